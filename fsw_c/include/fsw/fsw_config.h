@@ -1,0 +1,98 @@
+/* fsw_config: build-time configuration of the Kestrel flight library.
+ * Real type, capacities, numerical tolerances and the math-function names
+ * that go with the real type.  Every value can be overridden with -D; the
+ * CMake build exports the overrides to consumers so the library and its
+ * users always agree on structure layouts. */
+#ifndef FSW_CONFIG_H
+#define FSW_CONFIG_H
+
+#include <math.h>
+
+/* ---- Real type -----------------------------------------------------------
+ * FSW_USE_FLOAT = 0 (default): fsw_real is double.
+ * FSW_USE_FLOAT = 1: fsw_real is float (for FPUs without double support).
+ * Never mix the two in one build: the value is part of the ABI. */
+#ifndef FSW_USE_FLOAT
+#define FSW_USE_FLOAT 0
+#endif
+
+#if FSW_USE_FLOAT
+typedef float fsw_real;
+#define FSW_R(lit) (lit##f) /* typed literal: FSW_R(0.5) is 0.5f */
+#define FSW_SQRT sqrtf
+#define FSW_FABS fabsf
+#define FSW_SIN sinf
+#define FSW_COS cosf
+#define FSW_TAN tanf
+#define FSW_ACOS acosf
+#define FSW_ATAN atanf
+#define FSW_ATAN2 atan2f
+#define FSW_FLOOR floorf
+#define FSW_RINT rintf
+#define FSW_FREXP frexpf
+#define FSW_LDEXP ldexpf
+#define FSW_REAL_EPS FSW_R(1.1920929e-07)
+/* Pivot tolerance of the minimum-norm solve (fsw-algorithms.md 0.4 K1),
+ * relative to the largest diagonal of A A^T.  1e-12 in double; in single
+ * precision the Schur complement of an exactly singular M carries round-off
+ * of order 1e-7, so the threshold is raised to 1e-5. */
+#define FSW_RANK_TOL FSW_R(1e-5)
+/* Row-drop tolerance of the null-space projector (K2), relative to the
+ * original row norm: 1e-9 in double, 1e-4 in single precision. */
+#define FSW_NULL_TOL FSW_R(1e-4)
+#else
+typedef double fsw_real;
+#define FSW_R(lit) (lit)
+#define FSW_SQRT sqrt
+#define FSW_FABS fabs
+#define FSW_SIN sin
+#define FSW_COS cos
+#define FSW_TAN tan
+#define FSW_ACOS acos
+#define FSW_ATAN atan
+#define FSW_ATAN2 atan2
+#define FSW_FLOOR floor
+#define FSW_RINT rint
+#define FSW_FREXP frexp
+#define FSW_LDEXP ldexp
+#define FSW_REAL_EPS 2.220446049250313e-16
+#define FSW_RANK_TOL 1e-12
+#define FSW_NULL_TOL 1e-9
+#endif
+
+/* ---- Capacities -----------------------------------------------------------
+ * Fixed array sizes of every FSW struct.  Memory cost grows linearly (per
+ * wheel/thruster arrays) and quadratically (the wheel null-space projector,
+ * FSW_MAX_EFF^2 reals = 10.4 KiB at 36 in double). */
+#ifndef FSW_MAX_RW
+#define FSW_MAX_RW 36 /* [-] reaction wheels, allowed 3..64 */
+#endif
+#ifndef FSW_MAX_THR
+#define FSW_MAX_THR 36 /* [-] thrusters, allowed 1..64 (Basilisk MAX_EFF_CNT) */
+#endif
+
+#if FSW_MAX_RW < 3 || FSW_MAX_RW > 64
+#error "FSW_MAX_RW must be in 3..64"
+#endif
+#if FSW_MAX_THR < 1 || FSW_MAX_THR > 64
+#error "FSW_MAX_THR must be in 1..64"
+#endif
+
+/* Column capacity of the shared kernels (K1, K2): the larger of the two. */
+#if FSW_MAX_RW > FSW_MAX_THR
+#define FSW_MAX_EFF FSW_MAX_RW
+#else
+#define FSW_MAX_EFF FSW_MAX_THR
+#endif
+
+/* Availability flags (fsw-algorithms.md 0.1): zero-initialised = available. */
+#define FSW_AVAILABLE 0
+#define FSW_UNAVAILABLE 1
+
+/* C99 has no way to pass a non-const 2-D array to a const 2-D parameter
+ * without a diagnostic under -pedantic.  These add the qualifier explicitly
+ * (adding const is always safe). */
+#define FSW_CM33(a) ((const fsw_real(*)[3])(a))
+#define FSW_CM3N(a) ((const fsw_real(*)[FSW_MAX_EFF])(a))
+
+#endif /* FSW_CONFIG_H */

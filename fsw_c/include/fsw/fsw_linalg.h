@@ -1,0 +1,48 @@
+/* fsw_linalg: the shared numerical kernels of fsw-algorithms.md 0.4.
+ * K1 fsw_minnorm_solve: x = A^T (A A^T)^-1 b with a scale-invariant rank test.
+ * K2 fsw_null_projector: [tau] = I - Q^T Q, a true projector onto null([G])
+ *    for any rank of [G].
+ * Matrices with up to FSW_MAX_EFF columns are stored row-major in arrays of
+ * FSW_MAX_EFF columns; only the leading m x n block is read. */
+#ifndef FSW_LINALG_H
+#define FSW_LINALG_H
+
+#include <stdint.h>
+
+#include "fsw/fsw_config.h"
+#include "fsw/fsw_status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* K1.  A is m x n (1 <= m <= 3, 0 <= n <= FSW_MAX_EFF), b has m entries,
+ * x receives n entries.  Forms M = A A^T, factors it by Cholesky in fixed
+ * order and fails when a pivot is <= FSW_RANK_TOL * max_j M_jj, when n < m or
+ * when max_j M_jj == 0 (the test depends only on the shape of A, not on its
+ * units: scaling A by any c != 0 never changes the decision).
+ * Returns FSW_OK; FSW_E_SINGULAR (x = 0) when rank deficient;
+ * FSW_E_CAPACITY (x = 0) when m or n is out of range; FSW_E_BAD_INPUT
+ * (x = 0) when A or b hold NaN or Inf; FSW_E_NULL_ARG on NULL pointers.
+ * x[0..n-1] is always fully written (when x is not NULL). */
+FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_EFF],
+                            const fsw_real b[3], int m, int n);
+
+/* K2.  G is 3 x n.  tau (n x n, rows/columns beyond n untouched) becomes
+ * I - Q^T Q, Q an orthonormal basis of the row space of G by modified
+ * Gram-Schmidt over the rows in index order (one re-orthogonalisation pass),
+ * dropping a row whose residual is <= FSW_NULL_TOL x its original norm.
+ * `avail` (may be NULL = all available) masks columns: an UNAVAILABLE column
+ * is treated as absent and its row and column of tau are exactly 0.
+ * `rank` (may be NULL) receives the rank found (0..3).
+ * Returns FSW_OK; FSW_E_CAPACITY (tau = 0) if n is out of range;
+ * FSW_E_BAD_INPUT (tau = 0) if G holds NaN or Inf. */
+FswStatus fsw_null_projector(fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF],
+                             const fsw_real G[3][FSW_MAX_EFF], int n,
+                             const uint8_t avail[FSW_MAX_EFF], int *rank);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* FSW_LINALG_H */

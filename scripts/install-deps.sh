@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Install the Debian packages Kestrel needs, only those that are missing.
+# Usage: scripts/install-deps.sh [host|targets|all]   (default: all)
+set -euo pipefail
+what="${1:-all}"
+host_pkgs=(cmake ninja-build g++ gcc clang libgtest-dev googletest libbenchmark-dev
+           libeigen3-dev binutils python3)
+target_pkgs=(gcc-arm-none-eabi binutils-arm-none-eabi picolibc-arm-none-eabi
+             libstdc++-arm-none-eabi-picolibc qemu-system-arm qemu-user
+             g++-aarch64-linux-gnu g++-arm-linux-gnueabihf g++-s390x-linux-gnu)
+pkgs=()
+case "$what" in
+  host) pkgs=("${host_pkgs[@]}") ;;
+  targets) pkgs=("${target_pkgs[@]}") ;;
+  all) pkgs=("${host_pkgs[@]}" "${target_pkgs[@]}") ;;
+  *) echo "install-deps.sh: unknown set '$what' (host|targets|all)" >&2; exit 2 ;;
+esac
+missing=()
+for p in "${pkgs[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "install-deps: all ${#pkgs[@]} packages present"
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done"
