@@ -1,2 +1,416 @@
+// Kernels K1 (scale-invariant minimum-norm solve) and K2 (rank-robust
+// null-space projector) of fsw-algorithms.md 0.4.  Closed-form cases, an
+// independent normal-equation solver written here, and properties over
+// seeded random geometries with 3..FSW_MAX_EFF columns.
 #include <gtest/gtest.h>
-TEST(Placeholder, Builds) { SUCCEED(); }
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "fsw/fsw_linalg.h"
+#include "fsw/fsw_vec.h"
+#include "kestrel_test_support.h"
+
+namespace {
+
+const double kTol = kt::tol(1e-12, 2e-5);
+const fsw_real kNaN = std::numeric_limits<fsw_real>::quiet_NaN();
+
+struct Mat3N {
+  fsw_real a[3][FSW_MAX_EFF];
+};
+
+Mat3N random_matrix(kt::Rng& r, int m, int n, double scale = 1.0)
+{
+  Mat3N A;
+  std::memset(&A, 0, sizeof A);
+  for (int i = 0; i < m; i++)
+    for (int j = 0; j < n; j++) A.a[i][j] = static_cast<fsw_real>(scale * r.uniform(-1, 1));
+  return A;
+}
+
+/* Hadamard ratio det(A A^T) / prod(diag(A A^T)) in (0, 1]: 1 for orthogonal
+ * rows, 0 for dependent ones.  Used to keep random draws well conditioned
+ * where a test is about accuracy, not about the rank decision. */
+double hadamard_ratio(const Mat3N& A, int m, int n)
+{
+  double M[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (int i = 0; i < m; i++)
+    for (int j = 0; j < m; j++) {
+      double s = 0;
+      for (int k = 0; k < n; k++) s += static_cast<double>(A.a[i][k]) * A.a[j][k];
+      M[i][j] = s;
+    }
+  const double det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                     M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                     M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+  return det / (M[0][0] * M[1][1] * M[2][2]);
+}
+
+Mat3N random_well_conditioned(kt::Rng& r, int m, int n)
+{
+  Mat3N A = random_matrix(r, m, n);
+  while (hadamard_ratio(A, m, n) < 1e-2) A = random_matrix(r, m, n);
+  return A;
+}
+
+/* Independent reference: x = A^T (A A^T)^-1 b by Gauss-Jordan with partial
+ * pivoting in double (a different algorithm from the library's Cholesky). */
+void ref_minnorm(double* x, const Mat3N& A, const double* b, int m, int n)
+{
+  double M[3][4];
+  for (int i = 0; i < m; i++) {
+    for (int j = 0; j < m; j++) {
+      double s = 0;
+      for (int k = 0; k < n; k++) s += static_cast<double>(A.a[i][k]) * A.a[j][k];
+      M[i][j] = s;
+    }
+    M[i][m] = b[i];
+  }
+  for (int c = 0; c < m; c++) {
+    int p = c;
+    for (int i = c + 1; i < m; i++)
+      if (std::fabs(M[i][c]) > std::fabs(M[p][c])) p = i;
+    for (int j = 0; j <= m; j++) std::swap(M[c][j], M[p][j]);
+    for (int i = 0; i < m; i++) {
+      if (i == c) continue;
+      const double f = M[i][c] / M[c][c];
+      for (int j = 0; j <= m; j++) M[i][j] -= f * M[c][j];
+    }
+  }
+  double y[3];
+  for (int i = 0; i < m; i++) y[i] = M[i][m] / M[i][i];
+  for (int k = 0; k < n; k++) {
+    x[k] = 0;
+    for (int i = 0; i < m; i++) x[k] += static_cast<double>(A.a[i][k]) * y[i];
+  }
+}
+
+TEST(FswMinNorm, ClosedFormCases)
+{
+  Mat3N A;
+  std::memset(&A, 0, sizeof A);
+  fsw_real x[FSW_MAX_EFF], b[3] = {2, 0, 0};
+  // one row [1 1]: the minimum-norm split of 2 is (1, 1)
+  A.a[0][0] = 1;
+  A.a[0][1] = 1;
+  ASSERT_EQ(FSW_OK, fsw_minnorm_solve(x, A.a, b, 1, 2));
+  EXPECT_NEAR(1.0, x[0], kTol);
+  EXPECT_NEAR(1.0, x[1], kTol);
+  // 3 x 4 pyramid-like [I | 1]: A A^T = I + 1 1^T, (I + 11^T)^-1 = I - 11^T/4,
+  // so for b = (1,0,0): y = (3/4, -1/4, -1/4), x = A^T y = (3/4, -1/4, -1/4, 1/4).
+  std::memset(&A, 0, sizeof A);
+  for (int i = 0; i < 3; i++) {
+    A.a[i][i] = 1;
+    A.a[i][3] = 1;
+  }
+  fsw_real b1[3] = {1, 0, 0};
+  ASSERT_EQ(FSW_OK, fsw_minnorm_solve(x, A.a, b1, 3, 4));
+  EXPECT_NEAR(0.75, x[0], kTol);
+  EXPECT_NEAR(-0.25, x[1], kTol);
+  EXPECT_NEAR(-0.25, x[2], kTol);
+  EXPECT_NEAR(0.25, x[3], kTol);
+  // square, invertible: x = A^-1 b exactly
+  std::memset(&A, 0, sizeof A);
+  A.a[0][0] = 2;
+  A.a[1][1] = 4;
+  A.a[2][2] = FSW_R(0.5);
+  fsw_real b2[3] = {1, 1, 1};
+  ASSERT_EQ(FSW_OK, fsw_minnorm_solve(x, A.a, b2, 3, 3));
+  EXPECT_NEAR(0.5, x[0], kTol);
+  EXPECT_NEAR(0.25, x[1], kTol);
+  EXPECT_NEAR(2.0, x[2], kTol);
+}
+
+TEST(FswMinNorm, MatchesIndependentSolverAndIsMinimumNorm)
+{
+  kt::Rng r(201);
+  const int sizes[] = {3, 4, 6, 8, 12, FSW_MAX_EFF};
+  for (int n : sizes) {
+    for (int m = 1; m <= 3; m++) {
+      for (int k = 0; k < 20; k++) {
+        Mat3N A = random_well_conditioned(r, m, n);
+        fsw_real b[3] = {0, 0, 0}, x[FSW_MAX_EFF];
+        double bd[3] = {0, 0, 0}, xr[FSW_MAX_EFF];
+        for (int i = 0; i < m; i++) bd[i] = b[i] = static_cast<fsw_real>(r.uniform(-1, 1));
+        ASSERT_EQ(FSW_OK, fsw_minnorm_solve(x, A.a, b, m, n)) << "n=" << n << " m=" << m;
+        ref_minnorm(xr, A, bd, m, n);
+        const double xn = fsw_vn_norm(x, n) + 1e-300;
+        for (int j = 0; j < n; j++) EXPECT_NEAR(xr[j], x[j], kTol * 100 * xn);
+        // A x = b
+        for (int i = 0; i < m; i++) EXPECT_NEAR(b[i], fsw_vn_dot(A.a[i], x, n), kTol * 100 * (1 + xn));
+        // minimum norm: adding any null-space vector z (A z = 0) increases |x|.
+        // Build z by projecting a random vector with the K2 projector.
+        if (n > m) {
+          static fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF];
+          ASSERT_EQ(FSW_OK, fsw_null_projector(tau, A.a, n, nullptr, nullptr));
+          fsw_real v[FSW_MAX_EFF], z[FSW_MAX_EFF], xz[FSW_MAX_EFF];
+          for (int j = 0; j < n; j++) v[j] = static_cast<fsw_real>(r.uniform(-1, 1));
+          for (int j = 0; j < n; j++) z[j] = fsw_vn_dot(tau[j], v, n);
+          EXPECT_NEAR(0.0, fsw_vn_dot(x, z, n) / (xn * (fsw_vn_norm(z, n) + 1e-30)), kTol * 100);
+          fsw_vn_add(xz, x, z, n);
+          EXPECT_GE(fsw_vn_norm(xz, n), fsw_vn_norm(x, n) * (1 - kTol));
+        }
+      }
+    }
+  }
+}
+
+TEST(FswMinNorm, RankDecisionIsScaleInvariant)
+{
+  // A small spacecraft (lever arms in mm) and a large one (km) with the same
+  // shape get the same decision, and x scales as 1/c.  An absolute
+  // determinant threshold (Basilisk) would call the small one singular.
+  kt::Rng r(202);
+  const double scales[] = {1e-9, 1e-3, 1.0, 1e3, 1e9};
+  for (int k = 0; k < 50; k++) {
+    const int n = 4 + k % 8;
+    Mat3N A = random_well_conditioned(r, 3, n);
+    if (k % 5 == 0) {  // every fifth geometry: exactly coplanar columns
+      for (int j = 0; j < n; j++) A.a[2][j] = A.a[0][j] + A.a[1][j];
+    }
+    fsw_real b[3] = {FSW_R(0.3), FSW_R(-0.2), FSW_R(0.1)}, x1[FSW_MAX_EFF];
+    const FswStatus s1 = fsw_minnorm_solve(x1, A.a, b, 3, n);
+    EXPECT_EQ(k % 5 == 0 ? FSW_E_SINGULAR : FSW_OK, s1);
+    for (double c : scales) {
+      Mat3N Ac = A;
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < n; j++) Ac.a[i][j] = static_cast<fsw_real>(c * A.a[i][j]);
+      fsw_real xc[FSW_MAX_EFF];
+      EXPECT_EQ(s1, fsw_minnorm_solve(xc, Ac.a, b, 3, n)) << "scale " << c;
+      if (s1 == FSW_OK)
+        for (int j = 0; j < n; j++) EXPECT_NEAR(x1[j], c * xc[j], kTol * 100 * (1 + std::fabs(x1[j])));
+    }
+  }
+}
+
+TEST(FswMinNorm, RankDeficientGivesZeroAndStatus)
+{
+  Mat3N A;
+  fsw_real x[FSW_MAX_EFF], b[3] = {1, 2, 3};
+  // coplanar wheel axes: all columns in the x-y plane
+  std::memset(&A, 0, sizeof A);
+  for (int j = 0; j < 5; j++) {
+    A.a[0][j] = static_cast<fsw_real>(std::cos(0.3 * j));
+    A.a[1][j] = static_cast<fsw_real>(std::sin(0.3 * j));
+  }
+  for (int j = 0; j < FSW_MAX_EFF; j++) x[j] = 99;
+  EXPECT_EQ(FSW_E_SINGULAR, fsw_minnorm_solve(x, A.a, b, 3, 5));
+  for (int j = 0; j < 5; j++) EXPECT_EQ(0, x[j]);
+  // fewer columns than rows
+  EXPECT_EQ(FSW_E_SINGULAR, fsw_minnorm_solve(x, A.a, b, 3, 2));
+  // all zero
+  std::memset(&A, 0, sizeof A);
+  EXPECT_EQ(FSW_E_SINGULAR, fsw_minnorm_solve(x, A.a, b, 2, 4));
+  // n = 0 with m >= 1
+  EXPECT_EQ(FSW_E_SINGULAR, fsw_minnorm_solve(x, A.a, b, 1, 0));
+  // nearly dependent rows: threshold behaviour.  Row 2 = row 1 + d * e.
+  // The second Cholesky pivot is about d^2 |e_perp|^2 relative to |row1|^2.
+  kt::Rng r(203);
+  Mat3N B = random_matrix(r, 2, 6);
+  Mat3N Bd = B, Bc = B;
+  const double d_dep = kt::tol(1e-8, 1e-4), d_ok = kt::tol(1e-4, 1e-1);
+  for (int j = 0; j < 6; j++) {
+    const double e = r.uniform(-1, 1);
+    Bd.a[1][j] = static_cast<fsw_real>(B.a[0][j] + d_dep * e);
+    Bc.a[1][j] = static_cast<fsw_real>(B.a[0][j] + d_ok * e);
+  }
+  EXPECT_EQ(FSW_E_SINGULAR, fsw_minnorm_solve(x, Bd.a, b, 2, 6));
+  EXPECT_EQ(FSW_OK, fsw_minnorm_solve(x, Bc.a, b, 2, 6));
+}
+
+TEST(FswMinNorm, NonFiniteAndCapacity)
+{
+  kt::Rng r(204);
+  Mat3N A = random_matrix(r, 3, 6);
+  fsw_real x[FSW_MAX_EFF], b[3] = {1, 2, 3};
+  Mat3N An = A;
+  An.a[1][4] = kNaN;
+  for (int j = 0; j < FSW_MAX_EFF; j++) x[j] = 7;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_minnorm_solve(x, An.a, b, 3, 6));
+  for (int j = 0; j < 6; j++) EXPECT_EQ(0, x[j]);
+  // a NaN beyond the used block is not read
+  EXPECT_EQ(FSW_OK, fsw_minnorm_solve(x, An.a, b, 1, 6));
+  fsw_real bi[3] = {1, std::numeric_limits<fsw_real>::infinity(), 0};
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_minnorm_solve(x, A.a, bi, 3, 6));
+  EXPECT_EQ(FSW_E_CAPACITY, fsw_minnorm_solve(x, A.a, b, 0, 6));
+  EXPECT_EQ(FSW_E_CAPACITY, fsw_minnorm_solve(x, A.a, b, 4, 6));
+  EXPECT_EQ(FSW_E_CAPACITY, fsw_minnorm_solve(x, A.a, b, 3, -1));
+  EXPECT_EQ(FSW_E_CAPACITY, fsw_minnorm_solve(x, A.a, b, 3, FSW_MAX_EFF + 1));
+  for (int j = 0; j < FSW_MAX_EFF; j++) EXPECT_EQ(0, x[j]);  // clamped safe output
+  kestrel_assert_reset();
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_minnorm_solve(nullptr, A.a, b, 3, 6));
+  EXPECT_EQ(1ul, kestrel_assert_count());
+  kestrel_assert_reset();
+}
+
+TEST(FswMinNorm, HugeAndTinyEntriesDoNotOverflow)
+{
+  // Power-of-two pre-scaling keeps A A^T finite near the real's range ends.
+  Mat3N A;
+  std::memset(&A, 0, sizeof A);
+  const fsw_real big = std::numeric_limits<fsw_real>::max() / 8;
+  A.a[0][0] = big;
+  A.a[0][1] = big;
+  fsw_real x[FSW_MAX_EFF], b[3] = {big, 0, 0};
+  ASSERT_EQ(FSW_OK, fsw_minnorm_solve(x, A.a, b, 1, 2));
+  EXPECT_NEAR(0.5, x[0], kTol);
+  EXPECT_NEAR(0.5, x[1], kTol);
+}
+
+TEST(FswMinNorm, Repeatable)
+{
+  kt::Rng r(205);
+  Mat3N A = random_matrix(r, 3, 9);
+  fsw_real b[3] = {1, -1, FSW_R(0.5)}, x1[FSW_MAX_EFF], x2[FSW_MAX_EFF];
+  ASSERT_EQ(FSW_OK, fsw_minnorm_solve(x1, A.a, b, 3, 9));
+  ASSERT_EQ(FSW_OK, fsw_minnorm_solve(x2, A.a, b, 3, 9));
+  EXPECT_EQ(0, std::memcmp(x1, x2, 9 * sizeof(fsw_real)));
+}
+
+/* ---- K2 ---- */
+
+fsw_real g_tau[FSW_MAX_EFF][FSW_MAX_EFF];
+fsw_real g_tau2[FSW_MAX_EFF][FSW_MAX_EFF];
+
+void expect_projector(const fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF], const Mat3N& G, int n, int rank,
+                      double tol)
+{
+  // symmetric, idempotent, [G][tau] = 0, trace = n - rank
+  double tr = 0;
+  for (int i = 0; i < n; i++) {
+    tr += tau[i][i];
+    for (int j = 0; j < n; j++) {
+      EXPECT_EQ(tau[i][j], tau[j][i]);
+      double tt = 0;
+      for (int k = 0; k < n; k++) tt += static_cast<double>(tau[i][k]) * tau[k][j];
+      EXPECT_NEAR(tau[i][j], tt, tol);
+    }
+  }
+  EXPECT_NEAR(n - rank, tr, tol * n);
+  double gmax = 0;
+  for (int r = 0; r < 3; r++) gmax = std::fmax(gmax, fsw_vn_max_abs(G.a[r], n));
+  for (int r = 0; r < 3; r++)
+    for (int j = 0; j < n; j++) {
+      double s = 0;
+      for (int k = 0; k < n; k++) s += static_cast<double>(G.a[r][k]) * tau[k][j];
+      EXPECT_NEAR(0.0, s, tol * (1 + gmax) * n);
+    }
+}
+
+TEST(FswNullProjector, FullRankEqualsClosedForm)
+{
+  // [tau] = I - G^T (G G^T)^-1 G; column j of G^T (G G^T)^-1 G is the
+  // minimum-norm solution of G x = G e_j, so the reference uses ref_minnorm.
+  kt::Rng r(301);
+  const int sizes[] = {4, 5, 6, 12, FSW_MAX_EFF};
+  for (int n : sizes) {
+    Mat3N G = random_matrix(r, 3, n);
+    int rank = -1;
+    ASSERT_EQ(FSW_OK, fsw_null_projector(g_tau, G.a, n, nullptr, &rank));
+    EXPECT_EQ(3, rank);
+    for (int j = 0; j < n; j++) {
+      double b[3], col[FSW_MAX_EFF];
+      for (int i = 0; i < 3; i++) b[i] = G.a[i][j];
+      ref_minnorm(col, G, b, 3, n);
+      for (int i = 0; i < n; i++) EXPECT_NEAR((i == j ? 1.0 : 0.0) - col[i], g_tau[i][j], kTol * 100);
+    }
+    expect_projector(g_tau, G, n, 3, kTol * 100);
+  }
+}
+
+TEST(FswNullProjector, ThreeIndependentWheelsHaveNoNullSpace)
+{
+  kt::Rng r(302);
+  Mat3N G = random_well_conditioned(r, 3, 3);
+  int rank = 0;
+  ASSERT_EQ(FSW_OK, fsw_null_projector(g_tau, G.a, 3, nullptr, &rank));
+  EXPECT_EQ(3, rank);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) EXPECT_NEAR(0.0, g_tau[i][j], kTol * 10);
+}
+
+TEST(FswNullProjector, RankDeficientSetsStillGiveTrueProjector)
+{
+  kt::Rng r(303);
+  for (int k = 0; k < 30; k++) {
+    const int n = 3 + k % 10;
+    Mat3N G = random_matrix(r, 3, n);
+    int want_rank = 3;
+    if (k % 3 == 0) {  // coplanar: rank 2
+      for (int j = 0; j < n; j++) G.a[2][j] = FSW_R(0.5) * G.a[0][j] - FSW_R(2.0) * G.a[1][j];
+      want_rank = 2;
+    } else if (k % 3 == 1) {  // collinear: rank 1
+      for (int j = 0; j < n; j++) {
+        G.a[1][j] = FSW_R(3.0) * G.a[0][j];
+        G.a[2][j] = FSW_R(-1.0) * G.a[0][j];
+      }
+      want_rank = 1;
+    }
+    int rank = -1;
+    ASSERT_EQ(FSW_OK, fsw_null_projector(g_tau, G.a, n, nullptr, &rank));
+    EXPECT_EQ(want_rank, rank);
+    expect_projector(g_tau, G, n, want_rank, kTol * 100);
+  }
+  // all-zero geometry: nothing to avoid, tau = I, rank 0
+  Mat3N Z;
+  std::memset(&Z, 0, sizeof Z);
+  int rank = -1;
+  ASSERT_EQ(FSW_OK, fsw_null_projector(g_tau, Z.a, 4, nullptr, &rank));
+  EXPECT_EQ(0, rank);
+  for (int i = 0; i < 4; i++)
+    for (int j = 0; j < 4; j++) EXPECT_EQ(i == j ? 1 : 0, g_tau[i][j]);
+}
+
+TEST(FswNullProjector, AvailabilityMaskRemovesWheels)
+{
+  kt::Rng r(304);
+  const int n = 6;
+  Mat3N G = random_matrix(r, 3, n);
+  uint8_t avail[FSW_MAX_EFF] = {0};
+  avail[1] = FSW_UNAVAILABLE;
+  avail[4] = FSW_UNAVAILABLE;
+  ASSERT_EQ(FSW_OK, fsw_null_projector(g_tau, G.a, n, avail, nullptr));
+  // reference: projector of the 4 remaining columns, embedded
+  Mat3N Gr;
+  std::memset(&Gr, 0, sizeof Gr);
+  const int keep[] = {0, 2, 3, 5};
+  for (int i = 0; i < 3; i++)
+    for (int c = 0; c < 4; c++) Gr.a[i][c] = G.a[i][keep[c]];
+  ASSERT_EQ(FSW_OK, fsw_null_projector(g_tau2, Gr.a, 4, nullptr, nullptr));
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) {
+      if (avail[i] || avail[j]) {
+        EXPECT_EQ(0, g_tau[i][j]);
+      }
+    }
+  for (int a = 0; a < 4; a++)
+    for (int b = 0; b < 4; b++) EXPECT_NEAR(g_tau2[a][b], g_tau[keep[a]][keep[b]], kTol * 10);
+  // body torque of any null command is zero with the full G too
+  expect_projector(g_tau, G, n, 3 + 2 /* masked rows count as removed */, kTol * 100);
+}
+
+TEST(FswNullProjector, ScaleInvariantAndNonFinite)
+{
+  kt::Rng r(305);
+  Mat3N G = random_matrix(r, 3, 7);
+  ASSERT_EQ(FSW_OK, fsw_null_projector(g_tau, G.a, 7, nullptr, nullptr));
+  Mat3N Gs = G;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 7; j++) Gs.a[i][j] = G.a[i][j] * FSW_R(1e-7);
+  ASSERT_EQ(FSW_OK, fsw_null_projector(g_tau2, Gs.a, 7, nullptr, nullptr));
+  for (int i = 0; i < 7; i++)
+    for (int j = 0; j < 7; j++) EXPECT_NEAR(g_tau[i][j], g_tau2[i][j], kTol * 10);
+
+  G.a[2][3] = kNaN;
+  int rank = 9;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_null_projector(g_tau, G.a, 7, nullptr, &rank));
+  EXPECT_EQ(0, rank);
+  for (int i = 0; i < 7; i++)
+    for (int j = 0; j < 7; j++) EXPECT_EQ(0, g_tau[i][j]);
+  EXPECT_EQ(FSW_E_CAPACITY, fsw_null_projector(g_tau, G.a, FSW_MAX_EFF + 1, nullptr, nullptr));
+  EXPECT_EQ(FSW_E_CAPACITY, fsw_null_projector(g_tau, G.a, -2, nullptr, nullptr));
+}
+
+}  // namespace

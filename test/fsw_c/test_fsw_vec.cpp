@@ -1,2 +1,230 @@
+// Vector and 3x3 matrix operations: closed-form values, aliasing, and
+// properties over seeded random inputs.
 #include <gtest/gtest.h>
-TEST(Placeholder, Builds) { SUCCEED(); }
+
+#include <cmath>
+#include <limits>
+
+#include "fsw/fsw_vec.h"
+#include "kestrel_test_support.h"
+
+namespace {
+
+const double kTol = kt::tol(1e-14, 1e-6);
+
+void rnd3(kt::Rng& r, fsw_real v[3], double lo = -10.0, double hi = 10.0)
+{
+  for (int i = 0; i < 3; i++) v[i] = static_cast<fsw_real>(r.uniform(lo, hi));
+}
+void rnd33(kt::Rng& r, fsw_real m[3][3])
+{
+  for (int i = 0; i < 3; i++) rnd3(r, m[i]);
+}
+
+TEST(FswV3, ClosedFormValues)
+{
+  fsw_real a[3] = {1, 2, 3}, b[3] = {4, -5, 6}, c[3];
+  fsw_v3_add(c, a, b);
+  EXPECT_EQ(5, c[0]); EXPECT_EQ(-3, c[1]); EXPECT_EQ(9, c[2]);
+  fsw_v3_sub(c, a, b);
+  EXPECT_EQ(-3, c[0]); EXPECT_EQ(7, c[1]); EXPECT_EQ(-3, c[2]);
+  fsw_v3_scale(c, FSW_R(2.0), a);
+  EXPECT_EQ(2, c[0]); EXPECT_EQ(4, c[1]); EXPECT_EQ(6, c[2]);
+  fsw_v3_axpy(c, a, FSW_R(-1.0), b);
+  EXPECT_EQ(-3, c[0]); EXPECT_EQ(7, c[1]); EXPECT_EQ(-3, c[2]);
+  EXPECT_EQ(4 - 10 + 18, fsw_v3_dot(a, b));
+  // (1,2,3) x (4,-5,6) = (2*6 - 3*(-5), 3*4 - 1*6, 1*(-5) - 2*4) = (27, 6, -13)
+  fsw_v3_cross(c, a, b);
+  EXPECT_EQ(27, c[0]); EXPECT_EQ(6, c[1]); EXPECT_EQ(-13, c[2]);
+  EXPECT_EQ(14, fsw_v3_norm2(a));
+  fsw_real p[3] = {3, 4, 12};
+  EXPECT_NEAR(13.0, fsw_v3_norm(p), kTol * 13);
+  fsw_v3_zero(c);
+  EXPECT_EQ(0, c[0] + c[1] + c[2]);
+}
+
+TEST(FswV3, CrossIsAliasSafeAndOrthogonal)
+{
+  kt::Rng r(11);
+  for (int k = 0; k < 200; k++) {
+    fsw_real a[3], b[3], c[3], a2[3];
+    rnd3(r, a);
+    rnd3(r, b);
+    fsw_v3_cross(c, a, b);
+    fsw_v3_copy(a2, a);
+    fsw_v3_cross(a2, a2, b);  // output aliases first input
+    for (int i = 0; i < 3; i++) EXPECT_EQ(c[i], a2[i]);
+    const double scale = fsw_v3_norm(a) * fsw_v3_norm(b) * fsw_v3_norm(c) + 1e-300;
+    EXPECT_NEAR(0.0, fsw_v3_dot(c, a) / scale, kTol * 10);
+    EXPECT_NEAR(0.0, fsw_v3_dot(c, b) / scale, kTol * 10);
+  }
+}
+
+TEST(FswV3, NormalizeHandlesZeroAndNonFinite)
+{
+  fsw_real v[3] = {0, 0, 0}, out[3] = {9, 9, 9};
+  EXPECT_EQ(0, fsw_v3_normalize(out, v));
+  EXPECT_EQ(0, out[0]); EXPECT_EQ(0, out[1]); EXPECT_EQ(0, out[2]);
+  v[0] = std::numeric_limits<fsw_real>::quiet_NaN();
+  EXPECT_EQ(0, fsw_v3_normalize(out, v));
+  EXPECT_EQ(0, out[0]);
+  v[0] = std::numeric_limits<fsw_real>::infinity();
+  EXPECT_EQ(0, fsw_v3_normalize(out, v));
+  fsw_real w[3] = {0, -2, 0};
+  EXPECT_EQ(1, fsw_v3_normalize(w, w));
+  EXPECT_EQ(0, w[0]); EXPECT_EQ(-1, w[1]); EXPECT_EQ(0, w[2]);
+  EXPECT_FALSE(fsw_v3_is_finite(v));
+  EXPECT_TRUE(fsw_v3_is_finite(w));
+}
+
+TEST(FswVn, NormIsOverflowAndUnderflowSafe)
+{
+  const fsw_real big = std::numeric_limits<fsw_real>::max() / 4;
+  fsw_real v[2] = {big, big};
+  // |(b, b)| = b sqrt(2): the naive sum of squares overflows to Inf.
+  EXPECT_NEAR(1.0, fsw_vn_norm(v, 2) / (static_cast<double>(big) * std::sqrt(2.0)), kTol * 10);
+  const fsw_real tiny = std::numeric_limits<fsw_real>::min() * 8;
+  fsw_real t[2] = {tiny * 3, tiny * 4};  // squares underflow; the norm is 5 tiny
+  EXPECT_NEAR(1.0, fsw_vn_norm(t, 2) / (5.0 * static_cast<double>(tiny)), kTol * 10);
+  fsw_real z[4] = {0, 0, 0, 0};
+  EXPECT_EQ(0, fsw_vn_norm(z, 4));
+  EXPECT_EQ(0, fsw_vn_norm(z, 0));
+}
+
+TEST(FswVn, BasicOpsAndFiniteness)
+{
+  fsw_real a[5] = {1, -2, 3, -4, 5}, b[5] = {5, 4, 3, 2, 1}, c[5];
+  EXPECT_EQ(5 - 8 + 9 - 8 + 5, fsw_vn_dot(a, b, 5));
+  fsw_vn_add(c, a, b, 5);
+  EXPECT_EQ(6, c[0]); EXPECT_EQ(6, c[4]);
+  fsw_vn_sub(c, a, b, 5);
+  EXPECT_EQ(-4, c[0]); EXPECT_EQ(4, c[4]);
+  fsw_vn_scale(c, FSW_R(-2.0), a, 5);
+  EXPECT_EQ(-2, c[0]); EXPECT_EQ(8, c[3]);
+  EXPECT_EQ(5, fsw_vn_max_abs(a, 5));
+  fsw_vn_copy(c, a, 5);
+  for (int i = 0; i < 5; i++) EXPECT_EQ(a[i], c[i]);
+  fsw_vn_zero(c, 5);
+  for (int i = 0; i < 5; i++) EXPECT_EQ(0, c[i]);
+  EXPECT_TRUE(fsw_vn_is_finite(a, 5));
+  a[4] = std::numeric_limits<fsw_real>::quiet_NaN();
+  EXPECT_FALSE(fsw_vn_is_finite(a, 5));
+  EXPECT_TRUE(fsw_vn_is_finite(a, 4));  // only n entries are read
+  EXPECT_TRUE(std::isnan(fsw_vn_max_abs(a, 5)));  // NaN propagates
+}
+
+TEST(FswM33, ClosedFormValues)
+{
+  const fsw_real A[3][3] = {{2, 0, 1}, {1, 3, 2}, {1, 1, 1}};
+  // det = 2(3*1 - 2*1) - 0 + 1(1*1 - 3*1) = 2 - 2 = 0 -> use another one
+  const fsw_real B[3][3] = {{4, 7, 2}, {3, 6, 1}, {2, 5, 3}};
+  // det(B) = 4(18-5) - 7(9-2) + 2(15-12) = 52 - 49 + 6 = 9
+  EXPECT_NEAR(0.0, fsw_m33_det(A), kTol);
+  EXPECT_NEAR(9.0, fsw_m33_det(B), kTol * 9);
+  EXPECT_EQ(13, fsw_m33_trace(B));
+  fsw_real Binv[3][3];
+  ASSERT_EQ(1, fsw_m33_inverse(Binv, B, FSW_R(1e-9)));
+  // adj(B)/9: cofactors computed by hand
+  const double want[3][3] = {{13.0 / 9, -11.0 / 9, -5.0 / 9},
+                             {-7.0 / 9, 8.0 / 9, 2.0 / 9},
+                             {3.0 / 9, -6.0 / 9, 3.0 / 9}};
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) EXPECT_NEAR(want[i][j], Binv[i][j], kTol * 10);
+  fsw_real Ainv[3][3];
+  EXPECT_EQ(0, fsw_m33_inverse(Ainv, A, FSW_R(1e-9)));
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) EXPECT_EQ(0, Ainv[i][j]);
+
+  fsw_real v[3] = {1, 2, 3}, out[3];
+  fsw_m33_mult_v3(out, B, v);  // (4+14+6, 3+12+3, 2+10+9)
+  EXPECT_EQ(24, out[0]); EXPECT_EQ(18, out[1]); EXPECT_EQ(21, out[2]);
+  fsw_m33_tmult_v3(out, B, v);  // (4+6+6, 7+12+15, 2+2+9)
+  EXPECT_EQ(16, out[0]); EXPECT_EQ(34, out[1]); EXPECT_EQ(13, out[2]);
+}
+
+TEST(FswM33, InverseSingularityTestIsScaleInvariant)
+{
+  // The same nearly singular shape, expressed in tiny and in huge units,
+  // gets the same decision; an absolute determinant threshold would not.
+  kt::Rng r(5);
+  for (int k = 0; k < 50; k++) {
+    fsw_real M[3][3];
+    rnd33(r, M);
+    const fsw_real scales[] = {FSW_R(1e-6), FSW_R(1.0), FSW_R(1e6)};
+    int decisions[3];
+    for (int s = 0; s < 3; s++) {
+      fsw_real S[3][3], inv[3][3];
+      fsw_m33_scale(S, scales[s], FSW_CM33(M));
+      decisions[s] = fsw_m33_inverse(inv, FSW_CM33(S), FSW_R(1e-3));
+    }
+    EXPECT_EQ(decisions[0], decisions[1]);
+    EXPECT_EQ(decisions[1], decisions[2]);
+  }
+}
+
+TEST(FswM33, PropertiesOverRandomMatrices)
+{
+  kt::Rng r(7);
+  for (int k = 0; k < 200; k++) {
+    fsw_real A[3][3], B[3][3], AB[3][3], ABt[3][3], Bt[3][3], At[3][3], T[3][3];
+    rnd33(r, A);
+    rnd33(r, B);
+    fsw_m33_mult(AB, FSW_CM33(A), FSW_CM33(B));
+    // det(AB) = det(A) det(B)
+    const double dA = fsw_m33_det(FSW_CM33(A)), dB = fsw_m33_det(FSW_CM33(B));
+    EXPECT_NEAR(dA * dB, fsw_m33_det(FSW_CM33(AB)), kTol * 1e4 * (1 + std::fabs(dA * dB)));
+    // A B^T two ways
+    fsw_m33_transpose(Bt, FSW_CM33(B));
+    fsw_m33_mult(T, FSW_CM33(A), FSW_CM33(Bt));
+    fsw_m33_mult_t(ABt, FSW_CM33(A), FSW_CM33(B));
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) EXPECT_NEAR(T[i][j], ABt[i][j], kTol * 1e3);
+    // in-place transpose twice is the identity map
+    fsw_m33_copy(At, FSW_CM33(A));
+    fsw_m33_transpose(At, FSW_CM33(At));
+    fsw_m33_transpose(At, FSW_CM33(At));
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) EXPECT_EQ(A[i][j], At[i][j]);
+    // in-place multiply: A <- A B
+    fsw_m33_copy(T, FSW_CM33(A));
+    fsw_m33_mult(T, FSW_CM33(T), FSW_CM33(B));
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) EXPECT_EQ(AB[i][j], T[i][j]);
+    // A A^-1 = I when well conditioned
+    fsw_real inv[3][3], P[3][3];
+    if (fsw_m33_inverse(inv, FSW_CM33(A), FSW_R(1e-2))) {
+      fsw_m33_mult(P, FSW_CM33(A), FSW_CM33(inv));
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) EXPECT_NEAR(i == j ? 1.0 : 0.0, P[i][j], kTol * 1e4);
+    }
+    // add/sub/scale
+    fsw_real S[3][3], D[3][3];
+    fsw_m33_add(S, FSW_CM33(A), FSW_CM33(B));
+    fsw_m33_sub(D, FSW_CM33(S), FSW_CM33(B));
+    fsw_m33_scale(T, FSW_R(2.0), FSW_CM33(A));
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) {
+        EXPECT_NEAR(A[i][j], D[i][j], kTol * 1e2);
+        EXPECT_EQ(2 * A[i][j], T[i][j]);
+      }
+  }
+}
+
+TEST(FswM33, IdentityZeroAndFiniteness)
+{
+  fsw_real I[3][3], Z[3][3];
+  fsw_m33_identity(I);
+  fsw_m33_zero(Z);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      EXPECT_EQ(i == j ? 1 : 0, I[i][j]);
+      EXPECT_EQ(0, Z[i][j]);
+    }
+  EXPECT_TRUE(fsw_m33_is_finite(FSW_CM33(I)));
+  I[2][1] = std::numeric_limits<fsw_real>::infinity();
+  EXPECT_FALSE(fsw_m33_is_finite(FSW_CM33(I)));
+  fsw_real inv[3][3];
+  EXPECT_EQ(0, fsw_m33_inverse(inv, FSW_CM33(I), FSW_R(1e-9)));
+}
+
+}  // namespace
