@@ -1,0 +1,74 @@
+/* rw_map: reaction-wheel torque mapping (fsw-algorithms.md 4 and 5).
+ * Turns the control torque Lr (the torque the wheels must put on the body)
+ * into wheel motor torques u_s with [C][Gs_a] u_s,a = -[C] Lr over the
+ * available wheels a, choosing among all solutions either
+ *   FSW_RW_MAP_MIN_NORM  the minimum Euclidean norm (Basilisk rwMotorTorque), or
+ *   FSW_RW_MAP_POWER     the minimum of sum W_i u_i^2, W_i = Omega_i^2 + eps_P
+ *                        (L2 power-optimal, Schaub & Lappas 2009, with the
+ *                        library's named regularisation eps_P).
+ * No saturation is applied here (rw_sat).  Stateless apart from health.
+ * Frames: B.  Units: SI.
+ * Safe output: u_s = 0 for every wheel. */
+#ifndef FSW_RW_MAP_H
+#define FSW_RW_MAP_H
+
+#include <stdint.h>
+
+#include "fsw/fsw_config.h"
+#include "fsw/fsw_status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum {
+  FSW_RW_MAP_MIN_NORM = 0, /* section 4 (default of a zeroed config) */
+  FSW_RW_MAP_POWER = 1     /* section 5 */
+} FswRwMapMode;
+
+/* Default eps_P of fsw-algorithms.md 5.2 [rad^2/s^2]. */
+#define FSW_RW_MAP_EPS_P_DEFAULT FSW_R(1.0)
+
+typedef struct {
+  int num_rw;                       /* [-]     1..FSW_MAX_RW                       */
+  fsw_real gs_hat_B[FSW_MAX_RW][3]; /* [-]     (num_rw) spin axes, unit, B         */
+  int num_axes;                     /* [-]     nc, 0..3 controlled axes (0: u = 0) */
+  fsw_real ctrl_axes_B[3][3];       /* [-]     (num_axes) rows c_j: unit within
+                                       FSW_RW_UNIT_TOL, mutually orthogonal within
+                                       FSW_RW_ORTHO_TOL                           */
+  int mode;                         /* [-]     FswRwMapMode                        */
+  fsw_real eps_P;                   /* [rad^2/s^2] POWER only: finite, > 0        */
+} FswRwMapConfig;
+
+typedef struct {
+  int ready;        /* 1 after a successful init */
+  FswHealth health; /* counters read by the harness */
+} FswRwMapState;
+
+typedef struct {
+  fsw_real Lr_B[3];           /* [N*m]   torque the wheels must apply to the body */
+  fsw_real Omega[FSW_MAX_RW]; /* [rad/s] (num_rw) wheel speeds rel. body (POWER) */
+  uint8_t avail[FSW_MAX_RW];  /* [-]     (num_rw) FSW_AVAILABLE (0) / FSW_UNAVAILABLE (1);
+                                 all zero = all available                      */
+} FswRwMapIn;
+
+typedef struct {
+  fsw_real u_s[FSW_MAX_RW]; /* [N*m] (num_rw) motor torques; 0 beyond num_rw */
+} FswRwMapOut;
+
+/* FSW_OK, FSW_E_CAPACITY (num_rw), FSW_E_CONFIG (axes, mode, eps_P). */
+FswStatus fsw_rw_map_check(const FswRwMapConfig *cfg);
+FswStatus fsw_rw_map_init(FswRwMapState *st, const FswRwMapConfig *cfg);
+void fsw_rw_map_reset(FswRwMapState *st);
+/* FSW_OK; FSW_W_SINGULAR (u = 0) when the available wheels cannot produce
+ * torque about every control axis (fewer than nc available, or [C][Gs_a]
+ * rank deficient); FSW_E_BAD_INPUT (u = 0) for non-finite Lr, non-finite
+ * Omega in POWER mode or a mask entry other than 0/1; FSW_E_NOT_INIT. */
+FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
+                            const FswRwMapIn *in, FswRwMapOut *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* FSW_RW_MAP_H */

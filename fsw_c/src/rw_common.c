@@ -1,0 +1,102 @@
+/* rw_common: checks, cached null-space projector and scale-to-fit shared by
+ * the reaction-wheel modules. */
+#include "fsw/rw_common.h"
+
+#include <stddef.h>
+
+#include "fsw/fsw_linalg.h"
+#include "fsw/fsw_vec.h"
+
+FswStatus fsw_rw_check_axes(const fsw_real gs_hat_B[FSW_MAX_RW][3], int num_rw, int min_rw)
+{
+  int i;
+  if (num_rw < min_rw || num_rw > FSW_MAX_RW) return FSW_E_CAPACITY;
+  for (i = 0; i < num_rw; i++) {
+    if (!fsw_v3_is_finite(gs_hat_B[i])) return FSW_E_CONFIG;
+    if (FSW_FABS(fsw_v3_norm(gs_hat_B[i]) - FSW_R(1.0)) > FSW_RW_UNIT_TOL) return FSW_E_CONFIG;
+  }
+  return FSW_OK;
+}
+
+int fsw_rw_all_positive(const fsw_real *v, int n)
+{
+  int i;
+  for (i = 0; i < n; i++)
+    if (!isfinite(v[i]) || !(v[i] > FSW_R(0.0))) return 0;
+  return 1;
+}
+
+int fsw_rw_avail_valid(const uint8_t avail[FSW_MAX_RW], int n)
+{
+  int i;
+  for (i = 0; i < n; i++)
+    if (avail[i] != FSW_AVAILABLE && avail[i] != FSW_UNAVAILABLE) return 0;
+  return 1;
+}
+
+void fsw_rw_zero(fsw_real u[FSW_MAX_RW]) { fsw_vn_zero(u, FSW_MAX_RW); }
+
+static void proj_compute(FswRwNullProj *p)
+{
+  int i;
+  p->num_avail = 0;
+  for (i = 0; i < p->num_rw; i++)
+    if (p->avail[i] == FSW_AVAILABLE) p->num_avail++;
+  /* G is finite (checked config) and num_rw in range: K2 cannot fail */
+  (void)fsw_null_projector(p->tau, FSW_CM3N(p->G), p->num_rw, p->avail, &p->rank);
+}
+
+void fsw_rw_proj_init(FswRwNullProj *p, const fsw_real gs_hat_B[FSW_MAX_RW][3], int num_rw)
+{
+  int i, r;
+  for (i = 0; i < FSW_MAX_EFF; i++) {
+    for (r = 0; r < 3; r++) p->G[r][i] = (i < num_rw) ? gs_hat_B[i][r] : FSW_R(0.0);
+    fsw_vn_zero(p->tau[i], FSW_MAX_EFF);
+  }
+  for (i = 0; i < FSW_MAX_RW; i++) p->avail[i] = FSW_AVAILABLE;
+  p->num_rw = num_rw;
+  proj_compute(p);
+}
+
+int fsw_rw_proj_refresh(FswRwNullProj *p, const uint8_t avail[FSW_MAX_RW])
+{
+  int i, changed = 0;
+  for (i = 0; i < p->num_rw; i++) {
+    uint8_t a = (avail == NULL) ? (uint8_t)FSW_AVAILABLE : avail[i];
+    if (a != p->avail[i]) changed = 1;
+    p->avail[i] = a;
+  }
+  if (changed) proj_compute(p);
+  return changed;
+}
+
+fsw_real fsw_rw_add_scaled_to_fit(fsw_real *out, const fsw_real *u_c, const fsw_real *du,
+                                  const fsw_real *u_max, int n)
+{
+  fsw_real kappa = FSW_R(1.0);
+  int i;
+  if (u_max != NULL) {
+    for (i = 0; i < n; i++) {
+      fsw_real step;
+      if (FSW_FABS(u_c[i]) > u_max[i]) {
+        kappa = FSW_R(0.0);
+        break;
+      }
+      if (du[i] > FSW_R(0.0))
+        step = (u_max[i] - u_c[i]) / du[i];
+      else if (du[i] < FSW_R(0.0))
+        step = (-u_max[i] - u_c[i]) / du[i];
+      else
+        continue;
+      if (step < kappa) kappa = step;
+    }
+  }
+  for (i = 0; i < n; i++) out[i] = u_c[i] + kappa * du[i];
+  if (u_max != NULL && kappa > FSW_R(0.0)) {
+    for (i = 0; i < n; i++) {
+      if (out[i] > u_max[i]) out[i] = u_max[i];
+      if (out[i] < -u_max[i]) out[i] = -u_max[i];
+    }
+  }
+  return kappa;
+}

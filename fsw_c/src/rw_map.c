@@ -1,0 +1,112 @@
+/* rw_map: minimum-norm (section 4) and L2 power-optimal (section 5) wheel
+ * torque mapping.  Both are one weighted minimum-norm problem
+ *   min sum_k u_k^2 / y_k   s.t.  A u = b,  A = [C][Gs_a],  b = -[C] Lr,
+ * with y_k = 1 (min-norm) or y_k = 1/(Omega_k^2 + eps_P) (power), solved as
+ * in 5.3: columns scaled by sqrt(y), K1, then scaled back.
+ * K1 works on the normal equations, whose rounding grows with cond(A)^2; one
+ * step of iterative refinement (r = b - A x, x += K1(A, r)) brings the torque
+ * residual back to ~eps * |A| |x| (fsw-algorithms.md 5.3 asks for 1e-12
+ * relative, which badly conditioned 3-wheel sets miss without it).  The
+ * correction lies in the row space of A, so x stays the minimum-norm
+ * solution. */
+#include "fsw/rw_map.h"
+
+#include <stddef.h>
+
+#include "fsw/fsw_linalg.h"
+#include "fsw/fsw_vec.h"
+#include "fsw/rw_common.h"
+
+FswStatus fsw_rw_map_check(const FswRwMapConfig *cfg)
+{
+  FswStatus s;
+  int j, k;
+  FSW_ASSERT(cfg != NULL);
+  if (cfg == NULL) return FSW_E_NULL_ARG;
+  s = fsw_rw_check_axes(cfg->gs_hat_B, cfg->num_rw, 1);
+  if (s != FSW_OK) return s;
+  if (cfg->num_axes < 0 || cfg->num_axes > 3) return FSW_E_CONFIG;
+  for (j = 0; j < cfg->num_axes; j++) {
+    if (!fsw_v3_is_finite(cfg->ctrl_axes_B[j])) return FSW_E_CONFIG;
+    if (FSW_FABS(fsw_v3_norm(cfg->ctrl_axes_B[j]) - FSW_R(1.0)) > FSW_RW_UNIT_TOL)
+      return FSW_E_CONFIG;
+    for (k = 0; k < j; k++)
+      if (FSW_FABS(fsw_v3_dot(cfg->ctrl_axes_B[j], cfg->ctrl_axes_B[k])) > FSW_RW_ORTHO_TOL)
+        return FSW_E_CONFIG;
+  }
+  if (cfg->mode == FSW_RW_MAP_POWER) {
+    if (!fsw_rw_all_positive(&cfg->eps_P, 1)) return FSW_E_CONFIG;
+  } else if (cfg->mode != FSW_RW_MAP_MIN_NORM) {
+    return FSW_E_CONFIG;
+  }
+  return FSW_OK;
+}
+
+FswStatus fsw_rw_map_init(FswRwMapState *st, const FswRwMapConfig *cfg)
+{
+  FswStatus s;
+  FSW_ASSERT(st != NULL && cfg != NULL);
+  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  st->ready = 0;
+  fsw_health_clear(&st->health);
+  s = fsw_rw_map_check(cfg);
+  if (s != FSW_OK) return s;
+  st->ready = 1;
+  fsw_rw_map_reset(st);
+  return FSW_OK;
+}
+
+void fsw_rw_map_reset(FswRwMapState *st)
+{
+  FSW_ASSERT(st != NULL);
+  /* stateless: nothing time-varying to clear */
+  (void)st;
+}
+
+FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
+                            const FswRwMapIn *in, FswRwMapOut *out)
+{
+  fsw_real A[3][FSW_MAX_EFF]; /* [C][Gs_a] diag(sqrt(y)), nc x n_a */
+  fsw_real x[FSW_MAX_EFF], dx[FSW_MAX_EFF];
+  fsw_real sy[FSW_MAX_RW]; /* sqrt(y_k) of the available wheels */
+  int idx[FSW_MAX_RW];     /* indices of the available wheels, ascending */
+  fsw_real b[3], r[3];
+  int n, nc, na = 0, i, j, k;
+  FswStatus s;
+
+  FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
+  if (out != NULL) fsw_rw_zero(out->u_s); /* safe output */
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
+  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  n = cfg->num_rw;
+  nc = cfg->num_axes;
+
+  if (!fsw_v3_is_finite(in->Lr_B) || !fsw_rw_avail_valid(in->avail, n) ||
+      (cfg->mode == FSW_RW_MAP_POWER && !fsw_vn_is_finite(in->Omega, n)))
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (nc == 0) return fsw_health_record(&st->health, FSW_OK);
+
+  for (i = 0; i < n; i++) {
+    if (in->avail[i] != FSW_AVAILABLE) continue;
+    idx[na] = i;
+    /* y = 1/W, W = Omega^2 + eps_P (5.2); Omega^2 overflowing gives y = 0 */
+    sy[na] = (cfg->mode == FSW_RW_MAP_POWER)
+                 ? FSW_SQRT(FSW_R(1.0) / (in->Omega[i] * in->Omega[i] + cfg->eps_P))
+                 : FSW_R(1.0);
+    na++;
+  }
+  if (na < nc) return fsw_health_record(&st->health, FSW_W_SINGULAR);
+
+  for (j = 0; j < nc; j++) {
+    b[j] = -fsw_v3_dot(cfg->ctrl_axes_B[j], in->Lr_B);
+    for (k = 0; k < na; k++) A[j][k] = fsw_v3_dot(cfg->ctrl_axes_B[j], cfg->gs_hat_B[idx[k]]) * sy[k];
+  }
+  s = fsw_minnorm_solve(x, FSW_CM3N(A), b, nc, na);
+  if (s == FSW_E_SINGULAR) return fsw_health_record(&st->health, FSW_W_SINGULAR);
+  if (s != FSW_OK) return fsw_health_record(&st->health, s); /* not reached: inputs checked */
+  for (j = 0; j < nc; j++) r[j] = b[j] - fsw_vn_dot(A[j], x, na);
+  if (fsw_minnorm_solve(dx, FSW_CM3N(A), r, nc, na) == FSW_OK)
+    for (k = 0; k < na; k++) x[k] += dx[k];
+  for (k = 0; k < na; k++) out->u_s[idx[k]] = x[k] * sy[k];
+  return fsw_health_record(&st->health, FSW_OK);
+}

@@ -1,0 +1,389 @@
+// rw_map: minimum-norm (fsw-algorithms.md 4) and L2 power-optimal (5) wheel
+// torque mapping.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "fsw/rw_common.h"
+#include "fsw/rw_map.h"
+#include "kestrel_test_support.h"
+#include "rw_test_util.h"
+
+namespace {
+
+const double kI3[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+
+struct Fixture {
+  std::unique_ptr<FswRwMapConfig> cfg = rwt::make0<FswRwMapConfig>();
+  std::unique_ptr<FswRwMapState> st = rwt::make0<FswRwMapState>();
+  std::unique_ptr<FswRwMapIn> in = rwt::make0<FswRwMapIn>();
+  std::unique_ptr<FswRwMapOut> out = rwt::make0<FswRwMapOut>();
+
+  // all three body axes controlled, given wheel axes
+  void setup(const double g[][3], int n, int mode = FSW_RW_MAP_MIN_NORM)
+  {
+    cfg->num_rw = n;
+    rwt::set_axes(cfg->gs_hat_B, g, n);
+    cfg->num_axes = 3;
+    for (int j = 0; j < 3; j++)
+      for (int r = 0; r < 3; r++) cfg->ctrl_axes_B[j][r] = static_cast<fsw_real>(kI3[j][r]);
+    cfg->mode = mode;
+    cfg->eps_P = FSW_RW_MAP_EPS_P_DEFAULT;
+  }
+  FswStatus init() { return fsw_rw_map_init(st.get(), cfg.get()); }
+  FswStatus update() { return fsw_rw_map_update(st.get(), cfg.get(), in.get(), out.get()); }
+  void set_Lr(double x, double y, double z)
+  {
+    in->Lr_B[0] = static_cast<fsw_real>(x);
+    in->Lr_B[1] = static_cast<fsw_real>(y);
+    in->Lr_B[2] = static_cast<fsw_real>(z);
+  }
+  void fill_out_with_garbage()
+  {
+    for (int i = 0; i < FSW_MAX_RW; i++) out->u_s[i] = static_cast<fsw_real>(123.0);
+  }
+};
+
+Fixture pyramid(int mode = FSW_RW_MAP_MIN_NORM)
+{
+  double g[4][3];
+  rwt::pyramid4(g);
+  Fixture f;
+  f.setup(g, 4, mode);
+  EXPECT_EQ(f.init(), FSW_OK);
+  return f;
+}
+
+void expect_all_zero(const FswRwMapOut& out)
+{
+  for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(out.u_s[i], 0.0) << "wheel " << i;
+}
+
+double rel_residual(const FswRwMapConfig& cfg, const fsw_real* u, const fsw_real* Lr)
+{
+  double t[3];
+  rwt::gs_times(t, cfg.gs_hat_B, u, cfg.num_rw);
+  double r[3], L[3];
+  for (int k = 0; k < 3; k++) {
+    L[k] = static_cast<double>(Lr[k]);
+    r[k] = t[k] + L[k];  // [Gs] u = -Lr
+  }
+  return rwt::norm3(r) / rwt::norm3(L);
+}
+
+}  // namespace
+
+// ---- configuration -------------------------------------------------------
+
+TEST(RwMapConfig, RejectsBadConfigurationsTableDriven)
+{
+  struct Row {
+    const char* why;
+    void (*spoil)(FswRwMapConfig*);
+    FswStatus want;
+  };
+  static const Row rows[] = {
+      {"no wheels", [](FswRwMapConfig* c) { c->num_rw = 0; }, FSW_E_CAPACITY},
+      {"more wheels than FSW_MAX_RW", [](FswRwMapConfig* c) { c->num_rw = FSW_MAX_RW + 1; }, FSW_E_CAPACITY},
+      {"spin axis not unit", [](FswRwMapConfig* c) { c->gs_hat_B[2][0] *= FSW_R(1.01); }, FSW_E_CONFIG},
+      {"spin axis zero", [](FswRwMapConfig* c) { c->gs_hat_B[1][0] = c->gs_hat_B[1][1] = c->gs_hat_B[1][2] = 0; }, FSW_E_CONFIG},
+      {"spin axis NaN", [](FswRwMapConfig* c) { c->gs_hat_B[3][2] = std::numeric_limits<fsw_real>::quiet_NaN(); }, FSW_E_CONFIG},
+      {"negative axis count", [](FswRwMapConfig* c) { c->num_axes = -1; }, FSW_E_CONFIG},
+      {"four control axes", [](FswRwMapConfig* c) { c->num_axes = 4; }, FSW_E_CONFIG},
+      {"control axis not unit", [](FswRwMapConfig* c) { c->ctrl_axes_B[1][1] = FSW_R(2.0); }, FSW_E_CONFIG},
+      {"control axes not orthogonal",
+       [](FswRwMapConfig* c) {
+         c->ctrl_axes_B[1][0] = FSW_R(0.6);
+         c->ctrl_axes_B[1][1] = FSW_R(0.8);
+       },
+       FSW_E_CONFIG},
+      {"control axis Inf", [](FswRwMapConfig* c) { c->ctrl_axes_B[0][0] = std::numeric_limits<fsw_real>::infinity(); }, FSW_E_CONFIG},
+      {"unknown mode", [](FswRwMapConfig* c) { c->mode = 7; }, FSW_E_CONFIG},
+      {"power mode, eps_P zero",
+       [](FswRwMapConfig* c) {
+         c->mode = FSW_RW_MAP_POWER;
+         c->eps_P = 0;
+       },
+       FSW_E_CONFIG},
+      {"power mode, eps_P negative",
+       [](FswRwMapConfig* c) {
+         c->mode = FSW_RW_MAP_POWER;
+         c->eps_P = -1;
+       },
+       FSW_E_CONFIG},
+      {"power mode, eps_P NaN",
+       [](FswRwMapConfig* c) {
+         c->mode = FSW_RW_MAP_POWER;
+         c->eps_P = std::numeric_limits<fsw_real>::quiet_NaN();
+       },
+       FSW_E_CONFIG},
+  };
+  for (const Row& row : rows) {
+    Fixture f = pyramid();
+    row.spoil(f.cfg.get());
+    EXPECT_EQ(fsw_rw_map_check(f.cfg.get()), row.want) << row.why;
+    EXPECT_EQ(f.init(), row.want) << row.why;
+    EXPECT_EQ(f.st->ready, 0) << row.why;
+    f.set_Lr(0.1, 0.2, 0.3);
+    f.fill_out_with_garbage();
+    EXPECT_EQ(f.update(), FSW_E_NOT_INIT) << row.why;
+    expect_all_zero(*f.out);
+  }
+}
+
+TEST(RwMapConfig, AcceptsZeroAxesAndEpsIgnoredInMinNorm)
+{
+  Fixture f = pyramid();
+  f.cfg->eps_P = 0;  // not used by MIN_NORM
+  f.cfg->num_axes = 0;
+  EXPECT_EQ(f.init(), FSW_OK);
+  f.set_Lr(1, 2, 3);
+  f.fill_out_with_garbage();
+  EXPECT_EQ(f.update(), FSW_OK);  // nc = 0: all zeros (4, step 2)
+  expect_all_zero(*f.out);
+}
+
+TEST(RwMapConfig, NullArgumentsAssertAndReturn)
+{
+  Fixture f = pyramid();
+  kestrel_assert_reset();
+  EXPECT_EQ(fsw_rw_map_check(nullptr), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_rw_map_init(nullptr, f.cfg.get()), FSW_E_NULL_ARG);
+  f.fill_out_with_garbage();
+  EXPECT_EQ(fsw_rw_map_update(f.st.get(), f.cfg.get(), nullptr, f.out.get()), FSW_E_NULL_ARG);
+  expect_all_zero(*f.out);
+  EXPECT_EQ(kestrel_assert_count(), 3u);
+  kestrel_assert_reset();
+}
+
+// ---- nominal numbers -----------------------------------------------------
+
+// Pyramid: [Gs][Gs]^T = (4/3) I, so u = -[Gs]^T (3/4) Lr.  With
+// Lr = (0.03, -0.06, 0.12) and g_1 = (1,1,1)/sqrt(3):
+//   u_1 = -(3/4)(0.03 - 0.06 + 0.12)/sqrt(3) = -0.0675/sqrt(3)
+//   u_2 = -(3/4)(-0.03 - 0.06 + 0.12)/sqrt(3) = -0.0225/sqrt(3)
+//   u_3 = -(3/4)(-0.03 + 0.06 + 0.12)/sqrt(3) = -0.1125/sqrt(3)
+//   u_4 = -(3/4)(0.03 + 0.06 + 0.12)/sqrt(3) = -0.1575/sqrt(3)
+TEST(RwMapNominal, PyramidMinimumNormClosedForm)
+{
+  Fixture f = pyramid();
+  f.set_Lr(0.03, -0.06, 0.12);
+  f.fill_out_with_garbage();
+  ASSERT_EQ(f.update(), FSW_OK);
+  const double s3 = std::sqrt(3.0);
+  const double want[4] = {-0.0675 / s3, -0.0225 / s3, -0.1125 / s3, -0.1575 / s3};
+  for (int i = 0; i < 4; i++) EXPECT_NEAR(f.out->u_s[i], want[i], kt::tol(1e-15, 1e-7)) << i;
+  for (int i = 4; i < FSW_MAX_RW; i++) EXPECT_EQ(f.out->u_s[i], 0.0);
+  EXPECT_EQ(f.st->health.calls, 1u);
+}
+
+// Two control axes (x, y): A = rows 1, 2 of [Gs], A A^T = (4/3) I_2, so
+// u_i = -(3/4)(g_ix Lr_x + g_iy Lr_y); the z torque is not controlled.
+// Lr = (0.4, 0.2, 9): u = -(3/4)/sqrt(3) * (0.6, -0.2, -0.6, 0.2).
+TEST(RwMapNominal, PyramidTwoAxesLeavesZUncontrolled)
+{
+  Fixture f = pyramid();
+  f.cfg->num_axes = 2;
+  ASSERT_EQ(f.init(), FSW_OK);
+  f.set_Lr(0.4, 0.2, 9.0);
+  ASSERT_EQ(f.update(), FSW_OK);
+  const double k = -0.75 / std::sqrt(3.0);
+  const double want[4] = {0.6 * k, -0.2 * k, -0.6 * k, 0.2 * k};
+  for (int i = 0; i < 4; i++) EXPECT_NEAR(f.out->u_s[i], want[i], kt::tol(1e-15, 1e-7)) << i;
+}
+
+// Wheel 4 unavailable: the remaining three axes are independent, so the
+// solution is unique: u = -[Gs_a]^-1 Lr.  For Lr = (1, 0, 0) N*m:
+// g1 - g2 = (2/sqrt3, 0, 0) gives u1 = -sqrt(3)/2, u2 = +sqrt(3)/2 and u3 = 0
+// (check: -sqrt3/2 g1 + sqrt3/2 g2 = (-1, 0, 0) = -Lr).
+TEST(RwMapNominal, UnavailableWheelGetsExactlyZero)
+{
+  Fixture f = pyramid();
+  f.in->avail[3] = FSW_UNAVAILABLE;
+  f.set_Lr(1, 0, 0);
+  ASSERT_EQ(f.update(), FSW_OK);
+  EXPECT_NEAR(f.out->u_s[0], -std::sqrt(3.0) / 2, kt::tol(1e-14, 1e-6));
+  EXPECT_NEAR(f.out->u_s[1], std::sqrt(3.0) / 2, kt::tol(1e-14, 1e-6));
+  EXPECT_NEAR(f.out->u_s[2], 0.0, kt::tol(1e-14, 1e-6));
+  EXPECT_EQ(f.out->u_s[3], 0.0);
+}
+
+TEST(RwMapNominal, FewerAvailableThanAxesGivesZerosAndWarning)
+{
+  Fixture f = pyramid();
+  f.in->avail[0] = f.in->avail[1] = FSW_UNAVAILABLE;
+  f.set_Lr(0.1, 0.1, 0.1);
+  f.fill_out_with_garbage();
+  EXPECT_EQ(f.update(), FSW_W_SINGULAR);
+  expect_all_zero(*f.out);
+  EXPECT_EQ(f.st->health.singular, 1u);
+}
+
+// Three coplanar wheels (all axes in the x-y plane) cannot make a z torque.
+// Basilisk's |det| > 1e-30 test lets nearly coplanar sets through with huge
+// torques; K1's relative pivot test refuses them.
+TEST(RwMapNominal, CoplanarAvailableSetGivesZerosAndWarning)
+{
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  const double g[3][3] = {{1, 0, 0}, {0, 1, 0}, {c, s, 0}};
+  Fixture f;
+  f.setup(g, 3);
+  ASSERT_EQ(f.init(), FSW_OK);
+  f.set_Lr(0.1, 0.2, 0.3);
+  EXPECT_EQ(f.update(), FSW_W_SINGULAR);
+  expect_all_zero(*f.out);
+  // and the same set does fine with x, y control only
+  f.cfg->num_axes = 2;
+  ASSERT_EQ(f.init(), FSW_OK);
+  EXPECT_EQ(f.update(), FSW_OK);
+  double t[3];
+  rwt::gs_times(t, f.cfg->gs_hat_B, f.out->u_s, 3);
+  EXPECT_NEAR(t[0], -0.1, kt::tol(1e-14, 1e-6));
+  EXPECT_NEAR(t[1], -0.2, kt::tol(1e-14, 1e-6));
+  EXPECT_EQ(t[2], 0.0);  // z torque not controlled (bleeds): here it is 0
+}
+
+// Power mode, pyramid, speeds (100, 100, 100, 0) rad/s, eps_P = 1.  Weights
+// W = (10001, 10001, 10001, 1).  Hand check via the independent solver and
+// the defining properties: wheel 4 (stopped) takes most of the torque.
+TEST(RwMapNominal, PowerOptimalPyramidFavoursSlowWheel)
+{
+  Fixture f = pyramid(FSW_RW_MAP_POWER);
+  const double Om[4] = {100, 100, 100, 0};
+  for (int i = 0; i < 4; i++) f.in->Omega[i] = static_cast<fsw_real>(Om[i]);
+  f.set_Lr(0.03, -0.06, 0.12);
+  ASSERT_EQ(f.update(), FSW_OK);
+  double W[4], u[4];
+  for (int i = 0; i < 4; i++) W[i] = Om[i] * Om[i] + 1.0;
+  double Lr[3] = {0.03, -0.06, 0.12};
+  ASSERT_TRUE(rwt::ref_wmn(u, 3, kI3, 4, f.cfg->gs_hat_B, W, nullptr, Lr));
+  for (int i = 0; i < 4; i++) EXPECT_NEAR(f.out->u_s[i], u[i], kt::tol(1e-12, 1e-5) * std::fabs(u[i])) << i;
+  for (int i = 0; i < 3; i++) EXPECT_LT(std::fabs(f.out->u_s[i]), std::fabs(f.out->u_s[3]));
+  EXPECT_LT(rel_residual(*f.cfg, f.out->u_s, f.in->Lr_B), kt::tol(1e-12, 1e-5));
+}
+
+// ---- bad input -----------------------------------------------------------
+
+TEST(RwMapBadInput, NonFiniteOrBadMaskGivesZerosAndAdvancesNothing)
+{
+  struct Row {
+    const char* why;
+    void (*spoil)(FswRwMapIn*);
+  };
+  static const Row rows[] = {
+      {"Lr NaN", [](FswRwMapIn* in) { in->Lr_B[1] = std::numeric_limits<fsw_real>::quiet_NaN(); }},
+      {"Lr Inf", [](FswRwMapIn* in) { in->Lr_B[2] = -std::numeric_limits<fsw_real>::infinity(); }},
+      {"Omega NaN", [](FswRwMapIn* in) { in->Omega[3] = std::numeric_limits<fsw_real>::quiet_NaN(); }},
+      {"Omega Inf", [](FswRwMapIn* in) { in->Omega[0] = std::numeric_limits<fsw_real>::infinity(); }},
+      {"mask value 2", [](FswRwMapIn* in) { in->avail[2] = 2; }},
+  };
+  for (const Row& row : rows) {
+    Fixture f = pyramid(FSW_RW_MAP_POWER);
+    f.set_Lr(0.1, 0.2, 0.3);
+    row.spoil(f.in.get());
+    f.fill_out_with_garbage();
+    EXPECT_EQ(f.update(), FSW_E_BAD_INPUT) << row.why;
+    expect_all_zero(*f.out);
+    EXPECT_EQ(f.st->health.bad_input, 1u) << row.why;
+  }
+  // min-norm ignores Omega entirely
+  Fixture f = pyramid();
+  f.set_Lr(0.1, 0.2, 0.3);
+  f.in->Omega[0] = std::numeric_limits<fsw_real>::quiet_NaN();
+  EXPECT_EQ(f.update(), FSW_OK);
+}
+
+TEST(RwMapRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
+{
+  Fixture f = pyramid(FSW_RW_MAP_POWER);
+  fsw_real first[5][4];
+  for (int pass = 0; pass < 2; pass++) {
+    kt::Rng r(11);
+    for (int k = 0; k < 5; k++) {
+      f.set_Lr(r.normal(), r.normal(), r.normal());
+      for (int i = 0; i < 4; i++) f.in->Omega[i] = static_cast<fsw_real>(r.uniform(-300, 300));
+      ASSERT_EQ(f.update(), FSW_OK);
+      for (int i = 0; i < 4; i++) {
+        if (pass == 0)
+          first[k][i] = f.out->u_s[i];
+        else
+          EXPECT_EQ(f.out->u_s[i], first[k][i]);
+      }
+    }
+    fsw_rw_map_reset(f.st.get());
+  }
+}
+
+// ---- properties over seeded random geometries (3, 4, 6, 36 wheels) -------
+
+class RwMapProperties : public ::testing::TestWithParam<int> {};
+
+TEST_P(RwMapProperties, MinNormMatchesIndependentSolverAndTorqueConstraint)
+{
+  const int n = GetParam();
+  kt::Rng rng(1000u + static_cast<uint64_t>(n));
+  double g[FSW_MAX_RW][3];
+  for (int trial = 0; trial < 20; trial++) {
+    rwt::random_axes(rng, n, g);
+    Fixture f;
+    f.setup(g, n);
+    ASSERT_EQ(f.init(), FSW_OK);
+    double Lr[3] = {rng.normal(), rng.normal(), rng.normal()};
+    f.set_Lr(Lr[0], Lr[1], Lr[2]);
+    ASSERT_EQ(f.update(), FSW_OK);
+    double u[FSW_MAX_RW];
+    ASSERT_TRUE(rwt::ref_wmn(u, 3, kI3, n, f.cfg->gs_hat_B, nullptr, nullptr, Lr));
+    double un = 0.0;
+    for (int i = 0; i < n; i++) un = std::fmax(un, std::fabs(u[i]));
+    for (int i = 0; i < n; i++) EXPECT_NEAR(f.out->u_s[i], u[i], kt::tol(1e-11, 1e-4) * un) << n << "/" << i;
+    EXPECT_LT(rel_residual(*f.cfg, f.out->u_s, f.in->Lr_B), kt::tol(1e-12, 1e-5));
+  }
+}
+
+TEST_P(RwMapProperties, PowerOptimalConstraintEqualSpeedsAndCost)
+{
+  const int n = GetParam();
+  kt::Rng rng(2000u + static_cast<uint64_t>(n));
+  double g[FSW_MAX_RW][3];
+  for (int trial = 0; trial < 20; trial++) {
+    rwt::random_axes(rng, n, g);
+    Fixture p, m;
+    p.setup(g, n, FSW_RW_MAP_POWER);
+    m.setup(g, n, FSW_RW_MAP_MIN_NORM);
+    p.cfg->eps_P = static_cast<fsw_real>(rng.uniform(0.01, 10.0));
+    ASSERT_EQ(p.init(), FSW_OK);
+    ASSERT_EQ(m.init(), FSW_OK);
+    const double Lr[3] = {rng.normal(), rng.normal(), rng.normal()};
+    p.set_Lr(Lr[0], Lr[1], Lr[2]);
+    m.set_Lr(Lr[0], Lr[1], Lr[2]);
+    // a wheel may fail (only where the rest can still act)
+    if (n > 4 && trial % 3 == 0) p.in->avail[trial % n] = m.in->avail[trial % n] = FSW_UNAVAILABLE;
+    for (int i = 0; i < n; i++) p.in->Omega[i] = static_cast<fsw_real>(rng.uniform(-400, 400));
+    ASSERT_EQ(p.update(), FSW_OK);
+    ASSERT_EQ(m.update(), FSW_OK);
+
+    // (1) torque constraint to 1e-12 relative
+    EXPECT_LT(rel_residual(*p.cfg, p.out->u_s, p.in->Lr_B), kt::tol(1e-12, 1e-5)) << n;
+    // (2) weighted cost never above the minimum-norm solution's
+    double cp = 0.0, cm = 0.0;
+    for (int i = 0; i < n; i++) {
+      const double w = double(p.in->Omega[i]) * double(p.in->Omega[i]) + double(p.cfg->eps_P);
+      cp += w * double(p.out->u_s[i]) * double(p.out->u_s[i]);
+      cm += w * double(m.out->u_s[i]) * double(m.out->u_s[i]);
+    }
+    EXPECT_LE(cp, cm * (1.0 + kt::tol(1e-12, 1e-5))) << n;
+    // unavailable wheels stay exactly 0
+    for (int i = 0; i < n; i++)
+      if (p.in->avail[i]) EXPECT_EQ(p.out->u_s[i], 0.0);
+    // (3) all |Omega| equal (random signs): equals min-norm to 1e-12
+    const double w0 = rng.uniform(1, 500);
+    for (int i = 0; i < n; i++) p.in->Omega[i] = static_cast<fsw_real>(rng.uniform() < 0.5 ? -w0 : w0);
+    ASSERT_EQ(p.update(), FSW_OK);
+    double un = 0.0;
+    for (int i = 0; i < n; i++) un = std::fmax(un, std::fabs(double(m.out->u_s[i])));
+    for (int i = 0; i < n; i++) EXPECT_NEAR(p.out->u_s[i], m.out->u_s[i], kt::tol(1e-12, 1e-5) * un) << n << "/" << i;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Wheels, RwMapProperties, ::testing::ValuesIn(rwt::kCounts));
