@@ -44,6 +44,10 @@ static void proj_compute(FswRwNullProj *p)
     if (p->avail[i] == FSW_AVAILABLE) p->num_avail++;
   /* G is finite (checked config) and num_rw in range: K2 cannot fail */
   (void)fsw_null_projector(p->tau, FSW_CM3N(p->G), p->num_rw, p->avail, &p->rank);
+  /* No null space (e.g. three independent wheels): K2 leaves round-off of
+   * order eps in tau; make it exactly 0 so the output is exactly the input. */
+  if (p->rank >= p->num_avail)
+    for (i = 0; i < p->num_rw; i++) fsw_vn_zero(p->tau[i], p->num_rw);
 }
 
 void fsw_rw_proj_init(FswRwNullProj *p, const fsw_real gs_hat_B[FSW_MAX_RW][3], int num_rw)
@@ -99,4 +103,12 @@ fsw_real fsw_rw_add_scaled_to_fit(fsw_real *out, const fsw_real *u_c, const fsw_
     }
   }
   return kappa;
+}
+
+void fsw_rw_proj_apply(fsw_real *out, const FswRwNullProj *p, const fsw_real *d)
+{
+  fsw_real t[FSW_MAX_RW];
+  int i, n = p->num_rw;
+  for (i = 0; i < n; i++) t[i] = fsw_vn_dot(p->tau[i], d, n);
+  for (i = 0; i < n; i++) out[i] = fsw_vn_dot(p->tau[i], t, n);
 }

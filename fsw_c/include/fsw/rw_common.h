@@ -64,6 +64,12 @@ void fsw_rw_proj_init(FswRwNullProj *p, const fsw_real gs_hat_B[FSW_MAX_RW][3], 
  * differs from the mask tau was computed for.  Returns 1 if recomputed. */
 int fsw_rw_proj_refresh(FswRwNullProj *p, const uint8_t avail[FSW_MAX_RW]);
 
+/* out = [tau]([tau] d) (n = p->num_rw entries).  [tau] is idempotent; the
+ * second product removes the round-off of the first (~eps |d|, which leaks
+ * into the body torque when d lies mostly in the row space of [Gs]), so the
+ * leak is ~eps |out|.  out must not alias d. */
+void fsw_rw_proj_apply(fsw_real *out, const FswRwNullProj *p, const fsw_real *d);
+
 /* out = u_c + kappa * du with the largest kappa in [0, 1] such that
  * |out_i| <= u_max_i for every i < n (fsw-algorithms.md 6.1 scaleNullToFit):
  * kappa = min(1, min over du_i != 0 of the admissible step); kappa = 0 when

@@ -1,0 +1,67 @@
+/* rw_null: reaction-wheel null motion (fsw-algorithms.md 6.1, Basilisk
+ * rwNullSpace).  Adds wheel torques in the null space of [Gs_a] (available
+ * wheels) so the body torque is unchanged while wheel speeds move toward
+ * Omega_des:  u = u_c + kappa [tau] d,  d = -K_Omega (Omega - Omega_des).
+ * [tau] comes from K2 (true projector for any rank, also for coplanar sets)
+ * and is recomputed whenever the availability mask changes.  With
+ * scale_to_fit, kappa in [0,1] is the largest step that keeps every
+ * |u_i| <= u_max_i (kappa = 0 if u_c already violates a limit); otherwise
+ * kappa = 1.  Unavailable wheels get exactly 0.
+ * Frames: B.  Units: SI.
+ * Safe output (bad input, not initialised): u_s = 0 for every wheel. */
+#ifndef FSW_RW_NULL_H
+#define FSW_RW_NULL_H
+
+#include <stdint.h>
+
+#include "fsw/fsw_config.h"
+#include "fsw/fsw_status.h"
+#include "fsw/rw_common.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+  int num_rw;                       /* [-]       1..FSW_MAX_RW                   */
+  fsw_real gs_hat_B[FSW_MAX_RW][3]; /* [-]       (num_rw) spin axes, unit, B     */
+  fsw_real k_null;                  /* [N*m*s]   K_Omega speed-error gain, > 0   */
+  int scale_to_fit;                 /* [-]       0 (Basilisk parity) or 1        */
+  fsw_real u_max[FSW_MAX_RW];       /* [N*m]     (num_rw) torque limits, > 0;
+                                       read only when scale_to_fit = 1          */
+} FswRwNullConfig;
+
+typedef struct {
+  int ready;          /* 1 after a successful init */
+  FswRwNullProj proj; /* [Gs], projector and the mask it belongs to (~11 KiB) */
+  FswHealth health;
+} FswRwNullState;
+
+typedef struct {
+  fsw_real u_s[FSW_MAX_RW];       /* [N*m]   (num_rw) torques from rw_map        */
+  fsw_real Omega[FSW_MAX_RW];     /* [rad/s] (num_rw) measured speeds rel. body */
+  fsw_real Omega_des[FSW_MAX_RW]; /* [rad/s] (num_rw) desired speeds (0 = despin) */
+  uint8_t avail[FSW_MAX_RW];      /* [-]     (num_rw) 0 available, 1 unavailable */
+} FswRwNullIn;
+
+typedef struct {
+  fsw_real u_s[FSW_MAX_RW]; /* [N*m] (num_rw) torques; 0 beyond num_rw */
+  fsw_real kappa;           /* [-]   fraction of the null torque applied */
+} FswRwNullOut;
+
+/* FSW_OK, FSW_E_CAPACITY (num_rw), FSW_E_CONFIG (axes, gain, limits). */
+FswStatus fsw_rw_null_check(const FswRwNullConfig *cfg);
+FswStatus fsw_rw_null_init(FswRwNullState *st, const FswRwNullConfig *cfg);
+/* Stateless apart from the projector cache, which reset keeps. */
+void fsw_rw_null_reset(FswRwNullState *st);
+/* FSW_OK; FSW_W_SAT when scale_to_fit reduced the null torque (kappa < 1);
+ * FSW_E_BAD_INPUT (u = 0, projector untouched) for non-finite u_s, Omega or
+ * Omega_des, or a mask entry other than 0/1; FSW_E_NOT_INIT. */
+FswStatus fsw_rw_null_update(FswRwNullState *st, const FswRwNullConfig *cfg,
+                             const FswRwNullIn *in, FswRwNullOut *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* FSW_RW_NULL_H */

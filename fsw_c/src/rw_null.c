@@ -1,0 +1,70 @@
+/* rw_null: wheel-speed null motion (fsw-algorithms.md 6.1). */
+#include "fsw/rw_null.h"
+
+#include <stddef.h>
+
+#include "fsw/fsw_vec.h"
+
+FswStatus fsw_rw_null_check(const FswRwNullConfig *cfg)
+{
+  FswStatus s;
+  FSW_ASSERT(cfg != NULL);
+  if (cfg == NULL) return FSW_E_NULL_ARG;
+  s = fsw_rw_check_axes(cfg->gs_hat_B, cfg->num_rw, 1);
+  if (s != FSW_OK) return s;
+  if (!fsw_rw_all_positive(&cfg->k_null, 1)) return FSW_E_CONFIG;
+  if (cfg->scale_to_fit != 0 && cfg->scale_to_fit != 1) return FSW_E_CONFIG;
+  if (cfg->scale_to_fit && !fsw_rw_all_positive(cfg->u_max, cfg->num_rw)) return FSW_E_CONFIG;
+  return FSW_OK;
+}
+
+FswStatus fsw_rw_null_init(FswRwNullState *st, const FswRwNullConfig *cfg)
+{
+  FswStatus s;
+  FSW_ASSERT(st != NULL && cfg != NULL);
+  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  st->ready = 0;
+  fsw_health_clear(&st->health);
+  s = fsw_rw_null_check(cfg);
+  if (s != FSW_OK) return s;
+  fsw_rw_proj_init(&st->proj, cfg->gs_hat_B, cfg->num_rw);
+  st->ready = 1;
+  fsw_rw_null_reset(st);
+  return FSW_OK;
+}
+
+void fsw_rw_null_reset(FswRwNullState *st)
+{
+  FSW_ASSERT(st != NULL);
+  (void)st; /* no time-varying state; the projector is derived data */
+}
+
+FswStatus fsw_rw_null_update(FswRwNullState *st, const FswRwNullConfig *cfg,
+                             const FswRwNullIn *in, FswRwNullOut *out)
+{
+  fsw_real d[FSW_MAX_RW];  /* [N*m] -K (Omega - Omega_des) */
+  fsw_real du[FSW_MAX_RW]; /* [N*m] [tau] d (projected twice, see rw_common.h) */
+  fsw_real uc[FSW_MAX_RW]; /* [N*m] u_c with unavailable wheels at 0 */
+  int n, i;
+
+  FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
+  if (out != NULL) {
+    fsw_rw_zero(out->u_s); /* safe output */
+    out->kappa = FSW_R(0.0);
+  }
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
+  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  n = cfg->num_rw;
+  if (!fsw_vn_is_finite(in->u_s, n) || !fsw_vn_is_finite(in->Omega, n) ||
+      !fsw_vn_is_finite(in->Omega_des, n) || !fsw_rw_avail_valid(in->avail, n))
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+
+  (void)fsw_rw_proj_refresh(&st->proj, in->avail);
+  for (i = 0; i < n; i++) {
+    d[i] = -cfg->k_null * (in->Omega[i] - in->Omega_des[i]);
+    uc[i] = (in->avail[i] == FSW_AVAILABLE) ? in->u_s[i] : FSW_R(0.0);
+  }
+  fsw_rw_proj_apply(du, &st->proj, d);
+  out->kappa = fsw_rw_add_scaled_to_fit(out->u_s, uc, du, cfg->scale_to_fit ? cfg->u_max : NULL, n);
+  return fsw_health_record(&st->health, out->kappa < FSW_R(1.0) ? FSW_W_SAT : FSW_OK);
+}
