@@ -1,0 +1,333 @@
+// rw_null_regen: regenerative power-optimal null motion (fsw-algorithms.md 6.2).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "fsw/rw_map.h"
+#include "fsw/rw_null_regen.h"
+#include "kestrel_test_support.h"
+#include "rw_test_util.h"
+
+namespace {
+
+const fsw_real kNaN = std::numeric_limits<fsw_real>::quiet_NaN();
+
+struct Fixture {
+  std::unique_ptr<FswRwNullRegenConfig> cfg = rwt::make0<FswRwNullRegenConfig>();
+  std::unique_ptr<FswRwNullRegenState> st = rwt::make0<FswRwNullRegenState>();
+  std::unique_ptr<FswRwNullRegenIn> in = rwt::make0<FswRwNullRegenIn>();
+  std::unique_ptr<FswRwNullRegenOut> out = rwt::make0<FswRwNullRegenOut>();
+  void setup(const double g[][3], int n, int mode, double kP = 1e-4, double umax = 0.1)
+  {
+    cfg->num_rw = n;
+    rwt::set_axes(cfg->gs_hat_B, g, n);
+    cfg->mode = mode;
+    cfg->k_P = static_cast<fsw_real>(kP);
+    for (int i = 0; i < n; i++) cfg->u_max[i] = static_cast<fsw_real>(umax);
+  }
+  FswStatus init() { return fsw_rw_null_regen_init(st.get(), cfg.get()); }
+  FswStatus update() { return fsw_rw_null_regen_update(st.get(), cfg.get(), in.get(), out.get()); }
+};
+
+std::unique_ptr<Fixture> pyramid(int mode)
+{
+  double g[4][3];
+  rwt::pyramid4(g);
+  auto f = rwt::make0<Fixture>();
+  f->setup(g, 4, mode);
+  EXPECT_EQ(f->init(), FSW_OK);
+  return f;
+}
+
+double dot(const fsw_real* a, const fsw_real* b, int n)
+{
+  double s = 0;
+  for (int i = 0; i < n; i++) s += double(a[i]) * double(b[i]);
+  return s;
+}
+
+double body_change(const FswRwNullRegenConfig& c, const fsw_real* u, const fsw_real* u0)
+{
+  double du[FSW_MAX_RW], t[3], a = 0, b = 0;
+  for (int i = 0; i < c.num_rw; i++) {
+    du[i] = double(u[i]) - double(u0[i]);
+    a += double(u0[i]) * double(u0[i]);
+    b += du[i] * du[i];
+  }
+  rwt::gs_times(t, c.gs_hat_B, du, c.num_rw);
+  return rwt::norm3(t) / (std::sqrt(a) + std::sqrt(b) + 1e-300);
+}
+
+// Null vector of four axes in general position by cofactors:
+// n_i = (-1)^i det(g_j, g_k, g_l) (the other three, in order).
+void null4(double nv[4], const double g[4][3])
+{
+  for (int i = 0; i < 4; i++) {
+    const double* c[3];
+    int m = 0;
+    for (int j = 0; j < 4; j++)
+      if (j != i) c[m++] = g[j];
+    const double det = c[0][0] * (c[1][1] * c[2][2] - c[1][2] * c[2][1]) -
+                       c[1][0] * (c[0][1] * c[2][2] - c[0][2] * c[2][1]) +
+                       c[2][0] * (c[0][1] * c[1][2] - c[0][2] * c[1][1]);
+    nv[i] = (i % 2 ? -1.0 : 1.0) * det;
+  }
+}
+
+}  // namespace
+
+TEST(RwNullRegenConfig, RejectsBadConfigurationsTableDriven)
+{
+  struct Row {
+    const char* why;
+    void (*spoil)(FswRwNullRegenConfig*);
+    FswStatus want;
+  };
+  static const Row rows[] = {
+      {"no wheels", [](FswRwNullRegenConfig* c) { c->num_rw = 0; }, FSW_E_CAPACITY},
+      {"too many wheels", [](FswRwNullRegenConfig* c) { c->num_rw = FSW_MAX_RW + 1; }, FSW_E_CAPACITY},
+      {"axis not unit", [](FswRwNullRegenConfig* c) { c->gs_hat_B[2][2] = FSW_R(3.0); }, FSW_E_CONFIG},
+      {"unknown mode", [](FswRwNullRegenConfig* c) { c->mode = 5; }, FSW_E_CONFIG},
+      {"gradient gain zero", [](FswRwNullRegenConfig* c) { c->k_P = 0; }, FSW_E_CONFIG},
+      {"gradient gain NaN", [](FswRwNullRegenConfig* c) { c->k_P = kNaN; }, FSW_E_CONFIG},
+      {"limit zero", [](FswRwNullRegenConfig* c) { c->u_max[1] = 0; }, FSW_E_CONFIG},
+      {"limit negative", [](FswRwNullRegenConfig* c) { c->u_max[3] = FSW_R(-1.0); }, FSW_E_CONFIG},
+  };
+  for (const Row& row : rows) {
+    auto f = pyramid(FSW_RW_REGEN_GRADIENT);
+    row.spoil(f->cfg.get());
+    EXPECT_EQ(fsw_rw_null_regen_check(f->cfg.get()), row.want) << row.why;
+    EXPECT_EQ(f->init(), row.want) << row.why;
+    EXPECT_EQ(f->update(), FSW_E_NOT_INIT);
+    for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(f->out->u_s[i], 0.0);
+  }
+  auto f = pyramid(FSW_RW_REGEN_OPTIMUM);
+  f->cfg->k_P = 0;  // not used by OPTIMUM
+  EXPECT_EQ(f->init(), FSW_OK);
+}
+
+// Gradient, pyramid (null vector n = (1,-1,1,-1)/2): Omega = (100,0,0,0),
+// k_P = 1e-4, u0 = 0: d = -k_P Omega = (-0.01,0,0,0), n.d = -0.005,
+// [tau] d = -0.005 n = (-0.0025, 0.0025, -0.0025, 0.0025); P = -0.25 W.
+TEST(RwNullRegenNominal, GradientPyramidHandNumbers)
+{
+  auto f = pyramid(FSW_RW_REGEN_GRADIENT);
+  f->in->Omega[0] = FSW_R(100.0);
+  ASSERT_EQ(f->update(), FSW_OK);
+  const double want[4] = {-0.0025, 0.0025, -0.0025, 0.0025};
+  for (int i = 0; i < 4; i++) EXPECT_NEAR(f->out->u_s[i], want[i], kt::tol(1e-17, 1e-9)) << i;
+  EXPECT_NEAR(f->out->power, -0.25, kt::tol(1e-14, 1e-6));
+}
+
+// Optimum, pyramid, u_max = 0.1, u0 = min-norm map of Lr = (0.03,-0.06,0.12):
+// u0 = -(0.0675, 0.0225, 0.1125, 0.1575)/sqrt3 (see test_rw_map).
+// Omega = (100, 50, -30, 10): Omega.n = (100-50-30-10)/2 = 5 > 0 -> alpha_lo.
+// Bounds alpha in [(-0.1 - u0_i)/n_i, (0.1 - u0_i)/n_i] (swapped for n_i < 0):
+// wheel 3 (u0 = -0.0650, n = 1/2) binds: alpha = 2(-0.1 - u0_3) = -0.0701,
+// so u_3 = -u_max exactly and P drops by 5 |alpha| = 0.3505 W.
+TEST(RwNullRegenNominal, OptimumPyramidHandNumbers)
+{
+  auto f = pyramid(FSW_RW_REGEN_OPTIMUM);
+  const double s3 = std::sqrt(3.0);
+  const double u0[4] = {-0.0675 / s3, -0.0225 / s3, -0.1125 / s3, -0.1575 / s3};
+  const double Om[4] = {100, 50, -30, 10};
+  for (int i = 0; i < 4; i++) {
+    f->in->u_s[i] = static_cast<fsw_real>(u0[i]);
+    f->in->Omega[i] = static_cast<fsw_real>(Om[i]);
+  }
+  ASSERT_EQ(f->update(), FSW_OK);
+  const double alpha = 2.0 * (-0.1 - u0[2]);
+  const double nv[4] = {0.5, -0.5, 0.5, -0.5};
+  double P0 = 0;
+  for (int i = 0; i < 4; i++) {
+    EXPECT_NEAR(f->out->u_s[i], u0[i] + alpha * nv[i], kt::tol(1e-15, 1e-7)) << i;
+    P0 += Om[i] * u0[i];
+  }
+  EXPECT_NEAR(f->out->u_s[2], -0.1, kt::tol(1e-16, 1e-8));
+  EXPECT_NEAR(f->out->power, P0 + 5.0 * alpha, kt::tol(1e-13, 1e-5));
+  // Omega orthogonal to n: any alpha is optimal, the rule picks alpha = 0
+  const double Om0[4] = {100, 100, 100, 100};
+  for (int i = 0; i < 4; i++) f->in->Omega[i] = static_cast<fsw_real>(Om0[i]);
+  ASSERT_EQ(f->update(), FSW_OK);
+  for (int i = 0; i < 4; i++) EXPECT_EQ(f->out->u_s[i], f->in->u_s[i]);
+}
+
+// u0 = (0.3, 0.3, 0, 0), u_max = 0.1: wheel 1 needs alpha <= -0.4, wheel 2
+// needs alpha >= 0.4: empty interval -> u = u0 and FSW_W_SAT.
+TEST(RwNullRegenNominal, OptimumEmptyIntervalReturnsU0)
+{
+  auto f = pyramid(FSW_RW_REGEN_OPTIMUM);
+  f->in->u_s[0] = f->in->u_s[1] = FSW_R(0.3);
+  f->in->Omega[0] = FSW_R(10.0);
+  EXPECT_EQ(f->update(), FSW_W_SAT);
+  for (int i = 0; i < 4; i++) EXPECT_EQ(f->out->u_s[i], f->in->u_s[i]);
+}
+
+TEST(RwNullRegenNominal, OptimumNullityZeroAndAboveOne)
+{
+  double g[6][3];
+  kt::Rng rng(42);
+  rwt::random_axes(rng, 6, g);
+  auto f = rwt::make0<Fixture>();
+  f->setup(g, 6, FSW_RW_REGEN_OPTIMUM);
+  ASSERT_EQ(f->init(), FSW_OK);
+  for (int i = 0; i < 6; i++) {
+    f->in->u_s[i] = static_cast<fsw_real>(0.01 * (i - 2));
+    f->in->Omega[i] = static_cast<fsw_real>(50.0 * i);
+  }
+  EXPECT_EQ(f->update(), FSW_E_UNSUPPORTED);  // nullity 3
+  for (int i = 0; i < 6; i++) EXPECT_EQ(f->out->u_s[i], f->in->u_s[i]);
+  for (int i = 3; i < 6; i++) f->in->avail[i] = FSW_UNAVAILABLE;  // nullity 0
+  EXPECT_EQ(f->update(), FSW_OK);
+  for (int i = 0; i < 6; i++) EXPECT_EQ(f->out->u_s[i], i < 3 ? f->in->u_s[i] : 0.0);
+}
+
+TEST(RwNullRegenBadInput, NonFiniteOrBadMaskGivesZeros)
+{
+  for (int row = 0; row < 3; row++) {
+    auto f = pyramid(FSW_RW_REGEN_GRADIENT);
+    f->in->avail[0] = FSW_UNAVAILABLE;  // must not be taken
+    if (row == 0) f->in->u_s[1] = kNaN;
+    if (row == 1) f->in->Omega[2] = -std::numeric_limits<fsw_real>::infinity();
+    if (row == 2) f->in->avail[3] = 3;
+    for (int i = 0; i < FSW_MAX_RW; i++) f->out->u_s[i] = 5;
+    EXPECT_EQ(f->update(), FSW_E_BAD_INPUT) << row;
+    for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(f->out->u_s[i], 0.0);
+    EXPECT_EQ(f->st->proj.num_avail, 4);
+    EXPECT_EQ(f->st->health.bad_input, 1u);
+  }
+}
+
+TEST(RwNullRegenBadInput, NullArgumentsAssertAndReturn)
+{
+  auto f = pyramid(FSW_RW_REGEN_GRADIENT);
+  kestrel_assert_reset();
+  EXPECT_EQ(fsw_rw_null_regen_check(nullptr), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_rw_null_regen_update(f->st.get(), f->cfg.get(), nullptr, f->out.get()), FSW_E_NULL_ARG);
+  EXPECT_EQ(kestrel_assert_count(), 2u);
+  kestrel_assert_reset();
+}
+
+TEST(RwNullRegenRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
+{
+  for (int mode = 0; mode < 2; mode++) {
+    auto f = pyramid(mode);
+    fsw_real first[5][4];
+    for (int pass = 0; pass < 2; pass++) {
+      kt::Rng r(9);
+      for (int k = 0; k < 5; k++) {
+        for (int i = 0; i < 4; i++) {
+          f->in->u_s[i] = static_cast<fsw_real>(r.uniform(-0.05, 0.05));
+          f->in->Omega[i] = static_cast<fsw_real>(r.uniform(-500, 500));
+        }
+        (void)f->update();
+        for (int i = 0; i < 4; i++) {
+          if (pass == 0)
+            first[k][i] = f->out->u_s[i];
+          else
+            EXPECT_EQ(f->out->u_s[i], first[k][i]);
+        }
+      }
+      fsw_rw_null_regen_reset(f->st.get());
+    }
+  }
+}
+
+// Properties with u0 from rw_map's minimum-norm solution inside the limits:
+// body torque unchanged (1e-12), Omega^T u <= Omega^T u0, |u_i| <= u_max_i.
+// OPTIMUM is exercised with exactly four available wheels (nullity 1) and
+// checked against an independent optimum: the cofactor null vector and the
+// interval end chosen by comparing the power at both ends.
+class RwNullRegenProperties : public ::testing::TestWithParam<int> {};
+
+TEST_P(RwNullRegenProperties, BodyTorquePowerAndLimits)
+{
+  const int n = GetParam();
+  kt::Rng rng(4000u + static_cast<uint64_t>(n));
+  double g[FSW_MAX_RW][3];
+  auto f = rwt::make0<Fixture>();
+  auto mc = rwt::make0<FswRwMapConfig>();
+  auto ms = rwt::make0<FswRwMapState>();
+  auto mi = rwt::make0<FswRwMapIn>();
+  auto mo = rwt::make0<FswRwMapOut>();
+  for (int trial = 0; trial < 30; trial++) {
+    const int mode = trial % 2;
+    rwt::random_axes(rng, n, g);
+    f->setup(g, n, mode, rng.uniform(1e-5, 1e-2), 0.0);
+    for (int i = 0; i < n; i++) f->cfg->u_max[i] = static_cast<fsw_real>(rng.uniform(0.05, 0.2));
+    ASSERT_EQ(f->init(), FSW_OK);
+    mc->num_rw = n;
+    rwt::set_axes(mc->gs_hat_B, g, n);
+    mc->num_axes = 3;
+    for (int j = 0; j < 3; j++)
+      for (int r = 0; r < 3; r++) mc->ctrl_axes_B[j][r] = j == r ? FSW_R(1.0) : FSW_R(0.0);
+    ASSERT_EQ(fsw_rw_map_init(ms.get(), mc.get()), FSW_OK);
+    // availability: OPTIMUM keeps exactly 4 wheels (nullity 1) when n > 4
+    int avail_idx[4] = {0, 1, 2, 3};
+    for (int i = 0; i < n; i++) mi->avail[i] = FSW_AVAILABLE;
+    if (mode == FSW_RW_REGEN_OPTIMUM && n > 4) {
+      for (int i = 0; i < n; i++) mi->avail[i] = FSW_UNAVAILABLE;
+      for (int k = 0; k < 4; k++) {
+        int c;
+        do c = rng.uniform_int(0, n - 1);
+        while (mi->avail[c] == FSW_AVAILABLE);
+        mi->avail[c] = FSW_AVAILABLE;
+      }
+      for (int i = 0, k = 0; i < n; i++)
+        if (mi->avail[i] == FSW_AVAILABLE) avail_idx[k++] = i;
+    }
+    // u0: min-norm map of a torque scaled so that max |u0_i| = 0.5 u_min
+    for (int r = 0; r < 3; r++) mi->Lr_B[r] = static_cast<fsw_real>(rng.normal());
+    ASSERT_EQ(fsw_rw_map_update(ms.get(), mc.get(), mi.get(), mo.get()), FSW_OK);
+    double umax_abs = 0;
+    for (int i = 0; i < n; i++) umax_abs = std::fmax(umax_abs, std::fabs(double(mo->u_s[i])));
+    const double sc = 0.5 * 0.05 / umax_abs;
+    for (int i = 0; i < n; i++) {
+      f->in->u_s[i] = static_cast<fsw_real>(double(mo->u_s[i]) * sc);
+      f->in->Omega[i] = static_cast<fsw_real>(rng.uniform(-600, 600));
+      f->in->avail[i] = mi->avail[i];
+    }
+    const FswStatus s = f->update();
+    if (mode == FSW_RW_REGEN_OPTIMUM && n > 4) ASSERT_EQ(s, FSW_OK) << n;
+    if (mode == FSW_RW_REGEN_OPTIMUM && n == 3) ASSERT_EQ(s, FSW_OK) << n;
+    if (mode == FSW_RW_REGEN_OPTIMUM && n == 4) ASSERT_EQ(s, FSW_OK) << n;
+    ASSERT_TRUE(s == FSW_OK || s == FSW_W_SAT) << s;
+
+    EXPECT_LT(body_change(*f->cfg, f->out->u_s, f->in->u_s), kt::tol(1e-12, 1e-5)) << n << "/" << trial;
+    const double P0 = dot(f->in->Omega, f->in->u_s, n);
+    const double P = dot(f->in->Omega, f->out->u_s, n);
+    EXPECT_LE(P, P0 + kt::tol(1e-12, 1e-5) * std::fabs(P0)) << n << "/" << trial;
+    EXPECT_NEAR(f->out->power, P, kt::tol(1e-12, 1e-4) * (std::fabs(P) + 1e-3));
+    for (int i = 0; i < n; i++) {
+      EXPECT_LE(std::fabs(f->out->u_s[i]), f->cfg->u_max[i]);
+      if (f->in->avail[i]) EXPECT_EQ(f->out->u_s[i], 0.0);
+    }
+    if (mode == FSW_RW_REGEN_OPTIMUM && n >= 4) {
+      // independent optimum over the four available wheels
+      double ga[4][3], nv[4], lo = -1e300, hi = 1e300;
+      for (int k = 0; k < 4; k++)
+        for (int r = 0; r < 3; r++) ga[k][r] = double(f->cfg->gs_hat_B[avail_idx[k]][r]);
+      null4(nv, ga);
+      double om_n = 0;
+      for (int k = 0; k < 4; k++) {
+        const int i = avail_idx[k];
+        const double u0 = double(f->in->u_s[i]), um = double(f->cfg->u_max[i]);
+        double a = (-um - u0) / nv[k], b = (um - u0) / nv[k];
+        if (a > b) std::swap(a, b);
+        lo = std::fmax(lo, a);
+        hi = std::fmin(hi, b);
+        om_n += double(f->in->Omega[i]) * nv[k];
+      }
+      ASSERT_LE(lo, hi);
+      const double alpha = om_n > 0 ? lo : hi;  // P linear in alpha
+      for (int k = 0; k < 4; k++) {
+        const int i = avail_idx[k];
+        EXPECT_NEAR(f->out->u_s[i], double(f->in->u_s[i]) + alpha * nv[k], kt::tol(1e-12, 1e-5))
+            << n << "/" << trial << "/" << k;
+      }
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Wheels, RwNullRegenProperties, ::testing::ValuesIn(rwt::kCounts));
