@@ -1,0 +1,262 @@
+// guid_sunsafe: sun-safe pointing (fsw-algorithms.md 1.2).
+// Hand cases: s_cmd = +x and the Sun on +y is a -90 deg rotation of B
+// relative to R about z (R's first axis must coincide with the Sun, i.e.
+// R = B turned +90 deg about z), so sigma_BR = tan(-90deg/4) z.
+// Property (any geometry): [BR]^T s_hat_B = s_cmd_hat, i.e. in R components
+// the commanded body axis points at the Sun, checked with an independent DCM.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fsw/guid_sunsafe.h"
+#include "gnc_test_ref.h"
+#include "kestrel_test_support.h"
+
+namespace {
+
+const double kTol = kt::tol(1e-15, 2e-7);
+const double kDeg = gref::kPi / 180.0;
+
+class GuidSunsafe : public ::testing::Test {
+ protected:
+  void SetUp() override
+  {
+    kestrel_assert_reset();
+    gref::set3(cfg_.s_cmd_B, 1.0, 0.0, 0.0);
+    cfg_.min_unit_mag = FSW_R(0.1);
+    cfg_.small_angle = static_cast<fsw_real>(0.01 * kDeg);
+    gref::set3(cfg_.omega_search_B, 0.0, 0.0, 0.02);
+    cfg_.sun_axis_spin_rate = FSW_R(0.0);
+    ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_init(&st_, &cfg_));
+  }
+  FswStatus run() { return fsw_guid_sunsafe_update(&st_, &cfg_, &in_, &out_); }
+  FswGuidSunsafeConfig cfg_{};
+  FswGuidSunsafeState st_{};
+  FswGuidSunsafeIn in_{};
+  FswGuidSunsafeOut out_{};
+};
+
+TEST_F(GuidSunsafe, QuarterTurnHandCase)
+{
+  // Sun on +y with |s| = 2 (not unit): theta = 90 deg,
+  // e = unit(s x s_cmd) = unit(y x x) = -z, sigma_BR = tan(22.5 deg) (-z).
+  gref::set3(in_.sun_B, 0.0, 2.0, 0.0);
+  gref::set3(in_.omega_BN_B, 0.01, 0.02, 0.03);
+  ASSERT_EQ(FSW_OK, run());
+  EXPECT_V3_NEAR(0.0, 0.0, -std::tan(22.5 * kDeg), out_.guid.sigma_BR, kTol);
+  EXPECT_NEAR(90 * kDeg, out_.sun_angle_err, kTol);
+  EXPECT_EQ(1, out_.sun_valid);
+  // no spin about the Sun axis: omega_RN = 0, omega_BR = omega_BN
+  EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.omega_RN_B, 0.0);
+  EXPECT_V3_NEAR(0.01, 0.02, 0.03, out_.guid.omega_BR_B, 0.0);
+  EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.omega_dot_RN_B, 0.0);
+}
+
+TEST_F(GuidSunsafe, SpinAboutSunAxis)
+{
+  // omega_RN_B = (rate/|s|) s = (0.05/2) (0, 2, 0) = (0, 0.05, 0);
+  // omega_BR = (0.01, 0.02, 0.03) - (0, 0.05, 0) = (0.01, -0.03, 0.03).
+  cfg_.sun_axis_spin_rate = FSW_R(0.05);
+  ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_init(&st_, &cfg_));
+  gref::set3(in_.sun_B, 0.0, 2.0, 0.0);
+  gref::set3(in_.omega_BN_B, 0.01, 0.02, 0.03);
+  ASSERT_EQ(FSW_OK, run());
+  EXPECT_V3_NEAR(0.0, 0.05, 0.0, out_.guid.omega_RN_B, kTol);
+  EXPECT_V3_NEAR(0.01, -0.03, 0.03, out_.guid.omega_BR_B, kTol);
+}
+
+TEST_F(GuidSunsafe, InsideDeadBandNoAttitudeError)
+{
+  // Sun 0.005 deg off +x in the x-y plane, dead band 0.01 deg: sigma_BR = 0,
+  // theta still reported, rates still formed.
+  const double a = 0.005 * kDeg;
+  gref::set3(in_.sun_B, std::cos(a), std::sin(a), 0.0);
+  gref::set3(in_.omega_BN_B, 0.001, 0.0, 0.0);
+  ASSERT_EQ(FSW_OK, run());
+  EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.sigma_BR, 0.0);
+  EXPECT_NEAR(a, out_.sun_angle_err, kt::tol(1e-9, 3e-4));  // acos near 1 loses digits
+  EXPECT_V3_NEAR(0.001, 0.0, 0.0, out_.guid.omega_BR_B, 0.0);
+  EXPECT_EQ(1, out_.sun_valid);
+}
+
+TEST_F(GuidSunsafe, AntiparallelUsesE180)
+{
+  // s_cmd = +x: |x cross x| = 0 < 0.1, so e180 = unit(x cross y) = +z.
+  // Sun on -x: theta = pi, sigma_BR = tan(pi/4) z = z (|sigma| = 1, no switch).
+  EXPECT_V3_NEAR(0.0, 0.0, 1.0, st_.e180_hat_B, 0.0);
+  gref::set3(in_.sun_B, -3.0, 0.0, 0.0);
+  ASSERT_EQ(FSW_OK, run());
+  EXPECT_V3_NEAR(0.0, 0.0, 1.0, out_.guid.sigma_BR, kTol);
+  EXPECT_NEAR(gref::kPi, out_.sun_angle_err, kTol);
+}
+
+TEST_F(GuidSunsafe, NearlyAntiparallelWithinDeadBandUsesE180)
+{
+  // Sun 0.005 deg from -x (pi - theta < small_angle): axis e180 = +z,
+  // angle theta, sigma_BR = tan(theta/4) z.
+  const double a = 0.005 * kDeg;
+  gref::set3(in_.sun_B, -std::cos(a), 0.0, std::sin(a));
+  ASSERT_EQ(FSW_OK, run());
+  const double theta = gref::kPi - a;
+  EXPECT_V3_NEAR(0.0, 0.0, std::tan(theta / 4), out_.guid.sigma_BR, kt::tol(1e-9, 2e-4));
+}
+
+TEST_F(GuidSunsafe, ExactAntiparallelWithZeroDeadBandIsGuarded)
+{
+  // small_angle = 0: the e180 branch (pi - theta < 0) is never taken, the
+  // cross product is exactly 0 and the library guard must use e180.
+  // s_cmd = +z: |z x x| = 1 >= 0.1, e180 = unit(z x x) = +y.
+  gref::set3(cfg_.s_cmd_B, 0.0, 0.0, 5.0);
+  cfg_.small_angle = FSW_R(0.0);
+  ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_init(&st_, &cfg_));
+  EXPECT_V3_NEAR(0.0, 0.0, 1.0, st_.s_cmd_hat_B, 0.0);
+  EXPECT_V3_NEAR(0.0, 1.0, 0.0, st_.e180_hat_B, 0.0);
+  gref::set3(in_.sun_B, 0.0, 0.0, -1.0);
+  ASSERT_EQ(FSW_OK, run());
+  EXPECT_V3_NEAR(0.0, 1.0, 0.0, out_.guid.sigma_BR, kTol);
+  for (int i = 0; i < 3; i++) EXPECT_TRUE(std::isfinite(static_cast<double>(out_.guid.sigma_BR[i])));
+}
+
+TEST_F(GuidSunsafe, NoValidSunSearchSpin)
+{
+  // |s| = 0.05 <= min_unit_mag = 0.1: sigma_BR = 0, omega_RN = omega_search,
+  // omega_BR = omega_BN - omega_search = (0.01, 0, 0.03 - 0.02).
+  gref::set3(in_.sun_B, 0.05, 0.0, 0.0);
+  gref::set3(in_.omega_BN_B, 0.01, 0.0, 0.03);
+  ASSERT_EQ(FSW_OK, run());
+  EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.sigma_BR, 0.0);
+  EXPECT_V3_NEAR(0.0, 0.0, 0.02, out_.guid.omega_RN_B, 0.0);
+  EXPECT_V3_NEAR(0.01, 0.0, 0.03 - 0.02, out_.guid.omega_BR_B, kTol);
+  EXPECT_EQ(0, out_.sun_valid);
+  EXPECT_EQ(0.0, out_.sun_angle_err);
+  // exactly zero heading with min_unit_mag = 0 is also "no Sun" (no 0/0)
+  cfg_.min_unit_mag = FSW_R(0.0);
+  ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_init(&st_, &cfg_));
+  gref::set3(in_.sun_B, 0.0, 0.0, 0.0);
+  ASSERT_EQ(FSW_OK, run());
+  EXPECT_EQ(0, out_.sun_valid);
+  EXPECT_V3_NEAR(0.01, 0.0, 0.03 - 0.02, out_.guid.omega_BR_B, kTol);
+}
+
+TEST_F(GuidSunsafe, RandomGeometryPointsCommandedAxisAtSun)
+{
+  kt::Rng rng(0x5eed0002u);
+  for (int trial = 0; trial < 300; trial++) {
+    double scmd[3], sun[3];
+    rng.unit3(scmd);
+    rng.unit3(sun);
+    const double mag = rng.uniform(0.5, 3.0);
+    FswGuidSunsafeConfig cfg = cfg_;
+    gref::to_real(cfg.s_cmd_B, scmd);
+    FswGuidSunsafeState st{};
+    ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_init(&st, &cfg));
+    FswGuidSunsafeIn in{};
+    gref::set3(in.sun_B, mag * sun[0], mag * sun[1], mag * sun[2]);
+    FswGuidSunsafeOut out{};
+    ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_update(&st, &cfg, &in, &out));
+    const double theta = std::acos(std::fmax(-1.0, std::fmin(1.0, gref::dot(scmd, sun))));
+    EXPECT_NEAR(theta, out.sun_angle_err, kt::tol(1e-12, 1e-3));
+    if (theta < 0.01 * kDeg || gref::kPi - theta < 0.01 * kDeg) continue;  // dead bands
+    double C_BR[3][3], C_RB[3][3], s_R[3];
+    gref::dcm_of_mrp(C_BR, out.guid.sigma_BR);
+    gref::transpose(C_RB, C_BR);
+    gref::matvec(s_R, C_RB, sun);
+    for (int i = 0; i < 3; i++) EXPECT_NEAR(scmd[i], s_R[i], kt::tol(1e-12, 2e-5)) << trial;
+    // minimal rotation: sigma_BR is perpendicular to both vectors, |sigma| = tan(theta/4)
+    double s_out[3];
+    gref::to_double(s_out, out.guid.sigma_BR);
+    EXPECT_NEAR(std::tan(theta / 4), gref::norm(s_out), kt::tol(1e-12, 2e-5));
+    EXPECT_NEAR(0.0, gref::dot(s_out, sun), kt::tol(1e-12, 2e-5));
+  }
+}
+
+TEST_F(GuidSunsafe, RejectsBadConfig)
+{
+  struct Case {
+    const char* name;
+    void (*edit)(FswGuidSunsafeConfig&);
+  };
+  const Case cases[] = {
+      {"s_cmd too short", [](FswGuidSunsafeConfig& c) { gref::set3(c.s_cmd_B, 0.05, 0.05, 0.0); }},
+      {"s_cmd zero", [](FswGuidSunsafeConfig& c) { gref::set3(c.s_cmd_B, 0, 0, 0); }},
+      {"s_cmd nan", [](FswGuidSunsafeConfig& c) { c.s_cmd_B[1] = static_cast<fsw_real>(gref::nan()); }},
+      {"min_unit_mag < 0", [](FswGuidSunsafeConfig& c) { c.min_unit_mag = FSW_R(-0.1); }},
+      {"min_unit_mag inf", [](FswGuidSunsafeConfig& c) { c.min_unit_mag = static_cast<fsw_real>(gref::inf()); }},
+      {"small_angle < 0", [](FswGuidSunsafeConfig& c) { c.small_angle = FSW_R(-1e-3); }},
+      {"small_angle = pi/2", [](FswGuidSunsafeConfig& c) { c.small_angle = static_cast<fsw_real>(gref::kPi / 2); }},
+      {"small_angle nan", [](FswGuidSunsafeConfig& c) { c.small_angle = static_cast<fsw_real>(gref::nan()); }},
+      {"omega_search inf", [](FswGuidSunsafeConfig& c) { c.omega_search_B[2] = static_cast<fsw_real>(gref::inf()); }},
+      {"spin rate nan", [](FswGuidSunsafeConfig& c) { c.sun_axis_spin_rate = static_cast<fsw_real>(gref::nan()); }},
+  };
+  for (const Case& k : cases) {
+    SCOPED_TRACE(k.name);
+    FswGuidSunsafeConfig cfg = cfg_;
+    k.edit(cfg);
+    EXPECT_EQ(FSW_E_CONFIG, fsw_guid_sunsafe_check(&cfg));
+    FswGuidSunsafeState st{};
+    EXPECT_EQ(FSW_E_CONFIG, fsw_guid_sunsafe_init(&st, &cfg));
+    EXPECT_EQ(0, st.ready);
+    gref::set3(in_.sun_B, 0.0, 1.0, 0.0);
+    out_.sun_valid = 5;
+    EXPECT_EQ(FSW_E_NOT_INIT, fsw_guid_sunsafe_update(&st, &cfg, &in_, &out_));
+    EXPECT_EQ(0, out_.sun_valid);
+    EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.sigma_BR, 0.0);
+  }
+  // boundary values that are legal
+  FswGuidSunsafeConfig ok = cfg_;
+  gref::set3(ok.s_cmd_B, 0.1, 0.0, 0.0);  // |s_cmd| = 0.1 exactly
+  ok.min_unit_mag = FSW_R(0.0);
+  ok.small_angle = FSW_R(0.0);
+  EXPECT_EQ(FSW_OK, fsw_guid_sunsafe_check(&ok));
+}
+
+TEST_F(GuidSunsafe, NonFiniteInputGivesZeroErrors)
+{
+  const double bad_values[] = {gref::nan(), gref::inf(), -gref::inf()};
+  uint32_t n = 0;
+  for (int f = 0; f < 2; f++) {
+    for (int k = 0; k < 3; k++) {
+      for (double v : bad_values) {
+        FswGuidSunsafeIn in{};
+        gref::set3(in.sun_B, 0.0, 1.0, 0.0);
+        gref::set3(in.omega_BN_B, 0.01, 0.02, 0.03);
+        (f == 0 ? in.sun_B : in.omega_BN_B)[k] = static_cast<fsw_real>(v);
+        for (int i = 0; i < 3; i++) out_.guid.omega_BR_B[i] = out_.guid.sigma_BR[i] = FSW_R(4.0);
+        EXPECT_EQ(FSW_E_BAD_INPUT, fsw_guid_sunsafe_update(&st_, &cfg_, &in, &out_));
+        EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.sigma_BR, 0.0);
+        EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.omega_BR_B, 0.0);
+        EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.omega_RN_B, 0.0);
+        EXPECT_EQ(0, out_.sun_valid);
+        n++;
+      }
+    }
+  }
+  EXPECT_EQ(n, st_.health.bad_input);
+  EXPECT_EQ(0ul, kestrel_assert_count());
+}
+
+TEST_F(GuidSunsafe, NullPointersAssert)
+{
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_guid_sunsafe_update(&st_, &cfg_, nullptr, &out_));
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_guid_sunsafe_check(nullptr));
+  EXPECT_EQ(2ul, kestrel_assert_count());
+}
+
+TEST_F(GuidSunsafe, RepeatableAfterReset)
+{
+  cfg_.sun_axis_spin_rate = FSW_R(0.01);
+  ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_init(&st_, &cfg_));
+  gref::set3(in_.sun_B, 0.3, -0.5, 0.8);
+  gref::set3(in_.omega_BN_B, 0.01, 0.02, -0.01);
+  FswGuidSunsafeOut a{}, b{};
+  ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_update(&st_, &cfg_, &in_, &a));
+  fsw_guid_sunsafe_reset(&st_);
+  ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_update(&st_, &cfg_, &in_, &b));
+  for (int i = 0; i < 3; i++) {
+    EXPECT_EQ(a.guid.sigma_BR[i], b.guid.sigma_BR[i]);
+    EXPECT_EQ(a.guid.omega_BR_B[i], b.guid.omega_BR_B[i]);
+  }
+  EXPECT_EQ(a.sun_angle_err, b.sun_angle_err);
+}
+
+}  // namespace
