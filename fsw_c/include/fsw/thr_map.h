@@ -1,0 +1,104 @@
+/* thr_map: thruster force mapping (fsw-algorithms.md 8, Basilisk
+ * thrForceMapping).  Maps the requested control torque Lr onto per-thruster
+ * forces for 1-3 control axes.  Frames: B.  Units: SI.
+ *
+ * Two modes:
+ *  - FSW_THR_MAP_MIN_NORM (default, Basilisk parity): minimum-norm solve, the
+ *    min-shift of on-pulsing thrusters, the optional second pass and the
+ *    saturation scaling (8.3-8.5).  Assumes the thrusters form pure couples;
+ *    with a CoM offset or a failed thruster the delivered torque is wrong
+ *    (fsw-algorithms.md 12, trap 4).
+ *  - FSW_THR_MAP_NNLS (opt-in, 8.6): minimum ||F|| subject to [C][D]F = Lbar
+ *    (least squares when no admissible F exists) and the thruster limits,
+ *    by a deterministic bounded-variable active-set method.  Delivers the
+ *    requested torque whenever the thrusters can.
+ *
+ * Output F: on-pulsing (thr_force_sign = +1) the commanded force of each
+ * thruster, >= 0; off-pulsing (thr_force_sign = -1, DV thrusters nominally
+ * on at F_max) the force change from full thrust, <= 0 in normal use.
+ *
+ * Safe output: F = 0 for every entry (no state is advanced: the module has
+ * no dynamic state).  Entries at and beyond num_thr are always exactly 0. */
+#ifndef FSW_THR_MAP_H
+#define FSW_THR_MAP_H
+
+#include "fsw/fsw_config.h" /* FSW_MAX_THR, FSW_MAX_EFF, fsw_real */
+#include "fsw/fsw_status.h" /* FswStatus, FswHealth */
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Mapping algorithm (FswThrMapConfig.mode). */
+typedef enum {
+  FSW_THR_MAP_MIN_NORM = 0, /* Basilisk thrForceMapping (8.3-8.5), default */
+  FSW_THR_MAP_NNLS = 1      /* exact bounded solve (8.6), opt-in             */
+} FswThrMapMode;
+
+typedef struct {
+  /* [-] (3 rows) control axes, B components.  Rows are counted in order up
+   * to the first whose norm is <= epsilon (0 counted rows is an error) and
+   * normalised by init; the counted rows must be linearly independent. */
+  fsw_real control_axes_B[3][3];
+  int num_thr;                         /* [-]   1..FSW_MAX_THR                */
+  fsw_real r_thr_B[FSW_MAX_THR][3];    /* [m]   (num_thr) thruster locations  */
+  fsw_real gt_hat_B[FSW_MAX_THR][3];   /* [-]   (num_thr) unit force axes     */
+  fsw_real F_max[FSW_MAX_THR];         /* [N]   (num_thr) max thrust, > 0     */
+  int thr_force_sign;                  /* [-]   +1 on-pulsing RCS, -1 off-pulsing DV */
+  fsw_real ang_err_thresh;             /* [rad] >= 0; scaling when the torque angle
+                                          error exceeds it; > pi disables scaling */
+  fsw_real epsilon;                    /* [N*m] >= 0; |Lbar| <= epsilon counts as
+                                          zero request (Basilisk default 0)  */
+  int use_2nd_loop;                    /* [-]   0/1: second pass for on-pulsing */
+  int mode;                            /* [-]   FswThrMapMode                  */
+} FswThrMapConfig;
+
+/* Scratch matrices of one update (kept here, not on the stack, so every
+ * public function stays well below the 4 KiB stack budget).  They carry no
+ * meaning between calls. */
+typedef struct {
+  fsw_real D_B[3][FSW_MAX_EFF];  /* [m] torque arms d_i as columns, B     */
+  fsw_real CD[3][FSW_MAX_EFF];   /* [m] [C][D], control-axis rows          */
+  fsw_real CD_S[3][FSW_MAX_EFF]; /* [m] second-pass / free-set columns     */
+} FswThrMapWork;
+
+typedef struct {
+  int ready;                /* [-] 1 once init accepted the config          */
+  int num_axes;             /* [-] counted control axes nc (1..3), by init  */
+  fsw_real C[3][3];         /* [-] normalised control axes (nc rows), by init */
+  fsw_real ang_err;         /* [rad] torque angle error of the last update
+                               (min-norm mode), 0 otherwise                 */
+  int nnls_iter;            /* [-] active-set iterations of the last update */
+  FswThrMapWork work;       /* scratch, see above                           */
+  FswHealth health;         /* counters read by the harness                 */
+} FswThrMapState;
+
+typedef struct {
+  fsw_real Lr_B[3];    /* [N*m] requested external control torque, B        */
+  fsw_real r_CoM_B[3]; /* [m]   centre of mass location, B                  */
+} FswThrMapIn;
+
+typedef struct {
+  fsw_real F[FSW_MAX_THR]; /* [N] (num_thr) force command, see above; rest 0 */
+} FswThrMapOut;
+
+/* Validate the configuration.  FSW_E_CAPACITY: num_thr > FSW_MAX_THR;
+ * FSW_E_SINGULAR: the counted control axes are linearly dependent;
+ * FSW_E_CONFIG: anything else out of range or non-finite. */
+FswStatus fsw_thr_map_check(const FswThrMapConfig *cfg);
+/* check, then normalise the control axes, clear health, reset. */
+FswStatus fsw_thr_map_init(FswThrMapState *st, const FswThrMapConfig *cfg);
+/* No dynamic state: clears the last-update diagnostics only. */
+void fsw_thr_map_reset(FswThrMapState *st);
+/* Returns FSW_OK; FSW_W_SAT (min-norm: forces were scaled down; NNLS: the
+ * request is out of reach, the least-squares torque is delivered);
+ * FSW_W_SINGULAR (min-norm: rank-deficient [C][D], F = 0); FSW_E_BAD_INPUT
+ * (NaN/Inf input, F = 0); FSW_E_NOT_INIT; FSW_E_NULL_ARG. */
+FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
+                             const FswThrMapIn *in, FswThrMapOut *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* FSW_THR_MAP_H */
