@@ -1,0 +1,416 @@
+// css_sun: Sun heading from coarse sun sensors (docs/fsw/css_sun.md).
+// Hand geometry: six sensors on the cube faces (+-x, +-y, +-z), where the
+// lit normals are orthonormal and every estimate can be written down.
+// Property checks use a 14-sensor head (6 faces + 8 cube corners) and seeded
+// Sun directions: noiseless readings must give the Sun exactly; with bounded
+// noise |dy_i| <= b the WLS error is exactly dx = (H^T W H)^-1 H^T W dy
+// (because y = H s + dy for every lit sensor), so
+//   |dx_j| <= b sum_i |P_ji|,  P = (H^T W H)^-1 H^T W,
+// and the angle between x and the unit Sun s is at most atan(D / (1 - D)),
+// D = |(b sum_i |P_ji|)_j|.  P is computed here independently (cofactor
+// inverse), from the noisy readings the module saw.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+
+#include "fsw/css_sun.h"
+#include "gnc_test_ref.h"
+#include "kestrel_test_support.h"
+
+namespace {
+
+const double kTol = kt::tol(1e-14, 2e-6);
+
+// Cube faces: index 0..5 = +x, -x, +y, -y, +z, -z.
+void cube_faces(FswCssSunConfig& c, double scale)
+{
+  c = FswCssSunConfig{};
+  c.num_css = 6;
+  const double n[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (int i = 0; i < 6; i++) {
+    gref::to_real(c.n_hat_B[i], n[i]);
+    c.scale[i] = static_cast<fsw_real>(scale);
+  }
+  c.lit_threshold = FSW_R(0.1);
+}
+
+// 6 faces + 8 corners (+-1, +-1, +-1)/sqrt(3); scales differ per sensor.
+void head14(FswCssSunConfig& c, double n_d[14][3], double scale_d[14])
+{
+  c = FswCssSunConfig{};
+  c.num_css = 14;
+  const double f[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  int k = 0;
+  for (int i = 0; i < 6; i++, k++)
+    for (int j = 0; j < 3; j++) n_d[k][j] = f[i][j];
+  const double r3 = 1.0 / std::sqrt(3.0);
+  for (int sx = -1; sx <= 1; sx += 2)
+    for (int sy = -1; sy <= 1; sy += 2)
+      for (int sz = -1; sz <= 1; sz += 2, k++) {
+        n_d[k][0] = sx * r3;
+        n_d[k][1] = sy * r3;
+        n_d[k][2] = sz * r3;
+      }
+  for (int i = 0; i < 14; i++) {
+    scale_d[i] = 1.5 + 0.1 * i;  // [reading units] at normal incidence
+    gref::to_real(c.n_hat_B[i], n_d[i]);
+    // the module sees the fsw_real normals: use those in the reference
+    gref::to_double(n_d[i], c.n_hat_B[i]);
+    c.scale[i] = static_cast<fsw_real>(scale_d[i]);
+    scale_d[i] = static_cast<double>(c.scale[i]);
+  }
+  c.lit_threshold = FSW_R(0.1);
+}
+
+// Ideal cosine-law readings for unit Sun s.
+void readings(FswCssSunIn& in, const FswCssSunConfig& c, const double s[3])
+{
+  for (int i = 0; i < c.num_css; i++) {
+    double n[3];
+    gref::to_double(n, c.n_hat_B[i]);
+    in.reading[i] = static_cast<fsw_real>(static_cast<double>(c.scale[i]) * std::fmax(0.0, gref::dot(n, s)));
+  }
+}
+
+bool inv3(double out[3][3], const double A[3][3])
+{
+  const double c00 = A[1][1] * A[2][2] - A[1][2] * A[2][1];
+  const double c01 = A[1][2] * A[2][0] - A[1][0] * A[2][2];
+  const double c02 = A[1][0] * A[2][1] - A[1][1] * A[2][0];
+  const double det = A[0][0] * c00 + A[0][1] * c01 + A[0][2] * c02;
+  if (!(std::fabs(det) > 0.0)) return false;
+  out[0][0] = c00 / det;
+  out[1][0] = c01 / det;
+  out[2][0] = c02 / det;
+  out[0][1] = (A[0][2] * A[2][1] - A[0][1] * A[2][2]) / det;
+  out[1][1] = (A[0][0] * A[2][2] - A[0][2] * A[2][0]) / det;
+  out[2][1] = (A[0][1] * A[2][0] - A[0][0] * A[2][1]) / det;
+  out[0][2] = (A[0][1] * A[1][2] - A[0][2] * A[1][1]) / det;
+  out[1][2] = (A[0][2] * A[1][0] - A[0][0] * A[1][2]) / det;
+  out[2][2] = (A[0][0] * A[1][1] - A[0][1] * A[1][0]) / det;
+  return true;
+}
+
+double angle(const double a[3], const double b[3])
+{
+  double c[3];
+  gref::cross(c, a, b);
+  return std::atan2(gref::norm(c), gref::dot(a, b));
+}
+
+class CssSun : public ::testing::Test {
+ protected:
+  void SetUp() override
+  {
+    kestrel_assert_reset();
+    cube_faces(cfg_, 2.0);
+    ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_, &cfg_));
+  }
+  FswStatus run() { return fsw_css_sun_update(&st_, &cfg_, &in_, &out_); }
+  FswCssSunConfig cfg_{};
+  FswCssSunState st_{};
+  FswCssSunIn in_{};
+  FswCssSunOut out_{};
+};
+
+TEST_F(CssSun, ThreeOrthogonalLitSensorsGiveExactSun)
+{
+  // s = (1,1,1)/sqrt(3): +x, +y, +z read 2/sqrt(3), y_i = 1/sqrt(3).
+  // M = (1/sqrt(3)) I, c = (1/3)(1,1,1)  ->  x = sqrt(3)/3 (1,1,1) = s, |x| = 1.
+  const double r3 = 1.0 / std::sqrt(3.0);
+  const double s[3] = {r3, r3, r3};
+  readings(in_, cfg_, s);
+  ASSERT_EQ(FSW_OK, run());
+  EXPECT_EQ(FSW_CSS_SUN_WLS, out_.mode);
+  EXPECT_EQ(3, out_.num_lit);
+  EXPECT_EQ(1, out_.sun_valid);
+  EXPECT_V3_NEAR(r3, r3, r3, out_.sun_hat_B, kTol);
+  EXPECT_NEAR(1.0, out_.sun_mag, kTol);
+}
+
+TEST_F(CssSun, TwoLitSensorsInPlaneSunIsExact)
+{
+  // s = (0.6, 0.8, 0): only +x (0.6) and +y (0.8) lit.  Two-sensor
+  // minimum-norm: n_a = +y (brighter), n_b = +x, n_a.n_b = 0 ->
+  // x = 0.8 y + 0.6 x = s; status warns that this is a fallback.
+  const double s[3] = {0.6, 0.8, 0.0};
+  readings(in_, cfg_, s);
+  ASSERT_EQ(FSW_W_SINGULAR, run());
+  EXPECT_EQ(FSW_CSS_SUN_TWO, out_.mode);
+  EXPECT_EQ(2, out_.num_lit);
+  EXPECT_V3_NEAR(0.6, 0.8, 0.0, out_.sun_hat_B, kTol);
+  EXPECT_NEAR(1.0, out_.sun_mag, kTol);
+  EXPECT_EQ(1u, st_.health.singular);
+}
+
+TEST_F(CssSun, TwoLitSensorsGiveInPlaneProjection)
+{
+  // s = (0.6, 0.6, sqrt(0.28)) with +z failed: +x, +y lit at 0.6 each.
+  // x = 0.6 x + 0.6 y (the projection of s on span{x, y}), |x| = 0.6 sqrt(2),
+  // heading (1,1,0)/sqrt(2): the out-of-plane part is lost (documented).
+  const double s[3] = {0.6, 0.6, std::sqrt(0.28)};
+  readings(in_, cfg_, s);
+  in_.avail[4] = FSW_UNAVAILABLE;
+  ASSERT_EQ(FSW_W_SINGULAR, run());
+  EXPECT_EQ(FSW_CSS_SUN_TWO, out_.mode);
+  const double r2 = 1.0 / std::sqrt(2.0);
+  EXPECT_V3_NEAR(r2, r2, 0.0, out_.sun_hat_B, kTol);
+  EXPECT_NEAR(0.6 * std::sqrt(2.0), out_.sun_mag, kTol);
+}
+
+TEST_F(CssSun, OneLitSensorGivesItsNormal)
+{
+  // s = (0.6, 0, 0.8) with +z failed: only +x lit (y = 0.6).
+  const double s[3] = {0.6, 0.0, 0.8};
+  readings(in_, cfg_, s);
+  in_.avail[4] = FSW_UNAVAILABLE;
+  in_.reading[4] = static_cast<fsw_real>(gref::nan());  // ignored: unavailable
+  ASSERT_EQ(FSW_W_SINGULAR, run());
+  EXPECT_EQ(FSW_CSS_SUN_ONE, out_.mode);
+  EXPECT_EQ(1, out_.num_lit);
+  EXPECT_EQ(1, out_.sun_valid);
+  EXPECT_V3_NEAR(1.0, 0.0, 0.0, out_.sun_hat_B, 0.0);
+  EXPECT_NEAR(0.6, out_.sun_mag, kTol);
+}
+
+TEST_F(CssSun, NoLitSensorNoHeading)
+{
+  // eclipse: all readings 0 (and one just at the threshold: not lit, strict >)
+  in_.reading[2] = FSW_R(0.2);  // y = 0.2/2 = 0.1 = threshold
+  ASSERT_EQ(FSW_W_SINGULAR, run());
+  EXPECT_EQ(FSW_CSS_SUN_NONE, out_.mode);
+  EXPECT_EQ(0, out_.num_lit);
+  EXPECT_EQ(0, out_.sun_valid);
+  EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.sun_hat_B, 0.0);
+  EXPECT_EQ(0.0, out_.sun_mag);
+}
+
+TEST_F(CssSun, CoplanarLitSensorsFallBackToTwo)
+{
+  // normals x, y, (x+y)/sqrt(2) are coplanar: M has rank 2, WLS refused.
+  // s = (0.6, 0.8, 0): y = 0.6, 0.8, 1.4/sqrt(2) = 0.98995.  Brightest a = 2,
+  // brightest non-parallel partner b = 1 (+y); x = projection of s on the
+  // x-y plane = s (s lies in it).
+  FswCssSunConfig c{};
+  c.num_css = 3;
+  const double r2 = 1.0 / std::sqrt(2.0);
+  gref::set3(c.n_hat_B[0], 1, 0, 0);
+  gref::set3(c.n_hat_B[1], 0, 1, 0);
+  gref::set3(c.n_hat_B[2], r2, r2, 0);
+  for (int i = 0; i < 3; i++) c.scale[i] = FSW_R(1.0);
+  c.lit_threshold = FSW_R(0.05);
+  ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_, &c));
+  const double s[3] = {0.6, 0.8, 0.0};
+  readings(in_, c, s);
+  ASSERT_EQ(FSW_W_SINGULAR, fsw_css_sun_update(&st_, &c, &in_, &out_));
+  EXPECT_EQ(FSW_CSS_SUN_TWO, out_.mode);
+  EXPECT_EQ(3, out_.num_lit);
+  EXPECT_V3_NEAR(0.6, 0.8, 0.0, out_.sun_hat_B, kt::tol(1e-14, 4e-6));
+}
+
+TEST_F(CssSun, ParallelLitSensorsFallBackToOne)
+{
+  // two sensors with the same normal (redundant pair) both lit: no 2-D
+  // information, heading = the common normal; the brighter (lower index on a
+  // tie) is reported.
+  FswCssSunConfig c{};
+  c.num_css = 2;
+  gref::set3(c.n_hat_B[0], 0, 0, 1);
+  gref::set3(c.n_hat_B[1], 0, 0, 1);
+  c.scale[0] = c.scale[1] = FSW_R(1.0);
+  c.lit_threshold = FSW_R(0.1);
+  ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_, &c));
+  in_.reading[0] = FSW_R(0.5);
+  in_.reading[1] = FSW_R(0.7);
+  ASSERT_EQ(FSW_W_SINGULAR, fsw_css_sun_update(&st_, &c, &in_, &out_));
+  EXPECT_EQ(FSW_CSS_SUN_ONE, out_.mode);
+  EXPECT_EQ(2, out_.num_lit);
+  EXPECT_V3_NEAR(0.0, 0.0, 1.0, out_.sun_hat_B, 0.0);
+  EXPECT_NEAR(0.7, out_.sun_mag, kTol);
+}
+
+TEST_F(CssSun, NoiselessReadingsGiveExactSunOnSeededDirections)
+{
+  double n[14][3], sc[14];
+  FswCssSunConfig c{};
+  head14(c, n, sc);
+  ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_, &c));
+  kt::Rng rng(0x5eed0004u);
+  int n_wls = 0;
+  const int kTrials = 500;
+  for (int t = 0; t < kTrials; t++) {
+    double s[3];
+    rng.unit3(s);
+    FswCssSunIn in{};
+    readings(in, c, s);
+    FswCssSunOut out{};
+    const FswStatus st = fsw_css_sun_update(&st_, &c, &in, &out);
+    if (out.mode != FSW_CSS_SUN_WLS) {
+      EXPECT_EQ(FSW_W_SINGULAR, st);
+      continue;
+    }
+    n_wls++;
+    EXPECT_EQ(FSW_OK, st);
+    EXPECT_V3_NEAR(s[0], s[1], s[2], out.sun_hat_B, kt::tol(1e-13, 2e-6));
+    EXPECT_NEAR(1.0, out.sun_mag, kt::tol(1e-13, 2e-6));
+  }
+  // with 14 sensors at least 3 spanning sensors are lit almost everywhere
+  EXPECT_GT(n_wls, kTrials * 95 / 100);
+}
+
+TEST_F(CssSun, NoisyReadingsStayWithinAnalyticBound)
+{
+  double n[14][3], sc[14];
+  FswCssSunConfig c{};
+  head14(c, n, sc);
+  ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_, &c));
+  const double b = 0.01;  // [-] noise bound on each cosine, < lit_threshold
+  kt::Rng rng(0x5eed0005u);
+  int n_checked = 0;
+  double worst_ratio = 0.0;
+  for (int t = 0; t < 400; t++) {
+    double s[3];
+    rng.unit3(s);
+    FswCssSunIn in{};
+    for (int i = 0; i < 14; i++) {
+      const double cosv = std::fmax(0.0, gref::dot(n[i], s));
+      in.reading[i] = static_cast<fsw_real>(sc[i] * (cosv + b * rng.uniform(-1.0, 1.0)));
+    }
+    FswCssSunOut out{};
+    fsw_css_sun_update(&st_, &c, &in, &out);
+    // lit set and weights as the module defines them, from the noisy values
+    double M[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    double y[14];
+    bool lit[14];
+    int n_lit = 0;
+    for (int i = 0; i < 14; i++) {
+      y[i] = static_cast<double>(in.reading[i]) / sc[i];
+      lit[i] = y[i] > 0.1;
+      if (!lit[i]) continue;
+      n_lit++;
+      EXPECT_GT(gref::dot(n[i], s), 0.0);  // lit => the cosine law is linear there
+      for (int j = 0; j < 3; j++)
+        for (int k = 0; k < 3; k++) M[j][k] += y[i] * n[i][j] * n[i][k];
+    }
+    EXPECT_EQ(n_lit, out.num_lit);
+    if (out.mode != FSW_CSS_SUN_WLS) continue;
+    double Minv[3][3];
+    ASSERT_TRUE(inv3(Minv, M));
+    double B[3] = {0, 0, 0}, x_ref[3] = {0, 0, 0};
+    for (int i = 0; i < 14; i++) {
+      if (!lit[i]) continue;
+      double Pcol[3];  // column i of P = M^-1 n_i w_i
+      gref::matvec(Pcol, Minv, n[i]);
+      for (int j = 0; j < 3; j++) {
+        Pcol[j] *= y[i];
+        B[j] += b * std::fabs(Pcol[j]);
+        x_ref[j] += Pcol[j] * y[i];
+      }
+    }
+    const double D = gref::norm(B);
+    ASSERT_LT(D, 1.0);
+    const double bound = std::atan(D / (1.0 - D)) + kt::tol(1e-12, 2e-5);
+    double got[3];
+    gref::to_double(got, out.sun_hat_B);
+    const double err = angle(got, s);
+    EXPECT_LE(err, bound) << "trial " << t;
+    worst_ratio = std::fmax(worst_ratio, err / bound);
+    // and the module's estimate is the WLS solution itself
+    const double xn = gref::norm(x_ref);
+    for (int j = 0; j < 3; j++) EXPECT_NEAR(x_ref[j] / xn, got[j], kt::tol(1e-12, 2e-5));
+    n_checked++;
+  }
+  EXPECT_GT(n_checked, 380);
+  EXPECT_GT(worst_ratio, 0.05);  // the bound is not vacuous
+}
+
+TEST_F(CssSun, RejectsBadConfig)
+{
+  struct Case {
+    const char* name;
+    FswStatus want;
+    void (*edit)(FswCssSunConfig&);
+  };
+  const Case cases[] = {
+      {"no sensors", FSW_E_CONFIG, [](FswCssSunConfig& c) { c.num_css = 0; }},
+      {"negative count", FSW_E_CONFIG, [](FswCssSunConfig& c) { c.num_css = -2; }},
+      {"too many", FSW_E_CAPACITY, [](FswCssSunConfig& c) { c.num_css = FSW_MAX_CSS + 1; }},
+      {"normal not unit", FSW_E_CONFIG, [](FswCssSunConfig& c) { c.n_hat_B[3][1] = FSW_R(-0.9); }},
+      {"normal zero", FSW_E_CONFIG, [](FswCssSunConfig& c) { c.n_hat_B[0][0] = FSW_R(0.0); }},
+      {"normal nan", FSW_E_CONFIG, [](FswCssSunConfig& c) { c.n_hat_B[5][2] = static_cast<fsw_real>(gref::nan()); }},
+      {"scale 0", FSW_E_CONFIG, [](FswCssSunConfig& c) { c.scale[1] = FSW_R(0.0); }},
+      {"scale < 0", FSW_E_CONFIG, [](FswCssSunConfig& c) { c.scale[1] = FSW_R(-2.0); }},
+      {"scale inf", FSW_E_CONFIG, [](FswCssSunConfig& c) { c.scale[4] = static_cast<fsw_real>(gref::inf()); }},
+      {"threshold < 0", FSW_E_CONFIG, [](FswCssSunConfig& c) { c.lit_threshold = FSW_R(-0.01); }},
+      {"threshold 1", FSW_E_CONFIG, [](FswCssSunConfig& c) { c.lit_threshold = FSW_R(1.0); }},
+      {"threshold nan", FSW_E_CONFIG, [](FswCssSunConfig& c) { c.lit_threshold = static_cast<fsw_real>(gref::nan()); }},
+  };
+  for (const Case& k : cases) {
+    SCOPED_TRACE(k.name);
+    FswCssSunConfig c = cfg_;
+    k.edit(c);
+    EXPECT_EQ(k.want, fsw_css_sun_check(&c));
+    FswCssSunState st{};
+    EXPECT_EQ(k.want, fsw_css_sun_init(&st, &c));
+    EXPECT_EQ(0, st.ready);
+    out_.sun_valid = 1;
+    EXPECT_EQ(FSW_E_NOT_INIT, fsw_css_sun_update(&st, &c, &in_, &out_));
+    EXPECT_EQ(0, out_.sun_valid);
+  }
+  FswCssSunConfig ok = cfg_;
+  ok.lit_threshold = FSW_R(0.0);
+  ok.num_css = 1;
+  EXPECT_EQ(FSW_OK, fsw_css_sun_check(&ok));
+}
+
+TEST_F(CssSun, BadInputGivesSafeOutput)
+{
+  const double r3 = 1.0 / std::sqrt(3.0);
+  const double s[3] = {r3, r3, r3};
+  readings(in_, cfg_, s);
+  const FswCssSunIn good = in_;
+  for (double v : {gref::nan(), gref::inf(), -gref::inf()}) {
+    in_ = good;
+    in_.reading[3] = static_cast<fsw_real>(v);  // an unlit but available sensor
+    out_.sun_valid = 1;
+    EXPECT_EQ(FSW_E_BAD_INPUT, run());
+    EXPECT_EQ(0, out_.sun_valid);
+    EXPECT_EQ(FSW_CSS_SUN_NONE, out_.mode);
+    EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.sun_hat_B, 0.0);
+  }
+  in_ = good;
+  in_.avail[0] = 3;  // neither AVAILABLE nor UNAVAILABLE
+  EXPECT_EQ(FSW_E_BAD_INPUT, run());
+  EXPECT_EQ(4u, st_.health.bad_input);
+  in_ = good;
+  EXPECT_EQ(FSW_OK, run());  // recovers
+  EXPECT_EQ(1, out_.sun_valid);
+}
+
+TEST_F(CssSun, NullPointersAssert)
+{
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_css_sun_update(&st_, &cfg_, nullptr, &out_));
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_css_sun_check(nullptr));
+  EXPECT_EQ(2ul, kestrel_assert_count());
+}
+
+TEST_F(CssSun, RepeatableAfterReset)
+{
+  double n[14][3], sc[14];
+  FswCssSunConfig c{};
+  head14(c, n, sc);
+  ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_, &c));
+  kt::Rng rng(7);
+  for (int i = 0; i < 14; i++) in_.reading[i] = static_cast<fsw_real>(rng.uniform(0.0, 1.5));
+  FswCssSunOut a{}, b{};
+  const FswStatus sa = fsw_css_sun_update(&st_, &c, &in_, &a);
+  fsw_css_sun_reset(&st_);
+  const FswStatus sb = fsw_css_sun_update(&st_, &c, &in_, &b);
+  EXPECT_EQ(sa, sb);
+  EXPECT_EQ(a.mode, b.mode);
+  for (int i = 0; i < 3; i++) EXPECT_EQ(a.sun_hat_B[i], b.sun_hat_B[i]);
+  EXPECT_EQ(a.sun_mag, b.sun_mag);
+}
+
+}  // namespace
