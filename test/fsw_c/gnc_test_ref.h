@@ -29,6 +29,8 @@ inline void set3(fsw_real out[3], double x, double y, double z)
   out[1] = static_cast<fsw_real>(y);
   out[2] = static_cast<fsw_real>(z);
 }
+// x rounded to fsw_real and back: the exact value a module sees for literal x
+inline double rr(double x) { return static_cast<double>(static_cast<fsw_real>(x)); }
 inline double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 inline double norm(const double a[3]) { return std::sqrt(dot(a, a)); }
 inline void cross(double out[3], const double a[3], const double b[3])

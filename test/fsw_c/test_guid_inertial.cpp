@@ -36,7 +36,7 @@ TEST_F(GuidInertial, OutputsConfiguredAttitudeWithZeroRates)
   EXPECT_EQ(1, st_.ready);
   fill_garbage(out_);
   ASSERT_EQ(FSW_OK, fsw_guid_inertial_update(&st_, &cfg_, &out_));
-  EXPECT_V3_NEAR(0.1, 0.2, -0.3, out_.sigma_RN, 0.0);  // exact copy
+  EXPECT_V3_NEAR(gref::rr(0.1), gref::rr(0.2), gref::rr(-0.3), out_.sigma_RN, 0.0);  // exact copy
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.omega_RN_N, 0.0);
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.omega_dot_RN_N, 0.0);
   EXPECT_EQ(1u, st_.health.calls);

@@ -48,7 +48,7 @@ TEST_F(GuidSunsafe, QuarterTurnHandCase)
   EXPECT_EQ(1, out_.sun_valid);
   // no spin about the Sun axis: omega_RN = 0, omega_BR = omega_BN
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.omega_RN_B, 0.0);
-  EXPECT_V3_NEAR(0.01, 0.02, 0.03, out_.guid.omega_BR_B, 0.0);
+  EXPECT_V3_NEAR(gref::rr(0.01), gref::rr(0.02), gref::rr(0.03), out_.guid.omega_BR_B, 0.0);
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.omega_dot_RN_B, 0.0);
 }
 
@@ -75,7 +75,7 @@ TEST_F(GuidSunsafe, InsideDeadBandNoAttitudeError)
   ASSERT_EQ(FSW_OK, run());
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.sigma_BR, 0.0);
   EXPECT_NEAR(a, out_.sun_angle_err, kt::tol(1e-9, 3e-4));  // acos near 1 loses digits
-  EXPECT_V3_NEAR(0.001, 0.0, 0.0, out_.guid.omega_BR_B, 0.0);
+  EXPECT_V3_NEAR(gref::rr(0.001), 0.0, 0.0, out_.guid.omega_BR_B, 0.0);
   EXPECT_EQ(1, out_.sun_valid);
 }
 
@@ -125,7 +125,7 @@ TEST_F(GuidSunsafe, NoValidSunSearchSpin)
   gref::set3(in_.omega_BN_B, 0.01, 0.0, 0.03);
   ASSERT_EQ(FSW_OK, run());
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.sigma_BR, 0.0);
-  EXPECT_V3_NEAR(0.0, 0.0, 0.02, out_.guid.omega_RN_B, 0.0);
+  EXPECT_V3_NEAR(0.0, 0.0, gref::rr(0.02), out_.guid.omega_RN_B, 0.0);
   EXPECT_V3_NEAR(0.01, 0.0, 0.03 - 0.02, out_.guid.omega_BR_B, kTol);
   EXPECT_EQ(0, out_.sun_valid);
   EXPECT_EQ(0.0, out_.sun_angle_err);
