@@ -1,0 +1,90 @@
+/* rw_speed_filter: wheel-speed (tachometer) outlier rejection.  Library
+ * design; fsw-algorithms.md does not cover it (issue 4, docs/fsw/rw_speed_filter.md).
+ * Per wheel i, with the last accepted ("good") sample Omega_good at t_good:
+ *   bound_i = (u_max_i / J_s,i) (t - t_good) + noise_i
+ * A wheel's speed relative to the body changes at most u_max/J_s (the motor
+ * torque) plus the body-acceleration term g_s^T omega_dot_BN, which noise_i
+ * must cover together with the sensor noise.
+ *   accept  |Omega_meas - Omega_good| <= bound_i (finite sample): Omega_good,
+ *           t_good <- sample; the run of consecutive rejections restarts.
+ *   reject  otherwise, or a NaN/Inf sample: the output holds Omega_good, the
+ *           wheel's rejection counter rises, bit i of `rejected` is set.
+ *           Because t_good stays put, the bound widens while rejecting.
+ *   fail    after k_reject consecutive rejections the wheel is marked
+ *           UNAVAILABLE (bit i of `failed`), and stays so until it recovers.
+ *   recover while failed, each finite sample is compared with the previous
+ *           finite one (same bound, over their spacing); n_recover samples in
+ *           a row that are mutually consistent bring the wheel back, anchored
+ *           on the latest sample.  A NaN/Inf sample or an inconsistent one
+ *           restarts the count (an inconsistent one counts as its first).
+ * The first finite sample after reset is accepted as it is (no reference).
+ * Non-finite samples are outliers of one wheel, not bad input of the module.
+ * Out.avail = In.avail OR failed.  Units: SI.
+ * Safe output (bad time, bad mask, not initialised): Omega = held good values
+ * (0 if none, and 0 when not initialised), every wheel UNAVAILABLE. */
+#ifndef FSW_RW_SPEED_FILTER_H
+#define FSW_RW_SPEED_FILTER_H
+
+#include <stdint.h>
+
+#include "fsw/fsw_config.h"
+#include "fsw/fsw_status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+  int num_rw;                 /* [-]        1..FSW_MAX_RW (<= 64)                 */
+  fsw_real u_max[FSW_MAX_RW]; /* [N*m]      (num_rw) motor torque limit, > 0      */
+  fsw_real J_s[FSW_MAX_RW];   /* [kg*m^2]   (num_rw) spin inertia, > 0            */
+  fsw_real noise[FSW_MAX_RW]; /* [rad/s]    (num_rw) margin, finite, >= 0         */
+  uint32_t k_reject;          /* [-]        consecutive rejections to fail, >= 1  */
+  uint32_t n_recover;         /* [-]        consistent samples to recover, >= 1   */
+} FswRwSpeedFilterConfig;
+
+typedef struct {
+  int ready;
+  fsw_real Omega_good[FSW_MAX_RW]; /* [rad/s] last accepted sample           */
+  uint64_t t_good_ns[FSW_MAX_RW];  /* [ns]    its time                        */
+  fsw_real Omega_cand[FSW_MAX_RW]; /* [rad/s] previous finite sample (failed) */
+  uint64_t t_cand_ns[FSW_MAX_RW];  /* [ns]    its time                        */
+  uint32_t reject_run[FSW_MAX_RW]; /* [-]     consecutive rejections          */
+  uint32_t recover_run[FSW_MAX_RW];/* [-]     consistent samples while failed */
+  uint32_t rejections[FSW_MAX_RW]; /* [-]     total rejections (saturating),
+                                      kept by reset like the health counters */
+  uint8_t has_good[FSW_MAX_RW];    /* [-]     Omega_good valid                */
+  uint8_t failed[FSW_MAX_RW];      /* [-]     held UNAVAILABLE by the filter  */
+  int has_prev;                    /* [-]     a call accepted since reset     */
+  uint64_t t_prev_ns;              /* [ns]                                    */
+  FswHealth health;
+} FswRwSpeedFilterState;
+
+typedef struct {
+  fsw_real Omega_meas[FSW_MAX_RW]; /* [rad/s] (num_rw) raw tachometer samples    */
+  uint8_t avail[FSW_MAX_RW];       /* [-]     (num_rw) upstream mask, 0/1        */
+  uint64_t t_ns;                   /* [ns]    sample time                        */
+} FswRwSpeedFilterIn;
+
+typedef struct {
+  fsw_real Omega[FSW_MAX_RW]; /* [rad/s] (num_rw) screened speeds; 0 beyond num_rw */
+  uint8_t avail[FSW_MAX_RW];  /* [-]     (num_rw) In.avail OR failed; 0 beyond     */
+  uint64_t rejected;          /* [-]     bit i: this call's sample i rejected     */
+  uint64_t failed;            /* [-]     bit i: wheel i held unavailable          */
+} FswRwSpeedFilterOut;
+
+FswStatus fsw_rw_speed_filter_check(const FswRwSpeedFilterConfig *cfg);
+FswStatus fsw_rw_speed_filter_init(FswRwSpeedFilterState *st, const FswRwSpeedFilterConfig *cfg);
+/* Clears samples, runs, failures and timing; keeps `rejections` and health. */
+void fsw_rw_speed_filter_reset(FswRwSpeedFilterState *st);
+/* FSW_OK (rejections are reported in Out, not as a status); FSW_E_BAD_INPUT
+ * (mask entry not 0/1); FSW_E_TIME (t_ns <= previous); FSW_E_NOT_INIT.
+ * Errors advance no state. */
+FswStatus fsw_rw_speed_filter_update(FswRwSpeedFilterState *st, const FswRwSpeedFilterConfig *cfg,
+                                     const FswRwSpeedFilterIn *in, FswRwSpeedFilterOut *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* FSW_RW_SPEED_FILTER_H */

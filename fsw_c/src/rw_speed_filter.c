@@ -1,0 +1,139 @@
+/* rw_speed_filter: tachometer outlier rejection with hold, fail and recover. */
+#include "fsw/rw_speed_filter.h"
+
+#include <stddef.h>
+
+#include "fsw/fsw_vec.h"
+#include "fsw/rw_common.h"
+
+FswStatus fsw_rw_speed_filter_check(const FswRwSpeedFilterConfig *cfg)
+{
+  int n, i;
+  FSW_ASSERT(cfg != NULL);
+  if (cfg == NULL) return FSW_E_NULL_ARG;
+  n = cfg->num_rw;
+  if (n < 1 || n > FSW_MAX_RW || n > 64) return FSW_E_CAPACITY;
+  if (!fsw_rw_all_positive(cfg->u_max, n) || !fsw_rw_all_positive(cfg->J_s, n)) return FSW_E_CONFIG;
+  for (i = 0; i < n; i++)
+    if (!isfinite(cfg->noise[i]) || cfg->noise[i] < FSW_R(0.0)) return FSW_E_CONFIG;
+  if (cfg->k_reject < 1u || cfg->n_recover < 1u) return FSW_E_CONFIG;
+  return FSW_OK;
+}
+
+FswStatus fsw_rw_speed_filter_init(FswRwSpeedFilterState *st, const FswRwSpeedFilterConfig *cfg)
+{
+  FswStatus s;
+  int i;
+  FSW_ASSERT(st != NULL && cfg != NULL);
+  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  st->ready = 0;
+  fsw_health_clear(&st->health);
+  for (i = 0; i < FSW_MAX_RW; i++) st->rejections[i] = 0u;
+  s = fsw_rw_speed_filter_check(cfg);
+  if (s != FSW_OK) return s;
+  st->ready = 1;
+  fsw_rw_speed_filter_reset(st);
+  return FSW_OK;
+}
+
+void fsw_rw_speed_filter_reset(FswRwSpeedFilterState *st)
+{
+  int i;
+  FSW_ASSERT(st != NULL);
+  if (st == NULL) return;
+  for (i = 0; i < FSW_MAX_RW; i++) {
+    st->Omega_good[i] = FSW_R(0.0);
+    st->t_good_ns[i] = 0u;
+    st->Omega_cand[i] = FSW_R(0.0);
+    st->t_cand_ns[i] = 0u;
+    st->reject_run[i] = 0u;
+    st->recover_run[i] = 0u;
+    st->has_good[i] = 0u;
+    st->failed[i] = 0u;
+  }
+  st->has_prev = 0;
+  st->t_prev_ns = 0u;
+}
+
+/* |x - ref| within what the motor torque allows since t_ref, plus noise. */
+static int consistent(const FswRwSpeedFilterConfig *cfg, int i, fsw_real x, fsw_real ref,
+                      uint64_t t_ns, uint64_t t_ref_ns)
+{
+  const fsw_real dt = (fsw_real)(t_ns - t_ref_ns) * FSW_R(1e-9);
+  return FSW_FABS(x - ref) <= cfg->u_max[i] / cfg->J_s[i] * dt + cfg->noise[i];
+}
+
+static void safe_output(const FswRwSpeedFilterState *st, int n, FswRwSpeedFilterOut *out, int held)
+{
+  int i;
+  fsw_rw_zero(out->Omega);
+  for (i = 0; i < FSW_MAX_RW; i++) out->avail[i] = (i < n) ? (uint8_t)FSW_UNAVAILABLE : (uint8_t)0u;
+  if (held)
+    for (i = 0; i < n; i++) out->Omega[i] = st->has_good[i] ? st->Omega_good[i] : FSW_R(0.0);
+  out->rejected = 0u;
+  out->failed = 0u;
+}
+
+FswStatus fsw_rw_speed_filter_update(FswRwSpeedFilterState *st, const FswRwSpeedFilterConfig *cfg,
+                                     const FswRwSpeedFilterIn *in, FswRwSpeedFilterOut *out)
+{
+  int n, i;
+  FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
+    if (out != NULL) safe_output(st, FSW_MAX_RW, out, 0);
+    return FSW_E_NULL_ARG;
+  }
+  n = (cfg->num_rw < 0) ? 0 : (cfg->num_rw > FSW_MAX_RW ? FSW_MAX_RW : cfg->num_rw);
+  safe_output(st, n, out, st->ready);
+  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  if (!fsw_rw_avail_valid(in->avail, n)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (st->has_prev && in->t_ns <= st->t_prev_ns) return fsw_health_record(&st->health, FSW_E_TIME);
+
+  for (i = 0; i < n; i++) {
+    const fsw_real x = in->Omega_meas[i];
+    const int finite = isfinite(x) != 0;
+    const uint64_t bit = (uint64_t)1u << i;
+    if (!st->failed[i]) {
+      if (finite && (!st->has_good[i] ||
+                     consistent(cfg, i, x, st->Omega_good[i], in->t_ns, st->t_good_ns[i]))) {
+        st->Omega_good[i] = x;
+        st->t_good_ns[i] = in->t_ns;
+        st->has_good[i] = 1u;
+        st->reject_run[i] = 0u;
+      } else {
+        out->rejected |= bit;
+        if (st->rejections[i] < UINT32_MAX) st->rejections[i]++;
+        st->reject_run[i]++;
+        if (st->reject_run[i] >= cfg->k_reject) {
+          st->failed[i] = 1u;
+          st->recover_run[i] = 0u;
+        }
+      }
+    } else if (!finite) {
+      st->recover_run[i] = 0u;
+    } else {
+      if (st->recover_run[i] > 0u &&
+          consistent(cfg, i, x, st->Omega_cand[i], in->t_ns, st->t_cand_ns[i]))
+        st->recover_run[i]++;
+      else
+        st->recover_run[i] = 1u;
+      st->Omega_cand[i] = x;
+      st->t_cand_ns[i] = in->t_ns;
+      if (st->recover_run[i] >= cfg->n_recover) {
+        st->failed[i] = 0u;
+        st->reject_run[i] = 0u;
+        st->recover_run[i] = 0u;
+        st->Omega_good[i] = x;
+        st->t_good_ns[i] = in->t_ns;
+        st->has_good[i] = 1u;
+      }
+    }
+    out->Omega[i] = st->Omega_good[i];
+    if (st->failed[i]) out->failed |= bit;
+    out->avail[i] = (st->failed[i] || in->avail[i] != FSW_AVAILABLE) ? (uint8_t)FSW_UNAVAILABLE
+                                                                     : (uint8_t)FSW_AVAILABLE;
+  }
+  st->has_prev = 1;
+  st->t_prev_ns = in->t_ns;
+  return fsw_health_record(&st->health, FSW_OK);
+}

@@ -1,0 +1,112 @@
+/* rw_volt: torque -> voltage with speed loop and outlier gate (fsw-algorithms.md 7.1). */
+#include "fsw/rw_volt.h"
+
+#include <stddef.h>
+
+#include "fsw/fsw_vec.h"
+#include "fsw/rw_common.h"
+
+FswStatus fsw_rw_volt_check(const FswRwVoltConfig *cfg)
+{
+  int n;
+  FSW_ASSERT(cfg != NULL);
+  if (cfg == NULL) return FSW_E_NULL_ARG;
+  n = cfg->num_rw;
+  if (n < 1 || n > FSW_MAX_RW || n > 64) return FSW_E_CAPACITY;
+  if (!isfinite(cfg->V_min) || cfg->V_min < FSW_R(0.0)) return FSW_E_CONFIG;
+  if (!isfinite(cfg->V_max) || !(cfg->V_max > cfg->V_min)) return FSW_E_CONFIG;
+  if (!isfinite(cfg->K_V) || cfg->K_V < FSW_R(0.0)) return FSW_E_CONFIG;
+  if (!fsw_rw_all_positive(cfg->u_max, n) || !fsw_rw_all_positive(cfg->J_s, n)) return FSW_E_CONFIG;
+  if (cfg->gate_rate != 0 && cfg->gate_rate != 1) return FSW_E_CONFIG;
+  if (cfg->gate_rate && !fsw_rw_all_positive(cfg->Omega_dot_max, n)) return FSW_E_CONFIG;
+  return FSW_OK;
+}
+
+FswStatus fsw_rw_volt_init(FswRwVoltState *st, const FswRwVoltConfig *cfg)
+{
+  FswStatus s;
+  FSW_ASSERT(st != NULL && cfg != NULL);
+  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  st->ready = 0;
+  fsw_health_clear(&st->health);
+  s = fsw_rw_volt_check(cfg);
+  if (s != FSW_OK) return s;
+  st->ready = 1;
+  fsw_rw_volt_reset(st);
+  return FSW_OK;
+}
+
+void fsw_rw_volt_reset(FswRwVoltState *st)
+{
+  FSW_ASSERT(st != NULL);
+  if (st == NULL) return;
+  fsw_rw_zero(st->Omega_prev);
+  st->phase = 0;
+  st->has_prev = 0;
+  st->t_prev_ns = 0u;
+}
+
+FswStatus fsw_rw_volt_update(FswRwVoltState *st, const FswRwVoltConfig *cfg,
+                             const FswRwVoltIn *in, FswRwVoltOut *out)
+{
+  fsw_real dt = FSW_R(0.0);
+  int n, i, clipped = 0;
+  FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
+  if (out != NULL) { /* safe output */
+    fsw_rw_zero(out->V);
+    out->fault = 0u;
+  }
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
+  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  n = cfg->num_rw;
+  if (!fsw_vn_is_finite(in->u_s, n) || (in->has_Omega != 0 && in->has_Omega != 1) ||
+      (in->has_Omega && !fsw_vn_is_finite(in->Omega, n)) || !fsw_rw_avail_valid(in->avail, n))
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (st->has_prev) {
+    if (in->t_ns <= st->t_prev_ns) return fsw_health_record(&st->health, FSW_E_TIME);
+    dt = (fsw_real)(in->t_ns - st->t_prev_ns) * FSW_R(1e-9);
+  }
+
+  for (i = 0; i < n; i++) out->V[i] = (in->avail[i] == FSW_AVAILABLE) ? in->u_s[i] : FSW_R(0.0);
+
+  /* speed loop (out->V holds the torque until the feed-forward below) */
+  if (!in->has_Omega) {
+    st->phase = 0;
+  } else if (st->phase == 0) {
+    st->phase = 1;
+  } else {
+    for (i = 0; i < n; i++) {
+      if (st->phase == 2 && in->avail[i] == FSW_AVAILABLE) {
+        const fsw_real Omega_dot = (in->Omega[i] - st->Omega_prev[i]) / dt;
+        if (cfg->gate_rate && FSW_FABS(Omega_dot) > cfg->Omega_dot_max[i])
+          out->fault |= (uint64_t)1u << i;
+        else
+          out->V[i] -= cfg->K_V * (cfg->J_s[i] * Omega_dot - out->V[i]);
+      }
+      st->Omega_prev[i] = in->Omega[i];
+    }
+    st->phase = 2;
+  }
+
+  /* feed-forward with dead-band jump and clip */
+  for (i = 0; i < n; i++) {
+    fsw_real V;
+    if (in->avail[i] != FSW_AVAILABLE) continue; /* stays exactly 0 */
+    V = (cfg->V_max - cfg->V_min) / cfg->u_max[i] * out->V[i];
+    if (V > FSW_R(0.0))
+      V += cfg->V_min;
+    else if (V < FSW_R(0.0))
+      V -= cfg->V_min;
+    if (V > cfg->V_max) {
+      V = cfg->V_max;
+      clipped = 1;
+    } else if (V < -cfg->V_max) {
+      V = -cfg->V_max;
+      clipped = 1;
+    }
+    out->V[i] = V;
+  }
+  st->has_prev = 1;
+  st->t_prev_ns = in->t_ns;
+  return fsw_health_record(&st->health, clipped ? FSW_W_SAT : FSW_OK);
+}

@@ -1,0 +1,76 @@
+/* trq_lpf: first-order Tustin low-pass of the control torque (fsw-algorithms.md 3). */
+#include "fsw/trq_lpf.h"
+
+#include <stddef.h>
+
+#include "fsw/fsw_vec.h"
+
+#define TRQ_LPF_PI FSW_R(3.14159265358979323846)
+
+FswStatus fsw_trq_lpf_check(const FswTrqLpfConfig *cfg)
+{
+  FSW_ASSERT(cfg != NULL);
+  if (cfg == NULL) return FSW_E_NULL_ARG;
+  if (!isfinite(cfg->h) || !(cfg->h > FSW_R(0.0))) return FSW_E_CONFIG;
+  if (!isfinite(cfg->omega_c) || !(cfg->omega_c > FSW_R(0.0))) return FSW_E_CONFIG;
+  if (!(cfg->omega_c * cfg->h < TRQ_LPF_PI)) return FSW_E_CONFIG;
+  return FSW_OK;
+}
+
+FswStatus fsw_trq_lpf_init(FswTrqLpfState *st, const FswTrqLpfConfig *cfg)
+{
+  FswStatus s;
+  fsw_real hw;
+  FSW_ASSERT(st != NULL && cfg != NULL);
+  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  st->ready = 0;
+  fsw_health_clear(&st->health);
+  s = fsw_trq_lpf_check(cfg);
+  if (s != FSW_OK) return s;
+  hw = FSW_R(2.0) * FSW_TAN(cfg->omega_c * cfg->h / FSW_R(2.0));
+  st->a0 = FSW_R(2.0) + hw;
+  st->a1 = FSW_R(2.0) - hw;
+  st->b0 = hw;
+  st->ready = 1;
+  fsw_trq_lpf_reset(st);
+  return FSW_OK;
+}
+
+void fsw_trq_lpf_reset(FswTrqLpfState *st)
+{
+  FSW_ASSERT(st != NULL);
+  if (st == NULL) return;
+  fsw_v3_zero(st->Lr_prev);
+  fsw_v3_zero(st->LrF_prev);
+  st->has_prev = 0;
+  st->t_prev_ns = 0u;
+}
+
+FswStatus fsw_trq_lpf_update(FswTrqLpfState *st, const FswTrqLpfConfig *cfg,
+                             const FswTrqLpfIn *in, FswTrqLpfOut *out)
+{
+  FswStatus s = FSW_OK;
+  int k;
+  FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
+  if (out != NULL) fsw_v3_zero(out->LrF_B); /* safe output */
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
+  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  if (!fsw_v3_is_finite(in->Lr_B)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (st->has_prev) {
+    fsw_real dt;
+    if (in->t_ns <= st->t_prev_ns) return fsw_health_record(&st->health, FSW_E_TIME);
+    dt = (fsw_real)(in->t_ns - st->t_prev_ns) * FSW_R(1e-9);
+    if (FSW_FABS(dt - cfg->h) > FSW_TRQ_LPF_RATE_TOL * cfg->h) s = FSW_W_RATE;
+  } else {
+    fsw_v3_copy(st->Lr_prev, in->Lr_B);
+    fsw_v3_zero(st->LrF_prev);
+  }
+  for (k = 0; k < 3; k++) {
+    out->LrF_B[k] = (st->b0 * in->Lr_B[k] + st->b0 * st->Lr_prev[k] + st->a1 * st->LrF_prev[k]) / st->a0;
+    st->Lr_prev[k] = in->Lr_B[k];
+    st->LrF_prev[k] = out->LrF_B[k];
+  }
+  st->has_prev = 1;
+  st->t_prev_ns = in->t_ns;
+  return fsw_health_record(&st->health, s);
+}

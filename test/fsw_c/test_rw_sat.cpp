@@ -1,0 +1,158 @@
+// rw_sat: wheel torque saturation (fsw-algorithms.md 7.2).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "fsw/rw_sat.h"
+#include "kestrel_test_support.h"
+#include "rw_test_util.h"
+
+namespace {
+struct Fixture {
+  std::unique_ptr<FswRwSatConfig> cfg = rwt::make0<FswRwSatConfig>();
+  std::unique_ptr<FswRwSatState> st = rwt::make0<FswRwSatState>();
+  std::unique_ptr<FswRwSatIn> in = rwt::make0<FswRwSatIn>();
+  std::unique_ptr<FswRwSatOut> out = rwt::make0<FswRwSatOut>();
+  explicit Fixture(int n = 4, int mode = FSW_RW_SAT_SCALE)
+  {
+    cfg->num_rw = n;
+    cfg->mode = mode;
+    for (int i = 0; i < n; i++) cfg->u_max[i] = FSW_R(0.1);
+    EXPECT_EQ(fsw_rw_sat_init(st.get(), cfg.get()), FSW_OK);
+  }
+  FswStatus update() { return fsw_rw_sat_update(st.get(), cfg.get(), in.get(), out.get()); }
+  void set(const double* u, int n)
+  {
+    for (int i = 0; i < n; i++) in->u_s[i] = static_cast<fsw_real>(u[i]);
+  }
+};
+}  // namespace
+
+TEST(RwSatConfig, RejectsBadConfigurationsTableDriven)
+{
+  const struct {
+    const char* why;
+    void (*spoil)(FswRwSatConfig*);
+    FswStatus want;
+  } rows[] = {
+      {"no wheels", [](FswRwSatConfig* c) { c->num_rw = 0; }, FSW_E_CAPACITY},
+      {"too many", [](FswRwSatConfig* c) { c->num_rw = FSW_MAX_RW + 1; }, FSW_E_CAPACITY},
+      {"limit zero", [](FswRwSatConfig* c) { c->u_max[2] = 0; }, FSW_E_CONFIG},
+      {"limit NaN", [](FswRwSatConfig* c) { c->u_max[0] = std::numeric_limits<fsw_real>::quiet_NaN(); }, FSW_E_CONFIG},
+      {"limit Inf", [](FswRwSatConfig* c) { c->u_max[1] = std::numeric_limits<fsw_real>::infinity(); }, FSW_E_CONFIG},
+      {"mode 2", [](FswRwSatConfig* c) { c->mode = 2; }, FSW_E_CONFIG},
+  };
+  for (const auto& r : rows) {
+    Fixture f;
+    r.spoil(f.cfg.get());
+    EXPECT_EQ(fsw_rw_sat_check(f.cfg.get()), r.want) << r.why;
+    EXPECT_EQ(fsw_rw_sat_init(f.st.get(), f.cfg.get()), r.want) << r.why;
+    f.in->u_s[0] = 1;
+    EXPECT_EQ(f.update(), FSW_E_NOT_INIT);
+    EXPECT_EQ(f.out->u_s[0], 0.0);
+  }
+}
+
+// u = (0.2, -0.05, 0.1, 0), u_max = 0.1: s = max |u|/u_max = 2.
+// SCALE: u/2 = (0.1, -0.025, 0.05, 0).  CLIP: (0.1, -0.05, 0.1, 0).
+TEST(RwSatNominal, ScaleAndClipByHand)
+{
+  const double u[4] = {0.2, -0.05, 0.1, 0};
+  Fixture s(4, FSW_RW_SAT_SCALE), c(4, FSW_RW_SAT_CLIP);
+  s.set(u, 4);
+  c.set(u, 4);
+  EXPECT_EQ(s.update(), FSW_W_SAT);
+  EXPECT_EQ(c.update(), FSW_W_SAT);
+  const double ws[4] = {0.1, -0.025, 0.05, 0}, wc[4] = {0.1, -0.05, 0.1, 0};
+  for (int i = 0; i < 4; i++) {
+    EXPECT_NEAR(s.out->u_s[i], ws[i], kt::tol(1e-17, 1e-8)) << i;
+    EXPECT_NEAR(c.out->u_s[i], wc[i], kt::tol(1e-17, 1e-8)) << i;
+  }
+  EXPECT_EQ(s.st->health.saturated, 1u);
+  // inside the limits: unchanged, OK
+  const double v[4] = {0.1, -0.1, 0.03, 0};
+  s.set(v, 4);
+  EXPECT_EQ(s.update(), FSW_OK);
+  for (int i = 0; i < 4; i++) EXPECT_EQ(s.out->u_s[i], s.in->u_s[i]);
+}
+
+// An unavailable wheel is 0 and does not set the scale.
+TEST(RwSatNominal, UnavailableWheelIsZeroAndIgnored)
+{
+  const double u[4] = {0.05, 5.0, -0.02, 0.01};
+  Fixture f;
+  f.set(u, 4);
+  f.in->avail[1] = FSW_UNAVAILABLE;
+  for (int i = 0; i < FSW_MAX_RW; i++) f.out->u_s[i] = 9;
+  EXPECT_EQ(f.update(), FSW_OK);
+  EXPECT_EQ(f.out->u_s[1], 0.0);
+  EXPECT_EQ(f.out->u_s[0], f.in->u_s[0]);
+  for (int i = 4; i < FSW_MAX_RW; i++) EXPECT_EQ(f.out->u_s[i], 0.0);
+}
+
+TEST(RwSatBadInput, NonFiniteOrBadMaskGivesZeros)
+{
+  for (int row = 0; row < 3; row++) {
+    Fixture f;
+    f.in->u_s[0] = FSW_R(0.05);
+    if (row == 0) f.in->u_s[2] = std::numeric_limits<fsw_real>::quiet_NaN();
+    if (row == 1) f.in->u_s[3] = -std::numeric_limits<fsw_real>::infinity();
+    if (row == 2) f.in->avail[1] = 2;
+    EXPECT_EQ(f.update(), FSW_E_BAD_INPUT);
+    for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(f.out->u_s[i], 0.0);
+    EXPECT_EQ(f.st->health.bad_input, 1u);
+  }
+  Fixture f;
+  kestrel_assert_reset();
+  EXPECT_EQ(fsw_rw_sat_update(f.st.get(), nullptr, f.in.get(), f.out.get()), FSW_E_NULL_ARG);
+  EXPECT_EQ(kestrel_assert_count(), 1u);
+  kestrel_assert_reset();
+}
+
+TEST(RwSatRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
+{
+  Fixture f;
+  fsw_real first[4];
+  for (int pass = 0; pass < 2; pass++) {
+    const double u[4] = {0.3, -0.1, 0.2, 0.05};
+    f.set(u, 4);
+    (void)f.update();
+    for (int i = 0; i < 4; i++) {
+      if (pass == 0) first[i] = f.out->u_s[i];
+      else EXPECT_EQ(f.out->u_s[i], first[i]);
+    }
+    fsw_rw_sat_reset(f.st.get());
+  }
+}
+
+// Properties (3, 4, 6, 36 wheels, random limits and torques): every output
+// within its limit; SCALE keeps the direction (u_out = u / s, with s from an
+// independent max); CLIP changes only the entries beyond their limit.
+class RwSatProperties : public ::testing::TestWithParam<int> {};
+TEST_P(RwSatProperties, LimitsDirectionAndClip)
+{
+  const int n = GetParam();
+  kt::Rng rng(5000u + uint64_t(n));
+  for (int trial = 0; trial < 40; trial++) {
+    Fixture s(n, FSW_RW_SAT_SCALE), c(n, FSW_RW_SAT_CLIP);
+    double smax = 0;
+    for (int i = 0; i < n; i++) {
+      s.cfg->u_max[i] = c.cfg->u_max[i] = static_cast<fsw_real>(rng.uniform(0.01, 0.5));
+      s.in->u_s[i] = c.in->u_s[i] = static_cast<fsw_real>(rng.normal() * 0.3);
+      smax = std::fmax(smax, std::fabs(double(s.in->u_s[i])) / double(s.cfg->u_max[i]));
+    }
+    ASSERT_EQ(fsw_rw_sat_init(s.st.get(), s.cfg.get()), FSW_OK);
+    ASSERT_EQ(fsw_rw_sat_init(c.st.get(), c.cfg.get()), FSW_OK);
+    EXPECT_EQ(s.update(), smax > 1 ? FSW_W_SAT : FSW_OK);
+    EXPECT_EQ(c.update(), smax > 1 ? FSW_W_SAT : FSW_OK);
+    for (int i = 0; i < n; i++) {
+      const double u = double(s.in->u_s[i]), um = double(s.cfg->u_max[i]);
+      EXPECT_LE(std::fabs(s.out->u_s[i]), s.cfg->u_max[i]);
+      EXPECT_LE(std::fabs(c.out->u_s[i]), c.cfg->u_max[i]);
+      EXPECT_NEAR(s.out->u_s[i], smax > 1 ? u / smax : u, kt::tol(1e-15, 1e-6) * std::fabs(u) + 1e-300);
+      EXPECT_EQ(double(c.out->u_s[i]), std::fabs(u) > um ? std::copysign(um, u) : u);
+    }
+  }
+}
+INSTANTIATE_TEST_SUITE_P(Wheels, RwSatProperties, ::testing::ValuesIn(rwt::kCounts));

@@ -1,0 +1,234 @@
+// rw_speed_filter: tachometer outlier rejection (library design, see
+// docs/fsw/rw_speed_filter.md).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "fsw/rw_speed_filter.h"
+#include "kestrel_test_support.h"
+#include "rw_test_util.h"
+
+namespace {
+constexpr uint64_t kDt = 100000000u;  // 0.1 s
+const fsw_real kNaN = std::numeric_limits<fsw_real>::quiet_NaN();
+
+// u_max/J_s = 0.2/0.02 = 10 rad/s^2, noise 0.5 rad/s: bound over 0.1 s = 1.5 rad/s.
+struct Fixture {
+  std::unique_ptr<FswRwSpeedFilterConfig> cfg = rwt::make0<FswRwSpeedFilterConfig>();
+  std::unique_ptr<FswRwSpeedFilterState> st = rwt::make0<FswRwSpeedFilterState>();
+  std::unique_ptr<FswRwSpeedFilterIn> in = rwt::make0<FswRwSpeedFilterIn>();
+  std::unique_ptr<FswRwSpeedFilterOut> out = rwt::make0<FswRwSpeedFilterOut>();
+  explicit Fixture(int n = 1)
+  {
+    cfg->num_rw = n;
+    for (int i = 0; i < n; i++) {
+      cfg->u_max[i] = FSW_R(0.2);
+      cfg->J_s[i] = FSW_R(0.02);
+      cfg->noise[i] = FSW_R(0.5);
+    }
+    cfg->k_reject = 3;
+    cfg->n_recover = 3;
+    EXPECT_EQ(init(), FSW_OK);
+  }
+  FswStatus init() { return fsw_rw_speed_filter_init(st.get(), cfg.get()); }
+  FswStatus step(uint64_t t, double w0)
+  {
+    in->t_ns = t;
+    in->Omega_meas[0] = static_cast<fsw_real>(w0);
+    return fsw_rw_speed_filter_update(st.get(), cfg.get(), in.get(), out.get());
+  }
+};
+}  // namespace
+
+TEST(RwSpeedFilterConfig, RejectsBadConfigurationsTableDriven)
+{
+  const struct {
+    const char* why;
+    void (*spoil)(FswRwSpeedFilterConfig*);
+    FswStatus want;
+  } rows[] = {
+      {"no wheels", [](FswRwSpeedFilterConfig* c) { c->num_rw = 0; }, FSW_E_CAPACITY},
+      {"too many", [](FswRwSpeedFilterConfig* c) { c->num_rw = FSW_MAX_RW + 1; }, FSW_E_CAPACITY},
+      {"u_max zero", [](FswRwSpeedFilterConfig* c) { c->u_max[0] = 0; }, FSW_E_CONFIG},
+      {"J_s NaN", [](FswRwSpeedFilterConfig* c) { c->J_s[0] = kNaN; }, FSW_E_CONFIG},
+      {"noise negative", [](FswRwSpeedFilterConfig* c) { c->noise[0] = -1; }, FSW_E_CONFIG},
+      {"noise Inf", [](FswRwSpeedFilterConfig* c) { c->noise[0] = std::numeric_limits<fsw_real>::infinity(); }, FSW_E_CONFIG},
+      {"k_reject zero", [](FswRwSpeedFilterConfig* c) { c->k_reject = 0; }, FSW_E_CONFIG},
+      {"n_recover zero", [](FswRwSpeedFilterConfig* c) { c->n_recover = 0; }, FSW_E_CONFIG},
+  };
+  for (const auto& r : rows) {
+    Fixture f;
+    r.spoil(f.cfg.get());
+    EXPECT_EQ(fsw_rw_speed_filter_check(f.cfg.get()), r.want) << r.why;
+    EXPECT_EQ(f.init(), r.want) << r.why;
+    EXPECT_EQ(f.step(0, 100.0), FSW_E_NOT_INIT);
+    EXPECT_EQ(f.out->Omega[0], 0.0);
+  }
+  Fixture f;
+  f.cfg->noise[0] = 0;  // zero margin is allowed
+  EXPECT_EQ(f.init(), FSW_OK);
+}
+
+// Bound over 0.1 s is 1.5 rad/s.  100 -> 101 -> 102.4 accepted; 150 rejected
+// (held at 102.4); 104.0 at 0.4 s: bound since the last good (0.2 s) is
+// 10*0.2 + 0.5 = 2.5 >= 1.6, accepted.
+TEST(RwSpeedFilterNominal, RejectHoldAndWideningBound)
+{
+  Fixture f;
+  EXPECT_EQ(f.step(0, 100.0), FSW_OK);  // first sample: no reference, accepted
+  EXPECT_EQ(f.step(kDt, 101.0), FSW_OK);
+  EXPECT_EQ(f.step(2 * kDt, 102.4), FSW_OK);
+  EXPECT_EQ(f.out->rejected, 0u);
+  EXPECT_EQ(f.step(3 * kDt, 150.0), FSW_OK);
+  EXPECT_EQ(f.out->rejected, 1u);
+  EXPECT_EQ(f.out->Omega[0], FSW_R(102.4));
+  EXPECT_EQ(f.out->avail[0], FSW_AVAILABLE);
+  EXPECT_EQ(f.st->rejections[0], 1u);
+  EXPECT_EQ(f.step(4 * kDt, 104.0), FSW_OK);
+  EXPECT_EQ(f.out->rejected, 0u);
+  EXPECT_EQ(f.out->Omega[0], FSW_R(104.0));
+  // 1.6 rad/s in 0.1 s would have been rejected without the widening
+  EXPECT_EQ(f.step(5 * kDt, 105.6), FSW_OK);
+  EXPECT_EQ(f.out->rejected, 1u);
+}
+
+// k_reject = 3: three consecutive rejections (a NaN counts) mark the wheel
+// unavailable; three mutually consistent samples bring it back at the latest.
+TEST(RwSpeedFilterNominal, FailAfterKAndRecoverAfterN)
+{
+  Fixture f;
+  ASSERT_EQ(f.step(0, 100.0), FSW_OK);
+  ASSERT_EQ(f.step(kDt, 300.0), FSW_OK);
+  ASSERT_EQ(f.step(2 * kDt, kNaN), FSW_OK);
+  EXPECT_EQ(f.out->avail[0], FSW_AVAILABLE);
+  ASSERT_EQ(f.step(3 * kDt, -300.0), FSW_OK);
+  EXPECT_EQ(f.out->avail[0], FSW_UNAVAILABLE);
+  EXPECT_EQ(f.out->failed, 1u);
+  EXPECT_EQ(f.out->Omega[0], FSW_R(100.0));
+  EXPECT_EQ(f.st->rejections[0], 3u);
+  // recovery chain: 200 (1), 200.5 (2), NaN breaks it, 201 (1), 201.5 (2), 202 (3)
+  const double seq[6] = {200.0, 200.5, std::nan(""), 201.0, 201.5, 202.0};
+  for (int k = 0; k < 6; k++) {
+    ASSERT_EQ(f.step(uint64_t(4 + k) * kDt, seq[k]), FSW_OK);
+    EXPECT_EQ(f.out->avail[0], k < 5 ? FSW_UNAVAILABLE : FSW_AVAILABLE) << k;
+  }
+  EXPECT_EQ(f.out->Omega[0], FSW_R(202.0));
+  EXPECT_EQ(f.out->failed, 0u);
+  EXPECT_EQ(f.st->rejections[0], 3u);  // samples while failed are not counted
+  // an inconsistent sample while failed restarts the chain at 1
+  Fixture g;
+  g.cfg->k_reject = 1;
+  g.cfg->n_recover = 2;
+  ASSERT_EQ(g.init(), FSW_OK);
+  ASSERT_EQ(g.step(0, 0.0), FSW_OK);
+  ASSERT_EQ(g.step(kDt, 50.0), FSW_OK);
+  EXPECT_EQ(g.out->failed, 1u);
+  ASSERT_EQ(g.step(2 * kDt, 60.0), FSW_OK);  // chain 1
+  ASSERT_EQ(g.step(3 * kDt, 80.0), FSW_OK);  // inconsistent: chain 1 again
+  EXPECT_EQ(g.out->failed, 1u);
+  ASSERT_EQ(g.step(4 * kDt, 80.5), FSW_OK);  // chain 2: back
+  EXPECT_EQ(g.out->failed, 0u);
+  EXPECT_EQ(g.out->Omega[0], FSW_R(80.5));
+}
+
+TEST(RwSpeedFilterNominal, UpstreamMaskIsCombined)
+{
+  Fixture f(3);
+  f.in->avail[1] = FSW_UNAVAILABLE;
+  f.in->Omega_meas[1] = FSW_R(7.0);
+  ASSERT_EQ(f.step(0, 1.0), FSW_OK);
+  EXPECT_EQ(f.out->avail[0], FSW_AVAILABLE);
+  EXPECT_EQ(f.out->avail[1], FSW_UNAVAILABLE);
+  EXPECT_EQ(f.out->Omega[1], FSW_R(7.0));  // still screened and passed on
+  for (int i = 3; i < FSW_MAX_RW; i++) {
+    EXPECT_EQ(f.out->Omega[i], 0.0);
+    EXPECT_EQ(f.out->avail[i], 0);
+  }
+}
+
+TEST(RwSpeedFilterBadInput, BadMaskAndTimeAdvanceNothing)
+{
+  Fixture f(2);
+  ASSERT_EQ(f.step(kDt, 100.0), FSW_OK);
+  f.in->avail[1] = 4;
+  EXPECT_EQ(f.step(2 * kDt, 300.0), FSW_E_BAD_INPUT);
+  EXPECT_EQ(f.out->Omega[0], FSW_R(100.0));  // held
+  EXPECT_EQ(f.out->avail[0], FSW_UNAVAILABLE);
+  EXPECT_EQ(f.out->avail[1], FSW_UNAVAILABLE);
+  EXPECT_EQ(f.st->rejections[0], 0u);
+  f.in->avail[1] = 0;
+  EXPECT_EQ(f.step(kDt, 300.0), FSW_E_TIME);
+  EXPECT_EQ(f.step(kDt / 2, 300.0), FSW_E_TIME);
+  EXPECT_EQ(f.st->t_prev_ns, kDt);
+  EXPECT_EQ(f.st->reject_run[0], 0u);
+  EXPECT_EQ(f.st->health.bad_time, 2u);
+  EXPECT_EQ(f.st->health.bad_input, 1u);
+  kestrel_assert_reset();
+  EXPECT_EQ(fsw_rw_speed_filter_update(f.st.get(), f.cfg.get(), nullptr, f.out.get()), FSW_E_NULL_ARG);
+  EXPECT_EQ(kestrel_assert_count(), 1u);
+  kestrel_assert_reset();
+}
+
+TEST(RwSpeedFilterRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
+{
+  Fixture f(4);
+  fsw_real first[30][4];
+  uint64_t rej[30];
+  for (int pass = 0; pass < 2; pass++) {
+    kt::Rng r(77);
+    for (int k = 0; k < 30; k++) {
+      for (int i = 0; i < 4; i++)
+        f.in->Omega_meas[i] = static_cast<fsw_real>(r.uniform() < 0.2 ? r.uniform(-500, 500) : 100 + 0.1 * k);
+      f.in->t_ns = uint64_t(k) * kDt;
+      ASSERT_EQ(fsw_rw_speed_filter_update(f.st.get(), f.cfg.get(), f.in.get(), f.out.get()), FSW_OK);
+      if (pass == 0) rej[k] = f.out->rejected;
+      else EXPECT_EQ(f.out->rejected, rej[k]);
+      for (int i = 0; i < 4; i++) {
+        if (pass == 0) first[k][i] = f.out->Omega[i];
+        else EXPECT_EQ(f.out->Omega[i], first[k][i]);
+      }
+    }
+    fsw_rw_speed_filter_reset(f.st.get());
+  }
+}
+
+// Properties, 3/4/6/36 wheels: a speed history whose steps stay within the
+// torque bound (random accelerations up to 90 % of u_max/J_s, noise within
+// the margin) is never rejected; isolated spikes beyond bound + 1 rad/s are
+// always rejected and the held value is the previous true sample.
+class RwSpeedFilterProperties : public ::testing::TestWithParam<int> {};
+TEST_P(RwSpeedFilterProperties, PhysicalHistoriesPassAndSpikesAreCaught)
+{
+  const int n = GetParam();
+  kt::Rng rng(7000u + uint64_t(n));
+  Fixture f(n);
+  f.cfg->k_reject = 2;
+  for (int i = 0; i < n; i++) {
+    f.cfg->u_max[i] = static_cast<fsw_real>(rng.uniform(0.05, 0.3));
+    f.cfg->J_s[i] = static_cast<fsw_real>(rng.uniform(0.01, 0.1));
+    f.cfg->noise[i] = static_cast<fsw_real>(rng.uniform(0.2, 1.0));
+  }
+  ASSERT_EQ(f.init(), FSW_OK);
+  double w[FSW_MAX_RW];
+  for (int i = 0; i < n; i++) w[i] = rng.uniform(-300, 300);
+  for (int k = 0; k < 60; k++) {
+    const bool spike_step = k % 5 == 4;
+    const int spiked = rng.uniform_int(0, n - 1);
+    for (int i = 0; i < n; i++) {
+      const double amax = double(f.cfg->u_max[i]) / double(f.cfg->J_s[i]);
+      const double noise = double(f.cfg->noise[i]);
+      if (k > 0) w[i] += 0.9 * amax * 0.1 * rng.uniform(-1, 1);
+      double meas = w[i] + 0.45 * noise * rng.uniform(-1, 1);
+      if (spike_step && i == spiked) meas = w[i] + (rng.uniform() < 0.5 ? -1 : 1) * (amax * 0.2 + noise + 1.0);
+      f.in->Omega_meas[i] = static_cast<fsw_real>(meas);
+    }
+    f.in->t_ns = uint64_t(k) * kDt;
+    ASSERT_EQ(fsw_rw_speed_filter_update(f.st.get(), f.cfg.get(), f.in.get(), f.out.get()), FSW_OK);
+    const uint64_t want = spike_step ? (uint64_t(1) << spiked) : 0u;
+    EXPECT_EQ(f.out->rejected, want) << "n=" << n << " k=" << k;
+    EXPECT_EQ(f.out->failed, 0u);
+    for (int i = 0; i < n; i++) EXPECT_EQ(f.out->avail[i], FSW_AVAILABLE);
+  }
+}
+INSTANTIATE_TEST_SUITE_P(Wheels, RwSpeedFilterProperties, ::testing::ValuesIn(rwt::kCounts));

@@ -1,0 +1,230 @@
+// rw_volt: motor torque -> voltage with speed loop (fsw-algorithms.md 7.1).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "fsw/rw_volt.h"
+#include "kestrel_test_support.h"
+#include "rw_test_util.h"
+
+namespace {
+constexpr uint64_t kDt = 100000000u;  // 0.1 s
+
+struct Fixture {
+  std::unique_ptr<FswRwVoltConfig> cfg = rwt::make0<FswRwVoltConfig>();
+  std::unique_ptr<FswRwVoltState> st = rwt::make0<FswRwVoltState>();
+  std::unique_ptr<FswRwVoltIn> in = rwt::make0<FswRwVoltIn>();
+  std::unique_ptr<FswRwVoltOut> out = rwt::make0<FswRwVoltOut>();
+  // V_min = 0.5 V, V_max = 10 V, u_max = 0.2 N*m, J_s = 0.01 kg m^2, K_V = 0.5
+  explicit Fixture(int n = 4)
+  {
+    cfg->num_rw = n;
+    cfg->V_min = FSW_R(0.5);
+    cfg->V_max = FSW_R(10.0);
+    cfg->K_V = FSW_R(0.5);
+    for (int i = 0; i < n; i++) {
+      cfg->u_max[i] = FSW_R(0.2);
+      cfg->J_s[i] = FSW_R(0.01);
+      cfg->Omega_dot_max[i] = FSW_R(20.0);
+    }
+    EXPECT_EQ(init(), FSW_OK);
+  }
+  FswStatus init() { return fsw_rw_volt_init(st.get(), cfg.get()); }
+  FswStatus update(uint64_t t) {
+    in->t_ns = t;
+    return fsw_rw_volt_update(st.get(), cfg.get(), in.get(), out.get());
+  }
+};
+// (V_max - V_min)/u_max = 47.5 V/(N*m)
+double ff(double u) { return u > 0 ? 47.5 * u + 0.5 : (u < 0 ? 47.5 * u - 0.5 : 0.0); }
+}  // namespace
+
+TEST(RwVoltConfig, RejectsBadConfigurationsTableDriven)
+{
+  const struct {
+    const char* why;
+    void (*spoil)(FswRwVoltConfig*);
+    FswStatus want;
+  } rows[] = {
+      {"no wheels", [](FswRwVoltConfig* c) { c->num_rw = 0; }, FSW_E_CAPACITY},
+      {"too many", [](FswRwVoltConfig* c) { c->num_rw = FSW_MAX_RW + 1; }, FSW_E_CAPACITY},
+      {"V_min negative", [](FswRwVoltConfig* c) { c->V_min = -1; }, FSW_E_CONFIG},
+      {"V_max = V_min", [](FswRwVoltConfig* c) { c->V_max = c->V_min; }, FSW_E_CONFIG},
+      {"V_max NaN", [](FswRwVoltConfig* c) { c->V_max = std::numeric_limits<fsw_real>::quiet_NaN(); }, FSW_E_CONFIG},
+      {"K_V negative", [](FswRwVoltConfig* c) { c->K_V = -1; }, FSW_E_CONFIG},
+      {"K_V Inf", [](FswRwVoltConfig* c) { c->K_V = std::numeric_limits<fsw_real>::infinity(); }, FSW_E_CONFIG},
+      {"u_max zero", [](FswRwVoltConfig* c) { c->u_max[3] = 0; }, FSW_E_CONFIG},
+      {"J_s negative", [](FswRwVoltConfig* c) { c->J_s[0] = -1; }, FSW_E_CONFIG},
+      {"gate flag 3", [](FswRwVoltConfig* c) { c->gate_rate = 3; }, FSW_E_CONFIG},
+      {"gate with zero limit",
+       [](FswRwVoltConfig* c) {
+         c->gate_rate = 1;
+         c->Omega_dot_max[2] = 0;
+       },
+       FSW_E_CONFIG},
+  };
+  for (const auto& r : rows) {
+    Fixture f;
+    r.spoil(f.cfg.get());
+    EXPECT_EQ(fsw_rw_volt_check(f.cfg.get()), r.want) << r.why;
+    EXPECT_EQ(f.init(), r.want) << r.why;
+    f.in->u_s[0] = FSW_R(0.1);
+    EXPECT_EQ(f.update(0), FSW_E_NOT_INIT);
+    EXPECT_EQ(f.out->V[0], 0.0);
+  }
+}
+
+// Feed-forward: V = 47.5 u +/- 0.5, exact 0 stays 0, clip at 10 V,
+// unavailable wheel 0 V.
+TEST(RwVoltNominal, FeedForwardByHand)
+{
+  Fixture f(5);
+  const double u[5] = {0.1, -0.02, 0.0, 0.5, 0.1};
+  for (int i = 0; i < 5; i++) f.in->u_s[i] = static_cast<fsw_real>(u[i]);
+  f.in->avail[4] = FSW_UNAVAILABLE;
+  EXPECT_EQ(f.update(0), FSW_W_SAT);  // wheel 4 clipped
+  EXPECT_NEAR(f.out->V[0], 5.25, kt::tol(1e-14, 1e-5));
+  EXPECT_NEAR(f.out->V[1], -1.45, kt::tol(1e-14, 1e-5));
+  EXPECT_EQ(f.out->V[2], 0.0);
+  EXPECT_EQ(f.out->V[3], 10.0);
+  EXPECT_EQ(f.out->V[4], 0.0);
+  for (int i = 5; i < FSW_MAX_RW; i++) EXPECT_EQ(f.out->V[i], 0.0);
+}
+
+// Speed loop, u = 0.1, Omega = 100, 100, 100.5 rad/s at 0, 0.1, 0.2 s:
+// call 1: p 0 -> 1; call 2: stores Omega, p -> 2; call 3: Omega_dot = 5,
+// J Omega_dot = 0.05, u' = 0.1 - 0.5 (0.05 - 0.1) = 0.125, V = 47.5*0.125 + 0.5.
+TEST(RwVoltNominal, SpeedLoopWarmUpAndCorrection)
+{
+  Fixture f(1);
+  f.in->u_s[0] = FSW_R(0.1);
+  f.in->has_Omega = 1;
+  f.in->Omega[0] = FSW_R(100.0);
+  ASSERT_EQ(f.update(0), FSW_OK);
+  EXPECT_NEAR(f.out->V[0], ff(0.1), kt::tol(1e-14, 1e-5));
+  EXPECT_EQ(f.st->phase, 1);
+  ASSERT_EQ(f.update(kDt), FSW_OK);
+  EXPECT_NEAR(f.out->V[0], ff(0.1), kt::tol(1e-14, 1e-5));
+  EXPECT_EQ(f.st->phase, 2);
+  f.in->Omega[0] = FSW_R(100.5);
+  ASSERT_EQ(f.update(2 * kDt), FSW_OK);
+  EXPECT_NEAR(f.out->V[0], ff(0.125), kt::tol(1e-12, 1e-4));
+  // a call without speeds restarts the warm-up
+  f.in->has_Omega = 0;
+  ASSERT_EQ(f.update(3 * kDt), FSW_OK);
+  EXPECT_EQ(f.st->phase, 0);
+  EXPECT_NEAR(f.out->V[0], ff(0.1), kt::tol(1e-14, 1e-5));
+}
+
+// Gate at 20 rad/s^2: a jump of 10 rad/s in 0.1 s (100 rad/s^2) is not used,
+// bit 0 of fault is set, the feed-forward alone remains; Omega_prev still moves.
+TEST(RwVoltNominal, OutlierGateSkipsCorrection)
+{
+  Fixture f(2);
+  f.cfg->gate_rate = 1;
+  ASSERT_EQ(f.init(), FSW_OK);
+  f.in->has_Omega = 1;
+  f.in->u_s[0] = f.in->u_s[1] = FSW_R(0.1);
+  f.in->Omega[0] = f.in->Omega[1] = FSW_R(100.0);
+  ASSERT_EQ(f.update(0), FSW_OK);
+  ASSERT_EQ(f.update(kDt), FSW_OK);
+  f.in->Omega[0] = FSW_R(110.0);
+  f.in->Omega[1] = FSW_R(100.5);
+  ASSERT_EQ(f.update(2 * kDt), FSW_OK);
+  EXPECT_EQ(f.out->fault, 1u);
+  EXPECT_NEAR(f.out->V[0], ff(0.1), kt::tol(1e-14, 1e-5));
+  EXPECT_NEAR(f.out->V[1], ff(0.125), kt::tol(1e-12, 1e-4));
+  EXPECT_EQ(f.st->Omega_prev[0], FSW_R(110.0));
+}
+
+TEST(RwVoltBadInput, NonFiniteBadFlagsAndTime)
+{
+  for (int row = 0; row < 4; row++) {
+    Fixture f;
+    f.in->u_s[0] = FSW_R(0.1);
+    f.in->has_Omega = 1;
+    if (row == 0) f.in->u_s[1] = std::numeric_limits<fsw_real>::quiet_NaN();
+    if (row == 1) f.in->Omega[2] = std::numeric_limits<fsw_real>::infinity();
+    if (row == 2) f.in->has_Omega = 2;
+    if (row == 3) f.in->avail[0] = 7;
+    EXPECT_EQ(f.update(0), FSW_E_BAD_INPUT) << row;
+    for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(f.out->V[i], 0.0);
+    EXPECT_EQ(f.st->phase, 0);
+    EXPECT_EQ(f.st->has_prev, 0);
+  }
+  // NaN speeds are ignored when not supplied
+  Fixture g;
+  g.in->Omega[0] = std::numeric_limits<fsw_real>::quiet_NaN();
+  EXPECT_EQ(g.update(0), FSW_OK);
+  // time must increase
+  Fixture h;
+  h.in->has_Omega = 1;
+  ASSERT_EQ(h.update(5 * kDt), FSW_OK);
+  EXPECT_EQ(h.update(5 * kDt), FSW_E_TIME);
+  EXPECT_EQ(h.update(4 * kDt), FSW_E_TIME);
+  EXPECT_EQ(h.st->phase, 1);
+  EXPECT_EQ(h.st->t_prev_ns, 5 * kDt);
+  EXPECT_EQ(h.st->health.bad_time, 2u);
+}
+
+TEST(RwVoltBadInput, NullArgumentsAssertAndReturn)
+{
+  Fixture f;
+  kestrel_assert_reset();
+  EXPECT_EQ(fsw_rw_volt_update(f.st.get(), f.cfg.get(), nullptr, f.out.get()), FSW_E_NULL_ARG);
+  EXPECT_EQ(f.out->V[0], 0.0);
+  EXPECT_EQ(kestrel_assert_count(), 1u);
+  kestrel_assert_reset();
+}
+
+TEST(RwVoltRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
+{
+  Fixture f;
+  fsw_real first[8][4];
+  for (int pass = 0; pass < 2; pass++) {
+    kt::Rng r(21);
+    f.in->has_Omega = 1;
+    for (int k = 0; k < 8; k++) {
+      for (int i = 0; i < 4; i++) {
+        f.in->u_s[i] = static_cast<fsw_real>(r.uniform(-0.2, 0.2));
+        f.in->Omega[i] = static_cast<fsw_real>(r.uniform(-100, 100));
+      }
+      ASSERT_GE(f.update(uint64_t(k) * kDt), FSW_OK);
+      for (int i = 0; i < 4; i++) {
+        if (pass == 0) first[k][i] = f.out->V[i];
+        else EXPECT_EQ(f.out->V[i], first[k][i]);
+      }
+    }
+    fsw_rw_volt_reset(f.st.get());
+  }
+}
+
+// Properties, 3/4/6/36 wheels: |V| <= V_max, sign(V) = sign(u) without the
+// loop, |V| >= V_min for u != 0, unavailable wheels exactly 0.
+class RwVoltProperties : public ::testing::TestWithParam<int> {};
+TEST_P(RwVoltProperties, BoundsSignAndAvailability)
+{
+  const int n = GetParam();
+  kt::Rng rng(6000u + uint64_t(n));
+  Fixture f(n);
+  for (int k = 0; k < 30; k++) {
+    for (int i = 0; i < n; i++) {
+      f.in->u_s[i] = static_cast<fsw_real>(rng.normal() * 0.2);
+      f.in->avail[i] = rng.uniform() < 0.2 ? FSW_UNAVAILABLE : FSW_AVAILABLE;
+    }
+    ASSERT_GE(f.update(uint64_t(k) * kDt), FSW_OK);
+    for (int i = 0; i < n; i++) {
+      const double V = f.out->V[i], u = f.in->u_s[i];
+      EXPECT_LE(std::fabs(V), 10.0);
+      if (f.in->avail[i]) {
+        EXPECT_EQ(V, 0.0);
+      } else {
+        EXPECT_EQ(V > 0, u > 0);
+        EXPECT_GE(std::fabs(V), 0.5);
+        EXPECT_NEAR(V, std::fmax(-10.0, std::fmin(10.0, ff(u))), kt::tol(1e-13, 1e-4));
+      }
+    }
+  }
+}
+INSTANTIATE_TEST_SUITE_P(Wheels, RwVoltProperties, ::testing::ValuesIn(rwt::kCounts));
