@@ -1,0 +1,94 @@
+/* thr_pulse_round: rounding thruster pulser, fsw-algorithms.md 11. */
+#include "fsw/thr_pulse_round.h"
+
+#include <stddef.h>
+
+#include "fsw/fsw_vec.h"
+#include "thr_pulse_common.h"
+
+FswStatus fsw_thr_pulse_round_check(const FswThrPulseRoundConfig *cfg)
+{
+  FswStatus s;
+  FSW_ASSERT(cfg != NULL);
+  if (cfg == NULL) return FSW_E_NULL_ARG;
+  s = fsw_thr_pulse_check_common(cfg->num_thr, cfg->t_min, 0, cfg->F_max);
+  if (s != FSW_OK) return s;
+  if (!isfinite(cfg->period) || !(cfg->period > FSW_R(0.0))) return FSW_E_CONFIG;
+  if (!isfinite(cfg->resolution) || !(cfg->resolution > FSW_R(0.0))) return FSW_E_CONFIG;
+  if (cfg->carry_residual != 0 && cfg->carry_residual != 1) return FSW_E_CONFIG;
+  return FSW_OK;
+}
+
+void fsw_thr_pulse_round_reset(FswThrPulseRoundState *st)
+{
+  FSW_ASSERT(st != NULL);
+  if (st == NULL) return;
+  fsw_vn_zero(st->resid, FSW_MAX_THR);
+  st->has_prev = 0;
+  st->t_prev_ns = 0u;
+}
+
+FswStatus fsw_thr_pulse_round_init(FswThrPulseRoundState *st, const FswThrPulseRoundConfig *cfg)
+{
+  FswStatus s;
+  FSW_ASSERT(st != NULL && cfg != NULL);
+  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  st->ready = 0;
+  fsw_health_clear(&st->health);
+  fsw_thr_pulse_round_reset(st);
+  s = fsw_thr_pulse_round_check(cfg);
+  if (s != FSW_OK) return s;
+  st->ready = 1;
+  return FSW_OK;
+}
+
+static fsw_real clamp(fsw_real x, fsw_real lo, fsw_real hi)
+{
+  if (x < lo) return lo;
+  if (x > hi) return hi;
+  return x;
+}
+
+FswStatus fsw_thr_pulse_round_update(FswThrPulseRoundState *st, const FswThrPulseRoundConfig *cfg,
+                                     const FswThrPulseRoundIn *in, FswThrPulseRoundOut *out)
+{
+  const fsw_real T = (cfg != NULL) ? cfg->period : FSW_R(0.0);
+  int i, n, saturated = 0;
+
+  FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
+  if (out != NULL) fsw_thr_pulse_safe_output(out->t_on);
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
+    if (st != NULL) (void)fsw_health_record(&st->health, FSW_E_NULL_ARG);
+    return FSW_E_NULL_ARG;
+  }
+  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  n = cfg->num_thr;
+  if (!fsw_vn_is_finite(in->F, n)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (cfg->carry_residual) {
+    ThrPulseTiming timing;
+    fsw_real dt;
+    FswStatus s = fsw_thr_pulse_timing(st->has_prev, st->t_prev_ns, in->t_ns, &timing, &dt);
+    if (s != FSW_OK) return fsw_health_record(&st->health, s);
+  }
+
+  for (i = 0; i < n; i++) {
+    fsw_real f = (in->F[i] > FSW_R(0.0)) ? in->F[i] : FSW_R(0.0);
+    fsw_real t = T * f / cfg->F_max[i];
+    fsw_real t_req;
+    if (cfg->carry_residual) t = t + st->resid[i];
+    t_req = t;
+    if (t > T) saturated = 1;
+    t = clamp(t, FSW_R(0.0), T);
+    /* round half to even: rint in the default rounding mode, not round() */
+    t = FSW_RINT(t / cfg->resolution) * cfg->resolution;
+    if (t < cfg->t_min) t = FSW_R(0.0);
+    t = clamp(t, FSW_R(0.0), T);
+    out->t_on[i] = t;
+    if (cfg->carry_residual) st->resid[i] = clamp(t_req - t, -T, T);
+  }
+  if (cfg->carry_residual) {
+    st->has_prev = 1;
+    st->t_prev_ns = in->t_ns;
+  }
+  return fsw_health_record(&st->health, saturated ? FSW_W_SAT : FSW_OK);
+}
