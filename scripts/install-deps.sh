@@ -4,7 +4,7 @@
 set -euo pipefail
 what="${1:-all}"
 host_pkgs=(cmake ninja-build g++ gcc clang libgtest-dev googletest libbenchmark-dev
-           libeigen3-dev binutils python3 pkgconf)
+           libeigen3-dev binutils python3 pkgconf libyaml-cpp-dev libhdf5-dev libcli11-dev nlohmann-json3-dev)
 target_pkgs=(gcc-arm-none-eabi binutils-arm-none-eabi picolibc-arm-none-eabi
              libstdc++-arm-none-eabi-picolibc qemu-system-arm qemu-user
              g++-aarch64-linux-gnu g++-arm-linux-gnueabihf g++-s390x-linux-gnu)
