@@ -63,6 +63,7 @@ FswStatus fsw_att_track_update(FswAttTrackState *st, const FswAttTrackConfig *cf
   fsw_real dcm_BN[3][3];     /* [-] [BN] = MRP2C(sigma_BN)          */
   fsw_real omega_RN_B[3];    /* [rad/s]                             */
   fsw_real omega_dot_RN_B[3];/* [rad/s^2]                           */
+  fsw_real omega_BR_B[3];    /* [rad/s]                             */
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (out != NULL) write_safe(out);
@@ -78,8 +79,14 @@ FswStatus fsw_att_track_update(FswAttTrackState *st, const FswAttTrackConfig *cf
   fsw_m33_mult_v3(omega_RN_B, FSW_CM33(dcm_BN), in->ref.omega_RN_N);
   fsw_m33_mult_v3(omega_dot_RN_B, FSW_CM33(dcm_BN), in->ref.omega_dot_RN_N);
 
+  fsw_v3_sub(omega_BR_B, in->omega_BN_B, omega_RN_B);
+  /* finite but huge inputs can overflow: treat like non-finite input */
+  if (!fsw_v3_is_finite(sigma_BR) || !fsw_v3_is_finite(omega_BR_B) ||
+      !fsw_v3_is_finite(omega_RN_B) || !fsw_v3_is_finite(omega_dot_RN_B)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  }
   fsw_v3_copy(out->sigma_BR, sigma_BR);
-  fsw_v3_sub(out->omega_BR_B, in->omega_BN_B, omega_RN_B);
+  fsw_v3_copy(out->omega_BR_B, omega_BR_B);
   fsw_v3_copy(out->omega_RN_B, omega_RN_B);
   fsw_v3_copy(out->omega_dot_RN_B, omega_dot_RN_B);
   return fsw_health_record(&st->health, FSW_OK);

@@ -137,6 +137,7 @@ FswStatus fsw_css_sun_update(FswCssSunState *st, const FswCssSunConfig *cfg,
     y[i] = FSW_R(0.0);
     if (in->avail[i] != FSW_AVAILABLE) continue;
     y[i] = in->reading[i] / cfg->scale[i];
+    if (!isfinite(y[i])) return fsw_health_record(&st->health, FSW_E_BAD_INPUT); /* overflow */
     if (!(y[i] > cfg->lit_threshold)) continue;
     lit[i] = 1u;
     num_lit++;
@@ -145,6 +146,9 @@ FswStatus fsw_css_sun_update(FswCssSunState *st, const FswCssSunConfig *cfg,
       for (k = 0; k < 3; k++) M[j][k] += y[i] * cfg->n_hat_B[i][j] * cfg->n_hat_B[i][k];
       c[j] += y[i] * y[i] * cfg->n_hat_B[i][j];
     }
+  }
+  if (!fsw_m33_is_finite(FSW_CM33(M)) || !fsw_v3_is_finite(c)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); /* overflow of huge readings */
   }
   out->num_lit = num_lit;
 

@@ -121,5 +121,10 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
     fsw_v3_copy(out->guid.omega_RN_B, cfg->omega_search_B);
     fsw_v3_sub(out->guid.omega_BR_B, in->omega_BN_B, cfg->omega_search_B);
   }
+  /* finite but huge inputs can overflow: treat like non-finite input */
+  if (!fsw_v3_is_finite(out->guid.omega_BR_B) || !fsw_v3_is_finite(out->guid.omega_RN_B)) {
+    write_safe(out);
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  }
   return fsw_health_record(&st->health, FSW_OK);
 }

@@ -192,6 +192,11 @@ FswStatus fsw_mrp_fb_update(FswMrpFbState *st, const FswMrpFbConfig *cfg, const 
   fsw_v3_add(sum_B, sum_B, I_term_B);
   fsw_v3_add(sum_B, sum_B, cfg->known_torque_B);
 
+  /* finite but huge inputs can overflow: treat like non-finite input */
+  if (!fsw_v3_is_finite(sum_B) || !fsw_v3_is_finite(P_Ki_z)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  }
+
   /* 6. outputs; commit state */
   fsw_v3_scale(out->torque_B, FSW_R(-1.0), sum_B);
   fsw_v3_scale(out->int_torque_B, FSW_R(-1.0), P_Ki_z);

@@ -195,6 +195,16 @@ TEST_F(AttTrack, NonFiniteInputGivesZeroErrors)
       }
     }
   }
+  // finite but huge reference rate: [BN] omega_RN_N overflows -> safe output
+  {
+    FswAttTrackIn in{};
+    gref::set3(in.sigma_BN, 0.1, 0.2, 0.3);
+    const double big = kt::kFloat ? 3e38 : 1.7e308;
+    gref::set3(in.ref.omega_RN_N, big, big, big);
+    EXPECT_EQ(FSW_E_BAD_INPUT, fsw_att_track_update(&st_, &cfg_, &in, &out_));
+    expect_zero_guid(out_);
+    n_bad++;
+  }
   EXPECT_EQ(n_bad, st_.health.bad_input);
   // the next good call recovers
   gref::set3(in_.sigma_BN, 0.1, 0.0, 0.0);

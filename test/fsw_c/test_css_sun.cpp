@@ -382,7 +382,12 @@ TEST_F(CssSun, BadInputGivesSafeOutput)
   in_ = good;
   in_.avail[0] = 3;  // neither AVAILABLE nor UNAVAILABLE
   EXPECT_EQ(FSW_E_BAD_INPUT, run());
-  EXPECT_EQ(4u, st_.health.bad_input);
+  // finite readings whose normal equations overflow
+  in_ = good;
+  in_.reading[0] = static_cast<fsw_real>(kt::kFloat ? 3e38 : 1.7e308);
+  EXPECT_EQ(FSW_E_BAD_INPUT, run());
+  EXPECT_EQ(0, out_.sun_valid);
+  EXPECT_EQ(5u, st_.health.bad_input);
   in_ = good;
   EXPECT_EQ(FSW_OK, run());  // recovers
   EXPECT_EQ(1, out_.sun_valid);

@@ -381,7 +381,13 @@ TEST_F(MrpFb, NonFiniteInputGivesZeroTorqueAndKeepsState)
   in_ = good;
   in_.rw_avail[3] = 2;
   EXPECT_EQ(FSW_E_BAD_INPUT, step(2000000000ull));
-  n += 2;
+  // finite but huge rate: omega x [I]omega overflows to Inf -> same safe output
+  in_ = good;
+  gref::set3(in_.guid.omega_BR_B, (kt::kFloat ? 1e30 : 1e200), 0.0, 0.0);
+  gref::set3(in_.guid.omega_RN_B, 0.0, (kt::kFloat ? 1e30 : 1e200), 0.0);
+  EXPECT_EQ(FSW_E_BAD_INPUT, step(2000000000ull));
+  EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.torque_B, 0.0);
+  n += 3;
   EXPECT_EQ(n, st_.health.bad_input);
   EXPECT_V3_NEAR(is[0], is[1], is[2], st_.int_sigma, 0.0);
   EXPECT_EQ(1000000000ull, st_.t_prev_ns);

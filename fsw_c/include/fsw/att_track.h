@@ -53,8 +53,9 @@ FswStatus fsw_att_track_check(const FswAttTrackConfig *cfg);
 FswStatus fsw_att_track_init(FswAttTrackState *st, const FswAttTrackConfig *cfg);
 /* No dynamic state: kept for the uniform module shape. */
 void fsw_att_track_reset(FswAttTrackState *st);
-/* FSW_OK; FSW_E_BAD_INPUT (NaN/Inf anywhere in `in`), FSW_E_NOT_INIT,
- * FSW_E_NULL_ARG with the safe output. */
+/* FSW_OK; with the safe output: FSW_E_BAD_INPUT (NaN/Inf anywhere in `in`,
+ * or finite inputs so large that an output overflows), FSW_E_NOT_INIT,
+ * FSW_E_NULL_ARG. */
 FswStatus fsw_att_track_update(FswAttTrackState *st, const FswAttTrackConfig *cfg,
                                const FswAttTrackIn *in, FswAttTrackOut *out);
 

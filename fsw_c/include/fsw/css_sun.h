@@ -106,7 +106,8 @@ FswStatus fsw_css_sun_init(FswCssSunState *st, const FswCssSunConfig *cfg);
 void fsw_css_sun_reset(FswCssSunState *st);
 /* FSW_OK (WLS); FSW_W_SINGULAR (a fallback mode, see above); with the safe
  * output: FSW_E_BAD_INPUT (NaN/Inf reading of an available sensor, avail
- * entry not 0/1), FSW_E_NOT_INIT, FSW_E_NULL_ARG. */
+ * entry not 0/1, readings so large that the sums overflow), FSW_E_NOT_INIT,
+ * FSW_E_NULL_ARG. */
 FswStatus fsw_css_sun_update(FswCssSunState *st, const FswCssSunConfig *cfg,
                              const FswCssSunIn *in, FswCssSunOut *out);
 

@@ -57,8 +57,9 @@ FswStatus fsw_guid_sunsafe_check(const FswGuidSunsafeConfig *cfg);
 FswStatus fsw_guid_sunsafe_init(FswGuidSunsafeState *st, const FswGuidSunsafeConfig *cfg);
 /* No dynamic state: kept for the uniform module shape. */
 void fsw_guid_sunsafe_reset(FswGuidSunsafeState *st);
-/* FSW_OK (valid heading or search mode); FSW_E_BAD_INPUT (NaN/Inf input),
- * FSW_E_NOT_INIT, FSW_E_NULL_ARG with the safe output. */
+/* FSW_OK (valid heading or search mode); with the safe output:
+ * FSW_E_BAD_INPUT (NaN/Inf input, or a rate output that overflows),
+ * FSW_E_NOT_INIT, FSW_E_NULL_ARG. */
 FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeConfig *cfg,
                                   const FswGuidSunsafeIn *in, FswGuidSunsafeOut *out);
 

@@ -85,7 +85,8 @@ FswStatus fsw_mrp_fb_init(FswMrpFbState *st, const FswMrpFbConfig *cfg);
 /* int_sigma = 0, has_prev = 0.  Keeps ready and health. */
 void fsw_mrp_fb_reset(FswMrpFbState *st);
 /* FSW_OK; with the safe output and no state change: FSW_E_BAD_INPUT (NaN/Inf
- * in guid or in Omega of an available wheel, rw_avail entry not 0/1),
+ * in guid or in Omega of an available wheel, rw_avail entry not 0/1, finite
+ * inputs so large that Lr overflows),
  * FSW_E_TIME (t_ns <= t_prev_ns after the first call), FSW_E_NOT_INIT,
  * FSW_E_NULL_ARG.  dt = 0 on the first call after reset. */
 FswStatus fsw_mrp_fb_update(FswMrpFbState *st, const FswMrpFbConfig *cfg, const FswMrpFbIn *in,
