@@ -271,4 +271,22 @@ TEST(ThrPulseRound, RepeatableAfterReset)
   }
 }
 
+TEST(ThrPulseRound, NullArgumentsReachTheAssertHook)
+{
+  FswThrPulseRoundConfig c = basilisk_defaults(2);
+  FswThrPulseRoundState st;
+  ASSERT_EQ(FSW_OK, fsw_thr_pulse_round_init(&st, &c));
+  FswThrPulseRoundIn in;
+  std::memset(&in, 0, sizeof in);
+  FswThrPulseRoundOut out;
+  for (R& t : out.t_on) t = 5;
+  kestrel_assert_reset();
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_thr_pulse_round_update(&st, &c, nullptr, &out));
+  for (R t : out.t_on) EXPECT_EQ(0, t);
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_thr_pulse_round_check(nullptr));
+  EXPECT_EQ(2u, kestrel_assert_count());
+  EXPECT_EQ(1u, st.health.bad_input);
+  kestrel_assert_reset();
+}
+
 }  // namespace

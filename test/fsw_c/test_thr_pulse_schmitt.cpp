@@ -240,4 +240,22 @@ TEST(ThrPulseSchmitt, RequestHeldBetweenLevelsNeverChatters)
   }
 }
 
+TEST(ThrPulseSchmitt, NullArgumentsReachTheAssertHook)
+{
+  FswThrPulseSchmittConfig c = cfg1();
+  FswThrPulseSchmittState st;
+  ASSERT_EQ(FSW_OK, fsw_thr_pulse_schmitt_init(&st, &c));
+  FswThrPulseSchmittIn in;
+  std::memset(&in, 0, sizeof in);
+  FswThrPulseSchmittOut out;
+  for (R& t : out.t_on) t = 5;
+  kestrel_assert_reset();
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_thr_pulse_schmitt_update(&st, &c, nullptr, &out));
+  for (R t : out.t_on) EXPECT_EQ(0, t);
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_thr_pulse_schmitt_check(nullptr));
+  EXPECT_EQ(2u, kestrel_assert_count());
+  EXPECT_EQ(1u, st.health.bad_input);
+  kestrel_assert_reset();
+}
+
 }  // namespace
