@@ -51,8 +51,7 @@ static int count_axes(fsw_real C[3][3], const FswThrMapConfig *cfg)
 
 FswStatus fsw_thr_map_check(const FswThrMapConfig *cfg)
 {
-  fsw_real C[3][3], A[3][FSW_MAX_EFF], b[3] = {FSW_R(0.0), FSW_R(0.0), FSW_R(0.0)};
-  fsw_real x[FSW_MAX_EFF];
+  fsw_real C[3][3], L[3][3];
   int i, j, nc;
 
   FSW_ASSERT(cfg != NULL);
@@ -75,12 +74,24 @@ FswStatus fsw_thr_map_check(const FswThrMapConfig *cfg)
   }
   nc = count_axes(C, cfg);
   if (nc == 0) return FSW_E_CONFIG;
-  /* The counted axes must be independent: rank test of K1 on [C] (nc x 3). */
-  for (j = 0; j < 3; j++) {
-    for (i = 0; i < 3; i++) A[j][i] = C[j][i];
-    for (i = 3; i < FSW_MAX_EFF; i++) A[j][i] = FSW_R(0.0);
+  /* The counted (unit) axes must be independent: the K1 rank rule applied
+   * to [C]: Cholesky of [C][C]^T, fail if a pivot <= FSW_RANK_TOL * max diag
+   * (max diag = 1 for unit rows). */
+  for (j = 0; j < nc; j++) {
+    for (i = 0; i < j; i++) {
+      fsw_real v = fsw_v3_dot(C[j], C[i]);
+      int k;
+      for (k = 0; k < i; k++) v -= L[j][k] * L[i][k];
+      L[j][i] = v / L[i][i];
+    }
+    {
+      fsw_real d = fsw_v3_dot(C[j], C[j]);
+      int k;
+      for (k = 0; k < j; k++) d -= L[j][k] * L[j][k];
+      if (!(d > FSW_RANK_TOL)) return FSW_E_SINGULAR;
+      L[j][j] = FSW_SQRT(d);
+    }
   }
-  if (fsw_minnorm_solve(x, FSW_CM3N(A), b, nc, 3) != FSW_OK) return FSW_E_SINGULAR;
   return FSW_OK;
 }
 
@@ -148,7 +159,7 @@ static fsw_real torque_angle_error(const FswThrMapState *st, const FswThrMapConf
 static FswStatus map_min_norm(FswThrMapState *st, const FswThrMapConfig *cfg,
                               const fsw_real Lbar[3], fsw_real F[FSW_MAX_EFF])
 {
-  fsw_real Fbar[FSW_MAX_EFF];
+  fsw_real *Fbar = st->work.Fbar;
   const int n = cfg->num_thr, nc = st->num_axes, sF = cfg->thr_force_sign;
   int singular = 0, scaled = 0, i, j;
 
@@ -461,7 +472,7 @@ static int nnls_solve(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_EFF],
 static FswStatus map_nnls(FswThrMapState *st, const FswThrMapConfig *cfg,
                           const fsw_real Lbar[3], fsw_real F[FSW_MAX_EFF])
 {
-  fsw_real lo[FSW_MAX_EFF], hi[FSW_MAX_EFF], r[3];
+  fsw_real *lo = st->work.lo, *hi = st->work.hi, r[3];
   const int n = cfg->num_thr, nc = st->num_axes;
   int i, k;
   for (i = 0; i < n; i++) {
@@ -484,7 +495,7 @@ static FswStatus map_nnls(FswThrMapState *st, const FswThrMapConfig *cfg,
 FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
                              const FswThrMapIn *in, FswThrMapOut *out)
 {
-  fsw_real F[FSW_MAX_EFF], Lr_B[3], Lbar[3];
+  fsw_real *F, Lr_B[3], Lbar[3];
   FswStatus s;
   int i, j, k, n, nc;
 
@@ -530,6 +541,7 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
   }
   if (!fsw_vn_is_finite(Lbar, nc)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
 
+  F = st->work.F;
   fsw_vn_zero(F, FSW_MAX_EFF);
   st->nnls_iter = 0;
   if (cfg->mode == FSW_THR_MAP_NNLS)

@@ -59,7 +59,11 @@ typedef struct {
 typedef struct {
   fsw_real D_B[3][FSW_MAX_EFF];  /* [m] torque arms d_i as columns, B     */
   fsw_real CD[3][FSW_MAX_EFF];   /* [m] [C][D], control-axis rows          */
-  fsw_real CD_S[3][FSW_MAX_EFF]; /* [m] second-pass / free-set columns     */
+  fsw_real CD_S[3][FSW_MAX_EFF]; /* [m] second-pass columns                */
+  fsw_real F[FSW_MAX_EFF];       /* [N] forces being computed              */
+  fsw_real Fbar[FSW_MAX_EFF];    /* [N] second-pass forces                 */
+  fsw_real lo[FSW_MAX_EFF];      /* [N] NNLS lower bounds                  */
+  fsw_real hi[FSW_MAX_EFF];      /* [N] NNLS upper bounds                  */
 } FswThrMapWork;
 
 typedef struct {
