@@ -8,9 +8,15 @@
 #include "fsw/fsw_vec.h"
 
 /* Saturation angle below which the torque angle error is treated as 0: the
- * angle of two parallel vectors computed in floating point is ~1e-8 rad
- * (fsw-algorithms.md 8.5, defect b).  [rad] */
+ * angle of two parallel vectors computed in floating point is ~1e-8 rad in
+ * double (fsw-algorithms.md 8.5, defect b: 1e-6 rad).  In single precision
+ * acos(1 - k eps) is already sqrt(2 k eps) ~ 5e-4 rad for k = 1, so the
+ * float build uses 2e-3 rad.  [rad] */
+#if FSW_USE_FLOAT
+#define THR_MAP_ANGLE_ROUNDOFF FSW_R(2e-3)
+#else
 #define THR_MAP_ANGLE_ROUNDOFF FSW_R(1e-6)
+#endif
 
 /* Tolerance of a unit force direction: | |gt_hat| - 1 | must not exceed it. */
 #if FSW_USE_FLOAT

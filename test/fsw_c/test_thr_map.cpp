@@ -199,7 +199,7 @@ TEST(ThrMap, SixThrusterMinNormAndShift)
   MapRun r = map_once(six_axis_cfg(), 1, -0.5, 0.25);
   EXPECT_EQ(FSW_OK, r.s);
   expect_forces(r.out, {1.0, 0.0, 0.25, 0.75, 0.625, 0.375});
-  EXPECT_EQ(0, r.st.ang_err);
+  EXPECT_EQ(0, r.st.ang_err);  // below the round-off floor of 8.5
 }
 
 TEST(ThrMap, SecondPassShiftAddsTorqueWhenNotPureCouples)
@@ -501,14 +501,24 @@ void random_geometry(kt::Rng& rng, FswThrMapConfig* c, int n)
   }
 }
 
+// nc random, well-separated axes (Gram determinant >= 0.05), not unit
+// length: init normalises them.
 void random_axes(kt::Rng& rng, FswThrMapConfig* c, int nc)
 {
+  double a[3][3], det;
+  do {
+    for (int j = 0; j < 3; j++) rng.unit3(a[j]);
+    double g[3][3];
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) g[i][j] = a[i][0] * a[j][0] + a[i][1] * a[j][1] + a[i][2] * a[j][2];
+    det = nc == 1 ? 1.0
+          : nc == 2 ? g[0][0] * g[1][1] - g[0][1] * g[1][0]
+                    : g[0][0] * (g[1][1] * g[2][2] - g[1][2] * g[2][1]) -
+                          g[0][1] * (g[1][0] * g[2][2] - g[1][2] * g[2][0]) +
+                          g[0][2] * (g[1][0] * g[2][1] - g[1][1] * g[2][0]);
+  } while (det < 0.05);
   std::memset(c->control_axes_B, 0, sizeof c->control_axes_B);
-  for (int j = 0; j < nc; j++) {
-    double a[3];
-    rng.unit3(a);
-    set3(c->control_axes_B[j], a[0] * 2, a[1] * 2, a[2] * 2);  // not unit: init normalises
-  }
+  for (int j = 0; j < nc; j++) set3(c->control_axes_B[j], a[j][0] * 2, a[j][1] * 2, a[j][2] * 2);
 }
 
 TEST(ThrMap, MinNormMatchesIndependentImplementation)

@@ -138,7 +138,8 @@ TEST(ThrPulseRound, PeriodForceLimitAndMinimumOnTime)
 TEST(ThrPulseRound, RoundingAboveThePeriodIsClipped)
 {
   // q = 0.75 does not divide T = 1: t = 1 -> 1.33 -> 1 -> 0.75; t = 0.9 ->
-  // 1.2 -> 0.75; with q = 0.6: t = 1 -> 1.67 -> 2 -> 1.2 -> clipped to 1.
+  // 1.2 -> 0.75; with q = 0.6: t = 1 -> 1.67 -> 2 -> 1.2 -> clipped to 1,
+  // t = 0.95 -> 1.58 -> 2 -> clipped to 1.
   FswThrPulseRoundConfig c = basilisk_defaults(2);
   c.resolution = static_cast<R>(0.75);
   FswThrPulseRoundOut out;
@@ -146,7 +147,7 @@ TEST(ThrPulseRound, RoundingAboveThePeriodIsClipped)
   EXPECT_EQ(0.75, out.t_on[0]);
   EXPECT_EQ(0.75, out.t_on[1]);
   c.resolution = static_cast<R>(0.6);
-  run(c, {1.0, 0.9}, &out);
+  run(c, {1.0, 0.95}, &out);
   EXPECT_EQ(1, out.t_on[0]);
   EXPECT_EQ(1, out.t_on[1]);
 }
