@@ -8,7 +8,7 @@
 function(kestrel_add_gtest name)
   cmake_parse_arguments(A "" "TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${name} ${A_SOURCES})
-  target_link_libraries(${name} PRIVATE kestrel_test_main ${A_LIBS})
+  target_link_libraries(${name} PRIVATE kestrel_assert_hook kestrel_test_main ${A_LIBS})
   target_compile_options(${name} PRIVATE ${KESTREL_SANITIZE_FLAGS})
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     # same rounding as the library on every target (no FMA contraction)

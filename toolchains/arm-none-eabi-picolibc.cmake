@@ -24,7 +24,11 @@ set(CMAKE_CXX_FLAGS_INIT "${KESTREL_ARM_FLAGS} -mthumb --specs=picolibcpp.specs"
 set(CMAKE_EXE_LINKER_FLAGS_INIT
   "--oslib=semihost --crt0=semihost -Wl,--gc-sections \
 -Wl,--defsym=__flash=${KESTREL_FLASH} -Wl,--defsym=__flash_size=${KESTREL_FLASH_SIZE} \
--Wl,--defsym=__ram=${KESTREL_RAM} -Wl,--defsym=__ram_size=${KESTREL_RAM_SIZE}")
+-Wl,--defsym=__ram=${KESTREL_RAM} -Wl,--defsym=__ram_size=${KESTREL_RAM_SIZE} \
+-Wl,--defsym=__stack_size=0x10000")
+# __stack_size: the region picolibc's linker script reserves for the stack
+# below the top of RAM (its default is 2 KiB); 64 KiB keeps the heap that
+# GoogleTest uses well away from a 4 KiB-per-function flight budget.
 
 set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
 set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)

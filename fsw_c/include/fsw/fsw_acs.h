@@ -1,0 +1,160 @@
+/* fsw_acs: the FSW application.  One cycle function, called once per control
+ * period by the flight executive (or the harness, a HIL process, a target
+ * test), wires the modules into
+ *   guidance (css_sun -> guid_sunsafe | guid_inertial -> att_track) -> mrp_fb
+ *   -> [trq_lpf] -> wheel chain:    rw_map -> [rw_null] -> rw_sat -> [rw_volt]
+ *                -> thruster chain: thr_map -> thr_pulse_rem | thr_pulse_schmitt
+ * over the messages of fsw_acs_msgs.h.  See docs/fsw/fsw_acs.md.
+ *
+ * Mode transitions (a change of mode or of actuation in FswAcsCmdMsg) take
+ * effect at the start of the cycle that requests them and reset:
+ *   - mrp_fb (integral term and timing), trq_lpf (filter memory),
+ *   - the pulser (remainders / Schmitt memory) and thr_map,
+ *   - rw_volt (speed-loop warm-up).
+ * Derived data (null-space projector, normalised axes) is never reset.
+ *
+ * Safe output: all actuator commands 0 (wheel torque and voltage 0,
+ * thrusters off, Lr = 0), with wheels_active = thrusters_active = 0.  It is
+ * written on every error; the next good cycle recovers with no reset. */
+#ifndef FSW_ACS_H
+#define FSW_ACS_H
+
+#include <stdint.h>
+
+#include "fsw/att_track.h"
+#include "fsw/css_sun.h"
+#include "fsw/fsw_acs_msgs.h"
+#include "fsw/fsw_config.h"
+#include "fsw/fsw_status.h"
+#include "fsw/guid_inertial.h"
+#include "fsw/guid_sunsafe.h"
+#include "fsw/mrp_fb.h"
+#include "fsw/rw_map.h"
+#include "fsw/rw_null.h"
+#include "fsw/rw_sat.h"
+#include "fsw/rw_volt.h"
+#include "fsw/thr_map.h"
+#include "fsw/thr_pulse_rem.h"
+#include "fsw/thr_pulse_schmitt.h"
+#include "fsw/trq_lpf.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum {
+  FSW_ACS_PULSE_REMAINDER = 0, /* thr_pulse_rem (spec 9)     */
+  FSW_ACS_PULSE_SCHMITT = 1    /* thr_pulse_schmitt (spec 10) */
+} FswAcsPulser;
+
+/* All configuration of the application in one struct. */
+typedef struct {
+  int initial_mode;         /* [-] FswAcsMode after init                          */
+  int initial_actuation;    /* [-] FswAcsActuation after init                     */
+  /* guidance */
+  FswCssSunConfig css;             /* coarse sun sensors (SUN_SAFE)                */
+  FswGuidSunsafeConfig sunsafe;    /* sun-safe pointing                            */
+  FswGuidInertialConfig inertial;  /* inertial pointing                            */
+  FswAttTrackConfig track;         /* tracking error (INERTIAL)                    */
+  /* control */
+  FswMrpFbConfig mrp_fb;           /* control law (its RW set: the wheel set)     */
+  int use_lpf;                     /* [-] 0/1: low-pass filter Lr                  */
+  FswTrqLpfConfig lpf;
+  /* wheel chain (used when has_wheels = 1) */
+  int has_wheels;                  /* [-] 0/1                                       */
+  FswRwMapConfig rw_map;
+  int use_null;                    /* [-] 0/1: null motion toward Omega_des         */
+  FswRwNullConfig rw_null;
+  fsw_real Omega_des[FSW_MAX_RW];  /* [rad/s] (num_rw) desired wheel speeds         */
+  FswRwSatConfig rw_sat;
+  int use_volt;                    /* [-] 0/1: also compute motor voltages          */
+  FswRwVoltConfig rw_volt;
+  /* thruster chain (used when has_thrusters = 1) */
+  int has_thrusters;               /* [-] 0/1                                       */
+  FswThrMapConfig thr_map;
+  int pulser;                      /* [-] FswAcsPulser                              */
+  FswThrPulseRemConfig pulse_rem;
+  FswThrPulseSchmittConfig pulse_schmitt;
+} FswAcsConfig;
+
+/* Inputs and outputs of the stages, kept in the state so that the cycle
+ * function's own stack stays small (see the stack table in docs). */
+typedef struct {
+  FswCssSunIn css_in;
+  FswCssSunOut css_out;
+  FswGuidSunsafeIn sunsafe_in;
+  FswGuidSunsafeOut sunsafe_out;
+  FswGuidInertialOut inertial_out;
+  FswAttTrackIn track_in;
+  FswAttTrackOut track_out;
+  FswMrpFbIn fb_in;
+  FswMrpFbOut fb_out;
+  FswTrqLpfIn lpf_in;
+  FswTrqLpfOut lpf_out;
+  FswRwMapIn map_in;
+  FswRwMapOut map_out;
+  FswRwNullIn null_in;
+  FswRwNullOut null_out;
+  FswRwSatIn sat_in;
+  FswRwSatOut sat_out;
+  FswRwVoltIn volt_in;
+  FswRwVoltOut volt_out;
+  FswThrMapIn thr_in;
+  FswThrMapOut thr_out;
+  FswThrPulseRemIn rem_in;
+  FswThrPulseRemOut rem_out;
+  FswThrPulseSchmittIn sch_in;
+  FswThrPulseSchmittOut sch_out;
+} FswAcsWork;
+
+typedef struct {
+  int ready;            /* [-]  1 after a successful init                      */
+  int mode;             /* [-]  FswAcsMode in force                            */
+  int actuation;        /* [-]  FswAcsActuation in force                       */
+  int has_prev;         /* [-]  a cycle has been accepted since reset (0.3)    */
+  uint64_t t_prev_ns;   /* [ns] its time stamp                                 */
+  uint32_t cycles;      /* [-]  accepted cycles since init                     */
+  uint32_t mode_changes;/* [-]  transitions since init                         */
+  FswCssSunState css;
+  FswGuidSunsafeState sunsafe;
+  FswGuidInertialState inertial;
+  FswAttTrackState track;
+  FswMrpFbState mrp_fb;
+  FswTrqLpfState lpf;
+  FswRwMapState rw_map;
+  FswRwNullState rw_null;
+  FswRwSatState rw_sat;
+  FswRwVoltState rw_volt;
+  FswThrMapState thr_map;
+  FswThrPulseRemState pulse_rem;
+  FswThrPulseSchmittState pulse_schmitt;
+  FswAcsWork work;
+  FswHealth health;
+} FswAcsState;
+
+/* Validates the whole configuration.  On failure, *bad_field (if not NULL)
+ * receives the name of the first bad field, e.g. "initial_mode" or
+ * "rw_map" (a module config that its own _check rejected; the status is
+ * that module's).  On success *bad_field = NULL. */
+FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field);
+
+/* check + init of every module used; on failure the state is not ready. */
+FswStatus fsw_acs_init(FswAcsState *st, const FswAcsConfig *cfg, const char **bad_field);
+
+/* Back to the post-init mode with all dynamic state cleared. */
+void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg);
+
+/* One control cycle.  `cmd` may be NULL (keep the current mode).  Always
+ * writes `act` fully and `hlth` fully.  Returns the cycle status (also in
+ * hlth->status): FSW_OK or a warning with valid commands; an error with the
+ * safe output (FSW_E_BAD_INPUT: non-finite sensor values or an invalid mode
+ * request; FSW_E_TIME: t_ns not after the previous cycle; FSW_E_NOT_INIT).
+ * Bad input advances no state at all. */
+FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
+                        const FswAcsCmdMsg *cmd, FswAcsActuatorMsg *act, FswAcsHealthMsg *hlth);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* FSW_ACS_H */

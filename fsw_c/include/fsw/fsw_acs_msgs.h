@@ -1,0 +1,98 @@
+/* fsw_acs_msgs: the messages of the FSW application fsw_acs.
+ * Plain C structs, one per direction, shared by the flight executive, the
+ * desktop harness, a hardware-in-the-loop process and the target tests:
+ *   FswAcsSensorMsg   sensors -> FSW          (one per control cycle)
+ *   FswAcsCmdMsg      ground/executive -> FSW (mode requests)
+ *   FswAcsActuatorMsg FSW -> actuators        (wheel torques/voltages, thruster on-times)
+ *   FswAcsHealthMsg   FSW -> executive/telemetry
+ * Frames: B body, N inertial.  Units: SI, time in ns. */
+#ifndef FSW_ACS_MSGS_H
+#define FSW_ACS_MSGS_H
+
+#include <stdint.h>
+
+#include "fsw/css_sun.h" /* FSW_MAX_CSS */
+#include "fsw/fsw_config.h"
+#include "fsw/fsw_status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Pointing modes. */
+typedef enum {
+  FSW_ACS_MODE_SUN_SAFE = 0, /* point s_cmd at the Sun from the CSS heading (or search spin) */
+  FSW_ACS_MODE_INERTIAL = 1  /* hold the configured inertial attitude (needs sigma_BN)     */
+} FswAcsMode;
+
+/* Actuation chains. */
+typedef enum {
+  FSW_ACS_ACT_WHEELS = 0,   /* rw_map -> rw_null -> rw_sat -> rw_volt */
+  FSW_ACS_ACT_THRUSTERS = 1 /* thr_map -> pulsing                     */
+} FswAcsActuation;
+
+typedef struct {
+  uint64_t t_ns;                  /* [ns]    time stamp of this cycle, strictly increasing   */
+  fsw_real sigma_BN[3];           /* [-]     navigation attitude (star tracker/estimator)    */
+  uint8_t att_valid;              /* [-]     1 if sigma_BN is valid (required by INERTIAL)   */
+  fsw_real omega_BN_B[3];         /* [rad/s] body rate (gyro), B components, always required */
+  fsw_real css[FSW_MAX_CSS];      /* [css units] (num_css) coarse sun sensor readings        */
+  uint8_t css_avail[FSW_MAX_CSS]; /* [-]     (num_css) 0 available, 1 unavailable            */
+  fsw_real Omega[FSW_MAX_RW];     /* [rad/s] (num_rw) wheel speeds relative to the body      */
+  uint8_t rw_avail[FSW_MAX_RW];   /* [-]     (num_rw) 0 available, 1 unavailable             */
+  fsw_real r_CoM_B[3];            /* [m]     centre of mass, B (thruster mapping)            */
+} FswAcsSensorMsg;
+
+typedef struct {
+  int mode;      /* [-] requested FswAcsMode       */
+  int actuation; /* [-] requested FswAcsActuation  */
+} FswAcsCmdMsg;
+
+typedef struct {
+  fsw_real Lr_B[3];            /* [N*m] control torque request (after the optional filter)  */
+  fsw_real u_s[FSW_MAX_RW];    /* [N*m] (num_rw) wheel motor torques (0 in thruster mode)   */
+  fsw_real V[FSW_MAX_RW];      /* [V]   (num_rw) wheel motor voltages (if use_volt, else 0)  */
+  fsw_real F[FSW_MAX_THR];     /* [N]   (num_thr) thruster force command (telemetry)         */
+  fsw_real t_on[FSW_MAX_THR];  /* [s]   (num_thr) thruster on-times from this cycle's start  */
+  uint8_t wheels_active;       /* [-]   1 if u_s/V are to be applied                         */
+  uint8_t thrusters_active;    /* [-]   1 if t_on is to be applied                           */
+} FswAcsActuatorMsg;
+
+/* Stages of the cycle, for per-stage status telemetry. */
+typedef enum {
+  FSW_ACS_STAGE_CSS = 0,
+  FSW_ACS_STAGE_GUIDANCE,
+  FSW_ACS_STAGE_TRACK,
+  FSW_ACS_STAGE_CONTROL,
+  FSW_ACS_STAGE_LPF,
+  FSW_ACS_STAGE_RW_MAP,
+  FSW_ACS_STAGE_RW_NULL,
+  FSW_ACS_STAGE_RW_SAT,
+  FSW_ACS_STAGE_RW_VOLT,
+  FSW_ACS_STAGE_THR_MAP,
+  FSW_ACS_STAGE_THR_PULSE,
+  FSW_ACS_NUM_STAGES
+} FswAcsStage;
+
+typedef struct {
+  FswStatus status;                         /* [-]   status of the cycle (worst of the stages) */
+  int mode;                                 /* [-]   FswAcsMode in force after the cycle        */
+  int actuation;                            /* [-]   FswAcsActuation in force after the cycle   */
+  uint8_t safe_output;                      /* [-]   1: the actuator message is the safe output */
+  uint32_t cycles;                          /* [-]   accepted cycles since init                 */
+  uint32_t mode_changes;                    /* [-]   mode/actuation transitions since init      */
+  FswStatus stage_status[FSW_ACS_NUM_STAGES]; /* [-] status of each stage this cycle (FSW_OK if not run) */
+  fsw_real sigma_BR[3];                     /* [-]     attitude error                            */
+  fsw_real omega_BR_B[3];                   /* [rad/s] rate error                                */
+  fsw_real att_err_angle;                   /* [rad]   principal angle of sigma_BR               */
+  fsw_real sun_angle_err;                   /* [rad]   sun-safe angle error (SUN_SAFE)            */
+  uint8_t sun_valid;                        /* [-]     CSS heading valid this cycle              */
+  uint8_t num_lit;                          /* [-]     lit CSS                                   */
+  FswHealth health;                         /* [-]     counters of the application              */
+} FswAcsHealthMsg;
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* FSW_ACS_MSGS_H */

@@ -1,0 +1,468 @@
+/* fsw_acs: the FSW application (one cycle per control period). */
+#include "fsw/fsw_acs.h"
+
+#include <stddef.h>
+
+#include "fsw/fsw_attitude.h"
+#include "fsw/fsw_vec.h"
+
+/* ---- configuration ---------------------------------------------------- */
+
+static FswStatus fail(const char **bad_field, const char *name, FswStatus s)
+{
+  if (bad_field != NULL) *bad_field = name;
+  return s;
+}
+
+static int is_bool(int v) { return v == 0 || v == 1; }
+
+FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
+{
+  FswStatus s;
+  int i;
+  FSW_ASSERT(cfg != NULL);
+  if (bad_field != NULL) *bad_field = NULL;
+  if (cfg == NULL) return fail(bad_field, "cfg", FSW_E_NULL_ARG);
+
+  if (cfg->initial_mode != FSW_ACS_MODE_SUN_SAFE && cfg->initial_mode != FSW_ACS_MODE_INERTIAL)
+    return fail(bad_field, "initial_mode", FSW_E_CONFIG);
+  if (!is_bool(cfg->has_wheels)) return fail(bad_field, "has_wheels", FSW_E_CONFIG);
+  if (!is_bool(cfg->has_thrusters)) return fail(bad_field, "has_thrusters", FSW_E_CONFIG);
+  if (!cfg->has_wheels && !cfg->has_thrusters) return fail(bad_field, "has_wheels", FSW_E_CONFIG);
+  if (cfg->initial_actuation == FSW_ACS_ACT_WHEELS) {
+    if (!cfg->has_wheels) return fail(bad_field, "initial_actuation", FSW_E_CONFIG);
+  } else if (cfg->initial_actuation == FSW_ACS_ACT_THRUSTERS) {
+    if (!cfg->has_thrusters) return fail(bad_field, "initial_actuation", FSW_E_CONFIG);
+  } else {
+    return fail(bad_field, "initial_actuation", FSW_E_CONFIG);
+  }
+
+  if ((s = fsw_css_sun_check(&cfg->css)) != FSW_OK) return fail(bad_field, "css", s);
+  if ((s = fsw_guid_sunsafe_check(&cfg->sunsafe)) != FSW_OK) return fail(bad_field, "sunsafe", s);
+  if ((s = fsw_guid_inertial_check(&cfg->inertial)) != FSW_OK) return fail(bad_field, "inertial", s);
+  if ((s = fsw_att_track_check(&cfg->track)) != FSW_OK) return fail(bad_field, "track", s);
+  if ((s = fsw_mrp_fb_check(&cfg->mrp_fb)) != FSW_OK) return fail(bad_field, "mrp_fb", s);
+  if (!is_bool(cfg->use_lpf)) return fail(bad_field, "use_lpf", FSW_E_CONFIG);
+  if (cfg->use_lpf && (s = fsw_trq_lpf_check(&cfg->lpf)) != FSW_OK) return fail(bad_field, "lpf", s);
+
+  if (cfg->has_wheels) {
+    const int n = cfg->rw_map.num_rw;
+    if ((s = fsw_rw_map_check(&cfg->rw_map)) != FSW_OK) return fail(bad_field, "rw_map", s);
+    if (cfg->mrp_fb.num_rw != 0 && cfg->mrp_fb.num_rw != n)
+      return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG);
+    if ((s = fsw_rw_sat_check(&cfg->rw_sat)) != FSW_OK) return fail(bad_field, "rw_sat", s);
+    if (cfg->rw_sat.num_rw != n) return fail(bad_field, "rw_sat.num_rw", FSW_E_CONFIG);
+    if (!is_bool(cfg->use_null)) return fail(bad_field, "use_null", FSW_E_CONFIG);
+    if (cfg->use_null) {
+      if ((s = fsw_rw_null_check(&cfg->rw_null)) != FSW_OK) return fail(bad_field, "rw_null", s);
+      if (cfg->rw_null.num_rw != n) return fail(bad_field, "rw_null.num_rw", FSW_E_CONFIG);
+      if (!fsw_vn_is_finite(cfg->Omega_des, n)) return fail(bad_field, "Omega_des", FSW_E_CONFIG);
+    }
+    if (!is_bool(cfg->use_volt)) return fail(bad_field, "use_volt", FSW_E_CONFIG);
+    if (cfg->use_volt) {
+      if ((s = fsw_rw_volt_check(&cfg->rw_volt)) != FSW_OK) return fail(bad_field, "rw_volt", s);
+      if (cfg->rw_volt.num_rw != n) return fail(bad_field, "rw_volt.num_rw", FSW_E_CONFIG);
+    }
+  } else if (cfg->mrp_fb.num_rw != 0) {
+    return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG); /* wheels in H but no wheel chain */
+  }
+
+  if (cfg->has_thrusters) {
+    const int n = cfg->thr_map.num_thr;
+    /* off-pulsing mapping (sign -1) needs off-pulsing pulsing (b = 1) and
+     * vice versa; a mismatch silently inverts the control (spec 9). */
+    const int b_want = (cfg->thr_map.thr_force_sign < 0) ? 1 : 0;
+    const fsw_real *F_max;
+    int num_thr, b;
+    if ((s = fsw_thr_map_check(&cfg->thr_map)) != FSW_OK) return fail(bad_field, "thr_map", s);
+    if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
+      if ((s = fsw_thr_pulse_rem_check(&cfg->pulse_rem)) != FSW_OK)
+        return fail(bad_field, "pulse_rem", s);
+      num_thr = cfg->pulse_rem.num_thr;
+      F_max = cfg->pulse_rem.F_max;
+      b = cfg->pulse_rem.base_thrust_state;
+      if (num_thr != n) return fail(bad_field, "pulse_rem.num_thr", FSW_E_CONFIG);
+      if (b != b_want) return fail(bad_field, "pulse_rem.base_thrust_state", FSW_E_CONFIG);
+      for (i = 0; i < n; i++)
+        if (F_max[i] != cfg->thr_map.F_max[i]) return fail(bad_field, "pulse_rem.F_max", FSW_E_CONFIG);
+    } else if (cfg->pulser == FSW_ACS_PULSE_SCHMITT) {
+      if ((s = fsw_thr_pulse_schmitt_check(&cfg->pulse_schmitt)) != FSW_OK)
+        return fail(bad_field, "pulse_schmitt", s);
+      num_thr = cfg->pulse_schmitt.num_thr;
+      F_max = cfg->pulse_schmitt.F_max;
+      b = cfg->pulse_schmitt.base_thrust_state;
+      if (num_thr != n) return fail(bad_field, "pulse_schmitt.num_thr", FSW_E_CONFIG);
+      if (b != b_want) return fail(bad_field, "pulse_schmitt.base_thrust_state", FSW_E_CONFIG);
+      for (i = 0; i < n; i++)
+        if (F_max[i] != cfg->thr_map.F_max[i])
+          return fail(bad_field, "pulse_schmitt.F_max", FSW_E_CONFIG);
+    } else {
+      return fail(bad_field, "pulser", FSW_E_CONFIG);
+    }
+  }
+  return FSW_OK;
+}
+
+/* ---- init / reset ---------------------------------------------------- */
+
+static void clear_state(FswAcsState *st)
+{
+  unsigned char *p = (unsigned char *)st;
+  size_t k;
+  for (k = 0; k < sizeof(*st); k++) p[k] = 0u;
+}
+
+/* Reset the stages whose memory must not survive a mode transition. */
+static void reset_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
+{
+  fsw_mrp_fb_reset(&st->mrp_fb);
+  if (cfg->use_lpf) fsw_trq_lpf_reset(&st->lpf);
+  if (cfg->has_wheels && cfg->use_volt) fsw_rw_volt_reset(&st->rw_volt);
+  if (cfg->has_thrusters) {
+    fsw_thr_map_reset(&st->thr_map);
+    if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
+      fsw_thr_pulse_rem_reset(&st->pulse_rem);
+    } else {
+      fsw_thr_pulse_schmitt_reset(&st->pulse_schmitt);
+    }
+  }
+}
+
+FswStatus fsw_acs_init(FswAcsState *st, const FswAcsConfig *cfg, const char **bad_field)
+{
+  FswStatus s;
+  FSW_ASSERT(st != NULL && cfg != NULL);
+  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  clear_state(st);
+  s = fsw_acs_check(cfg, bad_field);
+  if (s != FSW_OK) return s;
+
+#define ACS_INIT(call, name)                                                   \
+  do {                                                                         \
+    s = (call);                                                                \
+    if (s != FSW_OK) {                                                         \
+      clear_state(st);                                                         \
+      return fail(bad_field, name, s);                                         \
+    }                                                                          \
+  } while (0)
+
+  ACS_INIT(fsw_css_sun_init(&st->css, &cfg->css), "css");
+  ACS_INIT(fsw_guid_sunsafe_init(&st->sunsafe, &cfg->sunsafe), "sunsafe");
+  ACS_INIT(fsw_guid_inertial_init(&st->inertial, &cfg->inertial), "inertial");
+  ACS_INIT(fsw_att_track_init(&st->track, &cfg->track), "track");
+  ACS_INIT(fsw_mrp_fb_init(&st->mrp_fb, &cfg->mrp_fb), "mrp_fb");
+  if (cfg->use_lpf) ACS_INIT(fsw_trq_lpf_init(&st->lpf, &cfg->lpf), "lpf");
+  if (cfg->has_wheels) {
+    ACS_INIT(fsw_rw_map_init(&st->rw_map, &cfg->rw_map), "rw_map");
+    if (cfg->use_null) ACS_INIT(fsw_rw_null_init(&st->rw_null, &cfg->rw_null), "rw_null");
+    ACS_INIT(fsw_rw_sat_init(&st->rw_sat, &cfg->rw_sat), "rw_sat");
+    if (cfg->use_volt) ACS_INIT(fsw_rw_volt_init(&st->rw_volt, &cfg->rw_volt), "rw_volt");
+  }
+  if (cfg->has_thrusters) {
+    ACS_INIT(fsw_thr_map_init(&st->thr_map, &cfg->thr_map), "thr_map");
+    if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
+      ACS_INIT(fsw_thr_pulse_rem_init(&st->pulse_rem, &cfg->pulse_rem), "pulse_rem");
+    } else {
+      ACS_INIT(fsw_thr_pulse_schmitt_init(&st->pulse_schmitt, &cfg->pulse_schmitt), "pulse_schmitt");
+    }
+  }
+#undef ACS_INIT
+  fsw_health_clear(&st->health);
+  st->ready = 1;
+  fsw_acs_reset(st, cfg);
+  return FSW_OK;
+}
+
+void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg)
+{
+  FSW_ASSERT(st != NULL && cfg != NULL);
+  if (st == NULL || cfg == NULL || !st->ready) return;
+  fsw_css_sun_reset(&st->css);
+  fsw_guid_sunsafe_reset(&st->sunsafe);
+  fsw_guid_inertial_reset(&st->inertial);
+  fsw_att_track_reset(&st->track);
+  if (cfg->has_wheels) {
+    fsw_rw_map_reset(&st->rw_map);
+    if (cfg->use_null) fsw_rw_null_reset(&st->rw_null);
+    fsw_rw_sat_reset(&st->rw_sat);
+  }
+  reset_dynamic(st, cfg);
+  st->mode = cfg->initial_mode;
+  st->actuation = cfg->initial_actuation;
+  st->has_prev = 0;
+  st->t_prev_ns = 0u;
+}
+
+/* ---- cycle -------------------------------------------------------------- */
+
+static void safe_output(FswAcsActuatorMsg *act)
+{
+  fsw_v3_zero(act->Lr_B);
+  fsw_vn_zero(act->u_s, FSW_MAX_RW);
+  fsw_vn_zero(act->V, FSW_MAX_RW);
+  fsw_vn_zero(act->F, FSW_MAX_THR);
+  fsw_vn_zero(act->t_on, FSW_MAX_THR);
+  act->wheels_active = 0u;
+  act->thrusters_active = 0u;
+}
+
+static void u8_copy(uint8_t *out, const uint8_t *in, int n)
+{
+  int i;
+  for (i = 0; i < n; i++) out[i] = in[i];
+}
+
+/* Finite check of the entries whose availability flag is 0. */
+static int avail_finite(const fsw_real *x, const uint8_t *avail, int n)
+{
+  int i;
+  for (i = 0; i < n; i++)
+    if (avail[i] == FSW_AVAILABLE && !isfinite(x[i])) return 0;
+  return 1;
+}
+
+/* First error wins; otherwise the first warning; otherwise OK. */
+static FswStatus combine(FswStatus acc, FswStatus s)
+{
+  if (fsw_status_is_error(acc)) return acc;
+  if (fsw_status_is_error(s)) return s;
+  if (acc != FSW_OK) return acc;
+  return s;
+}
+
+static FswStatus finish(FswAcsState *st, FswAcsHealthMsg *h, FswStatus s)
+{
+  h->status = fsw_health_record(&st->health, s);
+  h->safe_output = (uint8_t)(fsw_status_is_error(s) ? 1 : 0);
+  h->mode = st->mode;
+  h->actuation = st->actuation;
+  h->cycles = st->cycles;
+  h->mode_changes = st->mode_changes;
+  h->health = st->health;
+  return s;
+}
+
+static FswStatus run_guidance(FswAcsState *st, const FswAcsConfig *cfg,
+                              const FswAcsSensorMsg *sens, FswAcsHealthMsg *h, FswAttGuid *guid)
+{
+  FswAcsWork *w = &st->work;
+  FswStatus acc = FSW_OK, s;
+  int i;
+  if (st->mode == FSW_ACS_MODE_SUN_SAFE) {
+    const int nc = cfg->css.num_css;
+    for (i = 0; i < nc; i++) w->css_in.reading[i] = sens->css[i];
+    u8_copy(w->css_in.avail, sens->css_avail, nc);
+    s = fsw_css_sun_update(&st->css, &cfg->css, &w->css_in, &w->css_out);
+    h->stage_status[FSW_ACS_STAGE_CSS] = s;
+    acc = combine(acc, s);
+    if (w->css_out.sun_valid) {
+      fsw_v3_copy(w->sunsafe_in.sun_B, w->css_out.sun_hat_B);
+    } else {
+      fsw_v3_zero(w->sunsafe_in.sun_B); /* no heading: search spin */
+    }
+    fsw_v3_copy(w->sunsafe_in.omega_BN_B, sens->omega_BN_B);
+    s = fsw_guid_sunsafe_update(&st->sunsafe, &cfg->sunsafe, &w->sunsafe_in, &w->sunsafe_out);
+    h->stage_status[FSW_ACS_STAGE_GUIDANCE] = s;
+    acc = combine(acc, s);
+    *guid = w->sunsafe_out.guid;
+    h->sun_angle_err = w->sunsafe_out.sun_angle_err;
+    h->sun_valid = (uint8_t)(w->css_out.sun_valid ? 1 : 0);
+    h->num_lit = (uint8_t)w->css_out.num_lit;
+  } else {
+    s = fsw_guid_inertial_update(&st->inertial, &cfg->inertial, &w->inertial_out);
+    h->stage_status[FSW_ACS_STAGE_GUIDANCE] = s;
+    acc = combine(acc, s);
+    fsw_v3_copy(w->track_in.sigma_BN, sens->sigma_BN);
+    fsw_v3_copy(w->track_in.omega_BN_B, sens->omega_BN_B);
+    w->track_in.ref = w->inertial_out;
+    s = fsw_att_track_update(&st->track, &cfg->track, &w->track_in, &w->track_out);
+    h->stage_status[FSW_ACS_STAGE_TRACK] = s;
+    acc = combine(acc, s);
+    *guid = w->track_out;
+  }
+  return acc;
+}
+
+static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
+                            const fsw_real Lr_B[3], FswAcsActuatorMsg *act, FswAcsHealthMsg *h)
+{
+  FswAcsWork *w = &st->work;
+  const int n = cfg->rw_map.num_rw;
+  FswStatus acc = FSW_OK, s;
+  const fsw_real *u;
+
+  fsw_v3_copy(w->map_in.Lr_B, Lr_B);
+  fsw_vn_copy(w->map_in.Omega, sens->Omega, n);
+  u8_copy(w->map_in.avail, sens->rw_avail, n);
+  s = fsw_rw_map_update(&st->rw_map, &cfg->rw_map, &w->map_in, &w->map_out);
+  h->stage_status[FSW_ACS_STAGE_RW_MAP] = s;
+  acc = combine(acc, s);
+  u = w->map_out.u_s;
+
+  if (cfg->use_null) {
+    fsw_vn_copy(w->null_in.u_s, u, n);
+    fsw_vn_copy(w->null_in.Omega, sens->Omega, n);
+    fsw_vn_copy(w->null_in.Omega_des, cfg->Omega_des, n);
+    u8_copy(w->null_in.avail, sens->rw_avail, n);
+    s = fsw_rw_null_update(&st->rw_null, &cfg->rw_null, &w->null_in, &w->null_out);
+    h->stage_status[FSW_ACS_STAGE_RW_NULL] = s;
+    acc = combine(acc, s);
+    u = w->null_out.u_s;
+  }
+
+  fsw_vn_copy(w->sat_in.u_s, u, n);
+  u8_copy(w->sat_in.avail, sens->rw_avail, n);
+  s = fsw_rw_sat_update(&st->rw_sat, &cfg->rw_sat, &w->sat_in, &w->sat_out);
+  h->stage_status[FSW_ACS_STAGE_RW_SAT] = s;
+  acc = combine(acc, s);
+  fsw_vn_copy(act->u_s, w->sat_out.u_s, n);
+
+  if (cfg->use_volt) {
+    fsw_vn_copy(w->volt_in.u_s, w->sat_out.u_s, n);
+    fsw_vn_copy(w->volt_in.Omega, sens->Omega, n);
+    w->volt_in.has_Omega = 1;
+    u8_copy(w->volt_in.avail, sens->rw_avail, n);
+    w->volt_in.t_ns = sens->t_ns;
+    s = fsw_rw_volt_update(&st->rw_volt, &cfg->rw_volt, &w->volt_in, &w->volt_out);
+    h->stage_status[FSW_ACS_STAGE_RW_VOLT] = s;
+    acc = combine(acc, s);
+    fsw_vn_copy(act->V, w->volt_out.V, n);
+  }
+  act->wheels_active = 1u;
+  return acc;
+}
+
+static FswStatus run_thrusters(FswAcsState *st, const FswAcsConfig *cfg,
+                               const FswAcsSensorMsg *sens, const fsw_real Lr_B[3],
+                               FswAcsActuatorMsg *act, FswAcsHealthMsg *h)
+{
+  FswAcsWork *w = &st->work;
+  const int n = cfg->thr_map.num_thr;
+  FswStatus acc = FSW_OK, s;
+
+  fsw_v3_copy(w->thr_in.Lr_B, Lr_B);
+  fsw_v3_copy(w->thr_in.r_CoM_B, sens->r_CoM_B);
+  s = fsw_thr_map_update(&st->thr_map, &cfg->thr_map, &w->thr_in, &w->thr_out);
+  h->stage_status[FSW_ACS_STAGE_THR_MAP] = s;
+  acc = combine(acc, s);
+  fsw_vn_copy(act->F, w->thr_out.F, n);
+
+  if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
+    w->rem_in.t_ns = sens->t_ns;
+    fsw_vn_copy(w->rem_in.F, w->thr_out.F, n);
+    s = fsw_thr_pulse_rem_update(&st->pulse_rem, &cfg->pulse_rem, &w->rem_in, &w->rem_out);
+    fsw_vn_copy(act->t_on, w->rem_out.t_on, n);
+  } else {
+    w->sch_in.t_ns = sens->t_ns;
+    fsw_vn_copy(w->sch_in.F, w->thr_out.F, n);
+    s = fsw_thr_pulse_schmitt_update(&st->pulse_schmitt, &cfg->pulse_schmitt, &w->sch_in,
+                                     &w->sch_out);
+    fsw_vn_copy(act->t_on, w->sch_out.t_on, n);
+  }
+  h->stage_status[FSW_ACS_STAGE_THR_PULSE] = s;
+  acc = combine(acc, s);
+  act->thrusters_active = 1u;
+  return acc;
+}
+
+FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
+                        const FswAcsCmdMsg *cmd, FswAcsActuatorMsg *act, FswAcsHealthMsg *h)
+{
+  FswAcsWork *w;
+  FswStatus acc = FSW_OK, s;
+  FswAttGuid guid;
+  const fsw_real *Lr;
+  int req_mode, req_act, i;
+
+  FSW_ASSERT(st != NULL && cfg != NULL && sens != NULL && act != NULL && h != NULL);
+  if (act != NULL) safe_output(act);
+  if (h != NULL) {
+    unsigned char *p = (unsigned char *)h;
+    size_t k;
+    for (k = 0; k < sizeof(*h); k++) p[k] = 0u;
+  }
+  if (st == NULL || cfg == NULL || sens == NULL || act == NULL || h == NULL) {
+    if (st != NULL) (void)fsw_health_record(&st->health, FSW_E_NULL_ARG);
+    return FSW_E_NULL_ARG;
+  }
+  if (!st->ready) return finish(st, h, FSW_E_NOT_INIT);
+  w = &st->work;
+
+  /* 1. Everything that can be wrong with the inputs is checked before any
+   *    stage runs, so a bad cycle advances no state at all. */
+  req_mode = (cmd != NULL) ? cmd->mode : st->mode;
+  req_act = (cmd != NULL) ? cmd->actuation : st->actuation;
+  if (req_mode != FSW_ACS_MODE_SUN_SAFE && req_mode != FSW_ACS_MODE_INERTIAL)
+    return finish(st, h, FSW_E_BAD_INPUT);
+  if (!((req_act == FSW_ACS_ACT_WHEELS && cfg->has_wheels) ||
+        (req_act == FSW_ACS_ACT_THRUSTERS && cfg->has_thrusters)))
+    return finish(st, h, FSW_E_BAD_INPUT);
+  if (st->has_prev && sens->t_ns <= st->t_prev_ns) return finish(st, h, FSW_E_TIME);
+  if (!fsw_v3_is_finite(sens->omega_BN_B)) return finish(st, h, FSW_E_BAD_INPUT);
+  if (req_mode == FSW_ACS_MODE_INERTIAL && (sens->att_valid != 1u || !fsw_v3_is_finite(sens->sigma_BN)))
+    return finish(st, h, FSW_E_BAD_INPUT);
+  if (req_mode == FSW_ACS_MODE_SUN_SAFE) {
+    for (i = 0; i < cfg->css.num_css; i++)
+      if (sens->css_avail[i] > FSW_UNAVAILABLE) return finish(st, h, FSW_E_BAD_INPUT);
+    if (!avail_finite(sens->css, sens->css_avail, cfg->css.num_css))
+      return finish(st, h, FSW_E_BAD_INPUT);
+  }
+  if (cfg->has_wheels) {
+    for (i = 0; i < cfg->rw_map.num_rw; i++)
+      if (sens->rw_avail[i] > FSW_UNAVAILABLE) return finish(st, h, FSW_E_BAD_INPUT);
+    if (!avail_finite(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw))
+      return finish(st, h, FSW_E_BAD_INPUT);
+  }
+  if (req_act == FSW_ACS_ACT_THRUSTERS && !fsw_v3_is_finite(sens->r_CoM_B))
+    return finish(st, h, FSW_E_BAD_INPUT);
+
+  /* 2. Mode transition: clear the memory that belongs to the old mode. */
+  if (req_mode != st->mode || req_act != st->actuation) {
+    reset_dynamic(st, cfg);
+    st->mode = req_mode;
+    st->actuation = req_act;
+    if (st->mode_changes < UINT32_MAX) st->mode_changes++;
+  }
+
+  /* 3. Guidance and attitude error. */
+  acc = combine(acc, run_guidance(st, cfg, sens, h, &guid));
+
+  /* 4. Control law. */
+  w->fb_in.t_ns = sens->t_ns;
+  w->fb_in.guid = guid;
+  if (cfg->mrp_fb.num_rw > 0) {
+    fsw_vn_copy(w->fb_in.Omega, sens->Omega, cfg->mrp_fb.num_rw);
+    u8_copy(w->fb_in.rw_avail, sens->rw_avail, cfg->mrp_fb.num_rw);
+  }
+  s = fsw_mrp_fb_update(&st->mrp_fb, &cfg->mrp_fb, &w->fb_in, &w->fb_out);
+  h->stage_status[FSW_ACS_STAGE_CONTROL] = s;
+  acc = combine(acc, s);
+  Lr = w->fb_out.torque_B;
+
+  if (cfg->use_lpf) {
+    fsw_v3_copy(w->lpf_in.Lr_B, Lr);
+    w->lpf_in.t_ns = sens->t_ns;
+    s = fsw_trq_lpf_update(&st->lpf, &cfg->lpf, &w->lpf_in, &w->lpf_out);
+    h->stage_status[FSW_ACS_STAGE_LPF] = s;
+    acc = combine(acc, s);
+    Lr = w->lpf_out.LrF_B;
+  }
+  fsw_v3_copy(act->Lr_B, Lr);
+
+  /* 5. Actuation chain. */
+  if (st->actuation == FSW_ACS_ACT_WHEELS) {
+    acc = combine(acc, run_wheels(st, cfg, sens, Lr, act, h));
+  } else {
+    acc = combine(acc, run_thrusters(st, cfg, sens, Lr, act, h));
+  }
+
+  /* 6. Telemetry and timing. */
+  fsw_v3_copy(h->sigma_BR, guid.sigma_BR);
+  fsw_v3_copy(h->omega_BR_B, guid.omega_BR_B);
+  h->att_err_angle = fsw_mrp_angle(guid.sigma_BR);
+  st->has_prev = 1;
+  st->t_prev_ns = sens->t_ns;
+  if (st->cycles < UINT32_MAX) st->cycles++;
+  if (fsw_status_is_error(acc)) safe_output(act);
+  return finish(st, h, acc);
+}
