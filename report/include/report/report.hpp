@@ -1,0 +1,42 @@
+// kestrel::report: the offline HTML run report.
+//
+// One self-contained HTML file per run: the page (template, style sheet and
+// the bundled report code with uPlot and three.js, built at build time by
+// report/CMakeLists.txt) with the run's report_data.json embedded in a
+// <script type="application/json"> element.  The page fetches nothing.
+// Schema of report_data.json: docs/report.md.
+#pragma once
+
+#include <cstddef>
+#include <iosfwd>
+#include <string>
+
+namespace report {
+
+// The run data made safe to embed in a <script> element: every '<' becomes
+// the JSON escape \u003c (in valid JSON '<' occurs only inside strings, where
+// the escape means the same character), so neither "</script>" nor "<!--"
+// can appear in the embedded text.  Nothing else changes.
+std::string escape_json_for_script(const std::string& report_data_json);
+
+// The whole page for one run.  The JSON is embedded as given (escaped as
+// above) and parsed by the page; the page shows an error instead of the
+// sections if it is not valid JSON.
+std::string render_html(const std::string& report_data_json);
+
+// render_html() to a stream.
+void write_html(const std::string& report_data_json, std::ostream& out);
+
+// render_html() to a file (created or truncated).  Throws std::runtime_error
+// naming the path if it cannot be written.
+void write_html(const std::string& report_data_json, const std::string& out_html_path);
+
+// True when the page was built with the report bundle (Node.js and npm were
+// found at build time); false for the fallback page that shows only the
+// embedded data.
+bool has_bundle();
+
+// Size in bytes of the page without the data.
+std::size_t page_size();
+
+}  // namespace report

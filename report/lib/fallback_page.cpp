@@ -1,0 +1,28 @@
+// The page used when Node.js/npm were not found at build time: no plots, no
+// 3D; it says so and shows the embedded run data as text.
+#include <cstddef>
+
+namespace report {
+namespace detail {
+extern const char kPagePrefix[];
+extern const std::size_t kPagePrefixSize;
+extern const char kPageSuffix[];
+extern const std::size_t kPageSuffixSize;
+extern const bool kHasBundle;
+
+const char kPagePrefix[] = R"KRPT(<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>Kestrel run report (data only)</title></head>
+<body><h1>Kestrel run report</h1>
+<p>This build of Kestrel had no Node.js/npm, so the report's plots and 3D replay were not built
+(scripts/install-deps.sh host installs them). The run data follows.</p>
+<script id="kestrel-data" type="application/json">)KRPT";
+const std::size_t kPagePrefixSize = sizeof(kPagePrefix) - 1;
+const char kPageSuffix[] = R"KRPT(</script>
+<pre id="raw"></pre>
+<script>document.getElementById('raw').textContent=document.getElementById('kestrel-data').textContent;</script>
+</body></html>
+)KRPT";
+const std::size_t kPageSuffixSize = sizeof(kPageSuffix) - 1;
+const bool kHasBundle = false;
+}  // namespace detail
+}  // namespace report

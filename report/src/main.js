@@ -1,0 +1,104 @@
+// Kestrel run report: entry point of the bundle.  Reads the run data from the
+// <script id="kestrel-data" type="application/json"> element and builds each
+// section; a section that fails shows its error and the others still render.
+import 'uplot/dist/uPlot.min.css';
+import './report.css';
+import { normalize, el, fmt, finiteMinMax, isNumArray, indexedKeys } from './data.js';
+import { buildTimePlots, resizePlots } from './plots.js';
+import { buildSpectrum } from './spectrumview.js';
+import { buildReplay } from './replay3d.js';
+import { buildDataflow } from './dataflowview.js';
+
+const status = { ready: false, errors: [], plots: 0 };
+window.kestrelReport = status;
+
+function section(id, fn) {
+  const root = document.getElementById(id);
+  if (!root) return;
+  try {
+    fn(root);
+  } catch (e) {
+    status.errors.push(`${id}: ${e && e.message}`);
+    root.appendChild(el('p', { class: 'error', text: `This section could not be drawn: ${e && e.message}` }));
+    console.error(e);
+  }
+}
+
+function summary(root, D, absent) {
+  const { meta, series, t } = D;
+  const rows = [];
+  const add = (k, v) => rows.push(el('tr', null, el('th', { text: k }), el('td', { text: v })));
+  if (t.length) add('samples', `${t.length} (t = ${fmt(t[0])} \u2026 ${fmt(t[t.length - 1])} s)`);
+  if (isNumArray(series.pointing_error_deg)) {
+    const y = series.pointing_error_deg;
+    const last = y[y.length - 1];
+    add('final pointing error', `${fmt(last)} deg`);
+    const tail = y.slice(Math.floor(y.length * 0.9));
+    const mm = finiteMinMax(tail);
+    if (mm) add('max pointing error, last 10 % of the run', `${fmt(mm[1])} deg`);
+    const mmAll = finiteMinMax(y);
+    if (mmAll) add('max pointing error', `${fmt(mmAll[1])} deg`);
+  }
+  if (isNumArray(series.propellant_kg)) {
+    const p = series.propellant_kg.filter((v) => typeof v === 'number');
+    if (p.length) add('propellant used', `${fmt(p[0] - p[p.length - 1])} kg (${fmt(p[0])} \u2192 ${fmt(p[p.length - 1])} kg)`);
+  }
+  const wk = indexedKeys(series, 'wheel_speed_rpm_');
+  if (wk.length) {
+    let mx = 0;
+    for (const { key } of wk) { const mm = finiteMinMax(series[key]); if (mm) mx = Math.max(mx, Math.abs(mm[0]), Math.abs(mm[1])); }
+    add('wheels', `${wk.length}, peak |speed| ${fmt(mx)} rpm`);
+  }
+  const tk = indexedKeys(series, 'thruster_on_time_');
+  if (tk.length) {
+    let tot = 0;
+    for (const { key } of tk) for (const v of series[key]) if (typeof v === 'number' && v > 0) tot += v;
+    add('thrusters', `${tk.length}, total on-time ${fmt(tot)} s`);
+  }
+  if (absent.length) add('not in this run', absent.join(', '));
+  root.appendChild(el('table', { class: 'summary' }, el('tbody', null, ...rows)));
+}
+
+function main() {
+  let raw = {};
+  const node = document.getElementById('kestrel-data');
+  try {
+    raw = JSON.parse(node ? node.textContent : '{}');
+  } catch (e) {
+    status.errors.push('data: ' + e.message);
+    document.getElementById('summary').appendChild(el('p', { class: 'error', text: 'The run data embedded in this page is not valid JSON: ' + e.message }));
+    console.error(e);
+  }
+  const D = normalize(raw);
+  const m = D.meta;
+  document.getElementById('title-scenario').textContent = m.scenario ? `\u2014 ${m.scenario}` : '';
+  if (m.scenario) document.title = `Kestrel report: ${m.scenario}`;
+  const metaRoot = document.getElementById('meta');
+  for (const [k, unit] of [['scenario', ''], ['seed', ''], ['version', ''], ['dt', ' s'], ['duration', ' s']]) {
+    if (m[k] !== undefined && m[k] !== null) metaRoot.appendChild(el('span', { class: 'kv' }, el('b', { text: k + ' ' }), String(m[k]) + unit));
+  }
+  for (const [k, v] of Object.entries(m)) {
+    if (['scenario', 'seed', 'version', 'dt', 'duration'].includes(k) || (typeof v === 'object' && v !== null)) continue;
+    metaRoot.appendChild(el('span', { class: 'kv' }, el('b', { text: k + ' ' }), String(v)));
+  }
+  let absent = [];
+  section('plots', (root) => {
+    if (!D.t.length) {
+      root.appendChild(el('p', { class: 'absent', text: 'No time series in this run.' }));
+      return;
+    }
+    absent = buildTimePlots(root, D).absent;
+    status.plots = root.querySelectorAll('.uplot').length;
+  });
+  section('summary', (root) => summary(root, D, absent));
+  section('spectrum', (root) => buildSpectrum(root, D));
+  section('replay', (root) => buildReplay(root, D, status));
+  section('dataflow', (root) => buildDataflow(root, D, status));
+  let timer = 0;
+  window.addEventListener('resize', () => { clearTimeout(timer); timer = setTimeout(resizePlots, 150); });
+  status.ready = true;
+  document.body.setAttribute('data-ready', status.errors.length ? 'errors' : 'ok');
+}
+
+if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', main);
+else main();

@@ -1,0 +1,192 @@
+// Time-series plots with uPlot: one card per quantity present in the data,
+// cursors and x-zoom synchronised across cards.
+import uPlot from 'uplot';
+import { alignSeries, indexedKeys, isNumArray, el, finiteMinMax } from './data.js';
+
+export const PALETTE = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#17becf',
+  '#7f7f7f', '#bcbd22', '#393b79', '#ad494a', '#637939', '#e6550d', '#6b6ecf', '#843c39'];
+export const AXIS_COLORS = ['#d62728', '#2ca02c', '#1f77b4'];
+
+const MAX_POINTS = 40000;
+
+// Min/max bucketing to at most ~MAX_POINTS x values, keeping peaks.
+export function decimate(t, ys) {
+  const n = t.length;
+  if (n <= MAX_POINTS) return [t, ys];
+  const b = Math.ceil((2 * n) / MAX_POINTS);
+  const tx = [];
+  const out = ys.map(() => []);
+  for (let s = 0; s < n; s += b) {
+    const e = Math.min(n, s + b);
+    const m = (s + e) >> 1;
+    tx.push(t[s], t[m]);
+    ys.forEach((y, k) => {
+      let lo = -1;
+      let hi = -1;
+      for (let i = s; i < e; i++) {
+        const v = y[i];
+        if (v === null) continue;
+        if (lo < 0 || v < y[lo]) lo = i;
+        if (hi < 0 || v > y[hi]) hi = i;
+      }
+      if (lo < 0) out[k].push(null, null);
+      else if (lo <= hi) out[k].push(y[lo], y[hi]);
+      else out[k].push(y[hi], y[lo]);
+    });
+  }
+  return [tx, out];
+}
+
+const plots = [];
+
+function syncX(u) {
+  const min = u.scales.x.min;
+  const max = u.scales.x.max;
+  for (const p of plots) {
+    if (p !== u && p.scales.x && (p.scales.x.min !== min || p.scales.x.max !== max)) p.setScale('x', { min, max });
+  }
+}
+
+function widthOf(container) {
+  return Math.max(280, Math.floor(container.getBoundingClientRect().width) - 24);
+}
+
+// spec: { id, title, unit, names: [], ys: [[...]], colors?, log?, stepped?, note? }
+export function addTimePlot(grid, t, spec) {
+  const card = el('div', { class: 'card', id: 'plot-' + spec.id });
+  card.appendChild(el('h3', { text: spec.title + (spec.unit ? ` [${spec.unit}]` : '') }));
+  const holder = el('div', { class: 'plot' });
+  card.appendChild(holder);
+  if (spec.note) card.appendChild(el('p', { class: 'note', text: spec.note }));
+  grid.appendChild(card);
+
+  let log = !!spec.log;
+  let u = null;
+  const build = () => {
+    if (u) { plots.splice(plots.indexOf(u), 1); u.destroy(); }
+    let ys = spec.ys;
+    if (log) {
+      // log axis: non-positive values become gaps
+      ys = ys.map((y) => y.map((v) => (v !== null && v > 0 ? v : null)));
+    }
+    const [tx, yd] = decimate(t, ys);
+    const stepped = spec.stepped ? uPlot.paths.stepped({ align: 1 }) : undefined;
+    const opts = {
+      width: widthOf(card),
+      height: 220,
+      cursor: { sync: { key: 'kestrel-t', setSeries: false }, drag: { x: true, y: false } },
+      scales: { x: { time: false }, y: log ? { distr: 3 } : { auto: true } },
+      legend: { live: true },
+      axes: [
+        { label: 't [s]', size: 40 },
+        { label: spec.unit || '', size: 64, values: (self, ticks) => ticks.map((v) => fmtTick(v)) },
+      ],
+      series: [
+        { label: 't [s]', value: (self, v) => (v === null || v === undefined ? '\u2013' : v.toFixed(2)) },
+        ...spec.names.map((name, k) => ({
+          label: name,
+          stroke: (spec.colors || PALETTE)[k % (spec.colors || PALETTE).length],
+          width: 1.25,
+          spanGaps: false,
+          paths: stepped,
+          value: (self, v) => (v === null || v === undefined ? '\u2013' : fmtTick(v)),
+        })),
+      ],
+      hooks: { setScale: [(self, key) => { if (key === 'x') syncX(self); }] },
+    };
+    u = new uPlot(opts, [tx, ...yd], holder);
+    plots.push(u);
+  };
+  if (spec.log !== undefined) {
+    const btn = el('button', { class: 'toggle', text: log ? 'linear scale' : 'log scale' });
+    btn.addEventListener('click', () => {
+      log = !log;
+      btn.textContent = log ? 'linear scale' : 'log scale';
+      build();
+    });
+    card.querySelector('h3').appendChild(btn);
+  }
+  build();
+  return card;
+}
+
+export function fmtTick(v) {
+  if (v === null || v === undefined || !Number.isFinite(v)) return '';
+  if (v === 0) return '0';
+  const a = Math.abs(v);
+  if (a >= 1e5 || a < 1e-3) return v.toExponential(1);
+  return Number(v.toPrecision(4)).toString();
+}
+
+export function resizePlots() {
+  for (const u of plots) {
+    const card = u.root.closest('.card');
+    if (card) u.setSize({ width: widthOf(card), height: u.height });
+  }
+}
+
+// rad/s -> deg/s for display (deg/s is how rates are read); returns [ys, unit].
+export function rateDisplay(ys, unit) {
+  if (!unit || /^rad\s*\/\s*s$/i.test(unit)) {
+    return [ys.map((y) => y.map((v) => (v === null ? null : (v * 180) / Math.PI))), 'deg/s'];
+  }
+  return [ys, unit];
+}
+
+// Builds every time-series card; returns the keys used (others are shown
+// as generic cards) and what is absent.
+export function buildTimePlots(grid, D) {
+  const { series, units, t } = D;
+  const n = t.length;
+  const used = new Set(['t']);
+  const absent = [];
+  const take = (k) => { used.add(k); return alignSeries(series[k], n); };
+  const unitOf = (k, def) => (typeof units[k] === 'string' ? units[k] : def);
+
+  if (isNumArray(series.pointing_error_deg)) {
+    const y = take('pointing_error_deg');
+    const mm = finiteMinMax(y);
+    addTimePlot(grid, t, {
+      id: 'pointing', title: 'Pointing error (principal angle)', unit: unitOf('pointing_error_deg', 'deg'),
+      names: ['error'], ys: [y], log: !!(mm && mm[1] > 0 && mm[1] / Math.max(mm[0], 1e-12) > 100),
+    });
+  } else absent.push('pointing error');
+
+  const rk = ['x', 'y', 'z'].map((a) => `omega_BN_B_${a}`).filter((k) => isNumArray(series[k]));
+  if (rk.length) {
+    const [ys, unit] = rateDisplay(rk.map(take), unitOf(rk[0], 'rad/s'));
+    addTimePlot(grid, t, { id: 'rates', title: 'Body rates \u03c9_BN in B', unit, names: rk.map((k) => k.slice(-1)), ys, colors: rk.map((k) => AXIS_COLORS['xyz'.indexOf(k.slice(-1))]) });
+  } else absent.push('body rates');
+
+  const groups = [
+    ['wheel_speed_rpm_', 'wheels', 'Wheel speeds', 'rpm', 'wheel ', false],
+    ['wheel_torque_', 'wheeltorque', 'Wheel motor torques', 'N m', 'wheel ', false],
+    ['thruster_on_time_', 'ontime', 'Thruster on-times', 's', 'thr ', true],
+    ['thruster_force_', 'force', 'Thruster forces', 'N', 'thr ', true],
+  ];
+  for (const [prefix, id, title, unit, nm, stepped] of groups) {
+    const ks = indexedKeys(series, prefix);
+    if (!ks.length) { absent.push(title.toLowerCase()); continue; }
+    addTimePlot(grid, t, {
+      id, title, unit: unitOf(ks[0].key, unit), stepped,
+      names: ks.map(({ index }) => nm + index), ys: ks.map(({ key }) => take(key)),
+    });
+  }
+
+  if (isNumArray(series.propellant_kg)) {
+    addTimePlot(grid, t, { id: 'propellant', title: 'Propellant', unit: unitOf('propellant_kg', 'kg'), names: ['propellant'], ys: [take('propellant_kg')] });
+  } else absent.push('propellant');
+
+  // anything else the harness recorded, grouped by name stem
+  const rest = new Map();
+  for (const k of Object.keys(series).sort()) {
+    if (used.has(k) || !isNumArray(series[k]) || typeof series[k][0] === 'object') continue;
+    const stem = k.replace(/_(\d+|[xyz])$/, '');
+    if (!rest.has(stem)) rest.set(stem, []);
+    rest.get(stem).push(k);
+  }
+  for (const [stem, ks] of rest) {
+    addTimePlot(grid, t, { id: 'x-' + stem.replace(/[^A-Za-z0-9_-]/g, '_'), title: stem, unit: unitOf(ks[0], ''), names: ks, ys: ks.map(take) });
+  }
+  return { absent };
+}

@@ -1,0 +1,296 @@
+// 3D attitude replay with three.js: the spacecraft in the inertial frame N,
+// its body axes, its reaction-wheel axes (discs spinning with the wheel
+// speed sign) and its thrusters (plumes while firing), driven by a timeline.
+import {
+  WebGLRenderer, Scene, PerspectiveCamera, AmbientLight, DirectionalLight, Group, Mesh, MeshStandardMaterial,
+  MeshBasicMaterial, BoxGeometry, CylinderGeometry, ConeGeometry, ArrowHelper, Vector3, Quaternion, Color,
+  BufferGeometry, LineBasicMaterial, Line, Float32BufferAttribute, CanvasTexture, SpriteMaterial, Sprite,
+  EdgesGeometry, LineSegments, GridHelper,
+} from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { indexedKeys, alignSeries, isNumArray, sampleIndex, el, fmt } from './data.js';
+import { attitudeSamples } from './attitude.js';
+import { PALETTE, AXIS_COLORS } from './plots.js';
+
+function label(text, color, size) {
+  const c = document.createElement('canvas');
+  c.width = 128;
+  c.height = 64;
+  const g = c.getContext('2d');
+  g.font = 'bold 40px sans-serif';
+  g.fillStyle = color;
+  g.textAlign = 'center';
+  g.textBaseline = 'middle';
+  g.fillText(text, 64, 32);
+  const s = new Sprite(new SpriteMaterial({ map: new CanvasTexture(c), depthTest: false, transparent: true }));
+  s.scale.set(size * 2, size, 1);
+  return s;
+}
+
+function vec3(a) {
+  if (!Array.isArray(a) || a.length < 3) return null;
+  const v = new Vector3(Number(a[0]), Number(a[1]), Number(a[2]));
+  return Number.isFinite(v.x) && Number.isFinite(v.y) && Number.isFinite(v.z) ? v : null;
+}
+
+function line(a, b, color, opacity = 1) {
+  const g = new BufferGeometry();
+  g.setAttribute('position', new Float32BufferAttribute([a.x, a.y, a.z, b.x, b.y, b.z], 3));
+  return new Line(g, new LineBasicMaterial({ color, transparent: opacity < 1, opacity }));
+}
+
+function webglAvailable() {
+  try {
+    const c = document.createElement('canvas');
+    return !!(window.WebGLRenderingContext && (c.getContext('webgl2') || c.getContext('webgl')));
+  } catch (e) {
+    return false;
+  }
+}
+
+export function buildReplay(root, D, status) {
+  const att = attitudeSamples(D.attitude);
+  const geom = D.geometry || {};
+  const wheelAxes = (Array.isArray(geom.wheel_axes_B) ? geom.wheel_axes_B : []).map(vec3).filter(Boolean).map((v) => v.normalize());
+  const thrusters = (Array.isArray(geom.thrusters) ? geom.thrusters : [])
+    .map((th) => (th && typeof th === 'object' ? { r: vec3(th.r_B), d: vec3(th.dir_B) } : {}))
+    .filter((th) => th.r && th.d && th.d.length() > 0)
+    .map((th) => ({ r: th.r, d: th.d.normalize() }));
+
+  const card = el('div', { class: 'card wide' });
+  root.appendChild(card);
+  if (!att.t.length) card.appendChild(el('p', { class: 'absent', text: 'No attitude history in this run: the spacecraft is shown at the identity attitude.' }));
+  if (!webglAvailable()) {
+    card.appendChild(el('p', { class: 'absent', text: 'This browser offers no WebGL: the 3D replay cannot be shown.' }));
+    status.replay = 'no-webgl';
+    return;
+  }
+
+  // --- scene ---------------------------------------------------------------
+  let hx = 0.5;
+  let hy = 0.5;
+  let hz = 0.5;
+  if (thrusters.length) {
+    hx = Math.max(0.2, ...thrusters.map((t) => Math.abs(t.r.x) * 0.9));
+    hy = Math.max(0.2, ...thrusters.map((t) => Math.abs(t.r.y) * 0.9));
+    hz = Math.max(0.2, ...thrusters.map((t) => Math.abs(t.r.z) * 0.9));
+  }
+  const S = Math.max(hx, hy, hz); // characteristic size [m]
+  const scene = new Scene();
+  scene.background = new Color('#0e1726');
+  scene.add(new AmbientLight(0xffffff, 0.55));
+  const sun = new DirectionalLight(0xffffff, 1.6);
+  sun.position.set(3, 2, 4);
+  scene.add(sun);
+  const grid = new GridHelper(8 * S, 16, 0x2a3a55, 0x1b2740);
+  grid.rotation.x = Math.PI / 2; // the n1-n2 plane
+  grid.position.z = -2.2 * S;
+  scene.add(grid);
+
+  // inertial axes
+  const NL = 3.2 * S;
+  ['n1', 'n2', 'n3'].forEach((name, i) => {
+    const d = new Vector3(i === 0 ? 1 : 0, i === 1 ? 1 : 0, i === 2 ? 1 : 0);
+    scene.add(line(new Vector3(0, 0, 0), d.clone().multiplyScalar(NL), AXIS_COLORS[i], 0.45));
+    const l = label(name, '#8fa3bf', 0.3 * S);
+    l.position.copy(d.clone().multiplyScalar(NL * 1.07));
+    scene.add(l);
+  });
+
+  const body = new Group();
+  scene.add(body);
+  const bus = new Mesh(new BoxGeometry(2 * hx, 2 * hy, 2 * hz),
+    new MeshStandardMaterial({ color: 0xb8c4d6, metalness: 0.2, roughness: 0.6, transparent: true, opacity: 0.28, depthWrite: false }));
+  body.add(bus);
+  body.add(new LineSegments(new EdgesGeometry(bus.geometry), new LineBasicMaterial({ color: 0xd0d8e8 })));
+  // a solar array along +b3 side so the attitude reads at a glance
+  const panel = new Mesh(new BoxGeometry(0.04 * S, 2.6 * hy, 1.2 * hz), new MeshStandardMaterial({ color: 0x23407a, metalness: 0.5, roughness: 0.4 }));
+  panel.position.set(-hx - 0.02 * S, 0, 0);
+  body.add(panel);
+
+  const BL = 2.3 * S;
+  ['b1', 'b2', 'b3'].forEach((name, i) => {
+    const d = new Vector3(i === 0 ? 1 : 0, i === 1 ? 1 : 0, i === 2 ? 1 : 0);
+    body.add(new ArrowHelper(d, new Vector3(0, 0, 0), BL, new Color(AXIS_COLORS[i]).getHex(), 0.18 * S, 0.09 * S));
+    const l = label(name, AXIS_COLORS[i], 0.3 * S);
+    l.position.copy(d.clone().multiplyScalar(BL * 1.1));
+    body.add(l);
+  });
+
+  // wheels: disc on its spin axis at 0.55 S along it, with a rim marker
+  const series = D.series || {};
+  const t = D.t;
+  const wheelSpeedKeys = indexedKeys(series, 'wheel_speed_rpm_');
+  const wheelSpeeds = wheelAxes.map((_, i) => {
+    const k = wheelSpeedKeys.find((w) => w.index === i) || wheelSpeedKeys[i];
+    return k ? alignSeries(series[k.key], t.length) : null;
+  });
+  const maxRpm = Math.max(1, ...wheelSpeeds.flatMap((s) => (s ? s.filter((v) => v !== null).map(Math.abs) : [])));
+  const spinners = wheelAxes.map((a, i) => {
+    const color = PALETTE[(i + 3) % PALETTE.length];
+    const holder = new Group();
+    holder.quaternion.setFromUnitVectors(new Vector3(0, 1, 0), a);
+    holder.position.copy(a.clone().multiplyScalar(0.55 * Math.min(hx, hy, hz)));
+    const spin = new Group();
+    holder.add(spin);
+    const disc = new Mesh(new CylinderGeometry(0.2 * S, 0.2 * S, 0.05 * S, 32), new MeshStandardMaterial({ color, metalness: 0.4, roughness: 0.4 }));
+    spin.add(disc);
+    const mark = new Mesh(new BoxGeometry(0.06 * S, 0.07 * S, 0.06 * S), new MeshBasicMaterial({ color: 0xffffff }));
+    mark.position.set(0.17 * S, 0, 0);
+    spin.add(mark);
+    body.add(holder);
+    body.add(new ArrowHelper(a, new Vector3(0, 0, 0), 1.35 * S, new Color(color).getHex(), 0.1 * S, 0.05 * S));
+    const l = label('w' + i, color, 0.22 * S);
+    l.position.copy(a.clone().multiplyScalar(1.45 * S));
+    body.add(l);
+    return { spin, disc, color: new Color(color), angle: 0 };
+  });
+
+  // thrusters: nozzle at r_B, plume along -dir_B scaled with the firing level
+  const forceKeys = indexedKeys(series, 'thruster_force_');
+  const onKeys = indexedKeys(series, 'thruster_on_time_');
+  const level = thrusters.map((_, i) => {
+    const fk = forceKeys.find((k) => k.index === i);
+    const ok = onKeys.find((k) => k.index === i);
+    const src = fk || ok;
+    if (!src) return null;
+    const y = alignSeries(series[src.key], t.length);
+    const mx = Math.max(1e-300, ...y.filter((v) => v !== null).map(Math.abs));
+    return y.map((v) => (v === null ? 0 : Math.min(1, Math.abs(v) / mx)));
+  });
+  const plumes = thrusters.map((th, i) => {
+    const g = new Group();
+    g.position.copy(th.r);
+    g.quaternion.setFromUnitVectors(new Vector3(0, 1, 0), th.d.clone().negate()); // +y of g = exhaust
+    const nozzle = new Mesh(new ConeGeometry(0.06 * S, 0.14 * S, 16, 1, true), new MeshStandardMaterial({ color: 0x9aa3ad, side: 2 }));
+    nozzle.rotation.x = Math.PI; // opening towards the exhaust
+    nozzle.position.y = 0.07 * S;
+    g.add(nozzle);
+    const plumeGeom = new ConeGeometry(0.09 * S, 1, 20, 1, true);
+    plumeGeom.translate(0, -0.5, 0);
+    plumeGeom.rotateX(Math.PI); // apex at the nozzle, widening along +y
+    const plume = new Mesh(plumeGeom, new MeshBasicMaterial({ color: 0xffa23a, transparent: true, opacity: 0.75, side: 2, depthWrite: false }));
+    plume.position.y = 0.14 * S;
+    plume.visible = false;
+    g.add(plume);
+    body.add(g);
+    return { plume, level: level[i] };
+  });
+
+  // --- renderer, camera, controls ----------------------------------------------
+  let renderer;
+  try {
+    renderer = new WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  } catch (e) {
+    card.appendChild(el('p', { class: 'absent', text: 'WebGL context could not be created: ' + e.message }));
+    status.replay = 'no-webgl';
+    return;
+  }
+  const H = 440;
+  const width = () => Math.max(280, Math.floor(card.getBoundingClientRect().width) - 24);
+  renderer.setPixelRatio(Math.min(2, window.devicePixelRatio || 1));
+  renderer.setSize(width(), H);
+  const view = el('div', { class: 'replay-view' });
+  view.appendChild(renderer.domElement);
+  const camera = new PerspectiveCamera(40, width() / H, 0.01 * S, 200 * S);
+  camera.up.set(0, 0, 1);
+  camera.position.set(5.2 * S, 4.0 * S, 3.4 * S);
+  const controls = new OrbitControls(camera, renderer.domElement);
+  controls.target.set(0, 0, 0);
+  controls.update();
+
+  // --- timeline ----------------------------------------------------------------
+  const t0 = att.t.length ? att.t[0] : t.length ? t[0] : 0;
+  const t1 = att.t.length ? att.t[att.t.length - 1] : t.length ? t[t.length - 1] : 0;
+  const span = Math.max(t1 - t0, 0);
+  const niceSpeeds = [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000];
+  const autoSpeed = niceSpeeds.find((s) => span / s <= 40) || niceSpeeds[niceSpeeds.length - 1];
+  const play = el('button', { class: 'play', text: '\u25b6 play' });
+  const slider = el('input', { type: 'range', min: '0', max: '10000', value: '0', step: '1', class: 'timeline' });
+  const speed = el('select', null, ...niceSpeeds.map((s) => {
+    const o = el('option', { value: String(s), text: s + '\u00d7' });
+    if (s === autoSpeed) o.selected = true;
+    return o;
+  }));
+  const readout = el('div', { class: 'readout' });
+  card.appendChild(el('div', { class: 'controls' }, play, slider, el('label', null, ' speed ', speed)));
+  card.appendChild(view);
+  card.appendChild(readout);
+  card.appendChild(el('p', { class: 'note', text:
+    'Inertial frame N (faint axes n1 n2 n3); body axes b1 (red), b2 (green), b3 (blue); wheel spin axes w0.. with discs that turn with the sign ' +
+    'of the wheel speed and brighten with its magnitude; thruster plumes (orange) along -dir_B, length proportional to the force ' +
+    '(or on-time). Drag to orbit, wheel to zoom.' }));
+
+  const pe = isNumArray(series.pointing_error_deg) ? alignSeries(series.pointing_error_deg, t.length) : null;
+  const qa = new Quaternion();
+  const qb = new Quaternion();
+  let tNow = t0;
+  let playing = false;
+
+  const setTime = (x) => {
+    tNow = Math.min(t1, Math.max(t0, x));
+    if (att.t.length) {
+      const i = sampleIndex(att.t, tNow);
+      const j = Math.min(i + 1, att.t.length - 1);
+      qa.fromArray(att.q[i]);
+      if (j !== i && att.t[j] > att.t[i]) {
+        qb.fromArray(att.q[j]);
+        qa.slerp(qb, Math.min(1, Math.max(0, (tNow - att.t[i]) / (att.t[j] - att.t[i]))));
+      }
+      body.quaternion.copy(qa);
+    }
+    const k = t.length ? sampleIndex(t, tNow) : -1;
+    const parts = [`t = ${fmt(tNow, 6)} s`];
+    if (pe && k >= 0) parts.push(`pointing error ${fmt(pe[k])} deg`);
+    spinners.forEach((w, i) => {
+      const s = wheelSpeeds[i];
+      const v = s && k >= 0 ? s[k] : null;
+      w.speed = v === null ? 0 : v;
+      const mag = Math.min(1, Math.abs(w.speed) / maxRpm);
+      w.disc.material.color.copy(w.color).multiplyScalar(0.45 + 0.75 * mag);
+      if (v !== null) parts.push(`w${i} ${fmt(v)} rpm`);
+    });
+    let firing = 0;
+    plumes.forEach((p) => {
+      const lv = p.level && k >= 0 ? p.level[k] : 0;
+      p.plume.visible = lv > 0;
+      if (lv > 0) { firing++; p.plume.scale.set(1, Math.max(0.15, lv) * 1.2 * S, 1); }
+    });
+    if (plumes.length) parts.push(`${firing}/${plumes.length} thrusters firing`);
+    readout.textContent = parts.join('   \u00b7   ');
+    if (span > 0) slider.value = String(Math.round(((tNow - t0) / span) * 10000));
+  };
+  slider.addEventListener('input', () => setTime(t0 + (Number(slider.value) / 10000) * span));
+  play.addEventListener('click', () => {
+    if (!playing && tNow >= t1) setTime(t0);
+    playing = !playing;
+    play.textContent = playing ? '\u275a\u275a pause' : '\u25b6 play';
+  });
+
+  let last = performance.now();
+  const frame = (now) => {
+    const dtReal = Math.min(0.1, Math.max(0, (now - last) / 1000));
+    last = now;
+    if (playing) {
+      setTime(tNow + dtReal * Number(speed.value));
+      if (tNow >= t1) { playing = false; play.textContent = '\u25b6 play'; }
+      for (const w of spinners) {
+        w.angle += Math.sign(w.speed) * (0.5 + 3 * Math.min(1, Math.abs(w.speed) / maxRpm)) * dtReal * 2 * Math.PI * (w.speed ? 1 : 0);
+        w.spin.rotation.y = w.angle;
+      }
+    }
+    controls.update();
+    renderer.render(scene, camera);
+    requestAnimationFrame(frame);
+  };
+  window.addEventListener('resize', () => {
+    renderer.setSize(width(), H);
+    camera.aspect = width() / H;
+    camera.updateProjectionMatrix();
+  });
+  setTime(t0);
+  renderer.render(scene, camera);
+  requestAnimationFrame(frame);
+  status.replay = 'ok';
+  status.replayFrames = att.t.length;
+}
