@@ -76,10 +76,9 @@ Matrix3d parallel_axis(double m, const Vector3d& r)
   return m * (r.squaredNorm() * Matrix3d::Identity() - r * r.transpose());
 }
 
-MassProps mass_props_from_stages(const SpacecraftParams& p, const StateLayout& L,
-                                 const WheelStages& st)
+MassProps mass_props_from_stages(const SpacecraftParams& p, const HubParams& h,
+                                 const StateLayout& L, const WheelStages& st)
 {
-  const HubParams& h = p.hub;
   MassProps mp;
   mp.m_sc = h.m_h;
   Vector3d first_moment = h.m_h * h.r_BcB_B;
@@ -147,6 +146,11 @@ SpacecraftModel::SpacecraftModel(SpacecraftParams params) : p_(std::move(params)
 
 StateVector SpacecraftModel::initial_state(const InitialConditions& ic) const
 {
+  return initial_state(ic, p_.hub);
+}
+
+StateVector SpacecraftModel::initial_state(const InitialConditions& ic, const HubParams& hub) const
+{
   detail::require_finite("ic.r_CN_N", ic.r_CN_N);
   detail::require_finite("ic.v_CN_N", ic.v_CN_N);
   detail::require_finite("ic.sigma_BN", ic.sigma_BN);
@@ -157,7 +161,7 @@ StateVector SpacecraftModel::initial_state(const InitialConditions& ic) const
   x.segment<3>(StateLayout::omega_BN_B) = ic.omega_BN_B;
   for (int i = 0; i < num_rw(); ++i) x(layout_.Omega(i)) = p_.wheels[static_cast<size_t>(i)].Omega_0;
   // r_B = r_C - [NB] c,  v_B = v_C - [NB](c' + omega x c)   (§1)
-  const MassProps mp = mass_props(x);
+  const MassProps mp = mass_props(x, hub);
   const Matrix3d dcm_NB = dcm_BN_from_sigma(ic.sigma_BN).transpose();
   x.segment<3>(StateLayout::r_BN_N) = ic.r_CN_N - dcm_NB * mp.c_B;
   x.segment<3>(StateLayout::v_BN_N) =
@@ -167,9 +171,14 @@ StateVector SpacecraftModel::initial_state(const InitialConditions& ic) const
 
 MassProps SpacecraftModel::mass_props(const StateVector& x) const
 {
+  return mass_props(x, p_.hub);
+}
+
+MassProps SpacecraftModel::mass_props(const StateVector& x, const HubParams& hub) const
+{
   WheelStages st;
   fill_stages(p_, derived_, layout_, x, st);
-  return mass_props_from_stages(p_, layout_, st);
+  return mass_props_from_stages(p_, hub, layout_, st);
 }
 
 double SpacecraftModel::friction_torque(int i, const StateVector& x, bool stribeck) const
@@ -180,8 +189,14 @@ double SpacecraftModel::friction_torque(int i, const StateVector& x, bool stribe
 
 // ---------------------------------------------------------------- derivatives
 
-StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, const HeldInputs& in,
+StateVector SpacecraftModel::derivatives(double t, const StateVector& x, const HeldInputs& in,
                                          Accelerations* acc) const
+{
+  return derivatives(t, x, in, p_.hub, acc);
+}
+
+StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, const HeldInputs& in,
+                                         const HubParams& hub, Accelerations* acc) const
 {
   const int n = num_rw();
   const Vector3d v_BN_N = x.segment<3>(StateLayout::v_BN_N);
@@ -191,7 +206,7 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
 
   WheelStages st;
   fill_stages(p_, derived_, layout_, x, st);
-  const MassProps mp = mass_props_from_stages(p_, layout_, st);
+  const MassProps mp = mass_props_from_stages(p_, hub, layout_, st);
   const double m = mp.m_sc;
   const Vector3d& c = mp.c_B;
 
@@ -302,13 +317,18 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
 
 EnergyMomentum SpacecraftModel::energy_momentum(const StateVector& x) const
 {
+  return energy_momentum(x, p_.hub);
+}
+
+EnergyMomentum SpacecraftModel::energy_momentum(const StateVector& x, const HubParams& hub) const
+{
   WheelStages st;
   fill_stages(p_, derived_, layout_, x, st);
-  const MassProps mp = mass_props_from_stages(p_, layout_, st);
+  const MassProps mp = mass_props_from_stages(p_, hub, layout_, st);
   const Vector3d sigma_BN = x.segment<3>(StateLayout::sigma_BN);
   const Vector3d omega = x.segment<3>(StateLayout::omega_BN_B);
   const Matrix3d dcm_NB = dcm_BN_from_sigma(sigma_BN).transpose();
-  const HubParams& h = p_.hub;
+  const HubParams& h = hub;
   const Vector3d c_dot = mp.c_prime_B + omega.cross(mp.c_B);
 
   EnergyMomentum em;

@@ -117,6 +117,17 @@ class SpacecraftModel {
 
   EnergyMomentum energy_momentum(const StateVector& x) const;
 
+  // --- hub override (added for thrusters/propellant, issue 7) -------------
+  // Same physics with `hub` in place of params().hub.  The propulsion layer
+  // (sim/vehicle.h) passes the hub merged with the rigid propellant tanks of
+  // the current stage (§5.6: tanks are rigid bodies fixed in B, so merging
+  // them into the hub is exact for §2 and §8).  `hub` is not re-validated.
+  StateVector initial_state(const InitialConditions& ic, const HubParams& hub) const;
+  MassProps mass_props(const StateVector& x, const HubParams& hub) const;
+  StateVector derivatives(double t, const StateVector& x, const HeldInputs& in,
+                          const HubParams& hub, Accelerations* acc = nullptr) const;
+  EnergyMomentum energy_momentum(const StateVector& x, const HubParams& hub) const;
+
   // Friction torque tau_f (§4.4) of wheel i at state x and mode flag.
   double friction_torque(int i, const StateVector& x, bool stribeck) const;
 

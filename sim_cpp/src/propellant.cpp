@@ -1,0 +1,56 @@
+// propellant: see sim/propellant.h.  Spec plant-dynamics §2, §5.6.
+#include "sim/propellant.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "validate_util.h"
+
+namespace sim {
+
+namespace {
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+// m [r~][r~]^T = m ((r.r) I - r r^T)
+Matrix3d parallel_axis(double m, const Vector3d& r)
+{
+  return m * (r.squaredNorm() * Matrix3d::Identity() - r * r.transpose());
+}
+}  // namespace
+
+void validate(const TankParams& p, const std::string& name)
+{
+  detail::require_finite(name + ".r_TB_B", p.r_TB_B);
+  detail::require_non_negative(name + ".m_p0", p.m_p0);
+  detail::require_non_negative(name + ".R_T", p.R_T);
+}
+
+Matrix3d tank_inertia(const TankParams& p, double m_p)
+{
+  return (0.4 * m_p * p.R_T * p.R_T) * Matrix3d::Identity();
+}
+
+HubParams merge_tanks_into_hub(const HubParams& hub, const TankParams* tanks, int num_tanks,
+                               const TankArray& m_p)
+{
+  if (num_tanks == 0) return hub;
+  // Inertia about B of all parts, then shifted to the merged CoM (§2).
+  double m = hub.m_h;
+  Vector3d first_moment = hub.m_h * hub.r_BcB_B;
+  Matrix3d I_B = hub.I_hBc_B + parallel_axis(hub.m_h, hub.r_BcB_B);
+  for (int k = 0; k < num_tanks; ++k) {
+    const TankParams& t = tanks[k];
+    const double mk = std::max(m_p[static_cast<size_t>(k)], 0.0);
+    m += mk;
+    first_moment += mk * t.r_TB_B;
+    I_B += tank_inertia(t, mk) + parallel_axis(mk, t.r_TB_B);
+  }
+  HubParams out;
+  out.m_h = m;
+  out.r_BcB_B = first_moment / m;
+  out.I_hBc_B = I_B - parallel_axis(m, out.r_BcB_B);
+  return out;
+}
+
+}  // namespace sim
