@@ -1,0 +1,48 @@
+// commands: everything the `kestrel` program does, as library functions.
+// The executable (src/main.cpp) only parses arguments and calls these.
+//
+// Exit codes (docs/harness.md):
+//   0  ok
+//   1  run failed (non-finite plant state, recorder overflow, internal error)
+//   2  usage error (bad arguments, malformed --set)
+//   3  invalid scenario (unknown key, wrong type, invalid value, unreadable
+//      file, YAML syntax, configuration rejected by the plant or an FSW module)
+//   4  output error (results directory or files cannot be written)
+#ifndef HARNESS_COMMANDS_H
+#define HARNESS_COMMANDS_H
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace harness {
+
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitRunFailed = 1,
+  kExitUsage = 2,
+  kExitInvalidScenario = 3,
+  kExitOutput = 4,
+};
+
+struct RunCommand {
+  std::string scenario;             // YAML scenario or manifest.json
+  std::string out_dir;              // "" : runs/<scenario name>
+  std::vector<std::string> sets;    // "key.path=value"
+  bool csv = false;                 // also write telemetry.csv
+  bool progress = false;            // draw a progress bar on `err`
+};
+
+int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err);
+int cmd_validate(const std::string& scenario, const std::vector<std::string>& sets, std::ostream& out,
+                 std::ostream& err);
+int cmd_list(const std::string& dir, std::ostream& out, std::ostream& err);
+int cmd_bench(const std::string& dir, std::ostream& out, std::ostream& err);
+
+// Directory of the shipped scenarios: $KESTREL_SCENARIO_DIR, else the
+// source tree's scenarios/ (compiled in), else ./scenarios.
+std::string scenario_dir();
+
+}  // namespace harness
+
+#endif  // HARNESS_COMMANDS_H

@@ -1,0 +1,209 @@
+// scenario: the scenario schema, loaded from YAML (or from a run manifest,
+// which is JSON and therefore YAML) and validated key by key.
+//
+// Every key is checked: an unknown key, a wrong type or a physically invalid
+// value is reported as `FILE:LINE:COL: KEY: message`, all problems of a file
+// are collected, and load_scenario() throws ScenarioError so no run starts.
+// Values are stored SI; keys with the suffixes the schema lists (`_rpm`,
+// `_deg`, `_deg_s`, `_arcsec`, `_g_cm`, `_g_cm2`) are converted on load.
+// The schema is documented in docs/harness.md.
+#ifndef HARNESS_SCENARIO_H
+#define HARNESS_SCENARIO_H
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "sim/reaction_wheel.h"
+#include "sim/spacecraft.h"
+
+namespace harness {
+
+struct ScenarioIssue {
+  std::string file;
+  int line = 0;        // 1-based; 0 when the location is not in the file (--set)
+  int column = 0;      // 1-based
+  std::string key;     // dotted path, e.g. wheels[2].J_s
+  std::string message;
+  std::string where;   // "--set key=value" when the value came from the command line
+  std::string str() const;  // "file:line:col: key: message"
+};
+
+class ScenarioError : public std::runtime_error {
+ public:
+  explicit ScenarioError(std::vector<ScenarioIssue> issues);
+  const std::vector<ScenarioIssue>& issues() const { return issues_; }
+
+ private:
+  std::vector<ScenarioIssue> issues_;
+};
+
+enum class FswMode { Inertial, SunSafe };
+enum class RwMapMode { MinNorm, Power };
+enum class ThrPulseMode { Remainder, Schmitt };
+enum class ThrTransient { Instant, FirstOrder };
+
+struct RatesSpec {
+  double dt = 0.0;              // [s]     plant step = base tick, whole nanoseconds
+  uint32_t fsw_divisor = 1;     // [ticks] FSW period
+  uint32_t fsw_offset = 0;      // [ticks] FSW phase, < fsw_divisor
+  uint32_t record_divisor = 1;  // [ticks] recording period
+  uint32_t thruster_divisor = 1;// [ticks] thruster latch period T_upd
+};
+
+struct InitialSpec {
+  Eigen::Vector3d sigma_BN = Eigen::Vector3d::Zero();    // [-]
+  Eigen::Vector3d omega_BN_B = Eigen::Vector3d::Zero();  // [rad/s]
+  Eigen::Vector3d r_CN_N = Eigen::Vector3d::Zero();      // [m]
+  Eigen::Vector3d v_CN_N = Eigen::Vector3d::Zero();      // [m/s]
+};
+
+struct SpacecraftSpec {
+  double mass = 0.0;                                   // [kg]     hub mass
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();   // [kg*m^2] hub inertia about hub CoM
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();       // [m]      hub CoM rel. B
+  InitialSpec initial;
+};
+
+struct EnvironmentSpec {
+  double mu = 0.0;                                             // [m^3/s^2]
+  Eigen::Vector3d sun_position_N{1.495978707e11, 0.0, 0.0};    // [m]
+};
+
+struct WheelSpec {
+  std::string name;
+  sim::ReactionWheelParams params;  // SI; gs_hat_nom_B normalised
+};
+
+struct ThrusterSpec {
+  std::string name;
+  Eigen::Vector3d r_B = Eigen::Vector3d::Zero();    // [m]
+  Eigen::Vector3d dir_B = Eigen::Vector3d::UnitZ(); // [-] nominal unit thrust direction
+  double F_max = 0.0;                               // [N]
+  double Isp = 0.0;                                 // [s]
+  double T_min = 0.0;                               // [s]
+  double misalignment = 0.0;                        // [rad] truth-only thrust-axis tilt
+  ThrTransient transient = ThrTransient::FirstOrder;
+  double omega_on = 10.0;                           // [rad/s]
+  double omega_off = 10.0;                          // [rad/s]
+  bool acs = true;                                  // false: main engine (not mapped by FSW)
+};
+
+struct TankSpec {
+  double mass = 0.0;                                // [kg] initial propellant
+  Eigen::Vector3d r_B = Eigen::Vector3d::Zero();    // [m]
+};
+
+struct CssSpec {
+  std::vector<Eigen::Vector3d> normals_B;  // [-] unit
+  double fov = 80.0 * 3.14159265358979323846 / 180.0;  // [rad] half angle
+  double scale = 1.0;                      // [-]
+  double noise_std = 0.0;                  // [-]
+};
+
+struct StarTrackerSpec {
+  bool enabled = false;
+  double sigma_cross = 0.0;  // [rad]
+  double sigma_bore = 0.0;   // [rad]
+  uint32_t divisor = 1;      // [ticks]
+};
+
+struct GyroSpec {
+  bool enabled = false;
+  double arw = 0.0;  // [rad/sqrt(s)]
+  double rrw = 0.0;  // [rad/s^(3/2)]
+};
+
+struct SensorsSpec {
+  CssSpec css;
+  StarTrackerSpec star_tracker;
+  GyroSpec gyro;
+};
+
+struct MrpFbSpec {
+  double K = 0.0;               // [N*m]
+  double P = 0.0;               // [N*m*s]
+  double K_i = -1.0;            // [1/(kg*m^2)] <= 0 disables
+  double integral_limit = 0.0;  // [N*m*s]
+  int control_law = 0;          // 0 or 1
+  std::optional<Eigen::Matrix3d> inertia;  // [kg*m^2] FSW inertia about C; default: plant truth at t0
+};
+
+struct FswSpec {
+  FswMode mode = FswMode::Inertial;
+  Eigen::Vector3d sigma_R0N = Eigen::Vector3d::Zero();        // [-] inertial mode
+  Eigen::Vector3d sun_axis_B = Eigen::Vector3d::UnitZ();      // [-] sun-safe mode
+  double sun_small_angle = 0.0;                               // [rad]
+  Eigen::Vector3d omega_search_B = Eigen::Vector3d::Zero();   // [rad/s]
+  MrpFbSpec mrp_fb;
+  RwMapMode rw_map = RwMapMode::MinNorm;
+  double eps_P = 1.0;                                         // [rad^2/s^2]
+  bool rw_null = false;
+  double k_null = 0.0;                                        // [N*m*s]
+  bool rw_null_scale_to_fit = true;
+  std::vector<double> Omega_des;                              // [rad/s] (num_rw)
+  ThrPulseMode thr_pulse = ThrPulseMode::Remainder;
+};
+
+struct OutputsSpec {
+  bool hdf5 = true;
+  bool csv = false;
+  bool report_data = true;
+};
+
+struct Scenario {
+  std::string name;
+  std::string description;
+  uint64_t seed = 0;
+  double duration = 0.0;  // [s]
+  RatesSpec rates;
+  SpacecraftSpec spacecraft;
+  EnvironmentSpec environment;
+  std::vector<WheelSpec> wheels;
+  std::vector<ThrusterSpec> thrusters;
+  std::optional<TankSpec> tank;
+  SensorsSpec sensors;
+  FswSpec fsw;
+  OutputsSpec outputs;
+
+  std::string source_file;  // where it was loaded from (not part of the physics)
+  uint64_t tick_ns() const;    // dt in ns
+  uint64_t num_ticks() const;  // duration / dt
+};
+
+// "key.path=value" overrides applied before validation (`kestrel run --set`).
+// Paths use dots; list elements are addressed by index (wheels.0.J_s).
+struct Override {
+  std::string path;
+  std::string value;  // parsed as YAML (so lists `[1,2,3]` work)
+};
+
+// Loads and validates.  A file whose top level has `kestrel_manifest` is a
+// run manifest: its `scenario` object is loaded.  Throws ScenarioError with
+// every problem found (also for unreadable files and YAML syntax errors).
+Scenario load_scenario(const std::string& path, const std::vector<Override>& overrides = {});
+// The same from text (`file_name` is used in messages).
+Scenario load_scenario_text(const std::string& text, const std::string& file_name,
+                            const std::vector<Override>& overrides = {});
+
+// The fully resolved scenario as canonical JSON (SI keys only, every default
+// filled in).  load_scenario_text() of this text gives the same Scenario.
+std::string scenario_to_json_text(const Scenario& sc, int indent = 2);
+
+// Parses "a.b=c" into an Override; throws std::invalid_argument.
+Override parse_override(const std::string& s);
+
+const char* to_string(FswMode m);
+const char* to_string(RwMapMode m);
+const char* to_string(ThrPulseMode m);
+const char* to_string(ThrTransient m);
+// Schema name of a wheel model ("balanced", "simple_jitter", "fully_coupled").
+const char* wheel_model_key(sim::WheelModel m);
+
+}  // namespace harness
+
+#endif  // HARNESS_SCENARIO_H

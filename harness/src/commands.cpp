@@ -1,0 +1,249 @@
+#include "harness/commands.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "harness/outputs.h"
+#include "harness/run.h"
+#include "harness/scenario.h"
+
+#ifndef KESTREL_SCENARIO_DIR
+#define KESTREL_SCENARIO_DIR "scenarios"
+#endif
+
+namespace harness {
+
+namespace fs = std::filesystem;
+
+RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
+{
+  RunResult res;
+  if (!opt.out_dir.empty()) {
+    std::error_code ec;
+    fs::create_directories(opt.out_dir, ec);
+    if (ec || !fs::is_directory(opt.out_dir))
+      throw OutputError(opt.out_dir + ": cannot create the results directory" + (ec ? ": " + ec.message() : ""));
+  }
+  Run run(sc);
+  const uint64_t total = run.total_ticks();
+  const uint64_t chunk = std::max<uint64_t>(1, total / 200);
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!run.done()) {
+    if (!run.step_ticks(chunk)) break;
+    if (opt.progress) opt.progress(static_cast<double>(run.tick()) / static_cast<double>(total));
+  }
+  res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.ticks = run.tick();
+  res.sim_seconds = sc.duration;
+  res.failure = run.failure();
+  res.ok = res.failure.empty();
+  const Recorder& rec = run.recorder();
+  if (rec.rows() > 0) res.final_pointing_error_deg = rec.at(rec.rows() - 1, rec.column_index("pointing_error_deg"));
+  // Results are written also for a failed run (never lose data): the rows
+  // recorded up to the failure are in the files.
+  if (!opt.out_dir.empty()) {
+    const fs::path dir(opt.out_dir);
+    const std::string manifest = manifest_text(sc, opt.overrides);
+    auto put = [&res](const fs::path& p) { res.files.push_back(p.string()); };
+    write_text((dir / "manifest.json").string(), manifest);
+    put(dir / "manifest.json");
+    if (sc.outputs.hdf5) {
+      write_hdf5((dir / "results.h5").string(), rec, sc, manifest);
+      put(dir / "results.h5");
+    }
+    if (sc.outputs.csv) {
+      write_csv((dir / "telemetry.csv").string(), rec);
+      put(dir / "telemetry.csv");
+    }
+    if (sc.outputs.report_data) {
+      write_text((dir / "report_data.json").string(), report_data_text(run));
+      put(dir / "report_data.json");
+    }
+    write_text((dir / "dataflow.dot").string(), run.dataflow().to_dot(sc.name));
+    put(dir / "dataflow.dot");
+    std::ostringstream health;
+    for (const std::string& l : run.fsw_health_lines()) health << l << "\n";
+    write_text((dir / "fsw_health.txt").string(), health.str());
+    put(dir / "fsw_health.txt");
+  }
+  return res;
+}
+
+namespace {
+
+bool parse_sets(const std::vector<std::string>& sets, std::vector<Override>& out, std::ostream& err)
+{
+  for (const std::string& s : sets) {
+    try {
+      out.push_back(parse_override(s));
+    } catch (const std::exception& e) {
+      err << "kestrel: " << e.what() << "\n";
+      return false;
+    }
+  }
+  return true;
+}
+
+void print_issues(const ScenarioError& e, std::ostream& err)
+{
+  for (const ScenarioIssue& is : e.issues()) err << is.str() << "\n";
+  err << "kestrel: scenario rejected (" << e.issues().size() << " problem" << (e.issues().size() == 1 ? "" : "s")
+      << "); nothing was run\n";
+}
+
+}  // namespace
+
+std::string scenario_dir()
+{
+  if (const char* d = std::getenv("KESTREL_SCENARIO_DIR")) return d;
+  if (fs::is_directory(KESTREL_SCENARIO_DIR)) return KESTREL_SCENARIO_DIR;
+  return "scenarios";
+}
+
+int cmd_validate(const std::string& scenario, const std::vector<std::string>& sets, std::ostream& out,
+                 std::ostream& err)
+{
+  std::vector<Override> ov;
+  if (!parse_sets(sets, ov, err)) return kExitUsage;
+  try {
+    const Scenario sc = load_scenario(scenario, ov);
+    Run probe(sc);  // the plant and FSW configuration checks
+    out << scenario << ": ok (" << sc.name << ", " << sc.wheels.size() << " wheels, " << sc.thrusters.size()
+        << " thrusters, " << sc.num_ticks() << " steps of " << sc.rates.dt << " s)\n";
+    return kExitOk;
+  } catch (const ScenarioError& e) {
+    print_issues(e, err);
+    return kExitInvalidScenario;
+  } catch (const std::exception& e) {
+    err << scenario << ": internal error: " << e.what() << "\n";
+    return kExitRunFailed;
+  }
+}
+
+int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
+{
+  std::vector<Override> ov;
+  if (!parse_sets(c.sets, ov, err)) return kExitUsage;
+  Scenario sc;
+  try {
+    sc = load_scenario(c.scenario, ov);
+  } catch (const ScenarioError& e) {
+    print_issues(e, err);
+    return kExitInvalidScenario;
+  }
+  if (c.csv) sc.outputs.csv = true;
+  RunOptions opt;
+  opt.out_dir = c.out_dir.empty() ? (fs::path("runs") / sc.name).string() : c.out_dir;
+  opt.overrides = ov;
+  int last_pct = -1;
+  if (c.progress) {
+    opt.progress = [&err, &last_pct](double f) {
+      const int pct = static_cast<int>(f * 100.0);
+      if (pct == last_pct) return;
+      last_pct = pct;
+      const int w = 40, filled = pct * w / 100;
+      err << "\r[" << std::string(static_cast<size_t>(filled), '#') << std::string(static_cast<size_t>(w - filled), ' ')
+          << "] " << std::setw(3) << pct << "%" << std::flush;
+    };
+  }
+  RunResult r;
+  try {
+    r = run_scenario(sc, opt);
+  } catch (const ScenarioError& e) {
+    if (c.progress) err << "\n";
+    print_issues(e, err);
+    return kExitInvalidScenario;
+  } catch (const OutputError& e) {
+    if (c.progress) err << "\n";
+    err << "kestrel: output error: " << e.what() << "\n";
+    return kExitOutput;
+  } catch (const std::exception& e) {
+    if (c.progress) err << "\n";
+    err << "kestrel: run failed: " << e.what() << "\n";
+    return kExitRunFailed;
+  }
+  if (c.progress) err << "\n";
+  if (!r.ok) {
+    err << "kestrel: run failed: " << r.failure << "\n";
+    for (const auto& f : r.files) err << "  partial results: " << f << "\n";
+    return kExitRunFailed;
+  }
+  out << sc.name << ": " << sc.duration << " s simulated in " << std::setprecision(3) << r.wall_seconds
+      << " s (real-time factor " << std::setprecision(4) << (r.wall_seconds > 0 ? sc.duration / r.wall_seconds : 0.0)
+      << "x); final pointing error " << std::setprecision(4) << r.final_pointing_error_deg << " deg\n";
+  out << "results: " << opt.out_dir << "\n";
+  for (const auto& f : r.files) out << "  " << f << "\n";
+  return kExitOk;
+}
+
+int cmd_list(const std::string& dir, std::ostream& out, std::ostream& err)
+{
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) {
+    err << "kestrel: no scenario directory '" << dir << "'\n";
+    return kExitUsage;
+  }
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    if (e.path().extension() == ".yaml" || e.path().extension() == ".yml") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  for (const fs::path& p : files) {
+    try {
+      const Scenario sc = load_scenario(p.string());
+      out << std::left << std::setw(28) << p.filename().string() << " " << sc.description << "\n";
+    } catch (const ScenarioError& e) {
+      out << std::left << std::setw(28) << p.filename().string() << " (invalid: " << e.issues().size()
+          << " problems; run kestrel validate)\n";
+    }
+  }
+  return kExitOk;
+}
+
+int cmd_bench(const std::string& dir, std::ostream& out, std::ostream& err)
+{
+  const std::string s1 = (fs::path(dir) / "s1_sun_pointing.yaml").string();
+  struct Case {
+    const char* label;
+    std::vector<Override> ov;
+  };
+  std::vector<Case> cases;
+  for (const char* dt : {"0.01", "0.1"}) {
+    Case c{dt[3] == '1' ? "S1 fully-coupled, dt = 0.01 s" : "S1 fully-coupled, dt = 0.1 s", {}};
+    c.ov.push_back({"rates.dt", dt});
+    c.ov.push_back({"rates.fsw_divisor", std::string(dt) == "0.01" ? "10" : "1"});
+    c.ov.push_back({"rates.fsw_offset", "0"});
+    c.ov.push_back({"rates.record_divisor", std::string(dt) == "0.01" ? "100" : "10"});
+    c.ov.push_back({"wheel_defaults.model", "fully_coupled"});
+    cases.push_back(c);
+  }
+  out << "kestrel bench (" << version() << "), one core, FSW at 10 Hz, recording at 1 Hz\n";
+  for (const Case& c : cases) {
+    try {
+      Scenario sc = load_scenario(s1, c.ov);
+      for (auto& w : sc.wheels) w.params.model = sim::WheelModel::FullyCoupled;
+      Run run(sc);
+      const auto t0 = std::chrono::steady_clock::now();
+      run.step_ticks(run.total_ticks());
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (!run.failure().empty()) {
+        err << c.label << ": run failed: " << run.failure() << "\n";
+        return kExitRunFailed;
+      }
+      out << "  " << std::left << std::setw(34) << c.label << " " << std::right << std::setw(10) << std::fixed
+          << std::setprecision(0) << sc.duration / wall << "x real time  (" << std::setprecision(3) << wall
+          << " s wall for " << std::setprecision(0) << sc.duration << " s)\n";
+      out.unsetf(std::ios::fixed);
+    } catch (const ScenarioError& e) {
+      print_issues(e, err);
+      return kExitInvalidScenario;
+    }
+  }
+  out << "  S2 (Mars orbit insertion)            not available: the plant thruster model is not in this build\n";
+  return kExitOk;
+}
+
+}  // namespace harness

@@ -1,0 +1,43 @@
+#include "harness/scheduler.h"
+
+#include <stdexcept>
+#include <utility>
+
+namespace harness {
+
+void validate(const RateGroup& g)
+{
+  if (g.divisor == 0)
+    throw std::invalid_argument("rate group '" + g.name + "': divisor must be >= 1");
+  if (g.offset >= g.divisor)
+    throw std::invalid_argument("rate group '" + g.name + "': offset " + std::to_string(g.offset) +
+                                " must be < divisor " + std::to_string(g.divisor));
+}
+
+Scheduler::Scheduler(uint64_t tick_ns) : tick_ns_(tick_ns)
+{
+  if (tick_ns == 0) throw std::invalid_argument("scheduler: tick_ns must be > 0");
+}
+
+size_t Scheduler::add_task(std::string name, const RateGroup& g, TaskFn fn)
+{
+  validate(g);
+  if (!fn) throw std::invalid_argument("scheduler: task '" + name + "' has no function");
+  tasks_.push_back(Task{std::move(name), g, std::move(fn), 0});
+  return tasks_.size() - 1;
+}
+
+size_t Scheduler::run_tick(uint64_t tick)
+{
+  size_t n = 0;
+  for (Task& t : tasks_) {
+    if (t.group.due(tick)) {
+      t.fn(tick);
+      ++t.runs;
+      ++n;
+    }
+  }
+  return n;
+}
+
+}  // namespace harness
