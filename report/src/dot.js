@@ -242,7 +242,9 @@ export function messageTable(g) {
 }
 
 // Layered layout, left to right.  measure(text) -> width in px.
+// opt.rankdir: 'LR' (layers left to right, default) or 'TB' (top to bottom).
 export function layoutGraph(g, measure = (s) => 7 * s.length, opt = {}) {
+  const tb = String(opt.rankdir || 'LR').toUpperCase() === 'TB';
   const lineH = opt.lineHeight || 16;
   const padX = 12;
   const padY = 8;
@@ -297,7 +299,9 @@ export function layoutGraph(g, measure = (s) => 7 * s.length, opt = {}) {
     const nd = g.nodes.get(id);
     const lines = String(nd.label).split('\n');
     const w = Math.max(40, ...lines.map(measure)) + 2 * padX;
-    return { id, label: nd.label, lines, layer: layer[i], w, h: lines.length * lineH + 2 * padY, dummy: false };
+    const h = lines.length * lineH + 2 * padY;
+    // layout space: w along the layer axis, h across it
+    return { id, label: nd.label, lines, layer: layer[i], w: tb ? h : w, h: tb ? w : h, dummy: false };
   });
   const chains = [];
   for (const [u, v, k, rev] of dag) {
@@ -305,7 +309,7 @@ export function layoutGraph(g, measure = (s) => 7 * s.length, opt = {}) {
     let prev = u;
     for (let L = V[u].layer + 1; L < V[v].layer; L++) {
       const d = V.length;
-      V.push({ id: `__d${d}`, label: '', lines: [], layer: L, w: 0, h: 8, dummy: true });
+      V.push({ id: `__d${d}`, label: '', lines: [], layer: L, w: 0, h: tb ? 16 : 8, dummy: true });
       chain.push(d);
       prev = d;
     }
@@ -340,13 +344,13 @@ export function layoutGraph(g, measure = (s) => 7 * s.length, opt = {}) {
     }
   }
   // 5. coordinates: column widths leave room for the edge labels leaving them
-  const gapY = 18;
+  const gapY = tb ? 28 : 18;
   const labelW = new Float64Array(nLayers);
   for (const c of chains) {
     const lbl = c.edge.label || '';
     if (!lbl) continue;
     const L = V[c.nodes[0]].layer;
-    labelW[L] = Math.max(labelW[L], measure(lbl) + 16);
+    labelW[L] = Math.max(labelW[L], tb ? 2 * lineH + 8 : measure(lbl) + 16);
   }
   const colW = layers.map((L) => L.reduce((m, v) => Math.max(m, V[v].w), 0));
   const colH = layers.map((L) => L.reduce((s, v) => s + V[v].h + gapY, -gapY));
@@ -359,9 +363,9 @@ export function layoutGraph(g, measure = (s) => 7 * s.length, opt = {}) {
       V[v].y = y;
       y += V[v].h + gapY;
     }
-    x += colW[li] + Math.max(70, labelW[li]);
+    x += colW[li] + Math.max(tb ? 44 : 70, labelW[li]);
   });
-  const width = x - Math.max(70, labelW[nLayers - 1] || 0) + 10;
+  const width = x - Math.max(tb ? 44 : 70, labelW[nLayers - 1] || 0) + 10;
   // 6. edge polylines (in layout direction), label at the first segment
   const routed = chains.map((c) => {
     const pts = [];
@@ -376,5 +380,15 @@ export function layoutGraph(g, measure = (s) => 7 * s.length, opt = {}) {
     return { edge: c.edge, points: pts, reversed: c.reversed, labelAt: [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2] };
   });
   const selfLoops = edges.filter((e) => e.from === e.to).map((e) => ({ edge: e, node: V[idx.get(e.from)] }));
-  return { nodes: V.filter((v) => !v.dummy), edges: routed, selfLoops, width: Math.max(width, 40), height: H + 20 };
+  let W = Math.max(width, 40);
+  let Ht = H + 20;
+  if (tb) {
+    for (const v of V) [v.x, v.y, v.w, v.h] = [v.y, v.x, v.h, v.w];
+    for (const r of routed) {
+      r.points = r.points.map(([a, b]) => [b, a]);
+      r.labelAt = [r.labelAt[1], r.labelAt[0]];
+    }
+    [W, Ht] = [Ht, W];
+  }
+  return { nodes: V.filter((v) => !v.dummy), edges: routed, selfLoops, width: W, height: Ht, rankdir: tb ? 'TB' : 'LR' };
 }

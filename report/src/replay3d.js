@@ -162,15 +162,15 @@ export function buildReplay(root, D, status) {
     const g = new Group();
     g.position.copy(th.r);
     g.quaternion.setFromUnitVectors(new Vector3(0, 1, 0), th.d.clone().negate()); // +y of g = exhaust
-    const nozzle = new Mesh(new ConeGeometry(0.06 * S, 0.14 * S, 16, 1, true), new MeshStandardMaterial({ color: 0x9aa3ad, side: 2 }));
+    const nozzle = new Mesh(new ConeGeometry(0.09 * S, 0.2 * S, 16, 1, true), new MeshStandardMaterial({ color: 0xc9a46a, metalness: 0.6, roughness: 0.35, side: 2 }));
     nozzle.rotation.x = Math.PI; // opening towards the exhaust
-    nozzle.position.y = 0.07 * S;
+    nozzle.position.y = 0.1 * S;
     g.add(nozzle);
-    const plumeGeom = new ConeGeometry(0.09 * S, 1, 20, 1, true);
+    const plumeGeom = new ConeGeometry(0.13 * S, 1, 20, 1, true);
     plumeGeom.translate(0, -0.5, 0);
     plumeGeom.rotateX(Math.PI); // apex at the nozzle, widening along +y
     const plume = new Mesh(plumeGeom, new MeshBasicMaterial({ color: 0xffa23a, transparent: true, opacity: 0.75, side: 2, depthWrite: false }));
-    plume.position.y = 0.14 * S;
+    plume.position.y = 0.2 * S;
     plume.visible = false;
     g.add(plume);
     body.add(g);
@@ -194,7 +194,7 @@ export function buildReplay(root, D, status) {
   view.appendChild(renderer.domElement);
   const camera = new PerspectiveCamera(40, width() / H, 0.01 * S, 200 * S);
   camera.up.set(0, 0, 1);
-  camera.position.set(5.2 * S, 4.0 * S, 3.4 * S);
+  camera.position.set(6.4 * S, 4.9 * S, 3.6 * S);
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.target.set(0, 0, 0);
   controls.update();

@@ -1,0 +1,217 @@
+#!/usr/bin/env node
+// Writes synthetic report_data.json files (the schema of docs/report.md) for
+// the report tests, made by small physical models, not by the harness:
+//   s1.json       4 pyramid wheels, no thrusters: tumble, sun acquisition, hold,
+//                 wheel-imbalance jitter on the body rates; DOT with message nodes
+//   s2.json       8 thrusters, no wheels: main-engine burn with misalignment,
+//                 pulsed ACS thrusters, propellant; DOT with labelled edges
+//   minimal.json  meta and t only
+//   empty.json    {}
+//   hostile.json  </script>, <!-- and quotes in strings, NaN-like nulls, ragged
+//                 series, a malformed DOT
+// Usage: node make_synthetic_data.cjs OUTDIR
+'use strict';
+const fs = require('fs');
+const path = require('path');
+
+const out = process.argv[2] || '.';
+fs.mkdirSync(out, { recursive: true });
+
+let seed = 12345;
+function rand() { // xorshift32, deterministic
+  seed ^= seed << 13; seed >>>= 0; seed ^= seed >>> 17; seed ^= seed << 5; seed >>>= 0;
+  return seed / 4294967296;
+}
+function gauss() { return Math.sqrt(-2 * Math.log(rand() + 1e-12)) * Math.cos(2 * Math.PI * rand()); }
+const r6 = (v) => Number(v.toPrecision(7));
+
+function qmul(a, b) { // scalar-first Hamilton product
+  return [a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+    a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+    a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+    a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]];
+}
+function qnorm(q) { const n = Math.hypot(...q); return q.map((v) => v / n); }
+// Euler-parameter kinematics dq/dt = 1/2 B(q) w (q_BN, w = omega_BN in B)
+function qstep(q, w, dt) {
+  const dq = qmul(q, [0, w[0], w[1], w[2]]).map((v) => 0.5 * v * dt);
+  return qnorm(q.map((v, i) => v + dq[i]));
+}
+const principalDeg = (q) => (2 * Math.acos(Math.min(1, Math.abs(q[0]))) * 180) / Math.PI;
+
+function s1() {
+  const dt = 0.1;
+  const T = 1200;
+  const n = Math.round(T / dt) + 1;
+  const I = [900, 800, 600];
+  const Js = 0.15; // wheel inertia about spin axis [kg m^2]
+  const b = Math.atan(1 / Math.sqrt(2)); // pyramid elevation
+  const G = [0, 1, 2, 3].map((i) => { const a = (Math.PI / 2) * i + Math.PI / 4; return [Math.cos(b) * Math.cos(a), Math.cos(b) * Math.sin(a), Math.sin(b)]; });
+  let q = qnorm([0.3, -0.6, 0.5, 0.55]);
+  let w = [0.035, -0.026, 0.018];
+  const Om = [150, -120, 90, 200].map((r) => (r * 2 * Math.PI) / 60);
+  const S = { t: [], pointing_error_deg: [], omega_BN_B_x: [], omega_BN_B_y: [], omega_BN_B_z: [] };
+  for (let i = 0; i < 4; i++) { S[`wheel_speed_rpm_${i}`] = []; S[`wheel_torque_${i}`] = []; }
+  const att = { t: [], q_BN: [] };
+  for (let k = 0; k < n; k++) {
+    const t = k * dt;
+    // control: rate damping first, then MRP-like PD towards q_BN = identity
+    const sgn = q[0] < 0 ? -1 : 1;
+    const e = [q[1] * sgn, q[2] * sgn, q[3] * sgn];
+    const Kp = t < 60 ? 0 : 0.15;
+    const P = 4;
+    // PD plus gyroscopic feed-forward w x (I w + h_wheels), as an MRP feedback law does
+    const hw0 = G.reduce((acc, g, i) => acc.map((v, j) => v + Js * Om[i] * g[j]), [0, 0, 0]);
+    const H0 = [I[0] * w[0] + hw0[0], I[1] * w[1] + hw0[1], I[2] * w[2] + hw0[2]];
+    const ff = [w[1] * H0[2] - w[2] * H0[1], w[2] * H0[0] - w[0] * H0[2], w[0] * H0[1] - w[1] * H0[0]];
+    let L = [0, 1, 2].map((j) => -Kp * e[j] * I[j] / 100 - P * w[j] * I[j] / 100 + ff[j]);
+    L = L.map((v) => Math.max(-0.2, Math.min(0.2, v)));
+    // minimum-norm wheel torques: u = G^T (G G^T)^-1 (-L); G G^T = (4/3) I for this pyramid
+    const u = G.map((g) => -(0.75) * (g[0] * L[0] + g[1] * L[1] + g[2] * L[2]));
+    const jit = G.reduce((acc, g, i) => acc.map((v, j) => v + 4e-6 * Math.sin(Om[i] * t + i) * g[j]), [0, 0, 0]);
+    S.t.push(r6(t));
+    S.pointing_error_deg.push(r6(principalDeg(q)));
+    ['x', 'y', 'z'].forEach((a, j) => S[`omega_BN_B_${a}`].push(r6(w[j] + jit[j] + 2e-7 * gauss())));
+    for (let i = 0; i < 4; i++) {
+      S[`wheel_speed_rpm_${i}`].push(r6((Om[i] * 60) / (2 * Math.PI)));
+      S[`wheel_torque_${i}`].push(r6(u[i]));
+    }
+    if (k % 5 === 0) { att.t.push(r6(t)); att.q_BN.push(q.map(r6)); }
+    // dynamics: I dw = L - w x (I w + hw), crude but fine for a picture
+    const hw = G.reduce((acc, g, i) => acc.map((v, j) => v + Js * Om[i] * g[j]), [0, 0, 0]);
+    const H = [I[0] * w[0] + hw[0], I[1] * w[1] + hw[1], I[2] * w[2] + hw[2]];
+    const wxH = [w[1] * H[2] - w[2] * H[1], w[2] * H[0] - w[0] * H[2], w[0] * H[1] - w[1] * H[0]];
+    const dw = [0, 1, 2].map((j) => (L[j] - wxH[j]) / I[j]);
+    for (let i = 0; i < 4; i++) Om[i] += (u[i] / Js) * dt;
+    q = qstep(q, w, dt);
+    w = w.map((v, j) => v + dw[j] * dt);
+  }
+  const units = { t: 's', pointing_error_deg: 'deg', omega_BN_B_x: 'rad/s', omega_BN_B_y: 'rad/s', omega_BN_B_z: 'rad/s' };
+  for (let i = 0; i < 4; i++) { units[`wheel_speed_rpm_${i}`] = 'rpm'; units[`wheel_torque_${i}`] = 'N m'; }
+  const dot = `digraph kestrel_dataflow {
+  rankdir=LR;
+  node [shape=box, style=rounded];
+  // components
+  css [label="css_array\\n(plant sensors)"]; imu; fsw_css_sun; fsw_guid_sunsafe; fsw_att_track; fsw_mrp_fb; fsw_rw_map; fsw_rw_null; plant_wheels; plant_hub;
+  // messages
+  node [shape=note];
+  CSSArrayMsg; NavAttMsg; SunHeadingMsg; AttGuidMsg; AttErrMsg; CmdTorqueMsg; RWSpeedMsg; RWTorqueMsg; HubStateMsg;
+  css -> CSSArrayMsg -> fsw_css_sun -> SunHeadingMsg -> fsw_guid_sunsafe -> AttGuidMsg -> fsw_att_track;
+  imu -> NavAttMsg; NavAttMsg -> fsw_att_track; NavAttMsg -> fsw_guid_sunsafe;
+  fsw_att_track -> AttErrMsg -> fsw_mrp_fb -> CmdTorqueMsg -> fsw_rw_map -> RWTorqueMsg -> plant_wheels;
+  fsw_rw_null -> RWTorqueMsg;
+  plant_wheels -> RWSpeedMsg; RWSpeedMsg -> fsw_rw_null; RWSpeedMsg -> fsw_mrp_fb;
+  plant_hub -> HubStateMsg; HubStateMsg -> imu; HubStateMsg -> css; plant_wheels -> plant_hub;
+}`;
+  return {
+    meta: { scenario: 'S1 deep-space sun pointing (synthetic)', seed: 42, version: '0.1.0', dt, duration: T, wheel_jitter: 'fully-coupled' },
+    series: S, units, attitude: att,
+    geometry: { wheel_axes_B: G.map((g) => g.map(r6)), thrusters: [] },
+    dataflow_dot: dot,
+  };
+}
+
+function s2() {
+  const dt = 0.1;
+  const T = 300;
+  const n = Math.round(T / dt) + 1;
+  const thr = [];
+  for (let i = 0; i < 8; i++) { // 4 pairs at the +-z corners, firing tangentially
+    const a = (Math.PI / 2) * (i >> 1) + Math.PI / 4;
+    const r = [1.1 * Math.cos(a), 1.1 * Math.sin(a), i % 2 ? -0.9 : 0.9];
+    const s = (i % 4 < 2 ? 1 : -1);
+    thr.push({ r_B: r.map(r6), dir_B: [-Math.sin(a) * s, Math.cos(a) * s, 0].map(r6) });
+  }
+  const S = { t: [], pointing_error_deg: [], omega_BN_B_x: [], omega_BN_B_y: [], omega_BN_B_z: [], propellant_kg: [] };
+  for (let i = 0; i < 8; i++) { S[`thruster_on_time_${i}`] = []; S[`thruster_force_${i}`] = []; }
+  const att = { t: [], q_BN: [] };
+  let q = [1, 0, 0, 0];
+  let w = [0, 0, 0];
+  let m = 1200;
+  const mdotMain = 400 / (315 * 9.80665);
+  const ctrlPeriod = 0.5;
+  let onTimes = new Array(8).fill(0);
+  let tLastCtrl = -1;
+  for (let k = 0; k < n; k++) {
+    const t = k * dt;
+    const burning = t >= 30 && t < 250;
+    const dist = burning ? [0.9, -0.6, 0.15] : [0, 0, 0]; // misalignment torque [N m]
+    if (t - tLastCtrl >= ctrlPeriod - 1e-9) {
+      tLastCtrl = t;
+      const sgn = q[0] < 0 ? -1 : 1;
+      const Lr = [0, 1, 2].map((j) => -400 * q[j + 1] * sgn - 900 * w[j]);
+      onTimes = thr.map((th) => {
+        const tq = [th.r_B[1] * th.dir_B[2] - th.r_B[2] * th.dir_B[1], th.r_B[2] * th.dir_B[0] - th.r_B[0] * th.dir_B[2], th.r_B[0] * th.dir_B[1] - th.r_B[1] * th.dir_B[0]];
+        // share of the demanded torque this thruster can give (two per axis sense)
+        const frac = (tq[0] * Lr[0] + tq[1] * Lr[1] + tq[2] * Lr[2]) / (2 * 22 * (tq[0] ** 2 + tq[1] ** 2 + tq[2] ** 2));
+        const on = Math.max(0, Math.min(ctrlPeriod, frac * ctrlPeriod));
+        return on < 0.005 ? 0 : on; // minimum impulse bit
+      });
+    }
+    const phase = t - tLastCtrl;
+    const F = onTimes.map((on) => (phase < on ? 22 : 0));
+    let L = dist.slice();
+    F.forEach((f, i) => {
+      const th = thr[i];
+      L[0] += f * (th.r_B[1] * th.dir_B[2] - th.r_B[2] * th.dir_B[1]);
+      L[1] += f * (th.r_B[2] * th.dir_B[0] - th.r_B[0] * th.dir_B[2]);
+      L[2] += f * (th.r_B[0] * th.dir_B[1] - th.r_B[1] * th.dir_B[0]);
+    });
+    S.t.push(r6(t));
+    S.pointing_error_deg.push(r6(principalDeg(q)));
+    ['x', 'y', 'z'].forEach((a, j) => S[`omega_BN_B_${a}`].push(r6(w[j] + 1e-6 * gauss())));
+    S.propellant_kg.push(r6(m - 800));
+    for (let i = 0; i < 8; i++) { S[`thruster_on_time_${i}`].push(r6(onTimes[i])); S[`thruster_force_${i}`].push(r6(F[i])); }
+    att.t.push(r6(t));
+    att.q_BN.push(q.map(r6));
+    const I = [1500, 1400, 1100];
+    w = w.map((v, j) => v + (L[j] / I[j]) * dt);
+    q = qstep(q, w, dt);
+    m -= ((burning ? mdotMain : 0) + F.reduce((s, f) => s + f, 0) / (220 * 9.80665)) * dt;
+  }
+  const units = { t: 's', pointing_error_deg: 'deg', omega_BN_B_x: 'rad/s', omega_BN_B_y: 'rad/s', omega_BN_B_z: 'rad/s', propellant_kg: 'kg' };
+  for (let i = 0; i < 8; i++) { units[`thruster_on_time_${i}`] = 's'; units[`thruster_force_${i}`] = 'N'; }
+  const dot = `digraph G {
+  node [shape=box];
+  nav -> att_track [label="NavAttMsg"];
+  guid_inertial -> att_track [label="AttRefMsg"];
+  att_track -> mrp_fb [label="AttGuidMsg"];
+  mrp_fb -> thr_map [label="CmdTorqueMsg"];
+  thr_map -> thr_pulse_rem [label="THRArrayCmdForceMsg"];
+  thr_pulse_rem -> thrusters [label="THRArrayOnTimeCmdMsg"];
+  main_engine -> hub [label="ForceTorqueMsg"];
+  thrusters -> hub [label="ForceTorqueMsg"];
+  thrusters -> propellant [label="MassFlowMsg"];
+  propellant -> hub [label="MassPropsMsg"];
+  hub -> nav [label="SCStatesMsg"];
+  hub -> orbit_report [label="SCStatesMsg"];
+}`;
+  return {
+    meta: { scenario: 'S2 Mars orbit insertion (synthetic)', seed: 7, version: '0.1.0', dt, duration: T, pulsing: 'remainder' },
+    series: S, units, attitude: att, geometry: { wheel_axes_B: [], thrusters: thr }, dataflow_dot: dot,
+  };
+}
+
+function hostile() {
+  const d = s1();
+  const n = 400;
+  for (const k of Object.keys(d.series)) d.series[k] = d.series[k].slice(0, n);
+  d.series.wheel_speed_rpm_3 = d.series.wheel_speed_rpm_3.slice(0, 100); // ragged
+  d.series.omega_BN_B_y[10] = null; // NaN written as null
+  d.series.pointing_error_deg[11] = 'nan';
+  d.series.extra_thing_x = d.series.t.map((t) => Math.sin(t)); // unknown series
+  d.attitude.q_BN[3] = [0, 0, 0, 0]; // bad quaternion
+  d.attitude.q_BN[4] = 'x';
+  d.meta.scenario = 'hostile </script><script>window.__pwned=1</script><!-- "quotes" & \u2028 \u00e9';
+  d.geometry.thrusters = [{ r_B: [1, 0, 0] }, { r_B: [0, 1, 0], dir_B: [0, 0, 0] }, 5];
+  d.dataflow_dot = 'digraph { a -> "b</script>" [label="<!-- x -->"]; b -> ; { c d } -> e; e -> a; a -> a; /* unterminated';
+  d.units.omega_BN_B_x = 'deg/s';
+  return d;
+}
+
+fs.writeFileSync(path.join(out, 's1.json'), JSON.stringify(s1()));
+fs.writeFileSync(path.join(out, 's2.json'), JSON.stringify(s2()));
+fs.writeFileSync(path.join(out, 'minimal.json'), JSON.stringify({ meta: { scenario: 'minimal', dt: 1, duration: 2 }, series: { t: [0, 1, 2] } }));
+fs.writeFileSync(path.join(out, 'empty.json'), '{}');
+fs.writeFileSync(path.join(out, 'hostile.json'), JSON.stringify(hostile()));
+console.log(`synthetic report data written to ${out}`);
