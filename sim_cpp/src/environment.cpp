@@ -1,0 +1,140 @@
+// environment: see sim/environment.h.  Spec plant-dynamics §0, §6, §9.3, §11.
+#include "sim/environment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "sim/units.h"
+#include "validate_util.h"
+
+namespace sim {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+namespace {
+constexpr int kKeplerMaxIter = 60;  // Newton converges in < 10 for e < 0.99 or e > 1.01
+constexpr double kKeplerTol = 1e-15;  // [rad] on the anomaly step
+}  // namespace
+
+CentralBody mars() { return CentralBody{kMuMars, kRadiusMars}; }
+CentralBody earth() { return CentralBody{kMuEarth, kRadiusEarth}; }
+
+void validate(const SunParams& p, const char* name)
+{
+  const std::string n(name);
+  detail::require_finite(n + ".r_SunN_N0", p.r_SunN_N0);
+  if (!(p.r_SunN_N0.norm() > 0.0)) detail::fail_vec(n + ".r_SunN_N0", p.r_SunN_N0, "must be non-zero");
+  detail::require_finite(n + ".n", p.n);
+}
+
+void validate(const CentralBody& b, const char* name)
+{
+  const std::string n(name);
+  detail::require_non_negative(n + ".mu", b.mu);
+  detail::require_non_negative(n + ".radius", b.radius);
+}
+
+Vector3d point_mass_gravity(double mu, const Vector3d& r_N)
+{
+  if (mu == 0.0) return Vector3d::Zero();
+  const double r = r_N.norm();
+  return (-mu / (r * r * r)) * r_N;
+}
+
+Vector3d sun_position_N(const SunParams& p, double t)
+{
+  if (p.n == 0.0) return p.r_SunN_N0;
+  const double c = std::cos(p.n * t), s = std::sin(p.n * t);
+  const Vector3d& r = p.r_SunN_N0;
+  return Vector3d(c * r.x() - s * r.y(), s * r.x() + c * r.y(), r.z());
+}
+
+Vector3d sun_direction_B(const Matrix3d& dcm_BN, const Vector3d& r_scN_N, const Vector3d& r_SunN_N)
+{
+  return dcm_BN * (r_SunN_N - r_scN_N).normalized();
+}
+
+double solar_flux_scale(const Vector3d& r_scN_N, const Vector3d& r_SunN_N)
+{
+  const double d = (r_SunN_N - r_scN_N).norm() / kAU;
+  return 1.0 / (d * d);
+}
+
+double illumination_factor(const Vector3d& r_scN_N, const Vector3d& r_SunN_N, double R_body,
+                           double R_sun)
+{
+  if (R_body <= 0.0) return 1.0;
+  const Vector3d to_sun = r_SunN_N - r_scN_N;
+  const Vector3d to_body = -r_scN_N;
+  const double d_sun = to_sun.norm(), d_body = to_body.norm();
+  if (d_body <= R_body) return 0.0;  // inside the body
+  const double a = std::asin(std::min(1.0, R_sun / d_sun));  // apparent Sun radius
+  const double b = std::asin(R_body / d_body);               // apparent body radius
+  const double cos_c = std::clamp(to_sun.dot(to_body) / (d_sun * d_body), -1.0, 1.0);
+  const double c = std::acos(cos_c);  // angular separation of the disk centres
+  if (c >= a + b) return 1.0;              // no overlap
+  if (c <= b - a) return 0.0;              // total eclipse
+  if (c <= a - b) return 1.0 - (b * b) / (a * a);  // annular
+  // Partial overlap of two disks (flat-disk approximation, angles ~< 0.1 rad).
+  const double x = (c * c + a * a - b * b) / (2.0 * c);
+  const double y = std::sqrt(std::max(0.0, a * a - x * x));
+  const double area = a * a * std::acos(std::clamp(x / a, -1.0, 1.0)) +
+                      b * b * std::acos(std::clamp((c - x) / b, -1.0, 1.0)) - c * y;
+  return std::clamp(1.0 - area / (kPi * a * a), 0.0, 1.0);
+}
+
+OrbitElements elements_from_rv(double mu, const Vector3d& r_N, const Vector3d& v_N)
+{
+  OrbitElements el;
+  const double r = r_N.norm();
+  el.energy = 0.5 * v_N.squaredNorm() - mu / r;
+  el.h_N = r_N.cross(v_N);
+  const Vector3d e_vec = v_N.cross(el.h_N) / mu - r_N / r;
+  el.e = e_vec.norm();
+  const double p = el.h_N.squaredNorm() / mu;  // semi-latus rectum
+  el.r_p = p / (1.0 + el.e);
+  el.a = el.energy == 0.0 ? std::numeric_limits<double>::infinity() : -mu / (2.0 * el.energy);
+  el.r_a = el.e < 1.0 ? p / (1.0 - el.e) : std::numeric_limits<double>::infinity();
+  return el;
+}
+
+OrbitState conic_state_from_periapsis(double mu, double r_p, double e, double t)
+{
+  if (!(mu > 0.0)) detail::fail("conic.mu", mu, "must be > 0");
+  if (!(r_p > 0.0)) detail::fail("conic.r_p", r_p, "must be > 0");
+  if (!(e >= 0.0) || e == 1.0) detail::fail("conic.e", e, "must be >= 0 and != 1 (no parabolas)");
+  const double p = r_p * (1.0 + e);
+  double nu;  // true anomaly
+  if (e < 1.0) {
+    const double a = r_p / (1.0 - e);
+    const double M = std::sqrt(mu / (a * a * a)) * t;
+    double E = e < 0.8 ? M : kPi * (M < 0 ? -1.0 : 1.0);
+    for (int i = 0; i < kKeplerMaxIter; ++i) {
+      const double dE = (E - e * std::sin(E) - M) / (1.0 - e * std::cos(E));
+      E -= dE;
+      if (std::abs(dE) < kKeplerTol) break;
+    }
+    nu = 2.0 * std::atan2(std::sqrt(1.0 + e) * std::sin(0.5 * E), std::sqrt(1.0 - e) * std::cos(0.5 * E));
+  } else {
+    const double a = r_p / (e - 1.0);  // |a|
+    const double M = std::sqrt(mu / (a * a * a)) * t;
+    double H = std::asinh(M / e);
+    for (int i = 0; i < kKeplerMaxIter; ++i) {
+      const double dH = (e * std::sinh(H) - H - M) / (e * std::cosh(H) - 1.0);
+      H -= dH;
+      if (std::abs(dH) < kKeplerTol * std::max(1.0, std::abs(H))) break;
+    }
+    nu = 2.0 * std::atan(std::sqrt((e + 1.0) / (e - 1.0)) * std::tanh(0.5 * H));
+  }
+  const double r = p / (1.0 + e * std::cos(nu));
+  const double vf = std::sqrt(mu / p);
+  OrbitState s;
+  s.r_N = Vector3d(r * std::cos(nu), r * std::sin(nu), 0.0);
+  s.v_N = Vector3d(-vf * std::sin(nu), vf * (e + std::cos(nu)), 0.0);
+  return s;
+}
+
+}  // namespace sim
