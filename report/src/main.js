@@ -77,8 +77,9 @@ function main() {
   for (const [k, unit] of [['scenario', ''], ['seed', ''], ['version', ''], ['dt', ' s'], ['duration', ' s']]) {
     if (m[k] !== undefined && m[k] !== null) metaRoot.appendChild(el('span', { class: 'kv' }, el('b', { text: k + ' ' }), String(m[k]) + unit));
   }
+  if (typeof m.description === 'string' && m.description.trim()) document.getElementById('description').textContent = m.description.trim();
   for (const [k, v] of Object.entries(m)) {
-    if (['scenario', 'seed', 'version', 'dt', 'duration'].includes(k) || (typeof v === 'object' && v !== null)) continue;
+    if (['scenario', 'seed', 'version', 'dt', 'duration', 'description'].includes(k) || (typeof v === 'object' && v !== null)) continue;
     metaRoot.appendChild(el('span', { class: 'kv' }, el('b', { text: k + ' ' }), String(v)));
   }
   let absent = [];
@@ -87,7 +88,9 @@ function main() {
       root.appendChild(el('p', { class: 'absent', text: 'No time series in this run.' }));
       return;
     }
-    absent = buildTimePlots(root, D).absent;
+    const res = buildTimePlots(root, D, document.getElementById('plots-other'));
+    absent = res.absent;
+    if (res.others) document.getElementById('others-title').hidden = false;
     status.plots = root.querySelectorAll('.uplot').length;
   });
   section('summary', (root) => summary(root, D, absent));

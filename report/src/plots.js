@@ -135,7 +135,7 @@ export function rateDisplay(ys, unit) {
 
 // Builds every time-series card; returns the keys used (others are shown
 // as generic cards) and what is absent.
-export function buildTimePlots(grid, D) {
+export function buildTimePlots(grid, D, otherGrid = grid) {
   const { series, units, t } = D;
   const n = t.length;
   const used = new Set(['t']);
@@ -186,7 +186,8 @@ export function buildTimePlots(grid, D) {
     rest.get(stem).push(k);
   }
   for (const [stem, ks] of rest) {
-    addTimePlot(grid, t, { id: 'x-' + stem.replace(/[^A-Za-z0-9_-]/g, '_'), title: stem, unit: unitOf(ks[0], ''), names: ks, ys: ks.map(take) });
+    const names = ks.length > 1 ? ks.map((k) => k.slice(stem.length + 1)) : ks;
+    addTimePlot(otherGrid, t, { id: 'x-' + stem.replace(/[^A-Za-z0-9_-]/g, '_'), title: stem, unit: unitOf(ks[0], ''), names, ys: ks.map(take) });
   }
-  return { absent };
+  return { absent, others: rest.size };
 }

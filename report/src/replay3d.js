@@ -51,7 +51,15 @@ function webglAvailable() {
 export function buildReplay(root, D, status) {
   const att = attitudeSamples(D.attitude);
   const geom = D.geometry || {};
-  const wheelAxes = (Array.isArray(geom.wheel_axes_B) ? geom.wheel_axes_B : []).map(vec3).filter(Boolean).map((v) => v.normalize());
+  const wheelAxes = [];
+  const wheelPos = [];
+  const wpos = Array.isArray(geom.wheel_positions_B) ? geom.wheel_positions_B : [];
+  (Array.isArray(geom.wheel_axes_B) ? geom.wheel_axes_B : []).forEach((a, i) => {
+    const v = vec3(a);
+    if (!v || !(v.length() > 0)) return;
+    wheelAxes.push(v.normalize());
+    wheelPos.push(vec3(wpos[i]));
+  });
   const thrusters = (Array.isArray(geom.thrusters) ? geom.thrusters : [])
     .map((th) => (th && typeof th === 'object' ? { r: vec3(th.r_B), d: vec3(th.dir_B) } : {}))
     .filter((th) => th.r && th.d && th.d.length() > 0)
@@ -130,7 +138,10 @@ export function buildReplay(root, D, status) {
     const color = PALETTE[(i + 3) % PALETTE.length];
     const holder = new Group();
     holder.quaternion.setFromUnitVectors(new Vector3(0, 1, 0), a);
-    holder.position.copy(a.clone().multiplyScalar(0.55 * Math.min(hx, hy, hz)));
+    // at its position in B when given and inside the drawn bus, else along its axis
+    const p = wheelPos[i];
+    if (p && Math.abs(p.x) <= hx && Math.abs(p.y) <= hy && Math.abs(p.z) <= hz && p.length() > 0.05 * S) holder.position.copy(p);
+    else holder.position.copy(a.clone().multiplyScalar(0.55 * Math.min(hx, hy, hz)));
     const spin = new Group();
     holder.add(spin);
     const disc = new Mesh(new CylinderGeometry(0.2 * S, 0.2 * S, 0.05 * S, 32), new MeshStandardMaterial({ color, metalness: 0.4, roughness: 0.4 }));

@@ -4,6 +4,22 @@ import { alignSeries, isNumArray, el, fmt } from './data.js';
 import { uniformWindow, welch, rms } from './spectrum.js';
 import { AXIS_COLORS, rateDisplay, fmtTick } from './plots.js';
 
+// Jitter is a property of the hold: the window starts after the last sample
+// with a pointing error above SETTLED_DEG (the whole run if there is none);
+// without a pointing error, or if fewer than 256 samples would remain, it
+// is the second half of the run.
+const SETTLED_DEG = 1.0;
+export function defaultWindowStart(t, pe) {
+  const n = t.length;
+  const half = t[0] + 0.5 * (t[n - 1] - t[0]);
+  if (!isNumArray(pe)) return half;
+  let last = -1;
+  for (let i = 0; i < Math.min(n, pe.length); i++) if (typeof pe[i] === 'number' && pe[i] > SETTLED_DEG) last = i;
+  if (last < 0) return t[0];
+  if (n - 1 - last < 256) return half;
+  return t[last + 1];
+}
+
 export function buildSpectrum(root, D) {
   const { series, units, t } = D;
   const keys = ['x', 'y', 'z'].map((a) => `omega_BN_B_${a}`).filter((k) => isNumArray(series[k]));
@@ -13,7 +29,7 @@ export function buildSpectrum(root, D) {
   }
   const [ys, unit] = rateDisplay(keys.map((k) => alignSeries(series[k], t.length)), typeof units[keys[0]] === 'string' ? units[keys[0]] : 'rad/s');
   const tEnd = t[t.length - 1];
-  const t0Default = t[0] + 0.5 * (tEnd - t[0]);
+  const t0Default = defaultWindowStart(t, series.pointing_error_deg);
   const card = el('div', { class: 'card wide', id: 'spectrum-card' });
   const from = el('input', { type: 'number', step: 'any', value: String(Number(t0Default.toPrecision(6))), id: 'spec-from' });
   const to = el('input', { type: 'number', step: 'any', value: String(Number(tEnd.toPrecision(6))), id: 'spec-to' });
@@ -54,7 +70,7 @@ export function buildSpectrum(root, D) {
       ],
     }, data, holder);
     const r0 = ok[0];
-    info.textContent = `Welch: Hann window, ${r0.s.nseg}-sample segments, 50 % overlap, ${r0.s.segments} averages, ` +
+    info.textContent = `Default window: from the end of the last excursion above ${SETTLED_DEG} deg pointing error (the hold). Welch: Hann window, ${r0.s.nseg}-sample segments, 50 % overlap, ${r0.s.segments} averages, ` +
       `fs = ${fmt(1 / r0.w.dt)} Hz. RMS over the window (mean removed): ` +
       res.map((r, i) => `\u03c9_${keys[i].slice(-1)} ${r.w.y.length ? fmt(rms(r.w.y)) : '\u2013'} ${unit}`).join(', ') + '.';
   };

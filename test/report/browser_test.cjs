@@ -26,7 +26,7 @@ const { PNG } = require('pngjs');
 
 // expectations per generated report
 const CASES = [
-  { file: 's1.html', plots: ['pointing', 'rates', 'wheels', 'wheeltorque'], absent: ['ontime', 'force', 'propellant'],
+  { file: 's1.html', plots: ['pointing', 'rates', 'wheels', 'wheeltorque', 'x-sigma_BN', 'x-wheel_cmd', 'x-E_rot'], absent: ['ontime', 'force', 'propellant'],
     replay: 'ok', dataflow: 'ok', spectrum: true, shot: true },
   { file: 's2.html', plots: ['pointing', 'rates', 'ontime', 'force', 'propellant'], absent: ['wheels', 'wheeltorque'],
     replay: 'ok', dataflow: 'ok', spectrum: true, shot: true },
@@ -94,8 +94,8 @@ async function main() {
         const r = window.kestrelReport;
         return {
           errors: r.errors, replay: r.replay || null, dataflow: r.dataflow || null,
-          cards: [...document.querySelectorAll('#plots .card')].map((e) => e.id.replace(/^plot-/, '')),
-          uplots: document.querySelectorAll('#plots .uplot canvas').length,
+          cards: [...document.querySelectorAll('#plots .card, #plots-other .card')].map((e) => e.id.replace(/^plot-/, '')),
+          uplots: document.querySelectorAll('#plots .uplot canvas, #plots-other .uplot canvas').length,
           spectrum: !!document.querySelector('#spectrum .uplot'),
           pwned: window.__pwned !== undefined,
           title: document.getElementById('meta').textContent,

@@ -88,25 +88,35 @@ function s1() {
   }
   const units = { t: 's', pointing_error_deg: 'deg', omega_BN_B_x: 'rad/s', omega_BN_B_y: 'rad/s', omega_BN_B_z: 'rad/s' };
   for (let i = 0; i < 4; i++) { units[`wheel_speed_rpm_${i}`] = 'rpm'; units[`wheel_torque_${i}`] = 'N m'; }
-  const dot = `digraph kestrel_dataflow {
-  rankdir=LR;
-  node [shape=box, style=rounded];
-  // components
-  css [label="css_array\\n(plant sensors)"]; imu; fsw_css_sun; fsw_guid_sunsafe; fsw_att_track; fsw_mrp_fb; fsw_rw_map; fsw_rw_null; plant_wheels; plant_hub;
-  // messages
-  node [shape=note];
-  CSSArrayMsg; NavAttMsg; SunHeadingMsg; AttGuidMsg; AttErrMsg; CmdTorqueMsg; RWSpeedMsg; RWTorqueMsg; HubStateMsg;
-  css -> CSSArrayMsg -> fsw_css_sun -> SunHeadingMsg -> fsw_guid_sunsafe -> AttGuidMsg -> fsw_att_track;
-  imu -> NavAttMsg; NavAttMsg -> fsw_att_track; NavAttMsg -> fsw_guid_sunsafe;
-  fsw_att_track -> AttErrMsg -> fsw_mrp_fb -> CmdTorqueMsg -> fsw_rw_map -> RWTorqueMsg -> plant_wheels;
-  fsw_rw_null -> RWTorqueMsg;
-  plant_wheels -> RWSpeedMsg; RWSpeedMsg -> fsw_rw_null; RWSpeedMsg -> fsw_mrp_fb;
-  plant_hub -> HubStateMsg; HubStateMsg -> imu; HubStateMsg -> css; plant_wheels -> plant_hub;
-}`;
+  // the harness's style: components "c:<name>" as boxes, messages "m:<name>" as ellipses
+  const comps = { css: 'plant', imu: 'plant', fsw: 'FSW application', wheels: 'plant', hub: 'plant', recorder: '' };
+  const msgs = { CssArrayMsg: ['css', ['fsw', 'recorder']], ImuMsg: ['imu', ['fsw']], RwSpeedMsg: ['wheels', ['fsw', 'recorder']],
+    RwCmdMsg: ['fsw', ['wheels', 'recorder']], CmdTorqueMsg: ['fsw', ['recorder']], AttGuidMsg: ['fsw', ['recorder']],
+    TruthMsg: ['hub', ['css', 'imu', 'recorder']], MetricsMsg: ['hub', ['recorder']] };
+  let dot = 'digraph "S1 sun pointing" {\n  rankdir=LR;\n  node [fontname="Helvetica", fontsize=10];\n';
+  for (const [c, what] of Object.entries(comps)) dot += `  "c:${c}" [shape=box, style="rounded,filled", fillcolor="#dde8f5", label="${what ? c + ' (' + what + ')' : c}"];\n`;
+  for (const m of Object.keys(msgs)) dot += `  "m:${m}" [shape=ellipse, label="${m}"];\n`;
+  for (const [m, [w, rs]] of Object.entries(msgs)) {
+    dot += `  "c:${w}" -> "m:${m}";\n`;
+    for (const r of rs) dot += `  "m:${m}" -> "c:${r}";\n`;
+  }
+  dot += '}\n';
+  // a few of the other columns the harness records
+  S.sigma_BN_x = []; S.sigma_BN_y = []; S.sigma_BN_z = []; S.E_rot = [];
+  for (let i = 0; i < 4; i++) S[`wheel_cmd_${i}`] = S[`wheel_torque_${i}`].map((v) => r6(v * 1.02));
+  for (let k = 0; k < S.t.length; k++) {
+    const j = Math.min(att.q_BN.length - 1, Math.floor(k / 5));
+    const q = att.q_BN[j];
+    const d = 1 + q[0];
+    S.sigma_BN_x.push(r6(q[1] / d)); S.sigma_BN_y.push(r6(q[2] / d)); S.sigma_BN_z.push(r6(q[3] / d));
+    S.E_rot.push(r6(0.5 * (I[0] * S.omega_BN_B_x[k] ** 2 + I[1] * S.omega_BN_B_y[k] ** 2 + I[2] * S.omega_BN_B_z[k] ** 2)));
+  }
+  Object.assign(units, { sigma_BN_x: '-', sigma_BN_y: '-', sigma_BN_z: '-', E_rot: 'J', wheel_cmd_0: 'N*m', wheel_cmd_1: 'N*m', wheel_cmd_2: 'N*m', wheel_cmd_3: 'N*m' });
   return {
-    meta: { scenario: 'S1 deep-space sun pointing (synthetic)', seed: 42, version: '0.1.0', dt, duration: T, wheel_jitter: 'fully-coupled' },
+    meta: { scenario: 'S1 deep-space sun pointing (synthetic)', description: 'Synthetic test data: tumble, rate damping, slew to the Sun, hold; 4 pyramid wheels.',
+      seed: 42, version: '0.1.0', dt, duration: T, record_period: dt, fsw_period: 0.1, fsw_mode: 'sun_safe', num_wheels: 4, num_thrusters: 0 },
     series: S, units, attitude: att,
-    geometry: { wheel_axes_B: G.map((g) => g.map(r6)), thrusters: [] },
+    geometry: { wheel_axes_B: G.map((g) => g.map(r6)), wheel_positions_B: G.map((g) => g.map((v) => r6(0.3 * v))), thrusters: [] },
     dataflow_dot: dot,
   };
 }
