@@ -1,0 +1,205 @@
+// sensors: gyro, star tracker, coarse sun sensors and wheel tachometers
+// (spec plant-dynamics §9, §10, §13).  Frames: N, B, P (gyro platform),
+// C (star-tracker case, boresight = case z).  Units: SI; time tags are
+// integer nanoseconds of the plant clock.
+//
+// Every sensor owns a random stream Rng(ctx.run_seed, params.name) and never
+// seeds itself.  update(truth) samples when truth.t_ns is a multiple of the
+// sensor's period (else the last output is held and false returned).  Draw
+// order per sample is fixed and documented per sensor, so a stream does not
+// depend on other sensors, validity or saturation.
+//
+// One switch: SensorContext::noise = false makes every sensor ideal: no
+// random draws, no random-walk or constant biases, no gyro scale-factor
+// error, no CSS bias.  What remains is the deterministic transfer: gyro
+// quantisation and saturation, CSS cosine/FOV/Kelly/scale/albedo/limits,
+// tachometer quantisation.  With those off too, outputs equal truth exactly.
+#ifndef SIM_SENSORS_H
+#define SIM_SENSORS_H
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "sim/rng.h"
+#include "sim/spacecraft.h"  // kMaxWheels, WheelArray
+
+namespace sim {
+
+struct SensorContext {
+  uint64_t run_seed = 0;  // [-] Monte Carlo run seed
+  bool noise = true;      // [-] false: all sensors ideal (see above)
+};
+
+// End-of-step truth the sensors read (§7.2 step 1).
+struct SensorTruth {
+  int64_t t_ns = 0;                                      // [ns] sample time
+  Eigen::Vector3d sigma_BN = Eigen::Vector3d::Zero();    // [-]
+  Eigen::Vector3d omega_BN_B = Eigen::Vector3d::Zero();  // [rad/s]
+  Eigen::Vector3d r_BN_N = Eigen::Vector3d::Zero();      // [m] spacecraft position
+  Eigen::Vector3d r_SunN_N = Eigen::Vector3d(149597870693.0, 0.0, 0.0);  // [m]
+  double f_illum = 1.0;                                  // [-] eclipse factor in [0, 1]
+  WheelArray Omega{};                                    // [rad/s] (num_rw) wheel speeds
+};
+
+// q(x) = sign(x) LSB floor(|x| / LSB) (§9.1); identity for lsb <= 0.
+double quantize(double x, double lsb);
+
+// ------------------------------------------------------------------ gyro
+
+struct GyroParams {
+  std::string name = "gyro";                               // stream name
+  Eigen::Matrix3d dcm_PB = Eigen::Matrix3d::Identity();    // [-] platform from body
+  int64_t period_ns = 10'000'000;                          // [ns] sample period, > 0
+  double sigma_ARW = 0.0;   // [rad/sqrt(s)]   angle random walk
+  double sigma_RRW = 0.0;   // [rad/s^(3/2)]   rate random walk (bias walk)
+  Eigen::Vector3d b0 = Eigen::Vector3d::Zero();           // [rad/s] constant bias
+  Eigen::Vector3d scale_error = Eigen::Vector3d::Zero();  // [-] diagonal; output *= 1 + e
+  double lsb = 0.0;        // [rad/s] quantisation step; 0: off
+  double omega_max = 0.0;  // [rad/s] saturation; 0: off
+};
+
+struct GyroOutput {
+  int64_t t_ns = 0;                                      // [ns] time tag
+  Eigen::Vector3d omega_PN_P = Eigen::Vector3d::Zero();  // [rad/s] measured rate
+  bool valid = false;                                    // a sample exists
+  bool saturated = false;                                // any axis clipped
+};
+
+// Per sample, with dt_s = period:  draws eta (3 normals) then nu (3 normals);
+//   w = [PB] omega + b_k + b0 + sigma_ARW / sqrt(dt_s) eta
+//   w = (1 + scale_error) .* w;  quantise;  saturate
+//   b_{k+1} = b_k + sigma_RRW sqrt(dt_s) nu            (b_0 = 0)
+class Gyro {
+ public:
+  Gyro(GyroParams p, const SensorContext& ctx);  // validates (std::invalid_argument)
+  bool update(const SensorTruth& truth);
+  const GyroOutput& output() const { return out_; }
+  const Eigen::Vector3d& bias_walk() const { return b_; }  // b_k for the next sample [rad/s]
+  const GyroParams& params() const { return p_; }
+
+ private:
+  GyroParams p_;
+  bool noise_;
+  Rng rng_;
+  Eigen::Vector3d b_ = Eigen::Vector3d::Zero();
+  GyroOutput out_;
+};
+
+// ---------------------------------------------------------- star tracker
+
+struct StarTrackerParams {
+  std::string name = "st";
+  Eigen::Matrix3d dcm_CB = Eigen::Matrix3d::Identity();  // [-] case from body
+  int64_t period_ns = 250'000'000;                        // [ns] 4 Hz default
+  double sigma_cross = 0.0;     // [rad] 1-sigma about case x and y
+  double sigma_bore = 0.0;      // [rad] 1-sigma about case z (boresight)
+  double sun_exclusion = 0.0;   // [rad] Sun-to-boresight angle below which output is invalid; 0: off
+};
+
+struct StarTrackerOutput {
+  int64_t t_ns = 0;
+  Eigen::Vector4d q_CN = Eigen::Vector4d(1.0, 0.0, 0.0, 0.0);  // [-] scalar first, q0 >= 0
+  Eigen::Vector3d sigma_CN = Eigen::Vector3d::Zero();          // [-] MRP, |sigma| <= 1
+  bool valid = false;
+};
+
+// Per sample: draws 3 normals (x, y, z);  delta = (sx n1, sx n2, sb n3) in C;
+//   [CN]_meas = exp(-[delta~]) [CB][BN].
+class StarTracker {
+ public:
+  StarTracker(StarTrackerParams p, const SensorContext& ctx);
+  bool update(const SensorTruth& truth);
+  const StarTrackerOutput& output() const { return out_; }
+  const StarTrackerParams& params() const { return p_; }
+
+ private:
+  StarTrackerParams p_;
+  bool noise_;
+  Rng rng_;
+  StarTrackerOutput out_;
+};
+
+// Scalar-first quaternion (q0 >= 0) of a DCM, Shepperd's method.
+Eigen::Vector4d quaternion_from_dcm(const Eigen::Matrix3d& dcm);
+// MRP from a scalar-first quaternion with q0 >= 0: q_v / (1 + q0).
+Eigen::Vector3d sigma_from_quaternion(const Eigen::Vector4d& q);
+
+// ---------------------------------------------------- coarse sun sensors
+
+struct CssParams {
+  std::string name = "css";
+  Eigen::Vector3d n_hat_B = Eigen::Vector3d::UnitZ();  // [-] unit normal, B
+  double fov_half = 1.5707963267948966;  // [rad] half-angle, in (0, pi/2]
+  double k_kelly = 0.0;     // [-] Kelly factor; <= 1e-10: off
+  double scale = 1.0;       // [output units] s, > 0
+  double bias = 0.0;        // [-] b, in units of gamma (cosine)
+  double sigma = 0.0;       // [-] noise 1-sigma, in units of gamma
+  double albedo = 0.0;      // [-] a, in units of gamma
+  double y_min = 0.0;       // [output units] lower output limit
+  double y_max = std::numeric_limits<double>::infinity();  // [output units] upper limit
+  int64_t period_ns = 100'000'000;  // [ns]
+};
+
+struct CssOutput {
+  int64_t t_ns = 0;
+  double y = 0.0;      // [output units]
+  double gamma = 0.0;  // [-] noise-free response before scale (for tests and logs)
+  bool valid = false;
+};
+
+// Per sample: draws 1 normal.  §9.3:
+//   s_B = [BN] unit(r_Sun - r_B); gamma = n.s if n.s >= cos(fov) else 0
+//   gamma *= 1 - exp(-gamma^2 / k_kelly)  (if on)
+//   gamma *= (1 AU / |r_Sun - r_B|)^2 f_illum
+//   y = clamp(s (gamma + a + b + sigma eta), y_min, y_max)
+class CoarseSunSensor {
+ public:
+  CoarseSunSensor(CssParams p, const SensorContext& ctx);
+  bool update(const SensorTruth& truth);
+  const CssOutput& output() const { return out_; }
+  const CssParams& params() const { return p_; }
+
+ private:
+  CssParams p_;
+  bool noise_;
+  Rng rng_;
+  CssOutput out_;
+};
+
+// -------------------------------------------------- wheel tachometers
+
+struct TachParams {
+  std::string name = "tach";
+  int num_rw = 0;                  // [-] wheels read, <= kMaxWheels
+  double sigma = 0.0;              // [rad/s] white noise 1-sigma
+  double lsb = 0.0;                // [rad/s] quantisation; 0: off
+  int64_t period_ns = 100'000'000; // [ns]
+};
+
+struct TachOutput {
+  int64_t t_ns = 0;
+  WheelArray Omega{};  // [rad/s] (num_rw)
+  bool valid = false;
+};
+
+// Per sample: draws num_rw normals, wheel 0 first.  Omega + sigma eta, quantised.
+class WheelTachometers {
+ public:
+  WheelTachometers(TachParams p, const SensorContext& ctx);
+  bool update(const SensorTruth& truth);
+  const TachOutput& output() const { return out_; }
+
+ private:
+  TachParams p_;
+  bool noise_;
+  Rng rng_;
+  TachOutput out_;
+};
+
+}  // namespace sim
+
+#endif  // SIM_SENSORS_H

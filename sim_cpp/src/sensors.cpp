@@ -1,0 +1,232 @@
+// sensors: see sim/sensors.h.  Spec plant-dynamics §9.
+#include "sim/sensors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "sim/attitude.h"
+#include "sim/environment.h"
+#include "validate_util.h"
+
+namespace sim {
+
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+using Eigen::Vector4d;
+
+constexpr double kOrthoTol = 1e-9;     // [-] max |R R^T - I| of a typed-in DCM
+constexpr double kUnitTol = 1e-9;      // [-] on |n_hat| - 1
+constexpr double kKellyOff = 1e-10;    // [-] k_kelly at or below this disables Kelly (§9.3)
+
+void require_dcm(const std::string& field, const Matrix3d& R)
+{
+  if (!R.allFinite()) detail::fail(field, R.cwiseAbs().maxCoeff(), "must be finite");
+  const double err = (R * R.transpose() - Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (err > kOrthoTol) detail::fail(field + " (max |R R^T - I|)", err, "must be orthonormal");
+  if (!(R.determinant() > 0.0)) detail::fail(field + " (det)", R.determinant(), "must be a rotation");
+}
+
+void require_period(const std::string& field, int64_t p)
+{
+  if (!(p > 0)) detail::fail(field, static_cast<double>(p), "must be > 0");
+}
+
+void require_name(const std::string& field, const std::string& n)
+{
+  if (n.empty()) detail::fail(field + ".size()", 0.0, "stream name must not be empty");
+}
+
+bool due(int64_t t_ns, int64_t period_ns) { return t_ns % period_ns == 0; }
+
+}  // namespace
+
+double quantize(double x, double lsb)
+{
+  if (!(lsb > 0.0)) return x;
+  const double q = lsb * std::floor(std::abs(x) / lsb);
+  return x < 0.0 ? -q : q;
+}
+
+// ------------------------------------------------------------------ gyro
+
+Gyro::Gyro(GyroParams p, const SensorContext& ctx)
+    : p_(std::move(p)), noise_(ctx.noise), rng_(ctx.run_seed, p_.name)
+{
+  using namespace detail;
+  const std::string n = "gyro(" + p_.name + ")";
+  require_name(n + ".name", p_.name);
+  require_dcm(n + ".dcm_PB", p_.dcm_PB);
+  require_period(n + ".period_ns", p_.period_ns);
+  require_non_negative(n + ".sigma_ARW", p_.sigma_ARW);
+  require_non_negative(n + ".sigma_RRW", p_.sigma_RRW);
+  require_finite(n + ".b0", p_.b0);
+  require_finite(n + ".scale_error", p_.scale_error);
+  if (!(p_.scale_error.minCoeff() > -1.0))
+    fail(n + ".scale_error (min)", p_.scale_error.minCoeff(), "must be > -1");
+  require_non_negative(n + ".lsb", p_.lsb);
+  require_non_negative(n + ".omega_max", p_.omega_max);
+}
+
+bool Gyro::update(const SensorTruth& truth)
+{
+  if (!due(truth.t_ns, p_.period_ns)) return false;
+  Vector3d w = p_.dcm_PB * truth.omega_BN_B;
+  if (noise_) {
+    const double dt_s = static_cast<double>(p_.period_ns) * 1e-9;
+    const Vector3d eta = rng_.normal3();
+    const Vector3d nu = rng_.normal3();
+    w += b_ + p_.b0 + (p_.sigma_ARW / std::sqrt(dt_s)) * eta;
+    w = w.cwiseProduct(Vector3d::Ones() + p_.scale_error);
+    b_ += (p_.sigma_RRW * std::sqrt(dt_s)) * nu;
+  }
+  out_.saturated = false;
+  for (int i = 0; i < 3; ++i) {
+    w(i) = quantize(w(i), p_.lsb);
+    if (p_.omega_max > 0.0 && std::abs(w(i)) > p_.omega_max) {
+      w(i) = std::copysign(p_.omega_max, w(i));
+      out_.saturated = true;
+    }
+  }
+  out_.omega_PN_P = w;
+  out_.t_ns = truth.t_ns;
+  out_.valid = true;
+  return true;
+}
+
+// ---------------------------------------------------------- star tracker
+
+Vector4d quaternion_from_dcm(const Matrix3d& C)
+{
+  const double tr = C.trace();
+  const double b2[4] = {0.25 * (1.0 + tr), 0.25 * (1.0 + 2.0 * C(0, 0) - tr),
+                        0.25 * (1.0 + 2.0 * C(1, 1) - tr), 0.25 * (1.0 + 2.0 * C(2, 2) - tr)};
+  const int i = static_cast<int>(std::max_element(b2, b2 + 4) - b2);
+  Vector4d q;
+  // Products from C = (q0^2 - qv.qv) I + 2 qv qv^T - 2 q0 [qv~] (Shepperd).
+  const double p01 = 0.25 * (C(1, 2) - C(2, 1)), p02 = 0.25 * (C(2, 0) - C(0, 2));
+  const double p03 = 0.25 * (C(0, 1) - C(1, 0)), p12 = 0.25 * (C(0, 1) + C(1, 0));
+  const double p13 = 0.25 * (C(2, 0) + C(0, 2)), p23 = 0.25 * (C(1, 2) + C(2, 1));
+  const double s = std::sqrt(b2[i]);
+  switch (i) {
+    case 0: q << s, p01 / s, p02 / s, p03 / s; break;
+    case 1: q << p01 / s, s, p12 / s, p13 / s; break;
+    case 2: q << p02 / s, p12 / s, s, p23 / s; break;
+    default: q << p03 / s, p13 / s, p23 / s, s; break;
+  }
+  if (q(0) < 0.0) q = -q;
+  return q / q.norm();
+}
+
+Vector3d sigma_from_quaternion(const Vector4d& q)
+{
+  return q.tail<3>() / (1.0 + q(0));
+}
+
+StarTracker::StarTracker(StarTrackerParams p, const SensorContext& ctx)
+    : p_(std::move(p)), noise_(ctx.noise), rng_(ctx.run_seed, p_.name)
+{
+  using namespace detail;
+  const std::string n = "star_tracker(" + p_.name + ")";
+  require_name(n + ".name", p_.name);
+  require_dcm(n + ".dcm_CB", p_.dcm_CB);
+  require_period(n + ".period_ns", p_.period_ns);
+  require_non_negative(n + ".sigma_cross", p_.sigma_cross);
+  require_non_negative(n + ".sigma_bore", p_.sigma_bore);
+  require_non_negative(n + ".sun_exclusion", p_.sun_exclusion);
+}
+
+bool StarTracker::update(const SensorTruth& truth)
+{
+  if (!due(truth.t_ns, p_.period_ns)) return false;
+  const Matrix3d dcm_BN = dcm_BN_from_sigma(truth.sigma_BN);
+  Matrix3d dcm_CN = p_.dcm_CB * dcm_BN;
+  if (noise_) {
+    const Vector3d eta = rng_.normal3();
+    const Vector3d delta(p_.sigma_cross * eta.x(), p_.sigma_cross * eta.y(), p_.sigma_bore * eta.z());
+    dcm_CN = rotation_from_vector(-delta) * dcm_CN;
+  }
+  out_.q_CN = quaternion_from_dcm(dcm_CN);
+  out_.sigma_CN = sigma_from_quaternion(out_.q_CN);
+  out_.valid = true;
+  if (p_.sun_exclusion > 0.0) {
+    const Vector3d s_C = p_.dcm_CB * sun_direction_B(dcm_BN, truth.r_BN_N, truth.r_SunN_N);
+    if (std::acos(std::clamp(s_C.z(), -1.0, 1.0)) < p_.sun_exclusion) out_.valid = false;
+  }
+  out_.t_ns = truth.t_ns;
+  return true;
+}
+
+// ---------------------------------------------------- coarse sun sensors
+
+CoarseSunSensor::CoarseSunSensor(CssParams p, const SensorContext& ctx)
+    : p_(std::move(p)), noise_(ctx.noise), rng_(ctx.run_seed, p_.name)
+{
+  using namespace detail;
+  const std::string n = "css(" + p_.name + ")";
+  require_name(n + ".name", p_.name);
+  require_finite(n + ".n_hat_B", p_.n_hat_B);
+  if (std::abs(p_.n_hat_B.norm() - 1.0) > kUnitTol) fail_vec(n + ".n_hat_B", p_.n_hat_B, "must be a unit vector");
+  require_positive(n + ".fov_half", p_.fov_half);
+  if (p_.fov_half > 0.5 * 3.14159265358979323846 + 1e-15)
+    fail(n + ".fov_half", p_.fov_half, "must be <= pi/2");
+  require_finite(n + ".k_kelly", p_.k_kelly);
+  require_positive(n + ".scale", p_.scale);
+  require_finite(n + ".bias", p_.bias);
+  require_non_negative(n + ".sigma", p_.sigma);
+  require_finite(n + ".albedo", p_.albedo);
+  if (std::isnan(p_.y_min)) fail(n + ".y_min", p_.y_min, "must not be NaN");
+  if (std::isnan(p_.y_max) || !(p_.y_max > p_.y_min)) fail(n + ".y_max", p_.y_max, "must be > y_min");
+  require_period(n + ".period_ns", p_.period_ns);
+}
+
+bool CoarseSunSensor::update(const SensorTruth& truth)
+{
+  if (!due(truth.t_ns, p_.period_ns)) return false;
+  const Matrix3d dcm_BN = dcm_BN_from_sigma(truth.sigma_BN);
+  const Vector3d s_B = sun_direction_B(dcm_BN, truth.r_BN_N, truth.r_SunN_N);
+  const double cos_inc = p_.n_hat_B.dot(s_B);
+  double gamma = cos_inc >= std::cos(p_.fov_half) ? cos_inc : 0.0;
+  if (p_.k_kelly > kKellyOff) gamma *= 1.0 - std::exp(-gamma * gamma / p_.k_kelly);
+  gamma *= solar_flux_scale(truth.r_BN_N, truth.r_SunN_N) * truth.f_illum;
+  double signal = gamma + p_.albedo;
+  if (noise_) signal += p_.bias + p_.sigma * rng_.normal();
+  out_.gamma = gamma;
+  out_.y = std::clamp(p_.scale * signal, p_.y_min, p_.y_max);
+  out_.t_ns = truth.t_ns;
+  out_.valid = true;
+  return true;
+}
+
+// -------------------------------------------------- wheel tachometers
+
+WheelTachometers::WheelTachometers(TachParams p, const SensorContext& ctx)
+    : p_(std::move(p)), noise_(ctx.noise), rng_(ctx.run_seed, p_.name)
+{
+  using namespace detail;
+  const std::string n = "tach(" + p_.name + ")";
+  require_name(n + ".name", p_.name);
+  if (p_.num_rw < 0 || p_.num_rw > kMaxWheels)
+    fail(n + ".num_rw", p_.num_rw, "must be in [0, kMaxWheels]");
+  require_non_negative(n + ".sigma", p_.sigma);
+  require_non_negative(n + ".lsb", p_.lsb);
+  require_period(n + ".period_ns", p_.period_ns);
+}
+
+bool WheelTachometers::update(const SensorTruth& truth)
+{
+  if (!due(truth.t_ns, p_.period_ns)) return false;
+  for (int i = 0; i < p_.num_rw; ++i) {
+    const auto ui = static_cast<size_t>(i);
+    double w = truth.Omega[ui];
+    if (noise_) w += p_.sigma * rng_.normal();
+    out_.Omega[ui] = quantize(w, p_.lsb);
+  }
+  out_.t_ns = truth.t_ns;
+  out_.valid = true;
+  return true;
+}
+
+}  // namespace sim
