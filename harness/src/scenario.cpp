@@ -125,7 +125,14 @@ class MapReader {
 
   const std::string& path() const { return path_; }
   const YAML::Node& node() const { return node_; }
-  std::string key_path(const std::string& key) const { return join(path_, key); }
+  // Keys merged in from another map (wheel_defaults) are named by where they
+  // are written, e.g. wheel_defaults.model.
+  std::string key_path(const std::string& key) const
+  {
+    auto it = alias_.find(key);
+    return it != alias_.end() ? join(it->second, key) : join(path_, key);
+  }
+  void set_alias(const std::string& key, const std::string& origin) { alias_[key] = origin; }
 
   bool has(const std::string& key) const { return !synthetic_ && node_[key].IsDefined(); }
 
@@ -307,6 +314,9 @@ class MapReader {
       ctx_->error(v, kp, "must be a unit vector (|v| = 1 within " + fmt(kUnitTol) + "), |v| = " + fmt(n));
       return std::nullopt;
     }
+    // Renormalise, but leave an already-normalised vector bit-for-bit alone
+    // so a manifest reloads to exactly the same values.
+    if (std::fabs(n - 1.0) <= 4.0 * std::numeric_limits<double>::epsilon()) return *u;
     return Eigen::Vector3d(*u / n);
   }
 
@@ -403,6 +413,7 @@ class MapReader {
   std::string path_;
   bool synthetic_ = false;
   std::set<std::string> used_;
+  std::map<std::string, std::string> alias_;
 };
 
 // ---- checks ------------------------------------------------------------------
@@ -503,6 +514,7 @@ WheelSpec read_wheel(const Ctx& ctx, const YAML::Node& node, const YAML::Node& d
     }
   }
   MapReader r(ctx, merged, path);
+  for (const std::string& k : from_defaults) r.set_alias(k, "wheel_defaults");
   sim::ReactionWheelParams& p = w.params;
   if (auto v = r.string("name")) w.name = *v;
   if (auto m = r.choice("model", {"balanced", "simple_jitter", "fully_coupled"}))
@@ -543,8 +555,8 @@ WheelSpec read_wheel(const Ctx& ctx, const YAML::Node& node, const YAML::Node& d
   if (auto v = f.real("omega_lc", positive("rad/s"))) p.friction.omega_lc = *v;
   f.finish();
   // Cross-field physics (reported on the wheel map).
-  if (p.model == sim::WheelModel::FullyCoupled && !(p.m_w > 0.0) && !(p.U_s == 0.0))
-    r.error_at("m_w", "a fully_coupled wheel with static imbalance U_s > 0 needs a rotor mass m_w > 0");
+  if (p.model == sim::WheelModel::FullyCoupled && !(p.m_w > 0.0))
+    r.error_at(r.has("m_w") ? "m_w" : "model", "a fully_coupled wheel needs a rotor mass m_w > 0 [kg]");
   if (p.u_min > 0.0 && p.u_max > 0.0 && p.u_min >= p.u_max)
     r.error_at("u_min", "must be < u_max (" + fmt(p.u_max) + " N*m)");
   if (p.Omega_max > 0.0 && std::fabs(p.Omega_0) > p.Omega_max)
@@ -561,7 +573,6 @@ WheelSpec read_wheel(const Ctx& ctx, const YAML::Node& node, const YAML::Node& d
     for (const auto& is : *ctx.issues) already = already || is.key.rfind(path, 0) == 0;
     if (!already) ctx.error(node, path, e.what());
   }
-  (void)from_defaults;
   return w;
 }
 

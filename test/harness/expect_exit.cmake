@@ -1,0 +1,11 @@
+# cmake -DEXE=... -DARGS="a;b" -DWANT=<code> [-DEXPECT=<stdout fragment>] -P expect_exit.cmake
+if(ARGS STREQUAL "no_args")
+  set(ARGS "")
+endif()
+execute_process(COMMAND ${EXE} ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc STREQUAL "${WANT}")
+  message(FATAL_ERROR "kestrel ${ARGS}: exit ${rc}, want ${WANT}\nstdout: ${out}\nstderr: ${err}")
+endif()
+if(DEFINED EXPECT AND NOT out MATCHES "${EXPECT}")
+  message(FATAL_ERROR "kestrel ${ARGS}: stdout lacks '${EXPECT}':\n${out}")
+endif()

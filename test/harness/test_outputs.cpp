@@ -1,0 +1,194 @@
+// Results: HDF5 round trip (columns, units, attributes, chunking, deflate),
+// CSV, report_data.json schema, and reproducibility from the manifest.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/commands.h"
+#include "harness/outputs.h"
+#include "harness/run.h"
+#include "harness/scenario.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kS1 = std::string(KESTREL_SOURCE_DIR) + "/scenarios/s1_sun_pointing.yaml";
+
+fs::path fresh_dir(const std::string& name)
+{
+  const fs::path d = fs::temp_directory_path() / ("kestrel_test_" + name);
+  fs::remove_all(d);
+  return d;
+}
+
+std::string slurp(const fs::path& p)
+{
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A short S1: 30 s, balanced wheels, 0.05 s steps.
+harness::Scenario short_s1(uint64_t seed = 11)
+{
+  return harness::load_scenario(kS1, {{"duration", "30"},
+                                      {"rates.dt", "0.05"},
+                                      {"rates.fsw_divisor", "2"},
+                                      {"rates.record_divisor", "4"},
+                                      {"wheel_defaults.model", "balanced"},
+                                      {"outputs.csv", "true"},
+                                      {"seed", std::to_string(seed)}});
+}
+
+}  // namespace
+
+TEST(Outputs, Hdf5RoundTrip)
+{
+  const fs::path dir = fresh_dir("h5");
+  const harness::Scenario sc = short_s1();
+  harness::RunOptions opt;
+  opt.out_dir = dir.string();
+  const harness::RunResult r = harness::run_scenario(sc, opt);
+  ASSERT_TRUE(r.ok) << r.failure;
+
+  // the same table in memory, for comparison
+  harness::Run run(sc);
+  run.step_ticks(run.total_ticks());
+  const harness::Recorder& rec = run.recorder();
+  // 30 s at 0.05 s = 600 steps, ticks 0..600, every 4th: 0,4,...,600 -> 151 rows
+  ASSERT_EQ(rec.rows(), 151u);
+
+  const harness::Hdf5Table t = harness::read_hdf5((dir / "results.h5").string());
+  EXPECT_EQ(t.rows, 151u);
+  ASSERT_EQ(t.names.size(), rec.num_columns());
+  ASSERT_EQ(t.units.size(), rec.num_columns());
+  for (size_t c = 0; c < rec.num_columns(); ++c) {
+    EXPECT_EQ(t.names[c], rec.columns()[c].name);
+    EXPECT_EQ(t.units[c], rec.columns()[c].unit);
+  }
+  EXPECT_EQ(t.names[0], "t");
+  EXPECT_EQ(t.units[0], "s");
+  for (uint64_t row = 0; row < t.rows; ++row)
+    for (size_t c = 0; c < rec.num_columns(); ++c)
+      ASSERT_EQ(t.data[row * rec.num_columns() + c], rec.at(row, c)) << row << " " << t.names[c];
+  EXPECT_EQ(t.data[150 * rec.num_columns()], 30.0);  // last t
+  EXPECT_EQ(t.seed, 11u);
+  EXPECT_EQ(t.version, std::string(harness::version()));
+  EXPECT_EQ(t.scenario, "s1_sun_pointing");
+  EXPECT_EQ(t.dt, 0.05);
+  EXPECT_EQ(t.duration, 30.0);
+  EXPECT_TRUE(t.chunked);
+  EXPECT_TRUE(t.deflate);
+  EXPECT_EQ(t.manifest, slurp(dir / "manifest.json"));
+}
+
+TEST(Outputs, CsvHeaderAndValues)
+{
+  const fs::path dir = fresh_dir("csv");
+  harness::RunOptions opt;
+  opt.out_dir = dir.string();
+  ASSERT_TRUE(harness::run_scenario(short_s1(), opt).ok);
+  std::ifstream in(dir / "telemetry.csv");
+  std::string header, row0;
+  std::getline(in, header);
+  std::getline(in, row0);
+  EXPECT_EQ(header.rfind("t [s],pointing_error_deg [deg],sigma_BN_x [-]", 0), 0u) << header;
+  EXPECT_EQ(row0.rfind("0,", 0), 0u);
+  size_t lines = 2;
+  std::string l;
+  while (std::getline(in, l)) ++lines;
+  EXPECT_EQ(lines, 152u);  // header + 151 rows
+}
+
+TEST(Outputs, ReportDataSchema)
+{
+  const fs::path dir = fresh_dir("report");
+  harness::RunOptions opt;
+  opt.out_dir = dir.string();
+  ASSERT_TRUE(harness::run_scenario(short_s1(), opt).ok);
+  const auto j = nlohmann::json::parse(slurp(dir / "report_data.json"));
+  for (const char* k : {"meta", "series", "units", "attitude", "geometry", "dataflow_dot"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["meta"]["scenario"], "s1_sun_pointing");
+  EXPECT_EQ(j["meta"]["seed"], 11);
+  EXPECT_EQ(j["meta"]["dt"], 0.05);
+  EXPECT_EQ(j["meta"]["duration"], 30.0);
+  const auto& s = j["series"];
+  for (const char* k : {"t", "pointing_error_deg", "omega_BN_B_x", "omega_BN_B_y", "omega_BN_B_z",
+                        "wheel_speed_rpm_0", "wheel_speed_rpm_3", "wheel_torque_0", "wheel_torque_3"}) {
+    ASSERT_TRUE(s.contains(k)) << k;
+    EXPECT_EQ(s[k].size(), 151u) << k;
+    EXPECT_TRUE(j["units"].contains(k)) << k;
+  }
+  EXPECT_EQ(j["units"]["wheel_speed_rpm_0"], "rpm");
+  EXPECT_EQ(j["units"]["pointing_error_deg"], "deg");
+  // first recorded wheel speed is the configured 100 rpm
+  EXPECT_NEAR(s["wheel_speed_rpm_0"][0].get<double>(), 100.0, 1e-9);
+  ASSERT_EQ(j["attitude"]["q_BN"].size(), 151u);
+  const auto& q0 = j["attitude"]["q_BN"][0];
+  // sigma = (0.1, 0.2, -0.3): s2 = 0.14, beta0 = 0.86/1.14, beta_v = 2 sigma / 1.14
+  EXPECT_NEAR(q0[0].get<double>(), 0.86 / 1.14, 1e-15);
+  EXPECT_NEAR(q0[1].get<double>(), 0.2 / 1.14, 1e-15);
+  EXPECT_NEAR(q0[3].get<double>(), -0.6 / 1.14, 1e-15);
+  ASSERT_EQ(j["geometry"]["wheel_axes_B"].size(), 4u);
+  EXPECT_NEAR(j["geometry"]["wheel_axes_B"][0][2].get<double>(), std::sin(40.0 * M_PI / 180.0), 1e-6);
+  EXPECT_TRUE(j["geometry"]["thrusters"].is_array());
+  const std::string dot = j["dataflow_dot"];
+  EXPECT_EQ(dot.rfind("digraph", 0), 0u);
+  EXPECT_NE(dot.find("\"c:mrp_fb\" -> \"m:cmd_torque\""), std::string::npos);
+  EXPECT_EQ(slurp(dir / "dataflow.dot"), dot);
+}
+
+TEST(Outputs, RunFromManifestReproducesResults)
+{
+  const fs::path d1 = fresh_dir("repro1"), d2 = fresh_dir("repro2");
+  std::ostringstream out, err;
+  harness::RunCommand c;
+  c.scenario = kS1;
+  c.out_dir = d1.string();
+  c.sets = {"duration=20", "rates.dt=0.05", "rates.fsw_divisor=2", "wheel_defaults.model=fully_coupled",
+            "fsw.mrp_fb.K=4.0", "seed=1234"};
+  ASSERT_EQ(harness::cmd_run(c, out, err), harness::kExitOk) << err.str();
+  harness::RunCommand c2;
+  c2.scenario = (d1 / "manifest.json").string();
+  c2.out_dir = d2.string();
+  ASSERT_EQ(harness::cmd_run(c2, out, err), harness::kExitOk) << err.str();
+  const harness::Hdf5Table a = harness::read_hdf5((d1 / "results.h5").string());
+  const harness::Hdf5Table b = harness::read_hdf5((d2 / "results.h5").string());
+  EXPECT_EQ(a.seed, 1234u);
+  EXPECT_EQ(b.seed, 1234u);
+  EXPECT_EQ(a.names, b.names);
+  ASSERT_EQ(a.data.size(), b.data.size());
+  EXPECT_TRUE(a.data == b.data);  // bit-identical
+  EXPECT_EQ(slurp(d1 / "report_data.json"), slurp(d2 / "report_data.json"));
+  // the manifest of the rerun describes the same scenario
+  const auto m1 = nlohmann::json::parse(slurp(d1 / "manifest.json"));
+  const auto m2 = nlohmann::json::parse(slurp(d2 / "manifest.json"));
+  EXPECT_EQ(m1["scenario"], m2["scenario"]);
+  EXPECT_EQ(m1["scenario"]["fsw"]["mrp_fb"]["K"], 4.0);
+  EXPECT_EQ(m1["overrides"].size(), 6u);
+}
+
+TEST(Outputs, UnwritableDirectoryIsAnOutputError)
+{
+  std::ostringstream out, err;
+  harness::RunCommand c;
+  c.scenario = kS1;
+  c.out_dir = "/proc/kestrel_cannot_write_here";
+  c.sets = {"duration=1"};
+  EXPECT_EQ(harness::cmd_run(c, out, err), harness::kExitOutput) << err.str();
+  EXPECT_NE(err.str().find("kestrel_cannot_write_here"), std::string::npos);
+}
+
+TEST(Outputs, ListShowsShippedScenarios)
+{
+  std::ostringstream out, err;
+  EXPECT_EQ(harness::cmd_list(std::string(KESTREL_SOURCE_DIR) + "/scenarios", out, err), harness::kExitOk);
+  EXPECT_NE(out.str().find("s1_sun_pointing.yaml"), std::string::npos);
+}
