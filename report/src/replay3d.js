@@ -78,10 +78,16 @@ export function buildReplay(root, D, status) {
   let hx = 0.5;
   let hy = 0.5;
   let hz = 0.5;
-  if (thrusters.length) {
-    hx = Math.max(0.2, ...thrusters.map((t) => Math.abs(t.r.x) * 0.9));
-    hy = Math.max(0.2, ...thrusters.map((t) => Math.abs(t.r.y) * 0.9));
-    hz = Math.max(0.2, ...thrusters.map((t) => Math.abs(t.r.z) * 0.9));
+  // the bus: thrusters on its faces (0.9 of their offsets), wheels inside it
+  const pts = thrusters.map((t) => t.r.clone().multiplyScalar(0.9)).concat(wheelPos.filter(Boolean).map((p) => p.clone().multiplyScalar(1.15)));
+  if (pts.length) {
+    hx = Math.max(0.2, ...pts.map((p) => Math.abs(p.x)));
+    hy = Math.max(0.2, ...pts.map((p) => Math.abs(p.y)));
+    hz = Math.max(0.2, ...pts.map((p) => Math.abs(p.z)));
+    const m = Math.max(hx, hy, hz);
+    hx = Math.max(hx, 0.35 * m);
+    hy = Math.max(hy, 0.35 * m);
+    hz = Math.max(hz, 0.35 * m);
   }
   const S = Math.max(hx, hy, hz); // characteristic size [m]
   const scene = new Scene();
