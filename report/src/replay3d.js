@@ -39,6 +39,13 @@ function line(a, b, color, opacity = 1) {
   return new Line(g, new LineBasicMaterial({ color, transparent: opacity < 1, opacity }));
 }
 
+// no spread of long arrays into Math.max (argument-count limits)
+function maxAbs(a) {
+  let m = 0;
+  if (a) for (const v of a) if (typeof v === 'number' && Math.abs(v) > m) m = Math.abs(v);
+  return m;
+}
+
 function webglAvailable() {
   try {
     const c = document.createElement('canvas');
@@ -139,7 +146,7 @@ export function buildReplay(root, D, status) {
     const k = wheelSpeedKeys.find((w) => w.index === i) || wheelSpeedKeys[i];
     return k ? alignSeries(series[k.key], t.length) : null;
   });
-  const maxRpm = Math.max(1, ...wheelSpeeds.flatMap((s) => (s ? s.filter((v) => v !== null).map(Math.abs) : [])));
+  const maxRpm = wheelSpeeds.reduce((m, s) => Math.max(m, maxAbs(s)), 1);
   const spinners = wheelAxes.map((a, i) => {
     const color = PALETTE[(i + 3) % PALETTE.length];
     const holder = new Group();
@@ -172,7 +179,7 @@ export function buildReplay(root, D, status) {
     const src = fk || ok;
     if (!src) return null;
     const y = alignSeries(series[src.key], t.length);
-    const mx = Math.max(1e-300, ...y.filter((v) => v !== null).map(Math.abs));
+    const mx = Math.max(1e-300, maxAbs(y));
     return y.map((v) => (v === null ? 0 : Math.min(1, Math.abs(v) / mx)));
   });
   const plumes = thrusters.map((th, i) => {

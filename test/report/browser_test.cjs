@@ -32,6 +32,7 @@ const CASES = [
     replay: 'ok', dataflow: 'ok', spectrum: true, shot: true },
   { file: 'hostile.html', plots: ['pointing', 'rates', 'wheels', 'wheeltorque', 'x-extra_thing'], replay: 'ok',
     dataflow: 'unreadable', title: 'hostile </script><script>window.__pwned=1</script><!-- "quotes"' },
+  { file: 'long.html', plots: ['pointing', 'rates', 'wheels'], replay: 'ok', dataflow: 'absent', spectrum: true },
   { file: 'minimal.html', plots: [], replay: 'ok', dataflow: 'absent' },
   { file: 'empty.html', plots: [], replay: 'ok', dataflow: 'absent' },
 ];

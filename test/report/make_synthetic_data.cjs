@@ -7,6 +7,7 @@
 //                 pulsed ACS thrusters, propellant; DOT with labelled edges
 //   minimal.json  meta and t only
 //   empty.json    {}
+//   long.json     200 001 samples of a few series (decimation, big arrays)
 //   hostile.json  </script>, <!-- and quotes in strings, NaN-like nulls, ragged
 //                 series, a malformed DOT
 // Usage: node make_synthetic_data.cjs OUTDIR
@@ -219,7 +220,34 @@ function hostile() {
   return d;
 }
 
+// a long record (200 001 samples): decimation, and no argument-count limits
+function long() {
+  const n = 200001;
+  const dt = 0.01;
+  const S = { t: new Array(n), pointing_error_deg: new Array(n), omega_BN_B_x: new Array(n), omega_BN_B_y: new Array(n), omega_BN_B_z: new Array(n) };
+  for (let i = 0; i < 4; i++) S[`wheel_speed_rpm_${i}`] = new Array(n);
+  const att = { t: [], q_BN: [] };
+  for (let k = 0; k < n; k++) {
+    const t = k * dt;
+    S.t[k] = Number(t.toFixed(2));
+    S.pointing_error_deg[k] = Number((10 * Math.exp(-t / 200) + 0.01 * Math.abs(Math.sin(3 * t))).toPrecision(4));
+    S.omega_BN_B_x[k] = Number((1e-3 * Math.exp(-t / 200) * Math.cos(0.05 * t) + 1e-6 * Math.sin(2 * Math.PI * 12.5 * t)).toPrecision(4));
+    S.omega_BN_B_y[k] = Number((1e-6 * Math.sin(2 * Math.PI * 7 * t)).toPrecision(4));
+    S.omega_BN_B_z[k] = Number((1e-4 * Math.exp(-t / 300)).toPrecision(4));
+    for (let i = 0; i < 4; i++) S[`wheel_speed_rpm_${i}`][k] = Number((1000 * (i + 1) * Math.cos(1e-3 * t + i)).toPrecision(4));
+    if (k % 10 === 0) {
+      const a = 0.5 * (10 * Math.exp(-t / 200)) * Math.PI / 180;
+      att.t.push(S.t[k]);
+      att.q_BN.push([Math.cos(a), 0, Number(Math.sin(a).toPrecision(6)), 0]);
+    }
+  }
+  const G = [[0.5417, 0.5417, 0.6428], [-0.5417, 0.5417, 0.6428], [-0.5417, -0.5417, 0.6428], [0.5417, -0.5417, 0.6428]];
+  return { meta: { scenario: 'long record (synthetic)', dt, duration: (n - 1) * dt }, series: S, units: { omega_BN_B_x: 'rad/s' },
+    attitude: att, geometry: { wheel_axes_B: G } };
+}
+
 fs.writeFileSync(path.join(out, 's1.json'), JSON.stringify(s1()));
+fs.writeFileSync(path.join(out, 'long.json'), JSON.stringify(long()));
 fs.writeFileSync(path.join(out, 's2.json'), JSON.stringify(s2()));
 fs.writeFileSync(path.join(out, 'minimal.json'), JSON.stringify({ meta: { scenario: 'minimal', dt: 1, duration: 2 }, series: { t: [0, 1, 2] } }));
 fs.writeFileSync(path.join(out, 'empty.json'), '{}');
