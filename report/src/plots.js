@@ -39,6 +39,45 @@ export function decimate(t, ys) {
 
 const plots = [];
 
+// The replay's time, drawn as a vertical line on every time plot; a click
+// (not a drag) on a plot moves the replay to that time.
+let markerTime = null;
+let markerPending = false;
+export function setMarkerTime(t) {
+  markerTime = t;
+  if (markerPending) return;
+  markerPending = true;
+  requestAnimationFrame(() => {
+    markerPending = false;
+    for (const u of plots) u.redraw(false, false);
+  });
+}
+
+function drawMarker(u) {
+  if (markerTime === null || !u.scales.x || !(markerTime >= u.scales.x.min && markerTime <= u.scales.x.max)) return;
+  const x = Math.round(u.valToPos(markerTime, 'x', true));
+  const { ctx, bbox } = u;
+  ctx.save();
+  ctx.strokeStyle = 'rgba(230, 120, 20, 0.9)';
+  ctx.lineWidth = Math.max(1, window.devicePixelRatio || 1);
+  ctx.setLineDash([4, 3]);
+  ctx.beginPath();
+  ctx.moveTo(x, bbox.top);
+  ctx.lineTo(x, bbox.top + bbox.height);
+  ctx.stroke();
+  ctx.restore();
+}
+
+function clickToTime(u) {
+  let down = null;
+  u.over.addEventListener('mousedown', (e) => { down = [e.clientX, e.clientY]; });
+  u.over.addEventListener('mouseup', (e) => {
+    if (!down || Math.hypot(e.clientX - down[0], e.clientY - down[1]) > 3) return;
+    const t = u.posToVal(e.clientX - u.over.getBoundingClientRect().left, 'x');
+    if (Number.isFinite(t)) window.dispatchEvent(new CustomEvent('kestrel:time', { detail: t }));
+  });
+}
+
 function syncX(u) {
   const min = u.scales.x.min;
   const max = u.scales.x.max;
@@ -92,9 +131,10 @@ export function addTimePlot(grid, t, spec) {
           value: (self, v) => (v === null || v === undefined ? '\u2013' : fmtTick(v)),
         })),
       ],
-      hooks: { setScale: [(self, key) => { if (key === 'x') syncX(self); }] },
+      hooks: { setScale: [(self, key) => { if (key === 'x') syncX(self); }], draw: [drawMarker] },
     };
     u = new uPlot(opts, [tx, ...yd], holder);
+    clickToTime(u);
     plots.push(u);
   };
   if (spec.log !== undefined) {

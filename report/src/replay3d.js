@@ -10,7 +10,7 @@ import {
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { indexedKeys, alignSeries, isNumArray, sampleIndex, el, fmt } from './data.js';
 import { attitudeSamples } from './attitude.js';
-import { PALETTE, AXIS_COLORS } from './plots.js';
+import { PALETTE, AXIS_COLORS, setMarkerTime } from './plots.js';
 
 function label(text, color, size) {
   const c = document.createElement('canvas');
@@ -243,7 +243,7 @@ export function buildReplay(root, D, status) {
   card.appendChild(el('p', { class: 'note', text:
     'Inertial frame N (faint axes n1 n2 n3); body axes b1 (red), b2 (green), b3 (blue); wheel spin axes w0.. with discs that turn with the sign ' +
     'of the wheel speed and brighten with its magnitude; thruster plumes (orange) along -dir_B, length proportional to the force ' +
-    '(or on-time). Drag to orbit, wheel to zoom.' }));
+    '(or on-time). Drag to orbit, wheel to zoom. The replay time is the dashed orange line on the time plots; click a plot to jump there.' }));
 
   const pe = isNumArray(series.pointing_error_deg) ? alignSeries(series.pointing_error_deg, t.length) : null;
   const qa = new Quaternion();
@@ -283,7 +283,9 @@ export function buildReplay(root, D, status) {
     if (plumes.length) parts.push(`${firing}/${plumes.length} thrusters firing`);
     readout.textContent = parts.join('   \u00b7   ');
     if (span > 0) slider.value = String(Math.round(((tNow - t0) / span) * 10000));
+    setMarkerTime(tNow);
   };
+  window.addEventListener('kestrel:time', (e) => setTime(Number(e.detail)));
   slider.addEventListener('input', () => setTime(t0 + (Number(slider.value) / 10000) * span));
   play.addEventListener('click', () => {
     if (!playing && tNow >= t1) setTime(t0);

@@ -1,6 +1,6 @@
 // Jitter spectrum card: Welch ASD of the body rates over a chosen window.
 import uPlot from 'uplot';
-import { alignSeries, isNumArray, el, fmt } from './data.js';
+import { alignSeries, isNumArray, indexedKeys, el, fmt } from './data.js';
 import { uniformWindow, welch, rms } from './spectrum.js';
 import { AXIS_COLORS, rateDisplay, fmtTick } from './plots.js';
 
@@ -9,6 +9,7 @@ import { AXIS_COLORS, rateDisplay, fmtTick } from './plots.js';
 // without a pointing error, or if fewer than 256 samples would remain, it
 // is the second half of the run.
 const SETTLED_DEG = 1.0;
+const ok0 = (res) => res.find((r) => r.s) || null;
 export function defaultWindowStart(t, pe) {
   const n = t.length;
   const half = t[0] + 0.5 * (t[n - 1] - t[0]);
@@ -49,6 +50,26 @@ export function buildSpectrum(root, D) {
       const w = uniformWindow(t, y, Number.isFinite(a) ? a : -Infinity, Number.isFinite(b) ? b : Infinity);
       return { w, s: welch(w.y, w.dt) };
     });
+    // mean wheel speed over the window: the imbalance lines sit at |rpm|/60 Hz
+    const wheelLines = [];
+    for (const { index, key } of indexedKeys(series, 'wheel_speed_rpm_')) {
+      const w = alignSeries(series[key], t.length);
+      let sum = 0;
+      let cnt = 0;
+      for (let i = 0; i < t.length; i++) {
+        if (w[i] !== null && t[i] >= (Number.isFinite(a) ? a : -Infinity) && t[i] <= (Number.isFinite(b) ? b : Infinity)) { sum += Math.abs(w[i]); cnt++; }
+      }
+      if (cnt) wheelLines.push({ name: 'w' + index, f: sum / cnt / 60 });
+    }
+    // above the Nyquist frequency a wheel's line shows folded (aliased) back
+    const fsWin = ok0(res) ? 1 / ok0(res).w.dt : NaN;
+    for (const wl of wheelLines) {
+      if (Number.isFinite(fsWin) && wl.f > fsWin / 2) {
+        wl.f = Math.abs(wl.f - fsWin * Math.round(wl.f / fsWin));
+        wl.name += ' (alias)';
+        wl.alias = true;
+      }
+    }
     if (u) { u.destroy(); u = null; }
     const ok = res.filter((r) => r.s);
     if (!ok.length) {
@@ -68,9 +89,30 @@ export function buildSpectrum(root, D) {
         { label: 'f [Hz]', value: (s, v) => (v == null ? '\u2013' : fmtTick(v)) },
         ...keys.map((k, i) => ({ label: '\u03c9_' + k.slice(-1), stroke: AXIS_COLORS['xyz'.indexOf(k.slice(-1))], width: 1.25, value: (s, v) => (v == null ? '\u2013' : fmtTick(v)) })),
       ],
+      hooks: { draw: [(self) => {
+        const { ctx, bbox } = self;
+        ctx.save();
+        ctx.strokeStyle = 'rgba(120, 120, 140, 0.7)';
+        ctx.fillStyle = 'rgba(80, 80, 100, 0.9)';
+        ctx.font = `${Math.round(10 * (window.devicePixelRatio || 1))}px sans-serif`;
+        ctx.setLineDash([3, 3]);
+        const dpr = window.devicePixelRatio || 1;
+        wheelLines.forEach((wl, i) => {
+          if (!(wl.f >= self.scales.x.min && wl.f <= self.scales.x.max)) return;
+          const x = Math.round(self.valToPos(wl.f, 'x', true));
+          ctx.beginPath();
+          ctx.moveTo(x, bbox.top);
+          ctx.lineTo(x, bbox.top + bbox.height);
+          ctx.stroke();
+          ctx.fillText(wl.name, x + 3, bbox.top + (12 + 12 * (i % 4)) * dpr); // staggered: lines can be close
+        });
+        ctx.restore();
+      }] },
     }, data, holder);
     const r0 = ok[0];
-    info.textContent = `Default window: from the end of the last excursion above ${SETTLED_DEG} deg pointing error (the hold). Welch: Hann window, ${r0.s.nseg}-sample segments, 50 % overlap, ${r0.s.segments} averages, ` +
+    const aliased = wheelLines.some((wl) => wl.alias);
+    info.textContent = (wheelLines.length ? 'Dashed lines: mean wheel speeds over the window (|rpm|/60 Hz, where static and dynamic imbalance act)' +
+      (aliased ? '; wheels faster than the Nyquist frequency are marked where they fold to (alias): record the rates faster to resolve them' : '') + '. ' : '') + `Default window: from the end of the last excursion above ${SETTLED_DEG} deg pointing error (the hold). Welch: Hann window, ${r0.s.nseg}-sample segments, 50 % overlap, ${r0.s.segments} averages, ` +
       `fs = ${fmt(1 / r0.w.dt)} Hz. RMS over the window (mean removed): ` +
       res.map((r, i) => `\u03c9_${keys[i].slice(-1)} ${r.w.y.length ? fmt(rms(r.w.y)) : '\u2013'} ${unit}`).join(', ') + '.';
   };
