@@ -119,6 +119,14 @@ async function main() {
       if (c.dataflow === 'ok' && (st.dfNodes < 5 || st.dfRows < 3)) fail(c, 'data-flow map nearly empty');
       if (c.title && !st.title.includes(c.title)) fail(c, `scenario text not shown verbatim: ${st.title.slice(0, 120)}`);
       if (c.shot) {
+        // a click on a time plot moves the replay to that time
+        const box = await page.locator('#plot-pointing .u-over').boundingBox();
+        await page.mouse.click(box.x + box.width * 0.75, box.y + box.height / 2);
+        const rt = await page.evaluate(() => document.querySelector('#replay .readout').textContent);
+        const tClick = Number((/t = ([-0-9.e+]+) s/.exec(rt) || [])[1]);
+        console.log(`  click at 3/4 of the pointing plot -> replay ${rt.split('\u00b7')[0].trim()}`);
+        if (!(tClick > 0)) fail(c, 'clicking a plot did not move the replay');
+
         const base = c.file.replace(/\.html$/, '');
         // play the replay for a moment so the view shows a later attitude, then shoot
         await page.click('#replay button.play');
