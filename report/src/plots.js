@@ -204,12 +204,15 @@ export function buildTimePlots(grid, D, otherGrid = grid) {
     ['thruster_on_time_', 'ontime', 'Thruster on-times', 's', 'thr ', true],
     ['thruster_force_', 'force', 'Thruster forces', 'N', 'thr ', true],
   ];
+  const thrNames = (D.geometry && Array.isArray(D.geometry.thrusters) ? D.geometry.thrusters : [])
+    .map((th) => (th && typeof th.name === 'string' && th.name ? th.name : null));
   for (const [prefix, id, title, unit, nm, stepped] of groups) {
     const ks = indexedKeys(series, prefix);
     if (!ks.length) { absent.push(title.toLowerCase()); continue; }
+    const label = (index) => (nm === 'thr ' && thrNames[index] ? `${index} ${thrNames[index]}` : nm + index);
     addTimePlot(grid, t, {
       id, title, unit: unitOf(ks[0].key, unit), stepped,
-      names: ks.map(({ index }) => nm + index), ys: ks.map(({ key }) => take(key)),
+      names: ks.map(({ index }) => label(index)), ys: ks.map(({ key }) => take(key)),
     });
   }
 

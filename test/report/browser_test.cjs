@@ -102,6 +102,7 @@ async function main() {
           title: document.getElementById('meta').textContent,
           dfNodes: document.querySelectorAll('#dataflow svg rect.node').length,
           dfRows: document.querySelectorAll('#dataflow table tbody tr').length,
+          othersShown: getComputedStyle(document.getElementById('others-title')).display !== 'none',
         };
       });
       console.log(`  cards [${st.cards.join(', ')}], spectrum ${st.spectrum}, replay ${st.replay}, dataflow ${st.dataflow} ` +
@@ -114,6 +115,8 @@ async function main() {
       for (const p of c.absent || []) if (st.cards.includes(p)) fail(c, `${p} plot drawn though absent from the data`);
       if (st.uplots < c.plots.length) fail(c, `${st.uplots} plot canvases for ${c.plots.length} plots`);
       if (c.spectrum && !st.spectrum) fail(c, 'no jitter spectrum');
+      const wantOthers = c.plots.some((p) => p.startsWith('x-'));
+      if (st.othersShown !== wantOthers) fail(c, `'Other recorded series' heading ${st.othersShown ? 'shown' : 'hidden'}`);
       if (c.replay && st.replay !== c.replay) fail(c, `replay ${st.replay}, expected ${c.replay}`);
       if (c.dataflow && st.dataflow !== c.dataflow) fail(c, `dataflow ${st.dataflow}, expected ${c.dataflow}`);
       if (c.dataflow === 'ok' && (st.dfNodes < 5 || st.dfRows < 3)) fail(c, 'data-flow map nearly empty');

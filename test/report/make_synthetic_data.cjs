@@ -131,7 +131,7 @@ function s2() {
     const a = (Math.PI / 2) * (i >> 1) + Math.PI / 4;
     const r = [1.1 * Math.cos(a), 1.1 * Math.sin(a), i % 2 ? -0.9 : 0.9];
     const s = (i % 4 < 2 ? 1 : -1);
-    thr.push({ r_B: r.map(r6), dir_B: [-Math.sin(a) * s, Math.cos(a) * s, 0].map(r6) });
+    thr.push({ name: `acs_${i}`, r_B: r.map(r6), dir_B: [-Math.sin(a) * s, Math.cos(a) * s, 0].map(r6) });
   }
   const S = { t: [], pointing_error_deg: [], omega_BN_B_x: [], omega_BN_B_y: [], omega_BN_B_z: [], propellant_kg: [] };
   for (let i = 0; i < 8; i++) { S[`thruster_on_time_${i}`] = []; S[`thruster_force_${i}`] = []; }
