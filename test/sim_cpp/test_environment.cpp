@@ -86,9 +86,9 @@ TEST(TwoBody, KeplerSolutionIsConsistent)
   }
 }
 
-// One period of an e = 0.3 Mars orbit with RK4 (dt = 1 s): energy and
+// One period of an e = 0.3 Mars orbit with RK4 (dt = 2 s): energy and
 // angular momentum conserved, and the trajectory matches Kepler's solution.
-// RK4 error scale: (n_max dt)^4 with n_max = v_p/r_p ~ 1.3e-3 /s -> ~3e-12
+// RK4 error scale: (n_max dt)^4 with n_max = v_p/r_p ~ 1.3e-3 /s -> ~5e-11
 // per radian of true anomaly; we allow 1e-9 on position.
 TEST(TwoBody, EllipticOrbitConservesAndMatchesKepler)
 {
@@ -102,12 +102,12 @@ TEST(TwoBody, EllipticOrbitConservesAndMatchesKepler)
   ic.omega_BN_B = Vector3d(0.001, -0.002, 0.003);
   sim::Spacecraft sc(mars_hub(), ic);
   const sim::EnergyMomentum e0 = sc.energy_momentum();
-  const int n = static_cast<int>(std::floor(T));
+  const int n = static_cast<int>(std::floor(T / 2.0));
   double worst = 0.0;
   for (int k = 1; k <= n; ++k) {
-    ASSERT_EQ(sc.step(1.0), sim::StepStatus::Ok);
-    if (k % 500 != 0 && k != n) continue;
-    const sim::OrbitState s = sim::conic_state_from_periapsis(mu, r_p, e, k * 1.0);
+    ASSERT_EQ(sc.step(2.0), sim::StepStatus::Ok);
+    if (k % 250 != 0 && k != n) continue;
+    const sim::OrbitState s = sim::conic_state_from_periapsis(mu, r_p, e, k * 2.0);
     worst = std::max(worst, (sc.energy_momentum().r_CN_N - s.r_N).norm() / s.r_N.norm());
   }
   EXPECT_LT(worst, 1e-9);
@@ -138,7 +138,7 @@ TEST(TwoBody, MarsApproachHyperbolaReachesPeriapsis)
   ic.r_CN_N = s0.r_N;
   ic.v_CN_N = s0.v_N;
   sim::Vehicle v(mars_hub(), prop, ic);
-  for (int k = 0; k < 7500; ++k) ASSERT_EQ(v.step(100'000'000), sim::StepStatus::Ok);  // 0.1 s
+  for (int k = 0; k < 1500; ++k) ASSERT_EQ(v.step(500'000'000), sim::StepStatus::Ok);  // 0.5 s
   const sim::EnergyMomentum em = v.energy_momentum();
   const double v_p = std::sqrt(v_inf * v_inf + 2.0 * mu / r_p);
   EXPECT_LT((em.r_CN_N - Vector3d(r_p, 0.0, 0.0)).norm(), 1e-8 * r_p);
@@ -214,12 +214,12 @@ TEST(Sun, IlluminationFactorConicalShadow)
     prev = f;
     if (f > 0.0 && f < 1.0) {
       ++partial;
-      worst = std::max(worst, std::abs(f - illumination_by_rays(r_sc, r_sun, R, 300)));
+      worst = std::max(worst, std::abs(f - illumination_by_rays(r_sc, r_sun, R, 200)));
     }
   }
   EXPECT_EQ(prev, 1.0);
   EXPECT_GE(partial, 5);
-  EXPECT_LT(worst, 4e-3);  // grid of 300 x 300: edge-cell fraction ~ 4/300 * 0.3
+  EXPECT_LT(worst, 6e-3);  // grid of 200 x 200: edge-cell fraction ~ 4/200 * 0.3
 
   // Annular case (body disk inside the Sun's): 1 - (b/a)^2.
   const double R_small = 1e3;

@@ -157,7 +157,7 @@ TEST(TankDepletion, RocketEquationDuringBurn)
   sim::Vehicle v(s2_hub(), s2_main_engine(), sim::InitialConditions{});
   v.command_thrusters({kInf});
   const double mdot = 445.0 / (9.80665 * 234.0);
-  for (int k = 0; k < 3000; ++k) ASSERT_EQ(v.step(100 * kMs), sim::StepStatus::Ok);  // 300 s
+  for (int k = 0; k < 300; ++k) ASSERT_EQ(v.step(1000 * kMs), sim::StepStatus::Ok);  // 300 s
   const double m0 = 1150.0, m1 = m0 - mdot * 300.0;
   EXPECT_NEAR(v.mass_props().m_sc, m1, 1e-12 * m0);
   const double dv = sim::rocket_delta_v(234.0, m0, m1);
@@ -173,11 +173,11 @@ TEST(TankDepletion, RocketEquationDuringBurn)
 // |error| <= F dt / m_dry.
 TEST(TankDepletion, RocketEquationToEmptyTankAndEngineStops)
 {
-  const double m_p0 = 40.0;  // ~202 s of burn
+  const double m_p0 = 10.0;  // ~51.6 s of burn
   sim::Vehicle v(s2_hub(), s2_main_engine(m_p0), sim::InitialConditions{});
   v.command_thrusters({kInf});
   const double dt = 0.1;
-  for (int k = 0; k < 2200; ++k) ASSERT_EQ(v.step(100 * kMs), sim::StepStatus::Ok);  // 220 s
+  for (int k = 0; k < 600; ++k) ASSERT_EQ(v.step(100 * kMs), sim::StepStatus::Ok);  // 60 s
   EXPECT_EQ(v.m_prop(0), 0.0);
   EXPECT_EQ(v.mass_props().m_sc, 750.0);
   EXPECT_EQ(v.thruster_effect(0).F_B, Vector3d::Zero());
@@ -207,7 +207,7 @@ TEST(TankConservation, RigidTanksConserveMomentumAndEnergy)
   ic.omega_BN_B = Vector3d(0.05, -0.03, 0.08);
   sim::Vehicle v(sc, p, ic);
   const sim::EnergyMomentum e0 = v.energy_momentum();
-  for (int k = 0; k < 2000; ++k) ASSERT_EQ(v.step(10 * kMs), sim::StepStatus::Ok);
+  for (int k = 0; k < 500; ++k) ASSERT_EQ(v.step(10 * kMs), sim::StepStatus::Ok);
   const sim::EnergyMomentum e1 = v.energy_momentum();
   EXPECT_LT((e1.H_C_N - e0.H_C_N).norm(), 1e-12 * e0.H_C_N.norm());
   EXPECT_LT(std::abs(e1.E_rot - e0.E_rot), 1e-12 * std::abs(e0.E_rot));
