@@ -279,14 +279,15 @@ StepStatus Vehicle::step(int64_t dt_ns)
   }
   first_step_ = false;
 
-  // Segments between latch instants k*T_upd (§5.2); latch at a segment start.
+  // Latch instants k*T_upd (§5.2) cut the step only while a command message
+  // is pending (the latch is the only thing that happens there).
   const VehicleState x_start = x_;
   const int64_t T_upd = model_.propulsion().command.T_upd_ns;
   const int64_t t_end = t_ns_ + dt_ns;
   int64_t t0 = t_ns_;
   while (t0 < t_end) {
     if (t0 % T_upd == 0 && command_pending_) latch_thrusters(t0);
-    const int64_t t1 = std::min(t_end, (t0 / T_upd + 1) * T_upd);
+    const int64_t t1 = command_pending_ ? std::min(t_end, (t0 / T_upd + 1) * T_upd) : t_end;
     if (!integrate_segment(t0, t1)) {
       x_ = x_start;
       status_ = StepStatus::NonFiniteState;
