@@ -466,6 +466,22 @@ TEST(ThrusterLatch, LatchInstantInsideAStepSplitsTheStep)
   EXPECT_NEAR(impulse_time(v, t.F_max), 0.02, 1e-12 * 0.02);
 }
 
+// A step longer than T_upd: the pending message is latched at the first
+// latch instant inside the step, and only there.
+TEST(ThrusterLatch, StepLongerThanCommandPeriod)
+{
+  const auto t = axial(sim::ThrusterTransient::Instant);
+  sim::PropulsionParams p = one_thruster(t, 30 * kMs);
+  sim::Vehicle v(test_hub(), p, sim::InitialConditions{});
+  v.step(100 * kMs);
+  v.command_thrusters(req(0.025));  // t = 100 ms; next latch instant 120 ms
+  for (int k = 0; k < 3; ++k) v.step(100 * kMs);
+  EXPECT_EQ(v.schedule(0).t_latch_ns, 120 * kMs);
+  EXPECT_EQ(v.counters().latches, 1u);
+  EXPECT_NEAR(impulse_time(v, t.F_max), 0.025, 1e-12 * 0.025);
+  EXPECT_EQ(v.counters().split_sub_steps, 1u);  // the closing (latch cuts are not counted)
+}
+
 TEST(ThrusterLatch, ContinuousFiringAcrossPeriodsAndTruncation)
 {
   auto t = axial(sim::ThrusterTransient::Instant);

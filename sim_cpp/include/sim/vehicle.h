@@ -105,7 +105,7 @@ class VehicleModel {
 struct ThrusterCounters {
   uint64_t latches = 0;             // command messages latched
   uint64_t ignored_min_on = 0;      // per-thruster requests dropped by T_min (§5.2 step 2)
-  uint64_t split_sub_steps = 0;     // extra sub-steps created by events (§7.3)
+  uint64_t split_sub_steps = 0;     // extra sub-steps created by valve/table events (§7.3); latch cuts not counted
 };
 
 class Vehicle {
