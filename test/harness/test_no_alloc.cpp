@@ -77,7 +77,8 @@ TEST(NoAlloc, ClosedLoopRunDoesNotAllocate)
   for (const char* model : {"balanced", "fully_coupled"}) {
     const harness::Scenario sc = harness::load_scenario(
         KESTREL_SOURCE_DIR "/scenarios/s1_sun_pointing.yaml",
-        {{"duration", "20"}, {"wheel_defaults.model", model}, {"fsw.rw_null.enabled", "true"}});
+        {{"duration", "20"}, {"rates.dt", "0.05"}, {"rates.fsw_divisor", "2"}, {"rates.record_divisor", "2"},
+         {"wheel_defaults.model", model}, {"fsw.rw_null.enabled", "true"}});
     harness::Run run(sc);  // setup allocates
     const double* storage = run.recorder().storage_address();
     const unsigned long n = count_during([&run] { run.step_ticks(run.total_ticks()); });
