@@ -9,11 +9,13 @@
 
 #include "harness/outputs.h"
 #include "sim/attitude.h"
+#include "sim/sensors.h"
 #include "sim/spacecraft.h"
 #include "sim/units.h"
 
 extern "C" {
 #include "fsw/att_track.h"
+#include "fsw/css_sun.h"
 #include "fsw/guid_inertial.h"
 #include "fsw/guid_sunsafe.h"
 #include "fsw/mrp_fb.h"
@@ -54,7 +56,12 @@ struct RwSpeedsMsg {
   double Omega[kMaxRw];  // [rad/s]
 };
 struct SunHeadingMsg {
-  double sun_B[3];  // [-] unit Sun heading in B (ideal sensor until the CSS model lands)
+  double sun_B[3];  // [-] unit Sun heading in B; 0 when no valid heading
+  int valid;        // [-] 1 if sun_B holds a heading
+  int num_lit;      // [-] lit coarse sun sensors (0 for the ideal heading)
+};
+struct CssMsg {
+  double y[FSW_MAX_CSS];  // [reading units] (num_css) coarse-sun-sensor outputs
 };
 struct RwCmdMsg {
   double u_s[kMaxRw];  // [N*m] motor torque commands
@@ -129,6 +136,9 @@ struct Run::Impl {
   FswRwMapState rm_st{};
   FswRwNullConfig rn_cfg{};
   FswRwNullState rn_st{};
+  FswCssSunConfig cs_cfg{};
+  FswCssSunState cs_st{};
+  std::vector<sim::CoarseSunSensor> css;
   FswStatus last_mf = FSW_OK, last_rm = FSW_OK;
 
   // channels
@@ -215,6 +225,30 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
   } else {
     check(fsw_guid_sunsafe_init(&m.gs_st, &m.gs_cfg), "fsw.sun_safe", "fsw_guid_sunsafe_init");
   }
+  // Coarse sun sensors (plant side) and css_sun (FSW) in sun-safe mode.
+  const bool use_css = sc.fsw.mode == FswMode::SunSafe && !sc.sensors.css.normals_B.empty();
+  if (use_css) {
+    const sim::SensorContext sctx{sc.seed, sc.sensors.css.noise_std > 0.0};
+    m.cs_cfg.num_css = static_cast<int>(sc.sensors.css.normals_B.size());
+    m.cs_cfg.lit_threshold = static_cast<fsw_real>(sc.fsw.css_lit_threshold);
+    for (size_t i = 0; i < sc.sensors.css.normals_B.size(); ++i) {
+      sim::CssParams cp;
+      cp.name = "css" + std::to_string(i);
+      cp.n_hat_B = sc.sensors.css.normals_B[i];
+      cp.fov_half = sc.sensors.css.fov;
+      cp.scale = sc.sensors.css.scale;
+      cp.sigma = sc.sensors.css.noise_std;
+      cp.period_ns = static_cast<int64_t>(sc.tick_ns());  // sampled at FSW ticks
+      try {
+        m.css.emplace_back(cp, sctx);
+      } catch (const std::exception& e) {
+        throw config_error(sc, "sensors.css", std::string("rejected by the plant: ") + e.what());
+      }
+      copy3(m.cs_cfg.n_hat_B[i], sc.sensors.css.normals_B[i].data());
+      m.cs_cfg.scale[i] = static_cast<fsw_real>(sc.sensors.css.scale);
+    }
+    check(fsw_css_sun_init(&m.cs_st, &m.cs_cfg), "sensors.css", "fsw_css_sun_init");
+  }
   check(fsw_mrp_fb_init(&m.mf_st, &m.mf_cfg), "fsw.mrp_fb", "fsw_mrp_fb_init");
   check(fsw_rw_map_init(&m.rm_st, &m.rm_cfg), "fsw.rw_map", "fsw_rw_map_init");
   if (sc.fsw.rw_null) check(fsw_rw_null_init(&m.rn_st, &m.rn_cfg), "fsw.rw_null", "fsw_rw_null_init");
@@ -266,9 +300,9 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
     auto wn = f.writer("sensors", nav);
     auto ws = f.writer("sensors", speeds);
     Writer<SunHeadingMsg> wsun;
-    if (sun) wsun = f.writer("sensors", *sun);
+    if (sun && !use_css) wsun = f.writer("sensors", *sun);
     const Eigen::Vector3d r_sun = sc.environment.sun_position_N;
-    const bool has_sun = sun != nullptr;
+    const bool has_sun = sun != nullptr && !use_css;
     m.sched.add_task("sensors", fsw_group, [ip, rt, wn, ws, wsun, r_sun, has_sun](uint64_t k) {
       const TruthMsg& t = rt.read();
       const uint64_t t_ns = ip->sched.t_ns(k);
@@ -284,8 +318,45 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
         const Eigen::Vector3d d_B = sim::dcm_BN_from_sigma(ev(t.sigma_BN)) * d_N;
         SunHeadingMsg h{};
         for (int i = 0; i < 3; ++i) h.sun_B[i] = d_B(i);
+        h.valid = 1;
         wsun.write(h, t_ns);
       }
+    });
+  }
+  if (use_css) {
+    f.add_component("css", "sim::CoarseSunSensor");
+    f.add_component("css_sun", "fsw_c");
+    auto& css_msg = f.add_message<CssMsg>("css_readings");
+    auto rt = f.reader("css", truth);
+    auto wc = f.writer("css", css_msg);
+    auto rc = f.reader("css_sun", css_msg);
+    auto ws = f.writer("css_sun", *sun);
+    const Eigen::Vector3d r_sun = sc.environment.sun_position_N;
+    m.sched.add_task("css", fsw_group, [ip, rt, wc, r_sun](uint64_t k) {
+      const TruthMsg& t = rt.read();
+      sim::SensorTruth st;
+      st.t_ns = static_cast<int64_t>(ip->sched.t_ns(k));
+      st.sigma_BN = ev(t.sigma_BN);
+      st.omega_BN_B = ev(t.omega_BN_B);
+      st.r_BN_N = ev(t.r_BN_N);
+      st.r_SunN_N = r_sun;
+      CssMsg c{};
+      for (size_t i = 0; i < ip->css.size(); ++i) {
+        ip->css[i].update(st);
+        c.y[i] = ip->css[i].output().y;
+      }
+      wc.write(c, ip->sched.t_ns(k));
+    });
+    m.sched.add_task("css_sun", fsw_group, [ip, rc, ws](uint64_t k) {
+      FswCssSunIn in{};
+      for (int i = 0; i < ip->cs_cfg.num_css; ++i) in.reading[i] = static_cast<fsw_real>(rc.read().y[i]);
+      FswCssSunOut out{};
+      fsw_css_sun_update(&ip->cs_st, &ip->cs_cfg, &in, &out);
+      SunHeadingMsg h{};
+      copy3(h.sun_B, out.sun_hat_B);
+      h.valid = out.sun_valid;
+      h.num_lit = out.num_lit;
+      ws.write(h, ip->sched.t_ns(k));
     });
   }
   // FSW chain
@@ -489,6 +560,17 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
                                for (int i = 0; i < 3; ++i) o[i] = x.H_C_N[i];
                                o[3] = x.E_rot;
                              });
+    if (sun) {
+      f.reader("recorder", *sun);
+      m.rec.record<SunHeadingMsg>(*sun,
+                                  {{"sun_B_x", "-"}, {"sun_B_y", "-"}, {"sun_B_z", "-"}, {"sun_valid", "-"},
+                                   {"css_num_lit", "-"}},
+                                  [](const SunHeadingMsg& h, double* o) {
+                                    for (int i = 0; i < 3; ++i) o[i] = h.sun_B[i];
+                                    o[3] = h.valid;
+                                    o[4] = h.num_lit;
+                                  });
+    }
     Recorder* rec = &m.rec;
     m.sched.add_task("recorder", rec_group, [rec](uint64_t) { rec->sample(); });
     // rows: every due tick in [0, n_ticks] (the final tick is sampled too)
@@ -553,6 +635,7 @@ std::vector<std::string> Run::fsw_health_lines() const
     line("guid_inertial", m.gi_st.health);
     line("att_track", m.at_st.health);
   } else {
+    if (!m.css.empty()) line("css_sun", m.cs_st.health);
     line("guid_sunsafe", m.gs_st.health);
   }
   line("mrp_fb", m.mf_st.health);

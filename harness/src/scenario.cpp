@@ -675,7 +675,10 @@ void read_sensors(MapReader r, Scenario& sc)
     if (!normals.IsSequence()) {
       r.ctx().error(normals, css.key_path("normals"), "expected a list of unit 3-vectors, got " + kind_name(normals));
     } else {
-      for (size_t i = 0; i < normals.size(); ++i)
+      if (normals.size() > 32)
+        r.ctx().error(normals, css.key_path("normals"), "at most 32 sensors (FSW_MAX_CSS), got " +
+                                                            std::to_string(normals.size()));
+      for (size_t i = 0; i < normals.size() && i < 32; ++i)
         if (auto n = css.unit_of(normals[i], css.key_path("normals") + "[" + std::to_string(i) + "]"))
           sc.sensors.css.normals_B.push_back(*n);
     }
@@ -713,6 +716,10 @@ void read_fsw(MapReader r, Scenario& sc)
       }))
     f.sun_small_angle = *v;
   if (auto v = ss.vec3("omega_search_B")) f.omega_search_B = *v;
+  if (auto v = ss.real("lit_threshold", [](double x) {
+        return x >= 0.0 && x < 1.0 ? std::string() : std::string("must be in [0, 1)");
+      }))
+    f.css_lit_threshold = *v;
   ss.finish();
   MapReader mf = r.sub("mrp_fb");
   if (auto v = mf.real("K", positive("N*m"))) f.mrp_fb.K = *v;

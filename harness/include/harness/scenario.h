@@ -138,6 +138,7 @@ struct FswSpec {
   Eigen::Vector3d sigma_R0N = Eigen::Vector3d::Zero();        // [-] inertial mode
   Eigen::Vector3d sun_axis_B = Eigen::Vector3d::UnitZ();      // [-] sun-safe mode
   double sun_small_angle = 0.0;                               // [rad]
+  double css_lit_threshold = 0.1;                             // [-] css_sun: y_i above this is lit
   Eigen::Vector3d omega_search_B = Eigen::Vector3d::Zero();   // [rad/s]
   MrpFbSpec mrp_fb;
   RwMapMode rw_map = RwMapMode::MinNorm;
