@@ -11,6 +11,10 @@
 #include "harness/run.h"
 #include "harness/scenario.h"
 
+#ifdef KESTREL_HAVE_REPORT
+#include "report/report.hpp"
+#endif
+
 #ifndef KESTREL_SCENARIO_DIR
 #define KESTREL_SCENARIO_DIR "scenarios"
 #endif
@@ -60,8 +64,17 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
       put(dir / "telemetry.csv");
     }
     if (sc.outputs.report_data) {
-      write_text((dir / "report_data.json").string(), report_data_text(run));
+      const std::string data = report_data_text(run);
+      write_text((dir / "report_data.json").string(), data);
       put(dir / "report_data.json");
+#ifdef KESTREL_HAVE_REPORT
+      try {
+        report::write_html(data, (dir / "report.html").string());
+      } catch (const std::exception& e) {
+        throw OutputError(e.what());
+      }
+      put(dir / "report.html");
+#endif
     }
     write_text((dir / "dataflow.dot").string(), run.dataflow().to_dot(sc.name));
     put(dir / "dataflow.dot");
@@ -176,6 +189,8 @@ int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
       << " s (real-time factor " << std::setprecision(4) << (r.wall_seconds > 0 ? sc.duration / r.wall_seconds : 0.0)
       << "x); final pointing error " << std::setprecision(4) << r.final_pointing_error_deg << " deg\n";
   out << "results: " << opt.out_dir << "\n";
+  for (const auto& f : r.files)
+    if (fs::path(f).filename() == "report.html") out << "report: " << f << "\n";
   for (const auto& f : r.files) out << "  " << f << "\n";
   return kExitOk;
 }

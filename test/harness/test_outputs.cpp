@@ -143,6 +143,12 @@ TEST(Outputs, ReportDataSchema)
   EXPECT_EQ(dot.rfind("digraph", 0), 0u);
   EXPECT_NE(dot.find("\"c:mrp_fb\" -> \"m:cmd_torque\""), std::string::npos);
   EXPECT_EQ(slurp(dir / "dataflow.dot"), dot);
+#ifdef KESTREL_TEST_HAVE_REPORT
+  // with the report writer in the build, the run also has its HTML page
+  const std::string html = slurp(dir / "report.html");
+  EXPECT_NE(html.find("<html"), std::string::npos);
+  EXPECT_NE(html.find("s1_sun_pointing"), std::string::npos);
+#endif
 }
 
 TEST(Outputs, RunFromManifestReproducesResults)
