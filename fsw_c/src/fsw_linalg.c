@@ -19,7 +19,6 @@ static fsw_real pow2_scale_for(fsw_real m)
 FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_EFF],
                             const fsw_real b[3], int m, int n)
 {
-  fsw_real As[3][FSW_MAX_EFF]; /* A scaled by a power of two */
   fsw_real bs[3];
   fsw_real M[3][3], L[3][3], y[3], z[3];
   fsw_real amax = FSW_R(0.0), s, dmax;
@@ -39,16 +38,19 @@ FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX
   }
   if (n < m || amax == FSW_R(0.0)) return FSW_E_SINGULAR;
 
+  /* As = s A with s a power of two, formed on the fly (no copy of A: the
+   * products (s A_ik)(s A_jk) are exact scalings of A_ik A_jk). */
   s = pow2_scale_for(amax);
-  for (i = 0; i < m; i++) {
-    for (j = 0; j < n; j++) As[i][j] = A[i][j] * s;
-    bs[i] = b[i] * s;
-  }
+  for (i = 0; i < m; i++) bs[i] = b[i] * s;
 
   /* M = As As^T (lower triangle used) */
   dmax = FSW_R(0.0);
   for (i = 0; i < m; i++) {
-    for (j = 0; j <= i; j++) M[i][j] = fsw_vn_dot(As[i], As[j], n);
+    for (j = 0; j <= i; j++) {
+      fsw_real v = FSW_R(0.0);
+      for (k = 0; k < n; k++) v += (A[i][k] * s) * (A[j][k] * s);
+      M[i][j] = v;
+    }
     if (M[i][i] > dmax) dmax = M[i][i];
   }
   if (!(dmax > FSW_R(0.0))) return FSW_E_SINGULAR;
@@ -79,7 +81,7 @@ FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX
   /* x = As^T z  (the two scale factors cancel: As^T (As As^T)^-1 bs = x) */
   for (j = 0; j < n; j++) {
     fsw_real v = FSW_R(0.0);
-    for (i = 0; i < m; i++) v += As[i][j] * z[i];
+    for (i = 0; i < m; i++) v += (A[i][j] * s) * z[i];
     x[j] = v;
   }
   return FSW_OK;

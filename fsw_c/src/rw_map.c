@@ -66,11 +66,12 @@ void fsw_rw_map_reset(FswRwMapState *st)
 FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
                             const FswRwMapIn *in, FswRwMapOut *out)
 {
-  fsw_real A[3][FSW_MAX_EFF]; /* [C][Gs_a] diag(sqrt(y)), nc x n_a */
-  fsw_real x[FSW_MAX_EFF], dx[FSW_MAX_EFF];
-  fsw_real sy[FSW_MAX_RW]; /* sqrt(y_k) of the available wheels */
-  int idx[FSW_MAX_RW];     /* indices of the available wheels, ascending */
   fsw_real b[3], r[3];
+  /* scratch in the state (see FswRwMapWork): A = [C][Gs_a] diag(sqrt(y)),
+   * sy = sqrt(y_k) and idx = indices of the available wheels, ascending */
+  fsw_real(*A)[FSW_MAX_EFF];
+  fsw_real *x, *dx, *sy;
+  int *idx;
   int n, nc, na = 0, i, j, k;
   FswStatus s;
 
@@ -78,6 +79,11 @@ FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
   if (out != NULL) fsw_rw_zero(out->u_s); /* safe output */
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
   if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  A = st->work.A;
+  x = st->work.x;
+  dx = st->work.dx;
+  sy = st->work.sy;
+  idx = st->work.idx;
   n = cfg->num_rw;
   nc = cfg->num_axes;
 

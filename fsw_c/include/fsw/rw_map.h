@@ -41,8 +41,19 @@ typedef struct {
 } FswRwMapConfig;
 
 typedef struct {
-  int ready;        /* 1 after a successful init */
-  FswHealth health; /* counters read by the harness */
+  /* scratch of one update, kept here so that the update's own stack stays
+   * small (flight stack budget): [C][Gs_a] diag(sqrt(y)), solutions, the
+   * available-wheel indices and their sqrt(y) */
+  fsw_real A[3][FSW_MAX_EFF];
+  fsw_real x[FSW_MAX_EFF], dx[FSW_MAX_EFF];
+  fsw_real sy[FSW_MAX_RW];
+  int idx[FSW_MAX_RW];
+} FswRwMapWork;
+
+typedef struct {
+  int ready;         /* 1 after a successful init */
+  FswRwMapWork work; /* scratch, see above */
+  FswHealth health;  /* counters read by the harness */
 } FswRwMapState;
 
 typedef struct {
