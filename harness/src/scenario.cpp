@@ -68,6 +68,14 @@ struct Ctx {
         is.column = m.column + 1;
       }
     }
+    if (is.where.empty() && is.line == 0) {
+      // a node the command line created (e.g. the 'a' of --set a.b=1)
+      for (const std::string& o : overridden)
+        if (o.rfind(key + ".", 0) == 0 || o.rfind(key + "[", 0) == 0) {
+          is.where = "--set " + o;
+          break;
+        }
+    }
     issues->push_back(is);
   }
 };

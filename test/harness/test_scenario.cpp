@@ -135,6 +135,10 @@ TEST(Scenario, OverridesApplyAndAreNamedInErrors)
   ASSERT_EQ(v.size(), 1u);
   EXPECT_EQ(v[0].key, "fsw.mrp_fb.Q");
   EXPECT_NE(v[0].message.find("unknown key"), std::string::npos);
+  v = issues_of(kMini, {{"nosuch.key", "1"}});  // the override creates an unknown map
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0].key, "nosuch");
+  EXPECT_EQ(v[0].where, "--set nosuch.key");
   EXPECT_THROW(harness::parse_override("novalue"), std::invalid_argument);
   EXPECT_EQ(harness::parse_override("a.b=c=d").value, "c=d");
 }
