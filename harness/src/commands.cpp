@@ -257,7 +257,7 @@ int cmd_bench(const std::string& dir, std::ostream& out, std::ostream& err)
       return kExitInvalidScenario;
     }
   }
-  out << "  S2 (Mars orbit insertion)            not available: the plant thruster model is not in this build\n";
+  out << "  S2 (Mars orbit insertion)            not available yet: the harness does not wire thrusters (sim::Vehicle, thr_map, thr_pulse) yet\n";
   return kExitOk;
 }
 

@@ -156,8 +156,8 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
   m.n_rw = static_cast<int>(sc.wheels.size());
   if (!sc.thrusters.empty())
     throw config_error(sc, "thrusters",
-                       "thrusters are not simulated yet in this build (the plant thruster model is pending); "
-                       "remove the 'thrusters' list to run");
+                       "thrusters are not run yet: the harness does not wire the plant's thrusters "
+                       "(sim::Vehicle) and the FSW thruster chain yet; remove the 'thrusters' list to run");
 
   // ---- plant -----------------------------------------------------------------
   m.params.hub.m_h = sc.spacecraft.mass;
