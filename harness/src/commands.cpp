@@ -82,6 +82,12 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
     for (const std::string& l : run.fsw_health_lines()) health << l << "\n";
     write_text((dir / "fsw_health.txt").string(), health.str());
     put(dir / "fsw_health.txt");
+    std::ostringstream summ;
+    summ << std::setprecision(10);
+    for (const SummaryItem& it : run.summary())
+      summ << it.key << " = " << it.value << " " << it.unit << "    # " << it.what << "\n";
+    write_text((dir / "summary.txt").string(), summ.str());
+    put(dir / "summary.txt");
   }
   return res;
 }

@@ -1,6 +1,8 @@
 // outputs.cpp: HDF5 (C API), CSV, manifest and report-data writers.
 #include "harness/outputs.h"
 
+#include <cmath>
+
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -258,6 +260,10 @@ std::string report_data_text(const Run& run)
   for (const WheelSpec& w : sc.wheels) wpos.push_back({w.params.r_WB_B(0), w.params.r_WB_B(1), w.params.r_WB_B(2)});
   j["geometry"] = {{"wheel_axes_B", axes}, {"wheel_positions_B", wpos}, {"thrusters", thr}};
   j["dataflow_dot"] = run.dataflow().to_dot(sc.name);
+  json summ = json::object();
+  for (const SummaryItem& it : run.summary())
+    summ[it.key] = {{"value", std::isfinite(it.value) ? json(it.value) : json(nullptr)}, {"unit", it.unit}, {"what", it.what}};
+  j["summary"] = summ;
   return j.dump() + "\n";
 }
 

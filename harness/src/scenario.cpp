@@ -13,6 +13,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "sim/environment.h"
 #include "sim/units.h"
 
 namespace harness {
@@ -487,6 +488,31 @@ void read_spacecraft(MapReader r, Scenario& sc)
   }
   if (auto v = ic.vec3("r_CN_N")) s.initial.r_CN_N = *v;
   if (auto v = ic.vec3("v_CN_N")) s.initial.v_CN_N = *v;
+  if (ic.has("hyperbola")) {
+    // Approach hyperbola (sim::conic_state_from_periapsis): perifocal frame = N
+    // (x toward periapsis, z along the orbit normal).  Resolved into r_CN_N,
+    // v_CN_N here (needs environment.mu, read before the spacecraft).
+    MapReader h = ic.sub("hyperbola");
+    const auto rp = h.real("periapsis_radius", positive("m"));
+    if (!rp && !h.has("periapsis_radius")) h.missing("periapsis_radius", "periapsis radius [m]");
+    const auto vinf = h.real("v_inf", positive("m/s"));
+    if (!vinf && !h.has("v_inf")) h.missing("v_inf", "hyperbolic excess speed [m/s]");
+    const auto tp = h.real("time_to_periapsis", non_negative("s"));
+    if (!tp && !h.has("time_to_periapsis")) h.missing("time_to_periapsis", "time from the start to periapsis [s]");
+    h.finish();
+    if (ic.has("r_CN_N") || ic.has("v_CN_N"))
+      ic.error_at("hyperbola", "give either 'hyperbola' or 'r_CN_N'/'v_CN_N', not both");
+    else if (!(sc.environment.mu > 0.0))
+      ic.error_at("hyperbola", "needs gravity: environment.mu > 0");
+    else if (rp && vinf && tp) {
+      const double e = sim::hyperbolic_eccentricity(sc.environment.mu, *rp, *vinf);
+      const sim::OrbitState os = sim::conic_state_from_periapsis(sc.environment.mu, *rp, e, -*tp);
+      if (!os.r_N.allFinite() || !os.v_N.allFinite())
+        ic.error_at("hyperbola", "no finite state on this hyperbola (time_to_periapsis too large?)");
+      s.initial.r_CN_N = os.r_N;
+      s.initial.v_CN_N = os.v_N;
+    }
+  }
   ic.finish();
   r.finish();
 }
@@ -650,11 +676,13 @@ void read_thrusters(MapReader& top, Scenario& sc)
     if (auto v = r.real("omega_off", positive("rad/s"))) t.omega_off = *v;
     if (auto v = r.boolean("acs")) t.acs = *v;
     r.finish();
+    for (const ThrusterSpec& o : sc.thrusters)
+      if (o.name == t.name) r.error_at("name", "duplicate thruster name '" + t.name + "'");
     sc.thrusters.push_back(t);
   }
 }
 
-void read_tank(MapReader r, Scenario& sc)
+void read_tank(MapReader r, std::optional<TankSpec>& out)
 {
   if (!r.node().IsMap() || r.node().size() == 0) {
     r.finish();
@@ -665,7 +693,32 @@ void read_tank(MapReader r, Scenario& sc)
   else if (!r.has("mass")) r.missing("mass", "initial propellant [kg]");
   if (auto v = r.vec3("position")) t.r_B = *v;
   r.finish();
-  sc.tank = t;
+  out = t;
+}
+
+void read_burn(MapReader r, Scenario& sc)
+{
+  if (!r.node().IsMap() || r.node().size() == 0) {
+    r.finish();
+    return;
+  }
+  BurnSpec b;
+  if (auto v = r.string("thruster")) {
+    b.thruster = *v;
+    const ThrusterSpec* t = nullptr;
+    for (const ThrusterSpec& x : sc.thrusters)
+      if (x.name == *v) t = &x;
+    if (!t) r.error_at("thruster", "no thruster named '" + *v + "' in 'thrusters'");
+    else if (t->acs) r.error_at("thruster", "'" + *v + "' is an ACS thruster (acs: true); the burn needs a main engine (acs: false)");
+  } else if (!r.has("thruster")) {
+    r.missing("thruster", "name of the main engine (a thruster with acs: false)");
+  }
+  if (auto v = r.real("start", non_negative("s"))) b.start = *v;
+  else if (!r.has("start")) r.missing("start", "ignition time [s]");
+  if (auto v = r.real("duration", positive("s"))) b.duration = *v;
+  else if (!r.has("duration")) r.missing("duration", "burn duration [s]");
+  r.finish();
+  sc.burn = b;
 }
 
 void read_sensors(MapReader r, Scenario& sc)
@@ -780,7 +833,26 @@ void read_fsw(MapReader r, Scenario& sc)
   MapReader tp = r.sub("thr_pulse");
   if (auto m = tp.choice("mode", {"remainder", "schmitt"}))
     f.thr_pulse = *m == 0 ? ThrPulseMode::Remainder : ThrPulseMode::Schmitt;
+  if (auto v = tp.real("t_min", positive("s"))) f.thr_t_min = *v;
+  if (auto v = tp.real("level_on", [](double x) {
+        return x > 0.0 && x <= 1.0 ? std::string() : std::string("must be in (0, 1]");
+      }))
+    f.thr_level_on = *v;
+  if (auto v = tp.real("level_off", non_negative("-"))) f.thr_level_off = *v;
+  if (f.thr_level_off >= f.thr_level_on) tp.error_at(tp.has("level_off") ? "level_off" : "level_on", "level_off must be < level_on");
   tp.finish();
+  MapReader tm = r.sub("thr_map");
+  if (auto m = tm.choice("mode", {"min_norm", "nnls"})) f.thr_map = *m == 0 ? ThrMapMode::MinNorm : ThrMapMode::Nnls;
+  tm.finish();
+  f.actuation = sc.wheels.empty() ? Actuation::Thrusters : Actuation::Wheels;
+  if (auto m = r.choice("actuation", {"wheels", "thrusters"})) {
+    f.actuation = *m == 0 ? Actuation::Wheels : Actuation::Thrusters;
+    bool acs = false;
+    for (const ThrusterSpec& t : sc.thrusters) acs = acs || t.acs;
+    if (f.actuation == Actuation::Wheels && sc.wheels.empty()) r.error_at("actuation", "'wheels' needs wheels");
+    if (f.actuation == Actuation::Thrusters && !acs)
+      r.error_at("actuation", "'thrusters' needs ACS thrusters (thrusters with acs: true)");
+  }
   if (!r.has("mrp_fb")) r.missing("mrp_fb", "control gains K and P");
   r.finish();
 }
@@ -816,11 +888,13 @@ void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
   if (!top.has("rates")) top.missing("rates", "dt and rate divisors");
   read_rates(top.sub("rates"), sc);
   if (!top.has("spacecraft")) top.missing("spacecraft", "mass, inertia, com");
-  read_spacecraft(top.sub("spacecraft"), sc);
   read_environment(top.sub("environment"), sc);
+  read_spacecraft(top.sub("spacecraft"), sc);
   read_wheels(top, sc);
   read_thrusters(top, sc);
-  read_tank(top.sub("tank"), sc);
+  read_tank(top.sub("tank"), sc.tank);
+  read_tank(top.sub("rcs_tank"), sc.rcs_tank);
+  read_burn(top.sub("burn"), sc);
   read_sensors(top.sub("sensors"), sc);
   if (!top.has("fsw")) top.missing("fsw", "flight software gains and modes");
   read_fsw(top.sub("fsw"), sc);
@@ -844,6 +918,46 @@ void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
     ctx.error(root["environment"], "environment.sun_position_N", "sun_safe mode needs a Sun position");
   if (!sc.thrusters.empty() && !sc.tank)
     ctx.error(root["thrusters"], "tank", "thrusters need a propellant tank (key 'tank')");
+  if (sc.rcs_tank && sc.thrusters.empty())
+    ctx.error(root["rcs_tank"], "rcs_tank", "given but there are no thrusters");
+  if (sc.burn && sc.duration > 0.0 && sc.burn->start >= sc.duration)
+    ctx.error(root["burn"]["start"], "burn.start", "must be before the end of the run (duration " + fmt(sc.duration) + " s)");
+  if (!sc.thrusters.empty()) {
+    // The FSW's on-times cover one control period: thruster commands are
+    // latched at the FSW rate.  Absent, thruster_divisor follows fsw_divisor.
+    const YAML::Node rates = root["rates"];
+    const bool given = rates.IsMap() && rates["thruster_divisor"].IsDefined();
+    if (!given) sc.rates.thruster_divisor = sc.rates.fsw_divisor;
+    else if (sc.rates.thruster_divisor != sc.rates.fsw_divisor)
+      ctx.error(rates["thruster_divisor"], "rates.thruster_divisor",
+                "must equal rates.fsw_divisor (" + std::to_string(sc.rates.fsw_divisor) +
+                    ") with thrusters: the FSW's on-times cover one control period");
+    bool acs = false;
+    for (const ThrusterSpec& t : sc.thrusters) acs = acs || t.acs;
+    if (acs && sc.fsw.thr_t_min * 1.0 >= sc.rates.dt * sc.rates.fsw_divisor)
+      ctx.error(root["fsw"], "fsw.thr_pulse.t_min", "must be shorter than the FSW period");
+  }
+}
+
+// Records where every key sits in the file (dotted paths with [i] indices).
+void collect_key_lines(const YAML::Node& n, const std::string& path, std::map<std::string, std::pair<int, int>>& out)
+{
+  if (n.IsMap()) {
+    for (auto it = n.begin(); it != n.end(); ++it) {
+      if (!it->first.IsScalar()) continue;
+      const std::string k = join(path, it->first.Scalar());
+      const YAML::Mark m = it->first.Mark();
+      if (m.line >= 0) out[k] = {m.line + 1, m.column + 1};
+      collect_key_lines(it->second, k, out);
+    }
+  } else if (n.IsSequence()) {
+    for (size_t i = 0; i < n.size(); ++i) {
+      const std::string k = path + "[" + std::to_string(i) + "]";
+      const YAML::Mark m = n[i].Mark();
+      if (m.line >= 0) out[k] = {m.line + 1, m.column + 1};
+      collect_key_lines(n[i], k, out);
+    }
+  }
 }
 
 // Splits "a.b[2].c" or "a.b.2.c" into components.
@@ -959,6 +1073,7 @@ Scenario load_from_root(YAML::Node root, const std::string& file, const std::vec
   if (issues.empty()) {
     try {
       read_scenario(ctx, root, sc);
+      collect_key_lines(root, "", sc.key_lines);
     } catch (const YAML::Exception& e) {  // safety net: never crash on odd input
       ScenarioIssue is;
       is.file = file;
@@ -1058,6 +1173,8 @@ const char* to_string(FswMode m) { return m == FswMode::Inertial ? "inertial" : 
 const char* to_string(RwMapMode m) { return m == RwMapMode::MinNorm ? "min_norm" : "power"; }
 const char* to_string(ThrPulseMode m) { return m == ThrPulseMode::Remainder ? "remainder" : "schmitt"; }
 const char* to_string(ThrTransient m) { return m == ThrTransient::Instant ? "instant" : "first_order"; }
+const char* to_string(Actuation m) { return m == Actuation::Wheels ? "wheels" : "thrusters"; }
+const char* to_string(ThrMapMode m) { return m == ThrMapMode::MinNorm ? "min_norm" : "nnls"; }
 const char* wheel_model_key(sim::WheelModel m)
 {
   switch (m) {

@@ -84,6 +84,9 @@ json scenario_to_json(const Scenario& sc)
   }
   j["thrusters"] = thr;
   if (sc.tank) j["tank"] = {{"mass", sc.tank->mass}, {"position", v3(sc.tank->r_B)}};
+  if (sc.rcs_tank) j["rcs_tank"] = {{"mass", sc.rcs_tank->mass}, {"position", v3(sc.rcs_tank->r_B)}};
+  if (sc.burn)
+    j["burn"] = {{"thruster", sc.burn->thruster}, {"start", sc.burn->start}, {"duration", sc.burn->duration}};
   json normals = json::array();
   for (const auto& n : sc.sensors.css.normals_B) normals.push_back(v3(n));
   j["sensors"] = {{"css",
@@ -120,7 +123,13 @@ json scenario_to_json(const Scenario& sc)
               {"mrp_fb", mrp},
               {"rw_map", {{"mode", to_string(f.rw_map)}, {"eps_P", f.eps_P}}},
               {"rw_null", rn},
-              {"thr_pulse", {{"mode", to_string(f.thr_pulse)}}}};
+              {"thr_pulse",
+               {{"mode", to_string(f.thr_pulse)},
+                {"t_min", f.thr_t_min},
+                {"level_on", f.thr_level_on},
+                {"level_off", f.thr_level_off}}},
+              {"thr_map", {{"mode", to_string(f.thr_map)}}},
+              {"actuation", to_string(f.actuation)}};
   j["outputs"] = {{"hdf5", sc.outputs.hdf5}, {"csv", sc.outputs.csv}, {"report_data", sc.outputs.report_data}};
   return j;
 }

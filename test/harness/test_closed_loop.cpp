@@ -47,9 +47,11 @@ TEST(ClosedLoop, SunAcquisitionBalancedWheels)
   EXPECT_LT(err.back(), 0.5);
   // |H| ~ 18 N*m*s; RK4 at 0.1 s keeps it to far better than 1e-8 relative
   EXPECT_LT(max_rel_change(r, "H_C_N_x", "H_C_N_y", "H_C_N_z"), 1e-8);
-  // the Sun heading came from the coarse sun sensors through css_sun
-  EXPECT_EQ(run.dataflow().writer_of("sun_heading"), "css_sun");
+  // the Sun heading came from the coarse sun sensors through the FSW
+  // application (its css_sun stage), which is fed the plant's CSS readings
+  EXPECT_EQ(run.dataflow().writer_of("sun_heading"), "fsw_acs");
   EXPECT_EQ(run.dataflow().writer_of("css_readings"), "css");
+  EXPECT_EQ(run.dataflow().writer_of("fsw_actuators"), "fsw_acs");
   EXPECT_GE(r.column("css_num_lit").back(), 3.0);  // +z_B on the Sun: the 4 upper sensors at 45 deg
   EXPECT_EQ(r.column("sun_valid").back(), 1.0);
   // the wheels absorbed the tumble: body rate small at the end

@@ -141,7 +141,10 @@ TEST(Outputs, ReportDataSchema)
   EXPECT_TRUE(j["geometry"]["thrusters"].is_array());
   const std::string dot = j["dataflow_dot"];
   EXPECT_EQ(dot.rfind("digraph", 0), 0u);
-  EXPECT_NE(dot.find("\"c:mrp_fb\" -> \"m:cmd_torque\""), std::string::npos);
+  // the FSW is one component, the application fsw_acs, between its messages
+  EXPECT_NE(dot.find("\"m:fsw_sensors\" -> \"c:fsw_acs\""), std::string::npos);
+  EXPECT_NE(dot.find("\"c:fsw_acs\" -> \"m:fsw_actuators\""), std::string::npos);
+  EXPECT_NE(dot.find("\"c:fsw_acs\" -> \"m:fsw_health\""), std::string::npos);
   EXPECT_EQ(slurp(dir / "dataflow.dot"), dot);
 #ifdef KESTREL_TEST_HAVE_REPORT
   // with the report writer in the build, the run also has its HTML page

@@ -2,10 +2,13 @@
 //
 // Tick protocol (plant-dynamics §7.2), tick k at t_k = k * dt:
 //   1. every task due at k runs in this fixed order:
-//        truth     (every tick)  plant state -> `truth`
-//        sensors   (FSW group)   truth -> `nav_att`, `rw_speeds`, `sun_heading`
-//        fsw       (FSW group)   guidance -> att_track -> mrp_fb -> rw_map [-> rw_null] -> `rw_cmd`
-//        actuators (FSW group)   `rw_cmd` latched into the plant (zero-order hold)
+//        truth        (every tick)  plant state -> `truth`
+//        burn_monitor (every tick, thruster runs) non-gravitational delta-v, burn start/end
+//        css          (FSW group, configured CSS) truth -> `css_readings`
+//        sensors      (FSW group)   truth (+ css_readings) -> `fsw_sensors` (FswAcsSensorMsg)
+//        fsw_acs      (FSW group)   fsw_acs_cycle(): `fsw_sensors` -> `fsw_actuators`, `fsw_health`
+//        actuators    (FSW group)   wheel torques latched (zero-order hold); thruster
+//                                   on-times (ACS + burn schedule) -> `thr_cmd` -> plant
 //        metrics, recorder (record group)
 //   2. the plant integrates [t_k, t_k + dt] with the held commands.
 // The last tick k = num_ticks only runs step 1 (so t = duration is recorded).
@@ -28,6 +31,14 @@
 namespace harness {
 
 const char* version();
+
+// One figure of the run summary (summary.txt, report_data.json "summary").
+struct SummaryItem {
+  std::string key;
+  double value = 0.0;  // NaN: not applicable
+  std::string unit;
+  std::string what;
+};
 
 class Run {
  public:
@@ -55,6 +66,9 @@ class Run {
   std::vector<std::array<double, 3>> wheel_axes_B() const;
   // FSW health: module name -> (calls, errors, last status name)
   std::vector<std::string> fsw_health_lines() const;
+  // Figures of the run: final pointing error; with thrusters the burn
+  // (propellant vs the rocket equation, delivered delta-v) and the orbit.
+  std::vector<SummaryItem> summary() const;
 
  private:
   struct Impl;

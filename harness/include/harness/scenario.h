@@ -11,6 +11,8 @@
 #define HARNESS_SCENARIO_H
 
 #include <cstdint>
+#include <map>
+#include <utility>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -46,6 +48,8 @@ enum class FswMode { Inertial, SunSafe };
 enum class RwMapMode { MinNorm, Power };
 enum class ThrPulseMode { Remainder, Schmitt };
 enum class ThrTransient { Instant, FirstOrder };
+enum class Actuation { Wheels, Thrusters };
+enum class ThrMapMode { MinNorm, Nnls };
 
 struct RatesSpec {
   double dt = 0.0;              // [s]     plant step = base tick, whole nanoseconds
@@ -98,6 +102,14 @@ struct TankSpec {
   Eigen::Vector3d r_B = Eigen::Vector3d::Zero();    // [m]
 };
 
+// Main-engine burn: the named (non-ACS) thruster fires continuously from the
+// first thruster command instant at or after `start` until start + duration.
+struct BurnSpec {
+  std::string thruster;   // name of a thruster with acs: false
+  double start = 0.0;     // [s]
+  double duration = 0.0;  // [s]
+};
+
 struct CssSpec {
   std::vector<Eigen::Vector3d> normals_B;  // [-] unit
   double fov = 80.0 * 3.14159265358979323846 / 180.0;  // [rad] half angle
@@ -148,6 +160,11 @@ struct FswSpec {
   bool rw_null_scale_to_fit = true;
   std::vector<double> Omega_des;                              // [rad/s] (num_rw)
   ThrPulseMode thr_pulse = ThrPulseMode::Remainder;
+  Actuation actuation = Actuation::Wheels;                    // default: wheels if any, else thrusters
+  ThrMapMode thr_map = ThrMapMode::Nnls;
+  double thr_t_min = 0.02;                                    // [s] FSW pulser minimum on-time
+  double thr_level_on = 0.75;                                 // [-] Schmitt levels
+  double thr_level_off = 0.25;                                // [-]
 };
 
 struct OutputsSpec {
@@ -166,12 +183,18 @@ struct Scenario {
   EnvironmentSpec environment;
   std::vector<WheelSpec> wheels;
   std::vector<ThrusterSpec> thrusters;
-  std::optional<TankSpec> tank;
+  std::optional<TankSpec> tank;       // feeds every thruster (and the main engine)
+  std::optional<TankSpec> rcs_tank;   // if given, feeds the ACS thrusters (acs: true)
+  std::optional<BurnSpec> burn;
   SensorsSpec sensors;
   FswSpec fsw;
   OutputsSpec outputs;
 
   std::string source_file;  // where it was loaded from (not part of the physics)
+  // Where each key was written in the file: dotted path -> (line, column),
+  // 1-based; used to name the line of problems found after loading (FSW
+  // configuration checks).  Not part of the physics.
+  std::map<std::string, std::pair<int, int>> key_lines;
   uint64_t tick_ns() const;    // dt in ns
   uint64_t num_ticks() const;  // duration / dt
 };
@@ -202,6 +225,8 @@ const char* to_string(FswMode m);
 const char* to_string(RwMapMode m);
 const char* to_string(ThrPulseMode m);
 const char* to_string(ThrTransient m);
+const char* to_string(Actuation m);
+const char* to_string(ThrMapMode m);
 // Schema name of a wheel model ("balanced", "simple_jitter", "fully_coupled").
 const char* wheel_model_key(sim::WheelModel m);
 
