@@ -920,8 +920,6 @@ void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
     ctx.error(root["thrusters"], "tank", "thrusters need a propellant tank (key 'tank')");
   if (sc.rcs_tank && sc.thrusters.empty())
     ctx.error(root["rcs_tank"], "rcs_tank", "given but there are no thrusters");
-  if (sc.burn && sc.duration > 0.0 && sc.burn->start >= sc.duration)
-    ctx.error(root["burn"]["start"], "burn.start", "must be before the end of the run (duration " + fmt(sc.duration) + " s)");
   if (!sc.thrusters.empty()) {
     // The FSW's on-times cover one control period: thruster commands are
     // latched at the FSW rate.  Absent, thruster_divisor follows fsw_divisor.

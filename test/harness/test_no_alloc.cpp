@@ -91,3 +91,17 @@ TEST(NoAlloc, ClosedLoopRunDoesNotAllocate)
     EXPECT_EQ(run.recorder().rows(), 201u);  // 20 s at 10 Hz, t = 0 and t = 20 included
   }
 }
+
+// S2: sim::Vehicle (thrusters, tanks, gravity), the 8-thruster fsw_acs chain
+// and the burn, over ignition (burn.start moved to 10 s): no allocation either.
+TEST(NoAlloc, S2ThrusterRunDoesNotAllocate)
+{
+  const harness::Scenario sc = harness::load_scenario(KESTREL_SOURCE_DIR "/scenarios/s2_mars_orbit_insertion.yaml",
+                                                      {{"duration", "30"}, {"burn.start", "10"}, {"burn.duration", "10"}});
+  harness::Run run(sc);
+  const unsigned long n = count_during([&run] { run.step_ticks(run.total_ticks()); });
+  EXPECT_TRUE(run.done());
+  EXPECT_EQ(run.failure(), "");
+  EXPECT_EQ(n, 0u);
+  EXPECT_EQ(run.recorder().overflow(), 0u);
+}
