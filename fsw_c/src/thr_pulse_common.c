@@ -42,6 +42,20 @@ FswStatus fsw_thr_pulse_timing(int has_prev, uint64_t t_prev_ns, uint64_t t_ns,
   return FSW_OK;
 }
 
+FswStatus fsw_thr_pulse_begin(int ready, FswHealth *health, const fsw_real *F, int n, int use_time,
+                              int has_prev, uint64_t t_prev_ns, uint64_t t_ns,
+                              ThrPulseTiming *timing, fsw_real *dt)
+{
+  FswStatus s = FSW_OK;
+  *timing = THR_PULSE_FIRST;
+  *dt = FSW_R(0.0);
+  if (!ready) return fsw_health_record(health, FSW_E_NOT_INIT);
+  if (!fsw_vn_is_finite(F, n)) return fsw_health_record(health, FSW_E_BAD_INPUT);
+  if (use_time) s = fsw_thr_pulse_timing(has_prev, t_prev_ns, t_ns, timing, dt);
+  if (s != FSW_OK) return fsw_health_record(health, s);
+  return FSW_OK;
+}
+
 void fsw_thr_pulse_safe_output(fsw_real t_on[FSW_MAX_THR]) { fsw_vn_zero(t_on, FSW_MAX_THR); }
 
 void fsw_thr_pulse_first_output(fsw_real t_on[FSW_MAX_THR], int n, int base_thrust_state,

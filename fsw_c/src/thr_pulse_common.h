@@ -50,6 +50,15 @@ void fsw_thr_pulse_first_output(fsw_real t_on[FSW_MAX_THR], int n, int base_thru
 
 /* 9 steps 1-2 without the remainder: f = F (+ F_max if b = 1), clipped at
  * 0; returns (f / F_max) * dt. */
+/* The shared start of every pulser update, after its NULL checks: readiness,
+ * finite forces (n entries) and, when use_time, the timing model of
+ * fsw-algorithms.md 0.3 (*timing, *dt).  Returns FSW_OK to go on; any other
+ * status has already been counted in *health and is for the caller to
+ * return with the safe output it wrote.  Changes no module state. */
+FswStatus fsw_thr_pulse_begin(int ready, FswHealth *health, const fsw_real *F, int n, int use_time,
+                              int has_prev, uint64_t t_prev_ns, uint64_t t_ns,
+                              ThrPulseTiming *timing, fsw_real *dt);
+
 fsw_real fsw_thr_pulse_on_time(fsw_real F, fsw_real F_max, int base_thrust_state, fsw_real dt);
 
 #endif /* FSW_THR_PULSE_COMMON_H */

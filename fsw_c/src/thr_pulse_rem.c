@@ -53,11 +53,10 @@ FswStatus fsw_thr_pulse_rem_update(FswThrPulseRemState *st, const FswThrPulseRem
     if (st != NULL) (void)fsw_health_record(&st->health, FSW_E_NULL_ARG);
     return FSW_E_NULL_ARG;
   }
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
   n = cfg->num_thr;
-  if (!fsw_vn_is_finite(in->F, n)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
-  s = fsw_thr_pulse_timing(st->has_prev, st->t_prev_ns, in->t_ns, &timing, &dt);
-  if (s != FSW_OK) return fsw_health_record(&st->health, s);
+  s = fsw_thr_pulse_begin(st->ready, &st->health, in->F, n, 1, st->has_prev, st->t_prev_ns,
+                          in->t_ns, &timing, &dt);
+  if (s != FSW_OK) return s;
 
   if (timing == THR_PULSE_FIRST) {
     fsw_thr_pulse_first_output(out->t_on, n, cfg->base_thrust_state,

@@ -53,6 +53,9 @@ FswStatus fsw_thr_pulse_round_update(FswThrPulseRoundState *st, const FswThrPuls
                                      const FswThrPulseRoundIn *in, FswThrPulseRoundOut *out)
 {
   const fsw_real T = (cfg != NULL) ? cfg->period : FSW_R(0.0);
+  ThrPulseTiming timing;
+  fsw_real dt;
+  FswStatus s;
   int i, n, saturated = 0;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
@@ -61,15 +64,12 @@ FswStatus fsw_thr_pulse_round_update(FswThrPulseRoundState *st, const FswThrPuls
     if (st != NULL) (void)fsw_health_record(&st->health, FSW_E_NULL_ARG);
     return FSW_E_NULL_ARG;
   }
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
   n = cfg->num_thr;
-  if (!fsw_vn_is_finite(in->F, n)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
-  if (cfg->carry_residual) {
-    ThrPulseTiming timing;
-    fsw_real dt;
-    FswStatus s = fsw_thr_pulse_timing(st->has_prev, st->t_prev_ns, in->t_ns, &timing, &dt);
-    if (s != FSW_OK) return fsw_health_record(&st->health, s);
-  }
+  /* time stamps matter only to the carried residual (the default mode is
+   * stateless like Basilisk's) */
+  s = fsw_thr_pulse_begin(st->ready, &st->health, in->F, n, cfg->carry_residual, st->has_prev,
+                          st->t_prev_ns, in->t_ns, &timing, &dt);
+  if (s != FSW_OK) return s;
 
   for (i = 0; i < n; i++) {
     fsw_real f = (in->F[i] > FSW_R(0.0)) ? in->F[i] : FSW_R(0.0);
