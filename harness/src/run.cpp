@@ -70,6 +70,21 @@ struct TruthMsg {
   double u_s[kMaxRw];       // [N*m]   motor torque held by the plant
   double F_thr[kMaxThr];    // [N]     thrust magnitude of each thruster now
 };
+// Sampled outputs of the gyro, star tracker and wheel tachometers, held
+// between samples (written by the every-tick sampling task).  Frames: the
+// gyro platform P and the star-tracker case C coincide with B (dcm_PB =
+// dcm_CB = I), so omega_PN_P = omega_BN_B and sigma_CN = sigma_BN as measured.
+struct SensorSampleMsg {
+  double omega_PN_P[3];    // [rad/s] gyro output
+  int64_t gyro_t_ns;       // [ns] time tag of the gyro sample
+  uint8_t gyro_valid;      // [-] 1 once the gyro has sampled
+  double sigma_CN[3];      // [-] star-tracker attitude (MRP, |sigma| <= 1)
+  int64_t st_t_ns;         // [ns] time tag of the star-tracker sample
+  uint8_t st_valid;        // [-] 1 if the latest star-tracker sample is valid (sampled, not Sun-excluded)
+  double Omega[kMaxRw];    // [rad/s] tachometer wheel speeds
+  int64_t tach_t_ns;       // [ns]
+  uint8_t tach_valid;      // [-]
+};
 struct CssMsg {
   double y[FSW_MAX_CSS];  // [reading units] (num_css) coarse-sun-sensor outputs
 };
@@ -208,6 +223,9 @@ struct Run::Impl {
   FswAcsState acs_st{};
   FswAcsHealthMsg last_health{};
   std::vector<sim::CoarseSunSensor> css;
+  std::unique_ptr<sim::Gyro> gyro;                 // when sensors.gyro.enabled
+  std::unique_ptr<sim::StarTracker> st;            // when sensors.star_tracker.enabled
+  std::unique_ptr<sim::WheelTachometers> tach;     // when sensors.tachometer.enabled and wheels
   bool ideal_css = false;
   std::array<Eigen::Vector3d, kIdealCss> ideal_normals;
 
@@ -454,7 +472,7 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
 
   // Coarse sun sensors (plant side) when normals are configured.
   if (!m.ideal_css) {
-    const sim::SensorContext sctx{sc.seed, sc.sensors.css.noise_std > 0.0};
+    const sim::SensorContext sctx{sc.seed, sc.sensors.noise && sc.sensors.css.noise_std > 0.0};
     for (size_t i = 0; i < sc.sensors.css.normals_B.size(); ++i) {
       sim::CssParams cp;
       cp.name = "css" + std::to_string(i);
@@ -471,10 +489,56 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
     }
   }
 
+  // Gyro, star tracker, wheel tachometers (plant side), each on its own
+  // stream Rng(seed, "gyro" | "star_tracker" | "tachometer"); one noise switch.
+  {
+    const sim::SensorContext sctx{sc.seed, sc.sensors.noise};
+    const int64_t tk = static_cast<int64_t>(sc.tick_ns());
+    try {
+      if (sc.sensors.gyro.enabled) {
+        sim::GyroParams gp;
+        gp.name = "gyro";
+        gp.period_ns = static_cast<int64_t>(sc.sensors.gyro.divisor) * tk;
+        gp.sigma_ARW = sc.sensors.gyro.arw;
+        gp.sigma_RRW = sc.sensors.gyro.rrw;
+        gp.lsb = sc.sensors.gyro.lsb;
+        m.gyro = std::make_unique<sim::Gyro>(gp, sctx);
+      }
+    } catch (const std::exception& e) {
+      throw config_error(sc, "sensors.gyro", std::string("rejected by the plant: ") + e.what());
+    }
+    try {
+      if (sc.sensors.star_tracker.enabled) {
+        sim::StarTrackerParams sp;
+        sp.name = "star_tracker";
+        sp.period_ns = static_cast<int64_t>(sc.sensors.star_tracker.divisor) * tk;
+        sp.sigma_cross = sc.sensors.star_tracker.sigma_cross;
+        sp.sigma_bore = sc.sensors.star_tracker.sigma_bore;
+        sp.sun_exclusion = sc.sensors.star_tracker.sun_exclusion;
+        m.st = std::make_unique<sim::StarTracker>(sp, sctx);
+      }
+    } catch (const std::exception& e) {
+      throw config_error(sc, "sensors.star_tracker", std::string("rejected by the plant: ") + e.what());
+    }
+    try {
+      if (sc.sensors.tachometer.enabled && m.n_rw > 0) {
+        sim::TachParams tp;
+        tp.name = "tachometer";
+        tp.num_rw = m.n_rw;
+        tp.period_ns = static_cast<int64_t>(sc.sensors.tachometer.divisor) * tk;
+        tp.sigma = sc.sensors.tachometer.sigma;
+        tp.lsb = sc.sensors.tachometer.lsb;
+        m.tach = std::make_unique<sim::WheelTachometers>(tp, sctx);
+      }
+    } catch (const std::exception& e) {
+      throw config_error(sc, "sensors.tachometer", std::string("rejected by the plant: ") + e.what());
+    }
+  }
+
   // ---- messages and data flow -------------------------------------------------
   DataFlow& f = m.flow;
   f.add_component("plant", m.veh ? "sim::Vehicle" : "sim::Spacecraft");
-  f.add_component("sensors", "ideal truth sampling");
+  f.add_component("sensors", "FSW input: sampled sensor outputs (truth where a sensor is disabled)");
   f.add_component("fsw_acs", "fsw_c application (fsw_acs_cycle)");
   f.add_component("actuators", "harness");
   auto& truth = f.add_message<TruthMsg>("truth");
@@ -552,10 +616,60 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
     });
   }
   const RateGroup fsw_group{"fsw", sc.rates.fsw_divisor, sc.rates.fsw_offset};
-  // sensors (ideal): FswAcsSensorMsg from truth (+ CSS readings)
+  // sensor sampling (every tick): each model samples when its own period is
+  // due (t_k a multiple of divisor * dt) and its output is held in between.
+  const bool have_models = m.gyro || m.st || m.tach;
+  Channel<SensorSampleMsg>* samples = have_models ? &f.add_message<SensorSampleMsg>("sensor_samples") : nullptr;
+  if (have_models) {
+    f.add_component("sample_sensors", "sim::Gyro, sim::StarTracker, sim::WheelTachometers");
+    auto rt = f.reader("sample_sensors", truth);
+    auto wsm = f.writer("sample_sensors", *samples);
+    const Eigen::Vector3d r_sun = sc.environment.sun_position_N;
+    const uint64_t dg = sc.sensors.gyro.divisor, ds = sc.sensors.star_tracker.divisor,
+                   dw = sc.sensors.tachometer.divisor;
+    m.sched.add_task("sample_sensors", RateGroup{"every_tick", 1, 0},
+                     [ip, rt, wsm, r_sun, dg, ds, dw](uint64_t k) {
+      Impl& s = *ip;
+      const bool g = s.gyro && k % dg == 0, a = s.st && k % ds == 0, w = s.tach && k % dw == 0;
+      if (!(g || a || w)) return;
+      const TruthMsg& t = rt.read();
+      sim::SensorTruth st;
+      st.t_ns = static_cast<int64_t>(s.sched.t_ns(k));
+      st.sigma_BN = ev(t.sigma_BN);
+      st.omega_BN_B = ev(t.omega_BN_B);
+      st.r_BN_N = ev(t.r_BN_N);
+      st.r_SunN_N = r_sun;
+      for (int i = 0; i < s.n_rw; ++i) st.Omega[static_cast<size_t>(i)] = t.Omega[i];
+      SensorSampleMsg out = wsm.channel().value();
+      if (g && s.gyro->update(st)) {
+        const sim::GyroOutput& o = s.gyro->output();
+        put3(out.omega_PN_P, o.omega_PN_P);
+        out.gyro_t_ns = o.t_ns;
+        out.gyro_valid = o.valid ? 1 : 0;
+      }
+      if (a && s.st->update(st)) {
+        const sim::StarTrackerOutput& o = s.st->output();
+        put3(out.sigma_CN, o.sigma_CN);
+        out.st_t_ns = o.t_ns;
+        out.st_valid = o.valid ? 1 : 0;
+      }
+      if (w && s.tach->update(st)) {
+        const sim::TachOutput& o = s.tach->output();
+        for (int i = 0; i < s.n_rw; ++i) out.Omega[i] = o.Omega[static_cast<size_t>(i)];
+        out.tach_t_ns = o.t_ns;
+        out.tach_valid = o.valid ? 1 : 0;
+      }
+      wsm.write(out, st.t_ns);
+    });
+  }
+  // sensors: FswAcsSensorMsg from the held sensor samples (gyro -> omega_BN_B,
+  // star tracker -> sigma_BN + att_valid, tachometers -> Omega), CSS readings;
+  // a disabled sensor's quantity and r_CoM_B come from truth
   {
     auto rt = f.reader("sensors", truth);
     auto ws = f.writer("sensors", sens);
+    Reader<SensorSampleMsg> rsm;
+    if (samples) rsm = f.reader("sensors", *samples);
     Reader<CssMsg> rc;
     if (!m.ideal_css) {
       f.add_component("css", "sim::CoarseSunSensor");
@@ -581,15 +695,23 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
       });
     }
     const Eigen::Vector3d r_sun = sc.environment.sun_position_N;
-    m.sched.add_task("sensors", fsw_group, [ip, rt, ws, rc, r_sun](uint64_t k) {
+    m.sched.add_task("sensors", fsw_group, [ip, rt, ws, rc, rsm, r_sun](uint64_t k) {
       const Impl& s = *ip;
       const TruthMsg& t = rt.read();
       FswAcsSensorMsg msg;
       std::memset(&msg, 0, sizeof msg);
       msg.t_ns = s.sched.t_ns(k);
-      copy3(msg.sigma_BN, t.sigma_BN);
-      msg.att_valid = 1;
-      copy3(msg.omega_BN_B, t.omega_BN_B);
+      if (s.st) {
+        // sigma_BN = sigma_CN (case = body); no valid sample yet or Sun-excluded: att_valid 0
+        const SensorSampleMsg& sm = rsm.read();
+        copy3(msg.sigma_BN, sm.sigma_CN);
+        msg.att_valid = sm.st_valid;
+      } else {
+        copy3(msg.sigma_BN, t.sigma_BN);
+        msg.att_valid = 1;
+      }
+      if (s.gyro) copy3(msg.omega_BN_B, rsm.read().omega_PN_P);  // P = B
+      else copy3(msg.omega_BN_B, t.omega_BN_B);
       if (s.ideal_css) {
         const Eigen::Vector3d d_B =
             sim::dcm_BN_from_sigma(ev(t.sigma_BN)) * (r_sun - ev(t.r_BN_N)).normalized();
@@ -598,7 +720,12 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
       } else {
         for (int i = 0; i < s.acs_cfg.css.num_css; ++i) msg.css[i] = R(rc.read().y[i]);
       }
-      for (int i = 0; i < s.n_rw; ++i) msg.Omega[i] = R(t.Omega[i]);
+      if (s.tach) {
+        const SensorSampleMsg& sm = rsm.read();
+        for (int i = 0; i < s.n_rw; ++i) msg.Omega[i] = R(sm.Omega[i]);
+      } else {
+        for (int i = 0; i < s.n_rw; ++i) msg.Omega[i] = R(t.Omega[i]);
+      }
       copy3(msg.r_CoM_B, t.c_B);
       ws.write(msg, msg.t_ns);
     });
@@ -732,6 +859,28 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
                                o[13 + i] = x.v_BN_N[i];
                              }
                            });
+    // what the FSW was given (FswAcsSensorMsg): the measured values next to truth
+    {
+      f.reader("recorder", sens);
+      m.rec.record<FswAcsSensorMsg>(sens,
+                                    {{"meas_sigma_BN_x", "-"}, {"meas_sigma_BN_y", "-"}, {"meas_sigma_BN_z", "-"},
+                                     {"meas_att_valid", "-"},
+                                     {"meas_omega_BN_B_x", "rad/s"}, {"meas_omega_BN_B_y", "rad/s"},
+                                     {"meas_omega_BN_B_z", "rad/s"}},
+                                    [](const FswAcsSensorMsg& x, double* o) {
+                                      copy3(o, x.sigma_BN);
+                                      o[3] = x.att_valid;
+                                      copy3(o + 4, x.omega_BN_B);
+                                    });
+      const int nw = m.n_rw;
+      if (nw > 0) {
+        std::vector<Column> mc;
+        for (int i = 0; i < nw; ++i) mc.push_back({"meas_wheel_speed_rpm_" + std::to_string(i), "rpm"});
+        m.rec.record<FswAcsSensorMsg>(sens, mc, [nw](const FswAcsSensorMsg& x, double* o) {
+          for (int i = 0; i < nw; ++i) o[i] = static_cast<double>(x.Omega[i]) * kRpmPerRadS;
+        });
+      }
+    }
     const int n = m.n_rw;
     if (n > 0) {
       std::vector<Column> wc;

@@ -751,13 +751,29 @@ void read_sensors(MapReader r, Scenario& sc)
     sc.sensors.star_tracker.sigma_cross = *v;
   if (auto v = st.quantity("sigma_bore", "_arcsec", kRadPerArcsec, non_negative("rad or arcsec")))
     sc.sensors.star_tracker.sigma_bore = *v;
+  if (auto v = st.quantity("sun_exclusion", "_deg", sim::kRadPerDeg, [&st](double x) {
+        const double lim = st.has("sun_exclusion_deg") ? 180.0 : sim::kPi;
+        return x >= 0.0 && x < lim ? std::string() : std::string("must be in [0, 180 deg)");
+      }))
+    sc.sensors.star_tracker.sun_exclusion = *v;
   if (auto v = st.integer("divisor", 1, kMaxDivisor)) sc.sensors.star_tracker.divisor = static_cast<uint32_t>(*v);
   st.finish();
   MapReader g = r.sub("gyro");
   if (auto v = g.boolean("enabled")) sc.sensors.gyro.enabled = *v;
   if (auto v = g.real("arw", non_negative("rad/sqrt(s)"))) sc.sensors.gyro.arw = *v;
   if (auto v = g.real("rrw", non_negative("rad/s^(3/2)"))) sc.sensors.gyro.rrw = *v;
+  if (auto v = g.real("lsb", non_negative("rad/s"))) sc.sensors.gyro.lsb = *v;
+  if (auto v = g.integer("divisor", 1, kMaxDivisor)) sc.sensors.gyro.divisor = static_cast<uint32_t>(*v);
   g.finish();
+  MapReader tc = r.sub("tachometer");
+  if (auto v = tc.boolean("enabled")) sc.sensors.tachometer.enabled = *v;
+  if (auto v = tc.quantity("sigma", "_rpm", sim::kRadPerSecPerRpm, non_negative("rad/s or rpm")))
+    sc.sensors.tachometer.sigma = *v;
+  if (auto v = tc.quantity("lsb", "_rpm", sim::kRadPerSecPerRpm, non_negative("rad/s or rpm")))
+    sc.sensors.tachometer.lsb = *v;
+  if (auto v = tc.integer("divisor", 1, kMaxDivisor)) sc.sensors.tachometer.divisor = static_cast<uint32_t>(*v);
+  tc.finish();
+  if (auto v = r.boolean("noise")) sc.sensors.noise = *v;
   r.finish();
 }
 
@@ -909,6 +925,9 @@ void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
     else if (std::round(n) > static_cast<double>(kMaxTicks))
       top.error_at("duration", "too many steps (" + fmt(n) + " > 1e11)");
   }
+  // Sensor sample periods: absent, a sensor samples at the FSW rate.
+  for (uint32_t* d : {&sc.sensors.gyro.divisor, &sc.sensors.star_tracker.divisor, &sc.sensors.tachometer.divisor})
+    if (*d == 0) *d = sc.rates.fsw_divisor;
   if (sc.wheels.empty() && sc.thrusters.empty())
     ctx.error(root, "wheels", "the spacecraft needs wheels or thrusters");
   if (!sc.wheels.empty() && sc.wheels.size() < 3)

@@ -98,11 +98,20 @@ json scenario_to_json(const Scenario& sc)
                    {{"enabled", sc.sensors.star_tracker.enabled},
                     {"sigma_cross", sc.sensors.star_tracker.sigma_cross},
                     {"sigma_bore", sc.sensors.star_tracker.sigma_bore},
+                    {"sun_exclusion", sc.sensors.star_tracker.sun_exclusion},
                     {"divisor", sc.sensors.star_tracker.divisor}}},
                   {"gyro",
                    {{"enabled", sc.sensors.gyro.enabled},
                     {"arw", sc.sensors.gyro.arw},
-                    {"rrw", sc.sensors.gyro.rrw}}}};
+                    {"rrw", sc.sensors.gyro.rrw},
+                    {"lsb", sc.sensors.gyro.lsb},
+                    {"divisor", sc.sensors.gyro.divisor}}},
+                  {"tachometer",
+                   {{"enabled", sc.sensors.tachometer.enabled},
+                    {"sigma", sc.sensors.tachometer.sigma},
+                    {"lsb", sc.sensors.tachometer.lsb},
+                    {"divisor", sc.sensors.tachometer.divisor}}},
+                  {"noise", sc.sensors.noise}};
   const FswSpec& f = sc.fsw;
   json mrp = {{"K", f.mrp_fb.K},
               {"P", f.mrp_fb.P},

@@ -114,6 +114,17 @@ void check_burn_and_orbit(const S2Result& r)
 // response to a step disturbance never exceeds that static deflection: so the
 // error stays below 2.34 deg during the whole burn.  The integral (time
 // constant 5 s) then removes it: below 0.1 deg from 60 s after ignition.
+// Sensor noise (as shipped: star tracker 20"/20"/100" 1-sigma at 10 Hz, gyro
+// ARW 1e-5 rad/sqrt(s)): the attitude noise reaches the true attitude through
+// the closed loop T(s) = (2 zeta w s + w^2) / (s^2 + 2 zeta w s + w^2) (w = 1
+// rad/s, zeta = 1), whose integral of |T|^2 over all frequencies is
+// (b1^2 a0 + b0^2) / (2 a0 a1) = 1.25 Hz; white samples at 10 Hz have a
+// two-sided PSD of var / 10 Hz, so the true jitter is sqrt(0.125) = 0.35 of the
+// measurement's rms angle sqrt(2 * 20^2 + 100^2)" = 0.029 deg: 0.010 deg, 5 sigma
+// = 0.05 deg.  The gyro's share is P ARW/sqrt(T) = 0.06 N*m of torque noise vs
+// the tracker's K sigma_bore / 4 = 0.44 N*m.  Noise-free the hold error is below
+// 0.04 deg, so 0.1 deg still holds; the propellant bound is unaffected (the ACS
+// burn from rcs_tank, not from the engine's tank 0).
 TEST(S2, RemainderPulsingHoldsAttitudeThroughTheBurnAndCapturesAtMars)
 {
   const S2Result r = run_s2({});
@@ -129,10 +140,13 @@ TEST(S2, RemainderPulsingHoldsAttitudeThroughTheBurnAndCapturesAtMars)
 // a dead band of 4 (level_on t_min / T) F d / K = 4 (0.75 * 0.02 / 0.1) * 30 *
 // 1.79 / 3600 rad = 0.51 deg (fsw_acs docs); bound 0.6 deg from 60 s after
 // ignition to the end of the burn.
+// The dead band assumes the FSW sees the exact attitude: this test runs with
+// sensors.noise = false (star-tracker NEA of 20" cross-axis alone moves the
+// limit cycle's extremes by ~0.3 deg: see SchmittPulsingWithSensorNoise).
 TEST(S2, SchmittPulsingHoldsAttitudeWithinItsDeadBand)
 {
   // shortened to the first 120 s of the burn (the orbit is checked with remainder pulsing)
-  const S2Result r = run_s2({{"fsw.thr_pulse.mode", "schmitt"}, {"duration", "480"}});
+  const S2Result r = run_s2({{"fsw.thr_pulse.mode", "schmitt"}, {"duration", "480"}, {"sensors.noise", "false"}});
   EXPECT_EQ(r.s.at("burn_complete"), 0.0);
   EXPECT_LT(r.s.at("max_pointing_error_burn_deg"), 2.34);
   EXPECT_LT(max_in(r.run->recorder(), "pointing_error_deg", 420.0, 480.0), 0.6);
@@ -146,7 +160,9 @@ TEST(S2, SchmittPulsingHoldsAttitudeWithinItsDeadBand)
 // conserved (RK4 at 0.05 s on a 3800-30000 km arc: well below 1e-10 relative).
 TEST(S2, CoastWithIdleActuatorsConservesMomentumAndOrbit)
 {
-  const S2Result r = run_s2({{"duration", "150"}, {"spacecraft.initial.sigma_BN", "[0.41421356, 0, 0]"}});
+  // noise off: with sensor noise the FSW rightly fires at the noise
+  const S2Result r = run_s2(
+      {{"duration", "150"}, {"spacecraft.initial.sigma_BN", "[0.41421356, 0, 0]"}, {"sensors.noise", "false"}});
   const harness::Recorder& rec = r.run->recorder();
   for (int j = 0; j < 9; ++j)
     EXPECT_EQ(max_in(rec, ("thruster_on_time_" + std::to_string(j)).c_str(), 0.0, 150.0), 0.0) << j;

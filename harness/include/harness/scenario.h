@@ -117,23 +117,40 @@ struct CssSpec {
   double noise_std = 0.0;                  // [-]
 };
 
+// Gyro, star tracker and wheel tachometers (sim::Gyro, sim::StarTracker,
+// sim::WheelTachometers).  enabled: the model's sampled output feeds the
+// FSW; false: the FSW gets that quantity ideal (truth at the FSW tick, the
+// pre-sensor behaviour).  divisor: sample period in ticks; 0 in a spec being
+// built means "follow rates.fsw_divisor" (load_scenario resolves it).
 struct StarTrackerSpec {
-  bool enabled = false;
-  double sigma_cross = 0.0;  // [rad]
-  double sigma_bore = 0.0;   // [rad]
-  uint32_t divisor = 1;      // [ticks]
+  bool enabled = true;
+  double sigma_cross = 0.0;    // [rad] 1-sigma about case x, y
+  double sigma_bore = 0.0;     // [rad] 1-sigma about the boresight (case z = +z_B)
+  double sun_exclusion = 0.0;  // [rad] Sun-to-boresight angle below which no valid sample; 0: off
+  uint32_t divisor = 0;        // [ticks]
 };
 
 struct GyroSpec {
-  bool enabled = false;
-  double arw = 0.0;  // [rad/sqrt(s)]
-  double rrw = 0.0;  // [rad/s^(3/2)]
+  bool enabled = true;
+  double arw = 0.0;   // [rad/sqrt(s)]
+  double rrw = 0.0;   // [rad/s^(3/2)]
+  double lsb = 0.0;   // [rad/s] quantisation step; 0: off
+  uint32_t divisor = 0;  // [ticks]
+};
+
+struct TachSpec {
+  bool enabled = true;
+  double sigma = 0.0;  // [rad/s] white noise 1-sigma
+  double lsb = 0.0;    // [rad/s] quantisation step; 0: off
+  uint32_t divisor = 0;  // [ticks]
 };
 
 struct SensorsSpec {
+  bool noise = true;  // false: every sensor ideal (sim::SensorContext::noise)
   CssSpec css;
   StarTrackerSpec star_tracker;
   GyroSpec gyro;
+  TachSpec tachometer;
 };
 
 struct MrpFbSpec {
