@@ -26,6 +26,14 @@ int fsw_rw_all_positive(const fsw_real *v, int n)
   return 1;
 }
 
+int fsw_rw_avail_finite(const fsw_real *x, const uint8_t avail[FSW_MAX_RW], int n)
+{
+  int i;
+  for (i = 0; i < n; i++)
+    if (avail[i] == FSW_AVAILABLE && !isfinite(x[i])) return 0;
+  return 1;
+}
+
 int fsw_rw_avail_valid(const uint8_t avail[FSW_MAX_RW], int n)
 {
   int i;

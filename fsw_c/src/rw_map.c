@@ -88,7 +88,7 @@ FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
   nc = cfg->num_axes;
 
   if (!fsw_v3_is_finite(in->Lr_B) || !fsw_rw_avail_valid(in->avail, n) ||
-      (cfg->mode == FSW_RW_MAP_POWER && !fsw_vn_is_finite(in->Omega, n)))
+      (cfg->mode == FSW_RW_MAP_POWER && !fsw_rw_avail_finite(in->Omega, in->avail, n)))
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   if (nc == 0) return fsw_health_record(&st->health, FSW_OK);
 

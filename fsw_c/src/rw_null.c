@@ -55,14 +55,17 @@ FswStatus fsw_rw_null_update(FswRwNullState *st, const FswRwNullConfig *cfg,
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
   if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
   n = cfg->num_rw;
-  if (!fsw_vn_is_finite(in->u_s, n) || !fsw_vn_is_finite(in->Omega, n) ||
-      !fsw_vn_is_finite(in->Omega_des, n) || !fsw_rw_avail_valid(in->avail, n))
+  if (!fsw_rw_avail_valid(in->avail, n) || !fsw_vn_is_finite(in->u_s, n) ||
+      !fsw_rw_avail_finite(in->Omega, in->avail, n) ||
+      !fsw_rw_avail_finite(in->Omega_des, in->avail, n))
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
 
   (void)fsw_rw_proj_refresh(&st->proj, in->avail);
   for (i = 0; i < n; i++) {
-    d[i] = -cfg->k_null * (in->Omega[i] - in->Omega_des[i]);
-    uc[i] = (in->avail[i] == FSW_AVAILABLE) ? in->u_s[i] : FSW_R(0.0);
+    const int a = in->avail[i] == FSW_AVAILABLE;
+    /* unavailable wheels: their speeds are not read (0 * NaN would leak) */
+    d[i] = a ? -cfg->k_null * (in->Omega[i] - in->Omega_des[i]) : FSW_R(0.0);
+    uc[i] = a ? in->u_s[i] : FSW_R(0.0);
   }
   fsw_rw_proj_apply(du, &st->proj, d);
   out->kappa = fsw_rw_add_scaled_to_fit(out->u_s, uc, du, cfg->scale_to_fit ? cfg->u_max : NULL, n);

@@ -122,8 +122,8 @@ FswStatus fsw_rw_null_regen_update(FswRwNullRegenState *st, const FswRwNullRegen
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
   if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
   n = cfg->num_rw;
-  if (!fsw_vn_is_finite(in->u_s, n) || !fsw_vn_is_finite(in->Omega, n) ||
-      !fsw_rw_avail_valid(in->avail, n))
+  if (!fsw_rw_avail_valid(in->avail, n) || !fsw_vn_is_finite(in->u_s, n) ||
+      !fsw_rw_avail_finite(in->Omega, in->avail, n))
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
 
   (void)fsw_rw_proj_refresh(&st->proj, in->avail);

@@ -41,6 +41,10 @@ void fsw_rw_volt_reset(FswRwVoltState *st)
   FSW_ASSERT(st != NULL);
   if (st == NULL) return;
   fsw_rw_zero(st->Omega_prev);
+  {
+    int i;
+    for (i = 0; i < FSW_MAX_RW; i++) st->prev_ok[i] = 0u;
+  }
   st->phase = 0;
   st->has_prev = 0;
   st->t_prev_ns = 0u;
@@ -59,8 +63,9 @@ FswStatus fsw_rw_volt_update(FswRwVoltState *st, const FswRwVoltConfig *cfg,
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
   if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
   n = cfg->num_rw;
-  if (!fsw_vn_is_finite(in->u_s, n) || (in->has_Omega != 0 && in->has_Omega != 1) ||
-      (in->has_Omega && !fsw_vn_is_finite(in->Omega, n)) || !fsw_rw_avail_valid(in->avail, n))
+  if (!fsw_rw_avail_valid(in->avail, n) || !fsw_vn_is_finite(in->u_s, n) ||
+      (in->has_Omega != 0 && in->has_Omega != 1) ||
+      (in->has_Omega && !fsw_rw_avail_finite(in->Omega, in->avail, n)))
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   if (st->has_prev) {
     if (in->t_ns <= st->t_prev_ns) return fsw_health_record(&st->health, FSW_E_TIME);
@@ -76,14 +81,18 @@ FswStatus fsw_rw_volt_update(FswRwVoltState *st, const FswRwVoltConfig *cfg,
     st->phase = 1;
   } else {
     for (i = 0; i < n; i++) {
-      if (st->phase == 2 && in->avail[i] == FSW_AVAILABLE) {
+      /* a wheel whose previous speed was not a number (unavailable with a
+       * failed tachometer) skips one correction after it comes back */
+      if (st->phase == 2 && in->avail[i] == FSW_AVAILABLE && st->prev_ok[i]) {
         const fsw_real Omega_dot = (in->Omega[i] - st->Omega_prev[i]) / dt;
         if (cfg->gate_rate && FSW_FABS(Omega_dot) > cfg->Omega_dot_max[i])
           out->fault |= (uint64_t)1u << i;
         else
           out->V[i] -= cfg->K_V * (cfg->J_s[i] * Omega_dot - out->V[i]);
       }
-      st->Omega_prev[i] = in->Omega[i];
+      /* spec 7.1: Omega_prev = Omega for every wheel (available or not) */
+      st->prev_ok[i] = (uint8_t)(isfinite(in->Omega[i]) ? 1 : 0);
+      st->Omega_prev[i] = st->prev_ok[i] ? in->Omega[i] : FSW_R(0.0);
     }
     st->phase = 2;
   }

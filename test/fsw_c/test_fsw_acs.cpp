@@ -293,15 +293,36 @@ TEST(FswAcsCycle, BadInputGivesSafeOutputAdvancesNothingAndRecovers)
 
 TEST(FswAcsCycle, UnavailableWheelGetsZeroAndItsNaNSpeedIsIgnored)
 {
-  acsfix::wheel_config(g_cfg);
-  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
-  sensors_at_rest(g_sens, 0);
-  g_sens.rw_avail[2] = FSW_UNAVAILABLE;
-  g_sens.Omega[2] = kNaN;
-  const FswStatus s = fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h);
-  EXPECT_FALSE(fsw_status_is_error(s)) << fsw_status_name(s);
-  EXPECT_EQ(0, g_act.u_s[2]);
-  EXPECT_NE(0, g_act.u_s[0]);
+  // A failed tachometer on a wheel already out of service must not stop the
+  // chain: every stage (map in both modes, null motion, saturation, voltage
+  // with its speed loop) reads speeds of available wheels only.
+  for (int variant = 0; variant < 2; variant++) {
+    acsfix::golden_config(0, g_cfg);  // null motion, filter and voltages on
+    if (variant == 1) g_cfg.rw_map.mode = FSW_RW_MAP_POWER;
+    ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+    for (int c = 0; c < 4; c++) {  // past the voltage loop's two-call warm-up
+      sensors_at_rest(g_sens, c * kPeriodNs);
+      g_sens.Omega[0] = acsfix::R(10.0 + c);
+      g_sens.rw_avail[2] = FSW_UNAVAILABLE;
+      g_sens.Omega[2] = kNaN;
+      const FswStatus s = fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h);
+      EXPECT_FALSE(fsw_status_is_error(s)) << fsw_status_name(s) << " variant " << variant;
+      EXPECT_EQ(0, g_h.safe_output);
+      EXPECT_EQ(0, g_act.u_s[2]);
+      EXPECT_EQ(0, g_act.V[2]);
+      EXPECT_NE(0, g_act.u_s[0]);
+      for (int k = 0; k < 4; k++) {
+        EXPECT_TRUE(std::isfinite(g_act.u_s[k]));
+        EXPECT_TRUE(std::isfinite(g_act.V[k]));
+      }
+    }
+    // the wheel returns with a good speed: no NaN leaks from its stored sample
+    sensors_at_rest(g_sens, 4 * kPeriodNs);
+    g_sens.Omega[2] = acsfix::R(5.0);
+    EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+    for (int k = 0; k < 4; k++) EXPECT_TRUE(std::isfinite(g_act.V[k]));
+    EXPECT_NE(0, g_act.u_s[2]);
+  }
 }
 
 TEST(FswAcsCycle, BadModeRequestIsRejected)

@@ -3,6 +3,10 @@
 // gen_fsw_acs_golden.cpp) through fsw_acs and compares every output.
 // Inputs are replayed open loop, so any difference is the platform's
 // arithmetic (soft-float, FPU, libm, endianness), not a diverging loop.
+// This is a platform-equivalence and regression test: the expected values
+// are the host's own outputs by design, so it is evidence that every target
+// computes what the host computes, not that the host is right (that is
+// test_fsw_acs.cpp's job, with hand-computed and closed-loop checks).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -129,6 +129,13 @@ TEST_F(GuidSunsafe, NoValidSunSearchSpin)
   EXPECT_V3_NEAR(0.01, 0.0, 0.03 - 0.02, out_.guid.omega_BR_B, kTol);
   EXPECT_EQ(0, out_.sun_valid);
   EXPECT_EQ(0.0, out_.sun_angle_err);
+  // the boundary |s| = min_unit_mag is "no Sun" (spec: valid only if |s| > minUnitMag)
+  gref::set3(in_.sun_B, 0.1, 0.0, 0.0);
+  ASSERT_EQ(FSW_OK, run());
+  EXPECT_EQ(0, out_.sun_valid);
+  gref::set3(in_.sun_B, 0.1001, 0.0, 0.0);
+  ASSERT_EQ(FSW_OK, run());
+  EXPECT_EQ(1, out_.sun_valid);
   // exactly zero heading with min_unit_mag = 0 is also "no Sun" (no 0/0)
   cfg_.min_unit_mag = FSW_R(0.0);
   ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_init(&st_, &cfg_));

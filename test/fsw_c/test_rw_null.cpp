@@ -227,7 +227,7 @@ TEST(RwNullBadInput, NonFiniteOrBadMaskGivesZerosAndKeepsProjector)
   };
   static const Row rows[] = {
       {"u_s NaN", [](FswRwNullIn* in) { in->u_s[2] = kNaN; }},
-      {"Omega Inf", [](FswRwNullIn* in) { in->Omega[1] = kInf; }},
+      {"Omega Inf (available wheel)", [](FswRwNullIn* in) { in->Omega[2] = kInf; }},
       {"Omega_des NaN", [](FswRwNullIn* in) { in->Omega_des[3] = kNaN; }},
       {"mask value 9", [](FswRwNullIn* in) { in->avail[0] = 9; }},
   };
@@ -242,6 +242,17 @@ TEST(RwNullBadInput, NonFiniteOrBadMaskGivesZerosAndKeepsProjector)
     EXPECT_EQ(f->st->health.bad_input, 1u);
     EXPECT_EQ(f->st->proj.avail[1], FSW_AVAILABLE) << row.why;
     EXPECT_EQ(f->st->proj.num_avail, 4) << row.why;
+  }
+  {
+    // a failed tachometer on a wheel that is already unavailable is not read
+    auto g = pyramid();
+    g->in->avail[1] = FSW_UNAVAILABLE;
+    g->in->Omega[0] = FSW_R(10.0);
+    g->in->Omega[1] = kNaN;
+    g->in->Omega_des[1] = kInf;
+    EXPECT_EQ(g->update(), FSW_OK);
+    for (int i = 0; i < 4; i++) EXPECT_TRUE(std::isfinite(g->out->u_s[i])) << i;
+    EXPECT_EQ(g->out->u_s[1], 0.0);
   }
   auto f = pyramid();
   kestrel_assert_reset();

@@ -138,6 +138,41 @@ TEST(RwVoltNominal, OutlierGateSkipsCorrection)
   EXPECT_EQ(f.st->Omega_prev[0], FSW_R(110.0));
 }
 
+// Spec 7.1 stores Omega_prev for EVERY wheel.  Wheel 1 is unavailable for
+// one call while its speed moves 100 -> 101 rad/s; back in service at
+// 102 rad/s, its rate is (102 - 101)/0.1 = 10 rad/s^2 (from the sample taken
+// while unavailable, not the 100 of before): u = 0.1 - 0.5 (0.01*10 - 0.1) = 0.1.
+// With a stale 100 it would be 20 rad/s^2 and u = 0.05.  A NaN sample taken
+// while unavailable (failed tachometer) is not read and skips one correction.
+TEST(RwVoltNominal, StoredSpeedOfUnavailableWheelIsUsedOnReturn)
+{
+  Fixture f(2);
+  f.in->has_Omega = 1;
+  f.in->u_s[0] = f.in->u_s[1] = FSW_R(0.1);
+  f.in->Omega[0] = f.in->Omega[1] = FSW_R(100.0);
+  ASSERT_EQ(f.update(0), FSW_OK);
+  ASSERT_EQ(f.update(kDt), FSW_OK);
+  f.in->avail[1] = FSW_UNAVAILABLE;
+  f.in->Omega[1] = FSW_R(101.0);
+  ASSERT_EQ(f.update(2 * kDt), FSW_OK);
+  EXPECT_EQ(f.out->V[1], 0.0);
+  f.in->avail[1] = FSW_AVAILABLE;
+  f.in->Omega[1] = FSW_R(102.0);
+  ASSERT_EQ(f.update(3 * kDt), FSW_OK);
+  EXPECT_NEAR(f.out->V[1], ff(0.1), kt::tol(1e-12, 1e-4));
+  // failed tachometer while unavailable: accepted, and no NaN on return
+  f.in->avail[1] = FSW_UNAVAILABLE;
+  f.in->Omega[1] = std::numeric_limits<fsw_real>::quiet_NaN();
+  ASSERT_EQ(f.update(4 * kDt), FSW_OK);
+  f.in->avail[1] = FSW_AVAILABLE;
+  f.in->Omega[1] = FSW_R(50.0);
+  ASSERT_EQ(f.update(5 * kDt), FSW_OK);
+  EXPECT_NEAR(f.out->V[1], ff(0.1), kt::tol(1e-14, 1e-5));  // correction skipped once
+  f.in->Omega[1] = FSW_R(50.5);                              // 5 rad/s^2 -> u = 0.1 - 0.5 (0.05 - 0.1)
+  ASSERT_EQ(f.update(6 * kDt), FSW_OK);
+  EXPECT_NEAR(f.out->V[1], ff(0.125), kt::tol(1e-12, 1e-4));
+}
+
 TEST(RwVoltBadInput, NonFiniteBadFlagsAndTime)
 {
   for (int row = 0; row < 4; row++) {
@@ -152,6 +187,26 @@ TEST(RwVoltBadInput, NonFiniteBadFlagsAndTime)
     for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(f.out->V[i], 0.0);
     EXPECT_EQ(f.st->phase, 0);
     EXPECT_EQ(f.st->has_prev, 0);
+    EXPECT_EQ(f.st->health.bad_input, 1u) << row;
+  }
+  // mid-loop (phase 2, speeds stored): a bad call changes no state at all
+  {
+    Fixture f(2);
+    f.in->has_Omega = 1;
+    f.in->u_s[0] = FSW_R(0.1);
+    f.in->Omega[0] = FSW_R(100.0);
+    f.in->Omega[1] = FSW_R(-50.0);
+    ASSERT_EQ(f.update(0), FSW_OK);
+    ASSERT_EQ(f.update(kDt), FSW_OK);
+    ASSERT_EQ(f.st->phase, 2);
+    f.in->Omega[1] = std::numeric_limits<fsw_real>::quiet_NaN();
+    EXPECT_EQ(f.update(2 * kDt), FSW_E_BAD_INPUT);
+    EXPECT_EQ(f.st->phase, 2);
+    EXPECT_EQ(f.st->Omega_prev[0], FSW_R(100.0));
+    EXPECT_EQ(f.st->Omega_prev[1], FSW_R(-50.0));
+    EXPECT_EQ(f.st->t_prev_ns, kDt);
+    EXPECT_EQ(f.st->health.bad_input, 1u);
+    for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(f.out->V[i], 0.0);
   }
   // NaN speeds are ignored when not supplied
   Fixture g;
@@ -161,8 +216,11 @@ TEST(RwVoltBadInput, NonFiniteBadFlagsAndTime)
   Fixture h;
   h.in->has_Omega = 1;
   ASSERT_EQ(h.update(5 * kDt), FSW_OK);
+  h.in->u_s[0] = FSW_R(0.1);
   EXPECT_EQ(h.update(5 * kDt), FSW_E_TIME);
+  for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(h.out->V[i], 0.0);
   EXPECT_EQ(h.update(4 * kDt), FSW_E_TIME);
+  for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(h.out->V[i], 0.0);
   EXPECT_EQ(h.st->phase, 1);
   EXPECT_EQ(h.st->t_prev_ns, 5 * kDt);
   EXPECT_EQ(h.st->health.bad_time, 2u);

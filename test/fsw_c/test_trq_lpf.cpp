@@ -110,9 +110,17 @@ TEST(TrqLpfTiming, RateWarningAndTimeErrors)
   EXPECT_EQ(f.st.LrF_prev[0], before.LrF_prev[0]);
   EXPECT_EQ(f.st.t_prev_ns, before.t_prev_ns);
   EXPECT_EQ(f.st.health.bad_time, 2u);
-  EXPECT_EQ(f.step(9 * kH, 1, 1, 1), FSW_W_RATE);  // 0.3 s instead of 0.1 s
-  EXPECT_NE(f.out.LrF_B[0], 0.0);                 // still filtered with h
+  // the 1 % threshold of spec 3: a period 0.9 % long is fine, 1.5 % long warns
+  uint64_t t = 6 * kH + kH / 200;
+  t += kH + kH * 9 / 1000;
+  EXPECT_EQ(f.step(t, 1, 1, 1), FSW_OK);
+  t += kH + kH * 15 / 1000;
+  EXPECT_EQ(f.step(t, 1, 1, 1), FSW_W_RATE);
   EXPECT_EQ(f.st.health.rate, 1u);
+  t += 3 * kH;
+  EXPECT_EQ(f.step(t, 1, 1, 1), FSW_W_RATE);  // 0.3 s instead of 0.1 s
+  EXPECT_NE(f.out.LrF_B[0], 0.0);                 // still filtered with h
+  EXPECT_EQ(f.st.health.rate, 2u);
 }
 
 TEST(TrqLpfBadInput, NonFiniteGivesZerosAndNoStateChange)

@@ -38,6 +38,10 @@ int fsw_rw_all_positive(const fsw_real *v, int n);
 
 /* 1 when every avail[0..n-1] is FSW_AVAILABLE or FSW_UNAVAILABLE. */
 int fsw_rw_avail_valid(const uint8_t avail[FSW_MAX_RW], int n);
+/* 1 if x[i] is finite for every AVAILABLE wheel i < n (entries of
+ * unavailable wheels are not read: a failed tachometer on a wheel already
+ * taken out of service must not stop the chain).  avail must be valid. */
+int fsw_rw_avail_finite(const fsw_real *x, const uint8_t avail[FSW_MAX_RW], int n);
 
 /* Zero all FSW_MAX_RW entries (the safe torque/voltage output). */
 void fsw_rw_zero(fsw_real u[FSW_MAX_RW]);

@@ -40,6 +40,7 @@ typedef struct {
 typedef struct {
   int ready;
   fsw_real Omega_prev[FSW_MAX_RW]; /* [rad/s] speeds of the previous call */
+  uint8_t prev_ok[FSW_MAX_RW];     /* [-] 1 if that speed was a number     */
   int phase;                       /* [-] speed-loop warm-up 0, 1, 2 */
   int has_prev;                    /* [-] a call has been accepted since reset */
   uint64_t t_prev_ns;              /* [ns] its time stamp */
