@@ -19,6 +19,18 @@ std::vector<harness::Override> fast(std::vector<harness::Override> more)
   return ov;
 }
 
+// Largest value of column `name` from time t0 [s] to the end of the run:
+// "below a bound by a stated time" must hold over the whole remaining run,
+// not at one sample.
+double max_after(const harness::Recorder& r, const char* name, double t0)
+{
+  const auto t = r.column("t"), v = r.column(name);
+  double worst = 0.0;
+  for (size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= t0) worst = std::max(worst, v[i]);
+  return worst;
+}
+
 double max_rel_change(const harness::Recorder& r, const char* x, const char* y, const char* z)
 {
   const auto hx = r.column(x), hy = r.column(y), hz = r.column(z);
@@ -33,8 +45,10 @@ double max_rel_change(const harness::Recorder& r, const char* x, const char* y, 
 
 }  // namespace
 
-// S1 acquisition from the tumble: the Sun is within 0.5 deg of +z_B by t = 500 s,
-// and inertial angular momentum about C is conserved (wheel torques are internal).
+// S1 acquisition from the tumble: the Sun is within 0.5 deg of +z_B from
+// t = 450 s on (requirement: acquire and hold 0.5 deg within 450 s of a
+// 0.03 rad/s tumble), and inertial angular momentum about C is conserved
+// (wheel torques are internal).
 TEST(ClosedLoop, SunAcquisitionBalancedWheels)
 {
   const harness::Scenario sc =
@@ -44,9 +58,11 @@ TEST(ClosedLoop, SunAcquisitionBalancedWheels)
   const harness::Recorder& r = run.recorder();
   const auto err = r.column("pointing_error_deg");
   EXPECT_GT(err.front(), 30.0);  // starts far off (tumbling, ~70 deg)
-  EXPECT_LT(err.back(), 0.5);
-  // |H| ~ 18 N*m*s; RK4 at 0.1 s keeps it to far better than 1e-8 relative
-  EXPECT_LT(max_rel_change(r, "H_C_N_x", "H_C_N_y", "H_C_N_z"), 1e-8);
+  EXPECT_LT(max_after(r, "pointing_error_deg", 450.0), 0.5);
+  // |H| ~ 18 N*m*s with balanced wheels: internal torques only, so H_C is
+  // constant up to RK4 truncation at dt = 0.25 s (measured 6e-12); 1e-10
+  // leaves a margin while still failing on any spurious external torque.
+  EXPECT_LT(max_rel_change(r, "H_C_N_x", "H_C_N_y", "H_C_N_z"), 1e-10);
   // the Sun heading came from the coarse sun sensors through the FSW
   // application (its css_sun stage), which is fed the plant's CSS readings
   EXPECT_EQ(run.dataflow().writer_of("sun_heading"), "fsw_acs");
@@ -69,7 +85,7 @@ TEST(ClosedLoop, InertialHold)
   const auto err = run.recorder().column("pointing_error_deg");
   // initial principal angle of sigma = (0.1, 0.2, -0.3): 4 atan(|sigma|) = 4 atan(0.374166) = 81.97 deg
   EXPECT_NEAR(err.front(), 4.0 * std::atan(std::sqrt(0.14)) * 180.0 / M_PI, 1e-9);
-  EXPECT_LT(err.back(), 0.5);
+  EXPECT_LT(max_after(run.recorder(), "pointing_error_deg", 450.0), 0.5);
 }
 
 // Fully-coupled wheels in the loop (short: jitter models need small steps).
