@@ -291,13 +291,34 @@ TEST(FswAcsCycle, BadInputGivesSafeOutputAdvancesNothingAndRecovers)
   EXPECT_EQ(0, std::memcmp(&g_act, &g_act2, sizeof g_act));
 }
 
+// cos of the angle between the wheels' body torque -[Gs]u and Lr
+double wheel_torque_alignment(const FswAcsActuatorMsg& a)
+{
+  double body[3] = {0, 0, 0};
+  for (int k = 0; k < 4; k++) {
+    double g[3];
+    acsfix::pyramid_axis(k, g);
+    for (int i = 0; i < 3; i++) body[i] -= a.u_s[k] * g[i];
+  }
+  double bl = 0, bb = 0, ll = 0;
+  for (int i = 0; i < 3; i++) {
+    bl += body[i] * a.Lr_B[i];
+    bb += body[i] * body[i];
+    ll += static_cast<double>(a.Lr_B[i]) * a.Lr_B[i];
+  }
+  return bl / std::sqrt(bb * ll);
+}
+
 TEST(FswAcsCycle, UnavailableWheelGetsZeroAndItsNaNSpeedIsIgnored)
 {
   // A failed tachometer on a wheel already out of service must not stop the
   // chain: every stage (map in both modes, null motion, saturation, voltage
-  // with its speed loop) reads speeds of available wheels only.
+  // with its speed loop) reads speeds of available wheels only.  The three
+  // remaining wheels still deliver a torque along Lr (the pyramid minus one
+  // wheel keeps full rank), and scaling saturation keeps the direction.
   for (int variant = 0; variant < 2; variant++) {
     acsfix::golden_config(0, g_cfg);  // null motion, filter and voltages on
+    g_cfg.use_null = 0;               // null motion would add a (bodiless) torque; checked below
     if (variant == 1) g_cfg.rw_map.mode = FSW_RW_MAP_POWER;
     ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
     for (int c = 0; c < 4; c++) {  // past the voltage loop's two-call warm-up
@@ -310,18 +331,29 @@ TEST(FswAcsCycle, UnavailableWheelGetsZeroAndItsNaNSpeedIsIgnored)
       EXPECT_EQ(0, g_h.safe_output);
       EXPECT_EQ(0, g_act.u_s[2]);
       EXPECT_EQ(0, g_act.V[2]);
-      EXPECT_NE(0, g_act.u_s[0]);
       for (int k = 0; k < 4; k++) {
         EXPECT_TRUE(std::isfinite(g_act.u_s[k]));
         EXPECT_TRUE(std::isfinite(g_act.V[k]));
       }
+      EXPECT_NEAR(1.0, wheel_torque_alignment(g_act), kt::tol(1e-12, 1e-5)) << "cycle " << c;
     }
     // the wheel returns with a good speed: no NaN leaks from its stored sample
     sensors_at_rest(g_sens, 4 * kPeriodNs);
     g_sens.Omega[2] = acsfix::R(5.0);
     EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
     for (int k = 0; k < 4; k++) EXPECT_TRUE(std::isfinite(g_act.V[k]));
-    EXPECT_NE(0, g_act.u_s[2]);
+    EXPECT_NEAR(1.0, wheel_torque_alignment(g_act), kt::tol(1e-12, 1e-5));
+  }
+  // with null motion on as well: still no safe output and all finite
+  acsfix::golden_config(0, g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  for (int c = 0; c < 4; c++) {
+    sensors_at_rest(g_sens, c * kPeriodNs);
+    g_sens.rw_avail[2] = FSW_UNAVAILABLE;
+    g_sens.Omega[2] = kNaN;
+    EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+    EXPECT_EQ(0, g_act.u_s[2]);
+    for (int k = 0; k < 4; k++) EXPECT_TRUE(std::isfinite(g_act.V[k]));
   }
 }
 
