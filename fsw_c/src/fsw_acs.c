@@ -154,7 +154,11 @@ FswStatus fsw_acs_init(FswAcsState *st, const FswAcsConfig *cfg, const char **ba
   if (cfg->use_lpf) ACS_INIT(fsw_trq_lpf_init(&st->lpf, &cfg->lpf), "lpf");
   if (cfg->has_wheels) {
     ACS_INIT(fsw_rw_map_init(&st->rw_map, &cfg->rw_map), "rw_map");
-    if (cfg->use_null) ACS_INIT(fsw_rw_null_init(&st->rw_null, &cfg->rw_null), "rw_null");
+    if (cfg->use_null) {
+      ACS_INIT(fsw_rw_null_init(&st->rw_null, &cfg->rw_null), "rw_null");
+      /* desired speeds are configuration: copied into the stage input once */
+      fsw_vn_copy(st->work.null_in.Omega_des, cfg->Omega_des, cfg->rw_null.num_rw);
+    }
     ACS_INIT(fsw_rw_sat_init(&st->rw_sat, &cfg->rw_sat), "rw_sat");
     if (cfg->use_volt) ACS_INIT(fsw_rw_volt_init(&st->rw_volt, &cfg->rw_volt), "rw_volt");
   }
@@ -302,7 +306,6 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   if (cfg->use_null) {
     fsw_vn_copy(w->null_in.u_s, u, n);
     fsw_vn_copy(w->null_in.Omega, sens->Omega, n);
-    fsw_vn_copy(w->null_in.Omega_des, cfg->Omega_des, n);
     u8_copy(w->null_in.avail, sens->rw_avail, n);
     s = fsw_rw_null_update(&st->rw_null, &cfg->rw_null, &w->null_in, &w->null_out);
     h->stage_status[FSW_ACS_STAGE_RW_NULL] = s;

@@ -121,18 +121,10 @@ void put3(Out* out, const Eigen::Vector3d& v)
 Eigen::Vector3d ev(const double* p) { return Eigen::Vector3d(p[0], p[1], p[2]); }
 fsw_real R(double x) { return static_cast<fsw_real>(x); }
 
-// Scalar-first quaternion from an MRP (|sigma| <= 1 gives beta_0 >= 0).
-Eigen::Vector4d quat_from_mrp(const Eigen::Vector3d& s)
-{
-  const double s2 = s.squaredNorm();
-  const double d = 1.0 + s2;
-  return Eigen::Vector4d((1.0 - s2) / d, 2.0 * s(0) / d, 2.0 * s(1) / d, 2.0 * s(2) / d);
-}
-
 // Principal angle of B relative to R from two MRPs, via quaternions.
 double principal_angle(const Eigen::Vector3d& sigma_BN, const Eigen::Vector3d& sigma_RN)
 {
-  const Eigen::Vector4d b = quat_from_mrp(sigma_BN), r = quat_from_mrp(sigma_RN);
+  const Eigen::Vector4d b = sim::quaternion_from_sigma(sigma_BN), r = sim::quaternion_from_sigma(sigma_RN);
   // q_BR = q_BN (x) q_RN^-1: scalar part and vector norm
   const double q0 = b(0) * r(0) + b.tail<3>().dot(r.tail<3>());
   const Eigen::Vector3d qv = r(0) * b.tail<3>() - b(0) * r.tail<3>() - b.tail<3>().cross(r.tail<3>());
@@ -192,6 +184,18 @@ ScenarioError config_error(const Scenario& sc, const std::string& key, const std
     k = k.substr(0, cut);
   }
   return ScenarioError({is});
+}
+
+// Runs `make` (plant construction): an exception from the plant becomes a
+// scenario error naming `key`, with the line of that key.
+template <class F>
+void built_by_plant(const Scenario& sc, const char* key, F&& make)
+{
+  try {
+    make();
+  } catch (const std::exception& e) {
+    throw config_error(sc, key, std::string("rejected by the plant: ") + e.what());
+  }
 }
 
 }  // namespace
@@ -300,11 +304,9 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
   ic.sigma_BN = sc.spacecraft.initial.sigma_BN;
   ic.omega_BN_B = sc.spacecraft.initial.omega_BN_B;
   if (m.n_thr == 0) {
-    try {
+    built_by_plant(sc, "spacecraft", [&] {
       m.craft = std::make_unique<sim::Spacecraft>(params, ic);
-    } catch (const std::exception& e) {
-      throw config_error(sc, "spacecraft", std::string("rejected by the plant: ") + e.what());
-    }
+    });
   } else {
     sim::PropulsionParams prop;
     sim::TankParams tk;
@@ -334,11 +336,9 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
       if (sc.burn && t.name == sc.burn->thruster) m.engine = j;
     }
     prop.command.T_upd_ns = static_cast<int64_t>(sc.rates.thruster_divisor) * m.dt_ns;
-    try {
+    built_by_plant(sc, "thrusters", [&] {
       m.veh = std::make_unique<sim::Vehicle>(params, prop, ic);
-    } catch (const std::exception& e) {
-      throw config_error(sc, "thrusters", std::string("rejected by the plant: ") + e.what());
-    }
+    });
     m.n_tanks = static_cast<int>(prop.tanks.size());
     if (sc.burn) {
       // the engine opens at the first command instant at or after start
@@ -481,11 +481,9 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
       cp.scale = sc.sensors.css.scale;
       cp.sigma = sc.sensors.css.noise_std;
       cp.period_ns = static_cast<int64_t>(sc.tick_ns());  // sampled at FSW ticks
-      try {
+      built_by_plant(sc, "sensors.css", [&] {
         m.css.emplace_back(cp, sctx);
-      } catch (const std::exception& e) {
-        throw config_error(sc, "sensors.css", std::string("rejected by the plant: ") + e.what());
-      }
+      });
     }
   }
 
@@ -494,7 +492,7 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
   {
     const sim::SensorContext sctx{sc.seed, sc.sensors.noise};
     const int64_t tk = static_cast<int64_t>(sc.tick_ns());
-    try {
+    built_by_plant(sc, "sensors.gyro", [&] {
       if (sc.sensors.gyro.enabled) {
         sim::GyroParams gp;
         gp.name = "gyro";
@@ -504,10 +502,8 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
         gp.lsb = sc.sensors.gyro.lsb;
         m.gyro = std::make_unique<sim::Gyro>(gp, sctx);
       }
-    } catch (const std::exception& e) {
-      throw config_error(sc, "sensors.gyro", std::string("rejected by the plant: ") + e.what());
-    }
-    try {
+    });
+    built_by_plant(sc, "sensors.star_tracker", [&] {
       if (sc.sensors.star_tracker.enabled) {
         sim::StarTrackerParams sp;
         sp.name = "star_tracker";
@@ -517,10 +513,8 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
         sp.sun_exclusion = sc.sensors.star_tracker.sun_exclusion;
         m.st = std::make_unique<sim::StarTracker>(sp, sctx);
       }
-    } catch (const std::exception& e) {
-      throw config_error(sc, "sensors.star_tracker", std::string("rejected by the plant: ") + e.what());
-    }
-    try {
+    });
+    built_by_plant(sc, "sensors.tachometer", [&] {
       if (sc.sensors.tachometer.enabled && m.n_rw > 0) {
         sim::TachParams tp;
         tp.name = "tachometer";
@@ -530,9 +524,7 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
         tp.lsb = sc.sensors.tachometer.lsb;
         m.tach = std::make_unique<sim::WheelTachometers>(tp, sctx);
       }
-    } catch (const std::exception& e) {
-      throw config_error(sc, "sensors.tachometer", std::string("rejected by the plant: ") + e.what());
-    }
+    });
   }
 
   // ---- messages and data flow -------------------------------------------------
@@ -850,7 +842,7 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
                             {"r_BN_N_x", "m"}, {"r_BN_N_y", "m"}, {"r_BN_N_z", "m"},
                             {"v_BN_N_x", "m/s"}, {"v_BN_N_y", "m/s"}, {"v_BN_N_z", "m/s"}},
                            [](const TruthMsg& x, double* o) {
-                             const Eigen::Vector4d q = quat_from_mrp(ev(x.sigma_BN));
+                             const Eigen::Vector4d q = sim::quaternion_from_sigma(ev(x.sigma_BN));
                              for (int i = 0; i < 3; ++i) o[i] = x.sigma_BN[i];
                              for (int i = 0; i < 4; ++i) o[3 + i] = q(i);
                              for (int i = 0; i < 3; ++i) {

@@ -98,33 +98,6 @@ bool Gyro::update(const SensorTruth& truth)
 
 // ---------------------------------------------------------- star tracker
 
-Vector4d quaternion_from_dcm(const Matrix3d& C)
-{
-  const double tr = C.trace();
-  const double b2[4] = {0.25 * (1.0 + tr), 0.25 * (1.0 + 2.0 * C(0, 0) - tr),
-                        0.25 * (1.0 + 2.0 * C(1, 1) - tr), 0.25 * (1.0 + 2.0 * C(2, 2) - tr)};
-  const int i = static_cast<int>(std::max_element(b2, b2 + 4) - b2);
-  Vector4d q;
-  // Products from C = (q0^2 - qv.qv) I + 2 qv qv^T - 2 q0 [qv~] (Shepperd).
-  const double p01 = 0.25 * (C(1, 2) - C(2, 1)), p02 = 0.25 * (C(2, 0) - C(0, 2));
-  const double p03 = 0.25 * (C(0, 1) - C(1, 0)), p12 = 0.25 * (C(0, 1) + C(1, 0));
-  const double p13 = 0.25 * (C(2, 0) + C(0, 2)), p23 = 0.25 * (C(1, 2) + C(2, 1));
-  const double s = std::sqrt(b2[i]);
-  switch (i) {
-    case 0: q << s, p01 / s, p02 / s, p03 / s; break;
-    case 1: q << p01 / s, s, p12 / s, p13 / s; break;
-    case 2: q << p02 / s, p12 / s, s, p23 / s; break;
-    default: q << p03 / s, p13 / s, p23 / s, s; break;
-  }
-  if (q(0) < 0.0) q = -q;
-  return q / q.norm();
-}
-
-Vector3d sigma_from_quaternion(const Vector4d& q)
-{
-  return q.tail<3>() / (1.0 + q(0));
-}
-
 StarTracker::StarTracker(StarTrackerParams p, const SensorContext& ctx)
     : p_(std::move(p)), noise_(ctx.noise), rng_(ctx.run_seed, p_.name)
 {

@@ -4,6 +4,7 @@
 #ifndef SIM_ATTITUDE_H
 #define SIM_ATTITUDE_H
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Dense>
@@ -57,6 +58,43 @@ inline Eigen::Matrix3d rotation_from_vector(const Eigen::Vector3d& delta)
   if (angle == 0.0) return Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d k = skew(delta / angle);
   return Eigen::Matrix3d::Identity() + std::sin(angle) * k + (1.0 - std::cos(angle)) * k * k;
+}
+
+// Scalar-first quaternion (q0 >= 0) of a DCM, Shepperd's method.
+inline Eigen::Vector4d quaternion_from_dcm(const Eigen::Matrix3d& C)
+{
+  const double tr = C.trace();
+  const double b2[4] = {0.25 * (1.0 + tr), 0.25 * (1.0 + 2.0 * C(0, 0) - tr),
+                        0.25 * (1.0 + 2.0 * C(1, 1) - tr), 0.25 * (1.0 + 2.0 * C(2, 2) - tr)};
+  const int i = static_cast<int>(std::max_element(b2, b2 + 4) - b2);
+  Eigen::Vector4d q;
+  // Products from C = (q0^2 - qv.qv) I + 2 qv qv^T - 2 q0 [qv~] (Shepperd).
+  const double p01 = 0.25 * (C(1, 2) - C(2, 1)), p02 = 0.25 * (C(2, 0) - C(0, 2));
+  const double p03 = 0.25 * (C(0, 1) - C(1, 0)), p12 = 0.25 * (C(0, 1) + C(1, 0));
+  const double p13 = 0.25 * (C(2, 0) + C(0, 2)), p23 = 0.25 * (C(1, 2) + C(2, 1));
+  const double s = std::sqrt(b2[i]);
+  switch (i) {
+    case 0: q << s, p01 / s, p02 / s, p03 / s; break;
+    case 1: q << p01 / s, s, p12 / s, p13 / s; break;
+    case 2: q << p02 / s, p12 / s, s, p23 / s; break;
+    default: q << p03 / s, p13 / s, p23 / s, s; break;
+  }
+  if (q(0) < 0.0) q = -q;
+  return q / q.norm();
+}
+
+// MRP from a scalar-first quaternion with q0 >= 0: q_v / (1 + q0).
+inline Eigen::Vector3d sigma_from_quaternion(const Eigen::Vector4d& q)
+{
+  return q.tail<3>() / (1.0 + q(0));
+}
+
+// Scalar-first quaternion of an MRP (|sigma| <= 1 gives q0 >= 0).
+inline Eigen::Vector4d quaternion_from_sigma(const Eigen::Vector3d& s)
+{
+  const double s2 = s.squaredNorm();
+  const double d = 1.0 + s2;
+  return Eigen::Vector4d((1.0 - s2) / d, 2.0 * s(0) / d, 2.0 * s(1) / d, 2.0 * s(2) / d);
 }
 
 }  // namespace sim

@@ -24,6 +24,7 @@
 
 #include <Eigen/Dense>
 
+#include "sim/attitude.h"  // quaternion_from_dcm, sigma_from_quaternion
 #include "sim/rng.h"
 #include "sim/spacecraft.h"  // kMaxWheels, WheelArray
 
@@ -123,10 +124,7 @@ class StarTracker {
   StarTrackerOutput out_;
 };
 
-// Scalar-first quaternion (q0 >= 0) of a DCM, Shepperd's method.
-Eigen::Vector4d quaternion_from_dcm(const Eigen::Matrix3d& dcm);
-// MRP from a scalar-first quaternion with q0 >= 0: q_v / (1 + q0).
-Eigen::Vector3d sigma_from_quaternion(const Eigen::Vector4d& q);
+// quaternion_from_dcm / sigma_from_quaternion: see sim/attitude.h.
 
 // ---------------------------------------------------- coarse sun sensors
 
