@@ -270,6 +270,7 @@ static FswStatus run_guidance(FswAcsState *st, const FswAcsConfig *cfg,
     acc = combine(acc, s);
     *guid = w->sunsafe_out.guid;
     h->sun_angle_err = w->sunsafe_out.sun_angle_err;
+    fsw_v3_copy(h->sun_hat_B, w->css_out.sun_hat_B);
     h->sun_valid = (uint8_t)(w->css_out.sun_valid ? 1 : 0);
     h->num_lit = (uint8_t)w->css_out.num_lit;
   } else {

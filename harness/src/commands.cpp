@@ -11,10 +11,6 @@
 #include "harness/run.h"
 #include "harness/scenario.h"
 
-#ifdef KESTREL_HAVE_REPORT
-#include "report/report.hpp"
-#endif
-
 #ifndef KESTREL_SCENARIO_DIR
 #define KESTREL_SCENARIO_DIR "scenarios"
 #endif
@@ -22,75 +18,6 @@
 namespace harness {
 
 namespace fs = std::filesystem;
-
-RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
-{
-  RunResult res;
-  if (!opt.out_dir.empty()) {
-    std::error_code ec;
-    fs::create_directories(opt.out_dir, ec);
-    if (ec || !fs::is_directory(opt.out_dir))
-      throw OutputError(opt.out_dir + ": cannot create the results directory" + (ec ? ": " + ec.message() : ""));
-  }
-  Run run(sc);
-  const uint64_t total = run.total_ticks();
-  const uint64_t chunk = std::max<uint64_t>(1, total / 200);
-  const auto t0 = std::chrono::steady_clock::now();
-  while (!run.done()) {
-    if (!run.step_ticks(chunk)) break;
-    if (opt.progress) opt.progress(static_cast<double>(run.tick()) / static_cast<double>(total));
-  }
-  res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  res.ticks = run.tick();
-  res.sim_seconds = sc.duration;
-  res.failure = run.failure();
-  res.ok = res.failure.empty();
-  const Recorder& rec = run.recorder();
-  if (rec.rows() > 0) res.final_pointing_error_deg = rec.at(rec.rows() - 1, rec.column_index("pointing_error_deg"));
-  // Results are written also for a failed run (never lose data): the rows
-  // recorded up to the failure are in the files.
-  if (!opt.out_dir.empty()) {
-    const fs::path dir(opt.out_dir);
-    const std::string manifest = manifest_text(sc, opt.overrides);
-    auto put = [&res](const fs::path& p) { res.files.push_back(p.string()); };
-    write_text((dir / "manifest.json").string(), manifest);
-    put(dir / "manifest.json");
-    if (sc.outputs.hdf5) {
-      write_hdf5((dir / "results.h5").string(), rec, sc, manifest);
-      put(dir / "results.h5");
-    }
-    if (sc.outputs.csv) {
-      write_csv((dir / "telemetry.csv").string(), rec);
-      put(dir / "telemetry.csv");
-    }
-    if (sc.outputs.report_data) {
-      const std::string data = report_data_text(run);
-      write_text((dir / "report_data.json").string(), data);
-      put(dir / "report_data.json");
-#ifdef KESTREL_HAVE_REPORT
-      try {
-        report::write_html(data, (dir / "report.html").string());
-      } catch (const std::exception& e) {
-        throw OutputError(e.what());
-      }
-      put(dir / "report.html");
-#endif
-    }
-    write_text((dir / "dataflow.dot").string(), run.dataflow().to_dot(sc.name));
-    put(dir / "dataflow.dot");
-    std::ostringstream health;
-    for (const std::string& l : run.fsw_health_lines()) health << l << "\n";
-    write_text((dir / "fsw_health.txt").string(), health.str());
-    put(dir / "fsw_health.txt");
-    std::ostringstream summ;
-    summ << std::setprecision(10);
-    for (const SummaryItem& it : run.summary())
-      summ << it.key << " = " << it.value << " " << it.unit << "    # " << it.what << "\n";
-    write_text((dir / "summary.txt").string(), summ.str());
-    put(dir / "summary.txt");
-  }
-  return res;
-}
 
 namespace {
 
@@ -130,7 +57,9 @@ int cmd_validate(const std::string& scenario, const std::vector<std::string>& se
   if (!parse_sets(sets, ov, err)) return kExitUsage;
   try {
     const Scenario sc = load_scenario(scenario, ov);
-    Run probe(sc);  // the plant and FSW configuration checks
+    RunConfig cfg;
+    cfg.keep_in_memory = false;  // nothing is run: no row storage
+    Run probe(sc, std::move(cfg));  // the plant and FSW configuration checks
     out << scenario << ": ok (" << sc.name << ", " << sc.wheels.size() << " wheels, " << sc.thrusters.size()
         << " thrusters, " << sc.num_ticks() << " steps of " << sc.rates.dt << " s)\n";
     return kExitOk;
@@ -246,7 +175,9 @@ int cmd_bench(const std::string& dir, std::ostream& out, std::ostream& err)
     try {
       Scenario sc = load_scenario(s1, c.ov);
       for (auto& w : sc.wheels) w.params.model = sim::WheelModel::FullyCoupled;
-      Run run(sc);
+      RunConfig cfg;
+      cfg.keep_in_memory = false;
+      Run run(sc, std::move(cfg));
       const auto t0 = std::chrono::steady_clock::now();
       run.step_ticks(run.total_ticks());
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -269,7 +200,9 @@ int cmd_bench(const std::string& dir, std::ostream& out, std::ostream& err)
     const std::string s2 = (fs::path(dir) / "s2_mars_orbit_insertion.yaml").string();
     try {
       Scenario sc = load_scenario(s2);
-      Run run(sc);
+      RunConfig cfg;
+      cfg.keep_in_memory = false;
+      Run run(sc, std::move(cfg));
       const auto t0 = std::chrono::steady_clock::now();
       run.step_ticks(run.total_ticks());
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -22,7 +22,7 @@ std::vector<harness::Override> fast(std::vector<harness::Override> more)
 // Largest value of column `name` from time t0 [s] to the end of the run:
 // "below a bound by a stated time" must hold over the whole remaining run,
 // not at one sample.
-double max_after(const harness::Recorder& r, const char* name, double t0)
+double max_after(const harness::MemorySink& r, const char* name, double t0)
 {
   const auto t = r.column("t"), v = r.column(name);
   double worst = 0.0;
@@ -31,7 +31,7 @@ double max_after(const harness::Recorder& r, const char* name, double t0)
   return worst;
 }
 
-double max_rel_change(const harness::Recorder& r, const char* x, const char* y, const char* z)
+double max_rel_change(const harness::MemorySink& r, const char* x, const char* y, const char* z)
 {
   const auto hx = r.column(x), hy = r.column(y), hz = r.column(z);
   const double h0 = std::sqrt(hx[0] * hx[0] + hy[0] * hy[0] + hz[0] * hz[0]);
@@ -55,7 +55,7 @@ TEST(ClosedLoop, SunAcquisitionBalancedWheels)
       harness::load_scenario(kS1, fast({{"duration", "500"}, {"wheel_defaults.model", "balanced"}}));
   harness::Run run(sc);
   ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
-  const harness::Recorder& r = run.recorder();
+  const harness::MemorySink& r = run.memory();
   const auto err = r.column("pointing_error_deg");
   EXPECT_GT(err.front(), 30.0);  // starts far off (tumbling, ~70 deg)
   EXPECT_LT(max_after(r, "pointing_error_deg", 450.0), 0.5);
@@ -82,10 +82,10 @@ TEST(ClosedLoop, InertialHold)
                  {"wheel_defaults.model", "balanced"}}));
   harness::Run run(sc);
   ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
-  const auto err = run.recorder().column("pointing_error_deg");
+  const auto err = run.memory().column("pointing_error_deg");
   // initial principal angle of sigma = (0.1, 0.2, -0.3): 4 atan(|sigma|) = 4 atan(0.374166) = 81.97 deg
   EXPECT_NEAR(err.front(), 4.0 * std::atan(std::sqrt(0.14)) * 180.0 / M_PI, 1e-9);
-  EXPECT_LT(max_after(run.recorder(), "pointing_error_deg", 450.0), 0.5);
+  EXPECT_LT(max_after(run.memory(), "pointing_error_deg", 450.0), 0.5);
 }
 
 // Fully-coupled wheels in the loop (short: jitter models need small steps).
@@ -95,11 +95,11 @@ TEST(ClosedLoop, FullyCoupledWheelsRunAndConserveMomentum)
       kS1, {{"duration", "10"}, {"rates.dt", "0.002"}, {"rates.fsw_divisor", "50"}, {"rates.record_divisor", "500"}});
   harness::Run run(sc);
   ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
-  const auto err = run.recorder().column("pointing_error_deg");
+  const auto err = run.memory().column("pointing_error_deg");
   EXPECT_EQ(err.size(), 11u);  // t = 0, 1, ..., 10 s
   // wheels at 100..600 rpm turn < 0.13 rad per 2 ms step: H_C is conserved
   // to well below 1e-8 relative (the plant documents ~1e-10 at 1 ms)
-  EXPECT_LT(max_rel_change(run.recorder(), "H_C_N_x", "H_C_N_y", "H_C_N_z"), 1e-8);
+  EXPECT_LT(max_rel_change(run.memory(), "H_C_N_x", "H_C_N_y", "H_C_N_z"), 1e-8);
 }
 
 TEST(ClosedLoop, NullMotionDrivesWheelSpeedsWithoutDisturbingPointing)
@@ -109,7 +109,7 @@ TEST(ClosedLoop, NullMotionDrivesWheelSpeedsWithoutDisturbingPointing)
                  {"fsw.rw_null.k_null", "0.05"}}));
   harness::Run run(sc);
   ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
-  const harness::Recorder& r = run.recorder();
+  const harness::MemorySink& r = run.memory();
   EXPECT_LT(r.column("pointing_error_deg").back(), 0.5);
   // The null-space component of the speeds moves toward the null-space
   // component of Omega_des = (1000, -1000, 1000, -1000) rpm.  For this
@@ -130,7 +130,7 @@ TEST(ClosedLoop, DeterministicRepeat)
   harness::Run a(sc), b(sc);
   a.step_ticks(a.total_ticks());
   b.step_ticks(b.total_ticks());
-  ASSERT_EQ(a.recorder().rows(), b.recorder().rows());
-  for (uint64_t i = 0; i < a.recorder().rows(); ++i)
-    for (size_t c = 0; c < a.recorder().num_columns(); ++c) ASSERT_EQ(a.recorder().at(i, c), b.recorder().at(i, c));
+  ASSERT_EQ(a.memory().rows(), b.memory().rows());
+  for (uint64_t i = 0; i < a.memory().rows(); ++i)
+    for (size_t c = 0; c < a.memory().num_columns(); ++c) ASSERT_EQ(a.memory().at(i, c), b.memory().at(i, c));
 }

@@ -62,14 +62,17 @@ TEST(NoAlloc, RecorderSampleDoesNotAllocate)
     o[0] = 1.0;
     o[1] = 2.0;
   });
-  rec.allocate(1000);
-  const double* storage = rec.storage_address();
+  rec.allocate(1000, 64);
+  harness::MemorySink mem;
+  rec.add_sink(mem);
+  const double* storage = mem.storage_address();
   const unsigned long n = count_during([&rec] {
     for (int i = 0; i < 1000; ++i) rec.sample();
   });
   EXPECT_EQ(n, 0u);
   EXPECT_EQ(rec.rows(), 1000u);
-  EXPECT_EQ(rec.storage_address(), storage);
+  EXPECT_EQ(mem.rows(), 960u);  // 15 full chunks handed over
+  EXPECT_EQ(mem.storage_address(), storage);
 }
 
 TEST(NoAlloc, ClosedLoopRunDoesNotAllocate)
@@ -80,15 +83,15 @@ TEST(NoAlloc, ClosedLoopRunDoesNotAllocate)
         {{"duration", "20"}, {"rates.dt", "0.05"}, {"rates.fsw_divisor", "2"}, {"rates.record_divisor", "2"},
          {"wheel_defaults.model", model}, {"fsw.rw_null.enabled", "true"}});
     harness::Run run(sc);  // setup allocates
-    const double* storage = run.recorder().storage_address();
+    const double* storage = run.memory().storage_address();
     const unsigned long n = count_during([&run] { run.step_ticks(run.total_ticks()); });
     EXPECT_TRUE(run.done());
     EXPECT_EQ(run.failure(), "");
     EXPECT_EQ(n, 0u) << model;
-    EXPECT_EQ(run.recorder().storage_address(), storage);
+    EXPECT_EQ(run.memory().storage_address(), storage);
     EXPECT_EQ(run.recorder().rows(), run.recorder().capacity());  // exact preallocation
     EXPECT_EQ(run.recorder().overflow(), 0u);
-    EXPECT_EQ(run.recorder().rows(), 201u);  // 20 s at 10 Hz, t = 0 and t = 20 included
+    EXPECT_EQ(run.memory().rows(), 201u);  // 20 s at 10 Hz, t = 0 and t = 20 included
   }
 }
 

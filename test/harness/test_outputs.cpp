@@ -60,7 +60,7 @@ TEST(Outputs, Hdf5RoundTrip)
   // the same table in memory, for comparison
   harness::Run run(sc);
   run.step_ticks(run.total_ticks());
-  const harness::Recorder& rec = run.recorder();
+  const harness::MemorySink& rec = run.memory();
   // 30 s at 0.05 s = 600 steps, ticks 0..600, every 4th: 0,4,...,600 -> 151 rows
   ASSERT_EQ(rec.rows(), 151u);
 

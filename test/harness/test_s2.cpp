@@ -27,7 +27,7 @@ std::map<std::string, double> summary(const harness::Run& run)
   return m;
 }
 
-double max_in(const harness::Recorder& r, const char* col, double t0, double t1)
+double max_in(const harness::MemorySink& r, const char* col, double t0, double t1)
 {
   const auto t = r.column("t"), x = r.column(col);
   double worst = 0.0;
@@ -60,7 +60,7 @@ S2Result run_s2(std::vector<harness::Override> ov)
 void check_burn_and_orbit(const S2Result& r)
 {
   const auto& s = r.s;
-  const harness::Recorder& rec = r.run->recorder();
+  const harness::MemorySink& rec = r.run->memory();
   ASSERT_EQ(s.at("burn_complete"), 1.0);
   EXPECT_DOUBLE_EQ(s.at("burn_start_s"), 360.0);  // burn.start is a command instant (0.1 s grid)
   // engine closes at 840 s; the first-order thrust (omega_off = 10 rad/s)
@@ -129,7 +129,7 @@ TEST(S2, RemainderPulsingHoldsAttitudeThroughTheBurnAndCapturesAtMars)
 {
   const S2Result r = run_s2({});
   check_burn_and_orbit(r);
-  const harness::Recorder& rec = r.run->recorder();
+  const harness::MemorySink& rec = r.run->memory();
   EXPECT_LT(r.s.at("max_pointing_error_burn_deg"), 2.34);
   EXPECT_LT(max_in(rec, "pointing_error_deg", 420.0, 840.0), 0.1);
   // the initial 1.2 deg error is removed before the burn
@@ -149,8 +149,8 @@ TEST(S2, SchmittPulsingHoldsAttitudeWithinItsDeadBand)
   const S2Result r = run_s2({{"fsw.thr_pulse.mode", "schmitt"}, {"duration", "480"}, {"sensors.noise", "false"}});
   EXPECT_EQ(r.s.at("burn_complete"), 0.0);
   EXPECT_LT(r.s.at("max_pointing_error_burn_deg"), 2.34);
-  EXPECT_LT(max_in(r.run->recorder(), "pointing_error_deg", 420.0, 480.0), 0.6);
-  EXPECT_EQ(max_in(r.run->recorder(), "fsw_safe_output", 0.0, 480.0), 0.0);
+  EXPECT_LT(max_in(r.run->memory(), "pointing_error_deg", 420.0, 480.0), 0.6);
+  EXPECT_EQ(max_in(r.run->memory(), "fsw_safe_output", 0.0, 480.0), 0.0);
 }
 
 // Coast with the actuators idle: starting exactly on the reference attitude
@@ -163,7 +163,7 @@ TEST(S2, CoastWithIdleActuatorsConservesMomentumAndOrbit)
   // noise off: with sensor noise the FSW rightly fires at the noise
   const S2Result r = run_s2(
       {{"duration", "150"}, {"spacecraft.initial.sigma_BN", "[0.41421356, 0, 0]"}, {"sensors.noise", "false"}});
-  const harness::Recorder& rec = r.run->recorder();
+  const harness::MemorySink& rec = r.run->memory();
   for (int j = 0; j < 9; ++j)
     EXPECT_EQ(max_in(rec, ("thruster_on_time_" + std::to_string(j)).c_str(), 0.0, 150.0), 0.0) << j;
   EXPECT_EQ(max_in(rec, "H_C_N_x", 0.0, 150.0) + max_in(rec, "H_C_N_y", 0.0, 150.0) + max_in(rec, "H_C_N_z", 0.0, 150.0), 0.0);
@@ -187,7 +187,7 @@ TEST(S2, DataFlowAndReportGeometry)
   const harness::Scenario sc = harness::load_scenario(kS2, {{"duration", "1"}});
   harness::Run run(sc);
   EXPECT_EQ(run.dataflow().writer_of("fsw_actuators"), "fsw_acs");
-  EXPECT_EQ(run.dataflow().writer_of("thr_cmd"), "actuators");
+  EXPECT_EQ(run.dataflow().writer_of("plant_cmd"), "actuators");
   EXPECT_EQ(sc.rates.thruster_divisor, sc.rates.fsw_divisor);  // defaulted to the FSW period
   EXPECT_EQ(sc.thrusters.size(), 9u);
 }
@@ -198,8 +198,10 @@ TEST(S2, ReportDataHasThrusterSeriesGeometryAndSummary)
 {
   const harness::Scenario sc = harness::load_scenario(kS2, {{"duration", "20"}, {"burn.start", "5"}, {"burn.duration", "5"}});
   harness::Run run(sc);
+  harness::ReportSink report;
+  run.add_sink(report);
   ASSERT_TRUE(run.step_ticks(run.total_ticks()));
-  const std::string j = harness::report_data_text(run);
+  const std::string j = harness::report_data_text(run, report);
   for (const char* key : {"\"thruster_on_time_0\"", "\"thruster_force_8\"", "\"propellant_kg\"", "\"acs8\"",
                           "\"dir_B\"", "\"summary\"", "\"propellant_vs_rocket_rel\"", "\"fsw_stage_thr_pulse\""})
     EXPECT_NE(j.find(key), std::string::npos) << key;

@@ -45,15 +45,15 @@ std::unique_ptr<harness::Run> run_of(const std::string& file, const std::vector<
   return run;
 }
 
-std::vector<double> col(const harness::Run& r, const std::string& name) { return r.recorder().column(name); }
+std::vector<double> col(const harness::Run& r, const std::string& name) { return r.memory().column(name); }
 
 bool is_meas_sigma(const std::string& c) { return c.rfind("meas_sigma_BN_", 0) == 0; }
 
 // Every column of a and b bit-identical (except those `skip` names).
 void expect_identical(const harness::Run& a, const harness::Run& b, bool (*skip)(const std::string&) = nullptr)
 {
-  const harness::Recorder& ra = a.recorder();
-  const harness::Recorder& rb = b.recorder();
+  const harness::MemorySink& ra = a.memory();
+  const harness::MemorySink& rb = b.memory();
   ASSERT_EQ(ra.rows(), rb.rows());
   ASSERT_EQ(ra.num_columns(), rb.num_columns());
   for (size_t c = 0; c < ra.num_columns(); ++c) {

@@ -86,6 +86,9 @@ typedef struct {
   fsw_real omega_BR_B[3];                   /* [rad/s] rate error                                */
   fsw_real att_err_angle;                   /* [rad]   principal angle of sigma_BR               */
   fsw_real sun_angle_err;                   /* [rad]   sun-safe angle error (SUN_SAFE)            */
+  fsw_real sun_hat_B[3];                    /* [-]     CSS Sun heading the cycle used, B (unit
+                                                       when sun_valid; 0 when not, in INERTIAL
+                                                       and on a rejected cycle)                  */
   uint8_t sun_valid;                        /* [-]     CSS heading valid this cycle              */
   uint8_t num_lit;                          /* [-]     lit CSS                                   */
   FswHealth health;                         /* [-]     counters of the application              */

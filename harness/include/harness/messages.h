@@ -67,6 +67,7 @@ class Reader {
  public:
   Reader() = default;
   explicit Reader(const Channel<T>* c) : c_(c) {}
+  bool valid() const { return c_ != nullptr; }
   const T& read() const { return c_->value(); }
   uint64_t write_count() const { return c_->write_count(); }
   uint64_t t_ns() const { return c_->t_ns(); }

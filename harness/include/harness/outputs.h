@@ -1,15 +1,24 @@
-// outputs: result files of a run.
-//   results.h5        HDF5 (C API): /telemetry [rows x cols] float64, chunked,
-//                     shuffle + deflate; attributes column_names, column_units
-//                     on the dataset; kestrel_version, scenario, seed, dt,
-//                     duration, manifest on the root group.
-//   telemetry.csv     optional: header "name [unit]", %.17g values.
+// outputs: the result files of a run (harness_io).
+//   results.h5        HDF5 (C API), streamed in chunks as the run goes:
+//                     one dataset per recorded quantity, /<message>/<quantity>
+//                     shaped (samples, components), float64, chunked, shuffle
+//                     + deflate, attributes unit, frame, columns; /t (samples,
+//                     1) the time.  Root attributes: kestrel_version,
+//                     scenario, seed, dt, duration, manifest, column_names,
+//                     column_units, column_datasets (the flat table's order),
+//                     rows and complete (written at the end).
+//   telemetry.csv     optional: header "name [unit]", %.17g values, streamed.
 //   manifest.json     fully resolved scenario (reload with `kestrel run`).
-//   report_data.json  data for the HTML report (schema in docs/harness.md).
+//   report_data.json  data for the HTML report (schema in docs/report.md):
+//                     time series decimated for display (min/max per bucket),
+//                     full-rate body rates for the jitter spectrum's window.
 //   dataflow.dot      the data-flow map.
 #ifndef HARNESS_OUTPUTS_H
 #define HARNESS_OUTPUTS_H
 
+#include <cstdio>
+#include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,24 +34,116 @@ class OutputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-void write_hdf5(const std::string& path, const Recorder& rec, const Scenario& sc,
-                const std::string& manifest_text);
-void write_csv(const std::string& path, const Recorder& rec);
+// ---- sinks --------------------------------------------------------------------
+// Streams the rows into an HDF5 file (created at begin, closed at end).
+class Hdf5Sink : public RecordSink {
+ public:
+  Hdf5Sink(std::string path, const Scenario& sc, std::string manifest_text);
+  ~Hdf5Sink() override;
+  void begin(const RecordLayout& layout, uint64_t expected_rows) override;
+  void write(const double* rows, size_t n) override;
+  void end(bool complete) override;
+
+ private:
+  struct File;
+  std::string path_;
+  const Scenario& sc_;
+  std::string manifest_;
+  std::unique_ptr<File> f_;
+  size_t nc_total_ = 0;
+};
+
+// Streams the rows into a CSV file.
+class CsvSink : public RecordSink {
+ public:
+  explicit CsvSink(std::string path) : path_(std::move(path)) {}
+  ~CsvSink() override;
+  void begin(const RecordLayout& layout, uint64_t expected_rows) override;
+  void write(const double* rows, size_t n) override;
+  void end(bool complete) override;
+
+ private:
+  std::string path_;
+  FILE* f_ = nullptr;
+  size_t nc_ = 0;
+};
+
+// Keeps what the report shows, bounded for any duration: with more rows
+// than 2 * kReportBuckets, each column is reduced to its minimum and maximum
+// per bucket of consecutive rows (in the order they occurred, at the times of
+// the bucket's first and last rows; t and the attitude quaternion take the
+// values of those rows), so no extreme is lost; the last kSpectrumRows rows
+// of t, the body rates and the pointing error are kept at full rate for the
+// jitter spectrum.  Fewer rows are kept as they are.
+class ReportSink : public RecordSink {
+ public:
+  static constexpr size_t kReportBuckets = 4000;
+  static constexpr size_t kSpectrumRows = 32768;
+  void begin(const RecordLayout& layout, uint64_t expected_rows) override;
+  void write(const double* rows, size_t n) override;
+  void end(bool complete) override;
+  // The report's series (a JSON object text: "series", "units", "attitude",
+  // and "spectrum" / "decimation" when reduced); valid after end().
+  std::string series_json() const;
+  bool decimated() const { return bucket_rows_ > 1; }
+
+ private:
+  void close_bucket();
+  RecordLayout layout_;
+  std::vector<char> endpoint_col_;  // 1: first/last row values (t, q_BN), 0: min/max
+  size_t bucket_rows_ = 1;          // rows per bucket (1: every row kept)
+  uint64_t rows_seen_ = 0;
+  // display points: 2 per bucket (or 1 per row when not decimated)
+  std::vector<double> points_;      // npoints x ncols, row-major
+  // the open bucket
+  size_t in_bucket_ = 0;
+  std::vector<double> first_, last_, lo_, hi_;
+  std::vector<uint64_t> lo_at_, hi_at_;
+  // full-rate ring for the spectrum: t, omega_BN_B_x/y/z, pointing_error_deg
+  std::vector<size_t> spec_cols_;
+  std::vector<double> ring_;
+  uint64_t ring_n_ = 0;
+};
+
+// ---- files ----------------------------------------------------------------------
 std::string manifest_text(const Scenario& sc, const std::vector<Override>& overrides);
-std::string report_data_text(const Run& run);
+// report_data.json from a finished run and its report sink.
+std::string report_data_text(const Run& run, const ReportSink& report);
 void write_text(const std::string& path, const std::string& text);
 
-// Read-back helpers (tests, tools): the telemetry table of an HDF5 file.
+// Read-back (tests, tools): the flat telemetry table of an HDF5 results file.
 struct Hdf5Table {
-  std::vector<std::string> names, units;
+  std::vector<std::string> names, units, datasets;
   uint64_t rows = 0;
   std::vector<double> data;  // row-major
   std::string version, scenario, manifest;
   uint64_t seed = 0;
   double dt = 0.0, duration = 0.0;
-  bool chunked = false, deflate = false;
+  bool chunked = false, deflate = false, complete = false;
 };
 Hdf5Table read_hdf5(const std::string& path);
+
+// ---- a whole run to files ----------------------------------------------------------
+struct RunOptions {
+  std::string out_dir;                          // "" : write nothing
+  std::vector<Override> overrides;              // echoed into the manifest
+  std::function<void(double fraction)> progress;  // optional, called <= ~200 times
+};
+
+struct RunResult {
+  bool ok = false;
+  std::string failure;
+  uint64_t ticks = 0;
+  double sim_seconds = 0.0;
+  double wall_seconds = 0.0;
+  double final_pointing_error_deg = 0.0;
+  std::vector<std::string> files;  // written, in order
+};
+
+// Runs a scenario to the end, streaming its results into opt.out_dir (memory
+// bounded for any duration).  Throws ScenarioError (configuration rejected)
+// or OutputError (files).
+RunResult run_scenario(const Scenario& sc, const RunOptions& opt = {});
 
 }  // namespace harness
 

@@ -1,28 +1,32 @@
 // run: one closed-loop run of a scenario.
 //
-// Tick protocol (plant-dynamics §7.2), tick k at t_k = k * dt:
-//   1. every task due at k runs in this fixed order:
-//        truth        (every tick)  plant state -> `truth`
-//        burn_monitor (every tick, thruster runs) non-gravitational delta-v, burn start/end
-//        css          (FSW group, configured CSS) truth -> `css_readings`
-//        sensors      (FSW group)   truth (+ css_readings) -> `fsw_sensors` (FswAcsSensorMsg)
-//        fsw_acs      (FSW group)   fsw_acs_cycle(): `fsw_sensors` -> `fsw_actuators`, `fsw_health`
-//        actuators    (FSW group)   wheel torques latched (zero-order hold); thruster
-//                                   on-times (ACS + burn schedule) -> `thr_cmd` -> plant
-//        metrics, recorder (record group)
-//   2. the plant integrates [t_k, t_k + dt] with the held commands.
-// The last tick k = num_ticks only runs step 1 (so t = duration is recorded).
-// Setup allocates everything; step_ticks() does not allocate.
+// Tick protocol (plant-dynamics §7.2), tick k at t_k = k * dt: every task due
+// at k runs in the order of the table kTickProtocol (run.cpp):
+//   truth          (every tick)  plant state -> `truth`
+//   burn_monitor   (every tick, thruster runs) `truth` -> `burn_state`
+//   sample_sensors (every tick, sampled sensors) `truth` -> `sensor_samples`
+//   css            (FSW group, configured CSS) `truth` -> `css_readings`
+//   sensors        (FSW group)   `truth`, `sensor_samples`, `css_readings` -> `fsw_sensors`
+//   fsw_acs        (FSW group)   FswEndpoint::cycle: `fsw_sensors` -> `fsw_actuators`, `fsw_health`
+//                                (+ `sun_heading` in sun-safe runs)
+//   actuators      (FSW group)   `fsw_actuators` (+ burn schedule) -> `plant_cmd`
+//   plant_input    (FSW group)   `plant_cmd` latched by the plant (zero-order hold)
+//   metrics        (record group) `truth`, `burn_state` -> `metrics`
+//   recorder       (record group) one row -> the sinks
+// then the plant integrates [t_k, t_k + dt] with the held commands.  The last
+// tick k = num_ticks only runs the tasks (so t = duration is recorded).
+// Setup allocates; step_ticks() does not (the sinks' own work aside: an HDF5
+// sink's library allocates when it writes a chunk).
 #ifndef HARNESS_RUN_H
 #define HARNESS_RUN_H
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "harness/fsw_endpoint.h"
 #include "harness/messages.h"
 #include "harness/recorder.h"
 #include "harness/scenario.h"
@@ -40,18 +44,35 @@ struct SummaryItem {
   std::string what;
 };
 
+struct RunConfig {
+  // Keep every recorded row in memory (Run::memory()): tests, the C++ API,
+  // short runs.  Off for streaming-only runs (memory bounded for any duration).
+  bool keep_in_memory = true;
+  // Where the FSW runs; null: the fsw_c application in this process,
+  // configured from the scenario.
+  std::unique_ptr<FswEndpoint> fsw;
+  size_t chunk_rows = 1024;  // recorder rows per chunk handed to the sinks
+};
+
 class Run {
  public:
-  // Builds the plant, the FSW chain, the data flow and the recorder.  Throws
-  // ScenarioError when the plant or an FSW module rejects the configuration.
-  explicit Run(const Scenario& sc);
+  // Builds the plant, the sensors, the FSW endpoint, the data flow and the
+  // recorder from a typed scenario (load_scenario() or built in C++).  Throws
+  // ScenarioError when the plant or the FSW rejects the configuration.
+  explicit Run(const Scenario& sc, RunConfig cfg = {});
   ~Run();
   Run(const Run&) = delete;
   Run& operator=(const Run&) = delete;
 
+  // Attaches a sink (caller-owned, alive until finish()); before the first step.
+  void add_sink(RecordSink& sink);
+
   // Runs up to n more ticks (fewer at the end).  False once the run has
   // failed (see failure()); true otherwise.
   bool step_ticks(uint64_t n);
+  // Hands the last rows to the sinks and ends them: complete when the run
+  // reached its end without failure.  Idempotent.
+  void finish();
   bool done() const;
   uint64_t tick() const;         // next tick to run
   uint64_t total_ticks() const;  // num_ticks + 1 (the final sample)
@@ -59,12 +80,17 @@ class Run {
   const std::string& failure() const;  // "" while ok
   const Scenario& scenario() const;
   const Recorder& recorder() const;
+  // The rows kept in memory (RunConfig::keep_in_memory; std::logic_error otherwise).
+  const MemorySink& memory() const;
   const DataFlow& dataflow() const;
   const Scheduler& scheduler() const;
 
+  // Pointing error of the last recorded row [deg] (NaN before the first).
+  double final_pointing_error_deg() const;
   // Geometry for the report.
   std::vector<std::array<double, 3>> wheel_axes_B() const;
-  // FSW health: module name -> (calls, errors, last status name)
+  // FSW health: the last health message, then per-module counters when the
+  // endpoint can see them.
   std::vector<std::string> fsw_health_lines() const;
   // Figures of the run: final pointing error; with thrusters the burn
   // (propellant vs the rocket equation, delivered delta-v) and the orbit.
@@ -74,26 +100,6 @@ class Run {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-struct RunOptions {
-  std::string out_dir;                          // "" : write nothing
-  std::vector<Override> overrides;              // echoed into the manifest
-  std::function<void(double fraction)> progress;  // optional, called <= ~200 times
-};
-
-struct RunResult {
-  bool ok = false;
-  std::string failure;
-  uint64_t ticks = 0;
-  double sim_seconds = 0.0;
-  double wall_seconds = 0.0;
-  double final_pointing_error_deg = 0.0;
-  std::vector<std::string> files;  // written, in order
-};
-
-// Runs a scenario to the end and writes its results into opt.out_dir.
-// Throws ScenarioError (configuration rejected) or OutputError (files).
-RunResult run_scenario(const Scenario& sc, const RunOptions& opt = {});
 
 }  // namespace harness
 

@@ -1,0 +1,79 @@
+// loop_messages: the harness's own messages of the closed loop (plain
+// structs on harness::Channel).  The FSW's messages are the application's
+// FswAcsSensorMsg / FswAcsActuatorMsg / FswAcsHealthMsg (fsw/fsw_acs_msgs.h).
+// Frames: N inertial, B body (origin at point B), C the mass centre.
+#ifndef HARNESS_LOOP_MESSAGES_H
+#define HARNESS_LOOP_MESSAGES_H
+
+#include <cstdint>
+
+#include "sim/spacecraft.h"  // kMaxWheels
+#include "sim/thruster.h"     // kMaxThrusters
+
+extern "C" {
+#include "fsw/fsw_acs_msgs.h"
+}
+
+namespace harness {
+
+constexpr int kMaxRw = sim::kMaxWheels;
+constexpr int kMaxThr = sim::kMaxThrusters;
+
+// Plant truth at the tick (written every tick by the truth task).
+struct TruthMsg {
+  double sigma_BN[3];       // [-]
+  double omega_BN_B[3];     // [rad/s]
+  double r_BN_N[3];         // [m]
+  double v_BN_N[3];         // [m/s]
+  double r_CN_N[3];         // [m]   mass centre
+  double v_CN_N[3];         // [m/s] mass centre
+  double r_CoM_B[3];        // [m]   mass centre relative to B
+  double m_sc;              // [kg]  total mass
+  double m_prop;            // [kg]  propellant left (all tanks)
+  double Omega[kMaxRw];     // [rad/s] wheel speeds rel. B
+  double u_s[kMaxRw];       // [N*m]   motor torque held by the plant
+  double F_thr[kMaxThr];    // [N]     thrust magnitude of each thruster now
+};
+
+// Sampled outputs of the gyro, star tracker and wheel tachometers, held
+// between samples.  The gyro platform P and the star-tracker case C coincide
+// with B, so omega_PN_P = omega_BN_B and sigma_CN = sigma_BN as measured.
+struct SensorSampleMsg {
+  double omega_PN_P[3];    // [rad/s] gyro output
+  int64_t gyro_t_ns;       // [ns] time tag of the gyro sample
+  uint8_t gyro_valid;      // [-] 1 once the gyro has sampled
+  double sigma_CN[3];      // [-] star-tracker attitude (MRP, |sigma| <= 1)
+  int64_t st_t_ns;         // [ns] time tag of the star-tracker sample
+  uint8_t st_valid;        // [-] 1 if the latest star-tracker sample is valid (sampled, not Sun-excluded)
+  double Omega[kMaxRw];    // [rad/s] tachometer wheel speeds
+  int64_t tach_t_ns;       // [ns]
+  uint8_t tach_valid;      // [-]
+};
+
+struct CssMsg {
+  double y[FSW_MAX_CSS];  // [reading units] (num_css) coarse-sun-sensor outputs
+};
+
+struct SunHeadingMsg {
+  double sun_B[3];  // [-] unit Sun heading in B (FSW css_sun estimate); 0 when no valid heading
+  int valid;        // [-] 1 if sun_B holds a heading
+  int num_lit;      // [-] lit coarse sun sensors
+};
+
+struct ThrCmdMsg {
+  double T_on[kMaxThr];  // [s] on-time requests sent to the plant (plant thruster order)
+};
+
+struct MetricsMsg {
+  double pointing_error;  // [rad]
+  double H_C_N[3];        // [kg*m^2/s]
+  double E_rot;           // [J]
+  double dv_ng;           // [m/s] |accumulated non-gravitational velocity change| of C
+  double orbit_e;         // [-]   osculating eccentricity (mu > 0)
+  double orbit_r_p;       // [m]   osculating periapsis radius (mu > 0)
+  double orbit_energy;    // [J/kg] specific orbital energy (mu > 0)
+};
+
+}  // namespace harness
+
+#endif  // HARNESS_LOOP_MESSAGES_H

@@ -1,0 +1,163 @@
+#include "sensor_suite.h"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+#include "build_error.h"
+#include "sim/attitude.h"
+
+namespace harness {
+
+namespace {
+Eigen::Vector3d ev(const double* p) { return Eigen::Vector3d(p[0], p[1], p[2]); }
+template <class Out, class In>
+void copy3(Out* out, const In* in)
+{
+  for (int i = 0; i < 3; ++i) out[i] = static_cast<Out>(in[i]);
+}
+template <class Out>
+void put3(Out* out, const Eigen::Vector3d& v)
+{
+  for (int i = 0; i < 3; ++i) out[i] = static_cast<Out>(v(i));
+}
+}  // namespace
+
+SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw)
+    : n_rw_(static_cast<int>(sc.wheels.size())),
+      num_css_(fsw.cfg.css.num_css),
+      r_sun_N_(sc.environment.sun_position_N),
+      ideal_css_(fsw.ideal_css),
+      ideal_normals_(fsw.ideal_normals),
+      div_gyro_(sc.sensors.gyro.divisor),
+      div_st_(sc.sensors.star_tracker.divisor),
+      div_tach_(sc.sensors.tachometer.divisor)
+{
+  const int64_t tk = static_cast<int64_t>(sc.tick_ns());
+  if (!ideal_css_) {
+    const sim::SensorContext sctx{sc.seed, sc.sensors.noise && sc.sensors.css.noise_std > 0.0};
+    for (size_t i = 0; i < sc.sensors.css.normals_B.size(); ++i) {
+      sim::CssParams cp;
+      cp.name = "css" + std::to_string(i);
+      cp.n_hat_B = sc.sensors.css.normals_B[i];
+      cp.fov_half = sc.sensors.css.fov;
+      cp.scale = sc.sensors.css.scale;
+      cp.sigma = sc.sensors.css.noise_std;
+      cp.period_ns = tk;  // sampled at FSW ticks
+      built_by_plant(sc, "sensors.css", [&] { css_.emplace_back(cp, sctx); });
+    }
+  }
+  const sim::SensorContext sctx{sc.seed, sc.sensors.noise};
+  built_by_plant(sc, "sensors.gyro", [&] {
+    if (sc.sensors.gyro.enabled) {
+      sim::GyroParams gp;
+      gp.name = "gyro";
+      gp.period_ns = static_cast<int64_t>(sc.sensors.gyro.divisor) * tk;
+      gp.sigma_ARW = sc.sensors.gyro.arw;
+      gp.sigma_RRW = sc.sensors.gyro.rrw;
+      gp.lsb = sc.sensors.gyro.lsb;
+      gyro_ = std::make_unique<sim::Gyro>(gp, sctx);
+    }
+  });
+  built_by_plant(sc, "sensors.star_tracker", [&] {
+    if (sc.sensors.star_tracker.enabled) {
+      sim::StarTrackerParams sp;
+      sp.name = "star_tracker";
+      sp.period_ns = static_cast<int64_t>(sc.sensors.star_tracker.divisor) * tk;
+      sp.sigma_cross = sc.sensors.star_tracker.sigma_cross;
+      sp.sigma_bore = sc.sensors.star_tracker.sigma_bore;
+      sp.sun_exclusion = sc.sensors.star_tracker.sun_exclusion;
+      st_ = std::make_unique<sim::StarTracker>(sp, sctx);
+    }
+  });
+  built_by_plant(sc, "sensors.tachometer", [&] {
+    if (sc.sensors.tachometer.enabled && n_rw_ > 0) {
+      sim::TachParams tp;
+      tp.name = "tachometer";
+      tp.num_rw = n_rw_;
+      tp.period_ns = static_cast<int64_t>(sc.sensors.tachometer.divisor) * tk;
+      tp.sigma = sc.sensors.tachometer.sigma;
+      tp.lsb = sc.sensors.tachometer.lsb;
+      tach_ = std::make_unique<sim::WheelTachometers>(tp, sctx);
+    }
+  });
+}
+
+sim::SensorTruth SensorSuite::truth_for_sensors(int64_t t_ns, const TruthMsg& t) const
+{
+  sim::SensorTruth st;
+  st.t_ns = t_ns;
+  st.sigma_BN = ev(t.sigma_BN);
+  st.omega_BN_B = ev(t.omega_BN_B);
+  st.r_BN_N = ev(t.r_BN_N);
+  st.r_SunN_N = r_sun_N_;
+  for (int i = 0; i < n_rw_; ++i) st.Omega[static_cast<size_t>(i)] = t.Omega[i];
+  return st;
+}
+
+bool SensorSuite::sample(uint64_t k, int64_t t_ns, const TruthMsg& truth, SensorSampleMsg& out)
+{
+  const bool g = gyro_ && k % div_gyro_ == 0, a = st_ && k % div_st_ == 0, w = tach_ && k % div_tach_ == 0;
+  if (!(g || a || w)) return false;
+  const sim::SensorTruth st = truth_for_sensors(t_ns, truth);
+  if (g && gyro_->update(st)) {
+    const sim::GyroOutput& o = gyro_->output();
+    put3(out.omega_PN_P, o.omega_PN_P);
+    out.gyro_t_ns = o.t_ns;
+    out.gyro_valid = o.valid ? 1 : 0;
+  }
+  if (a && st_->update(st)) {
+    const sim::StarTrackerOutput& o = st_->output();
+    put3(out.sigma_CN, o.sigma_CN);
+    out.st_t_ns = o.t_ns;
+    out.st_valid = o.valid ? 1 : 0;
+  }
+  if (w && tach_->update(st)) {
+    const sim::TachOutput& o = tach_->output();
+    for (int i = 0; i < n_rw_; ++i) out.Omega[i] = o.Omega[static_cast<size_t>(i)];
+    out.tach_t_ns = o.t_ns;
+    out.tach_valid = o.valid ? 1 : 0;
+  }
+  return true;
+}
+
+void SensorSuite::read_css(int64_t t_ns, const TruthMsg& truth, CssMsg& out)
+{
+  const sim::SensorTruth st = truth_for_sensors(t_ns, truth);
+  for (size_t i = 0; i < css_.size(); ++i) {
+    css_[i].update(st);
+    out.y[i] = css_[i].output().y;
+  }
+}
+
+void SensorSuite::fsw_input(uint64_t t_ns, const TruthMsg& t, const SensorSampleMsg& sm, const CssMsg& css,
+                            FswAcsSensorMsg& msg) const
+{
+  std::memset(&msg, 0, sizeof msg);
+  msg.t_ns = t_ns;
+  if (st_) {
+    // sigma_BN = sigma_CN (case = body); no valid sample yet or Sun-excluded: att_valid 0
+    copy3(msg.sigma_BN, sm.sigma_CN);
+    msg.att_valid = sm.st_valid;
+  } else {
+    copy3(msg.sigma_BN, t.sigma_BN);
+    msg.att_valid = 1;
+  }
+  if (gyro_) copy3(msg.omega_BN_B, sm.omega_PN_P);  // P = B
+  else copy3(msg.omega_BN_B, t.omega_BN_B);
+  if (ideal_css_) {
+    const Eigen::Vector3d d_B = sim::dcm_BN_from_sigma(ev(t.sigma_BN)) * (r_sun_N_ - ev(t.r_BN_N)).normalized();
+    for (int i = 0; i < kIdealCss; ++i)
+      msg.css[i] = static_cast<fsw_real>(std::max(0.0, ideal_normals_[static_cast<size_t>(i)].dot(d_B)));
+  } else {
+    for (int i = 0; i < num_css_; ++i) msg.css[i] = static_cast<fsw_real>(css.y[i]);
+  }
+  if (tach_) {
+    for (int i = 0; i < n_rw_; ++i) msg.Omega[i] = static_cast<fsw_real>(sm.Omega[i]);
+  } else {
+    for (int i = 0; i < n_rw_; ++i) msg.Omega[i] = static_cast<fsw_real>(t.Omega[i]);
+  }
+  copy3(msg.r_CoM_B, t.r_CoM_B);
+}
+
+}  // namespace harness

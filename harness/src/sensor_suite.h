@@ -1,0 +1,54 @@
+// sensor_suite: the plant-side sensor models of a run (coarse sun sensors,
+// gyro, star tracker, wheel tachometers) and the mapping of their outputs
+// (or truth, for a disabled sensor) onto the FSW's FswAcsSensorMsg.
+#ifndef HARNESS_SENSOR_SUITE_H
+#define HARNESS_SENSOR_SUITE_H
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "fsw_config.h"
+#include "harness/loop_messages.h"
+#include "harness/scenario.h"
+#include "sim/sensors.h"
+
+namespace harness {
+
+class SensorSuite {
+ public:
+  // Each model on its own stream Rng(seed, name); one noise switch.  Throws
+  // ScenarioError (at the sensor's key) when a model rejects its parameters.
+  SensorSuite(const Scenario& sc, const FswSetup& fsw);
+
+  bool has_css_models() const { return !css_.empty(); }
+  bool has_sampled_models() const { return gyro_ || st_ || tach_; }
+
+  // Every tick: the models whose own period is due at tick k sample truth;
+  // `out` keeps the held outputs of the others.  False when none was due.
+  bool sample(uint64_t k, int64_t t_ns, const TruthMsg& truth, SensorSampleMsg& out);
+  // The coarse sun sensors at an FSW tick.
+  void read_css(int64_t t_ns, const TruthMsg& truth, CssMsg& out);
+  // The FSW input: the held samples (gyro -> omega_BN_B, star tracker ->
+  // sigma_BN + att_valid, tachometers -> Omega), CSS readings (or the ideal
+  // cube-face readings), truth for a disabled sensor and for r_CoM_B.
+  void fsw_input(uint64_t t_ns, const TruthMsg& truth, const SensorSampleMsg& samples, const CssMsg& css,
+                 FswAcsSensorMsg& msg) const;
+
+ private:
+  sim::SensorTruth truth_for_sensors(int64_t t_ns, const TruthMsg& t) const;
+  int n_rw_ = 0;
+  int num_css_ = 0;
+  Eigen::Vector3d r_sun_N_;
+  bool ideal_css_ = false;
+  std::array<Eigen::Vector3d, kIdealCss> ideal_normals_{};
+  uint64_t div_gyro_ = 1, div_st_ = 1, div_tach_ = 1;
+  std::vector<sim::CoarseSunSensor> css_;
+  std::unique_ptr<sim::Gyro> gyro_;
+  std::unique_ptr<sim::StarTracker> st_;
+  std::unique_ptr<sim::WheelTachometers> tach_;
+};
+
+}  // namespace harness
+
+#endif  // HARNESS_SENSOR_SUITE_H
