@@ -166,3 +166,20 @@ TEST(Scenario, NeverCrashesOnOddDocuments)
     EXPECT_THROW(harness::load_scenario_text(text, "odd.yaml"), harness::ScenarioError);
   }
 }
+
+TEST(Scenario, OverrideIndexOutOfRangeOrAbsurdIsACleanMessage)
+{
+  for (const char* idx : {"3", "99999999999999999999", "18446744073709551616", "x", "-1"}) {
+    SCOPED_TRACE(idx);
+    const std::string path = std::string("wheels.") + idx + ".model";
+    std::vector<harness::ScenarioIssue> v;
+    ASSERT_NO_FATAL_FAILURE(v = issues_of(kMini, {{path, "balanced"}}));
+    ASSERT_EQ(v.size(), 1u);
+    EXPECT_EQ(v[0].message, std::string("no list element '") + idx + "' (the list has 3 entries)");
+    EXPECT_EQ(v[0].where, "--set " + path + "=balanced");
+  }
+  // as the leaf of the path too
+  auto v = issues_of(kMini, {{"wheels.99999999999999999999", "{}"}});
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_NE(v[0].message.find("no list element"), std::string::npos);
+}
