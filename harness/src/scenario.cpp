@@ -143,7 +143,18 @@ Scenario load_from_root(YAML::Node root, const std::string& file, const std::vec
     }
     root = s;
   }
-  for (const Override& o : overrides) apply_override(ctx, root, o);
+  for (const Override& o : overrides) {
+    try {
+      apply_override(ctx, root, o);
+    } catch (const YAML::Exception& e) {  // safety net: never crash on an odd --set
+      ScenarioIssue is;
+      is.file = file;
+      is.key = o.path;
+      is.where = "--set " + o.path + "=" + o.value;
+      is.message = std::string("cannot apply: ") + e.msg;
+      issues.push_back(is);
+    }
+  }
   Scenario sc;
   sc.source_file = file;
   if (issues.empty()) {
