@@ -1,5 +1,5 @@
-// scenario.cpp: the YAML schema reader.  One MapReader per YAML map consumes
-// the keys the schema knows; whatever is left is an unknown key.
+// scenario.cpp: the scenario schema read from YAML (yaml_reader.h) after the
+// `--set` overrides are applied (overrides.h).
 #include "harness/scenario.h"
 
 #include <cmath>
@@ -13,894 +13,69 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "sim/environment.h"
-#include "sim/units.h"
+#include "overrides.h"
+#include "scenario_schema.h"
+#include "yaml_reader.h"
+
 
 namespace harness {
 
+namespace schema {
 namespace {
 
-constexpr double kRadPerArcsec = sim::kRadPerDeg / 3600.0;  // [rad / arcsec]
-constexpr double kUnitTol = 1e-3;        // [-] tolerance on given unit vectors (renormalised)
-constexpr double kSymTol = 1e-9;         // [-] relative inertia symmetry tolerance
-constexpr uint32_t kMaxDivisor = 1000000;  // [ticks] sanity bound on rate divisors
+// ---- the top level --------------------------------------------------------------
+bool is_plain_name(const std::string& v)
+{
+  bool ok = !v.empty();
+  for (char c : v) ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-');
+  return ok;
+}
+
+schema::Section make_schema()
+{
+  using namespace schema;
+  Section top{
+      "",
+      {
+          string("name", [](auto& sc, size_t) -> auto& { return sc.name; })
+              .req("scenario name")
+              .scheck([](const std::string& v) {
+                return is_plain_name(v) ? "" : "must be non-empty and use only letters, digits, '_' and '-'";
+              }),
+          string("description", [](auto& sc, size_t) -> auto& { return sc.description; }),
+          unsigned64("seed", [](auto& sc, size_t) -> auto& { return sc.seed; })
+              .req("random seed, a non-negative integer"),
+          real("duration", [](auto& sc, size_t) -> auto& { return sc.duration; })
+              .req("simulated time [s]").bounds(positive("s")).unit("s"),
+      },
+      {rates_section(), environment_section(), spacecraft_section(), wheel_section(true), wheel_section(),
+       thrusters_section(), tank_section("tank"), tank_section("rcs_tank"), burn_section(), sensors_section(),
+       fsw_section(), outputs_section()}};
+  return top;
+}
+}  // namespace
+
+const Section& schema()
+{
+  static const Section s = make_schema();
+  return s;
+}
+}  // namespace schema
+
+namespace {
+
 constexpr uint64_t kMaxTicks = 100000000000ULL;  // [-] 1e11 ticks: refuse absurd runs
 
-std::string kind_name(const YAML::Node& n)
-{
-  switch (n.Type()) {
-    case YAML::NodeType::Null: return "null";
-    case YAML::NodeType::Scalar: return "scalar '" + n.Scalar() + "'";
-    case YAML::NodeType::Sequence: return "a list";
-    case YAML::NodeType::Map: return "a map";
-    default: return "undefined";
-  }
-}
-
-std::string fmt(double v)
-{
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
-
-struct Ctx {
-  std::string file;
-  std::vector<ScenarioIssue>* issues;
-  std::set<std::string> overridden;  // dotted paths set on the command line
-
-  void error(const YAML::Node& at, const std::string& key, const std::string& msg) const
-  {
-    ScenarioIssue is;
-    is.file = file;
-    is.key = key;
-    is.message = msg;
-    for (const std::string& o : overridden) {
-      if (key == o || key.rfind(o + ".", 0) == 0 || key.rfind(o + "[", 0) == 0) {
-        is.where = "--set " + o;
-        break;
-      }
-    }
-    if (is.where.empty() && at.IsDefined()) {
-      const YAML::Mark m = at.Mark();
-      if (m.line >= 0) {
-        is.line = m.line + 1;
-        is.column = m.column + 1;
-      }
-    }
-    if (is.where.empty() && is.line == 0) {
-      // a node the command line created (e.g. the 'a' of --set a.b=1)
-      for (const std::string& o : overridden)
-        if (o.rfind(key + ".", 0) == 0 || o.rfind(key + "[", 0) == 0) {
-          is.where = "--set " + o;
-          break;
-        }
-    }
-    issues->push_back(is);
-  }
-};
-
-// Dotted path with list indices as [i] in messages; overrides use the same
-// form with the index spelled [i] too (normalised in apply_override).
-std::string join(const std::string& path, const std::string& key)
-{
-  return path.empty() ? key : path + "." + key;
-}
-
-bool decode_double(const YAML::Node& n, double& out)
-{
-  if (!n.IsScalar()) return false;
-  const std::string& s = n.Scalar();
-  // yaml-cpp accepts ".nan"/".inf"; reject non-finite below.  Refuse
-  // booleans or other words that happen to convert.
-  return YAML::convert<double>::decode(n, out) && !s.empty();
-}
-
-bool decode_int(const YAML::Node& n, long long& out)
-{
-  if (!n.IsScalar()) return false;
-  return YAML::convert<long long>::decode(n, out);
-}
-
-class MapReader {
- public:
-  MapReader(const Ctx& ctx, const YAML::Node& node, std::string path, bool present = true)
-      : ctx_(&ctx), node_(pick(ctx, node, path, present)), path_(std::move(path))
-  {
-    synthetic_ = !(present && node.IsDefined() && node.IsMap());
-    if (synthetic_) return;
-    // duplicate keys
-    std::set<std::string> seen;
-    for (auto it = node_.begin(); it != node_.end(); ++it) {
-      if (!it->first.IsScalar()) {
-        ctx.error(it->first, path_, "keys must be plain names");
-        continue;
-      }
-      const std::string k = it->first.Scalar();
-      if (!seen.insert(k).second) ctx.error(it->first, join(path_, k), "duplicate key");
-    }
-  }
-
-  // The map to read, or a fresh empty map (absent, null or not a map; the
-  // last is reported here).  Never assigns to an invalid (zombie) node.
-  static YAML::Node pick(const Ctx& ctx, const YAML::Node& node, const std::string& path, bool present)
-  {
-    if (present && node.IsDefined() && node.IsMap()) return node;
-    if (present && node.IsDefined() && !node.IsNull())
-      ctx.error(node, path.empty() ? "(top level)" : path, "expected a map of keys, got " + kind_name(node));
-    return YAML::Node(YAML::NodeType::Map);
-  }
-
-  const std::string& path() const { return path_; }
-  const YAML::Node& node() const { return node_; }
-  // Keys merged in from another map (wheel_defaults) are named by where they
-  // are written, e.g. wheel_defaults.model.
-  std::string key_path(const std::string& key) const
-  {
-    auto it = alias_.find(key);
-    return it != alias_.end() ? join(it->second, key) : join(path_, key);
-  }
-  void set_alias(const std::string& key, const std::string& origin) { alias_[key] = origin; }
-
-  bool has(const std::string& key) const { return !synthetic_ && node_[key].IsDefined(); }
-
-  YAML::Node get(const std::string& key)
-  {
-    used_.insert(key);
-    const YAML::Node& cn = node_;  // const lookup: a missing key is undefined, never created
-    return cn[key];
-  }
-
-  void error_at(const std::string& key, const std::string& msg)
-  {
-    const YAML::Node& cn = node_;
-    const YAML::Node v = cn[key];
-    ctx_->error(v.IsDefined() ? v : node_, key_path(key), msg);
-  }
-  void error_self(const std::string& msg) { ctx_->error(node_, path_, msg); }
-
-  void missing(const std::string& key, const std::string& what)
-  {
-    ctx_->error(node_, key_path(key), "required key missing (" + what + ")");
-  }
-
-  // ---- scalars -------------------------------------------------------------
-  // Reads a finite real.  `check` returns "" or the reason the value is invalid.
-  std::optional<double> real(const std::string& key, const std::function<std::string(double)>& check = {},
-                             double factor = 1.0)
-  {
-    YAML::Node v = get(key);
-    if (!v.IsDefined()) return std::nullopt;
-    double x = 0.0;
-    if (!decode_double(v, x)) {
-      ctx_->error(v, key_path(key), "expected a number, got " + kind_name(v));
-      return std::nullopt;
-    }
-    if (!std::isfinite(x)) {
-      ctx_->error(v, key_path(key), "must be finite, got " + v.Scalar());
-      return std::nullopt;
-    }
-    if (check) {
-      const std::string why = check(x);
-      if (!why.empty()) {
-        ctx_->error(v, key_path(key), why + ", got " + v.Scalar());
-        return std::nullopt;
-      }
-    }
-    return x * factor;
-  }
-
-  // A quantity accepted as `key` (SI) or as `key<suffix>` (factor to SI).
-  // The check applies to the value as written.
-  std::optional<double> quantity(const std::string& key, const std::string& suffix, double factor,
-                                 const std::function<std::string(double)>& check = {})
-  {
-    const bool a = has(key), b = has(key + suffix);
-    if (a && b) {
-      get(key);
-      get(key + suffix);
-      error_at(key + suffix, "give either '" + key + "' or '" + key + suffix + "', not both");
-      return std::nullopt;
-    }
-    if (b) return real(key + suffix, check, factor);
-    used_.insert(key + suffix);
-    return real(key, check);
-  }
-
-  std::optional<long long> integer(const std::string& key, long long lo, long long hi)
-  {
-    YAML::Node v = get(key);
-    if (!v.IsDefined()) return std::nullopt;
-    long long x = 0;
-    if (!decode_int(v, x)) {
-      ctx_->error(v, key_path(key), "expected an integer, got " + kind_name(v));
-      return std::nullopt;
-    }
-    if (x < lo || x > hi) {
-      ctx_->error(v, key_path(key),
-                  "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + v.Scalar());
-      return std::nullopt;
-    }
-    return x;
-  }
-
-  std::optional<uint64_t> uinteger(const std::string& key)
-  {
-    YAML::Node v = get(key);
-    if (!v.IsDefined()) return std::nullopt;
-    unsigned long long x = 0;
-    if (!v.IsScalar() || v.Scalar().empty() || v.Scalar()[0] == '-' ||
-        !YAML::convert<unsigned long long>::decode(v, x)) {
-      ctx_->error(v, key_path(key), "expected a non-negative integer, got " + kind_name(v));
-      return std::nullopt;
-    }
-    return static_cast<uint64_t>(x);
-  }
-
-  std::optional<bool> boolean(const std::string& key)
-  {
-    YAML::Node v = get(key);
-    if (!v.IsDefined()) return std::nullopt;
-    bool x = false;
-    if (!v.IsScalar() || !YAML::convert<bool>::decode(v, x)) {
-      ctx_->error(v, key_path(key), "expected true or false, got " + kind_name(v));
-      return std::nullopt;
-    }
-    return x;
-  }
-
-  std::optional<std::string> string(const std::string& key)
-  {
-    YAML::Node v = get(key);
-    if (!v.IsDefined()) return std::nullopt;
-    if (!v.IsScalar()) {
-      ctx_->error(v, key_path(key), "expected a string, got " + kind_name(v));
-      return std::nullopt;
-    }
-    return v.Scalar();
-  }
-
-  // One of `options`; returns the index.
-  std::optional<size_t> choice(const std::string& key, const std::vector<std::string>& options)
-  {
-    YAML::Node v = get(key);
-    if (!v.IsDefined()) return std::nullopt;
-    std::string all;
-    for (size_t i = 0; i < options.size(); ++i) all += (i ? ", " : "") + options[i];
-    if (v.IsScalar()) {
-      for (size_t i = 0; i < options.size(); ++i)
-        if (v.Scalar() == options[i]) return i;
-    }
-    ctx_->error(v, key_path(key), "expected one of {" + all + "}, got " + kind_name(v));
-    return std::nullopt;
-  }
-
-  // ---- vectors and matrices ------------------------------------------------
-  std::optional<Eigen::Vector3d> vec3(const std::string& key, double factor = 1.0)
-  {
-    YAML::Node v = get(key);
-    if (!v.IsDefined()) return std::nullopt;
-    return vec3_of(v, key_path(key), factor);
-  }
-
-  std::optional<Eigen::Vector3d> vec3_of(const YAML::Node& v, const std::string& kp, double factor = 1.0)
-  {
-    if (!v.IsSequence() || v.size() != 3) {
-      ctx_->error(v, kp, "expected a list of 3 numbers, got " +
-                             (v.IsSequence() ? "a list of " + std::to_string(v.size()) : kind_name(v)));
-      return std::nullopt;
-    }
-    Eigen::Vector3d out;
-    for (size_t i = 0; i < 3; ++i) {
-      double x = 0.0;
-      if (!decode_double(v[i], x)) {
-        ctx_->error(v[i], kp + "[" + std::to_string(i) + "]", "expected a number, got " + kind_name(v[i]));
-        return std::nullopt;
-      }
-      if (!std::isfinite(x)) {
-        ctx_->error(v[i], kp + "[" + std::to_string(i) + "]", "must be finite, got " + v[i].Scalar());
-        return std::nullopt;
-      }
-      out(static_cast<int>(i)) = x * factor;
-    }
-    return out;
-  }
-
-  std::optional<Eigen::Vector3d> unit_vec3(const std::string& key)
-  {
-    YAML::Node v = get(key);
-    if (!v.IsDefined()) return std::nullopt;
-    return unit_of(v, key_path(key));
-  }
-
-  std::optional<Eigen::Vector3d> unit_of(const YAML::Node& v, const std::string& kp)
-  {
-    auto u = vec3_of(v, kp);
-    if (!u) return std::nullopt;
-    const double n = u->norm();
-    if (!(std::fabs(n - 1.0) <= kUnitTol)) {
-      ctx_->error(v, kp, "must be a unit vector (|v| = 1 within " + fmt(kUnitTol) + "), |v| = " + fmt(n));
-      return std::nullopt;
-    }
-    // Renormalise, but leave an already-normalised vector bit-for-bit alone
-    // so a manifest reloads to exactly the same values.
-    if (std::fabs(n - 1.0) <= 4.0 * std::numeric_limits<double>::epsilon()) return *u;
-    return Eigen::Vector3d(*u / n);
-  }
-
-  // 3x3 as nested lists, or 3 numbers for a diagonal.  Symmetric positive definite.
-  std::optional<Eigen::Matrix3d> inertia(const std::string& key)
-  {
-    YAML::Node v = get(key);
-    if (!v.IsDefined()) return std::nullopt;
-    const std::string kp = key_path(key);
-    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
-    if (v.IsSequence() && v.size() == 3 && v[0].IsScalar()) {
-      auto d = vec3_of(v, kp);
-      if (!d) return std::nullopt;
-      m = d->asDiagonal();
-    } else if (v.IsSequence() && v.size() == 3) {
-      for (size_t r = 0; r < 3; ++r) {
-        auto row = vec3_of(v[r], kp + "[" + std::to_string(r) + "]");
-        if (!row) return std::nullopt;
-        m.row(static_cast<int>(r)) = row->transpose();
-      }
-    } else {
-      ctx_->error(v, kp, "expected 3 diagonal values or a 3x3 list of lists, got " + kind_name(v));
-      return std::nullopt;
-    }
-    const double scale = m.cwiseAbs().maxCoeff();
-    if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= kSymTol * scale)) {
-      ctx_->error(v, kp, "inertia must be symmetric");
-      return std::nullopt;
-    }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(m);
-    if (!(es.eigenvalues().minCoeff() > 0.0)) {
-      ctx_->error(v, kp, "inertia must be positive definite (smallest eigenvalue " +
-                             fmt(es.eigenvalues().minCoeff()) + " kg*m^2)");
-      return std::nullopt;
-    }
-    const Eigen::Vector3d ev = es.eigenvalues();
-    if (ev(0) + ev(1) < ev(2) * (1.0 - 1e-12)) {
-      ctx_->error(v, kp, "inertia violates the triangle inequality (principal moments " + fmt(ev(0)) + ", " +
-                             fmt(ev(1)) + ", " + fmt(ev(2)) + ")");
-      return std::nullopt;
-    }
-    return m;
-  }
-
-  // Every key not consumed is unknown.
-  void finish(const std::set<std::string>& ignore = {})
-  {
-    if (synthetic_) return;
-    for (auto it = node_.begin(); it != node_.end(); ++it) {
-      if (!it->first.IsScalar()) continue;
-      const std::string k = it->first.Scalar();
-      if (used_.count(k) || ignore.count(k)) continue;
-      std::string msg = "unknown key";
-      const std::string near = nearest(k);
-      if (!near.empty()) msg += " (did you mean '" + near + "'?)";
-      ctx_->error(it->first, key_path(k), msg);
-    }
-  }
-
-  MapReader sub(const std::string& key)
-  {
-    YAML::Node v = get(key);
-    return MapReader(*ctx_, v, key_path(key), v.IsDefined());
-  }
-
-  const Ctx& ctx() const { return *ctx_; }
-
- private:
-  std::string nearest(const std::string& k) const
-  {
-    // smallest edit distance among the known keys, if close
-    std::string best;
-    size_t best_d = 3;
-    for (const std::string& u : used_) {
-      const size_t n = k.size(), m = u.size();
-      std::vector<size_t> prev(m + 1), cur(m + 1);
-      for (size_t j = 0; j <= m; ++j) prev[j] = j;
-      for (size_t i = 1; i <= n; ++i) {
-        cur[0] = i;
-        for (size_t j = 1; j <= m; ++j)
-          cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (k[i - 1] == u[j - 1] ? 0 : 1)});
-        std::swap(prev, cur);
-      }
-      if (prev[m] < best_d) {
-        best_d = prev[m];
-        best = u;
-      }
-    }
-    return best;
-  }
-
-  const Ctx* ctx_;
-  YAML::Node node_;
-  std::string path_;
-  bool synthetic_ = false;
-  std::set<std::string> used_;
-  std::map<std::string, std::string> alias_;
-};
-
-// ---- checks ------------------------------------------------------------------
-auto positive(const char* unit)
-{
-  return [unit](double x) { return x > 0.0 ? std::string() : std::string("must be > 0 [") + unit + "]"; };
-}
-auto non_negative(const char* unit)
-{
-  return [unit](double x) { return x >= 0.0 ? std::string() : std::string("must be >= 0 [") + unit + "]"; };
-}
-
-// ---- sections ----------------------------------------------------------------
-void read_rates(MapReader r, Scenario& sc)
-{
-  if (auto v = r.real("dt", positive("s"))) {
-    const double ns = *v * 1e9;
-    const double rounded = std::round(ns);
-    if (rounded < 1.0 || std::fabs(ns - rounded) > 1e-6 * std::max(1.0, rounded))
-      r.error_at("dt", "must be a whole number of nanoseconds (>= 1 ns), got " + fmt(*v) + " s");
-    else
-      sc.rates.dt = rounded * 1e-9;
-  } else if (!r.has("dt")) {
-    r.missing("dt", "plant step [s]");
-  }
-  if (auto v = r.integer("fsw_divisor", 1, kMaxDivisor)) sc.rates.fsw_divisor = static_cast<uint32_t>(*v);
-  if (auto v = r.integer("fsw_offset", 0, kMaxDivisor)) {
-    if (*v >= sc.rates.fsw_divisor)
-      r.error_at("fsw_offset", "must be < fsw_divisor (" + std::to_string(sc.rates.fsw_divisor) + ")");
-    else
-      sc.rates.fsw_offset = static_cast<uint32_t>(*v);
-  }
-  if (auto v = r.integer("record_divisor", 1, kMaxDivisor)) sc.rates.record_divisor = static_cast<uint32_t>(*v);
-  if (auto v = r.integer("thruster_divisor", 1, kMaxDivisor)) sc.rates.thruster_divisor = static_cast<uint32_t>(*v);
-  r.finish();
-}
-
-void read_spacecraft(MapReader r, Scenario& sc)
-{
-  SpacecraftSpec& s = sc.spacecraft;
-  if (auto v = r.real("mass", positive("kg"))) s.mass = *v;
-  else if (!r.has("mass")) r.missing("mass", "hub mass [kg]");
-  if (auto v = r.inertia("inertia")) s.inertia = *v;
-  else if (!r.has("inertia")) r.missing("inertia", "hub inertia about its CoM [kg*m^2]");
-  if (auto v = r.vec3("com")) s.com = *v;
-  MapReader ic = r.sub("initial");
-  if (auto v = ic.vec3("sigma_BN")) {
-    if (v->norm() > 1.0 + 1e-12) ic.error_at("sigma_BN", "MRP must have |sigma| <= 1 (use the shadow set)");
-    else s.initial.sigma_BN = *v;
-  }
-  {
-    const bool a = ic.has("omega_BN_B"), b = ic.has("omega_BN_B_deg_s");
-    if (a && b) {
-      ic.get("omega_BN_B");
-      ic.get("omega_BN_B_deg_s");
-      ic.error_at("omega_BN_B_deg_s", "give either 'omega_BN_B' or 'omega_BN_B_deg_s', not both");
-    } else if (b) {
-      if (auto v = ic.vec3("omega_BN_B_deg_s", sim::kRadPerDeg)) s.initial.omega_BN_B = *v;
-    } else {
-      ic.get("omega_BN_B_deg_s");
-      if (auto v = ic.vec3("omega_BN_B")) s.initial.omega_BN_B = *v;
-    }
-  }
-  if (auto v = ic.vec3("r_CN_N")) s.initial.r_CN_N = *v;
-  if (auto v = ic.vec3("v_CN_N")) s.initial.v_CN_N = *v;
-  if (ic.has("hyperbola")) {
-    // Approach hyperbola (sim::conic_state_from_periapsis): perifocal frame = N
-    // (x toward periapsis, z along the orbit normal).  Resolved into r_CN_N,
-    // v_CN_N here (needs environment.mu, read before the spacecraft).
-    MapReader h = ic.sub("hyperbola");
-    const auto rp = h.real("periapsis_radius", positive("m"));
-    if (!rp && !h.has("periapsis_radius")) h.missing("periapsis_radius", "periapsis radius [m]");
-    const auto vinf = h.real("v_inf", positive("m/s"));
-    if (!vinf && !h.has("v_inf")) h.missing("v_inf", "hyperbolic excess speed [m/s]");
-    const auto tp = h.real("time_to_periapsis", non_negative("s"));
-    if (!tp && !h.has("time_to_periapsis")) h.missing("time_to_periapsis", "time from the start to periapsis [s]");
-    h.finish();
-    if (ic.has("r_CN_N") || ic.has("v_CN_N"))
-      ic.error_at("hyperbola", "give either 'hyperbola' or 'r_CN_N'/'v_CN_N', not both");
-    else if (!(sc.environment.mu > 0.0))
-      ic.error_at("hyperbola", "needs gravity: environment.mu > 0");
-    else if (rp && vinf && tp) {
-      const double e = sim::hyperbolic_eccentricity(sc.environment.mu, *rp, *vinf);
-      const sim::OrbitState os = sim::conic_state_from_periapsis(sc.environment.mu, *rp, e, -*tp);
-      if (!os.r_N.allFinite() || !os.v_N.allFinite())
-        ic.error_at("hyperbola", "no finite state on this hyperbola (time_to_periapsis too large?)");
-      s.initial.r_CN_N = os.r_N;
-      s.initial.v_CN_N = os.v_N;
-    }
-  }
-  ic.finish();
-  r.finish();
-}
-
-void read_environment(MapReader r, Scenario& sc)
-{
-  if (auto v = r.real("mu", non_negative("m^3/s^2"))) sc.environment.mu = *v;
-  if (auto v = r.vec3("sun_position_N")) sc.environment.sun_position_N = *v;
-  r.finish();
-}
-
-// One wheel from its own map, with keys missing there taken from `defaults`.
-WheelSpec read_wheel(const Ctx& ctx, const YAML::Node& node, const YAML::Node& defaults, size_t index)
-{
-  const std::string path = "wheels[" + std::to_string(index) + "]";
-  WheelSpec w;
-  w.name = "rw" + std::to_string(index + 1);
-  if (!node.IsMap()) {
-    ctx.error(node, path, "expected a map of wheel keys, got " + kind_name(node));
-    return w;
-  }
-  // Merge: the wheel's own keys first, then defaults it does not override.
-  YAML::Node merged(YAML::NodeType::Map);
-  std::set<std::string> from_defaults;
-  for (auto it = node.begin(); it != node.end(); ++it) merged[it->first] = it->second;
-  if (defaults.IsDefined() && defaults.IsMap()) {
-    for (auto it = defaults.begin(); it != defaults.end(); ++it) {
-      const std::string k = it->first.as<std::string>("");
-      if (!node[k].IsDefined()) {
-        merged[it->first] = it->second;
-        from_defaults.insert(k);
-      }
-    }
-  }
-  MapReader r(ctx, merged, path);
-  for (const std::string& k : from_defaults) r.set_alias(k, "wheel_defaults");
-  sim::ReactionWheelParams& p = w.params;
-  if (auto v = r.string("name")) w.name = *v;
-  if (auto m = r.choice("model", {"balanced", "simple_jitter", "fully_coupled"}))
-    p.model = *m == 0 ? sim::WheelModel::Balanced
-                      : (*m == 1 ? sim::WheelModel::SimpleJitter : sim::WheelModel::FullyCoupled);
-  else if (!r.has("model")) r.missing("model", "balanced, simple_jitter or fully_coupled");
-  if (auto v = r.unit_vec3("axis")) p.gs_hat_nom_B = *v;
-  else if (!r.has("axis")) r.missing("axis", "spin axis, unit vector in B");
-  if (auto v = r.vec3("position")) p.r_WB_B = *v;
-  if (auto v = r.real("J_s", positive("kg*m^2"))) p.J_s = *v;
-  else if (!r.has("J_s")) r.missing("J_s", "spin inertia [kg*m^2]");
-  if (auto v = r.real("J_t", positive("kg*m^2"))) p.J_t = *v;
-  if (auto v = r.real("J_g", positive("kg*m^2"))) p.J_g = *v;
-  if (auto v = r.real("m_w", non_negative("kg"))) p.m_w = *v;
-  if (auto v = r.quantity("U_s", "_g_cm", sim::kKgMPerGCm, non_negative("kg*m or g*cm"))) p.U_s = *v;
-  if (auto v = r.quantity("U_d", "_g_cm2", sim::kKgM2PerGCm2, non_negative("kg*m^2 or g*cm^2"))) p.U_d = *v;
-  if (auto v = r.quantity("Omega_0", "_rpm", sim::kRadPerSecPerRpm)) p.Omega_0 = *v;
-  if (auto v = r.quantity("Omega_max", "_rpm", sim::kRadPerSecPerRpm, non_negative("rad/s or rpm")))
-    p.Omega_max = *v;
-  if (auto v = r.real("u_max", positive("N*m"))) p.u_max = *v;
-  else if (!r.has("u_max")) r.missing("u_max", "motor torque limit [N*m]");
-  if (auto v = r.real("u_min", non_negative("N*m"))) p.u_min = *v;
-  if (auto v = r.real("P_max", non_negative("W"))) p.P_max = *v;
-  if (r.has("misalignment") && r.has("misalignment_deg")) {
-    r.get("misalignment");
-    r.get("misalignment_deg");
-    r.error_at("misalignment_deg", "give either 'misalignment' or 'misalignment_deg', not both");
-  } else if (auto v = r.vec3("misalignment")) {
-    p.delta_mis_B = *v;
-  } else if (auto d = r.vec3("misalignment_deg", sim::kRadPerDeg)) {
-    p.delta_mis_B = *d;
-  }
-  MapReader f = r.sub("friction");
-  if (auto v = f.real("tau_c", non_negative("N*m"))) p.friction.tau_c = *v;
-  if (auto v = f.real("tau_st", non_negative("N*m"))) p.friction.tau_st = *v;
-  if (auto v = f.real("c_v", non_negative("N*m*s/rad"))) p.friction.c_v = *v;
-  if (auto v = f.real("beta_st")) p.friction.beta_st = *v;
-  if (auto v = f.real("omega_lc", positive("rad/s"))) p.friction.omega_lc = *v;
-  f.finish();
-  // Cross-field physics (reported on the wheel map).
-  if (p.model == sim::WheelModel::FullyCoupled && !(p.m_w > 0.0))
-    r.error_at(r.has("m_w") ? "m_w" : "model", "a fully_coupled wheel needs a rotor mass m_w > 0 [kg]");
-  if (p.u_min > 0.0 && p.u_max > 0.0 && p.u_min >= p.u_max)
-    r.error_at("u_min", "must be < u_max (" + fmt(p.u_max) + " N*m)");
-  if (p.Omega_max > 0.0 && std::fabs(p.Omega_0) > p.Omega_max)
-    r.error_at(r.has("Omega_0_rpm") ? "Omega_0_rpm" : "Omega_0",
-               "initial speed exceeds Omega_max (" + fmt(p.Omega_max / sim::kRadPerSecPerRpm) + " rpm)");
-  if (p.friction.beta_st > 0.0 && p.friction.tau_st < p.friction.tau_c)
-    f.error_at("tau_st", "must be >= tau_c when Stribeck friction is on (beta_st > 0)");
-  r.finish();
-  // Let the plant's own validation have the last word (it names the field).
-  try {
-    sim::validate(p, path);
-  } catch (const std::exception& e) {
-    bool already = false;
-    for (const auto& is : *ctx.issues) already = already || is.key.rfind(path, 0) == 0;
-    if (!already) ctx.error(node, path, e.what());
-  }
-  return w;
-}
-
-void read_wheels(MapReader& top, Scenario& sc)
-{
-  YAML::Node defaults = top.get("wheel_defaults");
-  if (defaults.IsDefined() && !defaults.IsNull() && !defaults.IsMap()) {
-    top.ctx().error(defaults, "wheel_defaults", "expected a map of wheel keys, got " + kind_name(defaults));
-    defaults = YAML::Node();
-  }
-  YAML::Node list = top.get("wheels");
-  if (!list.IsDefined() || list.IsNull()) {
-    if (defaults.IsDefined() && defaults.IsMap() && defaults.size() > 0)
-      top.ctx().error(defaults, "wheel_defaults", "given but there are no wheels");
-    return;
-  }
-  if (!list.IsSequence()) {
-    top.ctx().error(list, "wheels", "expected a list of wheels, got " + kind_name(list));
-    return;
-  }
-  if (list.size() > static_cast<size_t>(sim::kMaxWheels)) {
-    top.ctx().error(list, "wheels", "at most " + std::to_string(sim::kMaxWheels) + " wheels, got " +
-                                        std::to_string(list.size()));
-    return;
-  }
-  for (size_t i = 0; i < list.size(); ++i) sc.wheels.push_back(read_wheel(top.ctx(), list[i], defaults, i));
-  for (size_t i = 0; i < sc.wheels.size(); ++i)
-    for (size_t j = 0; j < i; ++j)
-      if (sc.wheels[i].name == sc.wheels[j].name)
-        top.ctx().error(list[i], "wheels[" + std::to_string(i) + "].name",
-                        "duplicate wheel name '" + sc.wheels[i].name + "'");
-}
-
-void read_thrusters(MapReader& top, Scenario& sc)
-{
-  YAML::Node list = top.get("thrusters");
-  if (!list.IsDefined() || list.IsNull()) return;
-  if (!list.IsSequence()) {
-    top.ctx().error(list, "thrusters", "expected a list of thrusters, got " + kind_name(list));
-    return;
-  }
-  if (list.size() > 36) {
-    top.ctx().error(list, "thrusters", "at most 36 thrusters, got " + std::to_string(list.size()));
-    return;
-  }
-  for (size_t i = 0; i < list.size(); ++i) {
-    MapReader r(top.ctx(), list[i], "thrusters[" + std::to_string(i) + "]");
-    ThrusterSpec t;
-    t.name = "thr" + std::to_string(i + 1);
-    if (auto v = r.string("name")) t.name = *v;
-    if (auto v = r.vec3("position")) t.r_B = *v;
-    else if (!r.has("position")) r.missing("position", "nozzle location in B [m]");
-    if (auto v = r.unit_vec3("direction")) t.dir_B = *v;
-    else if (!r.has("direction")) r.missing("direction", "unit thrust direction in B");
-    if (auto v = r.real("F_max", positive("N"))) t.F_max = *v;
-    else if (!r.has("F_max")) r.missing("F_max", "thrust [N]");
-    if (auto v = r.real("Isp", positive("s"))) t.Isp = *v;
-    else if (!r.has("Isp")) r.missing("Isp", "specific impulse [s]");
-    if (auto v = r.real("T_min", non_negative("s"))) t.T_min = *v;
-    if (auto v = r.quantity("misalignment", "_deg", sim::kRadPerDeg, [](double x) {
-          return x >= 0.0 && x < 90.0 ? std::string() : std::string("must be in [0, 90) deg");
-        }))
-      t.misalignment = *v;
-    if (auto m = r.choice("transient", {"instant", "first_order"}))
-      t.transient = *m == 0 ? ThrTransient::Instant : ThrTransient::FirstOrder;
-    if (auto v = r.real("omega_on", positive("rad/s"))) t.omega_on = *v;
-    if (auto v = r.real("omega_off", positive("rad/s"))) t.omega_off = *v;
-    if (auto v = r.boolean("acs")) t.acs = *v;
-    r.finish();
-    for (const ThrusterSpec& o : sc.thrusters)
-      if (o.name == t.name) r.error_at("name", "duplicate thruster name '" + t.name + "'");
-    sc.thrusters.push_back(t);
-  }
-}
-
-void read_tank(MapReader r, std::optional<TankSpec>& out)
-{
-  if (!r.node().IsMap() || r.node().size() == 0) {
-    r.finish();
-    return;
-  }
-  TankSpec t;
-  if (auto v = r.real("mass", non_negative("kg"))) t.mass = *v;
-  else if (!r.has("mass")) r.missing("mass", "initial propellant [kg]");
-  if (auto v = r.vec3("position")) t.r_B = *v;
-  r.finish();
-  out = t;
-}
-
-void read_burn(MapReader r, Scenario& sc)
-{
-  if (!r.node().IsMap() || r.node().size() == 0) {
-    r.finish();
-    return;
-  }
-  BurnSpec b;
-  if (auto v = r.string("thruster")) {
-    b.thruster = *v;
-    const ThrusterSpec* t = nullptr;
-    for (const ThrusterSpec& x : sc.thrusters)
-      if (x.name == *v) t = &x;
-    if (!t) r.error_at("thruster", "no thruster named '" + *v + "' in 'thrusters'");
-    else if (t->acs) r.error_at("thruster", "'" + *v + "' is an ACS thruster (acs: true); the burn needs a main engine (acs: false)");
-  } else if (!r.has("thruster")) {
-    r.missing("thruster", "name of the main engine (a thruster with acs: false)");
-  }
-  if (auto v = r.real("start", non_negative("s"))) b.start = *v;
-  else if (!r.has("start")) r.missing("start", "ignition time [s]");
-  if (auto v = r.real("duration", positive("s"))) b.duration = *v;
-  else if (!r.has("duration")) r.missing("duration", "burn duration [s]");
-  r.finish();
-  sc.burn = b;
-}
-
-void read_sensors(MapReader r, Scenario& sc)
-{
-  MapReader css = r.sub("css");
-  if (auto v = css.quantity("fov", "_deg", sim::kRadPerDeg, [&css](double x) {
-        const double lim = css.has("fov_deg") ? 90.0 : 0.5 * sim::kPi;
-        return x > 0.0 && x <= lim ? std::string() : std::string("half-angle must be in (0, 90 deg]");
-      }))
-    sc.sensors.css.fov = *v;
-  if (auto v = css.real("scale", positive("-"))) sc.sensors.css.scale = *v;
-  if (auto v = css.real("noise_std", non_negative("-"))) sc.sensors.css.noise_std = *v;
-  YAML::Node normals = css.get("normals");
-  if (normals.IsDefined()) {
-    if (!normals.IsSequence()) {
-      r.ctx().error(normals, css.key_path("normals"), "expected a list of unit 3-vectors, got " + kind_name(normals));
-    } else {
-      if (normals.size() > 32)
-        r.ctx().error(normals, css.key_path("normals"), "at most 32 sensors (FSW_MAX_CSS), got " +
-                                                            std::to_string(normals.size()));
-      for (size_t i = 0; i < normals.size() && i < 32; ++i)
-        if (auto n = css.unit_of(normals[i], css.key_path("normals") + "[" + std::to_string(i) + "]"))
-          sc.sensors.css.normals_B.push_back(*n);
-    }
-  }
-  css.finish();
-  MapReader st = r.sub("star_tracker");
-  if (auto v = st.boolean("enabled")) sc.sensors.star_tracker.enabled = *v;
-  if (auto v = st.quantity("sigma_cross", "_arcsec", kRadPerArcsec, non_negative("rad or arcsec")))
-    sc.sensors.star_tracker.sigma_cross = *v;
-  if (auto v = st.quantity("sigma_bore", "_arcsec", kRadPerArcsec, non_negative("rad or arcsec")))
-    sc.sensors.star_tracker.sigma_bore = *v;
-  if (auto v = st.quantity("sun_exclusion", "_deg", sim::kRadPerDeg, [&st](double x) {
-        const double lim = st.has("sun_exclusion_deg") ? 180.0 : sim::kPi;
-        return x >= 0.0 && x < lim ? std::string() : std::string("must be in [0, 180 deg)");
-      }))
-    sc.sensors.star_tracker.sun_exclusion = *v;
-  if (auto v = st.integer("divisor", 1, kMaxDivisor)) sc.sensors.star_tracker.divisor = static_cast<uint32_t>(*v);
-  st.finish();
-  MapReader g = r.sub("gyro");
-  if (auto v = g.boolean("enabled")) sc.sensors.gyro.enabled = *v;
-  if (auto v = g.real("arw", non_negative("rad/sqrt(s)"))) sc.sensors.gyro.arw = *v;
-  if (auto v = g.real("rrw", non_negative("rad/s^(3/2)"))) sc.sensors.gyro.rrw = *v;
-  if (auto v = g.real("lsb", non_negative("rad/s"))) sc.sensors.gyro.lsb = *v;
-  if (auto v = g.integer("divisor", 1, kMaxDivisor)) sc.sensors.gyro.divisor = static_cast<uint32_t>(*v);
-  g.finish();
-  MapReader tc = r.sub("tachometer");
-  if (auto v = tc.boolean("enabled")) sc.sensors.tachometer.enabled = *v;
-  if (auto v = tc.quantity("sigma", "_rpm", sim::kRadPerSecPerRpm, non_negative("rad/s or rpm")))
-    sc.sensors.tachometer.sigma = *v;
-  if (auto v = tc.quantity("lsb", "_rpm", sim::kRadPerSecPerRpm, non_negative("rad/s or rpm")))
-    sc.sensors.tachometer.lsb = *v;
-  if (auto v = tc.integer("divisor", 1, kMaxDivisor)) sc.sensors.tachometer.divisor = static_cast<uint32_t>(*v);
-  tc.finish();
-  if (auto v = r.boolean("noise")) sc.sensors.noise = *v;
-  r.finish();
-}
-
-void read_fsw(MapReader r, Scenario& sc)
-{
-  FswSpec& f = sc.fsw;
-  if (auto m = r.choice("mode", {"inertial", "sun_safe"}))
-    f.mode = *m == 0 ? FswMode::Inertial : FswMode::SunSafe;
-  MapReader in = r.sub("inertial");
-  if (auto v = in.vec3("sigma_R0N")) f.sigma_R0N = *v;
-  in.finish();
-  MapReader ss = r.sub("sun_safe");
-  if (auto v = ss.unit_vec3("sun_axis_B")) f.sun_axis_B = *v;
-  if (auto v = ss.quantity("small_angle", "_deg", sim::kRadPerDeg, [&ss](double x) {
-        const double lim = ss.has("small_angle_deg") ? 90.0 : 0.5 * sim::kPi;
-        return x >= 0.0 && x < lim ? std::string() : std::string("must be in [0, 90 deg)");
-      }))
-    f.sun_small_angle = *v;
-  if (auto v = ss.vec3("omega_search_B")) f.omega_search_B = *v;
-  if (auto v = ss.real("lit_threshold", [](double x) {
-        return x >= 0.0 && x < 1.0 ? std::string() : std::string("must be in [0, 1)");
-      }))
-    f.css_lit_threshold = *v;
-  ss.finish();
-  MapReader mf = r.sub("mrp_fb");
-  if (auto v = mf.real("K", positive("N*m"))) f.mrp_fb.K = *v;
-  else if (!mf.has("K")) mf.missing("K", "attitude gain [N*m]");
-  if (auto v = mf.real("P", positive("N*m*s"))) f.mrp_fb.P = *v;
-  else if (!mf.has("P")) mf.missing("P", "rate gain [N*m*s]");
-  if (auto v = mf.real("K_i")) f.mrp_fb.K_i = *v;
-  if (auto v = mf.real("integral_limit", non_negative("N*m*s"))) f.mrp_fb.integral_limit = *v;
-  if (auto v = mf.integer("control_law", 0, 1)) f.mrp_fb.control_law = static_cast<int>(*v);
-  if (auto v = mf.inertia("inertia")) f.mrp_fb.inertia = *v;
-  mf.finish();
-  MapReader rm = r.sub("rw_map");
-  if (auto m = rm.choice("mode", {"min_norm", "power"})) f.rw_map = *m == 0 ? RwMapMode::MinNorm : RwMapMode::Power;
-  if (auto v = rm.real("eps_P", positive("rad^2/s^2"))) f.eps_P = *v;
-  rm.finish();
-  MapReader rn = r.sub("rw_null");
-  if (auto v = rn.boolean("enabled")) f.rw_null = *v;
-  if (auto v = rn.real("k_null", positive("N*m*s"))) f.k_null = *v;
-  if (auto v = rn.boolean("scale_to_fit")) f.rw_null_scale_to_fit = *v;
-  {
-    const bool a = rn.has("Omega_des"), b = rn.has("Omega_des_rpm");
-    const std::string key = b ? "Omega_des_rpm" : "Omega_des";
-    const double factor = b ? sim::kRadPerSecPerRpm : 1.0;
-    rn.get("Omega_des");
-    rn.get("Omega_des_rpm");
-    if (a && b) {
-      rn.error_at("Omega_des_rpm", "give either 'Omega_des' or 'Omega_des_rpm', not both");
-    } else if (a || b) {
-      YAML::Node l = rn.node()[key];
-      if (!l.IsSequence()) {
-        rn.error_at(key, "expected a list with one speed per wheel, got " + kind_name(l));
-      } else if (l.size() != sc.wheels.size()) {
-        rn.error_at(key, "expected " + std::to_string(sc.wheels.size()) + " speeds (one per wheel), got " +
-                             std::to_string(l.size()));
-      } else {
-        for (size_t i = 0; i < l.size(); ++i) {
-          double x = 0.0;
-          if (!decode_double(l[i], x) || !std::isfinite(x)) {
-            r.ctx().error(l[i], rn.key_path(key) + "[" + std::to_string(i) + "]",
-                          "expected a finite number, got " + kind_name(l[i]));
-            break;
-          }
-          f.Omega_des.push_back(x * factor);
-        }
-      }
-    }
-  }
-  if (f.rw_null && !(f.k_null > 0.0) && !rn.has("k_null")) rn.missing("k_null", "needed when rw_null is enabled");
-  rn.finish();
-  MapReader tp = r.sub("thr_pulse");
-  if (auto m = tp.choice("mode", {"remainder", "schmitt"}))
-    f.thr_pulse = *m == 0 ? ThrPulseMode::Remainder : ThrPulseMode::Schmitt;
-  if (auto v = tp.real("t_min", positive("s"))) f.thr_t_min = *v;
-  if (auto v = tp.real("level_on", [](double x) {
-        return x > 0.0 && x <= 1.0 ? std::string() : std::string("must be in (0, 1]");
-      }))
-    f.thr_level_on = *v;
-  if (auto v = tp.real("level_off", non_negative("-"))) f.thr_level_off = *v;
-  if (f.thr_level_off >= f.thr_level_on) tp.error_at(tp.has("level_off") ? "level_off" : "level_on", "level_off must be < level_on");
-  tp.finish();
-  MapReader tm = r.sub("thr_map");
-  if (auto m = tm.choice("mode", {"min_norm", "nnls"})) f.thr_map = *m == 0 ? ThrMapMode::MinNorm : ThrMapMode::Nnls;
-  tm.finish();
-  f.actuation = sc.wheels.empty() ? Actuation::Thrusters : Actuation::Wheels;
-  if (auto m = r.choice("actuation", {"wheels", "thrusters"})) {
-    f.actuation = *m == 0 ? Actuation::Wheels : Actuation::Thrusters;
-    bool acs = false;
-    for (const ThrusterSpec& t : sc.thrusters) acs = acs || t.acs;
-    if (f.actuation == Actuation::Wheels && sc.wheels.empty()) r.error_at("actuation", "'wheels' needs wheels");
-    if (f.actuation == Actuation::Thrusters && !acs)
-      r.error_at("actuation", "'thrusters' needs ACS thrusters (thrusters with acs: true)");
-  }
-  if (!r.has("mrp_fb")) r.missing("mrp_fb", "control gains K and P");
-  r.finish();
-}
-
-void read_outputs(MapReader r, Scenario& sc)
-{
-  if (auto v = r.boolean("hdf5")) sc.outputs.hdf5 = *v;
-  if (auto v = r.boolean("csv")) sc.outputs.csv = *v;
-  if (auto v = r.boolean("report_data")) sc.outputs.report_data = *v;
-  r.finish();
-}
-
+// The whole document: every section, then the checks across sections.
 void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
 {
+  using namespace schema;
   MapReader top(ctx, root, "");
   if (!root.IsDefined() || root.IsNull()) {
     ctx.error(root, "(top level)", "empty scenario file");
     return;
   }
-  if (auto v = top.string("name")) {
-    bool ok = !v->empty();
-    for (char c : *v) ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-');
-    if (!ok) top.error_at("name", "must be non-empty and use only letters, digits, '_' and '-'");
-    else sc.name = *v;
-  } else if (!top.has("name")) {
-    top.missing("name", "scenario name");
-  }
-  if (auto v = top.string("description")) sc.description = *v;
-  if (auto v = top.uinteger("seed")) sc.seed = *v;
-  else if (!top.has("seed")) top.missing("seed", "random seed, a non-negative integer");
-  if (auto v = top.real("duration", positive("s"))) sc.duration = *v;
-  else if (!top.has("duration")) top.missing("duration", "simulated time [s]");
+  schema::read_keys(top, schema::schema(), sc);
   if (!top.has("rates")) top.missing("rates", "dt and rate divisors");
   read_rates(top.sub("rates"), sc);
   if (!top.has("spacecraft")) top.missing("spacecraft", "mass, inertia, com");
@@ -908,8 +83,8 @@ void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
   read_spacecraft(top.sub("spacecraft"), sc);
   read_wheels(top, sc);
   read_thrusters(top, sc);
-  read_tank(top.sub("tank"), sc.tank);
-  read_tank(top.sub("rcs_tank"), sc.rcs_tank);
+  read_tank(top.sub("tank"), sc, "tank");
+  read_tank(top.sub("rcs_tank"), sc, "rcs_tank");
   read_burn(top.sub("burn"), sc);
   read_sensors(top.sub("sensors"), sc);
   if (!top.has("fsw")) top.missing("fsw", "flight software gains and modes");
@@ -917,7 +92,7 @@ void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
   read_outputs(top.sub("outputs"), sc);
   top.finish();
 
-  // Cross-section checks.
+  // ---- Cross-section checks (after every key is read) ----
   if (sc.duration > 0.0 && sc.rates.dt > 0.0) {
     const double n = sc.duration / sc.rates.dt;
     if (std::fabs(n - std::round(n)) > 1e-6 * std::max(1.0, n))
@@ -956,122 +131,6 @@ void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
   }
 }
 
-// Records where every key sits in the file (dotted paths with [i] indices).
-void collect_key_lines(const YAML::Node& n, const std::string& path, std::map<std::string, std::pair<int, int>>& out)
-{
-  if (n.IsMap()) {
-    for (auto it = n.begin(); it != n.end(); ++it) {
-      if (!it->first.IsScalar()) continue;
-      const std::string k = join(path, it->first.Scalar());
-      const YAML::Mark m = it->first.Mark();
-      if (m.line >= 0) out[k] = {m.line + 1, m.column + 1};
-      collect_key_lines(it->second, k, out);
-    }
-  } else if (n.IsSequence()) {
-    for (size_t i = 0; i < n.size(); ++i) {
-      const std::string k = path + "[" + std::to_string(i) + "]";
-      const YAML::Mark m = n[i].Mark();
-      if (m.line >= 0) out[k] = {m.line + 1, m.column + 1};
-      collect_key_lines(n[i], k, out);
-    }
-  }
-}
-
-// Splits "a.b[2].c" or "a.b.2.c" into components.
-std::vector<std::string> split_path(const std::string& p)
-{
-  std::vector<std::string> out;
-  std::string cur;
-  for (char c : p) {
-    if (c == '.' || c == '[' || c == ']') {
-      if (!cur.empty()) out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  if (!cur.empty()) out.push_back(cur);
-  return out;
-}
-
-std::string normalise_path(const std::vector<std::string>& parts)
-{
-  std::string s;
-  for (const std::string& p : parts) {
-    const bool index = !p.empty() && p.find_first_not_of("0123456789") == std::string::npos;
-    if (index) s += "[" + p + "]";
-    else s += (s.empty() ? "" : ".") + p;
-  }
-  return s;
-}
-
-void apply_override(Ctx& ctx, YAML::Node& root, const Override& o)
-{
-  const std::vector<std::string> parts = split_path(o.path);
-  const std::string norm = normalise_path(parts);
-  ctx.overridden.insert(norm);
-  ScenarioIssue is;
-  is.file = ctx.file;
-  is.key = norm;
-  is.where = "--set " + o.path + "=" + o.value;
-  if (parts.empty()) {
-    is.message = "empty key path";
-    ctx.issues->push_back(is);
-    return;
-  }
-  YAML::Node value;
-  try {
-    value = YAML::Load(o.value);
-  } catch (const YAML::Exception& e) {
-    is.message = std::string("value is not valid YAML: ") + e.msg;
-    ctx.issues->push_back(is);
-    return;
-  }
-  if (!root.IsMap()) {
-    is.message = "the scenario is not a map";
-    ctx.issues->push_back(is);
-    return;
-  }
-  // Walk down, creating maps as needed; list indices must exist.
-  std::vector<YAML::Node> chain{root};
-  for (size_t i = 0; i + 1 < parts.size(); ++i) {
-    YAML::Node cur = chain.back();
-    const std::string& p = parts[i];
-    const bool index = p.find_first_not_of("0123456789") == std::string::npos;
-    if (cur.IsSequence()) {
-      if (!index || std::stoul(p) >= cur.size()) {
-        is.message = "no list element '" + p + "' (the list has " + std::to_string(cur.size()) + " entries)";
-        ctx.issues->push_back(is);
-        return;
-      }
-      chain.push_back(cur[std::stoul(p)]);
-    } else if (cur.IsMap() || cur.IsNull()) {
-      if (!cur[p].IsDefined() || cur[p].IsNull()) cur[p] = YAML::Node(YAML::NodeType::Map);
-      chain.push_back(cur[p]);
-    } else {
-      is.message = "'" + p + "' is inside a scalar";
-      ctx.issues->push_back(is);
-      return;
-    }
-  }
-  YAML::Node last = chain.back();
-  const std::string& leaf = parts.back();
-  if (last.IsSequence()) {
-    const bool index = leaf.find_first_not_of("0123456789") == std::string::npos;
-    if (!index || std::stoul(leaf) >= last.size()) {
-      is.message = "no list element '" + leaf + "'";
-      ctx.issues->push_back(is);
-      return;
-    }
-    last[std::stoul(leaf)] = value;
-  } else if (last.IsMap()) {
-    last[leaf] = value;
-  } else {
-    is.message = "cannot set a key inside a scalar";
-    ctx.issues->push_back(is);
-  }
-}
-
 Scenario load_from_root(YAML::Node root, const std::string& file, const std::vector<Override>& overrides)
 {
   std::vector<ScenarioIssue> issues;
@@ -1084,7 +143,18 @@ Scenario load_from_root(YAML::Node root, const std::string& file, const std::vec
     }
     root = s;
   }
-  for (const Override& o : overrides) apply_override(ctx, root, o);
+  for (const Override& o : overrides) {
+    try {
+      apply_override(ctx, root, o);
+    } catch (const YAML::Exception& e) {  // safety net: never crash on an odd --set
+      ScenarioIssue is;
+      is.file = file;
+      is.key = o.path;
+      is.where = "--set " + o.path + "=" + o.value;
+      is.message = std::string("cannot apply: ") + e.msg;
+      issues.push_back(is);
+    }
+  }
   Scenario sc;
   sc.source_file = file;
   if (issues.empty()) {

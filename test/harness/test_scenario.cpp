@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "harness/scenario.h"
 
@@ -164,5 +166,219 @@ TEST(Scenario, NeverCrashesOnOddDocuments)
                            "fsw: {mrp_fb: {K: 1e400}}", "seed: 99999999999999999999999"}) {
     SCOPED_TRACE(text);
     EXPECT_THROW(harness::load_scenario_text(text, "odd.yaml"), harness::ScenarioError);
+  }
+}
+
+TEST(Scenario, OverrideIndexOutOfRangeOrAbsurdIsACleanMessage)
+{
+  for (const char* idx : {"3", "99999999999999999999", "18446744073709551616", "x", "-1"}) {
+    SCOPED_TRACE(idx);
+    const std::string path = std::string("wheels.") + idx + ".model";
+    std::vector<harness::ScenarioIssue> v;
+    ASSERT_NO_FATAL_FAILURE(v = issues_of(kMini, {{path, "balanced"}}));
+    ASSERT_EQ(v.size(), 1u);
+    EXPECT_EQ(v[0].message, std::string("no list element '") + idx + "' (the list has 3 entries)");
+    EXPECT_EQ(v[0].where, "--set " + path + "=balanced");
+  }
+  // as the leaf of the path too
+  auto v = issues_of(kMini, {{"wheels.99999999999999999999", "{}"}});
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_NE(v[0].message.find("no list element"), std::string::npos);
+}
+
+TEST(Scenario, SetOfAVectorABoolAndAWord)
+{
+  const harness::Scenario sc = harness::load_scenario_text(
+      kMini, "t.yaml",
+      {{"spacecraft.initial.omega_BN_B", "[0.01, -0.02, 0.03]"}, {"outputs.csv", "true"},
+       {"description", "a: b, [c]"}, {"fsw.mode", "sun_safe"}, {"spacecraft.inertia.1", "13"}});
+  EXPECT_EQ(sc.spacecraft.initial.omega_BN_B, Eigen::Vector3d(0.01, -0.02, 0.03));
+  EXPECT_TRUE(sc.outputs.csv);
+  EXPECT_EQ(sc.description, "a: b, [c]");  // a word key takes the text as it is, not as YAML
+  EXPECT_EQ(sc.fsw.mode, harness::FswMode::SunSafe);
+  EXPECT_EQ(sc.spacecraft.inertia(1, 1), 13.0);  // one element of a list in the file
+
+  auto v = issues_of(kMini, {{"spacecraft.com.2", "0.5"}});  // no 'com' list in the file
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_NE(v[0].message.find("set the whole vector"), std::string::npos) << v[0].message;
+  v = issues_of(kMini, {{"spacecraft.inertia.3", "1"}});
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0].message, "no list element '3' (the list has 3 entries)");
+  v = issues_of(kMini, {{"outputs.csv", "maybe"}});
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0].str(), "t.yaml: --set outputs.csv: outputs.csv: expected true or false, got scalar 'maybe'");
+  v = issues_of(kMini, {{"spacecraft.initial.omega_BN_B_deg_s", "[1, 2]"}});
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0].where, "--set spacecraft.initial.omega_BN_B_deg_s");
+  EXPECT_NE(v[0].message.find("list of 3 numbers"), std::string::npos);
+  v = issues_of(kMini, {{"spacecraft.com", "[1, 2"}});
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_NE(v[0].message.find("not valid YAML"), std::string::npos);
+  v = issues_of(kMini, {{"seed.x", "1"}});
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_NE(v[0].message.find("single value"), std::string::npos);
+}
+
+TEST(Scenario, SetOfOneSpellingReplacesTheOther)
+{
+  // wheel 3 of kMini has Omega_0_rpm: 60; --set Omega_0 replaces it
+  const harness::Scenario sc = harness::load_scenario_text(kMini, "t.yaml", {{"wheels.2.Omega_0", "1.5"}});
+  EXPECT_EQ(sc.wheels[2].params.Omega_0, 1.5);
+  const harness::Scenario sc2 = harness::load_scenario_text(kMini, "t.yaml", {{"wheels[2].Omega_0_rpm", "30"}});
+  EXPECT_NEAR(sc2.wheels[2].params.Omega_0, M_PI, 1e-15);
+}
+
+TEST(Scenario, UnknownSetPathNamesTheSetWithAHint)
+{
+  struct Case {
+    const char* path;
+    const char* key;
+    const char* hint;
+  };
+  for (const Case& c : {Case{"fsw.mrp_fb.Kp", "fsw.mrp_fb.Kp", "did you mean 'K'?"},
+                        Case{"rates.dtt", "rates.dtt", "did you mean 'dt'?"},
+                        Case{"wheels.1.J_ss", "wheels[1].J_ss", "did you mean 'J_s'?"},
+                        Case{"wheel_defaults.Omega_0_rmp", "wheel_defaults.Omega_0_rmp", "did you mean 'Omega_0_rpm'?"},
+                        Case{"sensors.tachometr.sigma", "sensors.tachometr", "did you mean 'tachometer'?"},
+                        Case{"durtion", "durtion", "did you mean 'duration'?"}}) {
+    SCOPED_TRACE(c.path);
+    const auto v = issues_of(kMini, {{c.path, "1"}});
+    ASSERT_EQ(v.size(), 1u);
+    EXPECT_EQ(v[0].key, c.key);
+    EXPECT_EQ(v[0].where.rfind("--set ", 0), 0u);
+    EXPECT_EQ(v[0].where.find('='), std::string::npos);  // the --set named, as for other problems
+    EXPECT_NE(v[0].message.find("unknown key"), std::string::npos);
+    EXPECT_NE(v[0].message.find(c.hint), std::string::npos) << v[0].message;
+    EXPECT_EQ(v[0].line, 0);
+  }
+}
+
+// ---- the typed setter ----------------------------------------------------------------
+
+namespace {
+std::string set_error(harness::Scenario& sc, const std::string& path, const harness::ParameterValue& v)
+{
+  try {
+    harness::set_parameter(sc, path, v);
+  } catch (const harness::ScenarioError& e) {
+    EXPECT_EQ(e.issues().size(), 1u);
+    return e.issues().front().key + ": " + e.issues().front().message;
+  }
+  return "";
+}
+}  // namespace
+
+TEST(SetParameter, SetsTypedValuesLikeTheEquivalentSet)
+{
+  harness::Scenario a = harness::load_scenario(kS1);
+  harness::set_parameter(a, "fsw.mrp_fb.K", 3.5);
+  harness::set_parameter(a, "wheels.2.Omega_0_rpm", 50);           // int, suffix converts
+  harness::set_parameter(a, "wheels[1].model", "balanced");         // a choice, as a word
+  harness::set_parameter(a, "fsw.rw_null.enabled", true);           // a bool
+  harness::set_parameter(a, "spacecraft.initial.omega_BN_B_deg_s", Eigen::Vector3d(1, -2, 3));
+  harness::set_parameter(a, "sensors.css.fov_deg", 60.0);
+  harness::set_parameter(a, "rates.record_divisor", 5);
+  harness::set_parameter(a, "seed", uint64_t{18446744073709551615ull});
+  harness::set_parameter(a, "fsw.mrp_fb.inertia", Eigen::Vector3d(900, 800, 600));  // diagonal
+  harness::set_parameter(a, "wheels.3.axis", Eigen::Vector3d(0, 0, 1.0004));          // renormalised
+  const harness::Scenario b = harness::load_scenario(
+      kS1, {{"fsw.mrp_fb.K", "3.5"},
+            {"wheels.2.Omega_0_rpm", "50"},
+            {"wheels.1.model", "balanced"},
+            {"fsw.rw_null.enabled", "true"},
+            {"spacecraft.initial.omega_BN_B_deg_s", "[1, -2, 3]"},
+            {"sensors.css.fov_deg", "60"},
+            {"rates.record_divisor", "5"},
+            {"seed", "18446744073709551615"},
+            {"fsw.mrp_fb.inertia", "[900, 800, 600]"},
+            {"wheels.3.axis", "[0, 0, 1.0004]"}});
+  EXPECT_EQ(harness::scenario_to_json_text(a), harness::scenario_to_json_text(b));
+  EXPECT_EQ(a.wheels[3].params.gs_hat_nom_B, Eigen::Vector3d(0, 0, 1));
+  EXPECT_NO_THROW(harness::validate_scenario(a));
+}
+
+TEST(SetParameter, RefusesBadValuesNamingTheKeyAndLeavesTheScenarioAlone)
+{
+  harness::Scenario sc = harness::load_scenario(kS1);
+  const std::string before = harness::scenario_to_json_text(sc);
+  EXPECT_EQ(set_error(sc, "fsw.mrp_fb.K", -2.0), "fsw.mrp_fb.K: must be > 0 [N*m], got -2");
+  EXPECT_EQ(set_error(sc, "fsw.mrp_fb.K", true), "fsw.mrp_fb.K: expected a number, got true");
+  EXPECT_EQ(set_error(sc, "fsw.mrp_fb.K", std::nan("")), "fsw.mrp_fb.K: must be finite, got nan");
+  EXPECT_EQ(set_error(sc, "outputs.csv", 1), "outputs.csv: expected true or false, got 1");
+  EXPECT_EQ(set_error(sc, "rates.fsw_divisor", 2.5), "rates.fsw_divisor: expected an integer, got 2.5");
+  EXPECT_EQ(set_error(sc, "rates.fsw_divisor", 0), "rates.fsw_divisor: must be in [1, 1000000], got 0");
+  EXPECT_EQ(set_error(sc, "seed", -1), "seed: expected a non-negative integer, got -1");
+  EXPECT_EQ(set_error(sc, "fsw.mode", "sunny"), "fsw.mode: expected one of {inertial, sun_safe}, got 'sunny'");
+  EXPECT_EQ(set_error(sc, "name", "a b"), "name: must be non-empty and use only letters, digits, '_' and '-'");
+  EXPECT_EQ(set_error(sc, "wheels.0.axis", Eigen::Vector3d(1, 1, 0)).rfind("wheels[0].axis: must be a unit vector", 0), 0u);
+  EXPECT_EQ(set_error(sc, "spacecraft.inertia", Eigen::Vector3d(1, 1, 3)).rfind("spacecraft.inertia: inertia violates", 0), 0u);
+  EXPECT_EQ(set_error(sc, "spacecraft.initial.sigma_BN", Eigen::Vector3d(1, 1, 0)),
+            "spacecraft.initial.sigma_BN: MRP must have |sigma| <= 1 (use the shadow set)");
+  EXPECT_EQ(set_error(sc, "sensors.css.fov_deg", 91.0), "sensors.css.fov_deg: half-angle must be in (0, 90 deg], got 91");
+  EXPECT_EQ(set_error(sc, "rates.dt", 1.5e-10), "rates.dt: must be a whole number of nanoseconds (>= 1 ns), got 1.5e-10 s");
+  // paths
+  EXPECT_EQ(set_error(sc, "fsw.mrp_fb.Kp", 1.0), "fsw.mrp_fb.Kp: unknown key (did you mean 'K'?)");
+  EXPECT_EQ(set_error(sc, "wheels.4.J_s", 1.0), "wheels[4].J_s: no list element '4' (the list has 4 entries)");
+  EXPECT_EQ(set_error(sc, "wheels.99999999999999999999.J_s", 1.0),
+            "wheels[99999999999999999999].J_s: no list element '99999999999999999999' (the list has 4 entries)");
+  EXPECT_EQ(set_error(sc, "tank.mass", 1.0), "tank.mass: there is no 'tank' in this scenario");
+  EXPECT_NE(set_error(sc, "wheel_defaults.J_s", 1.0).find("set wheels.<i>.<key> instead"), std::string::npos);
+  EXPECT_NE(set_error(sc, "fsw.mrp_fb", 1.0).find("names a section"), std::string::npos);
+  EXPECT_NE(set_error(sc, "sensors.css.normals", 1.0).find("cannot be set"), std::string::npos);
+  EXPECT_EQ(harness::scenario_to_json_text(sc), before);  // nothing changed
+  // the issue reads like a --set one
+  try {
+    harness::set_parameter(sc, "fsw.mrp_fb.P", 0.0);
+    FAIL();
+  } catch (const harness::ScenarioError& e) {
+    EXPECT_EQ(e.issues()[0].str(), kS1 + ": set_parameter fsw.mrp_fb.P: fsw.mrp_fb.P: must be > 0 [N*m*s], got 0");
+  }
+}
+
+TEST(SetParameter, CrossKeyChecksAreValidateScenarios)
+{
+  harness::Scenario sc = harness::load_scenario(kS1);
+  harness::set_parameter(sc, "wheels.0.u_min", 0.5);  // > u_max 0.2: a check across keys
+  harness::set_parameter(sc, "duration", 600.005);    // not a multiple of dt
+  try {
+    harness::validate_scenario(sc);
+    FAIL();
+  } catch (const harness::ScenarioError& e) {
+    bool umin = false, dur = false;
+    for (const auto& is : e.issues()) {
+      umin = umin || (is.key == "wheels[0].u_min" && is.message.find("must be < u_max") != std::string::npos);
+      dur = dur || (is.key == "duration" && is.message.find("whole number of steps") != std::string::npos);
+      EXPECT_EQ(is.line, 0);
+      EXPECT_EQ(is.file, kS1);
+    }
+    EXPECT_TRUE(umin);
+    EXPECT_TRUE(dur);
+  }
+}
+
+TEST(Scenario, S2ManifestReloadsIdentically)
+{
+  const harness::Scenario a = harness::load_scenario(std::string(KESTREL_SOURCE_DIR) + "/scenarios/s2_mars_orbit_insertion.yaml");
+  const std::string ja = harness::scenario_to_json_text(a);
+  EXPECT_EQ(harness::scenario_to_json_text(harness::load_scenario_text(ja, "m.json")), ja);
+  EXPECT_TRUE(a.burn.has_value());
+  EXPECT_TRUE(a.rcs_tank.has_value());
+}
+
+TEST(Scenario, EveryKeyIsDocumented)
+{
+  std::ifstream in(std::string(KESTREL_SOURCE_DIR) + "/docs/harness.md");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string doc = ss.str();
+  const auto paths = harness::scenario_key_paths();
+  EXPECT_GT(paths.size(), 100u);
+  for (const std::string& p : paths) {
+    bool spelling = false;  // Omega_0_rpm: documented as Omega_0 (`_rpm`)
+    for (const std::string& q : paths) spelling = spelling || (p.size() > q.size() + 1 && p.rfind(q + "_", 0) == 0);
+    if (spelling) continue;
+    const size_t dot = p.find_last_of('.');
+    const std::string leaf = dot == std::string::npos ? p : p.substr(dot + 1);
+    EXPECT_NE(doc.find(leaf), std::string::npos) << p << " is not in docs/harness.md";
   }
 }

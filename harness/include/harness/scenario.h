@@ -12,10 +12,12 @@
 
 #include <cstdint>
 #include <map>
+#include <type_traits>
 #include <utility>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -237,6 +239,50 @@ std::string scenario_to_json_text(const Scenario& sc, int indent = 2);
 
 // Parses "a.b=c" into an Override; throws std::invalid_argument.
 Override parse_override(const std::string& s);
+
+// A typed value for set_parameter(): a number (also for integer keys), a
+// flag, a word (strings and choices such as "sun_safe"), a 3-vector (also
+// a diagonal inertia) or a 3x3 matrix (inertia).
+struct ParameterValue {
+  std::variant<double, long long, uint64_t, bool, std::string, Eigen::Vector3d, Eigen::Matrix3d> value;
+  ParameterValue(double v) : value(v) {}
+  ParameterValue(int v) : value(static_cast<long long>(v)) {}
+  ParameterValue(long v) : value(static_cast<long long>(v)) {}
+  ParameterValue(long long v) : value(v) {}
+  ParameterValue(unsigned v) : value(static_cast<uint64_t>(v)) {}
+  ParameterValue(unsigned long v) : value(static_cast<uint64_t>(v)) {}
+  ParameterValue(unsigned long long v) : value(static_cast<uint64_t>(v)) {}
+  ParameterValue(bool v) : value(v) {}
+  ParameterValue(const char* v) : value(std::string(v)) {}
+  ParameterValue(std::string v) : value(std::move(v)) {}
+  template <class D>
+  ParameterValue(const Eigen::MatrixBase<D>& m)
+  {
+    static_assert((D::RowsAtCompileTime == 3 && D::ColsAtCompileTime == 1) ||
+                      (D::RowsAtCompileTime == 3 && D::ColsAtCompileTime == 3),
+                  "a 3-vector or a 3x3 matrix");
+    if constexpr (D::ColsAtCompileTime == 1) value = Eigen::Vector3d(m);
+    else value = Eigen::Matrix3d(m);
+  }
+};
+
+// Sets one key of a loaded scenario without YAML (Monte Carlo, Python):
+// `path` as for --set ("fsw.mrp_fb.K", "wheels.2.Omega_0_rpm",
+// "wheels[2].J_s"; a unit suffix converts as in a file).  The key's own
+// definition checks the value (type, bounds, unit vector, inertia): on a
+// problem it throws ScenarioError naming the key and leaves sc unchanged.
+// Checks that involve other keys (duration a multiple of dt, u_min < u_max,
+// burn names a main engine, ...) are validate_scenario()'s job.
+void set_parameter(Scenario& sc, const std::string& path, const ParameterValue& value);
+
+// Every check of load_scenario() on a Scenario built or changed in code:
+// its canonical form is reloaded (the manifest round trip).  Throws
+// ScenarioError (issues name keys; no line numbers).
+void validate_scenario(const Scenario& sc);
+
+// Every key path the schema knows, list elements as [i] (e.g.
+// "wheels[i].Omega_0", alternative spellings as "wheels[i].Omega_0_rpm").
+std::vector<std::string> scenario_key_paths();
 
 const char* to_string(FswMode m);
 const char* to_string(RwMapMode m);

@@ -1,0 +1,26 @@
+// scenario_limits: how many wheels, thrusters and coarse sun sensors a
+// scenario may have -- the smaller of the flight software's and the plant's
+// capacities, taken from their constants (the one place the harness's
+// scenario schema names them).
+//
+// Private to the harness library.
+#ifndef HARNESS_SRC_SCENARIO_LIMITS_H
+#define HARNESS_SRC_SCENARIO_LIMITS_H
+
+#include <algorithm>
+#include <cstddef>
+
+#include "fsw/css_sun.h"     // FSW_MAX_CSS
+#include "fsw/fsw_config.h"  // FSW_MAX_RW, FSW_MAX_THR
+#include "sim/spacecraft.h"  // sim::kMaxWheels
+#include "sim/thruster.h"    // sim::kMaxThrusters
+
+namespace harness {
+
+constexpr size_t kMaxScenarioWheels = static_cast<size_t>(std::min(FSW_MAX_RW, sim::kMaxWheels));       // [-]
+constexpr size_t kMaxScenarioThrusters = static_cast<size_t>(std::min(FSW_MAX_THR, sim::kMaxThrusters));  // [-]
+constexpr size_t kMaxScenarioCss = static_cast<size_t>(FSW_MAX_CSS);  // [-] the plant's CSS list is unbounded
+
+}  // namespace harness
+
+#endif  // HARNESS_SRC_SCENARIO_LIMITS_H

@@ -1,0 +1,414 @@
+// yaml_reader.cpp: see yaml_reader.h.
+#include "yaml_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace harness {
+
+void Ctx::error(const YAML::Node& at, const std::string& key, const std::string& msg) const
+{
+  ScenarioIssue is;
+  is.file = file;
+  is.key = key;
+  is.message = msg;
+  for (const std::string& o : overridden) {
+    if (key == o || key.rfind(o + ".", 0) == 0 || key.rfind(o + "[", 0) == 0) {
+      is.where = "--set " + o;
+      break;
+    }
+  }
+  if (is.where.empty() && at.IsDefined()) {
+    const YAML::Mark m = at.Mark();
+    if (m.line >= 0) {
+      is.line = m.line + 1;
+      is.column = m.column + 1;
+    }
+  }
+  if (is.where.empty() && is.line == 0) {
+    // a node the command line created (e.g. the 'a' of --set a.b=1)
+    for (const std::string& o : overridden)
+      if (o.rfind(key + ".", 0) == 0 || o.rfind(key + "[", 0) == 0) {
+        is.where = "--set " + o;
+        break;
+      }
+  }
+  issues->push_back(is);
+}
+
+std::string kind_name(const YAML::Node& n)
+{
+  switch (n.Type()) {
+    case YAML::NodeType::Null: return "null";
+    case YAML::NodeType::Scalar: return "scalar '" + n.Scalar() + "'";
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Map: return "a map";
+    default: return "undefined";
+  }
+}
+
+std::string fmt(double v)
+{
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
+
+std::string join(const std::string& path, const std::string& key)
+{
+  return path.empty() ? key : path + "." + key;
+}
+
+bool decode_double(const YAML::Node& n, double& out)
+{
+  if (!n.IsScalar()) return false;
+  const std::string& s = n.Scalar();
+  // yaml-cpp accepts ".nan"/".inf"; callers reject non-finite values.
+  // Refuse booleans or other words that happen to convert.
+  return YAML::convert<double>::decode(n, out) && !s.empty();
+}
+
+bool decode_int(const YAML::Node& n, long long& out)
+{
+  if (!n.IsScalar()) return false;
+  return YAML::convert<long long>::decode(n, out);
+}
+
+std::string did_you_mean(const std::string& k, const std::vector<std::string>& known)
+{
+  // smallest edit distance among the known words, if close
+  std::string best;
+  size_t best_d = 3;
+  for (const std::string& u : known) {
+    const size_t n = k.size(), m = u.size();
+    std::vector<size_t> prev(m + 1), cur(m + 1);
+    for (size_t j = 0; j <= m; ++j) prev[j] = j;
+    for (size_t i = 1; i <= n; ++i) {
+      cur[0] = i;
+      for (size_t j = 1; j <= m; ++j)
+        cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (k[i - 1] == u[j - 1] ? 0 : 1)});
+      std::swap(prev, cur);
+    }
+    if (prev[m] < best_d) {
+      best_d = prev[m];
+      best = u;
+    }
+  }
+  return best;
+}
+
+std::string check_unit_vector(Eigen::Vector3d& v)
+{
+  const double n = v.norm();
+  if (!(std::fabs(n - 1.0) <= kUnitTol))
+    return "must be a unit vector (|v| = 1 within " + fmt(kUnitTol) + "), |v| = " + fmt(n);
+  // Renormalise, but leave an already-normalised vector bit-for-bit alone
+  // so a manifest reloads to exactly the same values.
+  if (!(std::fabs(n - 1.0) <= 4.0 * std::numeric_limits<double>::epsilon())) v /= n;
+  return "";
+}
+
+std::string check_inertia(const Eigen::Matrix3d& m)
+{
+  if (!m.allFinite()) return "inertia must be finite";
+  const double scale = m.cwiseAbs().maxCoeff();
+  if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= kSymTol * scale)) return "inertia must be symmetric";
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(m);
+  if (!(es.eigenvalues().minCoeff() > 0.0))
+    return "inertia must be positive definite (smallest eigenvalue " + fmt(es.eigenvalues().minCoeff()) +
+           " kg*m^2)";
+  const Eigen::Vector3d ev = es.eigenvalues();
+  if (ev(0) + ev(1) < ev(2) * (1.0 - 1e-12))
+    return "inertia violates the triangle inequality (principal moments " + fmt(ev(0)) + ", " + fmt(ev(1)) +
+           ", " + fmt(ev(2)) + ")";
+  return "";
+}
+
+void collect_key_lines(const YAML::Node& n, const std::string& path, std::map<std::string, std::pair<int, int>>& out)
+{
+  if (n.IsMap()) {
+    for (auto it = n.begin(); it != n.end(); ++it) {
+      if (!it->first.IsScalar()) continue;
+      const std::string k = join(path, it->first.Scalar());
+      const YAML::Mark m = it->first.Mark();
+      if (m.line >= 0) out[k] = {m.line + 1, m.column + 1};
+      collect_key_lines(it->second, k, out);
+    }
+  } else if (n.IsSequence()) {
+    for (size_t i = 0; i < n.size(); ++i) {
+      const std::string k = path + "[" + std::to_string(i) + "]";
+      const YAML::Mark m = n[i].Mark();
+      if (m.line >= 0) out[k] = {m.line + 1, m.column + 1};
+      collect_key_lines(n[i], k, out);
+    }
+  }
+}
+
+// ---- MapReader ----------------------------------------------------------------
+
+MapReader::MapReader(const Ctx& ctx, const YAML::Node& node, std::string path, bool present)
+    : ctx_(&ctx), node_(pick(ctx, node, path, present)), path_(std::move(path))
+{
+  synthetic_ = !(present && node.IsDefined() && node.IsMap());
+  if (synthetic_) return;
+  // duplicate keys
+  std::set<std::string> seen;
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    if (!it->first.IsScalar()) {
+      ctx.error(it->first, path_, "keys must be plain names");
+      continue;
+    }
+    const std::string k = it->first.Scalar();
+    if (!seen.insert(k).second) ctx.error(it->first, join(path_, k), "duplicate key");
+  }
+}
+
+// The map to read, or a fresh empty map (absent, null or not a map; the
+// last is reported here).  Never assigns to an invalid (zombie) node.
+YAML::Node MapReader::pick(const Ctx& ctx, const YAML::Node& node, const std::string& path, bool present)
+{
+  if (present && node.IsDefined() && node.IsMap()) return node;
+  if (present && node.IsDefined() && !node.IsNull())
+    ctx.error(node, path.empty() ? "(top level)" : path, "expected a map of keys, got " + kind_name(node));
+  return YAML::Node(YAML::NodeType::Map);
+}
+
+std::string MapReader::key_path(const std::string& key) const
+{
+  auto it = alias_.find(key);
+  return it != alias_.end() ? join(it->second, key) : join(path_, key);
+}
+
+YAML::Node MapReader::get(const std::string& key)
+{
+  used_.insert(key);
+  const YAML::Node& cn = node_;  // const lookup: a missing key is undefined, never created
+  return cn[key];
+}
+
+void MapReader::error_at(const std::string& key, const std::string& msg)
+{
+  const YAML::Node& cn = node_;
+  const YAML::Node v = cn[key];
+  ctx_->error(v.IsDefined() ? v : node_, key_path(key), msg);
+}
+
+void MapReader::error_self(const std::string& msg) { ctx_->error(node_, path_, msg); }
+
+void MapReader::missing(const std::string& key, const std::string& what)
+{
+  ctx_->error(node_, key_path(key), "required key missing (" + what + ")");
+}
+
+std::optional<double> MapReader::real(const std::string& key, const NumberCheck& check, double factor)
+{
+  YAML::Node v = get(key);
+  if (!v.IsDefined()) return std::nullopt;
+  double x = 0.0;
+  if (!decode_double(v, x)) {
+    ctx_->error(v, key_path(key), "expected a number, got " + kind_name(v));
+    return std::nullopt;
+  }
+  if (!std::isfinite(x)) {
+    ctx_->error(v, key_path(key), "must be finite, got " + v.Scalar());
+    return std::nullopt;
+  }
+  if (check) {
+    const std::string why = check(x);
+    if (!why.empty()) {
+      ctx_->error(v, key_path(key), why + ", got " + v.Scalar());
+      return std::nullopt;
+    }
+  }
+  return x * factor;
+}
+
+std::optional<bool> MapReader::spelling(const std::string& key, const std::string& suffix)
+{
+  const bool a = has(key), b = has(key + suffix);
+  used_.insert(key);
+  used_.insert(key + suffix);
+  if (a && b) {
+    error_at(key + suffix, "give either '" + key + "' or '" + key + suffix + "', not both");
+    return std::nullopt;
+  }
+  return b;
+}
+
+std::optional<double> MapReader::quantity(const std::string& key, const std::string& suffix, double factor,
+                                          const NumberCheck& check)
+{
+  const std::optional<bool> suffixed = spelling(key, suffix);
+  if (!suffixed) return std::nullopt;
+  return *suffixed ? real(key + suffix, check, factor) : real(key, check);
+}
+
+std::optional<long long> MapReader::integer(const std::string& key, long long lo, long long hi)
+{
+  YAML::Node v = get(key);
+  if (!v.IsDefined()) return std::nullopt;
+  long long x = 0;
+  if (!decode_int(v, x)) {
+    ctx_->error(v, key_path(key), "expected an integer, got " + kind_name(v));
+    return std::nullopt;
+  }
+  if (x < lo || x > hi) {
+    ctx_->error(v, key_path(key),
+                "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + v.Scalar());
+    return std::nullopt;
+  }
+  return x;
+}
+
+std::optional<uint64_t> MapReader::uinteger(const std::string& key)
+{
+  YAML::Node v = get(key);
+  if (!v.IsDefined()) return std::nullopt;
+  unsigned long long x = 0;
+  if (!v.IsScalar() || v.Scalar().empty() || v.Scalar()[0] == '-' ||
+      !YAML::convert<unsigned long long>::decode(v, x)) {
+    ctx_->error(v, key_path(key), "expected a non-negative integer, got " + kind_name(v));
+    return std::nullopt;
+  }
+  return static_cast<uint64_t>(x);
+}
+
+std::optional<bool> MapReader::boolean(const std::string& key)
+{
+  YAML::Node v = get(key);
+  if (!v.IsDefined()) return std::nullopt;
+  bool x = false;
+  if (!v.IsScalar() || !YAML::convert<bool>::decode(v, x)) {
+    ctx_->error(v, key_path(key), "expected true or false, got " + kind_name(v));
+    return std::nullopt;
+  }
+  return x;
+}
+
+std::optional<std::string> MapReader::string(const std::string& key)
+{
+  YAML::Node v = get(key);
+  if (!v.IsDefined()) return std::nullopt;
+  if (!v.IsScalar()) {
+    ctx_->error(v, key_path(key), "expected a string, got " + kind_name(v));
+    return std::nullopt;
+  }
+  return v.Scalar();
+}
+
+std::optional<size_t> MapReader::choice(const std::string& key, const std::vector<std::string>& options)
+{
+  YAML::Node v = get(key);
+  if (!v.IsDefined()) return std::nullopt;
+  std::string all;
+  for (size_t i = 0; i < options.size(); ++i) all += (i ? ", " : "") + options[i];
+  if (v.IsScalar()) {
+    for (size_t i = 0; i < options.size(); ++i)
+      if (v.Scalar() == options[i]) return i;
+  }
+  ctx_->error(v, key_path(key), "expected one of {" + all + "}, got " + kind_name(v));
+  return std::nullopt;
+}
+
+std::optional<Eigen::Vector3d> MapReader::vec3(const std::string& key, double factor)
+{
+  YAML::Node v = get(key);
+  if (!v.IsDefined()) return std::nullopt;
+  return vec3_of(v, key_path(key), factor);
+}
+
+std::optional<Eigen::Vector3d> MapReader::vec3_of(const YAML::Node& v, const std::string& kp, double factor)
+{
+  if (!v.IsSequence() || v.size() != 3) {
+    ctx_->error(v, kp, "expected a list of 3 numbers, got " +
+                           (v.IsSequence() ? "a list of " + std::to_string(v.size()) : kind_name(v)));
+    return std::nullopt;
+  }
+  Eigen::Vector3d out;
+  for (size_t i = 0; i < 3; ++i) {
+    double x = 0.0;
+    if (!decode_double(v[i], x)) {
+      ctx_->error(v[i], kp + "[" + std::to_string(i) + "]", "expected a number, got " + kind_name(v[i]));
+      return std::nullopt;
+    }
+    if (!std::isfinite(x)) {
+      ctx_->error(v[i], kp + "[" + std::to_string(i) + "]", "must be finite, got " + v[i].Scalar());
+      return std::nullopt;
+    }
+    out(static_cast<int>(i)) = x * factor;
+  }
+  return out;
+}
+
+std::optional<Eigen::Vector3d> MapReader::unit_vec3(const std::string& key)
+{
+  YAML::Node v = get(key);
+  if (!v.IsDefined()) return std::nullopt;
+  return unit_of(v, key_path(key));
+}
+
+std::optional<Eigen::Vector3d> MapReader::unit_of(const YAML::Node& v, const std::string& kp)
+{
+  auto u = vec3_of(v, kp);
+  if (!u) return std::nullopt;
+  const std::string why = check_unit_vector(*u);
+  if (!why.empty()) {
+    ctx_->error(v, kp, why);
+    return std::nullopt;
+  }
+  return u;
+}
+
+std::optional<Eigen::Matrix3d> MapReader::inertia(const std::string& key)
+{
+  YAML::Node v = get(key);
+  if (!v.IsDefined()) return std::nullopt;
+  const std::string kp = key_path(key);
+  Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+  if (v.IsSequence() && v.size() == 3 && v[0].IsScalar()) {
+    auto d = vec3_of(v, kp);
+    if (!d) return std::nullopt;
+    m = d->asDiagonal();
+  } else if (v.IsSequence() && v.size() == 3) {
+    for (size_t r = 0; r < 3; ++r) {
+      auto row = vec3_of(v[r], kp + "[" + std::to_string(r) + "]");
+      if (!row) return std::nullopt;
+      m.row(static_cast<int>(r)) = row->transpose();
+    }
+  } else {
+    ctx_->error(v, kp, "expected 3 diagonal values or a 3x3 list of lists, got " + kind_name(v));
+    return std::nullopt;
+  }
+  const std::string why = check_inertia(m);
+  if (!why.empty()) {
+    ctx_->error(v, kp, why);
+    return std::nullopt;
+  }
+  return m;
+}
+
+void MapReader::finish(const std::set<std::string>& ignore)
+{
+  if (synthetic_) return;
+  const std::vector<std::string> known(used_.begin(), used_.end());
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    if (!it->first.IsScalar()) continue;
+    const std::string k = it->first.Scalar();
+    if (used_.count(k) || ignore.count(k)) continue;
+    std::string msg = "unknown key";
+    const std::string near = did_you_mean(k, known);
+    if (!near.empty()) msg += " (did you mean '" + near + "'?)";
+    ctx_->error(it->first, key_path(k), msg);
+  }
+}
+
+MapReader MapReader::sub(const std::string& key)
+{
+  YAML::Node v = get(key);
+  return MapReader(*ctx_, v, key_path(key), v.IsDefined());
+}
+
+}  // namespace harness

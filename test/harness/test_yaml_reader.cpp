@@ -1,0 +1,134 @@
+// The generic YAML reader (harness/src/yaml_reader.h) alone, on small
+// documents unrelated to the scenario schema: typed decoding, issues with
+// file:line:col, unknown keys with a did-you-mean hint, alternative-unit
+// spellings, unit vectors and inertia checks, --set attribution.
+#include <gtest/gtest.h>
+
+#include <yaml-cpp/yaml.h>
+
+#include "yaml_reader.h"
+
+namespace {
+
+using harness::Ctx;
+using harness::MapReader;
+using harness::ScenarioIssue;
+
+struct Doc {
+  std::vector<ScenarioIssue> issues;
+  Ctx ctx;
+  YAML::Node root;
+  explicit Doc(const std::string& text) : ctx{"d.yaml", &issues, {}}, root(YAML::Load(text)) {}
+};
+
+}  // namespace
+
+TEST(YamlReader, DecodesTypesAndLeavesAbsentKeysUnset)
+{
+  Doc d("x: 2.5\nn: 7\nb: true\ns: hello\nc: blue\nv: [1, 2, 3]\nu: [0, 0, 1]\nI: [1, 2, 2.5]\nbig: 18446744073709551615\n");
+  MapReader r(d.ctx, d.root, "");
+  EXPECT_EQ(r.real("x"), 2.5);
+  EXPECT_EQ(r.integer("n", 0, 10), 7);
+  EXPECT_EQ(r.boolean("b"), true);
+  EXPECT_EQ(r.string("s"), "hello");
+  EXPECT_EQ(r.choice("c", {"red", "blue"}), 1u);
+  EXPECT_EQ(*r.vec3("v"), Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(*r.unit_vec3("u"), Eigen::Vector3d(0, 0, 1));
+  EXPECT_EQ(r.inertia("I")->diagonal(), Eigen::Vector3d(1, 2, 2.5));
+  EXPECT_EQ(r.uinteger("big"), 18446744073709551615ull);
+  EXPECT_FALSE(r.real("absent").has_value());
+  r.finish();
+  EXPECT_TRUE(d.issues.empty());
+}
+
+TEST(YamlReader, IssuesCarryLineColumnAndKey)
+{
+  Doc d("a:\n  x: -1\n  y: word\n  n: 11\n  z: .nan\n");
+  MapReader top(d.ctx, d.root, "");
+  MapReader a = top.sub("a");
+  EXPECT_FALSE(a.real("x", [](double v) { return v > 0 ? std::string() : std::string("must be > 0 [m]"); }));
+  EXPECT_FALSE(a.real("y"));
+  EXPECT_FALSE(a.integer("n", 0, 10));
+  EXPECT_FALSE(a.real("z"));
+  a.finish();
+  top.finish();
+  ASSERT_EQ(d.issues.size(), 4u);
+  EXPECT_EQ(d.issues[0].str(), "d.yaml:2:6: a.x: must be > 0 [m], got -1");
+  EXPECT_EQ(d.issues[1].str(), "d.yaml:3:6: a.y: expected a number, got scalar 'word'");
+  EXPECT_EQ(d.issues[2].str(), "d.yaml:4:6: a.n: must be in [0, 10], got 11");
+  EXPECT_EQ(d.issues[3].str(), "d.yaml:5:6: a.z: must be finite, got .nan");
+}
+
+TEST(YamlReader, UnknownAndDuplicateKeys)
+{
+  Doc d("speed: 1\nspeeed: 2\ncolour: red\nspeed: 3\n");
+  MapReader r(d.ctx, d.root, "");
+  r.real("speed");
+  r.finish();
+  ASSERT_EQ(d.issues.size(), 3u);
+  EXPECT_EQ(d.issues[0].str(), "d.yaml:4:1: speed: duplicate key");
+  EXPECT_EQ(d.issues[1].str(), "d.yaml:2:1: speeed: unknown key (did you mean 'speed'?)");
+  EXPECT_EQ(d.issues[2].str(), "d.yaml:3:1: colour: unknown key");
+  EXPECT_EQ(harness::did_you_mean("Kp", {"K", "P", "K_i"}), "K");
+  EXPECT_EQ(harness::did_you_mean("zzzzzz", {"K", "P"}), "");
+}
+
+TEST(YamlReader, AlternativeUnitSpelling)
+{
+  Doc d("a: {w_rpm: 60}\nb: {w: 1, w_rpm: 2}\n");
+  MapReader top(d.ctx, d.root, "");
+  MapReader a = top.sub("a");
+  const double rpm = 2.0 * M_PI / 60.0;
+  EXPECT_NEAR(*a.quantity("w", "_rpm", rpm), 2.0 * M_PI, 1e-15);
+  a.finish();
+  MapReader b = top.sub("b");
+  EXPECT_FALSE(b.quantity("w", "_rpm", rpm).has_value());
+  b.finish();  // both spellings are known keys: no 'unknown key' on top
+  top.finish();
+  ASSERT_EQ(d.issues.size(), 1u);
+  EXPECT_EQ(d.issues[0].key, "b.w_rpm");
+  EXPECT_NE(d.issues[0].message.find("not both"), std::string::npos);
+}
+
+TEST(YamlReader, UnitVectorsAndInertia)
+{
+  Doc d("u: [0, 0, 1.0005]\nbad: [1, 1, 0]\nI: [[1, 0.5, 0], [0, 1, 0], [0, 0, 1]]\nJ: [1, 1, 3]\n");
+  MapReader r(d.ctx, d.root, "");
+  const auto u = r.unit_vec3("u");
+  ASSERT_TRUE(u.has_value());
+  EXPECT_DOUBLE_EQ(u->norm(), 1.0);  // renormalised
+  EXPECT_FALSE(r.unit_vec3("bad"));
+  EXPECT_FALSE(r.inertia("I"));
+  EXPECT_FALSE(r.inertia("J"));
+  r.finish();
+  ASSERT_EQ(d.issues.size(), 3u);
+  EXPECT_NE(d.issues[0].message.find("unit vector"), std::string::npos);
+  EXPECT_NE(d.issues[1].message.find("symmetric"), std::string::npos);
+  EXPECT_NE(d.issues[2].message.find("triangle inequality"), std::string::npos);
+  Eigen::Vector3d exact(0, 1, 0);
+  EXPECT_EQ(harness::check_unit_vector(exact), "");
+  EXPECT_EQ(exact, Eigen::Vector3d(0, 1, 0));
+}
+
+TEST(YamlReader, CommandLineValuesNameTheSet)
+{
+  Doc d("a: {x: 1}\n");
+  d.ctx.overridden.insert("a.x");
+  MapReader top(d.ctx, d.root, "");
+  MapReader a = top.sub("a");
+  EXPECT_FALSE(a.boolean("x"));
+  a.finish();
+  top.finish();
+  ASSERT_EQ(d.issues.size(), 1u);
+  EXPECT_EQ(d.issues[0].where, "--set a.x");
+  EXPECT_EQ(d.issues[0].line, 0);
+  EXPECT_EQ(d.issues[0].str(), "d.yaml: --set a.x: a.x: expected true or false, got scalar '1'");
+}
+
+TEST(YamlReader, KeyLines)
+{
+  std::map<std::string, std::pair<int, int>> lines;
+  harness::collect_key_lines(YAML::Load("a:\n  b: 1\nl:\n  - {c: 2}\n"), "", lines);
+  EXPECT_EQ(lines.at("a.b"), std::make_pair(2, 3));
+  EXPECT_EQ(lines.at("l[0].c"), std::make_pair(4, 6));
+}
