@@ -36,7 +36,11 @@ export function normalize(raw) {
   const attitude = d.attitude && typeof d.attitude === 'object' ? d.attitude : {};
   const geometry = d.geometry && typeof d.geometry === 'object' ? d.geometry : {};
   const dot = typeof d.dataflow_dot === 'string' ? d.dataflow_dot : '';
-  return { meta, series, units, t, attitude, geometry, dot };
+  // long runs: the series are reduced for display (min/max per bucket) and
+  // the last samples are kept at full rate for the jitter spectrum
+  const spectrum = d.spectrum && typeof d.spectrum === 'object' && isNumArray(d.spectrum.t) ? d.spectrum : null;
+  const decimation = d.decimation && typeof d.decimation === 'object' ? d.decimation : null;
+  return { meta, series, units, t, attitude, geometry, dot, spectrum, decimation };
 }
 
 export function finiteMinMax(a) {

@@ -22,16 +22,26 @@ export function defaultWindowStart(t, pe) {
 }
 
 export function buildSpectrum(root, D) {
-  const { series, units, t } = D;
-  const keys = ['x', 'y', 'z'].map((a) => `omega_BN_B_${a}`).filter((k) => isNumArray(series[k]));
+  const { series, units } = D;
+  // full-rate samples: the spectrum block of a reduced run, else the series
+  const full = D.spectrum || series;
+  const t = D.spectrum ? alignSeries(D.spectrum.t, D.spectrum.t.length) : D.t;
+  const keys = ['x', 'y', 'z'].map((a) => `omega_BN_B_${a}`).filter((k) => isNumArray(full[k]));
   if (!keys.length || t.length < 16) {
     root.appendChild(el('p', { class: 'absent', text: 'No body-rate series in this run: no spectrum.' }));
     return;
   }
-  const [ys, unit] = rateDisplay(keys.map((k) => alignSeries(series[k], t.length)), typeof units[keys[0]] === 'string' ? units[keys[0]] : 'rad/s');
+  const [ys, unit] = rateDisplay(keys.map((k) => alignSeries(full[k], t.length)), typeof units[keys[0]] === 'string' ? units[keys[0]] : 'rad/s');
   const tEnd = t[t.length - 1];
-  const t0Default = defaultWindowStart(t, series.pointing_error_deg);
+  const t0Default = defaultWindowStart(t, full.pointing_error_deg);
   const card = el('div', { class: 'card wide', id: 'spectrum-card' });
+  if (D.spectrum) {
+    card.appendChild(el('p', { class: 'note', id: 'spectrum-full-rate',
+      text: `Full-rate samples of the last ${t.length} records (t = ${fmt(t[0])} to ${fmt(tEnd)} s); ` +
+            'the time plots show this run reduced to the minimum and maximum of each bucket' +
+            (D.decimation && D.decimation.bucket_rows ? ` of ${D.decimation.bucket_rows} records` : '') +
+            '. The whole run at full rate is in results.h5.' }));
+  }
   const from = el('input', { type: 'number', step: 'any', value: String(Number(t0Default.toPrecision(6))), id: 'spec-from' });
   const to = el('input', { type: 'number', step: 'any', value: String(Number(tEnd.toPrecision(6))), id: 'spec-to' });
   const go = el('button', { text: 'recompute' });
@@ -52,12 +62,13 @@ export function buildSpectrum(root, D) {
     });
     // mean wheel speed over the window: the imbalance lines sit at |rpm|/60 Hz
     const wheelLines = [];
+    const tw = D.t;  // wheel speeds: from the (possibly reduced) series
     for (const { index, key } of indexedKeys(series, 'wheel_speed_rpm_')) {
-      const w = alignSeries(series[key], t.length);
+      const w = alignSeries(series[key], tw.length);
       let sum = 0;
       let cnt = 0;
-      for (let i = 0; i < t.length; i++) {
-        if (w[i] !== null && t[i] >= (Number.isFinite(a) ? a : -Infinity) && t[i] <= (Number.isFinite(b) ? b : Infinity)) { sum += Math.abs(w[i]); cnt++; }
+      for (let i = 0; i < tw.length; i++) {
+        if (w[i] !== null && tw[i] >= (Number.isFinite(a) ? a : -Infinity) && tw[i] <= (Number.isFinite(b) ? b : Infinity)) { sum += Math.abs(w[i]); cnt++; }
       }
       if (cnt) wheelLines.push({ name: 'w' + index, f: sum / cnt / 60 });
     }

@@ -33,6 +33,7 @@ const CASES = [
   { file: 'hostile.html', plots: ['pointing', 'rates', 'wheels', 'wheeltorque', 'x-extra_thing'], replay: 'ok',
     dataflow: 'unreadable', title: 'hostile </script><script>window.__pwned=1</script><!-- "quotes"' },
   { file: 'long.html', plots: ['pointing', 'rates', 'wheels'], replay: 'ok', dataflow: 'absent', spectrum: true },
+  { file: 'reduced.html', plots: ['pointing', 'rates', 'wheels'], replay: 'ok', dataflow: 'absent', spectrum: true, fullRate: true },
   { file: 'minimal.html', plots: [], replay: 'ok', dataflow: 'absent' },
   { file: 'empty.html', plots: [], replay: 'ok', dataflow: 'absent' },
 ];
@@ -98,6 +99,7 @@ async function main() {
           cards: [...document.querySelectorAll('#plots .card, #plots-other .card')].map((e) => e.id.replace(/^plot-/, '')),
           uplots: document.querySelectorAll('#plots .uplot canvas, #plots-other .uplot canvas').length,
           spectrum: !!document.querySelector('#spectrum .uplot'),
+          fullRate: !!document.getElementById('spectrum-full-rate'),
           pwned: window.__pwned !== undefined,
           title: document.getElementById('meta').textContent,
           dfNodes: document.querySelectorAll('#dataflow svg rect.node').length,
@@ -115,6 +117,7 @@ async function main() {
       for (const p of c.absent || []) if (st.cards.includes(p)) fail(c, `${p} plot drawn though absent from the data`);
       if (st.uplots < c.plots.length) fail(c, `${st.uplots} plot canvases for ${c.plots.length} plots`);
       if (c.spectrum && !st.spectrum) fail(c, 'no jitter spectrum');
+      if (!!c.fullRate !== st.fullRate) fail(c, `full-rate spectrum note ${st.fullRate ? 'shown' : 'missing'}`);
       const wantOthers = c.plots.some((p) => p.startsWith('x-'));
       if (st.othersShown !== wantOthers) fail(c, `'Other recorded series' heading ${st.othersShown ? 'shown' : 'hidden'}`);
       if (c.replay && st.replay !== c.replay) fail(c, `replay ${st.replay}, expected ${c.replay}`);

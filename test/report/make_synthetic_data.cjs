@@ -246,6 +246,45 @@ function long() {
     attitude: att, geometry: { wheel_axes_B: G } };
 }
 
+// a long run as the harness writes it: series reduced to min/max per bucket
+// (two points per bucket), the last samples at full rate for the spectrum
+function reduced() {
+  const buckets = 1000;
+  const rowsPerBucket = 50;
+  const dt = 0.1;
+  const S = { t: [], pointing_error_deg: [], omega_BN_B_x: [], omega_BN_B_y: [], omega_BN_B_z: [], wheel_speed_rpm_0: [] };
+  const att = { t: [], q_BN: [] };
+  for (let b = 0; b < buckets; b++) {
+    const t0 = b * rowsPerBucket * dt;
+    const t1 = t0 + (rowsPerBucket - 1) * dt;
+    for (const [t, s] of [[t0, -1], [t1, 1]]) {
+      S.t.push(Number(t.toFixed(1)));
+      S.pointing_error_deg.push(10 * Math.exp(-t / 500) + (s > 0 ? 0.02 : 0));
+      S.omega_BN_B_x.push(1e-5 * s);
+      S.omega_BN_B_y.push(2e-6 * s);
+      S.omega_BN_B_z.push(1e-4 * Math.exp(-t / 300));
+      S.wheel_speed_rpm_0.push(1000 + s);
+      att.t.push(S.t[S.t.length - 1]);
+      att.q_BN.push([1, 0, 0, 0]);
+    }
+  }
+  const n = 4096;
+  const tEnd = (buckets * rowsPerBucket - 1) * dt;
+  const F = { t: [], omega_BN_B_x: [], omega_BN_B_y: [], omega_BN_B_z: [], pointing_error_deg: [] };
+  for (let k = 0; k < n; k++) {
+    const t = tEnd - (n - 1 - k) * dt;
+    F.t.push(Number(t.toFixed(1)));
+    F.omega_BN_B_x.push(1e-5 * Math.sin(2 * Math.PI * 2 * t));
+    F.omega_BN_B_y.push(2e-6 * Math.sin(2 * Math.PI * 0.7 * t));
+    F.omega_BN_B_z.push(1e-7 * gauss());
+    F.pointing_error_deg.push(0.01);
+  }
+  return { meta: { scenario: 'reduced long run (synthetic)', dt, duration: tEnd, decimated: true }, series: S,
+    units: { omega_BN_B_x: 'rad/s', wheel_speed_rpm_0: 'rpm' }, attitude: att, spectrum: F,
+    decimation: { rows: buckets * rowsPerBucket, bucket_rows: rowsPerBucket, points: 2 * buckets } };
+}
+
+fs.writeFileSync(path.join(out, 'reduced.json'), JSON.stringify(reduced()));
 fs.writeFileSync(path.join(out, 's1.json'), JSON.stringify(s1()));
 fs.writeFileSync(path.join(out, 'long.json'), JSON.stringify(long()));
 fs.writeFileSync(path.join(out, 's2.json'), JSON.stringify(s2()));
