@@ -1,6 +1,7 @@
 // fsw_config.cpp: the scenario's fsw/wheels/thrusters/sensors.css keys mapped
 // onto FswAcsConfig.  fsw_real may be float: every value is converted here.
 #include "fsw_config.h"
+#include "convert.h"
 
 #include <cstring>
 
@@ -11,11 +12,6 @@ namespace harness {
 namespace {
 
 fsw_real R(double x) { return static_cast<fsw_real>(x); }
-template <class Out>
-void put3(Out* out, const Eigen::Vector3d& v)
-{
-  for (int i = 0; i < 3; ++i) out[i] = static_cast<Out>(v(i));
-}
 
 // FswAcsConfig field (prefix, as fsw_acs_check names it) -> scenario key.
 struct FieldKey {

@@ -1,4 +1,5 @@
 #include "sensor_suite.h"
+#include "convert.h"
 
 #include <algorithm>
 #include <cstring>
@@ -8,20 +9,6 @@
 #include "sim/attitude.h"
 
 namespace harness {
-
-namespace {
-Eigen::Vector3d ev(const double* p) { return Eigen::Vector3d(p[0], p[1], p[2]); }
-template <class Out, class In>
-void copy3(Out* out, const In* in)
-{
-  for (int i = 0; i < 3; ++i) out[i] = static_cast<Out>(in[i]);
-}
-template <class Out>
-void put3(Out* out, const Eigen::Vector3d& v)
-{
-  for (int i = 0; i < 3; ++i) out[i] = static_cast<Out>(v(i));
-}
-}  // namespace
 
 SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw)
     : n_rw_(static_cast<int>(sc.wheels.size())),

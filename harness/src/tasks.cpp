@@ -1,5 +1,6 @@
 // tasks.cpp: the bodies of the tick protocol's tasks.
 #include "tasks.h"
+#include "convert.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,15 +10,6 @@
 #include "sim/environment.h"
 
 namespace harness {
-
-namespace {
-Eigen::Vector3d ev(const double* p) { return Eigen::Vector3d(p[0], p[1], p[2]); }
-template <class Out, class In>
-void copy3(Out* out, const In* in)
-{
-  for (int i = 0; i < 3; ++i) out[i] = static_cast<Out>(in[i]);
-}
-}  // namespace
 
 double principal_angle(const Eigen::Vector3d& sigma_BN, const Eigen::Vector3d& sigma_RN)
 {

@@ -2,6 +2,7 @@
 // table (CSV, report).  Dataset names are the quantity names; column names
 // are the flat names kept since the first harness (scripts rely on them).
 #include "telemetry_columns.h"
+#include "convert.h"
 
 #include <string>
 #include <vector>
@@ -15,13 +16,6 @@ namespace {
 
 constexpr double kRadToDeg = 180.0 / sim::kPi;
 constexpr double kRpmPerRadS = 1.0 / sim::kRadPerSecPerRpm;
-
-Eigen::Vector3d ev(const double* p) { return Eigen::Vector3d(p[0], p[1], p[2]); }
-template <class Out, class In>
-void copy3(Out* out, const In* in)
-{
-  for (int i = 0; i < 3; ++i) out[i] = static_cast<Out>(in[i]);
-}
 
 // A 3-vector quantity with columns <prefix>_x/_y/_z.
 Quantity vec3(const std::string& name, const std::string& unit, const std::string& frame,
