@@ -150,11 +150,15 @@ double friction_torque(const WheelFrictionParams& f, double Omega, bool stribeck
 bool update_stribeck_mode(const WheelFrictionParams& f, bool mode, double Omega, double dOmega)
 {
   if (!(f.beta_st > 0.0)) return false;
-  if (std::abs(Omega) < 0.1 * f.omega_lc) return true;
-  if (!mode) return false;
-  // keep while moving away from zero: sign(Omega) == sign(dOmega), or either is zero
+  // §4.6: the regime describes breakaway, i.e. a wheel whose speed moves AWAY
+  // from zero: sign(Omega) == sign(dOmega), or either is zero (at rest, or the
+  // first step).  It is entered near zero (|Omega| < 0.1 omega_lc) and kept
+  // only while that holds.  A wheel still slowing down toward zero never
+  // enters it: its friction stays the Coulomb/viscous law, so a coasting wheel
+  // decays at the low-speed-band rate instead of the much weaker Stribeck one.
   const bool away = Omega == 0.0 || dOmega == 0.0 || ((Omega > 0.0) == (dOmega > 0.0));
-  return away;
+  if (!away) return false;
+  return mode || std::abs(Omega) < 0.1 * f.omega_lc;
 }
 
 }  // namespace sim

@@ -191,7 +191,14 @@ TEST(WheelFriction, StribeckPeakAndSymmetry)
 TEST(WheelFriction, StribeckModeLogic)
 {
   const sim::WheelFrictionParams f = friction_params();  // 0.1 omega_lc = 0.01
-  EXPECT_TRUE(sim::update_stribeck_mode(f, false, 0.005, -1.0));   // near zero: enter
+  // §4.6: entered near zero only while the speed moves AWAY from zero.
+  EXPECT_TRUE(sim::update_stribeck_mode(f, false, 0.005, 1e-3));    // near zero, speeding up: enter
+  EXPECT_TRUE(sim::update_stribeck_mode(f, false, -0.005, -1e-3));
+  EXPECT_TRUE(sim::update_stribeck_mode(f, false, 0.0, -1.0));      // at rest: enter
+  EXPECT_TRUE(sim::update_stribeck_mode(f, false, 0.005, 0.0));     // first step (dOmega = 0): enter
+  EXPECT_FALSE(sim::update_stribeck_mode(f, false, 0.005, -1e-3));  // near zero but slowing: stay out
+  EXPECT_FALSE(sim::update_stribeck_mode(f, false, -0.005, 1e-3));
+  EXPECT_FALSE(sim::update_stribeck_mode(f, true, 0.005, -1e-3));   // slowing near zero: leave
   EXPECT_TRUE(sim::update_stribeck_mode(f, true, 0.5, 0.01));      // moving away: keep
   EXPECT_TRUE(sim::update_stribeck_mode(f, true, -0.5, -0.01));
   EXPECT_TRUE(sim::update_stribeck_mode(f, true, 0.5, 0.0));       // dOmega zero: keep
@@ -365,6 +372,116 @@ TEST(WheelFriction, ModeFollowsStepProtocol)
   sc.step(0.01);  // flag uses the speed change over the previous step: still accelerating
   sc.step(0.01);
   EXPECT_FALSE(sc.stribeck_mode(0));
+}
+
+// §4.6 regression: a wheel braked by friction toward rest must not enter the
+// Stribeck regime (it is slowing down, not breaking away).  Viscous friction
+// with Coulomb off and a stiction hump configured (tau_st > 0, beta_st > 0):
+// the Coulomb/viscous law is exactly -c_v Omega at every speed, so
+//   Omega(t) = Omega_0 exp(-k t),  k = c_v I_zz / (J_s (I_zz - J_s))
+// (single-axis coupling as in SingleWheelAnalytic).  Entering the regime
+// below 0.1 omega_lc would add the hump slope and leave the exponential.
+TEST(WheelFriction, ViscousCoastToRestFollowsTheExponentialAndNeverEntersStribeck)
+{
+  SingleWheel s = single_wheel(WheelModel::Balanced);
+  sim::WheelFrictionParams& f = s.params.wheels[0].friction;
+  f.tau_c = 0.0;
+  f.c_v = 1e-3;
+  f.tau_st = 1e-3;
+  f.beta_st = 0.5;
+  f.omega_lc = 1e-4;
+  sim::Spacecraft sc(s.params, sim::InitialConditions{});
+  const double k_rate = 1e-3 * s.I_zz / (s.J_s * (s.I_zz - s.J_s));  // [1/s] ~0.0201
+  const double dt = 0.1;                                            // k dt = 2e-3
+  double worst_rel = 0.0;
+  for (int k = 1; k <= 20000; ++k) {  // 2000 s = 40 time constants
+    ASSERT_EQ(sc.step(dt), sim::StepStatus::Ok);
+    ASSERT_FALSE(sc.stribeck_mode(0)) << "t = " << k * dt;
+    const double truth = 20.0 * std::exp(-k_rate * k * dt);
+    worst_rel = std::max(worst_rel, std::abs(sc.Omega(0) - truth) / truth);
+  }
+  EXPECT_LT(worst_rel, 1e-9);
+  EXPECT_LT(std::abs(sc.Omega(0)), 1e-12);  // analytic: 20 e^-40.3 = 6e-17
+}
+
+// The case the old reading got badly wrong: Coulomb + viscous friction with
+// Stribeck configured, coasting to rest.  Below omega_lc the law is the
+// straight line f(omega_lc) Omega / omega_lc, i.e. an exponential with
+//   k = (tau_c / omega_lc + c_v) I_zz / (J_s (I_zz - J_s)).
+// Entering the Stribeck regime at 0.1 omega_lc (old behaviour) replaced that
+// slope with tau_c tanh(10 omega_lc/beta)/omega_lc + ..., ~400x weaker, and
+// the wheel crept at ~1e-7 rad/s for minutes.
+TEST(WheelFriction, CoulombCoastToRestDecaysAtTheLowSpeedBandRate)
+{
+  SingleWheel s = single_wheel(WheelModel::Balanced);
+  s.params.wheels[0].Omega_0 = 0.05;
+  sim::WheelFrictionParams& f = s.params.wheels[0].friction;
+  f.tau_c = 1e-4;
+  f.c_v = 1e-5;
+  f.tau_st = 2e-4;
+  f.beta_st = 0.5;
+  f.omega_lc = 1e-4;
+  sim::Spacecraft sc(s.params, sim::InitialConditions{});
+  const double coupling = s.I_zz / (s.J_s * (s.I_zz - s.J_s));
+  const double k_band = (1e-4 / 1e-4 + 1e-5) * coupling;  // [1/s] ~20: stiff, RK4 needs k dt < 2.7
+  const double dt = 0.01;
+  // Enter the band (Coulomb ramp takes ~ 0.05 / (1e-4 * coupling) = 25 s).
+  int k = 0;
+  while (std::abs(sc.Omega(0)) >= 1e-4 && k < 5000) {
+    ASSERT_EQ(sc.step(dt), sim::StepStatus::Ok);
+    ++k;
+  }
+  ASSERT_LT(k, 5000);
+  const double Om_band = sc.Omega(0);
+  ASSERT_GT(Om_band, 0.0);
+  // RK4 amplification for the linear decay, per step: R(z) = 1 - z + z^2/2 - z^3/6 + z^4/24.
+  const double z = k_band * dt;
+  const double R = 1.0 - z + z * z / 2.0 - z * z * z / 6.0 + z * z * z * z / 24.0;
+  double Om_rk4 = Om_band;
+  for (int n = 1; n <= 200; ++n) {  // 2 s = 40 band time constants
+    ASSERT_EQ(sc.step(dt), sim::StepStatus::Ok);
+    EXPECT_FALSE(sc.stribeck_mode(0));
+    Om_rk4 *= R;
+    EXPECT_NEAR(sc.Omega(0), Om_rk4, 1e-9 * Om_band + 1e-300) << "n = " << n;
+  }
+  // RK4 and the analytic exponential agree to (z^5/120) per step here.
+  EXPECT_NEAR(sc.Omega(0), Om_band * std::exp(-k_band * 2.0), 1e-3 * Om_band * std::exp(-k_band * 2.0));
+  EXPECT_LT(std::abs(sc.Omega(0)), 1e-12);
+}
+
+// ... and a wheel accelerating away from zero does enter it: start slightly
+// negative, a small positive motor torque drives Omega through zero.  Flags:
+// first step in (dOmega = 0), out while approaching zero, in again once past
+// zero and below 0.1 omega_lc, kept while the speed keeps growing.
+TEST(WheelFriction, AcceleratingAwayFromZeroEntersStribeck)
+{
+  SingleWheel s = single_wheel(WheelModel::Balanced);
+  s.params.wheels[0].Omega_0 = -5e-6;
+  sim::WheelFrictionParams& f = s.params.wheels[0].friction;
+  f.tau_c = 0.0;
+  f.c_v = 1e-9;
+  f.tau_st = 1e-9;
+  f.beta_st = 0.5;
+  f.omega_lc = 1e-4;  // 0.1 omega_lc = 1e-5
+  sim::Spacecraft sc(s.params, sim::InitialConditions{});
+  sim::WheelArray cmd{};
+  cmd[0] = 1e-6;  // Omega_dot ~ 2e-5 rad/s^2: 2e-7 rad/s per 0.01 s step
+  sc.latch_commands(cmd);
+  ASSERT_EQ(sc.step(0.01), sim::StepStatus::Ok);
+  EXPECT_TRUE(sc.stribeck_mode(0));  // first step: dOmega = 0
+  ASSERT_EQ(sc.step(0.01), sim::StepStatus::Ok);
+  EXPECT_FALSE(sc.stribeck_mode(0));  // Omega < 0 growing toward zero
+  int k = 0;
+  while (sc.Omega(0) <= 0.0 && k < 1000) {
+    ASSERT_EQ(sc.step(0.01), sim::StepStatus::Ok);
+    ++k;
+  }
+  ASSERT_LT(k, 1000);
+  ASSERT_EQ(sc.step(0.01), sim::StepStatus::Ok);  // this step starts with Omega in (0, 1e-5)
+  EXPECT_TRUE(sc.stribeck_mode(0));
+  for (int n = 0; n < 200; ++n) ASSERT_EQ(sc.step(0.01), sim::StepStatus::Ok);
+  EXPECT_GT(sc.Omega(0), 1e-5);      // well past the entry band ...
+  EXPECT_TRUE(sc.stribeck_mode(0));  // ... and still breaking away
 }
 
 // ------------------------------------------------ zero-imbalance equivalences

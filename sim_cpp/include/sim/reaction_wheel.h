@@ -84,6 +84,9 @@ double friction_torque(const WheelFrictionParams& f, double Omega, bool stribeck
 
 // §4.6 Stribeck mode update, once per step at the step start.
 // dOmega = Omega(step start) - Omega(previous step start) (0 on the first step).
+// Returns true only while the wheel moves away from zero (sign(Omega) ==
+// sign(dOmega), or either is zero): entered when also |Omega| < 0.1 omega_lc,
+// kept while moving away, left as soon as the wheel slows down.
 bool update_stribeck_mode(const WheelFrictionParams& f, bool mode, double Omega, double dOmega);
 
 }  // namespace sim
