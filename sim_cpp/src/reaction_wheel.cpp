@@ -26,6 +26,15 @@ const char* to_string(WheelModel m)
   return "?";
 }
 
+const char* to_string(WheelHealth h)
+{
+  switch (h) {
+    case WheelHealth::Nominal: return "Nominal";
+    case WheelHealth::Off: return "Off";
+  }
+  return "?";
+}
+
 void validate(const ReactionWheelParams& p, const std::string& name)
 {
   using namespace detail;
@@ -58,14 +67,19 @@ void validate(const ReactionWheelParams& p, const std::string& name)
   require_finite(name + ".Omega_max", p.Omega_max);
   require_finite(name + ".P_max", p.P_max);
 
-  const WheelFrictionParams& f = p.friction;
-  require_non_negative(name + ".friction.tau_c", f.tau_c);
-  require_non_negative(name + ".friction.c_v", f.c_v);
-  require_positive(name + ".friction.omega_lc", f.omega_lc);
-  require_finite(name + ".friction.beta_st", f.beta_st);
-  require_finite(name + ".friction.tau_st", f.tau_st);
+  validate(p.friction, name + ".friction");
+}
+
+void validate(const WheelFrictionParams& f, const std::string& name)
+{
+  using namespace detail;
+  require_non_negative(name + ".tau_c", f.tau_c);
+  require_non_negative(name + ".c_v", f.c_v);
+  require_positive(name + ".omega_lc", f.omega_lc);
+  require_finite(name + ".beta_st", f.beta_st);
+  require_finite(name + ".tau_st", f.tau_st);
   if (f.beta_st > 0.0 && !(f.tau_st >= f.tau_c))
-    fail(name + ".friction.tau_st", f.tau_st, "must be >= tau_c when Stribeck is on (beta_st > 0)");
+    fail(name + ".tau_st", f.tau_st, "must be >= tau_c when Stribeck is on (beta_st > 0)");
 }
 
 ReactionWheelDerived derive(const ReactionWheelParams& p)

@@ -31,7 +31,15 @@ struct WheelFrictionParams {
   double omega_lc = 1e-4;  // [rad/s]     low-speed linearisation band, > 0
 };
 
-struct ReactionWheelParams {  // checked by validate(); fixed for a run
+// Health of a wheel, set by the Plant between steps (faults/events).
+enum class WheelHealth {
+  Nominal,  // commands go through the §4.3 pipeline
+  Off       // motor unpowered: u_s forced to 0 at once and at every latch; friction still acts
+};
+
+const char* to_string(WheelHealth h);
+
+struct ReactionWheelParams {  // checked by validate(); u_max, Omega_max and friction settable on a Plant
   WheelModel model = WheelModel::Balanced;
   Eigen::Vector3d gs_hat_nom_B = Eigen::Vector3d::Zero();  // [-]   nominal spin axis, unit (what FSW believes)
   Eigen::Vector3d delta_mis_B = Eigen::Vector3d::Zero();   // [rad] spin-axis misalignment rotation vector
@@ -62,8 +70,9 @@ struct ReactionWheelDerived {
   double J_bar = 0.0;         // [kg*m^2] spin inertia about the spin axis: J_s + m_w d^2 (FC), J_s otherwise
 };
 
-// Throws std::invalid_argument naming `name.field` and the offending value.
+// Throw std::invalid_argument naming `name.field` and the offending value.
 void validate(const ReactionWheelParams& p, const std::string& name = "wheel");
+void validate(const WheelFrictionParams& f, const std::string& name = "friction");
 
 // §4.2 frame construction.  Requires validate(p) to have passed.
 ReactionWheelDerived derive(const ReactionWheelParams& p);
