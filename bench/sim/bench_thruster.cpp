@@ -2,7 +2,7 @@
 // S2 layout, spec plant-dynamics §11), dt = 0.01 s, T_upd = 0.1 s.
 //   BM_ThrusterEffects8     the pure §5.4 evaluation of 8 thrusters (one
 //                           derivative call's worth; RK4 makes 4 per sub-step)
-//   BM_VehicleStep/...      one Vehicle::step (RK4, event splitting, tank):
+//   BM_VehicleStep/...      one Plant::step (RK4, event splitting, tank):
 //     NoThrusters           hub + tank only: the baseline
 //     Idle8                 8 FirstOrder thrusters, never commanded
 //     Pulsing8FirstOrder    8 FirstOrder thrusters re-commanded every 0.1 s
@@ -22,7 +22,7 @@
 
 #include "sim/thruster.h"
 #include "sim/units.h"
-#include "sim/vehicle.h"
+#include "sim/plant.h"
 
 namespace {
 
@@ -111,7 +111,7 @@ void BM_VehicleStep(benchmark::State& state, Case c)
 {
   const bool any = c != Case::NoThrusters;
   const auto model = c == Case::Pulsing8Table ? sim::ThrusterTransient::Table : sim::ThrusterTransient::FirstOrder;
-  sim::Vehicle v(s2_hub(), s2_prop(any ? 8 : 0, model), s2_ic());
+  sim::Plant v({s2_hub(), s2_prop(any ? 8 : 0, model)}, s2_ic());
   const bool pulse = c == Case::Pulsing8FirstOrder || c == Case::Pulsing8Table;
   // On-times 25..95 ms: every closing falls inside a 10 ms step.
   const sim::ThrusterArray cmd{0.025, 0.0437, 0.0513, 0.0621, 0.0705, 0.0788, 0.0852, 0.0949};

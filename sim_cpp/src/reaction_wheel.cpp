@@ -26,6 +26,15 @@ const char* to_string(WheelModel m)
   return "?";
 }
 
+const char* to_string(WheelHealth h)
+{
+  switch (h) {
+    case WheelHealth::Nominal: return "Nominal";
+    case WheelHealth::Off: return "Off";
+  }
+  return "?";
+}
+
 void validate(const ReactionWheelParams& p, const std::string& name)
 {
   using namespace detail;
@@ -58,14 +67,19 @@ void validate(const ReactionWheelParams& p, const std::string& name)
   require_finite(name + ".Omega_max", p.Omega_max);
   require_finite(name + ".P_max", p.P_max);
 
-  const WheelFrictionParams& f = p.friction;
-  require_non_negative(name + ".friction.tau_c", f.tau_c);
-  require_non_negative(name + ".friction.c_v", f.c_v);
-  require_positive(name + ".friction.omega_lc", f.omega_lc);
-  require_finite(name + ".friction.beta_st", f.beta_st);
-  require_finite(name + ".friction.tau_st", f.tau_st);
+  validate(p.friction, name + ".friction");
+}
+
+void validate(const WheelFrictionParams& f, const std::string& name)
+{
+  using namespace detail;
+  require_non_negative(name + ".tau_c", f.tau_c);
+  require_non_negative(name + ".c_v", f.c_v);
+  require_positive(name + ".omega_lc", f.omega_lc);
+  require_finite(name + ".beta_st", f.beta_st);
+  require_finite(name + ".tau_st", f.tau_st);
   if (f.beta_st > 0.0 && !(f.tau_st >= f.tau_c))
-    fail(name + ".friction.tau_st", f.tau_st, "must be >= tau_c when Stribeck is on (beta_st > 0)");
+    fail(name + ".tau_st", f.tau_st, "must be >= tau_c when Stribeck is on (beta_st > 0)");
 }
 
 ReactionWheelDerived derive(const ReactionWheelParams& p)
@@ -150,11 +164,15 @@ double friction_torque(const WheelFrictionParams& f, double Omega, bool stribeck
 bool update_stribeck_mode(const WheelFrictionParams& f, bool mode, double Omega, double dOmega)
 {
   if (!(f.beta_st > 0.0)) return false;
-  if (std::abs(Omega) < 0.1 * f.omega_lc) return true;
-  if (!mode) return false;
-  // keep while moving away from zero: sign(Omega) == sign(dOmega), or either is zero
+  // §4.6: the regime describes breakaway, i.e. a wheel whose speed moves AWAY
+  // from zero: sign(Omega) == sign(dOmega), or either is zero (at rest, or the
+  // first step).  It is entered near zero (|Omega| < 0.1 omega_lc) and kept
+  // only while that holds.  A wheel still slowing down toward zero never
+  // enters it: its friction stays the Coulomb/viscous law, so a coasting wheel
+  // decays at the low-speed-band rate instead of the much weaker Stribeck one.
   const bool away = Omega == 0.0 || dOmega == 0.0 || ((Omega > 0.0) == (dOmega > 0.0));
-  return away;
+  if (!away) return false;
+  return mode || std::abs(Omega) < 0.1 * f.omega_lc;
 }
 
 }  // namespace sim

@@ -1,4 +1,4 @@
-// spacecraft: see sim/spacecraft.h.  Spec plant-dynamics §1-§4, §7, §8.
+// spacecraft: see sim/spacecraft.h.  Spec plant-dynamics §1-§4, §8.
 #include "sim/spacecraft.h"
 
 #include <cmath>
@@ -9,7 +9,6 @@
 #include <Eigen/LU>
 
 #include "sim/attitude.h"
-#include "sim/rk4.h"
 #include "validate_util.h"
 
 namespace sim {
@@ -108,7 +107,7 @@ MassProps mass_props_from_stages(const SpacecraftParams& p, const HubParams& h,
 
 // ---------------------------------------------------------------- validation
 
-SpacecraftModel::SpacecraftModel(SpacecraftParams params) : p_(std::move(params))
+SpacecraftModel::SpacecraftModel(SpacecraftParams params, int num_tanks) : p_(std::move(params))
 {
   using namespace detail;
   const HubParams& h = p_.hub;
@@ -139,15 +138,39 @@ SpacecraftModel::SpacecraftModel(SpacecraftParams params) : p_(std::move(params)
   if (!(min_eig_less > 0.0))
     fail("hub.I_hBc_B - sum(J_s gs gs^T) (min eigenvalue)", min_eig_less,
          "hub inertia must include the spin inertia of Balanced/SimpleJitter wheels");
+  if (num_tanks < 0 || num_tanks > kMaxTanks)
+    fail("tanks.size()", num_tanks, "must be <= sim::kMaxTanks");
   layout_.num_rw = static_cast<int>(n);
+  layout_.num_tanks = num_tanks;
+}
+
+void SpacecraftModel::check_wheel_index(int i) const
+{
+  if (i < 0 || i >= num_rw()) detail::fail("wheel index", i, "must be in [0, num_rw)");
+}
+
+void SpacecraftModel::set_wheel_u_max(int i, double u_max)
+{
+  check_wheel_index(i);
+  detail::require_finite("wheels[" + std::to_string(i) + "].u_max", u_max);
+  p_.wheels[static_cast<size_t>(i)].u_max = u_max;
+}
+
+void SpacecraftModel::set_wheel_Omega_max(int i, double Omega_max)
+{
+  check_wheel_index(i);
+  detail::require_finite("wheels[" + std::to_string(i) + "].Omega_max", Omega_max);
+  p_.wheels[static_cast<size_t>(i)].Omega_max = Omega_max;
+}
+
+void SpacecraftModel::set_wheel_friction(int i, const WheelFrictionParams& f)
+{
+  check_wheel_index(i);
+  validate(f, "wheels[" + std::to_string(i) + "].friction");
+  p_.wheels[static_cast<size_t>(i)].friction = f;
 }
 
 // -------------------------------------------------------------- initial state
-
-StateVector SpacecraftModel::initial_state(const InitialConditions& ic) const
-{
-  return initial_state(ic, p_.hub);
-}
 
 StateVector SpacecraftModel::initial_state(const InitialConditions& ic, const HubParams& hub) const
 {
@@ -169,11 +192,6 @@ StateVector SpacecraftModel::initial_state(const InitialConditions& ic, const Hu
   return x;
 }
 
-MassProps SpacecraftModel::mass_props(const StateVector& x) const
-{
-  return mass_props(x, p_.hub);
-}
-
 MassProps SpacecraftModel::mass_props(const StateVector& x, const HubParams& hub) const
 {
   WheelStages st;
@@ -189,14 +207,9 @@ double SpacecraftModel::friction_torque(int i, const StateVector& x, bool stribe
 
 // ---------------------------------------------------------------- derivatives
 
-StateVector SpacecraftModel::derivatives(double t, const StateVector& x, const HeldInputs& in,
+StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, const WheelInputs& in,
+                                         const ExternalLoads& loads, const HubParams& hub,
                                          Accelerations* acc) const
-{
-  return derivatives(t, x, in, p_.hub, acc);
-}
-
-StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, const HeldInputs& in,
-                                         const HubParams& hub, Accelerations* acc) const
 {
   const int n = num_rw();
   const Vector3d v_BN_N = x.segment<3>(StateLayout::v_BN_N);
@@ -223,15 +236,15 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
   Matrix3d B = -m * skew(c);
   Matrix3d C = m * skew(c);
   Matrix3d D = mp.I_sc_B;
-  Vector3d v_trans = in.F_ext_B + m * g_B - 2.0 * m * omega.cross(mp.c_prime_B) -
+  Vector3d v_trans = loads.F_ext_B + m * g_B - 2.0 * m * omega.cross(mp.c_prime_B) -
                      m * omega.cross(omega.cross(c));
-  Vector3d v_rot = in.L_ext_B + c.cross(m * g_B) - omega.cross(mp.I_sc_B * omega) -
+  Vector3d v_rot = loads.L_ext_B + c.cross(m * g_B) - omega.cross(mp.I_sc_B * omega) -
                    mp.I_sc_prime_B * omega;
 
   // Wheel contributions (§4.9); Omega_dot = a_Omega . r_ddot_B + b_Omega . omega_dot + c_Omega.
   std::array<Vector3d, kMaxWheels> a_Omega;
   std::array<Vector3d, kMaxWheels> b_Omega;
-  WheelArray c_Omega{};
+  WheelArray c_Omega;  // entries [0, n) written below
   for (int i = 0; i < n; ++i) {
     const auto ui = static_cast<size_t>(i);
     const ReactionWheelParams& w = p_.wheels[ui];
@@ -306,6 +319,7 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
     xd(layout_.Omega(i)) = a_Omega[ui].dot(r_ddot_B) + b_Omega[ui].dot(omega_dot) + c_Omega[ui];
     xd(layout_.theta(i)) = x(layout_.Omega(i));
   }
+  for (int k = 0; k < layout_.num_tanks; ++k) xd(layout_.m_p(k)) = 0.0;  // mass flows: the Plant's
   if (acc != nullptr) {
     acc->omega_dot_BN_B = omega_dot;
     acc->r_ddot_BN_B = r_ddot_B;
@@ -314,11 +328,6 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
 }
 
 // ----------------------------------------------------------- energy, momentum
-
-EnergyMomentum SpacecraftModel::energy_momentum(const StateVector& x) const
-{
-  return energy_momentum(x, p_.hub);
-}
 
 EnergyMomentum SpacecraftModel::energy_momentum(const StateVector& x, const HubParams& hub) const
 {
@@ -361,71 +370,6 @@ EnergyMomentum SpacecraftModel::energy_momentum(const StateVector& x, const HubP
   em.E_rot = E - 0.5 * mp.m_sc * c_dot.squaredNorm();
   em.H_C_N = dcm_NB * em.H_C_B;
   return em;
-}
-
-// ------------------------------------------------------------------ the run
-
-Spacecraft::Spacecraft(SpacecraftParams params, const InitialConditions& ic)
-    : model_(std::move(params)), x_(model_.initial_state(ic))
-{
-}
-
-void Spacecraft::set_state(const StateVector& x)
-{
-  if (x.size() != model_.layout().size())
-    detail::fail("state.size()", static_cast<double>(x.size()), "must equal 12 + 2*num_rw");
-  x_ = x;
-}
-
-void Spacecraft::latch_commands(const WheelArray& u_cmd)
-{
-  for (int i = 0; i < model_.num_rw(); ++i) {
-    const auto ui = static_cast<size_t>(i);
-    held_.u_s[ui] = command_pipeline(model_.params().wheels[ui], u_cmd[ui], Omega(i));
-  }
-}
-
-void Spacecraft::set_external(const Eigen::Vector3d& F_ext_B, const Eigen::Vector3d& L_ext_B)
-{
-  held_.F_ext_B = F_ext_B;
-  held_.L_ext_B = L_ext_B;
-}
-
-double Spacecraft::tau_f(int i) const
-{
-  return model_.friction_torque(i, x_, held_.stribeck[static_cast<size_t>(i)]);
-}
-
-StepStatus Spacecraft::step(double dt)
-{
-  if (status_ != StepStatus::Ok) return status_;
-  for (int i = 0; i < model_.num_rw(); ++i) {  // §4.6, once per step at its start
-    const auto ui = static_cast<size_t>(i);
-    const double Om = Omega(i);
-    const double dOm = first_step_ ? 0.0 : Om - Omega_prev_[ui];
-    held_.stribeck[ui] =
-        update_stribeck_mode(model_.params().wheels[ui].friction, held_.stribeck[ui], Om, dOm);
-    Omega_prev_[ui] = Om;
-  }
-  first_step_ = false;
-
-  const SpacecraftModel& m = model_;
-  const HeldInputs& in = held_;
-  StateVector x_next = rk4_step(x_, 0.0, dt, [&m, &in](double t, const StateVector& x) {
-    return m.derivatives(t, x, in);
-  });
-  if (!x_next.allFinite()) {
-    status_ = StepStatus::NonFiniteState;
-    return status_;
-  }
-  const Vector3d sigma = x_next.segment<3>(StateLayout::sigma_BN);
-  if (sigma.squaredNorm() > 1.0) {  // §7.4: only between steps
-    x_next.segment<3>(StateLayout::sigma_BN) = mrp_shadow(sigma);
-    ++switches_;
-  }
-  x_ = x_next;
-  ++steps_;
-  return status_;
 }
 
 }  // namespace sim

@@ -46,6 +46,16 @@ const char* to_string(ThrusterTransient m)
   return "?";
 }
 
+const char* to_string(ThrusterHealth h)
+{
+  switch (h) {
+    case ThrusterHealth::Nominal: return "Nominal";
+    case ThrusterHealth::FailedOff: return "FailedOff";
+    case ThrusterHealth::StuckOn: return "StuckOn";
+  }
+  return "?";
+}
+
 void validate(const ThrusterParams& p, const std::string& name)
 {
   using namespace detail;
@@ -142,6 +152,21 @@ double scheduled_kappa(const ThrusterParams& p, const ValveSchedule& s, double s
   if (p.transient == ThrusterTransient::Instant) return open ? 1.0 : 0.0;
   if (open) return ramp_value(p.on_ramp, s.tau_on0 + s_since_latch);
   return ramp_value(p.off_ramp, s.tau_off0 + (s_since_latch - s.T_on));
+}
+
+double first_order_kappa(const ThrusterParams& p, double kappa0, bool open, double t)
+{
+  const double kappa_c = open ? 1.0 : 0.0;
+  const double w = open ? p.omega_on : p.omega_off;
+  return kappa_c + (kappa0 - kappa_c) * std::exp(-w * t);
+}
+
+double first_order_kappa_integral(const ThrusterParams& p, double kappa0, bool open, double t)
+{
+  const double kappa_c = open ? 1.0 : 0.0;
+  const double w = open ? p.omega_on : p.omega_off;
+  // 1 - e^{-w t} = -expm1(-w t): accurate for w t << 1
+  return kappa_c * t - (kappa0 - kappa_c) * std::expm1(-w * t) / w;
 }
 
 LatchResult latch_thruster(const ThrusterParams& p, const ThrusterCommandParams& c, double T_req,

@@ -5,11 +5,12 @@
 #define SIM_TEST_UTIL_H
 
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Dense>
 
-#include "sim/spacecraft.h"
+#include "sim/plant.h"
 #include "sim/units.h"
 
 namespace simtest {
@@ -48,6 +49,9 @@ inline Matrix3d dcm_BN_via_quaternion(const Vector3d& s)
       b0 * b0 - b(0) * b(0) - b(1) * b(1) + b(2) * b(2);
   return C;
 }
+
+// Seconds -> plant clock [ns] (tests written in seconds convert here).
+inline int64_t ns(double seconds) { return std::llround(seconds * 1e9); }
 
 inline double rel_err(const Vector3d& a, const Vector3d& b) { return (a - b).norm() / b.norm(); }
 inline double rel_err(double a, double b) { return std::abs(a - b) / std::abs(b); }

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "sim/attitude.h"
-#include "sim/spacecraft.h"
+#include "sim/plant.h"
 #include "sim_test_util.h"
 
 namespace {
@@ -55,11 +55,11 @@ class Conservation : public ::testing::TestWithParam<ConservationCase> {};
 TEST_P(Conservation, TorqueOffNoFriction)
 {
   const ConservationCase c = GetParam();
-  sim::Spacecraft sc(vehicle(c.model), simtest::leo_ic());
+  sim::Plant sc({vehicle(c.model), {}}, simtest::leo_ic());
   const sim::EnergyMomentum e0 = sc.energy_momentum();
   Drift d;
   for (int k = 0; k < c.steps; ++k) {
-    ASSERT_EQ(sc.step(c.dt), sim::StepStatus::Ok);
+    ASSERT_EQ(sc.step(simtest::ns(c.dt)), sim::StepStatus::Ok);
     track(d, e0, sc.energy_momentum());
   }
   EXPECT_LT(d.H_C, c.tol);
@@ -75,10 +75,10 @@ TEST_P(Conservation, TorqueOffNoFriction)
 TEST_P(Conservation, TorqueOnThenOff)
 {
   const ConservationCase c = GetParam();
-  sim::Spacecraft sc(vehicle(c.model), simtest::leo_ic());
+  sim::Plant sc({vehicle(c.model), {}}, simtest::leo_ic());
   const sim::EnergyMomentum e0 = sc.energy_momentum();
   const sim::WheelArray cmd{0.05, -0.04, 0.03, -0.02};
-  sc.latch_commands(cmd);
+  sc.latch_wheel_commands(cmd);
   const int half = c.steps / 2;  // even number of steps per half for Simpson
   ASSERT_EQ(half % 2, 0);
   auto power = [&sc, &cmd]() {
@@ -89,7 +89,7 @@ TEST_P(Conservation, TorqueOnThenOff)
   Drift d;
   double work = power();  // Simpson weights 1,4,2,...,4,1 (times dt/3)
   for (int k = 1; k <= half; ++k) {
-    ASSERT_EQ(sc.step(c.dt), sim::StepStatus::Ok);
+    ASSERT_EQ(sc.step(simtest::ns(c.dt)), sim::StepStatus::Ok);
     track(d, e0, sc.energy_momentum());
     work += (k == half ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0)) * power();
   }
@@ -99,10 +99,10 @@ TEST_P(Conservation, TorqueOnThenOff)
   EXPECT_GT(std::abs(dE), 1e-4 * std::abs(e0.E_rot));  // the motors did real work
   EXPECT_NEAR(dE, work, 1e-9 * std::abs(dE));
 
-  sc.latch_commands(sim::WheelArray{});
+  sc.latch_wheel_commands(sim::WheelArray{});
   Drift after;
   for (int k = 0; k < c.steps - half; ++k) {
-    ASSERT_EQ(sc.step(c.dt), sim::StepStatus::Ok);
+    ASSERT_EQ(sc.step(simtest::ns(c.dt)), sim::StepStatus::Ok);
     const sim::EnergyMomentum e = sc.energy_momentum();
     track(d, e0, e);
     track(after, e_cut, e);
@@ -125,13 +125,13 @@ TEST_P(Conservation, FrictionDissipatesEnergyButKeepsMomentum)
     w.friction.tau_st = 8e-3;
     w.friction.beta_st = 0.5;
   }
-  sim::Spacecraft sc(p, simtest::leo_ic());
+  sim::Plant sc({p, {}}, simtest::leo_ic());
   const sim::EnergyMomentum e0 = sc.energy_momentum();
   Drift d;
   double E_prev = e0.E_rot;
   int increases = 0;
   for (int k = 0; k < c.steps; ++k) {
-    ASSERT_EQ(sc.step(c.dt), sim::StepStatus::Ok);
+    ASSERT_EQ(sc.step(simtest::ns(c.dt)), sim::StepStatus::Ok);
     const sim::EnergyMomentum e = sc.energy_momentum();
     track(d, e0, e);
     if (e.E_rot > E_prev) ++increases;
@@ -163,11 +163,11 @@ TEST(Conservation, MixedBalancedAndFullyCoupledWheels)
   sim::SpacecraftParams p = vehicle(WheelModel::FullyCoupled);
   p.wheels[0].model = WheelModel::Balanced;
   p.wheels[2].model = WheelModel::Balanced;
-  sim::Spacecraft sc(p, simtest::leo_ic());
+  sim::Plant sc({p, {}}, simtest::leo_ic());
   const sim::EnergyMomentum e0 = sc.energy_momentum();
   Drift d;
   for (int k = 0; k < 10000; ++k) {
-    ASSERT_EQ(sc.step(1e-4), sim::StepStatus::Ok);
+    ASSERT_EQ(sc.step(simtest::ns(1e-4)), sim::StepStatus::Ok);
     track(d, e0, sc.energy_momentum());
   }
   EXPECT_LT(d.H_C, 1e-12);
@@ -181,11 +181,11 @@ TEST(Conservation, SimpleJitterWithoutImbalanceConserves)
 {
   sim::SpacecraftParams p = vehicle(WheelModel::SimpleJitter);
   for (auto& w : p.wheels) w.U_s = w.U_d = 0.0;
-  sim::Spacecraft sc(p, simtest::leo_ic());
+  sim::Plant sc({p, {}}, simtest::leo_ic());
   const sim::EnergyMomentum e0 = sc.energy_momentum();
   Drift d;
   for (int k = 0; k < 2000; ++k) {
-    sc.step(1e-3);
+    sc.step(simtest::ns(1e-3));
     track(d, e0, sc.energy_momentum());
   }
   EXPECT_LT(d.H_C, 1e-12);
@@ -199,7 +199,7 @@ TEST(Conservation, SimpleJitterWithoutImbalanceConserves)
 TEST(Conservation, SimpleJitterDoesNotConserveAndDriftEqualsPseudoLoads)
 {
   const sim::SpacecraftParams p = vehicle(WheelModel::SimpleJitter);
-  sim::Spacecraft sc(p, simtest::leo_ic());
+  sim::Plant sc({p, {}}, simtest::leo_ic());
   const sim::SpacecraftModel& m = sc.model();
   const Vector3d c = p.hub.r_BcB_B;  // no FC wheels: C is fixed in B
 
@@ -227,7 +227,7 @@ TEST(Conservation, SimpleJitterDoesNotConserveAndDriftEqualsPseudoLoads)
   double dE = P;
   double max_dH = 0.0;
   for (int k = 1; k <= steps; ++k) {
-    ASSERT_EQ(sc.step(dt), sim::StepStatus::Ok);
+    ASSERT_EQ(sc.step(simtest::ns(dt)), sim::StepStatus::Ok);
     loads(L, P);
     const double wgt = (k == steps ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0));
     dH += wgt * L;
@@ -262,7 +262,7 @@ TEST(EnergyMomentum, BalancedHandCalculation)
   sim::InitialConditions ic;
   ic.omega_BN_B = Vector3d(0.1, 0.2, 0.3);
   ic.v_CN_N = Vector3d(1.0, 0.0, 0.0);
-  sim::Spacecraft sc(p, ic);
+  sim::Plant sc({p, {}}, ic);
   const sim::EnergyMomentum e = sc.energy_momentum();
   // H = (1, 2.4, 2.4) + (0, 0, 2) ; E = 0.5*(0.1+0.48+0.72) + 0.5*0.5*16 + 0.5*4*0.3
   EXPECT_LT((e.H_C_B - Vector3d(1.0, 2.4, 4.4)).norm(), 1e-14);
@@ -292,7 +292,7 @@ TEST(EnergyMomentum, FullyCoupledHandCalculation)
   sim::StateVector x(model.layout().size());
   x.setZero();
   x(model.layout().Omega(0)) = 10.0;
-  const sim::EnergyMomentum e = model.energy_momentum(x);
+  const sim::EnergyMomentum e = model.energy_momentum(x, model.params().hub);
   const double d = 0.01, m = 25.0;
   const Vector3d w2 = Vector3d::UnitY();       // theta = 0
   const Vector3d c = 5.0 * d * w2 / m;           // (0, 0.002, 0)
@@ -301,7 +301,7 @@ TEST(EnergyMomentum, FullyCoupledHandCalculation)
   const Vector3d H = (0.1 * 10.0 + 5.0 * d * d * 10.0) * Vector3d::UnitZ() - m * c.cross(c_dot);
   EXPECT_NEAR(e.E_rot, E, 1e-15);
   EXPECT_LT((e.H_C_B - H).norm(), 1e-15);
-  const sim::MassProps mp = model.mass_props(x);
+  const sim::MassProps mp = model.mass_props(x, model.params().hub);
   EXPECT_LT((mp.c_B - c).norm(), 1e-17);
   EXPECT_LT((mp.c_prime_B - c_dot).norm(), 1e-16);
 }

@@ -9,7 +9,7 @@
 
 #include "kestrel_test_support.h"
 #include "sim/attitude.h"
-#include "sim/spacecraft.h"
+#include "sim/plant.h"
 #include "sim_test_util.h"
 
 namespace {
@@ -42,7 +42,7 @@ TEST(Hub, TorqueFreeAxisymmetricMatchesClosedFormThroughMrpSwitches)
   ic.r_CN_N = Vector3d(10.0, -5.0, 2.0);
   ic.sigma_BN = Vector3d(0.2, -0.1, 0.3);
   ic.omega_BN_B = Vector3d(0.3, 0.1, 0.5);
-  sim::Spacecraft sc(hub_only(I, c), ic);
+  sim::Plant sc({hub_only(I, c), {}}, ic);
 
   const Matrix3d dcm_NB0 = sim::dcm_BN_from_sigma(ic.sigma_BN).transpose();
   const Vector3d H_N = dcm_NB0 * (I * ic.omega_BN_B);
@@ -54,7 +54,7 @@ TEST(Hub, TorqueFreeAxisymmetricMatchesClosedFormThroughMrpSwitches)
   const int steps = 8000;  // 40 s, ~3.5 revolutions about H
   double worst_att = 0.0, worst_rate = 0.0, worst_rC = 0.0;
   for (int k = 1; k <= steps; ++k) {
-    ASSERT_EQ(sc.step(dt), sim::StepStatus::Ok);
+    ASSERT_EQ(sc.step(simtest::ns(dt)), sim::StepStatus::Ok);
     if (k % 100 != 0) continue;
     const double t = k * dt;
     const Matrix3d dcm_NB_true = rot(h_hat_N, w_p * t) * dcm_NB0 * rot(Vector3d::UnitZ(), w_r * t);
@@ -76,12 +76,12 @@ TEST(Hub, TorqueFreeAxisymmetricMatchesClosedFormThroughMrpSwitches)
 TEST(Hub, ConstantPrincipalTorqueFromRest)
 {
   const Matrix3d I = Vector3d(80.0, 90.0, 50.0).asDiagonal();
-  sim::Spacecraft sc(hub_only(I, Vector3d::Zero()), sim::InitialConditions{});
+  sim::Plant sc({hub_only(I, Vector3d::Zero()), {}}, sim::InitialConditions{});
   const double L = 5.0;  // [N*m] about z
   sc.set_external(Vector3d::Zero(), Vector3d(0.0, 0.0, L));
   const double dt = 0.01;
   for (int k = 1; k <= 1000; ++k) {
-    ASSERT_EQ(sc.step(dt), sim::StepStatus::Ok);
+    ASSERT_EQ(sc.step(simtest::ns(dt)), sim::StepStatus::Ok);
     const double t = k * dt;
     const double angle = 0.5 * L / 50.0 * t * t;
     EXPECT_NEAR(sc.omega_BN_B().z(), L / 50.0 * t, 1e-13);
@@ -106,10 +106,10 @@ TEST(Hub, CircularOrbitOfMassCentre)
   ic.r_CN_N = Vector3d(R, 0.0, 0.0);
   ic.v_CN_N = Vector3d(0.0, n * R, 0.0);
   ic.omega_BN_B = Vector3d(0.02, -0.05, 0.03);
-  sim::Spacecraft sc(hub_only(I, Vector3d(0.4, 0.1, -0.3), mu), ic);
+  sim::Plant sc({hub_only(I, Vector3d(0.4, 0.1, -0.3), mu), {}}, ic);
   const double dt = 0.25;
   const int steps = 2400;  // 600 s
-  for (int k = 0; k < steps; ++k) ASSERT_EQ(sc.step(dt), sim::StepStatus::Ok);
+  for (int k = 0; k < steps; ++k) ASSERT_EQ(sc.step(simtest::ns(dt)), sim::StepStatus::Ok);
   const double t = steps * dt;
   const Vector3d r_true(R * std::cos(n * t), R * std::sin(n * t), 0.0);
   EXPECT_LT((sc.energy_momentum().r_CN_N - r_true).norm(), 1e-6);  // [m] of 7e6 m
@@ -130,12 +130,12 @@ TEST(Hub, DerivativesMatchHandDerivedBPointEquations)
     ic.r_CN_N = Vector3d(rng.uniform(6.8e6, 7.2e6), rng.uniform(-1e6, 1e6), rng.uniform(-1e6, 1e6));
     ic.sigma_BN = Vector3d(rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5));
     ic.omega_BN_B = Vector3d(rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2));
-    const sim::StateVector x = model.initial_state(ic);
-    sim::HeldInputs in;
+    const sim::StateVector x = model.initial_state(ic, model.params().hub);
+    sim::ExternalLoads in;
     in.F_ext_B = Vector3d(rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-5, 5));
     in.L_ext_B = Vector3d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
     sim::Accelerations acc;
-    const sim::StateVector xd = model.derivatives(0.0, x, in, &acc);
+    const sim::StateVector xd = model.derivatives(0.0, x, sim::WheelInputs{}, in, model.params().hub, &acc);
 
     const double m = 500.0;
     const Vector3d& w = ic.omega_BN_B;
@@ -160,11 +160,11 @@ TEST(Hub, InitialConditionsAreConvertedFromCToB)
   ic.v_CN_N = Vector3d(-0.1, 0.2, 0.05);
   ic.sigma_BN = Vector3d(0.0, 0.0, std::sqrt(2.0) - 1.0);  // +90 deg about z
   ic.omega_BN_B = Vector3d(0.0, 0.0, 0.5);
-  const sim::StateVector x = model.initial_state(ic);
+  const sim::StateVector x = model.initial_state(ic, model.params().hub);
   // [NB] c = rot_z(90) c = (-0.1, 0.4, -0.3); w x c = (-0.05, 0.2, 0) -> N: (-0.2, -0.05, 0)
   EXPECT_LT((x.segment<3>(0) - Vector3d(1.1, 1.6, 3.3)).norm(), 1e-15);
   EXPECT_LT((x.segment<3>(3) - Vector3d(0.1, 0.25, 0.05)).norm(), 1e-15);
-  const sim::EnergyMomentum em = model.energy_momentum(x);
+  const sim::EnergyMomentum em = model.energy_momentum(x, model.params().hub);
   EXPECT_LT((em.r_CN_N - ic.r_CN_N).norm(), 1e-15);
   EXPECT_LT((em.v_CN_N - ic.v_CN_N).norm(), 1e-15);
 }
@@ -174,7 +174,8 @@ TEST(Hub, MassPropertiesParallelAxis)
 {
   const Vector3d r(1.0, 2.0, 0.0);
   sim::SpacecraftModel model(hub_only(Vector3d(10.0, 20.0, 30.0).asDiagonal(), r));
-  const sim::MassProps mp = model.mass_props(model.initial_state(sim::InitialConditions{}));
+  const sim::MassProps mp =
+      model.mass_props(model.initial_state(sim::InitialConditions{}, model.params().hub), model.params().hub);
   EXPECT_EQ(mp.m_sc, 500.0);
   EXPECT_EQ(mp.c_B, r);
   EXPECT_EQ(mp.c_prime_B, Vector3d::Zero());
@@ -186,13 +187,13 @@ TEST(Hub, MassPropertiesParallelAxis)
 
 TEST(Hub, NonFiniteStateHaltsTheRun)
 {
-  sim::Spacecraft sc(hub_only(Matrix3d::Identity(), Vector3d::Zero()), sim::InitialConditions{});
+  sim::Plant sc({hub_only(Matrix3d::Identity(), Vector3d::Zero()), {}}, sim::InitialConditions{});
   sc.set_external(Vector3d::Zero(), Vector3d(std::nan(""), 0.0, 0.0));
   const sim::StateVector before = sc.state();
-  EXPECT_EQ(sc.step(0.1), sim::StepStatus::NonFiniteState);
+  EXPECT_EQ(sc.step(simtest::ns(0.1)), sim::StepStatus::NonFiniteState);
   EXPECT_EQ(sc.state(), before);  // not committed
   sc.set_external(Vector3d::Zero(), Vector3d::Zero());
-  EXPECT_EQ(sc.step(0.1), sim::StepStatus::NonFiniteState);  // stays halted
+  EXPECT_EQ(sc.step(simtest::ns(0.1)), sim::StepStatus::NonFiniteState);  // stays halted
   EXPECT_EQ(sc.steps_taken(), 0u);
 }
 
@@ -229,7 +230,7 @@ const BadHub kBadHubs[] = {
        w.J_s = 0.01;
        p.wheels.assign(sim::kMaxWheels + 1, w);
      },
-     "wheels.size()", "= 17"},
+     "wheels.size()", "= 37"},  // kMaxWheels + 1
     {"hub inertia without the wheel spin inertia",
      [](sim::SpacecraftParams& p) {
        sim::ReactionWheelParams w;

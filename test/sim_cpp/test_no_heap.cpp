@@ -1,13 +1,14 @@
 // No heap allocation inside the step (style guide §5, issue 6): a counting
-// global operator new proves that step(), derivatives(), latch_commands(),
-// mass_props() and energy_momentum() allocate nothing once the run exists.
+// global operator new proves that step(), derivatives(), latch_wheel_commands(),
+// mass_props(), energy_momentum() and the accessors allocate nothing once the
+// run exists.  (Thrusters and tanks: test_thruster.cpp ThrusterNoHeap.)
 #include <atomic>
 #include <cstdlib>
 #include <new>
 
 #include <gtest/gtest.h>
 
-#include "sim/spacecraft.h"
+#include "sim/plant.h"
 #include "sim_test_util.h"
 
 namespace {
@@ -50,17 +51,17 @@ TEST(NoHeap, StepAndAccessorsDoNotAllocate)
     w.friction.tau_st = 2e-3;
   }
   p.mu = sim::kMuEarth;
-  sim::Spacecraft sc(p, simtest::leo_ic());
+  sim::Plant sc({p, {}}, simtest::leo_ic());
   const sim::WheelArray cmd{0.01, -0.02, 0.03, 0.04};
-  sim::HeldInputs in;
 
   const long before = g_news.load();
   double sink = 0.0;
   for (int k = 0; k < 100; ++k) {
-    sc.latch_commands(cmd);
-    ASSERT_EQ(sc.step(1e-3), sim::StepStatus::Ok);
-    const sim::StateVector xd = sc.model().derivatives(0.0, sc.state(), in);
-    sink += xd(0) + sc.energy_momentum().E_rot + sc.mass_props().m_sc + sc.tau_f(0);
+    sc.latch_wheel_commands(cmd);
+    ASSERT_EQ(sc.step(simtest::ns(1e-3)), sim::StepStatus::Ok);
+    const sim::StateVector xd = sc.derivatives(0.0, sc.state());
+    sink += xd(0) + sc.energy_momentum().E_rot + sc.mass_props().m_sc + sc.tau_f(0) + sc.u_s(1) +
+            sc.sensor_truth(Eigen::Vector3d(1.0, 0.0, 0.0)).Omega[2];
   }
   EXPECT_EQ(g_news.load() - before, 0);
   EXPECT_TRUE(std::isfinite(sink));

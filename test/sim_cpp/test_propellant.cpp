@@ -11,7 +11,7 @@
 
 #include "sim/attitude.h"
 #include "sim/propellant.h"
-#include "sim/vehicle.h"
+#include "sim/plant.h"
 
 namespace {
 
@@ -77,13 +77,13 @@ TEST(TankConfig, RejectsEachBadFieldByName)
       {
         sim::PropulsionParams p = s2_main_engine();
         p.tanks.resize(sim::kMaxTanks + 1);
-        sim::VehicleModel m(s2_hub(), p);
+        sim::Plant m({s2_hub(), p}, sim::InitialConditions{});
       },
       std::invalid_argument);
 }
 
 // §2 sums written out for a hub with an offset CoM and two tanks (a point
-// mass and a sphere), compared with Vehicle::mass_props().
+// mass and a sphere), compared with Plant::mass_props().
 TEST(TankMassProps, MatchHandSumsForPointAndSphereTanks)
 {
   sim::SpacecraftParams sc = s2_hub();
@@ -93,9 +93,8 @@ TEST(TankMassProps, MatchHandSumsForPointAndSphereTanks)
   p.tanks[1].r_TB_B = Vector3d(0.4, -0.3, 0.6);
   p.tanks[1].m_p0 = 120.0;
   p.tanks[1].R_T = 0.35;
-  const sim::VehicleModel m(sc, p);
-  const sim::VehicleState x = m.initial_state(sim::InitialConditions{});
-  const sim::MassProps mp = m.mass_props(x);
+  const sim::Plant m({sc, p}, sim::InitialConditions{});
+  const sim::MassProps mp = m.mass_props();
 
   const double m_tot = 750.0 + 300.0 + 120.0;
   const Vector3d c = (750.0 * sc.hub.r_BcB_B + 300.0 * Vector3d(0, 0, 0.2) +
@@ -112,8 +111,8 @@ TEST(TankMassProps, MatchHandSumsForPointAndSphereTanks)
   sim::InitialConditions ic;
   ic.r_CN_N = Vector3d(1.0, 2.0, 3.0);
   ic.sigma_BN = Vector3d(0.1, -0.2, 0.3);
-  const sim::VehicleState x2 = m.initial_state(ic);
-  EXPECT_NEAR((m.energy_momentum(x2).r_CN_N - ic.r_CN_N).norm(), 0.0, 1e-14);
+  const sim::Plant m2({sc, p}, ic);
+  EXPECT_NEAR((m2.energy_momentum().r_CN_N - ic.r_CN_N).norm(), 0.0, 1e-14);
 
   // An empty or (stage-)negative tank contributes nothing.
   sim::TankArray m_p{};
@@ -139,7 +138,7 @@ TEST(TankDepletion, MassUsedMatchesMassFlowPerTank)
   p.thrusters.push_back(acs);
   acs.tank = -1;
   p.thrusters.push_back(acs);
-  sim::Vehicle v(s2_hub(), p, sim::InitialConditions{});
+  sim::Plant v({s2_hub(), p}, sim::InitialConditions{});
   v.command_thrusters({0.0537, 0.0713, 0.09});
   for (int k = 0; k < 20; ++k) ASSERT_EQ(v.step(10 * kMs), sim::StepStatus::Ok);
   const double used0 = 445.0 * 0.0537 / (9.80665 * 234.0);
@@ -154,7 +153,7 @@ TEST(TankDepletion, MassUsedMatchesMassFlowPerTank)
 // it with error ~ dt^4 (mdot/m)^4, negligible here (mdot/m ~ 2e-4 /s).
 TEST(TankDepletion, RocketEquationDuringBurn)
 {
-  sim::Vehicle v(s2_hub(), s2_main_engine(), sim::InitialConditions{});
+  sim::Plant v({s2_hub(), s2_main_engine()}, sim::InitialConditions{});
   v.command_thrusters({kInf});
   const double mdot = 445.0 / (9.80665 * 234.0);
   for (int k = 0; k < 300; ++k) ASSERT_EQ(v.step(1000 * kMs), sim::StepStatus::Ok);  // 300 s
@@ -174,7 +173,7 @@ TEST(TankDepletion, RocketEquationDuringBurn)
 TEST(TankDepletion, RocketEquationToEmptyTankAndEngineStops)
 {
   const double m_p0 = 10.0;  // ~51.6 s of burn
-  sim::Vehicle v(s2_hub(), s2_main_engine(m_p0), sim::InitialConditions{});
+  sim::Plant v({s2_hub(), s2_main_engine(m_p0)}, sim::InitialConditions{});
   v.command_thrusters({kInf});
   const double dt = 0.1;
   for (int k = 0; k < 600; ++k) ASSERT_EQ(v.step(100 * kMs), sim::StepStatus::Ok);  // 60 s
@@ -205,7 +204,7 @@ TEST(TankConservation, RigidTanksConserveMomentumAndEnergy)
   ic.v_CN_N = Vector3d(0.0, 3500.0, 300.0);
   ic.sigma_BN = Vector3d(0.1, 0.2, -0.3);
   ic.omega_BN_B = Vector3d(0.05, -0.03, 0.08);
-  sim::Vehicle v(sc, p, ic);
+  sim::Plant v({sc, p}, ic);
   const sim::EnergyMomentum e0 = v.energy_momentum();
   for (int k = 0; k < 500; ++k) ASSERT_EQ(v.step(10 * kMs), sim::StepStatus::Ok);
   const sim::EnergyMomentum e1 = v.energy_momentum();

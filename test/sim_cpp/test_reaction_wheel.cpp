@@ -11,7 +11,7 @@
 #include "kestrel_test_support.h"
 #include "sim/attitude.h"
 #include "sim/reaction_wheel.h"
-#include "sim/spacecraft.h"
+#include "sim/plant.h"
 #include "sim_test_util.h"
 
 namespace {
@@ -133,12 +133,12 @@ TEST(WheelCommand, LatchUsesWheelSpeedAtLatchAndHoldsIt)
   w.P_max = 2.0;
   w.Omega_0 = 40.0;
   sp.wheels.push_back(w);
-  sim::Spacecraft sc(sp, sim::InitialConditions{});
+  sim::Plant sc({sp, {}}, sim::InitialConditions{});
   sim::WheelArray u{};
   u[0] = 1.0;
-  sc.latch_commands(u);
+  sc.latch_wheel_commands(u);
   EXPECT_DOUBLE_EQ(sc.u_s(0), 2.0 / 40.0);  // power limit at the latch speed
-  for (int k = 0; k < 10; ++k) sc.step(0.1);
+  for (int k = 0; k < 10; ++k) sc.step(simtest::ns(0.1));
   EXPECT_GT(sc.Omega(0), 40.0);
   EXPECT_DOUBLE_EQ(sc.u_s(0), 2.0 / 40.0);  // held, not re-limited during the steps
 }
@@ -191,7 +191,14 @@ TEST(WheelFriction, StribeckPeakAndSymmetry)
 TEST(WheelFriction, StribeckModeLogic)
 {
   const sim::WheelFrictionParams f = friction_params();  // 0.1 omega_lc = 0.01
-  EXPECT_TRUE(sim::update_stribeck_mode(f, false, 0.005, -1.0));   // near zero: enter
+  // §4.6: entered near zero only while the speed moves AWAY from zero.
+  EXPECT_TRUE(sim::update_stribeck_mode(f, false, 0.005, 1e-3));    // near zero, speeding up: enter
+  EXPECT_TRUE(sim::update_stribeck_mode(f, false, -0.005, -1e-3));
+  EXPECT_TRUE(sim::update_stribeck_mode(f, false, 0.0, -1.0));      // at rest: enter
+  EXPECT_TRUE(sim::update_stribeck_mode(f, false, 0.005, 0.0));     // first step (dOmega = 0): enter
+  EXPECT_FALSE(sim::update_stribeck_mode(f, false, 0.005, -1e-3));  // near zero but slowing: stay out
+  EXPECT_FALSE(sim::update_stribeck_mode(f, false, -0.005, 1e-3));
+  EXPECT_FALSE(sim::update_stribeck_mode(f, true, 0.005, -1e-3));   // slowing near zero: leave
   EXPECT_TRUE(sim::update_stribeck_mode(f, true, 0.5, 0.01));      // moving away: keep
   EXPECT_TRUE(sim::update_stribeck_mode(f, true, -0.5, -0.01));
   EXPECT_TRUE(sim::update_stribeck_mode(f, true, 0.5, 0.0));       // dOmega zero: keep
@@ -241,16 +248,16 @@ TEST_P(SingleWheelAnalytic, SpinUpWithConstantMotorTorque)
   const SingleWheel s = single_wheel(GetParam());
   sim::InitialConditions ic;
   ic.omega_BN_B = Vector3d(0.0, 0.0, 0.3);
-  sim::Spacecraft sc(s.params, ic);
+  sim::Plant sc({s.params, {}}, ic);
   const double u = 0.03;
   sim::WheelArray cmd{};
   cmd[0] = u;
-  sc.latch_commands(cmd);
+  sc.latch_wheel_commands(cmd);
   const double wz_dot = -u / (s.I_zz - s.J_s);
   const double Om_dot = u * s.I_zz / (s.J_s * (s.I_zz - s.J_s));
   const double dt = 0.01;
   for (int k = 1; k <= 2000; ++k) {  // 20 s: Omega 20 -> ~32 rad/s, hub turns > 180 deg
-    ASSERT_EQ(sc.step(dt), sim::StepStatus::Ok);
+    ASSERT_EQ(sc.step(simtest::ns(dt)), sim::StepStatus::Ok);
     const double t = k * dt;
     const double wz = 0.3 + wz_dot * t;
     ASSERT_NEAR(sc.Omega(0), 20.0 + Om_dot * t, 1e-10 * 20.0) << "t = " << t;
@@ -269,10 +276,10 @@ TEST_P(SingleWheelAnalytic, ViscousSpinDownIsExponential)
   SingleWheel s = single_wheel(GetParam());
   s.params.wheels[0].friction.c_v = 2e-3;
   s.params.wheels[0].friction.omega_lc = 1e-4;
-  sim::Spacecraft sc(s.params, sim::InitialConditions{});
+  sim::Plant sc({s.params, {}}, sim::InitialConditions{});
   const double k_rate = 2e-3 * s.I_zz / (s.J_s * (s.I_zz - s.J_s));  // [1/s]
   const double dt = 0.005;
-  for (int k = 1; k <= 2000; ++k) ASSERT_EQ(sc.step(dt), sim::StepStatus::Ok);
+  for (int k = 1; k <= 2000; ++k) ASSERT_EQ(sc.step(simtest::ns(dt)), sim::StepStatus::Ok);
   const double Om = 20.0 * std::exp(-k_rate * 10.0);
   EXPECT_NEAR(sc.Omega(0), Om, 1e-10 * 20.0);
   // total momentum about z: I_zz w + J_s Omega = J_s Omega_0 (hub starts at rest)
@@ -284,9 +291,9 @@ TEST_P(SingleWheelAnalytic, CoulombSpinDownIsLinear)
 {
   SingleWheel s = single_wheel(GetParam());
   s.params.wheels[0].friction.tau_c = 1e-3;
-  sim::Spacecraft sc(s.params, sim::InitialConditions{});
+  sim::Plant sc({s.params, {}}, sim::InitialConditions{});
   const double rate = 1e-3 * s.I_zz / (s.J_s * (s.I_zz - s.J_s));
-  for (int k = 0; k < 500; ++k) ASSERT_EQ(sc.step(0.01), sim::StepStatus::Ok);
+  for (int k = 0; k < 500; ++k) ASSERT_EQ(sc.step(simtest::ns(0.01)), sim::StepStatus::Ok);
   EXPECT_NEAR(sc.Omega(0), 20.0 - rate * 5.0, 1e-12);
 }
 
@@ -307,12 +314,12 @@ TEST(WheelMisalignment, HubFeelsTheTrueSpinAxis)
   SingleWheel s = single_wheel(WheelModel::Balanced);
   s.params.wheels[0].Omega_0 = 0.0;
   s.params.wheels[0].delta_mis_B = Vector3d(0.02, 0.0, 0.0);
-  sim::Spacecraft sc(s.params, sim::InitialConditions{});
+  sim::Plant sc({s.params, {}}, sim::InitialConditions{});
   const double u = 0.05, dt = 1e-4;
   sim::WheelArray cmd{};
   cmd[0] = u;
-  sc.latch_commands(cmd);
-  ASSERT_EQ(sc.step(dt), sim::StepStatus::Ok);
+  sc.latch_wheel_commands(cmd);
+  ASSERT_EQ(sc.step(simtest::ns(dt)), sim::StepStatus::Ok);
   const Vector3d g(0.0, -std::sin(0.02), std::cos(0.02));
   const Matrix3d I = Vector3d(10.0, 12.0, 8.0).asDiagonal();
   const Vector3d omega_dot = -(I - s.J_s * g * g.transpose()).inverse() * g * u;
@@ -331,11 +338,11 @@ TEST(WheelMisalignment, FullyCoupledPyramidStillConserves)
   p.wheels = simtest::pyramid_wheels(WheelModel::FullyCoupled);
   for (size_t i = 0; i < p.wheels.size(); ++i)
     p.wheels[i].delta_mis_B = Vector3d(0.01 * (i + 1), -0.005 * i, 0.002);
-  sim::Spacecraft sc(p, sim::InitialConditions{});
+  sim::Plant sc({p, {}}, sim::InitialConditions{});
   const sim::EnergyMomentum e0 = sc.energy_momentum();
   double dH = 0.0, dE = 0.0;
   for (int k = 0; k < 5000; ++k) {
-    ASSERT_EQ(sc.step(1e-4), sim::StepStatus::Ok);
+    ASSERT_EQ(sc.step(simtest::ns(1e-4)), sim::StepStatus::Ok);
     const sim::EnergyMomentum e = sc.energy_momentum();
     dH = std::max(dH, (e.H_C_N - e0.H_C_N).norm() / e0.H_C_N.norm());
     dE = std::max(dE, std::abs(e.E_rot - e0.E_rot) / e0.E_rot);
@@ -351,20 +358,130 @@ TEST(WheelFriction, ModeFollowsStepProtocol)
   SingleWheel s = single_wheel(WheelModel::Balanced);
   s.params.wheels[0].Omega_0 = 0.0;
   s.params.wheels[0].friction = friction_params();
-  sim::Spacecraft sc(s.params, sim::InitialConditions{});
+  sim::Plant sc({s.params, {}}, sim::InitialConditions{});
   sim::WheelArray cmd{};
   cmd[0] = 0.01;
-  sc.latch_commands(cmd);
-  sc.step(0.01);
+  sc.latch_wheel_commands(cmd);
+  sc.step(simtest::ns(0.01));
   EXPECT_TRUE(sc.stribeck_mode(0));
-  for (int k = 0; k < 50; ++k) sc.step(0.01);
+  for (int k = 0; k < 50; ++k) sc.step(simtest::ns(0.01));
   EXPECT_TRUE(sc.stribeck_mode(0));
   EXPECT_GT(sc.Omega(0), 0.0);
   cmd[0] = -0.02;
-  sc.latch_commands(cmd);
-  sc.step(0.01);  // flag uses the speed change over the previous step: still accelerating
-  sc.step(0.01);
+  sc.latch_wheel_commands(cmd);
+  sc.step(simtest::ns(0.01));  // flag uses the speed change over the previous step: still accelerating
+  sc.step(simtest::ns(0.01));
   EXPECT_FALSE(sc.stribeck_mode(0));
+}
+
+// §4.6 regression: a wheel braked by friction toward rest must not enter the
+// Stribeck regime (it is slowing down, not breaking away).  Viscous friction
+// with Coulomb off and a stiction hump configured (tau_st > 0, beta_st > 0):
+// the Coulomb/viscous law is exactly -c_v Omega at every speed, so
+//   Omega(t) = Omega_0 exp(-k t),  k = c_v I_zz / (J_s (I_zz - J_s))
+// (single-axis coupling as in SingleWheelAnalytic).  Entering the regime
+// below 0.1 omega_lc would add the hump slope and leave the exponential.
+TEST(WheelFriction, ViscousCoastToRestFollowsTheExponentialAndNeverEntersStribeck)
+{
+  SingleWheel s = single_wheel(WheelModel::Balanced);
+  sim::WheelFrictionParams& f = s.params.wheels[0].friction;
+  f.tau_c = 0.0;
+  f.c_v = 1e-3;
+  f.tau_st = 1e-3;
+  f.beta_st = 0.5;
+  f.omega_lc = 1e-4;
+  sim::Plant sc({s.params, {}}, sim::InitialConditions{});
+  const double k_rate = 1e-3 * s.I_zz / (s.J_s * (s.I_zz - s.J_s));  // [1/s] ~0.0201
+  const double dt = 0.1;                                            // k dt = 2e-3
+  double worst_rel = 0.0;
+  for (int k = 1; k <= 20000; ++k) {  // 2000 s = 40 time constants
+    ASSERT_EQ(sc.step(simtest::ns(dt)), sim::StepStatus::Ok);
+    ASSERT_FALSE(sc.stribeck_mode(0)) << "t = " << k * dt;
+    const double truth = 20.0 * std::exp(-k_rate * k * dt);
+    worst_rel = std::max(worst_rel, std::abs(sc.Omega(0) - truth) / truth);
+  }
+  EXPECT_LT(worst_rel, 1e-9);
+  EXPECT_LT(std::abs(sc.Omega(0)), 1e-12);  // analytic: 20 e^-40.3 = 6e-17
+}
+
+// The case the old reading got badly wrong: Coulomb + viscous friction with
+// Stribeck configured, coasting to rest.  Below omega_lc the law is the
+// straight line f(omega_lc) Omega / omega_lc, i.e. an exponential with
+//   k = (tau_c / omega_lc + c_v) I_zz / (J_s (I_zz - J_s)).
+// Entering the Stribeck regime at 0.1 omega_lc (old behaviour) replaced that
+// slope with tau_c tanh(10 omega_lc/beta)/omega_lc + ..., ~400x weaker, and
+// the wheel crept at ~1e-7 rad/s for minutes.
+TEST(WheelFriction, CoulombCoastToRestDecaysAtTheLowSpeedBandRate)
+{
+  SingleWheel s = single_wheel(WheelModel::Balanced);
+  s.params.wheels[0].Omega_0 = 0.05;
+  sim::WheelFrictionParams& f = s.params.wheels[0].friction;
+  f.tau_c = 1e-4;
+  f.c_v = 1e-5;
+  f.tau_st = 2e-4;
+  f.beta_st = 0.5;
+  f.omega_lc = 1e-4;
+  sim::Plant sc({s.params, {}}, sim::InitialConditions{});
+  const double coupling = s.I_zz / (s.J_s * (s.I_zz - s.J_s));
+  const double k_band = (1e-4 / 1e-4 + 1e-5) * coupling;  // [1/s] ~20: stiff, RK4 needs k dt < 2.7
+  const double dt = 0.01;
+  // Enter the band (Coulomb ramp takes ~ 0.05 / (1e-4 * coupling) = 25 s).
+  int k = 0;
+  while (std::abs(sc.Omega(0)) >= 1e-4 && k < 5000) {
+    ASSERT_EQ(sc.step(simtest::ns(dt)), sim::StepStatus::Ok);
+    ++k;
+  }
+  ASSERT_LT(k, 5000);
+  const double Om_band = sc.Omega(0);
+  ASSERT_GT(Om_band, 0.0);
+  // RK4 amplification for the linear decay, per step: R(z) = 1 - z + z^2/2 - z^3/6 + z^4/24.
+  const double z = k_band * dt;
+  const double R = 1.0 - z + z * z / 2.0 - z * z * z / 6.0 + z * z * z * z / 24.0;
+  double Om_rk4 = Om_band;
+  for (int n = 1; n <= 200; ++n) {  // 2 s = 40 band time constants
+    ASSERT_EQ(sc.step(simtest::ns(dt)), sim::StepStatus::Ok);
+    EXPECT_FALSE(sc.stribeck_mode(0));
+    Om_rk4 *= R;
+    EXPECT_NEAR(sc.Omega(0), Om_rk4, 1e-9 * Om_band + 1e-300) << "n = " << n;
+  }
+  // RK4 and the analytic exponential agree to (z^5/120) per step here.
+  EXPECT_NEAR(sc.Omega(0), Om_band * std::exp(-k_band * 2.0), 1e-3 * Om_band * std::exp(-k_band * 2.0));
+  EXPECT_LT(std::abs(sc.Omega(0)), 1e-12);
+}
+
+// ... and a wheel accelerating away from zero does enter it: start slightly
+// negative, a small positive motor torque drives Omega through zero.  Flags:
+// first step in (dOmega = 0), out while approaching zero, in again once past
+// zero and below 0.1 omega_lc, kept while the speed keeps growing.
+TEST(WheelFriction, AcceleratingAwayFromZeroEntersStribeck)
+{
+  SingleWheel s = single_wheel(WheelModel::Balanced);
+  s.params.wheels[0].Omega_0 = -5e-6;
+  sim::WheelFrictionParams& f = s.params.wheels[0].friction;
+  f.tau_c = 0.0;
+  f.c_v = 1e-9;
+  f.tau_st = 1e-9;
+  f.beta_st = 0.5;
+  f.omega_lc = 1e-4;  // 0.1 omega_lc = 1e-5
+  sim::Plant sc({s.params, {}}, sim::InitialConditions{});
+  sim::WheelArray cmd{};
+  cmd[0] = 1e-6;  // Omega_dot ~ 2e-5 rad/s^2: 2e-7 rad/s per 0.01 s step
+  sc.latch_wheel_commands(cmd);
+  ASSERT_EQ(sc.step(simtest::ns(0.01)), sim::StepStatus::Ok);
+  EXPECT_TRUE(sc.stribeck_mode(0));  // first step: dOmega = 0
+  ASSERT_EQ(sc.step(simtest::ns(0.01)), sim::StepStatus::Ok);
+  EXPECT_FALSE(sc.stribeck_mode(0));  // Omega < 0 growing toward zero
+  int k = 0;
+  while (sc.Omega(0) <= 0.0 && k < 1000) {
+    ASSERT_EQ(sc.step(simtest::ns(0.01)), sim::StepStatus::Ok);
+    ++k;
+  }
+  ASSERT_LT(k, 1000);
+  ASSERT_EQ(sc.step(simtest::ns(0.01)), sim::StepStatus::Ok);  // this step starts with Omega in (0, 1e-5)
+  EXPECT_TRUE(sc.stribeck_mode(0));
+  for (int n = 0; n < 200; ++n) ASSERT_EQ(sc.step(simtest::ns(0.01)), sim::StepStatus::Ok);
+  EXPECT_GT(sc.Omega(0), 1e-5);      // well past the entry band ...
+  EXPECT_TRUE(sc.stribeck_mode(0));  // ... and still breaking away
 }
 
 // ------------------------------------------------ zero-imbalance equivalences
@@ -383,20 +500,20 @@ TEST(WheelImbalance, SimpleJitterWithZeroImbalanceIsBitwiseBalanced)
   sim::SpacecraftParams pb = pyramid_vehicle(WheelModel::Balanced);
   sim::SpacecraftParams ps = pyramid_vehicle(WheelModel::SimpleJitter);
   for (auto& w : ps.wheels) w.U_s = w.U_d = 0.0;
-  sim::Spacecraft b(pb, simtest::leo_ic());
-  sim::Spacecraft s(ps, simtest::leo_ic());
+  sim::Plant b({pb, {}}, simtest::leo_ic());
+  sim::Plant s({ps, {}}, simtest::leo_ic());
   sim::WheelArray cmd{0.01, -0.02, 0.015, 0.005};
-  b.latch_commands(cmd);
-  s.latch_commands(cmd);
+  b.latch_wheel_commands(cmd);
+  s.latch_wheel_commands(cmd);
   for (int k = 0; k < 1000; ++k) {
-    b.step(1e-3);
-    s.step(1e-3);
+    b.step(simtest::ns(1e-3));
+    s.step(simtest::ns(1e-3));
   }
   EXPECT_EQ(b.state(), s.state());
   // and the imbalance does change the answer, so the comparison has teeth
-  sim::Spacecraft j(pyramid_vehicle(WheelModel::SimpleJitter), simtest::leo_ic());
-  j.latch_commands(cmd);
-  for (int k = 0; k < 1000; ++k) j.step(1e-3);
+  sim::Plant j({pyramid_vehicle(WheelModel::SimpleJitter), {}}, simtest::leo_ic());
+  j.latch_wheel_commands(cmd);
+  for (int k = 0; k < 1000; ++k) j.step(simtest::ns(1e-3));
   EXPECT_GT((j.omega_BN_B() - b.omega_BN_B()).norm(), 1e-9);
 }
 
@@ -428,14 +545,14 @@ TEST(WheelImbalance, FullyCoupledWithZeroImbalanceEqualsBalancedWithFoldedHub)
   pb.hub.r_BcB_B = c;
   pb.hub.I_hBc_B = 0.5 * (I_C + I_C.transpose());
 
-  sim::Spacecraft f(pf, simtest::leo_ic());
-  sim::Spacecraft b(pb, simtest::leo_ic());
+  sim::Plant f({pf, {}}, simtest::leo_ic());
+  sim::Plant b({pb, {}}, simtest::leo_ic());
   sim::WheelArray cmd{0.01, -0.02, 0.015, 0.005};
-  f.latch_commands(cmd);
-  b.latch_commands(cmd);
+  f.latch_wheel_commands(cmd);
+  b.latch_wheel_commands(cmd);
   for (int k = 0; k < 1000; ++k) {
-    f.step(1e-3);
-    b.step(1e-3);
+    f.step(simtest::ns(1e-3));
+    b.step(simtest::ns(1e-3));
   }
   EXPECT_LT(simtest::rel_err(f.omega_BN_B(), b.omega_BN_B()), 1e-12);
   EXPECT_LT((f.sigma_BN() - b.sigma_BN()).norm(), 1e-13);
@@ -517,9 +634,9 @@ TEST_P(FullyCoupledBackEffect, WheelSpeedMatchesIndependentPlanarModel)
   p.wheels.push_back(w);
   sim::InitialConditions ic;  // system CoM at rest at the origin
   ic.omega_BN_B = Vector3d(0.0, 0.0, omega0);
-  sim::Spacecraft sc(p, ic);
+  sim::Plant sc({p, {}}, ic);
   sim::WheelArray cmd{u};
-  sc.latch_commands(cmd);
+  sc.latch_wheel_commands(cmd);
 
   // Same initial state for the planar model: rotor CoM direction w2 = e(psi + pi/2 + theta).
   const double m = pl.m_h + pl.m_w;
@@ -539,7 +656,7 @@ TEST_P(FullyCoupledBackEffect, WheelSpeedMatchesIndependentPlanarModel)
     const auto k3 = pl.f(q + 0.5 * dt * k2);
     const auto k4 = pl.f(q + dt * k3);
     q += dt / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
-    ASSERT_EQ(sc.step(dt), sim::StepStatus::Ok);
+    ASSERT_EQ(sc.step(simtest::ns(dt)), sim::StepStatus::Ok);
     const double Om_ref = q(7) - q(6);
     Om_min = std::min(Om_min, sc.Omega(0));
     Om_max = std::max(Om_max, sc.Omega(0));
@@ -572,25 +689,25 @@ TEST(WheelMixed, BalancedWheelThetaDoesNotChangeThePhysics)
   p.wheels[0].model = WheelModel::Balanced;
   p.wheels[1].model = WheelModel::SimpleJitter;
   p.hub.I_hBc_B += p.wheels[0].J_s * p.wheels[0].gs_hat_nom_B * p.wheels[0].gs_hat_nom_B.transpose();
-  sim::Spacecraft a(p, simtest::leo_ic());
-  sim::Spacecraft b(p, simtest::leo_ic());
+  sim::Plant a({p, {}}, simtest::leo_ic());
+  sim::Plant b({p, {}}, simtest::leo_ic());
   sim::StateVector x = b.state();
   x(b.model().layout().theta(0)) = 1.234;  // balanced wheel: theta is output only
   b.set_state(x);
   for (int k = 0; k < 500; ++k) {
-    a.step(1e-3);
-    b.step(1e-3);
+    a.step(simtest::ns(1e-3));
+    b.step(simtest::ns(1e-3));
   }
   sim::StateVector xa = a.state(), xb = b.state();
   EXPECT_NEAR(xb(b.model().layout().theta(0)) - xa(a.model().layout().theta(0)), 1.234, 1e-13);
   xa(a.model().layout().theta(0)) = xb(b.model().layout().theta(0)) = 0.0;
   EXPECT_EQ(xa, xb);
   // the jitter wheels' angles do matter
-  sim::Spacecraft c(p, simtest::leo_ic());
+  sim::Plant c({p, {}}, simtest::leo_ic());
   x = c.state();
   x(c.model().layout().theta(2)) = 1.234;
   c.set_state(x);
-  for (int k = 0; k < 500; ++k) c.step(1e-3);
+  for (int k = 0; k < 500; ++k) c.step(simtest::ns(1e-3));
   EXPECT_GT((c.omega_BN_B() - a.omega_BN_B()).norm(), 1e-10);
 }
 

@@ -8,7 +8,7 @@
 
 #include "sim/attitude.h"
 #include "sim/rk4.h"
-#include "sim/spacecraft.h"
+#include "sim/plant.h"
 #include "sim_test_util.h"
 
 namespace {
@@ -59,9 +59,9 @@ double rigid_body_error(double dt)
   sim::InitialConditions ic;
   ic.sigma_BN = Vector3d(0.2, -0.1, 0.3);
   ic.omega_BN_B = Vector3d(0.3, 0.1, 0.5);
-  sim::Spacecraft sc(p, ic);
+  sim::Plant sc({p, {}}, ic);
   const int n = static_cast<int>(std::lround(20.0 / dt));
-  for (int k = 0; k < n; ++k) sc.step(dt);
+  for (int k = 0; k < n; ++k) sc.step(simtest::ns(dt));
   const Matrix3d dcm_NB0 = sim::dcm_BN_from_sigma(ic.sigma_BN).transpose();
   const Vector3d H_N = dcm_NB0 * (p.hub.I_hBc_B * ic.omega_BN_B);
   const double t = n * dt;
@@ -86,10 +86,10 @@ sim::StateVector plant_run(double dt)
   p.hub = simtest::reference_hub();
   p.wheels = simtest::pyramid_wheels(sim::WheelModel::FullyCoupled);
   p.mu = sim::kMuEarth;
-  sim::Spacecraft sc(p, simtest::leo_ic());
-  sc.latch_commands(sim::WheelArray{0.05, -0.04, 0.03, -0.02});
+  sim::Plant sc({p, {}}, simtest::leo_ic());
+  sc.latch_wheel_commands(sim::WheelArray{0.05, -0.04, 0.03, -0.02});
   const int n = static_cast<int>(std::lround(0.4 / dt));
-  for (int k = 0; k < n; ++k) sc.step(dt);
+  for (int k = 0; k < n; ++k) sc.step(simtest::ns(dt));
   return sc.state();
 }
 

@@ -17,14 +17,11 @@
 
 #include <Eigen/Dense>
 
-#include "sim/spacecraft.h"
+#include "sim/capacities.h"  // kMaxTanks, TankArray
+#include "sim/spacecraft.h"   // HubParams
 #include "sim/thruster.h"  // kG0
 
 namespace sim {
-
-constexpr int kMaxTanks = 4;  // [-] capacity
-
-using TankArray = std::array<double, kMaxTanks>;
 
 struct TankParams {  // checked by validate(); fixed for a run
   Eigen::Vector3d r_TB_B = Eigen::Vector3d::Zero();  // [m]  tank centre T relative to B

@@ -31,7 +31,15 @@ struct WheelFrictionParams {
   double omega_lc = 1e-4;  // [rad/s]     low-speed linearisation band, > 0
 };
 
-struct ReactionWheelParams {  // checked by validate(); fixed for a run
+// Health of a wheel, set by the Plant between steps (faults/events).
+enum class WheelHealth {
+  Nominal,  // commands go through the §4.3 pipeline
+  Off       // motor unpowered: u_s forced to 0 at once and at every latch; friction still acts
+};
+
+const char* to_string(WheelHealth h);
+
+struct ReactionWheelParams {  // checked by validate(); u_max, Omega_max and friction settable on a Plant
   WheelModel model = WheelModel::Balanced;
   Eigen::Vector3d gs_hat_nom_B = Eigen::Vector3d::Zero();  // [-]   nominal spin axis, unit (what FSW believes)
   Eigen::Vector3d delta_mis_B = Eigen::Vector3d::Zero();   // [rad] spin-axis misalignment rotation vector
@@ -62,8 +70,9 @@ struct ReactionWheelDerived {
   double J_bar = 0.0;         // [kg*m^2] spin inertia about the spin axis: J_s + m_w d^2 (FC), J_s otherwise
 };
 
-// Throws std::invalid_argument naming `name.field` and the offending value.
+// Throw std::invalid_argument naming `name.field` and the offending value.
 void validate(const ReactionWheelParams& p, const std::string& name = "wheel");
+void validate(const WheelFrictionParams& f, const std::string& name = "friction");
 
 // §4.2 frame construction.  Requires validate(p) to have passed.
 ReactionWheelDerived derive(const ReactionWheelParams& p);
@@ -84,6 +93,9 @@ double friction_torque(const WheelFrictionParams& f, double Omega, bool stribeck
 
 // §4.6 Stribeck mode update, once per step at the step start.
 // dOmega = Omega(step start) - Omega(previous step start) (0 on the first step).
+// Returns true only while the wheel moves away from zero (sign(Omega) ==
+// sign(dOmega), or either is zero): entered when also |Omega| < 0.1 omega_lc,
+// kept while moving away, left as soon as the wheel slows down.
 bool update_stribeck_mode(const WheelFrictionParams& f, bool mode, double Omega, double dOmega);
 
 }  // namespace sim

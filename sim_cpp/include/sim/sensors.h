@@ -26,7 +26,7 @@
 
 #include "sim/attitude.h"  // quaternion_from_dcm, sigma_from_quaternion
 #include "sim/rng.h"
-#include "sim/spacecraft.h"  // kMaxWheels, WheelArray
+#include "sim/capacities.h"  // kMaxWheels, WheelArray
 
 namespace sim {
 

@@ -5,11 +5,14 @@
 // This header holds the pure parts, testable on their own:
 //   * parameters and validate()                                     (§5.1)
 //   * the latch rule: saturation, minimum on-time, timer resolution (§5.2)
-//   * the thrust factor kappa(t): Instant, FirstOrder (an integrated state),
-//     Table (piecewise linear in time, evaluated from the schedule) (§5.3)
+//   * the thrust factor kappa(t): Instant, FirstOrder (closed-form
+//     exponential, first_order_kappa), Table (piecewise linear in time,
+//     evaluated from the schedule) (§5.3)
 //   * force, torque about B and mass flow of one thruster          (§5.4)
-// The run (integration with valve-event step splitting, tanks) is
-// sim::Vehicle in sim/vehicle.h; tanks are in sim/propellant.h.
+// The discrete run part (command mailbox, latches, valve schedules, event
+// times, closed-form first-order factor) is sim::ThrusterSet in
+// sim/thruster_set.h, one force/torque effector of sim::Plant (sim/plant.h);
+// tanks are in sim/propellant.h.
 #ifndef SIM_THRUSTER_H
 #define SIM_THRUSTER_H
 
@@ -21,16 +24,24 @@
 
 #include <Eigen/Dense>
 
+#include "sim/capacities.h"  // kMaxThrusters, ThrusterArray
+
 namespace sim {
 
 constexpr double kG0 = 9.80665;  // [m/s^2] standard gravity for Isp (§0)
-constexpr int kMaxThrusters = 16;  // [-] capacity of fixed-size per-thruster arrays
-
-using ThrusterArray = std::array<double, kMaxThrusters>;
 
 enum class ThrusterTransient { Instant, FirstOrder, Table };
 
 const char* to_string(ThrusterTransient m);
+
+// Health of a thruster, set by the Plant between steps (faults/events).
+enum class ThrusterHealth {
+  Nominal,    // commands latched per §5.2
+  FailedOff,  // valve closed and kappa = 0 at once; requests ignored; no force, no flow
+  StuckOn     // valve open from now on (kappa rises per the transient); requests ignored
+};
+
+const char* to_string(ThrusterHealth h);
 
 struct RampPoint {
   double t = 0.0;  // [s] time since the ramp started
@@ -96,7 +107,7 @@ bool valve_open(const ValveSchedule& s, double s_since_latch);
 
 // Thrust factor of a Table or Instant thruster at time s since the latch.
 // `open` selects the branch (the caller fixes it per sub-step, §7.3).
-// Not used for FirstOrder, whose kappa is a state.
+// Not used for FirstOrder (see first_order_kappa).
 double scheduled_kappa(const ThrusterParams& p, const ValveSchedule& s, double s_since_latch,
                        bool open);
 
@@ -116,6 +127,15 @@ bool valve_firing(const ValveSchedule& s, double s_since_latch);
 // as 0 (valve closes).  On IgnoredMinOnTime, `s` is left unchanged.
 LatchResult latch_thruster(const ThrusterParams& p, const ThrusterCommandParams& c, double T_req,
                            int64_t t_L_ns, double kappa_now, bool firing, ValveSchedule& s);
+
+// FirstOrder factor (§5.3) in closed form: t [s] after a point where it was
+// kappa0, with the valve state fixed over [0, t]:
+//   kappa(t) = kappa_c + (kappa0 - kappa_c) e^{-w t},
+// kappa_c = 1, w = omega_on when open; kappa_c = 0, w = omega_off when closed.
+double first_order_kappa(const ThrusterParams& p, double kappa0, bool open, double t);
+// Its exact integral over [0, t] [s]:
+//   kappa_c t + (kappa0 - kappa_c) (1 - e^{-w t}) / w.
+double first_order_kappa_integral(const ThrusterParams& p, double kappa0, bool open, double t);
 
 // ------------------------------------------------------------------ effect
 

@@ -1,0 +1,108 @@
+// thruster_set: the run part of the on/off ACS thrusters, one force/torque
+// effector of sim::Plant (spec plant-dynamics §5.2-§5.4, §7.3).  Frames: B.
+// Units: SI; times are the plant's integer nanosecond clock.
+//
+// Holds the command mailbox, the latch rule at k*T_upd (§5.2), the valve
+// schedules, per-thruster health, and the thrust factors:
+//   Instant, Table  kappa(t) evaluated from the schedule at each RK4 stage;
+//   FirstOrder      kappa advanced in closed form across each sub-step
+//                   (kappa(t+h) = kappa_c + (kappa - kappa_c) e^{-w h}); the
+//                   RK4 stages see the closed form at their own times plus a
+//                   constant O(h^4) correction chosen so that the RK4
+//                   quadrature of the thrust over the sub-step equals its
+//                   exact integral (docs/dynamics.md "Thrust factor").
+// Event splitting (§7.3): next_event() proposes valve closings and Table
+// breakpoints; next_cut_ns() the latch instant while a message is pending.
+#ifndef SIM_THRUSTER_SET_H
+#define SIM_THRUSTER_SET_H
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "sim/capacities.h"
+#include "sim/effector.h"
+#include "sim/thruster.h"
+
+namespace sim {
+
+struct ThrusterCounters {
+  uint64_t latches = 0;          // command messages latched
+  uint64_t ignored_min_on = 0;   // per-thruster requests dropped by T_min (§5.2 step 2)
+  uint64_t split_sub_steps = 0;  // extra sub-steps created by events (§7.3), latch cuts not
+                                 // counted; filled by Plant::counters()
+};
+
+class ThrusterSet final : public ForceTorqueEffector {
+ public:
+  ThrusterSet() = default;
+  // Validates every thruster, the tank indices (< num_tanks or -1) and the
+  // command settings (std::invalid_argument names the field).
+  ThrusterSet(std::vector<ThrusterParams> thrusters, int num_tanks, ThrusterCommandParams command);
+
+  const char* kind() const override { return "thrusters"; }
+  int num_thr() const { return static_cast<int>(p_.size()); }
+  const std::vector<ThrusterParams>& params() const { return p_; }
+  const ThrusterCommandParams& command_params() const { return cmd_; }
+
+  // New command message: on-time requests [s] (num_thr), latched at the next
+  // latch instant k*T_upd at or after now; a later message replaces it (§5.2).
+  void command(const ThrusterArray& T_req);
+  bool command_pending() const { return pending_; }
+  const ThrusterArray& request() const { return T_req_; }  // [s] last message
+
+  // State now (after prepare_now(t_ns)).
+  double kappa(int j) const;                      // [-] thrust factor
+  bool valve_open(int j) const;                   // valve state just after now
+  const ValveSchedule& schedule(int j) const { return sched_[static_cast<size_t>(j)]; }
+  ThrusterHealth health(int j) const { return health_[static_cast<size_t>(j)]; }
+  const ThrusterCounters& counters() const { return counters_; }
+  // F, L about B, mdot of thruster j now; zero when its tank in x is empty or it failed off.
+  ThrusterEffect effect(int j, const StateVector& x, const StateLayout& L) const;
+
+  // Takes effect at the time of the last prepare_now (see ThrusterHealth).
+  void set_health(int j, ThrusterHealth h);
+
+  // ForceTorqueEffector
+  void accumulate(const EffectorStage& stage, EffectorSums& sums) const override;
+  void at_instant(int64_t t_ns) override;
+  int64_t next_cut_ns(int64_t t_ns) const override;
+  void begin_segment(int64_t t0_ns) override;
+  double next_event(double tau, double H, double snap) const override;
+  void begin_substep(double tau, double tau_end) override;
+  void end_substep() override;
+  void prepare_now(int64_t t_ns) override;
+
+ private:
+  // FirstOrder closed form over the current sub-step: stage times (as RK4
+  // forms them), factors at those times plus the quadrature correction, and
+  // the factor at the sub-step end.
+  struct FirstOrderStage {
+    double t[3] = {0.0, 0.0, 0.0};      // [s] tau, tau + h/2, tau + h
+    double kappa[3] = {0.0, 0.0, 0.0};  // [-] stage values (with delta)
+    double tau = 0.0;                   // [s] sub-step start
+    double kappa_c = 0.0, d0 = 0.0, w = 0.0, delta = 0.0;
+    double kappa_end = 0.0;             // [-] closed form at tau + h
+  };
+
+  double s_since_latch(int j, int64_t t_ns) const;
+  double stage_kappa(int j, double t) const;
+  void latch(int64_t t_L_ns);
+
+  std::vector<ThrusterParams> p_;
+  ThrusterCommandParams cmd_;
+  ThrusterArray T_req_{};
+  bool pending_ = false;
+  std::array<ValveSchedule, kMaxThrusters> sched_{};
+  std::array<ThrusterHealth, kMaxThrusters> health_{};
+  ThrusterArray kappa_fo_{};  // [-] FirstOrder kappa at the current sub-step start / now
+  int64_t t0_ns_ = 0;         // [ns] current segment start (or now)
+  ThrusterArray s_at_t0_{};   // [s] time since each thruster's latch at t0_ns_
+  std::array<bool, kMaxThrusters> open_{};  // valve state over the current sub-step
+  std::array<FirstOrderStage, kMaxThrusters> fo_{};
+  ThrusterCounters counters_;
+};
+
+}  // namespace sim
+
+#endif  // SIM_THRUSTER_SET_H

@@ -1,0 +1,255 @@
+// thruster_set: see sim/thruster_set.h.  Spec plant-dynamics §5.2-§5.4, §7.3.
+#include "sim/thruster_set.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "sim/units.h"
+#include "validate_util.h"
+
+namespace sim {
+
+ThrusterSet::ThrusterSet(std::vector<ThrusterParams> thrusters, int num_tanks,
+                         ThrusterCommandParams command)
+    : p_(std::move(thrusters)), cmd_(command)
+{
+  using namespace detail;
+  const size_t n_thr = p_.size();
+  if (n_thr > static_cast<size_t>(kMaxThrusters))
+    fail("thrusters.size()", static_cast<double>(n_thr), "must be <= sim::kMaxThrusters");
+  for (size_t j = 0; j < n_thr; ++j) {
+    const std::string name = "thrusters[" + std::to_string(j) + "]";
+    validate(p_[j], name);
+    if (p_[j].tank >= num_tanks) fail(name + ".tank", p_[j].tank, "must be < tanks.size() (or -1)");
+  }
+  validate(cmd_, "command");
+  for (size_t j = 0; j < n_thr; ++j) sched_[j] = initial_schedule(p_[j]);
+  prepare_now(0);
+}
+
+void ThrusterSet::command(const ThrusterArray& T_req)
+{
+  T_req_ = T_req;
+  pending_ = true;
+}
+
+double ThrusterSet::s_since_latch(int j, int64_t t_ns) const
+{
+  return seconds_from_ns(t_ns - sched_[static_cast<size_t>(j)].t_latch_ns);
+}
+
+double ThrusterSet::kappa(int j) const
+{
+  const auto uj = static_cast<size_t>(j);
+  const ThrusterParams& p = p_[uj];
+  if (health_[uj] == ThrusterHealth::FailedOff) return 0.0;
+  if (p.transient == ThrusterTransient::FirstOrder) return kappa_fo_[uj];
+  const double s = s_since_latch(j, t0_ns_);
+  return scheduled_kappa(p, sched_[uj], s, sim::valve_open(sched_[uj], s));
+}
+
+bool ThrusterSet::valve_open(int j) const
+{
+  return sim::valve_open(sched_[static_cast<size_t>(j)], s_since_latch(j, t0_ns_));
+}
+
+ThrusterEffect ThrusterSet::effect(int j, const StateVector& x, const StateLayout& L) const
+{
+  const auto uj = static_cast<size_t>(j);
+  const ThrusterParams& p = p_[uj];
+  if (health_[uj] == ThrusterHealth::FailedOff) return ThrusterEffect{};
+  if (p.tank >= 0 && !(x(L.m_p(p.tank)) > 0.0)) return ThrusterEffect{};  // §5.6 empty tank
+  return thruster_effect(p, kappa(j));
+}
+
+void ThrusterSet::set_health(int j, ThrusterHealth h)
+{
+  if (j < 0 || j >= num_thr()) detail::fail("thruster index", j, "must be in [0, num_thr)");
+  const int hv = static_cast<int>(h);
+  if (hv < 0 || hv > 2)
+    detail::fail("thrusters[" + std::to_string(j) + "].health", hv, "must be Nominal, FailedOff or StuckOn");
+  const auto uj = static_cast<size_t>(j);
+  const ThrusterParams& p = p_[uj];
+  const double kappa_now = kappa(j);
+  ValveSchedule& s = sched_[uj];
+  const ThrusterHealth old = health_[uj];
+  health_[uj] = h;
+  switch (h) {
+    case ThrusterHealth::FailedOff:  // closed now, no tail
+      s = initial_schedule(p);
+      s.t_latch_ns = t0_ns_;
+      kappa_fo_[uj] = 0.0;
+      break;
+    case ThrusterHealth::StuckOn:  // open from now on, rising from the present factor
+      s.t_latch_ns = t0_ns_;
+      s.T_on = std::numeric_limits<double>::infinity();
+      if (p.transient == ThrusterTransient::Table) s.tau_on0 = ramp_entry_time(p.on_ramp, kappa_now, true);
+      break;
+    case ThrusterHealth::Nominal:
+      if (old == ThrusterHealth::StuckOn) {  // the valve closes now; commands act again
+        s.t_latch_ns = t0_ns_;
+        s.T_on = 0.0;
+        if (p.transient == ThrusterTransient::Table)
+          s.tau_off0 = ramp_entry_time(p.off_ramp, kappa_now, false);
+      }
+      break;
+  }
+  prepare_now(t0_ns_);
+}
+
+// ------------------------------------------------------------------ physics
+
+double ThrusterSet::stage_kappa(int j, double t) const
+{
+  const auto uj = static_cast<size_t>(j);
+  const ThrusterParams& p = p_[uj];
+  if (p.transient != ThrusterTransient::FirstOrder)
+    return scheduled_kappa(p, sched_[uj], s_at_t0_[uj] + t, open_[uj]);
+  const FirstOrderStage& f = fo_[uj];
+  if (t == f.t[0]) return f.kappa[0];
+  if (t == f.t[1]) return f.kappa[1];
+  if (t == f.t[2]) return f.kappa[2];
+  // Not an RK4 stage time of the current sub-step (a caller evaluating the
+  // derivatives elsewhere): the closed form itself.
+  return f.kappa_c + f.d0 * std::exp(-f.w * (t - f.tau)) + f.delta;
+}
+
+void ThrusterSet::accumulate(const EffectorStage& stage, EffectorSums& sums) const
+{
+  for (int j = 0; j < num_thr(); ++j) {
+    const auto uj = static_cast<size_t>(j);
+    const ThrusterParams& p = p_[uj];
+    if (health_[uj] == ThrusterHealth::FailedOff) continue;
+    if (p.tank >= 0 && !(stage.x(stage.layout.m_p(p.tank)) > 0.0)) continue;  // §5.6 empty tank
+    const ThrusterEffect e = thruster_effect(p, stage_kappa(j, stage.t));
+    sums.F_B += e.F_B;
+    sums.L_B += e.L_B;
+    if (p.tank >= 0) sums.m_p_dot[static_cast<size_t>(p.tank)] -= e.mdot;
+  }
+}
+
+// ------------------------------------------------------------ step protocol
+
+void ThrusterSet::latch(int64_t t_L_ns)
+{
+  for (int j = 0; j < num_thr(); ++j) {
+    const auto uj = static_cast<size_t>(j);
+    if (health_[uj] != ThrusterHealth::Nominal) continue;  // failed valves ignore commands
+    const ThrusterParams& p = p_[uj];
+    const double s = s_since_latch(j, t_L_ns);
+    const double kappa_now =
+        p.transient == ThrusterTransient::FirstOrder
+            ? kappa_fo_[uj]
+            : scheduled_kappa(p, sched_[uj], s, sim::valve_open(sched_[uj], s));
+    const bool firing = valve_firing(sched_[uj], s);
+    if (latch_thruster(p, cmd_, T_req_[uj], t_L_ns, kappa_now, firing, sched_[uj]) ==
+        LatchResult::IgnoredMinOnTime)
+      ++counters_.ignored_min_on;
+  }
+  pending_ = false;
+  ++counters_.latches;
+}
+
+void ThrusterSet::at_instant(int64_t t_ns)
+{
+  if (pending_ && t_ns % cmd_.T_upd_ns == 0) latch(t_ns);
+}
+
+int64_t ThrusterSet::next_cut_ns(int64_t t_ns) const
+{
+  // Latch instants k*T_upd cut the step only while a message is pending.
+  if (!pending_) return std::numeric_limits<int64_t>::max();
+  return (t_ns / cmd_.T_upd_ns + 1) * cmd_.T_upd_ns;
+}
+
+void ThrusterSet::begin_segment(int64_t t0_ns)
+{
+  t0_ns_ = t0_ns;
+  for (int j = 0; j < num_thr(); ++j) s_at_t0_[static_cast<size_t>(j)] = s_since_latch(j, t0_ns);
+}
+
+double ThrusterSet::next_event(double tau, double H, double snap) const
+{
+  // Next event in (tau + snap, H - snap): valve closings and Table breakpoints.
+  double next = H;
+  const auto consider = [&](double e) {
+    if (e > tau + snap && e < next && e < H - snap) next = e;
+  };
+  for (int j = 0; j < num_thr(); ++j) {
+    const auto uj = static_cast<size_t>(j);
+    const ValveSchedule& s = sched_[uj];
+    const double s0 = s_at_t0_[uj];
+    consider(s.T_on - s0);  // valve closing (opening happens only at latches)
+    if (p_[uj].transient != ThrusterTransient::Table) continue;
+    for (const RampPoint& q : p_[uj].on_ramp)  // on-ramp knots, while open
+      if (q.t > s.tau_on0 && q.t - s.tau_on0 < s.T_on) consider(q.t - s.tau_on0 - s0);
+    for (const RampPoint& q : p_[uj].off_ramp)  // off-ramp knots, after closing
+      if (q.t > s.tau_off0) consider(s.T_on + (q.t - s.tau_off0) - s0);
+  }
+  return next;
+}
+
+void ThrusterSet::begin_substep(double tau, double tau_end)
+{
+  const double mid = 0.5 * (tau + tau_end);
+  const double h = tau_end - tau;  // as Plant passes it to rk4_step
+  for (int j = 0; j < num_thr(); ++j) {
+    const auto uj = static_cast<size_t>(j);
+    const bool open = sim::valve_open(sched_[uj], s_at_t0_[uj] + mid);
+    open_[uj] = open;
+    const ThrusterParams& p = p_[uj];
+    if (p.transient != ThrusterTransient::FirstOrder) continue;
+    // kappa(s) = kappa_c + d0 e^{-w s} on [0, h] (§5.3 in closed form).
+    FirstOrderStage& f = fo_[uj];
+    const double kappa0 = kappa_fo_[uj];
+    f.tau = tau;
+    f.t[0] = tau;  // RK4 stage times, formed exactly as rk4_step forms them
+    f.t[1] = tau + 0.5 * h;
+    f.t[2] = tau + h;
+    f.kappa_c = open ? 1.0 : 0.0;
+    f.w = open ? p.omega_on : p.omega_off;
+    f.d0 = kappa0 - f.kappa_c;
+    if (f.d0 == 0.0 || !(h > 0.0)) {  // at rest (0 closed, 1 open) or no interval
+      f.delta = 0.0;
+      f.kappa[0] = f.kappa[1] = f.kappa[2] = f.kappa_end = kappa0;
+      continue;
+    }
+    const double wh = f.w * h;
+    const double e_half = std::exp(-0.5 * wh);
+    const double e_full = std::exp(-wh);
+    // Exact mean of e^{-w s} over [0, h] minus RK4's weighting of it
+    // (1/6, 4/6, 1/6 at 0, h/2, h): an O((w h)^4 / 2880) correction added to
+    // every stage, so that the RK4 sum of kappa (and of F and mdot, linear in
+    // kappa) over the sub-step is the exact integral.
+    const double mean_exact = -std::expm1(-wh) / wh;
+    const double mean_rk4 = (1.0 + 4.0 * e_half + e_full) / 6.0;
+    f.delta = f.d0 * (mean_exact - mean_rk4);
+    f.kappa_end = f.kappa_c + f.d0 * e_full;
+    f.kappa[0] = kappa0 + f.delta;
+    f.kappa[1] = f.kappa_c + f.d0 * e_half + f.delta;
+    f.kappa[2] = f.kappa_end + f.delta;
+  }
+}
+
+void ThrusterSet::end_substep()
+{
+  for (int j = 0; j < num_thr(); ++j) {
+    const auto uj = static_cast<size_t>(j);
+    if (p_[uj].transient != ThrusterTransient::FirstOrder) continue;
+    double k = fo_[uj].kappa_end;
+    if (std::abs(k) < DBL_MIN) k = 0.0;  // a decayed tail: no subnormal arithmetic
+    kappa_fo_[uj] = k;
+  }
+}
+
+void ThrusterSet::prepare_now(int64_t t_ns)
+{
+  begin_segment(t_ns);
+  begin_substep(0.0, 0.0);
+}
+
+}  // namespace sim
