@@ -194,7 +194,7 @@ int cmd_bench(const std::string& dir, std::ostream& out, std::ostream& err)
       return kExitInvalidScenario;
     }
   }
-  // S2 as shipped: sim::Vehicle with 9 thrusters and two tanks, Mars gravity,
+  // S2 as shipped: sim::Plant with 9 thrusters and two tanks, Mars gravity,
   // dt = 0.05 s, fsw_acs with the 8-thruster chain at 10 Hz, 480 s burn
   {
     const std::string s2 = (fs::path(dir) / "s2_mars_orbit_insertion.yaml").string();

@@ -10,16 +10,6 @@
 
 namespace harness {
 
-void RunPlant::latch_wheels(const sim::WheelArray& u)
-{
-  if (veh_) {
-    u_held_ = u;
-    veh_->latch_wheel_commands(u);
-  } else {
-    craft_->latch_commands(u);
-  }
-}
-
 // The nominal axis d tilted by delta about a = unit(d x x_B) (or unit(d x y_B)
 // when d is within 25 deg of x_B): d' = cos(delta) d + sin(delta) (a x d).
 // For d = +z_B this tilts toward +x_B.
@@ -32,12 +22,10 @@ Eigen::Vector3d misaligned_axis(const Eigen::Vector3d& d, double delta)
   return (std::cos(delta) * d + std::sin(delta) * a.cross(d)).normalized();
 }
 
-RunPlant build_plant(const Scenario& sc)
+std::unique_ptr<sim::Plant> build_plant(const Scenario& sc)
 {
-  RunPlant p;
-  p.n_rw_ = static_cast<int>(sc.wheels.size());
-  p.n_thr_ = static_cast<int>(sc.thrusters.size());
-  if (p.n_thr_ > sim::kMaxThrusters)
+  std::unique_ptr<sim::Plant> p;
+  if (sc.thrusters.size() > static_cast<size_t>(sim::kMaxThrusters))
     throw config_error(sc, "thrusters", "at most " + std::to_string(sim::kMaxThrusters) + " thrusters in the plant");
   sim::SpacecraftParams params;
   params.hub.m_h = sc.spacecraft.mass;
@@ -50,8 +38,8 @@ RunPlant build_plant(const Scenario& sc)
   ic.v_CN_N = sc.spacecraft.initial.v_CN_N;
   ic.sigma_BN = sc.spacecraft.initial.sigma_BN;
   ic.omega_BN_B = sc.spacecraft.initial.omega_BN_B;
-  if (p.n_thr_ == 0) {
-    built_by_plant(sc, "spacecraft", [&] { p.craft_ = std::make_unique<sim::Spacecraft>(params, ic); });
+  if (sc.thrusters.empty()) {
+    built_by_plant(sc, "spacecraft", [&] { p = std::make_unique<sim::Plant>(sim::PlantParams{params, {}}, ic); });
     return p;
   }
   sim::PropulsionParams prop;
@@ -80,14 +68,14 @@ RunPlant build_plant(const Scenario& sc)
     prop.thrusters.push_back(tp);
   }
   prop.command.T_upd_ns = static_cast<int64_t>(sc.rates.thruster_divisor) * static_cast<int64_t>(sc.tick_ns());
-  built_by_plant(sc, "thrusters", [&] { p.veh_ = std::make_unique<sim::Vehicle>(params, prop, ic); });
+  built_by_plant(sc, "thrusters", [&] { p = std::make_unique<sim::Plant>(sim::PlantParams{params, prop}, ic); });
   return p;
 }
 
-BurnSchedule burn_schedule(const Scenario& sc, const RunPlant& plant)
+BurnSchedule burn_schedule(const Scenario& sc, const sim::Plant& plant)
 {
   BurnSchedule b;
-  b.T_upd_ns = plant.thruster_period_ns();
+  b.T_upd_ns = plant.num_thr() > 0 ? plant.thrusters().command_params().T_upd_ns : 0;
   if (!sc.burn || plant.num_thr() == 0) return b;
   for (size_t j = 0; j < sc.thrusters.size(); ++j)
     if (sc.thrusters[j].name == sc.burn->thruster) b.engine = static_cast<int>(j);

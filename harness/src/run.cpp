@@ -49,7 +49,8 @@ constexpr Slot kTickProtocol[] = {
 
 struct Run::Impl {
   Scenario sc;
-  RunPlant plant;
+  std::unique_ptr<sim::Plant> plant_owner;
+  sim::Plant& plant;
   FswSetup fsw_setup;
   std::unique_ptr<FswEndpoint> fsw;
   std::unique_ptr<SensorSuite> sensors;
@@ -75,7 +76,7 @@ struct Run::Impl {
   Channel<TruthMsg>* truth_ch = nullptr;
   Channel<FswAcsHealthMsg>* health_ch = nullptr;
 
-  explicit Impl(const Scenario& s) : sc(s), plant(build_plant(s)), sched(s.tick_ns()) {}
+  explicit Impl(const Scenario& s) : sc(s), plant_owner(build_plant(s)), plant(*plant_owner), sched(s.tick_ns()) {}
   void wire(RunConfig& cfg);
 };
 
@@ -93,11 +94,11 @@ void Run::Impl::wire(RunConfig& cfg)
       throw config_error(sc, "fsw", e.what());
     }
   }
-  sensors = std::make_unique<SensorSuite>(sc, fsw_setup);
+  sensors = std::make_unique<SensorSuite>(sc, fsw_setup, plant);
 
   // ---- messages --------------------------------------------------------------
   DataFlow& f = flow;
-  f.add_component("plant", plant.kind());
+  f.add_component("plant", "sim::Plant");
   f.add_component("sensors", "FSW input: sampled sensor outputs (truth where a sensor is disabled)");
   f.add_component("fsw_acs", fsw->describe());
   f.add_component("actuators", "harness: FSW actuator message -> plant commands");
@@ -125,13 +126,12 @@ void Run::Impl::wire(RunConfig& cfg)
                  f.writer("burn_monitor", *burn_m));
   }
   if (samples_m) {
-    f.add_component("sample_sensors", "sim::Gyro, sim::StarTracker, sim::WheelTachometers");
-    sample.emplace(SampleSensorsTask{sensors.get(), tk, f.reader("sample_sensors", truth_m),
-                                     f.writer("sample_sensors", *samples_m)});
+    f.add_component("sample_sensors", "sim::Gyro, sim::StarTracker, sim::WheelTachometers on the plant's sensor truth");
+    sample.emplace(SampleSensorsTask{sensors.get(), tk, f.writer("sample_sensors", *samples_m)});
   }
   if (css_m) {
-    f.add_component("css", "sim::CoarseSunSensor");
-    css.emplace(CssTask{sensors.get(), tk, f.reader("css", truth_m), f.writer("css", *css_m)});
+    f.add_component("css", "sim::CoarseSunSensor on the plant's sensor truth");
+    css.emplace(CssTask{sensors.get(), tk, f.writer("css", *css_m)});
   }
   fsw_input.emplace(FswInputTask{sensors.get(), tk, f.reader("sensors", truth_m),
                                  samples_m ? f.reader("sensors", *samples_m) : Reader<SensorSampleMsg>(),
@@ -281,7 +281,7 @@ std::vector<SummaryItem> Run::summary() const
     out.push_back({"final_pointing_error_deg", final_pointing_error_deg(), "deg", "pointing error at the end of the run"});
   if (m.plant.num_thr() == 0) return out;
   double used = 0.0;
-  for (int k = 0; k < m.plant.num_tanks(); ++k) used += m.plant.m_prop0(k) - m.plant.m_prop(k);
+  for (int k = 0; k < m.plant.num_tanks(); ++k) used += m.plant.tanks()[static_cast<size_t>(k)].m_p0 - m.plant.m_prop(k);
   out.push_back({"propellant_used_kg", used, "kg", "all tanks, whole run"});
   const double mu = m.sc.environment.mu;
   const BurnMonitor& bm = *m.burn;

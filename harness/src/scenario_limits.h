@@ -12,7 +12,7 @@
 
 #include "fsw/css_sun.h"     // FSW_MAX_CSS
 #include "fsw/fsw_config.h"  // FSW_MAX_RW, FSW_MAX_THR
-#include "sim/spacecraft.h"  // sim::kMaxWheels
+#include "sim/capacities.h"  // sim::kMaxWheels, kMaxThrusters, kMaxCss
 #include "sim/thruster.h"    // sim::kMaxThrusters
 
 namespace harness {

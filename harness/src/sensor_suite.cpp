@@ -10,8 +10,9 @@
 
 namespace harness {
 
-SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw)
-    : n_rw_(static_cast<int>(sc.wheels.size())),
+SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant)
+    : plant_(plant),
+      n_rw_(static_cast<int>(sc.wheels.size())),
       num_css_(fsw.cfg.css.num_css),
       r_sun_N_(sc.environment.sun_position_N),
       ideal_css_(fsw.ideal_css),
@@ -70,23 +71,17 @@ SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw)
   });
 }
 
-sim::SensorTruth SensorSuite::truth_for_sensors(int64_t t_ns, const TruthMsg& t) const
+const sim::SensorTruth& SensorSuite::truth_now()
 {
-  sim::SensorTruth st;
-  st.t_ns = t_ns;
-  st.sigma_BN = ev(t.sigma_BN);
-  st.omega_BN_B = ev(t.omega_BN_B);
-  st.r_BN_N = ev(t.r_BN_N);
-  st.r_SunN_N = r_sun_N_;
-  for (int i = 0; i < n_rw_; ++i) st.Omega[static_cast<size_t>(i)] = t.Omega[i];
-  return st;
+  plant_.fill_sensor_truth(truth_, r_sun_N_);
+  return truth_;
 }
 
-bool SensorSuite::sample(uint64_t k, int64_t t_ns, const TruthMsg& truth, SensorSampleMsg& out)
+bool SensorSuite::sample(uint64_t k, SensorSampleMsg& out)
 {
   const bool g = gyro_ && k % div_gyro_ == 0, a = st_ && k % div_st_ == 0, w = tach_ && k % div_tach_ == 0;
   if (!(g || a || w)) return false;
-  const sim::SensorTruth st = truth_for_sensors(t_ns, truth);
+  const sim::SensorTruth& st = truth_now();
   if (g && gyro_->update(st)) {
     const sim::GyroOutput& o = gyro_->output();
     put3(out.omega_PN_P, o.omega_PN_P);
@@ -108,9 +103,9 @@ bool SensorSuite::sample(uint64_t k, int64_t t_ns, const TruthMsg& truth, Sensor
   return true;
 }
 
-void SensorSuite::read_css(int64_t t_ns, const TruthMsg& truth, CssMsg& out)
+void SensorSuite::read_css(CssMsg& out)
 {
-  const sim::SensorTruth st = truth_for_sensors(t_ns, truth);
+  const sim::SensorTruth& st = truth_now();
   for (size_t i = 0; i < css_.size(); ++i) {
     css_[i].update(st);
     out.y[i] = css_[i].output().y;

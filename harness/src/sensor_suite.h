@@ -11,6 +11,7 @@
 #include "fsw_config.h"
 #include "harness/loop_messages.h"
 #include "harness/scenario.h"
+#include "sim/plant.h"
 #include "sim/sensors.h"
 
 namespace harness {
@@ -19,16 +20,17 @@ class SensorSuite {
  public:
   // Each model on its own stream Rng(seed, name); one noise switch.  Throws
   // ScenarioError (at the sensor's key) when a model rejects its parameters.
-  SensorSuite(const Scenario& sc, const FswSetup& fsw);
+  // The models sample the plant's own sensor truth (sim::Plant::fill_sensor_truth).
+  SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant);
 
   bool has_css_models() const { return !css_.empty(); }
   bool has_sampled_models() const { return gyro_ || st_ || tach_; }
 
   // Every tick: the models whose own period is due at tick k sample truth;
   // `out` keeps the held outputs of the others.  False when none was due.
-  bool sample(uint64_t k, int64_t t_ns, const TruthMsg& truth, SensorSampleMsg& out);
+  bool sample(uint64_t k, SensorSampleMsg& out);
   // The coarse sun sensors at an FSW tick.
-  void read_css(int64_t t_ns, const TruthMsg& truth, CssMsg& out);
+  void read_css(CssMsg& out);
   // The FSW input: the held samples (gyro -> omega_BN_B, star tracker ->
   // sigma_BN + att_valid, tachometers -> Omega), CSS readings (or the ideal
   // cube-face readings), truth for a disabled sensor and for r_CoM_B.
@@ -36,7 +38,9 @@ class SensorSuite {
                  FswAcsSensorMsg& msg) const;
 
  private:
-  sim::SensorTruth truth_for_sensors(int64_t t_ns, const TruthMsg& t) const;
+  const sim::SensorTruth& truth_now();
+  const sim::Plant& plant_;
+  sim::SensorTruth truth_;
   int n_rw_ = 0;
   int num_css_ = 0;
   Eigen::Vector3d r_sun_N_;

@@ -22,8 +22,8 @@ double principal_angle(const Eigen::Vector3d& sigma_BN, const Eigen::Vector3d& s
 
 void TruthTask::operator()(uint64_t k) const
 {
-  const RunPlant& p = *plant;
-  const sim::StateVector& x = p.x();
+  const sim::Plant& p = *plant;
+  const sim::StateVector& x = p.state();
   const sim::MassProps mp = p.mass_props();
   TruthMsg t{};
   for (int i = 0; i < 3; ++i) {
@@ -47,7 +47,7 @@ void TruthTask::operator()(uint64_t k) const
     t.Omega[i] = p.Omega(i);
     t.u_s[i] = p.u_s(i);
   }
-  for (int j = 0; j < p.num_thr(); ++j) t.F_thr[j] = p.thrust(j);
+  for (int j = 0; j < p.num_thr(); ++j) t.F_thr[j] = p.thruster_effect(j).F_B.norm();
   out.write(t, k * tick_ns);
 }
 
@@ -91,14 +91,13 @@ void BurnMonitor::operator()(uint64_t k)
 void SampleSensorsTask::operator()(uint64_t k) const
 {
   SensorSampleMsg s = out.channel().value();  // held outputs of the models not due
-  const int64_t t_ns = static_cast<int64_t>(k * tick_ns);
-  if (sensors->sample(k, t_ns, truth.read(), s)) out.write(s, static_cast<uint64_t>(t_ns));
+  if (sensors->sample(k, s)) out.write(s, k * tick_ns);
 }
 
 void CssTask::operator()(uint64_t k) const
 {
   CssMsg m{};
-  sensors->read_css(static_cast<int64_t>(k * tick_ns), truth.read(), m);
+  sensors->read_css(m);
   out.write(m, k * tick_ns);
 }
 
@@ -147,7 +146,7 @@ void PlantInputTask::operator()(uint64_t) const
   const PlantCmdMsg& c = in.read();
   sim::WheelArray u{};
   for (int i = 0; i < plant->num_rw(); ++i) u[static_cast<size_t>(i)] = c.u_s[i];
-  plant->latch_wheels(u);
+  plant->latch_wheel_commands(u);
   if (plant->num_thr() > 0) {
     sim::ThrusterArray T{};
     for (int j = 0; j < plant->num_thr(); ++j) T[static_cast<size_t>(j)] = c.T_on[j];

@@ -16,6 +16,7 @@
 #include "harness/messages.h"
 #include "harness/recorder.h"
 #include "plant_builder.h"
+#include "sim/plant.h"
 #include "sensor_suite.h"
 #include "sim/propellant.h"
 
@@ -35,7 +36,7 @@ struct BurnStateMsg {
 
 // Plant state -> `truth` (every tick).
 struct TruthTask {
-  const RunPlant* plant;
+  const sim::Plant* plant;
   uint64_t tick_ns;
   Writer<TruthMsg> out;
   void operator()(uint64_t k) const;
@@ -50,12 +51,12 @@ struct BurnMonitor {
     std::array<double, sim::kMaxTanks> m_p{};
     Eigen::Vector3d dv_ng = Eigen::Vector3d::Zero(), r = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero();
   };
-  BurnMonitor(const RunPlant* p, uint64_t tk, double dt_s, double mu_, BurnSchedule b, double F_eng,
+  BurnMonitor(const sim::Plant* p, uint64_t tk, double dt_s, double mu_, BurnSchedule b, double F_eng,
               Reader<TruthMsg> in, Writer<BurnStateMsg> w)
       : plant(p), tick_ns(tk), dt(dt_s), mu(mu_), burn(b), engine_F_max(F_eng), truth(in), out(w)
   {
   }
-  const RunPlant* plant;
+  const sim::Plant* plant;
   uint64_t tick_ns;
   double dt;              // [s]
   double mu;              // [m^3/s^2]
@@ -73,21 +74,20 @@ struct BurnMonitor {
   void snap(Snap& s, double t, const TruthMsg& tr) const;
 };
 
-// Gyro, star tracker, tachometers (every tick; each samples when its own
-// period is due, its output held in between) -> `sensor_samples`.
+// Gyro, star tracker, tachometers (every tick; each samples the plant's
+// sensor truth when its own period is due, its output held in between)
+// -> `sensor_samples`.
 struct SampleSensorsTask {
-  SensorSuite* sensors;
+  SensorSuite* sensors;  // samples the plant's sensor truth
   uint64_t tick_ns;
-  Reader<TruthMsg> truth;
   Writer<SensorSampleMsg> out;
   void operator()(uint64_t k) const;
 };
 
 // Coarse sun sensors (FSW ticks) -> `css_readings`.
 struct CssTask {
-  SensorSuite* sensors;
+  SensorSuite* sensors;  // samples the plant's sensor truth
   uint64_t tick_ns;
-  Reader<TruthMsg> truth;
   Writer<CssMsg> out;
   void operator()(uint64_t k) const;
 };
@@ -132,21 +132,21 @@ struct ActuatorTask {
 // The plant takes `plant_cmd` (FSW ticks): wheel torques latched (§4.3),
 // thruster requests latched at its next command instant (§5.2).
 struct PlantInputTask {
-  RunPlant* plant;
+  sim::Plant* plant;
   Reader<PlantCmdMsg> in;
   void operator()(uint64_t k) const;
 };
 
 // Figures of merit (record ticks) -> `metrics`.
 struct MetricsTask {
-  MetricsTask(const RunPlant* p, uint64_t tk, bool inertial_, const Eigen::Vector3d& sigma_R0N_,
+  MetricsTask(const sim::Plant* p, uint64_t tk, bool inertial_, const Eigen::Vector3d& sigma_R0N_,
               const Eigen::Vector3d& sun_axis_B_, const Eigen::Vector3d& r_sun_N_, double mu_, Reader<TruthMsg> t,
               Reader<BurnStateMsg> b, bool has_b, Writer<MetricsMsg> w)
       : plant(p), tick_ns(tk), inertial(inertial_), sigma_R0N(sigma_R0N_), sun_axis_B(sun_axis_B_),
         r_sun_N(r_sun_N_), mu(mu_), truth(t), burn(b), has_burn(has_b), out(w)
   {
   }
-  const RunPlant* plant;
+  const sim::Plant* plant;
   uint64_t tick_ns;
   bool inertial;
   Eigen::Vector3d sigma_R0N, sun_axis_B, r_sun_N;

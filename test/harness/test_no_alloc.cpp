@@ -95,7 +95,7 @@ TEST(NoAlloc, ClosedLoopRunDoesNotAllocate)
   }
 }
 
-// S2: sim::Vehicle (thrusters, tanks, gravity), the 8-thruster fsw_acs chain
+// S2: sim::Plant with thrusters, tanks and gravity,, the 8-thruster fsw_acs chain
 // and the burn, over ignition (burn.start moved to 10 s): no allocation either.
 TEST(NoAlloc, S2ThrusterRunDoesNotAllocate)
 {

@@ -1,4 +1,4 @@
-// S2 Mars orbit insertion, closed loop: sim::Vehicle (main engine with a
+// S2 Mars orbit insertion, closed loop: sim::Plant (main engine with a
 // 0.7 deg thrust misalignment, 8 ACS thrusters, two tanks, Mars gravity) and
 // the FSW application fsw_acs (mrp_fb with integral term -> thr_map NNLS ->
 // pulsing).  Numbers in the assertions are derived from the scenario's

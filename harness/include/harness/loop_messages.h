@@ -7,8 +7,7 @@
 
 #include <cstdint>
 
-#include "sim/spacecraft.h"  // kMaxWheels
-#include "sim/thruster.h"     // kMaxThrusters
+#include "sim/capacities.h"
 
 extern "C" {
 #include "fsw/fsw_acs_msgs.h"
