@@ -193,6 +193,11 @@ void Run::Impl::wire(RunConfig& cfg)
   }
 }
 
+FswAcsConfig fsw_acs_config_of(const Scenario& sc)
+{
+  return make_fsw_setup(sc, build_plant(sc)->mass_props()).cfg;
+}
+
 Run::Run(const Scenario& sc, RunConfig cfg) : impl_(std::make_unique<Impl>(sc)) { impl_->wire(cfg); }
 
 Run::~Run() = default;

@@ -54,6 +54,12 @@ struct RunConfig {
   size_t chunk_rows = 1024;  // recorder rows per chunk handed to the sinks
 };
 
+// The FSW application configuration a scenario gives (what InProcessFsw is
+// built with): an endpoint that runs the same application elsewhere (an FSW
+// process, a board under test) is configured with it.  Throws ScenarioError
+// like Run.
+FswAcsConfig fsw_acs_config_of(const Scenario& sc);
+
 class Run {
  public:
   // Builds the plant, the sensors, the FSW endpoint, the data flow and the
