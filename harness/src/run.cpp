@@ -250,6 +250,8 @@ const Scenario& Run::scenario() const { return impl_->sc; }
 const Recorder& Run::recorder() const { return impl_->rec; }
 const DataFlow& Run::dataflow() const { return impl_->flow; }
 const Scheduler& Run::scheduler() const { return impl_->sched; }
+sim::Plant& Run::plant() { return impl_->plant; }
+const sim::Plant& Run::plant() const { return impl_->plant; }
 
 const MemorySink& Run::memory() const
 {

@@ -4,6 +4,8 @@
 // at that tick with its message, the rows recorded so far kept.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -97,4 +99,26 @@ TEST(Endpoint, ALinkFailureStopsTheRunAndKeepsItsRows)
   // rows of t = 0 .. 4.9 s recorded (10 Hz), handed to the sink at the failure
   EXPECT_EQ(run.memory().rows(), 50u);
   EXPECT_FALSE(run.memory().complete());
+}
+
+// Device parameters change between steps without rebuilding the run: a wheel
+// switched off mid-run holds zero torque from then on, the others go on.
+TEST(Endpoint, ThePlantsDevicesChangeBetweenSteps)
+{
+  harness::Run run(short_s1());
+  ASSERT_TRUE(run.step_ticks(100));  // 5 s
+  run.plant().set_wheel_health(2, sim::WheelHealth::Off);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks()));
+  const auto t = run.memory().column("t");
+  const auto u2 = run.memory().column("wheel_torque_2");
+  const auto u0 = run.memory().column("wheel_torque_0");
+  double before = 0.0, after = 0.0, other = 0.0;
+  for (size_t r = 0; r < t.size(); ++r) {
+    if (t[r] < 5.0) before = std::max(before, std::fabs(u2[r]));
+    if (t[r] >= 5.0) after = std::max(after, std::fabs(u2[r]));
+    if (t[r] >= 5.0) other = std::max(other, std::fabs(u0[r]));
+  }
+  EXPECT_GT(before, 1e-4);  // the wheel was working (S1 acquires from a tumble)
+  EXPECT_EQ(after, 0.0);
+  EXPECT_GT(other, 1e-4);
 }

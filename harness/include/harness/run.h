@@ -31,6 +31,7 @@
 #include "harness/recorder.h"
 #include "harness/scenario.h"
 #include "harness/scheduler.h"
+#include "sim/plant.h"
 
 namespace harness {
 
@@ -90,6 +91,10 @@ class Run {
   const MemorySink& memory() const;
   const DataFlow& dataflow() const;
   const Scheduler& scheduler() const;
+  // The plant, for changes between steps (sim::Plant's device setters: wheel
+  // limits, friction and health, thruster health) and its §13 outputs.
+  sim::Plant& plant();
+  const sim::Plant& plant() const;
 
   // Pointing error of the last recorded row [deg] (NaN before the first).
   double final_pointing_error_deg() const;
