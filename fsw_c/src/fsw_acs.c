@@ -193,8 +193,7 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg)
   reset_dynamic(st, cfg);
   st->mode = cfg->initial_mode;
   st->actuation = cfg->initial_actuation;
-  st->has_prev = 0;
-  st->t_prev_ns = 0u;
+  fsw_clock_reset(&st->clock);
 }
 
 /* ---- cycle -------------------------------------------------------------- */
@@ -400,7 +399,11 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   if (!((req_act == FSW_ACS_ACT_WHEELS && cfg->has_wheels) ||
         (req_act == FSW_ACS_ACT_THRUSTERS && cfg->has_thrusters)))
     return finish(st, h, FSW_E_BAD_INPUT);
-  if (st->has_prev && sens->t_ns <= st->t_prev_ns) return finish(st, h, FSW_E_TIME);
+  {
+    fsw_real dt; /* [s] unused: the stages derive their own */
+    s = fsw_clock_dt(&st->clock, sens->t_ns, &dt);
+    if (s != FSW_OK) return finish(st, h, s);
+  }
   if (!fsw_v3_is_finite(sens->omega_BN_B)) return finish(st, h, FSW_E_BAD_INPUT);
   if (req_mode == FSW_ACS_MODE_INERTIAL && (sens->att_valid != 1u || !fsw_v3_is_finite(sens->sigma_BN)))
     return finish(st, h, FSW_E_BAD_INPUT);
@@ -463,8 +466,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   fsw_v3_copy(h->sigma_BR, guid.sigma_BR);
   fsw_v3_copy(h->omega_BR_B, guid.omega_BR_B);
   h->att_err_angle = fsw_mrp_angle(guid.sigma_BR);
-  st->has_prev = 1;
-  st->t_prev_ns = sens->t_ns;
+  fsw_clock_commit(&st->clock, sens->t_ns);
   if (st->cycles < UINT32_MAX) st->cycles++;
   if (fsw_status_is_error(acc)) safe_output(act);
   return finish(st, h, acc);

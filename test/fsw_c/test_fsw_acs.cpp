@@ -254,7 +254,7 @@ TEST(FswAcsCycle, BadInputGivesSafeOutputAdvancesNothingAndRecovers)
     fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2);
   }
   const FswMrpFbState fb_before = g_st.mrp_fb;
-  const uint64_t t_prev = g_st.t_prev_ns;
+  const uint64_t t_prev = g_st.clock.t_prev_ns;
   struct Spoil {
     const char* why;
     void (*f)(FswAcsSensorMsg&);
@@ -277,7 +277,7 @@ TEST(FswAcsCycle, BadInputGivesSafeOutputAdvancesNothingAndRecovers)
     EXPECT_EQ(1, g_h.safe_output) << sp.why;
     EXPECT_EQ(sp.want, g_h.status);
     EXPECT_EQ(0, std::memcmp(&fb_before, &g_st.mrp_fb, sizeof fb_before)) << sp.why;
-    EXPECT_EQ(t_prev, g_st.t_prev_ns);
+    EXPECT_EQ(t_prev, g_st.clock.t_prev_ns);
   }
   EXPECT_EQ(5u, g_st.health.bad_input);
   EXPECT_EQ(2u, g_st.health.bad_time);

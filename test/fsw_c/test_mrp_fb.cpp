@@ -339,7 +339,7 @@ TEST_F(MrpFb, TimeMustIncrease)
     EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.torque_B, 0.0);
     EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.int_torque_B, 0.0);
     EXPECT_V3_NEAR(is[0], is[1], is[2], st_.int_sigma, 0.0);  // no state advanced
-    EXPECT_EQ(1000000000ull, st_.t_prev_ns);
+    EXPECT_EQ(1000000000ull, st_.clock.t_prev_ns);
   }
   EXPECT_EQ(3u, st_.health.bad_time);
   // recovery: dt measured from the last accepted call (1 s), not the bad ones
@@ -390,7 +390,7 @@ TEST_F(MrpFb, NonFiniteInputGivesZeroTorqueAndKeepsState)
   n += 3;
   EXPECT_EQ(n, st_.health.bad_input);
   EXPECT_V3_NEAR(is[0], is[1], is[2], st_.int_sigma, 0.0);
-  EXPECT_EQ(1000000000ull, st_.t_prev_ns);
+  EXPECT_EQ(1000000000ull, st_.clock.t_prev_ns);
   // the next good call recovers
   in_ = good;
   EXPECT_EQ(FSW_OK, step(2000000000ull));
@@ -471,7 +471,7 @@ TEST_F(MrpFb, ResetClearsIntegralAndTimingAndIsRepeatable)
     first[k] = out_;
   }
   fsw_mrp_fb_reset(&st_);
-  EXPECT_EQ(0, st_.has_prev);
+  EXPECT_EQ(0, st_.clock.has_prev);
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, st_.int_sigma, 0.0);
   EXPECT_EQ(1, st_.ready);
   EXPECT_EQ(4u, st_.health.calls);  // counters survive reset

@@ -160,7 +160,7 @@ TEST(RwSpeedFilterBadInput, BadMaskAndTimeAdvanceNothing)
   f.in->avail[1] = 0;
   EXPECT_EQ(f.step(kDt, 300.0), FSW_E_TIME);
   EXPECT_EQ(f.step(kDt / 2, 300.0), FSW_E_TIME);
-  EXPECT_EQ(f.st->t_prev_ns, kDt);
+  EXPECT_EQ(f.st->clock.t_prev_ns, kDt);
   EXPECT_EQ(f.st->reject_run[0], 0u);
   EXPECT_EQ(f.st->health.bad_time, 2u);
   EXPECT_EQ(f.st->health.bad_input, 1u);

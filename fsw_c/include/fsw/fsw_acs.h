@@ -23,6 +23,7 @@
 
 #include "fsw/att_track.h"
 #include "fsw/css_sun.h"
+#include "fsw/fsw_clock.h"
 #include "fsw/fsw_acs_msgs.h"
 #include "fsw/fsw_config.h"
 #include "fsw/fsw_status.h"
@@ -111,8 +112,7 @@ typedef struct {
   int ready;            /* [-]  1 after a successful init                      */
   int mode;             /* [-]  FswAcsMode in force                            */
   int actuation;        /* [-]  FswAcsActuation in force                       */
-  int has_prev;         /* [-]  a cycle has been accepted since reset (0.3)    */
-  uint64_t t_prev_ns;   /* [ns] its time stamp                                 */
+  FswClock clock;       /* [-]  previous accepted cycle (0.3)                  */
   uint32_t cycles;      /* [-]  accepted cycles since init                     */
   uint32_t mode_changes;/* [-]  transitions since init                         */
   FswCssSunState css;
