@@ -78,9 +78,9 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
     if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
       if ((s = fsw_thr_pulse_rem_check(&cfg->pulse_rem)) != FSW_OK)
         return fail(bad_field, "pulse_rem", s);
-      num_thr = cfg->pulse_rem.num_thr;
-      F_max = cfg->pulse_rem.F_max;
-      b = cfg->pulse_rem.base_thrust_state;
+      num_thr = cfg->pulse_rem.common.num_thr;
+      F_max = cfg->pulse_rem.common.F_max;
+      b = cfg->pulse_rem.common.base_thrust_state;
       if (num_thr != n) return fail(bad_field, "pulse_rem.num_thr", FSW_E_CONFIG);
       if (b != b_want) return fail(bad_field, "pulse_rem.base_thrust_state", FSW_E_CONFIG);
       for (i = 0; i < n; i++)
@@ -88,9 +88,9 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
     } else if (cfg->pulser == FSW_ACS_PULSE_SCHMITT) {
       if ((s = fsw_thr_pulse_schmitt_check(&cfg->pulse_schmitt)) != FSW_OK)
         return fail(bad_field, "pulse_schmitt", s);
-      num_thr = cfg->pulse_schmitt.num_thr;
-      F_max = cfg->pulse_schmitt.F_max;
-      b = cfg->pulse_schmitt.base_thrust_state;
+      num_thr = cfg->pulse_schmitt.common.num_thr;
+      F_max = cfg->pulse_schmitt.common.F_max;
+      b = cfg->pulse_schmitt.common.base_thrust_state;
       if (num_thr != n) return fail(bad_field, "pulse_schmitt.num_thr", FSW_E_CONFIG);
       if (b != b_want) return fail(bad_field, "pulse_schmitt.base_thrust_state", FSW_E_CONFIG);
       for (i = 0; i < n; i++)

@@ -441,23 +441,23 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
     a.thr_map.use_2nd_loop = 0;
     a.thr_map.mode = sc.fsw.thr_map == ThrMapMode::Nnls ? FSW_THR_MAP_NNLS : FSW_THR_MAP_MIN_NORM;
     a.pulser = sc.fsw.thr_pulse == ThrPulseMode::Schmitt ? FSW_ACS_PULSE_SCHMITT : FSW_ACS_PULSE_REMAINDER;
-    a.pulse_rem.num_thr = m.n_acs;
-    a.pulse_rem.t_min = R(sc.fsw.thr_t_min);
-    a.pulse_rem.base_thrust_state = 0;
-    a.pulse_rem.init_off_pulse_on_time = R(0.0);
-    a.pulse_schmitt.num_thr = m.n_acs;
-    a.pulse_schmitt.t_min = R(sc.fsw.thr_t_min);
+    a.pulse_rem.common.num_thr = m.n_acs;
+    a.pulse_rem.common.t_min = R(sc.fsw.thr_t_min);
+    a.pulse_rem.common.base_thrust_state = 0;
+    a.pulse_rem.common.init_off_pulse_on_time = R(0.0);
+    a.pulse_schmitt.common.num_thr = m.n_acs;
+    a.pulse_schmitt.common.t_min = R(sc.fsw.thr_t_min);
     a.pulse_schmitt.level_on = R(sc.fsw.thr_level_on);
     a.pulse_schmitt.level_off = R(sc.fsw.thr_level_off);
-    a.pulse_schmitt.base_thrust_state = 0;
-    a.pulse_schmitt.init_off_pulse_on_time = R(0.0);
+    a.pulse_schmitt.common.base_thrust_state = 0;
+    a.pulse_schmitt.common.init_off_pulse_on_time = R(0.0);
     for (int i = 0; i < m.n_acs; ++i) {
       const ThrusterSpec& t = sc.thrusters[static_cast<size_t>(m.acs_to_plant[static_cast<size_t>(i)])];
       put3(a.thr_map.r_thr_B[i], t.r_B);
       put3(a.thr_map.gt_hat_B[i], t.dir_B);  // nominal axis: the misalignment is truth only
       a.thr_map.F_max[i] = R(t.F_max);
-      a.pulse_rem.F_max[i] = R(t.F_max);
-      a.pulse_schmitt.F_max[i] = R(t.F_max);
+      a.pulse_rem.common.F_max[i] = R(t.F_max);
+      a.pulse_schmitt.common.F_max[i] = R(t.F_max);
     }
   }
   {
@@ -1040,8 +1040,8 @@ std::vector<std::string> Run::fsw_health_lines() const
   }
   if (m.acs_cfg.has_thrusters) {
     line("thr_map", st.thr_map.health);
-    if (m.acs_cfg.pulser == FSW_ACS_PULSE_REMAINDER) line("thr_pulse_rem", st.pulse_rem.health);
-    else line("thr_pulse_schmitt", st.pulse_schmitt.health);
+    if (m.acs_cfg.pulser == FSW_ACS_PULSE_REMAINDER) line("thr_pulse_rem", st.pulse_rem.common.health);
+    else line("thr_pulse_schmitt", st.pulse_schmitt.common.health);
   }
   return out;
 }

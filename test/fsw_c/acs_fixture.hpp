@@ -131,22 +131,22 @@ inline void thruster_config(FswAcsConfig& c, int pulser = FSW_ACS_PULSE_REMAINDE
   c.thr_map.ang_err_thresh = R(0.0);
   c.thr_map.mode = FSW_THR_MAP_NNLS;
   c.pulser = pulser;
-  c.pulse_rem.num_thr = n;
-  c.pulse_rem.t_min = R(0.02);
-  c.pulse_rem.init_off_pulse_on_time = R(2.0);
-  c.pulse_schmitt.num_thr = n;
-  c.pulse_schmitt.t_min = R(0.02);
+  c.pulse_rem.common.num_thr = n;
+  c.pulse_rem.common.t_min = R(0.02);
+  c.pulse_rem.common.init_off_pulse_on_time = R(2.0);
+  c.pulse_schmitt.common.num_thr = n;
+  c.pulse_schmitt.common.t_min = R(0.02);
   c.pulse_schmitt.level_on = R(0.75);
   c.pulse_schmitt.level_off = R(0.25);
-  c.pulse_schmitt.init_off_pulse_on_time = R(2.0);
+  c.pulse_schmitt.common.init_off_pulse_on_time = R(2.0);
   for (int i = 0; i < n; i++) {
     for (int k = 0; k < 3; k++) {
       c.thr_map.r_thr_B[i][k] = R(kThrR[i][k]);
       c.thr_map.gt_hat_B[i][k] = R(kThrG[i][k]);
     }
     c.thr_map.F_max[i] = R(kFmax);
-    c.pulse_rem.F_max[i] = R(kFmax);
-    c.pulse_schmitt.F_max[i] = R(kFmax);
+    c.pulse_rem.common.F_max[i] = R(kFmax);
+    c.pulse_schmitt.common.F_max[i] = R(kFmax);
   }
 }
 

@@ -99,10 +99,10 @@ TEST(FswAcsConfig, ThrusterChainConsistency)
     const char* field;
   };
   const Row rows[] = {
-      {"off-pulsing pulser behind on-pulsing mapper", [](FswAcsConfig& c) { c.pulse_rem.base_thrust_state = 1; },
+      {"off-pulsing pulser behind on-pulsing mapper", [](FswAcsConfig& c) { c.pulse_rem.common.base_thrust_state = 1; },
        "pulse_rem.base_thrust_state"},
-      {"pulser thruster count", [](FswAcsConfig& c) { c.pulse_rem.num_thr = 7; }, "pulse_rem.num_thr"},
-      {"pulser F_max differs from mapper", [](FswAcsConfig& c) { c.pulse_rem.F_max[3] = acsfix::R(2.0); }, "pulse_rem.F_max"},
+      {"pulser thruster count", [](FswAcsConfig& c) { c.pulse_rem.common.num_thr = 7; }, "pulse_rem.num_thr"},
+      {"pulser F_max differs from mapper", [](FswAcsConfig& c) { c.pulse_rem.common.F_max[3] = acsfix::R(2.0); }, "pulse_rem.F_max"},
       {"unknown pulser", [](FswAcsConfig& c) { c.pulser = 5; }, "pulser"},
       {"thruster mapping geometry", [](FswAcsConfig& c) { c.thr_map.F_max[0] = 0; }, "thr_map"},
   };
