@@ -16,6 +16,83 @@ static FswStatus fail(const char **bad_field, const char *name, FswStatus s)
 
 static int is_bool(int v) { return v == 0 || v == 1; }
 
+/* ---- geometry ------------------------------------------------------------- */
+
+/* dst[i] = src[i] for i < n, 0 up to cap. */
+static void copy_n(fsw_real *dst, const fsw_real *src, int n, int cap)
+{
+  int i;
+  for (i = 0; i < cap; i++) dst[i] = (i < n) ? src[i] : FSW_R(0.0);
+}
+
+static void copy_n3(fsw_real (*dst)[3], const fsw_real (*src)[3], int n, int cap)
+{
+  int i, k;
+  for (i = 0; i < cap; i++)
+    for (k = 0; k < 3; k++) dst[i][k] = (i < n) ? src[i][k] : FSW_R(0.0);
+}
+
+FswStatus fsw_acs_config_set_geometry(FswAcsConfig *cfg, const FswAcsGeometry *geo)
+{
+  int nw, nt;
+  FSW_ASSERT(cfg != NULL && geo != NULL);
+  if (cfg == NULL || geo == NULL) return FSW_E_NULL_ARG;
+  nw = geo->num_rw;
+  nt = geo->num_thr;
+  if (nw < 0 || nt < 0) return FSW_E_CONFIG;
+  if (nw > FSW_MAX_RW || nt > FSW_MAX_THR) return FSW_E_CAPACITY;
+
+  /* wheels */
+  cfg->has_wheels = (nw > 0) ? 1 : 0;
+  cfg->mrp_fb.num_rw = nw;
+  copy_n3(cfg->mrp_fb.gs_hat_B, geo->gs_hat_B, nw, FSW_MAX_RW);
+  copy_n(cfg->mrp_fb.J_s, geo->J_s, nw, FSW_MAX_RW);
+  cfg->rw_map.num_rw = nw;
+  copy_n3(cfg->rw_map.gs_hat_B, geo->gs_hat_B, nw, FSW_MAX_RW);
+  cfg->rw_null.num_rw = nw;
+  copy_n3(cfg->rw_null.gs_hat_B, geo->gs_hat_B, nw, FSW_MAX_RW);
+  copy_n(cfg->rw_null.u_max, geo->u_max, nw, FSW_MAX_RW);
+  cfg->rw_sat.num_rw = nw;
+  copy_n(cfg->rw_sat.u_max, geo->u_max, nw, FSW_MAX_RW);
+  cfg->rw_volt.num_rw = nw;
+  copy_n(cfg->rw_volt.u_max, geo->u_max, nw, FSW_MAX_RW);
+  copy_n(cfg->rw_volt.J_s, geo->J_s, nw, FSW_MAX_RW);
+
+  /* thrusters */
+  cfg->has_thrusters = (nt > 0) ? 1 : 0;
+  cfg->thr_map.num_thr = nt;
+  copy_n3(cfg->thr_map.r_thr_B, geo->r_thr_B, nt, FSW_MAX_THR);
+  copy_n3(cfg->thr_map.gt_hat_B, geo->gt_hat_B, nt, FSW_MAX_THR);
+  copy_n(cfg->thr_map.F_max, geo->F_max, nt, FSW_MAX_THR);
+  cfg->pulse_rem.common.num_thr = nt;
+  copy_n(cfg->pulse_rem.common.F_max, geo->F_max, nt, FSW_MAX_THR);
+  cfg->pulse_schmitt.common.num_thr = nt;
+  copy_n(cfg->pulse_schmitt.common.F_max, geo->F_max, nt, FSW_MAX_THR);
+  return FSW_OK;
+}
+
+/* Safety net for configs filled by hand: the copies of physical geometry
+ * (spin axes, spin inertias) must be bit-for-bit equal.  Torque limits are
+ * not compared: a module may be given a derated limit on purpose. */
+
+/* 1 if the first n entries of a and b are equal. */
+static int same_n(const fsw_real *a, const fsw_real *b, int n)
+{
+  int i;
+  for (i = 0; i < n; i++)
+    if (a[i] != b[i]) return 0;
+  return 1;
+}
+
+static int same_n3(const fsw_real (*a)[3], const fsw_real (*b)[3], int n)
+{
+  int i, k;
+  for (i = 0; i < n; i++)
+    for (k = 0; k < 3; k++)
+      if (a[i][k] != b[i][k]) return 0;
+  return 1;
+}
+
 FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
 {
   FswStatus s;
@@ -50,18 +127,25 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
     if ((s = fsw_rw_map_check(&cfg->rw_map)) != FSW_OK) return fail(bad_field, "rw_map", s);
     if (cfg->mrp_fb.num_rw != 0 && cfg->mrp_fb.num_rw != n)
       return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG);
+    if (cfg->mrp_fb.num_rw != 0 &&
+        !same_n3(cfg->mrp_fb.gs_hat_B, cfg->rw_map.gs_hat_B, n))
+      return fail(bad_field, "mrp_fb.gs_hat_B", FSW_E_CONFIG);
     if ((s = fsw_rw_sat_check(&cfg->rw_sat)) != FSW_OK) return fail(bad_field, "rw_sat", s);
     if (cfg->rw_sat.num_rw != n) return fail(bad_field, "rw_sat.num_rw", FSW_E_CONFIG);
     if (!is_bool(cfg->use_null)) return fail(bad_field, "use_null", FSW_E_CONFIG);
     if (cfg->use_null) {
       if ((s = fsw_rw_null_check(&cfg->rw_null)) != FSW_OK) return fail(bad_field, "rw_null", s);
       if (cfg->rw_null.num_rw != n) return fail(bad_field, "rw_null.num_rw", FSW_E_CONFIG);
+      if (!same_n3(cfg->rw_null.gs_hat_B, cfg->rw_map.gs_hat_B, n))
+        return fail(bad_field, "rw_null.gs_hat_B", FSW_E_CONFIG);
       if (!fsw_vn_is_finite(cfg->Omega_des, n)) return fail(bad_field, "Omega_des", FSW_E_CONFIG);
     }
     if (!is_bool(cfg->use_volt)) return fail(bad_field, "use_volt", FSW_E_CONFIG);
     if (cfg->use_volt) {
       if ((s = fsw_rw_volt_check(&cfg->rw_volt)) != FSW_OK) return fail(bad_field, "rw_volt", s);
       if (cfg->rw_volt.num_rw != n) return fail(bad_field, "rw_volt.num_rw", FSW_E_CONFIG);
+      if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->rw_volt.J_s, cfg->mrp_fb.J_s, n))
+        return fail(bad_field, "rw_volt.J_s", FSW_E_CONFIG);
     }
   } else if (cfg->mrp_fb.num_rw != 0) {
     return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG); /* wheels in H but no wheel chain */

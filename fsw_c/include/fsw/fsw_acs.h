@@ -48,6 +48,24 @@ typedef enum {
   FSW_ACS_PULSE_SCHMITT = 1    /* thr_pulse_schmitt (spec 10) */
 } FswAcsPulser;
 
+/* The actuator geometry of the spacecraft, given once.  The modules keep
+ * their own copies (each module config is complete on its own, as the
+ * module template requires); fsw_acs_config_set_geometry() is the one place
+ * that writes them, and fsw_acs_check() cross-checks them as a safety net
+ * for configs filled by hand.  Thruster names follow thr_map. */
+typedef struct {
+  /* reaction wheels */
+  int num_rw;                          /* [-]      0..FSW_MAX_RW (0: no wheels)    */
+  fsw_real gs_hat_B[FSW_MAX_RW][3];    /* [-]      (num_rw) spin axes, unit, B     */
+  fsw_real J_s[FSW_MAX_RW];            /* [kg*m^2] (num_rw) spin inertias, > 0     */
+  fsw_real u_max[FSW_MAX_RW];          /* [N*m]    (num_rw) motor torque limits, > 0 */
+  /* thrusters (the ones the FSW commands) */
+  int num_thr;                         /* [-]      0..FSW_MAX_THR (0: none)        */
+  fsw_real r_thr_B[FSW_MAX_THR][3];    /* [m]      (num_thr) locations, B          */
+  fsw_real gt_hat_B[FSW_MAX_THR][3];   /* [-]      (num_thr) unit force axes, B    */
+  fsw_real F_max[FSW_MAX_THR];         /* [N]      (num_thr) max thrust, > 0       */
+} FswAcsGeometry;
+
 /* All configuration of the application in one struct. */
 typedef struct {
   int initial_mode;         /* [-] FswAcsMode after init                          */
@@ -131,6 +149,21 @@ typedef struct {
   FswAcsWork work;
   FswHealth health;
 } FswAcsState;
+
+/* Writes the geometry into every module config that holds a copy:
+ *   wheels:    has_wheels = (num_rw > 0); num_rw, gs_hat_B and J_s of mrp_fb
+ *              (the wheels in H); num_rw and gs_hat_B of rw_map; num_rw,
+ *              gs_hat_B and u_max of rw_null; num_rw and u_max of rw_sat;
+ *              num_rw, u_max and J_s of rw_volt;
+ *   thrusters: has_thrusters = (num_thr > 0); num_thr, r_thr_B, gt_hat_B and
+ *              F_max of thr_map and common.num_thr and common.F_max of both
+ *              pulsers (pulse_rem, pulse_schmitt).
+ * Entries beyond the counts are set to 0.  Nothing else is touched (gains,
+ * modes, use_* flags, the pulser's t_min ...).  Values are not checked here:
+ * fsw_acs_check() does that.  Returns FSW_OK; FSW_E_CAPACITY (num_rw >
+ * FSW_MAX_RW or num_thr > FSW_MAX_THR), FSW_E_CONFIG (a negative count) and
+ * FSW_E_NULL_ARG leave cfg unchanged. */
+FswStatus fsw_acs_config_set_geometry(FswAcsConfig *cfg, const FswAcsGeometry *geo);
 
 /* Validates the whole configuration.  On failure, *bad_field (if not NULL)
  * receives the name of the first bad field, e.g. "initial_mode" or
