@@ -6,6 +6,29 @@
 #include "fsw/fsw_attitude.h"
 #include "fsw/fsw_vec.h"
 
+/* ---- stage names --------------------------------------------------------- */
+
+/* A switch, not a table of pointers: a pointer table needs relocations and
+ * lands in a writable section (.data.rel.ro) of position-independent
+ * objects, which the no-globals proof rejects. */
+const char *fsw_acs_stage_name(int stage)
+{
+  switch (stage) {
+    case FSW_ACS_STAGE_CSS: return "css";
+    case FSW_ACS_STAGE_GUIDANCE: return "guidance";
+    case FSW_ACS_STAGE_TRACK: return "track";
+    case FSW_ACS_STAGE_CONTROL: return "control";
+    case FSW_ACS_STAGE_LPF: return "lpf";
+    case FSW_ACS_STAGE_RW_MAP: return "rw_map";
+    case FSW_ACS_STAGE_RW_NULL: return "rw_null";
+    case FSW_ACS_STAGE_RW_SAT: return "rw_sat";
+    case FSW_ACS_STAGE_RW_VOLT: return "rw_volt";
+    case FSW_ACS_STAGE_THR_MAP: return "thr_map";
+    case FSW_ACS_STAGE_THR_PULSE: return "thr_pulse";
+    default: return "unknown";
+  }
+}
+
 /* ---- configuration ---------------------------------------------------- */
 
 static FswStatus fail(const char **bad_field, const char *name, FswStatus s)
@@ -353,6 +376,7 @@ static FswStatus run_guidance(FswAcsState *st, const FswAcsConfig *cfg,
     acc = combine(acc, s);
     *guid = w->sunsafe_out.guid;
     h->sun_angle_err = w->sunsafe_out.sun_angle_err;
+    fsw_v3_copy(h->sun_hat_B, w->css_out.sun_hat_B);
     h->sun_valid = (uint8_t)(w->css_out.sun_valid ? 1 : 0);
     h->num_lit = (uint8_t)w->css_out.num_lit;
   } else {

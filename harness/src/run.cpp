@@ -51,9 +51,6 @@ constexpr double kSunMinUnitMag = 0.1;
 // fallbacks are exact for orthogonal normals).  This is the "ideal heading".
 constexpr int kIdealCss = 6;
 
-const char* const kStageNames[FSW_ACS_NUM_STAGES] = {"css",    "guidance", "track",   "control",
-                                                     "lpf",    "rw_map",   "rw_null", "rw_sat",
-                                                     "rw_volt", "thr_map", "thr_pulse"};
 
 // ---- harness messages (plain structs) ----------------------------------------
 struct TruthMsg {
@@ -733,9 +730,9 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
       wa.write(out, t_ns);
       wh.write(s.last_health, t_ns);
       if (has_sun) {
-        // the css_sun estimate the cycle used (the application's work area)
+        // the css_sun estimate the cycle used (published in the health message)
         SunHeadingMsg h{};
-        copy3(h.sun_B, s.acs_st.work.css_out.sun_hat_B);
+        copy3(h.sun_B, s.last_health.sun_hat_B);
         h.valid = s.last_health.sun_valid;
         h.num_lit = s.last_health.num_lit;
         wsun.write(h, t_ns);
@@ -927,7 +924,7 @@ Run::Run(const Scenario& sc) : impl_(std::make_unique<Impl>(sc))
                              });
     {
       std::vector<Column> hc{{"fsw_status", "-"}, {"fsw_safe_output", "-"}};
-      for (int i = 0; i < FSW_ACS_NUM_STAGES; ++i) hc.push_back({std::string("fsw_stage_") + kStageNames[i], "-"});
+      for (int i = 0; i < FSW_ACS_NUM_STAGES; ++i) hc.push_back({std::string("fsw_stage_") + fsw_acs_stage_name(i), "-"});
       m.rec.record<FswAcsHealthMsg>(health, hc, [](const FswAcsHealthMsg& h, double* o) {
         o[0] = static_cast<double>(h.status);
         o[1] = h.safe_output;
@@ -1009,7 +1006,7 @@ std::vector<std::string> Run::fsw_health_lines() const
     out.push_back(os.str());
     std::ostringstream ss;
     ss << "fsw_acs last cycle stages:";
-    for (int i = 0; i < FSW_ACS_NUM_STAGES; ++i) ss << " " << kStageNames[i] << "=" << fsw_status_name(h.stage_status[i]);
+    for (int i = 0; i < FSW_ACS_NUM_STAGES; ++i) ss << " " << fsw_acs_stage_name(i) << "=" << fsw_status_name(h.stage_status[i]);
     out.push_back(ss.str());
   }
   auto line = [&out](const char* name, const FswHealth& hh) {

@@ -121,6 +121,51 @@ TEST(FswAcsConfig, ThrusterChainConsistency)
   EXPECT_EQ(nullptr, field);
 }
 
+/* ---- what the health message publishes ---- */
+
+TEST(FswAcsHealth, StageNamesComeFromTheLibrary)
+{
+  const char* const want[FSW_ACS_NUM_STAGES] = {"css",     "guidance", "track",   "control",
+                                                "lpf",     "rw_map",   "rw_null", "rw_sat",
+                                                "rw_volt", "thr_map",  "thr_pulse"};
+  for (int i = 0; i < FSW_ACS_NUM_STAGES; i++) EXPECT_EQ(std::string(want[i]), fsw_acs_stage_name(i)) << i;
+  EXPECT_EQ(std::string("unknown"), fsw_acs_stage_name(-1));
+  EXPECT_EQ(std::string("unknown"), fsw_acs_stage_name(FSW_ACS_NUM_STAGES));
+}
+
+TEST(FswAcsHealth, PublishesTheSunHeadingTheCycleUsed)
+{
+  // Sun along (1,1,1)/sqrt3 on the +x, +y, +z sensors: the heading is exact.
+  acsfix::wheel_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 1000);
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  EXPECT_EQ(1, g_h.sun_valid);
+  EXPECT_EQ(3, g_h.num_lit);
+  for (int k = 0; k < 3; k++) {
+    EXPECT_NEAR(1.0 / std::sqrt(3.0), double(g_h.sun_hat_B[k]), kTol) << k;
+    EXPECT_EQ(g_st.work.css_out.sun_hat_B[k], g_h.sun_hat_B[k]) << k;  // the estimate used
+  }
+  // eclipse: no lit sensor, no heading
+  sensors_at_rest(g_sens, 2000);
+  for (int i = 0; i < 6; i++) g_sens.css[i] = 0;
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  EXPECT_EQ(0, g_h.sun_valid);
+  for (int k = 0; k < 3; k++) EXPECT_EQ(0, g_h.sun_hat_B[k]) << k;
+  // a rejected cycle publishes no heading
+  sensors_at_rest(g_sens, 3000);
+  g_sens.omega_BN_B[1] = kNaN;
+  ASSERT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  for (int k = 0; k < 3; k++) EXPECT_EQ(0, g_h.sun_hat_B[k]) << k;
+  // inertial pointing does not run the CSS: no heading either
+  acsfix::thruster_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 1000);
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  EXPECT_EQ(0, g_h.sun_valid);
+  for (int k = 0; k < 3; k++) EXPECT_EQ(0, g_h.sun_hat_B[k]) << k;
+}
+
 /* ---- geometry given once ---- */
 
 FswAcsGeometry g_geo;

@@ -97,7 +97,9 @@ typedef struct {
 } FswAcsConfig;
 
 /* Inputs and outputs of the stages, kept in the state so that the cycle
- * function's own stack stays small (see the stack table in docs). */
+ * function's own stack stays small (see the stack table in docs).  Private
+ * by convention: its layout may change; an integrator reads FswAcsHealthMsg
+ * (and the module health counters) instead. */
 typedef struct {
   FswCssSunIn css_in;
   FswCssSunOut css_out;
@@ -164,6 +166,11 @@ typedef struct {
  * FSW_MAX_RW or num_thr > FSW_MAX_THR), FSW_E_CONFIG (a negative count) and
  * FSW_E_NULL_ARG leave cfg unchanged. */
 FswStatus fsw_acs_config_set_geometry(FswAcsConfig *cfg, const FswAcsGeometry *geo);
+
+/* Name of a stage (FswAcsStage) for telemetry and logs, e.g. "rw_map";
+ * "unknown" for a value outside 0..FSW_ACS_NUM_STAGES-1.  Never NULL; the
+ * strings are constant. */
+const char *fsw_acs_stage_name(int stage);
 
 /* Validates the whole configuration.  On failure, *bad_field (if not NULL)
  * receives the name of the first bad field, e.g. "initial_mode" or
