@@ -285,3 +285,26 @@ TEST(ThrPulseRem, ImpulseTracksRequestWithinOneMinimumBit)
 }
 
 }  // namespace
+
+// fsw-algorithms.md 0.2 "reset zeroes the output", read for a caller-owned
+// output (docs/fsw-conventions.md): after reset, a bad input gives the
+// documented safe output (every thruster off), neither the on-times the
+// caller's buffer still holds nor the first-call output of the module.
+TEST(ThrPulseRem, ResetThenBadInputGivesTheSafeOutputNotStaleValues)
+{
+  FswThrPulseRemConfig c = cfg2();
+  c.common.base_thrust_state = 1;  // off-pulsing: the first-call output is 2 s, not 0
+  Pulser p(c);
+  ASSERT_EQ(FSW_OK, p.step(kSec, -0.5, -1.0));
+  EXPECT_EQ(R(2), p.out.t_on[0]);  // first call: b * init_off_pulse_on_time
+  ASSERT_FALSE(fsw_status_is_error(p.step(2 * kSec, -0.5, -1.0)));
+  ASSERT_NE(0, p.out.t_on[0]);
+  fsw_thr_pulse_rem_reset(&p.st);
+  EXPECT_EQ(FSW_E_BAD_INPUT, p.step(3 * kSec, std::numeric_limits<double>::quiet_NaN(), -1.0));
+  for (int i = 0; i < FSW_MAX_THR; i++) EXPECT_EQ(0, p.out.t_on[i]) << i;
+  EXPECT_EQ(0, p.st.common.clock.has_prev);  // nothing advanced
+  // the next good call is the first after reset again
+  ASSERT_EQ(FSW_OK, p.step(kSec, -0.5, -1.0));
+  EXPECT_EQ(R(2), p.out.t_on[0]);
+  EXPECT_EQ(R(2), p.out.t_on[1]);
+}
