@@ -136,8 +136,9 @@ FswStatus fsw_mrp_fb_update(FswMrpFbState *st, const FswMrpFbConfig *cfg, const 
   if (!guid_is_finite(g) || !wheels_ok(cfg, in)) {
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   }
-  if (fsw_clock_dt(&st->clock, in->t_ns, &dt) != FSW_OK) {
-    return fsw_health_record(&st->health, FSW_E_TIME);
+  {
+    const FswStatus s = fsw_clock_dt(&st->clock, in->t_ns, &dt); /* FSW_OK or FSW_E_TIME */
+    if (s != FSW_OK) return fsw_health_record(&st->health, s);
   }
 
   /* 1. omega = omega_BR + omega_RN */

@@ -88,8 +88,8 @@ FswStatus fsw_rw_speed_filter_update(FswRwSpeedFilterState *st, const FswRwSpeed
   if (!fsw_rw_avail_valid(in->avail, n)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   {
     fsw_real dt; /* [s] unused: the consistency test measures from each wheel's own sample */
-    if (fsw_clock_dt(&st->clock, in->t_ns, &dt) != FSW_OK)
-      return fsw_health_record(&st->health, FSW_E_TIME);
+    const FswStatus s = fsw_clock_dt(&st->clock, in->t_ns, &dt); /* FSW_OK or FSW_E_TIME */
+    if (s != FSW_OK) return fsw_health_record(&st->health, s);
   }
 
   for (i = 0; i < n; i++) {

@@ -66,8 +66,10 @@ FswStatus fsw_rw_volt_update(FswRwVoltState *st, const FswRwVoltConfig *cfg,
       (in->has_Omega != 0 && in->has_Omega != 1) ||
       (in->has_Omega && !fsw_rw_avail_finite(in->Omega, in->avail, n)))
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
-  if (fsw_clock_dt(&st->clock, in->t_ns, &dt) != FSW_OK)
-    return fsw_health_record(&st->health, FSW_E_TIME);
+  {
+    const FswStatus s = fsw_clock_dt(&st->clock, in->t_ns, &dt); /* FSW_OK or FSW_E_TIME */
+    if (s != FSW_OK) return fsw_health_record(&st->health, s);
+  }
 
   for (i = 0; i < n; i++) out->V[i] = (in->avail[i] == FSW_AVAILABLE) ? in->u_s[i] : FSW_R(0.0);
 

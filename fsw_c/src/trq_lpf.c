@@ -56,8 +56,8 @@ FswStatus fsw_trq_lpf_update(FswTrqLpfState *st, const FswTrqLpfConfig *cfg,
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
   if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
   if (!fsw_v3_is_finite(in->Lr_B)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
-  if (fsw_clock_dt(&st->clock, in->t_ns, &dt) != FSW_OK)
-    return fsw_health_record(&st->health, FSW_E_TIME);
+  s = fsw_clock_dt(&st->clock, in->t_ns, &dt); /* FSW_OK or FSW_E_TIME */
+  if (s != FSW_OK) return fsw_health_record(&st->health, s);
   if (st->clock.has_prev) {
     if (FSW_FABS(dt - cfg->h) > FSW_TRQ_LPF_RATE_TOL * cfg->h) s = FSW_W_RATE;
   } else {
