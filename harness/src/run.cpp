@@ -51,7 +51,6 @@ constexpr double kSunMinUnitMag = 0.1;
 // fallbacks are exact for orthogonal normals).  This is the "ideal heading".
 constexpr int kIdealCss = 6;
 
-
 // ---- harness messages (plain structs) ----------------------------------------
 struct TruthMsg {
   double sigma_BN[3];       // [-]

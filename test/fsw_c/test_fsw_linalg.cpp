@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
-#include <initializer_list>
 #include <limits>
 
 #include "fsw/fsw_linalg.h"
@@ -436,13 +436,16 @@ Box box(int n, double lo, double hi)
   return B;
 }
 
-Mat3N mat(int m, int n, std::initializer_list<double> rows)
+// (arrays by reference, not std::initializer_list by value: the latter
+// draws an ABI note from GCC on 32-bit Arm)
+template <size_t N>
+Mat3N mat(int m, int n, const double (&rows)[N])
 {
   Mat3N A;
   std::memset(&A, 0, sizeof A);
-  auto it = rows.begin();
+  size_t k = 0;
   for (int i = 0; i < m; i++)
-    for (int j = 0; j < n; j++) A.a[i][j] = static_cast<fsw_real>(*it++);
+    for (int j = 0; j < n && k < N; j++) A.a[i][j] = static_cast<fsw_real>(rows[k++]);
   return A;
 }
 
@@ -452,25 +455,23 @@ struct K4Run {
   fsw_real x[FSW_MAX_EFF];
 };
 
-K4Run k4(const Mat3N& A, std::initializer_list<double> bl, int m, int n, const Box& B)
+template <size_t N>
+K4Run k4(const Mat3N& A, const double (&bl)[N], int m, int n, const Box& B)
 {
+  static_assert(N <= 3, "b has at most 3 entries");
   K4Run r;
   fsw_real b[3] = {0, 0, 0};
-  int i = 0;
-  for (double v : bl) b[i++] = static_cast<fsw_real>(v);
+  for (size_t i = 0; i < N; i++) b[i] = static_cast<fsw_real>(bl[i]);
   for (int j = 0; j < FSW_MAX_EFF; j++) r.x[j] = 99;
   r.iter = -1;
   r.s = fsw_bounded_minnorm_solve(r.x, A.a, b, m, n, B.lo, B.hi, &r.iter);
   return r;
 }
 
-void expect_x(const K4Run& r, std::initializer_list<double> want, const char* why)
+template <size_t N>
+void expect_x(const K4Run& r, const double (&want)[N], const char* why)
 {
-  int j = 0;
-  for (double w : want) {
-    EXPECT_NEAR(w, double(r.x[j]), kTol) << why << ", entry " << j;
-    ++j;
-  }
+  for (size_t j = 0; j < N; j++) EXPECT_NEAR(want[j], double(r.x[j]), kTol) << why << ", entry " << j;
 }
 
 }  // namespace
