@@ -78,10 +78,10 @@ void BM_ThrPulseRem(benchmark::State& state)
 {
   const int n = static_cast<int>(state.range(0));
   FswThrPulseRemConfig cfg{};
-  cfg.num_thr = n;
-  for (int i = 0; i < n; i++) cfg.F_max[i] = 1;
-  cfg.t_min = static_cast<R>(0.02);
-  cfg.init_off_pulse_on_time = 2;
+  cfg.common.num_thr = n;
+  for (int i = 0; i < n; i++) cfg.common.F_max[i] = 1;
+  cfg.common.t_min = static_cast<R>(0.02);
+  cfg.common.init_off_pulse_on_time = 2;
   FswThrPulseRemState st{};
   if (fsw_thr_pulse_rem_init(&st, &cfg) != FSW_OK) state.SkipWithError("init");
   FswThrPulseRemIn in{};
@@ -99,12 +99,12 @@ void BM_ThrPulseSchmitt(benchmark::State& state)
 {
   const int n = static_cast<int>(state.range(0));
   FswThrPulseSchmittConfig cfg{};
-  cfg.num_thr = n;
-  for (int i = 0; i < n; i++) cfg.F_max[i] = 1;
-  cfg.t_min = static_cast<R>(0.02);
+  cfg.common.num_thr = n;
+  for (int i = 0; i < n; i++) cfg.common.F_max[i] = 1;
+  cfg.common.t_min = static_cast<R>(0.02);
   cfg.level_on = static_cast<R>(0.75);
   cfg.level_off = static_cast<R>(0.25);
-  cfg.init_off_pulse_on_time = 2;
+  cfg.common.init_off_pulse_on_time = 2;
   FswThrPulseSchmittState st{};
   if (fsw_thr_pulse_schmitt_init(&st, &cfg) != FSW_OK) state.SkipWithError("init");
   FswThrPulseSchmittIn in{};

@@ -6,6 +6,29 @@
 #include "fsw/fsw_attitude.h"
 #include "fsw/fsw_vec.h"
 
+/* ---- stage names --------------------------------------------------------- */
+
+/* A switch, not a table of pointers: a pointer table needs relocations and
+ * lands in a writable section (.data.rel.ro) of position-independent
+ * objects, which the no-globals proof rejects. */
+const char *fsw_acs_stage_name(int stage)
+{
+  switch (stage) {
+    case FSW_ACS_STAGE_CSS: return "css";
+    case FSW_ACS_STAGE_GUIDANCE: return "guidance";
+    case FSW_ACS_STAGE_TRACK: return "track";
+    case FSW_ACS_STAGE_CONTROL: return "control";
+    case FSW_ACS_STAGE_LPF: return "lpf";
+    case FSW_ACS_STAGE_RW_MAP: return "rw_map";
+    case FSW_ACS_STAGE_RW_NULL: return "rw_null";
+    case FSW_ACS_STAGE_RW_SAT: return "rw_sat";
+    case FSW_ACS_STAGE_RW_VOLT: return "rw_volt";
+    case FSW_ACS_STAGE_THR_MAP: return "thr_map";
+    case FSW_ACS_STAGE_THR_PULSE: return "thr_pulse";
+    default: return "unknown";
+  }
+}
+
 /* ---- configuration ---------------------------------------------------- */
 
 static FswStatus fail(const char **bad_field, const char *name, FswStatus s)
@@ -15,6 +38,83 @@ static FswStatus fail(const char **bad_field, const char *name, FswStatus s)
 }
 
 static int is_bool(int v) { return v == 0 || v == 1; }
+
+/* ---- geometry ------------------------------------------------------------- */
+
+/* dst[i] = src[i] for i < n, 0 up to cap. */
+static void copy_n(fsw_real *dst, const fsw_real *src, int n, int cap)
+{
+  int i;
+  for (i = 0; i < cap; i++) dst[i] = (i < n) ? src[i] : FSW_R(0.0);
+}
+
+static void copy_n3(fsw_real (*dst)[3], const fsw_real (*src)[3], int n, int cap)
+{
+  int i, k;
+  for (i = 0; i < cap; i++)
+    for (k = 0; k < 3; k++) dst[i][k] = (i < n) ? src[i][k] : FSW_R(0.0);
+}
+
+FswStatus fsw_acs_config_set_geometry(FswAcsConfig *cfg, const FswAcsGeometry *geo)
+{
+  int nw, nt;
+  FSW_ASSERT(cfg != NULL && geo != NULL);
+  if (cfg == NULL || geo == NULL) return FSW_E_NULL_ARG;
+  nw = geo->num_rw;
+  nt = geo->num_thr;
+  if (nw < 0 || nt < 0) return FSW_E_CONFIG;
+  if (nw > FSW_MAX_RW || nt > FSW_MAX_THR) return FSW_E_CAPACITY;
+
+  /* wheels */
+  cfg->has_wheels = (nw > 0) ? 1 : 0;
+  cfg->mrp_fb.num_rw = nw;
+  copy_n3(cfg->mrp_fb.gs_hat_B, geo->gs_hat_B, nw, FSW_MAX_RW);
+  copy_n(cfg->mrp_fb.J_s, geo->J_s, nw, FSW_MAX_RW);
+  cfg->rw_map.num_rw = nw;
+  copy_n3(cfg->rw_map.gs_hat_B, geo->gs_hat_B, nw, FSW_MAX_RW);
+  cfg->rw_null.num_rw = nw;
+  copy_n3(cfg->rw_null.gs_hat_B, geo->gs_hat_B, nw, FSW_MAX_RW);
+  copy_n(cfg->rw_null.u_max, geo->u_max, nw, FSW_MAX_RW);
+  cfg->rw_sat.num_rw = nw;
+  copy_n(cfg->rw_sat.u_max, geo->u_max, nw, FSW_MAX_RW);
+  cfg->rw_volt.num_rw = nw;
+  copy_n(cfg->rw_volt.u_max, geo->u_max, nw, FSW_MAX_RW);
+  copy_n(cfg->rw_volt.J_s, geo->J_s, nw, FSW_MAX_RW);
+
+  /* thrusters */
+  cfg->has_thrusters = (nt > 0) ? 1 : 0;
+  cfg->thr_map.num_thr = nt;
+  copy_n3(cfg->thr_map.r_thr_B, geo->r_thr_B, nt, FSW_MAX_THR);
+  copy_n3(cfg->thr_map.gt_hat_B, geo->gt_hat_B, nt, FSW_MAX_THR);
+  copy_n(cfg->thr_map.F_max, geo->F_max, nt, FSW_MAX_THR);
+  cfg->pulse_rem.common.num_thr = nt;
+  copy_n(cfg->pulse_rem.common.F_max, geo->F_max, nt, FSW_MAX_THR);
+  cfg->pulse_schmitt.common.num_thr = nt;
+  copy_n(cfg->pulse_schmitt.common.F_max, geo->F_max, nt, FSW_MAX_THR);
+  return FSW_OK;
+}
+
+/* Safety net for configs filled by hand: the copies of physical geometry
+ * (spin axes, spin inertias) must be bit-for-bit equal.  Torque limits are
+ * not compared: a module may be given a derated limit on purpose. */
+
+/* 1 if the first n entries of a and b are equal. */
+static int same_n(const fsw_real *a, const fsw_real *b, int n)
+{
+  int i;
+  for (i = 0; i < n; i++)
+    if (a[i] != b[i]) return 0;
+  return 1;
+}
+
+static int same_n3(const fsw_real (*a)[3], const fsw_real (*b)[3], int n)
+{
+  int i, k;
+  for (i = 0; i < n; i++)
+    for (k = 0; k < 3; k++)
+      if (a[i][k] != b[i][k]) return 0;
+  return 1;
+}
 
 FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
 {
@@ -50,18 +150,25 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
     if ((s = fsw_rw_map_check(&cfg->rw_map)) != FSW_OK) return fail(bad_field, "rw_map", s);
     if (cfg->mrp_fb.num_rw != 0 && cfg->mrp_fb.num_rw != n)
       return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG);
+    if (cfg->mrp_fb.num_rw != 0 &&
+        !same_n3(cfg->mrp_fb.gs_hat_B, cfg->rw_map.gs_hat_B, n))
+      return fail(bad_field, "mrp_fb.gs_hat_B", FSW_E_CONFIG);
     if ((s = fsw_rw_sat_check(&cfg->rw_sat)) != FSW_OK) return fail(bad_field, "rw_sat", s);
     if (cfg->rw_sat.num_rw != n) return fail(bad_field, "rw_sat.num_rw", FSW_E_CONFIG);
     if (!is_bool(cfg->use_null)) return fail(bad_field, "use_null", FSW_E_CONFIG);
     if (cfg->use_null) {
       if ((s = fsw_rw_null_check(&cfg->rw_null)) != FSW_OK) return fail(bad_field, "rw_null", s);
       if (cfg->rw_null.num_rw != n) return fail(bad_field, "rw_null.num_rw", FSW_E_CONFIG);
+      if (!same_n3(cfg->rw_null.gs_hat_B, cfg->rw_map.gs_hat_B, n))
+        return fail(bad_field, "rw_null.gs_hat_B", FSW_E_CONFIG);
       if (!fsw_vn_is_finite(cfg->Omega_des, n)) return fail(bad_field, "Omega_des", FSW_E_CONFIG);
     }
     if (!is_bool(cfg->use_volt)) return fail(bad_field, "use_volt", FSW_E_CONFIG);
     if (cfg->use_volt) {
       if ((s = fsw_rw_volt_check(&cfg->rw_volt)) != FSW_OK) return fail(bad_field, "rw_volt", s);
       if (cfg->rw_volt.num_rw != n) return fail(bad_field, "rw_volt.num_rw", FSW_E_CONFIG);
+      if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->rw_volt.J_s, cfg->mrp_fb.J_s, n))
+        return fail(bad_field, "rw_volt.J_s", FSW_E_CONFIG);
     }
   } else if (cfg->mrp_fb.num_rw != 0) {
     return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG); /* wheels in H but no wheel chain */
@@ -78,9 +185,9 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
     if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
       if ((s = fsw_thr_pulse_rem_check(&cfg->pulse_rem)) != FSW_OK)
         return fail(bad_field, "pulse_rem", s);
-      num_thr = cfg->pulse_rem.num_thr;
-      F_max = cfg->pulse_rem.F_max;
-      b = cfg->pulse_rem.base_thrust_state;
+      num_thr = cfg->pulse_rem.common.num_thr;
+      F_max = cfg->pulse_rem.common.F_max;
+      b = cfg->pulse_rem.common.base_thrust_state;
       if (num_thr != n) return fail(bad_field, "pulse_rem.num_thr", FSW_E_CONFIG);
       if (b != b_want) return fail(bad_field, "pulse_rem.base_thrust_state", FSW_E_CONFIG);
       for (i = 0; i < n; i++)
@@ -88,9 +195,9 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
     } else if (cfg->pulser == FSW_ACS_PULSE_SCHMITT) {
       if ((s = fsw_thr_pulse_schmitt_check(&cfg->pulse_schmitt)) != FSW_OK)
         return fail(bad_field, "pulse_schmitt", s);
-      num_thr = cfg->pulse_schmitt.num_thr;
-      F_max = cfg->pulse_schmitt.F_max;
-      b = cfg->pulse_schmitt.base_thrust_state;
+      num_thr = cfg->pulse_schmitt.common.num_thr;
+      F_max = cfg->pulse_schmitt.common.F_max;
+      b = cfg->pulse_schmitt.common.base_thrust_state;
       if (num_thr != n) return fail(bad_field, "pulse_schmitt.num_thr", FSW_E_CONFIG);
       if (b != b_want) return fail(bad_field, "pulse_schmitt.base_thrust_state", FSW_E_CONFIG);
       for (i = 0; i < n; i++)
@@ -193,8 +300,7 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg)
   reset_dynamic(st, cfg);
   st->mode = cfg->initial_mode;
   st->actuation = cfg->initial_actuation;
-  st->has_prev = 0;
-  st->t_prev_ns = 0u;
+  fsw_clock_reset(&st->clock);
 }
 
 /* ---- cycle -------------------------------------------------------------- */
@@ -401,7 +507,11 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   if (!((req_act == FSW_ACS_ACT_WHEELS && cfg->has_wheels) ||
         (req_act == FSW_ACS_ACT_THRUSTERS && cfg->has_thrusters)))
     return finish(st, h, FSW_E_BAD_INPUT);
-  if (st->has_prev && sens->t_ns <= st->t_prev_ns) return finish(st, h, FSW_E_TIME);
+  {
+    fsw_real dt; /* [s] unused: the stages derive their own */
+    s = fsw_clock_dt(&st->clock, sens->t_ns, &dt);
+    if (s != FSW_OK) return finish(st, h, s);
+  }
   if (!fsw_v3_is_finite(sens->omega_BN_B)) return finish(st, h, FSW_E_BAD_INPUT);
   if (req_mode == FSW_ACS_MODE_INERTIAL && (sens->att_valid != 1u || !fsw_v3_is_finite(sens->sigma_BN)))
     return finish(st, h, FSW_E_BAD_INPUT);
@@ -464,8 +574,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   fsw_v3_copy(h->sigma_BR, guid.sigma_BR);
   fsw_v3_copy(h->omega_BR_B, guid.omega_BR_B);
   h->att_err_angle = fsw_mrp_angle(guid.sigma_BR);
-  st->has_prev = 1;
-  st->t_prev_ns = sens->t_ns;
+  fsw_clock_commit(&st->clock, sens->t_ns);
   if (st->cycles < UINT32_MAX) st->cycles++;
   if (fsw_status_is_error(acc)) safe_output(act);
   return finish(st, h, acc);

@@ -1,5 +1,6 @@
 /* fsw_linalg: kernels K1 (minimum-norm solve) and K2 (null-space projector)
- * of fsw-algorithms.md 0.4. */
+ * of fsw-algorithms.md 0.4, and K4 (bounded minimum-norm solve, the exact
+ * mode of thr_map, fsw-algorithms.md 8.6). */
 #include "fsw/fsw_linalg.h"
 
 #include <stddef.h>
@@ -145,5 +146,294 @@ FswStatus fsw_null_projector(fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF],
     }
   }
   if (rank != NULL) *rank = nq;
+  return FSW_OK;
+}
+
+/* ---- K4: bounded least squares, then least norm ------------------------- */
+
+/* Relative round-off tolerance of the active-set method: a residual,
+ * gradient or step below K4_TOL times its natural scale is zero. */
+#define K4_TOL (FSW_R(1000.0) * FSW_REAL_EPS)
+/* Fixed iteration budget: K4_ITER_PER_COL times the column count (both
+ * phases together). */
+#define K4_ITER_PER_COL 3
+
+/* Variable status of the active-set method. */
+#define K4_FREE 0
+#define K4_AT_LO 1
+#define K4_AT_HI 2
+
+/* Solve M x = rhs for a symmetric positive semi-definite m x m matrix M by
+ * LDL^T in fixed order.  A pivot <= FSW_RANK_TOL * max diag is dropped (its
+ * component of the solution is 0), so a consistent rhs is solved exactly
+ * even when M is singular. */
+static void psd_solve(fsw_real x[3], const fsw_real M[3][3], const fsw_real rhs[3], int m)
+{
+  fsw_real L[3][3], d[3], y[3], dmax = FSW_R(0.0);
+  int keep[3], i, j, k;
+  for (k = 0; k < m; k++)
+    if (M[k][k] > dmax) dmax = M[k][k];
+  for (k = 0; k < m; k++) {
+    fsw_real v = M[k][k];
+    for (j = 0; j < k; j++) v -= L[k][j] * L[k][j] * d[j];
+    keep[k] = (dmax > FSW_R(0.0) && v > FSW_RANK_TOL * dmax);
+    d[k] = keep[k] ? v : FSW_R(0.0);
+    L[k][k] = FSW_R(1.0);
+    for (i = k + 1; i < m; i++) {
+      fsw_real w = M[i][k];
+      for (j = 0; j < k; j++) w -= L[i][j] * L[k][j] * d[j];
+      L[i][k] = keep[k] ? w / d[k] : FSW_R(0.0);
+    }
+  }
+  for (k = 0; k < m; k++) {
+    fsw_real v = rhs[k];
+    for (j = 0; j < k; j++) v -= L[k][j] * y[j];
+    y[k] = v;
+  }
+  for (k = m - 1; k >= 0; k--) {
+    fsw_real v = keep[k] ? y[k] / d[k] : FSW_R(0.0);
+    for (i = k + 1; i < m; i++) v -= L[i][k] * x[i];
+    x[k] = v;
+  }
+  for (k = m; k < 3; k++) x[k] = FSW_R(0.0);
+}
+
+/* Column i of A dotted with an m-vector. */
+static fsw_real col_dot(const fsw_real A[3][FSW_MAX_EFF], int i, const fsw_real v[3], int m)
+{
+  fsw_real s = FSW_R(0.0);
+  int k;
+  for (k = 0; k < m; k++) s += A[k][i] * v[k];
+  return s;
+}
+
+/* K4 body (inputs already checked).  See fsw_linalg.h for the method:
+ * phase 1 (Lawson-Hanson / BVLS style) minimises |A F - b| within the box
+ * from F = 0, keeping at most m independent free columns; phase 2 (primal
+ * active set) keeps A F fixed and minimises |F|, stepping in the null space
+ * of the free columns.  Ties go to the lowest index; F never leaves
+ * [lo, hi].  Returns the iteration count. */
+static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_EFF],
+                           const fsw_real b[3], int m, int n, const fsw_real lo[FSW_MAX_EFF],
+                           const fsw_real hi[FSW_MAX_EFF])
+{
+  signed char stat[FSW_MAX_EFF];
+  int P[3], np = 0, it = 0, i, j, k, q;
+  const int budget = K4_ITER_PER_COL * n;
+  fsw_real bnorm = fsw_vn_norm(b, m), fscale = FSW_R(0.0);
+
+  for (i = 0; i < n; i++) {
+    F[i] = FSW_R(0.0);
+    stat[i] = (lo[i] == FSW_R(0.0)) ? K4_AT_LO : K4_AT_HI;
+    if (hi[i] - lo[i] > fscale) fscale = hi[i] - lo[i];
+  }
+
+  /* ---- phase 1 ---- */
+  while (it < budget && np < m) {
+    fsw_real r[3], gbest = FSW_R(0.0);
+    int best = -1, first = 1;
+    for (k = 0; k < m; k++) {
+      fsw_real v = b[k];
+      for (i = 0; i < n; i++) v -= A[k][i] * F[i];
+      r[k] = v;
+    }
+    if (fsw_vn_norm(r, m) <= K4_TOL * bnorm) break;
+    for (i = 0; i < n; i++) {
+      fsw_real g, an2 = FSW_R(0.0);
+      if (stat[i] == K4_FREE) continue;
+      for (k = 0; k < m; k++) an2 += A[k][i] * A[k][i];
+      g = col_dot(A, i, r, m);
+      if (stat[i] == K4_AT_HI) g = -g;
+      if (g > K4_TOL * bnorm * FSW_SQRT(an2) && g > gbest) {
+        gbest = g;
+        best = i;
+      }
+    }
+    if (best < 0) break;
+    /* insert into P keeping index order */
+    for (q = np; q > 0 && P[q - 1] > best; q--) P[q] = P[q - 1];
+    P[q] = best;
+    np++;
+    {
+      const int entering_at_lo = (stat[best] == K4_AT_LO);
+      int stop = 0;
+      stat[best] = K4_FREE;
+      while (it < budget) {
+        fsw_real G[3][3], rhs[3], r0[3], z[3], alpha = FSW_R(1.0);
+        int blk = -1;
+        it++;
+        /* r0 = b - sum over fixed columns; LS on the free columns */
+        for (k = 0; k < m; k++) {
+          fsw_real v = b[k];
+          for (i = 0; i < n; i++)
+            if (stat[i] != K4_FREE) v -= A[k][i] * F[i];
+          r0[k] = v;
+        }
+        for (q = 0; q < np; q++) {
+          for (j = 0; j < np; j++) {
+            fsw_real v = FSW_R(0.0);
+            for (k = 0; k < m; k++) v += A[k][P[q]] * A[k][P[j]];
+            G[q][j] = v;
+          }
+          rhs[q] = col_dot(A, P[q], r0, m);
+        }
+        psd_solve(z, FSW_CM33(G), rhs, np);
+        if (first) {
+          /* The entering variable must move into the box (exact arithmetic
+           * guarantees it; round-off may not).  Otherwise undo and stop. */
+          for (q = 0; q < np && P[q] != best; q++) {
+          }
+          if (entering_at_lo ? !(z[q] > lo[best]) : !(z[q] < hi[best])) {
+            stat[best] = entering_at_lo ? K4_AT_LO : K4_AT_HI;
+            for (; q + 1 < np; q++) P[q] = P[q + 1];
+            np--;
+            stop = 1;
+            break;
+          }
+          first = 0;
+        }
+        for (q = 0; q < np; q++) {
+          i = P[q];
+          if (z[q] <= lo[i] || z[q] >= hi[i]) {
+            fsw_real bound = (z[q] <= lo[i]) ? lo[i] : hi[i];
+            fsw_real a = (bound - F[i]) / (z[q] - F[i]);
+            if (!(a > FSW_R(0.0))) a = FSW_R(0.0);
+            if (blk < 0 || a < alpha) {
+              alpha = a;
+              blk = q;
+            }
+          }
+        }
+        if (blk < 0) {
+          for (q = 0; q < np; q++) F[P[q]] = z[q];
+          break;
+        }
+        if (alpha > FSW_R(1.0)) alpha = FSW_R(1.0);
+        for (q = 0; q < np; q++) F[P[q]] = F[P[q]] + alpha * (z[q] - F[P[q]]);
+        /* fix the blocking variable and any other that reached a bound */
+        {
+          const int ib = P[blk];
+          const int ib_lo = (z[blk] <= lo[ib]);
+          F[ib] = ib_lo ? lo[ib] : hi[ib];
+          stat[ib] = ib_lo ? K4_AT_LO : K4_AT_HI;
+          for (q = 0; q < np; q++) {
+            i = P[q];
+            if (stat[i] != K4_FREE) continue;
+            if (F[i] <= lo[i]) {
+              F[i] = lo[i];
+              stat[i] = K4_AT_LO;
+            } else if (F[i] >= hi[i]) {
+              F[i] = hi[i];
+              stat[i] = K4_AT_HI;
+            }
+          }
+          for (j = 0, q = 0; q < np; q++)
+            if (stat[P[q]] == K4_FREE) P[j++] = P[q];
+          np = j;
+        }
+      }
+      if (stop) break;
+    }
+  }
+
+  /* ---- phase 2 ---- */
+  while (it < budget) {
+    fsw_real M[3][3], c[3], lam[3], alpha = FSW_R(1.0), pmax = FSW_R(0.0), vbest;
+    int blk = -1, best = -1, blk_lo = 0;
+    it++;
+    for (k = 0; k < m; k++) {
+      for (j = 0; j <= k; j++) {
+        fsw_real v = FSW_R(0.0);
+        for (i = 0; i < n; i++)
+          if (stat[i] == K4_FREE) v += A[k][i] * A[j][i];
+        M[k][j] = v;
+        M[j][k] = v;
+      }
+      {
+        fsw_real v = FSW_R(0.0);
+        for (i = 0; i < n; i++)
+          if (stat[i] == K4_FREE) v += A[k][i] * F[i];
+        c[k] = v;
+      }
+    }
+    psd_solve(lam, FSW_CM33(M), c, m);
+    for (i = 0; i < n; i++) {
+      fsw_real p;
+      if (stat[i] != K4_FREE) continue;
+      p = col_dot(A, i, lam, m) - F[i];
+      if (FSW_FABS(p) > pmax) pmax = FSW_FABS(p);
+    }
+    if (pmax > K4_TOL * fscale) {
+      /* step toward the minimum-norm point of the free set, ratio test */
+      for (i = 0; i < n; i++) {
+        fsw_real z;
+        if (stat[i] != K4_FREE) continue;
+        z = col_dot(A, i, lam, m);
+        if (z < lo[i] || z > hi[i]) {
+          fsw_real bound = (z < lo[i]) ? lo[i] : hi[i];
+          fsw_real a = (bound - F[i]) / (z - F[i]);
+          if (!(a > FSW_R(0.0))) a = FSW_R(0.0);
+          if (blk < 0 || a < alpha) {
+            alpha = a;
+            blk = i;
+            blk_lo = (z < lo[i]);
+          }
+        }
+      }
+      if (alpha > FSW_R(1.0)) alpha = FSW_R(1.0);
+      for (i = 0; i < n; i++) {
+        fsw_real z;
+        if (stat[i] != K4_FREE) continue;
+        z = col_dot(A, i, lam, m);
+        F[i] = F[i] + alpha * (z - F[i]);
+        if (F[i] < lo[i]) F[i] = lo[i];
+        if (F[i] > hi[i]) F[i] = hi[i];
+      }
+      if (blk >= 0) {
+        F[blk] = blk_lo ? lo[blk] : hi[blk];
+        stat[blk] = blk_lo ? K4_AT_LO : K4_AT_HI;
+        continue;
+      }
+      /* full step: F is now the minimiser on the free set and lam its
+       * multiplier, so the optimality test below needs no new solve */
+    }
+    /* stationary on the free set: release the bound with the largest
+     * multiplier of the wrong sign */
+    vbest = K4_TOL * fscale;
+    for (i = 0; i < n; i++) {
+      fsw_real g, v;
+      if (stat[i] == K4_FREE) continue;
+      g = col_dot(A, i, lam, m);
+      v = (stat[i] == K4_AT_LO) ? g - lo[i] : hi[i] - g;
+      if (v > vbest) {
+        vbest = v;
+        best = i;
+      }
+    }
+    if (best < 0) break;
+    stat[best] = K4_FREE;
+  }
+  return it;
+}
+
+FswStatus fsw_bounded_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_EFF],
+                                    const fsw_real b[3], int m, int n,
+                                    const fsw_real lo[FSW_MAX_EFF], const fsw_real hi[FSW_MAX_EFF],
+                                    int *iterations)
+{
+  int i;
+  FSW_ASSERT(x != NULL && A != NULL && b != NULL && lo != NULL && hi != NULL);
+  if (iterations != NULL) *iterations = 0;
+  if (x == NULL || A == NULL || b == NULL || lo == NULL || hi == NULL) return FSW_E_NULL_ARG;
+  fsw_vn_zero(x, n < 0 ? 0 : (n > FSW_MAX_EFF ? FSW_MAX_EFF : n)); /* safe output */
+  if (m < 1 || m > 3 || n < 0 || n > FSW_MAX_EFF) return FSW_E_CAPACITY;
+  for (i = 0; i < m; i++)
+    if (!fsw_vn_is_finite(A[i], n) || !isfinite(b[i])) return FSW_E_BAD_INPUT;
+  for (i = 0; i < n; i++) {
+    if (!isfinite(lo[i]) || !isfinite(hi[i]) || !(lo[i] <= hi[i])) return FSW_E_BAD_INPUT;
+    if (lo[i] != FSW_R(0.0) && hi[i] != FSW_R(0.0)) return FSW_E_BAD_INPUT;
+  }
+  i = bounded_minnorm(x, A, b, m, n, lo, hi);
+  if (iterations != NULL) *iterations = i;
   return FSW_OK;
 }

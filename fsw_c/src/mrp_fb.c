@@ -84,8 +84,7 @@ void fsw_mrp_fb_reset(FswMrpFbState *st)
 {
   FSW_ASSERT(st != NULL);
   if (st == NULL) return;
-  st->has_prev = 0;
-  st->t_prev_ns = 0u;
+  fsw_clock_reset(&st->clock);
   fsw_v3_zero(st->int_sigma);
 }
 
@@ -137,9 +136,9 @@ FswStatus fsw_mrp_fb_update(FswMrpFbState *st, const FswMrpFbConfig *cfg, const 
   if (!guid_is_finite(g) || !wheels_ok(cfg, in)) {
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   }
-  if (st->has_prev) {
-    if (in->t_ns <= st->t_prev_ns) return fsw_health_record(&st->health, FSW_E_TIME);
-    dt = (fsw_real)(in->t_ns - st->t_prev_ns) * FSW_R(1e-9);
+  {
+    const FswStatus s = fsw_clock_dt(&st->clock, in->t_ns, &dt); /* FSW_OK or FSW_E_TIME */
+    if (s != FSW_OK) return fsw_health_record(&st->health, s);
   }
 
   /* 1. omega = omega_BR + omega_RN */
@@ -201,7 +200,6 @@ FswStatus fsw_mrp_fb_update(FswMrpFbState *st, const FswMrpFbConfig *cfg, const 
   fsw_v3_scale(out->torque_B, FSW_R(-1.0), sum_B);
   fsw_v3_scale(out->int_torque_B, FSW_R(-1.0), P_Ki_z);
   fsw_v3_copy(st->int_sigma, int_sigma);
-  st->has_prev = 1;
-  st->t_prev_ns = in->t_ns;
+  fsw_clock_commit(&st->clock, in->t_ns);
   return fsw_health_record(&st->health, FSW_OK);
 }

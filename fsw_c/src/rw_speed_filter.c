@@ -51,8 +51,7 @@ void fsw_rw_speed_filter_reset(FswRwSpeedFilterState *st)
     st->has_good[i] = 0u;
     st->failed[i] = 0u;
   }
-  st->has_prev = 0;
-  st->t_prev_ns = 0u;
+  fsw_clock_reset(&st->clock);
 }
 
 /* |x - ref| within what the motor torque allows since t_ref, plus noise. */
@@ -87,7 +86,11 @@ FswStatus fsw_rw_speed_filter_update(FswRwSpeedFilterState *st, const FswRwSpeed
   safe_output(st, n, out, st->ready);
   if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
   if (!fsw_rw_avail_valid(in->avail, n)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
-  if (st->has_prev && in->t_ns <= st->t_prev_ns) return fsw_health_record(&st->health, FSW_E_TIME);
+  {
+    fsw_real dt; /* [s] unused: the consistency test measures from each wheel's own sample */
+    const FswStatus s = fsw_clock_dt(&st->clock, in->t_ns, &dt); /* FSW_OK or FSW_E_TIME */
+    if (s != FSW_OK) return fsw_health_record(&st->health, s);
+  }
 
   for (i = 0; i < n; i++) {
     const fsw_real x = in->Omega_meas[i];
@@ -133,7 +136,6 @@ FswStatus fsw_rw_speed_filter_update(FswRwSpeedFilterState *st, const FswRwSpeed
     out->avail[i] = (st->failed[i] || in->avail[i] != FSW_AVAILABLE) ? (uint8_t)FSW_UNAVAILABLE
                                                                      : (uint8_t)FSW_AVAILABLE;
   }
-  st->has_prev = 1;
-  st->t_prev_ns = in->t_ns;
+  fsw_clock_commit(&st->clock, in->t_ns);
   return fsw_health_record(&st->health, FSW_OK);
 }

@@ -46,8 +46,7 @@ void fsw_rw_volt_reset(FswRwVoltState *st)
     for (i = 0; i < FSW_MAX_RW; i++) st->prev_ok[i] = 0u;
   }
   st->phase = 0;
-  st->has_prev = 0;
-  st->t_prev_ns = 0u;
+  fsw_clock_reset(&st->clock);
 }
 
 FswStatus fsw_rw_volt_update(FswRwVoltState *st, const FswRwVoltConfig *cfg,
@@ -67,9 +66,9 @@ FswStatus fsw_rw_volt_update(FswRwVoltState *st, const FswRwVoltConfig *cfg,
       (in->has_Omega != 0 && in->has_Omega != 1) ||
       (in->has_Omega && !fsw_rw_avail_finite(in->Omega, in->avail, n)))
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
-  if (st->has_prev) {
-    if (in->t_ns <= st->t_prev_ns) return fsw_health_record(&st->health, FSW_E_TIME);
-    dt = (fsw_real)(in->t_ns - st->t_prev_ns) * FSW_R(1e-9);
+  {
+    const FswStatus s = fsw_clock_dt(&st->clock, in->t_ns, &dt); /* FSW_OK or FSW_E_TIME */
+    if (s != FSW_OK) return fsw_health_record(&st->health, s);
   }
 
   for (i = 0; i < n; i++) out->V[i] = (in->avail[i] == FSW_AVAILABLE) ? in->u_s[i] : FSW_R(0.0);
@@ -115,7 +114,6 @@ FswStatus fsw_rw_volt_update(FswRwVoltState *st, const FswRwVoltConfig *cfg,
     }
     out->V[i] = V;
   }
-  st->has_prev = 1;
-  st->t_prev_ns = in->t_ns;
+  fsw_clock_commit(&st->clock, in->t_ns);
   return fsw_health_record(&st->health, clipped ? FSW_W_SAT : FSW_OK);
 }

@@ -4,16 +4,13 @@
 #include <stddef.h>
 
 #include "fsw/fsw_vec.h"
-#include "thr_pulse_common.h"
+#include "thr_pulse_internal.h"
 
 FswStatus fsw_thr_pulse_rem_check(const FswThrPulseRemConfig *cfg)
 {
-  FswStatus s;
   FSW_ASSERT(cfg != NULL);
   if (cfg == NULL) return FSW_E_NULL_ARG;
-  s = fsw_thr_pulse_check_common(cfg->num_thr, cfg->t_min, 1, cfg->F_max);
-  if (s != FSW_OK) return s;
-  return fsw_thr_pulse_check_base(cfg->base_thrust_state, cfg->init_off_pulse_on_time);
+  return fsw_thr_pulse_check_common(&cfg->common);
 }
 
 void fsw_thr_pulse_rem_reset(FswThrPulseRemState *st)
@@ -21,8 +18,7 @@ void fsw_thr_pulse_rem_reset(FswThrPulseRemState *st)
   FSW_ASSERT(st != NULL);
   if (st == NULL) return;
   fsw_vn_zero(st->rem, FSW_MAX_THR);
-  st->has_prev = 0;
-  st->t_prev_ns = 0u;
+  fsw_clock_reset(&st->common.clock);
 }
 
 FswStatus fsw_thr_pulse_rem_init(FswThrPulseRemState *st, const FswThrPulseRemConfig *cfg)
@@ -30,45 +26,42 @@ FswStatus fsw_thr_pulse_rem_init(FswThrPulseRemState *st, const FswThrPulseRemCo
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
   if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
-  st->ready = 0;
-  fsw_health_clear(&st->health);
+  fsw_thr_pulse_init_common(&st->common);
   fsw_thr_pulse_rem_reset(st);
   s = fsw_thr_pulse_rem_check(cfg);
   if (s != FSW_OK) return s;
-  st->ready = 1;
+  st->common.ready = 1;
   return FSW_OK;
 }
 
 FswStatus fsw_thr_pulse_rem_update(FswThrPulseRemState *st, const FswThrPulseRemConfig *cfg,
                                    const FswThrPulseRemIn *in, FswThrPulseRemOut *out)
 {
-  ThrPulseTiming timing;
+  const FswThrPulseCommon *c;
   fsw_real dt;
   FswStatus s;
-  int i, n, saturated = 0;
+  int i, saturated = 0;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (out != NULL) fsw_thr_pulse_safe_output(out->t_on);
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
-    if (st != NULL) (void)fsw_health_record(&st->health, FSW_E_NULL_ARG);
+    if (st != NULL) (void)fsw_health_record(&st->common.health, FSW_E_NULL_ARG);
     return FSW_E_NULL_ARG;
   }
-  n = cfg->num_thr;
-  s = fsw_thr_pulse_begin(st->ready, &st->health, in->F, n, 1, st->has_prev, st->t_prev_ns,
-                          in->t_ns, &timing, &dt);
+  c = &cfg->common;
+  s = fsw_thr_pulse_begin(&st->common, in->F, c->num_thr, 1, in->t_ns, &dt);
   if (s != FSW_OK) return s;
 
-  if (timing == THR_PULSE_FIRST) {
-    fsw_thr_pulse_first_output(out->t_on, n, cfg->base_thrust_state,
-                               cfg->init_off_pulse_on_time);
+  if (!st->common.clock.has_prev) {
+    fsw_thr_pulse_first_output(out->t_on, c);
   } else {
-    for (i = 0; i < n; i++) {
+    for (i = 0; i < c->num_thr; i++) {
       /* 9 steps 1-3, in the order written */
-      fsw_real t = fsw_thr_pulse_on_time(in->F[i], cfg->F_max[i], cfg->base_thrust_state, dt);
-      t = t + st->rem[i] * cfg->t_min;
+      fsw_real t = fsw_thr_pulse_on_time(in->F[i], c->F_max[i], c->base_thrust_state, dt);
+      t = t + st->rem[i] * c->t_min;
       st->rem[i] = FSW_R(0.0);
-      if (t < cfg->t_min) {
-        st->rem[i] = t / cfg->t_min;
+      if (t < c->t_min) {
+        st->rem[i] = t / c->t_min;
         out->t_on[i] = FSW_R(0.0);
       } else if (t >= dt) {
         if (t > dt) saturated = 1;
@@ -78,7 +71,5 @@ FswStatus fsw_thr_pulse_rem_update(FswThrPulseRemState *st, const FswThrPulseRem
       }
     }
   }
-  st->has_prev = 1;
-  st->t_prev_ns = in->t_ns;
-  return fsw_health_record(&st->health, saturated ? FSW_W_SAT : FSW_OK);
+  return fsw_thr_pulse_end(&st->common, 1, in->t_ns, saturated);
 }

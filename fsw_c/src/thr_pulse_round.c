@@ -4,15 +4,16 @@
 #include <stddef.h>
 
 #include "fsw/fsw_vec.h"
-#include "thr_pulse_common.h"
+#include "thr_pulse_internal.h"
 
 FswStatus fsw_thr_pulse_round_check(const FswThrPulseRoundConfig *cfg)
 {
   FswStatus s;
   FSW_ASSERT(cfg != NULL);
   if (cfg == NULL) return FSW_E_NULL_ARG;
-  s = fsw_thr_pulse_check_common(cfg->num_thr, cfg->t_min, 0, cfg->F_max);
+  s = fsw_thr_pulse_check_thrusters(cfg->num_thr, cfg->F_max);
   if (s != FSW_OK) return s;
+  if (!isfinite(cfg->t_min) || cfg->t_min < FSW_R(0.0)) return FSW_E_CONFIG;
   if (!isfinite(cfg->period) || !(cfg->period > FSW_R(0.0))) return FSW_E_CONFIG;
   if (!isfinite(cfg->resolution) || !(cfg->resolution > FSW_R(0.0))) return FSW_E_CONFIG;
   if (cfg->carry_residual != 0 && cfg->carry_residual != 1) return FSW_E_CONFIG;
@@ -24,8 +25,7 @@ void fsw_thr_pulse_round_reset(FswThrPulseRoundState *st)
   FSW_ASSERT(st != NULL);
   if (st == NULL) return;
   fsw_vn_zero(st->resid, FSW_MAX_THR);
-  st->has_prev = 0;
-  st->t_prev_ns = 0u;
+  fsw_clock_reset(&st->common.clock);
 }
 
 FswStatus fsw_thr_pulse_round_init(FswThrPulseRoundState *st, const FswThrPulseRoundConfig *cfg)
@@ -33,12 +33,11 @@ FswStatus fsw_thr_pulse_round_init(FswThrPulseRoundState *st, const FswThrPulseR
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
   if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
-  st->ready = 0;
-  fsw_health_clear(&st->health);
+  fsw_thr_pulse_init_common(&st->common);
   fsw_thr_pulse_round_reset(st);
   s = fsw_thr_pulse_round_check(cfg);
   if (s != FSW_OK) return s;
-  st->ready = 1;
+  st->common.ready = 1;
   return FSW_OK;
 }
 
@@ -53,7 +52,6 @@ FswStatus fsw_thr_pulse_round_update(FswThrPulseRoundState *st, const FswThrPuls
                                      const FswThrPulseRoundIn *in, FswThrPulseRoundOut *out)
 {
   const fsw_real T = (cfg != NULL) ? cfg->period : FSW_R(0.0);
-  ThrPulseTiming timing;
   fsw_real dt;
   FswStatus s;
   int i, n, saturated = 0;
@@ -61,14 +59,13 @@ FswStatus fsw_thr_pulse_round_update(FswThrPulseRoundState *st, const FswThrPuls
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (out != NULL) fsw_thr_pulse_safe_output(out->t_on);
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
-    if (st != NULL) (void)fsw_health_record(&st->health, FSW_E_NULL_ARG);
+    if (st != NULL) (void)fsw_health_record(&st->common.health, FSW_E_NULL_ARG);
     return FSW_E_NULL_ARG;
   }
   n = cfg->num_thr;
   /* time stamps matter only to the carried residual (the default mode is
    * stateless like Basilisk's) */
-  s = fsw_thr_pulse_begin(st->ready, &st->health, in->F, n, cfg->carry_residual, st->has_prev,
-                          st->t_prev_ns, in->t_ns, &timing, &dt);
+  s = fsw_thr_pulse_begin(&st->common, in->F, n, cfg->carry_residual, in->t_ns, &dt);
   if (s != FSW_OK) return s;
 
   for (i = 0; i < n; i++) {
@@ -86,9 +83,5 @@ FswStatus fsw_thr_pulse_round_update(FswThrPulseRoundState *st, const FswThrPuls
     out->t_on[i] = t;
     if (cfg->carry_residual) st->resid[i] = clamp(t_req - t, -T, T);
   }
-  if (cfg->carry_residual) {
-    st->has_prev = 1;
-    st->t_prev_ns = in->t_ns;
-  }
-  return fsw_health_record(&st->health, saturated ? FSW_W_SAT : FSW_OK);
+  return fsw_thr_pulse_end(&st->common, cfg->carry_residual, in->t_ns, saturated);
 }

@@ -42,24 +42,23 @@ void fsw_trq_lpf_reset(FswTrqLpfState *st)
   if (st == NULL) return;
   fsw_v3_zero(st->Lr_prev);
   fsw_v3_zero(st->LrF_prev);
-  st->has_prev = 0;
-  st->t_prev_ns = 0u;
+  fsw_clock_reset(&st->clock);
 }
 
 FswStatus fsw_trq_lpf_update(FswTrqLpfState *st, const FswTrqLpfConfig *cfg,
                              const FswTrqLpfIn *in, FswTrqLpfOut *out)
 {
   FswStatus s = FSW_OK;
+  fsw_real dt; /* [s] */
   int k;
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (out != NULL) fsw_v3_zero(out->LrF_B); /* safe output */
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
   if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
   if (!fsw_v3_is_finite(in->Lr_B)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
-  if (st->has_prev) {
-    fsw_real dt;
-    if (in->t_ns <= st->t_prev_ns) return fsw_health_record(&st->health, FSW_E_TIME);
-    dt = (fsw_real)(in->t_ns - st->t_prev_ns) * FSW_R(1e-9);
+  s = fsw_clock_dt(&st->clock, in->t_ns, &dt); /* FSW_OK or FSW_E_TIME */
+  if (s != FSW_OK) return fsw_health_record(&st->health, s);
+  if (st->clock.has_prev) {
     if (FSW_FABS(dt - cfg->h) > FSW_TRQ_LPF_RATE_TOL * cfg->h) s = FSW_W_RATE;
   } else {
     fsw_v3_copy(st->Lr_prev, in->Lr_B);
@@ -70,7 +69,6 @@ FswStatus fsw_trq_lpf_update(FswTrqLpfState *st, const FswTrqLpfConfig *cfg,
     st->Lr_prev[k] = in->Lr_B[k];
     st->LrF_prev[k] = out->LrF_B[k];
   }
-  st->has_prev = 1;
-  st->t_prev_ns = in->t_ns;
+  fsw_clock_commit(&st->clock, in->t_ns);
   return fsw_health_record(&st->health, s);
 }

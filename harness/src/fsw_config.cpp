@@ -89,68 +89,63 @@ FswSetup make_fsw_setup(const Scenario& sc, const sim::MassProps& mp)
   for (int r = 0; r < 3; ++r)
     for (int k = 0; k < 3; ++k) mf.I_B[r][k] = R(I_fsw(r, k));
   a.use_lpf = 0;
-  // wheel chain: rw_map -> [rw_null] -> rw_sat (limits = the wheels' u_max)
-  a.has_wheels = n_rw > 0 ? 1 : 0;
-  if (a.has_wheels) {
-    mf.num_rw = n_rw;
-    a.rw_map.num_rw = n_rw;
-    a.rw_map.num_axes = 3;
-    for (int r = 0; r < 3; ++r) a.rw_map.ctrl_axes_B[r][r] = 1;
-    a.rw_map.mode = sc.fsw.rw_map == RwMapMode::Power ? FSW_RW_MAP_POWER : FSW_RW_MAP_MIN_NORM;
-    a.rw_map.eps_P = R(sc.fsw.eps_P);
-    a.use_null = sc.fsw.rw_null ? 1 : 0;
-    a.rw_null.num_rw = n_rw;
-    a.rw_null.k_null = R(sc.fsw.k_null);
-    a.rw_null.scale_to_fit = sc.fsw.rw_null_scale_to_fit ? 1 : 0;
-    a.rw_sat.num_rw = n_rw;
-    a.rw_sat.mode = FSW_RW_SAT_SCALE;
-    for (int i = 0; i < n_rw; ++i) {
-      const sim::ReactionWheelParams& p = sc.wheels[static_cast<size_t>(i)].params;
-      put3(mf.gs_hat_B[i], p.gs_hat_nom_B);
-      put3(a.rw_map.gs_hat_B[i], p.gs_hat_nom_B);
-      put3(a.rw_null.gs_hat_B[i], p.gs_hat_nom_B);
-      mf.J_s[i] = R(p.J_s);
-      a.rw_null.u_max[i] = R(p.u_max);
-      a.rw_sat.u_max[i] = R(p.u_max);
-      a.Omega_des[i] = i < static_cast<int>(sc.fsw.Omega_des.size()) ? R(sc.fsw.Omega_des[static_cast<size_t>(i)]) : 0;
-    }
+  // actuator geometry, given once: fsw_acs_config_set_geometry() writes the
+  // module copies (and has_wheels / has_thrusters from the counts).  ACS
+  // thrusters (acs: true) only: the main engine follows the burn schedule.
+  FswAcsGeometry geo;
+  std::memset(&geo, 0, sizeof geo);
+  geo.num_rw = n_rw;
+  for (int i = 0; i < n_rw; ++i) {
+    const sim::ReactionWheelParams& p = sc.wheels[static_cast<size_t>(i)].params;
+    put3(geo.gs_hat_B[i], p.gs_hat_nom_B);
+    geo.J_s[i] = R(p.J_s);
+    geo.u_max[i] = R(p.u_max);
   }
-  // thruster chain: the ACS thrusters (acs: true) only; the main engine is
-  // commanded by the burn schedule, not by the FSW
   for (size_t j = 0; j < sc.thrusters.size(); ++j)
     if (sc.thrusters[j].acs) {
       if (out.n_acs >= FSW_MAX_THR)
         throw config_error(sc, "thrusters", "at most " + std::to_string(FSW_MAX_THR) + " ACS thrusters (FSW_MAX_THR)");
       out.acs_to_plant[static_cast<size_t>(out.n_acs++)] = static_cast<int>(j);
     }
-  a.has_thrusters = out.n_acs > 0 ? 1 : 0;
+  geo.num_thr = out.n_acs;
+  for (int i = 0; i < out.n_acs; ++i) {
+    const ThrusterSpec& t = sc.thrusters[static_cast<size_t>(out.acs_to_plant[static_cast<size_t>(i)])];
+    put3(geo.r_thr_B[i], t.r_B);
+    put3(geo.gt_hat_B[i], t.dir_B);  // nominal axis: the misalignment is truth only
+    geo.F_max[i] = R(t.F_max);
+  }
+  if (fsw_acs_config_set_geometry(&a, &geo) != FSW_OK)
+    throw config_error(sc, n_rw > FSW_MAX_RW ? "wheels" : "thrusters", "more wheels or thrusters than the FSW holds");
+  // wheel chain: rw_map -> [rw_null] -> rw_sat (limits = the wheels' u_max)
+  if (a.has_wheels) {
+    a.rw_map.num_axes = 3;
+    for (int r = 0; r < 3; ++r) a.rw_map.ctrl_axes_B[r][r] = 1;
+    a.rw_map.mode = sc.fsw.rw_map == RwMapMode::Power ? FSW_RW_MAP_POWER : FSW_RW_MAP_MIN_NORM;
+    a.rw_map.eps_P = R(sc.fsw.eps_P);
+    a.use_null = sc.fsw.rw_null ? 1 : 0;
+    a.rw_null.k_null = R(sc.fsw.k_null);
+    a.rw_null.scale_to_fit = sc.fsw.rw_null_scale_to_fit ? 1 : 0;
+    a.rw_sat.mode = FSW_RW_SAT_SCALE;
+    for (int i = 0; i < n_rw; ++i)
+      a.Omega_des[i] = i < static_cast<int>(sc.fsw.Omega_des.size()) ? R(sc.fsw.Omega_des[static_cast<size_t>(i)]) : 0;
+  }
+  // thruster chain: map -> pulser
   if (a.has_thrusters) {
     for (int k = 0; k < 3; ++k) a.thr_map.control_axes_B[k][k] = R(1.0);
-    a.thr_map.num_thr = out.n_acs;
     a.thr_map.thr_force_sign = 1;
     a.thr_map.ang_err_thresh = R(0.0);
     a.thr_map.epsilon = R(0.0);
     a.thr_map.use_2nd_loop = 0;
     a.thr_map.mode = sc.fsw.thr_map == ThrMapMode::Nnls ? FSW_THR_MAP_NNLS : FSW_THR_MAP_MIN_NORM;
     a.pulser = sc.fsw.thr_pulse == ThrPulseMode::Schmitt ? FSW_ACS_PULSE_SCHMITT : FSW_ACS_PULSE_REMAINDER;
-    a.pulse_rem.num_thr = out.n_acs;
-    a.pulse_rem.t_min = R(sc.fsw.thr_t_min);
-    a.pulse_rem.base_thrust_state = 0;
-    a.pulse_rem.init_off_pulse_on_time = R(0.0);
-    a.pulse_schmitt.num_thr = out.n_acs;
-    a.pulse_schmitt.t_min = R(sc.fsw.thr_t_min);
+    a.pulse_rem.common.t_min = R(sc.fsw.thr_t_min);
+    a.pulse_rem.common.base_thrust_state = 0;
+    a.pulse_rem.common.init_off_pulse_on_time = R(0.0);
+    a.pulse_schmitt.common.t_min = R(sc.fsw.thr_t_min);
     a.pulse_schmitt.level_on = R(sc.fsw.thr_level_on);
     a.pulse_schmitt.level_off = R(sc.fsw.thr_level_off);
-    a.pulse_schmitt.base_thrust_state = 0;
-    a.pulse_schmitt.init_off_pulse_on_time = R(0.0);
-    for (int i = 0; i < out.n_acs; ++i) {
-      const ThrusterSpec& t = sc.thrusters[static_cast<size_t>(out.acs_to_plant[static_cast<size_t>(i)])];
-      put3(a.thr_map.r_thr_B[i], t.r_B);
-      put3(a.thr_map.gt_hat_B[i], t.dir_B);  // nominal axis: the misalignment is truth only
-      a.thr_map.F_max[i] = R(t.F_max);
-      a.pulse_rem.F_max[i] = R(t.F_max);
-      a.pulse_schmitt.F_max[i] = R(t.F_max);
-    }
+    a.pulse_schmitt.common.base_thrust_state = 0;
+    a.pulse_schmitt.common.init_off_pulse_on_time = R(0.0);
   }
   const char* bad = nullptr;
   const FswStatus s = fsw_acs_check(&a, &bad);

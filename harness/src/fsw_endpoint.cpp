@@ -7,16 +7,6 @@
 
 namespace harness {
 
-namespace {
-const char* const kStageNames[FSW_ACS_NUM_STAGES] = {"css",    "guidance", "track",   "control",
-                                                     "lpf",    "rw_map",   "rw_null", "rw_sat",
-                                                     "rw_volt", "thr_map", "thr_pulse"};
-}  // namespace
-
-const char* fsw_stage_name(int stage)
-{
-  return stage >= 0 && stage < FSW_ACS_NUM_STAGES ? kStageNames[stage] : "?";
-}
 
 InProcessFsw::InProcessFsw(const FswAcsConfig& cfg) : cfg_(cfg)
 {
@@ -44,7 +34,7 @@ std::vector<std::string> fsw_health_summary(const FswAcsHealthMsg& h)
   out.push_back(os.str());
   std::ostringstream ss;
   ss << "fsw_acs last cycle stages:";
-  for (int i = 0; i < FSW_ACS_NUM_STAGES; ++i) ss << " " << kStageNames[i] << "=" << fsw_status_name(h.stage_status[i]);
+  for (int i = 0; i < FSW_ACS_NUM_STAGES; ++i) ss << " " << fsw_acs_stage_name(i) << "=" << fsw_status_name(h.stage_status[i]);
   out.push_back(ss.str());
   return out;
 }
@@ -75,8 +65,8 @@ std::vector<std::string> InProcessFsw::module_health_lines() const
   }
   if (cfg_.has_thrusters) {
     line("thr_map", st_.thr_map.health);
-    if (cfg_.pulser == FSW_ACS_PULSE_REMAINDER) line("thr_pulse_rem", st_.pulse_rem.health);
-    else line("thr_pulse_schmitt", st_.pulse_schmitt.health);
+    if (cfg_.pulser == FSW_ACS_PULSE_REMAINDER) line("thr_pulse_rem", st_.pulse_rem.common.health);
+    else line("thr_pulse_schmitt", st_.pulse_schmitt.common.health);
   }
   return out;
 }

@@ -127,7 +127,7 @@ void declare_telemetry(Recorder& rec, const RecordedChannels& ch, int n_rw, int 
                          });
   {
     Quantity stages{"stage_status", "-", "", {}};
-    for (int i = 0; i < FSW_ACS_NUM_STAGES; ++i) stages.columns.push_back(std::string("fsw_stage_") + fsw_stage_name(i));
+    for (int i = 0; i < FSW_ACS_NUM_STAGES; ++i) stages.columns.push_back(std::string("fsw_stage_") + fsw_acs_stage_name(i));
     rec.record<FswAcsHealthMsg>(*ch.fsw_health,
                                 {scalar("status", "-", "fsw_status"), scalar("safe_output", "-", "fsw_safe_output"), stages},
                                 [](const FswAcsHealthMsg& h, double* o) {

@@ -76,40 +76,52 @@ inline void base_config(FswAcsConfig& c)
   c.lpf.omega_c = R(1.0);
 }
 
+// The 4-wheel pyramid as the application's geometry.
+inline void wheel_geometry(FswAcsGeometry& g)
+{
+  std::memset(&g, 0, sizeof g);
+  g.num_rw = 4;
+  for (int i = 0; i < g.num_rw; i++) {
+    double a[3];
+    pyramid_axis(i, a);
+    for (int k = 0; k < 3; k++) g.gs_hat_B[i][k] = R(a[k]);
+    g.J_s[i] = R(kJs);
+    g.u_max[i] = R(kUmax);
+  }
+}
+
+// The 8 RCS thrusters as the application's geometry.
+inline void thruster_geometry(FswAcsGeometry& g)
+{
+  std::memset(&g, 0, sizeof g);
+  g.num_thr = 8;
+  for (int i = 0; i < g.num_thr; i++) {
+    for (int k = 0; k < 3; k++) {
+      g.r_thr_B[i][k] = R(kThrR[i][k]);
+      g.gt_hat_B[i][k] = R(kThrG[i][k]);
+    }
+    g.F_max[i] = R(kFmax);
+  }
+}
+
 inline void wheel_config(FswAcsConfig& c)
 {
   base_config(c);
-  const int n = 4;
-  c.has_wheels = 1;
-  c.mrp_fb.num_rw = n;
-  c.rw_map.num_rw = n;
+  {
+    FswAcsGeometry g;
+    wheel_geometry(g);
+    (void)fsw_acs_config_set_geometry(&c, &g);  // has_wheels, num_rw, axes, J_s, u_max
+  }
   c.rw_map.num_axes = 3;
   for (int k = 0; k < 3; k++) c.rw_map.ctrl_axes_B[k][k] = R(1.0);
   c.rw_map.mode = FSW_RW_MAP_MIN_NORM;
   c.rw_map.eps_P = R(1.0);
-  c.rw_null.num_rw = n;
   c.rw_null.k_null = R(0.002);
   c.rw_null.scale_to_fit = 1;
-  c.rw_sat.num_rw = n;
   c.rw_sat.mode = FSW_RW_SAT_SCALE;
-  c.rw_volt.num_rw = n;
   c.rw_volt.V_min = R(0.0);
   c.rw_volt.V_max = R(10.0);
   c.rw_volt.K_V = R(0.0);
-  for (int i = 0; i < n; i++) {
-    double g[3];
-    pyramid_axis(i, g);
-    for (int k = 0; k < 3; k++) {
-      c.mrp_fb.gs_hat_B[i][k] = R(g[k]);
-      c.rw_map.gs_hat_B[i][k] = R(g[k]);
-      c.rw_null.gs_hat_B[i][k] = R(g[k]);
-    }
-    c.mrp_fb.J_s[i] = R(kJs);
-    c.rw_null.u_max[i] = R(kUmax);
-    c.rw_sat.u_max[i] = R(kUmax);
-    c.rw_volt.u_max[i] = R(kUmax);
-    c.rw_volt.J_s[i] = R(kJs);
-  }
 }
 
 inline void thruster_config(FswAcsConfig& c, int pulser = FSW_ACS_PULSE_REMAINDER)
@@ -117,37 +129,28 @@ inline void thruster_config(FswAcsConfig& c, int pulser = FSW_ACS_PULSE_REMAINDE
   base_config(c);
   c.initial_mode = FSW_ACS_MODE_INERTIAL;
   c.initial_actuation = FSW_ACS_ACT_THRUSTERS;
-  c.has_thrusters = 1;
+  {
+    FswAcsGeometry g;
+    thruster_geometry(g);
+    (void)fsw_acs_config_set_geometry(&c, &g);  // has_thrusters, num_thr, r, g, F_max
+  }
   // Thrusters have ~9x the wheels' authority (1 N x 1.8 m): stiffer gains,
   // omega_n = sqrt(K/(4 I)) = 0.075 rad/s, zeta = P/sqrt(K I) = 1.5.  The
   // Schmitt trigger's dead band (no firing below level_on t_min) then maps to
   // an attitude dead band of 4 (0.75 t_min / T) F d / K = 0.6 deg.
   c.mrp_fb.K = R(20.0);
   c.mrp_fb.P = R(200.0);
-  const int n = 8;
   for (int k = 0; k < 3; k++) c.thr_map.control_axes_B[k][k] = R(1.0);
-  c.thr_map.num_thr = n;
   c.thr_map.thr_force_sign = 1;
   c.thr_map.ang_err_thresh = R(0.0);
   c.thr_map.mode = FSW_THR_MAP_NNLS;
   c.pulser = pulser;
-  c.pulse_rem.num_thr = n;
-  c.pulse_rem.t_min = R(0.02);
-  c.pulse_rem.init_off_pulse_on_time = R(2.0);
-  c.pulse_schmitt.num_thr = n;
-  c.pulse_schmitt.t_min = R(0.02);
+  c.pulse_rem.common.t_min = R(0.02);
+  c.pulse_rem.common.init_off_pulse_on_time = R(2.0);
+  c.pulse_schmitt.common.t_min = R(0.02);
   c.pulse_schmitt.level_on = R(0.75);
   c.pulse_schmitt.level_off = R(0.25);
-  c.pulse_schmitt.init_off_pulse_on_time = R(2.0);
-  for (int i = 0; i < n; i++) {
-    for (int k = 0; k < 3; k++) {
-      c.thr_map.r_thr_B[i][k] = R(kThrR[i][k]);
-      c.thr_map.gt_hat_B[i][k] = R(kThrG[i][k]);
-    }
-    c.thr_map.F_max[i] = R(kFmax);
-    c.pulse_rem.F_max[i] = R(kFmax);
-    c.pulse_schmitt.F_max[i] = R(kFmax);
-  }
+  c.pulse_schmitt.common.init_off_pulse_on_time = R(2.0);
 }
 
 // ---- the canned sequences of the host/target equivalence test ----------

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "acs_fixture.hpp"
 #include "fsw/fsw_acs.h"
@@ -99,10 +100,10 @@ TEST(FswAcsConfig, ThrusterChainConsistency)
     const char* field;
   };
   const Row rows[] = {
-      {"off-pulsing pulser behind on-pulsing mapper", [](FswAcsConfig& c) { c.pulse_rem.base_thrust_state = 1; },
+      {"off-pulsing pulser behind on-pulsing mapper", [](FswAcsConfig& c) { c.pulse_rem.common.base_thrust_state = 1; },
        "pulse_rem.base_thrust_state"},
-      {"pulser thruster count", [](FswAcsConfig& c) { c.pulse_rem.num_thr = 7; }, "pulse_rem.num_thr"},
-      {"pulser F_max differs from mapper", [](FswAcsConfig& c) { c.pulse_rem.F_max[3] = acsfix::R(2.0); }, "pulse_rem.F_max"},
+      {"pulser thruster count", [](FswAcsConfig& c) { c.pulse_rem.common.num_thr = 7; }, "pulse_rem.num_thr"},
+      {"pulser F_max differs from mapper", [](FswAcsConfig& c) { c.pulse_rem.common.F_max[3] = acsfix::R(2.0); }, "pulse_rem.F_max"},
       {"unknown pulser", [](FswAcsConfig& c) { c.pulser = 5; }, "pulser"},
       {"thruster mapping geometry", [](FswAcsConfig& c) { c.thr_map.F_max[0] = 0; }, "thr_map"},
   };
@@ -118,6 +119,178 @@ TEST(FswAcsConfig, ThrusterChainConsistency)
   const char* field = "x";
   EXPECT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field));
   EXPECT_EQ(nullptr, field);
+}
+
+/* ---- what the health message publishes ---- */
+
+TEST(FswAcsHealth, StageNamesComeFromTheLibrary)
+{
+  const char* const want[FSW_ACS_NUM_STAGES] = {"css",     "guidance", "track",   "control",
+                                                "lpf",     "rw_map",   "rw_null", "rw_sat",
+                                                "rw_volt", "thr_map",  "thr_pulse"};
+  for (int i = 0; i < FSW_ACS_NUM_STAGES; i++) EXPECT_EQ(std::string(want[i]), fsw_acs_stage_name(i)) << i;
+  EXPECT_EQ(std::string("unknown"), fsw_acs_stage_name(-1));
+  EXPECT_EQ(std::string("unknown"), fsw_acs_stage_name(FSW_ACS_NUM_STAGES));
+}
+
+TEST(FswAcsHealth, PublishesTheSunHeadingTheCycleUsed)
+{
+  // Sun along (1,1,1)/sqrt3 on the +x, +y, +z sensors: the heading is exact.
+  acsfix::wheel_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 1000);
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  EXPECT_EQ(1, g_h.sun_valid);
+  EXPECT_EQ(3, g_h.num_lit);
+  for (int k = 0; k < 3; k++) {
+    EXPECT_NEAR(1.0 / std::sqrt(3.0), double(g_h.sun_hat_B[k]), kTol) << k;
+    EXPECT_EQ(g_st.work.css_out.sun_hat_B[k], g_h.sun_hat_B[k]) << k;  // the estimate used
+  }
+  // eclipse: no lit sensor, no heading
+  sensors_at_rest(g_sens, 2000);
+  for (int i = 0; i < 6; i++) g_sens.css[i] = 0;
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  EXPECT_EQ(0, g_h.sun_valid);
+  for (int k = 0; k < 3; k++) EXPECT_EQ(0, g_h.sun_hat_B[k]) << k;
+  // a rejected cycle publishes no heading
+  sensors_at_rest(g_sens, 3000);
+  g_sens.omega_BN_B[1] = kNaN;
+  ASSERT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  for (int k = 0; k < 3; k++) EXPECT_EQ(0, g_h.sun_hat_B[k]) << k;
+  // inertial pointing does not run the CSS: no heading either
+  acsfix::thruster_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 1000);
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  EXPECT_EQ(0, g_h.sun_valid);
+  for (int k = 0; k < 3; k++) EXPECT_EQ(0, g_h.sun_hat_B[k]) << k;
+}
+
+/* ---- geometry given once ---- */
+
+FswAcsGeometry g_geo;
+FswAcsConfig g_cfg2;
+
+TEST(FswAcsGeometry, WritesEveryCopyAndNothingElse)
+{
+  acsfix::wheel_geometry(g_geo);
+  for (int i = 0; i < 4; i++) {  // distinct values, so a crossed copy shows
+    g_geo.J_s[i] = acsfix::R(0.1 + 0.01 * i);
+    g_geo.u_max[i] = acsfix::R(0.2 + 0.02 * i);
+  }
+  std::memset(&g_cfg, 0, sizeof g_cfg);
+  for (int i = 0; i < FSW_MAX_RW; i++) g_cfg.rw_sat.u_max[i] = acsfix::R(9.0);  // stale, beyond n too
+  g_cfg.rw_null.k_null = acsfix::R(5.0);                                        // not geometry
+  g_cfg.pulse_rem.common.t_min = acsfix::R(0.3);                                // not geometry
+  ASSERT_EQ(FSW_OK, fsw_acs_config_set_geometry(&g_cfg, &g_geo));
+  EXPECT_EQ(1, g_cfg.has_wheels);
+  EXPECT_EQ(0, g_cfg.has_thrusters);
+  EXPECT_EQ(4, g_cfg.mrp_fb.num_rw);
+  EXPECT_EQ(4, g_cfg.rw_map.num_rw);
+  EXPECT_EQ(4, g_cfg.rw_null.num_rw);
+  EXPECT_EQ(4, g_cfg.rw_sat.num_rw);
+  EXPECT_EQ(4, g_cfg.rw_volt.num_rw);
+  EXPECT_EQ(0, g_cfg.thr_map.num_thr);
+  for (int i = 0; i < FSW_MAX_RW; i++) {
+    const bool in = i < 4;
+    for (int k = 0; k < 3; k++) {
+      const fsw_real g = in ? g_geo.gs_hat_B[i][k] : acsfix::R(0.0);
+      EXPECT_EQ(g, g_cfg.mrp_fb.gs_hat_B[i][k]) << i;
+      EXPECT_EQ(g, g_cfg.rw_map.gs_hat_B[i][k]) << i;
+      EXPECT_EQ(g, g_cfg.rw_null.gs_hat_B[i][k]) << i;
+    }
+    const fsw_real J = in ? g_geo.J_s[i] : acsfix::R(0.0), u = in ? g_geo.u_max[i] : acsfix::R(0.0);
+    EXPECT_EQ(J, g_cfg.mrp_fb.J_s[i]) << i;
+    EXPECT_EQ(J, g_cfg.rw_volt.J_s[i]) << i;
+    EXPECT_EQ(u, g_cfg.rw_null.u_max[i]) << i;
+    EXPECT_EQ(u, g_cfg.rw_sat.u_max[i]) << i;
+    EXPECT_EQ(u, g_cfg.rw_volt.u_max[i]) << i;
+  }
+  EXPECT_EQ(acsfix::R(5.0), g_cfg.rw_null.k_null);
+  EXPECT_EQ(acsfix::R(0.3), g_cfg.pulse_rem.common.t_min);
+
+  acsfix::thruster_geometry(g_geo);
+  g_geo.F_max[5] = acsfix::R(2.5);
+  ASSERT_EQ(FSW_OK, fsw_acs_config_set_geometry(&g_cfg, &g_geo));
+  EXPECT_EQ(0, g_cfg.has_wheels);  // the wheel copies follow the geometry: none
+  EXPECT_EQ(0, g_cfg.mrp_fb.num_rw);
+  EXPECT_EQ(0, g_cfg.rw_sat.u_max[0]);
+  EXPECT_EQ(1, g_cfg.has_thrusters);
+  EXPECT_EQ(8, g_cfg.thr_map.num_thr);
+  EXPECT_EQ(8, g_cfg.pulse_rem.common.num_thr);
+  EXPECT_EQ(8, g_cfg.pulse_schmitt.common.num_thr);
+  for (int j = 0; j < FSW_MAX_THR; j++) {
+    const bool in = j < 8;
+    for (int k = 0; k < 3; k++) {
+      EXPECT_EQ(in ? g_geo.r_thr_B[j][k] : acsfix::R(0.0), g_cfg.thr_map.r_thr_B[j][k]) << j;
+      EXPECT_EQ(in ? g_geo.gt_hat_B[j][k] : acsfix::R(0.0), g_cfg.thr_map.gt_hat_B[j][k]) << j;
+    }
+    const fsw_real F = in ? g_geo.F_max[j] : acsfix::R(0.0);
+    EXPECT_EQ(F, g_cfg.thr_map.F_max[j]) << j;
+    EXPECT_EQ(F, g_cfg.pulse_rem.common.F_max[j]) << j;
+    EXPECT_EQ(F, g_cfg.pulse_schmitt.common.F_max[j]) << j;
+  }
+}
+
+TEST(FswAcsGeometry, BadCountsLeaveTheConfigUnchanged)
+{
+  acsfix::wheel_config(g_cfg);
+  g_cfg2 = g_cfg;
+  const struct {
+    const char* why;
+    int num_rw, num_thr;
+    FswStatus want;
+  } rows[] = {
+      {"wheels above capacity", FSW_MAX_RW + 1, 0, FSW_E_CAPACITY},
+      {"thrusters above capacity", 4, FSW_MAX_THR + 1, FSW_E_CAPACITY},
+      {"negative wheel count", -1, 0, FSW_E_CONFIG},
+      {"negative thruster count", 4, -2, FSW_E_CONFIG},
+  };
+  for (const auto& r : rows) {
+    acsfix::wheel_geometry(g_geo);
+    g_geo.num_rw = r.num_rw;
+    g_geo.num_thr = r.num_thr;
+    EXPECT_EQ(r.want, fsw_acs_config_set_geometry(&g_cfg, &g_geo)) << r.why;
+    EXPECT_EQ(0, std::memcmp(&g_cfg, &g_cfg2, sizeof g_cfg)) << r.why;
+  }
+  kestrel_assert_reset();
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_acs_config_set_geometry(nullptr, &g_geo));
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_acs_config_set_geometry(&g_cfg, nullptr));
+  EXPECT_EQ(2ul, kestrel_assert_count());
+  kestrel_assert_reset();
+}
+
+TEST(FswAcsConfig, SafetyNetCatchesCopiesFilledByHand)
+{
+  // Swapping two spin axes in one copy keeps every module's own check happy
+  // (unit axes, same set) but breaks the geometry the modules share.
+  struct Row {
+    const char* why;
+    void (*spoil)(FswAcsConfig&);
+    const char* field;
+  };
+  const Row rows[] = {
+      {"control law wheel axes", [](FswAcsConfig& c) {
+         for (int k = 0; k < 3; k++) std::swap(c.mrp_fb.gs_hat_B[0][k], c.mrp_fb.gs_hat_B[1][k]);
+       }, "mrp_fb.gs_hat_B"},
+      {"null-motion wheel axes", [](FswAcsConfig& c) {
+         c.use_null = 1;
+         for (int k = 0; k < 3; k++) std::swap(c.rw_null.gs_hat_B[2][k], c.rw_null.gs_hat_B[3][k]);
+       }, "rw_null.gs_hat_B"},
+      {"voltage spin inertia", [](FswAcsConfig& c) {
+         c.use_volt = 1;
+         c.rw_volt.J_s[1] = acsfix::R(0.2);
+       }, "rw_volt.J_s"},
+  };
+  for (const Row& r : rows) {
+    acsfix::wheel_config(g_cfg);
+    ASSERT_EQ(FSW_OK, fsw_acs_check(&g_cfg, nullptr)) << r.why;
+    r.spoil(g_cfg);
+    const char* field = nullptr;
+    EXPECT_EQ(FSW_E_CONFIG, fsw_acs_check(&g_cfg, &field)) << r.why;
+    ASSERT_NE(nullptr, field) << r.why;
+    EXPECT_EQ(std::string(r.field), field) << r.why;
+  }
 }
 
 /* ---- nominal cycles, numbers by hand ---- */
@@ -254,7 +427,7 @@ TEST(FswAcsCycle, BadInputGivesSafeOutputAdvancesNothingAndRecovers)
     fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2);
   }
   const FswMrpFbState fb_before = g_st.mrp_fb;
-  const uint64_t t_prev = g_st.t_prev_ns;
+  const uint64_t t_prev = g_st.clock.t_prev_ns;
   struct Spoil {
     const char* why;
     void (*f)(FswAcsSensorMsg&);
@@ -277,7 +450,7 @@ TEST(FswAcsCycle, BadInputGivesSafeOutputAdvancesNothingAndRecovers)
     EXPECT_EQ(1, g_h.safe_output) << sp.why;
     EXPECT_EQ(sp.want, g_h.status);
     EXPECT_EQ(0, std::memcmp(&fb_before, &g_st.mrp_fb, sizeof fb_before)) << sp.why;
-    EXPECT_EQ(t_prev, g_st.t_prev_ns);
+    EXPECT_EQ(t_prev, g_st.clock.t_prev_ns);
   }
   EXPECT_EQ(5u, g_st.health.bad_input);
   EXPECT_EQ(2u, g_st.health.bad_time);

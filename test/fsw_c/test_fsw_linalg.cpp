@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 
@@ -414,3 +415,212 @@ TEST(FswNullProjector, ScaleInvariantAndNonFinite)
 }
 
 }  // namespace
+
+// ---- K4 fsw_bounded_minnorm_solve ------------------------------------------
+
+namespace {
+
+struct Box {
+  fsw_real lo[FSW_MAX_EFF];
+  fsw_real hi[FSW_MAX_EFF];
+};
+
+Box box(int n, double lo, double hi)
+{
+  Box B;
+  std::memset(&B, 0, sizeof B);
+  for (int i = 0; i < n; i++) {
+    B.lo[i] = static_cast<fsw_real>(lo);
+    B.hi[i] = static_cast<fsw_real>(hi);
+  }
+  return B;
+}
+
+// (arrays by reference, not std::initializer_list by value: the latter
+// draws an ABI note from GCC on 32-bit Arm)
+template <size_t N>
+Mat3N mat(int m, int n, const double (&rows)[N])
+{
+  Mat3N A;
+  std::memset(&A, 0, sizeof A);
+  size_t k = 0;
+  for (int i = 0; i < m; i++)
+    for (int j = 0; j < n && k < N; j++) A.a[i][j] = static_cast<fsw_real>(rows[k++]);
+  return A;
+}
+
+struct K4Run {
+  FswStatus s;
+  int iter;
+  fsw_real x[FSW_MAX_EFF];
+};
+
+template <size_t N>
+K4Run k4(const Mat3N& A, const double (&bl)[N], int m, int n, const Box& B)
+{
+  static_assert(N <= 3, "b has at most 3 entries");
+  K4Run r;
+  fsw_real b[3] = {0, 0, 0};
+  for (size_t i = 0; i < N; i++) b[i] = static_cast<fsw_real>(bl[i]);
+  for (int j = 0; j < FSW_MAX_EFF; j++) r.x[j] = 99;
+  r.iter = -1;
+  r.s = fsw_bounded_minnorm_solve(r.x, A.a, b, m, n, B.lo, B.hi, &r.iter);
+  return r;
+}
+
+template <size_t N>
+void expect_x(const K4Run& r, const double (&want)[N], const char* why)
+{
+  for (size_t j = 0; j < N; j++) EXPECT_NEAR(want[j], double(r.x[j]), kTol) << why << ", entry " << j;
+}
+
+}  // namespace
+
+TEST(FswBoundedMinNorm, InteriorSolutionIsTheNormalEquationSolution)
+{
+  // A = [1 0 1; 0 1 1], b = (2, 2): (A A^T)^-1 b = (2/3, 2/3), x = A^T y =
+  // (2/3, 2/3, 4/3), inside [0, 10]^3, so the bounds change nothing.
+  const Mat3N A = mat(2, 3, {1, 0, 1, 0, 1, 1});
+  const K4Run r = k4(A, {2, 2}, 2, 3, box(3, 0, 10));
+  EXPECT_EQ(FSW_OK, r.s);
+  expect_x(r, {2.0 / 3, 2.0 / 3, 4.0 / 3}, "interior");
+  EXPECT_GE(r.iter, 1);
+  EXPECT_LE(r.iter, 3 * 3);
+  // ... and equal to K1 (the normal equations) on the same problem
+  fsw_real x1[FSW_MAX_EFF], b[3] = {2, 2, 0};
+  ASSERT_EQ(FSW_OK, fsw_minnorm_solve(x1, A.a, b, 2, 3));
+  for (int j = 0; j < 3; j++) EXPECT_NEAR(double(x1[j]), double(r.x[j]), kTol);
+  // square and diagonal: x = b ./ diag
+  const K4Run d = k4(mat(2, 2, {2, 0, 0, 4}), {2, 2}, 2, 2, box(2, 0, 10));
+  EXPECT_EQ(FSW_OK, d.s);
+  expect_x(d, {1.0, 0.5}, "diagonal");
+  // an off-pulsing box [-F, 0]: x1 + x2 = -1 -> (-1/2, -1/2)
+  const K4Run neg = k4(mat(1, 2, {1, 1}), {-1}, 1, 2, box(2, -1, 0));
+  EXPECT_EQ(FSW_OK, neg.s);
+  expect_x(neg, {-0.5, -0.5}, "negative box");
+}
+
+TEST(FswBoundedMinNorm, ActiveBounds)
+{
+  // x1 + x2 = 3 with x1 <= 1: the unconstrained (3/2, 3/2) is cut to (1, 2),
+  // the smallest-norm point of the line inside the box.
+  Box B = box(2, 0, 10);
+  B.hi[0] = 1;
+  const K4Run up = k4(mat(1, 2, {1, 1}), {3}, 1, 2, B);
+  EXPECT_EQ(FSW_OK, up.s);
+  expect_x(up, {1.0, 2.0}, "upper bound active");
+  // x1 - x2 = 1 with x >= 0: unconstrained (1/2, -1/2) -> (1, 0)
+  const K4Run lo = k4(mat(1, 2, {1, -1}), {1}, 1, 2, box(2, 0, 10));
+  EXPECT_EQ(FSW_OK, lo.s);
+  expect_x(lo, {1.0, 0.0}, "lower bound active");
+  // out of reach: x1 + x2 = 5 with x <= 1: least squares, both at the top
+  const K4Run far = k4(mat(1, 2, {1, 1}), {5}, 1, 2, box(2, 0, 1));
+  EXPECT_EQ(FSW_OK, far.s);
+  expect_x(far, {1.0, 1.0}, "out of reach");
+  // a column fixed at zero (lo = hi = 0, a removed thruster) is never used
+  Box Z = box(3, 0, 10);
+  Z.hi[1] = 0;
+  const K4Run z = k4(mat(1, 3, {1, 1, 1}), {2}, 1, 3, Z);
+  EXPECT_EQ(FSW_OK, z.s);
+  expect_x(z, {1.0, 0.0, 1.0}, "fixed column");
+}
+
+TEST(FswBoundedMinNorm, RankDeficient)
+{
+  // rows (1 1) and (2 2): rank 1.  Consistent b = (1, 2): x1 + x2 = 1 ->
+  // (1/2, 1/2).  Inconsistent b = (1, 0): least squares in s = x1 + x2,
+  // (s - 1)^2 + (2 s)^2 minimal at s = 1/5 -> (1/10, 1/10).
+  const Mat3N A = mat(2, 2, {1, 1, 2, 2});
+  const K4Run c = k4(A, {1, 2}, 2, 2, box(2, 0, 10));
+  EXPECT_EQ(FSW_OK, c.s);
+  expect_x(c, {0.5, 0.5}, "consistent");
+  const K4Run i = k4(A, {1, 0}, 2, 2, box(2, 0, 10));
+  EXPECT_EQ(FSW_OK, i.s);
+  expect_x(i, {0.1, 0.1}, "inconsistent");
+  // duplicated columns in a 2 x 3 system: x1 + x2 = 2, x3 = 1 -> (1, 1, 1)
+  const K4Run d = k4(mat(2, 3, {1, 1, 0, 0, 0, 1}), {2, 1}, 2, 3, box(3, 0, 10));
+  EXPECT_EQ(FSW_OK, d.s);
+  expect_x(d, {1.0, 1.0, 1.0}, "duplicated columns");
+  // all-zero A: nothing to do, x = 0
+  const K4Run zero = k4(mat(3, 4, {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}), {1, 2, 3}, 3, 4,
+                        box(4, 0, 1));
+  EXPECT_EQ(FSW_OK, zero.s);
+  expect_x(zero, {0, 0, 0, 0}, "zero matrix");
+}
+
+TEST(FswBoundedMinNorm, BadInput)
+{
+  const Mat3N A = mat(1, 2, {1, 1});
+  const fsw_real inf = std::numeric_limits<fsw_real>::infinity();
+  struct Row {
+    const char* why;
+    void (*spoil)(Mat3N&, Box&);
+    int m, n;
+    FswStatus want;
+  };
+  const Row rows[] = {
+      {"NaN in A", [](Mat3N& a, Box&) { a.a[0][1] = kNaN; }, 1, 2, FSW_E_BAD_INPUT},
+      {"NaN lower bound", [](Mat3N&, Box& b) { b.lo[0] = kNaN; }, 1, 2, FSW_E_BAD_INPUT},
+      {"lo > hi", [](Mat3N&, Box& b) { b.lo[1] = 0; b.hi[1] = -1; }, 1, 2, FSW_E_BAD_INPUT},
+      {"0 not a bound", [](Mat3N&, Box& b) { b.lo[0] = -1; }, 1, 2, FSW_E_BAD_INPUT},
+      {"m = 0", [](Mat3N&, Box&) {}, 0, 2, FSW_E_CAPACITY},
+      {"m = 4", [](Mat3N&, Box&) {}, 4, 2, FSW_E_CAPACITY},
+      {"n < 0", [](Mat3N&, Box&) {}, 1, -1, FSW_E_CAPACITY},
+      {"n > FSW_MAX_EFF", [](Mat3N&, Box&) {}, 1, FSW_MAX_EFF + 1, FSW_E_CAPACITY},
+  };
+  for (const Row& r : rows) {
+    Mat3N a = A;
+    Box b = box(2, 0, 1);
+    r.spoil(a, b);
+    const K4Run run = k4(a, {1}, r.m, r.n, b);
+    EXPECT_EQ(r.want, run.s) << r.why;
+    EXPECT_EQ(0, run.iter) << r.why;
+    const int nz = r.n < 0 ? 0 : (r.n > FSW_MAX_EFF ? FSW_MAX_EFF : r.n);
+    for (int j = 0; j < nz; j++) EXPECT_EQ(0, run.x[j]) << r.why << " entry " << j;
+  }
+  // infinite right-hand side
+  {
+    fsw_real x[FSW_MAX_EFF], b[3] = {inf, 0, 0};
+    const Box B = box(2, 0, 1);
+    EXPECT_EQ(FSW_E_BAD_INPUT, fsw_bounded_minnorm_solve(x, A.a, b, 1, 2, B.lo, B.hi, nullptr));
+  }
+  // NULL pointers (iterations may be NULL)
+  kestrel_assert_reset();
+  {
+    fsw_real x[FSW_MAX_EFF], b[3] = {1, 0, 0};
+    const Box B = box(2, 0, 1);
+    EXPECT_EQ(FSW_OK, fsw_bounded_minnorm_solve(x, A.a, b, 1, 2, B.lo, B.hi, nullptr));
+    EXPECT_EQ(0ul, kestrel_assert_count());
+    EXPECT_EQ(FSW_E_NULL_ARG, fsw_bounded_minnorm_solve(x, A.a, b, 1, 2, nullptr, B.hi, nullptr));
+    EXPECT_EQ(1ul, kestrel_assert_count());
+  }
+  kestrel_assert_reset();
+}
+
+TEST(FswBoundedMinNorm, RandomBoxesAgreeWithK1WhenInteriorAndStayInTheBox)
+{
+  kt::Rng r(404);
+  int interior = 0;
+  for (int trial = 0; trial < 400; trial++) {
+    const int m = 1 + trial % 3, n = m + 1 + r.uniform_int(0, 6);
+    const Mat3N A = random_well_conditioned(r, m, n);
+    fsw_real b[3] = {0, 0, 0};
+    for (int i = 0; i < m; i++) b[i] = static_cast<fsw_real>(r.uniform(-1, 1));
+    const Box B = box(n, 0, r.uniform(0.1, 3));
+    fsw_real x[FSW_MAX_EFF], x1[FSW_MAX_EFF];
+    int it = -1;
+    ASSERT_EQ(FSW_OK, fsw_bounded_minnorm_solve(x, A.a, b, m, n, B.lo, B.hi, &it));
+    ASSERT_LE(it, 3 * n);
+    for (int j = 0; j < n; j++) {
+      ASSERT_GE(x[j], B.lo[j]);
+      ASSERT_LE(x[j], B.hi[j]);
+    }
+    ASSERT_EQ(FSW_OK, fsw_minnorm_solve(x1, A.a, b, m, n));
+    bool inside = true;
+    for (int j = 0; j < n; j++) inside = inside && x1[j] > B.lo[j] + 1e-3 && x1[j] < B.hi[j] - 1e-3;
+    if (!inside) continue;
+    ++interior;
+    for (int j = 0; j < n; j++) EXPECT_NEAR(double(x1[j]), double(x[j]), kt::tol(1e-11, 1e-4)) << trial;
+  }
+  EXPECT_GT(interior, 10);  // the property was exercised
+}

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "fsw/mrp_fb.h"
 #include "gnc_test_ref.h"
@@ -339,7 +340,7 @@ TEST_F(MrpFb, TimeMustIncrease)
     EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.torque_B, 0.0);
     EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.int_torque_B, 0.0);
     EXPECT_V3_NEAR(is[0], is[1], is[2], st_.int_sigma, 0.0);  // no state advanced
-    EXPECT_EQ(1000000000ull, st_.t_prev_ns);
+    EXPECT_EQ(1000000000ull, st_.clock.t_prev_ns);
   }
   EXPECT_EQ(3u, st_.health.bad_time);
   // recovery: dt measured from the last accepted call (1 s), not the bad ones
@@ -390,7 +391,7 @@ TEST_F(MrpFb, NonFiniteInputGivesZeroTorqueAndKeepsState)
   n += 3;
   EXPECT_EQ(n, st_.health.bad_input);
   EXPECT_V3_NEAR(is[0], is[1], is[2], st_.int_sigma, 0.0);
-  EXPECT_EQ(1000000000ull, st_.t_prev_ns);
+  EXPECT_EQ(1000000000ull, st_.clock.t_prev_ns);
   // the next good call recovers
   in_ = good;
   EXPECT_EQ(FSW_OK, step(2000000000ull));
@@ -471,7 +472,7 @@ TEST_F(MrpFb, ResetClearsIntegralAndTimingAndIsRepeatable)
     first[k] = out_;
   }
   fsw_mrp_fb_reset(&st_);
-  EXPECT_EQ(0, st_.has_prev);
+  EXPECT_EQ(0, st_.clock.has_prev);
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, st_.int_sigma, 0.0);
   EXPECT_EQ(1, st_.ready);
   EXPECT_EQ(4u, st_.health.calls);  // counters survive reset
@@ -482,6 +483,39 @@ TEST_F(MrpFb, ResetClearsIntegralAndTimingAndIsRepeatable)
       EXPECT_EQ(first[k].torque_B[i], out_.torque_B[i]);
       EXPECT_EQ(first[k].int_torque_B[i], out_.int_torque_B[i]);
     }
+  }
+}
+
+// fsw-algorithms.md 0.2 says reset zeroes the output; the output belongs to
+// the caller, so the project's reading (docs/fsw-conventions.md) is: the
+// first update after reset writes its documented safe output on bad input,
+// never what the caller's buffer held before the reset.
+TEST_F(MrpFb, ResetThenBadInputGivesTheSafeOutputNotStaleValues)
+{
+  RefIn r = scenario();
+  init(r, 20.0);
+  ASSERT_EQ(FSW_OK, step(5000000000ull));
+  ASSERT_EQ(FSW_OK, step(5100000000ull));
+  ASSERT_TRUE(out_.torque_B[0] != 0 || out_.torque_B[1] != 0 || out_.torque_B[2] != 0);
+  fsw_mrp_fb_reset(&st_);
+  const fsw_real keep = in_.guid.sigma_BR[1];
+  in_.guid.sigma_BR[1] = std::numeric_limits<fsw_real>::quiet_NaN();
+  EXPECT_EQ(FSW_E_BAD_INPUT, step(100));
+  EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.torque_B, 0.0);
+  EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.int_torque_B, 0.0);
+  // nothing advanced: the next good call is still the first after reset
+  // (an earlier stamp is legal) and equals a fresh module's first output
+  in_.guid.sigma_BR[1] = keep;
+  EXPECT_EQ(0, st_.clock.has_prev);
+  ASSERT_EQ(FSW_OK, step(50));
+  FswMrpFbState fresh{};
+  FswMrpFbOut want{};
+  ASSERT_EQ(FSW_OK, fsw_mrp_fb_init(&fresh, &cfg_));
+  in_.t_ns = 50;
+  ASSERT_EQ(FSW_OK, fsw_mrp_fb_update(&fresh, &cfg_, &in_, &want));
+  for (int i = 0; i < 3; i++) {
+    EXPECT_EQ(want.torque_B[i], out_.torque_B[i]);
+    EXPECT_EQ(want.int_torque_B[i], out_.int_torque_B[i]);
   }
 }
 

@@ -160,7 +160,7 @@ TEST(RwSpeedFilterBadInput, BadMaskAndTimeAdvanceNothing)
   f.in->avail[1] = 0;
   EXPECT_EQ(f.step(kDt, 300.0), FSW_E_TIME);
   EXPECT_EQ(f.step(kDt / 2, 300.0), FSW_E_TIME);
-  EXPECT_EQ(f.st->t_prev_ns, kDt);
+  EXPECT_EQ(f.st->clock.t_prev_ns, kDt);
   EXPECT_EQ(f.st->reject_run[0], 0u);
   EXPECT_EQ(f.st->health.bad_time, 2u);
   EXPECT_EQ(f.st->health.bad_input, 1u);
@@ -168,6 +168,26 @@ TEST(RwSpeedFilterBadInput, BadMaskAndTimeAdvanceNothing)
   EXPECT_EQ(fsw_rw_speed_filter_update(f.st.get(), f.cfg.get(), nullptr, f.out.get()), FSW_E_NULL_ARG);
   EXPECT_EQ(kestrel_assert_count(), 1u);
   kestrel_assert_reset();
+}
+
+// fsw-algorithms.md 0.2 "reset zeroes the output", read for a caller-owned
+// output (docs/fsw-conventions.md): this module's safe output holds the last
+// good speeds, but reset forgets them, so a bad input right after reset
+// gives 0 speeds (all unavailable), not the values from before the reset.
+TEST(RwSpeedFilterBadInput, ResetThenBadInputGivesTheSafeOutputNotStaleValues)
+{
+  Fixture f(2);
+  ASSERT_EQ(f.step(kDt, 100.0), FSW_OK);
+  f.in->avail[1] = 4;
+  ASSERT_EQ(f.step(2 * kDt, 100.0), FSW_E_BAD_INPUT);
+  EXPECT_EQ(f.out->Omega[0], FSW_R(100.0));  // before reset: held (documented)
+  fsw_rw_speed_filter_reset(f.st.get());
+  EXPECT_EQ(f.step(3 * kDt, 100.0), FSW_E_BAD_INPUT);
+  for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(f.out->Omega[i], FSW_R(0.0)) << i;
+  EXPECT_EQ(f.out->avail[0], FSW_UNAVAILABLE);
+  EXPECT_EQ(f.out->avail[1], FSW_UNAVAILABLE);
+  EXPECT_EQ(f.out->rejected, 0u);
+  EXPECT_EQ(f.st->clock.has_prev, 0);
 }
 
 TEST(RwSpeedFilterRepeatability, SameInputsAfterResetGiveIdenticalOutputs)

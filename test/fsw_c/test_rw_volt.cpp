@@ -186,7 +186,7 @@ TEST(RwVoltBadInput, NonFiniteBadFlagsAndTime)
     EXPECT_EQ(f.update(0), FSW_E_BAD_INPUT) << row;
     for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(f.out->V[i], 0.0);
     EXPECT_EQ(f.st->phase, 0);
-    EXPECT_EQ(f.st->has_prev, 0);
+    EXPECT_EQ(f.st->clock.has_prev, 0);
     EXPECT_EQ(f.st->health.bad_input, 1u) << row;
   }
   // mid-loop (phase 2, speeds stored): a bad call changes no state at all
@@ -204,7 +204,7 @@ TEST(RwVoltBadInput, NonFiniteBadFlagsAndTime)
     EXPECT_EQ(f.st->phase, 2);
     EXPECT_EQ(f.st->Omega_prev[0], FSW_R(100.0));
     EXPECT_EQ(f.st->Omega_prev[1], FSW_R(-50.0));
-    EXPECT_EQ(f.st->t_prev_ns, kDt);
+    EXPECT_EQ(f.st->clock.t_prev_ns, kDt);
     EXPECT_EQ(f.st->health.bad_input, 1u);
     for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(f.out->V[i], 0.0);
   }
@@ -222,7 +222,7 @@ TEST(RwVoltBadInput, NonFiniteBadFlagsAndTime)
   EXPECT_EQ(h.update(4 * kDt), FSW_E_TIME);
   for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(h.out->V[i], 0.0);
   EXPECT_EQ(h.st->phase, 1);
-  EXPECT_EQ(h.st->t_prev_ns, 5 * kDt);
+  EXPECT_EQ(h.st->clock.t_prev_ns, 5 * kDt);
   EXPECT_EQ(h.st->health.bad_time, 2u);
 }
 

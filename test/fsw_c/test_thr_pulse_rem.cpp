@@ -24,12 +24,12 @@ FswThrPulseRemConfig cfg2()
 {
   FswThrPulseRemConfig c;
   std::memset(&c, 0, sizeof c);
-  c.num_thr = 2;
-  c.F_max[0] = 1;
-  c.F_max[1] = 2;
-  c.t_min = static_cast<R>(0.1);
-  c.base_thrust_state = 0;
-  c.init_off_pulse_on_time = 2;
+  c.common.num_thr = 2;
+  c.common.F_max[0] = 1;
+  c.common.F_max[1] = 2;
+  c.common.t_min = static_cast<R>(0.1);
+  c.common.base_thrust_state = 0;
+  c.common.init_off_pulse_on_time = 2;
   return c;
 }
 
@@ -60,18 +60,18 @@ struct BadCfg {
   FswStatus want;
 };
 const BadCfg kBadConfigs[] = {
-    {"zero thrusters", [](FswThrPulseRemConfig* c) { c->num_thr = 0; }, FSW_E_CONFIG},
-    {"more than FSW_MAX_THR", [](FswThrPulseRemConfig* c) { c->num_thr = FSW_MAX_THR + 1; }, FSW_E_CAPACITY},
-    {"F_max zero", [](FswThrPulseRemConfig* c) { c->F_max[1] = 0; }, FSW_E_CONFIG},
-    {"F_max negative", [](FswThrPulseRemConfig* c) { c->F_max[0] = -1; }, FSW_E_CONFIG},
-    {"F_max Inf", [](FswThrPulseRemConfig* c) { c->F_max[0] = std::numeric_limits<R>::infinity(); }, FSW_E_CONFIG},
-    {"t_min zero", [](FswThrPulseRemConfig* c) { c->t_min = 0; }, FSW_E_CONFIG},
-    {"t_min negative", [](FswThrPulseRemConfig* c) { c->t_min = -0.1f; }, FSW_E_CONFIG},
-    {"t_min NaN", [](FswThrPulseRemConfig* c) { c->t_min = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
-    {"base state 2", [](FswThrPulseRemConfig* c) { c->base_thrust_state = 2; }, FSW_E_CONFIG},
-    {"base state -1", [](FswThrPulseRemConfig* c) { c->base_thrust_state = -1; }, FSW_E_CONFIG},
-    {"init on-time negative", [](FswThrPulseRemConfig* c) { c->init_off_pulse_on_time = -1; }, FSW_E_CONFIG},
-    {"init on-time NaN", [](FswThrPulseRemConfig* c) { c->init_off_pulse_on_time = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
+    {"zero thrusters", [](FswThrPulseRemConfig* c) { c->common.num_thr = 0; }, FSW_E_CONFIG},
+    {"more than FSW_MAX_THR", [](FswThrPulseRemConfig* c) { c->common.num_thr = FSW_MAX_THR + 1; }, FSW_E_CAPACITY},
+    {"F_max zero", [](FswThrPulseRemConfig* c) { c->common.F_max[1] = 0; }, FSW_E_CONFIG},
+    {"F_max negative", [](FswThrPulseRemConfig* c) { c->common.F_max[0] = -1; }, FSW_E_CONFIG},
+    {"F_max Inf", [](FswThrPulseRemConfig* c) { c->common.F_max[0] = std::numeric_limits<R>::infinity(); }, FSW_E_CONFIG},
+    {"t_min zero", [](FswThrPulseRemConfig* c) { c->common.t_min = 0; }, FSW_E_CONFIG},
+    {"t_min negative", [](FswThrPulseRemConfig* c) { c->common.t_min = -0.1f; }, FSW_E_CONFIG},
+    {"t_min NaN", [](FswThrPulseRemConfig* c) { c->common.t_min = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
+    {"base state 2", [](FswThrPulseRemConfig* c) { c->common.base_thrust_state = 2; }, FSW_E_CONFIG},
+    {"base state -1", [](FswThrPulseRemConfig* c) { c->common.base_thrust_state = -1; }, FSW_E_CONFIG},
+    {"init on-time negative", [](FswThrPulseRemConfig* c) { c->common.init_off_pulse_on_time = -1; }, FSW_E_CONFIG},
+    {"init on-time NaN", [](FswThrPulseRemConfig* c) { c->common.init_off_pulse_on_time = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
 };
 
 TEST(ThrPulseRem, ConfigRejectionTable)
@@ -87,7 +87,7 @@ TEST(ThrPulseRem, ConfigRejectionTable)
     FswThrPulseRemState st;
     std::memset(&st, 0x33, sizeof st);
     EXPECT_EQ(row.want, fsw_thr_pulse_rem_init(&st, &c)) << row.why;
-    EXPECT_EQ(0, st.ready);
+    EXPECT_EQ(0, st.common.ready);
     FswThrPulseRemIn in;
     std::memset(&in, 0, sizeof in);
     FswThrPulseRemOut out;
@@ -119,7 +119,7 @@ TEST(ThrPulseRem, HandSequenceWithRemainder)
   EXPECT_EQ(FSW_W_SAT, p.step(4 * kSec, 1.5));
   EXPECT_NEAR(1.1 * dt, p.out.t_on[0], kTol);
   EXPECT_EQ(0, p.st.rem[0]);
-  EXPECT_EQ(1u, p.st.health.saturated);
+  EXPECT_EQ(1u, p.st.common.health.saturated);
   // negative force is clipped to 0; a plain request passes through
   EXPECT_EQ(FSW_OK, p.step(5 * kSec, -0.3, 1.0));  // thruster 1: 1 N of 2 N -> 0.5 s
   EXPECT_EQ(0, p.out.t_on[0]);
@@ -132,11 +132,11 @@ TEST(ThrPulseRem, OnTimeEqualToMinimumFires)
   // t = (f / F_max) dt equal to t_min exactly is not "< t_min": it fires.
   FswThrPulseRemConfig c = cfg2();
   const uint64_t step = 500000000ull;
-  c.t_min = (static_cast<R>(0.25) / c.F_max[0]) * dt_of(step);
+  c.common.t_min = (static_cast<R>(0.25) / c.common.F_max[0]) * dt_of(step);
   Pulser p(c);
   p.step(0, 0);
   EXPECT_EQ(FSW_OK, p.step(step, 0.25));
-  EXPECT_EQ(c.t_min, p.out.t_on[0]);
+  EXPECT_EQ(c.common.t_min, p.out.t_on[0]);
   EXPECT_EQ(0, p.st.rem[0]);
   // and a request exactly equal to the period saturates without a warning
   EXPECT_EQ(FSW_OK, p.step(2 * step, 1.0));
@@ -146,7 +146,7 @@ TEST(ThrPulseRem, OnTimeEqualToMinimumFires)
 TEST(ThrPulseRem, OffPulsingFirstCallAndNominalFullOn)
 {
   FswThrPulseRemConfig c = cfg2();
-  c.base_thrust_state = 1;
+  c.common.base_thrust_state = 1;
   Pulser p(c);
   // first call: b * initOffPulseOnTime = 2.0 s for every thruster
   EXPECT_EQ(FSW_OK, p.step(7 * kSec, -0.5, -1.0));
@@ -176,9 +176,9 @@ TEST(ThrPulseRem, TimeMustIncreaseAndNothingAdvances)
     EXPECT_EQ(FSW_E_TIME, p.step(t, 0.5, 0.5));
     for (R x : p.out.t_on) EXPECT_EQ(0, x);
     EXPECT_EQ(0, std::memcmp(before.rem, p.st.rem, sizeof before.rem));
-    EXPECT_EQ(before.t_prev_ns, p.st.t_prev_ns);
+    EXPECT_EQ(before.common.clock.t_prev_ns, p.st.common.clock.t_prev_ns);
   }
-  EXPECT_EQ(3u, p.st.health.bad_time);
+  EXPECT_EQ(3u, p.st.common.health.bad_time);
   // the remainder survived the rejected calls: 0.03 + 0.3 * 0.1 = 0.06
   p.step(2 * kSec, 0.03);
   EXPECT_NEAR(0.6, p.st.rem[0], kTol);
@@ -200,8 +200,8 @@ TEST(ThrPulseRem, BadInputGivesSafeOutput)
     for (R& x : p.out.t_on) x = 4;
     EXPECT_EQ(FSW_E_BAD_INPUT, fsw_thr_pulse_rem_update(&p.st, &p.c, &in, &p.out));
     for (R x : p.out.t_on) EXPECT_EQ(0, x);
-    EXPECT_EQ(++k, p.st.health.bad_input);
-    EXPECT_EQ(kSec, p.st.t_prev_ns);  // time not advanced
+    EXPECT_EQ(++k, p.st.common.health.bad_input);
+    EXPECT_EQ(kSec, p.st.common.clock.t_prev_ns);  // time not advanced
     EXPECT_NEAR(0.5, p.st.rem[0], kTol);
   }
   // entries beyond num_thr are not inputs: NaN there is ignored
@@ -232,7 +232,7 @@ TEST(ThrPulseRem, RepeatableAfterReset)
     first[k][1] = p.out.t_on[1];
   }
   fsw_thr_pulse_rem_reset(&p.st);
-  EXPECT_EQ(0, p.st.has_prev);
+  EXPECT_EQ(0, p.st.common.clock.has_prev);
   for (int k = 0; k < 40; k++) {
     p.step(uint64_t(k) * 100000000ull, f[k][0], f[k][1]);
     EXPECT_EQ(first[k][0], p.out.t_on[0]) << k;
@@ -248,11 +248,11 @@ TEST(ThrPulseRem, ImpulseTracksRequestWithinOneMinimumBit)
   const int n = 6;
   FswThrPulseRemConfig c;
   std::memset(&c, 0, sizeof c);
-  c.num_thr = n;
-  c.t_min = static_cast<R>(0.02);
-  c.init_off_pulse_on_time = 2;
+  c.common.num_thr = n;
+  c.common.t_min = static_cast<R>(0.02);
+  c.common.init_off_pulse_on_time = 2;
   kt::Rng rng(99);
-  for (int i = 0; i < n; i++) c.F_max[i] = static_cast<R>(rng.uniform(0.5, 5));
+  for (int i = 0; i < n; i++) c.common.F_max[i] = static_cast<R>(rng.uniform(0.5, 5));
   FswThrPulseRemState st;
   ASSERT_EQ(FSW_OK, fsw_thr_pulse_rem_init(&st, &c));
   FswThrPulseRemIn in;
@@ -268,20 +268,43 @@ TEST(ThrPulseRem, ImpulseTracksRequestWithinOneMinimumBit)
       // mostly tiny requests (below t_min = 20 % of the period), some larger;
       // at most 75 % so that request + remainder stays below the period
       double frac = rng.uniform_int(0, 4) == 0 ? rng.uniform(0, 0.75) : rng.uniform(0, 0.15);
-      in.F[i] = static_cast<R>(frac * c.F_max[i]);
+      in.F[i] = static_cast<R>(frac * c.common.F_max[i]);
     }
     ASSERT_EQ(FSW_OK, fsw_thr_pulse_rem_update(&st, &c, &in, &out));
     for (int i = 0; i < n; i++) {
       req[i] += double(in.F[i]) * double(dt);
-      del[i] += double(c.F_max[i]) * double(out.t_on[i]);
-      const double bit = double(c.F_max[i]) * double(c.t_min);
+      del[i] += double(c.common.F_max[i]) * double(out.t_on[i]);
+      const double bit = double(c.common.F_max[i]) * double(c.common.t_min);
       const double lag = req[i] - del[i];
       ASSERT_GE(lag, -kt::tol(1e-9, 1e-2) * bit) << "step " << k << " thr " << i;
       ASSERT_LT(lag, bit * (1 + kt::tol(1e-9, 1e-2))) << "step " << k << " thr " << i;
       // every on-time is 0 or in [t_min, dt)
-      ASSERT_TRUE(out.t_on[i] == 0 || (out.t_on[i] >= c.t_min && out.t_on[i] < dt));
+      ASSERT_TRUE(out.t_on[i] == 0 || (out.t_on[i] >= c.common.t_min && out.t_on[i] < dt));
     }
   }
 }
 
 }  // namespace
+
+// fsw-algorithms.md 0.2 "reset zeroes the output", read for a caller-owned
+// output (docs/fsw-conventions.md): after reset, a bad input gives the
+// documented safe output (every thruster off), neither the on-times the
+// caller's buffer still holds nor the first-call output of the module.
+TEST(ThrPulseRem, ResetThenBadInputGivesTheSafeOutputNotStaleValues)
+{
+  FswThrPulseRemConfig c = cfg2();
+  c.common.base_thrust_state = 1;  // off-pulsing: the first-call output is 2 s, not 0
+  Pulser p(c);
+  ASSERT_EQ(FSW_OK, p.step(kSec, -0.5, -1.0));
+  EXPECT_EQ(R(2), p.out.t_on[0]);  // first call: b * init_off_pulse_on_time
+  ASSERT_FALSE(fsw_status_is_error(p.step(2 * kSec, -0.5, -1.0)));
+  ASSERT_NE(0, p.out.t_on[0]);
+  fsw_thr_pulse_rem_reset(&p.st);
+  EXPECT_EQ(FSW_E_BAD_INPUT, p.step(3 * kSec, std::numeric_limits<double>::quiet_NaN(), -1.0));
+  for (int i = 0; i < FSW_MAX_THR; i++) EXPECT_EQ(0, p.out.t_on[i]) << i;
+  EXPECT_EQ(0, p.st.common.clock.has_prev);  // nothing advanced
+  // the next good call is the first after reset again
+  ASSERT_EQ(FSW_OK, p.step(kSec, -0.5, -1.0));
+  EXPECT_EQ(R(2), p.out.t_on[0]);
+  EXPECT_EQ(R(2), p.out.t_on[1]);
+}

@@ -75,7 +75,7 @@ TEST(ThrPulseRound, ConfigRejectionTable)
     EXPECT_EQ(row.want, fsw_thr_pulse_round_check(&c)) << row.why;
     FswThrPulseRoundState st;
     EXPECT_EQ(row.want, fsw_thr_pulse_round_init(&st, &c)) << row.why;
-    EXPECT_EQ(0, st.ready);
+    EXPECT_EQ(0, st.common.ready);
     FswThrPulseRoundIn in;
     std::memset(&in, 0, sizeof in);
     FswThrPulseRoundOut out;
@@ -165,7 +165,7 @@ TEST(ThrPulseRound, BadInputAndStatelessTiming)
   for (R& t : out.t_on) t = 5;
   EXPECT_EQ(FSW_E_BAD_INPUT, fsw_thr_pulse_round_update(&st, &c, &in, &out));
   for (R t : out.t_on) EXPECT_EQ(0, t);
-  EXPECT_EQ(1u, st.health.bad_input);
+  EXPECT_EQ(1u, st.common.health.bad_input);
   // inputs beyond num_thr are ignored
   in.F[1] = 0;
   in.F[3] = std::numeric_limits<R>::infinity();
@@ -209,7 +209,7 @@ TEST(ThrPulseRound, CarryResidualHandSequence)
   // reset clears the residual and the time
   fsw_thr_pulse_round_reset(&st);
   EXPECT_EQ(0, st.resid[0]);
-  EXPECT_EQ(0, st.has_prev);
+  EXPECT_EQ(0, st.common.clock.has_prev);
 }
 
 TEST(ThrPulseRound, CarryResidualDeliversSubResolutionRequestsOnAverage)
@@ -286,7 +286,7 @@ TEST(ThrPulseRound, NullArgumentsReachTheAssertHook)
   for (R t : out.t_on) EXPECT_EQ(0, t);
   EXPECT_EQ(FSW_E_NULL_ARG, fsw_thr_pulse_round_check(nullptr));
   EXPECT_EQ(2u, kestrel_assert_count());
-  EXPECT_EQ(1u, st.health.bad_input);
+  EXPECT_EQ(1u, st.common.health.bad_input);
   kestrel_assert_reset();
 }
 

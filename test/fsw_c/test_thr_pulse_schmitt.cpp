@@ -23,12 +23,12 @@ FswThrPulseSchmittConfig cfg1(int n = 1)
 {
   FswThrPulseSchmittConfig c;
   std::memset(&c, 0, sizeof c);
-  c.num_thr = n;
-  for (int i = 0; i < n; i++) c.F_max[i] = 1;
-  c.t_min = static_cast<R>(0.1);
+  c.common.num_thr = n;
+  for (int i = 0; i < n; i++) c.common.F_max[i] = 1;
+  c.common.t_min = static_cast<R>(0.1);
   c.level_on = static_cast<R>(0.75);
   c.level_off = static_cast<R>(0.25);
-  c.init_off_pulse_on_time = 2;
+  c.common.init_off_pulse_on_time = 2;
   return c;
 }
 
@@ -56,18 +56,18 @@ struct BadCfg {
   FswStatus want;
 };
 const BadCfg kBadConfigs[] = {
-    {"zero thrusters", [](FswThrPulseSchmittConfig* c) { c->num_thr = 0; }, FSW_E_CONFIG},
-    {"more than FSW_MAX_THR", [](FswThrPulseSchmittConfig* c) { c->num_thr = FSW_MAX_THR + 1; }, FSW_E_CAPACITY},
-    {"F_max zero", [](FswThrPulseSchmittConfig* c) { c->F_max[0] = 0; }, FSW_E_CONFIG},
-    {"t_min zero", [](FswThrPulseSchmittConfig* c) { c->t_min = 0; }, FSW_E_CONFIG},
-    {"t_min Inf", [](FswThrPulseSchmittConfig* c) { c->t_min = std::numeric_limits<R>::infinity(); }, FSW_E_CONFIG},
+    {"zero thrusters", [](FswThrPulseSchmittConfig* c) { c->common.num_thr = 0; }, FSW_E_CONFIG},
+    {"more than FSW_MAX_THR", [](FswThrPulseSchmittConfig* c) { c->common.num_thr = FSW_MAX_THR + 1; }, FSW_E_CAPACITY},
+    {"F_max zero", [](FswThrPulseSchmittConfig* c) { c->common.F_max[0] = 0; }, FSW_E_CONFIG},
+    {"t_min zero", [](FswThrPulseSchmittConfig* c) { c->common.t_min = 0; }, FSW_E_CONFIG},
+    {"t_min Inf", [](FswThrPulseSchmittConfig* c) { c->common.t_min = std::numeric_limits<R>::infinity(); }, FSW_E_CONFIG},
     {"level_off negative", [](FswThrPulseSchmittConfig* c) { c->level_off = -0.1f; }, FSW_E_CONFIG},
     {"level_off == level_on", [](FswThrPulseSchmittConfig* c) { c->level_off = c->level_on; }, FSW_E_CONFIG},
     {"level_off > level_on", [](FswThrPulseSchmittConfig* c) { c->level_off = 0.8f; }, FSW_E_CONFIG},
     {"level_on > 1", [](FswThrPulseSchmittConfig* c) { c->level_on = 1.01f; }, FSW_E_CONFIG},
     {"level_on NaN", [](FswThrPulseSchmittConfig* c) { c->level_on = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
-    {"base state 3", [](FswThrPulseSchmittConfig* c) { c->base_thrust_state = 3; }, FSW_E_CONFIG},
-    {"init on-time negative", [](FswThrPulseSchmittConfig* c) { c->init_off_pulse_on_time = -2; }, FSW_E_CONFIG},
+    {"base state 3", [](FswThrPulseSchmittConfig* c) { c->common.base_thrust_state = 3; }, FSW_E_CONFIG},
+    {"init on-time negative", [](FswThrPulseSchmittConfig* c) { c->common.init_off_pulse_on_time = -2; }, FSW_E_CONFIG},
 };
 
 TEST(ThrPulseSchmitt, ConfigRejectionTable)
@@ -85,7 +85,7 @@ TEST(ThrPulseSchmitt, ConfigRejectionTable)
     EXPECT_EQ(row.want, fsw_thr_pulse_schmitt_check(&c)) << row.why;
     FswThrPulseSchmittState st;
     EXPECT_EQ(row.want, fsw_thr_pulse_schmitt_init(&st, &c)) << row.why;
-    EXPECT_EQ(0, st.ready);
+    EXPECT_EQ(0, st.common.ready);
     FswThrPulseSchmittIn in;
     std::memset(&in, 0, sizeof in);
     FswThrPulseSchmittOut out;
@@ -101,7 +101,7 @@ TEST(ThrPulseSchmitt, HandSequenceThroughTheBand)
   // levels on 0.75, off 0.25.
   Pulser p(cfg1());
   const R dt = dt_of(kSec);
-  const R t_min = p.c.t_min;
+  const R t_min = p.c.common.t_min;
   struct Row { double F; double want; const char* why; } rows[] = {
       {0.05, 0, "l = 0.5 in the band, memory off -> off"},
       {0.08, -1, "l = 0.8 >= 0.75 -> fires t_min"},
@@ -132,16 +132,16 @@ TEST(ThrPulseSchmitt, LevelBoundariesAreInclusive)
   // Levels computed with the spec's own expression l = ((F/F_max) dt)/t_min
   // so the comparisons see exact equality.
   FswThrPulseSchmittConfig c = cfg1();
-  c.t_min = static_cast<R>(0.5);
+  c.common.t_min = static_cast<R>(0.5);
   const uint64_t step = kSec;
   const R dt = dt_of(step);
   const R F_on = static_cast<R>(0.375), F_off = static_cast<R>(0.125);
-  c.level_on = ((F_on / c.F_max[0]) * dt) / c.t_min;
-  c.level_off = ((F_off / c.F_max[0]) * dt) / c.t_min;
+  c.level_on = ((F_on / c.common.F_max[0]) * dt) / c.common.t_min;
+  c.level_off = ((F_off / c.common.F_max[0]) * dt) / c.common.t_min;
   Pulser p(c);
   p.step(0, 0);
   p.step(step, F_on);  // l == level_on -> on
-  EXPECT_EQ(c.t_min, p.out.t_on[0]);
+  EXPECT_EQ(c.common.t_min, p.out.t_on[0]);
   p.step(2 * step, F_off);  // l == level_off -> off (not held)
   EXPECT_EQ(0, p.out.t_on[0]);
   EXPECT_EQ(0, p.st.last_on[0]);
@@ -150,7 +150,7 @@ TEST(ThrPulseSchmitt, LevelBoundariesAreInclusive)
 TEST(ThrPulseSchmitt, OffPulsingFirstCall)
 {
   FswThrPulseSchmittConfig c = cfg1(3);
-  c.base_thrust_state = 1;
+  c.common.base_thrust_state = 1;
   Pulser p(c);
   EXPECT_EQ(FSW_OK, p.step(123, -0.5));
   for (int i = 0; i < 3; i++) EXPECT_EQ(2, p.out.t_on[i]);
@@ -172,9 +172,9 @@ TEST(ThrPulseSchmitt, TimeAndBadInputAdvanceNothing)
   EXPECT_EQ(FSW_E_BAD_INPUT, p.step(2 * kSec, std::nan("")));
   for (R x : p.out.t_on) EXPECT_EQ(0, x);
   EXPECT_EQ(before.last_on[0], p.st.last_on[0]);
-  EXPECT_EQ(before.t_prev_ns, p.st.t_prev_ns);
-  EXPECT_EQ(2u, p.st.health.bad_time);
-  EXPECT_EQ(1u, p.st.health.bad_input);
+  EXPECT_EQ(before.common.clock.t_prev_ns, p.st.common.clock.t_prev_ns);
+  EXPECT_EQ(2u, p.st.common.health.bad_time);
+  EXPECT_EQ(1u, p.st.common.health.bad_input);
   // memory still on: a band request fires t_min
   p.step(2 * kSec, 0.05);
   EXPECT_NEAR(0.1, p.out.t_on[0], kTol);
@@ -209,7 +209,7 @@ TEST(ThrPulseSchmitt, RequestHeldBetweenLevelsNeverChatters)
     FswThrPulseSchmittConfig c = cfg1(n);
     c.level_off = static_cast<R>(rng.uniform(0.0, 0.5));
     c.level_on = static_cast<R>(rng.uniform(double(c.level_off) + 0.05, 1.0));
-    for (int i = 0; i < n; i++) c.F_max[i] = static_cast<R>(rng.uniform(0.5, 3));
+    for (int i = 0; i < n; i++) c.common.F_max[i] = static_cast<R>(rng.uniform(0.5, 3));
     FswThrPulseSchmittState st;
     ASSERT_EQ(FSW_OK, fsw_thr_pulse_schmitt_init(&st, &c));
     FswThrPulseSchmittIn in;
@@ -219,20 +219,20 @@ TEST(ThrPulseSchmitt, RequestHeldBetweenLevelsNeverChatters)
     uint64_t t = 0;
     for (int k = 0; k < 10; k++, t += kSec) {  // random history
       in.t_ns = t;
-      for (int i = 0; i < n; i++) in.F[i] = static_cast<R>(rng.uniform(0, 0.2) * c.F_max[i]);
+      for (int i = 0; i < n; i++) in.F[i] = static_cast<R>(rng.uniform(0, 0.2) * c.common.F_max[i]);
       fsw_thr_pulse_schmitt_update(&st, &c, &in, &out);
     }
     for (int i = 0; i < n; i++) {
       double lvl = rng.uniform(double(c.level_off), double(c.level_on));
       lvl = std::fmin(std::fmax(lvl, double(c.level_off) + 1e-3), double(c.level_on) - 1e-3);
-      in.F[i] = static_cast<R>(lvl * double(c.t_min) / double(dt) * double(c.F_max[i]));
+      in.F[i] = static_cast<R>(lvl * double(c.common.t_min) / double(dt) * double(c.common.F_max[i]));
     }
     R held[FSW_MAX_THR];
     for (int k = 0; k < 100; k++, t += kSec) {
       in.t_ns = t;
       ASSERT_EQ(FSW_OK, fsw_thr_pulse_schmitt_update(&st, &c, &in, &out));
       for (int i = 0; i < n; i++) {
-        ASSERT_TRUE(out.t_on[i] == 0 || out.t_on[i] == c.t_min);
+        ASSERT_TRUE(out.t_on[i] == 0 || out.t_on[i] == c.common.t_min);
         if (k == 0) held[i] = out.t_on[i];
         ASSERT_EQ(held[i], out.t_on[i]) << "trial " << trial << " thr " << i << " step " << k;
       }
@@ -254,7 +254,7 @@ TEST(ThrPulseSchmitt, NullArgumentsReachTheAssertHook)
   for (R t : out.t_on) EXPECT_EQ(0, t);
   EXPECT_EQ(FSW_E_NULL_ARG, fsw_thr_pulse_schmitt_check(nullptr));
   EXPECT_EQ(2u, kestrel_assert_count());
-  EXPECT_EQ(1u, st.health.bad_input);
+  EXPECT_EQ(1u, st.common.health.bad_input);
   kestrel_assert_reset();
 }
 

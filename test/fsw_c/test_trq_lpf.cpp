@@ -108,7 +108,7 @@ TEST(TrqLpfTiming, RateWarningAndTimeErrors)
   for (int k = 0; k < 3; k++) EXPECT_EQ(f.out.LrF_B[k], 0.0);
   EXPECT_EQ(f.step(kH, 1, 1, 1), FSW_E_TIME);  // earlier
   EXPECT_EQ(f.st.LrF_prev[0], before.LrF_prev[0]);
-  EXPECT_EQ(f.st.t_prev_ns, before.t_prev_ns);
+  EXPECT_EQ(f.st.clock.t_prev_ns, before.clock.t_prev_ns);
   EXPECT_EQ(f.st.health.bad_time, 2u);
   // the 1 % threshold of spec 3: a period 0.9 % long is fine, 1.5 % long warns
   uint64_t t = 6 * kH + kH / 200;
@@ -158,6 +158,6 @@ TEST(TrqLpfRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
       }
     }
     fsw_trq_lpf_reset(&f.st);
-    EXPECT_EQ(f.st.has_prev, 0);
+    EXPECT_EQ(f.st.clock.has_prev, 0);
   }
 }

@@ -23,6 +23,7 @@
 
 #include "fsw/att_track.h"
 #include "fsw/css_sun.h"
+#include "fsw/fsw_clock.h"
 #include "fsw/fsw_acs_msgs.h"
 #include "fsw/fsw_config.h"
 #include "fsw/fsw_status.h"
@@ -46,6 +47,24 @@ typedef enum {
   FSW_ACS_PULSE_REMAINDER = 0, /* thr_pulse_rem (spec 9)     */
   FSW_ACS_PULSE_SCHMITT = 1    /* thr_pulse_schmitt (spec 10) */
 } FswAcsPulser;
+
+/* The actuator geometry of the spacecraft, given once.  The modules keep
+ * their own copies (each module config is complete on its own, as the
+ * module template requires); fsw_acs_config_set_geometry() is the one place
+ * that writes them, and fsw_acs_check() cross-checks them as a safety net
+ * for configs filled by hand.  Thruster names follow thr_map. */
+typedef struct {
+  /* reaction wheels */
+  int num_rw;                          /* [-]      0..FSW_MAX_RW (0: no wheels)    */
+  fsw_real gs_hat_B[FSW_MAX_RW][3];    /* [-]      (num_rw) spin axes, unit, B     */
+  fsw_real J_s[FSW_MAX_RW];            /* [kg*m^2] (num_rw) spin inertias, > 0     */
+  fsw_real u_max[FSW_MAX_RW];          /* [N*m]    (num_rw) motor torque limits, > 0 */
+  /* thrusters (the ones the FSW commands) */
+  int num_thr;                         /* [-]      0..FSW_MAX_THR (0: none)        */
+  fsw_real r_thr_B[FSW_MAX_THR][3];    /* [m]      (num_thr) locations, B          */
+  fsw_real gt_hat_B[FSW_MAX_THR][3];   /* [-]      (num_thr) unit force axes, B    */
+  fsw_real F_max[FSW_MAX_THR];         /* [N]      (num_thr) max thrust, > 0       */
+} FswAcsGeometry;
 
 /* All configuration of the application in one struct. */
 typedef struct {
@@ -78,7 +97,9 @@ typedef struct {
 } FswAcsConfig;
 
 /* Inputs and outputs of the stages, kept in the state so that the cycle
- * function's own stack stays small (see the stack table in docs). */
+ * function's own stack stays small (see the stack table in docs).  Private
+ * by convention: its layout may change; an integrator reads FswAcsHealthMsg
+ * (and the module health counters) instead. */
 typedef struct {
   FswCssSunIn css_in;
   FswCssSunOut css_out;
@@ -111,8 +132,7 @@ typedef struct {
   int ready;            /* [-]  1 after a successful init                      */
   int mode;             /* [-]  FswAcsMode in force                            */
   int actuation;        /* [-]  FswAcsActuation in force                       */
-  int has_prev;         /* [-]  a cycle has been accepted since reset (0.3)    */
-  uint64_t t_prev_ns;   /* [ns] its time stamp                                 */
+  FswClock clock;       /* [-]  previous accepted cycle (0.3)                  */
   uint32_t cycles;      /* [-]  accepted cycles since init                     */
   uint32_t mode_changes;/* [-]  transitions since init                         */
   FswCssSunState css;
@@ -131,6 +151,26 @@ typedef struct {
   FswAcsWork work;
   FswHealth health;
 } FswAcsState;
+
+/* Writes the geometry into every module config that holds a copy:
+ *   wheels:    has_wheels = (num_rw > 0); num_rw, gs_hat_B and J_s of mrp_fb
+ *              (the wheels in H); num_rw and gs_hat_B of rw_map; num_rw,
+ *              gs_hat_B and u_max of rw_null; num_rw and u_max of rw_sat;
+ *              num_rw, u_max and J_s of rw_volt;
+ *   thrusters: has_thrusters = (num_thr > 0); num_thr, r_thr_B, gt_hat_B and
+ *              F_max of thr_map and common.num_thr and common.F_max of both
+ *              pulsers (pulse_rem, pulse_schmitt).
+ * Entries beyond the counts are set to 0.  Nothing else is touched (gains,
+ * modes, use_* flags, the pulser's t_min ...).  Values are not checked here:
+ * fsw_acs_check() does that.  Returns FSW_OK; FSW_E_CAPACITY (num_rw >
+ * FSW_MAX_RW or num_thr > FSW_MAX_THR), FSW_E_CONFIG (a negative count) and
+ * FSW_E_NULL_ARG leave cfg unchanged. */
+FswStatus fsw_acs_config_set_geometry(FswAcsConfig *cfg, const FswAcsGeometry *geo);
+
+/* Name of a stage (FswAcsStage) for telemetry and logs, e.g. "rw_map";
+ * "unknown" for a value outside 0..FSW_ACS_NUM_STAGES-1.  Never NULL; the
+ * strings are constant. */
+const char *fsw_acs_stage_name(int stage);
 
 /* Validates the whole configuration.  On failure, *bad_field (if not NULL)
  * receives the name of the first bad field, e.g. "initial_mode" or

@@ -4,7 +4,8 @@
  *   FswAcsSensorMsg   sensors -> FSW          (one per control cycle)
  *   FswAcsCmdMsg      ground/executive -> FSW (mode requests)
  *   FswAcsActuatorMsg FSW -> actuators        (wheel torques/voltages, thruster on-times)
- *   FswAcsHealthMsg   FSW -> executive/telemetry
+ *   FswAcsHealthMsg   FSW -> executive/telemetry (everything an integrator
+ *                     reads; the state's work area is private by convention)
  * Frames: B body, N inertial.  Units: SI, time in ns. */
 #ifndef FSW_ACS_MSGS_H
 #define FSW_ACS_MSGS_H
@@ -58,7 +59,8 @@ typedef struct {
   uint8_t thrusters_active;    /* [-]   1 if t_on is to be applied                           */
 } FswAcsActuatorMsg;
 
-/* Stages of the cycle, for per-stage status telemetry. */
+/* Stages of the cycle, for per-stage status telemetry.  Their names come
+ * from fsw_acs_stage_name() (fsw_acs.h). */
 typedef enum {
   FSW_ACS_STAGE_CSS = 0,
   FSW_ACS_STAGE_GUIDANCE,

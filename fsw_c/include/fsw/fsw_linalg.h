@@ -2,6 +2,10 @@
  * K1 fsw_minnorm_solve: x = A^T (A A^T)^-1 b with a scale-invariant rank test.
  * K2 fsw_null_projector: [tau] = I - Q^T Q, a true projector onto null([G])
  *    for any rank of [G].
+ * K4 fsw_bounded_minnorm_solve: the least-squares solution of A x = b
+ *    within box bounds with the smallest norm (deterministic active set),
+ *    the exact mode of thr_map (fsw-algorithms.md 8.6).  (K3 is the MRP
+ *    addition of fsw_attitude.h.)
  * Matrices with up to FSW_MAX_EFF columns are stored row-major in arrays of
  * FSW_MAX_EFF columns; only the leading m x n block is read. */
 #ifndef FSW_LINALG_H
@@ -40,6 +44,32 @@ FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX
 FswStatus fsw_null_projector(fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF],
                              const fsw_real G[3][FSW_MAX_EFF], int n,
                              const uint8_t avail[FSW_MAX_EFF], int *rank);
+
+/* K4.  Bounded least squares, then least norm:
+ *   phase 1: minimise |A x - b| subject to lo <= x <= hi (Lawson-Hanson /
+ *            BVLS style, from x = 0; the free set keeps at most m
+ *            independent columns);
+ *   phase 2: keeping A x at its phase-1 value, minimise |x| within the
+ *            bounds (primal active set, stepping in the null space of the
+ *            free columns, so A x never changes).
+ * So x solves A x = b with minimum norm whenever an admissible solution
+ * exists, and otherwise delivers the least-squares A x.  Deterministic: at
+ * most 3 n subproblem solves (both phases together), ties to the lowest
+ * index; small subproblems by LDL^T in fixed order, dropping pivots <=
+ * FSW_RANK_TOL x max diag (rank-deficient A is fine).
+ * A is m x n (1 <= m <= 3, 0 <= n <= FSW_MAX_EFF); b has m entries; lo and
+ * hi have n entries with lo_i <= hi_i and 0 one of the two (the start x = 0
+ * is a vertex of the box: [0, F_max] or [-F_max, 0]; lo_i = hi_i = 0 fixes
+ * x_i = 0).  x receives n entries, always within [lo, hi].
+ * `iterations` (may be NULL) receives the subproblem solves used.
+ * Returns FSW_OK; FSW_E_CAPACITY (x = 0) when m or n is out of range;
+ * FSW_E_BAD_INPUT (x = 0) when A, b, lo or hi hold NaN/Inf or a bound pair
+ * breaks the rule above; FSW_E_NULL_ARG on NULL pointers (iterations
+ * excepted).  x[0..n-1] is always fully written (when x is not NULL). */
+FswStatus fsw_bounded_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_EFF],
+                                    const fsw_real b[3], int m, int n,
+                                    const fsw_real lo[FSW_MAX_EFF], const fsw_real hi[FSW_MAX_EFF],
+                                    int *iterations);
 
 #ifdef __cplusplus
 }

@@ -18,6 +18,7 @@
 #include <stdint.h>
 
 #include "fsw/att_track.h" /* FswAttGuid */
+#include "fsw/fsw_clock.h"
 #include "fsw/fsw_config.h"
 #include "fsw/fsw_status.h"
 
@@ -48,8 +49,7 @@ typedef struct {
 
 typedef struct {
   int ready;              /* [-]     1 after a successful init                   */
-  int has_prev;           /* [-]     a previous accepted call exists (spec 0.3)  */
-  uint64_t t_prev_ns;     /* [ns]    time stamp of that call                     */
+  FswClock clock;         /* [-]     previous accepted call (spec 0.3)           */
   fsw_real int_sigma[3];  /* [N*m*s] integral of K sigma_BR dt, clamped          */
   FswHealth health;       /* [-]     call counters                               */
 } FswMrpFbState;
@@ -82,7 +82,7 @@ typedef struct {
 FswStatus fsw_mrp_fb_check(const FswMrpFbConfig *cfg);
 /* check; ready = 1; health cleared; reset. */
 FswStatus fsw_mrp_fb_init(FswMrpFbState *st, const FswMrpFbConfig *cfg);
-/* int_sigma = 0, has_prev = 0.  Keeps ready and health. */
+/* int_sigma = 0, clock reset.  Keeps ready and health. */
 void fsw_mrp_fb_reset(FswMrpFbState *st);
 /* FSW_OK; with the safe output and no state change: FSW_E_BAD_INPUT (NaN/Inf
  * in guid or in Omega of an available wheel, rw_avail entry not 0/1, finite

@@ -27,6 +27,7 @@
 
 #include <stdint.h>
 
+#include "fsw/fsw_clock.h"
 #include "fsw/fsw_config.h"
 #include "fsw/fsw_status.h"
 
@@ -55,8 +56,7 @@ typedef struct {
                                       kept by reset like the health counters */
   uint8_t has_good[FSW_MAX_RW];    /* [-]     Omega_good valid                */
   uint8_t failed[FSW_MAX_RW];      /* [-]     held UNAVAILABLE by the filter  */
-  int has_prev;                    /* [-]     a call accepted since reset     */
-  uint64_t t_prev_ns;              /* [ns]                                    */
+  FswClock clock;                  /* [-]     previous accepted call (0.3)    */
   FswHealth health;
 } FswRwSpeedFilterState;
 

@@ -18,6 +18,7 @@
 
 #include <stdint.h>
 
+#include "fsw/fsw_clock.h"
 #include "fsw/fsw_config.h"
 #include "fsw/fsw_status.h"
 
@@ -42,8 +43,7 @@ typedef struct {
   fsw_real Omega_prev[FSW_MAX_RW]; /* [rad/s] speeds of the previous call */
   uint8_t prev_ok[FSW_MAX_RW];     /* [-] 1 if that speed was a number     */
   int phase;                       /* [-] speed-loop warm-up 0, 1, 2 */
-  int has_prev;                    /* [-] a call has been accepted since reset */
-  uint64_t t_prev_ns;              /* [ns] its time stamp */
+  FswClock clock;                  /* [-] previous accepted call (spec 0.3) */
   FswHealth health;
 } FswRwVoltState;
 

@@ -15,29 +15,21 @@
 
 #include <stdint.h>
 
-#include "fsw/fsw_config.h" /* FSW_MAX_THR, fsw_real */
-#include "fsw/fsw_status.h" /* FswStatus, FswHealth */
+#include "fsw/fsw_config.h"       /* FSW_MAX_THR, fsw_real */
+#include "fsw/fsw_status.h"       /* FswStatus, FswHealth */
+#include "fsw/thr_pulse_common.h" /* FswThrPulseCommon, FswThrPulseCommonState */
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 typedef struct {
-  int num_thr;                     /* [-] 1..FSW_MAX_THR                        */
-  fsw_real F_max[FSW_MAX_THR];     /* [N] (num_thr) max thrust, > 0             */
-  fsw_real t_min;                  /* [s] minimum on-time, > 0                  */
-  int base_thrust_state;           /* [-] b: 0 on-pulsing, 1 off-pulsing (DV);
-                                      must match thr_map: sign -1 <=> b = 1    */
-  fsw_real init_off_pulse_on_time; /* [s] first-call on-time when b = 1, >= 0
-                                      (Basilisk: 2.0)                          */
+  FswThrPulseCommon common;        /* num_thr, F_max, t_min, b, init on-time    */
 } FswThrPulseRemConfig;
 
 typedef struct {
-  int ready;                       /* [-] 1 once init accepted the config       */
+  FswThrPulseCommonState common;   /* ready, clock, health                      */
   fsw_real rem[FSW_MAX_THR];       /* [-] (num_thr) remainder rho_i, in t_min   */
-  int has_prev;                    /* [-] a previous call exists (0.3)          */
-  uint64_t t_prev_ns;              /* [ns] time of the previous call            */
-  FswHealth health;                /* counters read by the harness              */
 } FswThrPulseRemState;
 
 typedef struct {

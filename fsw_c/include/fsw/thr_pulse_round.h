@@ -16,8 +16,9 @@
 
 #include <stdint.h>
 
-#include "fsw/fsw_config.h" /* FSW_MAX_THR, fsw_real */
-#include "fsw/fsw_status.h" /* FswStatus, FswHealth */
+#include "fsw/fsw_config.h"       /* FSW_MAX_THR, fsw_real */
+#include "fsw/fsw_status.h"       /* FswStatus, FswHealth */
+#include "fsw/thr_pulse_common.h" /* FswThrPulseCommonState */
 
 #ifdef __cplusplus
 extern "C" {
@@ -33,11 +34,8 @@ typedef struct {
 } FswThrPulseRoundConfig;
 
 typedef struct {
-  int ready;                   /* [-] 1 once init accepted the config         */
+  FswThrPulseCommonState common; /* ready, clock (carry mode only), health    */
   fsw_real resid[FSW_MAX_THR]; /* [s] (num_thr) carried residual r_i, in [-T, T] */
-  int has_prev;                /* [-] a previous call exists (carry mode)     */
-  uint64_t t_prev_ns;          /* [ns] time of the previous call (carry mode) */
-  FswHealth health;            /* counters read by the harness                */
 } FswThrPulseRoundState;
 
 typedef struct {

@@ -13,6 +13,7 @@
 
 #include <stdint.h>
 
+#include "fsw/fsw_clock.h"
 #include "fsw/fsw_config.h"
 #include "fsw/fsw_status.h"
 
@@ -33,8 +34,7 @@ typedef struct {
   fsw_real a0, a1, b0; /* [-] Tustin coefficients (b1 = b0), from init */
   fsw_real Lr_prev[3];  /* [N*m] previous input  */
   fsw_real LrF_prev[3]; /* [N*m] previous output */
-  int has_prev;         /* [-] a call has been accepted since reset */
-  uint64_t t_prev_ns;   /* [ns] time of that call */
+  FswClock clock;       /* [-] previous accepted call (spec 0.3) */
   FswHealth health;
 } FswTrqLpfState;
 

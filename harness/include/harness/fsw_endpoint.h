@@ -58,8 +58,6 @@ class InProcessFsw : public FswEndpoint {
 // Lines describing the last health message (status, mode, stages): the same
 // for every endpoint.
 std::vector<std::string> fsw_health_summary(const FswAcsHealthMsg& h);
-// Stage names, indexed by FswAcsStage.
-const char* fsw_stage_name(int stage);
 
 }  // namespace harness
 

@@ -1,0 +1,118 @@
+// fsw_clock: the shared timing step of fsw-algorithms.md 0.3.  Hand values,
+// the first call at any time stamp (no sentinel), rejection of equal and
+// earlier stamps without any change, dt from the integer difference (no
+// accumulated round-off), reset, and NULL arguments.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+
+#include "fsw/fsw_clock.h"
+#include "kestrel_test_support.h"
+
+namespace {
+
+using R = fsw_real;
+constexpr uint64_t kSec = 1000000000ull;
+
+FswClock fresh()
+{
+  FswClock c;
+  std::memset(&c, 0xA5, sizeof c);  // garbage: reset must define every field
+  fsw_clock_reset(&c);
+  return c;
+}
+
+}  // namespace
+
+TEST(FswClock, ResetClearsBothFields)
+{
+  const FswClock c = fresh();
+  EXPECT_EQ(0, c.has_prev);
+  EXPECT_EQ(0u, c.t_prev_ns);
+}
+
+TEST(FswClock, FirstCallIsLegalAtAnyTimeIncludingZero)
+{
+  const uint64_t stamps[] = {0u, 1u, 5 * kSec, UINT64_MAX};
+  for (uint64_t t : stamps) {
+    const FswClock c = fresh();
+    R dt = static_cast<R>(-1);
+    EXPECT_EQ(FSW_OK, fsw_clock_dt(&c, t, &dt)) << t;
+    EXPECT_EQ(0, dt) << t;
+    EXPECT_EQ(0, c.has_prev);  // dt changes nothing
+  }
+}
+
+TEST(FswClock, HandValues)
+{
+  FswClock c = fresh();
+  fsw_clock_commit(&c, 2 * kSec);
+  EXPECT_EQ(1, c.has_prev);
+  EXPECT_EQ(2 * kSec, c.t_prev_ns);
+  R dt = 0;
+  // 0.5 s, 1 ns and 10 s after the previous call
+  EXPECT_EQ(FSW_OK, fsw_clock_dt(&c, 2 * kSec + kSec / 2, &dt));
+  EXPECT_EQ(static_cast<R>(kSec / 2) * static_cast<R>(1e-9), dt);
+  EXPECT_NEAR(0.5, double(dt), kt::tol(1e-15, 1e-7));
+  EXPECT_EQ(FSW_OK, fsw_clock_dt(&c, 2 * kSec + 1, &dt));
+  EXPECT_EQ(static_cast<R>(1) * static_cast<R>(1e-9), dt);
+  EXPECT_EQ(FSW_OK, fsw_clock_dt(&c, 12 * kSec, &dt));
+  EXPECT_NEAR(10.0, double(dt), kt::tol(1e-14, 1e-5));
+  // nothing was committed by dt
+  EXPECT_EQ(2 * kSec, c.t_prev_ns);
+}
+
+TEST(FswClock, EqualOrEarlierStampIsRejectedAndChangesNothing)
+{
+  FswClock c = fresh();
+  fsw_clock_commit(&c, 7 * kSec);
+  const FswClock before = c;
+  const uint64_t stamps[] = {7 * kSec, 7 * kSec - 1, 0u};
+  for (uint64_t t : stamps) {
+    R dt = static_cast<R>(3);
+    EXPECT_EQ(FSW_E_TIME, fsw_clock_dt(&c, t, &dt)) << t;
+    EXPECT_EQ(0, dt) << t;
+    EXPECT_EQ(0, std::memcmp(&before, &c, sizeof c));
+  }
+}
+
+TEST(FswClock, DtFromTheIntegerDifferenceHasNoAccumulatedRoundOff)
+{
+  // 10^5 steps of 0.1 s: the stamp grows exactly, so the last dt is the
+  // same number as the first (a summed real clock would drift).
+  FswClock c = fresh();
+  const uint64_t h = kSec / 10;
+  R first = 0, dt = 0;
+  fsw_clock_commit(&c, 0);
+  for (uint64_t k = 1; k <= 100000u; ++k) {
+    ASSERT_EQ(FSW_OK, fsw_clock_dt(&c, k * h, &dt));
+    if (k == 1) first = dt;
+    ASSERT_EQ(first, dt) << k;
+    fsw_clock_commit(&c, k * h);
+  }
+}
+
+TEST(FswClock, ResetForgetsThePreviousCall)
+{
+  FswClock c = fresh();
+  fsw_clock_commit(&c, 9 * kSec);
+  fsw_clock_reset(&c);
+  R dt = static_cast<R>(1);
+  EXPECT_EQ(FSW_OK, fsw_clock_dt(&c, 1 * kSec, &dt));  // earlier stamp is fine again
+  EXPECT_EQ(0, dt);
+}
+
+TEST(FswClock, NullArguments)
+{
+  kestrel_assert_reset();
+  FswClock c = fresh();
+  R dt = static_cast<R>(4);
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_clock_dt(nullptr, 1, &dt));
+  EXPECT_EQ(0, dt);
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_clock_dt(&c, 1, nullptr));
+  fsw_clock_commit(nullptr, 1);
+  fsw_clock_reset(nullptr);
+  EXPECT_EQ(4u, kestrel_assert_count());
+  kestrel_assert_reset();
+}
