@@ -24,9 +24,7 @@ Eigen::Vector3d misaligned_axis(const Eigen::Vector3d& d, double delta)
 
 std::unique_ptr<sim::Plant> build_plant(const Scenario& sc)
 {
-  std::unique_ptr<sim::Plant> p;
-  if (sc.thrusters.size() > static_cast<size_t>(sim::kMaxThrusters))
-    throw config_error(sc, "thrusters", "at most " + std::to_string(sim::kMaxThrusters) + " thrusters in the plant");
+  std::unique_ptr<sim::Plant> p;  // the plant checks its own capacities (built_by_plant reports them)
   sim::SpacecraftParams params;
   params.hub.m_h = sc.spacecraft.mass;
   params.hub.I_hBc_B = sc.spacecraft.inertia;

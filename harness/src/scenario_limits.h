@@ -13,13 +13,12 @@
 #include "fsw/css_sun.h"     // FSW_MAX_CSS
 #include "fsw/fsw_config.h"  // FSW_MAX_RW, FSW_MAX_THR
 #include "sim/capacities.h"  // sim::kMaxWheels, kMaxThrusters, kMaxCss
-#include "sim/thruster.h"    // sim::kMaxThrusters
 
 namespace harness {
 
 constexpr size_t kMaxScenarioWheels = static_cast<size_t>(std::min(FSW_MAX_RW, sim::kMaxWheels));       // [-]
 constexpr size_t kMaxScenarioThrusters = static_cast<size_t>(std::min(FSW_MAX_THR, sim::kMaxThrusters));  // [-]
-constexpr size_t kMaxScenarioCss = static_cast<size_t>(FSW_MAX_CSS);  // [-] the plant's CSS list is unbounded
+constexpr size_t kMaxScenarioCss = static_cast<size_t>(std::min(FSW_MAX_CSS, sim::kMaxCss));              // [-]
 
 }  // namespace harness
 
