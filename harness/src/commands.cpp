@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "harness/outputs.h"
+#include "harness/results_dir.h"
 #include "harness/run.h"
 #include "harness/scenario.h"
 
@@ -87,6 +88,8 @@ int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
   RunOptions opt;
   opt.out_dir = c.out_dir.empty() ? (fs::path("runs") / sc.name).string() : c.out_dir;
   opt.overrides = ov;
+  opt.force = c.force;
+  opt.stop = c.stop;
   int last_pct = -1;
   if (c.progress) {
     opt.progress = [&err, &last_pct](double f) {
@@ -105,9 +108,14 @@ int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
     if (c.progress) err << "\n";
     print_issues(e, err);
     return kExitInvalidScenario;
+  } catch (const ResultsDirRefused& e) {
+    if (c.progress) err << "\n";
+    err << "kestrel: " << e.what() << "\n";
+    return kExitRefused;
   } catch (const OutputError& e) {
     if (c.progress) err << "\n";
     err << "kestrel: output error: " << e.what() << "\n";
+    err << "kestrel: nothing was written to " << opt.out_dir << " (its previous contents, if any, are unchanged)\n";
     return kExitOutput;
   } catch (const std::exception& e) {
     if (c.progress) err << "\n";
@@ -115,6 +123,11 @@ int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
     return kExitRunFailed;
   }
   if (c.progress) err << "\n";
+  if (r.stopped_by_signal != 0) {
+    err << "kestrel: interrupted by " << r.status.stopped_by << " at t = " << r.status.t_reached << " s of "
+        << sc.duration << " s; the results so far are in " << opt.out_dir << ", marked incomplete\n";
+    return kExitInterruptedBase + r.stopped_by_signal;
+  }
   if (!r.ok) {
     err << "kestrel: run failed: " << r.failure << "\n";
     for (const auto& f : r.files) err << "  partial results: " << f << "\n";

@@ -10,6 +10,22 @@ namespace harness {
 
 namespace {
 
+// Before the library's first use: no clean-up at exit.  A file whose
+// writes failed (disk full) cannot be closed, and HDF5's exit handler then
+// crashes on it; the sink closes every file it opens itself (end()), and a
+// failed run's files are deleted with its working folder.  Errors become
+// exceptions, not stderr noise.
+void h5_setup()
+{
+  static const bool once = [] {
+    H5dont_atexit();
+    H5open();
+    return true;
+  }();
+  (void)once;
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
+
 // RAII for HDF5 identifiers.
 struct H5Id {
   hid_t id = -1;
@@ -134,7 +150,7 @@ Hdf5Sink::~Hdf5Sink() = default;
 
 void Hdf5Sink::begin(const RecordLayout& layout, uint64_t expected_rows)
 {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become exceptions, not stderr noise
+  h5_setup();
   f_ = std::make_unique<File>();
   f_->file = H5Id(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
   h5check(f_->file, "creating the file", path_);
@@ -231,7 +247,7 @@ void Hdf5Sink::end(bool complete)
 
 Hdf5Table read_hdf5(const std::string& path)
 {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  h5_setup();
   Hdf5Table t;
   H5Id file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   h5check(file, "opening the file", path);

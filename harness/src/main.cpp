@@ -2,12 +2,39 @@
 // harness library function (harness/commands.h, exit codes there).
 #include <unistd.h>
 
+#include <atomic>
+#include <csignal>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 
 #include "harness/commands.h"
 #include "harness/run.h"
+
+namespace {
+
+// SIGINT/SIGTERM during `run`: the first asks the run to stop at a tick
+// boundary and write what it has; the handler is installed with
+// SA_RESETHAND, so a second one ends the process at once.
+std::atomic<int> g_stop{0};
+static_assert(std::atomic<int>::is_always_lock_free, "signal handler needs a lock-free flag");
+
+extern "C" void on_stop_signal(int sig)
+{
+  g_stop.store(sig);
+}
+
+void install_stop_handlers()
+{
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sa.sa_flags = SA_RESETHAND;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -21,6 +48,7 @@ int main(int argc, char** argv)
   run->add_option("-o,--output", rc.out_dir, "results directory (default runs/<scenario name>)");
   run->add_option("--set", rc.sets, "override a scenario key: key.path=value (repeatable)");
   run->add_flag("--csv", rc.csv, "also write telemetry.csv");
+  run->add_flag("--force", rc.force, "replace an existing results folder whole");
 
   std::string vpath;
   std::vector<std::string> vsets;
@@ -39,6 +67,8 @@ int main(int argc, char** argv)
   }
   if (*run) {
     rc.progress = isatty(STDERR_FILENO) != 0;
+    rc.stop = &g_stop;
+    install_stop_handlers();
     return harness::cmd_run(rc, std::cout, std::cerr);
   }
   if (*val) return harness::cmd_validate(vpath, vsets, std::cout, std::cerr);

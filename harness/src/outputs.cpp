@@ -55,7 +55,7 @@ void write_text(const std::string& path, const std::string& text)
   if (!out) throw OutputError(path + ": write failed");
 }
 
-std::string manifest_text(const Scenario& sc, const std::vector<Override>& overrides)
+std::string manifest_text(const Scenario& sc, const std::vector<Override>& overrides, const RunStatus* status)
 {
   json j;
   j["kestrel_manifest"] = 1;
@@ -65,10 +65,16 @@ std::string manifest_text(const Scenario& sc, const std::vector<Override>& overr
   for (const Override& o : overrides) ov.push_back(o.path + "=" + o.value);
   j["overrides"] = ov;
   j["scenario"] = scenario_to_json(sc);
+  if (status)
+    j["result"] = {{"complete", status->complete},
+                   {"ticks", status->ticks},
+                   {"t_reached", status->t_reached},
+                   {"duration", sc.duration},
+                   {"stopped_by", status->stopped_by}};
   return j.dump(2) + "\n";
 }
 
-std::string report_data_text(const Run& run, const ReportSink& report)
+std::string report_data_text(const Run& run, const ReportSink& report, const RunStatus* status)
 {
   const Scenario& sc = run.scenario();
   json j;
@@ -86,6 +92,10 @@ std::string report_data_text(const Run& run, const ReportSink& report)
                {"rows", run.recorder().rows()},
                {"complete", run.done() && run.failure().empty()},
                {"decimated", report.decimated()}};
+  if (status) {
+    j["meta"]["t_reached"] = status->t_reached;
+    j["meta"]["stopped_by"] = status->stopped_by;
+  }
   json axes = json::array();
   for (const auto& a : run.wheel_axes_B()) axes.push_back({a[0], a[1], a[2]});
   json thr = json::array();

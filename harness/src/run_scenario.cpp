@@ -1,11 +1,14 @@
 // run_scenario.cpp: a whole run into a results directory, streamed.
+#include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <iomanip>
 #include <optional>
 #include <sstream>
 
 #include "harness/outputs.h"
+#include "harness/results_dir.h"
 
 #ifdef KESTREL_HAVE_REPORT
 #include "report/report.hpp"
@@ -15,25 +18,56 @@ namespace harness {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// A generous estimate of a run's output [bytes]: the HDF5 file uncompressed
+// (deflate only makes it smaller), the CSV at ~25 characters a value, the
+// report's bounded series twice (JSON and the HTML page), and 1 MiB of small
+// files.
+uint64_t output_estimate(const Run& run, const Scenario& sc)
+{
+  const uint64_t rows = run.recorder().capacity();
+  const uint64_t cols = run.recorder().num_columns();
+  uint64_t b = (1u << 20);
+  if (sc.outputs.hdf5) b += rows * (cols + 1) * 8;
+  if (sc.outputs.csv) b += rows * cols * 25;
+  if (sc.outputs.report_data) {
+    const uint64_t shown = std::min<uint64_t>(rows, 2 * ReportSink::kReportBuckets) * cols +
+                           std::min<uint64_t>(rows, ReportSink::kSpectrumRows) * 5;
+    b += 2 * shown * 25;
+  }
+  return b;
+}
+
+std::string signal_name(int s)
+{
+  switch (s) {
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+    default: return "signal " + std::to_string(s);
+  }
+}
+
+}  // namespace
+
 RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
 {
   RunResult res;
   const bool files = !opt.out_dir.empty();
-  const fs::path dir(opt.out_dir);
-  if (files) {
-    std::error_code ec;
-    fs::create_directories(opt.out_dir, ec);
-    if (ec || !fs::is_directory(opt.out_dir))
-      throw OutputError(opt.out_dir + ": cannot create the results directory" + (ec ? ": " + ec.message() : ""));
-  }
+  // lock, refuse or replace, working folder: before anything is simulated
+  std::optional<ResultsDir> rdir;
+  if (files) rdir.emplace(opt.out_dir, opt.force);
   RunConfig cfg;
   cfg.keep_in_memory = false;  // streamed: memory does not grow with the duration
   Run run(sc, std::move(cfg));
+  if (rdir) rdir->require_free_space(output_estimate(run, sc));
+  const fs::path dir = files ? rdir->work() : fs::path();
   const std::string manifest = files ? manifest_text(sc, opt.overrides) : std::string();
-  auto put = [&res](const fs::path& p) { res.files.push_back(p.string()); };
+  std::vector<std::string> written;  // names in the results folder, in order
   if (files) {
+    // the input record first: a run killed outright leaves it in the working folder
     write_text((dir / "manifest.json").string(), manifest);
-    put(dir / "manifest.json");
+    written.push_back("manifest.json");
   }
   std::optional<Hdf5Sink> h5;
   std::optional<CsvSink> csv;
@@ -50,10 +84,15 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
     report.emplace();
     run.add_sink(*report);
   }
+  // chunks of at most 1000 ticks: a stop request is seen within milliseconds
   const uint64_t total = run.total_ticks();
-  const uint64_t chunk = std::max<uint64_t>(1, total / 200);
+  const uint64_t chunk = std::clamp<uint64_t>(total / 200, 1, 1000);
   const auto t0 = std::chrono::steady_clock::now();
   while (!run.done()) {
+    if (opt.stop && opt.stop->load() != 0) {
+      res.stopped_by_signal = opt.stop->load();
+      break;
+    }
     if (!run.step_ticks(chunk)) break;
     if (opt.progress) opt.progress(static_cast<double>(run.tick()) / static_cast<double>(total));
   }
@@ -61,39 +100,53 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   res.ticks = run.tick();
   res.sim_seconds = sc.duration;
   res.failure = run.failure();
-  res.ok = res.failure.empty();
-  // Results are written also for a failed run (never lose data): the rows
-  // recorded up to the failure are in the files, marked incomplete.
+  res.ok = res.failure.empty() && res.stopped_by_signal == 0;
+  // Results are written also for a failed or interrupted run (never lose
+  // data): the rows recorded up to there are in the files, marked incomplete.
   run.finish();
   res.final_pointing_error_deg = run.final_pointing_error_deg();
+  RunStatus& st = res.status;
+  st.complete = res.ok && run.done();
+  st.ticks = run.tick();
+  st.t_reached = run.recorder().rows() > 0 ? run.recorder().last_row()[0] : 0.0;
+  st.stopped_by = res.stopped_by_signal ? signal_name(res.stopped_by_signal) : res.failure;
   if (!files) return res;
-  if (h5) put(dir / "results.h5");
-  if (csv) put(dir / "telemetry.csv");
+  if (h5) written.push_back("results.h5");
+  if (csv) written.push_back("telemetry.csv");
   if (report) {
-    const std::string data = report_data_text(run, *report);
+    const std::string data = report_data_text(run, *report, &st);
     write_text((dir / "report_data.json").string(), data);
-    put(dir / "report_data.json");
+    written.push_back("report_data.json");
 #ifdef KESTREL_HAVE_REPORT
     try {
       report::write_html(data, (dir / "report.html").string());
     } catch (const std::exception& e) {
       throw OutputError(e.what());
     }
-    put(dir / "report.html");
+    written.push_back("report.html");
 #endif
   }
   write_text((dir / "dataflow.dot").string(), run.dataflow().to_dot(sc.name));
-  put(dir / "dataflow.dot");
+  written.push_back("dataflow.dot");
   std::ostringstream health;
   for (const std::string& l : run.fsw_health_lines()) health << l << "\n";
   write_text((dir / "fsw_health.txt").string(), health.str());
-  put(dir / "fsw_health.txt");
+  written.push_back("fsw_health.txt");
   std::ostringstream summ;
   summ << std::setprecision(10);
+  if (!st.complete)
+    summ << "# INCOMPLETE: stopped" << (st.stopped_by.empty() ? "" : " (" + st.stopped_by + ")") << " at t = "
+         << st.t_reached << " s of " << sc.duration << " s\n";
+  summ << "complete = " << (st.complete ? 1 : 0) << "     # 1: the run reached its duration\n";
+  summ << "t_reached = " << st.t_reached << " s    # time of the last recorded row\n";
   for (const SummaryItem& it : run.summary())
     summ << it.key << " = " << it.value << " " << it.unit << "    # " << it.what << "\n";
   write_text((dir / "summary.txt").string(), summ.str());
-  put(dir / "summary.txt");
+  written.push_back("summary.txt");
+  // the manifest again, now saying how the run ended
+  write_text((dir / "manifest.json").string(), manifest_text(sc, opt.overrides, &st));
+  rdir->commit();
+  for (const std::string& n : written) res.files.push_back((rdir->target() / n).string());
   return res;
 }
 

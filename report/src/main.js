@@ -78,8 +78,15 @@ function main() {
     if (m[k] !== undefined && m[k] !== null) metaRoot.appendChild(el('span', { class: 'kv' }, el('b', { text: k + ' ' }), String(m[k]) + unit));
   }
   if (typeof m.description === 'string' && m.description.trim()) document.getElementById('description').textContent = m.description.trim();
+  if (m.complete === false) {
+    // an interrupted or failed run: its plots end where it stopped
+    const why = typeof m.stopped_by === 'string' && m.stopped_by ? ` (${m.stopped_by})` : '';
+    const at = typeof m.t_reached === 'number' ? ` at t = ${m.t_reached} s` : '';
+    const of = typeof m.duration === 'number' ? ` of ${m.duration} s` : '';
+    metaRoot.after(el('p', { class: 'incomplete', id: 'incomplete', text: `Incomplete run: stopped${why}${at}${of}. The plots end where the run stopped.` }));
+  }
   for (const [k, v] of Object.entries(m)) {
-    if (['scenario', 'seed', 'version', 'dt', 'duration', 'description'].includes(k) || (typeof v === 'object' && v !== null)) continue;
+    if (['scenario', 'seed', 'version', 'dt', 'duration', 'description', 'stopped_by'].includes(k) || (typeof v === 'object' && v !== null)) continue;
     metaRoot.appendChild(el('span', { class: 'kv' }, el('b', { text: k + ' ' }), String(v)));
   }
   let absent = [];

@@ -36,6 +36,8 @@ const CASES = [
   { file: 'reduced.html', plots: ['pointing', 'rates', 'wheels'], replay: 'ok', dataflow: 'absent', spectrum: true, fullRate: true },
   { file: 'minimal.html', plots: [], replay: 'ok', dataflow: 'absent' },
   { file: 'empty.html', plots: [], replay: 'ok', dataflow: 'absent' },
+  { file: 'interrupted.html', plots: ['pointing'], replay: 'ok', dataflow: 'absent',
+    incomplete: 'Incomplete run: stopped (SIGINT) at t = 1.5 s of 10 s' },
 ];
 
 function stats(pngBuf) {
@@ -105,6 +107,7 @@ async function main() {
           dfNodes: document.querySelectorAll('#dataflow svg rect.node').length,
           dfRows: document.querySelectorAll('#dataflow table tbody tr').length,
           othersShown: getComputedStyle(document.getElementById('others-title')).display !== 'none',
+          incomplete: (document.getElementById('incomplete') || {}).textContent || '',
         };
       });
       console.log(`  cards [${st.cards.join(', ')}], spectrum ${st.spectrum}, replay ${st.replay}, dataflow ${st.dataflow} ` +
@@ -123,6 +126,8 @@ async function main() {
       if (c.replay && st.replay !== c.replay) fail(c, `replay ${st.replay}, expected ${c.replay}`);
       if (c.dataflow && st.dataflow !== c.dataflow) fail(c, `dataflow ${st.dataflow}, expected ${c.dataflow}`);
       if (c.dataflow === 'ok' && (st.dfNodes < 5 || st.dfRows < 3)) fail(c, 'data-flow map nearly empty');
+      if (c.incomplete && !st.incomplete.startsWith(c.incomplete)) fail(c, `incomplete-run notice missing: '${st.incomplete}'`);
+      if (!c.incomplete && st.incomplete) fail(c, `incomplete-run notice on a complete run: '${st.incomplete}'`);
       if (c.title && !st.title.includes(c.title)) fail(c, `scenario text not shown verbatim: ${st.title.slice(0, 120)}`);
       if (c.shot) {
         // a click on a time plot moves the replay to that time

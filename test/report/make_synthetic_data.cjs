@@ -290,5 +290,9 @@ fs.writeFileSync(path.join(out, 'long.json'), JSON.stringify(long()));
 fs.writeFileSync(path.join(out, 's2.json'), JSON.stringify(s2()));
 fs.writeFileSync(path.join(out, 'minimal.json'), JSON.stringify({ meta: { scenario: 'minimal', dt: 1, duration: 2 }, series: { t: [0, 1, 2] } }));
 fs.writeFileSync(path.join(out, 'empty.json'), '{}');
+// an interrupted run (Ctrl-C at t = 1.5 s of 10 s)
+fs.writeFileSync(path.join(out, 'interrupted.json'), JSON.stringify({
+  meta: { scenario: 'interrupted', dt: 0.5, duration: 10, complete: false, t_reached: 1.5, stopped_by: 'SIGINT' },
+  series: { t: [0, 0.5, 1, 1.5], pointing_error_deg: [10, 8, 6, 5] } }));
 fs.writeFileSync(path.join(out, 'hostile.json'), JSON.stringify(hostile()));
 console.log(`synthetic report data written to ${out}`);

@@ -7,10 +7,16 @@
 //   2  usage error (bad arguments, malformed --set)
 //   3  invalid scenario (unknown key, wrong type, invalid value, unreadable
 //      file, YAML syntax, configuration rejected by the plant or an FSW module)
-//   4  output error (results directory or files cannot be written)
+//   4  output error (results folder or files cannot be written, not enough
+//      free space); the target folder is left as it was
+//   5  results folder refused: it already holds results (without --force),
+//      holds foreign files, or another run is writing it; nothing was run
+//   130, 143  interrupted by SIGINT / SIGTERM (128 + the signal): the rows
+//      computed so far are written, marked incomplete
 #ifndef HARNESS_COMMANDS_H
 #define HARNESS_COMMANDS_H
 
+#include <atomic>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -23,6 +29,8 @@ enum ExitCode : int {
   kExitUsage = 2,
   kExitInvalidScenario = 3,
   kExitOutput = 4,
+  kExitRefused = 5,
+  kExitInterruptedBase = 128,  // + the signal number
 };
 
 struct RunCommand {
@@ -31,6 +39,8 @@ struct RunCommand {
   std::vector<std::string> sets;    // "key.path=value"
   bool csv = false;                 // also write telemetry.csv
   bool progress = false;            // draw a progress bar on `err`
+  bool force = false;               // replace an existing results folder whole
+  const std::atomic<int>* stop = nullptr;  // set to a signal number to stop the run (main.cpp)
 };
 
 int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err);

@@ -16,6 +16,7 @@
 #ifndef HARNESS_OUTPUTS_H
 #define HARNESS_OUTPUTS_H
 
+#include <atomic>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -106,9 +107,20 @@ class ReportSink : public RecordSink {
 };
 
 // ---- files ----------------------------------------------------------------------
-std::string manifest_text(const Scenario& sc, const std::vector<Override>& overrides);
-// report_data.json from a finished run and its report sink.
-std::string report_data_text(const Run& run, const ReportSink& report);
+// How a run ended, as recorded in its manifest ("result") and summary.
+struct RunStatus {
+  bool complete = false;       // every tick ran, no failure, no interrupt
+  uint64_t ticks = 0;          // ticks executed
+  double t_reached = 0.0;      // [s] time of the last recorded row
+  std::string stopped_by;      // "" | "SIGINT" | "SIGTERM" | the failure's message
+};
+// The resolved scenario (reload it with `kestrel run manifest.json`); with a
+// status, also a "result" object saying how the run ended.
+std::string manifest_text(const Scenario& sc, const std::vector<Override>& overrides,
+                          const RunStatus* status = nullptr);
+// report_data.json from a finished run and its report sink (with a status,
+// meta also has t_reached and stopped_by).
+std::string report_data_text(const Run& run, const ReportSink& report, const RunStatus* status = nullptr);
 void write_text(const std::string& path, const std::string& text);
 
 // Read-back (tests, tools): the flat telemetry table of an HDF5 results file.
@@ -125,9 +137,14 @@ Hdf5Table read_hdf5(const std::string& path);
 
 // ---- a whole run to files ----------------------------------------------------------
 struct RunOptions {
-  std::string out_dir;                          // "" : write nothing
+  std::string out_dir;                          // "" : write nothing (see results_dir.h)
+  bool force = false;                           // replace an existing results folder whole
   std::vector<Override> overrides;              // echoed into the manifest
-  std::function<void(double fraction)> progress;  // optional, called <= ~200 times
+  std::function<void(double fraction)> progress;  // optional, called between chunks of ticks
+  // Optional stop request (set by a SIGINT/SIGTERM handler to the signal
+  // number): the run stops at the next tick boundary (within ~1000 ticks),
+  // and what was recorded is written, marked incomplete.
+  const std::atomic<int>* stop = nullptr;
 };
 
 struct RunResult {
@@ -137,12 +154,17 @@ struct RunResult {
   double sim_seconds = 0.0;
   double wall_seconds = 0.0;
   double final_pointing_error_deg = 0.0;
-  std::vector<std::string> files;  // written, in order
+  int stopped_by_signal = 0;       // the signal that stopped the run (0: none)
+  RunStatus status;
+  std::vector<std::string> files;  // written, in order (paths in the results folder)
 };
 
 // Runs a scenario to the end, streaming its results into opt.out_dir (memory
-// bounded for any duration).  Throws ScenarioError (configuration rejected)
-// or OutputError (files).
+// bounded for any duration) through a ResultsDir (results_dir.h): the folder
+// appears whole when the run ends (complete, failed or interrupted) and is
+// never mixed with another run's files.  Throws ScenarioError (configuration
+// rejected), ResultsDirRefused (target exists / in use; nothing ran) or
+// OutputError (files; the target is left as it was).
 RunResult run_scenario(const Scenario& sc, const RunOptions& opt = {});
 
 }  // namespace harness
