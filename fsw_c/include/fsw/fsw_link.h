@@ -1,0 +1,147 @@
+/* fsw_link: the wire codec between the FSW application and whatever feeds it
+ * (the harness, a test bench): CCSDS Space Packets (CCSDS 133.0-B-2) with a
+ * time secondary header, fixed big-endian payload layouts, a CRC-16 per
+ * packet and, for byte streams, CCSDS attached sync markers.  The interface
+ * control document is docs/icd.md (byte tables of every packet).
+ *
+ * Packet = primary header (6 bytes) | secondary header (8 bytes: the sample
+ * time, uint64 ns, big-endian) | payload | CRC-16 (2 bytes, big-endian).
+ * Primary header: version 0, type 1 (telecommand: to the FSW) or 0
+ * (telemetry: from the FSW), secondary-header flag 1, APID (11 bits),
+ * sequence flags 3 (unsegmented), sequence count (14 bits, per APID, mod
+ * 16384), packet data length = bytes after the primary header - 1.  The CRC
+ * is CRC-16/CCITT-FALSE (polynomial 0x1021, initial value 0xFFFF, no
+ * reflection, no final XOR; check value 0x29B1 for "123456789"), the CRC of
+ * the CCSDS TC/TM frame standards, over every byte of the packet before it.
+ * Reals travel as IEEE-754 binary64, big-endian, whatever fsw_real is.
+ *
+ * On a byte stream (serial) each packet is preceded by the attached sync
+ * marker 1A CF FC 1D; the deframer hunts for it, takes the length from the
+ * primary header, checks the CRC, and after any failure resumes its hunt one
+ * byte after the rejected marker, so one corrupted packet costs one packet.
+ *
+ * C99, no heap, no globals, no stdio; every function is reentrant.  Decoders
+ * never read past the given length and never write a message on failure. */
+#ifndef FSW_LINK_H
+#define FSW_LINK_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fsw/fsw_acs_msgs.h"
+#include "fsw/fsw_config.h"
+#include "fsw/fsw_status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Application process identifiers (11 bits). */
+#define FSW_LINK_APID_SENSOR 0x101u   /* to the FSW:   FswAcsSensorMsg (drives one cycle) */
+#define FSW_LINK_APID_CMD 0x102u      /* to the FSW:   FswAcsCmdMsg                       */
+#define FSW_LINK_APID_ACTUATOR 0x181u /* from the FSW: FswAcsActuatorMsg                  */
+#define FSW_LINK_APID_HEALTH 0x182u   /* from the FSW: FswAcsHealthMsg                    */
+
+#define FSW_LINK_PRIMARY_SIZE 6u
+#define FSW_LINK_SECONDARY_SIZE 8u
+#define FSW_LINK_HEADER_SIZE (FSW_LINK_PRIMARY_SIZE + FSW_LINK_SECONDARY_SIZE)
+#define FSW_LINK_CRC_SIZE 2u
+#define FSW_LINK_ASM_SIZE 4u
+#define FSW_LINK_SEQ_MODULO 16384u
+
+/* Payload sizes [bytes] (docs/icd.md). */
+#define FSW_LINK_SENSOR_PAYLOAD(num_rw, num_css) (76u + 9u * (size_t)(num_rw) + 9u * (size_t)(num_css))
+#define FSW_LINK_CMD_PAYLOAD 4u
+#define FSW_LINK_ACTUATOR_PAYLOAD(num_rw, num_thr) (28u + 16u * (size_t)(num_rw) + 16u * (size_t)(num_thr))
+#define FSW_LINK_HEALTH_PAYLOAD (16u + 2u * (size_t)FSW_ACS_NUM_STAGES + 88u + 30u)
+
+/* The largest packet any capacity allows (buffer size for a receiver). */
+#define FSW_LINK_MAX_PACKET                                                                                  \
+  (FSW_LINK_HEADER_SIZE + FSW_LINK_CRC_SIZE +                                                                \
+   (FSW_LINK_SENSOR_PAYLOAD(FSW_MAX_RW, FSW_MAX_CSS) > FSW_LINK_ACTUATOR_PAYLOAD(FSW_MAX_RW, FSW_MAX_THR)     \
+        ? FSW_LINK_SENSOR_PAYLOAD(FSW_MAX_RW, FSW_MAX_CSS)                                                   \
+        : FSW_LINK_ACTUATOR_PAYLOAD(FSW_MAX_RW, FSW_MAX_THR)))
+
+/* Why a packet was rejected (the status is FSW_E_BAD_INPUT for all). */
+typedef enum {
+  FSW_LINK_OK = 0,
+  FSW_LINK_E_SHORT = 1,   /* fewer bytes than a header and CRC, or than the length field says */
+  FSW_LINK_E_HEADER = 2,  /* version, secondary-header flag or sequence flags not as above     */
+  FSW_LINK_E_CRC = 3,     /* CRC mismatch                                                      */
+  FSW_LINK_E_APID = 4,    /* not the APID (or packet type) the decoder expects                 */
+  FSW_LINK_E_LENGTH = 5,  /* payload length does not match the counts it declares              */
+  FSW_LINK_E_COUNT = 6,   /* a count beyond an FSW_MAX_* capacity, or a flag not 0/1           */
+  FSW_LINK_E_SPACE = 7    /* encoder: the output buffer is too small                           */
+} FswLinkError;
+
+/* A parsed packet: header fields and where its payload is (inside the
+ * caller's buffer). */
+typedef struct {
+  uint16_t apid;
+  uint8_t type;          /* 1 telecommand (to the FSW), 0 telemetry (from it) */
+  uint16_t seq;          /* sequence count, 0..16383 */
+  uint64_t t_ns;         /* secondary header: sample time [ns] */
+  const uint8_t *payload;
+  size_t payload_len;
+  size_t packet_len;     /* bytes of the whole packet, CRC included */
+} FswLinkPacket;
+
+/* CRC-16/CCITT-FALSE of n bytes, continuing from `crc` (0xFFFF to start). */
+uint16_t fsw_link_crc16(const uint8_t *data, size_t n, uint16_t crc);
+
+/* Encoders: one whole packet into buf[0..cap), its size in *len.  Returns
+ * FSW_OK, FSW_E_NULL_ARG, or FSW_E_BAD_INPUT with *err = FSW_LINK_E_SPACE or
+ * FSW_LINK_E_COUNT (counts beyond the capacities); err may be NULL. */
+FswStatus fsw_link_encode_sensor(const FswAcsSensorMsg *m, uint8_t num_rw, uint8_t num_css, uint16_t seq,
+                                 uint8_t *buf, size_t cap, size_t *len, FswLinkError *err);
+FswStatus fsw_link_encode_cmd(const FswAcsCmdMsg *m, uint64_t t_ns, uint16_t seq, uint8_t *buf, size_t cap,
+                              size_t *len, FswLinkError *err);
+FswStatus fsw_link_encode_actuator(const FswAcsActuatorMsg *m, uint8_t num_rw, uint8_t num_thr, uint64_t t_ns,
+                                   uint16_t seq, uint8_t *buf, size_t cap, size_t *len, FswLinkError *err);
+FswStatus fsw_link_encode_health(const FswAcsHealthMsg *m, uint64_t t_ns, uint16_t seq, uint8_t *buf, size_t cap,
+                                 size_t *len, FswLinkError *err);
+
+/* Checks the primary header and the CRC of buf[0..n) (n may exceed the
+ * packet: the length field decides) and fills *p.  FSW_OK or
+ * FSW_E_BAD_INPUT with *err saying why; *p is written only on FSW_OK. */
+FswStatus fsw_link_parse(const uint8_t *buf, size_t n, FswLinkPacket *p, FswLinkError *err);
+
+/* Decoders of a parsed packet's payload.  The message (and the counts) are
+ * written only on FSW_OK; fields beyond the counts are zeroed.  The sensor
+ * decoder takes t_ns from the secondary header. */
+FswStatus fsw_link_decode_sensor(const FswLinkPacket *p, FswAcsSensorMsg *m, uint8_t *num_rw, uint8_t *num_css,
+                                 FswLinkError *err);
+FswStatus fsw_link_decode_cmd(const FswLinkPacket *p, FswAcsCmdMsg *m, FswLinkError *err);
+FswStatus fsw_link_decode_actuator(const FswLinkPacket *p, FswAcsActuatorMsg *m, uint8_t *num_rw, uint8_t *num_thr,
+                                   FswLinkError *err);
+FswStatus fsw_link_decode_health(const FswLinkPacket *p, FswAcsHealthMsg *m, FswLinkError *err);
+
+/* ---- byte streams ------------------------------------------------------- */
+
+/* Writes the attached sync marker and the packet pkt[0..n) to out (n + 4
+ * bytes).  FSW_OK, FSW_E_NULL_ARG, or FSW_E_BAD_INPUT when cap is short. */
+FswStatus fsw_link_frame(const uint8_t *pkt, size_t n, uint8_t *out, size_t cap, size_t *len);
+
+typedef struct {
+  uint8_t buf[FSW_LINK_ASM_SIZE + FSW_LINK_MAX_PACKET]; /* marker + packet being assembled */
+  size_t have;               /* bytes in buf */
+  uint32_t packets;          /* packets delivered */
+  uint32_t sync_slips;       /* bytes skipped while hunting for a marker */
+  uint32_t rejected;         /* candidate packets rejected (header, length or CRC) */
+} FswLinkDeframer;
+
+void fsw_link_deframer_init(FswLinkDeframer *d);
+
+/* Feeds bytes[0..n).  Consumes bytes until a whole valid packet is
+ * assembled or the input is used up; returns the number consumed.  When a
+ * packet is ready, *pkt points to it (inside d, valid until the next call)
+ * with *pkt_len bytes; otherwise *pkt is NULL.  Call again with the
+ * remaining bytes. */
+size_t fsw_link_deframer_push(FswLinkDeframer *d, const uint8_t *bytes, size_t n, const uint8_t **pkt,
+                              size_t *pkt_len);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* FSW_LINK_H */
