@@ -90,6 +90,11 @@ int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
   opt.overrides = ov;
   opt.force = c.force;
   opt.stop = c.stop;
+  if (c.realtime) opt.realtime_scale = c.rt_scale;
+  opt.notice = [&err, &c](const std::string& msg) {
+    if (c.progress) err << "\n";
+    err << "kestrel: " << msg << "\n";
+  };
   int last_pct = -1;
   if (c.progress) {
     opt.progress = [&err, &last_pct](double f) {
@@ -136,6 +141,11 @@ int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
   out << sc.name << ": " << sc.duration << " s simulated in " << std::setprecision(3) << r.wall_seconds
       << " s (real-time factor " << std::setprecision(4) << (r.wall_seconds > 0 ? sc.duration / r.wall_seconds : 0.0)
       << "x); final pointing error " << std::setprecision(4) << r.final_pointing_error_deg << " deg\n";
+  if (r.paced)
+    out << "paced at " << r.pacing.scale << "x real time: tick lateness p50 " << r.pacing.lateness_p50_s * 1e6
+        << " us, p99 " << r.pacing.lateness_p99_s * 1e6 << " us, max " << r.pacing.lateness_max_s * 1e6 << " us, "
+        << r.pacing.overruns << " overruns in " << r.pacing.ticks << " ticks, drift at the end "
+        << r.pacing.drift_s * 1e6 << " us\n";
   out << "results: " << opt.out_dir << "\n";
   for (const auto& f : r.files)
     if (fs::path(f).filename() == "report.html") out << "report: " << f << "\n";

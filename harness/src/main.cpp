@@ -49,6 +49,9 @@ int main(int argc, char** argv)
   run->add_option("--set", rc.sets, "override a scenario key: key.path=value (repeatable)");
   run->add_flag("--csv", rc.csv, "also write telemetry.csv");
   run->add_flag("--force", rc.force, "replace an existing results folder whole");
+  run->add_flag("--realtime", rc.realtime, "pace the ticks to the wall clock (absolute deadlines)");
+  run->add_option("--rt-scale", rc.rt_scale, "with --realtime: multiple of real time (default 1)")
+      ->check(CLI::PositiveNumber);
 
   std::string vpath;
   std::vector<std::string> vsets;

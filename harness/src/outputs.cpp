@@ -74,7 +74,8 @@ std::string manifest_text(const Scenario& sc, const std::vector<Override>& overr
   return j.dump(2) + "\n";
 }
 
-std::string report_data_text(const Run& run, const ReportSink& report, const RunStatus* status)
+std::string report_data_text(const Run& run, const ReportSink& report, const RunStatus* status,
+                             const PacingStats* pacing)
 {
   const Scenario& sc = run.scenario();
   json j;
@@ -95,6 +96,14 @@ std::string report_data_text(const Run& run, const ReportSink& report, const Run
   if (status) {
     j["meta"]["t_reached"] = status->t_reached;
     j["meta"]["stopped_by"] = status->stopped_by;
+  }
+  if (pacing) {
+    j["meta"]["rt_scale"] = pacing->scale;
+    j["meta"]["rt_lateness_p50_s"] = pacing->lateness_p50_s;
+    j["meta"]["rt_lateness_p99_s"] = pacing->lateness_p99_s;
+    j["meta"]["rt_lateness_max_s"] = pacing->lateness_max_s;
+    j["meta"]["rt_overruns"] = pacing->overruns;
+    j["meta"]["rt_drift_s"] = pacing->drift_s;
   }
   json axes = json::array();
   for (const auto& a : run.wheel_axes_B()) axes.push_back({a[0], a[1], a[2]});

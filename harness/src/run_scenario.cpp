@@ -87,16 +87,42 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   // chunks of at most 1000 ticks: a stop request is seen within milliseconds
   const uint64_t total = run.total_ticks();
   const uint64_t chunk = std::clamp<uint64_t>(total / 200, 1, 1000);
+  std::optional<Pacer> pacer;
+  uint64_t notice_every = 1;  // paced: ticks per ~1 s of wall time
+  if (opt.realtime_scale > 0.0) {
+    pacer.emplace(sc.tick_ns(), opt.realtime_scale);
+    const std::string w = pacer->request_realtime();
+    if (!w.empty() && opt.notice) opt.notice(w);
+    notice_every = std::max<uint64_t>(1, static_cast<uint64_t>(1e9 * opt.realtime_scale / static_cast<double>(sc.tick_ns())));
+  }
   const auto t0 = std::chrono::steady_clock::now();
   while (!run.done()) {
     if (opt.stop && opt.stop->load() != 0) {
       res.stopped_by_signal = opt.stop->load();
       break;
     }
+    if (pacer) {  // one tick at a time, each at its deadline
+      const uint64_t k = run.tick();
+      pacer->wait_for(k);
+      if (!run.step_ticks(1)) break;
+      pacer->done(k);
+      if ((k + 1) % notice_every == 0) {
+        const uint64_t late = pacer->take_new_overruns();
+        if (late > 0 && opt.notice)
+          opt.notice("cannot keep up: " + std::to_string(late) + " of the last " + std::to_string(notice_every) +
+                     " ticks overran their deadline");
+      }
+      if (opt.progress && (k + 1) % chunk == 0) opt.progress(static_cast<double>(run.tick()) / static_cast<double>(total));
+      continue;
+    }
     if (!run.step_ticks(chunk)) break;
     if (opt.progress) opt.progress(static_cast<double>(run.tick()) / static_cast<double>(total));
   }
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (pacer) {
+    res.paced = true;
+    res.pacing = pacer->stats();
+  }
   res.ticks = run.tick();
   res.sim_seconds = sc.duration;
   res.failure = run.failure();
@@ -114,7 +140,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   if (h5) written.push_back("results.h5");
   if (csv) written.push_back("telemetry.csv");
   if (report) {
-    const std::string data = report_data_text(run, *report, &st);
+    const std::string data = report_data_text(run, *report, &st, res.paced ? &res.pacing : nullptr);
     write_text((dir / "report_data.json").string(), data);
     written.push_back("report_data.json");
 #ifdef KESTREL_HAVE_REPORT
@@ -141,6 +167,16 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   summ << "t_reached = " << st.t_reached << " s    # time of the last recorded row\n";
   for (const SummaryItem& it : run.summary())
     summ << it.key << " = " << it.value << " " << it.unit << "    # " << it.what << "\n";
+  if (res.paced) {
+    const PacingStats& p = res.pacing;
+    summ << "rt_scale = " << p.scale << "     # paced at this multiple of real time\n";
+    summ << "rt_lateness_p50 = " << p.lateness_p50_s << " s    # tick wake-up after its deadline, median\n";
+    summ << "rt_lateness_p99 = " << p.lateness_p99_s << " s    # 99th percentile\n";
+    summ << "rt_lateness_max = " << p.lateness_max_s << " s    # maximum\n";
+    summ << "rt_overruns = " << p.overruns << "     # ticks whose work ended after the next deadline\n";
+    summ << "rt_drift = " << p.drift_s << " s    # last tick's lateness (absolute deadlines: no accumulation)\n";
+    summ << "rt_priority = " << (p.realtime_priority ? 1 : 0) << "     # 1: SCHED_FIFO and locked memory\n";
+  }
   write_text((dir / "summary.txt").string(), summ.str());
   written.push_back("summary.txt");
   // the manifest again, now saying how the run ended

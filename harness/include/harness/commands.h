@@ -40,6 +40,8 @@ struct RunCommand {
   bool csv = false;                 // also write telemetry.csv
   bool progress = false;            // draw a progress bar on `err`
   bool force = false;               // replace an existing results folder whole
+  bool realtime = false;            // pace to the wall clock (pacer.h)
+  double rt_scale = 1.0;            // ... at this multiple of real time
   const std::atomic<int>* stop = nullptr;  // set to a signal number to stop the run (main.cpp)
 };
 

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/pacer.h"
 #include "harness/recorder.h"
 #include "harness/run.h"
 #include "harness/scenario.h"
@@ -119,8 +120,10 @@ struct RunStatus {
 std::string manifest_text(const Scenario& sc, const std::vector<Override>& overrides,
                           const RunStatus* status = nullptr);
 // report_data.json from a finished run and its report sink (with a status,
-// meta also has t_reached and stopped_by).
-std::string report_data_text(const Run& run, const ReportSink& report, const RunStatus* status = nullptr);
+// meta also has t_reached and stopped_by; with pacing figures, the rt_*
+// figures of summary.txt).
+std::string report_data_text(const Run& run, const ReportSink& report, const RunStatus* status = nullptr,
+                             const PacingStats* pacing = nullptr);
 void write_text(const std::string& path, const std::string& text);
 
 // Read-back (tests, tools): the flat telemetry table of an HDF5 results file.
@@ -145,6 +148,11 @@ struct RunOptions {
   // number): the run stops at the next tick boundary (within ~1000 ticks),
   // and what was recorded is written, marked incomplete.
   const std::atomic<int>* stop = nullptr;
+  // > 0: pace the ticks to the wall clock at this multiple of real time
+  // (1: real time; pacer.h); 0: as fast as possible.
+  double realtime_scale = 0.0;
+  // Optional: warnings while running (no real-time priority, cannot keep up).
+  std::function<void(const std::string&)> notice;
 };
 
 struct RunResult {
@@ -155,6 +163,8 @@ struct RunResult {
   double wall_seconds = 0.0;
   double final_pointing_error_deg = 0.0;
   int stopped_by_signal = 0;       // the signal that stopped the run (0: none)
+  bool paced = false;              // realtime_scale > 0: pacing holds the figures
+  PacingStats pacing;
   RunStatus status;
   std::vector<std::string> files;  // written, in order (paths in the results folder)
 };

@@ -1,0 +1,79 @@
+// Paced runs (pacer.h): pacing changes when ticks run, never what they
+// compute; the wall time is at least what the deadlines impose; the figures
+// are consistent.  (Lateness itself depends on the machine's load: it is a
+// benchmark figure, bench/pacing.sh, not a test threshold.)
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "harness/outputs.h"
+#include "harness/pacer.h"
+#include "harness/scenario.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kS1 = std::string(KESTREL_SOURCE_DIR) + "/scenarios/s1_sun_pointing.yaml";
+
+harness::RunResult run_to(const fs::path& dir, double scale)
+{
+  const harness::Scenario sc = harness::load_scenario(kS1, {{"duration", "2"}, {"rates.dt", "0.01"}, {"rates.record_divisor", "1"}});
+  harness::RunOptions opt;
+  fs::remove_all(dir);
+  opt.out_dir = dir.string();
+  opt.realtime_scale = scale;
+  return harness::run_scenario(sc, opt);
+}
+}  // namespace
+
+TEST(Pacing, PacedRunComputesExactlyWhatTheUnpacedRunComputes)
+{
+  const fs::path base = fs::temp_directory_path() / "kestrel_pacing";
+  const harness::RunResult fast = run_to(base / "fast", 0.0);
+  const harness::RunResult paced = run_to(base / "paced", 20.0);  // 2 s simulated in >= 0.1 s
+  ASSERT_TRUE(fast.ok);
+  ASSERT_TRUE(paced.ok);
+  EXPECT_FALSE(fast.paced);
+  ASSERT_TRUE(paced.paced);
+  const harness::Hdf5Table a = harness::read_hdf5((base / "fast" / "results.h5").string());
+  const harness::Hdf5Table b = harness::read_hdf5((base / "paced" / "results.h5").string());
+  ASSERT_EQ(a.rows, 201u);
+  EXPECT_TRUE(a.data == b.data);  // bit for bit
+  // 200 tick intervals of 10 ms / 20 after the first tick: at least 0.1 s
+  EXPECT_GE(paced.wall_seconds, 0.1);
+  const harness::PacingStats& p = paced.pacing;
+  EXPECT_EQ(p.ticks, 201u);
+  EXPECT_EQ(p.scale, 20.0);
+  EXPECT_LE(p.lateness_p50_s, p.lateness_p99_s);
+  EXPECT_LE(p.lateness_p99_s, p.lateness_max_s);
+  EXPECT_GE(p.lateness_max_s, 0.0);
+  EXPECT_LE(p.overruns, p.ticks);
+  EXPECT_LE(p.drift_s, p.lateness_max_s);
+  // the figures are in summary.txt
+  std::ifstream in(base / "paced" / "summary.txt");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* key : {"rt_scale = 20", "rt_lateness_p50 = ", "rt_lateness_p99 = ", "rt_lateness_max = ",
+                          "rt_overruns = ", "rt_drift = ", "rt_priority = "})
+    EXPECT_NE(text.find(key), std::string::npos) << key;
+  fs::remove_all(base);
+}
+
+TEST(Pacing, HistogramBinsAreTenPerDecade)
+{
+  EXPECT_DOUBLE_EQ(harness::pacer_bin_edge(0), 1e-7);
+  EXPECT_NEAR(harness::pacer_bin_edge(10), 1e-6, 1e-18);
+  EXPECT_NEAR(harness::pacer_bin_edge(1) / harness::pacer_bin_edge(0), std::pow(10.0, 0.1), 1e-12);
+  EXPECT_NEAR(harness::pacer_bin_edge(harness::Pacer::kBins - 2), 100.0 / std::pow(10.0, 0.1), 1e-9);
+  EXPECT_TRUE(std::isinf(harness::pacer_bin_edge(harness::Pacer::kBins - 1)));
+}
+
+TEST(Pacing, BadScaleIsRejected)
+{
+  EXPECT_THROW(harness::Pacer(10000000, 0.0), std::invalid_argument);
+  EXPECT_THROW(harness::Pacer(10000000, -1.0), std::invalid_argument);
+  EXPECT_THROW(harness::Pacer(0, 1.0), std::invalid_argument);
+}
