@@ -8,7 +8,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 
-ALL_PRESETS="host-debug-asan host-release host-clang host-float cortex-m3 cortex-m4f cortex-m7 cortex-m33 aarch64-linux armhf-linux s390x-linux"
+ALL_PRESETS="host-debug-asan host-release host-clang host-float coverage cortex-m3 cortex-m4f cortex-m7 cortex-m33 aarch64-linux armhf-linux s390x-linux"
 PRESETS="${KESTREL_PRESETS:-$ALL_PRESETS}"
 
 scripts/install-deps.sh all || { echo "test-all: dependency installation failed" >&2; exit 1; }
@@ -34,6 +34,8 @@ for p in $PRESETS; do
   ctest --test-dir "build/$p" -R '^fsw_proof_stack$' -V > "build/logs/$p.stack.log" 2>&1 || true
   stack=$(grep -Eo "largest: .* B over" "build/logs/$p.stack.log" | tail -1 | sed 's/.*largest: //; s/ over//')
   result[$p]="${result[$p]} ${stack:+(largest stack: $stack)}"
+  # the structural coverage of the flight library (coverage preset)
+  if [ -f "build/$p/coverage/summary.txt" ]; then result[$p]="${result[$p]} ($(cat "build/$p/coverage/summary.txt"))"; fi
 done
 
 echo
