@@ -3,9 +3,29 @@
  * mode of thr_map, fsw-algorithms.md 8.6). */
 #include "fsw/fsw_linalg.h"
 
+#include <float.h>
 #include <stddef.h>
 
 #include "fsw/fsw_vec.h"
+
+#if FSW_USE_FLOAT
+#define K1_MAX_EXP FLT_MAX_EXP
+#define K1_MIN_NORMAL FLT_MIN
+#else
+#define K1_MAX_EXP DBL_MAX_EXP
+#define K1_MIN_NORMAL DBL_MIN
+#endif
+
+/* e with 2^(e-1) <= m < 2^e (0 for m <= 0), clamped so that 2^-e is
+ * finite: b 2^-e is then an exact scaling into [1/2, 1). */
+static int pow2_exp(fsw_real m)
+{
+  int e = 0;
+  if (!(m > FSW_R(0.0)) || !isfinite(m)) return 0;
+  (void)FSW_FREXP(m, &e);
+  if (-e > K1_MAX_EXP - 1) e = -(K1_MAX_EXP - 1);
+  return e;
+}
 
 /* Cholesky solve L L^T z = rhs (m x m, L from the factorisation above). */
 static void chol_solve(fsw_real z[3], const fsw_real L[3][3], const fsw_real rhs[3], int m)
@@ -48,7 +68,7 @@ FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX
   fsw_real bs[3], r[3], dz[3];
   fsw_real M[3][3], L[3][3], z[3];
   fsw_real amax = FSW_R(0.0), s, t, dmax, bnorm, rnorm;
-  int i, j, k;
+  int i, j, k, eb;
 
   FSW_ASSERT(x != NULL && A != NULL && b != NULL);
   if (x == NULL || A == NULL || b == NULL) return FSW_E_NULL_ARG;
@@ -63,14 +83,18 @@ FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX
     }
   }
   if (n < m || amax == FSW_R(0.0)) return FSW_E_SINGULAR;
+  /* a matrix whose largest entry is subnormal cannot be scaled exactly and
+   * its solution overflows for any ordinary b: bad input */
+  if (amax < K1_MIN_NORMAL) return FSW_E_BAD_INPUT;
 
   /* As = s A with s a power of two, formed on the fly (no copy of A: the
    * products (s A_ik)(s A_jk) are exact scalings of A_ik A_jk).  b is
-   * scaled too, by s and by a power of two t that brings max |b| into
-   * [1/2, 1): the solve cannot overflow, and x = (solution) / t at the end
+   * scaled too, by s and by a power of two t = 2^-eb that brings max |b|
+   * into [1/2, 1): the solve cannot overflow, and x = (solution) 2^eb at the end
    * (exact scalings: the digits are those of the unscaled solve). */
   s = fsw_pow2_scale(amax);
-  t = fsw_pow2_scale(fsw_vn_max_abs(b, m));
+  eb = pow2_exp(fsw_vn_max_abs(b, m));
+  t = FSW_LDEXP(FSW_R(1.0), -eb);
   for (i = 0; i < m; i++) bs[i] = (b[i] * t) * s;
 
   /* M = As As^T (lower triangle used) */
@@ -116,8 +140,7 @@ FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX
     }
   }
   /* undo the scaling of b; a solution beyond the real's range is bad input */
-  t = FSW_R(1.0) / t;
-  for (j = 0; j < n; j++) x[j] = x[j] * t;
+  for (j = 0; j < n; j++) x[j] = FSW_LDEXP(x[j], eb); /* exact, or overflow */
   if (!fsw_vn_is_finite(x, n)) {
     fsw_vn_zero(x, n);
     return FSW_E_BAD_INPUT;

@@ -29,8 +29,9 @@ fsw_real fsw_v3_norm(const fsw_real a[3]);  /* overflow-safe Euclidean norm */
  * a is pre-scaled by a power of two, which changes no digit otherwise). */
 int fsw_v3_normalize(fsw_real out[3], const fsw_real a[3]);
 int fsw_v3_is_finite(const fsw_real a[3]); /* 1 if all entries are finite */
-/* 2^-e with 2^(e-1) <= m < 2^e (1 for m <= 0 or non-finite): multiplying
- * by it is exact barring subnormals, so it changes the range, not digits. */
+/* 2^-e with 2^(e-1) <= m < 2^e (1 for m <= 0 or non-finite; for subnormal
+ * m the largest finite power of two): multiplying by it is exact barring
+ * subnormals, so it changes the range, not digits. */
 fsw_real fsw_pow2_scale(fsw_real m);
 
 /* ---- n-vectors (0 <= n; n <= 0 is an empty vector) ---- */
