@@ -88,12 +88,12 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   const uint64_t total = run.total_ticks();
   const uint64_t chunk = std::clamp<uint64_t>(total / 200, 1, 1000);
   std::optional<Pacer> pacer;
-  uint64_t notice_every = 1;  // paced: ticks per ~1 s of wall time
+  uint64_t notice_every = 1;  // paced: ticks per ~10 s of wall time (one notice at most)
   if (opt.realtime_scale > 0.0) {
     pacer.emplace(sc.tick_ns(), opt.realtime_scale);
     const std::string w = pacer->request_realtime();
     if (!w.empty() && opt.notice) opt.notice(w);
-    notice_every = std::max<uint64_t>(1, static_cast<uint64_t>(1e9 * opt.realtime_scale / static_cast<double>(sc.tick_ns())));
+    notice_every = std::max<uint64_t>(1, static_cast<uint64_t>(1e10 * opt.realtime_scale / static_cast<double>(sc.tick_ns())));
   }
   const auto t0 = std::chrono::steady_clock::now();
   while (!run.done()) {
