@@ -2,6 +2,7 @@
  * the reaction-wheel modules. */
 #include "fsw/rw_common.h"
 
+#include <math.h>
 #include <stddef.h>
 
 #include "fsw/fsw_linalg.h"
@@ -39,6 +40,14 @@ int fsw_rw_avail_finite(const fsw_real *x, const uint8_t avail[FSW_MAX_RW], int 
   int i;
   for (i = 0; i < n; i++)
     if (avail[i] == FSW_AVAILABLE && !isfinite(x[i])) return 0;
+  return 1;
+}
+
+int fsw_rw_avail_speed_ok(const fsw_real *x, const uint8_t avail[FSW_MAX_RW], int n)
+{
+  int i;
+  for (i = 0; i < n; i++)
+    if (avail[i] == FSW_AVAILABLE && !(FSW_FABS(x[i]) <= FSW_RW_OMEGA_MAX)) return 0;
   return 1;
 }
 

@@ -59,8 +59,8 @@ FswStatus fsw_rw_null_update(FswRwNullState *st, const FswRwNullConfig *cfg,
   if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
   n = cfg->num_rw;
   if (!fsw_rw_avail_valid(in->avail, n) || !fsw_vn_is_finite(in->u_s, n) ||
-      !fsw_rw_avail_finite(in->Omega, in->avail, n) ||
-      !fsw_rw_avail_finite(in->Omega_des, in->avail, n))
+      !fsw_rw_avail_speed_ok(in->Omega, in->avail, n) ||
+      !fsw_rw_avail_speed_ok(in->Omega_des, in->avail, n))
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
 
   for (i = 0; i < FSW_MAX_RW; i++) avail_prev[i] = st->proj.avail[i];

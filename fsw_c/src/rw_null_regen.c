@@ -125,7 +125,7 @@ FswStatus fsw_rw_null_regen_update(FswRwNullRegenState *st, const FswRwNullRegen
   if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
   n = cfg->num_rw;
   if (!fsw_rw_avail_valid(in->avail, n) || !fsw_vn_is_finite(in->u_s, n) ||
-      !fsw_rw_avail_finite(in->Omega, in->avail, n))
+      !fsw_rw_avail_speed_ok(in->Omega, in->avail, n))
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
 
   for (i = 0; i < FSW_MAX_RW; i++) avail_prev[i] = st->proj.avail[i];
@@ -147,6 +147,7 @@ FswStatus fsw_rw_null_regen_update(FswRwNullRegenState *st, const FswRwNullRegen
     s = regen_optimum(out->u_s, &st->proj, u0, om, cfg->u_max);
   } else if (nullity > 1) {
     s = FSW_E_UNSUPPORTED;
+    (void)fsw_rw_proj_refresh(&st->proj, avail_prev); /* an error changes no state */
   }
   out->power = fsw_vn_dot(om, out->u_s, n);
   /* finite but huge speeds overflow the step or the power: bad input */

@@ -355,3 +355,53 @@ TEST(RwNullIssue13, OverflowIsBadInputAndGainIsBounded)
   EXPECT_EQ(0.0, f->out->kappa);
   EXPECT_EQ(0, std::memcmp(&proj_before, &f->st->proj, sizeof proj_before));
 }
+
+// Fuzzing after the issue-13 fixes: three wheels on one axis and a fourth
+// alone; the fourth wheel's true null step is 0, so with a huge finite
+// speed error its computed step is pure round-off (eps times the error),
+// which scale-to-fit then turned into up to 0.117 N*m of body torque.
+// Speeds beyond FSW_RW_OMEGA_MAX are bad input; at the bound the round-off
+// is ~eps * k_null * 2e4, far below any torque that matters.
+TEST(RwNullFuzzFinding, HugeFiniteSpeedErrorIsBadInputNotBodyTorque)
+{
+  auto f = pyramid();
+  const double a = -0.57735026918962573;
+  const double g[4][3] = {{a, a, a}, {a, a, a}, {-0.68945749096291087, 0.2220286835304289, -0.68945749096291087}, {a, a, a}};
+  for (int i = 0; i < 4; i++)
+    for (int k = 0; k < 3; k++) f->cfg->gs_hat_B[i][k] = static_cast<fsw_real>(g[i][k]);
+  f->cfg->k_null = FSW_R(0.02);
+  f->cfg->scale_to_fit = 1;
+  for (int i = 0; i < 4; i++) f->cfg->u_max[i] = FSW_R(0.2);
+  ASSERT_EQ(FSW_OK, f->init());
+  const fsw_real u0[4] = {FSW_R(0.05), FSW_R(-0.04), FSW_R(0.03), FSW_R(-0.02)};
+  const fsw_real om[4] = {FSW_R(100.0), FSW_R(-80.0), FSW_R(60.0), FSW_R(-40.0)};
+  for (int i = 0; i < 4; i++) {
+    f->in->u_s[i] = u0[i];
+    f->in->Omega[i] = om[i];
+    f->in->Omega_des[i] = FSW_R(0.0);
+  }
+  const FswStatus s0 = f->update();
+  ASSERT_TRUE(s0 == FSW_OK || s0 == FSW_W_SAT) << s0;
+  const FswRwNullProj proj_before = f->st->proj;
+  for (const double w : {2e4, 1e30, 1e100}) {
+    if (w > static_cast<double>(std::numeric_limits<fsw_real>::max())) continue;
+    f->in->Omega_des[2] = static_cast<fsw_real>(w);
+    f->garbage();
+    EXPECT_EQ(FSW_E_BAD_INPUT, f->update()) << w;
+    expect_all_zero(f->out->u_s);
+    EXPECT_EQ(0, std::memcmp(&proj_before, &f->st->proj, sizeof proj_before));
+  }
+  // at the bound the step is accepted and moves no body torque beyond round-off
+  f->in->Omega_des[2] = FSW_RW_OMEGA_MAX;
+  const FswStatus s = f->update();
+  EXPECT_TRUE(s == FSW_OK || s == FSW_W_SAT) << s;
+  for (int k = 0; k < 3; k++) {
+    double before = 0.0, after = 0.0;
+    for (int i = 0; i < 4; i++) {
+      before += g[i][k] * static_cast<double>(u0[i]);
+      after += g[i][k] * static_cast<double>(f->out->u_s[i]);
+    }
+    EXPECT_NEAR(after, before, sizeof(fsw_real) == 8 ? 1e-9 : 1e-3) << k;
+  }
+}
+

@@ -360,3 +360,49 @@ TEST(RwNullRegenIssue13, OverflowIsBadInputAndLimitsAreBounded)
   o->cfg->u_max[2] = FSW_RW_U_MAX_MAX;
   EXPECT_EQ(FSW_OK, o->init());
 }
+
+// Fuzzing after the issue-13 fixes: gradient mode, the same round-off leak
+// as rw_null's for a huge finite wheel speed (0.57 N*m of body torque at
+// 1e100 rad/s): speeds beyond FSW_RW_OMEGA_MAX are bad input.
+TEST(RwNullRegenFuzzFinding, HugeFiniteSpeedIsBadInput)
+{
+  const double a = -0.57735026918962573;
+  double g[4][3] = {{a, a, a}, {a, a, a}, {-0.68945749096291087, 0.2220286835304289, -0.68945749096291087}, {a, a, a}};
+  auto f = rwt::make0<Fixture>();
+  f->setup(g, 4, FSW_RW_REGEN_GRADIENT, 4e-4);
+  for (int i = 0; i < 4; i++) f->cfg->u_max[i] = FSW_R(0.8);
+  ASSERT_EQ(FSW_OK, f->init());
+  const fsw_real om[4] = {FSW_R(100.0), FSW_R(-80.0), FSW_R(0.0), FSW_R(-40.0)};
+  for (int i = 0; i < 4; i++) f->in->Omega[i] = om[i];
+  ASSERT_EQ(FSW_OK, f->update());
+  const FswRwNullProj proj_before = f->st->proj;
+  for (const double w : {2e4, 1e30, 1e100}) {
+    if (w > static_cast<double>(std::numeric_limits<fsw_real>::max())) continue;
+    f->in->Omega[2] = static_cast<fsw_real>(w);
+    EXPECT_EQ(FSW_E_BAD_INPUT, f->update()) << w;
+    for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(0.0, f->out->u_s[i]);
+    EXPECT_EQ(0, std::memcmp(&proj_before, &f->st->proj, sizeof proj_before));
+  }
+}
+
+// Fuzzing after the issue-13 fixes: OPTIMUM with nullity > 1 returned
+// FSW_E_UNSUPPORTED but kept the projector recomputed for the new mask (a
+// state change on an error).  Now the projector is that of the last
+// accepted call, byte for byte.
+TEST(RwNullRegenFuzzFinding, UnsupportedNullityLeavesTheProjectorUntouched)
+{
+  double g[6][3];
+  kt::Rng rng(42);
+  rwt::random_axes(rng, 6, g);
+  auto f = rwt::make0<Fixture>();
+  f->setup(g, 6, FSW_RW_REGEN_OPTIMUM);
+  ASSERT_EQ(f->init(), FSW_OK);
+  for (int i = 0; i < 6; i++) f->in->Omega[i] = static_cast<fsw_real>(50.0 * i);
+  for (int i = 4; i < 6; i++) f->in->avail[i] = FSW_UNAVAILABLE;  // nullity 1
+  ASSERT_EQ(f->update(), FSW_OK);
+  const FswRwNullProj proj_before = f->st->proj;
+  f->in->avail[4] = FSW_AVAILABLE;  // nullity 2: unsupported
+  EXPECT_EQ(f->update(), FSW_E_UNSUPPORTED);
+  EXPECT_EQ(0, std::memcmp(&proj_before, &f->st->proj, sizeof proj_before));
+}
+

@@ -42,6 +42,12 @@ FswStatus fsw_rw_check_axes(const fsw_real gs_hat_B[FSW_MAX_RW][3], int num_rw, 
 #define FSW_RW_J_S_MAX FSW_R(1e4)    /* [kg*m^2]    largest spin inertia  */
 #define FSW_RW_GAIN_MAX FSW_R(1e6)   /* [-, N*m*s]  largest gain (k_null, k_P, K_V) */
 #define FSW_RW_V_MAX_MAX FSW_R(1e4)  /* [V]         largest V_max         */
+/* Largest wheel speed (and desired speed) the null-motion modules accept at
+ * run time: 1e4 rad/s (~95,000 rpm, above any flywheel flown).  Beyond it a
+ * speed is bad input: a huge finite speed error makes a null step whose
+ * round-off alone (eps times the speed error) can exceed the real step and,
+ * scaled to the torque limits, leak into body torque. */
+#define FSW_RW_OMEGA_MAX FSW_R(1e4) /* [rad/s] */
 
 /* 1 when v[0..n-1] are all finite and > 0. */
 int fsw_rw_all_positive(const fsw_real *v, int n);
@@ -55,6 +61,10 @@ int fsw_rw_avail_valid(const uint8_t avail[FSW_MAX_RW], int n);
  * unavailable wheels are not read: a failed tachometer on a wheel already
  * taken out of service must not stop the chain).  avail must be valid. */
 int fsw_rw_avail_finite(const fsw_real *x, const uint8_t avail[FSW_MAX_RW], int n);
+
+/* 1 if x[i] is finite and |x[i]| <= FSW_RW_OMEGA_MAX for every AVAILABLE
+ * wheel i < n (entries of unavailable wheels are not read). */
+int fsw_rw_avail_speed_ok(const fsw_real *x, const uint8_t avail[FSW_MAX_RW], int n);
 
 /* Zero all FSW_MAX_RW entries (the safe torque/voltage output). */
 void fsw_rw_zero(fsw_real u[FSW_MAX_RW]);

@@ -58,8 +58,9 @@ FswStatus fsw_rw_null_init(FswRwNullState *st, const FswRwNullConfig *cfg);
 void fsw_rw_null_reset(FswRwNullState *st);
 /* FSW_OK (u finite, kappa = 1); FSW_W_SAT when scale_to_fit reduced the
  * null torque (kappa < 1); FSW_E_BAD_INPUT (u = 0, kappa = 0, projector
- * untouched) for non-finite u_s, Omega or Omega_des, a mask entry other
- * than 0/1, or finite values so large that the null torque overflows;
+ * untouched) for non-finite u_s, an Omega or Omega_des of an available
+ * wheel beyond +-FSW_RW_OMEGA_MAX (rw_common.h) or not finite, a mask entry
+ * other than 0/1, or finite values so large that the null torque overflows;
  * FSW_E_NOT_INIT. */
 FswStatus fsw_rw_null_update(FswRwNullState *st, const FswRwNullConfig *cfg,
                              const FswRwNullIn *in, FswRwNullOut *out);

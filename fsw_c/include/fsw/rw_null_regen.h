@@ -63,9 +63,11 @@ FswStatus fsw_rw_null_regen_init(FswRwNullRegenState *st, const FswRwNullRegenCo
 void fsw_rw_null_regen_reset(FswRwNullRegenState *st);
 /* FSW_OK; FSW_W_SAT (GRADIENT: null step reduced to fit the limits; OPTIMUM:
  * no alpha keeps every wheel inside its limit, u = u0); FSW_E_UNSUPPORTED
- * (OPTIMUM with nullity > 1, u = u0); FSW_E_BAD_INPUT (u = 0, power = 0,
- * projector untouched) for non-finite u_s or Omega, a mask entry other than
- * 0/1, or finite speeds so large that the step or the power overflows;
+ * (OPTIMUM with nullity > 1, u = u0, projector untouched); FSW_E_BAD_INPUT
+ * (u = 0, power = 0, projector untouched) for non-finite u_s, an Omega of an
+ * available wheel beyond +-FSW_RW_OMEGA_MAX (rw_common.h) or not finite, a
+ * mask entry other than 0/1, or finite values so large that the step or
+ * the power overflows;
  * FSW_E_NOT_INIT.  u and power are finite under every status. */
 FswStatus fsw_rw_null_regen_update(FswRwNullRegenState *st, const FswRwNullRegenConfig *cfg,
                                    const FswRwNullRegenIn *in, FswRwNullRegenOut *out);
