@@ -70,7 +70,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_REQUIRE(fuzz_nonzero_from(g.omega_dot_RN_B, 0, 3) < 0, "guid_sunsafe: omega_dot_RN_B not 0");
     const double sig = fuzz_norm3(g.sigma_BR);
     FUZZ_REQUIRE(sig <= 1.0 + 1e-12, "guid_sunsafe: |sigma_BR| = %.17g", sig);
-    const bool valid = fuzz_norm3(x.sun_B) > static_cast<double>(cfg.min_unit_mag);
+    // valid iff |s_B| > min_unit_mag; within rounding of the threshold either answer is right
+    const double sn = fuzz_norm3(x.sun_B), mu = cfg.min_unit_mag;
+    const bool valid = std::fabs(sn - mu) <= 1e-12 * (sn > mu ? sn : mu) ? out.sun_valid != 0 : sn > mu;
     FUZZ_REQUIRE(out.sun_valid == (valid ? 1 : 0), "guid_sunsafe: sun_valid %d but |s_B| = %.17g", out.sun_valid,
                  fuzz_norm3(x.sun_B));
     if (!valid) continue;

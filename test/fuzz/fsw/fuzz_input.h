@@ -116,8 +116,9 @@ class FuzzIn {
   {
     const uint8_t s = u8();
     double d[3] = {nominal[0], nominal[1], nominal[2]};
-    if (s >= 128 && s < 176) {  // a direction from three signed bytes
+    if (s >= 128 && s < 176) {  // a direction from three signed bytes, odd s: tilted by 2^-k
       for (double &x : d) x = static_cast<int8_t>(u8());
+      if (s & 1) d[(s / 2) % 3] += std::ldexp(1.0, -static_cast<int>(u8() % 64));
     } else if (s >= 176 && s < 192 && prev != nullptr) {  // prev, maybe tilted or negated
       const double sign = (s & 1) ? -1.0 : 1.0, tilt = (s & 2) ? std::ldexp(1.0, -static_cast<int>(u8() % 64)) : 0.0;
       for (int k = 0; k < 3; k++) d[k] = sign * prev[k];

@@ -54,20 +54,24 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_REQUIRE(fuzz_finite(out.u_s, FSW_MAX_RW), "rw_map: non-finite torque under OK");
     FUZZ_REQUIRE(fuzz_nonzero_from(out.u_s, n, FSW_MAX_RW) < 0, "rw_map: torque beyond num_rw");
     FUZZ_REQUIRE(fuzz_unavail_nonzero(out.u_s, x.avail, n) < 0, "rw_map: torque on an unavailable wheel");
-    // delivered torque along every control axis: c_j . (sum_a g_i u_i) = -c_j . Lr
+    // delivered torque along every control axis: c_j . (sum_a g_i u_i) = -c_j . Lr, within 1e-6 of |[C] Lr|
+    // (plus round-off of the terms and a physically-zero floor of 1e-100 N*m)
+    long double req[3] = {0, 0, 0}, got[3] = {0, 0, 0}, scale = 0, rn = 0;
     for (int j = 0; j < cfg.num_axes; j++) {
-      long double req = 0, got = 0, scale = 0;
-      for (int k3 = 0; k3 < 3; k3++) req -= static_cast<long double>(cfg.ctrl_axes_B[j][k3]) * x.Lr_B[k3];
+      for (int k3 = 0; k3 < 3; k3++) req[j] -= static_cast<long double>(cfg.ctrl_axes_B[j][k3]) * x.Lr_B[k3];
       for (int i = 0; i < n; i++) {
         if (x.avail[i]) continue;
         long double cg = 0;
         for (int k3 = 0; k3 < 3; k3++) cg += static_cast<long double>(cfg.ctrl_axes_B[j][k3]) * cfg.gs_hat_B[i][k3];
-        got += cg * out.u_s[i];
+        got[j] += cg * out.u_s[i];
         scale += std::fabs(cg * out.u_s[i]);
       }
-      const double err = static_cast<double>(std::fabs(got - req));
-      FUZZ_REQUIRE(err <= 1e-6 * static_cast<double>(std::fabs(req)) + 1e-9 * static_cast<double>(scale) + 1e-300,
-                   "rw_map: OK but axis %d gets torque %.17Lg instead of %.17Lg", j, got, req);
+      rn += req[j] * req[j];
+    }
+    for (int j = 0; j < cfg.num_axes; j++) {
+      const double err = static_cast<double>(std::fabs(got[j] - req[j]));
+      FUZZ_REQUIRE(err <= 1e-6 * static_cast<double>(std::sqrt(rn)) + 1e-9 * static_cast<double>(scale) + 1e-100,
+                   "rw_map: OK but axis %d gets torque %.17Lg instead of %.17Lg", j, got[j], req[j]);
     }
   }
   return 0;

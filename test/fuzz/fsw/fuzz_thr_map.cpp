@@ -119,7 +119,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     if (cfg.mode != FSW_THR_MAP_NNLS && vv > 0) rn -= rv * rv / vv;  // the min-shift is allowed
     const double err = static_cast<double>(std::sqrt(std::fabs(rn))), want = static_cast<double>(std::sqrt(qn));
-    FUZZ_REQUIRE(err <= 1e-6 * want + 1e-9 * static_cast<double>(scale) + 1e-300,
+    FUZZ_REQUIRE(err <= 1e-6 * want + 1e-9 * static_cast<double>(scale) + 1e-100,
                  "thr_map: OK but the torque error is %.17g for a request of %.17g", err, want);
   }
   return 0;
