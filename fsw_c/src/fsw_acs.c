@@ -5,6 +5,7 @@
 
 #include "fsw/fsw_attitude.h"
 #include "fsw/fsw_vec.h"
+#include "fsw/rw_common.h"
 
 /* ---- stage names --------------------------------------------------------- */
 
@@ -475,6 +476,67 @@ static FswStatus run_thrusters(FswAcsState *st, const FswAcsConfig *cfg,
   return acc;
 }
 
+/* Snapshot of the dynamic state before the stages run (see FswAcsWork). */
+static void save_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
+{
+  FswAcsWork *w = &st->work;
+  int i;
+  w->saved.mode = st->mode;
+  w->saved.actuation = st->actuation;
+  w->saved.mode_changes = st->mode_changes;
+  w->saved.mrp_fb = st->mrp_fb;
+  if (cfg->use_lpf) w->saved.lpf = st->lpf;
+  if (cfg->has_wheels && cfg->use_volt) w->saved.rw_volt = st->rw_volt;
+  if (cfg->has_wheels && cfg->use_null)
+    for (i = 0; i < FSW_MAX_RW; i++) w->saved.null_avail[i] = st->rw_null.proj.avail[i];
+  if (cfg->has_thrusters) {
+    w->saved.thr_ang_err = st->thr_map.ang_err;
+    w->saved.thr_nnls_iter = st->thr_map.nnls_iter;
+    if (cfg->pulser == FSW_ACS_PULSE_REMAINDER)
+      w->saved.pulse_rem = st->pulse_rem;
+    else
+      w->saved.pulse_schmitt = st->pulse_schmitt;
+  }
+}
+
+/* Put the snapshot back; every stage keeps its health counters (they count
+ * this cycle's statuses). */
+static void restore_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
+{
+  FswAcsWork *w = &st->work;
+  FswHealth hh;
+  st->mode = w->saved.mode;
+  st->actuation = w->saved.actuation;
+  st->mode_changes = w->saved.mode_changes;
+  hh = st->mrp_fb.health;
+  st->mrp_fb = w->saved.mrp_fb;
+  st->mrp_fb.health = hh;
+  if (cfg->use_lpf) {
+    hh = st->lpf.health;
+    st->lpf = w->saved.lpf;
+    st->lpf.health = hh;
+  }
+  if (cfg->has_wheels && cfg->use_volt) {
+    hh = st->rw_volt.health;
+    st->rw_volt = w->saved.rw_volt;
+    st->rw_volt.health = hh;
+  }
+  if (cfg->has_wheels && cfg->use_null) (void)fsw_rw_proj_refresh(&st->rw_null.proj, w->saved.null_avail);
+  if (cfg->has_thrusters) {
+    st->thr_map.ang_err = w->saved.thr_ang_err;
+    st->thr_map.nnls_iter = w->saved.thr_nnls_iter;
+    if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
+      hh = st->pulse_rem.common.health;
+      st->pulse_rem = w->saved.pulse_rem;
+      st->pulse_rem.common.health = hh;
+    } else {
+      hh = st->pulse_schmitt.common.health;
+      st->pulse_schmitt = w->saved.pulse_schmitt;
+      st->pulse_schmitt.common.health = hh;
+    }
+  }
+}
+
 FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
                         const FswAcsCmdMsg *cmd, FswAcsActuatorMsg *act, FswAcsHealthMsg *h)
 {
@@ -530,7 +592,11 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   if (req_act == FSW_ACS_ACT_THRUSTERS && !fsw_v3_is_finite(sens->r_CoM_B))
     return finish(st, h, FSW_E_BAD_INPUT);
 
-  /* 2. Mode transition: clear the memory that belongs to the old mode. */
+  /* 2. Mode transition: clear the memory that belongs to the old mode.
+   *    From here on the stages advance their own state; an error status of
+   *    the cycle puts the snapshot back (validate, compute, commit only on
+   *    success). */
+  save_dynamic(st, cfg);
   if (req_mode != st->mode || req_act != st->actuation) {
     reset_dynamic(st, cfg);
     st->mode = req_mode;
@@ -574,8 +640,12 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   fsw_v3_copy(h->sigma_BR, guid.sigma_BR);
   fsw_v3_copy(h->omega_BR_B, guid.omega_BR_B);
   h->att_err_angle = fsw_mrp_angle(guid.sigma_BR);
+  if (fsw_status_is_error(acc)) {
+    safe_output(act);
+    restore_dynamic(st, cfg); /* no state advance on an error cycle */
+    return finish(st, h, acc);
+  }
   fsw_clock_commit(&st->clock, sens->t_ns);
   if (st->cycles < UINT32_MAX) st->cycles++;
-  if (fsw_status_is_error(acc)) safe_output(act);
   return finish(st, h, acc);
 }

@@ -3,27 +3,72 @@
  * mode of thr_map, fsw-algorithms.md 8.6). */
 #include "fsw/fsw_linalg.h"
 
+#include <float.h>
 #include <stddef.h>
 
 #include "fsw/fsw_vec.h"
 
-/* Power of two 2^-e with 2^(e-1) <= m < 2^e: multiplying by it is exact
- * (barring subnormals), so pre-scaling changes no rounding, only the range. */
-static fsw_real pow2_scale_for(fsw_real m)
+#if FSW_USE_FLOAT
+#define K1_MAX_EXP FLT_MAX_EXP
+#define K1_MIN_NORMAL FLT_MIN
+#else
+#define K1_MAX_EXP DBL_MAX_EXP
+#define K1_MIN_NORMAL DBL_MIN
+#endif
+
+/* e with 2^(e-1) <= m < 2^e (0 for m <= 0), clamped so that 2^-e is
+ * finite: b 2^-e is then an exact scaling into [1/2, 1). */
+static int pow2_exp(fsw_real m)
 {
   int e = 0;
-  if (!(m > FSW_R(0.0))) return FSW_R(1.0);
+  if (!(m > FSW_R(0.0)) || !isfinite(m)) return 0;
   (void)FSW_FREXP(m, &e);
-  return FSW_LDEXP(FSW_R(1.0), -e);
+  if (-e > K1_MAX_EXP - 1) e = -(K1_MAX_EXP - 1);
+  return e;
+}
+
+/* Cholesky solve L L^T z = rhs (m x m, L from the factorisation above). */
+static void chol_solve(fsw_real z[3], const fsw_real L[3][3], const fsw_real rhs[3], int m)
+{
+  fsw_real y[3];
+  int i, j;
+  for (i = 0; i < m; i++) {
+    fsw_real v = rhs[i];
+    for (j = 0; j < i; j++) v -= L[i][j] * y[j];
+    y[i] = v / L[i][i];
+  }
+  for (i = m - 1; i >= 0; i--) {
+    fsw_real v = y[i];
+    for (j = i + 1; j < m; j++) v -= L[j][i] * z[j];
+    z[i] = v / L[i][i];
+  }
+}
+
+/* x = As^T z and r = bs - As x (As = s A formed on the fly); returns |r|. */
+static fsw_real k1_apply(fsw_real x[FSW_MAX_EFF], fsw_real r[3], const fsw_real A[3][FSW_MAX_EFF],
+                         fsw_real s, const fsw_real z[3], const fsw_real bs[3], int m, int n)
+{
+  int i, j;
+  for (j = 0; j < n; j++) {
+    fsw_real v = FSW_R(0.0);
+    for (i = 0; i < m; i++) v += (A[i][j] * s) * z[i];
+    x[j] = v;
+  }
+  for (i = 0; i < m; i++) {
+    fsw_real v = bs[i];
+    for (j = 0; j < n; j++) v -= (A[i][j] * s) * x[j];
+    r[i] = v;
+  }
+  return fsw_vn_norm(r, m);
 }
 
 FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_EFF],
                             const fsw_real b[3], int m, int n)
 {
-  fsw_real bs[3];
-  fsw_real M[3][3], L[3][3], y[3], z[3];
-  fsw_real amax = FSW_R(0.0), s, dmax;
-  int i, j, k;
+  fsw_real bs[3], r[3], dz[3];
+  fsw_real M[3][3], L[3][3], z[3];
+  fsw_real amax = FSW_R(0.0), s, t, dmax, bnorm, rnorm;
+  int i, j, k, eb;
 
   FSW_ASSERT(x != NULL && A != NULL && b != NULL);
   if (x == NULL || A == NULL || b == NULL) return FSW_E_NULL_ARG;
@@ -33,16 +78,24 @@ FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX
   for (i = 0; i < m; i++) {
     if (!fsw_vn_is_finite(A[i], n) || !isfinite(b[i])) return FSW_E_BAD_INPUT;
     {
-      fsw_real r = fsw_vn_max_abs(A[i], n);
-      if (r > amax) amax = r;
+      fsw_real v = fsw_vn_max_abs(A[i], n);
+      if (v > amax) amax = v;
     }
   }
   if (n < m || amax == FSW_R(0.0)) return FSW_E_SINGULAR;
+  /* a matrix whose largest entry is subnormal cannot be scaled exactly and
+   * its solution overflows for any ordinary b: bad input */
+  if (amax < K1_MIN_NORMAL) return FSW_E_BAD_INPUT;
 
   /* As = s A with s a power of two, formed on the fly (no copy of A: the
-   * products (s A_ik)(s A_jk) are exact scalings of A_ik A_jk). */
-  s = pow2_scale_for(amax);
-  for (i = 0; i < m; i++) bs[i] = b[i] * s;
+   * products (s A_ik)(s A_jk) are exact scalings of A_ik A_jk).  b is
+   * scaled too, by s and by a power of two t = 2^-eb that brings max |b|
+   * into [1/2, 1): the solve cannot overflow, and x = (solution) 2^eb at the end
+   * (exact scalings: the digits are those of the unscaled solve). */
+  s = fsw_pow2_scale(amax);
+  eb = pow2_exp(fsw_vn_max_abs(b, m));
+  t = FSW_LDEXP(FSW_R(1.0), -eb);
+  for (i = 0; i < m; i++) bs[i] = (b[i] * t) * s;
 
   /* M = As As^T (lower triangle used) */
   dmax = FSW_R(0.0);
@@ -68,22 +121,29 @@ FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX
       L[i][k] = v / L[k][k];
     }
   }
-  /* L y = bs; L^T z = y */
-  for (i = 0; i < m; i++) {
-    fsw_real v = bs[i];
-    for (j = 0; j < i; j++) v -= L[i][j] * y[j];
-    y[i] = v / L[i][i];
+  /* L L^T z = bs; x = As^T z (the two scale factors s cancel:
+   * As^T (As As^T)^-1 bs = A^T (A A^T)^-1 b t) */
+  chol_solve(z, FSW_CM33(L), bs, m);
+  bnorm = fsw_vn_norm(bs, m);
+  rnorm = k1_apply(x, r, A, s, z, bs, m, n);
+  /* Delivered-residual rank test (docs/fsw-conventions.md "Rank test"):
+   * a pivot above the floor can still be rounding noise; then A x is far
+   * from b.  One refinement step first (a full-rank A that passes the
+   * pivot floor always meets FSW_RESID_TOL after it), then reject. */
+  if (!(rnorm <= FSW_RESID_TOL * bnorm)) {
+    chol_solve(dz, FSW_CM33(L), r, m);
+    for (i = 0; i < m; i++) z[i] += dz[i];
+    rnorm = k1_apply(x, r, A, s, z, bs, m, n);
+    if (!(rnorm <= FSW_RESID_TOL * bnorm)) {
+      fsw_vn_zero(x, n);
+      return isfinite(rnorm) ? FSW_E_SINGULAR : FSW_E_BAD_INPUT;
+    }
   }
-  for (i = m - 1; i >= 0; i--) {
-    fsw_real v = y[i];
-    for (j = i + 1; j < m; j++) v -= L[j][i] * z[j];
-    z[i] = v / L[i][i];
-  }
-  /* x = As^T z  (the two scale factors cancel: As^T (As As^T)^-1 bs = x) */
-  for (j = 0; j < n; j++) {
-    fsw_real v = FSW_R(0.0);
-    for (i = 0; i < m; i++) v += (A[i][j] * s) * z[i];
-    x[j] = v;
+  /* undo the scaling of b; a solution beyond the real's range is bad input */
+  for (j = 0; j < n; j++) x[j] = FSW_LDEXP(x[j], eb); /* exact, or overflow */
+  if (!fsw_vn_is_finite(x, n)) {
+    fsw_vn_zero(x, n);
+    return FSW_E_BAD_INPUT;
   }
   return FSW_OK;
 }
@@ -111,7 +171,7 @@ FswStatus fsw_null_projector(fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF],
     fsw_real n0, res, s;
     for (j = 0; j < n; j++)
       v[j] = (avail != NULL && avail[j] != FSW_AVAILABLE) ? FSW_R(0.0) : G[r][j];
-    s = pow2_scale_for(fsw_vn_max_abs(v, n));
+    s = fsw_pow2_scale(fsw_vn_max_abs(v, n));
     fsw_vn_scale(v, s, v, n);
     n0 = fsw_vn_norm(v, n);
     if (!(n0 > FSW_R(0.0))) continue;

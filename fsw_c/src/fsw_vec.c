@@ -1,6 +1,8 @@
 /* fsw_vec: small vector and 3x3 matrix operations (alias-safe). */
 #include "fsw/fsw_vec.h"
 
+#include <float.h>
+
 void fsw_v3_set(fsw_real out[3], fsw_real x, fsw_real y, fsw_real z)
 {
   out[0] = x;
@@ -53,14 +55,37 @@ fsw_real fsw_v3_norm2(const fsw_real a[3]) { return fsw_v3_dot(a, a); }
 
 fsw_real fsw_v3_norm(const fsw_real a[3]) { return fsw_vn_norm(a, 3); }
 
+#if FSW_USE_FLOAT
+#define FSW_REAL_MAX_EXP FLT_MAX_EXP
+#else
+#define FSW_REAL_MAX_EXP DBL_MAX_EXP
+#endif
+
+fsw_real fsw_pow2_scale(fsw_real m)
+{
+  int e = 0;
+  if (!(m > FSW_R(0.0)) || !isfinite(m)) return FSW_R(1.0);
+  (void)FSW_FREXP(m, &e);
+  /* subnormal m: 2^-e would overflow; the largest finite power of two
+   * still brings m * scale into the normal range */
+  if (-e > FSW_REAL_MAX_EXP - 1) e = -(FSW_REAL_MAX_EXP - 1);
+  return FSW_LDEXP(FSW_R(1.0), -e);
+}
+
 int fsw_v3_normalize(fsw_real out[3], const fsw_real a[3])
 {
-  fsw_real n = fsw_v3_norm(a);
-  if (!(n > FSW_R(0.0)) || !isfinite(n)) {
+  /* Pre-scaled by a power of two (exact): the same bits as a/|a| in the
+   * normal range, and a unit vector also for entries near the real's
+   * maximum (|a| would overflow) or subnormal (|a| would lose digits). */
+  const fsw_real m = fsw_vn_max_abs(a, 3);
+  fsw_real b[3], n;
+  if (!(m > FSW_R(0.0)) || !isfinite(m) || !fsw_v3_is_finite(a)) {
     fsw_v3_zero(out);
     return 0;
   }
-  fsw_v3_set(out, a[0] / n, a[1] / n, a[2] / n);
+  fsw_v3_scale(b, fsw_pow2_scale(m), a);
+  n = fsw_v3_norm(b);
+  fsw_v3_set(out, b[0] / n, b[1] / n, b[2] / n);
   return 1;
 }
 

@@ -38,7 +38,12 @@ FswStatus fsw_guid_sunsafe_check(const FswGuidSunsafeConfig *cfg)
       !isfinite(cfg->sun_axis_spin_rate)) {
     return FSW_E_CONFIG;
   }
-  if (!(fsw_v3_norm(cfg->s_cmd_B) >= FSW_R(0.1))) return FSW_E_CONFIG;
+  if (!(fsw_v3_norm(cfg->s_cmd_B) >= FSW_R(0.1)) ||
+      !(fsw_v3_norm(cfg->s_cmd_B) <= FSW_GUID_SUNSAFE_S_CMD_MAX))
+    return FSW_E_CONFIG;
+  if (fsw_vn_max_abs(cfg->omega_search_B, 3) > FSW_GUID_SUNSAFE_RATE_MAX ||
+      FSW_FABS(cfg->sun_axis_spin_rate) > FSW_GUID_SUNSAFE_RATE_MAX)
+    return FSW_E_CONFIG;
   if (cfg->min_unit_mag < FSW_R(0.0)) return FSW_E_CONFIG;
   if (cfg->small_angle < FSW_R(0.0) || !(cfg->small_angle < FSW_R(0.5) * SUNSAFE_PI)) {
     return FSW_E_CONFIG;
@@ -77,6 +82,7 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
                                   const FswGuidSunsafeIn *in, FswGuidSunsafeOut *out)
 {
   fsw_real s_norm; /* [-] |s_B| */
+  fsw_real s_B[3]; /* [-] sun_B scaled by a power of two (direction only) */
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (out != NULL) write_safe(out);
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
@@ -89,9 +95,14 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
 
   s_norm = fsw_v3_norm(in->sun_B);
   if (s_norm > cfg->min_unit_mag && s_norm > FSW_R(0.0)) {
-    fsw_real c = fsw_v3_dot(st->s_cmd_hat_B, in->sun_B) / s_norm; /* cos(theta) */
-    fsw_real theta;                                                 /* [rad] */
+    fsw_real c, theta; /* cos(theta); [rad] */
     fsw_real omega_RN_B[3];
+    /* Only the direction of sun_B is used below: scale it by a power of
+     * two (exact, same digits) so that |s_B| is in [1/2, 2 sqrt 3) and no
+     * product overflows or underflows for any finite sun_B. */
+    fsw_v3_scale(s_B, fsw_pow2_scale(fsw_vn_max_abs(in->sun_B, 3)), in->sun_B);
+    s_norm = fsw_v3_norm(s_B);
+    c = fsw_v3_dot(st->s_cmd_hat_B, s_B) / s_norm;
     if (c > FSW_R(1.0)) c = FSW_R(1.0);
     if (c < FSW_R(-1.0)) c = FSW_R(-1.0);
     theta = FSW_ACOS(c);
@@ -101,7 +112,7 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
       if (SUNSAFE_PI - theta < cfg->small_angle) {
         fsw_v3_copy(e_hat, st->e180_hat_B);
       } else {
-        fsw_v3_cross(e_hat, in->sun_B, st->s_cmd_hat_B);
+        fsw_v3_cross(e_hat, s_B, st->s_cmd_hat_B);
         if (!(fsw_v3_norm(e_hat) > SUNSAFE_PARALLEL_TOL * s_norm) ||
             !fsw_v3_normalize(e_hat, e_hat)) {
           fsw_v3_copy(e_hat, st->e180_hat_B);
@@ -111,7 +122,7 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
       fsw_mrp_switch(out->guid.sigma_BR, sigma_BR); /* never active for theta <= pi */
     }
     /* (sigma_BR stays 0 inside the dead band) */
-    fsw_v3_scale(omega_RN_B, cfg->sun_axis_spin_rate / s_norm, in->sun_B);
+    fsw_v3_scale(omega_RN_B, cfg->sun_axis_spin_rate / s_norm, s_B);
     fsw_v3_copy(out->guid.omega_RN_B, omega_RN_B);
     fsw_v3_sub(out->guid.omega_BR_B, in->omega_BN_B, omega_RN_B);
     out->sun_angle_err = theta;
@@ -122,7 +133,8 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
     fsw_v3_sub(out->guid.omega_BR_B, in->omega_BN_B, cfg->omega_search_B);
   }
   /* finite but huge inputs can overflow: treat like non-finite input */
-  if (!fsw_v3_is_finite(out->guid.omega_BR_B) || !fsw_v3_is_finite(out->guid.omega_RN_B)) {
+  if (!fsw_v3_is_finite(out->guid.omega_BR_B) || !fsw_v3_is_finite(out->guid.omega_RN_B) ||
+      !fsw_v3_is_finite(out->guid.sigma_BR) || !isfinite(out->sun_angle_err)) {
     write_safe(out);
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   }

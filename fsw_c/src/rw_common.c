@@ -26,6 +26,14 @@ int fsw_rw_all_positive(const fsw_real *v, int n)
   return 1;
 }
 
+int fsw_rw_all_in_range(const fsw_real *v, int n, fsw_real lo, fsw_real hi)
+{
+  int i;
+  for (i = 0; i < n; i++)
+    if (!isfinite(v[i]) || !(v[i] > FSW_R(0.0)) || v[i] < lo || v[i] > hi) return 0;
+  return 1;
+}
+
 int fsw_rw_avail_finite(const fsw_real *x, const uint8_t avail[FSW_MAX_RW], int n)
 {
   int i;

@@ -35,7 +35,9 @@ FswStatus fsw_rw_map_check(const FswRwMapConfig *cfg)
         return FSW_E_CONFIG;
   }
   if (cfg->mode == FSW_RW_MAP_POWER) {
-    if (!fsw_rw_all_positive(&cfg->eps_P, 1)) return FSW_E_CONFIG;
+    if (!fsw_rw_all_positive(&cfg->eps_P, 1) || cfg->eps_P < FSW_RW_MAP_EPS_P_MIN ||
+        cfg->eps_P > FSW_RW_MAP_EPS_P_MAX)
+      return FSW_E_CONFIG;
   } else if (cfg->mode != FSW_RW_MAP_MIN_NORM) {
     return FSW_E_CONFIG;
   }
@@ -107,12 +109,22 @@ FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
     b[j] = -fsw_v3_dot(cfg->ctrl_axes_B[j], in->Lr_B);
     for (k = 0; k < na; k++) A[j][k] = fsw_v3_dot(cfg->ctrl_axes_B[j], cfg->gs_hat_B[idx[k]]) * sy[k];
   }
+  /* K1 judges rank by its pivot floor and by the delivered residual
+   * (fsw_linalg.h); FSW_E_BAD_INPUT from it means b = -[C] Lr or the
+   * solution overflows the real type (finite but huge Lr). */
   s = fsw_minnorm_solve(x, FSW_CM3N(A), b, nc, na);
   if (s == FSW_E_SINGULAR) return fsw_health_record(&st->health, FSW_W_SINGULAR);
-  if (s != FSW_OK) return fsw_health_record(&st->health, s); /* not reached: inputs checked */
+  if (s != FSW_OK) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   for (j = 0; j < nc; j++) r[j] = b[j] - fsw_vn_dot(A[j], x, na);
   if (fsw_minnorm_solve(dx, FSW_CM3N(A), r, nc, na) == FSW_OK)
     for (k = 0; k < na; k++) x[k] += dx[k];
-  for (k = 0; k < na; k++) out->u_s[idx[k]] = x[k] * sy[k];
+  for (k = 0; k < na; k++) {
+    const fsw_real u = x[k] * sy[k];
+    if (!isfinite(u)) { /* overflow of a finite request: bad input, u = 0 */
+      fsw_rw_zero(out->u_s);
+      return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+    }
+    out->u_s[idx[k]] = u;
+  }
   return fsw_health_record(&st->health, FSW_OK);
 }

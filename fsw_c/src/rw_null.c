@@ -12,9 +12,11 @@ FswStatus fsw_rw_null_check(const FswRwNullConfig *cfg)
   if (cfg == NULL) return FSW_E_NULL_ARG;
   s = fsw_rw_check_axes(cfg->gs_hat_B, cfg->num_rw, 1);
   if (s != FSW_OK) return s;
-  if (!fsw_rw_all_positive(&cfg->k_null, 1)) return FSW_E_CONFIG;
+  if (!fsw_rw_all_in_range(&cfg->k_null, 1, FSW_R(0.0), FSW_RW_GAIN_MAX)) return FSW_E_CONFIG;
   if (cfg->scale_to_fit != 0 && cfg->scale_to_fit != 1) return FSW_E_CONFIG;
-  if (cfg->scale_to_fit && !fsw_rw_all_positive(cfg->u_max, cfg->num_rw)) return FSW_E_CONFIG;
+  if (cfg->scale_to_fit &&
+      !fsw_rw_all_in_range(cfg->u_max, cfg->num_rw, FSW_RW_U_MAX_MIN, FSW_RW_U_MAX_MAX))
+    return FSW_E_CONFIG;
   return FSW_OK;
 }
 
@@ -45,6 +47,7 @@ FswStatus fsw_rw_null_update(FswRwNullState *st, const FswRwNullConfig *cfg,
   fsw_real d[FSW_MAX_RW];  /* [N*m] -K (Omega - Omega_des) */
   fsw_real du[FSW_MAX_RW]; /* [N*m] [tau] d (projected twice, see rw_common.h) */
   fsw_real uc[FSW_MAX_RW]; /* [N*m] u_c with unavailable wheels at 0 */
+  uint8_t avail_prev[FSW_MAX_RW]; /* projector mask before this call */
   int n, i;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
@@ -60,6 +63,7 @@ FswStatus fsw_rw_null_update(FswRwNullState *st, const FswRwNullConfig *cfg,
       !fsw_rw_avail_finite(in->Omega_des, in->avail, n))
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
 
+  for (i = 0; i < FSW_MAX_RW; i++) avail_prev[i] = st->proj.avail[i];
   (void)fsw_rw_proj_refresh(&st->proj, in->avail);
   for (i = 0; i < n; i++) {
     const int a = in->avail[i] == FSW_AVAILABLE;
@@ -68,6 +72,17 @@ FswStatus fsw_rw_null_update(FswRwNullState *st, const FswRwNullConfig *cfg,
     uc[i] = a ? in->u_s[i] : FSW_R(0.0);
   }
   fsw_rw_proj_apply(du, &st->proj, d);
+  /* finite but huge speed errors overflow d or [tau] d: bad input */
+  if (!fsw_vn_is_finite(du, n)) {
+    (void)fsw_rw_proj_refresh(&st->proj, avail_prev); /* untouched on error */
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  }
   out->kappa = fsw_rw_add_scaled_to_fit(out->u_s, uc, du, cfg->scale_to_fit ? cfg->u_max : NULL, n);
+  if (!fsw_vn_is_finite(out->u_s, n) || !isfinite(out->kappa)) {
+    fsw_rw_zero(out->u_s);
+    out->kappa = FSW_R(0.0);
+    (void)fsw_rw_proj_refresh(&st->proj, avail_prev); /* untouched on error */
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  }
   return fsw_health_record(&st->health, out->kappa < FSW_R(1.0) ? FSW_W_SAT : FSW_OK);
 }

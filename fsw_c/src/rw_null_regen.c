@@ -20,11 +20,12 @@ FswStatus fsw_rw_null_regen_check(const FswRwNullRegenConfig *cfg)
   s = fsw_rw_check_axes(cfg->gs_hat_B, cfg->num_rw, 1);
   if (s != FSW_OK) return s;
   if (cfg->mode == FSW_RW_REGEN_GRADIENT) {
-    if (!fsw_rw_all_positive(&cfg->k_P, 1)) return FSW_E_CONFIG;
+    if (!fsw_rw_all_in_range(&cfg->k_P, 1, FSW_R(0.0), FSW_RW_GAIN_MAX)) return FSW_E_CONFIG;
   } else if (cfg->mode != FSW_RW_REGEN_OPTIMUM) {
     return FSW_E_CONFIG;
   }
-  if (!fsw_rw_all_positive(cfg->u_max, cfg->num_rw)) return FSW_E_CONFIG;
+  if (!fsw_rw_all_in_range(cfg->u_max, cfg->num_rw, FSW_RW_U_MAX_MIN, FSW_RW_U_MAX_MAX))
+    return FSW_E_CONFIG;
   return FSW_OK;
 }
 
@@ -111,6 +112,7 @@ FswStatus fsw_rw_null_regen_update(FswRwNullRegenState *st, const FswRwNullRegen
                                    const FswRwNullRegenIn *in, FswRwNullRegenOut *out)
 {
   fsw_real u0[FSW_MAX_RW], om[FSW_MAX_RW], d[FSW_MAX_RW], du[FSW_MAX_RW];
+  uint8_t avail_prev[FSW_MAX_RW]; /* projector mask before this call */
   FswStatus s = FSW_OK;
   int n, i, nullity;
 
@@ -126,6 +128,7 @@ FswStatus fsw_rw_null_regen_update(FswRwNullRegenState *st, const FswRwNullRegen
       !fsw_rw_avail_finite(in->Omega, in->avail, n))
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
 
+  for (i = 0; i < FSW_MAX_RW; i++) avail_prev[i] = st->proj.avail[i];
   (void)fsw_rw_proj_refresh(&st->proj, in->avail);
   for (i = 0; i < n; i++) {
     const int a = in->avail[i] == FSW_AVAILABLE;
@@ -146,5 +149,12 @@ FswStatus fsw_rw_null_regen_update(FswRwNullRegenState *st, const FswRwNullRegen
     s = FSW_E_UNSUPPORTED;
   }
   out->power = fsw_vn_dot(om, out->u_s, n);
+  /* finite but huge speeds overflow the step or the power: bad input */
+  if (!fsw_vn_is_finite(out->u_s, n) || !isfinite(out->power)) {
+    fsw_rw_zero(out->u_s);
+    out->power = FSW_R(0.0);
+    (void)fsw_rw_proj_refresh(&st->proj, avail_prev); /* untouched on error */
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  }
   return fsw_health_record(&st->health, s);
 }

@@ -14,9 +14,13 @@ FswStatus fsw_rw_volt_check(const FswRwVoltConfig *cfg)
   n = cfg->num_rw;
   if (n < 1 || n > FSW_MAX_RW || n > 64) return FSW_E_CAPACITY;
   if (!isfinite(cfg->V_min) || cfg->V_min < FSW_R(0.0)) return FSW_E_CONFIG;
-  if (!isfinite(cfg->V_max) || !(cfg->V_max > cfg->V_min)) return FSW_E_CONFIG;
-  if (!isfinite(cfg->K_V) || cfg->K_V < FSW_R(0.0)) return FSW_E_CONFIG;
-  if (!fsw_rw_all_positive(cfg->u_max, n) || !fsw_rw_all_positive(cfg->J_s, n)) return FSW_E_CONFIG;
+  if (!isfinite(cfg->V_max) || !(cfg->V_max > cfg->V_min) || cfg->V_max > FSW_RW_V_MAX_MAX)
+    return FSW_E_CONFIG;
+  if (!isfinite(cfg->K_V) || cfg->K_V < FSW_R(0.0) || cfg->K_V > FSW_RW_GAIN_MAX)
+    return FSW_E_CONFIG;
+  if (!fsw_rw_all_in_range(cfg->u_max, n, FSW_RW_U_MAX_MIN, FSW_RW_U_MAX_MAX) ||
+      !fsw_rw_all_in_range(cfg->J_s, n, FSW_R(0.0), FSW_RW_J_S_MAX))
+    return FSW_E_CONFIG;
   if (cfg->gate_rate != 0 && cfg->gate_rate != 1) return FSW_E_CONFIG;
   if (cfg->gate_rate && !fsw_rw_all_positive(cfg->Omega_dot_max, n)) return FSW_E_CONFIG;
   return FSW_OK;
@@ -53,7 +57,9 @@ FswStatus fsw_rw_volt_update(FswRwVoltState *st, const FswRwVoltConfig *cfg,
                              const FswRwVoltIn *in, FswRwVoltOut *out)
 {
   fsw_real dt = FSW_R(0.0);
-  int n, i, clipped = 0;
+  fsw_real Omega_prev[FSW_MAX_RW]; /* [rad/s] candidate state, committed at the end */
+  uint8_t prev_ok[FSW_MAX_RW];
+  int n, i, clipped = 0, phase;
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (out != NULL) { /* safe output */
     fsw_rw_zero(out->V);
@@ -73,27 +79,36 @@ FswStatus fsw_rw_volt_update(FswRwVoltState *st, const FswRwVoltConfig *cfg,
 
   for (i = 0; i < n; i++) out->V[i] = (in->avail[i] == FSW_AVAILABLE) ? in->u_s[i] : FSW_R(0.0);
 
-  /* speed loop (out->V holds the torque until the feed-forward below) */
+  /* speed loop (out->V holds the torque until the feed-forward below); the
+   * new speed memory is built in locals and committed only on success */
+  for (i = 0; i < FSW_MAX_RW; i++) {
+    Omega_prev[i] = st->Omega_prev[i];
+    prev_ok[i] = st->prev_ok[i];
+  }
+  phase = st->phase;
   if (!in->has_Omega) {
-    st->phase = 0;
+    phase = 0;
   } else if (st->phase == 0) {
-    st->phase = 1;
+    phase = 1;
   } else {
     for (i = 0; i < n; i++) {
       /* a wheel whose previous speed was not a number (unavailable with a
        * failed tachometer) skips one correction after it comes back */
       if (st->phase == 2 && in->avail[i] == FSW_AVAILABLE && st->prev_ok[i]) {
         const fsw_real Omega_dot = (in->Omega[i] - st->Omega_prev[i]) / dt;
-        if (cfg->gate_rate && FSW_FABS(Omega_dot) > cfg->Omega_dot_max[i])
+        const fsw_real dV = cfg->K_V * (cfg->J_s[i] * Omega_dot - out->V[i]);
+        /* a rate or correction that overflows (a speed glitch of ~1e308)
+         * is an outlier whether or not the gate is on: no correction */
+        if ((cfg->gate_rate && FSW_FABS(Omega_dot) > cfg->Omega_dot_max[i]) || !isfinite(dV))
           out->fault |= (uint64_t)1u << i;
         else
-          out->V[i] -= cfg->K_V * (cfg->J_s[i] * Omega_dot - out->V[i]);
+          out->V[i] -= dV;
       }
       /* spec 7.1: Omega_prev = Omega for every wheel (available or not) */
-      st->prev_ok[i] = (uint8_t)(isfinite(in->Omega[i]) ? 1 : 0);
-      st->Omega_prev[i] = st->prev_ok[i] ? in->Omega[i] : FSW_R(0.0);
+      prev_ok[i] = (uint8_t)(isfinite(in->Omega[i]) ? 1 : 0);
+      Omega_prev[i] = prev_ok[i] ? in->Omega[i] : FSW_R(0.0);
     }
-    st->phase = 2;
+    phase = 2;
   }
 
   /* feed-forward with dead-band jump and clip */
@@ -114,6 +129,16 @@ FswStatus fsw_rw_volt_update(FswRwVoltState *st, const FswRwVoltConfig *cfg,
     }
     out->V[i] = V;
   }
+  if (!fsw_vn_is_finite(out->V, n)) { /* not reached with a checked config */
+    fsw_rw_zero(out->V);
+    out->fault = 0u;
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  }
+  for (i = 0; i < FSW_MAX_RW; i++) {
+    st->Omega_prev[i] = Omega_prev[i];
+    st->prev_ok[i] = prev_ok[i];
+  }
+  st->phase = phase;
   fsw_clock_commit(&st->clock, in->t_ns);
   return fsw_health_record(&st->health, clipped ? FSW_W_SAT : FSW_OK);
 }

@@ -58,10 +58,14 @@ FswStatus fsw_thr_map_check(const FswThrMapConfig *cfg)
   if (!isfinite(cfg->epsilon) || cfg->epsilon < FSW_R(0.0)) return FSW_E_CONFIG;
   if (!isfinite(cfg->ang_err_thresh) || cfg->ang_err_thresh < FSW_R(0.0)) return FSW_E_CONFIG;
   for (j = 0; j < 3; j++)
-    if (!fsw_v3_is_finite(cfg->control_axes_B[j])) return FSW_E_CONFIG;
+    if (!fsw_v3_is_finite(cfg->control_axes_B[j]) ||
+        fsw_vn_max_abs(cfg->control_axes_B[j], 3) > FSW_THR_MAP_AXIS_MAX)
+      return FSW_E_CONFIG;
   for (i = 0; i < cfg->num_thr; i++) {
     if (!fsw_v3_is_finite(cfg->r_thr_B[i]) || !fsw_v3_is_finite(cfg->gt_hat_B[i]))
       return FSW_E_CONFIG;
+    if (fsw_vn_max_abs(cfg->r_thr_B[i], 3) > FSW_THR_MAP_R_MAX) return FSW_E_CONFIG;
+    if (cfg->F_max[i] > FSW_THR_MAP_F_MAX) return FSW_E_CONFIG;
     if (FSW_FABS(fsw_v3_norm(cfg->gt_hat_B[i]) - FSW_R(1.0)) > THR_MAP_UNIT_TOL)
       return FSW_E_CONFIG;
     if (!isfinite(cfg->F_max[i]) || !(cfg->F_max[i] > FSW_R(0.0))) return FSW_E_CONFIG;
@@ -156,9 +160,13 @@ static FswStatus map_min_norm(FswThrMapState *st, const FswThrMapConfig *cfg,
   fsw_real *Fbar = st->work.Fbar;
   const int n = cfg->num_thr, nc = st->num_axes, sF = cfg->thr_force_sign;
   int singular = 0, scaled = 0, i, j;
+  FswStatus ks; /* K1 status */
 
-  /* 8.3 first pass over all thrusters */
-  if (fsw_minnorm_solve(F, FSW_CM3N(st->work.CD), Lbar, nc, n) != FSW_OK) singular = 1;
+  /* 8.3 first pass over all thrusters.  K1 judges rank by its pivot floor
+   * and the delivered residual; FSW_E_BAD_INPUT: F would overflow. */
+  ks = fsw_minnorm_solve(F, FSW_CM3N(st->work.CD), Lbar, nc, n);
+  if (ks == FSW_E_BAD_INPUT) return ks;
+  if (ks != FSW_OK) singular = 1;
   if (sF > 0) shift_min(F, n);
 
   /* 8.4 second pass over S = {i : sF F_i > 0} */
@@ -171,10 +179,13 @@ static FswStatus map_min_norm(FswThrMapState *st, const FswThrMapConfig *cfg,
       }
     }
     /* An empty S (zero request) gives F = 0 without a singular warning. */
-    if (ns == 0)
+    if (ns == 0) {
       fsw_vn_zero(Fbar, FSW_MAX_EFF);
-    else if (fsw_minnorm_solve(Fbar, FSW_CM3N(st->work.CD_S), Lbar, nc, ns) != FSW_OK)
-      singular = 1;
+    } else {
+      ks = fsw_minnorm_solve(Fbar, FSW_CM3N(st->work.CD_S), Lbar, nc, ns);
+      if (ks == FSW_E_BAD_INPUT) return ks;
+      if (ks != FSW_OK) singular = 1;
+    }
     if (sF > 0) shift_min(Fbar, ns);
     for (i = 0; i < n; i++) {
       if ((fsw_real)sF * F[i] > FSW_R(0.0)) {
@@ -226,7 +237,10 @@ static FswStatus map_nnls(FswThrMapState *st, const FswThrMapConfig *cfg,
     for (i = 0; i < n; i++) v -= st->work.CD[k][i] * F[i];
     r[k] = v;
   }
-  if (fsw_vn_norm(r, nc) > THR_NNLS_SAT_TOL * fsw_vn_norm(Lbar, nc)) return FSW_W_SAT;
+  /* OK only when the delivered torque is the request: a rank-deficient
+   * [C][D] (reduced-axis set) gets the least-squares torque and FSW_W_SAT
+   * unless the request lies in its range. */
+  if (!(fsw_vn_norm(r, nc) <= THR_NNLS_SAT_TOL * fsw_vn_norm(Lbar, nc))) return FSW_W_SAT;
   return FSW_OK;
 }
 
@@ -235,9 +249,9 @@ static FswStatus map_nnls(FswThrMapState *st, const FswThrMapConfig *cfg,
 FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
                              const FswThrMapIn *in, FswThrMapOut *out)
 {
-  fsw_real *F, Lr_B[3], Lbar[3];
+  fsw_real *F, Lr_B[3], Lbar[3], ang_err_prev;
   FswStatus s;
-  int i, j, k, n, nc;
+  int i, j, k, n, nc, nnls_iter_prev;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (out != NULL) fsw_vn_zero(out->F, FSW_MAX_THR); /* safe output */
@@ -246,7 +260,8 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
     return FSW_E_NULL_ARG;
   }
   if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
-  if (!fsw_v3_is_finite(in->Lr_B) || !fsw_v3_is_finite(in->r_CoM_B))
+  if (!fsw_v3_is_finite(in->Lr_B) || !fsw_v3_is_finite(in->r_CoM_B) ||
+      fsw_vn_max_abs(in->r_CoM_B, 3) > FSW_THR_MAP_R_MAX)
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   n = cfg->num_thr;
   nc = st->num_axes;
@@ -283,11 +298,19 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
 
   F = st->work.F;
   fsw_vn_zero(F, FSW_MAX_EFF);
+  ang_err_prev = st->ang_err;
+  nnls_iter_prev = st->nnls_iter;
   st->nnls_iter = 0;
   if (cfg->mode == FSW_THR_MAP_NNLS)
     s = map_nnls(st, cfg, Lbar, F);
   else
     s = map_min_norm(st, cfg, Lbar, F);
+  /* overflow of a finite request is bad input; no NaN/Inf leaves */
+  if (fsw_status_is_error(s) || !fsw_vn_is_finite(F, n) || !isfinite(st->ang_err)) {
+    st->ang_err = ang_err_prev; /* an error changes no diagnostics either */
+    st->nnls_iter = nnls_iter_prev;
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  }
   fsw_vn_copy(out->F, F, n);
   return fsw_health_record(&st->health, s);
 }

@@ -15,6 +15,9 @@ FswStatus fsw_thr_pulse_round_check(const FswThrPulseRoundConfig *cfg)
   if (s != FSW_OK) return s;
   if (!isfinite(cfg->t_min) || cfg->t_min < FSW_R(0.0)) return FSW_E_CONFIG;
   if (!isfinite(cfg->period) || !(cfg->period > FSW_R(0.0))) return FSW_E_CONFIG;
+  /* a minimum on-time longer than the period cannot be honoured: the final
+   * clamp to the period would command an on-time below t_min */
+  if (cfg->t_min > cfg->period) return FSW_E_CONFIG;
   if (!isfinite(cfg->resolution) || !(cfg->resolution > FSW_R(0.0))) return FSW_E_CONFIG;
   if (cfg->carry_residual != 0 && cfg->carry_residual != 1) return FSW_E_CONFIG;
   return FSW_OK;

@@ -70,15 +70,18 @@ FswStatus fsw_thr_pulse_schmitt_update(FswThrPulseSchmittState *st,
       fsw_real t = fsw_thr_pulse_on_time(in->F[i], c->F_max[i], c->base_thrust_state, dt);
       if (t < c->t_min) {
         fsw_real level = t / c->t_min;
+        /* the minimum pulse, but never longer than the call period (a
+         * period shorter than t_min cannot hold a t_min pulse) */
+        const fsw_real t_pulse = (c->t_min < dt) ? c->t_min : dt;
         /* both comparisons inclusive (10) */
         if (level >= cfg->level_on) {
           st->last_on[i] = 1u;
-          out->t_on[i] = c->t_min;
+          out->t_on[i] = t_pulse;
         } else if (level <= cfg->level_off) {
           st->last_on[i] = 0u;
           out->t_on[i] = FSW_R(0.0);
         } else {
-          out->t_on[i] = st->last_on[i] ? c->t_min : FSW_R(0.0);
+          out->t_on[i] = st->last_on[i] ? t_pulse : FSW_R(0.0);
         }
       } else if (t >= dt) {
         if (t > dt) saturated = 1;

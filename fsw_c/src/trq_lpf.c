@@ -50,6 +50,7 @@ FswStatus fsw_trq_lpf_update(FswTrqLpfState *st, const FswTrqLpfConfig *cfg,
 {
   FswStatus s = FSW_OK;
   fsw_real dt; /* [s] */
+  fsw_real Lr_prev[3], LrF[3]; /* candidate memory, committed on success */
   int k;
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (out != NULL) fsw_v3_zero(out->LrF_B); /* safe output */
@@ -60,15 +61,19 @@ FswStatus fsw_trq_lpf_update(FswTrqLpfState *st, const FswTrqLpfConfig *cfg,
   if (s != FSW_OK) return fsw_health_record(&st->health, s);
   if (st->clock.has_prev) {
     if (FSW_FABS(dt - cfg->h) > FSW_TRQ_LPF_RATE_TOL * cfg->h) s = FSW_W_RATE;
+    fsw_v3_copy(Lr_prev, st->Lr_prev);
+    fsw_v3_copy(LrF, st->LrF_prev);
   } else {
-    fsw_v3_copy(st->Lr_prev, in->Lr_B);
-    fsw_v3_zero(st->LrF_prev);
+    fsw_v3_copy(Lr_prev, in->Lr_B);
+    fsw_v3_zero(LrF);
   }
-  for (k = 0; k < 3; k++) {
-    out->LrF_B[k] = (st->b0 * in->Lr_B[k] + st->b0 * st->Lr_prev[k] + st->a1 * st->LrF_prev[k]) / st->a0;
-    st->Lr_prev[k] = in->Lr_B[k];
-    st->LrF_prev[k] = out->LrF_B[k];
-  }
+  for (k = 0; k < 3; k++)
+    LrF[k] = (st->b0 * in->Lr_B[k] + st->b0 * Lr_prev[k] + st->a1 * LrF[k]) / st->a0;
+  /* a finite but huge torque overflows the filter: bad input, memory kept */
+  if (!fsw_v3_is_finite(LrF)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  fsw_v3_copy(out->LrF_B, LrF);
+  fsw_v3_copy(st->Lr_prev, in->Lr_B);
+  fsw_v3_copy(st->LrF_prev, LrF);
   fsw_clock_commit(&st->clock, in->t_ns);
   return fsw_health_record(&st->health, s);
 }

@@ -13,8 +13,10 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "fsw/css_sun.h"
+#include "fsw/fsw_vec.h"
 #include "gnc_test_ref.h"
 #include "kestrel_test_support.h"
 
@@ -419,3 +421,23 @@ TEST_F(CssSun, RepeatableAfterReset)
 }
 
 }  // namespace
+
+// Finding 9 (issue 13): two lit sensors with subnormal readings (lit
+// threshold 0) gave |sun_hat| = 1.00013 in two-sensor mode: the norm of a
+// subnormal vector loses digits.  fsw_v3_normalize now pre-scales by a
+// power of two, so sun_hat is a unit vector for any finite estimate.
+TEST_F(CssSun, Issue13SubnormalReadingsStillGiveAUnitHeading)
+{
+  cfg_.lit_threshold = FSW_R(0.0);
+  ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_, &cfg_));
+  const fsw_real tiny = std::numeric_limits<fsw_real>::denorm_min();
+  for (int i = 0; i < 6; i++) in_.reading[i] = 0;
+  in_.reading[0] = tiny * 1000;
+  in_.reading[2] = tiny * 700;
+  const FswStatus s = run();
+  EXPECT_FALSE(fsw_status_is_error(s));
+  if (out_.sun_valid) {
+    EXPECT_NEAR(1.0, fsw_v3_norm(out_.sun_hat_B), kt::tol(1e-15, 1e-6));
+    for (int k = 0; k < 3; k++) EXPECT_TRUE(std::isfinite(out_.sun_hat_B[k]));
+  }
+}

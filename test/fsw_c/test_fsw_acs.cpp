@@ -671,3 +671,90 @@ TEST(FswAcsClosedLoop, InertialPointingWithThrustersHoldsAndIsDeterministic)
 }
 
 }  // namespace
+
+// ---- issue 13: an error cycle advances no state ---------------------------
+
+namespace {
+// The state with the health counters and the scratch of the stages set to
+// those of `ref`: what must be byte-identical after an error cycle.
+FswAcsState g_before, g_after;
+void mask_health_and_scratch(FswAcsState& s, const FswAcsState& ref)
+{
+  s.health = ref.health;
+  s.css.health = ref.css.health;
+  s.sunsafe.health = ref.sunsafe.health;
+  s.inertial.health = ref.inertial.health;
+  s.track.health = ref.track.health;
+  s.mrp_fb.health = ref.mrp_fb.health;
+  s.lpf.health = ref.lpf.health;
+  s.rw_map.health = ref.rw_map.health;
+  s.rw_map.work = ref.rw_map.work;
+  s.rw_null.health = ref.rw_null.health;
+  s.rw_sat.health = ref.rw_sat.health;
+  s.rw_volt.health = ref.rw_volt.health;
+  s.thr_map.health = ref.thr_map.health;
+  s.thr_map.work = ref.thr_map.work;
+  s.pulse_rem.common.health = ref.pulse_rem.common.health;
+  s.pulse_schmitt.common.health = ref.pulse_schmitt.common.health;
+  s.work = ref.work;
+}
+}  // namespace
+
+// Finding 1 (a): reference wheel configuration, torque filter on, sun-safe;
+// omega = (1e-3, 1e-3, 0) at t = 0, then a huge finite rate at t = 0.5 s.
+// The second cycle is bad input (mrp_fb overflows) and before the fix the
+// cycle count, the application's clock and the filter memory advanced, so a
+// good retry at t = 0.5 s got E_TIME.  Now the state is byte-identical
+// (health and scratch aside) and the retry equals a run without the glitch.
+TEST(FswAcsCycle, Issue13ErrorCycleAdvancesNoStateAndRetryWorks)
+{
+  const double big = 0.5 * static_cast<double>(std::numeric_limits<fsw_real>::max());
+  acsfix::wheel_config(g_cfg);
+  g_cfg.initial_mode = FSW_ACS_MODE_SUN_SAFE;
+  g_cfg.use_lpf = 1;
+  g_cfg.use_null = 1;
+  g_cfg.use_volt = 1;
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st2, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  g_sens.omega_BN_B[0] = acsfix::R(1e-3);
+  g_sens.omega_BN_B[1] = acsfix::R(1e-3);
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2)));
+  g_before = g_st;
+
+  g_sens.t_ns = kPeriodNs;
+  g_sens.omega_BN_B[0] = static_cast<fsw_real>(big);
+  g_sens.omega_BN_B[1] = static_cast<fsw_real>(big);
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_TRUE(all_zero(g_act));
+  EXPECT_EQ(1, g_h.safe_output);
+  EXPECT_EQ(1u, g_st.cycles);
+  EXPECT_EQ(g_before.clock.t_prev_ns, g_st.clock.t_prev_ns);
+  g_after = g_st;
+  mask_health_and_scratch(g_after, g_before);
+  EXPECT_EQ(0, std::memcmp(&g_before, &g_after, sizeof g_before));
+
+  // good retry at the same time: accepted, identical to the clean twin
+  g_sens.omega_BN_B[0] = acsfix::R(1e-3);
+  g_sens.omega_BN_B[1] = acsfix::R(1e-3);
+  const FswStatus s = fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h);
+  fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2);
+  EXPECT_FALSE(fsw_status_is_error(s));
+  EXPECT_EQ(0, std::memcmp(&g_act, &g_act2, sizeof g_act));
+  EXPECT_EQ(2u, g_st.cycles);
+  EXPECT_EQ(0, std::memcmp(g_st.lpf.LrF_prev, g_st2.lpf.LrF_prev, sizeof g_st.lpf.LrF_prev));
+}
+
+// Finding 1 (b): power-optimal mapping with a denormal eps_P made every
+// cycle bad input while the clocks advanced; check now refuses the config.
+TEST(FswAcsConfig, Issue13DenormalEpsPIsRefused)
+{
+  acsfix::wheel_config(g_cfg);
+  g_cfg.rw_map.mode = FSW_RW_MAP_POWER;
+  g_cfg.rw_map.eps_P = std::numeric_limits<fsw_real>::denorm_min() * 8;
+  const char* field = nullptr;
+  EXPECT_EQ(FSW_E_CONFIG, fsw_acs_check(&g_cfg, &field));
+  ASSERT_NE(nullptr, field);
+  EXPECT_STREQ("rw_map", field);
+}

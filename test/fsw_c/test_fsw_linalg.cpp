@@ -624,3 +624,70 @@ TEST(FswBoundedMinNorm, RandomBoxesAgreeWithK1WhenInteriorAndStayInTheBox)
   }
   EXPECT_GT(interior, 10);  // the property was exercised
 }
+
+// ---- issue 13: K1 rank by delivered residual; overflow is bad input -------
+
+// Nearly dependent rows (row 3 = mix of rows 1, 2 plus 1e-8..1e-3 noise,
+// 1e-4..1e-1 in float) at
+// scales 1e-3..1e3: OK always means |A x - b| <= FSW_RESID_TOL |b| (checked
+// in double); otherwise FSW_E_SINGULAR with x = 0.  Before the fix a pivot
+// of rounding noise just above the floor returned OK with a residual of
+// the order of |b|.
+TEST(FswMinNorm, Issue13OkAlwaysDeliversTheRequest)
+{
+  kt::Rng r(1313);
+  int ok = 0, singular = 0;
+  for (int trial = 0; trial < 5000; trial++) {
+    const int n = r.uniform_int(3, 8);
+    const double scale = std::pow(10.0, r.uniform(-3, 3));
+    Mat3N A = random_matrix(r, 3, n, scale);
+    const double c0 = r.uniform(-1, 1), c1 = r.uniform(-1, 1);
+    // float: the pivot floor (1e-5) needs a larger tilt for OK cases
+    const double noise = kt::kFloat ? std::pow(10.0, r.uniform(-4, -1)) : std::pow(10.0, r.uniform(-8, -3));
+    for (int j = 0; j < n; j++)
+      A.a[2][j] = static_cast<fsw_real>(c0 * A.a[0][j] + c1 * A.a[1][j] +
+                                        noise * scale * r.uniform(-1, 1));
+    fsw_real b[3], x[FSW_MAX_EFF];
+    for (int i = 0; i < 3; i++) b[i] = static_cast<fsw_real>(r.uniform(-1, 1));
+    const FswStatus s = fsw_minnorm_solve(x, A.a, b, 3, n);
+    if (s == FSW_OK) {
+      ok++;
+      double rn = 0, bn = 0;
+      for (int i = 0; i < 3; i++) {
+        double v = b[i];
+        for (int j = 0; j < n; j++) v -= static_cast<double>(A.a[i][j]) * x[j];
+        rn += v * v;
+        bn += static_cast<double>(b[i]) * b[i];
+      }
+      ASSERT_LE(std::sqrt(rn), 2.0 * FSW_RESID_TOL * std::sqrt(bn)) << "trial " << trial;
+    } else {
+      ASSERT_EQ(FSW_E_SINGULAR, s) << "trial " << trial;
+      singular++;
+      for (int j = 0; j < n; j++) ASSERT_EQ(0, x[j]);
+    }
+  }
+  EXPECT_GT(ok, 0);
+  EXPECT_GT(singular, 0);
+}
+
+// A finite b whose solution is beyond the real's range: FSW_E_BAD_INPUT,
+// x = 0 (was inf under OK).  A huge b with a representable solution is
+// fine (b is pre-scaled by a power of two).
+TEST(FswMinNorm, Issue13OverflowingSolutionIsBadInput)
+{
+  const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());
+  Mat3N A;
+  std::memset(&A, 0, sizeof A);
+  fsw_real x[FSW_MAX_EFF], b[3] = {static_cast<fsw_real>(big), 0, 0};
+  A.a[0][0] = FSW_R(0.5);
+  for (int j = 0; j < FSW_MAX_EFF; j++) x[j] = 99;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_minnorm_solve(x, A.a, b, 1, 1));
+  EXPECT_EQ(0, x[0]);
+  A.a[0][0] = FSW_R(4.0);
+  EXPECT_EQ(FSW_OK, fsw_minnorm_solve(x, A.a, b, 1, 1));
+  EXPECT_EQ(static_cast<fsw_real>(big) / FSW_R(4.0), x[0]);
+  A.a[0][0] = std::numeric_limits<fsw_real>::denorm_min();  // subnormal A
+  b[0] = 1;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_minnorm_solve(x, A.a, b, 1, 1));
+  EXPECT_EQ(0, x[0]);
+}

@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "fsw/fsw_vec.h"
 #include "fsw/guid_sunsafe.h"
 #include "gnc_test_ref.h"
 #include "kestrel_test_support.h"
@@ -238,20 +239,19 @@ TEST_F(GuidSunsafe, NonFiniteInputGivesZeroErrors)
       }
     }
   }
-  // finite but huge: omega_RN_B = -big x, omega_BN_B = +big x, so
-  // omega_BR = 2 big overflows -> safe output
+  // finite but huge rates: check bounds the configured rates (issue 13),
+  // so the rate outputs cannot overflow; a huge body rate stays finite
   {
     const double big = kt::kFloat ? 3e38 : 1.7e308;
     cfg_.sun_axis_spin_rate = static_cast<fsw_real>(big);
+    EXPECT_EQ(FSW_E_CONFIG, fsw_guid_sunsafe_init(&st_, &cfg_));
+    cfg_.sun_axis_spin_rate = FSW_R(-10.0);
     ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_init(&st_, &cfg_));
     FswGuidSunsafeIn in{};
     gref::set3(in.sun_B, -1.0, 0.0, 0.0);
     gref::set3(in.omega_BN_B, big, 0.0, 0.0);
-    EXPECT_EQ(FSW_E_BAD_INPUT, fsw_guid_sunsafe_update(&st_, &cfg_, &in, &out_));
-    EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.sigma_BR, 0.0);
-    EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.omega_BR_B, 0.0);
-    EXPECT_EQ(0, out_.sun_valid);
-    EXPECT_EQ(1u, st_.health.bad_input);  // init cleared the counters
+    EXPECT_EQ(FSW_OK, fsw_guid_sunsafe_update(&st_, &cfg_, &in, &out_));
+    for (int i = 0; i < 3; i++) EXPECT_TRUE(std::isfinite(out_.guid.omega_BR_B[i]));
   }
   EXPECT_EQ(0ul, kestrel_assert_count());
 }
@@ -281,3 +281,48 @@ TEST_F(GuidSunsafe, RepeatableAfterReset)
 }
 
 }  // namespace
+
+// ---- issue 13: the contract for every input -------------------------------
+
+// Finding 5: s_cmd = (0, 1, 1) with sun_B = (0, big, big) gave sigma_BR =
+// NaN under OK (|sun_B| overflowed).  sun_B is used by direction only now:
+// aligned, so sigma_BR = 0 and the angle 0, all finite.
+TEST_F(GuidSunsafe, Issue13HugeSunVectorIsUsedByDirection)
+{
+  const double big = 0.85 * static_cast<double>(std::numeric_limits<fsw_real>::max());
+  gref::set3(cfg_.s_cmd_B, 0.0, 1.0, 1.0);
+  ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_init(&st_, &cfg_));
+  gref::set3(in_.sun_B, 0.0, big, big);
+  gref::set3(in_.omega_BN_B, 0.0, 0.0, 0.0);
+  EXPECT_EQ(FSW_OK, run());
+  for (int i = 0; i < 3; i++) {
+    EXPECT_TRUE(std::isfinite(out_.guid.sigma_BR[i]));
+    EXPECT_NEAR(0.0, out_.guid.sigma_BR[i], kt::tol(1e-15, 1e-6));
+  }
+  EXPECT_TRUE(std::isfinite(out_.sun_angle_err));
+  // and at 90 degrees: the same guidance as for the unit heading
+  gref::set3(in_.sun_B, big, 0.0, 0.0);
+  EXPECT_EQ(FSW_OK, run());
+  const FswGuidSunsafeOut huge = out_;
+  gref::set3(in_.sun_B, 1.0, 0.0, 0.0);
+  EXPECT_EQ(FSW_OK, run());
+  for (int i = 0; i < 3; i++) EXPECT_EQ(out_.guid.sigma_BR[i], huge.guid.sigma_BR[i]);
+  EXPECT_NEAR(gref::kPi / 2, huge.sun_angle_err, kt::tol(1e-15, 1e-6));
+}
+
+// Finding 5: check accepted s_cmd = (big, big, 0), whose norm overflows, and
+// init stored a zero axis (sigma_BR = 0 under OK with the Sun at 90 deg).
+// Now |s_cmd_B| is bounded by FSW_GUID_SUNSAFE_S_CMD_MAX.
+TEST_F(GuidSunsafe, Issue13CommandedAxisIsBounded)
+{
+  const double big = 0.85 * static_cast<double>(std::numeric_limits<fsw_real>::max());
+  gref::set3(cfg_.s_cmd_B, big, big, 0.0);
+  EXPECT_EQ(FSW_E_CONFIG, fsw_guid_sunsafe_check(&cfg_));
+  EXPECT_EQ(FSW_E_CONFIG, fsw_guid_sunsafe_init(&st_, &cfg_));
+  gref::set3(cfg_.s_cmd_B, 7.0, 7.0, 0.0);  // |s_cmd| = 9.9: accepted, unit axis
+  ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_init(&st_, &cfg_));
+  EXPECT_NEAR(1.0, fsw_v3_norm(st_.s_cmd_hat_B), kt::tol(1e-15, 1e-6));
+  gref::set3(in_.sun_B, 0.0, 0.0, 1.0);  // 90 degrees
+  EXPECT_EQ(FSW_OK, run());
+  EXPECT_NEAR(std::tan(gref::kPi / 8), fsw_v3_norm(out_.guid.sigma_BR), kt::tol(1e-15, 1e-6));
+}

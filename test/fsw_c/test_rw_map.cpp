@@ -396,3 +396,96 @@ TEST_P(RwMapProperties, PowerOptimalConstraintEqualSpeedsAndCost)
 }
 
 INSTANTIATE_TEST_SUITE_P(Wheels, RwMapProperties, ::testing::ValuesIn(rwt::kCounts));
+
+// ---- issue 13: the contract for every input -------------------------------
+
+// Finding 2: three wheels in one plane to within ~1e-6.  Before the fix
+// the third Cholesky pivot (6.8e-13) passed the 4.5e-13 floor and the map
+// returned OK with a delivered torque far from the request; now the K1
+// delivered-residual test rejects it: W_SINGULAR with u = 0 (both modes).
+TEST(RwMapIssue13, NearlyCoplanarWheelsAreSingularNotOk)
+{
+  const double g[3][3] = {{0.0335, -0.0112, -0.99938},
+                          {0.87451, -0.24484, -0.41866},
+                          {-0.81849, 0.22940, 0.52674}};
+  double gn[3][3];
+  for (int i = 0; i < 3; i++) {
+    const double n = rwt::norm3(g[i]);
+    for (int r = 0; r < 3; r++) gn[i][r] = g[i][r] / n;
+  }
+  for (int mode : {FSW_RW_MAP_MIN_NORM, FSW_RW_MAP_POWER}) {
+    Fixture f;
+    f.setup(gn, 3, mode);
+    ASSERT_EQ(f.init(), FSW_OK);
+    f.set_Lr(0.966, 0.625, 0.267);
+    f.fill_out_with_garbage();
+    const FswStatus s = f.update();
+    if (s == FSW_OK) {
+      EXPECT_LE(rel_residual(*f.cfg, f.out->u_s, f.in->Lr_B), 10.0 * FSW_RESID_TOL) << mode;
+    } else {
+      EXPECT_EQ(FSW_W_SINGULAR, s) << mode;
+      expect_all_zero(*f.out);
+    }
+  }
+}
+
+// Finding 2, seeded search: coplanar and duplicate-axis sets tilted out of
+// their plane by 1e-8..1e-4.  OK always means a delivered torque within
+// the residual tolerance; everything else is W_SINGULAR with u = 0.
+TEST(RwMapIssue13, NearlyDeficientSetsNeverOkWithWrongTorque)
+{
+  kt::Rng rng(2013);
+  for (int trial = 0; trial < 3000; trial++) {
+    const int n = rng.uniform_int(3, 5);
+    double g[5][3], nrm[3];
+    rng.unit3(nrm);
+    rwt::coplanar_axes(rng, n, g);
+    if (trial % 3 == 0)
+      for (int r = 0; r < 3; r++) g[1][r] = g[0][r];  // duplicate axis
+    // tilt: the plane of coplanar_axes is unknown here, so add a small
+    // random component and renormalise
+    for (int i = 0; i < n; i++) {
+      const double eps = std::pow(10.0, rng.uniform(-8, -4));
+      for (int r = 0; r < 3; r++) g[i][r] += eps * nrm[r] * rng.uniform(-1, 1);
+      const double len = rwt::norm3(g[i]);
+      for (int r = 0; r < 3; r++) g[i][r] /= len;
+    }
+    const int mode = (trial % 2) ? FSW_RW_MAP_POWER : FSW_RW_MAP_MIN_NORM;
+    Fixture f;
+    f.setup(g, n, mode);
+    ASSERT_EQ(f.init(), FSW_OK);
+    f.set_Lr(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    for (int i = 0; i < n; i++) f.in->Omega[i] = static_cast<fsw_real>(rng.uniform(-300, 300));
+    const FswStatus s = f.update();
+    if (s == FSW_OK) {
+      ASSERT_LE(rel_residual(*f.cfg, f.out->u_s, f.in->Lr_B), 10.0 * FSW_RESID_TOL)
+          << "trial " << trial;
+    } else {
+      ASSERT_EQ(FSW_W_SINGULAR, s) << "trial " << trial;
+      for (int i = 0; i < FSW_MAX_RW; i++) ASSERT_EQ(0, f.out->u_s[i]);
+    }
+  }
+}
+
+// Finding 7 (rw_map): Lr near the real's maximum on each axis gave -inf
+// under OK in both modes; now bad input with u = 0.  A denormal eps_P
+// (which made every POWER update a bad input) is refused by check.
+TEST(RwMapIssue13, OverflowIsBadInputAndEpsPIsBounded)
+{
+  const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());
+  for (int mode : {FSW_RW_MAP_MIN_NORM, FSW_RW_MAP_POWER}) {
+    Fixture f = pyramid(mode);
+    f.set_Lr(big, big, big);
+    f.fill_out_with_garbage();
+    EXPECT_EQ(FSW_E_BAD_INPUT, f.update()) << mode;
+    expect_all_zero(*f.out);
+  }
+  Fixture f = pyramid(FSW_RW_MAP_POWER);
+  f.cfg->eps_P = std::numeric_limits<fsw_real>::denorm_min() * 8;
+  EXPECT_EQ(FSW_E_CONFIG, fsw_rw_map_check(f.cfg.get()));
+  f.cfg->eps_P = FSW_RW_MAP_EPS_P_MIN;
+  ASSERT_EQ(FSW_OK, f.init());
+  f.set_Lr(0.01, 0.02, 0.03);
+  EXPECT_EQ(FSW_OK, f.update());  // wheel speeds 0: W = eps_P, finite
+  EXPECT_LE(rel_residual(*f.cfg, f.out->u_s, f.in->Lr_B), kt::tol(1e-12, 1e-5));
+}

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "fsw/rw_null.h"
@@ -329,3 +330,28 @@ TEST_P(RwNullProperties, BodyTorqueUnchangedAndLimitsRespected)
 }
 
 INSTANTIATE_TEST_SUITE_P(Wheels, RwNullProperties, ::testing::ValuesIn(rwt::kCounts));
+
+// ---- issue 13: the contract for every input -------------------------------
+
+// Finding 7 (rw_null): k_null ~ max is refused by check; a finite speed
+// error that overflows (max - (-max)) gave NaN/inf under OK with kappa = 1:
+// now bad input with u = 0, kappa = 0 and the projector untouched.
+TEST(RwNullIssue13, OverflowIsBadInputAndGainIsBounded)
+{
+  const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());
+  auto f = pyramid();
+  f->cfg->k_null = static_cast<fsw_real>(big);
+  EXPECT_EQ(FSW_E_CONFIG, fsw_rw_null_check(f->cfg.get()));
+  f->cfg->k_null = FSW_R(0.01);
+  ASSERT_EQ(FSW_OK, f->init());
+  ASSERT_EQ(FSW_OK, f->update());  // all available: projector for the full set
+  const FswRwNullProj proj_before = f->st->proj;
+  f->in->avail[3] = FSW_UNAVAILABLE;
+  f->in->Omega[0] = static_cast<fsw_real>(big);
+  f->in->Omega_des[0] = static_cast<fsw_real>(-big);
+  f->garbage();
+  EXPECT_EQ(FSW_E_BAD_INPUT, f->update());
+  expect_all_zero(f->out->u_s);
+  EXPECT_EQ(0.0, f->out->kappa);
+  EXPECT_EQ(0, std::memcmp(&proj_before, &f->st->proj, sizeof proj_before));
+}

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "fsw/rw_map.h"
@@ -331,3 +332,31 @@ TEST_P(RwNullRegenProperties, BodyTorquePowerAndLimits)
 }
 
 INSTANTIATE_TEST_SUITE_P(Wheels, RwNullRegenProperties, ::testing::ValuesIn(rwt::kCounts));
+
+// ---- issue 13: the contract for every input -------------------------------
+
+// Finding 7 (rw_null_regen): gradient mode, k_P = 10, Omega ~ max gave NaN
+// under W_SAT; now bad input with u = 0 and power = 0.  Optimum mode with
+// u_max = max (power 1e306 W) is refused by check.
+TEST(RwNullRegenIssue13, OverflowIsBadInputAndLimitsAreBounded)
+{
+  const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());
+  double g[4][3];
+  rwt::pyramid4(g);
+  auto f = rwt::make0<Fixture>();
+  f->setup(g, 4, FSW_RW_REGEN_GRADIENT, 10.0);
+  ASSERT_EQ(FSW_OK, f->init());
+  for (int i = 0; i < 4; i++) f->in->Omega[i] = static_cast<fsw_real>(i == 0 ? big : 1.0);
+  const FswRwNullProj proj_before = f->st->proj;
+  EXPECT_EQ(FSW_E_BAD_INPUT, f->update());
+  for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(0.0, f->out->u_s[i]);
+  EXPECT_EQ(0.0, f->out->power);
+  EXPECT_EQ(0, std::memcmp(&proj_before, &f->st->proj, sizeof proj_before));
+
+  auto o = rwt::make0<Fixture>();
+  o->setup(g, 4, FSW_RW_REGEN_OPTIMUM);
+  o->cfg->u_max[2] = std::numeric_limits<fsw_real>::max();
+  EXPECT_EQ(FSW_E_CONFIG, fsw_rw_null_regen_check(o->cfg.get()));
+  o->cfg->u_max[2] = FSW_RW_U_MAX_MAX;
+  EXPECT_EQ(FSW_OK, o->init());
+}

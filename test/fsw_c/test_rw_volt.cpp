@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "fsw/rw_volt.h"
@@ -286,3 +287,54 @@ TEST_P(RwVoltProperties, BoundsSignAndAvailability)
   }
 }
 INSTANTIATE_TEST_SUITE_P(Wheels, RwVoltProperties, ::testing::ValuesIn(rwt::kCounts));
+
+// ---- issue 13: the contract for every input -------------------------------
+
+// Finding 3: a one-cycle speed glitch of ~ -max then 10 rad/s made the rate
+// (and the correction) overflow: V = NaN under OK.  Now that wheel is an
+// outlier (fault bit, no correction) and every voltage stays finite; the
+// next call runs the loop normally.  Also with K_V = 0 (0 * inf).
+TEST(RwVoltIssue13, SpeedGlitchOverflowIsAnOutlierNotNaN)
+{
+  const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());
+  for (double kv : {0.5, 0.0}) {
+    Fixture f(1);
+    f.cfg->K_V = static_cast<fsw_real>(kv);
+    ASSERT_EQ(FSW_OK, f.init());
+    f.in->has_Omega = 1;
+    f.in->u_s[0] = FSW_R(0.05);
+    f.in->Omega[0] = FSW_R(0.0);
+    EXPECT_FALSE(fsw_status_is_error(f.update(kDt)));
+    f.in->Omega[0] = static_cast<fsw_real>(-big);
+    EXPECT_FALSE(fsw_status_is_error(f.update(2 * kDt)));
+    f.in->Omega[0] = FSW_R(10.0);
+    const FswStatus s = f.update(3 * kDt);
+    EXPECT_FALSE(fsw_status_is_error(s));
+    EXPECT_TRUE(std::isfinite(f.out->V[0])) << kv;
+    EXPECT_LE(std::fabs(f.out->V[0]), 10.0);
+    EXPECT_EQ(1u, f.out->fault & 1u);
+    EXPECT_EQ(static_cast<fsw_real>(ff(0.05)), f.out->V[0]);  // no correction
+    EXPECT_FALSE(fsw_status_is_error(f.update(4 * kDt)));   // loop goes on
+    EXPECT_EQ(0u, f.out->fault);
+    EXPECT_TRUE(std::isfinite(f.out->V[0]));
+  }
+}
+
+// Finding 3: J_s ~ max and u_max ~ min (accepted before, NaN with ordinary
+// speeds or with u = 0) are outside the physical ranges: refused by check.
+TEST(RwVoltIssue13, ConfigRangesKeepProductsFinite)
+{
+  Fixture f(2);
+  f.cfg->J_s[1] = static_cast<fsw_real>(0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max()));
+  EXPECT_EQ(FSW_E_CONFIG, fsw_rw_volt_check(f.cfg.get()));
+  f.cfg->J_s[1] = FSW_R(0.01);
+  f.cfg->u_max[0] = std::numeric_limits<fsw_real>::min();
+  EXPECT_EQ(FSW_E_CONFIG, fsw_rw_volt_check(f.cfg.get()));
+  f.cfg->u_max[0] = FSW_RW_U_MAX_MIN;
+  ASSERT_EQ(FSW_OK, f.init());
+  f.in->u_s[0] = FSW_R(0.0);
+  f.in->u_s[1] = FSW_R(0.1);
+  EXPECT_FALSE(fsw_status_is_error(f.update(kDt)));
+  EXPECT_EQ(0.0, f.out->V[0]);
+  EXPECT_TRUE(std::isfinite(f.out->V[1]));
+}

@@ -141,6 +141,10 @@ const BadCfg kBadConfigs[] = {
     {"angle threshold NaN", [](FswThrMapConfig* c) { c->ang_err_thresh = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
     {"use_2nd_loop 2", [](FswThrMapConfig* c) { c->use_2nd_loop = 2; }, FSW_E_CONFIG},
     {"unknown mode", [](FswThrMapConfig* c) { c->mode = 7; }, FSW_E_CONFIG},
+    // issue 13: physical ranges, so that accepted configs cannot overflow
+    {"location beyond FSW_THR_MAP_R_MAX", [](FswThrMapConfig* c) { set3(c->r_thr_B[0], 0, 1.5e30, -1.5e30); }, FSW_E_CONFIG},
+    {"F_max beyond FSW_THR_MAP_F_MAX", [](FswThrMapConfig* c) { c->F_max[4] = static_cast<R>(1e30); }, FSW_E_CONFIG},
+    {"control axis beyond FSW_THR_MAP_AXIS_MAX", [](FswThrMapConfig* c) { set3(c->control_axes_B[0], 1e30, 0, 0); }, FSW_E_CONFIG},
 };
 
 TEST(ThrMap, ConfigRejectionTable)
@@ -795,3 +799,101 @@ TEST(ThrMapNnls, MinimumNormAgainstBruteForce)
 }
 
 }  // namespace
+
+// ---- issue 13: the contract for every input -------------------------------
+
+// Finding 2 (thr_map part): torque arms of rank 2 (every force parallel to
+// one unit u, so every d_i = (r_i - c) x u is orthogonal to u) with a request
+// that has a component along u.  Before the fix K1 accepted some of these as
+// OK (rounding-noise pivot just above the floor); now every one is
+// W_SINGULAR with F = 0, and an OK is never returned.
+TEST(ThrMapIssue13, RankTwoTorqueArmsAreNeverOk)
+{
+  kt::Rng rng(13);
+  int singular = 0;
+  for (int trial = 0; trial < 4000; trial++) {
+    FswThrMapConfig c = base_cfg();
+    c.num_thr = rng.uniform_int(3, 8);
+    double u[3];
+    rng.unit3(u);
+    for (int i = 0; i < c.num_thr; i++) {
+      const double sc = std::pow(10.0, rng.uniform(-3, 1));
+      set3(c.r_thr_B[i], sc * rng.uniform(-1, 1), sc * rng.uniform(-1, 1), sc * rng.uniform(-1, 1));
+      const double sg = rng.uniform() < 0.5 ? -1.0 : 1.0;
+      set3(c.gt_hat_B[i], sg * u[0], sg * u[1], sg * u[2]);
+      c.F_max[i] = 1;
+    }
+    MapRun r = map_once(c, u[0] + rng.uniform(-1, 1), u[1] + rng.uniform(-1, 1),
+                        u[2] + rng.uniform(-1, 1));
+    ASSERT_NE(FSW_OK, r.s) << "trial " << trial;
+    if (r.s == FSW_W_SINGULAR) {
+      singular++;
+      for (int i = 0; i < FSW_MAX_THR; i++) ASSERT_EQ(0, r.out.F[i]) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(singular, 3000);
+}
+
+// Finding 6 (a): a finite request so large that the forces overflow is bad
+// input with F = 0, in min-norm mode (also with a CoM offset, which gave
+// NaN under W_SAT before).
+TEST(ThrMapIssue13, OverflowingRequestIsBadInput)
+{
+  const double big = static_cast<double>(std::numeric_limits<R>::max());
+  for (double rx : {0.0, -0.01}) {
+    FswThrMapConfig c = base_cfg();
+    set3(c.control_axes_B[1], 0, 0, 0);
+    set3(c.control_axes_B[2], 0, 0, 0);
+    c.num_thr = 1;
+    set3(c.r_thr_B[0], rx, 0.5, 0);
+    set3(c.gt_hat_B[0], 0, 0, 1);
+    c.F_max[0] = 1;
+    MapRun r = map_once(c, big * 0.99, 0, 0);
+    EXPECT_EQ(FSW_E_BAD_INPUT, r.s) << "rx " << rx;
+    for (int i = 0; i < FSW_MAX_THR; i++) EXPECT_EQ(0, r.out.F[i]);
+    EXPECT_EQ(1u, r.st.health.bad_input);
+    EXPECT_TRUE(std::isfinite(r.st.ang_err));
+  }
+}
+
+// Finding 6 (b, c): the configs that overflowed (location 1.5e308, F_max
+// 1e308) are now refused by check; a CoM beyond FSW_THR_MAP_R_MAX is bad
+// input; the bounded mode is OK only when it delivers the request.
+TEST(ThrMapIssue13, BoundedModeRangesAndDeliveredTorque)
+{
+  const double big = static_cast<double>(std::numeric_limits<R>::max()) / 1.2;
+  FswThrMapConfig c = six_axis_cfg();
+  c.mode = FSW_THR_MAP_NNLS;
+  set3(c.r_thr_B[0], 0, big, -big);
+  FswThrMapState st;
+  EXPECT_EQ(FSW_E_CONFIG, fsw_thr_map_init(&st, &c));
+  c = six_axis_cfg();
+  c.mode = FSW_THR_MAP_NNLS;
+  c.thr_force_sign = -1;
+  c.F_max[4] = static_cast<R>(big);
+  EXPECT_EQ(FSW_E_CONFIG, fsw_thr_map_init(&st, &c));
+  c.F_max[4] = 1;
+  MapRun r = map_once(c, 0.3, -0.2, 0.1, 2e3, 0, 0);  // CoM out of range
+  EXPECT_EQ(FSW_E_BAD_INPUT, r.s);
+  // rank-deficient (all arms about x and y) bounded mode: a z request is
+  // out of reach -> least squares with W_SAT, never OK
+  FswThrMapConfig d = base_cfg();
+  d.mode = FSW_THR_MAP_NNLS;
+  d.num_thr = 4;
+  const double xy[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+  for (int i = 0; i < 4; i++) {
+    set3(d.r_thr_B[i], xy[i][0], xy[i][1], 0);
+    set3(d.gt_hat_B[i], 0, 0, 1);
+    d.F_max[i] = 1;
+  }
+  r = map_once(d, 0.1, 0.1, 0.5);
+  EXPECT_EQ(FSW_W_SAT, r.s);
+  for (int i = 0; i < FSW_MAX_THR; i++) EXPECT_TRUE(std::isfinite(r.out.F[i]));
+  r = map_once(d, 0.1, -0.1, 0.0);  // in the range of [C][D]: delivered
+  EXPECT_EQ(FSW_OK, r.s);
+  double com[3] = {0, 0, 0}, t[3];
+  body_torque(d, r.out.F, com, t);
+  EXPECT_NEAR(0.1, t[0], kTol);
+  EXPECT_NEAR(-0.1, t[1], kTol);
+  EXPECT_NEAR(0.0, t[2], kTol);
+}

@@ -291,3 +291,24 @@ TEST(ThrPulseRound, NullArgumentsReachTheAssertHook)
 }
 
 }  // namespace
+
+// Finding 8 (issue 13): period 0.1 s, resolution 0.15 s, t_min = 0.12 s and
+// F = F_max gave t_on = 0.1 s < t_min under OK.  A minimum on-time longer
+// than the period cannot be honoured: check refuses it; t_min = period is
+// accepted and then every non-zero on-time is >= t_min.
+TEST(ThrPulseRound, Issue13MinimumOnTimeLongerThanPeriodIsRefused)
+{
+  FswThrPulseRoundConfig c = basilisk_defaults(1);
+  c.period = static_cast<R>(0.1);
+  c.resolution = static_cast<R>(0.15);
+  c.t_min = static_cast<R>(0.12);
+  EXPECT_EQ(FSW_E_CONFIG, fsw_thr_pulse_round_check(&c));
+  c.t_min = c.period;
+  ASSERT_EQ(FSW_OK, fsw_thr_pulse_round_check(&c));
+  FswThrPulseRoundOut out;
+  for (double f : {0.3, 0.7, 1.0, 2.0}) {
+    EXPECT_FALSE(fsw_status_is_error(run(c, {f}, &out)));
+    EXPECT_TRUE(out.t_on[0] == 0 || out.t_on[0] >= c.t_min) << f;
+    EXPECT_LE(out.t_on[0], c.period);
+  }
+}

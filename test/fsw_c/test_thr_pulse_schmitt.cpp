@@ -259,3 +259,21 @@ TEST(ThrPulseSchmitt, NullArgumentsReachTheAssertHook)
 }
 
 }  // namespace
+
+// Finding 8 (issue 13): t_min = 0.02 s and a 16 ms call period gave
+// t_on = 0.02 s, longer than the period.  The minimum pulse is now
+// min(t_min, period): it fills the period.
+TEST(ThrPulseSchmitt, Issue13MinimumPulseNeverExceedsThePeriod)
+{
+  FswThrPulseSchmittConfig c = cfg1();
+  c.common.t_min = static_cast<R>(0.02);
+  Pulser p(c);
+  const uint64_t kT = 16000000ull;  // 16 ms
+  ASSERT_EQ(FSW_OK, p.step(kT, 0.0));  // first call
+  for (int k = 2; k < 6; k++) {
+    EXPECT_FALSE(fsw_status_is_error(p.step(k * kT, 1.0)));  // t = 16 ms < t_min
+    EXPECT_GT(p.out.t_on[0], 0.0);
+    EXPECT_LE(p.out.t_on[0], static_cast<R>(0.016));
+    EXPECT_NEAR(0.016, p.out.t_on[0], kTol);
+  }
+}

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "fsw/trq_lpf.h"
@@ -159,5 +160,31 @@ TEST(TrqLpfRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
     }
     fsw_trq_lpf_reset(&f.st);
     EXPECT_EQ(f.st.clock.has_prev, 0);
+  }
+}
+
+// Finding 4 (issue 13): 0.1, then a finite torque so large that the filter
+// overflows, then 0.1.  Before the fix the output became inf, then NaN on
+// every later call under OK (poisoned memory).  Now the huge input is bad
+// input with the safe output and the state byte-identical, and a good retry
+// at the same time stamp gives what a run without the glitch gives.
+TEST(TrqLpfIssue13, OverflowIsBadInputAndDoesNotPoisonTheMemory)
+{
+  const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());
+  constexpr uint64_t kHalf = 500000000u;  // h = 0.5 s
+  Fixture f(0.5, 4.0), clean(0.5, 4.0);
+  ASSERT_EQ(FSW_OK, f.step(kHalf, 0.1, 0.1, 0.1));
+  ASSERT_EQ(FSW_OK, clean.step(kHalf, 0.1, 0.1, 0.1));
+  const FswTrqLpfState before = f.st;
+  EXPECT_EQ(FSW_E_BAD_INPUT, f.step(2 * kHalf, big, 0.1, 0.1));
+  for (int k = 0; k < 3; k++) EXPECT_EQ(0.0, f.out.LrF_B[k]);
+  FswTrqLpfState after = f.st;
+  after.health = before.health;
+  EXPECT_EQ(0, std::memcmp(&before, &after, sizeof before));
+  EXPECT_EQ(FSW_OK, f.step(2 * kHalf, 0.1, 0.1, 0.1));  // retry, same time
+  EXPECT_EQ(FSW_OK, clean.step(2 * kHalf, 0.1, 0.1, 0.1));
+  for (int k = 0; k < 3; k++) {
+    EXPECT_TRUE(std::isfinite(f.out.LrF_B[k]));
+    EXPECT_EQ(clean.out.LrF_B[k], f.out.LrF_B[k]);
   }
 }

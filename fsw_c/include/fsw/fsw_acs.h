@@ -126,6 +126,21 @@ typedef struct {
   FswThrPulseRemOut rem_out;
   FswThrPulseSchmittIn sch_in;
   FswThrPulseSchmittOut sch_out;
+  /* The dynamic state as it was before the stages ran; a cycle that ends
+   * in an error puts it back (health counters excepted), so an error cycle
+   * advances no state (docs/fsw-conventions.md, "The contract"). */
+  struct {
+    int mode, actuation;
+    uint32_t mode_changes;
+    FswMrpFbState mrp_fb;
+    FswTrqLpfState lpf;
+    FswRwVoltState rw_volt;
+    fsw_real thr_ang_err;
+    int thr_nnls_iter;
+    FswThrPulseRemState pulse_rem;
+    FswThrPulseSchmittState pulse_schmitt;
+    uint8_t null_avail[FSW_MAX_RW]; /* rw_null projector mask */
+  } saved;
 } FswAcsWork;
 
 typedef struct {
@@ -133,7 +148,7 @@ typedef struct {
   int mode;             /* [-]  FswAcsMode in force                            */
   int actuation;        /* [-]  FswAcsActuation in force                       */
   FswClock clock;       /* [-]  previous accepted cycle (0.3)                  */
-  uint32_t cycles;      /* [-]  accepted cycles since init                     */
+  uint32_t cycles;      /* [-]  accepted (non-error) cycles since init         */
   uint32_t mode_changes;/* [-]  transitions since init                         */
   FswCssSunState css;
   FswGuidSunsafeState sunsafe;
@@ -188,8 +203,11 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg);
  * writes `act` fully and `hlth` fully.  Returns the cycle status (also in
  * hlth->status): FSW_OK or a warning with valid commands; an error with the
  * safe output (FSW_E_BAD_INPUT: non-finite sensor values or an invalid mode
- * request; FSW_E_TIME: t_ns not after the previous cycle; FSW_E_NOT_INIT).
- * Bad input advances no state at all. */
+ * request, or a stage's error such as an overflow of finite sensor values;
+ * FSW_E_TIME: t_ns not after the previous cycle; FSW_E_NOT_INIT).  An error
+ * cycle advances no state at all: mode, clock, cycle count and every
+ * stage's memory are as before the call (only health counters and the
+ * scratch `work` change), so a good retry at the same t_ns is accepted. */
 FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
                         const FswAcsCmdMsg *cmd, FswAcsActuatorMsg *act, FswAcsHealthMsg *hlth);
 

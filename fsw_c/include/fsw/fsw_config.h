@@ -40,6 +40,9 @@ typedef float fsw_real;
 /* Row-drop tolerance of the null-space projector (K2), relative to the
  * original row norm: 1e-9 in double, 1e-4 in single precision. */
 #define FSW_NULL_TOL FSW_R(1e-4)
+/* Delivered-residual tolerance of the minimum-norm solve (K1), relative to
+ * |b|: about sqrt(FSW_RANK_TOL) (docs/fsw-conventions.md, "Rank test"). */
+#define FSW_RESID_TOL FSW_R(3e-3)
 #else
 typedef double fsw_real;
 #define FSW_R(lit) (lit)
@@ -58,6 +61,7 @@ typedef double fsw_real;
 #define FSW_REAL_EPS 2.220446049250313e-16
 #define FSW_RANK_TOL 1e-12
 #define FSW_NULL_TOL 1e-9
+#define FSW_RESID_TOL 1e-6
 #endif
 
 /* ---- Capacities -----------------------------------------------------------

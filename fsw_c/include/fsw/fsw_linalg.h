@@ -23,11 +23,17 @@ extern "C" {
 /* K1.  A is m x n (1 <= m <= 3, 0 <= n <= FSW_MAX_EFF), b has m entries,
  * x receives n entries.  Forms M = A A^T, factors it by Cholesky in fixed
  * order and fails when a pivot is <= FSW_RANK_TOL * max_j M_jj, when n < m or
- * when max_j M_jj == 0 (the test depends only on the shape of A, not on its
- * units: scaling A by any c != 0 never changes the decision).
- * Returns FSW_OK; FSW_E_SINGULAR (x = 0) when rank deficient;
- * FSW_E_CAPACITY (x = 0) when m or n is out of range; FSW_E_BAD_INPUT
- * (x = 0) when A or b hold NaN or Inf; FSW_E_NULL_ARG on NULL pointers.
+ * when max_j M_jj == 0.  It then checks the delivered residual: if
+ * |b - A x| > FSW_RESID_TOL |b| it refines once (z += (A A^T)^-1 r) and
+ * fails if the residual is still above (a near-singular A whose last pivot
+ * is rounding noise just above the floor).  Both tests depend only on the
+ * shape of A, not on its units: scaling A or b by any c != 0 never changes
+ * the decision (docs/fsw-conventions.md, "Rank test").
+ * Returns FSW_OK (x finite, |A x - b| <= FSW_RESID_TOL |b|); FSW_E_SINGULAR
+ * (x = 0) when rank deficient; FSW_E_CAPACITY (x = 0) when m or n is out of
+ * range; FSW_E_BAD_INPUT (x = 0) when A or b hold NaN or Inf, or x
+ * overflows the real type (finite but huge b); FSW_E_NULL_ARG on NULL
+ * pointers.
  * x[0..n-1] is always fully written (when x is not NULL). */
 FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_EFF],
                             const fsw_real b[3], int m, int n);

@@ -24,10 +24,15 @@ fsw_real fsw_v3_dot(const fsw_real a[3], const fsw_real b[3]);
 void fsw_v3_cross(fsw_real out[3], const fsw_real a[3], const fsw_real b[3]);
 fsw_real fsw_v3_norm2(const fsw_real a[3]); /* squared norm */
 fsw_real fsw_v3_norm(const fsw_real a[3]);  /* overflow-safe Euclidean norm */
-/* out = a/|a|.  Returns 0 and writes zeros when |a| is zero or not finite,
- * 1 on success. */
+/* out = a/|a|.  Returns 0 and writes zeros when a is zero or not finite,
+ * 1 on success (also for finite a whose norm would overflow or underflow:
+ * a is pre-scaled by a power of two, which changes no digit otherwise). */
 int fsw_v3_normalize(fsw_real out[3], const fsw_real a[3]);
 int fsw_v3_is_finite(const fsw_real a[3]); /* 1 if all entries are finite */
+/* 2^-e with 2^(e-1) <= m < 2^e (1 for m <= 0 or non-finite; for subnormal
+ * m the largest finite power of two): multiplying by it is exact barring
+ * subnormals, so it changes the range, not digits. */
+fsw_real fsw_pow2_scale(fsw_real m);
 
 /* ---- n-vectors (0 <= n; n <= 0 is an empty vector) ---- */
 void fsw_vn_copy(fsw_real *out, const fsw_real *a, int n);

@@ -18,15 +18,23 @@
 extern "C" {
 #endif
 
+/* Physical ranges accepted by check (no product of them can overflow). */
+#define FSW_GUID_SUNSAFE_S_CMD_MAX FSW_R(10.0) /* [-]     largest |s_cmd_B|       */
+#define FSW_GUID_SUNSAFE_RATE_MAX FSW_R(10.0)  /* [rad/s] largest |component| of
+                                                  omega_search_B and |sun_axis_spin_rate| */
+
 typedef struct {
   fsw_real s_cmd_B[3];         /* [-]     body axis to point at the Sun, finite,
-                                          |s_cmd_B| >= 0.1 (normalised by init) */
+                                          0.1 <= |s_cmd_B| <= FSW_GUID_SUNSAFE_S_CMD_MAX
+                                          (normalised by init)                  */
   fsw_real min_unit_mag;       /* [-]     |s_B| above which the heading is valid,
                                           finite, >= 0                          */
   fsw_real small_angle;        /* [rad]   dead band on the Sun angle, finite,
                                           0 <= small_angle < pi/2               */
-  fsw_real omega_search_B[3];  /* [rad/s] search rate without Sun, finite (0 ok) */
-  fsw_real sun_axis_spin_rate; /* [rad/s] spin about the Sun heading, finite    */
+  fsw_real omega_search_B[3];  /* [rad/s] search rate without Sun, finite (0 ok),
+                                          |component| <= FSW_GUID_SUNSAFE_RATE_MAX */
+  fsw_real sun_axis_spin_rate; /* [rad/s] spin about the Sun heading, finite,
+                                          |.| <= FSW_GUID_SUNSAFE_RATE_MAX      */
 } FswGuidSunsafeConfig;
 
 typedef struct {
@@ -57,7 +65,9 @@ FswStatus fsw_guid_sunsafe_check(const FswGuidSunsafeConfig *cfg);
 FswStatus fsw_guid_sunsafe_init(FswGuidSunsafeState *st, const FswGuidSunsafeConfig *cfg);
 /* No dynamic state: kept for the uniform module shape. */
 void fsw_guid_sunsafe_reset(FswGuidSunsafeState *st);
-/* FSW_OK (valid heading or search mode); with the safe output:
+/* FSW_OK (valid heading or search mode; every output finite, |sigma_BR| <= 1;
+ * any finite sun_B is used by direction only, so huge or tiny headings give
+ * the same guidance as the unit heading); with the safe output:
  * FSW_E_BAD_INPUT (NaN/Inf input, or a rate output that overflows),
  * FSW_E_NOT_INIT, FSW_E_NULL_ARG. */
 FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeConfig *cfg,

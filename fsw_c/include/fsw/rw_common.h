@@ -33,8 +33,21 @@ extern "C" {
  * FSW_E_CONFIG). */
 FswStatus fsw_rw_check_axes(const fsw_real gs_hat_B[FSW_MAX_RW][3], int num_rw, int min_rw);
 
+/* Physical ranges of the wheel configuration values accepted by the
+ * modules' check: wide enough for any wheel from CubeSat to CMG, narrow
+ * enough that no product or ratio of accepted values overflows either real
+ * type (u_max ratios stay <= 1e13, gains times inertias <= 1e10). */
+#define FSW_RW_U_MAX_MIN FSW_R(1e-9) /* [N*m]       smallest torque limit */
+#define FSW_RW_U_MAX_MAX FSW_R(1e4)  /* [N*m]       largest torque limit  */
+#define FSW_RW_J_S_MAX FSW_R(1e4)    /* [kg*m^2]    largest spin inertia  */
+#define FSW_RW_GAIN_MAX FSW_R(1e6)   /* [-, N*m*s]  largest gain (k_null, k_P, K_V) */
+#define FSW_RW_V_MAX_MAX FSW_R(1e4)  /* [V]         largest V_max         */
+
 /* 1 when v[0..n-1] are all finite and > 0. */
 int fsw_rw_all_positive(const fsw_real *v, int n);
+
+/* 1 when v[0..n-1] are all finite, > 0 and within [lo, hi]. */
+int fsw_rw_all_in_range(const fsw_real *v, int n, fsw_real lo, fsw_real hi);
 
 /* 1 when every avail[0..n-1] is FSW_AVAILABLE or FSW_UNAVAILABLE. */
 int fsw_rw_avail_valid(const uint8_t avail[FSW_MAX_RW], int n);

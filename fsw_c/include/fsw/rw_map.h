@@ -28,6 +28,11 @@ typedef enum {
 
 /* Default eps_P of fsw-algorithms.md 5.2 [rad^2/s^2]. */
 #define FSW_RW_MAP_EPS_P_DEFAULT FSW_R(1.0)
+/* Accepted range of eps_P [rad^2/s^2]: 1/eps_P and Omega^2 + eps_P stay far
+ * inside the range of either real type (a denormal eps_P made 1/W infinite
+ * and every POWER update a bad input). */
+#define FSW_RW_MAP_EPS_P_MIN FSW_R(1e-9)
+#define FSW_RW_MAP_EPS_P_MAX FSW_R(1e9)
 
 typedef struct {
   int num_rw;                       /* [-]     1..FSW_MAX_RW                       */
@@ -37,7 +42,8 @@ typedef struct {
                                        FSW_RW_UNIT_TOL, mutually orthogonal within
                                        FSW_RW_ORTHO_TOL                           */
   int mode;                         /* [-]     FswRwMapMode                        */
-  fsw_real eps_P;                   /* [rad^2/s^2] POWER only: finite, > 0        */
+  fsw_real eps_P;                   /* [rad^2/s^2] POWER only: FSW_RW_MAP_EPS_P_MIN
+                                       ..FSW_RW_MAP_EPS_P_MAX                       */
 } FswRwMapConfig;
 
 typedef struct {
@@ -71,10 +77,14 @@ typedef struct {
 FswStatus fsw_rw_map_check(const FswRwMapConfig *cfg);
 FswStatus fsw_rw_map_init(FswRwMapState *st, const FswRwMapConfig *cfg);
 void fsw_rw_map_reset(FswRwMapState *st);
-/* FSW_OK; FSW_W_SINGULAR (u = 0) when the available wheels cannot produce
- * torque about every control axis (fewer than nc available, or [C][Gs_a]
- * rank deficient); FSW_E_BAD_INPUT (u = 0) for non-finite Lr, non-finite
- * Omega in POWER mode or a mask entry other than 0/1; FSW_E_NOT_INIT. */
+/* FSW_OK: u finite and [C][Gs] u = -[C] Lr within FSW_RESID_TOL relative
+ * (in practice ~1e-15); FSW_W_SINGULAR (u = 0) when the available wheels
+ * cannot produce torque about every control axis (fewer than nc available,
+ * or [C][Gs_a] rank deficient by the K1 test: pivot floor or delivered
+ * residual, fsw_linalg.h); FSW_E_BAD_INPUT (u = 0) for non-finite Lr,
+ * non-finite Omega in POWER mode, a mask entry other than 0/1, or a finite
+ * Lr so large that -[C] Lr or u overflows; FSW_E_NOT_INIT.  Stateless: no
+ * status changes anything but the health counters and the scratch. */
 FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
                             const FswRwMapIn *in, FswRwMapOut *out);
 

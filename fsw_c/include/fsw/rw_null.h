@@ -25,10 +25,12 @@ extern "C" {
 typedef struct {
   int num_rw;                       /* [-]       1..FSW_MAX_RW                   */
   fsw_real gs_hat_B[FSW_MAX_RW][3]; /* [-]       (num_rw) spin axes, unit, B     */
-  fsw_real k_null;                  /* [N*m*s]   K_Omega speed-error gain, > 0   */
+  fsw_real k_null;                  /* [N*m*s]   K_Omega speed-error gain,
+                                       > 0, <= FSW_RW_GAIN_MAX (rw_common.h)   */
   int scale_to_fit;                 /* [-]       0 (Basilisk parity) or 1        */
-  fsw_real u_max[FSW_MAX_RW];       /* [N*m]     (num_rw) torque limits, > 0;
-                                       read only when scale_to_fit = 1          */
+  fsw_real u_max[FSW_MAX_RW];       /* [N*m]     (num_rw) torque limits,
+                                       FSW_RW_U_MAX_MIN..FSW_RW_U_MAX_MAX; read
+                                       only when scale_to_fit = 1               */
 } FswRwNullConfig;
 
 typedef struct {
@@ -54,9 +56,11 @@ FswStatus fsw_rw_null_check(const FswRwNullConfig *cfg);
 FswStatus fsw_rw_null_init(FswRwNullState *st, const FswRwNullConfig *cfg);
 /* Stateless apart from the projector cache, which reset keeps. */
 void fsw_rw_null_reset(FswRwNullState *st);
-/* FSW_OK; FSW_W_SAT when scale_to_fit reduced the null torque (kappa < 1);
- * FSW_E_BAD_INPUT (u = 0, projector untouched) for non-finite u_s, Omega or
- * Omega_des, or a mask entry other than 0/1; FSW_E_NOT_INIT. */
+/* FSW_OK (u finite, kappa = 1); FSW_W_SAT when scale_to_fit reduced the
+ * null torque (kappa < 1); FSW_E_BAD_INPUT (u = 0, kappa = 0, projector
+ * untouched) for non-finite u_s, Omega or Omega_des, a mask entry other
+ * than 0/1, or finite values so large that the null torque overflows;
+ * FSW_E_NOT_INIT. */
 FswStatus fsw_rw_null_update(FswRwNullState *st, const FswRwNullConfig *cfg,
                              const FswRwNullIn *in, FswRwNullOut *out);
 

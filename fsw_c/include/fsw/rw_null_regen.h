@@ -35,9 +35,10 @@ typedef struct {
   int num_rw;                       /* [-]        1..FSW_MAX_RW                  */
   fsw_real gs_hat_B[FSW_MAX_RW][3]; /* [-]        (num_rw) spin axes, unit, B    */
   int mode;                         /* [-]        FswRwRegenMode                 */
-  fsw_real k_P;                     /* [N*m*s/rad] GRADIENT gain, > 0 (unused by
-                                       OPTIMUM)                                  */
-  fsw_real u_max[FSW_MAX_RW];       /* [N*m]      (num_rw) torque limits, > 0    */
+  fsw_real k_P;                     /* [N*m*s/rad] GRADIENT gain, > 0, <=
+                                       FSW_RW_GAIN_MAX (unused by OPTIMUM)       */
+  fsw_real u_max[FSW_MAX_RW];       /* [N*m]      (num_rw) torque limits,
+                                       FSW_RW_U_MAX_MIN..FSW_RW_U_MAX_MAX        */
 } FswRwNullRegenConfig;
 
 typedef struct {
@@ -62,9 +63,10 @@ FswStatus fsw_rw_null_regen_init(FswRwNullRegenState *st, const FswRwNullRegenCo
 void fsw_rw_null_regen_reset(FswRwNullRegenState *st);
 /* FSW_OK; FSW_W_SAT (GRADIENT: null step reduced to fit the limits; OPTIMUM:
  * no alpha keeps every wheel inside its limit, u = u0); FSW_E_UNSUPPORTED
- * (OPTIMUM with nullity > 1, u = u0); FSW_E_BAD_INPUT (u = 0, projector
- * untouched) for non-finite u_s or Omega or a mask entry other than 0/1;
- * FSW_E_NOT_INIT. */
+ * (OPTIMUM with nullity > 1, u = u0); FSW_E_BAD_INPUT (u = 0, power = 0,
+ * projector untouched) for non-finite u_s or Omega, a mask entry other than
+ * 0/1, or finite speeds so large that the step or the power overflows;
+ * FSW_E_NOT_INIT.  u and power are finite under every status. */
 FswStatus fsw_rw_null_regen_update(FswRwNullRegenState *st, const FswRwNullRegenConfig *cfg,
                                    const FswRwNullRegenIn *in, FswRwNullRegenOut *out);
 

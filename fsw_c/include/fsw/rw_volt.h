@@ -21,6 +21,7 @@
 #include "fsw/fsw_clock.h"
 #include "fsw/fsw_config.h"
 #include "fsw/fsw_status.h"
+#include "fsw/rw_common.h" /* physical ranges */
 
 #ifdef __cplusplus
 extern "C" {
@@ -29,11 +30,13 @@ extern "C" {
 typedef struct {
   int num_rw;                         /* [-]       1..FSW_MAX_RW (<= 64)           */
   fsw_real V_min;                     /* [V]       dead-band jump, >= 0            */
-  fsw_real V_max;                     /* [V]       > V_min                         */
-  fsw_real K_V;                       /* [-]       speed-loop gain, finite, >= 0
+  fsw_real V_max;                     /* [V]       > V_min, <= FSW_RW_V_MAX_MAX    */
+  fsw_real K_V;                       /* [-]       speed-loop gain, 0..FSW_RW_GAIN_MAX
                                          (Basilisk's header says V/N*m: wrong)     */
-  fsw_real u_max[FSW_MAX_RW];         /* [N*m]     (num_rw) torque at V_max, > 0   */
-  fsw_real J_s[FSW_MAX_RW];           /* [kg*m^2]  (num_rw) spin inertia, > 0      */
+  fsw_real u_max[FSW_MAX_RW];         /* [N*m]     (num_rw) torque at V_max,
+                                         FSW_RW_U_MAX_MIN..FSW_RW_U_MAX_MAX       */
+  fsw_real J_s[FSW_MAX_RW];           /* [kg*m^2]  (num_rw) spin inertia,
+                                         > 0, <= FSW_RW_J_S_MAX (rw_common.h)     */
   int gate_rate;                      /* [-]       0 (default) or 1: outlier gate  */
   fsw_real Omega_dot_max[FSW_MAX_RW]; /* [rad/s^2] (num_rw) gate, > 0 if gate_rate */
 } FswRwVoltConfig;
@@ -57,15 +60,19 @@ typedef struct {
 
 typedef struct {
   fsw_real V[FSW_MAX_RW]; /* [V] (num_rw) motor voltages; 0 beyond num_rw   */
-  uint64_t fault;         /* [-] bit i: wheel i's speed rate failed the gate */
+  uint64_t fault;         /* [-] bit i: wheel i's speed rate failed the gate,
+                             or its correction overflowed (no correction)  */
 } FswRwVoltOut;
 
 FswStatus fsw_rw_volt_check(const FswRwVoltConfig *cfg);
 FswStatus fsw_rw_volt_init(FswRwVoltState *st, const FswRwVoltConfig *cfg);
 void fsw_rw_volt_reset(FswRwVoltState *st);
-/* FSW_OK; FSW_W_SAT (a voltage was clipped to V_max); FSW_E_BAD_INPUT
- * (non-finite u or supplied Omega, has_Omega not 0/1, mask entry not 0/1);
- * FSW_E_TIME (t_ns <= previous); FSW_E_NOT_INIT.  Errors advance no state. */
+/* FSW_OK (|V| <= V_max, finite); FSW_W_SAT (a voltage was clipped to
+ * V_max); FSW_E_BAD_INPUT (non-finite u or supplied Omega, has_Omega not
+ * 0/1, mask entry not 0/1); FSW_E_TIME (t_ns <= previous); FSW_E_NOT_INIT.
+ * Errors advance no state (speed memory, phase, clock: all committed only
+ * on success).  A speed jump whose rate or correction overflows is an
+ * outlier: that wheel gets no correction and its fault bit is set. */
 FswStatus fsw_rw_volt_update(FswRwVoltState *st, const FswRwVoltConfig *cfg,
                              const FswRwVoltIn *in, FswRwVoltOut *out);
 

@@ -29,6 +29,13 @@
 extern "C" {
 #endif
 
+/* Physical ranges accepted by check (and, for r_CoM_B, by update): with
+ * them every intermediate of the mapping ([D], [C][D], the off-pulsing
+ * offset, K1/K4) stays far inside the range of either real type. */
+#define FSW_THR_MAP_R_MAX FSW_R(1e3)    /* [m] |component| of r_thr_B, r_CoM_B   */
+#define FSW_THR_MAP_F_MAX FSW_R(1e6)    /* [N] largest F_max                     */
+#define FSW_THR_MAP_AXIS_MAX FSW_R(1e3) /* [-] |component| of control_axes_B     */
+
 /* Mapping algorithm (FswThrMapConfig.mode). */
 typedef enum {
   FSW_THR_MAP_MIN_NORM = 0, /* Basilisk thrForceMapping (8.3-8.5), default */
@@ -41,9 +48,11 @@ typedef struct {
    * normalised by init; the counted rows must be linearly independent. */
   fsw_real control_axes_B[3][3];
   int num_thr;                         /* [-]   1..FSW_MAX_THR                */
-  fsw_real r_thr_B[FSW_MAX_THR][3];    /* [m]   (num_thr) thruster locations  */
+  fsw_real r_thr_B[FSW_MAX_THR][3];    /* [m]   (num_thr) thruster locations,
+                                          |component| <= FSW_THR_MAP_R_MAX   */
   fsw_real gt_hat_B[FSW_MAX_THR][3];   /* [-]   (num_thr) unit force axes     */
-  fsw_real F_max[FSW_MAX_THR];         /* [N]   (num_thr) max thrust, > 0     */
+  fsw_real F_max[FSW_MAX_THR];         /* [N]   (num_thr) max thrust,
+                                          0 < F_max <= FSW_THR_MAP_F_MAX     */
   int thr_force_sign;                  /* [-]   +1 on-pulsing RCS, -1 off-pulsing DV */
   fsw_real ang_err_thresh;             /* [rad] >= 0; scaling when the torque angle
                                           error exceeds it; > pi disables scaling */
@@ -79,7 +88,8 @@ typedef struct {
 
 typedef struct {
   fsw_real Lr_B[3];    /* [N*m] requested external control torque, B        */
-  fsw_real r_CoM_B[3]; /* [m]   centre of mass location, B                  */
+  fsw_real r_CoM_B[3]; /* [m]   centre of mass location, B, |component| <=
+                          FSW_THR_MAP_R_MAX (else FSW_E_BAD_INPUT)          */
 } FswThrMapIn;
 
 typedef struct {
@@ -94,10 +104,17 @@ FswStatus fsw_thr_map_check(const FswThrMapConfig *cfg);
 FswStatus fsw_thr_map_init(FswThrMapState *st, const FswThrMapConfig *cfg);
 /* No dynamic state: clears the last-update diagnostics only. */
 void fsw_thr_map_reset(FswThrMapState *st);
-/* Returns FSW_OK; FSW_W_SAT (min-norm: forces were scaled down; NNLS: the
- * request is out of reach, the least-squares torque is delivered);
- * FSW_W_SINGULAR (min-norm: rank-deficient [C][D], F = 0); FSW_E_BAD_INPUT
- * (NaN/Inf input, F = 0); FSW_E_NOT_INIT; FSW_E_NULL_ARG. */
+/* Returns FSW_OK (F finite; NNLS: [C][D] F = [C] Lr within 1e4 eps
+ * relative; min-norm: the solve met the K1 rank and residual tests);
+ * FSW_W_SAT (min-norm: forces were scaled down; NNLS: the request is out of
+ * reach, e.g. a reduced-axis (rank-deficient) set, and the least-squares
+ * torque is delivered); FSW_W_SINGULAR (min-norm: rank-deficient [C][D] by
+ * the K1 test, pivot floor or delivered residual, fsw_linalg.h; F = 0);
+ * FSW_E_BAD_INPUT (NaN/Inf input, r_CoM_B out of range, or a finite request
+ * so large that the forces overflow; F = 0); FSW_E_NOT_INIT;
+ * FSW_E_NULL_ARG.  OK and warnings change the diagnostics (ang_err,
+ * nnls_iter); every status may change the scratch and the health counters,
+ * nothing else. */
 FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
                              const FswThrMapIn *in, FswThrMapOut *out);
 

@@ -29,7 +29,8 @@ typedef struct {
   fsw_real F_max[FSW_MAX_THR]; /* [N] (num_thr) max thrust, > 0 (Basilisk 1) */
   fsw_real period;             /* [s] control period T, > 0 (Basilisk 1)      */
   fsw_real resolution;         /* [s] on-time resolution q, > 0 (Basilisk 0.01) */
-  fsw_real t_min;              /* [s] minimum on-time, >= 0 (Basilisk 0)      */
+  fsw_real t_min;              /* [s] minimum on-time, 0 <= t_min <= period
+                                   (Basilisk 0)                              */
   int carry_residual;          /* [-] 0 (Basilisk) or 1: carry rounding error */
 } FswThrPulseRoundConfig;
 

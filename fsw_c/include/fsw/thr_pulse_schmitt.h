@@ -5,7 +5,9 @@
  * between the thruster keeps its previous decision.  Units: SI.
  *
  * First call after reset: t_on = b * init_off_pulse_on_time (as in 9).
- * Saturated thrusters (t >= period) get 1.1 * period.
+ * Saturated thrusters (t >= period) get 1.1 * period (spec 10: "stay on
+ * through the period").  The minimum pulse is min(t_min, period): when the
+ * call period is shorter than t_min a minimum pulse lasts the period.
  * Safe output: every thruster off (t_on = 0), no state advanced.  Entries
  * at and beyond num_thr are always exactly 0. */
 #ifndef FSW_THR_PULSE_SCHMITT_H

@@ -51,8 +51,10 @@ typedef struct {
 FswStatus fsw_trq_lpf_check(const FswTrqLpfConfig *cfg);
 FswStatus fsw_trq_lpf_init(FswTrqLpfState *st, const FswTrqLpfConfig *cfg);
 void fsw_trq_lpf_reset(FswTrqLpfState *st);
-/* FSW_OK; FSW_W_RATE (output valid); FSW_E_BAD_INPUT (non-finite Lr);
- * FSW_E_TIME (t_ns <= previous); FSW_E_NOT_INIT.  Errors advance no state. */
+/* FSW_OK (output finite); FSW_W_RATE (output valid and finite);
+ * FSW_E_BAD_INPUT (non-finite Lr, or a finite Lr so large that the filter
+ * overflows); FSW_E_TIME (t_ns <= previous); FSW_E_NOT_INIT.  Errors
+ * advance no state (filter memory and clock are committed on success). */
 FswStatus fsw_trq_lpf_update(FswTrqLpfState *st, const FswTrqLpfConfig *cfg,
                              const FswTrqLpfIn *in, FswTrqLpfOut *out);
 
