@@ -1,9 +1,9 @@
 // fsw_thr_pulse_schmitt_update: thruster count, limits, t_min, levels, base
 // thrust state and first-call on-time; a sequence of force commands and
 // time stamps.  OK/W_SAT: first call after reset t_on = b * init on-time,
-// then 0 <= t_on <= 1.1 dt, non-zero on-times at least t_min unless
-// saturated, memory 0/1, nothing beyond num_thr; errors: all off and no
-// state change.
+// then 0 <= t_on <= 1.1 dt, non-zero on-times at least min(t_min, dt)
+// unless saturated, memory 0/1, nothing beyond num_thr; errors: all off and
+// no state change.
 #include "fsw/thr_pulse_schmitt.h"
 #include "fuzz_pulse.h"
 
@@ -37,8 +37,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fuzz_pulse_input(in, c, st.common.clock, 2 * k, 0.15, period, &t, x.F, &first, &dt);
     x.t_ns = t;
     if (step() < 0) continue;
+    // the minimum pulse is min(t_min, period) (a period shorter than t_min cannot hold a t_min pulse)
     fuzz_check_on_times("thr_pulse_schmitt", out.t_on, n, first, c.base_thrust_state * c.init_off_pulse_on_time,
-                        dt, 1.1 * dt, c.t_min, true);
+                        dt, 1.1 * dt, c.t_min < dt ? c.t_min : dt, true);
     for (int i = 0; i < FSW_MAX_THR; i++)
       FUZZ_REQUIRE(st.last_on[i] <= 1 && (i < n || st.last_on[i] == 0), "thr_pulse_schmitt: memory[%d] = %d", i,
                    st.last_on[i]);
