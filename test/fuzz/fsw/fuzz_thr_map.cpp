@@ -73,6 +73,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fuzz_trace("r_CoM_B", x.r_CoM_B, 3);
     const int s = step();
     if (s < 0) continue;
+    fuzz_trace("F", out.F, n);
     FUZZ_REQUIRE(fuzz_finite(out.F, FSW_MAX_THR), "thr_map: non-finite force under %s",
                  fsw_status_name(static_cast<FswStatus>(s)));
     FUZZ_REQUIRE(fuzz_nonzero_from(out.F, n, FSW_MAX_THR) < 0, "thr_map: force beyond num_thr");
@@ -102,7 +103,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                                   rel[0] * g[1] - rel[1] * g[0]};
         const long double cd = st.C[j][0] * d[0] + st.C[j][1] * d[1] + st.C[j][2] * d[2];
         if (sF < 0)
-          for (int k3 = 0; k3 < 3; k3++) Lr[k3] -= cfg.F_max[i] * d[k3];
+          for (int k3 = 0; k3 < 3; k3++) {
+            Lr[k3] -= cfg.F_max[i] * d[k3];
+            scale += std::fabs(cfg.F_max[i] * d[k3]);  // the all-on torque's round-off is in Lbar too
+          }
         if (out.F[i] != 0) r[j] += cd * out.F[i];
         scale += std::fabs(cd * out.F[i]);
         v[j] += cd;
