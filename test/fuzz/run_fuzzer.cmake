@@ -4,6 +4,20 @@
 # timeout-*, oom-*) stays in WORK.
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}/corpus")
+# Reproducers of past findings (REGRESSIONS): libFuzzer runs each file given
+# as an argument once; any of them failing fails the test.
+if(REGRESSIONS)
+  file(GLOB_RECURSE replays LIST_DIRECTORIES false "${REGRESSIONS}/*")
+  if(replays)
+    execute_process(
+      COMMAND "${FUZZER}" -timeout=${TIMEOUT_S} -rss_limit_mb=${RSS_MB} ${replays}
+      WORKING_DIRECTORY "${WORK}"
+      RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "fuzzer ${FUZZER}: a regression reproducer under ${REGRESSIONS} fails (exit ${rc})")
+    endif()
+  endif()
+endif()
 execute_process(
   COMMAND "${FUZZER}" -max_total_time=${SECONDS} -timeout=${TIMEOUT_S}
           -rss_limit_mb=${RSS_MB} -malloc_limit_mb=${RSS_MB} -print_final_stats=1

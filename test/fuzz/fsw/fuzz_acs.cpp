@@ -1,0 +1,196 @@
+// fsw_acs_cycle: the reference configurations of the application tests
+// (acs_fixture.hpp: wheels with null motion, filter and voltages; wheels with
+// the power-optimal mapping; thrusters with remainder or Schmitt pulsing)
+// with decoded gains, filter, mapping, pulser and geometry changes; a
+// sequence of sensor messages (NaN/inf/huge rates, attitudes, CSS readings,
+// wheel speeds, masks, time going backwards) and mode/actuation requests.
+// Checks: the returned status is known and equals hlth->status; OK and
+// warnings: finite commands, wheel torques within u_max and voltages within
+// V_max, on-times within [0, 1.1 dt] (or the first-call value), cycles
+// counted; errors: the safe output (all 0, nothing active) and the
+// application state byte-identical to before the cycle apart from health
+// counters and scratch (issue 13 finding 1).
+#include "acs_fixture.hpp"
+#include "fsw/fsw_acs.h"
+#include "fuzz_input.h"
+
+static void mask(FswAcsState &s)
+{
+  fuzz_mask_health(s);
+  std::memset(&s.work, 0, sizeof s.work);
+  std::memset(&s.rw_map.work, 0, sizeof s.rw_map.work);
+  std::memset(&s.thr_map.work, 0, sizeof s.thr_map.work);
+  fuzz_mask_health(s.css);
+  fuzz_mask_health(s.sunsafe);
+  fuzz_mask_health(s.inertial);
+  fuzz_mask_health(s.track);
+  fuzz_mask_health(s.mrp_fb);
+  fuzz_mask_health(s.lpf);
+  fuzz_mask_health(s.rw_map);
+  fuzz_mask_health(s.rw_null);
+  fuzz_mask_health(s.rw_sat);
+  fuzz_mask_health(s.rw_volt);
+  fuzz_mask_health(s.thr_map);
+  fuzz_mask_common_health(s.pulse_rem);
+  fuzz_mask_common_health(s.pulse_schmitt);
+}
+
+static bool act_safe(const FswAcsActuatorMsg &a, int)
+{
+  return fuzz_nonzero_from(a.Lr_B, 0, 3) < 0 && fuzz_nonzero_from(a.u_s, 0, FSW_MAX_RW) < 0 &&
+         fuzz_nonzero_from(a.V, 0, FSW_MAX_RW) < 0 && fuzz_nonzero_from(a.F, 0, FSW_MAX_THR) < 0 &&
+         fuzz_nonzero_from(a.t_on, 0, FSW_MAX_THR) < 0 && a.wheels_active == 0 && a.thrusters_active == 0;
+}
+
+// Decode the configuration: a reference config, then single fields.
+static void decode_config(FuzzIn &in, FswAcsConfig &c)
+{
+  const int variant = in.u8() % 4;
+  if (variant <= 1) {
+    acsfix::golden_config(0, c);  // wheels: null motion, filter, voltages
+    c.rw_map.mode = variant;      // 1: power-optimal mapping
+  } else {
+    acsfix::thruster_config(c, variant == 2 ? FSW_ACS_PULSE_REMAINDER : FSW_ACS_PULSE_SCHMITT);
+  }
+  FswAcsGeometry g;
+  if (variant <= 1) acsfix::wheel_geometry(g);
+  else acsfix::thruster_geometry(g);
+  for (int i = 0; i < g.num_rw; i++) {
+    const double g0[3] = {g.gs_hat_B[i][0], g.gs_hat_B[i][1], g.gs_hat_B[i][2]};
+    in.unit3(g.gs_hat_B[i], g0, i > 0 ? g.gs_hat_B[i - 1] : nullptr);
+    g.J_s[i] = static_cast<fsw_real>(in.real(g.J_s[i]));
+    g.u_max[i] = static_cast<fsw_real>(in.real(g.u_max[i]));
+  }
+  for (int i = 0; i < g.num_thr; i++) g.F_max[i] = static_cast<fsw_real>(in.real(g.F_max[i]));
+  (void)fsw_acs_config_set_geometry(&c, &g);
+  c.initial_mode = in.flag(c.initial_mode);
+  c.initial_actuation = in.flag(c.initial_actuation);
+  c.css.lit_threshold = static_cast<fsw_real>(in.real(c.css.lit_threshold));
+  c.mrp_fb.K = static_cast<fsw_real>(in.real(c.mrp_fb.K));
+  c.mrp_fb.P = static_cast<fsw_real>(in.real(c.mrp_fb.P));
+  c.mrp_fb.K_i = static_cast<fsw_real>(in.real(c.mrp_fb.K_i));
+  c.mrp_fb.integral_limit = static_cast<fsw_real>(in.real(c.mrp_fb.integral_limit));
+  c.use_lpf = in.flag(c.use_lpf);
+  c.lpf.h = static_cast<fsw_real>(in.real(c.lpf.h));
+  c.lpf.omega_c = static_cast<fsw_real>(in.real(c.lpf.omega_c));
+  c.rw_map.mode = in.flag(c.rw_map.mode);
+  c.rw_map.eps_P = static_cast<fsw_real>(in.real(c.rw_map.eps_P));
+  c.use_null = in.flag(c.use_null);
+  c.rw_null.k_null = static_cast<fsw_real>(in.real(c.rw_null.k_null));
+  c.Omega_des[0] = static_cast<fsw_real>(in.real(c.Omega_des[0]));
+  c.use_volt = in.flag(c.use_volt);
+  c.rw_volt.K_V = static_cast<fsw_real>(in.real(c.rw_volt.K_V));
+  c.rw_volt.V_max = static_cast<fsw_real>(in.real(c.rw_volt.V_max));
+  c.thr_map.mode = in.flag(c.thr_map.mode);
+  c.pulser = in.flag(c.pulser);
+  c.pulse_rem.common.t_min = static_cast<fsw_real>(in.real(c.pulse_rem.common.t_min));
+  c.pulse_schmitt.common.t_min = static_cast<fsw_real>(in.real(c.pulse_schmitt.common.t_min));
+  fuzz_trace_int("variant", variant);
+  for (int i = 0; i < g.num_rw; i++) fuzz_trace("gs_hat_B[i]", g.gs_hat_B[i], 3);
+  fuzz_trace("J_s", g.J_s, g.num_rw);
+  fuzz_trace("u_max", g.u_max, g.num_rw);
+  fuzz_trace("F_max", g.F_max, g.num_thr);
+  fuzz_trace("mrp_fb K P K_i integral_limit", &c.mrp_fb.K, 4);
+  fuzz_trace("css.lit_threshold", &c.css.lit_threshold, 1);
+  fuzz_trace_int("initial_mode", c.initial_mode);
+  fuzz_trace_int("initial_actuation", c.initial_actuation);
+  fuzz_trace_int("use_null", c.use_null);
+  fuzz_trace("k_null", &c.rw_null.k_null, 1);
+  fuzz_trace_int("use_volt", c.use_volt);
+  fuzz_trace("rw_volt K_V", &c.rw_volt.K_V, 1);
+  fuzz_trace_int("use_lpf", c.use_lpf);
+  fuzz_trace("lpf h omega_c", &c.lpf.h, 2);
+  fuzz_trace_int("rw_map.mode", c.rw_map.mode);
+  fuzz_trace("eps_P", &c.rw_map.eps_P, 1);
+}
+
+static FswStatus init_checked(FswAcsState *st, const FswAcsConfig *c) { return fsw_acs_init(st, c, nullptr); }
+static FswStatus check_checked(const FswAcsConfig *c) { return fsw_acs_check(c, nullptr); }
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+  FuzzIn in(data, size);
+  static FswAcsConfig cfg;
+  decode_config(in, cfg);
+  static FswAcsState st;
+  FswAcsSensorMsg sens{};
+  FswAcsCmdMsg cmd{};
+  const FswAcsCmdMsg *cmdp = nullptr;
+  FswAcsActuatorMsg act;
+  FswAcsHealthMsg hlth;
+  const auto step = [&]() {
+    const int s = fuzz_call("fsw_acs_cycle", st, act,
+                            {FSW_OK, FSW_W_SINGULAR, FSW_W_SAT, FSW_W_RATE, FSW_E_BAD_INPUT, FSW_E_TIME,
+                             FSW_E_NOT_INIT},
+                            [&] { return fsw_acs_cycle(&st, &cfg, &sens, cmdp, &act, &hlth); }, mask, act_safe);
+    FUZZ_REQUIRE(hlth.status == s, "fsw_acs_cycle returned %d but hlth.status = %d", s, hlth.status);
+    FUZZ_REQUIRE((s < 0) == (hlth.safe_output != 0), "fsw_acs_cycle: status %d with safe_output %d", s,
+                 hlth.safe_output);
+    return s;
+  };
+  if (!fuzz_init("fsw_acs", st, cfg, check_checked, init_checked, [](const FswAcsState &s) { return s.ready; }, step))
+    return 0;
+  uint64_t t = 0;
+  for (int k = 0, steps = in.steps(6, 24); k < steps; k++) {
+    if (in.op()) fsw_acs_reset(&st, &cfg);
+    const double sig[3] = {0.1, 0.2, -0.1}, w[3] = {1e-3, 1e-3, 0}, sun[3] = {0.6, 0.0, 0.8}, z[3] = {0, 0, 0};
+    sens.t_ns = t = (k == 0) ? in.next_time(0, 0) : in.next_time(t, acsfix::kPeriodNs);
+    in.reals(sens.sigma_BN, 3, sig);
+    sens.att_valid = static_cast<uint8_t>(in.flag(1));
+    in.reals(sens.omega_BN_B, 3, w);
+    for (int i = 0; i < cfg.css.num_css; i++) {
+      const fsw_real *nrm = cfg.css.n_hat_B[i];
+      const double c = nrm[0] * sun[0] + nrm[1] * sun[1] + nrm[2] * sun[2];
+      sens.css[i] = static_cast<fsw_real>(in.real(c > 0 ? c : 0.0));
+    }
+    in.avail_mask(sens.css_avail, cfg.css.num_css);
+    fuzz_speeds(in, sens.Omega, cfg.mrp_fb.num_rw, 20.0);
+    in.avail_mask(sens.rw_avail, cfg.mrp_fb.num_rw);
+    in.reals(sens.r_CoM_B, 3, z);
+    cmdp = nullptr;
+    if (in.u8() >= 200) {
+      cmd.mode = in.flag(cfg.initial_mode == 0 ? 1 : 0);
+      cmd.actuation = in.flag(cfg.initial_actuation);
+      cmdp = &cmd;
+    }
+    fuzz_trace_int("t_ns", static_cast<long long>(sens.t_ns));
+    fuzz_trace("omega_BN_B", sens.omega_BN_B, 3);
+    fuzz_trace("sigma_BN", sens.sigma_BN, 3);
+    fuzz_trace("css", sens.css, cfg.css.num_css);
+    fuzz_trace("Omega", sens.Omega, cfg.mrp_fb.num_rw);
+    fuzz_trace("r_CoM_B", sens.r_CoM_B, 3);
+    fuzz_trace_int("att_valid", sens.att_valid);
+    if (cmdp != nullptr) fuzz_trace_int("cmd.mode", cmd.mode), fuzz_trace_int("cmd.actuation", cmd.actuation);
+    const uint32_t cycles = st.cycles;
+    const int first = !st.clock.has_prev;
+    const double dt = first ? 0.0 : static_cast<double>(sens.t_ns - st.clock.t_prev_ns) * 1e-9;
+    const int s = step();
+    if (s < 0) {
+      FUZZ_REQUIRE(hlth.cycles == cycles, "fsw_acs_cycle: error but cycles %u -> %u", cycles, hlth.cycles);
+      continue;
+    }
+    FUZZ_REQUIRE(hlth.cycles == cycles + 1, "fsw_acs_cycle: accepted cycle not counted");
+    FUZZ_REQUIRE(fuzz_finite(act.Lr_B, 3) && fuzz_finite(act.u_s, FSW_MAX_RW) && fuzz_finite(act.V, FSW_MAX_RW) &&
+                     fuzz_finite(act.F, FSW_MAX_THR) && fuzz_finite(act.t_on, FSW_MAX_THR),
+                 "fsw_acs_cycle: non-finite command under %s", fsw_status_name(static_cast<FswStatus>(s)));
+    if (act.wheels_active) {
+      for (int i = 0; i < cfg.rw_sat.num_rw; i++) {
+        FUZZ_REQUIRE(std::fabs(act.u_s[i]) <= cfg.rw_sat.u_max[i], "fsw_acs_cycle: |u_s[%d]| = %.17g above u_max", i,
+                     act.u_s[i]);
+        FUZZ_REQUIRE(!cfg.use_volt || std::fabs(act.V[i]) <= cfg.rw_volt.V_max, "fsw_acs_cycle: |V[%d]| = %.17g", i,
+                     act.V[i]);
+      }
+    }
+    if (act.thrusters_active) {
+      const FswThrPulseCommon &pc =
+          cfg.pulser == FSW_ACS_PULSE_SCHMITT ? cfg.pulse_schmitt.common : cfg.pulse_rem.common;
+      const int pfirst = cfg.pulser == FSW_ACS_PULSE_SCHMITT ? !st.pulse_schmitt.common.clock.has_prev : 0;
+      (void)pfirst;
+      for (int i = 0; i < pc.num_thr; i++)
+        FUZZ_REQUIRE(act.t_on[i] >= 0 && (act.t_on[i] <= 1.1 * dt * (1 + 1e-12) ||
+                                          act.t_on[i] == pc.base_thrust_state * pc.init_off_pulse_on_time),
+                     "fsw_acs_cycle: t_on[%d] = %.17g for a %.17g s cycle", i, act.t_on[i], dt);
+    }
+  }
+  return 0;
+}

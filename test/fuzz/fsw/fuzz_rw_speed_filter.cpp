@@ -1,0 +1,58 @@
+// fsw_rw_speed_filter_update: limits, inertias, noise margins, k_reject and
+// n_recover; a sequence of tachometer samples (with NaN/inf outliers, jumps),
+// masks and time stamps.  OK: finite speeds, avail = In.avail OR failed, bits
+// only of configured wheels, nothing beyond num_rw; errors: the held good
+// speeds with every wheel unavailable and no state change.
+#include "fsw/rw_speed_filter.h"
+#include "fuzz_input.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+  FuzzIn in(data, size);
+  FswRwSpeedFilterConfig cfg{};
+  cfg.num_rw = in.count(4, FSW_MAX_RW);
+  const int n = fuzz_clamp_count(cfg.num_rw, FSW_MAX_RW);
+  in.reals(cfg.u_max, n, nullptr, 0.2);
+  in.reals(cfg.J_s, n, nullptr, 0.1);
+  in.reals(cfg.noise, n, nullptr, 0.5);
+  cfg.k_reject = in.u32(3);
+  cfg.n_recover = in.u32(2);
+  static FswRwSpeedFilterState st;
+  FswRwSpeedFilterIn x{};
+  FswRwSpeedFilterOut out;
+  const auto is_safe = [&](const FswRwSpeedFilterOut &o, int) {
+    for (int i = 0; i < FSW_MAX_RW; i++) {
+      const fsw_real held = (i < n && st.ready && st.has_good[i]) ? st.Omega_good[i] : 0;
+      if (o.Omega[i] != held || o.avail[i] != (i < n ? 1 : 0)) return false;
+    }
+    return o.rejected == 0 && o.failed == 0;
+  };
+  const auto step = [&]() {
+    return fuzz_call("rw_speed_filter", st, out, {FSW_OK, FSW_E_BAD_INPUT, FSW_E_TIME, FSW_E_NOT_INIT},
+                     [&] { return fsw_rw_speed_filter_update(&st, &cfg, &x, &out); },
+                     fuzz_mask_health<FswRwSpeedFilterState>, is_safe);
+  };
+  if (!fuzz_init("rw_speed_filter", st, cfg, fsw_rw_speed_filter_check, fsw_rw_speed_filter_init,
+                 [](const FswRwSpeedFilterState &s) { return s.ready; }, step))
+    return 0;
+  uint64_t t = 0;
+  for (int k = 0, steps = in.steps(12, 48); k < steps; k++) {
+    if (in.op()) fsw_rw_speed_filter_reset(&st);
+    fuzz_speeds(in, x.Omega_meas, n, 100.0 + 0.1 * k);
+    in.avail_mask(x.avail, n);
+    x.t_ns = t = (k == 0) ? in.next_time(0, 0) : in.next_time(t, 100000000ull);
+    fuzz_trace("Omega_meas", x.Omega_meas, n);
+    const int s = step();
+    if (s < 0) continue;
+    FUZZ_REQUIRE(fuzz_finite(out.Omega, FSW_MAX_RW), "rw_speed_filter: non-finite speed under OK");
+    FUZZ_REQUIRE(fuzz_nonzero_from(out.Omega, n, FSW_MAX_RW) < 0, "rw_speed_filter: speed beyond num_rw");
+    for (int i = 0; i < FSW_MAX_RW; i++) {
+      const int failed = i < 64 && ((out.failed >> i) & 1u);
+      const uint8_t expect = (i < n) ? static_cast<uint8_t>(x.avail[i] | failed) : 0;
+      FUZZ_REQUIRE(out.avail[i] == expect, "rw_speed_filter: avail[%d] = %d, In.avail OR failed = %d", i,
+                   out.avail[i], expect);
+    }
+    FUZZ_REQUIRE(n >= 64 || ((out.failed | out.rejected) >> n) == 0, "rw_speed_filter: bits beyond num_rw");
+  }
+  return 0;
+}

@@ -1,0 +1,61 @@
+#!/usr/bin/env python3
+"""Writes the committed seed corpora of the FSW harnesses (corpus/<harness>/).
+
+The harnesses decode every value as a perturbation of a nominal one and read
+a byte of 0 (or the end of the input) as "nominal" (fuzz_input.h), so:
+  nominal          empty input: the nominal config and sequence;
+  v<k>             the nominal config of variant k (first byte: mode, pulser,
+                   force sign ... for the harnesses that have variants);
+  v<k>-mild-<j>    variant k with mostly nominal bytes and some modest
+                   scalings / relative steps (a nominal run that differs in
+                   details: reaches the ordinary paths and the warnings);
+  v<k>-special-<j> the same with a few special values (NaN, inf, denormals,
+                   huge/tiny, time backwards, counts at capacity).
+Deterministic (fixed random seed): rerun after changing the harness list.
+Usage: python3 test/fuzz/fsw/make_seeds.py
+"""
+import os
+import random
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+# harness -> number of variants selected by the first byte (1: no variant byte)
+VARIANTS = {
+    "trq_lpf": 1, "rw_sat": 2, "rw_volt": 2, "rw_speed_filter": 1, "rw_map": 2,
+    "rw_null": 2, "rw_null_regen": 2, "thr_map": 4, "thr_pulse_rem": 2,
+    "thr_pulse_schmitt": 2, "thr_pulse_round": 2, "css_sun": 1,
+    "guid_sunsafe": 1, "guid_inertial": 1, "att_track": 1, "mrp_fb": 2, "acs": 4,
+}
+
+
+def seed_bytes(rng, variant, has_variant, n, p_mild, p_special):
+    out = bytearray([variant]) if has_variant else bytearray()
+    for _ in range(n):
+        r = rng.random()
+        if r < p_special:
+            out.append(rng.randrange(192, 224))
+        elif r < p_special + p_mild:
+            out.append(rng.randrange(128, 192))
+        else:
+            out.append(rng.randrange(0, 128))
+    return bytes(out)
+
+
+def main():
+    rng = random.Random(13)
+    for name, nv in VARIANTS.items():
+        d = os.path.join(HERE, "corpus", name)
+        os.makedirs(d, exist_ok=True)
+        files = {"nominal": b""}
+        for v in range(nv):
+            if nv > 1:
+                files["v%d" % v] = bytes([v])
+            for j in range(3):
+                files["v%d-mild-%d" % (v, j)] = seed_bytes(rng, v, nv > 1, rng.randrange(48, 400), 0.12, 0.0)
+            files["v%d-special-0" % v] = seed_bytes(rng, v, nv > 1, rng.randrange(48, 400), 0.08, 0.02)
+        for f, b in files.items():
+            with open(os.path.join(d, f), "wb") as fh:
+                fh.write(b)
+
+
+if __name__ == "__main__":
+    main()
