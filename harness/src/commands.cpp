@@ -58,9 +58,7 @@ int cmd_validate(const std::string& scenario, const std::vector<std::string>& se
   if (!parse_sets(sets, ov, err)) return kExitUsage;
   try {
     const Scenario sc = load_scenario(scenario, ov);
-    RunConfig cfg;
-    cfg.keep_in_memory = false;  // nothing is run: no row storage
-    Run probe(sc, std::move(cfg));  // the plant and FSW configuration checks
+    check_run_configuration(sc);  // the plant and FSW checks of a run, no run storage
     out << scenario << ": ok (" << sc.name << ", " << sc.wheels.size() << " wheels, " << sc.thrusters.size()
         << " thrusters, " << sc.num_ticks() << " steps of " << sc.rates.dt << " s)\n";
     return kExitOk;

@@ -121,6 +121,7 @@ void apply_override(Ctx& ctx, YAML::Node& root, const Override& o)
   is.key = norm;
   is.where = "--set " + o.path + "=" + o.value;
   if (parts.empty()) {
+    is.key = "(--set)";
     is.message = "empty key path";
     ctx.issues->push_back(is);
     return;
@@ -155,6 +156,15 @@ void apply_override(Ctx& ctx, YAML::Node& root, const Override& o)
   if (word) {
     value = YAML::Node(o.value);
   } else {
+    // the same bounds as a file (aliases, depth, one document, binary bytes)
+    const std::vector<ScenarioIssue> bounds = check_yaml_text(o.value, ctx.file);
+    if (!bounds.empty()) {
+      const std::string& m = bounds.front().message;
+      const std::string syntax = "YAML syntax error: ";
+      is.message = m.rfind(syntax, 0) == 0 ? "value is not valid YAML: " + m.substr(syntax.size()) : "value: " + m;
+      ctx.issues->push_back(is);
+      return;
+    }
     try {
       value = YAML::Load(o.value);
     } catch (const YAML::Exception& e) {

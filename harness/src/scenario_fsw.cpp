@@ -72,12 +72,9 @@ const Section& fsw_section()
                       vec3("sun_axis_B", KESTREL_FSW(sun_axis_B), true),
                       real("small_angle", KESTREL_FSW(sun_small_angle))
                           .alt("_deg", sim::kRadPerDeg)
-                          .bounds([](double x, bool deg) {
-                            const double lim = deg ? 90.0 : 0.5 * sim::kPi;
-                            return x >= 0.0 && x < lim ? std::string() : std::string("must be in [0, 90 deg)");
-                          })
+                          .bounds(angle_below(90.0))
                           .unit("rad"),
-                      vec3("omega_search_B", KESTREL_FSW(omega_search_B)).unit("rad/s"),
+                      vec3("omega_search_B", KESTREL_FSW(omega_search_B)).vcheck(rate_within(kMaxBodyRateDegS)).unit("rad/s"),
                       real("lit_threshold", KESTREL_FSW(css_lit_threshold))
                           .bounds(in_range_closed_open(0.0, 1.0, "must be in [0, 1)")).unit("-"),
                   },

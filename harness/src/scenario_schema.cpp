@@ -5,6 +5,8 @@
 
 #include <sstream>
 
+#include "sim/units.h"
+
 namespace harness::schema {
 
 Check positive(const char* unit)
@@ -15,6 +17,39 @@ Check positive(const char* unit)
 Check non_negative(const char* unit)
 {
   return [unit](double x, bool) { return x >= 0.0 ? std::string() : std::string("must be >= 0 [") + unit + "]"; };
+}
+
+namespace {
+constexpr double kRadPerDeg = sim::kRadPerDeg;
+}  // namespace
+
+Check angle_below(double max_deg)
+{
+  return [max_deg](double x, bool deg) {
+    const double lim = deg ? max_deg : max_deg * kRadPerDeg;
+    if (x >= 0.0 && x < lim) return std::string();
+    std::string why = "must be in [0, " + fmt(max_deg) + " deg) = [0, " + fmt(max_deg * kRadPerDeg) + " rad)";
+    if (!deg && x >= 0.0 && x < max_deg) why += "; a value in degrees? use the _deg spelling";
+    return why;
+  };
+}
+
+std::function<std::string(const Eigen::Vector3d&)> angles_within(double max_deg)
+{
+  return [max_deg](const Eigen::Vector3d& v) {
+    if (v.cwiseAbs().maxCoeff() <= max_deg * kRadPerDeg) return std::string();
+    return "every component must be within +-" + fmt(max_deg) + " deg = " + fmt(max_deg * kRadPerDeg) +
+           " rad, got " + fmt(v.cwiseAbs().maxCoeff()) + " rad (a value in degrees? use the _deg spelling)";
+  };
+}
+
+std::function<std::string(const Eigen::Vector3d&)> rate_within(double max_deg_s)
+{
+  return [max_deg_s](const Eigen::Vector3d& v) {
+    if (v.norm() <= max_deg_s * kRadPerDeg) return std::string();
+    return "|omega| must be at most " + fmt(max_deg_s) + " deg/s = " + fmt(max_deg_s * kRadPerDeg) + " rad/s, got " +
+           fmt(v.norm()) + " rad/s = " + fmt(v.norm() / kRadPerDeg) + " deg/s (the key is in rad/s)";
+  };
 }
 
 const KeyDef* Section::key(const std::string& n, bool& suffixed) const

@@ -45,6 +45,21 @@ using Check = std::function<std::string(double x, bool suffixed)>;
 Check positive(const char* unit);
 Check non_negative(const char* unit);
 
+// ---- unit-aware bounds (docs/harness.md, "Input bounds") ---------------------------
+// An angle key is read in radians, or in degrees with its _deg spelling; a
+// value that is absurd in radians but plausible in degrees is pointed at the
+// _deg spelling.  Rates likewise (rad/s, _deg_s, _rpm).
+constexpr double kMaxMisalignmentDeg = 10.0;     // [deg] a tilt beyond is a different axis, not a misalignment
+constexpr double kMaxBodyRateDegS = 180.0;       // [deg/s] |omega| of the body (half a turn per second)
+constexpr double kMaxStarTrackerSigmaArcsec = 3600.0;  // [arcsec] 1-sigma noise: one degree
+constexpr double kMaxWheelSpeedRpm = 20000.0;    // [rpm] wheel speed limit (flight wheels: <= 10000 rpm)
+// x in [0, max_deg) as written: degrees when the key's _deg spelling is used, else radians.
+Check angle_below(double max_deg);
+// Vec3 in SI: every component within +-max_deg (as radians).
+std::function<std::string(const Eigen::Vector3d&)> angles_within(double max_deg);
+// Vec3 in SI: |v| <= max_deg_s (as rad/s).
+std::function<std::string(const Eigen::Vector3d&)> rate_within(double max_deg_s);
+
 struct KeyDef;
 // Reads the key from `r` into sc (list element i); problems go to r's Ctx.
 using ReadFn = std::function<void(const KeyDef&, MapReader&, Scenario&, size_t)>;
@@ -268,7 +283,7 @@ KeyDef string(std::string name, F field)
   d.read = [field](const KeyDef& k, MapReader& r, Scenario& sc, size_t i) {
     if (auto v = r.string(k.name)) {
       const std::string why = k.check_str ? k.check_str(*v) : std::string();
-      if (!why.empty()) r.error_at(k.name, why);
+      if (!why.empty()) r.error_at(k.name, why + ", got '" + *v + "'");
       else field(sc, i) = *v;
     } else if (!k.required.empty() && !r.has(k.name)) {
       r.missing(k.name, k.required);

@@ -10,6 +10,17 @@ namespace harness::schema {
 namespace {
 constexpr double kRadPerArcsec = sim::kRadPerDeg / 3600.0;  // [rad / arcsec]
 
+// Star tracker 1-sigma: [0, 1 deg] in rad, or in arcsec with _arcsec.
+std::string sigma_arcsec(double x, bool arcsec)
+{
+  const double lim = arcsec ? kMaxStarTrackerSigmaArcsec : kMaxStarTrackerSigmaArcsec * kRadPerArcsec;
+  if (x >= 0.0 && x <= lim) return "";
+  return "must be in [0, " + fmt(kMaxStarTrackerSigmaArcsec) + " arcsec] = [0, " +
+         fmt(kMaxStarTrackerSigmaArcsec * kRadPerArcsec) + " rad]" +
+         (!arcsec && x >= 0.0 && x <= kMaxStarTrackerSigmaArcsec ? "; a value in arcsec? use the _arcsec spelling"
+                                                                 : "");
+}
+
 #define KESTREL_SENSOR(member) [](auto& sc, size_t) -> auto& { return sc.sensors.member; }
 
 // css.normals: a list of unit vectors, at most kMaxScenarioCss.
@@ -66,15 +77,12 @@ const Section& sensors_section()
                   {
                       boolean("enabled", KESTREL_SENSOR(star_tracker.enabled)),
                       real("sigma_cross", KESTREL_SENSOR(star_tracker.sigma_cross))
-                          .alt("_arcsec", kRadPerArcsec).bounds(non_negative("rad or arcsec")).unit("rad"),
+                          .alt("_arcsec", kRadPerArcsec).bounds(sigma_arcsec).unit("rad"),
                       real("sigma_bore", KESTREL_SENSOR(star_tracker.sigma_bore))
-                          .alt("_arcsec", kRadPerArcsec).bounds(non_negative("rad or arcsec")).unit("rad"),
+                          .alt("_arcsec", kRadPerArcsec).bounds(sigma_arcsec).unit("rad"),
                       real("sun_exclusion", KESTREL_SENSOR(star_tracker.sun_exclusion))
                           .alt("_deg", sim::kRadPerDeg)
-                          .bounds([](double x, bool deg) {
-                            const double lim = deg ? 180.0 : sim::kPi;
-                            return x >= 0.0 && x < lim ? std::string() : std::string("must be in [0, 180 deg)");
-                          })
+                          .bounds(angle_below(180.0))
                           .unit("rad"),
                       integer("divisor", 1, kMaxDivisor, KESTREL_SENSOR(star_tracker.divisor)).unit("ticks"),
                   },

@@ -21,10 +21,7 @@ const Section& thrusters_section()
                   real("T_min", KESTREL_THR(T_min)).bounds(non_negative("s")).unit("s"),
                   real("misalignment", KESTREL_THR(misalignment))
                       .alt("_deg", sim::kRadPerDeg)
-                      .bounds([](double x, bool deg) {
-                        const double lim = deg ? 90.0 : 0.5 * sim::kPi;
-                        return x >= 0.0 && x < lim ? std::string() : std::string("must be in [0, 90) deg");
-                      })
+                      .bounds(angle_below(kMaxMisalignmentDeg))
                       .unit("rad"),
                   choice<ThrTransient>("transient",
                                        {{"instant", ThrTransient::Instant}, {"first_order", ThrTransient::FirstOrder}},

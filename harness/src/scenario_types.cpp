@@ -1,17 +1,54 @@
 // scenario_types.cpp: the parts of the Scenario types that a run needs
 // without the YAML schema (harness_core): problems, tick arithmetic, names.
 #include <cmath>
+#include <cstdio>
 
 #include "harness/scenario.h"
 
 namespace harness {
+
+namespace {
+// An issue is one line: every control byte is escaped, line feeds too.
+bool is_control(unsigned char c) { return c < 0x20 || c == 0x7f; }
+
+// Length of the valid UTF-8 sequence at s[i] (0: invalid).
+size_t utf8_len(const std::string& s, size_t i)
+{
+  const unsigned char c = static_cast<unsigned char>(s[i]);
+  size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
+  if (n == 0 || i + n > s.size()) return 0;
+  for (size_t k = 1; k < n; ++k)
+    if ((static_cast<unsigned char>(s[i + k]) >> 6) != 0x2) return 0;
+  return n;
+}
+
+}  // namespace
+
+std::string escape_bytes(const std::string& s)
+{
+  std::string out;
+  for (size_t i = 0; i < s.size();) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    const size_t n = utf8_len(s, i);
+    if (n == 0 || (n == 1 && is_control(c))) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02X", c);
+      out += buf;
+      ++i;
+    } else {
+      out.append(s, i, n);
+      i += n;
+    }
+  }
+  return out;
+}
 
 std::string ScenarioIssue::str() const
 {
   std::string s = file;
   if (!where.empty()) s += ": " + where;
   else if (line > 0) s += ":" + std::to_string(line) + ":" + std::to_string(column);
-  return s + ": " + key + ": " + message;
+  return escape_bytes(s + ": " + key + ": " + message);
 }
 
 namespace {

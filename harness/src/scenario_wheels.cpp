@@ -38,11 +38,20 @@ Section make_wheel_section(const std::string& name, bool input_only)
               .alt("_g_cm2", sim::kKgM2PerGCm2).bounds(non_negative("kg*m^2 or g*cm^2")).unit("kg*m^2"),
           real("Omega_0", KESTREL_WHEEL(params.Omega_0)).alt("_rpm", sim::kRadPerSecPerRpm).unit("rad/s"),
           real("Omega_max", KESTREL_WHEEL(params.Omega_max))
-              .alt("_rpm", sim::kRadPerSecPerRpm).bounds(non_negative("rad/s or rpm")).unit("rad/s"),
+              .alt("_rpm", sim::kRadPerSecPerRpm)
+              .bounds([](double x, bool rpm) {
+                const double lim = rpm ? kMaxWheelSpeedRpm : kMaxWheelSpeedRpm * sim::kRadPerSecPerRpm;
+                if (x >= 0.0 && x <= lim) return std::string();
+                return "must be in [0, " + fmt(kMaxWheelSpeedRpm) + " rpm] = [0, " +
+                       fmt(kMaxWheelSpeedRpm * sim::kRadPerSecPerRpm) + " rad/s]" +
+                       (!rpm && x >= 0.0 && x <= kMaxWheelSpeedRpm ? "; a value in rpm? use Omega_max_rpm" : "");
+              })
+              .unit("rad/s"),
           real("u_max", KESTREL_WHEEL(params.u_max)).req("motor torque limit [N*m]").bounds(positive("N*m")).unit("N*m"),
           real("u_min", KESTREL_WHEEL(params.u_min)).bounds(non_negative("N*m")).unit("N*m"),
           real("P_max", KESTREL_WHEEL(params.P_max)).bounds(non_negative("W")).unit("W"),
-          vec3("misalignment", KESTREL_WHEEL(params.delta_mis_B)).alt("_deg", sim::kRadPerDeg).unit("rad"),
+          vec3("misalignment", KESTREL_WHEEL(params.delta_mis_B))
+              .alt("_deg", sim::kRadPerDeg).vcheck(angles_within(kMaxMisalignmentDeg)).unit("rad"),
       },
       {Section{"friction",
                {

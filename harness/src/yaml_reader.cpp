@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
+
+#include <yaml-cpp/eventhandler.h>
 
 namespace harness {
 
@@ -41,7 +44,7 @@ void Ctx::error(const YAML::Node& at, const std::string& key, const std::string&
 std::string kind_name(const YAML::Node& n)
 {
   switch (n.Type()) {
-    case YAML::NodeType::Null: return "null";
+    case YAML::NodeType::Null: return "an empty value (null)";
     case YAML::NodeType::Scalar: return "scalar '" + n.Scalar() + "'";
     case YAML::NodeType::Sequence: return "a list";
     case YAML::NodeType::Map: return "a map";
@@ -127,6 +130,186 @@ std::string check_inertia(const Eigen::Matrix3d& m)
   return "";
 }
 
+// ---- bounds on the text -------------------------------------------------------
+
+ScenarioIssue file_issue(const std::string& file, int line, int col, const std::string& msg)
+{
+  ScenarioIssue is;
+  is.file = file;
+  is.line = line;
+  is.column = col;
+  is.key = "(file)";
+  is.message = msg;
+  return is;
+}
+
+namespace {
+
+// Counts nodes as the parser reports them: each anchor's expanded size is
+// known when its node ends, an alias adds that size without expanding it.
+class BoundsHandler : public YAML::EventHandler {
+ public:
+  BoundsHandler(const std::string& text, const std::string& file, std::vector<ScenarioIssue>& issues)
+      : text_(text), file_(file), issues_(issues)
+  {
+  }
+  bool failed() const { return !issues_.empty(); }
+  int documents = 0;
+
+  void OnDocumentStart(const YAML::Mark& m) override
+  {
+    if (++documents == 2)
+      fail(m, "a second YAML document (after '---'): a scenario file holds exactly one");
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& m, YAML::anchor_t a) override { leaf(m, a); }
+  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t a, const std::string&) override
+  {
+    check_quote(m);
+    leaf(m, a);
+  }
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t a) override
+  {
+    for (const Open& o : open_)
+      if (o.anchor == a && a != 0) {
+        fail(m, "an alias inside the node its anchor names (a cycle)");
+        return;
+      }
+    const auto it = sizes_.find(a);
+    add(m, it == sizes_.end() ? 1 : it->second);
+  }
+  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t a, YAML::EmitterStyle::value) override
+  {
+    start(m, a, false);
+  }
+  void OnSequenceEnd() override { end(); }
+  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t a, YAML::EmitterStyle::value) override
+  {
+    start(m, a, true);
+  }
+  void OnMapEnd() override { end(); }
+
+ private:
+  struct Open {
+    YAML::anchor_t anchor;
+    size_t size;     // expanded nodes inside so far (itself included)
+    size_t entries;  // direct children (a map's keys and values both count)
+    bool is_map;
+  };
+  // A quoted scalar must close on the line it opens on: YAML lets a quoted
+  // string run over lines (up to the end of the file when the quote is never
+  // closed), which turns an unclosed quote into a dozen unrelated problems.
+  void check_quote(const YAML::Mark& m)
+  {
+    if (m.pos < 0 || static_cast<size_t>(m.pos) >= text_.size()) return;
+    const char q = text_[static_cast<size_t>(m.pos)];
+    if (q != '"' && q != '\'') return;
+    for (size_t i = static_cast<size_t>(m.pos) + 1; i < text_.size(); ++i) {
+      const char c = text_[i];
+      if (c == '\n' || c == '\r') break;
+      if (q == '"' && c == '\\') {
+        ++i;  // an escape: the next character is not the closing quote
+      } else if (c == q) {
+        if (q == '\'' && i + 1 < text_.size() && text_[i + 1] == '\'') ++i;  // '' is an escaped quote
+        else return;
+      }
+    }
+    fail(m, std::string("unclosed quote: the ") + (q == '"' ? "double" : "single") +
+                " quote opened here does not close on this line");
+  }
+  void fail(const YAML::Mark& m, const std::string& msg)
+  {
+    if (issues_.empty()) issues_.push_back(file_issue(file_, m.line + 1, m.column + 1, msg));
+  }
+  void add(const YAML::Mark& m, size_t n)
+  {
+    total_ += n;
+    if (total_ > kMaxYamlNodes) {
+      fail(m, "more than " + std::to_string(kMaxYamlNodes) +
+                  " nodes once aliases are expanded (an alias bomb?); a scenario has a few hundred");
+      return;
+    }
+    if (open_.empty()) return;
+    Open& o = open_.back();
+    o.size += n;
+    if (++o.entries > (o.is_map ? 2 : 1) * kMaxYamlList)
+      fail(m, std::string(o.is_map ? "a map" : "a list") + " with more than " + std::to_string(kMaxYamlList) +
+                  " entries");
+  }
+  void leaf(const YAML::Mark& m, YAML::anchor_t a)
+  {
+    if (a != 0) sizes_[a] = 1;
+    add(m, 1);
+  }
+  void start(const YAML::Mark& m, YAML::anchor_t a, bool is_map)
+  {
+    add(m, 1);
+    open_.push_back({a, 1, 0, is_map});
+    if (open_.size() > kMaxYamlDepth)
+      fail(m, "nested more than " + std::to_string(kMaxYamlDepth) + " levels deep");
+  }
+  void end()
+  {
+    if (open_.empty()) return;
+    const Open o = open_.back();
+    open_.pop_back();
+    if (o.anchor != 0) sizes_[o.anchor] = o.size;
+    // the children were already counted in total_; the parent grows by them
+    if (!open_.empty()) open_.back().size += o.size - 1;
+  }
+
+  const std::string& text_;
+  const std::string& file_;
+  std::vector<ScenarioIssue>& issues_;
+  std::vector<Open> open_;
+  std::map<YAML::anchor_t, size_t> sizes_;
+  size_t total_ = 0;
+};
+
+// A NUL or control byte (tab, line feed and carriage return are text).
+bool is_control(unsigned char c) { return (c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f; }
+
+}  // namespace
+
+std::vector<ScenarioIssue> check_yaml_text(const std::string& text, const std::string& file)
+{
+  std::vector<ScenarioIssue> issues;
+  if (text.size() > kMaxYamlBytes) {
+    issues.push_back(file_issue(file, 0, 0, "file too large (" + std::to_string(text.size()) + " bytes; at most " +
+                                                std::to_string(kMaxYamlBytes) + "): a scenario is a few kilobytes"));
+    return issues;
+  }
+  int line = 1, col = 1;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (is_control(c)) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "0x%02X", c);
+      issues.push_back(file_issue(file, line, col,
+                                  std::string(c == 0 ? "NUL byte" : "control byte ") + (c == 0 ? "" : buf) +
+                                      " in the text: a scenario is YAML text, not binary data"));
+      return issues;
+    }
+    if (c == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+  }
+  std::istringstream in(text);
+  BoundsHandler h(text, file, issues);
+  try {
+    YAML::Parser parser(in);
+    while (!h.failed() && parser.HandleNextDocument(h)) {
+    }
+  } catch (const YAML::Exception& e) {
+    if (issues.empty())
+      issues.push_back(file_issue(file, e.mark.line + 1, e.mark.column + 1, "YAML syntax error: " + e.msg));
+  }
+  return issues;
+}
+
 void collect_key_lines(const YAML::Node& n, const std::string& path, std::map<std::string, std::pair<int, int>>& out)
 {
   if (n.IsMap()) {
@@ -158,7 +341,7 @@ MapReader::MapReader(const Ctx& ctx, const YAML::Node& node, std::string path, b
   std::set<std::string> seen;
   for (auto it = node_.begin(); it != node_.end(); ++it) {
     if (!it->first.IsScalar()) {
-      ctx.error(it->first, path_, "keys must be plain names");
+      ctx.error(it->first, path_.empty() ? "(top level)" : path_, "keys must be plain names, got " + kind_name(it->first));
       continue;
     }
     const std::string k = it->first.Scalar();
@@ -182,6 +365,22 @@ std::string MapReader::key_path(const std::string& key) const
   return it != alias_.end() ? join(it->second, key) : join(path_, key);
 }
 
+YAML::Node MapReader::at(const std::string& key, const YAML::Node& v) const
+{
+  // An empty value (`mass:`) has no place of its own (the parser puts it at
+  // the next token, often the next key's line): name the key's place.
+  if (v.IsDefined() && !v.IsNull()) return v;
+  for (auto it = node_.begin(); it != node_.end(); ++it)
+    if (it->first.IsScalar() && it->first.Scalar() == key) return it->first;
+  return v;
+}
+
+std::nullopt_t MapReader::empty_value(const std::string& key, const std::string& expected)
+{
+  error_at_key(key, "expected " + expected + ", got an empty value");
+  return std::nullopt;
+}
+
 YAML::Node MapReader::get(const std::string& key)
 {
   used_.insert(key);
@@ -193,7 +392,12 @@ void MapReader::error_at(const std::string& key, const std::string& msg)
 {
   const YAML::Node& cn = node_;
   const YAML::Node v = cn[key];
-  ctx_->error(v.IsDefined() ? v : node_, key_path(key), msg);
+  ctx_->error(v.IsDefined() ? at(key, v) : node_, key_path(key), msg);
+}
+
+void MapReader::error_at_key(const std::string& key, const std::string& msg)
+{
+  ctx_->error(at(key, YAML::Node(YAML::NodeType::Null)), key_path(key), msg);
 }
 
 void MapReader::error_self(const std::string& msg) { ctx_->error(node_, path_, msg); }
@@ -209,17 +413,17 @@ std::optional<double> MapReader::real(const std::string& key, const NumberCheck&
   if (!v.IsDefined()) return std::nullopt;
   double x = 0.0;
   if (!decode_double(v, x)) {
-    ctx_->error(v, key_path(key), "expected a number, got " + kind_name(v));
+    ctx_->error(at(key, v), key_path(key), "expected a number, got " + kind_name(v));
     return std::nullopt;
   }
   if (!std::isfinite(x)) {
-    ctx_->error(v, key_path(key), "must be finite, got " + v.Scalar());
+    ctx_->error(at(key, v), key_path(key), "must be finite, got " + v.Scalar());
     return std::nullopt;
   }
   if (check) {
     const std::string why = check(x);
     if (!why.empty()) {
-      ctx_->error(v, key_path(key), why + ", got " + v.Scalar());
+      ctx_->error(at(key, v), key_path(key), why + ", got " + v.Scalar());
       return std::nullopt;
     }
   }
@@ -252,11 +456,11 @@ std::optional<long long> MapReader::integer(const std::string& key, long long lo
   if (!v.IsDefined()) return std::nullopt;
   long long x = 0;
   if (!decode_int(v, x)) {
-    ctx_->error(v, key_path(key), "expected an integer, got " + kind_name(v));
+    ctx_->error(at(key, v), key_path(key), "expected an integer, got " + kind_name(v));
     return std::nullopt;
   }
   if (x < lo || x > hi) {
-    ctx_->error(v, key_path(key),
+    ctx_->error(at(key, v), key_path(key),
                 "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + v.Scalar());
     return std::nullopt;
   }
@@ -270,7 +474,7 @@ std::optional<uint64_t> MapReader::uinteger(const std::string& key)
   unsigned long long x = 0;
   if (!v.IsScalar() || v.Scalar().empty() || v.Scalar()[0] == '-' ||
       !YAML::convert<unsigned long long>::decode(v, x)) {
-    ctx_->error(v, key_path(key), "expected a non-negative integer, got " + kind_name(v));
+    ctx_->error(at(key, v), key_path(key), "expected a non-negative integer, got " + kind_name(v));
     return std::nullopt;
   }
   return static_cast<uint64_t>(x);
@@ -282,7 +486,7 @@ std::optional<bool> MapReader::boolean(const std::string& key)
   if (!v.IsDefined()) return std::nullopt;
   bool x = false;
   if (!v.IsScalar() || !YAML::convert<bool>::decode(v, x)) {
-    ctx_->error(v, key_path(key), "expected true or false, got " + kind_name(v));
+    ctx_->error(at(key, v), key_path(key), "expected true or false, got " + kind_name(v));
     return std::nullopt;
   }
   return x;
@@ -293,7 +497,7 @@ std::optional<std::string> MapReader::string(const std::string& key)
   YAML::Node v = get(key);
   if (!v.IsDefined()) return std::nullopt;
   if (!v.IsScalar()) {
-    ctx_->error(v, key_path(key), "expected a string, got " + kind_name(v));
+    ctx_->error(at(key, v), key_path(key), "expected a string, got " + kind_name(v));
     return std::nullopt;
   }
   return v.Scalar();
@@ -309,7 +513,7 @@ std::optional<size_t> MapReader::choice(const std::string& key, const std::vecto
     for (size_t i = 0; i < options.size(); ++i)
       if (v.Scalar() == options[i]) return i;
   }
-  ctx_->error(v, key_path(key), "expected one of {" + all + "}, got " + kind_name(v));
+  ctx_->error(at(key, v), key_path(key), "expected one of {" + all + "}, got " + kind_name(v));
   return std::nullopt;
 }
 
@@ -317,6 +521,7 @@ std::optional<Eigen::Vector3d> MapReader::vec3(const std::string& key, double fa
 {
   YAML::Node v = get(key);
   if (!v.IsDefined()) return std::nullopt;
+  if (v.IsNull()) return empty_value(key, "a list of 3 numbers");
   return vec3_of(v, key_path(key), factor);
 }
 
@@ -347,6 +552,7 @@ std::optional<Eigen::Vector3d> MapReader::unit_vec3(const std::string& key)
 {
   YAML::Node v = get(key);
   if (!v.IsDefined()) return std::nullopt;
+  if (v.IsNull()) return empty_value(key, "a unit vector of 3 numbers");
   return unit_of(v, key_path(key));
 }
 
@@ -366,6 +572,7 @@ std::optional<Eigen::Matrix3d> MapReader::inertia(const std::string& key)
 {
   YAML::Node v = get(key);
   if (!v.IsDefined()) return std::nullopt;
+  if (v.IsNull()) return empty_value(key, "3 diagonal values or a 3x3 list of lists");
   const std::string kp = key_path(key);
   Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
   if (v.IsSequence() && v.size() == 3 && v[0].IsScalar()) {

@@ -63,6 +63,25 @@ std::string check_unit_vector(Eigen::Vector3d& v);
 // Symmetric, positive definite, triangle inequality of the principal moments.
 std::string check_inertia(const Eigen::Matrix3d& m);
 
+// ---- bounds on the text, checked before any node tree is built ---------------
+// A scenario is a few kilobytes with a few hundred nodes, nested 5 deep; a run
+// manifest a few times that.  Anything far beyond is refused with the place.
+constexpr size_t kMaxYamlBytes = 1u << 20;   // [bytes] 1 MiB per file
+constexpr size_t kMaxYamlDepth = 32;         // [-] nested maps and lists
+constexpr size_t kMaxYamlNodes = 20000;      // [-] nodes after alias expansion
+constexpr size_t kMaxYamlList = 1000;        // [-] entries of one list or map
+
+// Checks `text` as one YAML document: size, no NUL or other control bytes
+// (binary input), a single document, nesting depth, the size after alias
+// expansion (alias bombs; an alias inside its own anchor is a cycle), list
+// lengths.  Computed on the parser's events in time linear in the text,
+// never expanding an alias.  Returns the problems (empty: fine); each names
+// file:line:col.  YAML syntax errors are reported as such.
+// A problem of the file as a whole (key "(file)"); line 0: no place in it.
+ScenarioIssue file_issue(const std::string& file, int line, int col, const std::string& msg);
+
+std::vector<ScenarioIssue> check_yaml_text(const std::string& text, const std::string& file);
+
 // Where every key sits in a document: dotted path (list indices as [i]) ->
 // (line, column), 1-based.
 void collect_key_lines(const YAML::Node& n, const std::string& path,
@@ -87,7 +106,12 @@ class MapReader {
   YAML::Node get(const std::string& key);
   void mark_known(const std::string& key) { used_.insert(key); }
 
+  // Where a problem of `key` with value `v` is reported: the value, or the
+  // key itself when the value is empty (null).
+  YAML::Node at(const std::string& key, const YAML::Node& v) const;
   void error_at(const std::string& key, const std::string& msg);
+  // At the key itself (a problem of the whole value, e.g. a list of wheels).
+  void error_at_key(const std::string& key, const std::string& msg);
   void error_self(const std::string& msg);
   void missing(const std::string& key, const std::string& what);
 
@@ -124,6 +148,8 @@ class MapReader {
   MapReader sub(const std::string& key);
 
  private:
+  // Reports `key` as given without a value where `expected` was needed.
+  std::nullopt_t empty_value(const std::string& key, const std::string& expected);
   static YAML::Node pick(const Ctx& ctx, const YAML::Node& node, const std::string& path, bool present);
 
   const Ctx* ctx_;

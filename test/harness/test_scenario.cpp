@@ -3,13 +3,19 @@
 // the manifest form reloads to the same scenario.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "harness/scenario.h"
 
 namespace {
+
+namespace fs = std::filesystem;
 
 const std::string kS1 = std::string(KESTREL_SOURCE_DIR) + "/scenarios/s1_sun_pointing.yaml";
 
@@ -380,5 +386,129 @@ TEST(Scenario, EveryKeyIsDocumented)
     const size_t dot = p.find_last_of('.');
     const std::string leaf = dot == std::string::npos ? p : p.substr(dot + 1);
     EXPECT_NE(doc.find(leaf), std::string::npos) << p << " is not in docs/harness.md";
+  }
+}
+
+// ---- bounded input, durations, plausibility (issue 12) ----------------------------
+
+namespace {
+std::string first_issue(const std::string& text, std::vector<harness::Override> ov = {})
+{
+  const auto v = issues_of(text, std::move(ov));
+  return v.empty() ? "" : v.front().str();
+}
+std::string with(std::string t, const std::string& from, const std::string& to)
+{
+  const size_t at = t.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) t.replace(at, from.size(), to);
+  return t;
+}
+}  // namespace
+
+TEST(ScenarioBounds, DurationIsAWholeNumberOfStepsWithinARelativeTolerance)
+{
+  EXPECT_EQ(first_issue(with(kMini, "duration: 2.0", "duration: 0.3")), "");  // 2.9999999999999996 steps
+  EXPECT_EQ(first_issue(with(kMini, "duration: 2.0", "duration: 1e9")), "");  // 1e10 steps, no storage
+  EXPECT_EQ(first_issue(with(kMini, "duration: 2.0", "duration: 1e-9")),
+            "t.yaml:3:11: duration: shorter than one step dt = 0.1 s");
+  EXPECT_NE(first_issue(with(kMini, "duration: 2.0", "duration: 2.05")).find("t.yaml:3:11: duration: must be a whole "
+                                                                              "number of steps dt = 0.1 s (it is 20.5"),
+            std::string::npos);
+  EXPECT_NE(first_issue(with(kMini, "duration: 2.0", "duration: 1e12")).find("too many steps"), std::string::npos);
+  // every rate group's period
+  EXPECT_NE(first_issue(with(kMini, "rates: {dt: 0.1}", "rates: {dt: 0.1, record_divisor: 3}"))
+                .find("duration: must be a whole number of the period of rates.record_divisor (3 steps"),
+            std::string::npos);
+  EXPECT_NE(first_issue(kMini, {{"sensors.star_tracker.divisor", "7"}})
+                .find("period of sensors.star_tracker.divisor (7 steps"),
+            std::string::npos);
+}
+
+TEST(ScenarioBounds, ActuatorsMustSpanThreeAxes)
+{
+  const std::string z = "[0, 0, 1]";
+  const auto along_z = first_issue(kMini, {{"wheels.0.axis", z}, {"wheels.1.axis", z}});
+  EXPECT_NE(along_z.find("t.yaml:8:1: wheels: the wheel axes cannot control three axes"), std::string::npos) << along_z;
+  EXPECT_NE(along_z.find("all lie along one line"), std::string::npos) << along_z;
+  const auto plane = first_issue(kMini, {{"wheels.2.axis", "[0.6, 0.8, 0]"}});
+  EXPECT_NE(plane.find("all lie in one plane, so no torque about [0, 0, 1]"), std::string::npos) << plane;
+  // thrusters for attitude: torque directions about the mass centre (S2 ships a spanning set)
+  EXPECT_NO_THROW(harness::load_scenario(std::string(KESTREL_SOURCE_DIR) + "/scenarios/s2_mars_orbit_insertion.yaml"));
+  // the same check through set_parameter + validate_scenario (no line: the key is named)
+  harness::Scenario sc = harness::load_scenario(kS1);
+  for (int i = 0; i < 4; ++i) harness::set_parameter(sc, "wheels." + std::to_string(i) + ".axis", Eigen::Vector3d(0, 0, 1));
+  try {
+    harness::validate_scenario(sc);
+    FAIL();
+  } catch (const harness::ScenarioError& e) {
+    ASSERT_EQ(e.issues().size(), 1u);
+    EXPECT_EQ(e.issues()[0].key, "wheels");
+  }
+}
+
+TEST(ScenarioBounds, UnitAwareAngleAndRateBounds)
+{
+  const std::string thr = std::string(kMini) +
+                          "tank: {mass: 10}\nthrusters:\n  - {position: [0, 0, -1], direction: [0, 0, 1], F_max: 10, "
+                          "Isp: 300, acs: false, misalignment: 5.0}\n";
+  const auto mis = first_issue(thr);
+  EXPECT_NE(mis.find("t.yaml:16:"), std::string::npos) << mis;
+  EXPECT_NE(mis.find("thrusters[0].misalignment: must be in [0, 10 deg)"), std::string::npos) << mis;
+  EXPECT_NE(mis.find("a value in degrees? use the _deg spelling"), std::string::npos) << mis;
+  EXPECT_EQ(first_issue(with(thr, "misalignment: 5.0", "misalignment_deg: 5.0")), "");
+  EXPECT_NE(first_issue(kMini, {{"spacecraft.initial.omega_BN_B", "[0, 0, 4]"}}).find("|omega| must be at most 180 deg/s"),
+            std::string::npos);
+  EXPECT_EQ(first_issue(kMini, {{"spacecraft.initial.omega_BN_B_deg_s", "[0, 0, 4]"}}), "");
+  EXPECT_NE(first_issue(kMini, {{"sensors.star_tracker.sigma_cross", "20"}}).find("use the _arcsec spelling"),
+            std::string::npos);
+  EXPECT_EQ(first_issue(kMini, {{"sensors.star_tracker.sigma_cross_arcsec", "20"}}), "");
+  EXPECT_NE(first_issue(kMini, {{"wheels.0.Omega_max", "6000"}}).find("use Omega_max_rpm"), std::string::npos);
+}
+
+TEST(ScenarioBounds, NonFilesHugeFilesAndFifosAreNamedNeverRead)
+{
+  const fs::path dir = fs::temp_directory_path() / "kestrel_scenario_bounds";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  auto issue_of_path = [](const std::string& p) -> std::string {
+    try {
+      harness::load_scenario(p);
+    } catch (const harness::ScenarioError& e) {
+      return e.issues().front().str();
+    }
+    return "";
+  };
+  EXPECT_EQ(issue_of_path(dir.string()), dir.string() + ": (file): not a scenario file: a directory");
+  EXPECT_EQ(issue_of_path("/dev/null"), "/dev/null: (file): not a scenario file: a character device");
+  const fs::path fifo = dir / "pipe.yaml";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_EQ(issue_of_path(fifo.string()), fifo.string() + ": (file): not a scenario file: a FIFO");  // never blocks
+  const fs::path big = dir / "big.yaml";
+  {
+    std::ofstream out(big);
+    out << "description: \"" << std::string(1u << 20, 'x')  /* 1 MiB: the bound */ << "\"\n";
+  }
+  EXPECT_NE(issue_of_path(big.string()).find("file too large"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(ScenarioBounds, ValidationDoesNotGrowWithTheDuration)
+{
+  // check_run_configuration builds no run storage: 6e8 s (6e10 steps) costs what 600 s does
+  harness::Scenario sc = harness::load_scenario(kS1, {{"duration", "6e8"}});
+  const auto t0 = std::chrono::steady_clock::now();
+  harness::check_run_configuration(sc);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 0.5);
+}
+
+TEST(ScenarioBounds, OverrideValuesAreBoundedLikeAFile)
+{
+  // a value is YAML: two documents, a cyclic alias or deep nesting are named, never followed
+  for (const char* v : {"[0, 0, 0]\n---\n[1, 1, 1]", "&a [*a, *a, *a]", "[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[1]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]"}) {
+    const auto is = issues_of(kMini, {{"spacecraft.com", v}});
+    ASSERT_EQ(is.size(), 1u) << v;
+    EXPECT_EQ(is[0].where, std::string("--set spacecraft.com=") + v) << is[0].str();
+    EXPECT_EQ(is[0].message.rfind("value: ", 0), 0u) << is[0].str();
   }
 }

@@ -4,6 +4,8 @@
 // spellings, unit vectors and inertia checks, --set attribution.
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include <yaml-cpp/yaml.h>
 
 #include "yaml_reader.h"
@@ -131,4 +133,87 @@ TEST(YamlReader, KeyLines)
   harness::collect_key_lines(YAML::Load("a:\n  b: 1\nl:\n  - {c: 2}\n"), "", lines);
   EXPECT_EQ(lines.at("a.b"), std::make_pair(2, 3));
   EXPECT_EQ(lines.at("l[0].c"), std::make_pair(4, 6));
+}
+
+// ---- bounds on the text (check_yaml_text), before any node tree is built ----------
+
+namespace {
+std::string first_problem(const std::string& text)
+{
+  const std::vector<ScenarioIssue> v = harness::check_yaml_text(text, "d.yaml");
+  return v.empty() ? "" : v.front().str();
+}
+// n levels of ten aliases each: 10^n nodes once expanded, a few hundred bytes written.
+std::string alias_bomb(int levels)
+{
+  std::string t = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int k = 1; k <= levels; ++k) {
+    t += "a" + std::to_string(k) + ": &a" + std::to_string(k) + " [";
+    for (int j = 0; j < 10; ++j) t += (j ? ", *a" : "*a") + std::to_string(k - 1);
+    t += "]\n";
+  }
+  return t;
+}
+}  // namespace
+
+TEST(YamlBounds, OrdinaryTextPasses)
+{
+  EXPECT_EQ(first_problem("a: 1\nb: [1, 2, 3]\nc: {d: \"x y\", e: 'it''s'}\nf: &k [1]\ng: *k\n"), "");
+  EXPECT_EQ(first_problem(alias_bomb(3)), "");  // 1000 nodes: fine
+  EXPECT_EQ(first_problem("---\na: 1\n...\n"), "");  // one explicit document
+}
+
+TEST(YamlBounds, AliasBombIsRefusedAtTheAliasInLinearTime)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string p = first_problem(alias_bomb(30));  // 10^31 nodes if expanded
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_NE(p.find("d.yaml:5:10:"), std::string::npos) << p;  // a4 (10^5 nodes) crosses 20000
+  EXPECT_NE(p.find("alias bomb"), std::string::npos) << p;
+  EXPECT_LT(s, 0.5);
+}
+
+TEST(YamlBounds, CyclesDepthDocumentsListsAndBytes)
+{
+  EXPECT_NE(first_problem("a: &x [1, *x]\n").find("d.yaml:1:11: (file): an alias inside the node its anchor names"),
+            std::string::npos)
+      << first_problem("a: &x [1, *x]\n");
+  EXPECT_NE(first_problem("a: " + std::string(33, '[') + std::string(33, ']') + "\n").find("nested more than 32"),
+            std::string::npos);
+  EXPECT_EQ(first_problem("a: " + std::string(31, '[') + std::string(31, ']') + "\n"), "");
+  EXPECT_NE(first_problem("a: " + std::string(100000, '[')).find("nested more than 32"), std::string::npos);
+  EXPECT_NE(first_problem("a: 1\n---\nb: 2\n").find("d.yaml:2:1: (file): a second YAML document"), std::string::npos);
+  std::string big = "a: [0";
+  for (int i = 0; i < 1000; ++i) big += ", 0";
+  EXPECT_NE(first_problem(big + "]\n").find("a list with more than 1000 entries"), std::string::npos);
+  EXPECT_NE(first_problem(std::string("a: 1\nb: x\0y\n", 12)).find("d.yaml:2:5: (file): NUL byte"), std::string::npos);
+  EXPECT_NE(first_problem("a: \x01\n").find("control byte 0x01"), std::string::npos);
+  EXPECT_NE(first_problem(std::string(harness::kMaxYamlBytes + 1, ' ')).find("file too large"), std::string::npos);
+}
+
+TEST(YamlBounds, UnclosedQuotesAreNamedAtTheQuote)
+{
+  EXPECT_NE(first_problem("a: \"abc\nb: 1\nc: 2\n").find("d.yaml:1:4: (file): unclosed quote: the double quote"),
+            std::string::npos);
+  EXPECT_NE(first_problem("a:\n  b: 'abc\n  c: 1\n").find("d.yaml:2:6: (file): unclosed quote: the single quote"),
+            std::string::npos)
+      << first_problem("a:\n  b: 'abc\n  c: 1\n");
+  EXPECT_EQ(first_problem("a: \"x \\\" y\"\nb: 'it''s'\n"), "");  // escaped quotes close on the line
+}
+
+TEST(YamlBounds, MessagesEscapeControlBytesAndInvalidUtf8)
+{
+  EXPECT_EQ(harness::escape_bytes(std::string("a\0b\x1b[1m\n\xff\xc3\xa9", 11)), "a\\x00b\\x1B[1m\\x0A\\xFFé");
+}
+
+TEST(YamlReader, AnEmptyValueIsReportedAtItsKey)
+{
+  Doc d("a:\n  x:\n  y: 2\n  v:\n  w: [1, 2, 3]\n");
+  MapReader a(d.ctx, d.root, "");
+  MapReader r = a.sub("a");
+  EXPECT_FALSE(r.real("x").has_value());
+  EXPECT_FALSE(r.vec3("v").has_value());
+  ASSERT_EQ(d.issues.size(), 2u);
+  EXPECT_EQ(d.issues[0].str(), "d.yaml:2:3: a.x: expected a number, got an empty value (null)");
+  EXPECT_EQ(d.issues[1].str(), "d.yaml:4:3: a.v: expected a list of 3 numbers, got an empty value");
 }

@@ -37,6 +37,10 @@ struct ScenarioIssue {
   std::string str() const;  // "file:line:col: key: message"
 };
 
+// `s` with NUL, every other control byte and invalid UTF-8 shown as \xNN:
+// what a message quotes from a file is printable on one line.
+std::string escape_bytes(const std::string& s);
+
 class ScenarioError : public std::runtime_error {
  public:
   explicit ScenarioError(std::vector<ScenarioIssue> issues);
@@ -279,6 +283,14 @@ void set_parameter(Scenario& sc, const std::string& path, const ParameterValue& 
 // its canonical form is reloaded (the manifest round trip).  Throws
 // ScenarioError (issues name keys; no line numbers).
 void validate_scenario(const Scenario& sc);
+
+// The checks a run makes before its first step, without building the run:
+// the plant (sim::Plant), the FSW configuration (fsw_acs_check and
+// fsw_acs_init), the sensor models and the burn schedule -- the same
+// functions Run calls, so `kestrel validate` accepts exactly what a run
+// accepts.  No recorder, schedule or row storage is built: the cost does not
+// depend on the duration.  Throws ScenarioError (at the key's line).
+void check_run_configuration(const Scenario& sc);
 
 // Every key path the schema knows, list elements as [i] (e.g.
 // "wheels[i].Omega_0", alternative spellings as "wheels[i].Omega_0_rpm").
