@@ -27,7 +27,8 @@ uint16_t fsw_link_crc16(const uint8_t *data, size_t n, uint16_t crc)
   for (i = 0u; i < n; ++i) {
     crc = (uint16_t)(crc ^ (uint16_t)((uint16_t)data[i] << 8));
     for (b = 0; b < 8; ++b) {
-      crc = (crc & 0x8000u) != 0u ? (uint16_t)((uint16_t)(crc << 1) ^ 0x1021u) : (uint16_t)(crc << 1);
+      const uint32_t shifted = ((uint32_t)crc << 1) ^ (((uint32_t)crc & 0x8000u) != 0u ? 0x1021u : 0u);
+      crc = (uint16_t)(shifted & 0xFFFFu);
     }
   }
   return crc;
