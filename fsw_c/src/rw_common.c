@@ -137,3 +137,17 @@ void fsw_rw_proj_apply(fsw_real *out, const FswRwNullProj *p, const fsw_real *d)
   for (i = 0; i < n; i++) t[i] = fsw_vn_dot(p->tau[i], d, n);
   for (i = 0; i < n; i++) out[i] = fsw_vn_dot(p->tau[i], t, n);
 }
+
+int fsw_rw_null_change_ok(const FswRwNullProj *p, const fsw_real *u, const fsw_real *u0, int n)
+{
+  fsw_real t[3] = {FSW_R(0.0), FSW_R(0.0), FSW_R(0.0)};
+  fsw_real size = FSW_R(0.0);
+  int i, k;
+  for (i = 0; i < n; i++) {
+    const fsw_real c = u[i] - u0[i];
+    size += FSW_FABS(c);
+    for (k = 0; k < 3; k++) t[k] += p->G[k][i] * c;
+  }
+  return fsw_v3_norm(t) <= FSW_NULL_TOL * size;
+}
+

@@ -84,5 +84,11 @@ FswStatus fsw_rw_null_update(FswRwNullState *st, const FswRwNullConfig *cfg,
     (void)fsw_rw_proj_refresh(&st->proj, avail_prev); /* untouched on error */
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   }
+  if (!fsw_rw_null_change_ok(&st->proj, out->u_s, uc, n)) {
+    /* the step is not in the null space to working precision: drop it */
+    fsw_vn_copy(out->u_s, uc, n);
+    out->kappa = FSW_R(0.0);
+    return fsw_health_record(&st->health, FSW_W_SINGULAR);
+  }
   return fsw_health_record(&st->health, out->kappa < FSW_R(1.0) ? FSW_W_SAT : FSW_OK);
 }

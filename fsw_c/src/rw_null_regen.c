@@ -157,5 +157,11 @@ FswStatus fsw_rw_null_regen_update(FswRwNullRegenState *st, const FswRwNullRegen
     (void)fsw_rw_proj_refresh(&st->proj, avail_prev); /* untouched on error */
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   }
+  if (s >= 0 && !fsw_rw_null_change_ok(&st->proj, out->u_s, u0, n)) {
+    /* the step is not in the null space to working precision: drop it */
+    fsw_vn_copy(out->u_s, u0, n);
+    out->power = fsw_vn_dot(om, out->u_s, n);
+    s = FSW_W_SINGULAR;
+  }
   return fsw_health_record(&st->health, s);
 }

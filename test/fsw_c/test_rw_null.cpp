@@ -405,3 +405,42 @@ TEST(RwNullFuzzFinding, HugeFiniteSpeedErrorIsBadInputNotBodyTorque)
   }
 }
 
+// Fuzzing after the speed bound: two axes equal to 1e-16 make the projector
+// ill-conditioned and its null step moved the body torque by a third of its
+// size.  A step that is not null to FSW_NULL_TOL is dropped (W_SINGULAR,
+// u = u_c, kappa = 0); a well-conditioned set keeps its step.
+TEST(RwNullFuzzFinding, StepThatIsNotNullIsDropped)
+{
+  auto f = pyramid();
+  const double g[4][3] = {{0.54167522041970195, 0.54167522041970195, 0.64278760968653936},
+                          {0.54167522041970184, 0.54167522041970206, 0.64278760968653925},
+                          {-0.54167522041970195, -0.54167522041970184, 0.64278760968653925},
+                          {0.54167522041970184, -0.54167522041970206, 0.64278760968653936}};
+  for (int i = 0; i < 4; i++)
+    for (int k = 0; k < 3; k++) f->cfg->gs_hat_B[i][k] = static_cast<fsw_real>(g[i][k]);
+  f->cfg->k_null = FSW_R(0.002);
+  f->cfg->scale_to_fit = 0;
+  ASSERT_EQ(FSW_OK, f->init());
+  const fsw_real u0[4] = {FSW_R(1e-20), FSW_R(-1e-20), FSW_R(2e-20), FSW_R(0.0)};
+  for (int i = 0; i < 4; i++) {
+    f->in->u_s[i] = u0[i];
+    f->in->Omega[i] = FSW_R(0.0);
+    f->in->Omega_des[i] = i == 2 ? FSW_R(64.0) : FSW_R(0.0);
+  }
+  const FswStatus s = f->update();
+  ASSERT_TRUE(s == FSW_OK || s == FSW_W_SINGULAR) << s;
+  double before[3] = {0, 0, 0}, after[3] = {0, 0, 0}, size = 0.0;
+  for (int i = 0; i < 4; i++) {
+    size += std::fabs(static_cast<double>(f->out->u_s[i] - u0[i]));
+    for (int k = 0; k < 3; k++) {
+      before[k] += g[i][k] * static_cast<double>(u0[i]);
+      after[k] += g[i][k] * static_cast<double>(f->out->u_s[i]);
+    }
+  }
+  for (int k = 0; k < 3; k++) EXPECT_LE(std::fabs(after[k] - before[k]), 1e-4 * size + 1e-30) << k;
+  if (s == FSW_W_SINGULAR) {
+    EXPECT_EQ(0.0, f->out->kappa);
+    for (int i = 0; i < 4; i++) EXPECT_EQ(f->out->u_s[i], u0[i]);
+  }
+}
+

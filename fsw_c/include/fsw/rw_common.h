@@ -97,6 +97,15 @@ int fsw_rw_proj_refresh(FswRwNullProj *p, const uint8_t avail[FSW_MAX_RW]);
  * leak is ~eps |out|.  out must not alias d. */
 void fsw_rw_proj_apply(fsw_real *out, const FswRwNullProj *p, const fsw_real *d);
 
+/* 1 when the change u - u0 (n wheels) moves the body torque by at most
+ * FSW_NULL_TOL times its own size: |[Gs](u - u0)| <= FSW_NULL_TOL *
+ * sum_i |u_i - u0_i| (the axes are unit vectors, so the right side bounds
+ * the torque a change of that size could make).  A null step that fails
+ * this is not in the null space to working precision (near-duplicate or
+ * near-coplanar axes make the projector ill-conditioned): the modules then
+ * drop it and return FSW_W_SINGULAR with u = u0. */
+int fsw_rw_null_change_ok(const FswRwNullProj *p, const fsw_real *u, const fsw_real *u0, int n);
+
 /* out = u_c + kappa * du with the largest kappa in [0, 1] such that
  * |out_i| <= u_max_i for every i < n (fsw-algorithms.md 6.1 scaleNullToFit):
  * kappa = min(1, min over du_i != 0 of the admissible step); kappa = 0 when

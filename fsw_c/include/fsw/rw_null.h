@@ -57,7 +57,9 @@ FswStatus fsw_rw_null_init(FswRwNullState *st, const FswRwNullConfig *cfg);
 /* Stateless apart from the projector cache, which reset keeps. */
 void fsw_rw_null_reset(FswRwNullState *st);
 /* FSW_OK (u finite, kappa = 1); FSW_W_SAT when scale_to_fit reduced the
- * null torque (kappa < 1); FSW_E_BAD_INPUT (u = 0, kappa = 0, projector
+ * null torque (kappa < 1); FSW_W_SINGULAR (u = u_c, kappa = 0) when the
+ * null step would move the body torque by more than FSW_NULL_TOL of its size
+ * (near-duplicate or near-coplanar axes: fsw_rw_null_change_ok); FSW_E_BAD_INPUT (u = 0, kappa = 0, projector
  * untouched) for non-finite u_s, an Omega or Omega_des of an available
  * wheel beyond +-FSW_RW_OMEGA_MAX (rw_common.h) or not finite, a mask entry
  * other than 0/1, or finite values so large that the null torque overflows;

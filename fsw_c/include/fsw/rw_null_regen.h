@@ -62,7 +62,9 @@ FswStatus fsw_rw_null_regen_check(const FswRwNullRegenConfig *cfg);
 FswStatus fsw_rw_null_regen_init(FswRwNullRegenState *st, const FswRwNullRegenConfig *cfg);
 void fsw_rw_null_regen_reset(FswRwNullRegenState *st);
 /* FSW_OK; FSW_W_SAT (GRADIENT: null step reduced to fit the limits; OPTIMUM:
- * no alpha keeps every wheel inside its limit, u = u0); FSW_E_UNSUPPORTED
+ * no alpha keeps every wheel inside its limit, u = u0); FSW_W_SINGULAR (u =
+ * u0) when the step would move the body torque by more than FSW_NULL_TOL of
+ * its size (fsw_rw_null_change_ok, rw_common.h); FSW_E_UNSUPPORTED
  * (OPTIMUM with nullity > 1, u = u0, projector untouched); FSW_E_BAD_INPUT
  * (u = 0, power = 0, projector untouched) for non-finite u_s, an Omega of an
  * available wheel beyond +-FSW_RW_OMEGA_MAX (rw_common.h) or not finite, a

@@ -22,7 +22,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   FswRwNullIn x{};
   FswRwNullOut out;
   const auto step = [&]() {
-    return fuzz_call("rw_null", st, out, {FSW_OK, FSW_W_SAT, FSW_E_BAD_INPUT, FSW_E_NOT_INIT},
+    return fuzz_call("rw_null", st, out, {FSW_OK, FSW_W_SAT, FSW_W_SINGULAR, FSW_E_BAD_INPUT, FSW_E_NOT_INIT},
                      [&] { return fsw_rw_null_update(&st, &cfg, &x, &out); }, fuzz_mask_health<FswRwNullState>,
                      [](const FswRwNullOut &o, int) { return fuzz_nonzero_from(o.u_s, 0, FSW_MAX_RW) < 0; });
   };
