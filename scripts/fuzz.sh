@@ -16,7 +16,7 @@ names=("$@"); [ "${#names[@]}" -gt 0 ] || names=("${all[@]}")
 nice cmake --build build/host-clang -j "${JOBS:-2}" --target "${names[@]}"
 for n in "${names[@]}"; do
   exe=$(find build/host-clang/test/fuzz -type f -name "$n" -perm -u+x | head -1)
-  corpus=$(ctest --test-dir build/host-clang -R "^$n\$" -N -V | grep -o -- '-DCORPUS=[^ ]*' | head -1 | cut -d= -f2)
+  corpus=$(ctest --test-dir build/host-clang -R "^$n\$" -N -V | grep -o -- '-DCORPUS=[^ ]*' | head -1 | cut -d= -f2 | tr -d '"')
   work="build/fuzz/$n"; mkdir -p "$work/corpus"
   echo "== $n ($exe, seeds $corpus)"
   limit=(-max_total_time="$secs"); [ -n "${RUNS:-}" ] && limit=(-runs="$RUNS")
