@@ -5,7 +5,8 @@
 //   RTF_dt0.1     same at dt = 0.1 s
 // The step cost does not depend on dt (fixed-step RK4), so the real-time
 // factor is dt / (time per step).  Issue 6 target: <= 5 us per step for the
-// hub with 4 fully-coupled wheels.
+// hub with 4 fully-coupled wheels; issue 20 goal: <= 1.5 us.
+//   BM_Derivative_*: one derivative evaluation (us_per_derivative).
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -77,6 +78,32 @@ void run(benchmark::State& state, int num_rw, sim::WheelModel model)
   state.counters["RTF_dt_0.1s"] = 0.1 / t_step;
 }
 
+// One derivative evaluation (the step makes four, plus the RK4 sums and the
+// per-step device work).
+void derivative(benchmark::State& state, int num_rw, sim::WheelModel model)
+{
+  sim::InitialConditions ic;
+  ic.r_CN_N = Eigen::Vector3d(-4020338.690396649, 7490566.741852513, 5248299.211589362);
+  ic.v_CN_N = Eigen::Vector3d(-5199.77710904224, -3436.681645356935, 1041.576797498721);
+  ic.sigma_BN = Eigen::Vector3d(0.1, 0.2, -0.3);
+  ic.omega_BN_B = Eigen::Vector3d(0.001, -0.01, 0.03);
+  sim::Plant sc({vehicle(num_rw, model), {}}, ic);
+  sc.latch_wheel_commands(sim::WheelArray{0.01, -0.01, 0.005, -0.005});
+  sim::StateVector x = sc.state();
+  const double cpu0 = thread_cpu_seconds();
+  for (auto _ : state) {
+    const sim::StateVector xd = sc.derivatives(0.0, x);
+    benchmark::DoNotOptimize(xd.data());
+    x(sim::StateLayout::omega_BN_B) += 1e-12 * xd(sim::StateLayout::omega_BN_B);  // a new state each time
+  }
+  state.counters["us_per_derivative"] = (thread_cpu_seconds() - cpu0) / static_cast<double>(state.iterations()) * 1e6;
+}
+
+void BM_Derivative_Hub4FullyCoupled(benchmark::State& s) { derivative(s, 4, sim::WheelModel::FullyCoupled); }
+void BM_Derivative_Hub4SimpleJitter(benchmark::State& s) { derivative(s, 4, sim::WheelModel::SimpleJitter); }
+void BM_Derivative_Hub4Balanced(benchmark::State& s) { derivative(s, 4, sim::WheelModel::Balanced); }
+void BM_Derivative_HubOnly(benchmark::State& s) { derivative(s, 0, sim::WheelModel::Balanced); }
+
 void BM_Rk4Step_Hub4FullyCoupled(benchmark::State& s) { run(s, 4, sim::WheelModel::FullyCoupled); }
 void BM_Rk4Step_Hub4SimpleJitter(benchmark::State& s) { run(s, 4, sim::WheelModel::SimpleJitter); }
 void BM_Rk4Step_Hub4Balanced(benchmark::State& s) { run(s, 4, sim::WheelModel::Balanced); }
@@ -88,4 +115,8 @@ BENCHMARK(BM_Rk4Step_Hub4FullyCoupled);
 BENCHMARK(BM_Rk4Step_Hub4SimpleJitter);
 BENCHMARK(BM_Rk4Step_Hub4Balanced);
 BENCHMARK(BM_Rk4Step_HubOnly);
+BENCHMARK(BM_Derivative_Hub4FullyCoupled);
+BENCHMARK(BM_Derivative_Hub4SimpleJitter);
+BENCHMARK(BM_Derivative_Hub4Balanced);
+BENCHMARK(BM_Derivative_HubOnly);
 BENCHMARK_MAIN();

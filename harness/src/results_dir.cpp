@@ -66,16 +66,15 @@ ResultsDir::ResultsDir(const std::string& target, bool force)
 
   // 1. the lock (before looking at the target: another run may be swapping it)
   lock_path_ = beside(t, ".kestrel-lock");
-  lock_fd_ = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (lock_fd_ < 0)
+  lock_.fd = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_.fd < 0)
     throw OutputError(target + ": cannot write in " + t.parent_path().string() + " (lock file " +
                       lock_path_.filename().string() + ": " + sys_error(errno) + ")");
-  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+  if (::flock(lock_.fd, LOCK_EX | LOCK_NB) != 0) {
     const int err = errno;
     char buf[32] = {0};
-    const ssize_t n = ::pread(lock_fd_, buf, sizeof buf - 1, 0);
-    ::close(lock_fd_);
-    lock_fd_ = -1;
+    const ssize_t n = ::pread(lock_.fd, buf, sizeof buf - 1, 0);
+    lock_.reset();
     if (err == EWOULDBLOCK) {
       const std::string pid = n > 0 ? std::string(buf, static_cast<size_t>(n)) : std::string("?");
       throw ResultsDirRefused(target + ": another kestrel run (pid " + pid.substr(0, pid.find('\n')) +
@@ -84,7 +83,7 @@ ResultsDir::ResultsDir(const std::string& target, bool force)
     throw OutputError(target + ": cannot lock " + lock_path_.string() + ": " + sys_error(err));
   }
   const std::string me = std::to_string(::getpid()) + "\n";
-  if (::ftruncate(lock_fd_, 0) != 0 || ::pwrite(lock_fd_, me.data(), me.size(), 0) != static_cast<ssize_t>(me.size())) {
+  if (::ftruncate(lock_.fd, 0) != 0 || ::pwrite(lock_.fd, me.data(), me.size(), 0) != static_cast<ssize_t>(me.size())) {
     // the lock holds without the pid; only the refusal message is poorer
   }
 
@@ -92,7 +91,6 @@ ResultsDir::ResultsDir(const std::string& target, bool force)
   const fs::file_status st = fs::symlink_status(t, ec);
   if (fs::exists(st)) {
     if (!fs::is_directory(st)) {
-      ::close(lock_fd_);
       throw ResultsDirRefused(target + ": exists and is not a folder; not touching it");
     }
     std::string foreign;
@@ -106,16 +104,13 @@ ResultsDir::ResultsDir(const std::string& target, bool force)
       }
     }
     if (ec) {
-      ::close(lock_fd_);
       throw OutputError(target + ": cannot read the existing folder: " + ec.message());
     }
     if (!empty && !foreign.empty()) {
-      ::close(lock_fd_);
       throw ResultsDirRefused(target + ": exists and holds '" + foreign +
                               "', which is not a Kestrel result file; not replacing it (choose another -o)");
     }
     if (!empty && !force) {
-      ::close(lock_fd_);
       throw ResultsDirRefused(target +
                               ": already holds the results of a run; use --force to replace them whole, or "
                               "choose another -o");
@@ -126,11 +121,15 @@ ResultsDir::ResultsDir(const std::string& target, bool force)
   work_ = beside(t, ".kestrel-work-" + std::to_string(::getpid()));
   fs::remove_all(work_, ec);  // a stale one of a crashed run with our pid
   if (!fs::create_directory(work_, ec) || ec) {
-    ::close(lock_fd_);
-    lock_fd_ = -1;
     throw OutputError(target + ": cannot create the working folder " + work_.string() +
                       (ec ? ": " + ec.message() : ""));
   }
+}
+
+void ResultsDir::Fd::reset()
+{
+  if (fd >= 0) ::close(fd);
+  fd = -1;
 }
 
 ResultsDir::~ResultsDir()
@@ -139,7 +138,6 @@ ResultsDir::~ResultsDir()
     std::error_code ec;
     fs::remove_all(work_, ec);
   }
-  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the flock
 }
 
 void ResultsDir::require_free_space(uint64_t bytes) const

@@ -48,22 +48,24 @@ void fill_stages(const SpacecraftParams& p, const std::vector<ReactionWheelDeriv
     s.ax = wheel_axes(d, x(L.theta(i)));
     if (w.model != WheelModel::FullyCoupled) continue;
 
+    // [BW] diag-like inertias in closed form (W axes gs, w2, w3 orthonormal):
+    // Iw_B = J_s gs gs^T + J_t w2 w2^T + J_g w3 w3^T + J13 (gs w3^T + w3 gs^T)
+    // Iw'_B = Omega (-J13 (gs w2^T + w2 gs^T) + (J_t - J_g)(w2 w3^T + w3 w2^T))
     const double Omega = x(L.Omega(i));
-    Matrix3d dcm_BW;
-    dcm_BW.col(0) = s.ax.gs_hat_B;
-    dcm_BW.col(1) = s.ax.w2_hat_B;
-    dcm_BW.col(2) = s.ax.w3_hat_B;
-    Matrix3d Iw_W;
-    Iw_W << w.J_s, 0.0, d.J13,
-            0.0, d.J_t, 0.0,
-            d.J13, 0.0, d.J_g;
-    Matrix3d Iw_prime_W;
-    Iw_prime_W << 0.0, -d.J13, 0.0,
-                  -d.J13, 0.0, d.J_t - d.J_g,
-                  0.0, d.J_t - d.J_g, 0.0;
-    Iw_prime_W *= Omega;
-    s.Iw_B = dcm_BW * Iw_W * dcm_BW.transpose();
-    s.Iw_prime_B = dcm_BW * Iw_prime_W * dcm_BW.transpose();
+    const Vector3d& gs = s.ax.gs_hat_B;
+    const Vector3d& w2 = s.ax.w2_hat_B;
+    const Vector3d& w3 = s.ax.w3_hat_B;
+    const Vector3d a = w.J_s * gs + d.J13 * w3;  // Iw_B gs
+    const Vector3d b = d.J_t * w2;               // Iw_B w2
+    const Vector3d c = d.J13 * gs + d.J_g * w3;  // Iw_B w3
+    s.Iw_B.noalias() = a * gs.transpose();
+    s.Iw_B.noalias() += b * w2.transpose();
+    s.Iw_B.noalias() += c * w3.transpose();
+    const Vector3d p2 = Omega * (d.J_t - d.J_g) * w3 - Omega * d.J13 * gs;  // Iw'_B w2
+    const Vector3d p3 = Omega * (d.J_t - d.J_g) * w2;                        // Iw'_B w3
+    s.Iw_prime_B.noalias() = (-Omega * d.J13) * w2 * gs.transpose();
+    s.Iw_prime_B.noalias() += p2 * w2.transpose();
+    s.Iw_prime_B.noalias() += p3 * w3.transpose();
     s.r_WcB_B = w.r_WB_B + d.d * s.ax.w2_hat_B;
     s.r_WcB_B_prime = d.d * Omega * s.ax.w3_hat_B;
   }
@@ -89,14 +91,17 @@ MassProps mass_props_from_stages(const SpacecraftParams& p, const HubParams& h,
     const ReactionWheelParams& w = p.wheels[ui];
     if (w.model != WheelModel::FullyCoupled) continue;
     const WheelStage& s = st[ui];
-    const Matrix3d r_tilde = skew(s.r_WcB_B);
-    const Matrix3d r_tilde_prime = skew(s.r_WcB_B_prime);
     mp.m_sc += w.m_w;
     first_moment += w.m_w * s.r_WcB_B;
     first_moment_prime += w.m_w * s.r_WcB_B_prime;
     mp.I_sc_B += s.Iw_B + parallel_axis(w.m_w, s.r_WcB_B);
-    mp.I_sc_prime_B += s.Iw_prime_B + w.m_w * (r_tilde_prime * r_tilde.transpose() +
-                                               r_tilde * r_tilde_prime.transpose());
+    // m ([r'~][r~]^T + [r~][r'~]^T) = m (2 (r.r') I - r r'^T - r' r^T)
+    const Vector3d& r = s.r_WcB_B;
+    const Vector3d& rp = s.r_WcB_B_prime;
+    mp.I_sc_prime_B += s.Iw_prime_B;
+    mp.I_sc_prime_B.diagonal().array() += 2.0 * w.m_w * r.dot(rp);
+    mp.I_sc_prime_B.noalias() -= (w.m_w * r) * rp.transpose();
+    mp.I_sc_prime_B.noalias() -= (w.m_w * rp) * r.transpose();
   }
   mp.c_B = first_moment / mp.m_sc;
   mp.c_prime_B = first_moment_prime / mp.m_sc;
@@ -256,7 +261,7 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
         in.u_s[ui] + sim::friction_torque(w.friction, Omega, in.stribeck[ui]);
 
     if (w.model != WheelModel::FullyCoupled) {
-      D -= w.J_s * gs * gs.transpose();
+      D.noalias() -= (w.J_s * gs) * gs.transpose();
       v_rot -= gs * u_tot + w.J_s * Omega * omega.cross(gs);
       a_Omega[ui].setZero();
       b_Omega[ui] = -gs;
@@ -282,31 +287,39 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
     const Vector3d& r_W = w.r_WB_B;
     const Vector3d& r_Wc = s.r_WcB_B;
 
-    a_Omega[ui] = -(mw * d / J_bar) * w3;
-    b_Omega[ui] = -(1.0 / J_bar) * (J_bar * gs + dv.J13 * w3 + mw * d * r_W.cross(w3));
-    c_Omega[ui] = (1.0 / J_bar) *
-                  (omega_2 * omega_3 * (dv.J_t - dv.J_g - mw * d * d) -
-                   dv.J13 * omega_2 * omega_s - mw * d * w3.dot(omega.cross(omega.cross(r_W))) +
-                   u_tot + mw * d * w3.dot(g_B));
-    const Vector3d Iw_gs = s.Iw_B * gs;
-    const Vector3d q = Iw_gs + mw * d * r_Wc.cross(w3);
+    const double md = mw * d;
+    const double inv_J = 1.0 / J_bar;
+    const double kA = md * inv_J;
+    a_Omega[ui] = -kA * w3;
+    b_Omega[ui] = -gs - inv_J * (dv.J13 * w3 + md * r_W.cross(w3));
+    c_Omega[ui] = inv_J * (omega_2 * omega_3 * (dv.J_t - dv.J_g - md * d) - dv.J13 * omega_2 * omega_s -
+                           md * w3.dot(omega.cross(omega.cross(r_W))) + u_tot + md * w3.dot(g_B));
+    const Vector3d Iw_gs = w.J_s * gs + dv.J13 * w3;  // [Iw_B] gs (fill_stages)
+    const Vector3d q = Iw_gs + md * r_Wc.cross(w3);
 
-    A += (mw * d) * w3 * a_Omega[ui].transpose();
-    B += (mw * d) * w3 * b_Omega[ui].transpose();
-    C += q * a_Omega[ui].transpose();
-    D += q * b_Omega[ui].transpose();
-    v_trans += mw * d * (Omega * Omega * w2 - c_Omega[ui] * w3);
-    v_rot += mw * d * Omega * Omega * r_Wc.cross(w2) - Omega * (s.Iw_prime_B * gs) -
+    // Outer products accumulated in place (noalias: no temporaries).
+    A.noalias() -= (md * kA) * w3 * w3.transpose();  // (m_w d) w3 a_Omega^T
+    B.noalias() += (md * w3) * b_Omega[ui].transpose();
+    C.noalias() -= (kA * q) * w3.transpose();  // q a_Omega^T
+    D.noalias() += q * b_Omega[ui].transpose();
+    const double Omega2 = Omega * Omega;
+    v_trans += md * (Omega2 * w2 - c_Omega[ui] * w3);
+    v_rot += md * Omega2 * r_Wc.cross(w2) + (Omega2 * dv.J13) * w2 -
              omega.cross(Omega * Iw_gs + mw * r_Wc.cross(s.r_WcB_B_prime)) - c_Omega[ui] * q;
   }
 
-  // Back-substitution solve (§3): 3x3 LU with partial pivoting, never Cholesky
-  // (FC terms make D - C A^-1 B slightly non-symmetric).
-  const Eigen::PartialPivLU<Matrix3d> A_lu(A);
-  const Matrix3d Ainv_B = A_lu.solve(B);
-  const Vector3d Ainv_v = A_lu.solve(v_trans);
-  const Matrix3d M = D - C * Ainv_B;
-  const Vector3d omega_dot = Eigen::PartialPivLU<Matrix3d>(M).solve(v_rot - C * Ainv_v);
+  // Back-substitution solve (§3).  A is m I less a positive semi-definite
+  // wheel part and D - C A^-1 B an inertia-like matrix (slightly
+  // non-symmetric with FC terms: never Cholesky): both well conditioned, so
+  // the 3x3 inverses by cofactors (Eigen's fixed-size path) are as accurate
+  // as a pivoted LU and several times cheaper.
+  const Matrix3d A_inv = A.inverse();
+  Matrix3d Ainv_B;
+  Ainv_B.noalias() = A_inv * B;
+  const Vector3d Ainv_v = A_inv * v_trans;
+  Matrix3d M = D;
+  M.noalias() -= C * Ainv_B;
+  const Vector3d omega_dot = M.inverse() * (v_rot - C * Ainv_v);
   const Vector3d r_ddot_B = Ainv_v - Ainv_B * omega_dot;
 
   StateVector xd(layout_.size());

@@ -2,12 +2,17 @@
 // coupled wheels, sensor noise on) and S2 (40 s with a 20 s burn) recorded
 // with the harness of commit c4b044e (test/harness/data/README.md) must be
 // reproduced by today's harness, column by column.  The reshaping of the
-// harness (tasks, sinks, endpoint) changes no number; where a later physics
-// change does, the columns it changes are named here with the bound it keeps.
+// harness (tasks, sinks, endpoint) changed no number (bit for bit until the
+// plant's derivative was rearranged for speed, issue 20: see kRounding);
+// where a later physics change does, the columns it changes are named here
+// with the bound it keeps.  KESTREL_REGRESSION_PRINT=1 prints every column's
+// largest difference.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -42,6 +47,16 @@ Csv read_csv(const std::string& path)
   return c;
 }
 
+// Rounding: the fast plant derivative (closed-form wheel inertias, cofactor
+// 3x3 solves) agrees with the baseline's (rotation products, pivoted LU) to
+// a few ulp: <= 7e-15 of each component's largest value over 600 random
+// states of every wheel model.  S1 and S2 are stable closed loops, so such
+// differences are not amplified: measured after 60 s / 40 s, <= 6e-15 of
+// each column's largest value.  kRounding allows 1e-12 (a margin of 100 for
+// other compilers' contractions), six orders below the sensor noise; any
+// change of a status, mode or count (integers) still fails.
+constexpr double kRounding = 1e-12;
+
 // Columns allowed to differ from the baseline, with the largest difference
 // allowed relative to the column's largest magnitude (empty: none).
 using Allowed = std::map<std::string, double>;
@@ -64,9 +79,11 @@ void compare(const std::string& baseline, const harness::Scenario& sc, const All
       scale = std::max(scale, std::fabs(base.cols[k][r]));
       worst = std::max(worst, std::fabs(v[r] - base.cols[k][r]));
     }
+    if (std::getenv("KESTREL_REGRESSION_PRINT"))
+      std::printf("%-28s worst %.3g rel %.3g\n", name.c_str(), worst, worst / std::max(scale, 1e-300));
     const auto it = allowed.find(name);
     if (it == allowed.end()) {
-      EXPECT_EQ(v, base.cols[k]) << "max |diff| " << worst;
+      EXPECT_LE(worst, kRounding * scale) << "max |diff| " << worst << " of " << scale;
     } else {
       EXPECT_LE(worst, it->second * std::max(scale, 1e-300)) << "max |diff| " << worst << " of " << scale;
     }
@@ -85,7 +102,7 @@ TEST(Regression, S1SixtySecondsAsBefore)
 }
 
 // S2 with instantaneous thrust (no first-order transient): the plant merge
-// and the reshaped harness change nothing, bit for bit.
+// and the reshaped harness change nothing (to rounding, kRounding).
 TEST(Regression, S2InstantThrustAsBefore)
 {
   std::vector<harness::Override> ov{

@@ -54,8 +54,18 @@ class ResultsDir {
   static bool is_result_file_name(const std::string& name);
 
  private:
+  // The lock file's descriptor, closed (releasing the flock) when the
+  // ResultsDir ends, or when its constructor throws at any point.
+  struct Fd {
+    int fd = -1;
+    Fd() = default;
+    Fd(const Fd&) = delete;
+    Fd& operator=(const Fd&) = delete;
+    ~Fd() { reset(); }
+    void reset();
+  };
   std::filesystem::path target_, work_, lock_path_;
-  int lock_fd_ = -1;
+  Fd lock_;
   bool committed_ = false;
 };
 
