@@ -44,18 +44,26 @@ static void put_status(FswLinkNode *n, int slot, uint64_t t_ns)
                                &n->out_len[slot], NULL);
 }
 
+/* A packet that runs no cycle is answered by the link status alone, so
+ * that the sender learns at once that it was processed. */
+static int status_only(FswLinkNode *n)
+{
+  put_status(n, 0, n->last_t_ns);
+  return 1;
+}
+
 static int on_sensor(FswLinkNode *n, const FswAcsConfig *cfg, const FswLinkPacket *p)
 {
   uint8_t nrw, ncss;
   if (fsw_link_decode_sensor(p, &n->sens, &nrw, &ncss, NULL) != FSW_OK) {
     n->link.rx_rejected++;
-    return 0;
+    return status_only(n);
   }
   if (n->have_last != 0u) {
     const uint32_t ahead = ((uint32_t)p->seq + FSW_LINK_SEQ_MODULO - n->link.last_seq) % FSW_LINK_SEQ_MODULO;
     if (ahead == 0u || ahead >= HALF_SEQ || p->t_ns <= n->last_t_ns) {
       n->link.rx_stale++;
-      return 0;
+      return status_only(n);
     }
     n->link.missed += ahead - 1u;
   }
@@ -87,14 +95,14 @@ int fsw_link_node_receive(FswLinkNode *n, const FswAcsConfig *cfg, const uint8_t
       n->link.rx_crc++;
     else
       n->link.rx_rejected++;
-    return 0;
+    return status_only(n);
   }
   if (p.apid == FSW_LINK_APID_SENSOR) return on_sensor(n, cfg, &p);
   if (fsw_link_decode_cmd(&p, &n->cmd, NULL) == FSW_OK)
     n->have_cmd = 1u;
   else
     n->link.rx_rejected++;
-  return 0;
+  return status_only(n);
 }
 
 int fsw_link_node_watchdog(FswLinkNode *n, uint64_t t_ns)

@@ -48,6 +48,22 @@ std::string signal_name(int s)
   }
 }
 
+// The endpoint behind the link.  With real-time pacing a cycle waits at most
+// one FSW period of wall time and, unless told otherwise, holds the last
+// command when its reply is late.
+std::unique_ptr<FswEndpoint> make_remote_fsw(const Scenario& sc, const RunOptions& opt, RemoteFsw*& remote)
+{
+  LinkOptions lo = opt.link;
+  if (opt.realtime_scale > 0) {
+    if (!lo.on_missing_set) lo.on_missing = LinkOptions::Missing::kHold;
+    lo.on_missing_set = true;
+    lo.reply_timeout_s = sc.rates.dt * sc.rates.fsw_divisor / opt.realtime_scale;
+  }
+  auto r = std::make_unique<RemoteFsw>(open_link_transport(opt.fsw_link), fsw_acs_config_of(sc), lo);
+  remote = r.get();
+  return r;
+}
+
 }  // namespace
 
 RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
@@ -59,6 +75,8 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   if (files) rdir.emplace(opt.out_dir, opt.force);
   RunConfig cfg;
   cfg.keep_in_memory = false;  // streamed: memory does not grow with the duration
+  RemoteFsw* remote = nullptr;
+  if (!opt.fsw_link.empty()) cfg.fsw = make_remote_fsw(sc, opt, remote);
   Run run(sc, std::move(cfg));
   if (rdir) rdir->require_free_space(output_estimate(run, sc));
   const fs::path dir = files ? rdir->work() : fs::path();
@@ -130,6 +148,10 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   // Results are written also for a failed or interrupted run (never lose
   // data): the rows recorded up to there are in the files, marked incomplete.
   run.finish();
+  if (remote != nullptr) {
+    res.linked = true;
+    res.link = remote->counters();
+  }
   res.final_pointing_error_deg = run.final_pointing_error_deg();
   RunStatus& st = res.status;
   st.complete = res.ok && run.done();
@@ -176,6 +198,18 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
     summ << "rt_overruns = " << p.overruns << "     # ticks whose work ended after the next deadline\n";
     summ << "rt_drift = " << p.drift_s << " s    # last tick's lateness (absolute deadlines: no accumulation)\n";
     summ << "rt_priority = " << (p.realtime_priority ? 1 : 0) << "     # 1: SCHED_FIFO and locked memory\n";
+  }
+  if (res.linked) {
+    const LinkCounters& l = res.link;
+    summ << "link_cycles = " << l.cycles << "     # FSW cycles over the link\n";
+    summ << "link_sent = " << l.sent << "     # sensor packets sent (duplicates included)\n";
+    summ << "link_lost = " << l.lost << "     # dropped by the loss injector\n";
+    summ << "link_corrupted = " << l.corrupted << "     # sent with flipped bits\n";
+    summ << "link_missing = " << l.missing << "     # cycles without a reply (last command held or zero applied)\n";
+    summ << "link_rejected = " << l.rejected << "     # received packets the harness rejected\n";
+    summ << "link_fsw_rx_crc = " << l.fsw.rx_crc << "     # FSW end: packets rejected on CRC\n";
+    summ << "link_fsw_rx_stale = " << l.fsw.rx_stale << "     # FSW end: duplicate, old or out-of-order sensor packets\n";
+    summ << "link_fsw_missed = " << l.fsw.missed << "     # FSW end: control cycles without a sensor packet\n";
   }
   write_text((dir / "summary.txt").string(), summ.str());
   written.push_back("summary.txt");

@@ -6,8 +6,8 @@
 // of the fixture's wheel and thruster configs that fsw_acs_check accepts,
 // every single-bit error, truncation and extension rejected, nothing written
 // on failure.  Node: its replies equal fsw_acs_cycle run directly on the same
-// inputs; stale, duplicate, damaged and foreign packets counted and not
-// answered; sequence gaps counted as missed cycles; commands applied from the
+// inputs; stale, duplicate, damaged and foreign packets counted and answered
+// by the link status alone; sequence gaps counted as missed cycles; commands applied from the
 // next cycle; the watchdog entering link-safe after max_missed periods with
 // the safe output, and the next sensor packet recovering.
 #include <gtest/gtest.h>
@@ -404,23 +404,32 @@ TEST(FswLinkNode, RepliesEqualTheApplicationRunDirectly)
   EXPECT_EQ(node.n.link.rx_stale + node.n.link.rx_crc + node.n.link.rx_rejected, 0u);
 }
 
-TEST(FswLinkNode, StaleDamagedAndForeignPacketsAreCountedNotAnswered)
+TEST(FswLinkNode, StaleDamagedAndForeignPacketsAreCountedAndAnsweredByTheStatus)
 {
   auto nodep = std::make_unique<Node>();
   Node& node = *nodep;
   ASSERT_EQ(node.feed(sensor_packet(sensors(5), 100)), 3);
-  EXPECT_EQ(node.feed(sensor_packet(sensors(5), 100)), 0);  // duplicate
-  EXPECT_EQ(node.feed(sensor_packet(sensors(6), 99)), 0);   // older sequence count
-  EXPECT_EQ(node.feed(sensor_packet(sensors(4), 101)), 0);  // newer count, older time
-  EXPECT_EQ(node.feed(sensor_packet(sensors(5), 101)), 0);  // newer count, same time
-  EXPECT_EQ(node.feed(sensor_packet(sensors(6), uint16_t(100 + 8192))), 0);  // half the circle: behind
+  EXPECT_EQ(node.feed(sensor_packet(sensors(5), 100)), 1);  // duplicate
+  EXPECT_EQ(node.feed(sensor_packet(sensors(6), 99)), 1);   // older sequence count
+  EXPECT_EQ(node.feed(sensor_packet(sensors(4), 101)), 1);  // newer count, older time
+  EXPECT_EQ(node.feed(sensor_packet(sensors(5), 101)), 1);  // newer count, same time
+  EXPECT_EQ(node.feed(sensor_packet(sensors(6), uint16_t(100 + 8192))), 1);  // half the circle: behind
   EXPECT_EQ(node.n.link.rx_stale, 5u);
+  {  // the status answer: the counters so far, the last accepted time stamp
+    const FswLinkPacket p = node.reply(0);
+    FswLinkStatusMsg ls;
+    ASSERT_EQ(fsw_link_decode_status(&p, &ls, nullptr), FSW_OK);
+    EXPECT_EQ(p.t_ns, sensors(5).t_ns);
+    EXPECT_EQ(ls.rx_stale, 5u);
+    EXPECT_EQ(ls.rx_packets, 6u);
+    EXPECT_EQ(ls.cycles, 1u);
+  }
   EXPECT_EQ(node.n.acs.cycles, 1u);  // none of them ran a cycle
   Bytes bad = sensor_packet(sensors(6), 101);
   bad[20] ^= 0x10;
-  EXPECT_EQ(node.feed(bad), 0);
+  EXPECT_EQ(node.feed(bad), 1);
   EXPECT_EQ(node.n.link.rx_crc, 1u);
-  EXPECT_EQ(node.feed(Bytes(bad.begin(), bad.begin() + 10)), 0);  // short
+  EXPECT_EQ(node.feed(Bytes(bad.begin(), bad.begin() + 10)), 1);  // short
   // an actuator packet is not for the FSW; nor is a sensor packet whose
   // declared counts do not match its length
   FswAcsActuatorMsg a{};
@@ -428,11 +437,11 @@ TEST(FswLinkNode, StaleDamagedAndForeignPacketsAreCountedNotAnswered)
   size_t len = 0;
   ASSERT_EQ(fsw_link_encode_actuator(&a, 0, 0, 1, 0, ab.data(), ab.size(), &len, nullptr), FSW_OK);
   ab.resize(len);
-  EXPECT_EQ(node.feed(ab), 0);
+  EXPECT_EQ(node.feed(ab), 1);
   Bytes wrong = sensor_packet(sensors(6), 101);
   wrong[14] = kRw + 1;  // n_rw
   put_crc(wrong);
-  EXPECT_EQ(node.feed(wrong), 0);
+  EXPECT_EQ(node.feed(wrong), 1);
   EXPECT_EQ(node.n.link.rx_rejected, 3u);
   EXPECT_EQ(node.n.link.rx_packets, 10u);
   // a gap: sequence 100 -> 104 misses 3 cycles, and is answered
@@ -460,7 +469,7 @@ TEST(FswLinkNode, CommandsApplyFromTheNextCycle)
   EXPECT_EQ(h.mode, FSW_ACS_MODE_SUN_SAFE);
   ASSERT_EQ(fsw_link_encode_cmd(&c, 0, 0, cb.data(), cb.size(), &len, nullptr), FSW_OK);
   cb.resize(len);
-  EXPECT_EQ(node.feed(cb), 0);
+  EXPECT_EQ(node.feed(cb), 1);
   ASSERT_EQ(node.feed(sensor_packet(sensors(2), 2)), 3);
   ph = node.reply(1);
   ASSERT_EQ(fsw_link_decode_health(&ph, &h, nullptr), FSW_OK);

@@ -6,9 +6,12 @@
  *        actuator (0x181), health (0x182), link status (0x183), all with the
  *        sensor packet's t_ns;
  *   command packet (0x102)          -> kept, applied from the next cycle on;
- *   anything else or damaged        -> counted, no reply.
+ *                                      reply: link status;
+ *   anything else or damaged        -> counted; reply: link status (so a
+ *                                      sender knows at once that its packet
+ *                                      was processed and not answered).
  *
- * A sensor packet is stale (counted, no cycle, no reply) when its sequence
+ * A sensor packet is stale (counted, no cycle, link status only) when its sequence
  * count is not ahead of the last accepted one (modulo 16384: 1..8191 ahead)
  * or its t_ns is not later.  A sequence gap of g counts g - 1 missed cycles.
  * The transport calls fsw_link_node_watchdog() once per control period in
@@ -58,8 +61,9 @@ typedef struct {
 FswStatus fsw_link_node_init(FswLinkNode *n, const FswAcsConfig *cfg, uint32_t max_missed, const char **bad_field);
 
 /* One received packet (a datagram, or a deframed packet) buf[0..len).
- * Returns the number of reply packets now in n->out / n->out_len (0 or 3);
- * 0 also for NULL arguments. */
+ * Returns the number of reply packets now in n->out / n->out_len: 3 after a
+ * cycle, 1 (the link status, stamped with the last accepted t_ns) for any
+ * other packet; 0 for NULL arguments. */
 int fsw_link_node_receive(FswLinkNode *n, const FswAcsConfig *cfg, const uint8_t *buf, size_t len);
 
 /* A control period passed without a sensor packet; t_ns stamps the safe
