@@ -248,7 +248,10 @@ bool RemoteFsw::await_reply(uint64_t t_ns, FswAcsActuatorMsg& out, FswAcsHealthM
   if (!lockstep_fail && c_.fsw.rx_packets >= c_.sent) return false;
   for (;;) {
     const double left = std::chrono::duration<double>(end - Clock::now()).count();
-    if (left <= 0 || !t_->recv(rx_, left)) return false;
+    if (left <= 0 || !t_->recv(rx_, left)) {
+      ++c_.timeouts;
+      return false;
+    }
     FswLinkPacket p;
     if (fsw_link_parse(rx_.data(), rx_.size(), &p, nullptr) != FSW_OK) {
       ++c_.rejected;
@@ -353,7 +356,7 @@ std::vector<std::string> RemoteFsw::module_health_lines() const
   h << "link (harness end, " << t_->describe() << "): cycles=" << c_.cycles << " sent=" << c_.sent
     << " lost=" << c_.lost << " corrupted=" << c_.corrupted << " duplicated=" << c_.duplicated
     << " reordered=" << c_.reordered << " delayed=" << c_.delayed << " replies=" << c_.replies
-    << " missing=" << c_.missing << " rejected=" << c_.rejected << " stale=" << c_.stale << " on_missing="
+    << " missing=" << c_.missing << " timeouts=" << c_.timeouts << " rejected=" << c_.rejected << " stale=" << c_.stale << " on_missing="
     << (missing_ == LinkOptions::Missing::kFail ? "fail" : missing_ == LinkOptions::Missing::kHold ? "hold" : "zero");
   f << "link (FSW end, last status): rx_packets=" << c_.fsw.rx_packets << " rx_crc=" << c_.fsw.rx_crc
     << " rx_rejected=" << c_.fsw.rx_rejected << " rx_stale=" << c_.fsw.rx_stale << " missed=" << c_.fsw.missed

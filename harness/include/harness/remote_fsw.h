@@ -67,6 +67,7 @@ struct LinkCounters {
   uint64_t duplicated = 0, reordered = 0, delayed = 0;
   uint64_t replies = 0;         // cycles answered in time
   uint64_t missing = 0;         // cycles without a reply (hold/zero applied)
+  uint64_t timeouts = 0;        // ... of which given up after the reply timeout
   uint64_t rejected = 0;        // received packets that failed to parse or decode
   uint64_t stale = 0;           // replies of another cycle (late, duplicated)
   FswLinkStatusMsg fsw{};       // the last link status of the FSW end
