@@ -58,6 +58,18 @@ std::unique_ptr<Child> start_fsw(const std::vector<std::string>& args, std::stri
   return c;
 }
 
+// Starts kestrel-fsw on a free loopback UDP port; spec gets
+// "udp:127.0.0.1:N" ("" when it did not start).
+std::unique_ptr<Child> start_udp_fsw(const std::string& img, std::string& spec)
+{
+  std::string ready;
+  auto c = start_fsw({"--udp", "127.0.0.1:0", "--config", img, "--quiet"}, ready);
+  const std::string pre = "kestrel-fsw: ready udp ";
+  spec = ready.rfind(pre, 0) == 0 ? "udp:" + ready.substr(pre.size()) : "";
+  EXPECT_FALSE(spec.empty()) << ready;
+  return c;
+}
+
 std::unique_ptr<harness::RemoteFsw> remote(const std::string& spec, const harness::Scenario& sc,
                                            harness::LinkOptions lo = {})
 {
@@ -98,9 +110,8 @@ void lockstep_equals_in_process(const std::string& scenario, const std::string& 
   std::string spec, ready;
   std::unique_ptr<Child> fsw;
   if (transport == "udp") {
-    fsw = start_fsw({"--udp", "127.0.0.1:0", "--config", img, "--quiet"}, ready);
-    ASSERT_EQ(ready.rfind("kestrel-fsw: ready udp ", 0), 0u) << ready;
-    spec = "udp:" + ready.substr(std::strlen("kestrel-fsw: ready udp "));
+    fsw = start_udp_fsw(img, spec);
+    ASSERT_FALSE(spec.empty());
   } else {
     pty = std::make_unique<hwil::PtyPair>(SOCAT_EXE, tmp.p, kStartTimeout);
     const std::string a = pty->end_a(), b = pty->end_b();
@@ -146,16 +157,16 @@ TEST(Hwil, S1KeepsItsPointingBoundWithLossAndCorruption)
   const harness::Scenario sc = harness::load_scenario(kS1, {});
   TempDir tmp;
   const std::string img = write_image(sc, tmp.p / "fsw.img");
-  std::string ready;
-  auto fsw = start_fsw({"--udp", "127.0.0.1:0", "--config", img, "--quiet"}, ready);
-  ASSERT_EQ(ready.rfind("kestrel-fsw: ready udp ", 0), 0u) << ready;
+  std::string spec;
+  auto fsw = start_udp_fsw(img, spec);
+  ASSERT_FALSE(spec.empty());
   harness::LinkOptions lo;
   lo.loss = 0.10;
   lo.corrupt = 0.10;
   lo.seed = 16;
   lo.reply_timeout_s = kReplyTimeout;  // the FSW's link status ends a rejected cycle at once
   harness::RunConfig cfg;
-  auto r = remote("udp:" + ready.substr(std::strlen("kestrel-fsw: ready udp ")), sc, lo);
+  auto r = remote(spec, sc, lo);
   harness::RemoteFsw* link = r.get();
   cfg.fsw = std::move(r);
   harness::Run run(sc, std::move(cfg));
@@ -203,13 +214,13 @@ TEST(Hwil, S1InRealTimeAtScale10OverUdpKeepsItsBound)
   sc.outputs.csv = true;
   TempDir tmp;
   const std::string img = write_image(sc, tmp.p / "fsw.img");
-  std::string ready;
-  auto fsw = start_fsw({"--udp", "127.0.0.1:0", "--config", img, "--quiet"}, ready);
-  ASSERT_EQ(ready.rfind("kestrel-fsw: ready udp ", 0), 0u) << ready;
+  std::string spec;
+  auto fsw = start_udp_fsw(img, spec);
+  ASSERT_FALSE(spec.empty());
   harness::RunOptions opt;
   opt.out_dir = (tmp.p / "rt10").string();
   opt.realtime_scale = 10.0;
-  opt.fsw_link = "udp:" + ready.substr(std::strlen("kestrel-fsw: ready udp "));
+  opt.fsw_link = spec;
   const harness::RunResult r = harness::run_scenario(sc, opt);
   ASSERT_TRUE(r.ok) << r.failure;
   ASSERT_TRUE(r.linked);
@@ -260,16 +271,15 @@ TEST(Hwil, ASilentEndpointFailsTheRunWithAMessage)
   harness::Scenario sc = harness::load_scenario(kS1, {{"duration", "1"}});
   TempDir tmp;
   // a UDP port nobody listens on: bind one, read its number, close it
-  std::string ready;
+  std::string spec;
   {
     const std::string img = write_image(sc, tmp.p / "fsw.img");
-    auto fsw = start_fsw({"--udp", "127.0.0.1:0", "--config", img, "--quiet"}, ready);
+    auto fsw = start_udp_fsw(img, spec);
   }
-  ASSERT_EQ(ready.rfind("kestrel-fsw: ready udp ", 0), 0u) << ready;
-  harness::LinkOptions lo;
+  ASSERT_FALSE(spec.empty());
   harness::RunConfig cfg;
   cfg.fsw = std::make_unique<harness::RemoteFsw>(
-      harness::open_link_transport("udp:" + ready.substr(std::strlen("kestrel-fsw: ready udp "))),
+      harness::open_link_transport(spec),
       harness::fsw_acs_config_of(sc), [] {
         harness::LinkOptions o;
         o.timeout_s = 0.5;
