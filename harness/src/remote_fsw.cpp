@@ -240,7 +240,8 @@ void RemoteFsw::flush_due()
 bool RemoteFsw::await_reply(uint64_t t_ns, FswAcsActuatorMsg& out, FswAcsHealthMsg& health)
 {
   const bool lockstep_fail = missing_ == LinkOptions::Missing::kFail;
-  const double limit = lockstep_fail ? opt_.timeout_s : opt_.reply_timeout_s;
+  double limit = lockstep_fail ? opt_.timeout_s : opt_.reply_timeout_s;
+  if (opt_.time_left) limit = std::min(limit, opt_.time_left());
   const auto end = Clock::now() + std::chrono::duration<double>(limit);
   bool have_act = false;
   // nothing sent this cycle, and the FSW's last status covers all that was:

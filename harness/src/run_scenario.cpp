@@ -3,7 +3,9 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -51,13 +53,15 @@ std::string signal_name(int s)
 // The endpoint behind the link.  With real-time pacing a cycle waits at most
 // one FSW period of wall time and, unless told otherwise, holds the last
 // command when its reply is late.
-std::unique_ptr<FswEndpoint> make_remote_fsw(const Scenario& sc, const RunOptions& opt, RemoteFsw*& remote)
+std::unique_ptr<FswEndpoint> make_remote_fsw(const Scenario& sc, const RunOptions& opt, RemoteFsw*& remote,
+                                             std::function<double()> time_left)
 {
   LinkOptions lo = opt.link;
   if (opt.realtime_scale > 0) {
     if (!lo.on_missing_set) lo.on_missing = LinkOptions::Missing::kHold;
     lo.on_missing_set = true;
     lo.reply_timeout_s = sc.rates.dt * sc.rates.fsw_divisor / opt.realtime_scale;
+    lo.time_left = std::move(time_left);
   }
   auto r = std::make_unique<RemoteFsw>(open_link_transport(opt.fsw_link), fsw_acs_config_of(sc), lo);
   remote = r.get();
@@ -76,7 +80,14 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   RunConfig cfg;
   cfg.keep_in_memory = false;  // streamed: memory does not grow with the duration
   RemoteFsw* remote = nullptr;
-  if (!opt.fsw_link.empty()) cfg.fsw = make_remote_fsw(sc, opt, remote);
+  // paced: the FSW link waits for a reply at most until the deadline of the
+  // tick after the one being computed (pacer below, created after the run)
+  std::optional<Pacer> pacer;
+  uint64_t pacing_tick = 0;
+  if (!opt.fsw_link.empty())
+    cfg.fsw = make_remote_fsw(sc, opt, remote, [&pacer, &pacing_tick] {
+      return pacer ? pacer->seconds_to(pacing_tick + 1) : std::numeric_limits<double>::infinity();
+    });
   Run run(sc, std::move(cfg));
   if (rdir) rdir->require_free_space(output_estimate(run, sc));
   const fs::path dir = files ? rdir->work() : fs::path();
@@ -105,7 +116,6 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   // chunks of at most 1000 ticks: a stop request is seen within milliseconds
   const uint64_t total = run.total_ticks();
   const uint64_t chunk = std::clamp<uint64_t>(total / 200, 1, 1000);
-  std::optional<Pacer> pacer;
   uint64_t notice_every = 1;  // paced: ticks per ~10 s of wall time (one notice at most)
   if (opt.realtime_scale > 0.0) {
     pacer.emplace(sc.tick_ns(), opt.realtime_scale);
@@ -122,6 +132,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
     if (pacer) {  // one tick at a time, each at its deadline
       const uint64_t k = run.tick();
       pacer->wait_for(k);
+      pacing_tick = k;
       if (!run.step_ticks(1)) break;
       pacer->done(k);
       if ((k + 1) % notice_every == 0) {

@@ -202,8 +202,9 @@ TEST(Hwil, S1KeepsItsPointingBoundWithLossAndCorruption)
 }
 
 // S1 paced at 10x real time (60 s of wall time) with the FSW over UDP: the
-// harness never waits past one FSW period (10 ms of wall time here) for a
-// reply and holds the last command when one is late.  Same bound as the
+// harness never waits for a reply past the deadline of the tick being
+// computed (1 ms of wall time at 10x) and holds the last command when one is
+// late.  Same bound as the
 // in-process S1 (0.5 deg from t = 450 s, read back from telemetry.csv), for
 // the reason given for the fault test: a late reply is one extra period of
 // delay.  On a loaded 2-core machine some replies are late; the run must

@@ -19,6 +19,7 @@
 #define HARNESS_REMOTE_FSW_H
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <random>
 #include <string>
@@ -42,6 +43,9 @@ struct LinkOptions {
   double loss = 0.0, corrupt = 0.0, duplicate = 0.0, reorder = 0.0, delay = 0.0;
   int delay_cycles = 2;                 // how late a delayed packet goes out
   uint64_t seed = 1;
+  // Optional (paced runs): wall time [s] left until the deadline of the
+  // tick being computed; a wait for a reply never goes past it.
+  std::function<double()> time_left;
   bool any_fault() const { return loss > 0 || corrupt > 0 || duplicate > 0 || reorder > 0 || delay > 0; }
 };
 
