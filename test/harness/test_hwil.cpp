@@ -1,6 +1,6 @@
 // Hardware in the loop on one machine (docs/hwil.md): the harness drives
 // kestrel-fsw, started here as a child process, over loopback UDP and over a
-// pseudo-terminal pair made by socat.  Lockstep S1 and S2 equal the
+// pseudo-terminal pair made by socat.  Lockstep S1 and S2, over each, equal the
 // in-process runs bit for bit in every telemetry column (same FSW code, same
 // inputs, reals as binary64 on the wire); S1 with 10 % loss and 10 %
 // corruption keeps its pointing bound; a silent endpoint fails the run with
@@ -140,6 +140,7 @@ void lockstep_equals_in_process(const std::string& scenario, const std::string& 
 TEST(Hwil, LockstepS1OverUdpEqualsInProcess) { lockstep_equals_in_process(kS1, "udp"); }
 TEST(Hwil, LockstepS2OverUdpEqualsInProcess) { lockstep_equals_in_process(kS2, "udp"); }
 TEST(Hwil, LockstepS1OverPtyEqualsInProcess) { lockstep_equals_in_process(kS1, "serial"); }
+TEST(Hwil, LockstepS2OverPtyEqualsInProcess) { lockstep_equals_in_process(kS2, "serial"); }
 
 // S1 with 10 % of the sensor packets lost and 10 % corrupted (1-3 flipped
 // bits), the last command held for a cycle without a reply.  Bound: the
