@@ -2,6 +2,7 @@
  * docs/icd.md). */
 #include "fsw/fsw_link.h"
 
+#include <stddef.h>
 #include <string.h>
 
 #define LINK_VERSION 0u
@@ -521,4 +522,207 @@ size_t fsw_link_deframer_push(FswLinkDeframer *d, const uint8_t *bytes, size_t n
     }
   }
   return used;
+}
+
+/* ---- link status packet ------------------------------------------------- */
+
+FswStatus fsw_link_encode_status(const FswLinkStatusMsg *m, uint64_t t_ns, uint16_t seq, uint8_t *buf, size_t cap,
+                                 size_t *len, FswLinkError *err)
+{
+  Writer w;
+  if (m == NULL || buf == NULL || len == NULL) return FSW_E_NULL_ARG;
+  if (!begin_packet(&w, buf, cap, FSW_LINK_STATUS_PAYLOAD)) return link_fail(err, FSW_LINK_E_SPACE);
+  put_headers(&w, FSW_LINK_APID_LINK, 0u, seq, t_ns, FSW_LINK_STATUS_PAYLOAD);
+  put_u32(&w, m->rx_packets);
+  put_u32(&w, m->rx_crc);
+  put_u32(&w, m->rx_rejected);
+  put_u32(&w, m->rx_stale);
+  put_u32(&w, m->missed);
+  put_u32(&w, m->safe_entries);
+  put_u32(&w, m->safe_cycles);
+  put_u32(&w, m->recoveries);
+  put_u32(&w, m->cycles);
+  put_u16(&w, m->last_seq);
+  put_u8(&w, m->link_safe != 0u ? 1u : 0u);
+  put_u8(&w, 0u);
+  return finish_packet(&w, len, err);
+}
+
+FswStatus fsw_link_decode_status(const FswLinkPacket *p, FswLinkStatusMsg *m, FswLinkError *err)
+{
+  Reader r;
+  FswLinkStatusMsg out;
+  uint32_t safe;
+  if (p == NULL || m == NULL || p->payload == NULL) return FSW_E_NULL_ARG;
+  if (expect(p, FSW_LINK_APID_LINK, 0u, &r, err) != FSW_OK) return FSW_E_BAD_INPUT;
+  if (p->payload_len != FSW_LINK_STATUS_PAYLOAD) return link_fail(err, FSW_LINK_E_LENGTH);
+  out.rx_packets = get_u32(&r);
+  out.rx_crc = get_u32(&r);
+  out.rx_rejected = get_u32(&r);
+  out.rx_stale = get_u32(&r);
+  out.missed = get_u32(&r);
+  out.safe_entries = get_u32(&r);
+  out.safe_cycles = get_u32(&r);
+  out.recoveries = get_u32(&r);
+  out.cycles = get_u32(&r);
+  out.last_seq = (uint16_t)get_u16(&r);
+  safe = get_u8(&r);
+  if (safe > 1u || get_u8(&r) != 0u || out.last_seq >= FSW_LINK_SEQ_MODULO) return link_fail(err, FSW_LINK_E_COUNT);
+  out.link_safe = (uint8_t)safe;
+  out.reserved = 0u;
+  memcpy(m, &out, sizeof out);
+  return link_ok(err);
+}
+
+/* ---- configuration image -------------------------------------------------- */
+
+/* One entry per field of FswAcsConfig (nested module configs flattened),
+ * in struct order; arrays at full capacity.  Encoder, decoder, size and
+ * layout code all walk this table. */
+typedef struct {
+  size_t offset; /* of the first element */
+  uint8_t real;  /* 1 fsw_real (f64 on the wire), 0 int (i32) */
+  uint16_t count;
+} CfgField;
+
+#define CF_R(f, n) {offsetof(FswAcsConfig, f), 1u, (uint16_t)(n)}
+#define CF_I(f) {offsetof(FswAcsConfig, f), 0u, 1u}
+#define CF_PULSE_COMMON(p)                                                                                   \
+  CF_I(p.common.num_thr), CF_R(p.common.F_max, FSW_MAX_THR), CF_R(p.common.t_min, 1),                        \
+      CF_I(p.common.base_thrust_state), CF_R(p.common.init_off_pulse_on_time, 1)
+
+static const CfgField kCfgFields[] = {
+    CF_I(initial_mode), CF_I(initial_actuation),
+    /* css */
+    CF_I(css.num_css), CF_R(css.n_hat_B, 3 * FSW_MAX_CSS), CF_R(css.scale, FSW_MAX_CSS), CF_R(css.lit_threshold, 1),
+    /* sunsafe, inertial, track */
+    CF_R(sunsafe.s_cmd_B, 3), CF_R(sunsafe.min_unit_mag, 1), CF_R(sunsafe.small_angle, 1),
+    CF_R(sunsafe.omega_search_B, 3), CF_R(sunsafe.sun_axis_spin_rate, 1), CF_R(inertial.sigma_R0N, 3),
+    CF_R(track.sigma_R0R, 3),
+    /* mrp_fb */
+    CF_R(mrp_fb.K, 1), CF_R(mrp_fb.P, 1), CF_R(mrp_fb.K_i, 1), CF_R(mrp_fb.integral_limit, 1),
+    CF_I(mrp_fb.control_law_type), CF_R(mrp_fb.known_torque_B, 3), CF_R(mrp_fb.I_B, 9), CF_I(mrp_fb.num_rw),
+    CF_R(mrp_fb.gs_hat_B, 3 * FSW_MAX_RW), CF_R(mrp_fb.J_s, FSW_MAX_RW),
+    /* lpf */
+    CF_I(use_lpf), CF_R(lpf.h, 1), CF_R(lpf.omega_c, 1),
+    /* wheel chain */
+    CF_I(has_wheels), CF_I(rw_map.num_rw), CF_R(rw_map.gs_hat_B, 3 * FSW_MAX_RW), CF_I(rw_map.num_axes),
+    CF_R(rw_map.ctrl_axes_B, 9), CF_I(rw_map.mode), CF_R(rw_map.eps_P, 1),
+    CF_I(use_null), CF_I(rw_null.num_rw), CF_R(rw_null.gs_hat_B, 3 * FSW_MAX_RW), CF_R(rw_null.k_null, 1),
+    CF_I(rw_null.scale_to_fit), CF_R(rw_null.u_max, FSW_MAX_RW), CF_R(Omega_des, FSW_MAX_RW),
+    CF_I(rw_sat.num_rw), CF_R(rw_sat.u_max, FSW_MAX_RW), CF_I(rw_sat.mode),
+    CF_I(use_volt), CF_I(rw_volt.num_rw), CF_R(rw_volt.V_min, 1), CF_R(rw_volt.V_max, 1), CF_R(rw_volt.K_V, 1),
+    CF_R(rw_volt.u_max, FSW_MAX_RW), CF_R(rw_volt.J_s, FSW_MAX_RW), CF_I(rw_volt.gate_rate),
+    CF_R(rw_volt.Omega_dot_max, FSW_MAX_RW),
+    /* thruster chain */
+    CF_I(has_thrusters), CF_R(thr_map.control_axes_B, 9), CF_I(thr_map.num_thr),
+    CF_R(thr_map.r_thr_B, 3 * FSW_MAX_THR), CF_R(thr_map.gt_hat_B, 3 * FSW_MAX_THR), CF_R(thr_map.F_max, FSW_MAX_THR),
+    CF_I(thr_map.thr_force_sign), CF_R(thr_map.ang_err_thresh, 1), CF_R(thr_map.epsilon, 1),
+    CF_I(thr_map.use_2nd_loop), CF_I(thr_map.mode), CF_I(pulser),
+    CF_PULSE_COMMON(pulse_rem),
+    CF_PULSE_COMMON(pulse_schmitt), CF_R(pulse_schmitt.level_on, 1), CF_R(pulse_schmitt.level_off, 1)};
+
+#define CFG_NUM_FIELDS (sizeof kCfgFields / sizeof kCfgFields[0])
+#define CFG_MAGIC 0x4B434647u /* "KCFG" */
+
+static size_t cfg_body_size(void)
+{
+  size_t i, n = 0u;
+  for (i = 0u; i < CFG_NUM_FIELDS; ++i) n += (size_t)kCfgFields[i].count * (kCfgFields[i].real != 0u ? 8u : 4u);
+  return n;
+}
+
+/* CRC-16 over (kind, count) of every entry: changes with the table. */
+static uint16_t cfg_layout_code(void)
+{
+  size_t i;
+  uint16_t crc = 0xFFFFu;
+  for (i = 0u; i < CFG_NUM_FIELDS; ++i) {
+    const uint8_t e[3] = {kCfgFields[i].real, (uint8_t)(kCfgFields[i].count >> 8),
+                          (uint8_t)(kCfgFields[i].count & 0xFFu)};
+    crc = fsw_link_crc16(e, sizeof e, crc);
+  }
+  return crc;
+}
+
+size_t fsw_link_config_size(void) { return FSW_LINK_CONFIG_HEADER + cfg_body_size() + FSW_LINK_CRC_SIZE; }
+
+static void put_cfg_header(Writer *w)
+{
+  put_u32(w, CFG_MAGIC);
+  put_u16(w, FSW_LINK_CONFIG_VERSION);
+  put_u16(w, (uint32_t)CFG_NUM_FIELDS);
+  put_u16(w, cfg_layout_code());
+  put_u8(w, (uint32_t)FSW_MAX_RW);
+  put_u8(w, (uint32_t)FSW_MAX_CSS);
+  put_u8(w, (uint32_t)FSW_MAX_THR);
+  put_u8(w, 0u);
+  put_u16(w, 0u);
+  put_u32(w, (uint32_t)cfg_body_size());
+}
+
+FswStatus fsw_link_config_encode(const FswAcsConfig *cfg, uint8_t *buf, size_t cap, size_t *len, FswLinkError *err)
+{
+  Writer w;
+  size_t i, k;
+  const unsigned char *base = (const unsigned char *)cfg;
+  if (cfg == NULL || buf == NULL || len == NULL) return FSW_E_NULL_ARG;
+  if (cap < fsw_link_config_size()) return link_fail(err, FSW_LINK_E_SPACE);
+  w.p = buf;
+  w.n = 0u;
+  w.cap = cap;
+  put_cfg_header(&w);
+  for (i = 0u; i < CFG_NUM_FIELDS; ++i) {
+    for (k = 0u; k < kCfgFields[i].count; ++k) {
+      if (kCfgFields[i].real != 0u) {
+        fsw_real x;
+        memcpy(&x, base + kCfgFields[i].offset + k * sizeof x, sizeof x);
+        put_real(&w, x);
+      } else {
+        int v;
+        memcpy(&v, base + kCfgFields[i].offset + k * sizeof v, sizeof v);
+        put_u32(&w, (uint32_t)(int32_t)v);
+      }
+    }
+  }
+  return finish_packet(&w, len, err);
+}
+
+FswStatus fsw_link_config_decode(const uint8_t *buf, size_t n, FswAcsConfig *cfg, FswLinkError *err)
+{
+  Writer ref;
+  uint8_t hdr[FSW_LINK_CONFIG_HEADER];
+  Reader r;
+  size_t i, k;
+  const size_t size = fsw_link_config_size();
+  unsigned char *base = (unsigned char *)cfg;
+  if (buf == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  if (n < FSW_LINK_CONFIG_HEADER) return link_fail(err, FSW_LINK_E_SHORT);
+  /* the header this build writes, compared byte for byte */
+  ref.p = hdr;
+  ref.n = 0u;
+  ref.cap = sizeof hdr;
+  put_cfg_header(&ref);
+  if (memcmp(buf, hdr, FSW_LINK_CONFIG_HEADER - 4u) != 0) return link_fail(err, FSW_LINK_E_HEADER);
+  if (memcmp(buf + FSW_LINK_CONFIG_HEADER - 4u, hdr + FSW_LINK_CONFIG_HEADER - 4u, 4u) != 0 || n != size)
+    return link_fail(err, n < size ? FSW_LINK_E_SHORT : FSW_LINK_E_LENGTH);
+  if (fsw_link_crc16(buf, size - FSW_LINK_CRC_SIZE, 0xFFFFu) !=
+      (uint16_t)(((uint32_t)buf[size - 2u] << 8) | buf[size - 1u]))
+    return link_fail(err, FSW_LINK_E_CRC);
+  r.p = buf + FSW_LINK_CONFIG_HEADER;
+  r.n = 0u;
+  r.len = size - FSW_LINK_CONFIG_HEADER - FSW_LINK_CRC_SIZE;
+  memset(cfg, 0, sizeof *cfg);
+  for (i = 0u; i < CFG_NUM_FIELDS; ++i) {
+    for (k = 0u; k < kCfgFields[i].count; ++k) {
+      if (kCfgFields[i].real != 0u) {
+        const fsw_real x = get_real(&r);
+        memcpy(base + kCfgFields[i].offset + k * sizeof x, &x, sizeof x);
+      } else {
+        const int v = (int)(int32_t)get_u32(&r);
+        memcpy(base + kCfgFields[i].offset + k * sizeof v, &v, sizeof v);
+      }
+    }
+  }
+  return link_ok(err);
 }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -71,6 +72,36 @@ int cmd_validate(const std::string& scenario, const std::vector<std::string>& se
   }
 }
 
+int cmd_fsw_config(const std::string& scenario, const std::vector<std::string>& sets, const std::string& out_file,
+                   std::ostream& out, std::ostream& err)
+{
+  std::vector<Override> ov;
+  if (!parse_sets(sets, ov, err)) return kExitUsage;
+  FswAcsConfig cfg;
+  try {
+    cfg = fsw_acs_config_of(load_scenario(scenario, ov));
+  } catch (const ScenarioError& e) {
+    print_issues(e, err);
+    return kExitInvalidScenario;
+  }
+  std::vector<uint8_t> img(fsw_link_config_size());
+  size_t len = 0;
+  if (fsw_link_config_encode(&cfg, img.data(), img.size(), &len, nullptr) != FSW_OK) {
+    err << "kestrel: cannot encode the FSW configuration image\n";
+    return kExitRunFailed;
+  }
+  std::ofstream f(out_file, std::ios::binary | std::ios::trunc);
+  f.write(reinterpret_cast<const char*>(img.data()), static_cast<std::streamsize>(len));
+  f.close();
+  if (!f) {
+    err << "kestrel: cannot write " << out_file << "\n";
+    return kExitOutput;
+  }
+  out << out_file << ": FSW configuration image of " << scenario << " (" << len << " bytes, format "
+      << FSW_LINK_CONFIG_VERSION << ")\n";
+  return kExitOk;
+}
+
 int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
 {
   std::vector<Override> ov;
@@ -89,6 +120,20 @@ int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
   opt.force = c.force;
   opt.stop = c.stop;
   if (c.realtime) opt.realtime_scale = c.rt_scale;
+  opt.fsw_link = c.fsw;
+  opt.link.timeout_s = c.link_timeout;
+  opt.link.reply_timeout_s = c.reply_timeout;
+  if (!c.on_missing.empty()) {
+    opt.link.on_missing_set = true;
+    opt.link.on_missing = c.on_missing == "zero" ? LinkOptions::Missing::kZero : LinkOptions::Missing::kHold;
+  }
+  opt.link.loss = c.loss / 100.0;
+  opt.link.corrupt = c.corrupt / 100.0;
+  opt.link.duplicate = c.duplicate / 100.0;
+  opt.link.reorder = c.reorder / 100.0;
+  opt.link.delay = c.delay / 100.0;
+  opt.link.delay_cycles = c.delay_cycles;
+  opt.link.seed = c.link_seed;
   opt.notice = [&err, &c](const std::string& msg) {
     if (c.progress) err << "\n";
     err << "kestrel: " << msg << "\n";
@@ -144,6 +189,11 @@ int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
         << " us, p99 " << r.pacing.lateness_p99_s * 1e6 << " us, max " << r.pacing.lateness_max_s * 1e6 << " us, "
         << r.pacing.overruns << " overruns in " << r.pacing.ticks << " ticks, drift at the end "
         << r.pacing.drift_s * 1e6 << " us\n";
+  if (r.linked)
+    out << "FSW link (" << c.fsw << "): " << r.link.cycles << " cycles, " << r.link.sent << " sensor packets sent, "
+        << r.link.lost << " lost, " << r.link.corrupted << " corrupted, " << r.link.missing
+        << " cycles without a reply, " << r.link.rejected << " replies rejected; FSW end: " << r.link.fsw.rx_crc
+        << " CRC rejections, " << r.link.fsw.rx_stale << " stale, " << r.link.fsw.missed << " missed cycles\n";
   out << "results: " << opt.out_dir << "\n";
   for (const auto& f : r.files)
     if (fs::path(f).filename() == "report.html") out << "report: " << f << "\n";

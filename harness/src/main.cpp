@@ -52,6 +52,32 @@ int main(int argc, char** argv)
   run->add_flag("--realtime", rc.realtime, "pace the ticks to the wall clock (absolute deadlines)");
   run->add_option("--rt-scale", rc.rt_scale, "with --realtime: multiple of real time (default 1)")
       ->check(CLI::PositiveNumber);
+  run->add_option("--fsw", rc.fsw, "run the FSW behind the link: udp:HOST:PORT or serial:DEVICE:BAUD (docs/hwil.md)");
+  run->add_option("--on-missing", rc.on_missing, "a cycle without a reply: hold (last command) or zero (safe output)")
+      ->check(CLI::IsMember({"hold", "zero"}));
+  run->add_option("--link-timeout", rc.link_timeout, "lockstep: fail when a reply takes longer [s] (default 10)")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--reply-timeout", rc.reply_timeout, "hold/zero: give a cycle up after [s] (default 0.5)")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--link-loss", rc.loss, "fault: sensor packets lost [%]")->check(CLI::Range(0.0, 100.0));
+  run->add_option("--link-corrupt", rc.corrupt, "fault: sensor packets with 1-3 flipped bits [%]")
+      ->check(CLI::Range(0.0, 100.0));
+  run->add_option("--link-duplicate", rc.duplicate, "fault: sensor packets sent twice [%]")
+      ->check(CLI::Range(0.0, 100.0));
+  run->add_option("--link-reorder", rc.reorder, "fault: sensor packets swapped with the next [%]")
+      ->check(CLI::Range(0.0, 100.0));
+  run->add_option("--link-delay", rc.delay, "fault: sensor packets sent --link-delay-cycles late [%]")
+      ->check(CLI::Range(0.0, 100.0));
+  run->add_option("--link-delay-cycles", rc.delay_cycles, "FSW cycles a delayed packet is late (default 2)")
+      ->check(CLI::Range(1, 1000));
+  run->add_option("--link-seed", rc.link_seed, "seed of the fault injector (default 1)");
+
+  std::string cpath, cout_file;
+  std::vector<std::string> csets;
+  auto* fcfg = app.add_subcommand("fsw-config", "write the FSW configuration image of a scenario (for kestrel-fsw)");
+  fcfg->add_option("scenario", cpath, "scenario file or manifest.json")->required();
+  fcfg->add_option("-o,--output", cout_file, "image file")->required();
+  fcfg->add_option("--set", csets, "override a scenario key: key.path=value (repeatable)");
 
   std::string vpath;
   std::vector<std::string> vsets;
@@ -75,6 +101,7 @@ int main(int argc, char** argv)
     return harness::cmd_run(rc, std::cout, std::cerr);
   }
   if (*val) return harness::cmd_validate(vpath, vsets, std::cout, std::cerr);
+  if (*fcfg) return harness::cmd_fsw_config(cpath, csets, cout_file, std::cout, std::cerr);
   if (*list) return harness::cmd_list(harness::scenario_dir(), std::cout, std::cerr);
   if (*bench) return harness::cmd_bench(harness::scenario_dir(), std::cout, std::cerr);
   return harness::kExitUsage;

@@ -90,6 +90,12 @@ void Pacer::wait_for(uint64_t k)
   ++ticks_;
 }
 
+double Pacer::seconds_to(uint64_t k) const
+{
+  if (t0_ns_ < 0) return std::numeric_limits<double>::infinity();
+  return static_cast<double>(deadline_ns(k) - now_ns()) * 1e-9;
+}
+
 void Pacer::done(uint64_t k)
 {
   if (now_ns() > deadline_ns(k + 1)) ++overruns_;

@@ -3,7 +3,9 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -48,6 +50,24 @@ std::string signal_name(int s)
   }
 }
 
+// The endpoint behind the link.  With real-time pacing a cycle waits at most
+// one FSW period of wall time and, unless told otherwise, holds the last
+// command when its reply is late.
+std::unique_ptr<FswEndpoint> make_remote_fsw(const Scenario& sc, const RunOptions& opt, RemoteFsw*& remote,
+                                             std::function<double()> time_left)
+{
+  LinkOptions lo = opt.link;
+  if (opt.realtime_scale > 0) {
+    if (!lo.on_missing_set) lo.on_missing = LinkOptions::Missing::kHold;
+    lo.on_missing_set = true;
+    lo.reply_timeout_s = sc.rates.dt * sc.rates.fsw_divisor / opt.realtime_scale;
+    lo.time_left = std::move(time_left);
+  }
+  auto r = std::make_unique<RemoteFsw>(open_link_transport(opt.fsw_link), fsw_acs_config_of(sc), lo);
+  remote = r.get();
+  return r;
+}
+
 }  // namespace
 
 RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
@@ -59,6 +79,15 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   if (files) rdir.emplace(opt.out_dir, opt.force);
   RunConfig cfg;
   cfg.keep_in_memory = false;  // streamed: memory does not grow with the duration
+  RemoteFsw* remote = nullptr;
+  // paced: the FSW link waits for a reply at most until the deadline of the
+  // tick after the one being computed (pacer below, created after the run)
+  std::optional<Pacer> pacer;
+  uint64_t pacing_tick = 0;
+  if (!opt.fsw_link.empty())
+    cfg.fsw = make_remote_fsw(sc, opt, remote, [&pacer, &pacing_tick] {
+      return pacer ? pacer->seconds_to(pacing_tick + 1) : std::numeric_limits<double>::infinity();
+    });
   Run run(sc, std::move(cfg));
   if (rdir) rdir->require_free_space(output_estimate(run, sc));
   const fs::path dir = files ? rdir->work() : fs::path();
@@ -87,7 +116,6 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   // chunks of at most 1000 ticks: a stop request is seen within milliseconds
   const uint64_t total = run.total_ticks();
   const uint64_t chunk = std::clamp<uint64_t>(total / 200, 1, 1000);
-  std::optional<Pacer> pacer;
   uint64_t notice_every = 1;  // paced: ticks per ~10 s of wall time (one notice at most)
   if (opt.realtime_scale > 0.0) {
     pacer.emplace(sc.tick_ns(), opt.realtime_scale);
@@ -104,6 +132,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
     if (pacer) {  // one tick at a time, each at its deadline
       const uint64_t k = run.tick();
       pacer->wait_for(k);
+      pacing_tick = k;
       if (!run.step_ticks(1)) break;
       pacer->done(k);
       if ((k + 1) % notice_every == 0) {
@@ -130,6 +159,10 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   // Results are written also for a failed or interrupted run (never lose
   // data): the rows recorded up to there are in the files, marked incomplete.
   run.finish();
+  if (remote != nullptr) {
+    res.linked = true;
+    res.link = remote->counters();
+  }
   res.final_pointing_error_deg = run.final_pointing_error_deg();
   RunStatus& st = res.status;
   st.complete = res.ok && run.done();
@@ -176,6 +209,18 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
     summ << "rt_overruns = " << p.overruns << "     # ticks whose work ended after the next deadline\n";
     summ << "rt_drift = " << p.drift_s << " s    # last tick's lateness (absolute deadlines: no accumulation)\n";
     summ << "rt_priority = " << (p.realtime_priority ? 1 : 0) << "     # 1: SCHED_FIFO and locked memory\n";
+  }
+  if (res.linked) {
+    const LinkCounters& l = res.link;
+    summ << "link_cycles = " << l.cycles << "     # FSW cycles over the link\n";
+    summ << "link_sent = " << l.sent << "     # sensor packets sent (duplicates included)\n";
+    summ << "link_lost = " << l.lost << "     # dropped by the loss injector\n";
+    summ << "link_corrupted = " << l.corrupted << "     # sent with flipped bits\n";
+    summ << "link_missing = " << l.missing << "     # cycles without a reply (last command held or zero applied)\n";
+    summ << "link_rejected = " << l.rejected << "     # received packets the harness rejected\n";
+    summ << "link_fsw_rx_crc = " << l.fsw.rx_crc << "     # FSW end: packets rejected on CRC\n";
+    summ << "link_fsw_rx_stale = " << l.fsw.rx_stale << "     # FSW end: duplicate, old or out-of-order sensor packets\n";
+    summ << "link_fsw_missed = " << l.fsw.missed << "     # FSW end: control cycles without a sensor packet\n";
   }
   write_text((dir / "summary.txt").string(), summ.str());
   written.push_back("summary.txt");

@@ -388,3 +388,186 @@ TEST(FswLink, DeframerRecoversAfterGarbageAndCorruption)
     EXPECT_GE(d.sync_slips, 6u);
   }
 }
+
+// Every argument and range check of the encoders, the parser, the decoders,
+// the framer and the deframer, one condition at a time (branch coverage of
+// fsw_link.c: each operand of each || decides once).
+TEST(FswLink, EveryArgumentAndRangeCheckRejectsAlone)
+{
+  Bytes b(FSW_LINK_MAX_PACKET);
+  size_t len = 0;
+  FswLinkError e = FSW_LINK_OK;
+  const FswAcsSensorMsg s = sensor_msg(2, 2);
+  const FswAcsActuatorMsg a = actuator_msg(2, 2);
+  const FswAcsHealthMsg h = health_msg();
+  const FswAcsCmdMsg c = {1, 1};
+  // CRC of a null buffer: the running value unchanged
+  EXPECT_EQ(fsw_link_crc16(nullptr, 5, 0x1234), 0x1234);
+  // encoders: each null, each count, each mode range, each short buffer
+  EXPECT_EQ(fsw_link_encode_sensor(&s, 2, 2, 0, nullptr, b.size(), &len, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_encode_sensor(&s, 2, 2, 0, b.data(), b.size(), nullptr, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_encode_sensor(&s, 2, FSW_MAX_CSS + 1, 0, b.data(), b.size(), &len, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_COUNT);
+  EXPECT_EQ(fsw_link_encode_cmd(nullptr, 0, 0, b.data(), b.size(), &len, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_encode_cmd(&c, 0, 0, nullptr, b.size(), &len, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_encode_cmd(&c, 0, 0, b.data(), b.size(), nullptr, &e), FSW_E_NULL_ARG);
+  for (const FswAcsCmdMsg bad : {FswAcsCmdMsg{-1, 0}, FswAcsCmdMsg{256, 0}, FswAcsCmdMsg{0, -1}, FswAcsCmdMsg{0, 256}}) {
+    EXPECT_EQ(fsw_link_encode_cmd(&bad, 0, 0, b.data(), b.size(), &len, &e), FSW_E_BAD_INPUT);
+    EXPECT_EQ(e, FSW_LINK_E_COUNT);
+    FswAcsHealthMsg hb = h;
+    hb.mode = bad.mode;
+    hb.actuation = bad.actuation;
+    EXPECT_EQ(fsw_link_encode_health(&hb, 0, 0, b.data(), b.size(), &len, &e), FSW_E_BAD_INPUT);
+    EXPECT_EQ(e, FSW_LINK_E_COUNT);
+  }
+  EXPECT_EQ(fsw_link_encode_cmd(&c, 0, 0, b.data(), 14 + 4 + 1, &len, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_SPACE);
+  EXPECT_EQ(fsw_link_encode_actuator(nullptr, 2, 2, 0, 0, b.data(), b.size(), &len, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_encode_actuator(&a, 2, 2, 0, 0, nullptr, b.size(), &len, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_encode_actuator(&a, 2, 2, 0, 0, b.data(), b.size(), nullptr, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_encode_actuator(&a, FSW_MAX_RW + 1, 2, 0, 0, b.data(), b.size(), &len, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(fsw_link_encode_actuator(&a, 2, FSW_MAX_THR + 1, 0, 0, b.data(), b.size(), &len, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_COUNT);
+  EXPECT_EQ(fsw_link_encode_actuator(&a, 2, 2, 0, 0, b.data(), 20, &len, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_SPACE);
+  EXPECT_EQ(fsw_link_encode_health(nullptr, 0, 0, b.data(), b.size(), &len, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_encode_health(&h, 0, 0, nullptr, b.size(), &len, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_encode_health(&h, 0, 0, b.data(), b.size(), nullptr, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_encode_health(&h, 0, 0, b.data(), 100, &len, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_SPACE);
+  // thrusters_active travels as a flag
+  FswAcsActuatorMsg at = a;
+  at.thrusters_active = 7;
+  ASSERT_EQ(fsw_link_encode_actuator(&at, 2, 2, 0, 0, b.data(), b.size(), &len, &e), FSW_OK);
+  EXPECT_EQ(b[FSW_LINK_HEADER_SIZE + 3], 1u);
+
+  // parser: null packet pointer; a data length too small for the headers
+  FswLinkPacket p;
+  Bytes pk = encode_sensor(s, 2, 2);
+  EXPECT_EQ(fsw_link_parse(pk.data(), pk.size(), nullptr, &e), FSW_E_NULL_ARG);
+  Bytes tiny = pk;
+  tiny[4] = 0;
+  tiny[5] = 8;  // 9 bytes after the primary header: less than 8 + CRC ... + 1
+  fix_crc(tiny);
+  EXPECT_EQ(fsw_link_parse(tiny.data(), tiny.size(), &p, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_HEADER);
+
+  // decoders: each null; the right APID with the wrong type; short payloads
+  ASSERT_EQ(fsw_link_parse(pk.data(), pk.size(), &p, &e), FSW_OK);
+  FswAcsSensorMsg ms;
+  FswAcsCmdMsg mc;
+  FswAcsActuatorMsg ma;
+  FswAcsHealthMsg mh;
+  uint8_t n1 = 0, n2 = 0;
+  EXPECT_EQ(fsw_link_decode_sensor(nullptr, &ms, &n1, &n2, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_sensor(&p, nullptr, &n1, &n2, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_sensor(&p, &ms, nullptr, &n2, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_sensor(&p, &ms, &n1, nullptr, &e), FSW_E_NULL_ARG);
+  FswLinkPacket np = p;
+  np.payload = nullptr;
+  EXPECT_EQ(fsw_link_decode_sensor(&np, &ms, &n1, &n2, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_cmd(nullptr, &mc, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_cmd(&p, nullptr, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_cmd(&np, &mc, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_actuator(nullptr, &ma, &n1, &n2, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_actuator(&p, nullptr, &n1, &n2, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_actuator(&p, &ma, nullptr, &n2, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_actuator(&p, &ma, &n1, nullptr, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_actuator(&np, &ma, &n1, &n2, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_health(nullptr, &mh, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_health(&p, nullptr, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_health(&np, &mh, &e), FSW_E_NULL_ARG);
+  FswLinkPacket wrong_type = p;
+  wrong_type.type = 0;  // APID 0x101 as telemetry
+  EXPECT_EQ(fsw_link_decode_sensor(&wrong_type, &ms, &n1, &n2, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_APID);
+  // synthetic payloads of given lengths under a packet of the given APID
+  auto with = [&](uint16_t apid, uint8_t type, const Bytes& payload) {
+    FswLinkPacket q;
+    q.apid = apid;
+    q.type = type;
+    q.seq = 0;
+    q.t_ns = 0;
+    q.payload = payload.data();
+    q.payload_len = payload.size();
+    q.packet_len = payload.size() + 16;
+    return q;
+  };
+  const Bytes short3(3, 0);
+  FswLinkPacket q = with(FSW_LINK_APID_SENSOR, 1, short3);
+  EXPECT_EQ(fsw_link_decode_sensor(&q, &ms, &n1, &n2, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_LENGTH);
+  Bytes cnt(FSW_LINK_SENSOR_PAYLOAD(0, 0), 0);
+  cnt[1] = FSW_MAX_CSS + 1;
+  q = with(FSW_LINK_APID_SENSOR, 1, cnt);
+  EXPECT_EQ(fsw_link_decode_sensor(&q, &ms, &n1, &n2, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_COUNT);
+  q = with(FSW_LINK_APID_CMD, 1, short3);
+  EXPECT_EQ(fsw_link_decode_cmd(&q, &mc, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_LENGTH);
+  const Bytes cmd_reserved = {0, 0, 0, 1};
+  q = with(FSW_LINK_APID_CMD, 1, cmd_reserved);
+  EXPECT_EQ(fsw_link_decode_cmd(&q, &mc, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_COUNT);
+  q = with(FSW_LINK_APID_ACTUATOR, 1, Bytes(FSW_LINK_ACTUATOR_PAYLOAD(0, 0), 0));
+  EXPECT_EQ(fsw_link_decode_actuator(&q, &ma, &n1, &n2, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_APID);
+  q = with(FSW_LINK_APID_ACTUATOR, 0, short3);
+  EXPECT_EQ(fsw_link_decode_actuator(&q, &ma, &n1, &n2, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_LENGTH);
+  for (int which = 0; which < 5; ++which) {
+    Bytes pa(FSW_LINK_ACTUATOR_PAYLOAD(0, 0), 0);
+    if (which == 0) pa[0] = FSW_MAX_RW + 1;
+    if (which == 1) pa[1] = FSW_MAX_THR + 1;
+    if (which == 2) pa[0] = 1;  // one wheel declared, none in the payload
+    if (which == 3) pa[2] = 2;  // wheels_active
+    if (which == 4) pa[3] = 2;  // thrusters_active
+    q = with(FSW_LINK_APID_ACTUATOR, 0, pa);
+    EXPECT_EQ(fsw_link_decode_actuator(&q, &ma, &n1, &n2, &e), FSW_E_BAD_INPUT) << which;
+    EXPECT_EQ(e, which == 2 ? FSW_LINK_E_LENGTH : FSW_LINK_E_COUNT) << which;
+  }
+  q = with(FSW_LINK_APID_HEALTH, 1, Bytes(FSW_LINK_HEALTH_PAYLOAD, 0));
+  EXPECT_EQ(fsw_link_decode_health(&q, &mh, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_APID);
+  q = with(FSW_LINK_APID_HEALTH, 0, short3);
+  EXPECT_EQ(fsw_link_decode_health(&q, &mh, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_LENGTH);
+  for (int which = 0; which < 3; ++which) {
+    Bytes ph(FSW_LINK_HEALTH_PAYLOAD, 0);
+    ph[7] = FSW_ACS_NUM_STAGES;
+    if (which == 0) ph[4] = 2;  // safe_output
+    if (which == 1) ph[5] = 2;  // sun_valid
+    if (which == 2) ph[7] = FSW_ACS_NUM_STAGES + 1;
+    q = with(FSW_LINK_APID_HEALTH, 0, ph);
+    EXPECT_EQ(fsw_link_decode_health(&q, &mh, &e), FSW_E_BAD_INPUT) << which;
+    EXPECT_EQ(e, FSW_LINK_E_COUNT) << which;
+  }
+
+  // framer and deframer arguments
+  EXPECT_EQ(fsw_link_frame(nullptr, 4, b.data(), b.size(), &len), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_frame(pk.data(), pk.size(), nullptr, b.size(), &len), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_frame(pk.data(), pk.size(), b.data(), b.size(), nullptr), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_frame(pk.data(), pk.size(), b.data(), pk.size() + 3, &len), FSW_E_BAD_INPUT);
+  FswLinkDeframer d;
+  fsw_link_deframer_init(&d);
+  const uint8_t* out = nullptr;
+  size_t out_len = 0;
+  EXPECT_EQ(fsw_link_deframer_push(nullptr, pk.data(), pk.size(), &out, &out_len), 0u);
+  EXPECT_EQ(fsw_link_deframer_push(&d, nullptr, pk.size(), &out, &out_len), 0u);
+  EXPECT_EQ(fsw_link_deframer_push(&d, pk.data(), pk.size(), nullptr, &out_len), 0u);
+  EXPECT_EQ(fsw_link_deframer_push(&d, pk.data(), pk.size(), &out, nullptr), 0u);
+  // a marker followed by a length field below the smallest packet, then a
+  // good packet: the short candidate is rejected, the good one delivered
+  Bytes stream = {0x1A, 0xCF, 0xFC, 0x1D, 0x19, 0x01, 0xC0, 0x00, 0x00, 0x02};
+  Bytes framed(pk.size() + 4);
+  ASSERT_EQ(fsw_link_frame(pk.data(), pk.size(), framed.data(), framed.size(), &len), FSW_OK);
+  stream.insert(stream.end(), framed.begin(), framed.end());
+  size_t pos = 0;
+  int got = 0;
+  while (pos < stream.size()) {
+    pos += fsw_link_deframer_push(&d, stream.data() + pos, stream.size() - pos, &out, &out_len);
+    if (out != nullptr) ++got;
+  }
+  EXPECT_EQ(got, 1);
+  EXPECT_GE(d.rejected, 1u);
+}

@@ -28,6 +28,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "fsw/fsw_acs.h"
 #include "fsw/fsw_acs_msgs.h"
 #include "fsw/fsw_config.h"
 #include "fsw/fsw_status.h"
@@ -41,6 +42,7 @@ extern "C" {
 #define FSW_LINK_APID_CMD 0x102u      /* to the FSW:   FswAcsCmdMsg                       */
 #define FSW_LINK_APID_ACTUATOR 0x181u /* from the FSW: FswAcsActuatorMsg                  */
 #define FSW_LINK_APID_HEALTH 0x182u   /* from the FSW: FswAcsHealthMsg                    */
+#define FSW_LINK_APID_LINK 0x183u     /* from the FSW: FswLinkStatusMsg (link counters)   */
 
 #define FSW_LINK_PRIMARY_SIZE 6u
 #define FSW_LINK_SECONDARY_SIZE 8u
@@ -54,6 +56,7 @@ extern "C" {
 #define FSW_LINK_CMD_PAYLOAD 4u
 #define FSW_LINK_ACTUATOR_PAYLOAD(num_rw, num_thr) (28u + 16u * (size_t)(num_rw) + 16u * (size_t)(num_thr))
 #define FSW_LINK_HEALTH_PAYLOAD (16u + 2u * (size_t)FSW_ACS_NUM_STAGES + 88u + 30u)
+#define FSW_LINK_STATUS_PAYLOAD 40u
 
 /* The largest packet any capacity allows (buffer size for a receiver). */
 #define FSW_LINK_MAX_PACKET                                                                                  \
@@ -86,6 +89,23 @@ typedef struct {
   size_t packet_len;     /* bytes of the whole packet, CRC included */
 } FswLinkPacket;
 
+/* The FSW end's link counters (APID 0x183, sent after every health packet;
+ * docs/icd.md).  Filled by fsw_link_node. */
+typedef struct {
+  uint32_t rx_packets;   /* [-] packets received (any, before checks)                  */
+  uint32_t rx_crc;       /* [-] rejected: CRC mismatch                                  */
+  uint32_t rx_rejected;  /* [-] rejected: short, header, APID, length or count         */
+  uint32_t rx_stale;     /* [-] sensor packets rejected as duplicate, old or not later */
+  uint32_t missed;       /* [-] control cycles without a sensor packet (gaps, watchdog) */
+  uint32_t safe_entries; /* [-] entries into the link-safe output                       */
+  uint32_t safe_cycles;  /* [-] safe actuator packets sent by the watchdog              */
+  uint32_t recoveries;   /* [-] returns to normal cycles after link-safe               */
+  uint32_t cycles;       /* [-] fsw_acs cycles run                                      */
+  uint16_t last_seq;     /* [-] sequence count of the last accepted sensor packet       */
+  uint8_t link_safe;     /* [-] 1 while the link-safe output is in force                */
+  uint8_t reserved;      /* [-] 0                                                       */
+} FswLinkStatusMsg;
+
 /* CRC-16/CCITT-FALSE of n bytes, continuing from `crc` (0xFFFF to start). */
 uint16_t fsw_link_crc16(const uint8_t *data, size_t n, uint16_t crc);
 
@@ -99,6 +119,9 @@ FswStatus fsw_link_encode_cmd(const FswAcsCmdMsg *m, uint64_t t_ns, uint16_t seq
 FswStatus fsw_link_encode_actuator(const FswAcsActuatorMsg *m, uint8_t num_rw, uint8_t num_thr, uint64_t t_ns,
                                    uint16_t seq, uint8_t *buf, size_t cap, size_t *len, FswLinkError *err);
 FswStatus fsw_link_encode_health(const FswAcsHealthMsg *m, uint64_t t_ns, uint16_t seq, uint8_t *buf, size_t cap,
+                                 size_t *len, FswLinkError *err);
+
+FswStatus fsw_link_encode_status(const FswLinkStatusMsg *m, uint64_t t_ns, uint16_t seq, uint8_t *buf, size_t cap,
                                  size_t *len, FswLinkError *err);
 
 /* Checks the primary header and the CRC of buf[0..n) (n may exceed the
@@ -115,6 +138,35 @@ FswStatus fsw_link_decode_cmd(const FswLinkPacket *p, FswAcsCmdMsg *m, FswLinkEr
 FswStatus fsw_link_decode_actuator(const FswLinkPacket *p, FswAcsActuatorMsg *m, uint8_t *num_rw, uint8_t *num_thr,
                                    FswLinkError *err);
 FswStatus fsw_link_decode_health(const FswLinkPacket *p, FswAcsHealthMsg *m, FswLinkError *err);
+FswStatus fsw_link_decode_status(const FswLinkPacket *p, FswLinkStatusMsg *m, FswLinkError *err);
+
+/* ---- configuration image ------------------------------------------------- */
+
+/* A serialised FswAcsConfig (docs/icd.md, "Configuration image"): a 20-byte
+ * header (magic "KCFG", format version, field count, a layout code over the
+ * field table, the capacities FSW_MAX_RW, FSW_MAX_CSS, FSW_MAX_THR, the body
+ * length), the body (every field of one table, in order, arrays at full
+ * capacity: int as i32, fsw_real as f64, big-endian) and a CRC-16 over all
+ * bytes before it.  Encoder and decoder walk the same table, so they cannot
+ * drift.  An image is accepted only by a build with the same table and
+ * capacities.  The decoder does not judge values: fsw_acs_check() does. */
+#define FSW_LINK_CONFIG_VERSION 1u
+#define FSW_LINK_CONFIG_HEADER 20u
+
+/* Size of an image in bytes (this build's table and capacities). */
+size_t fsw_link_config_size(void);
+
+/* FSW_OK, FSW_E_NULL_ARG, or FSW_E_BAD_INPUT with FSW_LINK_E_SPACE (cap too
+ * small).  int fields travel as i32 (int is 32 bits on every supported
+ * target). */
+FswStatus fsw_link_config_encode(const FswAcsConfig *cfg, uint8_t *buf, size_t cap, size_t *len, FswLinkError *err);
+
+/* Decodes an image of exactly n bytes.  FSW_OK, FSW_E_NULL_ARG, or
+ * FSW_E_BAD_INPUT with FSW_LINK_E_SHORT (n shorter than the image),
+ * FSW_LINK_E_HEADER (magic, version, field count, layout or capacities not
+ * this build's), FSW_LINK_E_LENGTH (n or the body length not this build's
+ * size) or FSW_LINK_E_CRC; *cfg is written only on FSW_OK. */
+FswStatus fsw_link_config_decode(const uint8_t *buf, size_t n, FswAcsConfig *cfg, FswLinkError *err);
 
 /* ---- byte streams ------------------------------------------------------- */
 

@@ -43,7 +43,18 @@ struct RunCommand {
   bool realtime = false;            // pace to the wall clock (pacer.h)
   double rt_scale = 1.0;            // ... at this multiple of real time
   const std::atomic<int>* stop = nullptr;  // set to a signal number to stop the run (main.cpp)
+  std::string fsw;                  // "" in process; udp:HOST:PORT / serial:DEVICE:BAUD (docs/hwil.md)
+  std::string on_missing;           // "" (fail in lockstep, hold with faults or --realtime), hold, zero
+  double link_timeout = 10.0;       // lockstep reply timeout [s]
+  double reply_timeout = 0.5;       // hold/zero: give a cycle up after [s]
+  double loss = 0, corrupt = 0, duplicate = 0, reorder = 0, delay = 0;  // fault probabilities [%]
+  int delay_cycles = 2;
+  uint64_t link_seed = 1;
 };
+
+// Writes the FSW configuration image of a scenario (docs/hwil.md).
+int cmd_fsw_config(const std::string& scenario, const std::vector<std::string>& sets, const std::string& out_file,
+                   std::ostream& out, std::ostream& err);
 
 int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err);
 int cmd_validate(const std::string& scenario, const std::vector<std::string>& sets, std::ostream& out,

@@ -16,6 +16,7 @@
 #ifndef HARNESS_OUTPUTS_H
 #define HARNESS_OUTPUTS_H
 
+#include "harness/remote_fsw.h"
 #include <atomic>
 #include <cstdio>
 #include <functional>
@@ -153,6 +154,10 @@ struct RunOptions {
   double realtime_scale = 0.0;
   // Optional: warnings while running (no real-time priority, cannot keep up).
   std::function<void(const std::string&)> notice;
+  // "" : the FSW in this process; "udp:HOST:PORT" or "serial:DEVICE:BAUD":
+  // the FSW behind the link (remote_fsw.h, docs/hwil.md).
+  std::string fsw_link;
+  LinkOptions link;
 };
 
 struct RunResult {
@@ -167,6 +172,8 @@ struct RunResult {
   PacingStats pacing;
   RunStatus status;
   std::vector<std::string> files;  // written, in order (paths in the results folder)
+  bool linked = false;             // the FSW ran behind the link (RunOptions::fsw_link)
+  LinkCounters link;               // ... and what the link counted
 };
 
 // Runs a scenario to the end, streaming its results into opt.out_dir (memory

@@ -43,6 +43,9 @@ class Pacer {
   void wait_for(uint64_t k);
   // Marks the end of tick k's work (overrun accounting).
   void done(uint64_t k);
+  // Wall time [s] left until tick k's deadline (negative: past it; +inf
+  // before the first wait_for).  An FSW link bounds its waits with it.
+  double seconds_to(uint64_t k) const;
   // Overruns since the last call (for "cannot keep up" notices).
   uint64_t take_new_overruns();
   PacingStats stats() const;

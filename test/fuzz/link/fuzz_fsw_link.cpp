@@ -3,7 +3,8 @@
 // Asserts: no crash or out-of-bounds access (ASan); a parsed packet lies
 // inside the input; a decoder writes its message only on success; and a
 // packet that decodes re-encodes to exactly its own bytes (the encoding is
-// canonical: one byte string per message), in the double build.
+// canonical: one byte string per message), in the double build.  The same
+// bytes also go through the configuration-image decoder (same contract).
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -93,6 +94,35 @@ void check_packet(const uint8_t* data, size_t size)
       violation("health decoder wrote on failure");
     }
   }
+  {
+    FswLinkStatusMsg m;
+    std::memset(&m, 0xA5, sizeof m);
+    if (fsw_link_decode_status(&p, &m, &e) == FSW_OK) {
+      if (fsw_link_encode_status(&m, p.t_ns, p.seq, out.data(), out.size(), &len, nullptr) != FSW_OK)
+        violation("a decoded link status does not encode");
+      same_bytes(data, p.packet_len, out, len, "link status packet does not re-encode to its bytes");
+    } else if (!untouched(m)) {
+      violation("link status decoder wrote on failure");
+    }
+  }
+}
+
+// The bytes as a configuration image: written only on success, and an image
+// that decodes re-encodes to its own bytes (double build).
+void check_config(const uint8_t* data, size_t size)
+{
+  static FswAcsConfig c;
+  std::memset(&c, 0xA5, sizeof c);
+  FswLinkError e = FSW_LINK_OK;
+  if (fsw_link_config_decode(data, size, &c, &e) != FSW_OK) {
+    if (!untouched(c)) violation("config decoder wrote on failure");
+    return;
+  }
+  std::vector<uint8_t> out(fsw_link_config_size());
+  size_t len = 0;
+  if (fsw_link_config_encode(&c, out.data(), out.size(), &len, nullptr) != FSW_OK)
+    violation("a decoded configuration does not encode");
+  if (sizeof(fsw_real) == sizeof(double)) same_bytes(data, size, out, len, "config image does not re-encode");
 }
 
 }  // namespace
@@ -100,6 +130,7 @@ void check_packet(const uint8_t* data, size_t size)
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
   check_packet(data, size);
+  check_config(data, size);
   // the same bytes as a stream, in two pieces: every packet the deframer
   // delivers parses, and it never consumes more than it was given
   FswLinkDeframer d;

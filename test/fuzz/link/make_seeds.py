@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """Seed corpus of fuzz_fsw_link, written from docs/icd.md alone (an
 implementation independent of fsw_link.c): one packet per APID, an empty and
-a full sensor packet, and a framed byte stream.  Run from this folder."""
+a full sensor packet, and a framed byte stream.  Run from this folder.
+(config_image_s1 in the corpus is not written here: it is the output of
+`kestrel fsw-config scenarios/s1_sun_pointing.yaml`, a valid configuration
+image for the fuzzer to mutate.)"""
 import binascii, os, struct
 
 def packet(apid, tc, seq, t_ns, payload):
@@ -24,6 +27,7 @@ seeds = {
     'health': packet(0x182, 0, 4, 9, struct.pack('>hBBBBBBII', 0, 1, 0, 0, 1, 3, 11, 10, 1)
                      + struct.pack('>11h', *([0] * 11)) + struct.pack('>11d', *([0.0] * 11))
                      + struct.pack('>7Ih', 0, 0, 0, 0, 0, 0, 10, 0)),
+    'link_status': packet(0x183, 0, 5, 9, struct.pack('>9IHBB', 10, 1, 2, 3, 4, 1, 2, 1, 9, 9, 0, 0)),
 }
 seeds['stream'] = b'\x00\x1a\xcf' + b''.join(b'\x1a\xcf\xfc\x1d' + s for s in seeds.values())
 os.makedirs('corpus/fuzz_fsw_link', exist_ok=True)
