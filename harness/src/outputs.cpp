@@ -71,6 +71,12 @@ std::string manifest_text(const Scenario& sc, const std::vector<Override>& overr
                    {"t_reached", status->t_reached},
                    {"duration", sc.duration},
                    {"stopped_by", status->stopped_by}};
+  if (status && !sc.events.empty()) {
+    json ev = json::array();
+    for (const AppliedEvent& e : status->events)
+      ev.push_back({{"name", e.name}, {"tick", e.tick}, {"t", e.t}, {"actions", e.what}});
+    j["result"]["events_applied"] = ev;
+  }
   return j.dump(2) + "\n";
 }
 
