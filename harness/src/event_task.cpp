@@ -85,7 +85,7 @@ void EventTask::operator()(uint64_t k)
     for (const Act& a : e.acts) apply(a, t_ns);
     e.applied = true;
     const EventSpec& spec = sc_.events[i];
-    log_.push_back({spec.name, k, static_cast<double>(t_ns) * 1e-9, e.what});
+    log_.push_back({spec.name, k, static_cast<double>(t_ns) / 1e9, e.what});  // as the recorded t
     for (Ev& f : ev_)  // events that follow this one: their time is now known
       if (f.after == static_cast<int>(i)) f.t_ns = t_ns + f.delay_ns;
   }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <unistd.h>
@@ -311,4 +312,87 @@ TEST(Events, RecordedAndReproducedFromTheManifest)
     ASSERT_TRUE(h.data[i] == h2.data[i] || (std::isnan(h.data[i]) && std::isnan(h2.data[i]))) << i;
   EXPECT_EQ(h2.events.size(), 2u);
   fs::remove_all(dir);
+}
+
+// ---- reference case: S1, gyro dropout 500-505 s ------------------------------------------------
+
+// The FSW has no rates for 5 s: every cycle is rejected (FSW_E_BAD_INPUT)
+// with the safe output (wheel commands 0), flagged in the health message;
+// the first cycle with rates again (505 s) is a good one.  With no wheel
+// torque the body turns freely, at most |omega| * 5 s (torque-free, no
+// wheel friction in S1: |H| constant, |omega| <= |H_B| / I_min changes by
+// less than I_max / I_min = 1.5 from its value at 500 s), then the loop
+// pulls it back: the S1 figure (0.5 deg) holds again at the end.
+TEST(Events, S1GyroDropoutSafeOutputAndRecovery)
+{
+  const harness::Scenario sc = harness::load_scenario(kDir + "s1_gyro_dropout.yaml", fast());
+  harness::Run run(sc);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  const harness::MemorySink& r = run.memory();
+  ASSERT_EQ(run.events_applied().size(), 1u);
+  EXPECT_EQ(run.events_applied()[0].t, 500.0);
+  const auto t = r.column("t"), safe = r.column("fsw_safe_output"), st = r.column("fsw_status");
+  const auto wx = r.column("omega_BN_B_x"), wy = r.column("omega_BN_B_y"), wz = r.column("omega_BN_B_z");
+  const auto err = r.column("pointing_error_deg");
+  double w500 = 0.0, e500 = 0.0;
+  for (size_t k = 0; k < t.size(); ++k) {
+    const bool out = t[k] >= 500.0 && t[k] < 505.0;
+    EXPECT_EQ(safe[k], out ? 1.0 : 0.0) << t[k];  // safe exactly while the gyro is out
+    if (out) {
+      EXPECT_LT(st[k], 0.0) << t[k];  // an error status (negative codes)
+      for (int i = 0; i < 4; ++i) EXPECT_EQ(r.column("wheel_cmd_" + std::to_string(i))[k], 0.0);
+    }
+    if (t[k] == 500.0) {
+      w500 = std::sqrt(wx[k] * wx[k] + wy[k] * wy[k] + wz[k] * wz[k]);
+      e500 = err[k];
+    }
+  }
+  const double drift_deg = 1.5 * w500 * 5.0 * 180.0 / M_PI;
+  EXPECT_LT(max_between(r, "pointing_error_deg", 500.0, 505.0), e500 + drift_deg);
+  EXPECT_LT(max_between(r, "pointing_error_deg", 550.0, 600.0), 0.5);
+  std::printf("[ figures ] S1 gyro dropout: err(500 s) = %.3g deg, max err during = %.3g deg (bound %.3g), "
+              "max err [550, 600] s = %.3g deg\n",
+              e500, max_between(r, "pointing_error_deg", 500.0, 505.0), e500 + drift_deg,
+              max_between(r, "pointing_error_deg", 550.0, 600.0));
+}
+
+// ---- reference case: S2, acs1 stuck closed at 500 s mid-burn -------------------------------------
+
+// acs1 helps balance the engine's 36.7 N*m misalignment torque.  From 500 s
+// its force is missing while the FSW (not told: no thruster availability in
+// FswAcsSensorMsg) still counts on it.  The torque lost is at most acs1's
+// full torque F_max |r x d| <= F_max |r - com| (30 N at 2.15 m: 64.6 N*m,
+// the bound covering any motion of the mass centre), a step disturbance to
+// the loop: as in S2's own test (test_s2.cpp), the PD part with zeta = 1
+// never exceeds the static deflection tau / (K/4) (K = 3600 N*m), here
+// 64.6 / 900 rad = 4.1 deg, and the integral term (5 s time constant)
+// removes it: below S2's hold figure of 0.1 deg from 60 s after the failure
+// to the end of the burn.  The burn and the capture are unaffected.
+TEST(Events, S2StuckThrusterMidBurnAttitudeHeld)
+{
+  const harness::Scenario sc = harness::load_scenario(
+      kDir + "s2_thruster_stuck.yaml",
+      {{"rates.dt", "0.1"}, {"rates.fsw_divisor", "1"}, {"rates.record_divisor", "5"}, {"duration", "900"}});
+  harness::Run run(sc);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  const harness::MemorySink& r = run.memory();
+  ASSERT_EQ(run.events_applied().size(), 1u);
+  EXPECT_EQ(run.events_applied()[0].t, 500.0);
+  // acs1 (plant thruster 1; 0 is the engine) gives no force from 500 s
+  EXPECT_EQ(max_between(r, "thruster_force_1", 500.0, 900.0), 0.0);
+  EXPECT_GT(max_between(r, "thruster_force_1", 360.0, 499.9), 0.0);  // it was firing before
+  const harness::ThrusterSpec& acs1 = sc.thrusters[1];
+  ASSERT_EQ(acs1.name, "acs1");
+  const double tau = acs1.F_max * (acs1.r_B - sc.spacecraft.com).norm();
+  const double bound_deg = tau / (sc.fsw.mrp_fb.K / 4.0) * 180.0 / M_PI;
+  const double peak = max_between(r, "pointing_error_deg", 500.0, 560.0);
+  EXPECT_LT(peak, bound_deg);
+  EXPECT_LT(max_between(r, "pointing_error_deg", 560.0, 840.0), 0.1);
+  std::map<std::string, double> s;
+  for (const auto& it : run.summary()) s[it.key] = it.value;
+  EXPECT_EQ(s.at("burn_complete"), 1.0);
+  EXPECT_EQ(s.at("captured"), 1.0);
+  std::printf("[ figures ] S2 acs1 stuck closed at 500 s: peak error %.3g deg (bound %.3g), max error [560, 840] s = "
+              "%.3g deg\n",
+              peak, bound_deg, max_between(r, "pointing_error_deg", 560.0, 840.0));
 }
