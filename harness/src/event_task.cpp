@@ -12,6 +12,7 @@ namespace {
 // [ns] a time in seconds as the first whole tick at or after it
 uint64_t ceil_to_tick(double t_s, uint64_t tick_ns)
 {
+  if (!(t_s < 9e9)) return std::numeric_limits<uint64_t>::max();  // beyond any run (kMaxTicks)
   const uint64_t t_ns = static_cast<uint64_t>(std::llround(t_s * 1e9));
   return (t_ns + tick_ns - 1) / tick_ns * tick_ns;
 }
@@ -51,14 +52,15 @@ EventTask::EventTask(const Scenario& sc, sim::Plant& plant, SensorSuite& sensors
       act.action = find_event_action(act.target.device, a.action)->action;
       act.value = a.value;
       ev.acts.push_back(act);
-      ev.what += (j ? "; " : "") + a.device + " " + a.action;
+      ev.entry.what += (j ? "; " : "") + a.device + " " + a.action;
       if (!std::isnan(a.value)) {
         std::ostringstream v;
         v.precision(10);
         v << a.value;
-        ev.what += " " + v.str();
+        ev.entry.what += " " + v.str();
       }
     }
+    ev.entry.name = e.name;
     ev_.push_back(std::move(ev));
   }
   log_.reserve(ev_.size());
@@ -84,10 +86,13 @@ void EventTask::operator()(uint64_t k)
     if (!fire) continue;
     for (const Act& a : e.acts) apply(a, t_ns);
     e.applied = true;
-    const EventSpec& spec = sc_.events[i];
-    log_.push_back({spec.name, k, static_cast<double>(t_ns) / 1e9, e.what});  // as the recorded t
+    e.entry.tick = k;
+    e.entry.t = static_cast<double>(t_ns) / 1e9;  // as the recorded t
+    log_.push_back(std::move(e.entry));
     for (Ev& f : ev_)  // events that follow this one: their time is now known
-      if (f.after == static_cast<int>(i)) f.t_ns = t_ns + f.delay_ns;
+      if (f.after == static_cast<int>(i))
+        f.t_ns = f.delay_ns > std::numeric_limits<uint64_t>::max() - t_ns ? std::numeric_limits<uint64_t>::max()
+                                                                          : t_ns + f.delay_ns;
   }
 }
 
@@ -136,7 +141,10 @@ void EventTask::apply(const Act& a, uint64_t t_ns)
       const F f = a.action == EventAction::SensorDropout ? F::Dropout
                   : a.action == EventAction::SensorFrozen ? F::Frozen
                                                           : F::None;
-      const uint64_t until = f == F::Dropout ? t_ns + static_cast<uint64_t>(std::llround(a.value * 1e9)) : 0;
+      // a dropout longer than any run (> 9e9 s) lasts to the end
+      const uint64_t until = f != F::Dropout ? 0
+                             : a.value < 9e9 ? t_ns + static_cast<uint64_t>(std::llround(a.value * 1e9))
+                                             : std::numeric_limits<uint64_t>::max();
       if (a.target.device == EventDevice::Gyro) sensors_.set_gyro_fault(f, until);
       else if (a.target.device == EventDevice::StarTracker) sensors_.set_star_tracker_fault(f, until);
       else sensors_.set_css_fault(i, f, until);

@@ -47,7 +47,7 @@ class EventTask {
     bool watch = false, below = false;
     double threshold = 0.0;
     bool applied = false;
-    std::string what;
+    AppliedEvent entry;  // built at setup, moved into the log when applied (no allocation)
   };
   void apply(const Act& a, uint64_t t_ns);
 

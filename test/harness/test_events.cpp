@@ -283,7 +283,7 @@ TEST(Events, RecordedAndReproducedFromTheManifest)
   fs::remove_all(dir);
   harness::RunOptions opt;
   opt.out_dir = (dir / "a").string();
-  opt.overrides = fast({{"duration", "320"}, {"outputs.report_data", "false"}});
+  opt.overrides = fast({{"duration", "320"}});
   const harness::Scenario sc = harness::load_scenario(kS1Fail, opt.overrides);
   const harness::RunResult a = harness::run_scenario(sc, opt);
   ASSERT_TRUE(a.ok) << a.failure;
@@ -292,6 +292,10 @@ TEST(Events, RecordedAndReproducedFromTheManifest)
   EXPECT_NE(man.find("\"events_applied\""), std::string::npos);
   EXPECT_NE(man.find("\"tick\": 1200"), std::string::npos);
   EXPECT_NE(man.find("\"rw2 command_unavailable\""), std::string::npos);
+  // report_data.json: the list the report shows and marks on its time plots
+  const std::string rd = text_of((dir / "a" / "report_data.json").string());
+  EXPECT_NE(rd.find("\"events\":[{"), std::string::npos);
+  EXPECT_NE(rd.find("\"name\":\"rw2_flagged\""), std::string::npos);
   // HDF5: /events
   const harness::Hdf5Table h = harness::read_hdf5((dir / "a" / "results.h5").string());
   ASSERT_EQ(h.events.size(), 2u);
