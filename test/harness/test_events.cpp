@@ -400,3 +400,65 @@ TEST(Events, S2StuckThrusterMidBurnAttitudeHeld)
               "%.3g deg\n",
               peak, bound_deg, max_between(r, "pointing_error_deg", 560.0, 840.0));
 }
+
+// ---- each sensor and wheel action, seen in what the FSW was given -------------------------------
+
+// Noise-free sensors sampled at every tick (dt = FSW period = record period
+// = 0.25 s), so a measured column equals the truth column of the same row
+// unless a fault changes it.
+TEST(Events, SensorAndWheelActionsInTheFswInput)
+{
+  const harness::Scenario sc = harness::load_scenario_text(
+      s1_with("events:\n"
+              "  - {t: 2, actions: [{device: rw3, action: tach_bias, value: 1.0}]}\n"
+              "  - {t: 3, actions: [{device: rw1, action: tach_frozen}]}\n"
+              "  - {name: nan, t: 4, actions: [{device: rw4, action: tach_nan}]}\n"
+              "  - {after: nan, delay: 0.5, actions: [{device: rw4, action: command_unavailable}]}\n"
+              "  - {t: 5, actions: [{device: star_tracker, action: dropout, value: 1.0}]}\n"
+              "  - {name: gf, t: 6, actions: [{device: gyro, action: frozen}, {device: css3, action: dropout, value: 1}]}\n"
+              "  - {after: gf, delay: 1.0, actions: [{device: gyro, action: restore}, {device: rw1, action: restore}]}\n"
+              "  - {t: 8, actions: [{device: rw2, action: torque_limit, value: 0.001}]}\n"),
+      "ev.yaml", fast({{"duration", "10"}, {"sensors.noise", "false"}}));
+  harness::Run run(sc);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  const harness::MemorySink& r = run.memory();
+  ASSERT_EQ(run.events_applied().size(), 8u);
+  const auto t = r.column("t");
+  const double rpm = 60.0 / (2.0 * M_PI);
+  const auto m0 = r.column("meas_wheel_speed_rpm_0"), m2 = r.column("meas_wheel_speed_rpm_2"),
+             m3 = r.column("meas_wheel_speed_rpm_3"), w2 = r.column("wheel_speed_rpm_2"),
+             w0 = r.column("wheel_speed_rpm_0"), av = r.column("meas_att_valid"), safe = r.column("fsw_safe_output"),
+             gx = r.column("meas_omega_BN_B_x"), ox = r.column("omega_BN_B_x"), u1 = r.column("wheel_torque_1");
+  size_t k3 = 0;
+  while (t[k3] < 3.0) ++k3;
+  for (size_t k = 0; k < t.size(); ++k) {
+    // tach bias: +1 rad/s from 2 s (the FSW's real type may be float: 1e-4 rpm of ~3000 rpm)
+    EXPECT_NEAR(m2[k] - w2[k], t[k] >= 2.0 ? rpm : 0.0, 1e-3) << t[k];
+    // tach frozen from 3 s at the sample before (2.75 s), restored at 7 s
+    if (t[k] >= 3.0 && t[k] < 7.0) {
+      EXPECT_EQ(m0[k], m0[k3 - 1]) << t[k];
+    }
+    if (t[k] < 3.0 || t[k] >= 7.0) {
+      EXPECT_NEAR(m0[k], w0[k], 1e-3) << t[k];
+    }
+    // tach NaN from 4 s: the FSW's safe output until rw4 is flagged (4.5 s)
+    EXPECT_EQ(std::isnan(m3[k]), t[k] >= 4.0) << t[k];
+    EXPECT_EQ(safe[k], t[k] >= 4.0 && t[k] < 4.5 ? 1.0 : 0.0) << t[k];
+    // star tracker: no valid attitude for 5 <= t < 6
+    EXPECT_EQ(av[k], t[k] >= 5.0 && t[k] < 6.0 ? 0.0 : 1.0) << t[k];
+    // gyro frozen 6..7 s, then truth again (ideal gyro)
+    if (t[k] >= 7.0 || t[k] < 6.0) {
+      EXPECT_NEAR(gx[k], ox[k], 1e-9) << t[k];
+    }
+    // torque limit of rw2 from the latch at 8 s (the row at 8 s records the
+    // state at the tick's start: the torque held from 7.75 s)
+    if (t[k] > 8.0) {
+      EXPECT_LE(std::fabs(u1[k]), 0.001 + 1e-15) << t[k];
+    }
+  }
+  // the frozen gyro really held a value that truth left
+  size_t k6 = 0;
+  while (t[k6] < 6.0) ++k6;
+  EXPECT_EQ(gx[k6], gx[k6 + 3]);
+  EXPECT_NE(ox[k6], ox[k6 + 3]);
+}
