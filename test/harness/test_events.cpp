@@ -462,3 +462,38 @@ TEST(Events, SensorAndWheelActionsInTheFswInput)
   EXPECT_EQ(gx[k6], gx[k6 + 3]);
   EXPECT_NE(ox[k6], ox[k6 + 3]);
 }
+
+// Thruster stuck open, then restored (S2 coast, no burn): from the event the
+// valve is open whatever the FSW asks, the force rising to F_max with the
+// first-order transient (omega_on = 10 rad/s: 1 - e^-10 of F_max after 1 s);
+// once restored the thruster follows its commands again and is mostly off.
+TEST(Events, ThrusterStuckOpenThenRestored)
+{
+  const harness::Scenario sc = harness::load_scenario_text(
+      text_of(kDir + "s2_mars_orbit_insertion.yaml") +
+          "\nevents:\n  - {name: open, t: 10, actions: [{device: acs3, action: stuck_open}]}\n"
+          "  - {after: open, delay: 5, actions: [{device: acs3, action: restore}]}\n",
+      "ev.yaml",
+      {{"rates.dt", "0.1"}, {"rates.fsw_divisor", "1"}, {"rates.record_divisor", "1"}, {"duration", "40"},
+       {"burn.start", "100"}, {"burn.duration", "10"}});
+  harness::Run run(sc);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  const harness::MemorySink& r = run.memory();
+  const auto t = r.column("t"), f = r.column("thruster_force_3");  // plant 3 = acs3 (0 is the engine)
+  ASSERT_EQ(sc.thrusters[3].name, "acs3");
+  const double F = sc.thrusters[3].F_max;
+  for (size_t k = 0; k < t.size(); ++k)
+    if (t[k] >= 11.0 && t[k] <= 15.0) {
+      EXPECT_GT(f[k], F * (1.0 - std::exp(-10.0 * (t[k] - 10.0))) - 1e-9) << t[k];
+    }
+  // restored at 15 s: the FSW's pulses again (the hold needs a small duty:
+  // the force averaged over 25..40 s is well below F_max)
+  double sum = 0.0;
+  int n = 0;
+  for (size_t k = 0; k < t.size(); ++k)
+    if (t[k] >= 25.0) {
+      sum += f[k];
+      ++n;
+    }
+  EXPECT_LT(sum / n, 0.5 * F);
+}
