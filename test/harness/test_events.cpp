@@ -374,6 +374,11 @@ TEST(Events, S1GyroDropoutSafeOutputAndRecovery)
 // to the end of the burn.  The burn and the capture are unaffected.
 TEST(Events, S2StuckThrusterMidBurnAttitudeHeld)
 {
+#ifdef KESTREL_TEST_SANITIZE
+  // 9000 thruster ticks: ~50 s under ASan; the event code it uses is covered
+  // by the short cases (ThrusterStuckOpenThenRestored), the figure by Release
+  GTEST_SKIP() << "heavy: host-release only";
+#endif
   const harness::Scenario sc = harness::load_scenario(
       kDir + "s2_thruster_stuck.yaml",
       {{"rates.dt", "0.1"}, {"rates.fsw_divisor", "1"}, {"rates.record_divisor", "5"}, {"duration", "900"}});
