@@ -141,6 +141,33 @@ struct Hdf5Sink::File {
   uint64_t rows = 0;
 };
 
+namespace {
+// /events: one row per applied event (tick, t [s]), its name and actions as attributes.
+void write_events(hid_t file, const std::vector<AppliedEvent>& log, const std::string& path)
+{
+  hsize_t dims[2] = {log.size(), 2};
+  H5Id space(H5Screate_simple(2, dims, nullptr), H5Sclose);
+  H5Id d(H5Dcreate2(file, "/events", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  h5check(d, "creating /events", path);
+  std::vector<double> v;
+  std::vector<std::string> names, what;
+  for (const AppliedEvent& e : log) {
+    v.push_back(static_cast<double>(e.tick));
+    v.push_back(e.t);
+    names.push_back(e.name);
+    what.push_back(e.what);
+  }
+  if (!v.empty() && H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
+    throw OutputError(path + ": cannot write /events");
+  attr_strings(d, "columns", {"tick", "t"}, path);
+  attr_string(d, "unit", "-, s", path);
+  if (!log.empty()) {
+    attr_strings(d, "names", names, path);
+    attr_strings(d, "actions", what, path);
+  }
+}
+}  // namespace
+
 Hdf5Sink::Hdf5Sink(std::string path, const Scenario& sc, std::string manifest_text)
     : path_(std::move(path)), sc_(sc), manifest_(std::move(manifest_text))
 {
@@ -237,6 +264,7 @@ void Hdf5Sink::end(bool complete)
   if (!f_) return;
   attr_scalar<unsigned long long>(f_->file, "rows", H5T_NATIVE_ULLONG, H5T_STD_U64LE, f_->rows, path_);
   attr_scalar<int>(f_->file, "complete", H5T_NATIVE_INT, H5T_STD_I32LE, complete ? 1 : 0, path_);
+  if (events_ && !sc_.events.empty()) write_events(f_->file, *events_, path_);
   const bool flushed = H5Fflush(f_->file, H5F_SCOPE_GLOBAL) >= 0;
   f_->ds.clear();
   const bool closed = H5Fclose(f_->file.id) >= 0;
@@ -309,6 +337,21 @@ Hdf5Table read_hdf5(const std::string& path)
   read_scalar("complete", H5T_NATIVE_INT, &complete);
   t.seed = seed;
   t.complete = complete != 0;
+  if (H5Lexists(file, "/events", H5P_DEFAULT) > 0) {
+    H5Id ds(H5Dopen2(file, "/events", H5P_DEFAULT), H5Dclose);
+    h5check(ds, "opening /events", path);
+    H5Id space(H5Dget_space(ds), H5Sclose);
+    hsize_t dims[2] = {0, 0};
+    H5Sget_simple_extent_dims(space, dims, nullptr);
+    std::vector<double> buf(static_cast<size_t>(dims[0] * dims[1]));
+    if (!buf.empty() && H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0)
+      throw OutputError(path + ": cannot read /events");
+    if (dims[0] > 0) {
+      const std::vector<std::string> names = read_attr_strings(ds, "names"), what = read_attr_strings(ds, "actions");
+      for (size_t i = 0; i < dims[0] && i < names.size() && i < what.size(); ++i)
+        t.events.push_back({names[i], static_cast<uint64_t>(buf[2 * i]), buf[2 * i + 1], what[i]});
+    }
+  }
   return t;
 }
 

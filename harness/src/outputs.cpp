@@ -71,6 +71,12 @@ std::string manifest_text(const Scenario& sc, const std::vector<Override>& overr
                    {"t_reached", status->t_reached},
                    {"duration", sc.duration},
                    {"stopped_by", status->stopped_by}};
+  if (status && !sc.events.empty()) {
+    json ev = json::array();
+    for (const AppliedEvent& e : status->events)
+      ev.push_back({{"name", e.name}, {"tick", e.tick}, {"t", e.t}, {"actions", e.what}});
+    j["result"]["events_applied"] = ev;
+  }
   return j.dump(2) + "\n";
 }
 
@@ -116,6 +122,12 @@ std::string report_data_text(const Run& run, const ReportSink& report, const Run
   for (const WheelSpec& w : sc.wheels) wpos.push_back({w.params.r_WB_B(0), w.params.r_WB_B(1), w.params.r_WB_B(2)});
   j["geometry"] = {{"wheel_axes_B", axes}, {"wheel_positions_B", wpos}, {"thrusters", thr}};
   j["dataflow_dot"] = run.dataflow().to_dot(sc.name);
+  if (!sc.events.empty()) {
+    json ev = json::array();
+    for (const AppliedEvent& e : run.events_applied())
+      ev.push_back({{"name", e.name}, {"tick", e.tick}, {"t", e.t}, {"actions", e.what}});
+    j["events"] = ev;
+  }
   json summ = json::object();
   for (const SummaryItem& it : run.summary())
     summ[it.key] = {{"value", std::isfinite(it.value) ? json(it.value) : json(nullptr)}, {"unit", it.unit}, {"what", it.what}};

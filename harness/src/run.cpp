@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "build_error.h"
+#include "event_task.h"
 #include "fsw_config.h"
 #include "plant_builder.h"
 #include "sensor_suite.h"
@@ -38,6 +39,7 @@ struct Slot {
 // The tick protocol: the order of the tasks within a tick (run.h).  A task a
 // run does not need (no thrusters, no sampled sensors, ...) is skipped.
 constexpr Slot kTickProtocol[] = {
+    {"events", Group::EveryTick},
     {"truth", Group::EveryTick},         {"burn_monitor", Group::EveryTick},
     {"sample_sensors", Group::EveryTick}, {"css", Group::Fsw},
     {"sensors", Group::Fsw},             {"fsw_acs", Group::Fsw},
@@ -72,6 +74,7 @@ struct Run::Impl {
   std::optional<ActuatorTask> actuators;
   std::optional<PlantInputTask> plant_input;
   std::optional<MetricsTask> metrics;
+  std::optional<EventTask> events;  // scenarios with events only
 
   Channel<TruthMsg>* truth_ch = nullptr;
   Channel<FswAcsHealthMsg>* health_ch = nullptr;
@@ -166,7 +169,12 @@ void Run::Impl::wire(RunConfig& cfg)
   const RateGroup every{"every_tick", 1, 0};
   const RateGroup fsw_group{"fsw", sc.rates.fsw_divisor, sc.rates.fsw_offset};
   const RateGroup rec_group{"record", sc.rates.record_divisor, 0};
+  if (!sc.events.empty()) {
+    f.add_component("events", "harness: scenario events (docs/events.md) -> plant devices, sensor faults, FSW input");
+    events.emplace(sc, plant, *sensors, rec);
+  }
   auto fn_of = [this](const std::string& name) -> Scheduler::TaskFn {
+    if (name == "events" && events) return [t = &*events](uint64_t k) { (*t)(k); };
     if (name == "truth") return [t = &*truth](uint64_t k) { (*t)(k); };
     if (name == "burn_monitor" && burn) return [t = &*burn](uint64_t k) { (*t)(k); };
     if (name == "sample_sensors" && sample) return [t = &*sample](uint64_t k) { (*t)(k); };
@@ -252,6 +260,12 @@ const DataFlow& Run::dataflow() const { return impl_->flow; }
 const Scheduler& Run::scheduler() const { return impl_->sched; }
 sim::Plant& Run::plant() { return impl_->plant; }
 const sim::Plant& Run::plant() const { return impl_->plant; }
+
+const std::vector<AppliedEvent>& Run::events_applied() const
+{
+  static const std::vector<AppliedEvent> kNone;
+  return impl_->events ? impl_->events->log() : kNone;
+}
 
 const MemorySink& Run::memory() const
 {

@@ -103,6 +103,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   std::optional<ReportSink> report;
   if (files && sc.outputs.hdf5) {
     h5.emplace((dir / "results.h5").string(), sc, manifest);
+    h5->set_events(&run.events_applied());
     run.add_sink(*h5);
   }
   if (files && sc.outputs.csv) {
@@ -169,6 +170,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   st.ticks = run.tick();
   st.t_reached = run.recorder().rows() > 0 ? run.recorder().last_row()[0] : 0.0;
   st.stopped_by = res.stopped_by_signal ? signal_name(res.stopped_by_signal) : res.failure;
+  st.events = run.events_applied();
   if (!files) return res;
   if (h5) written.push_back("results.h5");
   if (csv) written.push_back("telemetry.csv");

@@ -51,7 +51,7 @@ schema::Section make_schema()
       },
       {rates_section(), environment_section(), spacecraft_section(), wheel_section(true), wheel_section(),
        thrusters_section(), tank_section("tank"), tank_section("rcs_tank"), burn_section(), sensors_section(),
-       fsw_section(), outputs_section()}};
+       fsw_section(), outputs_section(), events_section()}};
   return top;
 }
 }  // namespace
@@ -207,6 +207,7 @@ void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
   if (!top.has("fsw")) top.missing("fsw", "flight software gains and modes");
   read_fsw(top.sub("fsw"), sc);
   read_outputs(top.sub("outputs"), sc);
+  read_events(top, sc);
   top.finish();
 
   // ---- Cross-section checks (after every key is read) ----

@@ -19,6 +19,8 @@ namespace harness {
 constexpr size_t kMaxScenarioWheels = static_cast<size_t>(std::min(FSW_MAX_RW, sim::kMaxWheels));       // [-]
 constexpr size_t kMaxScenarioThrusters = static_cast<size_t>(std::min(FSW_MAX_THR, sim::kMaxThrusters));  // [-]
 constexpr size_t kMaxScenarioCss = static_cast<size_t>(std::min(FSW_MAX_CSS, sim::kMaxCss));              // [-]
+constexpr size_t kMaxScenarioEvents = 64;  // [-] events in a scenario (a fault campaign is a few)
+constexpr size_t kMaxEventActions = 16;    // [-] actions of one event
 
 }  // namespace harness
 

@@ -125,6 +125,7 @@ const Section& burn_section();
 const Section& sensors_section();
 const Section& fsw_section();
 const Section& outputs_section();
+const Section& events_section();
 
 void read_rates(MapReader r, Scenario& sc);
 void read_environment(MapReader r, Scenario& sc);
@@ -136,6 +137,7 @@ void read_burn(MapReader r, Scenario& sc);
 void read_sensors(MapReader r, Scenario& sc);
 void read_fsw(MapReader r, Scenario& sc);
 void read_outputs(MapReader r, Scenario& sc);
+void read_events(MapReader& top, Scenario& sc);  // after every other section
 
 // Reads every key of `s` (not its children) in table order.
 void read_keys(MapReader& r, const Section& s, Scenario& sc, size_t i = 0);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "build_error.h"
@@ -140,6 +141,87 @@ void SensorSuite::fsw_input(uint64_t t_ns, const TruthMsg& t, const SensorSample
     for (int i = 0; i < n_rw_; ++i) msg.Omega[i] = static_cast<fsw_real>(t.Omega[i]);
   }
   copy3(msg.r_CoM_B, t.r_CoM_B);
+  if (any_fault_) apply_faults(t_ns, msg);
+}
+
+void SensorSuite::apply_faults(uint64_t t_ns, FswAcsSensorMsg& msg) const
+{
+  const auto active = [t_ns](const SensorFault& f) {
+    return f.fault == Fault::Frozen || (f.fault == Fault::Dropout && t_ns < f.until_ns);
+  };
+  if (active(gyro_fault_)) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const Eigen::Vector3d w = gyro_fault_.fault == Fault::Frozen ? gyro_frozen_ : Eigen::Vector3d(nan, nan, nan);
+    for (int a = 0; a < 3; ++a) msg.omega_BN_B[a] = static_cast<fsw_real>(w(a));
+  }
+  if (active(st_fault_)) {
+    if (st_fault_.fault == Fault::Frozen) {
+      for (int a = 0; a < 3; ++a) msg.sigma_BN[a] = static_cast<fsw_real>(st_frozen_(a));
+      msg.att_valid = st_frozen_valid_;
+    } else {
+      msg.att_valid = 0;
+    }
+  }
+  for (int i = 0; i < num_css_; ++i) {
+    const SensorFault& f = css_fault_[static_cast<size_t>(i)];
+    if (!active(f)) continue;
+    if (f.fault == Fault::Frozen) {
+      msg.css[i] = static_cast<fsw_real>(css_frozen_[static_cast<size_t>(i)]);
+    } else {
+      msg.css[i] = 0;
+      msg.css_avail[i] = 1;
+    }
+  }
+  for (int i = 0; i < n_rw_; ++i) {
+    const size_t u = static_cast<size_t>(i);
+    switch (tach_fault_[u]) {
+      case Fault::Nan: msg.Omega[i] = static_cast<fsw_real>(std::numeric_limits<double>::quiet_NaN()); break;
+      case Fault::Frozen: msg.Omega[i] = static_cast<fsw_real>(tach_value_[u]); break;
+      case Fault::Bias: msg.Omega[i] = static_cast<fsw_real>(static_cast<double>(msg.Omega[i]) + tach_value_[u]); break;
+      default: break;
+    }
+    msg.rw_avail[i] = rw_unavail_[u];
+  }
+}
+
+void SensorSuite::set_gyro_fault(Fault f, uint64_t until_ns)
+{
+  any_fault_ = true;
+  gyro_fault_ = {f, until_ns};
+  if (f == Fault::Frozen && gyro_) gyro_frozen_ = gyro_->output().omega_PN_P;
+}
+
+void SensorSuite::set_star_tracker_fault(Fault f, uint64_t until_ns)
+{
+  any_fault_ = true;
+  st_fault_ = {f, until_ns};
+  if (f == Fault::Frozen && st_) {
+    st_frozen_ = st_->output().sigma_CN;
+    st_frozen_valid_ = st_->output().valid ? 1 : 0;
+  }
+}
+
+void SensorSuite::set_css_fault(int i, Fault f, uint64_t until_ns)
+{
+  any_fault_ = true;
+  const size_t u = static_cast<size_t>(i);
+  css_fault_[u] = {f, until_ns};
+  if (f == Fault::Frozen && u < css_.size()) css_frozen_[u] = css_[u].output().y;
+}
+
+void SensorSuite::set_tach_fault(int i, Fault f, double bias)
+{
+  any_fault_ = true;
+  const size_t u = static_cast<size_t>(i);
+  tach_fault_[u] = f;
+  tach_value_[u] = bias;
+  if (f == Fault::Frozen && tach_) tach_value_[u] = tach_->output().Omega[u];
+}
+
+void SensorSuite::set_rw_commanded_unavailable(int i, bool unavailable)
+{
+  any_fault_ = true;
+  rw_unavail_[static_cast<size_t>(i)] = unavailable ? 1 : 0;
 }
 
 }  // namespace harness

@@ -4,6 +4,7 @@
 #ifndef HARNESS_SENSOR_SUITE_H
 #define HARNESS_SENSOR_SUITE_H
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -37,8 +38,38 @@ class SensorSuite {
   void fsw_input(uint64_t t_ns, const TruthMsg& truth, const SensorSampleMsg& samples, const CssMsg& css,
                  FswAcsSensorMsg& msg) const;
 
+  // ---- faults set by scenario events (event_task.cpp, docs/events.md) -------
+  // They change what fsw_input() hands the FSW, never the models' own
+  // outputs (recorded samples, noise streams): a run whose events never
+  // fire is bit-identical to one without events.
+  enum class Fault { None, Dropout, Frozen, Nan, Bias };
+  // Gyro (which 0), star tracker (which 1) or CSS i (which 2): Dropout until
+  // t_ns < until_ns; Frozen holds the model's last output (taken now).
+  void set_gyro_fault(Fault f, uint64_t until_ns);
+  void set_star_tracker_fault(Fault f, uint64_t until_ns);
+  void set_css_fault(int i, Fault f, uint64_t until_ns);
+  // Tachometer of wheel i: Nan, Frozen (last output, taken now), Bias [rad/s].
+  void set_tach_fault(int i, Fault f, double bias);
+  // The executive's availability flag for wheel i (FswAcsSensorMsg.rw_avail).
+  void set_rw_commanded_unavailable(int i, bool unavailable);
+
  private:
+  struct SensorFault {
+    Fault fault = Fault::None;
+    uint64_t until_ns = 0;
+  };
+  SensorFault gyro_fault_, st_fault_;
+  Eigen::Vector3d gyro_frozen_ = Eigen::Vector3d::Zero(), st_frozen_ = Eigen::Vector3d::Zero();
+  uint8_t st_frozen_valid_ = 0;
+  std::array<SensorFault, FSW_MAX_CSS> css_fault_{};
+  std::array<double, FSW_MAX_CSS> css_frozen_{};
+  std::array<Fault, kMaxRw> tach_fault_{};
+  std::array<double, kMaxRw> tach_value_{};  // [rad/s] frozen reading or bias
+  std::array<uint8_t, kMaxRw> rw_unavail_{};
+  bool any_fault_ = false;  // a fault was ever set (the nominal path stays as it was)
+
   const sim::SensorTruth& truth_now();
+  void apply_faults(uint64_t t_ns, FswAcsSensorMsg& msg) const;
   const sim::Plant& plant_;
   sim::SensorTruth truth_;
   int n_rw_ = 0;

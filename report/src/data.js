@@ -40,7 +40,11 @@ export function normalize(raw) {
   // the last samples are kept at full rate for the jitter spectrum
   const spectrum = d.spectrum && typeof d.spectrum === 'object' && isNumArray(d.spectrum.t) ? d.spectrum : null;
   const decimation = d.decimation && typeof d.decimation === 'object' ? d.decimation : null;
-  return { meta, series, units, t, attitude, geometry, dot, spectrum, decimation };
+  // applied scenario events (docs/events.md): {name, tick, t, actions}
+  const events = Array.isArray(d.events)
+    ? d.events.filter((e) => e && typeof e === 'object' && typeof e.t === 'number' && Number.isFinite(e.t))
+    : [];
+  return { meta, series, units, t, attitude, geometry, dot, spectrum, decimation, events };
 }
 
 export function finiteMinMax(a) {

@@ -4,7 +4,7 @@
 import 'uplot/dist/uPlot.min.css';
 import './report.css';
 import { normalize, el, fmt, finiteMinMax, isNumArray, indexedKeys } from './data.js';
-import { buildTimePlots, resizePlots } from './plots.js';
+import { buildTimePlots, resizePlots, setEventTimes } from './plots.js';
 import { buildSpectrum } from './spectrumview.js';
 import { buildReplay } from './replay3d.js';
 import { buildDataflow } from './dataflowview.js';
@@ -90,6 +90,17 @@ function main() {
     metaRoot.appendChild(el('span', { class: 'kv' }, el('b', { text: k + ' ' }), String(v)));
   }
   let absent = [];
+  section('events', (root) => {
+    if (!D.events.length) return;
+    document.getElementById('sec-events').hidden = false;
+    setEventTimes(D.events.map((e) => e.t));
+    root.appendChild(el('p', { text: 'Scenario events applied during the run (docs/events.md); each is a red vertical line on every time plot.' }));
+    const rows = D.events.map((e) => el('tr', null, el('td', { text: fmt(e.t) }), el('td', { text: String(e.tick ?? '') }),
+      el('td', { text: String(e.name ?? '') }), el('td', { text: String(e.actions ?? '') })));
+    root.appendChild(el('table', { id: 'events-table' },
+      el('tr', null, el('th', { text: 't [s]' }), el('th', { text: 'tick' }), el('th', { text: 'event' }), el('th', { text: 'actions' })),
+      ...rows));
+  });
   section('plots', (root) => {
     if (!D.t.length) {
       root.appendChild(el('p', { class: 'absent', text: 'No time series in this run.' }));

@@ -53,6 +53,29 @@ export function setMarkerTime(t) {
   });
 }
 
+// Applied scenario events: a solid vertical line on every time plot.
+let eventTimes = [];
+export function setEventTimes(ts) {
+  eventTimes = ts.filter((x) => Number.isFinite(x));
+}
+
+function drawEvents(u) {
+  if (!eventTimes.length || !u.scales.x) return;
+  const { ctx, bbox } = u;
+  ctx.save();
+  ctx.strokeStyle = 'rgba(200, 30, 30, 0.8)';
+  ctx.lineWidth = Math.max(1, window.devicePixelRatio || 1);
+  for (const te of eventTimes) {
+    if (!(te >= u.scales.x.min && te <= u.scales.x.max)) continue;
+    const x = Math.round(u.valToPos(te, 'x', true));
+    ctx.beginPath();
+    ctx.moveTo(x, bbox.top);
+    ctx.lineTo(x, bbox.top + bbox.height);
+    ctx.stroke();
+  }
+  ctx.restore();
+}
+
 function drawMarker(u) {
   if (markerTime === null || !u.scales.x || !(markerTime >= u.scales.x.min && markerTime <= u.scales.x.max)) return;
   const x = Math.round(u.valToPos(markerTime, 'x', true));
@@ -131,7 +154,7 @@ export function addTimePlot(grid, t, spec) {
           value: (self, v) => (v === null || v === undefined ? '\u2013' : fmtTick(v)),
         })),
       ],
-      hooks: { setScale: [(self, key) => { if (key === 'x') syncX(self); }], draw: [drawMarker] },
+      hooks: { setScale: [(self, key) => { if (key === 'x') syncX(self); }], draw: [drawEvents, drawMarker] },
     };
     u = new uPlot(opts, [tx, ...yd], holder);
     clickToTime(u);

@@ -108,3 +108,20 @@ TEST(NoAlloc, S2ThrusterRunDoesNotAllocate)
   EXPECT_EQ(n, 0u);
   EXPECT_EQ(run.recorder().overflow(), 0u);
 }
+
+// Scenario events applied during the loop (docs/events.md): a wheel fails
+// at 5 s and is flagged unavailable 0.1 s later, both inside the counted
+// steps; the log entries are built at setup and moved in.
+TEST(NoAlloc, RunWithEventsDoesNotAllocate)
+{
+  const harness::Scenario sc = harness::load_scenario(
+      KESTREL_SOURCE_DIR "/scenarios/s1_wheel_failure.yaml",
+      {{"duration", "20"}, {"events.0.t", "5"}, {"rates.dt", "0.1"}, {"rates.fsw_divisor", "1"},
+       {"rates.record_divisor", "1"}, {"wheel_defaults.model", "balanced"}});
+  harness::Run run(sc);
+  const unsigned long n = count_during([&run] { run.step_ticks(run.total_ticks()); });
+  EXPECT_TRUE(run.done());
+  EXPECT_EQ(run.failure(), "");
+  ASSERT_EQ(run.events_applied().size(), 2u);  // both applied inside the counted loop
+  EXPECT_EQ(n, 0u);
+}

@@ -27,11 +27,11 @@ const { PNG } = require('pngjs');
 // expectations per generated report
 const CASES = [
   { file: 's1.html', plots: ['pointing', 'rates', 'wheels', 'wheeltorque', 'x-sigma_BN', 'x-wheel_cmd', 'x-E_rot'], absent: ['ontime', 'force', 'propellant'],
-    replay: 'ok', dataflow: 'ok', spectrum: true, shot: true },
+    replay: 'ok', dataflow: 'ok', spectrum: true, shot: true, events: 2 },
   { file: 's2.html', plots: ['pointing', 'rates', 'ontime', 'force', 'propellant'], absent: ['wheels', 'wheeltorque'],
     replay: 'ok', dataflow: 'ok', spectrum: true, shot: true },
   { file: 'hostile.html', plots: ['pointing', 'rates', 'wheels', 'wheeltorque', 'x-extra_thing'], replay: 'ok',
-    dataflow: 'unreadable', title: 'hostile </script><script>window.__pwned=1</script><!-- "quotes"' },
+    dataflow: 'unreadable', events: 1, title: 'hostile </script><script>window.__pwned=1</script><!-- "quotes"' },
   { file: 'long.html', plots: ['pointing', 'rates', 'wheels'], replay: 'ok', dataflow: 'absent', spectrum: true },
   { file: 'reduced.html', plots: ['pointing', 'rates', 'wheels'], replay: 'ok', dataflow: 'absent', spectrum: true, fullRate: true },
   { file: 'minimal.html', plots: [], replay: 'ok', dataflow: 'absent' },
@@ -108,6 +108,8 @@ async function main() {
           dfRows: document.querySelectorAll('#dataflow table tbody tr').length,
           othersShown: getComputedStyle(document.getElementById('others-title')).display !== 'none',
           incomplete: (document.getElementById('incomplete') || {}).textContent || '',
+          eventRows: document.querySelectorAll('#events-table tr').length,
+          eventsShown: !document.getElementById('sec-events').hidden,
         };
       });
       console.log(`  cards [${st.cards.join(', ')}], spectrum ${st.spectrum}, replay ${st.replay}, dataflow ${st.dataflow} ` +
@@ -128,6 +130,10 @@ async function main() {
       if (c.dataflow === 'ok' && (st.dfNodes < 5 || st.dfRows < 3)) fail(c, 'data-flow map nearly empty');
       if (c.incomplete && !st.incomplete.startsWith(c.incomplete)) fail(c, `incomplete-run notice missing: '${st.incomplete}'`);
       if (!c.incomplete && st.incomplete) fail(c, `incomplete-run notice on a complete run: '${st.incomplete}'`);
+      // applied scenario events: a header row plus one row each, the section shown only with events
+      const wantEv = c.events || 0;
+      if (st.eventRows !== (wantEv ? wantEv + 1 : 0)) fail(c, `${st.eventRows} rows in the events table, expected ${wantEv} events`);
+      if (st.eventsShown !== wantEv > 0) fail(c, `events section ${st.eventsShown ? 'shown' : 'hidden'}`);
       if (c.title && !st.title.includes(c.title)) fail(c, `scenario text not shown verbatim: ${st.title.slice(0, 120)}`);
       if (c.shot) {
         // a click on a time plot moves the replay to that time

@@ -119,6 +119,8 @@ function s1() {
     series: S, units, attitude: att,
     geometry: { wheel_axes_B: G.map((g) => g.map(r6)), wheel_positions_B: G.map((g) => g.map((v) => r6(0.3 * v))), thrusters: [] },
     dataflow_dot: dot,
+    events: [{ name: 'rw2_fails', tick: 60000, t: 600, actions: 'rw2 fail_off' },
+      { name: 'rw2_flagged', tick: 60010, t: 600.1, actions: 'rw2 command_unavailable' }],
   };
 }
 
@@ -217,6 +219,8 @@ function hostile() {
   d.geometry.thrusters = [{ r_B: [1, 0, 0] }, { r_B: [0, 1, 0], dir_B: [0, 0, 0] }, 5];
   d.dataflow_dot = 'digraph { a -> "b</script>" [label="<!-- x -->"]; b -> ; { c d } -> e; e -> a; a -> a; /* unterminated';
   d.units.omega_BN_B_x = 'deg/s';
+  // events: only entries with a finite time are listed; text is shown as text
+  d.events = [null, 5, { t: 'x' }, { t: 1e999 }, { t: 3, name: '<img src=x onerror="window.__pwned=1">', actions: 7 }];
   return d;
 }
 

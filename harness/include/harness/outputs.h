@@ -46,8 +46,13 @@ class Hdf5Sink : public RecordSink {
   void begin(const RecordLayout& layout, uint64_t expected_rows) override;
   void write(const double* rows, size_t n) override;
   void end(bool complete) override;
+  // The run's applied events (Run::events_applied()), written at end() as
+  // /events (rows: tick, t [s]; attributes names, actions) when the
+  // scenario has events.  Alive until end().
+  void set_events(const std::vector<AppliedEvent>* log) { events_ = log; }
 
  private:
+  const std::vector<AppliedEvent>* events_ = nullptr;
   struct File;
   std::string path_;
   const Scenario& sc_;
@@ -115,6 +120,7 @@ struct RunStatus {
   uint64_t ticks = 0;          // ticks executed
   double t_reached = 0.0;      // [s] time of the last recorded row
   std::string stopped_by;      // "" | "SIGINT" | "SIGTERM" | the failure's message
+  std::vector<AppliedEvent> events;  // applied scenario events (written when the scenario has events)
 };
 // The resolved scenario (reload it with `kestrel run manifest.json`); with a
 // status, also a "result" object saying how the run ended.
@@ -136,6 +142,7 @@ struct Hdf5Table {
   uint64_t seed = 0;
   double dt = 0.0, duration = 0.0;
   bool chunked = false, deflate = false, complete = false;
+  std::vector<AppliedEvent> events;  // /events, when the file has it
 };
 Hdf5Table read_hdf5(const std::string& path);
 

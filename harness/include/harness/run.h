@@ -2,6 +2,8 @@
 //
 // Tick protocol (plant-dynamics §7.2), tick k at t_k = k * dt: every task due
 // at k runs in the order of the table kTickProtocol (run.cpp):
+//   events         (every tick, scenarios with events) the events whose
+//                  trigger holds are applied (docs/events.md, event_task.h)
 //   truth          (every tick)  plant state -> `truth`
 //   burn_monitor   (every tick, thruster runs) `truth` -> `burn_state`
 //   sample_sensors (every tick, sampled sensors) `truth` -> `sensor_samples`
@@ -36,6 +38,15 @@
 namespace harness {
 
 const char* version();
+
+// A scenario event as applied during a run (docs/events.md): logged in the
+// manifest's result, the HDF5 file and the report.
+struct AppliedEvent {
+  std::string name;
+  uint64_t tick = 0;  // the tick boundary it was applied at
+  double t = 0.0;     // [s] t_tick
+  std::string what;   // its actions, e.g. "rw2 fail_off; rw2 command_unavailable"
+};
 
 // One figure of the run summary (summary.txt, report_data.json "summary").
 struct SummaryItem {
@@ -95,6 +106,9 @@ class Run {
   // limits, friction and health, thruster health) and its §13 outputs.
   sim::Plant& plant();
   const sim::Plant& plant() const;
+
+  // The events applied so far, in order.
+  const std::vector<AppliedEvent>& events_applied() const;
 
   // Pointing error of the last recorded row [deg] (NaN before the first).
   double final_pointing_error_deg() const;

@@ -11,6 +11,7 @@
 #define HARNESS_SCENARIO_H
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <type_traits>
 #include <utility>
@@ -190,6 +191,34 @@ struct FswSpec {
   double thr_level_off = 0.25;                                // [-]
 };
 
+// One action of an event (docs/events.md).  `device` names what it acts on:
+// a wheel or a thruster by its name, "gyro", "star_tracker", "css<i>"
+// (sensors.css.normals[i]) or "fsw"; `action` is one of the words
+// docs/events.md lists for that device; `value` is the action's number
+// (torque limit [N*m], friction factor [-], tachometer bias [rad/s],
+// dropout duration [s]); NaN when the action takes none.
+struct EventActionSpec {
+  std::string device;
+  std::string action;
+  double value = std::numeric_limits<double>::quiet_NaN();
+};
+
+// A scenario event: a trigger and the actions applied together when it
+// fires (once).  Trigger: exactly one of `t` (at the first tick at or after
+// t), `after` (the named earlier event's application plus `delay`) and
+// `when` (a recorded column, e.g. pointing_error_deg, first seen below
+// `below` or above `above` in a recorded row).
+struct EventSpec {
+  std::string name;                 // unique; default ev<i+1>
+  std::optional<double> t;          // [s]
+  std::string after;                // name of another event
+  double delay = 0.0;               // [s] with `after`
+  std::string when;                 // recorded column name
+  std::optional<double> below;      // [column unit]
+  std::optional<double> above;      // [column unit]
+  std::vector<EventActionSpec> actions;
+};
+
 struct OutputsSpec {
   bool hdf5 = true;
   bool csv = false;
@@ -211,6 +240,7 @@ struct Scenario {
   std::optional<BurnSpec> burn;
   SensorsSpec sensors;
   FswSpec fsw;
+  std::vector<EventSpec> events;  // applied at tick boundaries (docs/events.md)
   OutputsSpec outputs;
 
   std::string source_file;  // where it was loaded from (not part of the physics)

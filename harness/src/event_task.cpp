@@ -1,0 +1,156 @@
+#include "event_task.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "build_error.h"
+
+namespace harness {
+
+namespace {
+// [ns] a time in seconds as the first whole tick at or after it
+uint64_t ceil_to_tick(double t_s, uint64_t tick_ns)
+{
+  if (!(t_s < 9e9)) return std::numeric_limits<uint64_t>::max();  // beyond any run (kMaxTicks)
+  const uint64_t t_ns = static_cast<uint64_t>(std::llround(t_s * 1e9));
+  return (t_ns + tick_ns - 1) / tick_ns * tick_ns;
+}
+}  // namespace
+
+EventTask::EventTask(const Scenario& sc, sim::Plant& plant, SensorSuite& sensors, const Recorder& rec)
+    : sc_(sc), plant_(plant), sensors_(sensors), rec_(rec), tick_ns_(sc.tick_ns())
+{
+  for (size_t i = 0; i < sc.events.size(); ++i) {
+    const EventSpec& e = sc.events[i];
+    const std::string key = "events[" + std::to_string(i) + "]";
+    Ev ev;
+    if (e.t) ev.t_ns = ceil_to_tick(*e.t, tick_ns_);
+    if (!e.after.empty()) {
+      for (size_t j = 0; j < i; ++j)
+        if (sc.events[j].name == e.after) ev.after = static_cast<int>(j);
+      if (ev.after < 0) throw config_error(sc, key + ".after", "no earlier event named '" + e.after + "'");
+      ev.delay_ns = ceil_to_tick(e.delay, tick_ns_);
+    }
+    if (!e.when.empty()) {
+      try {
+        ev.column = rec.column_index(e.when);
+      } catch (const std::out_of_range&) {
+        throw config_error(sc, key + ".when", "this run records no column '" + e.when + "'");
+      }
+      ev.watch = true;
+      ev.below = e.below.has_value();
+      ev.threshold = e.below ? *e.below : e.above.value_or(0.0);
+    }
+    for (size_t j = 0; j < e.actions.size(); ++j) {
+      const EventActionSpec& a = e.actions[j];
+      std::string k;
+      const std::string why = check_event_action(sc, a, k);
+      if (!why.empty()) throw config_error(sc, key + ".actions[" + std::to_string(j) + "]." + k, why);
+      Act act;
+      resolve_event_device(sc, a.device, act.target);
+      act.action = find_event_action(act.target.device, a.action)->action;
+      act.value = a.value;
+      ev.acts.push_back(act);
+      ev.entry.what += (j ? "; " : "") + a.device + " " + a.action;
+      if (!std::isnan(a.value)) {
+        std::ostringstream v;
+        v.precision(10);
+        v << a.value;
+        ev.entry.what += " " + v.str();
+      }
+    }
+    ev.entry.name = e.name;
+    ev_.push_back(std::move(ev));
+  }
+  log_.reserve(ev_.size());
+}
+
+void EventTask::operator()(uint64_t k)
+{
+  const uint64_t t_ns = k * tick_ns_;
+  const double* row = nullptr;
+  for (size_t i = 0; i < ev_.size(); ++i) {
+    Ev& e = ev_[i];
+    if (e.applied) continue;
+    bool fire = false;
+    if (e.watch) {
+      if (!row) row = rec_.last_row();
+      if (row) {
+        const double x = row[e.column];
+        fire = e.below ? x < e.threshold : x > e.threshold;
+      }
+    } else {
+      fire = t_ns >= e.t_ns;
+    }
+    if (!fire) continue;
+    for (const Act& a : e.acts) apply(a, t_ns);
+    e.applied = true;
+    e.entry.tick = k;
+    e.entry.t = static_cast<double>(t_ns) / 1e9;  // as the recorded t
+    log_.push_back(std::move(e.entry));
+    for (Ev& f : ev_)  // events that follow this one: their time is now known
+      if (f.after == static_cast<int>(i))
+        f.t_ns = f.delay_ns > std::numeric_limits<uint64_t>::max() - t_ns ? std::numeric_limits<uint64_t>::max()
+                                                                          : t_ns + f.delay_ns;
+  }
+}
+
+void EventTask::apply(const Act& a, uint64_t t_ns)
+{
+  const int i = a.target.index;
+  const size_t u = static_cast<size_t>(i);
+  using F = SensorSuite::Fault;
+  switch (a.target.device) {
+    case EventDevice::Wheel: {
+      const sim::ReactionWheelParams& p = sc_.wheels[u].params;
+      switch (a.action) {
+        case EventAction::WheelFailOff: plant_.set_wheel_health(i, sim::WheelHealth::Off); break;
+        case EventAction::WheelTorqueLimit: plant_.set_wheel_u_max(i, a.value); break;
+        case EventAction::WheelFriction: {
+          sim::WheelFrictionParams f = p.friction;
+          f.tau_c *= a.value;
+          f.tau_st *= a.value;
+          f.c_v *= a.value;
+          plant_.set_wheel_friction(i, f);
+          break;
+        }
+        case EventAction::TachNan: sensors_.set_tach_fault(i, F::Nan, 0.0); break;
+        case EventAction::TachFrozen: sensors_.set_tach_fault(i, F::Frozen, 0.0); break;
+        case EventAction::TachBias: sensors_.set_tach_fault(i, F::Bias, a.value); break;
+        case EventAction::CommandUnavailable: sensors_.set_rw_commanded_unavailable(i, true); break;
+        case EventAction::CommandAvailable: sensors_.set_rw_commanded_unavailable(i, false); break;
+        case EventAction::Restore:
+          plant_.set_wheel_health(i, sim::WheelHealth::Nominal);
+          plant_.set_wheel_u_max(i, p.u_max);
+          plant_.set_wheel_friction(i, p.friction);
+          sensors_.set_tach_fault(i, F::None, 0.0);
+          break;
+        default: break;
+      }
+      break;
+    }
+    case EventDevice::Thruster:
+      plant_.set_thruster_health(i, a.action == EventAction::ThrStuckClosed ? sim::ThrusterHealth::FailedOff
+                                    : a.action == EventAction::ThrStuckOpen ? sim::ThrusterHealth::StuckOn
+                                                                            : sim::ThrusterHealth::Nominal);
+      break;
+    case EventDevice::Gyro:
+    case EventDevice::StarTracker:
+    case EventDevice::Css: {
+      const F f = a.action == EventAction::SensorDropout ? F::Dropout
+                  : a.action == EventAction::SensorFrozen ? F::Frozen
+                                                          : F::None;
+      // a dropout longer than any run (> 9e9 s) lasts to the end
+      const uint64_t until = f != F::Dropout ? 0
+                             : a.value < 9e9 ? t_ns + static_cast<uint64_t>(std::llround(a.value * 1e9))
+                                             : std::numeric_limits<uint64_t>::max();
+      if (a.target.device == EventDevice::Gyro) sensors_.set_gyro_fault(f, until);
+      else if (a.target.device == EventDevice::StarTracker) sensors_.set_star_tracker_fault(f, until);
+      else sensors_.set_css_fault(i, f, until);
+      break;
+    }
+  }
+}
+
+}  // namespace harness

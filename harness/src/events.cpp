@@ -1,0 +1,154 @@
+// events.cpp: the devices and actions of scenario events (events.h).
+#include "events.h"
+
+#include <cmath>
+#include <string>
+
+namespace harness {
+
+namespace {
+const std::vector<EventActionDef> kWheelActions = {
+    {"fail_off", EventAction::WheelFailOff, EventValue::None, "-", "motor unpowered: no torque (friction still acts)"},
+    {"torque_limit", EventAction::WheelTorqueLimit, EventValue::Positive, "N*m", "motor torque limit u_max reduced to value"},
+    {"friction", EventAction::WheelFriction, EventValue::NonNegative, "-",
+     "every friction term (Coulomb, static, viscous) times value"},
+    {"tach_nan", EventAction::TachNan, EventValue::None, "-", "its tachometer reads NaN"},
+    {"tach_frozen", EventAction::TachFrozen, EventValue::None, "-", "its tachometer holds its last reading"},
+    {"tach_bias", EventAction::TachBias, EventValue::Finite, "rad/s", "value added to its tachometer reading"},
+    {"command_unavailable", EventAction::CommandUnavailable, EventValue::None, "-",
+     "the FSW is told the wheel is unavailable (FswAcsSensorMsg.rw_avail = 1)"},
+    {"command_available", EventAction::CommandAvailable, EventValue::None, "-",
+     "the FSW is told the wheel is available again (rw_avail = 0)"},
+    {"restore", EventAction::Restore, EventValue::None, "-",
+     "motor, torque limit, friction and tachometer back to the scenario's values"},
+};
+const std::vector<EventActionDef> kThrusterActions = {
+    {"stuck_closed", EventAction::ThrStuckClosed, EventValue::None, "-", "valve closed: no thrust, requests ignored"},
+    {"stuck_open", EventAction::ThrStuckOpen, EventValue::None, "-", "valve open: full thrust, requests ignored"},
+    {"restore", EventAction::Restore, EventValue::None, "-", "valve follows its commands again"},
+};
+const std::vector<EventActionDef> kSensorActions = {
+    {"dropout", EventAction::SensorDropout, EventValue::Positive, "s",
+     "no valid output for value seconds (star tracker: att_valid 0; gyro: NaN rates; CSS: unavailable)"},
+    {"frozen", EventAction::SensorFrozen, EventValue::None, "-", "the output holds its last value"},
+    {"restore", EventAction::Restore, EventValue::None, "-", "the output follows the sensor again"},
+};
+}  // namespace
+
+const char* to_string(EventDevice d)
+{
+  switch (d) {
+    case EventDevice::Wheel: return "wheel";
+    case EventDevice::Thruster: return "thruster";
+    case EventDevice::Gyro: return "gyro";
+    case EventDevice::StarTracker: return "star tracker";
+    case EventDevice::Css: return "coarse sun sensor";
+  }
+  return "?";
+}
+
+const std::vector<EventActionDef>& event_actions(EventDevice d)
+{
+  switch (d) {
+    case EventDevice::Wheel: return kWheelActions;
+    case EventDevice::Thruster: return kThrusterActions;
+    default: return kSensorActions;
+  }
+}
+
+const EventActionDef* find_event_action(EventDevice d, const std::string& word)
+{
+  for (const EventActionDef& a : event_actions(d))
+    if (word == a.word) return &a;
+  return nullptr;
+}
+
+std::string resolve_event_device(const Scenario& sc, const std::string& name, EventTarget& out)
+{
+  for (size_t i = 0; i < sc.wheels.size(); ++i)
+    if (sc.wheels[i].name == name) {
+      out = {EventDevice::Wheel, static_cast<int>(i)};
+      return "";
+    }
+  for (size_t j = 0; j < sc.thrusters.size(); ++j)
+    if (sc.thrusters[j].name == name) {
+      out = {EventDevice::Thruster, static_cast<int>(j)};
+      return "";
+    }
+  if (name == "gyro") {
+    if (!sc.sensors.gyro.enabled) return "the gyro is not enabled (sensors.gyro.enabled: false)";
+    out = {EventDevice::Gyro, 0};
+    return "";
+  }
+  if (name == "star_tracker") {
+    if (!sc.sensors.star_tracker.enabled) return "the star tracker is not enabled (sensors.star_tracker.enabled: false)";
+    out = {EventDevice::StarTracker, 0};
+    return "";
+  }
+  if (name.size() > 3 && name.compare(0, 3, "css") == 0 && name.size() <= 6) {
+    bool digits = true;
+    for (size_t c = 3; c < name.size(); ++c) digits = digits && name[c] >= '0' && name[c] <= '9';
+    if (digits) {
+      const size_t i = static_cast<size_t>(std::stoul(name.substr(3)));
+      if (i >= sc.sensors.css.normals_B.size())
+        return "no coarse sun sensor " + name + " (sensors.css.normals has " +
+               std::to_string(sc.sensors.css.normals_B.size()) + "; css<i> is normals[i])";
+      out = {EventDevice::Css, static_cast<int>(i)};
+      return "";
+    }
+  }
+  std::string known;
+  for (const WheelSpec& w : sc.wheels) known += w.name + ", ";
+  for (const ThrusterSpec& t : sc.thrusters) known += t.name + ", ";
+  known += "gyro, star_tracker, css<i>";
+  return "no device named '" + escape_bytes(name) + "' (devices: " + known + ")";
+}
+
+std::string check_event_action(const Scenario& sc, const EventActionSpec& a, std::string& key)
+{
+  EventTarget tg;
+  key = "device";
+  std::string why = resolve_event_device(sc, a.device, tg);
+  if (!why.empty()) return why;
+  key = "action";
+  const EventActionDef* d = find_event_action(tg.device, a.action);
+  if (!d) {
+    std::string all;
+    for (const EventActionDef& x : event_actions(tg.device)) all += (all.empty() ? "" : ", ") + std::string(x.word);
+    return "a " + std::string(to_string(tg.device)) + " takes one of {" + all + "}, got '" + escape_bytes(a.action) +
+           "'";
+  }
+  if (tg.device == EventDevice::Wheel && (d->action == EventAction::TachNan || d->action == EventAction::TachFrozen ||
+                                          d->action == EventAction::TachBias) &&
+      !sc.sensors.tachometer.enabled)
+    return "'" + a.action + "' needs the tachometers (sensors.tachometer.enabled: true)";
+  key = "value";
+  const double v = a.value;
+  switch (d->value) {
+    case EventValue::None:
+      if (!std::isnan(v)) return "'" + a.action + "' takes no value";
+      return "";
+    case EventValue::Positive:
+      if (!(v > 0.0) || !std::isfinite(v)) return "'" + a.action + "' needs a value > 0 [" + d->unit + "]";
+      return "";
+    case EventValue::NonNegative:
+      if (!(v >= 0.0) || !std::isfinite(v)) return "'" + a.action + "' needs a value >= 0 [" + d->unit + "]";
+      return "";
+    case EventValue::Finite:
+      if (!std::isfinite(v)) return "'" + a.action + "' needs a finite value [" + d->unit + "]";
+      return "";
+  }
+  return "";
+}
+
+std::vector<std::string> event_watch_columns(const Scenario& sc)
+{
+  std::vector<std::string> out{"pointing_error_deg"};
+  for (size_t i = 0; i < sc.wheels.size(); ++i) {
+    out.push_back("wheel_speed_rpm_" + std::to_string(i));
+    out.push_back("meas_wheel_speed_rpm_" + std::to_string(i));
+  }
+  return out;
+}
+
+}  // namespace harness
