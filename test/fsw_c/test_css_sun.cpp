@@ -441,3 +441,25 @@ TEST_F(CssSun, Issue13SubnormalReadingsStillGiveAUnitHeading)
     for (int k = 0; k < 3; k++) EXPECT_TRUE(std::isfinite(out_.sun_hat_B[k]));
   }
 }
+
+// Issue 21: a finite reading whose normalised value y = reading / scale
+// overflows to -inf.  Scale 0.5, reading -max: y = -2 max = -inf, which is
+// not lit (-inf <= threshold), so only the overflow check on y refuses it;
+// without it the other sensors would give a heading from a corrupt input.
+// (The +max reading of BadInputGivesSafeOutput is also caught later, by the
+// overflow of the normal equations.)
+TEST_F(CssSun, Issue21NegativeOverflowOfAReadingIsBadInput)
+{
+  cube_faces(cfg_, 0.5);
+  ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_, &cfg_));
+  const double r3 = 1.0 / std::sqrt(3.0);
+  const double s[3] = {r3, r3, r3};
+  readings(in_, cfg_, s);
+  EXPECT_EQ(FSW_OK, run());  // +x, +y, +z lit: the exact Sun
+  EXPECT_EQ(1, out_.sun_valid);
+  in_.reading[1] = -std::numeric_limits<fsw_real>::max();  // the unlit -x face
+  EXPECT_EQ(FSW_E_BAD_INPUT, run());
+  EXPECT_EQ(0, out_.sun_valid);
+  EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.sun_hat_B, 0.0);
+  EXPECT_EQ(1u, st_.health.bad_input);
+}

@@ -72,6 +72,25 @@ const BadCfg kBadConfigs[] = {
     {"NaN desired speed", [](FswAcsConfig& c) { c.use_null = 1; c.Omega_des[2] = kNaN; }, "Omega_des", FSW_E_CONFIG},
     {"use_lpf not boolean", [](FswAcsConfig& c) { c.use_lpf = 2; }, "use_lpf", FSW_E_CONFIG},
     {"filter above Nyquist", [](FswAcsConfig& c) { c.use_lpf = 1; c.lpf.omega_c = acsfix::R(7.0); }, "lpf", FSW_E_CONFIG},
+    // issue 21: every stage's check and every consistency check has a row
+    {"has_wheels not boolean", [](FswAcsConfig& c) { c.has_wheels = 2; }, "has_wheels", FSW_E_CONFIG},
+    {"has_thrusters not boolean", [](FswAcsConfig& c) { c.has_thrusters = 3; }, "has_thrusters", FSW_E_CONFIG},
+    {"unknown initial actuation", [](FswAcsConfig& c) { c.initial_actuation = 9; }, "initial_actuation", FSW_E_CONFIG},
+    {"wheel actuation without wheels", [](FswAcsConfig& c) { c.has_wheels = 0; c.has_thrusters = 1; },
+     "initial_actuation", FSW_E_CONFIG},
+    {"sun-safe command axis zero", [](FswAcsConfig& c) { c.sunsafe.s_cmd_B[2] = 0; }, "sunsafe", FSW_E_CONFIG},
+    {"NaN inertial target", [](FswAcsConfig& c) { c.inertial.sigma_R0N[0] = kNaN; }, "inertial", FSW_E_CONFIG},
+    {"NaN tracking offset", [](FswAcsConfig& c) { c.track.sigma_R0R[1] = kNaN; }, "track", FSW_E_CONFIG},
+    {"saturation mode", [](FswAcsConfig& c) { c.rw_sat.mode = 7; }, "rw_sat", FSW_E_CONFIG},
+    {"use_null not boolean", [](FswAcsConfig& c) { c.use_null = 2; }, "use_null", FSW_E_CONFIG},
+    {"negative null gain", [](FswAcsConfig& c) { c.use_null = 1; c.rw_null.k_null = acsfix::R(-1.0); }, "rw_null", FSW_E_CONFIG},
+    {"null-motion wheel count", [](FswAcsConfig& c) { c.use_null = 1; c.rw_null.num_rw = 3; }, "rw_null.num_rw", FSW_E_CONFIG},
+    {"use_volt not boolean", [](FswAcsConfig& c) { c.use_volt = 2; }, "use_volt", FSW_E_CONFIG},
+    {"voltage range empty", [](FswAcsConfig& c) { c.use_volt = 1; c.rw_volt.V_max = 0; }, "rw_volt", FSW_E_CONFIG},
+    {"voltage wheel count", [](FswAcsConfig& c) { c.use_volt = 1; c.rw_volt.num_rw = 3; }, "rw_volt.num_rw", FSW_E_CONFIG},
+    {"H wheels without a wheel chain",
+     [](FswAcsConfig& c) { c.has_wheels = 0; c.has_thrusters = 1; c.initial_actuation = FSW_ACS_ACT_THRUSTERS; },
+     "mrp_fb.num_rw", FSW_E_CONFIG},
 };
 
 TEST(FswAcsConfig, RejectsTheFirstBadFieldByName)
@@ -106,6 +125,23 @@ TEST(FswAcsConfig, ThrusterChainConsistency)
       {"pulser F_max differs from mapper", [](FswAcsConfig& c) { c.pulse_rem.common.F_max[3] = acsfix::R(2.0); }, "pulse_rem.F_max"},
       {"unknown pulser", [](FswAcsConfig& c) { c.pulser = 5; }, "pulser"},
       {"thruster mapping geometry", [](FswAcsConfig& c) { c.thr_map.F_max[0] = 0; }, "thr_map"},
+      // issue 21: the same consistency rows for the Schmitt pulser, and each
+      // pulser's own check; F_max differs in the last thruster (index n - 1)
+      {"wheel actuation without wheels", [](FswAcsConfig& c) { c.initial_actuation = FSW_ACS_ACT_WHEELS; },
+       "initial_actuation"},
+      {"remainder pulser t_min zero", [](FswAcsConfig& c) { c.pulse_rem.common.t_min = 0; }, "pulse_rem"},
+      {"Schmitt level above 1", [](FswAcsConfig& c) { c.pulser = FSW_ACS_PULSE_SCHMITT; c.pulse_schmitt.level_on = 2; },
+       "pulse_schmitt"},
+      {"Schmitt thruster count", [](FswAcsConfig& c) { c.pulser = FSW_ACS_PULSE_SCHMITT; c.pulse_schmitt.common.num_thr = 7; },
+       "pulse_schmitt.num_thr"},
+      {"off-pulsing Schmitt behind on-pulsing mapper",
+       [](FswAcsConfig& c) { c.pulser = FSW_ACS_PULSE_SCHMITT; c.pulse_schmitt.common.base_thrust_state = 1; },
+       "pulse_schmitt.base_thrust_state"},
+      {"Schmitt F_max differs from mapper",
+       [](FswAcsConfig& c) { c.pulser = FSW_ACS_PULSE_SCHMITT; c.pulse_schmitt.common.F_max[7] = acsfix::R(2.0); },
+       "pulse_schmitt.F_max"},
+      {"remainder F_max differs in the last thruster", [](FswAcsConfig& c) { c.pulse_rem.common.F_max[7] = acsfix::R(0.5); },
+       "pulse_rem.F_max"},
   };
   for (const Row& r : rows) {
     acsfix::thruster_config(g_cfg);
@@ -119,6 +155,16 @@ TEST(FswAcsConfig, ThrusterChainConsistency)
   const char* field = "x";
   EXPECT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field));
   EXPECT_EQ(nullptr, field);
+  // entries beyond num_thr (8) are unused: a pulser's F_max there may differ
+  // from the mapper's without making the chain inconsistent (issue 21)
+  static_assert(FSW_MAX_THR > 8, "the thruster fixture fills 8 of FSW_MAX_THR");
+  for (int pulser : {FSW_ACS_PULSE_REMAINDER, FSW_ACS_PULSE_SCHMITT}) {
+    acsfix::thruster_config(g_cfg, pulser);
+    g_cfg.pulse_rem.common.F_max[8] = acsfix::R(5.0);
+    g_cfg.pulse_schmitt.common.F_max[8] = acsfix::R(5.0);
+    EXPECT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field)) << pulser;
+    EXPECT_EQ(nullptr, field) << pulser;
+  }
 }
 
 /* ---- what the health message publishes ---- */

@@ -691,3 +691,30 @@ TEST(FswMinNorm, Issue13OverflowingSolutionIsBadInput)
   EXPECT_EQ(FSW_E_BAD_INPUT, fsw_minnorm_solve(x, A.a, b, 1, 1));
   EXPECT_EQ(0, x[0]);
 }
+
+// Issue 21: phase 1's guard for an entering column that does not move into
+// the box.  a1 = (1, 0), a2 = (1/2)(1, d), b = (1, 1), box [0, 10]^2.
+// a1 has the larger gradient (1 against (1 + d)/2) and enters: x1 = 1,
+// r = (0, 1).  Then a2's gradient a2.r = d/2 passes the entry test
+// (> 1000 eps |b| |a2|: d >~ 3e-13 in double, 1.7e-4 in float), but the
+// Schur pivot of the 2 x 2 normal matrix is |a2|^2 - (a1.a2)^2/|a1|^2 = d^2/4
+// <= FSW_RANK_TOL (d = 1e-9: 2.5e-19 in double, rounded to 0; d = 1e-3:
+// 2.5e-7 in float), so the pivot is dropped, z2 = 0 does not enter the box,
+// and the entry is undone (phase 1 ends at x = (1, 0)).  Phase 2 then
+// minimises |x| at the same A x with the same rank test, which sees a2 as
+// a1 / 2: the minimum-norm point of x1 + x2 / 2 = 1 is (1, 1/2) / (1 + 1/4)
+// = (0.8, 0.4).  Its residual |(0, 1 - 0.2 d)| = 1 - 0.2 d is within 0.8 d of
+// the exact optimum (x = (0, 2), residual 1 - d), below FSW_RESID_TOL: a2 is
+// numerically parallel to a1 at this rank tolerance.
+TEST(FswBoundedMinNorm, Issue21EnteringColumnDroppedByTheRankTestIsUndone)
+{
+  const double d = kt::tol(1e-9, 1e-3);
+  const Mat3N A = mat(2, 2, {1.0, 0.5, 0.0, 0.5 * d});
+  const K4Run r = k4(A, {1, 1}, 2, 2, box(2, 0, 10));
+  EXPECT_EQ(FSW_OK, r.s);
+  expect_x(r, {0.8, 0.4}, "entry undone, then least norm");
+  EXPECT_LE(r.iter, 3 * 2);
+  const double res = std::hypot(1.0 - (double(r.x[0]) + 0.5 * double(r.x[1])), 1.0 - 0.5 * d * double(r.x[1]));
+  EXPECT_LE(res - (1.0 - d), double(FSW_RESID_TOL));
+  EXPECT_GE(res - (1.0 - d), 0.0);  // nothing beats the optimum
+}

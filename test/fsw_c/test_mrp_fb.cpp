@@ -423,6 +423,17 @@ TEST_F(MrpFb, RejectsBadConfig)
       {"I not symmetric", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.I_B[0][1] = FSW_R(11.0); }},
       {"I not pos. def.", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.I_B[2][2] = FSW_R(-800.0); }},
       {"I indefinite minor", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.I_B[0][1] = c.I_B[1][0] = FSW_R(950.0); }},
+      // m1 = 1000 > 0, m2 = 1000 * 800 - 950^2 = -102500 < 0, det = m2 * (-800)
+      // = 8.2e7 > 0: only the second leading minor shows it is not positive
+      // definite (issue 21)
+      {"I second minor only", FSW_E_CONFIG, [](FswMrpFbConfig& c) {
+         for (int j = 0; j < 3; j++)
+           for (int k = 0; k < 3; k++) c.I_B[j][k] = FSW_R(0.0);
+         c.I_B[0][0] = FSW_R(1000.0);
+         c.I_B[1][1] = FSW_R(800.0);
+         c.I_B[2][2] = FSW_R(-800.0);
+         c.I_B[0][1] = c.I_B[1][0] = FSW_R(950.0);
+       }},
       {"num_rw < 0", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.num_rw = -1; }},
       {"num_rw > max", FSW_E_CAPACITY, [](FswMrpFbConfig& c) { c.num_rw = FSW_MAX_RW + 1; }},
       {"gs not unit", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.gs_hat_B[1][0] = FSW_R(0.6); }},

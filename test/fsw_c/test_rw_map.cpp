@@ -489,3 +489,36 @@ TEST(RwMapIssue13, OverflowIsBadInputAndEpsPIsBounded)
   EXPECT_EQ(FSW_OK, f.update());  // wheel speeds 0: W = eps_P, finite
   EXPECT_LE(rel_residual(*f.cfg, f.out->u_s, f.in->Lr_B), kt::tol(1e-12, 1e-5));
 }
+
+// ---- issue 21: a single wheel is a legal configuration ----------------------
+
+// One wheel g = (0.6, 0, 0.8) controlling the body z axis alone: A = [C][g]
+// = [0.8] (1 x 1), b = -Lr_z, so u = -Lr_z / 0.8 in both modes (a square
+// system has one solution; the power weighting only scales the column and is
+// undone).  Lr = (5, 7, 0.04): u = -0.05.  Three axes from one wheel:
+// fewer available wheels than axes -> W_SINGULAR with u = 0 (section 4).
+TEST(RwMapIssue21, SingleWheelIsAcceptedAndSolvedExactly)
+{
+  const double g[1][3] = {{0.6, 0.0, 0.8}};
+  for (int mode : {FSW_RW_MAP_MIN_NORM, FSW_RW_MAP_POWER}) {
+    Fixture f;
+    f.setup(g, 1, mode);
+    f.cfg->num_axes = 1;
+    for (int r = 0; r < 3; r++) f.cfg->ctrl_axes_B[0][r] = static_cast<fsw_real>(kI3[2][r]);
+    EXPECT_EQ(fsw_rw_map_check(f.cfg.get()), FSW_OK) << mode;
+    ASSERT_EQ(f.init(), FSW_OK) << mode;
+    f.set_Lr(5.0, 7.0, 0.04);
+    f.in->Omega[0] = static_cast<fsw_real>(300.0);
+    f.fill_out_with_garbage();
+    ASSERT_EQ(f.update(), FSW_OK) << mode;
+    EXPECT_NEAR(f.out->u_s[0], -0.05, kt::tol(1e-16, 1e-8)) << mode;
+    for (int i = 1; i < FSW_MAX_RW; i++) EXPECT_EQ(f.out->u_s[i], 0.0) << mode << " wheel " << i;
+    f.cfg->num_axes = 3;
+    for (int j = 0; j < 3; j++)
+      for (int r = 0; r < 3; r++) f.cfg->ctrl_axes_B[j][r] = static_cast<fsw_real>(kI3[j][r]);
+    ASSERT_EQ(f.init(), FSW_OK) << mode;
+    f.fill_out_with_garbage();
+    EXPECT_EQ(f.update(), FSW_W_SINGULAR) << mode;
+    expect_all_zero(*f.out);
+  }
+}

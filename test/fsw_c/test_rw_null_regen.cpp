@@ -406,3 +406,30 @@ TEST(RwNullRegenFuzzFinding, UnsupportedNullityLeavesTheProjectorUntouched)
   EXPECT_EQ(0, std::memcmp(&proj_before, &f->st->proj, sizeof proj_before));
 }
 
+
+// Issue 21: gradient mode stopped by a limit reports W_SAT.  Pyramid,
+// Omega = (100, 0, 0, 0), k_P = 1e-4: the full step is
+// du = (-0.0025, 0.0025, -0.0025, 0.0025) (see GradientPyramidHandNumbers).
+// u0 = (-0.099, 0, 0, 0), u_max = 0.1: wheel 1 reaches -u_max after
+// kappa = (-0.1 + 0.099) / -0.0025 = 0.4 of the step (the others after 40),
+// so u = u0 + 0.4 du = (-0.1, 0.001, -0.001, 0.001) and P = 100 * -0.1 = -10 W.
+// A request already beyond its limit (u0_1 = 0.2) leaves no room: kappa = 0,
+// u = u0, W_SAT.
+TEST(RwNullRegenIssue21, GradientStepCutByALimitIsWSat)
+{
+  auto f = pyramid(FSW_RW_REGEN_GRADIENT);
+  f->in->Omega[0] = FSW_R(100.0);
+  f->in->u_s[0] = static_cast<fsw_real>(-0.099);
+  ASSERT_EQ(f->update(), FSW_W_SAT);
+  const double want[4] = {-0.1, 0.001, -0.001, 0.001};
+  for (int i = 0; i < 4; i++) EXPECT_NEAR(f->out->u_s[i], want[i], kt::tol(1e-15, 1e-7)) << i;
+  EXPECT_NEAR(f->out->power, -10.0, kt::tol(1e-12, 1e-5));
+  EXPECT_EQ(f->st->health.saturated, 1u);
+  f->in->u_s[0] = FSW_R(0.2);
+  ASSERT_EQ(f->update(), FSW_W_SAT);
+  EXPECT_EQ(f->out->u_s[0], FSW_R(0.2));
+  for (int i = 1; i < 4; i++) EXPECT_EQ(f->out->u_s[i], 0.0) << i;
+  // the same request with room to move: the whole step, OK
+  f->in->u_s[0] = FSW_R(0.0);
+  EXPECT_EQ(f->update(), FSW_OK);
+}

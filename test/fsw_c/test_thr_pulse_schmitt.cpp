@@ -277,3 +277,18 @@ TEST(ThrPulseSchmitt, Issue13MinimumPulseNeverExceedsThePeriod)
     EXPECT_NEAR(0.016, p.out.t_on[0], kTol);
   }
 }
+
+// Issue 21: saturation with a period other than 1 s.  Period 0.5 s, F_max 1:
+// t = F / F_max * dt.  F = 1.5 -> t = 0.75 s > dt: on for 1.1 dt = 0.55 s and
+// W_SAT; F = 1 -> t = dt exactly: 0.55 s, not saturated (t > dt is false).
+TEST(ThrPulseSchmitt, Issue21SaturationScalesWithThePeriod)
+{
+  Pulser p(cfg1());
+  const uint64_t half = kSec / 2;
+  ASSERT_EQ(FSW_OK, p.step(0, 0.0));
+  EXPECT_EQ(FSW_W_SAT, p.step(half, 1.5));
+  EXPECT_NEAR(0.55, p.out.t_on[0], kTol);
+  EXPECT_EQ(FSW_OK, p.step(2 * half, 1.0));
+  EXPECT_NEAR(0.55, p.out.t_on[0], kTol);
+  EXPECT_EQ(1u, p.st.common.health.saturated);
+}
