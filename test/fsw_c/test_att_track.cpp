@@ -10,6 +10,7 @@
 #include "fsw/att_track.h"
 #include "gnc_test_ref.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -237,3 +238,10 @@ TEST_F(AttTrack, RepeatableAfterReset)
 }
 
 }  // namespace
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(AttTrackIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("att_track", fsw_att_track_check, fsw_att_track_init, fsw_att_track_reset, fsw_att_track_update);
+}

@@ -19,6 +19,7 @@
 #include "fsw/fsw_vec.h"
 #include "gnc_test_ref.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -462,4 +463,11 @@ TEST_F(CssSun, Issue21NegativeOverflowOfAReadingIsBadInput)
   EXPECT_EQ(0, out_.sun_valid);
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.sun_hat_B, 0.0);
   EXPECT_EQ(1u, st_.health.bad_input);
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(CssSunNullIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("css_sun", fsw_css_sun_check, fsw_css_sun_init, fsw_css_sun_reset, fsw_css_sun_update);
 }

@@ -13,6 +13,7 @@
 #include "fsw/fsw_acs.h"
 #include "fsw/fsw_attitude.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -803,4 +804,89 @@ TEST(FswAcsConfig, Issue13DenormalEpsPIsRefused)
   EXPECT_EQ(FSW_E_CONFIG, fsw_acs_check(&g_cfg, &field));
   ASSERT_NE(nullptr, field);
   EXPECT_STREQ("rw_map", field);
+}
+
+// Issue 21: the same error-cycle contract with thrusters, for both pulsers
+// (the snapshot of the mapper diagnostics and of the pulser's memory is put
+// back): inertial, at rest, one good cycle, then a huge finite rate that
+// overflows the control law -> BAD_INPUT, safe output, state as before; the
+// retry equals a twin that never saw the bad cycle.
+TEST(FswAcsCycle, Issue21ThrusterErrorCycleAdvancesNoState)
+{
+  const double big = 0.5 * static_cast<double>(std::numeric_limits<fsw_real>::max());
+  for (int pulser : {FSW_ACS_PULSE_REMAINDER, FSW_ACS_PULSE_SCHMITT}) {
+    acsfix::thruster_config(g_cfg, pulser);
+    ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr)) << pulser;
+    ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st2, &g_cfg, nullptr)) << pulser;
+    sensors_at_rest(g_sens, 0);
+    ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+    ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2)));
+    g_before = g_st;
+    g_sens.t_ns = kPeriodNs;
+    g_sens.omega_BN_B[0] = static_cast<fsw_real>(big);
+    g_sens.omega_BN_B[2] = static_cast<fsw_real>(-big);
+    EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)) << pulser;
+    EXPECT_TRUE(all_zero(g_act)) << pulser;
+    EXPECT_EQ(1, g_h.safe_output) << pulser;
+    g_after = g_st;
+    mask_health_and_scratch(g_after, g_before);
+    EXPECT_EQ(0, std::memcmp(&g_before, &g_after, sizeof g_before)) << pulser;
+    sensors_at_rest(g_sens, kPeriodNs);
+    const FswStatus s = fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h);
+    fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2);
+    EXPECT_FALSE(fsw_status_is_error(s)) << pulser;
+    EXPECT_EQ(0, std::memcmp(&g_act, &g_act2, sizeof g_act)) << pulser;
+  }
+}
+
+// Issue 21: inputs the sun-safe and thruster paths read: a NaN reading of an
+// available CSS in SUN_SAFE, a NaN centre of mass with thrusters.
+TEST(FswAcsCycle, Issue21SunSafeAndThrusterInputsAreChecked)
+{
+  acsfix::wheel_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  g_sens.css[2] = kNaN;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_TRUE(all_zero(g_act));
+  g_sens.css_avail[2] = FSW_UNAVAILABLE;  // an unavailable sensor's reading is not read
+  EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  acsfix::thruster_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  g_sens.r_CoM_B[1] = kNaN;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_TRUE(all_zero(g_act));
+  g_sens.r_CoM_B[1] = 0;
+  EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+}
+
+// Issue 21: every pointer NULL in turn (cmd and bad_field may be NULL by
+// contract): assert once, FSW_E_NULL_ARG; the cycle still writes the safe
+// output and a zero health message wherever those pointers are valid.
+TEST(FswAcsIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  acsfix::wheel_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  const char* field = nullptr;
+  kt::each_null("fsw_acs_check", [&](const FswAcsConfig* c) { return fsw_acs_check(c, &field); }, &g_cfg);
+  EXPECT_EQ(std::string("cfg"), field);
+  kt::each_null("fsw_acs_init", [](FswAcsState* st, const FswAcsConfig* c) { return fsw_acs_init(st, c, nullptr); },
+                &g_st2, &g_cfg);
+  kt::each_null("fsw_acs_reset", fsw_acs_reset, &g_st, &g_cfg);
+  kt::each_null("fsw_acs_config_set_geometry", fsw_acs_config_set_geometry, &g_cfg2, &g_geo);
+  kt::each_null(
+      "fsw_acs_cycle",
+      [](FswAcsState* st, const FswAcsConfig* c, const FswAcsSensorMsg* sens, FswAcsActuatorMsg* act,
+         FswAcsHealthMsg* h) {
+        if (act != nullptr) act->u_s[0] = 9;
+        if (h != nullptr) h->cycles = 9;
+        const FswStatus s = fsw_acs_cycle(st, c, sens, nullptr, act, h);
+        if (act != nullptr) EXPECT_TRUE(all_zero(*act));
+        if (h != nullptr) EXPECT_EQ(0u, h->cycles);
+        return s;
+      },
+      &g_st, &g_cfg, &g_sens, &g_act, &g_h);
+  EXPECT_EQ(4u, g_st.health.bad_input);  // NULL_ARG is counted whenever the state was given
 }

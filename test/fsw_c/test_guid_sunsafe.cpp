@@ -12,6 +12,7 @@
 #include "fsw/guid_sunsafe.h"
 #include "gnc_test_ref.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -325,4 +326,11 @@ TEST_F(GuidSunsafe, Issue13CommandedAxisIsBounded)
   gref::set3(in_.sun_B, 0.0, 0.0, 1.0);  // 90 degrees
   EXPECT_EQ(FSW_OK, run());
   EXPECT_NEAR(std::tan(gref::kPi / 8), fsw_v3_norm(out_.guid.sigma_BR), kt::tol(1e-15, 1e-6));
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(GuidSunsafeIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("guid_sunsafe", fsw_guid_sunsafe_check, fsw_guid_sunsafe_init, fsw_guid_sunsafe_reset, fsw_guid_sunsafe_update);
 }

@@ -12,6 +12,7 @@
 #include "fsw/mrp_fb.h"
 #include "gnc_test_ref.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -541,3 +542,10 @@ TEST_F(MrpFb, NullPointersAssert)
 }
 
 }  // namespace
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(MrpFbNullIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("mrp_fb", fsw_mrp_fb_check, fsw_mrp_fb_init, fsw_mrp_fb_reset, fsw_mrp_fb_update);
+}

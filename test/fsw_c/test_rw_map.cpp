@@ -8,6 +8,7 @@
 #include "fsw/rw_common.h"
 #include "fsw/rw_map.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 #include "rw_test_util.h"
 
 namespace {
@@ -521,4 +522,11 @@ TEST(RwMapIssue21, SingleWheelIsAcceptedAndSolvedExactly)
     EXPECT_EQ(f.update(), FSW_W_SINGULAR) << mode;
     expect_all_zero(*f.out);
   }
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(RwMapIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("rw_map", fsw_rw_map_check, fsw_rw_map_init, fsw_rw_map_reset, fsw_rw_map_update);
 }

@@ -7,6 +7,7 @@
 
 #include "fsw/rw_null.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 #include "rw_test_util.h"
 
 namespace {
@@ -492,4 +493,11 @@ TEST(RwNullIssue21, ProjectorRefreshReportsAChangedMask)
   EXPECT_EQ(1, fsw_rw_proj_refresh(p.get(), nullptr));
   EXPECT_EQ(4, p->num_avail);
   expect_tau(true, "available again");
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(RwNullIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("rw_null", fsw_rw_null_check, fsw_rw_null_init, fsw_rw_null_reset, fsw_rw_null_update);
 }

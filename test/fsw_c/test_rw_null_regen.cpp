@@ -8,6 +8,7 @@
 #include "fsw/rw_map.h"
 #include "fsw/rw_null_regen.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 #include "rw_test_util.h"
 
 namespace {
@@ -432,4 +433,11 @@ TEST(RwNullRegenIssue21, GradientStepCutByALimitIsWSat)
   // the same request with room to move: the whole step, OK
   f->in->u_s[0] = FSW_R(0.0);
   EXPECT_EQ(f->update(), FSW_OK);
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(RwNullRegenIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("rw_null_regen", fsw_rw_null_regen_check, fsw_rw_null_regen_init, fsw_rw_null_regen_reset, fsw_rw_null_regen_update);
 }

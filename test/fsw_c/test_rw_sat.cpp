@@ -6,6 +6,7 @@
 
 #include "fsw/rw_sat.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 #include "rw_test_util.h"
 
 namespace {
@@ -176,4 +177,11 @@ TEST(RwSatIssue21, SingleWheelIsAcceptedAndLimited)
     EXPECT_EQ(f.update(), FSW_OK) << mode;
     EXPECT_EQ(f.out->u_s[0], f.in->u_s[0]) << mode;
   }
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(RwSatIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("rw_sat", fsw_rw_sat_check, fsw_rw_sat_init, fsw_rw_sat_reset, fsw_rw_sat_update);
 }

@@ -7,6 +7,7 @@
 
 #include "fsw/rw_volt.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 #include "rw_test_util.h"
 
 namespace {
@@ -337,4 +338,11 @@ TEST(RwVoltIssue13, ConfigRangesKeepProductsFinite)
   EXPECT_FALSE(fsw_status_is_error(f.update(kDt)));
   EXPECT_EQ(0.0, f.out->V[0]);
   EXPECT_TRUE(std::isfinite(f.out->V[1]));
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(RwVoltIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("rw_volt", fsw_rw_volt_check, fsw_rw_volt_init, fsw_rw_volt_reset, fsw_rw_volt_update);
 }

@@ -13,6 +13,7 @@
 
 #include "fsw/thr_map.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -896,4 +897,11 @@ TEST(ThrMapIssue13, BoundedModeRangesAndDeliveredTorque)
   EXPECT_NEAR(0.1, t[0], kTol);
   EXPECT_NEAR(-0.1, t[1], kTol);
   EXPECT_NEAR(0.0, t[2], kTol);
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(ThrMapIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("thr_map", fsw_thr_map_check, fsw_thr_map_init, fsw_thr_map_reset, fsw_thr_map_update);
 }

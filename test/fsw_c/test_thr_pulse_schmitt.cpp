@@ -10,6 +10,7 @@
 
 #include "fsw/thr_pulse_schmitt.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -291,4 +292,11 @@ TEST(ThrPulseSchmitt, Issue21SaturationScalesWithThePeriod)
   EXPECT_EQ(FSW_OK, p.step(2 * half, 1.0));
   EXPECT_NEAR(0.55, p.out.t_on[0], kTol);
   EXPECT_EQ(1u, p.st.common.health.saturated);
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(ThrPulseSchmittIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("thr_pulse_schmitt", fsw_thr_pulse_schmitt_check, fsw_thr_pulse_schmitt_init, fsw_thr_pulse_schmitt_reset, fsw_thr_pulse_schmitt_update);
 }

@@ -7,6 +7,7 @@
 
 #include "fsw/trq_lpf.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -187,4 +188,11 @@ TEST(TrqLpfIssue13, OverflowIsBadInputAndDoesNotPoisonTheMemory)
     EXPECT_TRUE(std::isfinite(f.out.LrF_B[k]));
     EXPECT_EQ(clean.out.LrF_B[k], f.out.LrF_B[k]);
   }
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(TrqLpfIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("trq_lpf", fsw_trq_lpf_check, fsw_trq_lpf_init, fsw_trq_lpf_reset, fsw_trq_lpf_update);
 }
