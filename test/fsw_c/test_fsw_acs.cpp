@@ -890,3 +890,83 @@ TEST(FswAcsIssue21, EveryNullArgumentAssertsAndReturns)
       &g_st, &g_cfg, &g_sens, &g_act, &g_h);
   EXPECT_EQ(4u, g_st.health.bad_input);  // NULL_ARG is counted whenever the state was given
 }
+
+// Issue 21: the remaining request and bookkeeping paths of the cycle.
+TEST(FswAcsIssue21, RequestsCountersAndResetOfANotReadyState)
+{
+  // wheels requested from a thruster-only configuration, an unknown
+  // actuation, an availability flag 2 on a CSS in SUN_SAFE: bad input
+  acsfix::thruster_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  FswAcsCmdMsg cmd = {FSW_ACS_MODE_INERTIAL, FSW_ACS_ACT_WHEELS};
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, &cmd, &g_act, &g_h));
+  cmd.actuation = 7;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, &cmd, &g_act, &g_h));
+  acsfix::wheel_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  g_sens.css_avail[4] = 2;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_TRUE(all_zero(g_act));
+  // the cycle and transition counters saturate instead of wrapping
+  sensors_at_rest(g_sens, 0);
+  g_st.cycles = UINT32_MAX;
+  g_st.mode_changes = UINT32_MAX;
+  cmd = {FSW_ACS_MODE_INERTIAL, FSW_ACS_ACT_WHEELS};  // a transition from SUN_SAFE
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, &cmd, &g_act, &g_h)));
+  EXPECT_EQ(UINT32_MAX, g_st.cycles);
+  EXPECT_EQ(UINT32_MAX, g_st.mode_changes);
+  EXPECT_EQ(FSW_ACS_MODE_INERTIAL, g_st.mode);
+  // reset of a state that init refused changes nothing
+  g_cfg.mrp_fb.K = 0;
+  ASSERT_EQ(FSW_E_CONFIG, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  g_before = g_st;
+  kestrel_assert_reset();
+  fsw_acs_reset(&g_st, &g_cfg);
+  EXPECT_EQ(0ul, kestrel_assert_count());
+  EXPECT_EQ(0, std::memcmp(&g_before, &g_st, sizeof g_st));
+}
+
+// Issue 21: a control law without wheel momentum (mrp_fb.num_rw = 0) in
+// front of a wheel chain is legal (H_s omitted, spec 2), and then the
+// spin-axis and spin-inertia copies have nothing to agree with.
+TEST(FswAcsIssue21, ControlLawWithoutWheelMomentumIsAccepted)
+{
+  acsfix::wheel_config(g_cfg);
+  g_cfg.mrp_fb.num_rw = 0;
+  g_cfg.use_volt = 1;
+  g_cfg.rw_volt.J_s[0] = acsfix::R(5.0);  // would differ from mrp_fb.J_s
+  const char* field = "x";
+  EXPECT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field));
+  EXPECT_EQ(nullptr, field);
+  EXPECT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+}
+
+// Issue 21: the wheel error cycle without null motion and voltages (the
+// snapshot paths for a chain with neither): state as before, retry equals
+// the twin.
+TEST(FswAcsCycle, Issue21WheelErrorCycleWithoutNullOrVoltages)
+{
+  const double big = 0.5 * static_cast<double>(std::numeric_limits<fsw_real>::max());
+  acsfix::wheel_config(g_cfg);
+  g_cfg.initial_mode = FSW_ACS_MODE_INERTIAL;
+  ASSERT_EQ(0, g_cfg.use_null);
+  ASSERT_EQ(0, g_cfg.use_volt);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st2, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2)));
+  g_before = g_st;
+  g_sens.t_ns = kPeriodNs;
+  g_sens.omega_BN_B[1] = static_cast<fsw_real>(big);
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_TRUE(all_zero(g_act));
+  g_after = g_st;
+  mask_health_and_scratch(g_after, g_before);
+  EXPECT_EQ(0, std::memcmp(&g_before, &g_after, sizeof g_before));
+  sensors_at_rest(g_sens, kPeriodNs);
+  EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2);
+  EXPECT_EQ(0, std::memcmp(&g_act, &g_act2, sizeof g_act));
+}

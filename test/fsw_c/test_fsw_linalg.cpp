@@ -12,6 +12,7 @@
 #include "fsw/fsw_linalg.h"
 #include "fsw/fsw_vec.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -717,4 +718,46 @@ TEST(FswBoundedMinNorm, Issue21EnteringColumnDroppedByTheRankTestIsUndone)
   const double res = std::hypot(1.0 - (double(r.x[0]) + 0.5 * double(r.x[1])), 1.0 - 0.5 * d * double(r.x[1]));
   EXPECT_LE(res - (1.0 - d), double(FSW_RESID_TOL));
   EXPECT_GE(res - (1.0 - d), 0.0);  // nothing beats the optimum
+}
+
+// Issue 21: two free variables that reach their bounds at the same step
+// length (phase 1 fixes the blocking one and every other one at a bound).
+// a1 = (1, 0), a2 = (-1/2, 1/2), b = (1, 2), box [0, 2]^2.  Gradients at 0:
+// a1.b = 1 > a2.b = 1/2, so a1 enters alone: x1 = a1.b / |a1|^2 = 1, r = (0, 2);
+// then a2.r = 1 > 0 enters and the free least squares is A^-1 b = (3, 4)
+// (3 a1 + 4 a2 = (1, 2)).  Step lengths to the bounds: (2 - 1)/(3 - 1) = 1/2
+// and (2 - 0)/(4 - 0) = 1/2, equal and exact in binary: both stop at 2.  At
+// (2, 2) the gradient A^T (A x - b) = A^T (0, -1) = (0, -1/2) does not point
+// into the box, so it is the bounded optimum; A is invertible, so phase 2
+// keeps it.  The mirror problem (b -> -b, box [-2, 0]) ends at (-2, -2)
+// through the lower bounds.
+TEST(FswBoundedMinNorm, Issue21TwoVariablesReachTheirBoundsTogether)
+{
+  const Mat3N A = mat(2, 2, {1.0, -0.5, 0.0, 0.5});
+  const K4Run up = k4(A, {1, 2}, 2, 2, box(2, 0, 2));
+  EXPECT_EQ(FSW_OK, up.s);
+  expect_x(up, {2.0, 2.0}, "upper bounds together");
+  const K4Run dn = k4(A, {-1, -2}, 2, 2, box(2, -2, 0));
+  EXPECT_EQ(FSW_OK, dn.s);
+  expect_x(dn, {-2.0, -2.0}, "lower bounds together");
+}
+
+// Issue 21: every required pointer of K1, K2 and K4 NULL in turn (null_args.h);
+// K2's avail and rank and K4's iterations may be NULL by contract.
+TEST(FswLinalgIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  static Mat3N A;
+  static fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF];
+  fsw_real x[FSW_MAX_EFF], b[3] = {1, 0, 0};
+  const Box B = box(2, 0, 1);
+  A = mat(1, 2, {1, 1});
+  kt::each_null("K1", [](fsw_real* xx, const Mat3N* a, const fsw_real* bb) {
+    return fsw_minnorm_solve(xx, a != nullptr ? a->a : nullptr, bb, 1, 2);
+  }, x, &A, b);
+  kt::each_null("K2", [](fsw_real (*t)[FSW_MAX_EFF], const Mat3N* a) {
+    return fsw_null_projector(t, a != nullptr ? a->a : nullptr, 2, nullptr, nullptr);
+  }, tau, &A);
+  kt::each_null("K4", [](fsw_real* xx, const Mat3N* a, const fsw_real* bb, const fsw_real* lo, const fsw_real* hi) {
+    return fsw_bounded_minnorm_solve(xx, a != nullptr ? a->a : nullptr, bb, 1, 2, lo, hi, nullptr);
+  }, x, &A, b, B.lo, B.hi);
 }

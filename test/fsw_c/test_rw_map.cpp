@@ -119,6 +119,12 @@ TEST(RwMapConfig, RejectsBadConfigurationsTableDriven)
          c->eps_P = std::numeric_limits<fsw_real>::quiet_NaN();
        },
        FSW_E_CONFIG},
+      {"power mode, eps_P above FSW_RW_MAP_EPS_P_MAX (issue 21)",
+       [](FswRwMapConfig* c) {
+         c->mode = FSW_RW_MAP_POWER;
+         c->eps_P = 2 * FSW_RW_MAP_EPS_P_MAX;
+       },
+       FSW_E_CONFIG},
   };
   for (const Row& row : rows) {
     Fixture f = pyramid();
@@ -529,4 +535,24 @@ TEST(RwMapIssue21, SingleWheelIsAcceptedAndSolvedExactly)
 TEST(RwMapIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("rw_map", fsw_rw_map_check, fsw_rw_map_init, fsw_rw_map_reset, fsw_rw_map_update);
+}
+
+// Issue 21: the overflow guard after the power weighting.  POWER, pyramid,
+// wheels at rest, eps_P = 1e-9: every column is scaled by sqrt(y) =
+// 1/sqrt(eps_P) = 31623, so K1 solves for x = u / 31623, which is finite,
+// while u = -(3/4) [Gs]^T Lr for Lr = 0.9 max (1, 1, 1) has
+// u_1 = -(3/4) sqrt(3) 0.9 max = -1.17 max: it overflows only when x is
+// scaled back.  Bad input, u = 0 (the MIN_NORM row of
+// OverflowIsBadInputAndEpsPIsBounded fails inside K1 instead).
+TEST(RwMapIssue21, PowerWeightingThatOverflowsOnTheWayBackIsBadInput)
+{
+  const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());
+  Fixture f = pyramid(FSW_RW_MAP_POWER);
+  f.cfg->eps_P = FSW_RW_MAP_EPS_P_MIN;
+  ASSERT_EQ(FSW_OK, f.init());
+  f.set_Lr(big, big, big);
+  f.fill_out_with_garbage();
+  EXPECT_EQ(FSW_E_BAD_INPUT, f.update());
+  expect_all_zero(*f.out);
+  EXPECT_EQ(1u, f.st->health.bad_input);
 }

@@ -52,6 +52,12 @@ TEST(RwVoltConfig, RejectsBadConfigurationsTableDriven)
       {"no wheels", [](FswRwVoltConfig* c) { c->num_rw = 0; }, FSW_E_CAPACITY},
       {"too many", [](FswRwVoltConfig* c) { c->num_rw = FSW_MAX_RW + 1; }, FSW_E_CAPACITY},
       {"V_min negative", [](FswRwVoltConfig* c) { c->V_min = -1; }, FSW_E_CONFIG},
+      // issue 21: each clause of the range checks
+      {"V_min NaN", [](FswRwVoltConfig* c) { c->V_min = std::numeric_limits<fsw_real>::quiet_NaN(); }, FSW_E_CONFIG},
+      {"V_max below V_min", [](FswRwVoltConfig* c) { c->V_max = c->V_min - 1; }, FSW_E_CONFIG},
+      {"V_max above FSW_RW_V_MAX_MAX", [](FswRwVoltConfig* c) { c->V_max = 2 * FSW_RW_V_MAX_MAX; }, FSW_E_CONFIG},
+      {"K_V NaN", [](FswRwVoltConfig* c) { c->K_V = std::numeric_limits<fsw_real>::quiet_NaN(); }, FSW_E_CONFIG},
+      {"K_V above FSW_RW_GAIN_MAX", [](FswRwVoltConfig* c) { c->K_V = 2 * FSW_RW_GAIN_MAX; }, FSW_E_CONFIG},
       {"V_max = V_min", [](FswRwVoltConfig* c) { c->V_max = c->V_min; }, FSW_E_CONFIG},
       {"V_max NaN", [](FswRwVoltConfig* c) { c->V_max = std::numeric_limits<fsw_real>::quiet_NaN(); }, FSW_E_CONFIG},
       {"K_V negative", [](FswRwVoltConfig* c) { c->K_V = -1; }, FSW_E_CONFIG},

@@ -138,6 +138,9 @@ const BadCfg kBadConfigs[] = {
     {"dependent control axes", [](FswThrMapConfig* c) { set3(c->control_axes_B[2], 1, 1, 0); }, FSW_E_SINGULAR},
     {"repeated control axis", [](FswThrMapConfig* c) { set3(c->control_axes_B[1], 2, 0, 0); }, FSW_E_SINGULAR},
     {"negative epsilon", [](FswThrMapConfig* c) { c->epsilon = -1e-3f; }, FSW_E_CONFIG},
+    // issue 21: the NaN clause of each finite check
+    {"epsilon NaN", [](FswThrMapConfig* c) { c->epsilon = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
+    {"direction NaN", [](FswThrMapConfig* c) { c->gt_hat_B[1][1] = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
     {"negative angle threshold", [](FswThrMapConfig* c) { c->ang_err_thresh = -0.1f; }, FSW_E_CONFIG},
     {"angle threshold NaN", [](FswThrMapConfig* c) { c->ang_err_thresh = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
     {"use_2nd_loop 2", [](FswThrMapConfig* c) { c->use_2nd_loop = 2; }, FSW_E_CONFIG},

@@ -61,6 +61,7 @@ const BadCfg kBadConfigs[] = {
     {"resolution zero", [](FswThrPulseRoundConfig* c) { c->resolution = 0; }, FSW_E_CONFIG},
     {"resolution NaN", [](FswThrPulseRoundConfig* c) { c->resolution = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
     {"t_min negative", [](FswThrPulseRoundConfig* c) { c->t_min = -0.01f; }, FSW_E_CONFIG},
+    {"t_min NaN (issue 21)", [](FswThrPulseRoundConfig* c) { c->t_min = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
     {"carry_residual 2", [](FswThrPulseRoundConfig* c) { c->carry_residual = 2; }, FSW_E_CONFIG},
 };
 

@@ -67,6 +67,7 @@ const BadCfg kBadConfigs[] = {
     {"level_off > level_on", [](FswThrPulseSchmittConfig* c) { c->level_off = 0.8f; }, FSW_E_CONFIG},
     {"level_on > 1", [](FswThrPulseSchmittConfig* c) { c->level_on = 1.01f; }, FSW_E_CONFIG},
     {"level_on NaN", [](FswThrPulseSchmittConfig* c) { c->level_on = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
+    {"level_off NaN (issue 21)", [](FswThrPulseSchmittConfig* c) { c->level_off = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
     {"base state 3", [](FswThrPulseSchmittConfig* c) { c->common.base_thrust_state = 3; }, FSW_E_CONFIG},
     {"init on-time negative", [](FswThrPulseSchmittConfig* c) { c->common.init_off_pulse_on_time = -2; }, FSW_E_CONFIG},
 };
