@@ -471,3 +471,23 @@ TEST(CssSunNullIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("css_sun", fsw_css_sun_check, fsw_css_sun_init, fsw_css_sun_reset, fsw_css_sun_update);
 }
+
+// Issue 21: an unavailable sensor never takes part, whatever the previous
+// call saw.  Call 1: Sun along (1, 1, 1)/sqrt(3), +x, +y, +z lit (WLS).
+// Call 2: only +x available: one lit sensor, so mode ONE with the +x normal
+// (header: FSW_CSS_SUN_ONE), never a TWO built with a sensor that is
+// unavailable now (its lit flag must be cleared on every call, not left from
+// call 1).
+TEST_F(CssSun, Issue21UnavailableSensorIsNeverAPartner)
+{
+  const double r3 = 1.0 / std::sqrt(3.0);
+  const double s[3] = {r3, r3, r3};
+  readings(in_, cfg_, s);
+  ASSERT_EQ(FSW_OK, run());
+  ASSERT_EQ(FSW_CSS_SUN_WLS, out_.mode);
+  for (int i = 1; i < 6; i++) in_.avail[i] = FSW_UNAVAILABLE;
+  EXPECT_EQ(FSW_W_SINGULAR, run());
+  EXPECT_EQ(FSW_CSS_SUN_ONE, out_.mode);
+  EXPECT_EQ(1, out_.num_lit);
+  EXPECT_V3_NEAR(1.0, 0.0, 0.0, out_.sun_hat_B, 0.0);
+}

@@ -294,3 +294,15 @@ TEST(FswMrp, Issue21DcmToQuatDegenerateInputGivesIdentity)
     for (int i = 0; i < 3; i++) EXPECT_EQ(0.0, s[i]) << why[c] << " sigma" << i;
   }
 }
+
+// Issue 21: a quaternion whose norm is not finite (an Inf entry) is not an
+// attitude: like the zero quaternion (HalfTurnAndDegenerateQuaternions) it
+// gives the identity DCM rather than NaN.
+TEST(FswMrp, Issue21InfiniteQuaternionGivesIdentity)
+{
+  const fsw_real q[4] = {0, std::numeric_limits<fsw_real>::infinity(), 0, 0};
+  fsw_real C[3][3];
+  fsw_quat_to_dcm(C, q);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) EXPECT_EQ(i == j ? 1.0 : 0.0, C[i][j]) << i << "," << j;
+}
