@@ -491,3 +491,17 @@ TEST_F(CssSun, Issue21UnavailableSensorIsNeverAPartner)
   EXPECT_EQ(1, out_.num_lit);
   EXPECT_V3_NEAR(1.0, 0.0, 0.0, out_.sun_hat_B, 0.0);
 }
+
+// Issue 21: readings whose normal matrix M = sum y n n^T is finite but whose
+// right-hand side c = sum y^2 n overflows: y = 1e200 (1e20 in float) gives
+// M ~ 1e200 and y^2 = 1e400 = inf.  Bad input, safe output.
+TEST_F(CssSun, Issue21OverflowOfTheRightHandSideIsBadInput)
+{
+  const double r3 = 1.0 / std::sqrt(3.0);
+  const double s[3] = {r3, r3, r3};
+  readings(in_, cfg_, s);
+  in_.reading[0] = static_cast<fsw_real>(kt::kFloat ? 1e20 : 1e200);
+  EXPECT_EQ(FSW_E_BAD_INPUT, run());
+  EXPECT_EQ(0, out_.sun_valid);
+  EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.sun_hat_B, 0.0);
+}

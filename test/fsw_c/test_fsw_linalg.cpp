@@ -718,6 +718,22 @@ TEST(FswBoundedMinNorm, Issue21EnteringColumnDroppedByTheRankTestIsUndone)
   const double res = std::hypot(1.0 - (double(r.x[0]) + 0.5 * double(r.x[1])), 1.0 - 0.5 * d * double(r.x[1]));
   EXPECT_LE(res - (1.0 - d), double(FSW_RESID_TOL));
   EXPECT_GE(res - (1.0 - d), 0.0);  // nothing beats the optimum
+  // mirrored into an off-pulsing box [-10, 0] with -b: the same numbers,
+  // negated (the entry is undone from the upper bound)
+  const K4Run rn = k4(A, {-1, -1}, 2, 2, box(2, -10, 0));
+  EXPECT_EQ(FSW_OK, rn.s);
+  expect_x(rn, {-0.8, -0.4}, "off-pulsing box");
+  // the entering column first in the free set: a0 = e (0, 1) tiny
+  // (e^2 <= FSW_RANK_TOL: e = 1e-7 in double, 1e-3 in float), a1 = (1, 0),
+  // b = (1, 1), box [0, 2]^2.  a1 enters (gradient 1 > e): x1 = 1 < 2 stays
+  // free, r = (0, 1); a0's gradient e passes the entry test (it scales with
+  // |a0|), but its pivot e^2 <= FSW_RANK_TOL * 1 is dropped, z0 = 0: undone,
+  // with a1 moved down in the free set.  x = (0, 1); the exact optimum
+  // x = (2, 1) has residual 1 - 2 e, better by 2 e < FSW_RESID_TOL only.
+  const double e = kt::tol(1e-7, 1e-3);
+  const K4Run rt = k4(mat(2, 2, {0.0, 1.0, e, 0.0}), {1, 1}, 2, 2, box(2, 0, 2));
+  EXPECT_EQ(FSW_OK, rt.s);
+  expect_x(rt, {0.0, 1.0}, "tiny entering column first");
 }
 
 // Issue 21: two free variables that reach their bounds at the same step
@@ -760,4 +776,17 @@ TEST(FswLinalgIssue21, EveryNullArgumentAssertsAndReturns)
   kt::each_null("K4", [](fsw_real* xx, const Mat3N* a, const fsw_real* bb, const fsw_real* lo, const fsw_real* hi) {
     return fsw_bounded_minnorm_solve(xx, a != nullptr ? a->a : nullptr, bb, 1, 2, lo, hi, nullptr);
   }, x, &A, b, B.lo, B.hi);
+}
+
+// Issue 21: a right-hand side whose largest entry is subnormal.  K1 scales b
+// by 2^-e to [1/2, 1); for the smallest subnormal 2^-e is not finite, so the
+// scale is clamped to the largest finite power of two.  A = [1]: x = b
+// exactly either way (the scaling is by powers of two and undone).
+TEST(FswMinNorm, Issue21SubnormalRightHandSide)
+{
+  static Mat3N A;
+  A = mat(1, 1, {1.0});
+  fsw_real x[FSW_MAX_EFF], b[3] = {std::numeric_limits<fsw_real>::denorm_min(), 0, 0};
+  EXPECT_EQ(FSW_OK, fsw_minnorm_solve(x, A.a, b, 1, 1));
+  EXPECT_EQ(b[0], x[0]);
 }

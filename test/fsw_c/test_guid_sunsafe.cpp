@@ -195,6 +195,8 @@ TEST_F(GuidSunsafe, RejectsBadConfig)
       {"small_angle = pi/2", [](FswGuidSunsafeConfig& c) { c.small_angle = static_cast<fsw_real>(gref::kPi / 2); }},
       {"small_angle nan", [](FswGuidSunsafeConfig& c) { c.small_angle = static_cast<fsw_real>(gref::nan()); }},
       {"omega_search inf", [](FswGuidSunsafeConfig& c) { c.omega_search_B[2] = static_cast<fsw_real>(gref::inf()); }},
+      {"omega_search above FSW_GUID_SUNSAFE_RATE_MAX (issue 21)",
+       [](FswGuidSunsafeConfig& c) { c.omega_search_B[0] = 2 * FSW_GUID_SUNSAFE_RATE_MAX; }},
       {"spin rate nan", [](FswGuidSunsafeConfig& c) { c.sun_axis_spin_rate = static_cast<fsw_real>(gref::nan()); }},
   };
   for (const Case& k : cases) {

@@ -435,6 +435,15 @@ TEST_F(MrpFb, RejectsBadConfig)
          c.I_B[2][2] = FSW_R(-800.0);
          c.I_B[0][1] = c.I_B[1][0] = FSW_R(950.0);
        }},
+      // m1 = -1000 < 0, m2 = (-1000)(-800) = 8e5 > 0, det = 8e5 * 800 > 0:
+      // only the first leading minor shows it (issue 21)
+      {"I first minor only", FSW_E_CONFIG, [](FswMrpFbConfig& c) {
+         for (int j = 0; j < 3; j++)
+           for (int k = 0; k < 3; k++) c.I_B[j][k] = FSW_R(0.0);
+         c.I_B[0][0] = FSW_R(-1000.0);
+         c.I_B[1][1] = FSW_R(-800.0);
+         c.I_B[2][2] = FSW_R(800.0);
+       }},
       {"num_rw < 0", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.num_rw = -1; }},
       {"num_rw > max", FSW_E_CAPACITY, [](FswMrpFbConfig& c) { c.num_rw = FSW_MAX_RW + 1; }},
       {"gs not unit", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.gs_hat_B[1][0] = FSW_R(0.6); }},

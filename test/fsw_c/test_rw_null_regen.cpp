@@ -495,3 +495,20 @@ TEST(RwNullRegenIssue21, OverflowingPowerIsBadInput)
   EXPECT_EQ(FSW_OK, f->update());  // recovers (GradientPyramidHandNumbers)
   EXPECT_NEAR(f->out->power, -0.25, kt::tol(1e-14, 1e-6));
 }
+
+// Issue 21: OPTIMUM with a wheel outside the null motion.  Axes x, y, z and
+// (x + y)/sqrt(2): the null vector is (1, 1, 0, -sqrt(2))/2, so wheel 3 (z)
+// takes no part in it and no alpha can bring its u0_3 = 0.2 > u_max = 0.1
+// back inside: W_SAT with u = u0.
+TEST(RwNullRegenIssue21, OptimumCannotFixAWheelOutsideTheNullSpace)
+{
+  const double h = 1.0 / std::sqrt(2.0);
+  const double g[4][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {h, h, 0}};
+  auto f = rwt::make0<Fixture>();
+  f->setup(g, 4, FSW_RW_REGEN_OPTIMUM);
+  ASSERT_EQ(FSW_OK, f->init());
+  f->in->u_s[2] = FSW_R(0.2);
+  f->in->Omega[0] = FSW_R(100.0);
+  EXPECT_EQ(FSW_W_SAT, f->update());
+  for (int i = 0; i < 4; i++) EXPECT_EQ(f->in->u_s[i], f->out->u_s[i]) << i;
+}
