@@ -505,3 +505,19 @@ TEST_F(CssSun, Issue21OverflowOfTheRightHandSideIsBadInput)
   EXPECT_EQ(0, out_.sun_valid);
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.sun_hat_B, 0.0);
 }
+
+// Issue 21: the normal matrix itself overflowing: two sensors with the same
+// normal (+x) each reading 0.9 max at scale 1 put 1.8 max = inf into M_xx
+// (the right-hand side overflows too).  Bad input.
+TEST_F(CssSun, Issue21OverflowOfTheNormalMatrixIsBadInput)
+{
+  FswCssSunConfig c = cfg_;
+  c.n_hat_B[1][0] = FSW_R(1.0);  // sensor 1 (was -x) now also +x
+  for (int i = 0; i < 6; i++) c.scale[i] = FSW_R(1.0);
+  FswCssSunState st{};
+  ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st, &c));
+  FswCssSunIn in{};
+  in.reading[0] = in.reading[1] = static_cast<fsw_real>(0.9) * std::numeric_limits<fsw_real>::max();
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_css_sun_update(&st, &c, &in, &out_));
+  EXPECT_EQ(0, out_.sun_valid);
+}

@@ -563,6 +563,8 @@ TEST(FswBoundedMinNorm, BadInput)
       {"NaN in A", [](Mat3N& a, Box&) { a.a[0][1] = kNaN; }, 1, 2, FSW_E_BAD_INPUT},
       {"NaN lower bound", [](Mat3N&, Box& b) { b.lo[0] = kNaN; }, 1, 2, FSW_E_BAD_INPUT},
       {"lo > hi", [](Mat3N&, Box& b) { b.lo[1] = 0; b.hi[1] = -1; }, 1, 2, FSW_E_BAD_INPUT},
+      {"Inf upper bound (issue 21)", [](Mat3N&, Box& b) { b.hi[0] = std::numeric_limits<fsw_real>::infinity(); }, 1, 2,
+       FSW_E_BAD_INPUT},
       {"0 not a bound", [](Mat3N&, Box& b) { b.lo[0] = -1; }, 1, 2, FSW_E_BAD_INPUT},
       {"m = 0", [](Mat3N&, Box&) {}, 0, 2, FSW_E_CAPACITY},
       {"m = 4", [](Mat3N&, Box&) {}, 4, 2, FSW_E_CAPACITY},
