@@ -792,3 +792,60 @@ TEST(FswMinNorm, Issue21SubnormalRightHandSide)
   EXPECT_EQ(FSW_OK, fsw_minnorm_solve(x, A.a, b, 1, 1));
   EXPECT_EQ(b[0], x[0]);
 }
+
+// Issue 21 (mutation survivors of seed 2112): K2's row-drop test is relative
+// to the row's own norm, |residual| <= FSW_NULL_TOL |row|.  16 columns,
+// row 0 = (1, ..., 1), row 1 = row 0 + rho (1, -1, 1, -1, ...): the part of
+// row 1 not in row 0 is rho (1, -1, ...), of norm 4 rho against |row 1| ~ 4,
+// so the relative residual is rho.  rho = FSW_NULL_TOL / 2: dropped (rank 1);
+// rho = 2 FSW_NULL_TOL: kept (rank 2).  (Both rows are scaled by 1/2 before
+// the test, so a threshold that is not relative to |row| = 2 would move by
+// a factor of 4 and swap the two answers.)
+TEST(FswNullProjector, Issue21RowDropIsRelativeToTheRowNorm)
+{
+  static Mat3N G;
+  static fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF];
+  for (const double f : {0.5, 2.0}) {
+    const double rho = f * static_cast<double>(FSW_NULL_TOL);
+    std::memset(&G, 0, sizeof G);
+    for (int j = 0; j < 16; j++) {
+      G.a[0][j] = 1;
+      G.a[1][j] = static_cast<fsw_real>(1.0 + rho * (j % 2 ? -1.0 : 1.0));
+    }
+    int rank = -1;
+    ASSERT_EQ(FSW_OK, fsw_null_projector(tau, G.a, 16, nullptr, &rank));
+    EXPECT_EQ(f < 1 ? 1 : 2, rank) << "rho = " << rho;
+  }
+}
+
+// Issue 21 (mutation survivors of seed 2112): K4 is scale-invariant.  The
+// interior problem of InteriorSolutionIsTheNormalEquationSolution with b
+// scaled by 1e-7: x = 1e-7 (2/3, 2/3, 4/3), not 0 (a stop test that is not
+// relative to |b| would end phase 1 at x = 0).
+TEST(FswBoundedMinNorm, Issue21SmallRightHandSideIsScaledNotIgnored)
+{
+  const double k = 1e-7;
+  const K4Run r = k4(mat(2, 3, {1, 0, 1, 0, 1, 1}), {2 * k, 2 * k}, 2, 3, box(3, 0, 10));
+  EXPECT_EQ(FSW_OK, r.s);
+  const double want[3] = {2.0 / 3, 2.0 / 3, 4.0 / 3};
+  for (int j = 0; j < 3; j++) EXPECT_NEAR(want[j], double(r.x[j]) / k, kTol) << j;
+}
+
+// Issue 21 (mutation survivors of seed 2112): the free set is kept in index
+// order, so the LDL^T of phase 1 meets the columns in index order and ties
+// of the rank test go to the lower index.  a0 = (1/2)(1, d), a1 = (1, 0),
+// b = (1, 1), box [0, 10]^2 (d as in EnteringColumnDroppedByTheRankTest...).
+// a1 enters first (gradient 1 > (1 + d)/2): x1 = 1.  a0 enters; in index
+// order its pivot comes first and is kept, a1's (d^2-small) is dropped, so
+// z = (2 (1 + d)/(1 + d^2), 0): x1 is blocked at 0 and x0 takes over.
+// Phase 2 then gives the minimum-norm point of the numerically rank-1
+// system x0 / 2 + x1 = (1 + d)/(1 + d^2): (0.4, 0.8) (1 + d)/(1 + d^2).
+// (In the other order a0's pivot would be the one dropped: x = (0, 1).)
+TEST(FswBoundedMinNorm, Issue21FreeSetInIndexOrder)
+{
+  const double d = kt::tol(1e-9, 1e-3);
+  const K4Run r = k4(mat(2, 2, {0.5, 1.0, 0.5 * d, 0.0}), {1, 1}, 2, 2, box(2, 0, 10));
+  EXPECT_EQ(FSW_OK, r.s);
+  const double c = (1 + d) / (1 + d * d);
+  expect_x(r, {0.4 * c, 0.8 * c}, "index order");
+}
