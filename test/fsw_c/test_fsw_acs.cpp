@@ -806,37 +806,44 @@ TEST(FswAcsConfig, Issue13DenormalEpsPIsRefused)
   EXPECT_STREQ("rw_map", field);
 }
 
-// Issue 21: the same error-cycle contract with thrusters, for both pulsers
-// (the snapshot of the mapper diagnostics and of the pulser's memory is put
-// back): inertial, at rest, one good cycle, then a huge finite rate that
-// overflows the control law -> BAD_INPUT, safe output, state as before; the
-// retry equals a twin that never saw the bad cycle.
-TEST(FswAcsCycle, Issue21ThrusterErrorCycleAdvancesNoState)
+// Issue 21: the error-cycle contract of Issue13ErrorCycleAdvancesNoState...
+// for any configuration in g_cfg: at rest, one good cycle, then a huge
+// finite rate about `axis` that overflows the control law -> BAD_INPUT,
+// safe output, state as before (health and scratch aside); the retry equals
+// a twin that never saw the bad cycle.
+namespace {
+void expect_error_cycle_advances_no_state(int axis, const char* why)
 {
   const double big = 0.5 * static_cast<double>(std::numeric_limits<fsw_real>::max());
-  for (int pulser : {FSW_ACS_PULSE_REMAINDER, FSW_ACS_PULSE_SCHMITT}) {
-    acsfix::thruster_config(g_cfg, pulser);
-    ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr)) << pulser;
-    ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st2, &g_cfg, nullptr)) << pulser;
-    sensors_at_rest(g_sens, 0);
-    ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
-    ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2)));
-    g_before = g_st;
-    g_sens.t_ns = kPeriodNs;
-    g_sens.omega_BN_B[0] = static_cast<fsw_real>(big);
-    g_sens.omega_BN_B[2] = static_cast<fsw_real>(-big);
-    EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)) << pulser;
-    EXPECT_TRUE(all_zero(g_act)) << pulser;
-    EXPECT_EQ(1, g_h.safe_output) << pulser;
-    g_after = g_st;
-    mask_health_and_scratch(g_after, g_before);
-    EXPECT_EQ(0, std::memcmp(&g_before, &g_after, sizeof g_before)) << pulser;
-    sensors_at_rest(g_sens, kPeriodNs);
-    const FswStatus s = fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h);
-    fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2);
-    EXPECT_FALSE(fsw_status_is_error(s)) << pulser;
-    EXPECT_EQ(0, std::memcmp(&g_act, &g_act2, sizeof g_act)) << pulser;
-  }
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr)) << why;
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st2, &g_cfg, nullptr)) << why;
+  sensors_at_rest(g_sens, 0);
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h))) << why;
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2))) << why;
+  g_before = g_st;
+  g_sens.t_ns = kPeriodNs;
+  g_sens.omega_BN_B[axis] = static_cast<fsw_real>(big);
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)) << why;
+  EXPECT_TRUE(all_zero(g_act)) << why;
+  EXPECT_EQ(1, g_h.safe_output) << why;
+  g_after = g_st;
+  mask_health_and_scratch(g_after, g_before);
+  EXPECT_EQ(0, std::memcmp(&g_before, &g_after, sizeof g_before)) << why;
+  sensors_at_rest(g_sens, kPeriodNs);
+  EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h))) << why;
+  fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2);
+  EXPECT_EQ(0, std::memcmp(&g_act, &g_act2, sizeof g_act)) << why;
+}
+}  // namespace
+
+// Issue 21: with thrusters, for both pulsers (the snapshot of the mapper
+// diagnostics and of the pulser's memory is put back).
+TEST(FswAcsCycle, Issue21ThrusterErrorCycleAdvancesNoState)
+{
+  acsfix::thruster_config(g_cfg, FSW_ACS_PULSE_REMAINDER);
+  expect_error_cycle_advances_no_state(0, "remainder pulser");
+  acsfix::thruster_config(g_cfg, FSW_ACS_PULSE_SCHMITT);
+  expect_error_cycle_advances_no_state(2, "Schmitt pulser");
 }
 
 // Issue 21: inputs the sun-safe and thruster paths read: a NaN reading of an
@@ -943,30 +950,12 @@ TEST(FswAcsIssue21, ControlLawWithoutWheelMomentumIsAccepted)
 }
 
 // Issue 21: the wheel error cycle without null motion and voltages (the
-// snapshot paths for a chain with neither): state as before, retry equals
-// the twin.
+// snapshot paths for a chain with neither).
 TEST(FswAcsCycle, Issue21WheelErrorCycleWithoutNullOrVoltages)
 {
-  const double big = 0.5 * static_cast<double>(std::numeric_limits<fsw_real>::max());
   acsfix::wheel_config(g_cfg);
   g_cfg.initial_mode = FSW_ACS_MODE_INERTIAL;
   ASSERT_EQ(0, g_cfg.use_null);
   ASSERT_EQ(0, g_cfg.use_volt);
-  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
-  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st2, &g_cfg, nullptr));
-  sensors_at_rest(g_sens, 0);
-  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
-  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2)));
-  g_before = g_st;
-  g_sens.t_ns = kPeriodNs;
-  g_sens.omega_BN_B[1] = static_cast<fsw_real>(big);
-  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
-  EXPECT_TRUE(all_zero(g_act));
-  g_after = g_st;
-  mask_health_and_scratch(g_after, g_before);
-  EXPECT_EQ(0, std::memcmp(&g_before, &g_after, sizeof g_before));
-  sensors_at_rest(g_sens, kPeriodNs);
-  EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
-  fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2);
-  EXPECT_EQ(0, std::memcmp(&g_act, &g_act2, sizeof g_act));
+  expect_error_cycle_advances_no_state(1, "wheels, no null motion, no voltages");
 }
