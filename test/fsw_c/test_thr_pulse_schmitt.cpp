@@ -301,3 +301,19 @@ TEST(ThrPulseSchmittIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("thr_pulse_schmitt", fsw_thr_pulse_schmitt_check, fsw_thr_pulse_schmitt_init, fsw_thr_pulse_schmitt_reset, fsw_thr_pulse_schmitt_update);
 }
+
+// Issue 21 (mutation survivor of seed 2112): init clears the hysteresis
+// memory, also on a state that has fired: after re-init a request in the
+// band (level 0.5, between level_off 0.25 and level_on 0.75) is off, as for
+// a fresh pulser.
+TEST(ThrPulseSchmitt, Issue21InitClearsTheMemoryOfAUsedState)
+{
+  Pulser p(cfg1());
+  ASSERT_EQ(FSW_OK, p.step(0, 0.0));
+  ASSERT_EQ(FSW_OK, p.step(kSec, 0.08));  // level 0.8: fires, memory on
+  ASSERT_NEAR(0.1, p.out.t_on[0], kTol);
+  ASSERT_EQ(FSW_OK, fsw_thr_pulse_schmitt_init(&p.st, &p.c));
+  ASSERT_EQ(FSW_OK, p.step(0, 0.0));
+  EXPECT_EQ(FSW_OK, p.step(kSec, 0.05));  // level 0.5: in the band
+  EXPECT_EQ(0, p.out.t_on[0]);
+}
