@@ -16,6 +16,7 @@ touched (the scratch copy is under build/mutation/).
 
   tools/mutate.py --sample 100 --seed 1            # one documented command
   tools/mutate.py --sample 150 --seed 7 --csv out.csv --module rw_map.c
+  tools/mutate.py --rerun build/mutation/mutants.csv --csv rerun.csv   # survivors only, after new tests
 """
 import argparse
 import csv
@@ -118,6 +119,11 @@ def main():
     ap.add_argument("--csv", default=os.path.join(ROOT, "build", "mutation", "mutants.csv"))
     ap.add_argument("--timeout", type=float, default=300.0, help="seconds per mutant's test run")
     ap.add_argument("--list", action="store_true", help="only count the mutants per module")
+    ap.add_argument("--workdir", default=os.path.join(ROOT, "build", "mutation"),
+                    help="scratch copy and build (default build/mutation; two runs at once need two)")
+    ap.add_argument("--rerun", metavar="CSV",
+                    help="instead of sampling, run again the survivors of an earlier run's CSV "
+                         "(e.g. after adding tests); --sample, --seed and --module are ignored")
     a = ap.parse_args()
 
     srcs = sorted(os.path.join(ROOT, "fsw_c", "src", f) for f in os.listdir(os.path.join(ROOT, "fsw_c", "src"))
@@ -129,12 +135,23 @@ def main():
             print(f"{rel:32s} {sum(1 for m in allm if m['file'] == rel):6d}")
         print(f"{'total':32s} {len(allm):6d}")
         return 0
-    rng = random.Random(a.seed)
-    sample = rng.sample(allm, min(a.sample, len(allm)))
+    if a.rerun:
+        with open(a.rerun) as f:
+            sample = [{k: r[k] for k in ("file", "op", "original", "mutant")} | {"line": int(r["line"])}
+                      for r in csv.DictReader(f) if r["result"] == "survived"]
+        for m in sample:  # the source line must still be the one that was mutated
+            with open(os.path.join(ROOT, m["file"])) as f:
+                src = f.read().split("\n")
+            if m["line"] > len(src) or src[m["line"] - 1] != m["original"]:
+                print(f"stale: {m['file']}:{m['line']} no longer reads {m['original'].strip()!r}")
+                return 2
+    else:
+        rng = random.Random(a.seed)
+        sample = rng.sample(allm, min(a.sample, len(allm)))
     sample.sort(key=lambda m: (m["file"], m["line"]))
 
-    scratch = os.path.join(ROOT, "build", "mutation", "src")
-    build = os.path.join(ROOT, "build", "mutation", "build")
+    scratch = os.path.join(a.workdir, "src")
+    build = os.path.join(a.workdir, "build")
     shutil.rmtree(scratch, ignore_errors=True)
     os.makedirs(scratch)
     for c in COPY:
@@ -181,6 +198,9 @@ def main():
                 f.writelines(lines)
         key = (m["file"], m["line"], m["mutant"].strip())
         m["equivalent"] = eq.get(key, "") if m["result"] == "survived" else ""
+        if m["result"] == "survived" and m["mutant"].strip() == m["original"].strip():
+            # e.g. "literal x.y->0" on a literal that is already 0.0: the same program
+            m["equivalent"] = "identical text (the mutation does not change the line)"
         print(f"[{i}/{len(sample)}] {m['result']:9s} {m['file']}:{m['line']} {m['op']}: {m['mutant'].strip()}"
               + (f"  (equivalent: {m['equivalent']})" if m["equivalent"] else ""), flush=True)
     run(["ninja", "-C", build], ROOT, 600)  # back to the unmutated build
@@ -204,7 +224,7 @@ def main():
     score = 100.0 * tot["k"] / live if live else 100.0
     print(f"{'total':28s} {tot['n']:7d} {tot['k']:6d} {tot['s']:5d} {tot['e']:6d} {tot['b']:6d}")
     print(f"mutation score {score:.1f} % of the non-equivalent, compiling mutants "
-          f"(seed {a.seed}, {time.time() - t0:.0f} s); CSV {a.csv}")
+          f"({'rerun of ' + a.rerun if a.rerun else f'seed {a.seed}'}, {time.time() - t0:.0f} s); CSV {a.csv}")
     for m in sample:
         if m["result"] == "survived" and not m["equivalent"]:
             print(f"  survived: {m['file']}:{m['line']} {m['op']}: {m['mutant'].strip()}")

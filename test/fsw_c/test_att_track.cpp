@@ -10,6 +10,7 @@
 #include "fsw/att_track.h"
 #include "gnc_test_ref.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -237,3 +238,49 @@ TEST_F(AttTrack, RepeatableAfterReset)
 }
 
 }  // namespace
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(AttTrackIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("att_track", fsw_att_track_check, fsw_att_track_init, fsw_att_track_reset, fsw_att_track_update);
+}
+
+// Issue 21: finite values that overflow.  An MRP whose |sigma|^2 overflows
+// (2 sqrt(max) in one component: |sigma|^2 = 4 max) cannot be switched to
+// its shadow set: a config offset like that is refused, an input like that
+// is bad input.  Rates: omega_BN = max and omega_RN_N = -max at [BN] = I
+// give omega_BR = 2 max = inf.  Accelerations: (max, max, 0) in N seen from
+// B turned 45 deg about z (sigma = (0, 0, tan(pi/16))) has one component of
+// length sqrt(2) max = inf.  Each: bad input, zero guidance.
+TEST_F(AttTrack, Issue21FiniteInputsThatOverflow)
+{
+  const fsw_real mx = std::numeric_limits<fsw_real>::max();
+  const fsw_real huge = 2 * std::sqrt(mx);
+  FswAttTrackConfig cfg{};
+  cfg.sigma_R0R[1] = huge;
+  EXPECT_EQ(FSW_E_CONFIG, fsw_att_track_check(&cfg));
+  for (int f : {0, 2}) {  // sigma_BN, ref.sigma_RN
+    FswAttTrackIn in{};
+    input_field(in, f)[2] = huge;
+    EXPECT_EQ(FSW_E_BAD_INPUT, fsw_att_track_update(&st_, &cfg_, &in, &out_)) << f;
+    expect_zero_guid(out_);
+  }
+  {
+    FswAttTrackIn in{};
+    in.omega_BN_B[0] = mx;
+    in.ref.omega_RN_N[0] = -mx;
+    EXPECT_EQ(FSW_E_BAD_INPUT, fsw_att_track_update(&st_, &cfg_, &in, &out_));
+    expect_zero_guid(out_);
+  }
+  {
+    FswAttTrackIn in{};
+    gref::set3(in.sigma_BN, 0.0, 0.0, std::tan(gref::kPi / 16.0));  // 45 deg about z
+    in.ref.omega_dot_RN_N[0] = mx;
+    in.ref.omega_dot_RN_N[1] = mx;
+    EXPECT_EQ(FSW_E_BAD_INPUT, fsw_att_track_update(&st_, &cfg_, &in, &out_));
+    expect_zero_guid(out_);
+  }
+  in_ = FswAttTrackIn{};
+  EXPECT_EQ(FSW_OK, fsw_att_track_update(&st_, &cfg_, &in_, &out_));  // recovers
+}

@@ -19,6 +19,7 @@
 #include "fsw/fsw_vec.h"
 #include "gnc_test_ref.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -440,4 +441,83 @@ TEST_F(CssSun, Issue13SubnormalReadingsStillGiveAUnitHeading)
     EXPECT_NEAR(1.0, fsw_v3_norm(out_.sun_hat_B), kt::tol(1e-15, 1e-6));
     for (int k = 0; k < 3; k++) EXPECT_TRUE(std::isfinite(out_.sun_hat_B[k]));
   }
+}
+
+// Issue 21: a finite reading whose normalised value y = reading / scale
+// overflows to -inf.  Scale 0.5, reading -max: y = -2 max = -inf, which is
+// not lit (-inf <= threshold), so only the overflow check on y refuses it;
+// without it the other sensors would give a heading from a corrupt input.
+// (The +max reading of BadInputGivesSafeOutput is also caught later, by the
+// overflow of the normal equations.)
+TEST_F(CssSun, Issue21NegativeOverflowOfAReadingIsBadInput)
+{
+  cube_faces(cfg_, 0.5);
+  ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_, &cfg_));
+  const double r3 = 1.0 / std::sqrt(3.0);
+  const double s[3] = {r3, r3, r3};
+  readings(in_, cfg_, s);
+  EXPECT_EQ(FSW_OK, run());  // +x, +y, +z lit: the exact Sun
+  EXPECT_EQ(1, out_.sun_valid);
+  in_.reading[1] = -std::numeric_limits<fsw_real>::max();  // the unlit -x face
+  EXPECT_EQ(FSW_E_BAD_INPUT, run());
+  EXPECT_EQ(0, out_.sun_valid);
+  EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.sun_hat_B, 0.0);
+  EXPECT_EQ(1u, st_.health.bad_input);
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(CssSunNullIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("css_sun", fsw_css_sun_check, fsw_css_sun_init, fsw_css_sun_reset, fsw_css_sun_update);
+}
+
+// Issue 21: an unavailable sensor never takes part, whatever the previous
+// call saw.  Call 1: Sun along (1, 1, 1)/sqrt(3), +x, +y, +z lit (WLS).
+// Call 2: only +x available: one lit sensor, so mode ONE with the +x normal
+// (header: FSW_CSS_SUN_ONE), never a TWO built with a sensor that is
+// unavailable now (its lit flag must be cleared on every call, not left from
+// call 1).
+TEST_F(CssSun, Issue21UnavailableSensorIsNeverAPartner)
+{
+  const double r3 = 1.0 / std::sqrt(3.0);
+  const double s[3] = {r3, r3, r3};
+  readings(in_, cfg_, s);
+  ASSERT_EQ(FSW_OK, run());
+  ASSERT_EQ(FSW_CSS_SUN_WLS, out_.mode);
+  for (int i = 1; i < 6; i++) in_.avail[i] = FSW_UNAVAILABLE;
+  EXPECT_EQ(FSW_W_SINGULAR, run());
+  EXPECT_EQ(FSW_CSS_SUN_ONE, out_.mode);
+  EXPECT_EQ(1, out_.num_lit);
+  EXPECT_V3_NEAR(1.0, 0.0, 0.0, out_.sun_hat_B, 0.0);
+}
+
+// Issue 21: readings whose normal matrix M = sum y n n^T is finite but whose
+// right-hand side c = sum y^2 n overflows: y = 1e200 (1e20 in float) gives
+// M ~ 1e200 and y^2 = 1e400 = inf.  Bad input, safe output.
+TEST_F(CssSun, Issue21OverflowOfTheRightHandSideIsBadInput)
+{
+  const double r3 = 1.0 / std::sqrt(3.0);
+  const double s[3] = {r3, r3, r3};
+  readings(in_, cfg_, s);
+  in_.reading[0] = static_cast<fsw_real>(kt::kFloat ? 1e20 : 1e200);
+  EXPECT_EQ(FSW_E_BAD_INPUT, run());
+  EXPECT_EQ(0, out_.sun_valid);
+  EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.sun_hat_B, 0.0);
+}
+
+// Issue 21: the normal matrix itself overflowing: two sensors with the same
+// normal (+x) each reading 0.9 max at scale 1 put 1.8 max = inf into M_xx
+// (the right-hand side overflows too).  Bad input.
+TEST_F(CssSun, Issue21OverflowOfTheNormalMatrixIsBadInput)
+{
+  FswCssSunConfig c = cfg_;
+  c.n_hat_B[1][0] = FSW_R(1.0);  // sensor 1 (was -x) now also +x
+  for (int i = 0; i < 6; i++) c.scale[i] = FSW_R(1.0);
+  FswCssSunState st{};
+  ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st, &c));
+  FswCssSunIn in{};
+  in.reading[0] = in.reading[1] = static_cast<fsw_real>(0.9) * std::numeric_limits<fsw_real>::max();
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_css_sun_update(&st, &c, &in, &out_));
+  EXPECT_EQ(0, out_.sun_valid);
 }

@@ -13,6 +13,7 @@
 #include "fsw/fsw_acs.h"
 #include "fsw/fsw_attitude.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -72,6 +73,25 @@ const BadCfg kBadConfigs[] = {
     {"NaN desired speed", [](FswAcsConfig& c) { c.use_null = 1; c.Omega_des[2] = kNaN; }, "Omega_des", FSW_E_CONFIG},
     {"use_lpf not boolean", [](FswAcsConfig& c) { c.use_lpf = 2; }, "use_lpf", FSW_E_CONFIG},
     {"filter above Nyquist", [](FswAcsConfig& c) { c.use_lpf = 1; c.lpf.omega_c = acsfix::R(7.0); }, "lpf", FSW_E_CONFIG},
+    // issue 21: every stage's check and every consistency check has a row
+    {"has_wheels not boolean", [](FswAcsConfig& c) { c.has_wheels = 2; }, "has_wheels", FSW_E_CONFIG},
+    {"has_thrusters not boolean", [](FswAcsConfig& c) { c.has_thrusters = 3; }, "has_thrusters", FSW_E_CONFIG},
+    {"unknown initial actuation", [](FswAcsConfig& c) { c.initial_actuation = 9; }, "initial_actuation", FSW_E_CONFIG},
+    {"wheel actuation without wheels", [](FswAcsConfig& c) { c.has_wheels = 0; c.has_thrusters = 1; },
+     "initial_actuation", FSW_E_CONFIG},
+    {"sun-safe command axis zero", [](FswAcsConfig& c) { c.sunsafe.s_cmd_B[2] = 0; }, "sunsafe", FSW_E_CONFIG},
+    {"NaN inertial target", [](FswAcsConfig& c) { c.inertial.sigma_R0N[0] = kNaN; }, "inertial", FSW_E_CONFIG},
+    {"NaN tracking offset", [](FswAcsConfig& c) { c.track.sigma_R0R[1] = kNaN; }, "track", FSW_E_CONFIG},
+    {"saturation mode", [](FswAcsConfig& c) { c.rw_sat.mode = 7; }, "rw_sat", FSW_E_CONFIG},
+    {"use_null not boolean", [](FswAcsConfig& c) { c.use_null = 2; }, "use_null", FSW_E_CONFIG},
+    {"negative null gain", [](FswAcsConfig& c) { c.use_null = 1; c.rw_null.k_null = acsfix::R(-1.0); }, "rw_null", FSW_E_CONFIG},
+    {"null-motion wheel count", [](FswAcsConfig& c) { c.use_null = 1; c.rw_null.num_rw = 3; }, "rw_null.num_rw", FSW_E_CONFIG},
+    {"use_volt not boolean", [](FswAcsConfig& c) { c.use_volt = 2; }, "use_volt", FSW_E_CONFIG},
+    {"voltage range empty", [](FswAcsConfig& c) { c.use_volt = 1; c.rw_volt.V_max = 0; }, "rw_volt", FSW_E_CONFIG},
+    {"voltage wheel count", [](FswAcsConfig& c) { c.use_volt = 1; c.rw_volt.num_rw = 3; }, "rw_volt.num_rw", FSW_E_CONFIG},
+    {"H wheels without a wheel chain",
+     [](FswAcsConfig& c) { c.has_wheels = 0; c.has_thrusters = 1; c.initial_actuation = FSW_ACS_ACT_THRUSTERS; },
+     "mrp_fb.num_rw", FSW_E_CONFIG},
 };
 
 TEST(FswAcsConfig, RejectsTheFirstBadFieldByName)
@@ -106,6 +126,23 @@ TEST(FswAcsConfig, ThrusterChainConsistency)
       {"pulser F_max differs from mapper", [](FswAcsConfig& c) { c.pulse_rem.common.F_max[3] = acsfix::R(2.0); }, "pulse_rem.F_max"},
       {"unknown pulser", [](FswAcsConfig& c) { c.pulser = 5; }, "pulser"},
       {"thruster mapping geometry", [](FswAcsConfig& c) { c.thr_map.F_max[0] = 0; }, "thr_map"},
+      // issue 21: the same consistency rows for the Schmitt pulser, and each
+      // pulser's own check; F_max differs in the last thruster (index n - 1)
+      {"wheel actuation without wheels", [](FswAcsConfig& c) { c.initial_actuation = FSW_ACS_ACT_WHEELS; },
+       "initial_actuation"},
+      {"remainder pulser t_min zero", [](FswAcsConfig& c) { c.pulse_rem.common.t_min = 0; }, "pulse_rem"},
+      {"Schmitt level above 1", [](FswAcsConfig& c) { c.pulser = FSW_ACS_PULSE_SCHMITT; c.pulse_schmitt.level_on = 2; },
+       "pulse_schmitt"},
+      {"Schmitt thruster count", [](FswAcsConfig& c) { c.pulser = FSW_ACS_PULSE_SCHMITT; c.pulse_schmitt.common.num_thr = 7; },
+       "pulse_schmitt.num_thr"},
+      {"off-pulsing Schmitt behind on-pulsing mapper",
+       [](FswAcsConfig& c) { c.pulser = FSW_ACS_PULSE_SCHMITT; c.pulse_schmitt.common.base_thrust_state = 1; },
+       "pulse_schmitt.base_thrust_state"},
+      {"Schmitt F_max differs from mapper",
+       [](FswAcsConfig& c) { c.pulser = FSW_ACS_PULSE_SCHMITT; c.pulse_schmitt.common.F_max[7] = acsfix::R(2.0); },
+       "pulse_schmitt.F_max"},
+      {"remainder F_max differs in the last thruster", [](FswAcsConfig& c) { c.pulse_rem.common.F_max[7] = acsfix::R(0.5); },
+       "pulse_rem.F_max"},
   };
   for (const Row& r : rows) {
     acsfix::thruster_config(g_cfg);
@@ -119,6 +156,16 @@ TEST(FswAcsConfig, ThrusterChainConsistency)
   const char* field = "x";
   EXPECT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field));
   EXPECT_EQ(nullptr, field);
+  // entries beyond num_thr (8) are unused: a pulser's F_max there may differ
+  // from the mapper's without making the chain inconsistent (issue 21)
+  static_assert(FSW_MAX_THR > 8, "the thruster fixture fills 8 of FSW_MAX_THR");
+  for (int pulser : {FSW_ACS_PULSE_REMAINDER, FSW_ACS_PULSE_SCHMITT}) {
+    acsfix::thruster_config(g_cfg, pulser);
+    g_cfg.pulse_rem.common.F_max[8] = acsfix::R(5.0);
+    g_cfg.pulse_schmitt.common.F_max[8] = acsfix::R(5.0);
+    EXPECT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field)) << pulser;
+    EXPECT_EQ(nullptr, field) << pulser;
+  }
 }
 
 /* ---- what the health message publishes ---- */
@@ -757,4 +804,158 @@ TEST(FswAcsConfig, Issue13DenormalEpsPIsRefused)
   EXPECT_EQ(FSW_E_CONFIG, fsw_acs_check(&g_cfg, &field));
   ASSERT_NE(nullptr, field);
   EXPECT_STREQ("rw_map", field);
+}
+
+// Issue 21: the error-cycle contract of Issue13ErrorCycleAdvancesNoState...
+// for any configuration in g_cfg: at rest, one good cycle, then a huge
+// finite rate about `axis` that overflows the control law -> BAD_INPUT,
+// safe output, state as before (health and scratch aside); the retry equals
+// a twin that never saw the bad cycle.
+namespace {
+void expect_error_cycle_advances_no_state(int axis, const char* why)
+{
+  const double big = 0.5 * static_cast<double>(std::numeric_limits<fsw_real>::max());
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr)) << why;
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st2, &g_cfg, nullptr)) << why;
+  sensors_at_rest(g_sens, 0);
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h))) << why;
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2))) << why;
+  g_before = g_st;
+  g_sens.t_ns = kPeriodNs;
+  g_sens.omega_BN_B[axis] = static_cast<fsw_real>(big);
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)) << why;
+  EXPECT_TRUE(all_zero(g_act)) << why;
+  EXPECT_EQ(1, g_h.safe_output) << why;
+  g_after = g_st;
+  mask_health_and_scratch(g_after, g_before);
+  EXPECT_EQ(0, std::memcmp(&g_before, &g_after, sizeof g_before)) << why;
+  sensors_at_rest(g_sens, kPeriodNs);
+  EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h))) << why;
+  fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, nullptr, &g_act2, &g_h2);
+  EXPECT_EQ(0, std::memcmp(&g_act, &g_act2, sizeof g_act)) << why;
+}
+}  // namespace
+
+// Issue 21: with thrusters, for both pulsers (the snapshot of the mapper
+// diagnostics and of the pulser's memory is put back).
+TEST(FswAcsCycle, Issue21ThrusterErrorCycleAdvancesNoState)
+{
+  acsfix::thruster_config(g_cfg, FSW_ACS_PULSE_REMAINDER);
+  expect_error_cycle_advances_no_state(0, "remainder pulser");
+  acsfix::thruster_config(g_cfg, FSW_ACS_PULSE_SCHMITT);
+  expect_error_cycle_advances_no_state(2, "Schmitt pulser");
+}
+
+// Issue 21: inputs the sun-safe and thruster paths read: a NaN reading of an
+// available CSS in SUN_SAFE, a NaN centre of mass with thrusters.
+TEST(FswAcsCycle, Issue21SunSafeAndThrusterInputsAreChecked)
+{
+  acsfix::wheel_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  g_sens.css[2] = kNaN;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_TRUE(all_zero(g_act));
+  g_sens.css_avail[2] = FSW_UNAVAILABLE;  // an unavailable sensor's reading is not read
+  EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  acsfix::thruster_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  g_sens.r_CoM_B[1] = kNaN;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_TRUE(all_zero(g_act));
+  g_sens.r_CoM_B[1] = 0;
+  EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+}
+
+// Issue 21: every pointer NULL in turn (cmd and bad_field may be NULL by
+// contract): assert once, FSW_E_NULL_ARG; the cycle still writes the safe
+// output and a zero health message wherever those pointers are valid.
+TEST(FswAcsIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  acsfix::wheel_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  const char* field = nullptr;
+  kt::each_null("fsw_acs_check", [&](const FswAcsConfig* c) { return fsw_acs_check(c, &field); }, &g_cfg);
+  EXPECT_EQ(std::string("cfg"), field);
+  kt::each_null("fsw_acs_init", [](FswAcsState* st, const FswAcsConfig* c) { return fsw_acs_init(st, c, nullptr); },
+                &g_st2, &g_cfg);
+  kt::each_null("fsw_acs_reset", fsw_acs_reset, &g_st, &g_cfg);
+  kt::each_null("fsw_acs_config_set_geometry", fsw_acs_config_set_geometry, &g_cfg2, &g_geo);
+  kt::each_null(
+      "fsw_acs_cycle",
+      [](FswAcsState* st, const FswAcsConfig* c, const FswAcsSensorMsg* sens, FswAcsActuatorMsg* act,
+         FswAcsHealthMsg* h) {
+        if (act != nullptr) act->u_s[0] = 9;
+        if (h != nullptr) h->cycles = 9;
+        const FswStatus s = fsw_acs_cycle(st, c, sens, nullptr, act, h);
+        if (act != nullptr) EXPECT_TRUE(all_zero(*act));
+        if (h != nullptr) EXPECT_EQ(0u, h->cycles);
+        return s;
+      },
+      &g_st, &g_cfg, &g_sens, &g_act, &g_h);
+  EXPECT_EQ(4u, g_st.health.bad_input);  // NULL_ARG is counted whenever the state was given
+}
+
+// Issue 21: the remaining request and bookkeeping paths of the cycle.
+TEST(FswAcsIssue21, RequestsCountersAndResetOfANotReadyState)
+{
+  // wheels requested from a thruster-only configuration, an unknown
+  // actuation, an availability flag 2 on a CSS in SUN_SAFE: bad input
+  acsfix::thruster_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  FswAcsCmdMsg cmd = {FSW_ACS_MODE_INERTIAL, FSW_ACS_ACT_WHEELS};
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, &cmd, &g_act, &g_h));
+  cmd.actuation = 7;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, &cmd, &g_act, &g_h));
+  acsfix::wheel_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  g_sens.css_avail[4] = 2;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_TRUE(all_zero(g_act));
+  // the cycle and transition counters saturate instead of wrapping
+  sensors_at_rest(g_sens, 0);
+  g_st.cycles = UINT32_MAX;
+  g_st.mode_changes = UINT32_MAX;
+  cmd = {FSW_ACS_MODE_INERTIAL, FSW_ACS_ACT_WHEELS};  // a transition from SUN_SAFE
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, &cmd, &g_act, &g_h)));
+  EXPECT_EQ(UINT32_MAX, g_st.cycles);
+  EXPECT_EQ(UINT32_MAX, g_st.mode_changes);
+  EXPECT_EQ(FSW_ACS_MODE_INERTIAL, g_st.mode);
+  // reset of a state that init refused changes nothing
+  g_cfg.mrp_fb.K = 0;
+  ASSERT_EQ(FSW_E_CONFIG, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  g_before = g_st;
+  kestrel_assert_reset();
+  fsw_acs_reset(&g_st, &g_cfg);
+  EXPECT_EQ(0ul, kestrel_assert_count());
+  EXPECT_EQ(0, std::memcmp(&g_before, &g_st, sizeof g_st));
+}
+
+// Issue 21: a control law without wheel momentum (mrp_fb.num_rw = 0) in
+// front of a wheel chain is legal (H_s omitted, spec 2), and then the
+// spin-axis and spin-inertia copies have nothing to agree with.
+TEST(FswAcsIssue21, ControlLawWithoutWheelMomentumIsAccepted)
+{
+  acsfix::wheel_config(g_cfg);
+  g_cfg.mrp_fb.num_rw = 0;
+  g_cfg.use_volt = 1;
+  g_cfg.rw_volt.J_s[0] = acsfix::R(5.0);  // would differ from mrp_fb.J_s
+  const char* field = "x";
+  EXPECT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field));
+  EXPECT_EQ(nullptr, field);
+  EXPECT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+}
+
+// Issue 21: the wheel error cycle without null motion and voltages (the
+// snapshot paths for a chain with neither).
+TEST(FswAcsCycle, Issue21WheelErrorCycleWithoutNullOrVoltages)
+{
+  acsfix::wheel_config(g_cfg);
+  g_cfg.initial_mode = FSW_ACS_MODE_INERTIAL;
+  ASSERT_EQ(0, g_cfg.use_null);
+  ASSERT_EQ(0, g_cfg.use_volt);
+  expect_error_cycle_advances_no_state(1, "wheels, no null motion, no voltages");
 }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "fsw/fsw_attitude.h"
 #include "fsw/fsw_vec.h"
@@ -264,3 +265,44 @@ TEST(FswMrp, KinematicsMatrixProperties)
 }
 
 }  // namespace
+
+// Issue 21: Sheppard's degenerate branch.  The four b_k^2 = (1 + tr)/4,
+// (1 + 2 C_kk - tr)/4 sum to exactly 1 for any matrix, so the largest is
+// >= 1/4 and f = 4 sqrt(b_k^2) >= 2 for every finite C (the zero matrix gives
+// b^2 = (1/4, 1/4, 1/4, 1/4): q = (1/2, 0, 0, 0), normalised to identity).
+// f > 0 fails only when the diagonal holds a NaN (every b^2 is NaN) or
+// overflows (-1e308 on the diagonal: tr = -inf, b0^2 = -inf, the others
+// -inf + inf = NaN): the branch then gives the identity quaternion, finite,
+// instead of propagating NaN into the attitude.
+TEST(FswMrp, Issue21DcmToQuatDegenerateInputGivesIdentity)
+{
+  const fsw_real big = -std::numeric_limits<fsw_real>::max();
+  const fsw_real nan = std::numeric_limits<fsw_real>::quiet_NaN();
+  const fsw_real Z[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  const fsw_real N[3][3] = {{nan, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const fsw_real O[3][3] = {{big, 0, 0}, {0, big, 0}, {0, 0, big}};
+  const fsw_real* cases[3] = {&Z[0][0], &N[0][0], &O[0][0]};
+  const char* why[3] = {"zero matrix", "NaN on the diagonal", "overflowing trace"};
+  for (int c = 0; c < 3; c++) {
+    fsw_real C[3][3], q[4] = {9, 9, 9, 9}, s[3] = {9, 9, 9};
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) C[i][j] = cases[c][3 * i + j];
+    fsw_dcm_to_quat(q, C);
+    EXPECT_EQ(1.0, q[0]) << why[c];
+    for (int i = 1; i < 4; i++) EXPECT_EQ(0.0, q[i]) << why[c] << " q" << i;
+    fsw_dcm_to_mrp(s, C);
+    for (int i = 0; i < 3; i++) EXPECT_EQ(0.0, s[i]) << why[c] << " sigma" << i;
+  }
+}
+
+// Issue 21: a quaternion whose norm is not finite (an Inf entry) is not an
+// attitude: like the zero quaternion (HalfTurnAndDegenerateQuaternions) it
+// gives the identity DCM rather than NaN.
+TEST(FswMrp, Issue21InfiniteQuaternionGivesIdentity)
+{
+  const fsw_real q[4] = {0, std::numeric_limits<fsw_real>::infinity(), 0, 0};
+  fsw_real C[3][3];
+  fsw_quat_to_dcm(C, q);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) EXPECT_EQ(i == j ? 1.0 : 0.0, C[i][j]) << i << "," << j;
+}

@@ -228,3 +228,34 @@ TEST(FswM33, IdentityZeroAndFiniteness)
 }
 
 }  // namespace
+
+// Issue 21: non-finite and aliased arguments of the helpers.  A zero, NaN or
+// infinite magnitude has no power-of-two scale (1 is returned); a vector
+// with an Inf has no direction (0, return 0) and its norm is Inf; a NaN
+// anywhere in a matrix makes it non-finite; copying onto itself is a no-op.
+TEST(FswVecIssue21, NonFiniteAndAliasedArguments)
+{
+  const fsw_real inf = std::numeric_limits<fsw_real>::infinity();
+  const fsw_real nan = std::numeric_limits<fsw_real>::quiet_NaN();
+  EXPECT_EQ(1.0, fsw_pow2_scale(0));
+  EXPECT_EQ(1.0, fsw_pow2_scale(inf));
+  EXPECT_EQ(1.0, fsw_pow2_scale(nan));
+  EXPECT_EQ(0.25, fsw_pow2_scale(3));  // 3 = 0.75 * 2^2 -> 2^-2
+  const fsw_real a[3] = {inf, 1, 0};
+  fsw_real u[3] = {9, 9, 9};
+  EXPECT_EQ(0, fsw_v3_normalize(u, a));
+  for (int i = 0; i < 3; i++) EXPECT_EQ(0.0, u[i]);
+  EXPECT_EQ(inf, fsw_vn_norm(a, 3));
+  for (int r = 0; r < 3; r++) {
+    fsw_real m[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    EXPECT_EQ(1, fsw_m33_is_finite(m));
+    m[r][2] = nan;
+    EXPECT_EQ(0, fsw_m33_is_finite(m)) << "row " << r;
+  }
+  fsw_real v[3] = {1, 2, 3};
+  fsw_vn_copy(v, v, 3);
+  EXPECT_EQ(2.0, v[1]);
+  fsw_real m[3][3] = {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}};
+  fsw_m33_copy(m, m);
+  EXPECT_EQ(6.0, m[1][2]);
+}

@@ -9,6 +9,7 @@
 #include "fsw/guid_inertial.h"
 #include "gnc_test_ref.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -133,3 +134,16 @@ TEST_F(GuidInertial, RepeatableAfterReset)
 }
 
 }  // namespace
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h); the module has no In struct.
+TEST(GuidInertialIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  FswGuidInertialConfig cfg{};
+  FswGuidInertialState st{};
+  FswGuidInertialOut out{};
+  kt::each_null("guid_inertial_check", fsw_guid_inertial_check, &cfg);
+  kt::each_null("guid_inertial_init", fsw_guid_inertial_init, &st, &cfg);
+  kt::each_null("guid_inertial_reset", fsw_guid_inertial_reset, &st);
+  kt::each_null("guid_inertial_update", fsw_guid_inertial_update, &st, &cfg, &out);
+}

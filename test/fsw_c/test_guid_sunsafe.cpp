@@ -12,6 +12,7 @@
 #include "fsw/guid_sunsafe.h"
 #include "gnc_test_ref.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -194,6 +195,8 @@ TEST_F(GuidSunsafe, RejectsBadConfig)
       {"small_angle = pi/2", [](FswGuidSunsafeConfig& c) { c.small_angle = static_cast<fsw_real>(gref::kPi / 2); }},
       {"small_angle nan", [](FswGuidSunsafeConfig& c) { c.small_angle = static_cast<fsw_real>(gref::nan()); }},
       {"omega_search inf", [](FswGuidSunsafeConfig& c) { c.omega_search_B[2] = static_cast<fsw_real>(gref::inf()); }},
+      {"omega_search above FSW_GUID_SUNSAFE_RATE_MAX (issue 21)",
+       [](FswGuidSunsafeConfig& c) { c.omega_search_B[0] = 2 * FSW_GUID_SUNSAFE_RATE_MAX; }},
       {"spin rate nan", [](FswGuidSunsafeConfig& c) { c.sun_axis_spin_rate = static_cast<fsw_real>(gref::nan()); }},
   };
   for (const Case& k : cases) {
@@ -325,4 +328,11 @@ TEST_F(GuidSunsafe, Issue13CommandedAxisIsBounded)
   gref::set3(in_.sun_B, 0.0, 0.0, 1.0);  // 90 degrees
   EXPECT_EQ(FSW_OK, run());
   EXPECT_NEAR(std::tan(gref::kPi / 8), fsw_v3_norm(out_.guid.sigma_BR), kt::tol(1e-15, 1e-6));
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(GuidSunsafeIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("guid_sunsafe", fsw_guid_sunsafe_check, fsw_guid_sunsafe_init, fsw_guid_sunsafe_reset, fsw_guid_sunsafe_update);
 }

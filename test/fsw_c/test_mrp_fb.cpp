@@ -12,6 +12,7 @@
 #include "fsw/mrp_fb.h"
 #include "gnc_test_ref.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -423,6 +424,26 @@ TEST_F(MrpFb, RejectsBadConfig)
       {"I not symmetric", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.I_B[0][1] = FSW_R(11.0); }},
       {"I not pos. def.", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.I_B[2][2] = FSW_R(-800.0); }},
       {"I indefinite minor", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.I_B[0][1] = c.I_B[1][0] = FSW_R(950.0); }},
+      // m1 = 1000 > 0, m2 = 1000 * 800 - 950^2 = -102500 < 0, det = m2 * (-800)
+      // = 8.2e7 > 0: only the second leading minor shows it is not positive
+      // definite (issue 21)
+      {"I second minor only", FSW_E_CONFIG, [](FswMrpFbConfig& c) {
+         for (int j = 0; j < 3; j++)
+           for (int k = 0; k < 3; k++) c.I_B[j][k] = FSW_R(0.0);
+         c.I_B[0][0] = FSW_R(1000.0);
+         c.I_B[1][1] = FSW_R(800.0);
+         c.I_B[2][2] = FSW_R(-800.0);
+         c.I_B[0][1] = c.I_B[1][0] = FSW_R(950.0);
+       }},
+      // m1 = -1000 < 0, m2 = (-1000)(-800) = 8e5 > 0, det = 8e5 * 800 > 0:
+      // only the first leading minor shows it (issue 21)
+      {"I first minor only", FSW_E_CONFIG, [](FswMrpFbConfig& c) {
+         for (int j = 0; j < 3; j++)
+           for (int k = 0; k < 3; k++) c.I_B[j][k] = FSW_R(0.0);
+         c.I_B[0][0] = FSW_R(-1000.0);
+         c.I_B[1][1] = FSW_R(-800.0);
+         c.I_B[2][2] = FSW_R(800.0);
+       }},
       {"num_rw < 0", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.num_rw = -1; }},
       {"num_rw > max", FSW_E_CAPACITY, [](FswMrpFbConfig& c) { c.num_rw = FSW_MAX_RW + 1; }},
       {"gs not unit", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.gs_hat_B[1][0] = FSW_R(0.6); }},
@@ -530,3 +551,10 @@ TEST_F(MrpFb, NullPointersAssert)
 }
 
 }  // namespace
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(MrpFbNullIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("mrp_fb", fsw_mrp_fb_check, fsw_mrp_fb_init, fsw_mrp_fb_reset, fsw_mrp_fb_update);
+}

@@ -8,6 +8,7 @@
 #include "fsw/rw_common.h"
 #include "fsw/rw_map.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 #include "rw_test_util.h"
 
 namespace {
@@ -116,6 +117,12 @@ TEST(RwMapConfig, RejectsBadConfigurationsTableDriven)
        [](FswRwMapConfig* c) {
          c->mode = FSW_RW_MAP_POWER;
          c->eps_P = std::numeric_limits<fsw_real>::quiet_NaN();
+       },
+       FSW_E_CONFIG},
+      {"power mode, eps_P above FSW_RW_MAP_EPS_P_MAX (issue 21)",
+       [](FswRwMapConfig* c) {
+         c->mode = FSW_RW_MAP_POWER;
+         c->eps_P = 2 * FSW_RW_MAP_EPS_P_MAX;
        },
        FSW_E_CONFIG},
   };
@@ -488,4 +495,64 @@ TEST(RwMapIssue13, OverflowIsBadInputAndEpsPIsBounded)
   f.set_Lr(0.01, 0.02, 0.03);
   EXPECT_EQ(FSW_OK, f.update());  // wheel speeds 0: W = eps_P, finite
   EXPECT_LE(rel_residual(*f.cfg, f.out->u_s, f.in->Lr_B), kt::tol(1e-12, 1e-5));
+}
+
+// ---- issue 21: a single wheel is a legal configuration ----------------------
+
+// One wheel g = (0.6, 0, 0.8) controlling the body z axis alone: A = [C][g]
+// = [0.8] (1 x 1), b = -Lr_z, so u = -Lr_z / 0.8 in both modes (a square
+// system has one solution; the power weighting only scales the column and is
+// undone).  Lr = (5, 7, 0.04): u = -0.05.  Three axes from one wheel:
+// fewer available wheels than axes -> W_SINGULAR with u = 0 (section 4).
+TEST(RwMapIssue21, SingleWheelIsAcceptedAndSolvedExactly)
+{
+  const double g[1][3] = {{0.6, 0.0, 0.8}};
+  for (int mode : {FSW_RW_MAP_MIN_NORM, FSW_RW_MAP_POWER}) {
+    Fixture f;
+    f.setup(g, 1, mode);
+    f.cfg->num_axes = 1;
+    for (int r = 0; r < 3; r++) f.cfg->ctrl_axes_B[0][r] = static_cast<fsw_real>(kI3[2][r]);
+    EXPECT_EQ(fsw_rw_map_check(f.cfg.get()), FSW_OK) << mode;
+    ASSERT_EQ(f.init(), FSW_OK) << mode;
+    f.set_Lr(5.0, 7.0, 0.04);
+    f.in->Omega[0] = static_cast<fsw_real>(300.0);
+    f.fill_out_with_garbage();
+    ASSERT_EQ(f.update(), FSW_OK) << mode;
+    EXPECT_NEAR(f.out->u_s[0], -0.05, kt::tol(1e-16, 1e-8)) << mode;
+    for (int i = 1; i < FSW_MAX_RW; i++) EXPECT_EQ(f.out->u_s[i], 0.0) << mode << " wheel " << i;
+    f.cfg->num_axes = 3;
+    for (int j = 0; j < 3; j++)
+      for (int r = 0; r < 3; r++) f.cfg->ctrl_axes_B[j][r] = static_cast<fsw_real>(kI3[j][r]);
+    ASSERT_EQ(f.init(), FSW_OK) << mode;
+    f.fill_out_with_garbage();
+    EXPECT_EQ(f.update(), FSW_W_SINGULAR) << mode;
+    expect_all_zero(*f.out);
+  }
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(RwMapIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("rw_map", fsw_rw_map_check, fsw_rw_map_init, fsw_rw_map_reset, fsw_rw_map_update);
+}
+
+// Issue 21: the overflow guard after the power weighting.  POWER, pyramid,
+// wheels at rest, eps_P = 1e-9: every column is scaled by sqrt(y) =
+// 1/sqrt(eps_P) = 31623, so K1 solves for x = u / 31623, which is finite,
+// while u = -(3/4) [Gs]^T Lr for Lr = 0.9 max (1, 1, 1) has
+// u_1 = -(3/4) sqrt(3) 0.9 max = -1.17 max: it overflows only when x is
+// scaled back.  Bad input, u = 0 (the MIN_NORM row of
+// OverflowIsBadInputAndEpsPIsBounded fails inside K1 instead).
+TEST(RwMapIssue21, PowerWeightingThatOverflowsOnTheWayBackIsBadInput)
+{
+  const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());
+  Fixture f = pyramid(FSW_RW_MAP_POWER);
+  f.cfg->eps_P = FSW_RW_MAP_EPS_P_MIN;
+  ASSERT_EQ(FSW_OK, f.init());
+  f.set_Lr(big, big, big);
+  f.fill_out_with_garbage();
+  EXPECT_EQ(FSW_E_BAD_INPUT, f.update());
+  expect_all_zero(*f.out);
+  EXPECT_EQ(1u, f.st->health.bad_input);
 }

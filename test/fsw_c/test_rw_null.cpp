@@ -7,6 +7,7 @@
 
 #include "fsw/rw_null.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 #include "rw_test_util.h"
 
 namespace {
@@ -454,3 +455,49 @@ TEST(RwNullFuzzFinding, StepThatIsNotNullIsDropped)
   }
 }
 
+
+// Issue 21: rw_common's cached projector reports whether it recomputed.
+// Pyramid, null vector n = (1, -1, 1, -1)/2: all available, tau = n n^T =
+// (+-1/4); the same mask again -> 0 (nothing recomputed); wheel 3 off -> 1,
+// three independent wheels: rank 3, nullity 0, tau exactly 0; all available
+// again (NULL = all available) -> 1 and tau = n n^T back.
+TEST(RwNullIssue21, ProjectorRefreshReportsAChangedMask)
+{
+  double gd[4][3];
+  rwt::pyramid4(gd);
+  fsw_real g[FSW_MAX_RW][3] = {};
+  rwt::set_axes(g, gd, 4);
+  auto p = rwt::make0<FswRwNullProj>();
+  fsw_rw_proj_init(p.get(), g, 4);
+  const double nv[4] = {0.5, -0.5, 0.5, -0.5};
+  auto expect_tau = [&](bool null_space, const char* why) {
+    for (int i = 0; i < 4; i++)
+      for (int j = 0; j < 4; j++)
+        EXPECT_NEAR(p->tau[i][j], null_space ? nv[i] * nv[j] : 0.0, kt::tol(1e-15, 1e-6))
+            << why << " " << i << "," << j;
+  };
+  EXPECT_EQ(4, p->num_avail);
+  EXPECT_EQ(3, p->rank);
+  expect_tau(true, "all available");
+  uint8_t avail[FSW_MAX_RW];
+  for (int i = 0; i < FSW_MAX_RW; i++) avail[i] = FSW_AVAILABLE;
+  EXPECT_EQ(0, fsw_rw_proj_refresh(p.get(), avail));
+  EXPECT_EQ(0, fsw_rw_proj_refresh(p.get(), nullptr));
+  avail[2] = FSW_UNAVAILABLE;
+  EXPECT_EQ(1, fsw_rw_proj_refresh(p.get(), avail));
+  EXPECT_EQ(3, p->num_avail);
+  EXPECT_EQ(3, p->rank);
+  for (int i = 0; i < 4; i++)
+    for (int j = 0; j < 4; j++) EXPECT_EQ(0.0, p->tau[i][j]) << i << "," << j;
+  EXPECT_EQ(0, fsw_rw_proj_refresh(p.get(), avail));
+  EXPECT_EQ(1, fsw_rw_proj_refresh(p.get(), nullptr));
+  EXPECT_EQ(4, p->num_avail);
+  expect_tau(true, "available again");
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(RwNullIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("rw_null", fsw_rw_null_check, fsw_rw_null_init, fsw_rw_null_reset, fsw_rw_null_update);
+}

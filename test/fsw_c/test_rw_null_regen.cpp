@@ -8,6 +8,7 @@
 #include "fsw/rw_map.h"
 #include "fsw/rw_null_regen.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 #include "rw_test_util.h"
 
 namespace {
@@ -406,3 +407,108 @@ TEST(RwNullRegenFuzzFinding, UnsupportedNullityLeavesTheProjectorUntouched)
   EXPECT_EQ(0, std::memcmp(&proj_before, &f->st->proj, sizeof proj_before));
 }
 
+
+// Issue 21: gradient mode stopped by a limit reports W_SAT.  Pyramid,
+// Omega = (100, 0, 0, 0), k_P = 1e-4: the full step is
+// du = (-0.0025, 0.0025, -0.0025, 0.0025) (see GradientPyramidHandNumbers).
+// u0 = (-0.099, 0, 0, 0), u_max = 0.1: wheel 1 reaches -u_max after
+// kappa = (-0.1 + 0.099) / -0.0025 = 0.4 of the step (the others after 40),
+// so u = u0 + 0.4 du = (-0.1, 0.001, -0.001, 0.001) and P = 100 * -0.1 = -10 W.
+// A request already beyond its limit (u0_1 = 0.2) leaves no room: kappa = 0,
+// u = u0, W_SAT.
+TEST(RwNullRegenIssue21, GradientStepCutByALimitIsWSat)
+{
+  auto f = pyramid(FSW_RW_REGEN_GRADIENT);
+  f->in->Omega[0] = FSW_R(100.0);
+  f->in->u_s[0] = static_cast<fsw_real>(-0.099);
+  ASSERT_EQ(f->update(), FSW_W_SAT);
+  const double want[4] = {-0.1, 0.001, -0.001, 0.001};
+  for (int i = 0; i < 4; i++) EXPECT_NEAR(f->out->u_s[i], want[i], kt::tol(1e-15, 1e-7)) << i;
+  EXPECT_NEAR(f->out->power, -10.0, kt::tol(1e-12, 1e-5));
+  EXPECT_EQ(f->st->health.saturated, 1u);
+  f->in->u_s[0] = FSW_R(0.2);
+  ASSERT_EQ(f->update(), FSW_W_SAT);
+  EXPECT_EQ(f->out->u_s[0], FSW_R(0.2));
+  for (int i = 1; i < 4; i++) EXPECT_EQ(f->out->u_s[i], 0.0) << i;
+  // the same request with room to move: the whole step, OK
+  f->in->u_s[0] = FSW_R(0.0);
+  EXPECT_EQ(f->update(), FSW_OK);
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(RwNullRegenIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("rw_null_regen", fsw_rw_null_regen_check, fsw_rw_null_regen_init, fsw_rw_null_regen_reset, fsw_rw_null_regen_update);
+}
+
+// Issue 21: rw_null's fuzz finding (StepThatIsNotNullIsDropped in
+// test_rw_null.cpp) in gradient mode: wheels 1 and 2 are duplicates to
+// 1e-16, which makes the cached projector ill-conditioned, and the step
+// d = -k_P Omega = (0, 0, 0.128, 0) comes out of it with a body-torque
+// component far above FSW_NULL_TOL of its size.  The step is dropped
+// (u = u0, W_SINGULAR) rather than let through.  In either real type, and
+// whatever the status: the body torque never moves by more than
+// FSW_NULL_TOL-ish of the step (1e-4 x size, the rw_null bound).
+TEST(RwNullRegenIssue21, GradientStepThatIsNotNullIsDropped)
+{
+  const double g[4][3] = {{0.54167522041970195, 0.54167522041970195, 0.64278760968653936},
+                          {0.54167522041970184, 0.54167522041970206, 0.64278760968653925},
+                          {-0.54167522041970195, -0.54167522041970184, 0.64278760968653925},
+                          {0.54167522041970184, -0.54167522041970206, 0.64278760968653936}};
+  auto f = rwt::make0<Fixture>();
+  f->setup(g, 4, FSW_RW_REGEN_GRADIENT, 0.002);
+  const double umax[4] = {7.4, 0.2, 0.2, 0.2};
+  for (int i = 0; i < 4; i++) f->cfg->u_max[i] = static_cast<fsw_real>(umax[i]);
+  ASSERT_EQ(FSW_OK, f->init());
+  f->in->Omega[2] = FSW_R(-64.0);
+  const FswStatus s = f->update();
+  ASSERT_TRUE(s == FSW_OK || s == FSW_W_SAT || s == FSW_W_SINGULAR) << s;
+  if (sizeof(fsw_real) == 8) EXPECT_EQ(s, FSW_W_SINGULAR);
+  double after[3] = {0, 0, 0}, size = 0.0;
+  for (int i = 0; i < 4; i++) {
+    size += std::fabs(static_cast<double>(f->out->u_s[i]));
+    for (int k = 0; k < 3; k++) after[k] += g[i][k] * static_cast<double>(f->out->u_s[i]);
+  }
+  for (int k = 0; k < 3; k++) EXPECT_LE(std::fabs(after[k]), 1e-4 * size + 1e-30) << k;
+  if (s == FSW_W_SINGULAR) {
+    for (int i = 0; i < 4; i++) EXPECT_EQ(0.0, f->out->u_s[i]) << i;
+    EXPECT_EQ(0.0, f->out->power);
+  }
+}
+
+// Issue 21: a finite torque request whose power overflows.  Speeds are
+// bounded (FSW_RW_OMEGA_MAX = 1e4 rad/s) but a request is only required to
+// be finite: u0_1 = max/2 at Omega_1 = 1e4 gives Omega^T u = 5e3 max = inf,
+// so the call is bad input with u = 0, power = 0.  (|u0_1| > u_max leaves
+// the gradient step no room, u = u0 before the power.)
+TEST(RwNullRegenIssue21, OverflowingPowerIsBadInput)
+{
+  auto f = pyramid(FSW_RW_REGEN_GRADIENT);
+  f->in->Omega[0] = FSW_RW_OMEGA_MAX;
+  f->in->u_s[0] = std::numeric_limits<fsw_real>::max() / 2;
+  EXPECT_EQ(FSW_E_BAD_INPUT, f->update());
+  for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(0.0, f->out->u_s[i]) << i;
+  EXPECT_EQ(0.0, f->out->power);
+  f->in->u_s[0] = FSW_R(0.0);
+  f->in->Omega[0] = FSW_R(100.0);
+  EXPECT_EQ(FSW_OK, f->update());  // recovers (GradientPyramidHandNumbers)
+  EXPECT_NEAR(f->out->power, -0.25, kt::tol(1e-14, 1e-6));
+}
+
+// Issue 21: OPTIMUM with a wheel outside the null motion.  Axes x, y, z and
+// (x + y)/sqrt(2): the null vector is (1, 1, 0, -sqrt(2))/2, so wheel 3 (z)
+// takes no part in it and no alpha can bring its u0_3 = 0.2 > u_max = 0.1
+// back inside: W_SAT with u = u0.
+TEST(RwNullRegenIssue21, OptimumCannotFixAWheelOutsideTheNullSpace)
+{
+  const double h = 1.0 / std::sqrt(2.0);
+  const double g[4][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {h, h, 0}};
+  auto f = rwt::make0<Fixture>();
+  f->setup(g, 4, FSW_RW_REGEN_OPTIMUM);
+  ASSERT_EQ(FSW_OK, f->init());
+  f->in->u_s[2] = FSW_R(0.2);
+  f->in->Omega[0] = FSW_R(100.0);
+  EXPECT_EQ(FSW_W_SAT, f->update());
+  for (int i = 0; i < 4; i++) EXPECT_EQ(f->in->u_s[i], f->out->u_s[i]) << i;
+}

@@ -6,6 +6,7 @@
 
 #include "fsw/rw_sat.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 #include "rw_test_util.h"
 
 namespace {
@@ -156,3 +157,31 @@ TEST_P(RwSatProperties, LimitsDirectionAndClip)
   }
 }
 INSTANTIATE_TEST_SUITE_P(Wheels, RwSatProperties, ::testing::ValuesIn(rwt::kCounts));
+
+// Issue 21: one wheel is a legal configuration (num_rw >= 1).  u = 0.25,
+// u_max = 0.1: s = 2.5, SCALE and CLIP both give 0.1 (a single wheel has no
+// direction to keep); u = -0.04 is inside: unchanged, OK.
+TEST(RwSatIssue21, SingleWheelIsAcceptedAndLimited)
+{
+  for (int mode : {FSW_RW_SAT_SCALE, FSW_RW_SAT_CLIP}) {
+    Fixture f(1, mode);
+    EXPECT_EQ(fsw_rw_sat_check(f.cfg.get()), FSW_OK) << mode;
+    ASSERT_EQ(f.st->ready, 1) << mode;
+    const double u[1] = {0.25};
+    f.set(u, 1);
+    EXPECT_EQ(f.update(), FSW_W_SAT) << mode;
+    EXPECT_NEAR(f.out->u_s[0], 0.1, kt::tol(1e-17, 1e-8)) << mode;
+    for (int i = 1; i < FSW_MAX_RW; i++) EXPECT_EQ(f.out->u_s[i], 0.0);
+    const double v[1] = {-0.04};
+    f.set(v, 1);
+    EXPECT_EQ(f.update(), FSW_OK) << mode;
+    EXPECT_EQ(f.out->u_s[0], f.in->u_s[0]) << mode;
+  }
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(RwSatIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("rw_sat", fsw_rw_sat_check, fsw_rw_sat_init, fsw_rw_sat_reset, fsw_rw_sat_update);
+}

@@ -7,6 +7,7 @@
 
 #include "fsw/rw_speed_filter.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 #include "rw_test_util.h"
 
 namespace {
@@ -252,3 +253,10 @@ TEST_P(RwSpeedFilterProperties, PhysicalHistoriesPassAndSpikesAreCaught)
   }
 }
 INSTANTIATE_TEST_SUITE_P(Wheels, RwSpeedFilterProperties, ::testing::ValuesIn(rwt::kCounts));
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(RwSpeedFilterIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("rw_speed_filter", fsw_rw_speed_filter_check, fsw_rw_speed_filter_init, fsw_rw_speed_filter_reset, fsw_rw_speed_filter_update);
+}

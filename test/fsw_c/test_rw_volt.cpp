@@ -7,6 +7,7 @@
 
 #include "fsw/rw_volt.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 #include "rw_test_util.h"
 
 namespace {
@@ -51,6 +52,12 @@ TEST(RwVoltConfig, RejectsBadConfigurationsTableDriven)
       {"no wheels", [](FswRwVoltConfig* c) { c->num_rw = 0; }, FSW_E_CAPACITY},
       {"too many", [](FswRwVoltConfig* c) { c->num_rw = FSW_MAX_RW + 1; }, FSW_E_CAPACITY},
       {"V_min negative", [](FswRwVoltConfig* c) { c->V_min = -1; }, FSW_E_CONFIG},
+      // issue 21: each clause of the range checks
+      {"V_min NaN", [](FswRwVoltConfig* c) { c->V_min = std::numeric_limits<fsw_real>::quiet_NaN(); }, FSW_E_CONFIG},
+      {"V_max below V_min", [](FswRwVoltConfig* c) { c->V_max = c->V_min - 1; }, FSW_E_CONFIG},
+      {"V_max above FSW_RW_V_MAX_MAX", [](FswRwVoltConfig* c) { c->V_max = 2 * FSW_RW_V_MAX_MAX; }, FSW_E_CONFIG},
+      {"K_V NaN", [](FswRwVoltConfig* c) { c->K_V = std::numeric_limits<fsw_real>::quiet_NaN(); }, FSW_E_CONFIG},
+      {"K_V above FSW_RW_GAIN_MAX", [](FswRwVoltConfig* c) { c->K_V = 2 * FSW_RW_GAIN_MAX; }, FSW_E_CONFIG},
       {"V_max = V_min", [](FswRwVoltConfig* c) { c->V_max = c->V_min; }, FSW_E_CONFIG},
       {"V_max NaN", [](FswRwVoltConfig* c) { c->V_max = std::numeric_limits<fsw_real>::quiet_NaN(); }, FSW_E_CONFIG},
       {"K_V negative", [](FswRwVoltConfig* c) { c->K_V = -1; }, FSW_E_CONFIG},
@@ -337,4 +344,11 @@ TEST(RwVoltIssue13, ConfigRangesKeepProductsFinite)
   EXPECT_FALSE(fsw_status_is_error(f.update(kDt)));
   EXPECT_EQ(0.0, f.out->V[0]);
   EXPECT_TRUE(std::isfinite(f.out->V[1]));
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(RwVoltIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("rw_volt", fsw_rw_volt_check, fsw_rw_volt_init, fsw_rw_volt_reset, fsw_rw_volt_update);
 }

@@ -13,6 +13,7 @@
 
 #include "fsw/thr_map.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -137,6 +138,9 @@ const BadCfg kBadConfigs[] = {
     {"dependent control axes", [](FswThrMapConfig* c) { set3(c->control_axes_B[2], 1, 1, 0); }, FSW_E_SINGULAR},
     {"repeated control axis", [](FswThrMapConfig* c) { set3(c->control_axes_B[1], 2, 0, 0); }, FSW_E_SINGULAR},
     {"negative epsilon", [](FswThrMapConfig* c) { c->epsilon = -1e-3f; }, FSW_E_CONFIG},
+    // issue 21: the NaN clause of each finite check
+    {"epsilon NaN", [](FswThrMapConfig* c) { c->epsilon = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
+    {"direction NaN", [](FswThrMapConfig* c) { c->gt_hat_B[1][1] = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
     {"negative angle threshold", [](FswThrMapConfig* c) { c->ang_err_thresh = -0.1f; }, FSW_E_CONFIG},
     {"angle threshold NaN", [](FswThrMapConfig* c) { c->ang_err_thresh = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
     {"use_2nd_loop 2", [](FswThrMapConfig* c) { c->use_2nd_loop = 2; }, FSW_E_CONFIG},
@@ -896,4 +900,11 @@ TEST(ThrMapIssue13, BoundedModeRangesAndDeliveredTorque)
   EXPECT_NEAR(0.1, t[0], kTol);
   EXPECT_NEAR(-0.1, t[1], kTol);
   EXPECT_NEAR(0.0, t[2], kTol);
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(ThrMapIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("thr_map", fsw_thr_map_check, fsw_thr_map_init, fsw_thr_map_reset, fsw_thr_map_update);
 }

@@ -10,6 +10,7 @@
 
 #include "fsw/thr_pulse_rem.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -307,4 +308,11 @@ TEST(ThrPulseRem, ResetThenBadInputGivesTheSafeOutputNotStaleValues)
   ASSERT_EQ(FSW_OK, p.step(kSec, -0.5, -1.0));
   EXPECT_EQ(R(2), p.out.t_on[0]);
   EXPECT_EQ(R(2), p.out.t_on[1]);
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(ThrPulseRemIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("thr_pulse_rem", fsw_thr_pulse_rem_check, fsw_thr_pulse_rem_init, fsw_thr_pulse_rem_reset, fsw_thr_pulse_rem_update);
 }

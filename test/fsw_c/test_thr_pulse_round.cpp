@@ -10,6 +10,7 @@
 
 #include "fsw/thr_pulse_round.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -60,6 +61,7 @@ const BadCfg kBadConfigs[] = {
     {"resolution zero", [](FswThrPulseRoundConfig* c) { c->resolution = 0; }, FSW_E_CONFIG},
     {"resolution NaN", [](FswThrPulseRoundConfig* c) { c->resolution = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
     {"t_min negative", [](FswThrPulseRoundConfig* c) { c->t_min = -0.01f; }, FSW_E_CONFIG},
+    {"t_min NaN (issue 21)", [](FswThrPulseRoundConfig* c) { c->t_min = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
     {"carry_residual 2", [](FswThrPulseRoundConfig* c) { c->carry_residual = 2; }, FSW_E_CONFIG},
 };
 
@@ -311,4 +313,11 @@ TEST(ThrPulseRound, Issue13MinimumOnTimeLongerThanPeriodIsRefused)
     EXPECT_TRUE(out.t_on[0] == 0 || out.t_on[0] >= c.t_min) << f;
     EXPECT_LE(out.t_on[0], c.period);
   }
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(ThrPulseRoundIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("thr_pulse_round", fsw_thr_pulse_round_check, fsw_thr_pulse_round_init, fsw_thr_pulse_round_reset, fsw_thr_pulse_round_update);
 }

@@ -10,6 +10,7 @@
 
 #include "fsw/thr_pulse_schmitt.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -66,6 +67,7 @@ const BadCfg kBadConfigs[] = {
     {"level_off > level_on", [](FswThrPulseSchmittConfig* c) { c->level_off = 0.8f; }, FSW_E_CONFIG},
     {"level_on > 1", [](FswThrPulseSchmittConfig* c) { c->level_on = 1.01f; }, FSW_E_CONFIG},
     {"level_on NaN", [](FswThrPulseSchmittConfig* c) { c->level_on = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
+    {"level_off NaN (issue 21)", [](FswThrPulseSchmittConfig* c) { c->level_off = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
     {"base state 3", [](FswThrPulseSchmittConfig* c) { c->common.base_thrust_state = 3; }, FSW_E_CONFIG},
     {"init on-time negative", [](FswThrPulseSchmittConfig* c) { c->common.init_off_pulse_on_time = -2; }, FSW_E_CONFIG},
 };
@@ -276,4 +278,42 @@ TEST(ThrPulseSchmitt, Issue13MinimumPulseNeverExceedsThePeriod)
     EXPECT_LE(p.out.t_on[0], static_cast<R>(0.016));
     EXPECT_NEAR(0.016, p.out.t_on[0], kTol);
   }
+}
+
+// Issue 21: saturation with a period other than 1 s.  Period 0.5 s, F_max 1:
+// t = F / F_max * dt.  F = 1.5 -> t = 0.75 s > dt: on for 1.1 dt = 0.55 s and
+// W_SAT; F = 1 -> t = dt exactly: 0.55 s, not saturated (t > dt is false).
+TEST(ThrPulseSchmitt, Issue21SaturationScalesWithThePeriod)
+{
+  Pulser p(cfg1());
+  const uint64_t half = kSec / 2;
+  ASSERT_EQ(FSW_OK, p.step(0, 0.0));
+  EXPECT_EQ(FSW_W_SAT, p.step(half, 1.5));
+  EXPECT_NEAR(0.55, p.out.t_on[0], kTol);
+  EXPECT_EQ(FSW_OK, p.step(2 * half, 1.0));
+  EXPECT_NEAR(0.55, p.out.t_on[0], kTol);
+  EXPECT_EQ(1u, p.st.common.health.saturated);
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(ThrPulseSchmittIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("thr_pulse_schmitt", fsw_thr_pulse_schmitt_check, fsw_thr_pulse_schmitt_init, fsw_thr_pulse_schmitt_reset, fsw_thr_pulse_schmitt_update);
+}
+
+// Issue 21 (mutation survivor of seed 2112): init clears the hysteresis
+// memory, also on a state that has fired: after re-init a request in the
+// band (level 0.5, between level_off 0.25 and level_on 0.75) is off, as for
+// a fresh pulser.
+TEST(ThrPulseSchmitt, Issue21InitClearsTheMemoryOfAUsedState)
+{
+  Pulser p(cfg1());
+  ASSERT_EQ(FSW_OK, p.step(0, 0.0));
+  ASSERT_EQ(FSW_OK, p.step(kSec, 0.08));  // level 0.8: fires, memory on
+  ASSERT_NEAR(0.1, p.out.t_on[0], kTol);
+  ASSERT_EQ(FSW_OK, fsw_thr_pulse_schmitt_init(&p.st, &p.c));
+  ASSERT_EQ(FSW_OK, p.step(0, 0.0));
+  EXPECT_EQ(FSW_OK, p.step(kSec, 0.05));  // level 0.5: in the band
+  EXPECT_EQ(0, p.out.t_on[0]);
 }

@@ -7,6 +7,7 @@
 
 #include "fsw/trq_lpf.h"
 #include "kestrel_test_support.h"
+#include "null_args.h"
 
 namespace {
 
@@ -186,5 +187,28 @@ TEST(TrqLpfIssue13, OverflowIsBadInputAndDoesNotPoisonTheMemory)
   for (int k = 0; k < 3; k++) {
     EXPECT_TRUE(std::isfinite(f.out.LrF_B[k]));
     EXPECT_EQ(clean.out.LrF_B[k], f.out.LrF_B[k]);
+  }
+}
+
+// Issue 21: every entry point with every pointer NULL in turn asserts once
+// and returns FSW_E_NULL_ARG (null_args.h).
+TEST(TrqLpfIssue21, EveryNullArgumentAssertsAndReturns)
+{
+  kt::module_null_args("trq_lpf", fsw_trq_lpf_check, fsw_trq_lpf_init, fsw_trq_lpf_reset, fsw_trq_lpf_update);
+}
+
+// Issue 21 (mutation survivor of seed 2112): init starts from a cleared
+// memory, also on a state that has run: a re-initialised filter repeats a
+// fresh filter's outputs bit for bit.
+TEST(TrqLpfIssue21, InitClearsTheMemoryOfAUsedState)
+{
+  Fixture used, fresh;
+  for (int k = 0; k < 5; k++) ASSERT_EQ(used.step(uint64_t(k) * kH, 1.0, -2.0, 0.5), FSW_OK);
+  ASSERT_EQ(fsw_trq_lpf_init(&used.st, &used.cfg), FSW_OK);
+  for (int k = 0; k < 3; k++) {
+    const FswStatus a = used.step(uint64_t(k) * kH, 0.3, 0.1, -0.2);
+    const FswStatus b = fresh.step(uint64_t(k) * kH, 0.3, 0.1, -0.2);
+    EXPECT_EQ(a, b) << k;
+    for (int j = 0; j < 3; j++) EXPECT_EQ(fresh.out.LrF_B[j], used.out.LrF_B[j]) << k << "," << j;
   }
 }
