@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <memory>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -51,15 +52,23 @@ sim::SpacecraftParams vehicle(int num_rw, sim::WheelModel model)
   return p;
 }
 
-void run(benchmark::State& state, int num_rw, sim::WheelModel model)
+// The vehicle in LEO with wheel torques latched.
+std::unique_ptr<sim::Plant> make_plant(int num_rw, sim::WheelModel model)
 {
   sim::InitialConditions ic;
   ic.r_CN_N = Eigen::Vector3d(-4020338.690396649, 7490566.741852513, 5248299.211589362);
   ic.v_CN_N = Eigen::Vector3d(-5199.77710904224, -3436.681645356935, 1041.576797498721);
   ic.sigma_BN = Eigen::Vector3d(0.1, 0.2, -0.3);
   ic.omega_BN_B = Eigen::Vector3d(0.001, -0.01, 0.03);
-  sim::Plant sc({vehicle(num_rw, model), {}}, ic);
-  sc.latch_wheel_commands(sim::WheelArray{0.01, -0.01, 0.005, -0.005});
+  auto sc = std::make_unique<sim::Plant>(sim::PlantParams{vehicle(num_rw, model), {}}, ic);
+  sc->latch_wheel_commands(sim::WheelArray{0.01, -0.01, 0.005, -0.005});
+  return sc;
+}
+
+void run(benchmark::State& state, int num_rw, sim::WheelModel model)
+{
+  const auto plant = make_plant(num_rw, model);
+  sim::Plant& sc = *plant;
   const double cpu0 = thread_cpu_seconds();
   const auto wall0 = std::chrono::steady_clock::now();
   for (auto _ : state) {
@@ -82,13 +91,8 @@ void run(benchmark::State& state, int num_rw, sim::WheelModel model)
 // per-step device work).
 void derivative(benchmark::State& state, int num_rw, sim::WheelModel model)
 {
-  sim::InitialConditions ic;
-  ic.r_CN_N = Eigen::Vector3d(-4020338.690396649, 7490566.741852513, 5248299.211589362);
-  ic.v_CN_N = Eigen::Vector3d(-5199.77710904224, -3436.681645356935, 1041.576797498721);
-  ic.sigma_BN = Eigen::Vector3d(0.1, 0.2, -0.3);
-  ic.omega_BN_B = Eigen::Vector3d(0.001, -0.01, 0.03);
-  sim::Plant sc({vehicle(num_rw, model), {}}, ic);
-  sc.latch_wheel_commands(sim::WheelArray{0.01, -0.01, 0.005, -0.005});
+  const auto plant = make_plant(num_rw, model);
+  const sim::Plant& sc = *plant;
   sim::StateVector x = sc.state();
   const double cpu0 = thread_cpu_seconds();
   for (auto _ : state) {
