@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "command_util.h"
 #include "harness/outputs.h"
 #include "harness/results_dir.h"
 #include "harness/run.h"
@@ -20,8 +21,6 @@
 namespace harness {
 
 namespace fs = std::filesystem;
-
-namespace {
 
 bool parse_sets(const std::vector<std::string>& sets, std::vector<Override>& out, std::ostream& err)
 {
@@ -43,7 +42,6 @@ void print_issues(const ScenarioError& e, std::ostream& err)
       << "); nothing was run\n";
 }
 
-}  // namespace
 
 std::string scenario_dir()
 {

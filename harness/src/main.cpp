@@ -4,6 +4,8 @@
 
 #include <atomic>
 #include <csignal>
+#include <cstdio>
+#include <optional>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -85,6 +87,28 @@ int main(int argc, char** argv)
   val->add_option("scenario", vpath, "scenario file or manifest.json")->required();
   val->add_option("--set", vsets, "override a scenario key: key.path=value (repeatable)");
 
+  harness::McCommand mc;
+  std::string shard;
+  auto* mcc = app.add_subcommand("mc", "run a Monte Carlo campaign of a scenario's monte_carlo section (docs/monte-carlo.md)");
+  mcc->add_option("scenario", mc.scenario, "scenario file with a monte_carlo section, or its manifest");
+  mcc->add_option("--runs", mc.runs, "number of runs (default monte_carlo.runs)")->check(CLI::Range(1ULL, 10000000ULL));
+  mcc->add_option("--seed", mc.seed, "master seed (default monte_carlo.seed)");
+  mcc->add_option("-j,--jobs", mc.jobs, "threads (default 1)")->check(CLI::Range(1u, 1024u));
+  mcc->add_option("-o,--output", mc.out_dir, "campaign folder (default runs/<name>_mc)");
+  mcc->add_option("--set", mc.sets, "override a key of the nominal scenario: key.path=value (repeatable)");
+  mcc->add_option("--only", mc.only, "rerun just these runs: 17,42,100-120");
+  mcc->add_option("--shard", shard, "run slice i of N (i/N, 0 <= i < N) for batch arrays; join with mc merge");
+  mcc->add_option("--slurm", mc.slurm_tasks, "write Slurm array scripts for this many shards to <output>.slurm/")
+      ->check(CLI::Range(1u, 100000u));
+  mcc->add_flag("--force", mc.force, "replace an existing campaign folder whole");
+  std::string merge_out;
+  std::vector<std::string> merge_in;
+  bool merge_force = false;
+  auto* merge = mcc->add_subcommand("merge", "join the shard folders of one campaign");
+  merge->add_option("-o,--output", merge_out, "campaign folder to write")->required();
+  merge->add_option("shards", merge_in, "shard folders")->required();
+  merge->add_flag("--force", merge_force, "replace an existing campaign folder whole");
+
   auto* list = app.add_subcommand("list", "list the shipped scenarios");
   auto* bench = app.add_subcommand("bench", "print real-time factors of the reference scenarios");
 
@@ -99,6 +123,27 @@ int main(int argc, char** argv)
     rc.stop = &g_stop;
     install_stop_handlers();
     return harness::cmd_run(rc, std::cout, std::cerr);
+  }
+  if (*merge) return harness::cmd_mc_merge(merge_out, merge_in, merge_force, std::cout, std::cerr);
+  if (*mcc) {
+    if (mc.scenario.empty()) {
+      std::cerr << "kestrel mc: a scenario file is required (or: kestrel mc merge -o DIR SHARD...)\n";
+      return harness::kExitUsage;
+    }
+    if (!shard.empty()) {
+      unsigned long long i = 0, n = 0;
+      char extra = 0;
+      if (std::sscanf(shard.c_str(), "%llu/%llu%c", &i, &n, &extra) != 2 || n < 1 || i >= n || n > 100000) {
+        std::cerr << "kestrel mc: --shard expects i/N with 0 <= i < N <= 100000, got '" << shard << "'\n";
+        return harness::kExitUsage;
+      }
+      mc.shard_index = static_cast<uint32_t>(i);
+      mc.shard_count = static_cast<uint32_t>(n);
+    }
+    mc.progress = isatty(STDERR_FILENO) != 0;
+    mc.stop = &g_stop;
+    install_stop_handlers();
+    return harness::cmd_mc(mc, std::cout, std::cerr);
   }
   if (*val) return harness::cmd_validate(vpath, vsets, std::cout, std::cerr);
   if (*fcfg) return harness::cmd_fsw_config(cpath, csets, cout_file, std::cout, std::cerr);

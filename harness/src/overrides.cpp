@@ -219,13 +219,15 @@ void apply_override(Ctx& ctx, YAML::Node& root, const Override& o)
 
 // ---- the typed setter (harness/scenario.h) -------------------------------------
 
-void set_parameter(Scenario& sc, const std::string& path, const ParameterValue& value)
+namespace {
+// The settable key `path` names in sc (a thrown ScenarioError otherwise).
+KeyTarget settable_key(const Scenario& sc, const std::string& path, const char* verb)
 {
   const std::vector<std::string> parts = split_path(path);
   ScenarioIssue is;
   is.file = sc.source_file.empty() ? "(scenario)" : sc.source_file;
   is.key = normalise_path(parts);
-  is.where = "set_parameter " + path;
+  is.where = std::string(verb) + " " + path;
   auto fail = [&is](const std::string& msg) {
     is.message = msg;
     throw ScenarioError({is});
@@ -244,8 +246,58 @@ void set_parameter(Scenario& sc, const std::string& path, const ParameterValue& 
     if (s->present && !s->present(sc)) fail("there is no '" + s->name + "' in this scenario");
   }
   if (!t.key->set) fail("cannot be set with set_parameter (a list sized by the scenario); use --set or the file");
+  return t;
+}
+}  // namespace
+
+void set_parameter(Scenario& sc, const std::string& path, const ParameterValue& value)
+{
+  const KeyTarget t = settable_key(sc, path, "set_parameter");
   const std::string why = t.key->set(*t.key, sc, t.index, value, t.suffixed);
-  if (!why.empty()) fail(why);
+  if (why.empty()) return;
+  ScenarioIssue is;
+  is.file = sc.source_file.empty() ? "(scenario)" : sc.source_file;
+  is.key = normalise_path(split_path(path));
+  is.where = "set_parameter " + path;
+  is.message = why;
+  throw ScenarioError({is});
+}
+
+ParameterValue get_parameter(const Scenario& sc, const std::string& path)
+{
+  const KeyTarget t = settable_key(sc, path, "get_parameter");
+  nlohmann::json j = nlohmann::json::object();
+  if (t.key->write) t.key->write(*t.key, j, sc, t.index);
+  const double f = t.suffixed ? t.key->factor : 1.0;
+  auto absent = [&]() -> ParameterValue {
+    ScenarioIssue is;
+    is.file = sc.source_file.empty() ? "(scenario)" : sc.source_file;
+    is.key = normalise_path(split_path(path));
+    is.where = "get_parameter " + path;
+    is.message = "has no value in this scenario (an optional key not given)";
+    throw ScenarioError({is});
+  };
+  if (!j.contains(t.key->name)) return absent();
+  const nlohmann::json& v = j[t.key->name];
+  switch (t.key->type) {
+    case schema::Type::Real: return ParameterValue(v.get<double>() / f);
+    case schema::Type::Integer: return ParameterValue(v.get<long long>());
+    case schema::Type::Unsigned: return ParameterValue(v.get<uint64_t>());
+    case schema::Type::Bool: return ParameterValue(v.get<bool>());
+    case schema::Type::String:
+    case schema::Type::Choice: return ParameterValue(v.get<std::string>());
+    case schema::Type::Vec3:
+    case schema::Type::UnitVec3:
+      return ParameterValue(Eigen::Vector3d(v.at(0).get<double>() / f, v.at(1).get<double>() / f, v.at(2).get<double>() / f));
+    case schema::Type::Inertia: {
+      Eigen::Matrix3d m;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) m(r, c) = v.at(static_cast<size_t>(r)).at(static_cast<size_t>(c)).get<double>();
+      return ParameterValue(m);
+    }
+    case schema::Type::Custom: break;
+  }
+  return absent();
 }
 
 void validate_scenario(const Scenario& sc)

@@ -42,6 +42,16 @@ bool ResultsDir::is_result_file_name(const std::string& name)
   return false;
 }
 
+bool ResultsDir::is_campaign_file_name(const std::string& name)
+{
+  static const std::array<const char*, 7> kNames = {"mc_manifest.json", "summary.csv",  "summary.h5",
+                                                    "mc_report_data.json", "mc_report.html", "mc_runs.json",
+                                                    "mc.sbatch"};
+  for (const char* n : kNames)
+    if (name == n) return true;
+  return false;
+}
+
 uint64_t free_bytes(const fs::path& p)
 {
   struct statvfs s {};
@@ -95,10 +105,14 @@ ResultsDir::ResultsDir(const std::string& target, bool force)
     }
     std::string foreign;
     bool empty = true;
+    // a Monte Carlo campaign's folder (docs/monte-carlo.md) also holds its
+    // runs/ folder (run folders of result files) and shards/
+    const bool campaign = fs::is_regular_file(t / "mc_manifest.json", ec);
     for (const fs::directory_entry& e : fs::directory_iterator(t, ec)) {
       empty = false;
       const std::string n = e.path().filename().string();
-      if (!is_result_file_name(n) || !e.is_regular_file()) {
+      const bool campaign_part = campaign && (is_campaign_file_name(n) || ((n == "runs" || n == "shards") && e.is_directory()));
+      if (!campaign_part && (!is_result_file_name(n) || !e.is_regular_file())) {
         foreign = n;
         break;
       }

@@ -114,6 +114,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
     report.emplace();
     run.add_sink(*report);
   }
+  for (RecordSink* s : opt.extra_sinks) run.add_sink(*s);
   // chunks of at most 1000 ticks: a stop request is seen within milliseconds
   const uint64_t total = run.total_ticks();
   const uint64_t chunk = std::clamp<uint64_t>(total / 200, 1, 1000);

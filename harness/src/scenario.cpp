@@ -14,6 +14,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "mc_draw.h"
 #include "overrides.h"
 #include "scenario_schema.h"
 #include "yaml_reader.h"
@@ -48,6 +49,7 @@ schema::Section make_schema()
               .req("random seed, a non-negative integer"),
           real("duration", [](auto& sc, size_t) -> auto& { return sc.duration; })
               .req("simulated time [s]").bounds(positive("s")).unit("s"),
+          monte_carlo_key(),
       },
       {rates_section(), environment_section(), spacecraft_section(), wheel_section(true), wheel_section(),
        thrusters_section(), tank_section("tank"), tank_section("rcs_tank"), burn_section(), sensors_section(),
@@ -242,6 +244,7 @@ void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
       ctx.error(root["fsw"], "fsw.thr_pulse.t_min", "must be shorter than the FSW period");
   }
   if (ctx.issues->empty()) check_actuator_span(top, sc);  // on a consistent scenario only
+  if (ctx.issues->empty()) check_monte_carlo(ctx, sc);    // the dispersed keys, against the scenario read
 }
 
 Scenario load_from_root(YAML::Node root, const std::string& file, const std::vector<Override>& overrides)

@@ -11,12 +11,16 @@
 //      free space); the target folder is left as it was
 //   5  results folder refused: it already holds results (without --force),
 //      holds foreign files, or another run is writing it; nothing was run
+//   6  Monte Carlo: the campaign ran and at least one run failed its
+//      criteria, failed, or was an invalid draw (docs/monte-carlo.md)
 //   130, 143  interrupted by SIGINT / SIGTERM (128 + the signal): the rows
 //      computed so far are written, marked incomplete
 #ifndef HARNESS_COMMANDS_H
 #define HARNESS_COMMANDS_H
 
 #include <atomic>
+#include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -30,6 +34,7 @@ enum ExitCode : int {
   kExitInvalidScenario = 3,
   kExitOutput = 4,
   kExitRefused = 5,
+  kExitMcFailures = 6,
   kExitInterruptedBase = 128,  // + the signal number
 };
 
@@ -57,6 +62,26 @@ int cmd_fsw_config(const std::string& scenario, const std::vector<std::string>& 
                    std::ostream& out, std::ostream& err);
 
 int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err);
+
+// `kestrel mc` (docs/monte-carlo.md).
+struct McCommand {
+  std::string scenario;              // YAML scenario (with monte_carlo) or a manifest of one
+  std::vector<std::string> sets;     // --set overrides (of the nominal scenario)
+  std::string out_dir;               // "" : runs/<name>_mc
+  std::optional<uint64_t> runs;      // default: monte_carlo.runs
+  std::optional<uint64_t> seed;      // default: monte_carlo.seed
+  unsigned jobs = 1;                 // threads (per MPI rank)
+  std::string only;                  // "17,42,100-120": just these runs
+  uint32_t shard_index = 0, shard_count = 1;  // --shard i/N
+  unsigned slurm_tasks = 0;          // > 0: write Slurm batch scripts for this many shards instead
+  bool force = false;
+  bool progress = false;
+  const std::atomic<int>* stop = nullptr;
+};
+int cmd_mc(const McCommand& c, std::ostream& out, std::ostream& err);
+// Joins the shard folders of one campaign into out_dir.
+int cmd_mc_merge(const std::string& out_dir, const std::vector<std::string>& shards, bool force, std::ostream& out,
+                 std::ostream& err);
 int cmd_validate(const std::string& scenario, const std::vector<std::string>& sets, std::ostream& out,
                  std::ostream& err);
 int cmd_list(const std::string& dir, std::ostream& out, std::ostream& err);

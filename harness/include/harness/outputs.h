@@ -165,6 +165,9 @@ struct RunOptions {
   // the FSW behind the link (remote_fsw.h, docs/hwil.md).
   std::string fsw_link;
   LinkOptions link;
+  // Further sinks (caller-owned) fed with the same rows (a Monte Carlo
+  // campaign's metrics, mc_campaign.cpp).
+  std::vector<RecordSink*> extra_sinks;
 };
 
 struct RunResult {

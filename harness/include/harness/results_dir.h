@@ -52,6 +52,9 @@ class ResultsDir {
 
   // The file names a results folder may hold (what --force may replace).
   static bool is_result_file_name(const std::string& name);
+  // ... and those of a Monte Carlo campaign's folder (with mc_manifest.json,
+  // whose runs/ and shards/ folders --force also replaces).
+  static bool is_campaign_file_name(const std::string& name);
 
  private:
   // The lock file's descriptor, closed (releasing the flock) when the

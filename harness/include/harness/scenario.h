@@ -219,6 +219,55 @@ struct EventSpec {
   std::vector<EventActionSpec> actions;
 };
 
+// ---- Monte Carlo (docs/monte-carlo.md) ----------------------------------------
+// A dispersion: how one key (or one key of every list element, `wheels[*].axis`)
+// is drawn for each run.  Numbers are in the unit the key is written with
+// (`wheels[0].Omega_0_rpm`: rpm); angles in radians (the _deg spellings
+// are converted when read).
+enum class DistKind { Normal, TruncatedNormal, Uniform, Choice, UnitVector, NormalVector, Attitude, Inertia };
+struct DispersionSpec {
+  std::string key;                 // as written; may hold one [*]
+  DistKind dist = DistKind::Normal;
+  std::optional<double> mean;      // normal, truncated_normal: absent = the nominal value
+  double std = 0.0;                // normal, truncated_normal
+  std::optional<double> min, max;  // truncated_normal bounds; uniform bounds
+  std::optional<double> half_width;  // uniform: nominal +- half_width (instead of min/max)
+  std::vector<std::string> values;   // choice: the values as written (YAML scalars)
+  std::vector<double> weights;       // choice: relative weights (empty: equal)
+  Eigen::Vector3d std_vec = Eigen::Vector3d::Zero();  // normal_vector: per-axis standard deviation
+  std::optional<double> angle_std;   // [rad] unit_vector, attitude, inertia
+  std::optional<double> angle_max;   // [rad] unit_vector, attitude
+  double principal_std_rel = 0.0;    // inertia: principal moments times (1 + N(0, s))
+  int line = 0, column = 0;          // where it is written (messages)
+};
+// A pass/fail criterion on one recorded quantity of a run: `stat` of
+// `column` over after <= t <= until; pass when below (or above) threshold.
+// `column`: a column (pointing_error_deg), a quantity (omega_BN_B: its norm
+// per row) or a prefix ending in * (wheel_speed_rpm_*: every such column).
+struct CriterionSpec {
+  std::string name;
+  std::string column;
+  std::string stat = "max";          // max, min, max_abs, final, mean, rms, error_count
+  double after = 0.0;                // [s]
+  std::optional<double> until;       // [s]
+  std::optional<double> below, above;
+  int line = 0, column_no = 0;
+};
+struct RetentionSpec {
+  uint32_t keep_first = 3;      // runs 0..keep_first-1 keep full results
+  bool keep_failing = true;     // failing runs keep full results ...
+  uint32_t max_failing = 100;   // ... at most this many (the first ones by index)
+  uint32_t thin_samples = 200;  // every run: this many samples of the thinned channels
+};
+struct MonteCarloSpec {
+  uint64_t runs = 100;  // default of --runs
+  uint64_t seed = 1;    // master seed, default of --seed
+  std::vector<DispersionSpec> dispersions;
+  std::vector<CriterionSpec> criteria;
+  RetentionSpec retention;
+  int line = 0;
+};
+
 struct OutputsSpec {
   bool hdf5 = true;
   bool csv = false;
@@ -241,6 +290,7 @@ struct Scenario {
   SensorsSpec sensors;
   FswSpec fsw;
   std::vector<EventSpec> events;  // applied at tick boundaries (docs/events.md)
+  std::optional<MonteCarloSpec> monte_carlo;  // `kestrel mc` (docs/monte-carlo.md); runs ignore it
   OutputsSpec outputs;
 
   std::string source_file;  // where it was loaded from (not part of the physics)
@@ -308,6 +358,9 @@ struct ParameterValue {
 // Checks that involve other keys (duration a multiple of dt, u_min < u_max,
 // burn names a main engine, ...) are validate_scenario()'s job.
 void set_parameter(Scenario& sc, const std::string& path, const ParameterValue& value);
+// The value of a settable key as set_parameter takes it (in the unit of the
+// path's spelling: "wheels[0].Omega_0_rpm" in rpm).  Throws ScenarioError.
+ParameterValue get_parameter(const Scenario& sc, const std::string& path);
 
 // Every check of load_scenario() on a Scenario built or changed in code:
 // its canonical form is reloaded (the manifest round trip).  Throws
