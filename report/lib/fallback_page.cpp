@@ -1,5 +1,5 @@
-// The page used when Node.js/npm were not found at build time: no plots, no
-// 3D; it says so and shows the embedded run data as text.
+// The pages used when Node.js/npm were not found at build time: no plots, no
+// 3D; each says so and shows the embedded run (or campaign) data as text.
 #include <cstddef>
 
 namespace report {
@@ -8,6 +8,10 @@ extern const char kPagePrefix[];
 extern const std::size_t kPagePrefixSize;
 extern const char kPageSuffix[];
 extern const std::size_t kPageSuffixSize;
+extern const char kMcPagePrefix[];
+extern const std::size_t kMcPagePrefixSize;
+extern const char kMcPageSuffix[];
+extern const std::size_t kMcPageSuffixSize;
 extern const bool kHasBundle;
 
 const char kPagePrefix[] = R"KRPT(<!DOCTYPE html>
@@ -23,6 +27,21 @@ const char kPageSuffix[] = R"KRPT(</script>
 </body></html>
 )KRPT";
 const std::size_t kPageSuffixSize = sizeof(kPageSuffix) - 1;
+
+const char kMcPagePrefix[] = R"KRPT(<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>Kestrel Monte Carlo report (data only)</title></head>
+<body><h1>Kestrel Monte Carlo report</h1>
+<p>This build of Kestrel had no Node.js/npm, so the report's plots and tables were not built
+(scripts/install-deps.sh host installs them). The campaign data follows.</p>
+<script id="kestrel-data" type="application/json">)KRPT";
+const std::size_t kMcPagePrefixSize = sizeof(kMcPagePrefix) - 1;
+const char kMcPageSuffix[] = R"KRPT(</script>
+<pre id="raw"></pre>
+<script>document.getElementById('raw').textContent=document.getElementById('kestrel-data').textContent;</script>
+</body></html>
+)KRPT";
+const std::size_t kMcPageSuffixSize = sizeof(kMcPageSuffix) - 1;
+
 const bool kHasBundle = false;
 }  // namespace detail
 }  // namespace report

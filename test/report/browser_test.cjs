@@ -8,21 +8,15 @@
 // Exit: 0 pass, 1 fail, 77 skipped (no chromium).
 'use strict';
 const fs = require('fs');
-const os = require('os');
 const path = require('path');
+const { requireChromium, launch, openReport, stats } = require('./browser_common.cjs');
 
-const CHROMIUM = process.env.KESTREL_CHROMIUM || '/usr/bin/chromium';
 const [htmlDir, outDir] = process.argv.slice(2);
 if (!htmlDir || !outDir) {
   console.error('usage: browser_test.cjs HTML_DIR OUT_DIR');
   process.exit(2);
 }
-if (!fs.existsSync(CHROMIUM)) {
-  console.log(`SKIP: ${CHROMIUM} not found (apt-get install chromium, or scripts/install-deps.sh host)`);
-  process.exit(77);
-}
-const { chromium } = require('playwright-core');
-const { PNG } = require('pngjs');
+requireChromium();
 
 // expectations per generated report
 const CASES = [
@@ -40,59 +34,18 @@ const CASES = [
     incomplete: 'Incomplete run: stopped (SIGINT) at t = 1.5 s of 10 s' },
 ];
 
-function stats(pngBuf) {
-  const png = PNG.sync.read(pngBuf);
-  const n = png.width * png.height;
-  let s = 0;
-  let s2 = 0;
-  const colours = new Set();
-  for (let i = 0; i < n; i++) {
-    const r = png.data[4 * i];
-    const g = png.data[4 * i + 1];
-    const b = png.data[4 * i + 2];
-    const y = 0.299 * r + 0.587 * g + 0.114 * b;
-    s += y;
-    s2 += y * y;
-    if (colours.size < 5000) colours.add((r << 16) | (g << 8) | b);
-  }
-  const mean = s / n;
-  return { width: png.width, height: png.height, mean, std: Math.sqrt(Math.max(0, s2 / n - mean * mean)), colours: colours.size };
-}
-
 async function main() {
   fs.mkdirSync(outDir, { recursive: true });
-  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'kestrel-report-chromium-'));
   const failures = [];
   const fail = (c, msg) => { failures.push(`${c.file}: ${msg}`); console.log(`  FAIL ${msg}`); };
   const t0 = Date.now();
-  const ctx = await chromium.launchPersistentContext(profile, {
-    executablePath: CHROMIUM,
-    headless: true,
-    viewport: { width: 1400, height: 900 },
-    args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
-      '--disable-component-update', '--disable-sync', '--enable-unsafe-swiftshader', '--use-angle=swiftshader'],
-  });
+  const { ctx, close } = await launch();
   try {
     for (const c of CASES) {
       const file = path.resolve(htmlDir, c.file);
       console.log(`${c.file}`);
       if (!fs.existsSync(file)) { fail(c, 'not generated'); continue; }
-      const page = await ctx.newPage();
-      const errors = [];
-      const external = [];
-      page.on('console', (m) => {
-        if (m.type() === 'error') errors.push(`console.error: ${m.text()}`);
-        else if (m.type() === 'warning') console.log(`  (console warning: ${m.text().slice(0, 160)})`);
-      });
-      page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
-      await page.route('**/*', (route) => {
-        const u = route.request().url();
-        if (/^(file|data|blob|about):/.test(u)) return route.continue();
-        external.push(u);
-        return route.abort();
-      });
-      await page.goto('file://' + file, { waitUntil: 'load' });
-      await page.waitForFunction(() => window.kestrelReport && window.kestrelReport.ready, null, { timeout: 15000 });
+      const { page, errors, external } = await openReport(ctx, file);
       await page.waitForTimeout(300); // a few animation frames of the 3D view
       const st = await page.evaluate(() => {
         const r = window.kestrelReport;
@@ -169,8 +122,7 @@ async function main() {
       await page.close();
     }
   } finally {
-    await ctx.close();
-    fs.rmSync(profile, { recursive: true, force: true });
+    await close();
   }
   console.log(`browser test: ${((Date.now() - t0) / 1000).toFixed(1)} s`);
   const passed = CASES.length - new Set(failures.map((f) => f.split(':')[0])).size;
