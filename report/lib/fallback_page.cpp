@@ -14,6 +14,12 @@ extern const char kMcPageSuffix[];
 extern const std::size_t kMcPageSuffixSize;
 extern const bool kHasBundle;
 
+// both pages end alike: the data element closed, then shown as text
+#define KESTREL_FALLBACK_SUFFIX                                                                    \
+  "</script>\n<pre id=\"raw\"></pre>\n"                                                            \
+  "<script>document.getElementById('raw').textContent=document.getElementById('kestrel-data').textContent;</script>\n" \
+  "</body></html>\n"
+
 const char kPagePrefix[] = R"KRPT(<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>Kestrel run report (data only)</title></head>
 <body><h1>Kestrel run report</h1>
@@ -21,11 +27,7 @@ const char kPagePrefix[] = R"KRPT(<!DOCTYPE html>
 (scripts/install-deps.sh host installs them). The run data follows.</p>
 <script id="kestrel-data" type="application/json">)KRPT";
 const std::size_t kPagePrefixSize = sizeof(kPagePrefix) - 1;
-const char kPageSuffix[] = R"KRPT(</script>
-<pre id="raw"></pre>
-<script>document.getElementById('raw').textContent=document.getElementById('kestrel-data').textContent;</script>
-</body></html>
-)KRPT";
+const char kPageSuffix[] = KESTREL_FALLBACK_SUFFIX;
 const std::size_t kPageSuffixSize = sizeof(kPageSuffix) - 1;
 
 const char kMcPagePrefix[] = R"KRPT(<!DOCTYPE html>
@@ -35,11 +37,7 @@ const char kMcPagePrefix[] = R"KRPT(<!DOCTYPE html>
 (scripts/install-deps.sh host installs them). The campaign data follows.</p>
 <script id="kestrel-data" type="application/json">)KRPT";
 const std::size_t kMcPagePrefixSize = sizeof(kMcPagePrefix) - 1;
-const char kMcPageSuffix[] = R"KRPT(</script>
-<pre id="raw"></pre>
-<script>document.getElementById('raw').textContent=document.getElementById('kestrel-data').textContent;</script>
-</body></html>
-)KRPT";
+const char kMcPageSuffix[] = KESTREL_FALLBACK_SUFFIX;
 const std::size_t kMcPageSuffixSize = sizeof(kMcPageSuffix) - 1;
 
 const bool kHasBundle = false;

@@ -11,21 +11,12 @@ import { resizePlots } from './plots.js';
 import { normalizeMc, status as runStatus } from './mcdata.js';
 import { addEnvelopeCard } from './mcplots.js';
 import { buildHistograms, buildScatter, buildTable } from './mcviews.js';
+import { section as sectionOf, embeddedData, finishPage, whenLoaded } from './page.js';
 
 const status = { ready: false, errors: [], plots: 0, runLines: 0, histograms: 0 };
 window.kestrelReport = status;
 
-function section(id, fn) {
-  const root = document.getElementById(id);
-  if (!root) return;
-  try {
-    fn(root);
-  } catch (e) {
-    status.errors.push(`${id}: ${e && e.message}`);
-    root.appendChild(el('p', { class: 'error', text: `This section could not be drawn: ${e && e.message}` }));
-    console.error(e);
-  }
-}
+const section = (id, fn) => sectionOf(status, id, fn);
 
 function header(D) {
   const m = D.meta;
@@ -61,15 +52,7 @@ function criteria(root, D) {
 }
 
 function main() {
-  let raw = {};
-  const node = document.getElementById('kestrel-data');
-  try {
-    raw = JSON.parse(node ? node.textContent : '{}');
-  } catch (e) {
-    status.errors.push('data: ' + e.message);
-    document.getElementById('criteria').appendChild(el('p', { class: 'error', text: 'The campaign data embedded in this page is not valid JSON: ' + e.message }));
-    console.error(e);
-  }
+  const raw = embeddedData(status, 'criteria', 'campaign data');
   const D = normalizeMc(raw);
   section('meta', () => header(D));
   section('criteria', (root) => criteria(root, D));
@@ -94,11 +77,7 @@ function main() {
     row.scrollIntoView({ block: 'center' });
   }));
   section('mc-table', (root) => buildTable(root, D));
-  let timer = 0;
-  window.addEventListener('resize', () => { clearTimeout(timer); timer = setTimeout(resizePlots, 150); });
-  status.ready = true;
-  document.body.setAttribute('data-ready', status.errors.length ? 'errors' : 'ok');
+  finishPage(status, resizePlots);
 }
 
-if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', main);
-else main();
+whenLoaded(main);

@@ -34,7 +34,7 @@ async function launch() {
   return { ctx, close };
 }
 
-// Opens file and waits for window.kestrelReport.ready.
+// Opens file and waits for window.kestrelReport.ready (ms: how long that took).
 async function openReport(ctx, file) {
   const page = await ctx.newPage();
   const errors = [];
@@ -50,9 +50,10 @@ async function openReport(ctx, file) {
     external.push(u);
     return route.abort();
   });
+  const t0 = Date.now();
   await page.goto('file://' + file, { waitUntil: 'load' });
   await page.waitForFunction(() => window.kestrelReport && window.kestrelReport.ready, null, { timeout: 15000 });
-  return { page, errors, external };
+  return { page, errors, external, ms: Date.now() - t0 };
 }
 
 // Luminance spread and colour count of a PNG screenshot (is it blank?).
@@ -76,4 +77,50 @@ function stats(pngBuf) {
   return { width: png.width, height: png.height, mean, std: Math.sqrt(Math.max(0, s2 / n - mean * mean)), colours: colours.size };
 }
 
-module.exports = { CHROMIUM, requireChromium, launch, openReport, stats };
+// The command line of a browser test (HTML_DIR OUT_DIR; exit 2 on a usage
+// error, 77 without Chromium).
+function parseArgs(script) {
+  const [htmlDir, outDir] = process.argv.slice(2);
+  if (!htmlDir || !outDir) {
+    console.error(`usage: ${script} HTML_DIR OUT_DIR`);
+    process.exit(2);
+  }
+  requireChromium();
+  fs.mkdirSync(outDir, { recursive: true });
+  return { htmlDir, outDir };
+}
+
+// Opens each case's page (c.file in htmlDir) and runs check(c, opened, fail);
+// prints a summary and exits 0 if nothing failed, 1 otherwise.
+function runCases(name, htmlDir, cases, check) {
+  const run = async () => {
+    const failures = [];
+    const t0 = Date.now();
+    const { ctx, close } = await launch();
+    try {
+      for (const c of cases) {
+        const fail = (msg) => { failures.push(`${c.file}: ${msg}`); console.log(`  FAIL ${msg}`); };
+        const file = path.resolve(htmlDir, c.file);
+        console.log(c.file);
+        if (!fs.existsSync(file)) { fail('not generated'); continue; }
+        const opened = await openReport(ctx, file);
+        await check(c, opened, fail);
+        for (const e of opened.errors) fail(e); // also those raised by the check's clicks
+        for (const u of opened.external) fail(`tried to fetch ${u}`);
+        await opened.page.close();
+      }
+    } finally {
+      await close();
+    }
+    console.log(`${name}: ${((Date.now() - t0) / 1000).toFixed(1)} s`);
+    const passed = cases.length - new Set(failures.map((f) => f.split(':')[0])).size;
+    console.log(`${passed} passed, ${cases.length - passed} failed`);
+    process.exit(failures.length ? 1 : 0);
+  };
+  run().catch((e) => {
+    console.error(e && e.stack ? e.stack : e);
+    process.exit(1);
+  });
+}
+
+module.exports = { CHROMIUM, requireChromium, launch, openReport, stats, parseArgs, runCases };

@@ -15,14 +15,9 @@
 'use strict';
 const fs = require('fs');
 const path = require('path');
-const { requireChromium, launch, openReport, stats } = require('./browser_common.cjs');
+const { stats, parseArgs, runCases } = require('./browser_common.cjs');
 
-const [htmlDir, outDir] = process.argv.slice(2);
-if (!htmlDir || !outDir) {
-  console.error('usage: mc_browser_test.cjs HTML_DIR OUT_DIR');
-  process.exit(2);
-}
-requireChromium();
+const { htmlDir, outDir } = parseArgs('mc_browser_test.cjs');
 
 const S1_CHANNELS = ['pointing_error', 'omega_BN_B', 'wheel_speed'];
 const CASES = [
@@ -38,142 +33,113 @@ const CASES = [
     title: 'hostile </script><script>window.__pwned=1</script><!-- "q" \'s\' &' },
 ];
 
-async function main() {
-  fs.mkdirSync(outDir, { recursive: true });
-  const failures = [];
-  const fail = (c, msg) => { failures.push(`${c.file}: ${msg}`); console.log(`  FAIL ${msg}`); };
-  const t0 = Date.now();
-  const { ctx, close } = await launch();
-  try {
-    for (const c of CASES) {
-      const file = path.resolve(htmlDir, c.file);
-      console.log(c.file);
-      if (!fs.existsSync(file)) { fail(c, 'not generated'); continue; }
-      const t1 = Date.now();
-      const { page, errors, external } = await openReport(ctx, file);
-      const load = Date.now() - t1;
-      const st = await page.evaluate(() => ({
-        errors: window.kestrelReport.errors,
-        runLines: window.kestrelReport.runLines,
-        cards: [...document.querySelectorAll('#mc-series .card')].map((e) => e.id.replace(/^mc-plot-/, '')),
-        canvases: document.querySelectorAll('#mc-series .uplot canvas').length,
-        hist: document.querySelectorAll('#mc-hist svg').length,
-        thresholds: document.querySelectorAll('#mc-hist svg line.threshold').length,
-        rows: [...document.querySelectorAll('#mc-runs tbody tr')].map((r) => Number(r.dataset.run)),
-        firstStatus: (document.querySelector('#mc-runs tbody tr td.st') || {}).textContent || '',
-        links: [...document.querySelectorAll('#mc-runs a')].map((a) => a.getAttribute('href')),
-        pwned: window.__pwned !== undefined,
-        meta: document.getElementById('meta').textContent,
-        title: document.title,
-        criteria: document.querySelectorAll('#mc-criteria tbody tr').length,
-        criteriaText: (document.getElementById('mc-criteria') || {}).textContent || '',
-        reasonCells: [...document.querySelectorAll('#mc-runs td.reason')].map((e) => e.textContent),
-        hasHtmlFromData: !!document.querySelector('#criteria img, #mc-runs b, #mc-runs img'),
-      }));
-      console.log(`  loaded in ${load} ms: cards [${st.cards.join(', ')}], ${st.canvases} canvases, ${st.runLines} run lines, ` +
-        `${st.hist} histograms (${st.thresholds} thresholds), ${st.rows.length} rows, ${st.links.length} links`);
-      for (const e of errors) fail(c, e);
-      for (const e of st.errors) fail(c, `section error: ${e}`);
-      for (const u of external) fail(c, `tried to fetch ${u}`);
-      if (st.pwned) fail(c, 'script from the data was executed');
-      if (st.hasHtmlFromData) fail(c, 'markup from the data became elements');
-      if (st.cards.join() !== c.cards.join()) fail(c, `cards [${st.cards}], expected [${c.cards}]`);
-      if (st.canvases < c.cards.length) fail(c, `${st.canvases} plot canvases for ${c.cards.length} cards`);
-      if (st.hist !== c.hist) fail(c, `${st.hist} histograms, expected ${c.hist}`);
-      if (st.thresholds !== c.thresholds) fail(c, `${st.thresholds} threshold lines, expected ${c.thresholds}`);
-      if (st.links.length !== c.links) fail(c, `${st.links.length} report links, expected ${c.links}`);
-      for (const h of st.links) if (/^[a-z]+:|^\//i.test(h)) fail(c, `non-relative link ${h}`);
-      if (c.rows !== undefined && st.rows.length !== c.rows) fail(c, `${st.rows.length} table rows, expected ${c.rows}`);
-      if (c.title) {
-        if (!st.meta.includes(c.title)) fail(c, `scenario not shown verbatim: ${st.meta.slice(0, 120)}`);
-        if (!st.criteriaText.includes('</script><script>window.__pwned=1</script>')) fail(c, 'criterion name not shown verbatim');
-        if (!st.reasonCells.some((r) => r.includes('</script><script>'))) fail(c, 'reason not shown verbatim');
-      }
-
-      if (c.expect) {
-        const E = JSON.parse(fs.readFileSync(path.resolve(htmlDir, c.expect), 'utf8'));
-        if (st.rows.length !== E.rows) fail(c, `${st.rows.length} table rows, expected ${E.rows}`);
-        if (st.rows.join() !== E.order.join()) fail(c, `default order ${st.rows.slice(0, 10)}..., expected ${E.order.slice(0, 10)}...`);
-        if (st.firstStatus !== 'FAIL') fail(c, `first row is '${st.firstStatus}', expected FAIL`);
-        if (!st.meta.includes(`failed ${E.failedHeader}`)) fail(c, `header lacks 'failed ${E.failedHeader}': ${st.meta}`);
-        if (st.runLines !== 3 * E.retained) fail(c, `${st.runLines} run lines, expected ${E.retained} retained runs x 3 cards`);
-        if (st.criteria !== 2) fail(c, `${st.criteria} criteria rows, expected 2`);
-
-        // sort by the first drawn value (column 5: run, seed, result, reason, drawn 0), then reverse
-        const rowsNow = () => page.evaluate(() => [...document.querySelectorAll('#mc-runs tbody tr')].map((r) => Number(r.dataset.run)));
-        await page.click('#mc-runs thead th:nth-child(5)');
-        const asc = await rowsNow();
-        if (asc.join() !== E.byDrawn0.join()) fail(c, `sorted by drawn[0]: ${asc.slice(0, 8)}..., expected ${E.byDrawn0.slice(0, 8)}...`);
-        await page.click('#mc-runs thead th:nth-child(5)');
-        const desc = await rowsNow();
-        if (desc.join() !== [...E.byDrawn0].reverse().join()) fail(c, 'a second click does not reverse the order');
-        // sort by run index, then by result: failing first again
-        await page.click('#mc-runs thead th:nth-child(1)');
-        const byIndex = await rowsNow();
-        if (byIndex.join() !== [...E.order].sort((a, b) => a - b).join()) fail(c, 'sorting by run index failed');
-        await page.click('#mc-runs thead th:nth-child(3)');
-        const byResult = await rowsNow();
-        if (byResult.join() !== E.order.join()) fail(c, 'sorting by result does not give failing, invalid, passing');
-
-        // scatter: one point per valid run, failing ones red; changing the selects redraws it
-        const sc = () => page.evaluate(() => {
-          const svg = document.getElementById('mc-scatter-svg');
-          return { m: svg.dataset.metric, d: svg.dataset.drawn, pts: svg.querySelectorAll('circle.pt').length,
-            fail: [...svg.querySelectorAll('circle.pt.fail')].map((e) => Number(e.dataset.run)).sort((a, b) => a - b),
-            thr: svg.querySelectorAll('line.threshold').length, first: svg.querySelector('circle.pt').getAttribute('cx') };
-        });
-        const s0 = await sc();
-        if (s0.pts !== E.rows - E.invalid.length) fail(c, `${s0.pts} scatter points, expected ${E.rows - E.invalid.length}`);
-        if (s0.fail.join() !== E.failing.join()) fail(c, `failing points ${s0.fail}, expected ${E.failing}`);
-        if (s0.thr !== 1) fail(c, 'the settled threshold is not drawn on the scatter');
-        await page.selectOption('#mc-scatter-drawn', '1');
-        await page.selectOption('#mc-scatter-metric', '2');
-        const s1 = await sc();
-        if (s1.m !== '2' || s1.d !== '1') fail(c, `scatter shows metric ${s1.m} against drawn ${s1.d} after selecting 2 and 1`);
-        if (s1.first === s0.first) fail(c, 'scatter not redrawn after changing the drawn value');
-        if (s1.thr !== 0) fail(c, 'a threshold drawn for a metric without a criterion');
-        // a click on a failing point marks its row
-        await page.click(`#mc-scatter-svg circle.pt.fail[data-run="${E.failing[0]}"]`);
-        const picked = await page.evaluate(() => [...document.querySelectorAll('#mc-runs tr.picked')].map((r) => Number(r.dataset.run)));
-        if (picked.join() !== String(E.failing[0])) fail(c, `picked rows ${picked}, expected ${E.failing[0]}`);
-        // a column switch in a multi-column card redraws it
-        const before = await page.evaluate(() => document.querySelector('#mc-plot-omega_BN_B .u-legend').textContent);
-        await page.selectOption('#mc-plot-omega_BN_B select.column', 'omega_BN_B_z');
-        const after = await page.evaluate(() => ({ n: document.querySelectorAll('#mc-plot-omega_BN_B .uplot').length, h: document.querySelector('#mc-plot-omega_BN_B h3').textContent }));
-        if (after.n !== 1 || !after.h.includes('deg/s')) fail(c, `column switch: ${after.n} plots, title ${after.h}`);
-        if (!before.includes('p50')) fail(c, 'percentile levels not in the legend');
-      }
-      if (c.shot) {
-        await page.evaluate(() => window.scrollTo(0, 0));
-        const shot = await page.screenshot({ fullPage: true, path: path.join(outDir, c.file.replace(/\.html$/, '.png')) });
-        const s = stats(shot);
-        console.log(`  screenshot ${s.width}x${s.height}: luminance std ${s.std.toFixed(1)}, ${s.colours} colours`);
-        if (s.height < 1500 || s.std < 20 || s.colours < 200) fail(c, 'screenshot looks blank');
-        const card = await page.locator('#mc-plot-pointing_error canvas').first().screenshot();
-        const cs = stats(card);
-        // red pixels: the failing runs are drawn on top
-        const { PNG } = require('pngjs');
-        const png = PNG.sync.read(card);
-        let red = 0;
-        for (let i = 0; i < png.width * png.height; i++) {
-          const [r, g, b] = [png.data[4 * i], png.data[4 * i + 1], png.data[4 * i + 2]];
-          if (r > 170 && g < 90 && b < 90) red++;
-        }
-        console.log(`  pointing card: luminance std ${cs.std.toFixed(1)}, ${cs.colours} colours, ${red} red pixels`);
-        if (red < 200) fail(c, 'no failing runs visible in red on the pointing card');
-      }
-      await page.close();
-    }
-  } finally {
-    await close();
+runCases('Monte Carlo browser test', htmlDir, CASES, async (c, { page, ms }, fail) => {
+  const st = await page.evaluate(() => ({
+    errors: window.kestrelReport.errors,
+    runLines: window.kestrelReport.runLines,
+    cards: [...document.querySelectorAll('#mc-series .card')].map((e) => e.id.replace(/^mc-plot-/, '')),
+    canvases: document.querySelectorAll('#mc-series .uplot canvas').length,
+    hist: document.querySelectorAll('#mc-hist svg').length,
+    thresholds: document.querySelectorAll('#mc-hist svg line.threshold').length,
+    rows: [...document.querySelectorAll('#mc-runs tbody tr')].map((r) => Number(r.dataset.run)),
+    firstStatus: (document.querySelector('#mc-runs tbody tr td.st') || {}).textContent || '',
+    links: [...document.querySelectorAll('#mc-runs a')].map((a) => a.getAttribute('href')),
+    pwned: window.__pwned !== undefined,
+    meta: document.getElementById('meta').textContent,
+    title: document.title,
+    criteria: document.querySelectorAll('#mc-criteria tbody tr').length,
+    criteriaText: (document.getElementById('mc-criteria') || {}).textContent || '',
+    reasonCells: [...document.querySelectorAll('#mc-runs td.reason')].map((e) => e.textContent),
+    hasHtmlFromData: !!document.querySelector('#criteria img, #mc-runs b, #mc-runs img'),
+  }));
+  console.log(`  loaded in ${ms} ms: cards [${st.cards.join(', ')}], ${st.canvases} canvases, ${st.runLines} run lines, ` +
+    `${st.hist} histograms (${st.thresholds} thresholds), ${st.rows.length} rows, ${st.links.length} links`);
+  for (const e of st.errors) fail(`section error: ${e}`);
+  if (st.pwned) fail('script from the data was executed');
+  if (st.hasHtmlFromData) fail('markup from the data became elements');
+  if (st.cards.join() !== c.cards.join()) fail(`cards [${st.cards}], expected [${c.cards}]`);
+  if (st.canvases < c.cards.length) fail(`${st.canvases} plot canvases for ${c.cards.length} cards`);
+  if (st.hist !== c.hist) fail(`${st.hist} histograms, expected ${c.hist}`);
+  if (st.thresholds !== c.thresholds) fail(`${st.thresholds} threshold lines, expected ${c.thresholds}`);
+  if (st.links.length !== c.links) fail(`${st.links.length} report links, expected ${c.links}`);
+  for (const h of st.links) if (/^[a-z]+:|^\//i.test(h)) fail(`non-relative link ${h}`);
+  if (c.rows !== undefined && st.rows.length !== c.rows) fail(`${st.rows.length} table rows, expected ${c.rows}`);
+  if (c.title) {
+    if (!st.meta.includes(c.title)) fail(`scenario not shown verbatim: ${st.meta.slice(0, 120)}`);
+    if (!st.criteriaText.includes('</script><script>window.__pwned=1</script>')) fail('criterion name not shown verbatim');
+    if (!st.reasonCells.some((r) => r.includes('</script><script>'))) fail('reason not shown verbatim');
   }
-  console.log(`Monte Carlo browser test: ${((Date.now() - t0) / 1000).toFixed(1)} s`);
-  const passed = CASES.length - new Set(failures.map((f) => f.split(':')[0])).size;
-  console.log(`${passed} passed, ${CASES.length - passed} failed`);
-  process.exit(failures.length ? 1 : 0);
-}
 
-main().catch((e) => {
-  console.error(e && e.stack ? e.stack : e);
-  process.exit(1);
+  if (c.expect) {
+    const E = JSON.parse(fs.readFileSync(path.resolve(htmlDir, c.expect), 'utf8'));
+    if (st.rows.length !== E.rows) fail(`${st.rows.length} table rows, expected ${E.rows}`);
+    if (st.rows.join() !== E.order.join()) fail(`default order ${st.rows.slice(0, 10)}..., expected ${E.order.slice(0, 10)}...`);
+    if (st.firstStatus !== 'FAIL') fail(`first row is '${st.firstStatus}', expected FAIL`);
+    if (!st.meta.includes(`failed ${E.failedHeader}`)) fail(`header lacks 'failed ${E.failedHeader}': ${st.meta}`);
+    if (st.runLines !== 3 * E.retained) fail(`${st.runLines} run lines, expected ${E.retained} retained runs x 3 cards`);
+    if (st.criteria !== 2) fail(`${st.criteria} criteria rows, expected 2`);
+
+    // sort by the first drawn value (column 5: run, seed, result, reason, drawn 0), then reverse
+    const rowsNow = () => page.evaluate(() => [...document.querySelectorAll('#mc-runs tbody tr')].map((r) => Number(r.dataset.run)));
+    await page.click('#mc-runs thead th:nth-child(5)');
+    const asc = await rowsNow();
+    if (asc.join() !== E.byDrawn0.join()) fail(`sorted by drawn[0]: ${asc.slice(0, 8)}..., expected ${E.byDrawn0.slice(0, 8)}...`);
+    await page.click('#mc-runs thead th:nth-child(5)');
+    const desc = await rowsNow();
+    if (desc.join() !== [...E.byDrawn0].reverse().join()) fail('a second click does not reverse the order');
+    // sort by run index, then by result: failing first again
+    await page.click('#mc-runs thead th:nth-child(1)');
+    const byIndex = await rowsNow();
+    if (byIndex.join() !== [...E.order].sort((a, b) => a - b).join()) fail('sorting by run index failed');
+    await page.click('#mc-runs thead th:nth-child(3)');
+    const byResult = await rowsNow();
+    if (byResult.join() !== E.order.join()) fail('sorting by result does not give failing, invalid, passing');
+
+    // scatter: one point per valid run, failing ones red; changing the selects redraws it
+    const sc = () => page.evaluate(() => {
+      const svg = document.getElementById('mc-scatter-svg');
+      return { m: svg.dataset.metric, d: svg.dataset.drawn, pts: svg.querySelectorAll('circle.pt').length,
+        fail: [...svg.querySelectorAll('circle.pt.fail')].map((e) => Number(e.dataset.run)).sort((a, b) => a - b),
+        thr: svg.querySelectorAll('line.threshold').length, first: svg.querySelector('circle.pt').getAttribute('cx') };
+    });
+    const s0 = await sc();
+    if (s0.pts !== E.rows - E.invalid.length) fail(`${s0.pts} scatter points, expected ${E.rows - E.invalid.length}`);
+    if (s0.fail.join() !== E.failing.join()) fail(`failing points ${s0.fail}, expected ${E.failing}`);
+    if (s0.thr !== 1) fail('the settled threshold is not drawn on the scatter');
+    await page.selectOption('#mc-scatter-drawn', '1');
+    await page.selectOption('#mc-scatter-metric', '2');
+    const s1 = await sc();
+    if (s1.m !== '2' || s1.d !== '1') fail(`scatter shows metric ${s1.m} against drawn ${s1.d} after selecting 2 and 1`);
+    if (s1.first === s0.first) fail('scatter not redrawn after changing the drawn value');
+    if (s1.thr !== 0) fail('a threshold drawn for a metric without a criterion');
+    // a click on a failing point marks its row
+    await page.click(`#mc-scatter-svg circle.pt.fail[data-run="${E.failing[0]}"]`);
+    const picked = await page.evaluate(() => [...document.querySelectorAll('#mc-runs tr.picked')].map((r) => Number(r.dataset.run)));
+    if (picked.join() !== String(E.failing[0])) fail(`picked rows ${picked}, expected ${E.failing[0]}`);
+    // a column switch in a multi-column card redraws it
+    const before = await page.evaluate(() => document.querySelector('#mc-plot-omega_BN_B .u-legend').textContent);
+    await page.selectOption('#mc-plot-omega_BN_B select.column', 'omega_BN_B_z');
+    const after = await page.evaluate(() => ({ n: document.querySelectorAll('#mc-plot-omega_BN_B .uplot').length, h: document.querySelector('#mc-plot-omega_BN_B h3').textContent }));
+    if (after.n !== 1 || !after.h.includes('deg/s')) fail(`column switch: ${after.n} plots, title ${after.h}`);
+    if (!before.includes('p50')) fail('percentile levels not in the legend');
+  }
+  if (c.shot) {
+    await page.evaluate(() => window.scrollTo(0, 0));
+    const shot = await page.screenshot({ fullPage: true, path: path.join(outDir, c.file.replace(/\.html$/, '.png')) });
+    const s = stats(shot);
+    console.log(`  screenshot ${s.width}x${s.height}: luminance std ${s.std.toFixed(1)}, ${s.colours} colours`);
+    if (s.height < 1500 || s.std < 20 || s.colours < 200) fail('screenshot looks blank');
+    const card = await page.locator('#mc-plot-pointing_error canvas').first().screenshot();
+    const cs = stats(card);
+    // red pixels: the failing runs are drawn on top
+    const { PNG } = require('pngjs');
+    const png = PNG.sync.read(card);
+    let red = 0;
+    for (let i = 0; i < png.width * png.height; i++) {
+      const [r, g, b] = [png.data[4 * i], png.data[4 * i + 1], png.data[4 * i + 2]];
+      if (r > 170 && g < 90 && b < 90) red++;
+    }
+    console.log(`  pointing card: luminance std ${cs.std.toFixed(1)}, ${cs.colours} colours, ${red} red pixels`);
+    if (red < 200) fail('no failing runs visible in red on the pointing card');
+  }
 });

@@ -14,7 +14,6 @@
 namespace {
 
 using page_checks::embedded_data;
-using page_checks::lower;
 
 const char* kHostile =
     R"({"meta":{"scenario":"x</script><script>alert(1)</script><!-- </SCRIPT >","seed":1},)"
@@ -27,6 +26,32 @@ const char* kHostileMc =
     R"("drawn":[{"name":"</script>","unit":"deg"}],"metrics":[{"name":"m","unit":"deg"}],)"
     R"("table":[{"index":0,"seed":"18446744073709551615","pass":false,"invalid":false,"reason":"</script>",)"
     R"("drawn":[1.5],"metrics":[2.5],"report":"runs/000000/report.html"}]})";
+
+// the file written, the stream written and the string rendered are the same page
+template <class Render, class WriteFile, class WriteStream>
+void expect_file_and_stream_alike(const std::string& data, const std::string& name, Render render, WriteFile write_file,
+                                  WriteStream write_stream) {
+  const std::string path = ::testing::TempDir() + name;
+  write_file(data, path);
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream buf;
+  buf << f.rdbuf();
+  EXPECT_EQ(buf.str(), render(data));
+  std::ostringstream os;
+  write_stream(data, os);
+  EXPECT_EQ(os.str(), buf.str());
+  std::remove(path.c_str());
+}
+
+template <class WriteFile>
+void expect_throws_naming(const std::string& bad, WriteFile write_file) {
+  try {
+    write_file(bad);
+    FAIL() << "expected std::runtime_error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+  }
+}
 
 }  // namespace
 
@@ -67,26 +92,15 @@ TEST(ReportEmbed, LargeDataRoundTrips) {
 }
 
 TEST(ReportEmbed, WritesFilesAndStreamsAlike) {
-  const std::string path = ::testing::TempDir() + "kestrel_report_embed_test.html";
-  report::write_html(kHostile, path);
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream buf;
-  buf << f.rdbuf();
-  EXPECT_EQ(buf.str(), report::render_html(kHostile));
-  std::ostringstream os;
-  report::write_html(kHostile, os);
-  EXPECT_EQ(os.str(), buf.str());
-  std::remove(path.c_str());
+  expect_file_and_stream_alike(
+      kHostile, "kestrel_report_embed_test.html", [](const std::string& d) { return report::render_html(d); },
+      [](const std::string& d, const std::string& p) { report::write_html(d, p); },
+      [](const std::string& d, std::ostream& o) { report::write_html(d, o); });
 }
 
 TEST(ReportEmbed, UnwritablePathThrowsNamingIt) {
-  const std::string bad = "/nonexistent-dir-kestrel/report.html";
-  try {
-    report::write_html("{}", bad);
-    FAIL() << "expected std::runtime_error";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
-  }
+  expect_throws_naming("/nonexistent-dir-kestrel/report.html",
+                       [](const std::string& p) { report::write_html("{}", p); });
 }
 
 // The Monte Carlo report page (report::write_mc_html): a second page of the
@@ -115,24 +129,13 @@ TEST(ReportMcEmbed, DataCannotCloseTheScriptElement) {
 }
 
 TEST(ReportMcEmbed, WritesFilesAndStreamsAlike) {
-  const std::string path = ::testing::TempDir() + "kestrel_mc_report_embed_test.html";
-  report::write_mc_html(kHostileMc, path);
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream buf;
-  buf << f.rdbuf();
-  EXPECT_EQ(buf.str(), report::render_mc_html(kHostileMc));
-  std::ostringstream os;
-  report::write_mc_html(kHostileMc, os);
-  EXPECT_EQ(os.str(), buf.str());
-  std::remove(path.c_str());
+  expect_file_and_stream_alike(
+      kHostileMc, "kestrel_mc_report_embed_test.html", [](const std::string& d) { return report::render_mc_html(d); },
+      [](const std::string& d, const std::string& p) { report::write_mc_html(d, p); },
+      [](const std::string& d, std::ostream& o) { report::write_mc_html(d, o); });
 }
 
 TEST(ReportMcEmbed, UnwritablePathThrowsNamingIt) {
-  const std::string bad = "/nonexistent-dir-kestrel/mc_report.html";
-  try {
-    report::write_mc_html("{}", bad);
-    FAIL() << "expected std::runtime_error";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
-  }
+  expect_throws_naming("/nonexistent-dir-kestrel/mc_report.html",
+                       [](const std::string& p) { report::write_mc_html("{}", p); });
 }
