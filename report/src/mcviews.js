@@ -46,7 +46,9 @@ function frame(svg, xr, yr, xlabel, ylabel) {
 function thresholdLine(svg, X, Y, xr, yr, v, vertical) {
   const a = vertical ? { x1: X(v), x2: X(v), y1: Y(yr[0]), y2: Y(yr[1]) } : { x1: X(xr[0]), x2: X(xr[1]), y1: Y(v), y2: Y(v) };
   svg.appendChild(s('line', { ...a, class: 'threshold' }));
-  svg.appendChild(s('text', vertical ? { x: X(v) + 3, y: M.t + 11, class: 'threshold-label', text: `threshold ${fmtTick(v)}` }
+  // the label on the side of the line with more room
+  const right = X(v) < (M.l + W - M.r) / 2;
+  svg.appendChild(s('text', vertical ? { x: X(v) + (right ? 3 : -3), y: M.t + 11, 'text-anchor': right ? 'start' : 'end', class: 'threshold-label', text: `threshold ${fmtTick(v)}` }
     : { x: X(xr[1]) - 3, y: Y(v) - 4, 'text-anchor': 'end', class: 'threshold-label', text: `threshold ${fmtTick(v)}` }));
 }
 
