@@ -8,8 +8,11 @@ import { el } from './data.js';
 export function section(status, id, fn) {
   const root = document.getElementById(id);
   if (!root) return;
+  const t0 = performance.now();
   try {
     fn(root);
+    status.ms = status.ms || {};
+    status.ms[id] = Math.round(performance.now() - t0); // shown by the browser tests
   } catch (e) {
     status.errors.push(`${id}: ${e && e.message}`);
     root.appendChild(el('p', { class: 'error', text: `This section could not be drawn: ${e && e.message}` }));

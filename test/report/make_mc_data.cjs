@@ -11,7 +11,7 @@
 //                    an invalid draw; percentiles 0/5/50/95/100 over all valid
 //                    runs, 20 runs retained (failing first), relative report links
 //   mc_thrusters.json 12 runs with a thruster force channel and levels 10/50/90
-//   mc_big.json      2000 runs, 200 retained, 301 samples (size and speed)
+//   mc_big.json      1000 runs, 150 retained, 301 samples (size and speed)
 //   mc_minimal.json  header only: no criteria, table, series
 //   mc_empty.json    {}
 //   mc_hostile.json  </script>, <!-- and quotes in every string, a javascript:
@@ -151,8 +151,8 @@ fs.writeFileSync(path.join(out, 'mc_expect.json'), JSON.stringify({
 
 fs.writeFileSync(path.join(out, 'mc_thrusters.json'), JSON.stringify(campaign({ runs: 12, nT: 101, dtT: 6, keep: 12,
   failing: [3], invalid: [], levels: [10, 50, 90], scenario: 's1_thrusters', thrusters: true })));
-fs.writeFileSync(path.join(out, 'mc_big.json'), JSON.stringify(campaign({ runs: 2000, nT: 301, dtT: 2, keep: 200,
-  failing: Array.from({ length: 40 }, (_, k) => 7 + 50 * k), invalid: [5, 500], levels: [0, 5, 50, 95, 100], scenario: 's1_big' })));
+fs.writeFileSync(path.join(out, 'mc_big.json'), JSON.stringify(campaign({ runs: 1000, nT: 301, dtT: 2, keep: 150,
+  failing: Array.from({ length: 20 }, (_, k) => 7 + 50 * k), invalid: [5, 500], levels: [0, 5, 50, 95, 100], scenario: 's1_big' })));
 fs.writeFileSync(path.join(out, 'mc_minimal.json'), JSON.stringify({ kind: 'kestrel_mc_report', schema: 1, scenario: 'minimal', master_seed: 1, runs: 0, failed: 0, invalid: 0 }));
 fs.writeFileSync(path.join(out, 'mc_empty.json'), '{}');
 
