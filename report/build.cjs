@@ -3,13 +3,15 @@
 //
 //   NODE_PATH=<dir>/node_modules node build.cjs --out <dir> [--cpp <file.cpp>]
 //
-// Bundles src/main.js (uPlot, three.js and the report code) with esbuild into
-// one script and one style sheet, inlines both into template.html together
-// with the licence texts of the bundled packages, and splits the page at the
-// data placeholder into a prefix and a suffix.  Writes
-//   <out>/report_prefix.html, <out>/report_suffix.html   (for inspection)
-//   <out>/report_bundle.js, <out>/report_bundle.css        (for inspection)
-//   <file.cpp>: the prefix and suffix as C++ raw string literals
+// Two pages: the run report (src/main.js with uPlot, three.js and the report
+// code, into template.html) and the Monte Carlo report (src/mc_main.js with
+// uPlot, into mc_template.html).  For each, esbuild bundles the entry point
+// into one script and one style sheet, inlines both into the template
+// together with the licence texts of the bundled packages, and the page is
+// split at the data placeholder into a prefix and a suffix.  Writes
+//   <out>/{report,mc}_prefix.html, <out>/{report,mc}_suffix.html (for inspection)
+//   <out>/{report,mc}_bundle.js, <out>/{report,mc}_bundle.css    (for inspection)
+//   <file.cpp>: the prefixes and suffixes as C++ raw string literals
 // Nothing is fetched at build time beyond what `npm ci` installed, and the
 // generated page references nothing outside itself.
 'use strict';
@@ -43,10 +45,13 @@ function fail(msg) {
   process.exit(1);
 }
 
-async function main() {
-  fs.mkdirSync(outDir, { recursive: true });
+// One page: esbuild bundles `entry`, the bundle, its style sheet and the
+// licence texts of `licPkgs` are inlined into `template`, and the page is
+// split at the data placeholder.  Returns [prefix, suffix]; writes the parts
+// and the bundle to outDir as <name>_prefix.html ... for inspection.
+async function buildPage({ name, entry, template, licPkgs }) {
   const res = await esbuild.build({
-    entryPoints: [path.join(here, 'src', 'main.js')],
+    entryPoints: [path.join(here, 'src', entry)],
     bundle: true,
     minify: true,
     format: 'iife',
@@ -55,7 +60,7 @@ async function main() {
     legalComments: 'none', // licence texts are embedded whole, below
     nodePaths,
     outdir: outDir,
-    entryNames: 'report_bundle',
+    entryNames: `${name}_bundle`,
     write: false,
     logLevel: 'warning',
     define: { 'process.env.NODE_ENV': '"production"' },
@@ -66,21 +71,21 @@ async function main() {
     if (f.path.endsWith('.js')) js = f.text;
     else if (f.path.endsWith('.css')) css = f.text;
   }
-  if (!js) fail('esbuild produced no JavaScript');
+  if (!js) fail(`${entry}: esbuild produced no JavaScript`);
   // Inline <script>/<style> must not contain their own end tags or an HTML
   // comment opener (which changes how the HTML parser tokenises the script).
   js = js.replace(/<\/(script)/gi, '<\\/$1').replace(/<!--/g, '<\\!--');
-  if (/<\/script/i.test(js) || js.includes('<!--')) fail('bundle still contains </script or <!--');
-  if (/<\/style/i.test(css)) fail('style sheet contains </style');
-  fs.writeFileSync(path.join(outDir, 'report_bundle.js'), js);
-  fs.writeFileSync(path.join(outDir, 'report_bundle.css'), css);
+  if (/<\/script/i.test(js) || js.includes('<!--')) fail(`${entry}: bundle still contains </script or <!--`);
+  if (/<\/style/i.test(css)) fail(`${entry}: style sheet contains </style`);
+  fs.writeFileSync(path.join(outDir, `${name}_bundle.js`), js);
+  fs.writeFileSync(path.join(outDir, `${name}_bundle.css`), css);
 
   const licences = [];
-  for (const pkg of ['uplot', 'three']) {
+  for (const pkg of licPkgs) {
     const pj = JSON.parse(fs.readFileSync(resolvePkgFile(path.join(pkg, 'package.json')), 'utf8'));
     let text = '';
-    for (const name of ['LICENSE', 'LICENSE.md', 'LICENSE.txt']) {
-      try { text = fs.readFileSync(resolvePkgFile(path.join(pkg, name)), 'utf8'); break; } catch (e) { /* next */ }
+    for (const lic of ['LICENSE', 'LICENSE.md', 'LICENSE.txt']) {
+      try { text = fs.readFileSync(resolvePkgFile(path.join(pkg, lic)), 'utf8'); break; } catch (e) { /* next */ }
     }
     licences.push(`${pj.name} ${pj.version} (${pj.license})\n\n${text.trim()}`);
   }
@@ -88,7 +93,7 @@ async function main() {
     .replace(/[^\x09\x0a\x0d\x20-\x7e]/gu, (c) => `&#x${c.codePointAt(0).toString(16)};`);
   const licHtml = licences.map((l) => `<pre>${esc(l)}</pre>`).join('\n');
 
-  let html = fs.readFileSync(path.join(here, 'template.html'), 'utf8');
+  let html = fs.readFileSync(path.join(here, template), 'utf8');
   const version = JSON.parse(fs.readFileSync(path.join(here, 'package.json'), 'utf8')).version;
   const subst = {
     '<!--KESTREL_CSS-->': `<style>\n${css}</style>`,
@@ -97,28 +102,35 @@ async function main() {
     '@@KESTREL_REPORT_VERSION@@': esc(version),
   };
   for (const [k, v] of Object.entries(subst)) {
-    if (!html.includes(k)) fail(`template.html lacks ${k}`);
+    if (!html.includes(k)) fail(`${template} lacks ${k}`);
     html = html.split(k).join(v);
   }
   const parts = html.split(PLACEHOLDER);
-  if (parts.length !== 2) fail(`template.html must hold ${PLACEHOLDER} exactly once`);
+  if (parts.length !== 2) fail(`${template} must hold ${PLACEHOLDER} exactly once`);
   for (const p of parts) {
     for (let i = 0; i < p.length; i++) {
-      if (p.charCodeAt(i) > 0x7e && p.charCodeAt(i) !== 0) fail(`non-ASCII character at ${i}: keep the page ASCII`);
-      if (p.charCodeAt(i) === 0) fail('NUL byte in the page');
+      if (p.charCodeAt(i) > 0x7e && p.charCodeAt(i) !== 0) fail(`${template}: non-ASCII character at ${i}: keep the page ASCII`);
+      if (p.charCodeAt(i) === 0) fail(`${template}: NUL byte in the page`);
     }
     // Nothing outside the file: no external script/style/image references.
     const ext = p.match(/\b(?:src|href)\s*=\s*["']?(?:https?:|\/\/)/i);
-    if (ext) fail(`external reference in the page: ${ext[0]}`);
+    if (ext) fail(`${template}: external reference in the page: ${ext[0]}`);
   }
-  fs.writeFileSync(path.join(outDir, 'report_prefix.html'), parts[0]);
-  fs.writeFileSync(path.join(outDir, 'report_suffix.html'), parts[1]);
+  fs.writeFileSync(path.join(outDir, `${name}_prefix.html`), parts[0]);
+  fs.writeFileSync(path.join(outDir, `${name}_suffix.html`), parts[1]);
+  console.log(`${name} page: js ${js.length} B, css ${css.length} B, page ${parts[0].length + parts[1].length} B`);
+  return parts;
+}
 
+async function main() {
+  fs.mkdirSync(outDir, { recursive: true });
+  // the run report (uPlot and three.js) and the Monte Carlo report (uPlot)
+  const run = await buildPage({ name: 'report', entry: 'main.js', template: 'template.html', licPkgs: ['uplot', 'three'] });
+  const mc = await buildPage({ name: 'mc', entry: 'mc_main.js', template: 'mc_template.html', licPkgs: ['uplot'] });
   if (cppOut) {
     fs.mkdirSync(path.dirname(path.resolve(cppOut)), { recursive: true });
-    fs.writeFileSync(cppOut, cppSource(parts[0], parts[1]));
+    fs.writeFileSync(cppOut, cppSource(run, mc));
   }
-  console.log(`report bundle: js ${js.length} B, css ${css.length} B, page ${parts[0].length + parts[1].length} B`);
 }
 
 function rawLiterals(s) {
@@ -131,31 +143,24 @@ function rawLiterals(s) {
   return out.join('\n');
 }
 
-function cppSource(prefix, suffix) {
+function cppSource(run, mc) {
+  const parts = [['kPagePrefix', run[0]], ['kPageSuffix', run[1]], ['kMcPagePrefix', mc[0]], ['kMcPageSuffix', mc[1]]];
+  const decl = parts.map(([n]) => `extern const char ${n}[];\nextern const std::size_t ${n}Size;\n`).join('');
+  const defs = parts.map(([n, text]) => `const char ${n}[] =\n${rawLiterals(text)};\nconst std::size_t ${n}Size = sizeof(${n}) - 1;\n`).join('\n');
   return `// Generated by report/build.cjs at build time: do not edit, do not commit.
-// The Kestrel report page (template + bundled uPlot/three.js + report code),
-// split at the data placeholder.
+// The Kestrel report pages (templates + bundled uPlot/three.js + report code),
+// each split at the data placeholder: the run report (kPage*) and the Monte
+// Carlo report (kMcPage*).
 #include <cstddef>
 
 namespace report {
 namespace detail {
 
-extern const char kPagePrefix[];
-extern const std::size_t kPagePrefixSize;
-extern const char kPageSuffix[];
-extern const std::size_t kPageSuffixSize;
-extern const bool kHasBundle;
+${decl}extern const bool kHasBundle;
 
 const bool kHasBundle = true;
 
-const char kPagePrefix[] =
-${rawLiterals(prefix)};
-const std::size_t kPagePrefixSize = sizeof(kPagePrefix) - 1;
-
-const char kPageSuffix[] =
-${rawLiterals(suffix)};
-const std::size_t kPageSuffixSize = sizeof(kPageSuffix) - 1;
-
+${defs}
 }  // namespace detail
 }  // namespace report
 `;

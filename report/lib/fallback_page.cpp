@@ -1,5 +1,5 @@
-// The page used when Node.js/npm were not found at build time: no plots, no
-// 3D; it says so and shows the embedded run data as text.
+// The pages used when Node.js/npm were not found at build time: no plots, no
+// 3D; each says so and shows the embedded run (or campaign) data as text.
 #include <cstddef>
 
 namespace report {
@@ -8,7 +8,17 @@ extern const char kPagePrefix[];
 extern const std::size_t kPagePrefixSize;
 extern const char kPageSuffix[];
 extern const std::size_t kPageSuffixSize;
+extern const char kMcPagePrefix[];
+extern const std::size_t kMcPagePrefixSize;
+extern const char kMcPageSuffix[];
+extern const std::size_t kMcPageSuffixSize;
 extern const bool kHasBundle;
+
+// both pages end alike: the data element closed, then shown as text
+#define KESTREL_FALLBACK_SUFFIX                                                                    \
+  "</script>\n<pre id=\"raw\"></pre>\n"                                                            \
+  "<script>document.getElementById('raw').textContent=document.getElementById('kestrel-data').textContent;</script>\n" \
+  "</body></html>\n"
 
 const char kPagePrefix[] = R"KRPT(<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>Kestrel run report (data only)</title></head>
@@ -17,12 +27,19 @@ const char kPagePrefix[] = R"KRPT(<!DOCTYPE html>
 (scripts/install-deps.sh host installs them). The run data follows.</p>
 <script id="kestrel-data" type="application/json">)KRPT";
 const std::size_t kPagePrefixSize = sizeof(kPagePrefix) - 1;
-const char kPageSuffix[] = R"KRPT(</script>
-<pre id="raw"></pre>
-<script>document.getElementById('raw').textContent=document.getElementById('kestrel-data').textContent;</script>
-</body></html>
-)KRPT";
+const char kPageSuffix[] = KESTREL_FALLBACK_SUFFIX;
 const std::size_t kPageSuffixSize = sizeof(kPageSuffix) - 1;
+
+const char kMcPagePrefix[] = R"KRPT(<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>Kestrel Monte Carlo report (data only)</title></head>
+<body><h1>Kestrel Monte Carlo report</h1>
+<p>This build of Kestrel had no Node.js/npm, so the report's plots and tables were not built
+(scripts/install-deps.sh host installs them). The campaign data follows.</p>
+<script id="kestrel-data" type="application/json">)KRPT";
+const std::size_t kMcPagePrefixSize = sizeof(kMcPagePrefix) - 1;
+const char kMcPageSuffix[] = KESTREL_FALLBACK_SUFFIX;
+const std::size_t kMcPageSuffixSize = sizeof(kMcPageSuffix) - 1;
+
 const bool kHasBundle = false;
 }  // namespace detail
 }  // namespace report

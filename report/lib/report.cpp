@@ -1,4 +1,4 @@
-// kestrel::report: splices the run data into the page built at build time.
+// kestrel::report: splices the run (or campaign) data into the page built at build time.
 #include "report/report.hpp"
 
 #include <cerrno>
@@ -13,8 +13,58 @@ extern const char kPagePrefix[];
 extern const std::size_t kPagePrefixSize;
 extern const char kPageSuffix[];
 extern const std::size_t kPageSuffixSize;
+extern const char kMcPagePrefix[];
+extern const std::size_t kMcPagePrefixSize;
+extern const char kMcPageSuffix[];
+extern const std::size_t kMcPageSuffixSize;
 extern const bool kHasBundle;
 }  // namespace detail
+
+namespace {
+
+// A page split at its data placeholder.
+struct Page {
+  const char* prefix;
+  std::size_t prefix_size;
+  const char* suffix;
+  std::size_t suffix_size;
+};
+
+Page run_page() { return {detail::kPagePrefix, detail::kPagePrefixSize, detail::kPageSuffix, detail::kPageSuffixSize}; }
+Page mc_page() {
+  return {detail::kMcPagePrefix, detail::kMcPagePrefixSize, detail::kMcPageSuffix, detail::kMcPageSuffixSize};
+}
+
+std::string render(const Page& p, const std::string& json) {
+  const std::string data = escape_json_for_script(json);
+  std::string page;
+  page.reserve(p.prefix_size + data.size() + p.suffix_size);
+  page.append(p.prefix, p.prefix_size);
+  page += data;
+  page.append(p.suffix, p.suffix_size);
+  return page;
+}
+
+void write(const Page& p, const std::string& json, std::ostream& out) {
+  out.write(p.prefix, static_cast<std::streamsize>(p.prefix_size));
+  const std::string data = escape_json_for_script(json);
+  out.write(data.data(), static_cast<std::streamsize>(data.size()));
+  out.write(p.suffix, static_cast<std::streamsize>(p.suffix_size));
+}
+
+void write_file(const Page& p, const std::string& json, const std::string& out_html_path) {
+  std::ofstream f(out_html_path, std::ios::binary | std::ios::trunc);
+  if (!f) {
+    throw std::runtime_error("report: cannot open '" + out_html_path + "' for writing: " + std::strerror(errno));
+  }
+  write(p, json, f);
+  f.flush();
+  if (!f) {
+    throw std::runtime_error("report: error writing '" + out_html_path + "'");
+  }
+}
+
+}  // namespace
 
 std::string escape_json_for_script(const std::string& json) {
   std::string out;
@@ -29,37 +79,28 @@ std::string escape_json_for_script(const std::string& json) {
   return out;
 }
 
-std::string render_html(const std::string& report_data_json) {
-  const std::string data = escape_json_for_script(report_data_json);
-  std::string page;
-  page.reserve(detail::kPagePrefixSize + data.size() + detail::kPageSuffixSize);
-  page.append(detail::kPagePrefix, detail::kPagePrefixSize);
-  page += data;
-  page.append(detail::kPageSuffix, detail::kPageSuffixSize);
-  return page;
-}
+std::string render_html(const std::string& report_data_json) { return render(run_page(), report_data_json); }
 
-void write_html(const std::string& report_data_json, std::ostream& out) {
-  out.write(detail::kPagePrefix, static_cast<std::streamsize>(detail::kPagePrefixSize));
-  const std::string data = escape_json_for_script(report_data_json);
-  out.write(data.data(), static_cast<std::streamsize>(data.size()));
-  out.write(detail::kPageSuffix, static_cast<std::streamsize>(detail::kPageSuffixSize));
-}
+void write_html(const std::string& report_data_json, std::ostream& out) { write(run_page(), report_data_json, out); }
 
 void write_html(const std::string& report_data_json, const std::string& out_html_path) {
-  std::ofstream f(out_html_path, std::ios::binary | std::ios::trunc);
-  if (!f) {
-    throw std::runtime_error("report: cannot open '" + out_html_path + "' for writing: " + std::strerror(errno));
-  }
-  write_html(report_data_json, f);
-  f.flush();
-  if (!f) {
-    throw std::runtime_error("report: error writing '" + out_html_path + "'");
-  }
+  write_file(run_page(), report_data_json, out_html_path);
+}
+
+std::string render_mc_html(const std::string& mc_report_data_json) { return render(mc_page(), mc_report_data_json); }
+
+void write_mc_html(const std::string& mc_report_data_json, std::ostream& out) {
+  write(mc_page(), mc_report_data_json, out);
+}
+
+void write_mc_html(const std::string& mc_report_data_json, const std::string& out_html_path) {
+  write_file(mc_page(), mc_report_data_json, out_html_path);
 }
 
 bool has_bundle() { return detail::kHasBundle; }
 
 std::size_t page_size() { return detail::kPagePrefixSize + detail::kPageSuffixSize; }
+
+std::size_t mc_page_size() { return detail::kMcPagePrefixSize + detail::kMcPageSuffixSize; }
 
 }  // namespace report

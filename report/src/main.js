@@ -8,21 +8,12 @@ import { buildTimePlots, resizePlots, setEventTimes } from './plots.js';
 import { buildSpectrum } from './spectrumview.js';
 import { buildReplay } from './replay3d.js';
 import { buildDataflow } from './dataflowview.js';
+import { section as sectionOf, embeddedData, finishPage, whenLoaded } from './page.js';
 
 const status = { ready: false, errors: [], plots: 0 };
 window.kestrelReport = status;
 
-function section(id, fn) {
-  const root = document.getElementById(id);
-  if (!root) return;
-  try {
-    fn(root);
-  } catch (e) {
-    status.errors.push(`${id}: ${e && e.message}`);
-    root.appendChild(el('p', { class: 'error', text: `This section could not be drawn: ${e && e.message}` }));
-    console.error(e);
-  }
-}
+const section = (id, fn) => sectionOf(status, id, fn);
 
 function summary(root, D, absent) {
   const { meta, series, t } = D;
@@ -60,15 +51,7 @@ function summary(root, D, absent) {
 }
 
 function main() {
-  let raw = {};
-  const node = document.getElementById('kestrel-data');
-  try {
-    raw = JSON.parse(node ? node.textContent : '{}');
-  } catch (e) {
-    status.errors.push('data: ' + e.message);
-    document.getElementById('summary').appendChild(el('p', { class: 'error', text: 'The run data embedded in this page is not valid JSON: ' + e.message }));
-    console.error(e);
-  }
+  const raw = embeddedData(status, 'summary', 'run data');
   const D = normalize(raw);
   const m = D.meta;
   document.getElementById('title-scenario').textContent = m.scenario ? `\u2014 ${m.scenario}` : '';
@@ -115,11 +98,7 @@ function main() {
   section('spectrum', (root) => buildSpectrum(root, D));
   section('replay', (root) => buildReplay(root, D, status));
   section('dataflow', (root) => buildDataflow(root, D, status));
-  let timer = 0;
-  window.addEventListener('resize', () => { clearTimeout(timer); timer = setTimeout(resizePlots, 150); });
-  status.ready = true;
-  document.body.setAttribute('data-ready', status.errors.length ? 'errors' : 'ok');
+  finishPage(status, resizePlots);
 }
 
-if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', main);
-else main();
+whenLoaded(main);

@@ -101,7 +101,16 @@ function clickToTime(u) {
   });
 }
 
-function syncX(u) {
+// A plot made outside addTimePlot (the Monte Carlo page's envelope plots)
+// joins the x-zoom synchronisation and the resizing; its setScale hook calls
+// syncX.
+export function trackPlot(u) { plots.push(u); }
+export function untrackPlot(u) {
+  const i = plots.indexOf(u);
+  if (i >= 0) plots.splice(i, 1);
+}
+
+export function syncX(u) {
   const min = u.scales.x.min;
   const max = u.scales.x.max;
   for (const p of plots) {
@@ -109,7 +118,7 @@ function syncX(u) {
   }
 }
 
-function widthOf(container) {
+export function widthOf(container) {
   return Math.max(280, Math.floor(container.getBoundingClientRect().width) - 24);
 }
 

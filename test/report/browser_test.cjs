@@ -7,22 +7,10 @@
 //   NODE_PATH=<build>/report/npm/node_modules node browser_test.cjs HTML_DIR OUT_DIR
 // Exit: 0 pass, 1 fail, 77 skipped (no chromium).
 'use strict';
-const fs = require('fs');
-const os = require('os');
 const path = require('path');
+const { stats, parseArgs, runCases } = require('./browser_common.cjs');
 
-const CHROMIUM = process.env.KESTREL_CHROMIUM || '/usr/bin/chromium';
-const [htmlDir, outDir] = process.argv.slice(2);
-if (!htmlDir || !outDir) {
-  console.error('usage: browser_test.cjs HTML_DIR OUT_DIR');
-  process.exit(2);
-}
-if (!fs.existsSync(CHROMIUM)) {
-  console.log(`SKIP: ${CHROMIUM} not found (apt-get install chromium, or scripts/install-deps.sh host)`);
-  process.exit(77);
-}
-const { chromium } = require('playwright-core');
-const { PNG } = require('pngjs');
+const { htmlDir, outDir } = parseArgs('browser_test.cjs');
 
 // expectations per generated report
 const CASES = [
@@ -40,145 +28,76 @@ const CASES = [
     incomplete: 'Incomplete run: stopped (SIGINT) at t = 1.5 s of 10 s' },
 ];
 
-function stats(pngBuf) {
-  const png = PNG.sync.read(pngBuf);
-  const n = png.width * png.height;
-  let s = 0;
-  let s2 = 0;
-  const colours = new Set();
-  for (let i = 0; i < n; i++) {
-    const r = png.data[4 * i];
-    const g = png.data[4 * i + 1];
-    const b = png.data[4 * i + 2];
-    const y = 0.299 * r + 0.587 * g + 0.114 * b;
-    s += y;
-    s2 += y * y;
-    if (colours.size < 5000) colours.add((r << 16) | (g << 8) | b);
-  }
-  const mean = s / n;
-  return { width: png.width, height: png.height, mean, std: Math.sqrt(Math.max(0, s2 / n - mean * mean)), colours: colours.size };
-}
-
-async function main() {
-  fs.mkdirSync(outDir, { recursive: true });
-  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'kestrel-report-chromium-'));
-  const failures = [];
-  const fail = (c, msg) => { failures.push(`${c.file}: ${msg}`); console.log(`  FAIL ${msg}`); };
-  const t0 = Date.now();
-  const ctx = await chromium.launchPersistentContext(profile, {
-    executablePath: CHROMIUM,
-    headless: true,
-    viewport: { width: 1400, height: 900 },
-    args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
-      '--disable-component-update', '--disable-sync', '--enable-unsafe-swiftshader', '--use-angle=swiftshader'],
+runCases('browser test', htmlDir, CASES, async (c, { page }, fail) => {
+  await page.waitForTimeout(300); // a few animation frames of the 3D view
+  const st = await page.evaluate(() => {
+    const r = window.kestrelReport;
+    return {
+      errors: r.errors, replay: r.replay || null, dataflow: r.dataflow || null,
+      cards: [...document.querySelectorAll('#plots .card, #plots-other .card')].map((e) => e.id.replace(/^plot-/, '')),
+      uplots: document.querySelectorAll('#plots .uplot canvas, #plots-other .uplot canvas').length,
+      spectrum: !!document.querySelector('#spectrum .uplot'),
+      fullRate: !!document.getElementById('spectrum-full-rate'),
+      pwned: window.__pwned !== undefined,
+      title: document.getElementById('meta').textContent,
+      dfNodes: document.querySelectorAll('#dataflow svg rect.node').length,
+      dfRows: document.querySelectorAll('#dataflow table tbody tr').length,
+      othersShown: getComputedStyle(document.getElementById('others-title')).display !== 'none',
+      incomplete: (document.getElementById('incomplete') || {}).textContent || '',
+      eventRows: document.querySelectorAll('#events-table tr').length,
+      eventsShown: !document.getElementById('sec-events').hidden,
+    };
   });
-  try {
-    for (const c of CASES) {
-      const file = path.resolve(htmlDir, c.file);
-      console.log(`${c.file}`);
-      if (!fs.existsSync(file)) { fail(c, 'not generated'); continue; }
-      const page = await ctx.newPage();
-      const errors = [];
-      const external = [];
-      page.on('console', (m) => {
-        if (m.type() === 'error') errors.push(`console.error: ${m.text()}`);
-        else if (m.type() === 'warning') console.log(`  (console warning: ${m.text().slice(0, 160)})`);
-      });
-      page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
-      await page.route('**/*', (route) => {
-        const u = route.request().url();
-        if (/^(file|data|blob|about):/.test(u)) return route.continue();
-        external.push(u);
-        return route.abort();
-      });
-      await page.goto('file://' + file, { waitUntil: 'load' });
-      await page.waitForFunction(() => window.kestrelReport && window.kestrelReport.ready, null, { timeout: 15000 });
-      await page.waitForTimeout(300); // a few animation frames of the 3D view
-      const st = await page.evaluate(() => {
-        const r = window.kestrelReport;
-        return {
-          errors: r.errors, replay: r.replay || null, dataflow: r.dataflow || null,
-          cards: [...document.querySelectorAll('#plots .card, #plots-other .card')].map((e) => e.id.replace(/^plot-/, '')),
-          uplots: document.querySelectorAll('#plots .uplot canvas, #plots-other .uplot canvas').length,
-          spectrum: !!document.querySelector('#spectrum .uplot'),
-          fullRate: !!document.getElementById('spectrum-full-rate'),
-          pwned: window.__pwned !== undefined,
-          title: document.getElementById('meta').textContent,
-          dfNodes: document.querySelectorAll('#dataflow svg rect.node').length,
-          dfRows: document.querySelectorAll('#dataflow table tbody tr').length,
-          othersShown: getComputedStyle(document.getElementById('others-title')).display !== 'none',
-          incomplete: (document.getElementById('incomplete') || {}).textContent || '',
-          eventRows: document.querySelectorAll('#events-table tr').length,
-          eventsShown: !document.getElementById('sec-events').hidden,
-        };
-      });
-      console.log(`  cards [${st.cards.join(', ')}], spectrum ${st.spectrum}, replay ${st.replay}, dataflow ${st.dataflow} ` +
-        `(${st.dfNodes} nodes, ${st.dfRows} rows)`);
-      for (const e of errors) fail(c, e);
-      for (const e of st.errors) fail(c, `section error: ${e}`);
-      for (const u of external) fail(c, `tried to fetch ${u}`);
-      if (st.pwned) fail(c, 'script from the data was executed');
-      for (const p of c.plots) if (!st.cards.some((x) => x === p || x.startsWith(p))) fail(c, `no ${p} plot`);
-      for (const p of c.absent || []) if (st.cards.includes(p)) fail(c, `${p} plot drawn though absent from the data`);
-      if (st.uplots < c.plots.length) fail(c, `${st.uplots} plot canvases for ${c.plots.length} plots`);
-      if (c.spectrum && !st.spectrum) fail(c, 'no jitter spectrum');
-      if (!!c.fullRate !== st.fullRate) fail(c, `full-rate spectrum note ${st.fullRate ? 'shown' : 'missing'}`);
-      const wantOthers = c.plots.some((p) => p.startsWith('x-'));
-      if (st.othersShown !== wantOthers) fail(c, `'Other recorded series' heading ${st.othersShown ? 'shown' : 'hidden'}`);
-      if (c.replay && st.replay !== c.replay) fail(c, `replay ${st.replay}, expected ${c.replay}`);
-      if (c.dataflow && st.dataflow !== c.dataflow) fail(c, `dataflow ${st.dataflow}, expected ${c.dataflow}`);
-      if (c.dataflow === 'ok' && (st.dfNodes < 5 || st.dfRows < 3)) fail(c, 'data-flow map nearly empty');
-      if (c.incomplete && !st.incomplete.startsWith(c.incomplete)) fail(c, `incomplete-run notice missing: '${st.incomplete}'`);
-      if (!c.incomplete && st.incomplete) fail(c, `incomplete-run notice on a complete run: '${st.incomplete}'`);
-      // applied scenario events: a header row plus one row each, the section shown only with events
-      const wantEv = c.events || 0;
-      if (st.eventRows !== (wantEv ? wantEv + 1 : 0)) fail(c, `${st.eventRows} rows in the events table, expected ${wantEv} events`);
-      if (st.eventsShown !== wantEv > 0) fail(c, `events section ${st.eventsShown ? 'shown' : 'hidden'}`);
-      if (c.title && !st.title.includes(c.title)) fail(c, `scenario text not shown verbatim: ${st.title.slice(0, 120)}`);
-      if (c.shot) {
-        // a click on a time plot moves the replay to that time
-        const box = await page.locator('#plot-pointing .u-over').boundingBox();
-        await page.mouse.click(box.x + box.width * 0.75, box.y + box.height / 2);
-        const rt = await page.evaluate(() => document.querySelector('#replay .readout').textContent);
-        const tClick = Number((/t = ([-0-9.e+]+) s/.exec(rt) || [])[1]);
-        console.log(`  click at 3/4 of the pointing plot -> replay ${rt.split('\u00b7')[0].trim()}`);
-        if (!(tClick > 0)) fail(c, 'clicking a plot did not move the replay');
+  console.log(`  cards [${st.cards.join(', ')}], spectrum ${st.spectrum}, replay ${st.replay}, dataflow ${st.dataflow} ` +
+    `(${st.dfNodes} nodes, ${st.dfRows} rows)`);
+  for (const e of st.errors) fail(`section error: ${e}`);
+  if (st.pwned) fail('script from the data was executed');
+  for (const p of c.plots) if (!st.cards.some((x) => x === p || x.startsWith(p))) fail(`no ${p} plot`);
+  for (const p of c.absent || []) if (st.cards.includes(p)) fail(`${p} plot drawn though absent from the data`);
+  if (st.uplots < c.plots.length) fail(`${st.uplots} plot canvases for ${c.plots.length} plots`);
+  if (c.spectrum && !st.spectrum) fail('no jitter spectrum');
+  if (!!c.fullRate !== st.fullRate) fail(`full-rate spectrum note ${st.fullRate ? 'shown' : 'missing'}`);
+  const wantOthers = c.plots.some((p) => p.startsWith('x-'));
+  if (st.othersShown !== wantOthers) fail(`'Other recorded series' heading ${st.othersShown ? 'shown' : 'hidden'}`);
+  if (c.replay && st.replay !== c.replay) fail(`replay ${st.replay}, expected ${c.replay}`);
+  if (c.dataflow && st.dataflow !== c.dataflow) fail(`dataflow ${st.dataflow}, expected ${c.dataflow}`);
+  if (c.dataflow === 'ok' && (st.dfNodes < 5 || st.dfRows < 3)) fail('data-flow map nearly empty');
+  if (c.incomplete && !st.incomplete.startsWith(c.incomplete)) fail(`incomplete-run notice missing: '${st.incomplete}'`);
+  if (!c.incomplete && st.incomplete) fail(`incomplete-run notice on a complete run: '${st.incomplete}'`);
+  // applied scenario events: a header row plus one row each, the section shown only with events
+  const wantEv = c.events || 0;
+  if (st.eventRows !== (wantEv ? wantEv + 1 : 0)) fail(`${st.eventRows} rows in the events table, expected ${wantEv} events`);
+  if (st.eventsShown !== wantEv > 0) fail(`events section ${st.eventsShown ? 'shown' : 'hidden'}`);
+  if (c.title && !st.title.includes(c.title)) fail(`scenario text not shown verbatim: ${st.title.slice(0, 120)}`);
+  if (c.shot) {
+    // a click on a time plot moves the replay to that time
+    const box = await page.locator('#plot-pointing .u-over').boundingBox();
+    await page.mouse.click(box.x + box.width * 0.75, box.y + box.height / 2);
+    const rt = await page.evaluate(() => document.querySelector('#replay .readout').textContent);
+    const tClick = Number((/t = ([-0-9.e+]+) s/.exec(rt) || [])[1]);
+    console.log(`  click at 3/4 of the pointing plot -> replay ${rt.split('\u00b7')[0].trim()}`);
+    if (!(tClick > 0)) fail('clicking a plot did not move the replay');
 
-        const base = c.file.replace(/\.html$/, '');
-        // play the replay for a moment so the view shows a later attitude, then shoot
-        await page.click('#replay button.play');
-        await page.waitForTimeout(500);
-        await page.click('#replay button.play');
-        // then to the middle of the run (S2: during the burn, thrusters pulsing)
-        await page.evaluate(() => {
-          const s = document.querySelector('#replay input.timeline');
-          s.value = '5000';
-          s.dispatchEvent(new Event('input'));
-          window.scrollTo(0, 0);
-        });
-        await page.waitForTimeout(200);
-        const full = await page.screenshot({ fullPage: true, path: path.join(outDir, `${base}.png`) });
-        const fs1 = stats(full);
-        console.log(`  screenshot ${base}.png ${fs1.width}x${fs1.height}: luminance std ${fs1.std.toFixed(1)}, ${fs1.colours} colours`);
-        if (fs1.height < 1500 || fs1.std < 20 || fs1.colours < 200) fail(c, 'screenshot looks blank');
-        const canvas = await page.locator('#replay canvas').screenshot({ path: path.join(outDir, `${base}_replay.png`) });
-        const cs = stats(canvas);
-        console.log(`  3D view ${cs.width}x${cs.height}: luminance std ${cs.std.toFixed(1)}, ${cs.colours} colours`);
-        if (cs.std < 8 || cs.colours < 50) fail(c, '3D view looks blank');
-      }
-      await page.close();
-    }
-  } finally {
-    await ctx.close();
-    fs.rmSync(profile, { recursive: true, force: true });
+    const base = c.file.replace(/\.html$/, '');
+    // play the replay for a moment so the view shows a later attitude, then shoot
+    await page.click('#replay button.play');
+    await page.waitForTimeout(500);
+    await page.click('#replay button.play');
+    // then to the middle of the run (S2: during the burn, thrusters pulsing)
+    await page.evaluate(() => {
+      const s = document.querySelector('#replay input.timeline');
+      s.value = '5000';
+      s.dispatchEvent(new Event('input'));
+      window.scrollTo(0, 0);
+    });
+    await page.waitForTimeout(200);
+    const full = await page.screenshot({ fullPage: true, path: path.join(outDir, `${base}.png`) });
+    const fs1 = stats(full);
+    console.log(`  screenshot ${base}.png ${fs1.width}x${fs1.height}: luminance std ${fs1.std.toFixed(1)}, ${fs1.colours} colours`);
+    if (fs1.height < 1500 || fs1.std < 20 || fs1.colours < 200) fail('screenshot looks blank');
+    const canvas = await page.locator('#replay canvas').screenshot({ path: path.join(outDir, `${base}_replay.png`) });
+    const cs = stats(canvas);
+    console.log(`  3D view ${cs.width}x${cs.height}: luminance std ${cs.std.toFixed(1)}, ${cs.colours} colours`);
+    if (cs.std < 8 || cs.colours < 50) fail('3D view looks blank');
   }
-  console.log(`browser test: ${((Date.now() - t0) / 1000).toFixed(1)} s`);
-  const passed = CASES.length - new Set(failures.map((f) => f.split(':')[0])).size;
-  console.log(`${passed} passed, ${CASES.length - passed} failed`);
-  process.exit(failures.length ? 1 : 0);
-}
-
-main().catch((e) => {
-  console.error(e && e.stack ? e.stack : e);
-  process.exit(1);
 });

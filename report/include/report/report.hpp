@@ -1,10 +1,14 @@
-// kestrel::report: the offline HTML run report.
+// kestrel::report: the offline HTML run report and Monte Carlo report.
 //
 // One self-contained HTML file per run: the page (template, style sheet and
 // the bundled report code with uPlot and three.js, built at build time by
 // report/CMakeLists.txt) with the run's report_data.json embedded in a
 // <script type="application/json"> element.  The page fetches nothing.
 // Schema of report_data.json: docs/report.md.
+//
+// The Monte Carlo report of a campaign (`kestrel mc`) is a second page built
+// the same way, with the campaign's mc_report_data.json embedded the same
+// way (schema: docs/report.md, "Monte Carlo report").
 #pragma once
 
 #include <cstddef>
@@ -38,5 +42,17 @@ bool has_bundle();
 
 // Size in bytes of the page without the data.
 std::size_t page_size();
+
+// The Monte Carlo report page of a campaign: as render_html()/write_html(),
+// with the Monte Carlo page and the campaign's mc_report_data.json (embedded
+// as given, escaped by escape_json_for_script()).  Without the bundle
+// (has_bundle() false) it is a data-only page.
+std::string render_mc_html(const std::string& mc_report_data_json);
+void write_mc_html(const std::string& mc_report_data_json, std::ostream& out);
+// Throws std::runtime_error naming the path if it cannot be written.
+void write_mc_html(const std::string& mc_report_data_json, const std::string& out_html_path);
+
+// Size in bytes of the Monte Carlo page without the data.
+std::size_t mc_page_size();
 
 }  // namespace report
