@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "command_util.h"
+#include "harness/monte_carlo.h"
 #include "harness/outputs.h"
 #include "harness/results_dir.h"
 #include "harness/run.h"
@@ -58,6 +59,11 @@ int cmd_validate(const std::string& scenario, const std::vector<std::string>& se
   try {
     const Scenario sc = load_scenario(scenario, ov);
     check_run_configuration(sc);  // the plant and FSW checks of a run, no run storage
+    if (sc.monte_carlo) {           // the campaign's criteria name recorded columns
+      const McPlan plan = make_mc_plan(sc, sc.monte_carlo->seed, sc.monte_carlo->runs);
+      out << scenario << ": monte_carlo: " << plan.runs << " runs, " << plan.drawn.size() << " drawn values, "
+          << sc.monte_carlo->criteria.size() << " criteria\n";
+    }
     out << scenario << ": ok (" << sc.name << ", " << sc.wheels.size() << " wheels, " << sc.thrusters.size()
         << " thrusters, " << sc.num_ticks() << " steps of " << sc.rates.dt << " s)\n";
     return kExitOk;

@@ -82,12 +82,13 @@ const schema::KeyDef* key_def(const Scenario& sc, const std::string& path, bool&
 
 }  // namespace
 
-McStream::McStream(uint64_t master, uint64_t run, uint64_t dispersion, uint64_t element)
+McStream::McStream(uint64_t master, uint64_t run, const std::string& key)
 {
+  uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a of the key path
+  for (unsigned char c : key) h = (h ^ c) * 0x100000001b3ULL;
   uint64_t s = mix(master ^ 0x6b65737472656c4dULL);  // "kestrelM"
   s = mix(s ^ mix(run + kGolden));
-  s = mix(s ^ mix((dispersion + 1) * kGolden));
-  s_ = mix(s ^ mix((element + 1) * 0xd1b54a32d192ed03ULL));
+  s_ = mix(s ^ mix(h));
 }
 
 uint64_t McStream::next()
@@ -179,7 +180,7 @@ std::vector<McColumn> drawn_columns(const Scenario& nominal)
   return out;
 }
 
-McDraw draw_run(const Scenario& nominal, uint64_t master, uint64_t run)
+McDraw draw_run(const Scenario& nominal, uint64_t master, uint64_t run, bool check)
 {
   McDraw d;
   d.sc = nominal;
@@ -193,7 +194,7 @@ McDraw draw_run(const Scenario& nominal, uint64_t master, uint64_t run)
     const std::vector<std::string> keys = expand_dispersion_key(nominal, s.key, why);
     for (size_t e = 0; e < keys.size(); ++e) {
       const std::string& k = keys[e];
-      McStream r(master, run, i, e);
+      McStream r(master, run, normalise_path(split_path(k)));
       try {
         const ParameterValue nom = get_parameter(nominal, k);
         switch (s.dist) {
@@ -316,6 +317,7 @@ McDraw draw_run(const Scenario& nominal, uint64_t master, uint64_t run)
       }
     }
   }
+  if (!check) return d;
   try {
     // the run is the reloaded canonical form: exactly what its manifest
     // gives `kestrel run` (every check of a scenario file on the way)

@@ -1,9 +1,9 @@
 // mc_draw: the random draws of a Monte Carlo campaign (docs/monte-carlo.md).
 //
 // Reproducible by construction: the numbers of run k come from counter-based
-// streams keyed by (master seed, k, dispersion, list element) only -- not by
-// the thread, the MPI rank, the shard or the order the runs are done in, and
-// adding a dispersion does not change the draws of the others.  The
+// streams keyed by (master seed, k, the dispersed key's path) only -- not by
+// the thread, the MPI rank, the shard or the order the runs are done in; adding,
+// removing or reordering dispersions does not change the draws of the others.  The
 // generator (SplitMix64 on the key) and the distributions (Box-Muller,
 // rejection for the truncated normal, inverse CDF for the cap) are written
 // here rather than taken from <random>, whose distributions differ between
@@ -33,7 +33,8 @@ KeyDef monte_carlo_key();  // the top-level `monte_carlo` key (read and written)
 // One random stream.
 class McStream {
  public:
-  McStream(uint64_t master, uint64_t run, uint64_t dispersion, uint64_t element);
+  // `key`: the dispersed key's normalised path (wheels[2].axis).
+  McStream(uint64_t master, uint64_t run, const std::string& key);
   uint64_t next();
   double uniform();  // [0, 1), 53 bits
   double normal();   // N(0, 1), Box-Muller
@@ -69,7 +70,9 @@ struct McDraw {
   std::vector<double> drawn;
   std::string invalid;
 };
-McDraw draw_run(const Scenario& nominal, uint64_t master, uint64_t run);
+// `check` false: the draws and each key's own checks only (no reload, no
+// plant or FSW check): the sample-statistics tests.
+McDraw draw_run(const Scenario& nominal, uint64_t master, uint64_t run, bool check = true);
 
 }  // namespace harness
 

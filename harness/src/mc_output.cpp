@@ -328,7 +328,7 @@ void write_mc_outputs(const McPlan& plan, const std::vector<McRecord>& records, 
   write_h5(plan, records, order, info, dir / "summary.h5");
   const std::string data = report_json(plan, records, order, info);
   write_text((dir / "mc_report_data.json").string(), data);
-#if defined(KESTREL_HAVE_REPORT) && defined(KESTREL_HAVE_MC_REPORT)
+#ifdef KESTREL_HAVE_REPORT
   try {
     report::write_mc_html(data, (dir / "mc_report.html").string());
   } catch (const std::exception& e) {

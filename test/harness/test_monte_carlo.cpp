@@ -1,0 +1,425 @@
+// Monte Carlo campaigns (harness/monte_carlo.h, docs/monte-carlo.md): the
+// distributions' sample statistics against their closed forms (bounds at 4
+// standard errors: a false alarm about once in 16,000 checks, and the
+// streams are fixed, so a pass stays a pass), the vector dispersions' angles
+// recomputed here from the drawn values, reproducibility (threads, order,
+// subsets, other dispersions), the criteria on closed-form columns, an
+// invalid draw, and a run reproduced from its manifest.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <algorithm>
+#include <cstring>
+#include <numeric>
+#include <sstream>
+
+#include "harness/monte_carlo.h"
+#include "harness/run.h"
+#include "harness/scenario.h"
+#include "mc_draw.h"
+#include "sim/attitude.h"
+
+namespace fs = std::filesystem;
+using namespace harness;
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+constexpr double kZ = 4.0;  // [-] bound in standard errors
+
+// A small, fast spacecraft: 3 balanced wheels, 20 s at 10 Hz.
+std::string base_text(const std::string& mc)
+{
+  return R"(name: mc_test
+seed: 7
+duration: 20.0
+rates: {dt: 0.1, fsw_divisor: 1, record_divisor: 1}
+spacecraft:
+  mass: 750.0
+  inertia: [900.0, 800.0, 600.0]
+  com: [0.0, 0.0, 0.0]
+  initial:
+    sigma_BN: [0.1, 0.2, -0.3]
+    omega_BN_B: [0.001, -0.01, 0.03]
+wheel_defaults: {model: balanced, J_s: 0.0795775, u_max: 0.2}
+wheels:
+  - {name: rw1, axis: [1.0, 0.0, 0.0]}
+  - {name: rw2, axis: [0.0, 1.0, 0.0]}
+  - {name: rw3, axis: [0.0, 0.0, 1.0]}
+fsw:
+  mode: inertial
+  mrp_fb: {K: 3.5, P: 30.0}
+outputs: {hdf5: false, report_data: false}
+events:
+  - {name: fail, t: 10.0, actions: [{device: rw2, action: fail_off}]}
+monte_carlo:
+)" + mc;
+}
+
+Scenario load(const std::string& mc) { return load_scenario_text(base_text(mc), "mc_test.yaml"); }
+
+struct Stats {
+  double mean = 0, sd = 0;
+};
+Stats stats(const std::vector<double>& x)
+{
+  Stats s;
+  s.mean = std::accumulate(x.begin(), x.end(), 0.0) / static_cast<double>(x.size());
+  double v = 0;
+  for (double a : x) v += (a - s.mean) * (a - s.mean);
+  s.sd = std::sqrt(v / static_cast<double>(x.size() - 1));
+  return s;
+}
+
+// N draws of one dispersion of `mc`, each value read back with `get`.
+template <class F>
+std::vector<double> draws(const Scenario& sc, size_t n, F get)
+{
+  std::vector<double> out;
+  for (size_t k = 0; k < n; ++k) {
+    const McDraw d = draw_run(sc, 99, k, false);  // the draws and each key's checks
+    EXPECT_TRUE(d.invalid.empty()) << d.invalid;
+    out.push_back(get(d));
+  }
+  return out;
+}
+
+constexpr size_t kN = 2000;  // draws per statistic (a few ms each)
+
+}  // namespace
+
+TEST(McStream, NormalAndUniformMoments)
+{
+  McStream r(1, 0, "x");
+  const size_t n = 200000;
+  std::vector<double> g(n), u(n);
+  for (size_t i = 0; i < n; ++i) g[i] = r.normal();
+  for (size_t i = 0; i < n; ++i) u[i] = r.uniform();
+  const Stats sg = stats(g), su = stats(u);
+  const double rn = std::sqrt(static_cast<double>(n));
+  EXPECT_NEAR(sg.mean, 0.0, kZ / rn);
+  EXPECT_NEAR(sg.sd, 1.0, kZ * std::sqrt(0.5) / rn);  // sd of the sample sd: 1/sqrt(2n)
+  EXPECT_NEAR(su.mean, 0.5, kZ * std::sqrt(1.0 / 12.0) / rn);
+  EXPECT_NEAR(su.sd * su.sd, 1.0 / 12.0, kZ * std::sqrt(1.0 / 180.0) / rn);  // var of U^2 terms: 1/180
+  for (double x : u) ASSERT_TRUE(x >= 0.0 && x < 1.0);
+}
+
+TEST(McStream, StreamsOfOtherRunsAndKeysAreUncorrelated)
+{
+  const size_t n = 100000;
+  McStream a(1, 0, "spacecraft.mass"), b(1, 1, "spacecraft.mass"), c(1, 0, "spacecraft.com");
+  double ab = 0, ac = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const double x = a.normal();
+    ab += x * b.normal();
+    ac += x * c.normal();
+  }
+  // the sample correlation of independent N(0,1) streams has sd 1/sqrt(n)
+  EXPECT_NEAR(ab / n, 0.0, kZ / std::sqrt(static_cast<double>(n)));
+  EXPECT_NEAR(ac / n, 0.0, kZ / std::sqrt(static_cast<double>(n)));
+}
+
+TEST(McDraw, NormalUniformTruncatedNormal)
+{
+  const double rn = std::sqrt(static_cast<double>(kN));
+  {
+    const Scenario sc = load("  dispersions: [{key: spacecraft.mass, dist: normal, std: 10}]\n");
+    const Stats s = stats(draws(sc, kN, [](const McDraw& d) { return d.sc.spacecraft.mass; }));
+    EXPECT_NEAR(s.mean, 750.0, kZ * 10.0 / rn);  // the mean defaults to the nominal value
+    EXPECT_NEAR(s.sd, 10.0, kZ * 10.0 / std::sqrt(2.0 * kN));
+  }
+  {
+    const Scenario sc = load("  dispersions: [{key: spacecraft.mass, dist: uniform, min: 700, max: 800}]\n");
+    const std::vector<double> x = draws(sc, kN, [](const McDraw& d) { return d.sc.spacecraft.mass; });
+    const Stats s = stats(x);
+    const double sd = 100.0 / std::sqrt(12.0);
+    EXPECT_NEAR(s.mean, 750.0, kZ * sd / rn);
+    EXPECT_NEAR(s.sd, sd, kZ * sd * std::sqrt(0.8 / 4.0) / rn);  // sd of a uniform's sample sd: sd*sqrt((k-1)/4n), k = 9/5
+    for (double v : x) ASSERT_TRUE(v >= 700.0 && v <= 800.0);
+  }
+  {
+    // truncated to [745, 770] about 750 with sd 10: alpha = -0.5, beta = 2
+    const Scenario sc =
+        load("  dispersions: [{key: spacecraft.mass, dist: truncated_normal, std: 10, min: 745, max: 770}]\n");
+    const std::vector<double> x = draws(sc, kN, [](const McDraw& d) { return d.sc.spacecraft.mass; });
+    auto phi = [](double z) { return std::exp(-0.5 * z * z) / std::sqrt(2.0 * M_PI); };
+    auto Phi = [](double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); };
+    const double a = -0.5, b = 2.0, Z = Phi(b) - Phi(a);
+    const double mean = 750.0 + 10.0 * (phi(a) - phi(b)) / Z;
+    const double var = 100.0 * (1.0 + (a * phi(a) - b * phi(b)) / Z - std::pow((phi(a) - phi(b)) / Z, 2));
+    const Stats s = stats(x);
+    EXPECT_NEAR(s.mean, mean, kZ * std::sqrt(var) / rn);
+    for (double v : x) ASSERT_TRUE(v >= 745.0 && v <= 770.0);
+  }
+}
+
+TEST(McDraw, ChoiceFollowsItsWeights)
+{
+  const Scenario sc = load(
+      "  dispersions: [{key: \"wheels[0].model\", dist: choice, values: [balanced, simple_jitter], weights: [1, 3]}]\n");
+  const std::vector<double> x = draws(sc, kN, [](const McDraw& d) {
+    EXPECT_EQ(d.drawn.size(), 1u);
+    const bool jitter = d.sc.wheels[0].params.model == sim::WheelModel::SimpleJitter;
+    EXPECT_EQ(d.drawn[0], jitter ? 1.0 : 0.0);  // the drawn column is the chosen value's index
+    return jitter ? 1.0 : 0.0;
+  });
+  const double p = 0.75;
+  EXPECT_NEAR(stats(x).mean, p, kZ * std::sqrt(p * (1 - p) / kN));
+}
+
+TEST(McDraw, UnitVectorAnglesAreRayleighOrUniformOnTheCap)
+{
+  const Eigen::Vector3d n(0.0, 1.0, 0.0);  // wheels[1].axis
+  {
+    const double sig = 1.0 * kDeg;
+    const Scenario sc = load("  dispersions: [{key: \"wheels[1].axis\", dist: unit_vector, angle_std_deg: 1.0}]\n");
+    const std::vector<double> th2 = draws(sc, kN, [&](const McDraw& d) {
+      const Eigen::Vector3d v = d.sc.wheels[1].params.gs_hat_nom_B;
+      EXPECT_NEAR(v.norm(), 1.0, 1e-12);
+      const double th = std::atan2(v.cross(n).norm(), v.dot(n));  // recomputed, not the drawn column
+      EXPECT_NEAR(th / kDeg, d.drawn[0], 1e-9);
+      return th * th;
+    });
+    // two tilt components N(0, sig): theta^2 is exponential with mean 2 sig^2 (and sd 2 sig^2)
+    EXPECT_NEAR(stats(th2).mean, 2 * sig * sig, kZ * 2 * sig * sig / std::sqrt(static_cast<double>(kN)));
+  }
+  {
+    const double mx = 5.0 * kDeg;
+    const Scenario sc = load("  dispersions: [{key: \"wheels[1].axis\", dist: unit_vector, angle_max_deg: 5.0}]\n");
+    const std::vector<double> c = draws(sc, kN, [&](const McDraw& d) { return d.sc.wheels[1].params.gs_hat_nom_B.dot(n); });
+    // uniform on the cap: cos(theta) uniform on [cos(max), 1]
+    const double lo = std::cos(mx), w = 1.0 - lo;
+    EXPECT_NEAR(stats(c).mean, (1.0 + lo) / 2.0, kZ * w / std::sqrt(12.0 * kN));
+    for (double x : c) ASSERT_GE(x, lo - 1e-12);
+  }
+}
+
+TEST(McDraw, AttitudeRotationAngles)
+{
+  const Eigen::Vector3d s0(0.1, 0.2, -0.3);
+  const Eigen::Matrix3d C0 = sim::dcm_BN_from_sigma(s0);
+  auto angle = [&](const McDraw& d) {
+    const Eigen::Matrix3d dC = sim::dcm_BN_from_sigma(d.sc.spacecraft.initial.sigma_BN) * C0.transpose();
+    const double c = std::clamp((dC.trace() - 1.0) / 2.0, -1.0, 1.0);
+    const double th = std::acos(c);
+    EXPECT_NEAR(th / kDeg, d.drawn[0], 1e-6);
+    return th;
+  };
+  {
+    const double sig = 2.0 * kDeg;
+    const Scenario sc = load("  dispersions: [{key: spacecraft.initial.sigma_BN, dist: attitude, angle_std_deg: 2}]\n");
+    std::vector<double> th2;
+    for (double t : draws(sc, kN, angle)) th2.push_back(t * t);
+    // rotation vector N(0, sig) per axis: theta^2 / sig^2 is chi-square with 3 dof (mean 3, sd sqrt(6))
+    EXPECT_NEAR(stats(th2).mean, 3 * sig * sig, kZ * std::sqrt(6.0) * sig * sig / std::sqrt(static_cast<double>(kN)));
+  }
+  {
+    const double mx = 30.0 * kDeg;
+    const Scenario sc = load("  dispersions: [{key: spacecraft.initial.sigma_BN, dist: attitude, angle_max_deg: 30}]\n");
+    const std::vector<double> th = draws(sc, kN, angle);
+    EXPECT_NEAR(stats(th).mean, mx / 2, kZ * mx / std::sqrt(12.0 * kN));
+    for (double t : th) ASSERT_LE(t, mx + 1e-9);
+  }
+}
+
+TEST(McDraw, NormalVectorPerAxis)
+{
+  const Scenario sc =
+      load("  dispersions: [{key: spacecraft.initial.omega_BN_B, dist: normal_vector, std: [0.001, 0.002, 0.004]}]\n");
+  const Eigen::Vector3d nom(0.001, -0.01, 0.03), sd(0.001, 0.002, 0.004);
+  for (int a = 0; a < 3; ++a) {
+    const Stats s = stats(draws(sc, kN, [a](const McDraw& d) { return d.sc.spacecraft.initial.omega_BN_B(a); }));
+    EXPECT_NEAR(s.mean, nom(a), kZ * sd(a) / std::sqrt(static_cast<double>(kN)));
+    EXPECT_NEAR(s.sd, sd(a), kZ * sd(a) / std::sqrt(2.0 * kN));
+  }
+}
+
+TEST(McDraw, InertiaKeepsPrincipalValuesTimesScaleAndRotatesTheFrame)
+{
+  const double sig = 3.0 * kDeg;
+  const Scenario sc =
+      load("  dispersions: [{key: spacecraft.inertia, dist: inertia, angle_std_deg: 3, principal_std_rel: 0.02}]\n");
+  std::vector<double> th2;
+  for (size_t k = 0; k < kN; ++k) {
+    const McDraw d = draw_run(sc, 5, k, false);
+    ASSERT_TRUE(d.invalid.empty()) << d.invalid;
+    const Eigen::Matrix3d I = d.sc.spacecraft.inertia;
+    ASSERT_NEAR((I - I.transpose()).norm(), 0.0, 1e-9);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(I);
+    // nominal principal values 600, 800, 900 (ascending) times the drawn scales
+    const double nominal[3] = {600.0, 800.0, 900.0};
+    std::vector<double> want = {nominal[0] * d.drawn[1], nominal[1] * d.drawn[2], nominal[2] * d.drawn[3]};
+    std::sort(want.begin(), want.end());
+    for (int c = 0; c < 3; ++c) ASSERT_NEAR(es.eigenvalues()(c), want[static_cast<size_t>(c)], 1e-9 * want[2]);
+    // the rotation between the nominal principal frame (columns z, y, x for the ascending
+    // moments 600, 800, 900) and the drawn one, up to the eigenvectors' signs: its angle
+    Eigen::Matrix3d V0;
+    V0 << Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitX();
+    double th = M_PI;
+    for (int sgn = 0; sgn < 8; ++sgn) {
+      const Eigen::Vector3d s((sgn & 1) ? -1 : 1, (sgn & 2) ? -1 : 1, (sgn & 4) ? -1 : 1);
+      const Eigen::Matrix3d R = es.eigenvectors() * s.asDiagonal() * V0.transpose();
+      if (R.determinant() < 0) continue;
+      th = std::min(th, std::acos(std::clamp((R.trace() - 1.0) / 2.0, -1.0, 1.0)));
+    }
+    EXPECT_NEAR(th / kDeg, d.drawn[0], 1e-5);
+    th2.push_back(th * th);
+  }
+  EXPECT_NEAR(stats(th2).mean, 3 * sig * sig, kZ * std::sqrt(6.0) * sig * sig / std::sqrt(static_cast<double>(kN)));
+}
+
+TEST(McDraw, AnInvalidDrawIsReportedNotRun)
+{
+  // principal values near the triangle limit (I3 ~ I1 + I2): a 20 % scale often breaks it
+  std::string text = base_text("  dispersions: [{key: spacecraft.inertia, dist: inertia, principal_std_rel: 0.2}]\n");
+  text.replace(text.find("[900.0, 800.0, 600.0]"), 21, "[400.0, 500.0, 890.0]");
+  const Scenario sc = load_scenario_text(text, "mc_test.yaml");
+  size_t invalid = 0;
+  for (uint64_t k = 0; k < 200; ++k) {
+    const McDraw d = draw_run(sc, 1, k);
+    if (d.invalid.empty()) continue;
+    ++invalid;
+    EXPECT_NE(d.invalid.find("spacecraft.inertia"), std::string::npos) << d.invalid;
+    EXPECT_EQ(d.drawn.size(), 4u);  // the drawn values stay for the table
+  }
+  EXPECT_GT(invalid, 10u);
+  EXPECT_LT(invalid, 190u);
+}
+
+TEST(McDraw, RunKDependsOnSeedAndIndexAndKeyOnly)
+{
+  const Scenario a = load(
+      "  dispersions:\n    - {key: spacecraft.mass, dist: normal, std: 10}\n"
+      "    - {key: \"events[0].t\", dist: uniform, min: 2, max: 18}\n");
+  const Scenario b = load(
+      "  dispersions:\n    - {key: \"events[0].t\", dist: uniform, min: 2, max: 18}\n"
+      "    - {key: spacecraft.com, dist: normal_vector, std: 0.01}\n");
+  for (uint64_t k : {0ULL, 7ULL, 123456789ULL}) {
+    const McDraw x = draw_run(a, 42, k), y = draw_run(a, 42, k), z = draw_run(b, 42, k);
+    EXPECT_EQ(x.drawn, y.drawn);
+    EXPECT_EQ(x.sc.seed, y.sc.seed);
+    EXPECT_EQ(x.sc.events[0].t, z.sc.events[0].t);  // another set of dispersions, same key: same draw
+    EXPECT_NE(x.sc.events[0].t, draw_run(a, 43, k).sc.events[0].t);
+    EXPECT_NE(x.sc.events[0].t, draw_run(a, 42, k + 1).sc.events[0].t);
+    EXPECT_LT(x.sc.seed, 1ULL << 53);
+    EXPECT_FALSE(x.sc.monte_carlo.has_value());
+  }
+}
+
+namespace {
+
+std::vector<McRecord> campaign(const McPlan& plan, const fs::path& dir, unsigned jobs, std::vector<uint64_t> idx)
+{
+  fs::remove_all(dir);
+  McRunOptions o;
+  o.jobs = jobs;
+  o.indices = std::move(idx);
+  bool stopped = false;
+  std::vector<McRecord> r = run_mc_runs(plan, dir, o, stopped);
+  EXPECT_FALSE(stopped);
+  return r;
+}
+
+void expect_same(const McRecord& a, const McRecord& b)
+{
+  EXPECT_EQ(a.index, b.index);
+  EXPECT_EQ(a.seed, b.seed);
+  EXPECT_EQ(a.pass, b.pass);
+  EXPECT_EQ(a.reason, b.reason);
+  EXPECT_EQ(a.drawn, b.drawn);
+  ASSERT_EQ(a.metrics.size(), b.metrics.size());
+  for (size_t i = 0; i < a.metrics.size(); ++i)
+    EXPECT_TRUE(a.metrics[i] == b.metrics[i] || (std::isnan(a.metrics[i]) && std::isnan(b.metrics[i])));
+  EXPECT_EQ(0, std::memcmp(a.series.data(), b.series.data(), a.series.size() * sizeof(float)));
+}
+
+const char* kCampaign =
+    "  seed: 11\n  dispersions:\n"
+    "    - {key: spacecraft.inertia, dist: inertia, angle_std_deg: 2, principal_std_rel: 0.03}\n"
+    "    - {key: \"wheels[*].axis\", dist: unit_vector, angle_std_deg: 0.5}\n"
+    "    - {key: spacecraft.initial.sigma_BN, dist: attitude, angle_max_deg: 20}\n"
+    "    - {key: \"events[0].t\", dist: uniform, min: 5, max: 15}\n"
+    "  criteria:\n"
+    "    - {name: t_mean, column: t, stat: mean, below: 100}\n"
+    "    - {name: t_last, column: t, stat: final, after: 3, until: 12.5, below: 100}\n"
+    "    - {name: late_error, column: pointing_error_deg, stat: max, after: 15, below: 5}\n"
+    "  retention: {keep_first: 1, thin_samples: 21}\n";
+
+}  // namespace
+
+TEST(McCampaign, CriteriaOnClosedFormColumns)
+{
+  const McPlan plan = make_mc_plan(load(kCampaign), 11, 3);
+  const fs::path dir = fs::temp_directory_path() / "kestrel_mc_test_criteria";
+  const std::vector<McRecord> r = campaign(plan, dir, 1, {0, 1, 2});
+  ASSERT_EQ(r.size(), 3u);
+  size_t t_mean = 0, t_last = 0;
+  for (size_t m = 0; m < plan.metrics.size(); ++m) {
+    if (plan.metrics[m].col.name == "t_mean") t_mean = m;
+    if (plan.metrics[m].col.name == "t_last") t_last = m;
+  }
+  for (const McRecord& x : r) {
+    // t = 0, 0.1, ..., 20 s: the mean is 10 s; the last row with t <= 12.5 s is t = 12.5 s
+    EXPECT_NEAR(x.metrics[t_mean], 10.0, 1e-12);
+    EXPECT_NEAR(x.metrics[t_last], 12.5, 1e-12);
+    EXPECT_TRUE(x.complete);
+  }
+  // 21 thinned samples over 201 rows: every 10th row, t = 0, 1, ..., 20 s
+  ASSERT_EQ(plan.series_t.size(), 21u);
+  for (size_t j = 0; j < 21; ++j) EXPECT_NEAR(plan.series_t[j], static_cast<double>(j), 1e-12);
+  EXPECT_TRUE(r[0].full);  // keep_first: 1
+  EXPECT_TRUE(fs::exists(dir / "runs" / "000000" / "results.h5") || fs::exists(dir / "runs" / "000000" / "summary.txt"));
+  EXPECT_TRUE(fs::exists(dir / "runs" / "000002" / "manifest.json"));
+  fs::remove_all(dir);
+}
+
+TEST(McCampaign, SameRecordsWithAnyThreadsOrderOrSubset)
+{
+  const McPlan plan = make_mc_plan(load(kCampaign), 11, 8);
+  const fs::path d1 = fs::temp_directory_path() / "kestrel_mc_test_j1";
+  const fs::path d2 = fs::temp_directory_path() / "kestrel_mc_test_j2";
+  const std::vector<McRecord> a = campaign(plan, d1, 1, {0, 1, 2, 3, 4, 5, 6, 7});
+  const std::vector<McRecord> b = campaign(plan, d2, 2, {7, 3, 5, 1, 0, 6, 2, 4});  // another order
+  ASSERT_EQ(a.size(), 8u);
+  ASSERT_EQ(b.size(), 8u);
+  for (size_t i = 0; i < 8; ++i) expect_same(a[i], b[i]);
+  const std::vector<McRecord> c = campaign(plan, d2, 2, {5, 2});  // --only 2,5
+  ASSERT_EQ(c.size(), 2u);
+  expect_same(a[2], c[0]);
+  expect_same(a[5], c[1]);
+  fs::remove_all(d1);
+  fs::remove_all(d2);
+}
+
+TEST(McCampaign, ARunIsReproducedFromItsManifest)
+{
+  const McPlan plan = make_mc_plan(load(kCampaign), 11, 4);
+  const fs::path dir = fs::temp_directory_path() / "kestrel_mc_test_manifest";
+  const std::vector<McRecord> r = campaign(plan, dir, 2, {0, 1, 2, 3});
+  for (uint64_t k : {0ULL, 3ULL}) {
+    char name[16];
+    std::snprintf(name, sizeof name, "%06llu", static_cast<unsigned long long>(k));
+    const Scenario sc = load_scenario((dir / "runs" / name / "manifest.json").string());
+    harness::Run run(sc);
+    while (run.step_ticks(1000)) {
+      if (run.done()) break;
+    }
+    run.finish();
+    // the final pointing error and the thinned series of the campaign's record, bit for bit
+    size_t pe = 0;
+    for (size_t m = 0; m < plan.metrics.size(); ++m)
+      if (plan.metrics[m].col.name == "pointing_error_final") pe = m;
+    EXPECT_EQ(run.final_pointing_error_deg(), r[k].metrics[pe]);
+    const MemorySink& mem = run.memory();
+    const size_t col = run.recorder().column_index("pointing_error_deg");
+    const size_t C = plan.series_columns.size();
+    size_t sc_col = 0;
+    for (size_t c = 0; c < C; ++c)
+      if (plan.series_columns[c] == "pointing_error_deg") sc_col = c;
+    for (size_t j = 0; j < plan.series_rows.size(); ++j)
+      EXPECT_EQ(static_cast<float>(mem.at(plan.series_rows[j], col)), r[k].series[j * C + sc_col]);
+  }
+  fs::remove_all(dir);
+}
