@@ -11,8 +11,11 @@
 // with a message naming the FSW side, within the time-out, and leave no
 // process behind.  host-release only (label pil); a target whose cross
 // compiler or emulator was missing when the build was configured is skipped.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
 
 #include <chrono>
 #include <cmath>
@@ -20,6 +23,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <string>
@@ -230,7 +234,16 @@ void pil_against_in_process(const std::string& name, double seconds, double eps,
   EXPECT_EQ(l.link.fsw.rx_crc + l.link.fsw.rx_rejected + l.link.fsw.rx_stale + l.link.fsw.missed, 0u);
 }
 
-bool process_exists(pid_t pid) { return ::kill(pid, 0) == 0 || errno != ESRCH; }
+// Running (a zombie that its new parent has not reaped yet counts as gone).
+bool process_exists(pid_t pid)
+{
+  if (::kill(pid, 0) != 0 && errno == ESRCH) return false;
+  std::ifstream st("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(st, line)) return false;
+  const auto rp = line.rfind(')');  // "pid (comm) S ...": the state follows the name
+  return rp == std::string::npos || rp + 2 >= line.size() || line[rp + 2] != 'Z';
+}
 
 // A fake emulator (shell script): writes its pid, then does what `body`
 // says.  exec keeps the pid.
@@ -304,34 +317,44 @@ TEST(Pil, S1OnCortexM4fFloatWithinRoundoffOfInProcess)
   pil_against_in_process("cortex-m4f-float", 10.0, 0x1p-24, false);
 }
 
+// Runs the fake emulator `body` as target `name` with a 2 s time-out: the
+// run fails with a message holding every `expected` piece, within the
+// time-out plus at most the 2 s SIGTERM grace (sleep ends at once on
+// SIGTERM) plus 1 s of slack, and the emulator is gone afterwards.
+void expect_time_out_and_stop(const std::string& name, const std::string& body,
+                              const std::vector<std::string>& expected)
+{
+  TempDir tmp;
+  double took = 0;
+  const std::string msg = failing_run(name, fake_emulator(tmp.p, body), 2.0, took);
+  for (const std::string& e : expected) EXPECT_NE(msg.find(e), std::string::npos) << msg;
+  const pid_t pid = read_pid(tmp.p);
+  ASSERT_GT(pid, 0);
+  EXPECT_FALSE(process_exists(pid)) << "emulator pid " << pid << " left running";
+  EXPECT_LT(took, 2.0 + 2.0 + 1.0);
+}
+
 // An emulator that never reports ready: the start-up fails within the
 // time-out, naming the FSW side, and the emulator is gone afterwards.
 TEST(Pil, EmulatorThatNeverGetsReadyTimesOutAndIsStopped)
 {
-  TempDir tmp;
-  double took = 0;
-  const std::string msg = failing_run("aarch64-linux", fake_emulator(tmp.p, "exec sleep 300"), 2.0, took);
-  EXPECT_NE(msg.find("PIL (FSW side)"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("did not report ready within"), std::string::npos) << msg;
-  const pid_t pid = read_pid(tmp.p);
-  ASSERT_GT(pid, 0);
-  EXPECT_FALSE(process_exists(pid)) << "emulator pid " << pid << " left running";
-  // 2 s time-out + at most the 2 s SIGTERM grace (sleep ends at once)
-  EXPECT_LT(took, 2.0 + 2.0 + 1.0);
+  expect_time_out_and_stop("aarch64-linux", "exec sleep 300", {"PIL (FSW side)", "did not report ready within"});
 }
 
 // A board whose UART never opens (the emulator hangs before it listens).
 TEST(Pil, BoardWhoseUartNeverOpensTimesOutAndIsStopped)
 {
-  TempDir tmp;
-  double took = 0;
-  const std::string msg = failing_run("cortex-m4f", fake_emulator(tmp.p, "exec sleep 300"), 2.0, took);
-  EXPECT_NE(msg.find("PIL (FSW side)"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("did not open its UART socket"), std::string::npos) << msg;
-  const pid_t pid = read_pid(tmp.p);
-  ASSERT_GT(pid, 0);
-  EXPECT_FALSE(process_exists(pid)) << "emulator pid " << pid << " left running";
-  EXPECT_LT(took, 2.0 + 2.0 + 1.0);
+  expect_time_out_and_stop("cortex-m4f", "exec sleep 300", {"PIL (FSW side)", "did not open its UART socket"});
+}
+
+// Ready, then silent: the lockstep time-out fails the run, the message says
+// the FSW side is running but did not answer, and the process is stopped.
+// Port 9 (discard): nothing answers on loopback.
+TEST(Pil, EmulatedFswThatNeverAnswersTimesOutAndIsStopped)
+{
+  expect_time_out_and_stop("aarch64-linux", "echo 'kestrel-fsw: ready udp 127.0.0.1:9'; exec sleep 300",
+                           {"no reply to the sensor packet",
+                            "FSW side: the emulated FSW is still running but did not answer"});
 }
 
 // An emulator that ends at once: reported at once with its status and output.
@@ -344,24 +367,107 @@ TEST(Pil, EmulatorThatEndsIsReportedWithItsStatus)
   EXPECT_NE(msg.find("PIL (FSW side)"), std::string::npos) << msg;
   EXPECT_NE(msg.find("exited with status 3"), std::string::npos) << msg;
   EXPECT_NE(msg.find("guest: bad ELF"), std::string::npos) << msg;
-  EXPECT_LT(took, 30.0);  // noticed when it ended, not at the time-out
+  // noticed when it ended, not at the 30 s time-out: stdout closes at the
+  // exit, then at most the 2 s wait for the reaping, plus 1 s of slack
+  EXPECT_LT(took, 3.0);
 }
 
-// Ready, then silent: the lockstep time-out fails the run, the message says
-// the FSW side is running but did not answer, and the process is stopped.
-TEST(Pil, EmulatedFswThatNeverAnswersTimesOutAndIsStopped)
+// `kestrel run` (the CLI) with the M4F: Ctrl-C (SIGINT) stops the run at a
+// tick boundary and the emulator with it; SIGKILL of the harness takes the
+// emulator down through PR_SET_PDEATHSIG.  The emulator is wrapped in a
+// script that records its pid and execs QEMU (same pid).
+pid_t spawn_kestrel(const fs::path& dir, const std::string& wrapper)
 {
+  const std::vector<std::string> argv = {KESTREL_EXE, "run", kS1, "-o", (dir / "run").string(), "--fsw",
+                                         "pil:cortex-m4f-float", "--pil-emulator", wrapper};
+  std::vector<char*> av;
+  for (const auto& a : argv) av.push_back(const_cast<char*>(a.c_str()));
+  av.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, (dir / "out.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  posix_spawn_file_actions_addopen(&fa, 2, (dir / "err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, av[0], &fa, nullptr, av.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  return rc == 0 ? pid : -1;
+}
+
+// Waits (bounded) until the wrapper has written its pid and the run has
+// been going for a while.
+pid_t wait_for_emulator(const fs::path& dir)
+{
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(kTimeout);
+  pid_t pid = -1;
+  while (pid <= 0 && std::chrono::steady_clock::now() < end) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    pid = read_pid(dir);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // some cycles through the link
+  return pid;
+}
+
+bool gone_within(pid_t pid, double seconds)
+{
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (process_exists(pid) && std::chrono::steady_clock::now() < end)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  return !process_exists(pid);
+}
+
+std::string qemu_wrapper(const fs::path& dir)
+{
+  return fake_emulator(dir, "echo \"$@\" > " + (dir / "args").string() +
+                                "; exec qemu-system-arm -M mps2-an386 -cpu cortex-m4 \"$@\"");
+}
+
+TEST(Pil, CtrlCStopsTheRunAndTheEmulator)
+{
+  if (target("cortex-m4f-float")->default_bin.empty()) GTEST_SKIP() << "cortex-m4f-float not built";
   TempDir tmp;
-  double took = 0;
-  // port 9 (discard): nothing answers on loopback
-  const std::string msg = failing_run(
-      "aarch64-linux", fake_emulator(tmp.p, "echo 'kestrel-fsw: ready udp 127.0.0.1:9'; exec sleep 300"), 2.0, took);
-  EXPECT_NE(msg.find("no reply to the sensor packet"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("FSW side: the emulated FSW is still running but did not answer"), std::string::npos) << msg;
-  const pid_t pid = read_pid(tmp.p);
-  ASSERT_GT(pid, 0);
-  EXPECT_FALSE(process_exists(pid)) << "emulator pid " << pid << " left running";
-  EXPECT_LT(took, 2.0 + 2.0 + 1.0);
+  const std::string wrapper = qemu_wrapper(tmp.p);
+  const pid_t k = spawn_kestrel(tmp.p, wrapper);
+  ASSERT_GT(k, 0);
+  const pid_t emu = wait_for_emulator(tmp.p);
+  ASSERT_GT(emu, 0);
+  ASSERT_TRUE(process_exists(emu));
+  ::kill(k, SIGINT);
+  int st = 0;
+  ASSERT_EQ(::waitpid(k, &st, 0), k);
+  ASSERT_TRUE(WIFEXITED(st));
+  EXPECT_EQ(WEXITSTATUS(st), 128 + SIGINT);  // kestrel's "interrupted by SIGINT" exit code
+  EXPECT_FALSE(process_exists(emu)) << "emulator pid " << emu << " left running";
+  std::ifstream e(tmp.p / "err.txt");
+  const std::string err((std::istreambuf_iterator<char>(e)), std::istreambuf_iterator<char>());
+  EXPECT_NE(err.find("interrupted by SIGINT"), std::string::npos) << err;
+}
+
+TEST(Pil, KilledHarnessTakesTheEmulatorDown)
+{
+  if (target("cortex-m4f-float")->default_bin.empty()) GTEST_SKIP() << "cortex-m4f-float not built";
+  TempDir tmp;
+  const std::string wrapper = qemu_wrapper(tmp.p);
+  const pid_t k = spawn_kestrel(tmp.p, wrapper);
+  ASSERT_GT(k, 0);
+  const pid_t emu = wait_for_emulator(tmp.p);
+  ASSERT_GT(emu, 0);
+  ::kill(k, SIGKILL);
+  int st = 0;
+  ASSERT_EQ(::waitpid(k, &st, 0), k);
+  // the kernel delivers SIGKILL to the emulator when its parent dies; it
+  // becomes a child of init (or of a subreaper), so only its end is seen
+  EXPECT_TRUE(gone_within(emu, 10.0)) << "emulator pid " << emu << " left running";
+  // its temporary folder is left behind (nobody ran the cleanup; docs/pil.md):
+  // the wrapper recorded QEMU's arguments, which name it
+  std::ifstream a(tmp.p / "args");
+  const std::string args((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+  const auto at = args.find("path=/tmp/kestrel-pil-"), slash = args.find("/uart0.sock");
+  ASSERT_NE(at, std::string::npos) << args;
+  ASSERT_NE(slash, std::string::npos) << args;
+  const fs::path left = args.substr(at + 5, slash - at - 5);
+  EXPECT_TRUE(fs::is_directory(left)) << left;
+  std::error_code ec;
+  fs::remove_all(left, ec);
 }
 
 // An unknown target and a missing program are refused before anything starts.
