@@ -123,6 +123,17 @@ static uint32_t be32(const uint8_t *p)
   return ((uint32_t)p[0] << 24) | ((uint32_t)p[1] << 16) | ((uint32_t)p[2] << 8) | (uint32_t)p[3];
 }
 
+static const char *image_error(FswLinkError e)
+{
+  switch (e) {
+    case FSW_LINK_E_SHORT: return "truncated";
+    case FSW_LINK_E_HEADER: return "not a configuration image of this build (magic, version, layout or capacities)";
+    case FSW_LINK_E_CRC: return "CRC mismatch";
+    case FSW_LINK_E_LENGTH: return "wrong length";
+    default: return "no image (length out of range)";
+  }
+}
+
 static int load_config(void)
 {
   const uint8_t *img = (const uint8_t *)(uintptr_t)KESTREL_M4F_CONFIG_ADDR;
@@ -134,8 +145,8 @@ static int load_config(void)
   const char *bad = NULL;
   FswStatus s;
   if (n == 0u || fsw_link_config_decode(img, n, &g_cfg, &why) != FSW_OK) {
-    fprintf(stderr, "kestrel-fsw-m4f: no valid configuration image at 0x%08lx (error %d)\n",
-            (unsigned long)KESTREL_M4F_CONFIG_ADDR, (int)why);
+    fprintf(stderr, "kestrel-fsw-m4f: configuration image at 0x%08lx refused: %s\n",
+            (unsigned long)KESTREL_M4F_CONFIG_ADDR, image_error(why));
     return -1;
   }
   s = fsw_acs_check(&g_cfg, &bad);

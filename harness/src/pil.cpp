@@ -246,14 +246,34 @@ class PilTransport : public LinkTransport {
   void send(const uint8_t* p, size_t n) override
   {
     check_alive("");
-    link_->send(p, n);
+    try {
+      link_->send(p, n);
+    } catch (const FswEndpointError& e) {
+      link_broke(e);
+    }
+  }
+  // The link broke (the emulator's socket closed): say why if the emulator
+  // is ending.
+  [[noreturn]] void link_broke(const FswEndpointError& e)
+  {
+    const auto t0 = Clock::now();
+    while (!child_->ended() && seconds_since(t0) < kStopGrace) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    check_alive("during the run");
+    throw FswEndpointError(std::string(e.what()) + " (the emulated FSW, " + what_ + ", is still running; its output: " +
+                           child_->output_tail() + ")");
   }
   bool recv(std::vector<uint8_t>& pkt, double timeout_s) override
   {
     const auto t0 = Clock::now();
     for (;;) {
       const double left = timeout_s - seconds_since(t0);
-      if (link_->recv(pkt, std::max(0.0, std::min(left, 0.2)))) return true;
+      bool got = false;
+      try {
+        got = link_->recv(pkt, std::max(0.0, std::min(left, 0.2)));
+      } catch (const FswEndpointError& e) {
+        link_broke(e);
+      }
+      if (got) return true;
       check_alive("during the run");
       if (left <= 0.2) return false;
     }

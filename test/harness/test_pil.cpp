@@ -421,24 +421,37 @@ std::string qemu_wrapper(const fs::path& dir)
                                 "; exec qemu-system-arm -M mps2-an386 -cpu cortex-m4 \"$@\"");
 }
 
+std::string read_text(const fs::path& p)
+{
+  std::ifstream f(p);
+  return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
+
+// Starts `kestrel run` with the M4F behind the wrapper, sends `sig` to it
+// once the run is going, and reaps it: its wait status and the emulator's
+// pid (-1 when the emulator never started).
+pid_t run_and_signal(const fs::path& dir, int sig, int& status)
+{
+  const pid_t k = spawn_kestrel(dir, qemu_wrapper(dir));
+  if (k <= 0) return -1;
+  const pid_t emu = wait_for_emulator(dir);
+  EXPECT_TRUE(emu > 0 && process_exists(emu));
+  ::kill(k, sig);
+  EXPECT_EQ(::waitpid(k, &status, 0), k);
+  return emu;
+}
+
 TEST(Pil, CtrlCStopsTheRunAndTheEmulator)
 {
   if (target("cortex-m4f-float")->default_bin.empty()) GTEST_SKIP() << "cortex-m4f-float not built";
   TempDir tmp;
-  const std::string wrapper = qemu_wrapper(tmp.p);
-  const pid_t k = spawn_kestrel(tmp.p, wrapper);
-  ASSERT_GT(k, 0);
-  const pid_t emu = wait_for_emulator(tmp.p);
-  ASSERT_GT(emu, 0);
-  ASSERT_TRUE(process_exists(emu));
-  ::kill(k, SIGINT);
   int st = 0;
-  ASSERT_EQ(::waitpid(k, &st, 0), k);
+  const pid_t emu = run_and_signal(tmp.p, SIGINT, st);
+  ASSERT_GT(emu, 0);
   ASSERT_TRUE(WIFEXITED(st));
   EXPECT_EQ(WEXITSTATUS(st), 128 + SIGINT);  // kestrel's "interrupted by SIGINT" exit code
   EXPECT_FALSE(process_exists(emu)) << "emulator pid " << emu << " left running";
-  std::ifstream e(tmp.p / "err.txt");
-  const std::string err((std::istreambuf_iterator<char>(e)), std::istreambuf_iterator<char>());
+  const std::string err = read_text(tmp.p / "err.txt");
   EXPECT_NE(err.find("interrupted by SIGINT"), std::string::npos) << err;
 }
 
@@ -446,21 +459,16 @@ TEST(Pil, KilledHarnessTakesTheEmulatorDown)
 {
   if (target("cortex-m4f-float")->default_bin.empty()) GTEST_SKIP() << "cortex-m4f-float not built";
   TempDir tmp;
-  const std::string wrapper = qemu_wrapper(tmp.p);
-  const pid_t k = spawn_kestrel(tmp.p, wrapper);
-  ASSERT_GT(k, 0);
-  const pid_t emu = wait_for_emulator(tmp.p);
-  ASSERT_GT(emu, 0);
-  ::kill(k, SIGKILL);
   int st = 0;
-  ASSERT_EQ(::waitpid(k, &st, 0), k);
+  const pid_t emu = run_and_signal(tmp.p, SIGKILL, st);
+  ASSERT_GT(emu, 0);
+  EXPECT_TRUE(WIFSIGNALED(st));
   // the kernel delivers SIGKILL to the emulator when its parent dies; it
   // becomes a child of init (or of a subreaper), so only its end is seen
   EXPECT_TRUE(gone_within(emu, 10.0)) << "emulator pid " << emu << " left running";
   // its temporary folder is left behind (nobody ran the cleanup; docs/pil.md):
   // the wrapper recorded QEMU's arguments, which name it
-  std::ifstream a(tmp.p / "args");
-  const std::string args((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+  const std::string args = read_text(tmp.p / "args");
   const auto at = args.find("path=/tmp/kestrel-pil-"), slash = args.find("/uart0.sock");
   ASSERT_NE(at, std::string::npos) << args;
   ASSERT_NE(slash, std::string::npos) << args;
@@ -468,6 +476,46 @@ TEST(Pil, KilledHarnessTakesTheEmulatorDown)
   EXPECT_TRUE(fs::is_directory(left)) << left;
   std::error_code ec;
   fs::remove_all(left, ec);
+}
+
+// The bare-metal program checks its configuration image before it starts
+// the link: an image with one flipped body byte (the wrapper hands QEMU's
+// loader that file instead of the harness's) makes it stop with exit
+// status 1 and say why; the harness reports the FSW side at once.
+TEST(Pil, BoardRefusesACorruptConfigurationImage)
+{
+  if (target("cortex-m4f-float")->default_bin.empty()) GTEST_SKIP() << "cortex-m4f-float not built";
+  TempDir tmp;
+  const harness::Scenario sc = s1(5.0);
+  const FswAcsConfig cfg = harness::fsw_acs_config_of(sc);
+  std::vector<uint8_t> img(fsw_link_config_size());
+  size_t len = 0;
+  ASSERT_EQ(fsw_link_config_encode(&cfg, img.data(), img.size(), &len, nullptr), FSW_OK);
+  img[FSW_LINK_CONFIG_HEADER + 100] ^= 0x10u;
+  const fs::path bad = tmp.p / "bad.img";
+  std::ofstream(bad, std::ios::binary).write(reinterpret_cast<const char*>(img.data()), static_cast<long>(len));
+  const std::string wrapper = fake_emulator(
+      tmp.p, "exec qemu-system-arm -M mps2-an386 -cpu cortex-m4 $(echo \"$@\" | sed 's|loader,file=[^,]*|loader,file=" +
+                 bad.string() + "|')");
+  harness::LinkOptions lo;
+  lo.timeout_s = kTimeout;
+  lo.pil_emulator = wrapper;
+  std::string msg;
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    harness::RunConfig rc;
+    rc.fsw = std::make_unique<harness::RemoteFsw>(harness::open_pil_transport("pil:cortex-m4f-float", cfg, lo), cfg, lo);
+    harness::Run run(sc, std::move(rc));
+    EXPECT_FALSE(run.step_ticks(run.total_ticks()));
+    msg = run.failure();
+  } catch (const std::exception& e) {
+    msg = e.what();
+  }
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_NE(msg.find("PIL (FSW side)"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("exited with status 1"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("configuration image at 0x00380000 refused: CRC mismatch"), std::string::npos) << msg;
+  EXPECT_LT(took, kTimeout);  // seen when QEMU ended, not at the reply time-out
 }
 
 // An unknown target and a missing program are refused before anything starts.
