@@ -13,6 +13,7 @@ command -v npm >/dev/null 2>&1 || host_pkgs+=(npm)
 target_pkgs=(gcc-arm-none-eabi binutils-arm-none-eabi picolibc-arm-none-eabi
              libstdc++-arm-none-eabi-picolibc qemu-system-arm qemu-user
              g++-aarch64-linux-gnu g++-arm-linux-gnueabihf g++-s390x-linux-gnu)
+# (with these, host-release also builds the processor-in-the-loop programs, docs/pil.md)
 pkgs=()
 case "$what" in
   host) pkgs=("${host_pkgs[@]}") ;;

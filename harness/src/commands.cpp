@@ -126,6 +126,8 @@ int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
   if (c.realtime) opt.realtime_scale = c.rt_scale;
   opt.fsw_link = c.fsw;
   opt.link.timeout_s = c.link_timeout;
+  opt.link.pil_bin = c.pil_bin;
+  opt.link.pil_emulator = c.pil_emulator;
   opt.link.reply_timeout_s = c.reply_timeout;
   if (!c.on_missing.empty()) {
     opt.link.on_missing_set = true;

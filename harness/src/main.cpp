@@ -54,7 +54,14 @@ int main(int argc, char** argv)
   run->add_flag("--realtime", rc.realtime, "pace the ticks to the wall clock (absolute deadlines)");
   run->add_option("--rt-scale", rc.rt_scale, "with --realtime: multiple of real time (default 1)")
       ->check(CLI::PositiveNumber);
-  run->add_option("--fsw", rc.fsw, "run the FSW behind the link: udp:HOST:PORT or serial:DEVICE:BAUD (docs/hwil.md)");
+  run->add_option("--fsw", rc.fsw,
+                  "run the FSW behind the link: udp:HOST:PORT or serial:DEVICE:BAUD (docs/hwil.md), or on an "
+                  "emulated processor: pil:aarch64-linux, pil:armhf-linux, pil:cortex-m4f, pil:cortex-m4f-float "
+                  "(docs/pil.md)");
+  run->add_option("--pil-bin", rc.pil_bin, "with --fsw pil:TARGET: the cross-built FSW program to run (default: this "
+                                           "build's)");
+  run->add_option("--pil-emulator", rc.pil_emulator,
+                  "with --fsw pil:TARGET: the emulator command, words separated by spaces (default: the target's QEMU)");
   run->add_option("--on-missing", rc.on_missing, "a cycle without a reply: hold (last command) or zero (safe output)")
       ->check(CLI::IsMember({"hold", "zero"}));
   run->add_option("--link-timeout", rc.link_timeout, "lockstep: fail when a reply takes longer [s] (default 10)")

@@ -113,37 +113,18 @@ speed_t baud_of(long b)
   }
 }
 
-class SerialTransport : public LinkTransport {
+// A byte stream (serial line, socket): packets framed by the attached sync
+// marker, deframed by the flight code's FswLinkDeframer.  Owns fd.
+class StreamTransport : public LinkTransport {
  public:
-  explicit SerialTransport(const std::string& spec)
+  StreamTransport(int fd, std::string desc) : fd_(fd), desc_(std::move(desc))
   {
-    std::string dev, baud;
-    if (!split_last(spec, dev, baud))
-      throw FswEndpointError("FSW link: bad serial line '" + spec + "' (expected serial:DEVICE:BAUD)");
-    char* end = nullptr;
-    const long b = std::strtol(baud.c_str(), &end, 10);
-    const speed_t sp = baud_of(b);
-    if (*end != '\0' || sp == 0)
-      throw FswEndpointError("FSW link: unsupported baud rate '" + baud + "' (9600 ... 921600)");
-    fd_ = ::open(dev.c_str(), O_RDWR | O_NOCTTY);
-    if (fd_ < 0) throw FswEndpointError("FSW link: cannot open " + dev + ": " + errno_text());
-    termios tio{};
-    if (::tcgetattr(fd_, &tio) != 0) {
-      ::close(fd_);
-      throw FswEndpointError("FSW link: " + dev + " is not a terminal");
-    }
-    ::cfmakeraw(&tio);
-    tio.c_cflag |= CLOCAL | CREAD;
-    tio.c_cflag &= ~(CSTOPB | CRTSCTS);
-    tio.c_cc[VMIN] = 1;
-    tio.c_cc[VTIME] = 0;
-    ::cfsetispeed(&tio, sp);
-    ::cfsetospeed(&tio, sp);
-    ::tcsetattr(fd_, TCSANOW, &tio);
+    int type = 0;
+    socklen_t tl = sizeof type;
+    socket_ = ::getsockopt(fd_, SOL_SOCKET, SO_TYPE, &type, &tl) == 0;
     fsw_link_deframer_init(&d_);
-    desc_ = "serial " + dev + " " + baud + " baud";
   }
-  ~SerialTransport() override { ::close(fd_); }
+  ~StreamTransport() override { ::close(fd_); }
   std::string describe() const override { return desc_; }
   void send(const uint8_t* p, size_t n) override
   {
@@ -152,7 +133,9 @@ class SerialTransport : public LinkTransport {
     if (fsw_link_frame(p, n, f.data(), f.size(), &len) != FSW_OK) return;
     size_t done = 0;
     while (done < len) {
-      const ssize_t w = ::write(fd_, f.data() + done, len - done);
+      // a socket whose peer has gone must not raise SIGPIPE
+      const ssize_t w = socket_ ? ::send(fd_, f.data() + done, len - done, MSG_NOSIGNAL)
+                                : ::write(fd_, f.data() + done, len - done);
       if (w < 0) {
         if (errno == EINTR || errno == EAGAIN) continue;
         throw FswEndpointError("FSW link: write failed: " + errno_text());
@@ -177,7 +160,7 @@ class SerialTransport : public LinkTransport {
       if (!wait_readable(fd_, left)) return false;
       const ssize_t n = ::read(fd_, buf_, sizeof buf_);
       if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) throw FswEndpointError("FSW link: the serial line closed");
+      if (n <= 0) throw FswEndpointError("FSW link: the " + std::string(socket_ ? "socket" : "serial line") + " closed");
       have_ = static_cast<size_t>(n);
       used_ = 0;
     }
@@ -185,20 +168,60 @@ class SerialTransport : public LinkTransport {
 
  private:
   int fd_ = -1;
+  bool socket_ = false;
   std::string desc_;
   FswLinkDeframer d_;
   uint8_t buf_[4096];
   size_t have_ = 0, used_ = 0;
 };
 
+// A serial line: a terminal set raw at the given baud rate.
+int open_serial_line(const std::string& spec, std::string& desc)
+{
+  std::string dev, baud;
+  if (!split_last(spec, dev, baud))
+    throw FswEndpointError("FSW link: bad serial line '" + spec + "' (expected serial:DEVICE:BAUD)");
+  char* end = nullptr;
+  const long b = std::strtol(baud.c_str(), &end, 10);
+  const speed_t sp = baud_of(b);
+  if (*end != '\0' || sp == 0)
+    throw FswEndpointError("FSW link: unsupported baud rate '" + baud + "' (9600 ... 921600)");
+  const int fd = ::open(dev.c_str(), O_RDWR | O_NOCTTY);
+  if (fd < 0) throw FswEndpointError("FSW link: cannot open " + dev + ": " + errno_text());
+  termios tio{};
+  if (::tcgetattr(fd, &tio) != 0) {
+    ::close(fd);
+    throw FswEndpointError("FSW link: " + dev + " is not a terminal");
+  }
+  ::cfmakeraw(&tio);
+  tio.c_cflag |= CLOCAL | CREAD;
+  tio.c_cflag &= ~(CSTOPB | CRTSCTS);
+  tio.c_cc[VMIN] = 1;
+  tio.c_cc[VTIME] = 0;
+  ::cfsetispeed(&tio, sp);
+  ::cfsetospeed(&tio, sp);
+  ::tcsetattr(fd, TCSANOW, &tio);
+  desc = "serial " + dev + " " + baud + " baud";
+  return fd;
+}
+
 uint8_t clamp_count(int n, int cap) { return static_cast<uint8_t>(std::clamp(n, 0, cap)); }
 
 }  // namespace
 
+std::unique_ptr<LinkTransport> make_stream_transport(int fd, const std::string& desc)
+{
+  return std::make_unique<StreamTransport>(fd, desc);
+}
+
 std::unique_ptr<LinkTransport> open_link_transport(const std::string& spec)
 {
   if (spec.rfind("udp:", 0) == 0) return std::make_unique<UdpTransport>(spec.substr(4));
-  if (spec.rfind("serial:", 0) == 0) return std::make_unique<SerialTransport>(spec.substr(7));
+  if (spec.rfind("serial:", 0) == 0) {
+    std::string desc;
+    const int fd = open_serial_line(spec.substr(7), desc);
+    return std::make_unique<StreamTransport>(fd, desc);
+  }
   throw FswEndpointError("FSW link: unknown transport '" + spec + "' (expected udp:HOST:PORT or serial:DEVICE:BAUD)");
 }
 
@@ -338,7 +361,12 @@ void RemoteFsw::cycle(const FswAcsSensorMsg& in, FswAcsActuatorMsg& out, FswAcsH
   if (missing_ == LinkOptions::Missing::kFail) {
     std::ostringstream os;
     os << "FSW link: no reply to the sensor packet of t = " << in.t_ns * 1e-9 << " s within " << opt_.timeout_s
-       << " s (" << t_->describe() << "; is kestrel-fsw running with the same configuration?)";
+       << " s (" << t_->describe();
+    const std::string why = t_->diagnose();
+    if (why.empty())
+      os << "; is kestrel-fsw running with the same configuration?)";
+    else
+      os << "; " << why << ")";
     throw FswEndpointError(os.str());
   }
   ++c_.missing;

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "harness/outputs.h"
+#include "harness/pil.h"
 #include "harness/results_dir.h"
 
 #ifdef KESTREL_HAVE_REPORT
@@ -63,7 +64,8 @@ std::unique_ptr<FswEndpoint> make_remote_fsw(const Scenario& sc, const RunOption
     lo.reply_timeout_s = sc.rates.dt * sc.rates.fsw_divisor / opt.realtime_scale;
     lo.time_left = std::move(time_left);
   }
-  auto r = std::make_unique<RemoteFsw>(open_link_transport(opt.fsw_link), fsw_acs_config_of(sc), lo);
+  const FswAcsConfig fcfg = fsw_acs_config_of(sc);
+  auto r = std::make_unique<RemoteFsw>(open_fsw_transport(opt.fsw_link, fcfg, lo), fcfg, lo);
   remote = r.get();
   return r;
 }

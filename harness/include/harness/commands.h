@@ -51,6 +51,8 @@ struct RunCommand {
   std::string fsw;                  // "" in process; udp:HOST:PORT / serial:DEVICE:BAUD (docs/hwil.md)
   std::string on_missing;           // "" (fail in lockstep, hold with faults or --realtime), hold, zero
   double link_timeout = 10.0;       // lockstep reply timeout [s]
+  std::string pil_bin;              // --fsw pil:TARGET: the FSW program ("" : the build's, docs/pil.md)
+  std::string pil_emulator;         // ... and the emulator command ("" : the target's QEMU)
   double reply_timeout = 0.5;       // hold/zero: give a cycle up after [s]
   double loss = 0, corrupt = 0, duplicate = 0, reorder = 0, delay = 0;  // fault probabilities [%]
   int delay_cycles = 2;

@@ -46,6 +46,12 @@ struct LinkOptions {
   // Optional (paced runs): wall time [s] left until the deadline of the
   // tick being computed; a wait for a reply never goes past it.
   std::function<double()> time_left;
+  // Processor in the loop (--fsw pil:TARGET, docs/pil.md): the FSW program
+  // to run instead of the build's cross-built one, and the emulator command
+  // instead of the target's QEMU ("" : defaults).  The start-up of the
+  // emulated FSW is bounded by timeout_s.
+  std::string pil_bin;
+  std::string pil_emulator;
   bool any_fault() const { return loss > 0 || corrupt > 0 || duplicate > 0 || reorder > 0 || delay > 0; }
 };
 
@@ -56,7 +62,14 @@ class LinkTransport {
   virtual std::string describe() const = 0;
   virtual void send(const uint8_t* p, size_t n) = 0;
   virtual bool recv(std::vector<uint8_t>& pkt, double timeout_s) = 0;
+  // Which side failed when a reply does not come ("" : unknown, the far
+  // end is not ours to inspect).
+  virtual std::string diagnose() const { return ""; }
 };
+
+// A byte stream already open (a serial line, a connected socket): packets
+// framed by the attached sync marker.  Takes ownership of fd.
+std::unique_ptr<LinkTransport> make_stream_transport(int fd, const std::string& desc);
 
 // "udp:HOST:PORT" or "serial:DEVICE:BAUD"; throws FswEndpointError with the
 // reason (bad address, cannot open).
