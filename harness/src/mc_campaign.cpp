@@ -277,39 +277,49 @@ McRecord run_mc_one(const McPlan& plan, uint64_t k, const fs::path& dir, bool fu
     McSink sink(plan);
     RunStatus st;
     std::string failure;
-    if (full) {
-      RunOptions o;
-      o.out_dir = dir.string();
-      o.force = true;  // the folder holds at most this run's manifest (a retention rerun)
-      o.extra_sinks.push_back(&sink);
-      const RunResult r = run_scenario(d.sc, o);
-      // the run folder's lock file: no other process writes into a campaign's runs/
-      std::error_code ec;
-      fs::remove(dir.parent_path() / ("." + dir.filename().string() + ".kestrel-lock"), ec);
-      failure = r.failure;
-      rec.complete = r.status.complete;
-      rec.full = true;
-    } else {
-      RunConfig rc;
-      rc.keep_in_memory = false;
-      Run run(d.sc, std::move(rc));
-      run.add_sink(sink);
-      while (!run.done() && run.step_ticks(100000)) {
+    try {
+      if (full) {
+        RunOptions o;
+        o.out_dir = dir.string();
+        o.force = true;  // the folder holds at most this run's manifest (a retention rerun)
+        o.extra_sinks.push_back(&sink);
+        const RunResult r = run_scenario(d.sc, o);
+        // the run folder's lock file: no other process writes into a campaign's runs/
+        std::error_code ec;
+        fs::remove(dir.parent_path() / ("." + dir.filename().string() + ".kestrel-lock"), ec);
+        failure = r.failure;
+        rec.complete = r.status.complete;
+        rec.full = true;
+      } else {
+        RunConfig rc;
+        rc.keep_in_memory = false;
+        Run run(d.sc, std::move(rc));
+        run.add_sink(sink);
+        while (!run.done() && run.step_ticks(100000)) {
+        }
+        run.finish();
+        failure = run.failure();
+        rec.complete = failure.empty() && run.done();
+        st.complete = rec.complete;
+        st.ticks = run.tick();
+        st.t_reached = run.recorder().rows() > 0 ? run.recorder().last_row()[0] : 0.0;
+        st.stopped_by = failure;
+        st.events = run.events_applied();
+        fs::create_directories(dir);
+        write_text((dir / "manifest.json").string(), manifest_text(d.sc, {}, &st));
       }
-      run.finish();
-      failure = run.failure();
-      rec.complete = failure.empty() && run.done();
-      st.complete = rec.complete;
-      st.ticks = run.tick();
-      st.t_reached = run.recorder().rows() > 0 ? run.recorder().last_row()[0] : 0.0;
-      st.stopped_by = failure;
-      st.events = run.events_applied();
+    } catch (const ScenarioError& e) {  // a configuration the plant or FSW refuses: an invalid draw
+      const ScenarioIssue& is = e.issues().front();
+      rec.invalid = true;
+      rec.reason = "invalid draw: " + is.key + ": " + is.message;
       fs::create_directories(dir);
-      write_text((dir / "manifest.json").string(), manifest_text(d.sc, {}, &st));
+      write_text((dir / "manifest.json").string(), manifest_text(d.sc, {}));
     }
-    rec.metrics = sink.metrics();
-    rec.series = sink.series();
-    if (!rec.complete) rec.reason = "run failed: " + (failure.empty() ? std::string("incomplete") : failure);
+    if (!rec.invalid) {
+      rec.metrics = sink.metrics();
+      rec.series = sink.series();
+    }
+    if (!rec.invalid && !rec.complete) rec.reason = "run failed: " + (failure.empty() ? std::string("incomplete") : failure);
   }
   if (rec.reason.empty()) {
     for (size_t m = 0; m < plan.metrics.size(); ++m) {
