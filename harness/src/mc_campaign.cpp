@@ -257,7 +257,7 @@ McPlan make_mc_plan(const Scenario& nominal, uint64_t master_seed, uint64_t runs
   return p;
 }
 
-McRecord run_mc_one(const McPlan& plan, uint64_t k, const fs::path& dir, bool full)
+McRecord run_mc_one(const McPlan& plan, uint64_t k, const fs::path& dir, bool full, const std::atomic<int>* stop)
 {
   const auto t0 = std::chrono::steady_clock::now();
   McRecord rec;
@@ -283,7 +283,9 @@ McRecord run_mc_one(const McPlan& plan, uint64_t k, const fs::path& dir, bool fu
         o.out_dir = dir.string();
         o.force = true;  // the folder holds at most this run's manifest (a retention rerun)
         o.extra_sinks.push_back(&sink);
+        o.stop = stop;
         const RunResult r = run_scenario(d.sc, o);
+        rec.interrupted = r.stopped_by_signal != 0;
         // the run folder's lock file: no other process writes into a campaign's runs/
         std::error_code ec;
         fs::remove(dir.parent_path() / ("." + dir.filename().string() + ".kestrel-lock"), ec);
@@ -295,7 +297,11 @@ McRecord run_mc_one(const McPlan& plan, uint64_t k, const fs::path& dir, bool fu
         rc.keep_in_memory = false;
         Run run(d.sc, std::move(rc));
         run.add_sink(sink);
-        while (!run.done() && run.step_ticks(100000)) {
+        while (!run.done() && run.step_ticks(1000)) {  // a stop request is seen within ~1000 ticks
+          if (stop && stop->load() != 0) {
+            rec.interrupted = true;
+            break;
+          }
         }
         run.finish();
         failure = run.failure();
@@ -315,6 +321,7 @@ McRecord run_mc_one(const McPlan& plan, uint64_t k, const fs::path& dir, bool fu
       fs::create_directories(dir);
       write_text((dir / "manifest.json").string(), manifest_text(d.sc, {}));
     }
+    if (rec.interrupted) return rec;
     if (!rec.invalid) {
       rec.metrics = sink.metrics();
       rec.series = sink.series();
@@ -385,7 +392,12 @@ std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const
         const uint64_t k = opt.indices[slot];
         try {
           if (!rerun_pass) {
-            McRecord r = run_mc_one(plan, k, runs / run_dir_name(k), k < ret.keep_first);
+            McRecord r = run_mc_one(plan, k, runs / run_dir_name(k), k < ret.keep_first, opt.stop);
+            if (r.interrupted) {  // not part of the campaign: no folder
+              std::error_code ec;
+              fs::remove_all(runs / run_dir_name(k), ec);
+              return;
+            }
             std::lock_guard<std::mutex> g(mu);
             out[slot] = std::move(r);
             done[slot] = 1;
@@ -394,8 +406,12 @@ std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const
             prog.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             if (opt.progress) opt.progress(prog);
           } else {
-            McRecord r = run_mc_one(plan, k, runs / run_dir_name(k), true);
+            McRecord r = run_mc_one(plan, k, runs / run_dir_name(k), true, opt.stop);
             std::lock_guard<std::mutex> g(mu);
+            if (r.interrupted) {  // the first pass's record stays; the folder holds a partial rerun, marked incomplete
+              out[slot].full = false;
+              return;
+            }
             McRecord& first = out[slot];
             if (!same_metrics(first, r) || first.pass != r.pass) {
               r.pass = false;

@@ -75,6 +75,13 @@ void read_dispersion(MapReader& d, MonteCarloSpec& mc)
       ok = false;
     }
   };
+  auto bounds = [&](const char* min_what) {  // min < max, both required
+    need("min", min_what);
+    need("max", "upper bound, in the key's unit");
+    s.min = d.real("min");
+    s.max = d.real("max");
+    if (s.min && s.max && !(*s.min < *s.max)) d.error_at("max", "must be > min");
+  };
   switch (s.dist) {
     case DistKind::Normal:
     case DistKind::TruncatedNormal: {
@@ -82,13 +89,7 @@ void read_dispersion(MapReader& d, MonteCarloSpec& mc)
       need("std", "standard deviation, in the key's unit");
       if (auto v = d.real("std", [](double x) { return x > 0.0 ? "" : "must be > 0"; })) s.std = *v;
       else ok = false;
-      if (s.dist == DistKind::TruncatedNormal) {
-        need("min", "lower bound, in the key's unit");
-        need("max", "upper bound, in the key's unit");
-        s.min = d.real("min");
-        s.max = d.real("max");
-        if (s.min && s.max && !(*s.min < *s.max)) d.error_at("max", "must be > min");
-      }
+      if (s.dist == DistKind::TruncatedNormal) bounds("lower bound, in the key's unit");
       break;
     }
     case DistKind::Uniform: {
@@ -96,11 +97,7 @@ void read_dispersion(MapReader& d, MonteCarloSpec& mc)
         s.half_width = d.real("half_width", [](double x) { return x > 0.0 ? "" : "must be > 0"; });
         if (d.has("min") || d.has("max")) d.error_at_key("half_width", "give half_width or min and max, not both");
       } else {
-        need("min", "lower bound, in the key's unit (or half_width about the nominal value)");
-        need("max", "upper bound, in the key's unit");
-        s.min = d.real("min");
-        s.max = d.real("max");
-        if (s.min && s.max && !(*s.min < *s.max)) d.error_at("max", "must be > min");
+        bounds("lower bound, in the key's unit (or half_width about the nominal value)");
       }
       break;
     }

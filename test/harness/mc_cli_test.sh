@@ -86,6 +86,27 @@ cli)
   "$K" mc "$SC" --runs 1 -o "$W/fail" --force > /dev/null 2>&1 || [ $? -eq 6 ]
   [ ! -d "$W/fail/runs/000001" ] || { echo "FAIL: --force left the older campaign's run 1"; exit 1; }
   echo "ok: exit code 6 on failing runs; existing folder refused, --force replaces it whole"
+  [ "$(stat -c %s "$W/j2/mc_report.html")" -gt 20000 ] && grep -q "s1_monte_carlo" "$W/j2/mc_report.html" ||
+    { echo "FAIL: no campaign report page"; exit 1; }
+  # Ctrl-C: the finished runs are written, marked incomplete; exit 130
+  "$K" mc "$SC" --runs 400 -j 1 -o "$W/int" > "$W/int.out" 2>&1 &
+  pid=$!
+  for _ in $(seq 1 100); do [ "$(ls "$W"/.int.kestrel-work-*/runs 2>/dev/null | wc -l)" -ge 4 ] && break; sleep 0.1; done
+  kill -INT $pid
+  set +e
+  wait $pid; rc=$?
+  set -e
+  [ $rc -eq 130 ] || { echo "FAIL: an interrupted campaign must exit 130 (rc $rc)"; cat "$W/int.out"; exit 1; }
+  n=$(($(wc -l < "$W/int/summary.csv") - 1))
+  [ "$n" -ge 3 ] && [ "$n" -lt 400 ] || { echo "FAIL: the interrupted campaign holds $n runs"; exit 1; }
+  grep -q '"complete": false' "$W/int/mc_manifest.json" || { echo "FAIL: not marked incomplete"; exit 1; }
+  [ "$(ls "$W/int/runs" | wc -l)" -eq "$n" ] || { echo "FAIL: run folders without records"; exit 1; }
+  for k in $(cut -d, -f1 "$W/int/summary.csv" | tail -n +2); do  # each recorded run is the whole campaign's
+    a=$(grep "^$k," "$W/int/summary.csv"); b=$("$K" mc "$SC" --runs 400 --only "$k" -o "$W/int-$k" > /dev/null 2>&1 || true; grep "^$k," "$W/int-$k/summary.csv")
+    [ "$a" = "$b" ] || { echo "FAIL: interrupted campaign's run $k differs from its rerun"; exit 1; }
+    break
+  done
+  echo "ok: Ctrl-C keeps the $n finished runs, marked incomplete, exit 130"
   ;;
 mpi)
   command -v mpirun > /dev/null || { echo "SKIP: mpirun not installed (scripts/install-deps.sh host installs OpenMPI)"; exit 77; }

@@ -75,12 +75,17 @@ struct McRecord {
   std::vector<double> metrics; // McPlan::metrics (NaN: not computed)
   std::vector<float> series;   // samples x series_columns, row-major (NaN where not recorded)
   bool full = false;           // runs/NNNNNN holds full results and a report
+  bool interrupted = false;    // stopped by a signal before its end (not recorded)
   double wall_seconds = 0.0;
 };
 
 // Runs one run of the plan: its folder `dir` (runs/NNNNNN) gets the
-// manifest, and with `full` the whole results (run_scenario).
-McRecord run_mc_one(const McPlan& plan, uint64_t k, const std::filesystem::path& dir, bool full);
+// manifest, and with `full` the whole results (run_scenario).  A stop
+// request (set to a signal number) ends the run at a tick boundary: the
+// record then says `interrupted` (run_mc_runs drops it and its folder: the
+// run is not part of the campaign; rerun it with --only).
+McRecord run_mc_one(const McPlan& plan, uint64_t k, const std::filesystem::path& dir, bool full,
+                    const std::atomic<int>* stop = nullptr);
 
 struct McProgress {
   uint64_t done = 0, total = 0, failed = 0;
