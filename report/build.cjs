@@ -43,10 +43,11 @@ function fail(msg) {
   process.exit(1);
 }
 
-async function main() {
-  fs.mkdirSync(outDir, { recursive: true });
+// esbuild: one entry of src/ with uPlot and three.js into one script and one
+// style sheet, checked for what could end an inline element early.
+async function bundle(entry, name) {
   const res = await esbuild.build({
-    entryPoints: [path.join(here, 'src', 'main.js')],
+    entryPoints: [path.join(here, 'src', entry)],
     bundle: true,
     minify: true,
     format: 'iife',
@@ -55,7 +56,7 @@ async function main() {
     legalComments: 'none', // licence texts are embedded whole, below
     nodePaths,
     outdir: outDir,
-    entryNames: 'report_bundle',
+    entryNames: name,
     write: false,
     logLevel: 'warning',
     define: { 'process.env.NODE_ENV': '"production"' },
@@ -66,15 +67,39 @@ async function main() {
     if (f.path.endsWith('.js')) js = f.text;
     else if (f.path.endsWith('.css')) css = f.text;
   }
-  if (!js) fail('esbuild produced no JavaScript');
+  if (!js) fail(`esbuild produced no JavaScript for ${entry}`);
   // Inline <script>/<style> must not contain their own end tags or an HTML
   // comment opener (which changes how the HTML parser tokenises the script).
   js = js.replace(/<\/(script)/gi, '<\\/$1').replace(/<!--/g, '<\\!--');
-  if (/<\/script/i.test(js) || js.includes('<!--')) fail('bundle still contains </script or <!--');
-  if (/<\/style/i.test(css)) fail('style sheet contains </style');
-  fs.writeFileSync(path.join(outDir, 'report_bundle.js'), js);
-  fs.writeFileSync(path.join(outDir, 'report_bundle.css'), css);
+  if (/<\/script/i.test(js) || js.includes('<!--')) fail(`${entry}: bundle still contains </script or <!--`);
+  if (/<\/style/i.test(css)) fail(`${entry}: style sheet contains </style`);
+  fs.writeFileSync(path.join(outDir, name + '.js'), js);
+  fs.writeFileSync(path.join(outDir, name + '.css'), css);
+  return { js, css };
+}
 
+// The page's parts are ASCII and reference nothing outside themselves.
+function checkPart(p) {
+  for (let i = 0; i < p.length; i++) {
+    if (p.charCodeAt(i) > 0x7e && p.charCodeAt(i) !== 0) fail(`non-ASCII character at ${i}: keep the page ASCII`);
+    if (p.charCodeAt(i) === 0) fail('NUL byte in the page');
+  }
+  const ext = p.match(/\b(?:src|href)\s*=\s*["']?(?:https?:|\/\/)/i);
+  if (ext) fail(`external reference in the page: ${ext[0]}`);
+}
+
+function fill(template, subst) {
+  let html = fs.readFileSync(path.join(here, template), 'utf8');
+  for (const [k, v] of Object.entries(subst)) {
+    if (!html.includes(k)) fail(`${template} lacks ${k}`);
+    html = html.split(k).join(v);
+  }
+  return html;
+}
+
+async function main() {
+  fs.mkdirSync(outDir, { recursive: true });
+  const { js, css } = await bundle('main.js', 'report_bundle');
   const licences = [];
   for (const pkg of ['uplot', 'three']) {
     const pj = JSON.parse(fs.readFileSync(resolvePkgFile(path.join(pkg, 'package.json')), 'utf8'));
@@ -88,37 +113,34 @@ async function main() {
     .replace(/[^\x09\x0a\x0d\x20-\x7e]/gu, (c) => `&#x${c.codePointAt(0).toString(16)};`);
   const licHtml = licences.map((l) => `<pre>${esc(l)}</pre>`).join('\n');
 
-  let html = fs.readFileSync(path.join(here, 'template.html'), 'utf8');
   const version = JSON.parse(fs.readFileSync(path.join(here, 'package.json'), 'utf8')).version;
-  const subst = {
+  const html = fill('template.html', {
     '<!--KESTREL_CSS-->': `<style>\n${css}</style>`,
     '<!--KESTREL_JS-->': `<script>\n${js}</script>`,
     '<!--KESTREL_LICENSES-->': licHtml,
     '@@KESTREL_REPORT_VERSION@@': esc(version),
-  };
-  for (const [k, v] of Object.entries(subst)) {
-    if (!html.includes(k)) fail(`template.html lacks ${k}`);
-    html = html.split(k).join(v);
-  }
+  });
+  // the live view's page (live.html, src/live.js): the same libraries, no data
+  const live = await bundle('live.js', 'live_bundle');
+  const liveHtml = fill('live.html', {
+    '<!--KESTREL_CSS-->': `<style>\n${live.css}</style>`,
+    '<!--KESTREL_JS-->': `<script>\n${live.js}</script>`,
+    '<!--KESTREL_LICENSES-->': licHtml,
+    '@@KESTREL_REPORT_VERSION@@': esc(version),
+  });
+  checkPart(liveHtml);
+  fs.writeFileSync(path.join(outDir, 'live.html'), liveHtml);
   const parts = html.split(PLACEHOLDER);
   if (parts.length !== 2) fail(`template.html must hold ${PLACEHOLDER} exactly once`);
-  for (const p of parts) {
-    for (let i = 0; i < p.length; i++) {
-      if (p.charCodeAt(i) > 0x7e && p.charCodeAt(i) !== 0) fail(`non-ASCII character at ${i}: keep the page ASCII`);
-      if (p.charCodeAt(i) === 0) fail('NUL byte in the page');
-    }
-    // Nothing outside the file: no external script/style/image references.
-    const ext = p.match(/\b(?:src|href)\s*=\s*["']?(?:https?:|\/\/)/i);
-    if (ext) fail(`external reference in the page: ${ext[0]}`);
-  }
+  for (const p of parts) checkPart(p);
   fs.writeFileSync(path.join(outDir, 'report_prefix.html'), parts[0]);
   fs.writeFileSync(path.join(outDir, 'report_suffix.html'), parts[1]);
 
   if (cppOut) {
     fs.mkdirSync(path.dirname(path.resolve(cppOut)), { recursive: true });
-    fs.writeFileSync(cppOut, cppSource(parts[0], parts[1]));
+    fs.writeFileSync(cppOut, cppSource(parts[0], parts[1], liveHtml));
   }
-  console.log(`report bundle: js ${js.length} B, css ${css.length} B, page ${parts[0].length + parts[1].length} B`);
+  console.log(`report bundle: js ${js.length} B, css ${css.length} B, page ${parts[0].length + parts[1].length} B; live page ${liveHtml.length} B`);
 }
 
 function rawLiterals(s) {
@@ -131,7 +153,7 @@ function rawLiterals(s) {
   return out.join('\n');
 }
 
-function cppSource(prefix, suffix) {
+function cppSource(prefix, suffix, live) {
   return `// Generated by report/build.cjs at build time: do not edit, do not commit.
 // The Kestrel report page (template + bundled uPlot/three.js + report code),
 // split at the data placeholder.
@@ -145,6 +167,8 @@ extern const std::size_t kPagePrefixSize;
 extern const char kPageSuffix[];
 extern const std::size_t kPageSuffixSize;
 extern const bool kHasBundle;
+extern const char kLivePage[];
+extern const std::size_t kLivePageSize;
 
 const bool kHasBundle = true;
 
@@ -155,6 +179,10 @@ const std::size_t kPagePrefixSize = sizeof(kPagePrefix) - 1;
 const char kPageSuffix[] =
 ${rawLiterals(suffix)};
 const std::size_t kPageSuffixSize = sizeof(kPageSuffix) - 1;
+
+const char kLivePage[] =
+${rawLiterals(live)};
+const std::size_t kLivePageSize = sizeof(kLivePage) - 1;
 
 }  // namespace detail
 }  // namespace report

@@ -6,7 +6,8 @@ what="${1:-all}"
 host_pkgs=(cmake ninja-build g++ gcc clang libgtest-dev googletest libbenchmark-dev
            libeigen3-dev binutils python3 pkgconf libyaml-cpp-dev libhdf5-dev libcli11-dev nlohmann-json3-dev
            nodejs chromium python3-h5py lcov  # report: npm bundle at build time, headless test
-           socat)  # HWIL: the serial link tested over a pseudo-terminal pair
+           socat  # HWIL: the serial link tested over a pseudo-terminal pair
+           libcpp-httplib-dev)  # live view: the local HTTP server of `kestrel run --live` (header only)
 # NodeSource's nodejs ships npm and conflicts with Debian's npm package
 command -v npm >/dev/null 2>&1 || host_pkgs+=(npm)
 target_pkgs=(gcc-arm-none-eabi binutils-arm-none-eabi picolibc-arm-none-eabi

@@ -14,6 +14,8 @@ extern const std::size_t kPagePrefixSize;
 extern const char kPageSuffix[];
 extern const std::size_t kPageSuffixSize;
 extern const bool kHasBundle;
+extern const char kLivePage[];
+extern const std::size_t kLivePageSize;
 }  // namespace detail
 
 std::string escape_json_for_script(const std::string& json) {
@@ -59,6 +61,12 @@ void write_html(const std::string& report_data_json, const std::string& out_html
 }
 
 bool has_bundle() { return detail::kHasBundle; }
+
+const std::string& live_page()
+{
+  static const std::string page(detail::kLivePage, detail::kLivePageSize);
+  return page;
+}
 
 std::size_t page_size() { return detail::kPagePrefixSize + detail::kPageSuffixSize; }
 
