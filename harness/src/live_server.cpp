@@ -135,6 +135,7 @@ struct LiveServer::Impl {
   uint64_t next_id = 1;
   size_t live_events = 0;  // event commands accepted (under cmd_mu)
   std::atomic<uint64_t> applied{0}, refused{0};
+  std::atomic<double> paused_s{0.0};
 
   // ---- run state (sim thread; mirrored for the server) -----------------------
   std::atomic<int> state{0};  // 0 starting, 1 running, 2 paused, 3 ended
@@ -554,15 +555,6 @@ void LiveServer::started(Run& run, double realtime_scale, const std::atomic<int>
   if (sc.sensors.gyro.enabled) add_device("gyro");
   if (sc.sensors.star_tracker.enabled) add_device("star_tracker");
   for (size_t i = 0; i < sc.sensors.css.normals_B.size(); ++i) add_device("css" + std::to_string(i));
-  json axes = json::array();
-  for (const auto& a : run.wheel_axes_B()) axes.push_back({a[0], a[1], a[2]});
-  json wpos = json::array();
-  for (const WheelSpec& w : sc.wheels) wpos.push_back({w.params.r_WB_B(0), w.params.r_WB_B(1), w.params.r_WB_B(2)});
-  json thr = json::array();
-  for (const ThrusterSpec& t : sc.thrusters)
-    thr.push_back({{"name", t.name},
-                   {"r_B", {t.r_B(0), t.r_B(1), t.r_B(2)}},
-                   {"dir_B", {t.dir_B(0), t.dir_B(1), t.dir_B(2)}}});
   json wheels = json::array();
   for (const WheelSpec& w : sc.wheels) wheels.push_back({{"name", w.name}, {"Omega_max", w.params.Omega_max}});
   json info = {{"scenario", sc.name},
@@ -578,7 +570,7 @@ void LiveServer::started(Run& run, double realtime_scale, const std::atomic<int>
                {"units", units},
                {"devices", devices},
                {"wheels", wheels},
-               {"geometry", {{"wheel_axes_B", axes}, {"wheel_positions_B", wpos}, {"thrusters", thr}}},
+               {"geometry", json::parse(geometry_json_text(run))},
                {"publish_period", kPublishPeriod},
                {"ring_frames", kRingFrames}};
   std::lock_guard<std::mutex> lk(m.info_mu);
@@ -604,6 +596,7 @@ uint64_t LiveServer::boundary(Run& run, double& pace)
   // paused: show it, then wait for a command (or a stop request)
   m.state.store(2);
   m.publish(run, true);
+  const auto wait0 = std::chrono::steady_clock::now();
   while (m.paused && run.tick() >= m.step_until) {
     if (m.stop && m.stop->load() != 0) return 1;
     {
@@ -612,6 +605,7 @@ uint64_t LiveServer::boundary(Run& run, double& pace)
     }
     if (m.has_cmd.load()) m.drain(run, pace);
   }
+  m.paused_s.store(m.paused_s.load() + seconds_since(wait0));
   if (!m.paused) m.state.store(1);
   m.publish(run, true);
   return m.paused ? m.step_until - run.tick() : 1;
@@ -656,6 +650,7 @@ LiveCounters LiveServer::counters() const
   c.dropped_unread = m.dropped_unread.load();
   c.commands_applied = m.applied.load();
   c.commands_refused = m.refused.load();
+  c.paused_s = m.paused_s.load();
   return c;
 }
 

@@ -44,6 +44,7 @@ struct LiveCounters {
   uint64_t dropped_unread = 0;    // overwritten before a page read them (a page connected)
   uint64_t commands_applied = 0;  // entered the run
   uint64_t commands_refused = 0;  // refused with a message (bad token, device, action, value, state)
+  double paused_s = 0.0;          // [s] wall time the run waited, paused
 };
 
 class LiveServer : public RunControl {

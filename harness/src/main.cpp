@@ -134,7 +134,8 @@ int main(int argc, char** argv)
       const harness::LiveCounters n = live->counters();
       std::cout << "live view: " << n.published << " frames published, " << n.dropped_busy + n.dropped_unread
                 << " dropped (" << n.dropped_busy << " while a page read, " << n.dropped_unread << " unread); "
-                << n.commands_applied << " commands applied, " << n.commands_refused << " refused" << std::endl;
+                << n.commands_applied << " commands applied, " << n.commands_refused << " refused; paused "
+                << n.paused_s << " s of wall time" << std::endl;
       if (live_linger > 0 && g_stop.load() == 0) {
         std::cout << "live view: the page stays at " << live->url() << " for " << live_linger
                   << " s (Ctrl-C ends it)" << std::endl;

@@ -358,9 +358,13 @@ function liveScene(card, view, renderer, scene, camera, controls, body, spinners
     if (plumes.length) parts.push(`${firing}/${plumes.length} thrusters firing`);
     readout.textContent = parts.join('   \u00b7   ');
   };
+  // at most 10 drawings a second: the page shares the machine with the run
+  // (software WebGL in a headless or GPU-less browser costs a core at 60 Hz)
   let last = performance.now();
   const frame = (now) => {
-    const dtReal = Math.min(0.1, Math.max(0, (now - last) / 1000));
+    requestAnimationFrame(frame);
+    if (now - last < 100) return;
+    const dtReal = Math.min(0.2, Math.max(0, (now - last) / 1000));
     last = now;
     for (const w of spinners) {
       w.angle += Math.sign(w.speed || 0) * (0.5 + 3 * Math.min(1, Math.abs(w.speed || 0) / maxRpm)) * dtReal * 2 * Math.PI;
@@ -368,7 +372,6 @@ function liveScene(card, view, renderer, scene, camera, controls, body, spinners
     }
     controls.update();
     renderer.render(scene, camera);
-    requestAnimationFrame(frame);
   };
   window.addEventListener('resize', () => {
     renderer.setSize(width(), H);

@@ -131,6 +131,9 @@ std::string manifest_text(const Scenario& sc, const std::vector<Override>& overr
 // figures of summary.txt).
 std::string report_data_text(const Run& run, const ReportSink& report, const RunStatus* status = nullptr,
                              const PacingStats* pacing = nullptr);
+// The report's "geometry" object (wheel axes and positions, thrusters), as
+// JSON text: report_data.json and the live view.
+std::string geometry_json_text(const Run& run);
 void write_text(const std::string& path, const std::string& text);
 
 // Read-back (tests, tools): the flat telemetry table of an HDF5 results file.
