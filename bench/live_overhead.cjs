@@ -20,6 +20,8 @@ if (!kestrel || !scenario) {
   process.exit(2);
 }
 const N = Number(nArg || 3);
+const PACE = Number(process.env.KESTREL_PACE || 100);           // paced case: multiple of real time
+const PACED_DURATION = Number(process.env.KESTREL_PACED_DURATION || 600);
 const DURATION = Number(durArg || 6000);
 const CHROMIUM = process.env.KESTREL_CHROMIUM || '/usr/bin/chromium';
 const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'kestrel-live-bench-'));
@@ -34,7 +36,8 @@ if (PIN) {
 
 function run(extra, onUrl) {
   return new Promise((resolve, reject) => {
-    const args = ['run', scenario, '--force', '-o', path.join(tmp, 'run'), '--set', `duration=${DURATION}`, ...extra];
+    const dur = extra.includes('--realtime') ? [] : ['--set', `duration=${DURATION}`];
+    const args = ['run', scenario, '--force', '-o', path.join(tmp, 'run'), ...dur, ...extra];
     const child = PIN ? spawn('taskset', ['-c', '0', kestrel, ...args], { stdio: ['ignore', 'pipe', 'pipe'] })
       : spawn(kestrel, args, { stdio: ['ignore', 'pipe', 'pipe'] });
     let out = '';
@@ -56,6 +59,7 @@ function run(extra, onUrl) {
 }
 
 const median = (a) => a.slice().sort((x, y) => x - y)[Math.floor(a.length / 2)];
+const min = (a) => Math.min(...a);
 
 async function main() {
   const { chromium } = require('playwright-core');
@@ -94,15 +98,38 @@ async function main() {
     frames.push(await page.evaluate(() => window.kestrelLive.frames));
     await page.close();
   }
+  // paced at PACE x real time (the way a run is watched): the real-time
+  // factor kestrel reports, without and with the page (PACED_DURATION s)
+  const paced = { plain: [], page: [] };
+  for (let i = 0; i < Math.min(N, 3); i++) {
+    const pacedArgs = ['--realtime', '--rt-scale', String(PACE), '--set', `duration=${PACED_DURATION}`];
+    paced.plain.push(await run(pacedArgs));
+    const page = await ctx.newPage();
+    paced.page.push(await run([...pacedArgs, '--live', '--live-paused', '--live-linger', '0'], async (url) => {
+      await page.goto(url, { waitUntil: 'load' });
+      await page.waitForFunction(() => window.kestrelLive && window.kestrelLive.state === 'paused' && window.kestrelLive.frames >= 1, null, { timeout: 30000 });
+      await page.click('#resume');
+    }));
+    await page.close();
+  }
   await ctx.close();
   fs.rmSync(tmp, { recursive: true, force: true });
   const m = { plain: median(res.plain), live: median(res.live), poll: median(res.poll), page: median(res.page) };
   const rtf = (w) => (DURATION / w).toFixed(0);
   console.log(`kestrel live-view overhead: ${path.basename(scenario)}, ${DURATION} s unpaced, median of ${N}` +
     (PIN ? ', kestrel on core 0, Chromium on core 1' : ', kestrel and Chromium on any core'));
+  const best = { plain: min(res.plain), live: min(res.live), poll: min(res.poll), page: min(res.page) };
+  const pct = (k) => `${(100 * m.plain / m[k]).toFixed(1)} % (median), ${(100 * best.plain / best[k]).toFixed(1)} % (fastest)`;
+  console.log('  real-time factor relative to the run without --live, from the median and from the fastest run of each:');
+  for (const [k, label] of [['live', '--live, no page'], ['poll', '--live, polling client'], ['page', '--live, page in Chromium']])
+    console.log(`    ${label.padEnd(26)} ${pct(k)}`);
   console.log(`  without --live            ${m.plain.toFixed(3)} s wall  (${rtf(m.plain)}x real time)  runs ${res.plain.map((x) => x.toFixed(3)).join(' ')}`);
   console.log(`  --live, no page           ${m.live.toFixed(3)} s wall  (${rtf(m.live)}x)  ${(100 * m.plain / m.live).toFixed(1)} % of the real-time factor without  runs ${res.live.map((x) => x.toFixed(3)).join(' ')}`);
   console.log(`  --live, polling client    ${m.poll.toFixed(3)} s wall  (${rtf(m.poll)}x)  ${(100 * m.plain / m.poll).toFixed(1)} % of the real-time factor without  runs ${res.poll.map((x) => x.toFixed(3)).join(' ')}`);
+  const pm = { plain: median(paced.plain), page: median(paced.page) };
+  console.log(`  paced at ${PACE}x, ${PACED_DURATION} s: real-time factor without --live ${(PACED_DURATION / pm.plain).toFixed(2)}x ` +
+    `(runs ${paced.plain.map((x) => (PACED_DURATION / x).toFixed(2)).join(' ')}), with the page ${(PACED_DURATION / pm.page).toFixed(2)}x ` +
+    `(runs ${paced.page.map((x) => (PACED_DURATION / x).toFixed(2)).join(' ')}): ${(100 * pm.plain / pm.page).toFixed(1)} %`);
   console.log(`  --live, page in Chromium  ${m.page.toFixed(3)} s wall  (${rtf(m.page)}x)  ${(100 * m.plain / m.page).toFixed(1)} % of the real-time factor without  runs ${res.page.map((x) => x.toFixed(3)).join(' ')}; frames the page received ${frames.join(' ')}`);
 }
 

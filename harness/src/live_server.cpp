@@ -433,7 +433,7 @@ void LiveServer::Impl::drain(Run& run, double& pace)
     has_cmd.store(false);
   }
   const uint64_t k = run.tick();
-  const double t_k = static_cast<double>(k * tick_ns) * 1e-9;  // as the recorded t
+  const double t_k = static_cast<double>(k * tick_ns) / 1e9;  // as the recorded t (correctly rounded: k dt)
   for (const Command& c : cmds) {
     if (c.op == "pause") {
       paused = true;

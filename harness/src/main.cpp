@@ -136,7 +136,8 @@ int main(int argc, char** argv)
                 << " dropped (" << n.dropped_busy << " while a page read, " << n.dropped_unread << " unread); "
                 << n.commands_applied << " commands applied, " << n.commands_refused << " refused; paused "
                 << n.paused_s << " s of wall time" << std::endl;
-      if (live_linger > 0 && g_stop.load() == 0) {
+      // the page shows the end and links the report (not when nothing ran, nor after Ctrl-C)
+      if (live_linger > 0 && g_stop.load() == 0 && (code == harness::kExitOk || code == harness::kExitRunFailed)) {
         std::cout << "live view: the page stays at " << live->url() << " for " << live_linger
                   << " s (Ctrl-C ends it)" << std::endl;
         live->linger(live_linger, &g_stop);

@@ -98,6 +98,7 @@ let devicesBuilt = false;
 let last = 0;
 const recent = []; // {t, wall, paused} for the real-time factor
 let replay = null;
+let lastDraw = -1e9;
 
 function idx(name) { return name in col ? col[name] : -1; }
 function indexed(prefix, n) { const a = []; for (let i = 0; i < n; i++) a.push(idx(prefix + i)); return a; }
@@ -247,7 +248,12 @@ function onFrames(j) {
     const pe = row[idx('pointing_error_deg')];
     setText('pe', valid(pe) ? `${fmt(pe)} deg` : '\u2013');
     showStatus(row);
-    for (const p of plots) p.u.setData(p.data);
+    // plots redrawn at most 5 times a second (the page shares the machine with the run)
+    const now = performance.now();
+    if (now - lastDraw >= 200 || j.state !== 'running') {
+      lastDraw = now;
+      for (const p of plots) p.u.setData(p.data);
+    }
     if (replay && replay.show) {
       const q = [0, 1, 2, 3].map((i) => row[idx('q_BN_' + i)]);
       const speeds = info.wheels.map((_, i) => row[idx('wheel_speed_rpm_' + i)]);

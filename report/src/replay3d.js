@@ -76,7 +76,7 @@ export function buildReplay(root, D, status, opts = {}) {
 
   const card = el('div', { class: 'card wide' });
   root.appendChild(card);
-  if (!att.t.length) card.appendChild(el('p', { class: 'absent', text: 'No attitude history in this run: the spacecraft is shown at the identity attitude.' }));
+  if (!att.t.length && !opts.live) card.appendChild(el('p', { class: 'absent', text: 'No attitude history in this run: the spacecraft is shown at the identity attitude.' }));
   if (!webglAvailable()) {
     card.appendChild(el('p', { class: 'absent', text: 'This browser offers no WebGL: the 3D replay cannot be shown.' }));
     status.replay = 'no-webgl';

@@ -73,7 +73,7 @@ class Scripted : public harness::RunControl {
       if (a.tick == k) {
         harness::EventSpec e;
         e.name = "live" + std::to_string(++n_);
-        e.t = static_cast<double>(k * run.scenario().tick_ns()) * 1e-9;
+        e.t = static_cast<double>(k * run.scenario().tick_ns()) / 1e9;
         e.actions.push_back(a.action);
         run.add_event(e);
       }
@@ -101,16 +101,17 @@ bool same(const std::vector<double>& a, const std::vector<double>& b)
 
 }  // namespace
 
-// rw2 failed at tick 80 (t = 20 s) and flagged unavailable at tick 81 by the
-// controller: its torque is zero in the row of tick 80 and after (fail_off
+// rw2 failed at tick 30 (t = 7.5 s) and flagged unavailable at tick 31 by the
+// controller: its torque is zero in the row of tick 30 and after (fail_off
 // zeroes u_s at once, docs/events.md) and not in the row before; the manifest
-// lists both as scenario events and reruns bit for bit.
+// lists both as scenario events (t = 7.5 exactly: 30 * 0.25e9 ns / 1e9, where
+// * 1e-9 would give 7.500000000000001) and reruns bit for bit.
 TEST(LiveControl, CommandsAtTickBoundariesReplayFromTheManifest)
 {
   const fs::path dir = temp_dir("replay");
   const harness::Scenario sc = harness::load_scenario(kS1, fast());
   ASSERT_TRUE(sc.events.empty());
-  Scripted ctl({{80, {"rw2", "fail_off"}}, {81, {"rw2", "command_unavailable"}}});
+  Scripted ctl({{30, {"rw2", "fail_off"}}, {31, {"rw2", "command_unavailable"}}});
   harness::RunOptions opt;
   opt.out_dir = (dir / "live").string();
   opt.control = &ctl;
@@ -119,11 +120,11 @@ TEST(LiveControl, CommandsAtTickBoundariesReplayFromTheManifest)
   EXPECT_TRUE(ctl.ended_);
   const harness::Hdf5Table h = harness::read_hdf5((dir / "live" / "results.h5").string());
   ASSERT_EQ(h.events.size(), 2u);
-  EXPECT_EQ(h.events[0].tick, 80u);
-  EXPECT_EQ(h.events[0].t, 20.0);
-  EXPECT_EQ(h.events[1].tick, 81u);
+  EXPECT_EQ(h.events[0].tick, 30u);
+  EXPECT_EQ(h.events[0].t, 7.5);
+  EXPECT_EQ(h.events[1].tick, 31u);
   EXPECT_EQ(h.events[0].what, "rw2 fail_off");
-  // rw2 = wheel 1: torque zero from the row of tick 80 on, not before
+  // rw2 = wheel 1: torque zero from the row of tick 30 on, not before
   size_t ct = 0, cw = 0;
   for (size_t c = 0; c < h.names.size(); ++c) {
     if (h.names[c] == "t") ct = c;
@@ -132,13 +133,13 @@ TEST(LiveControl, CommandsAtTickBoundariesReplayFromTheManifest)
   ASSERT_GT(cw, 0u);
   const size_t nc = h.names.size();
   ASSERT_EQ(h.rows, 241u);  // 60 s at 4 Hz, both ends
-  EXPECT_EQ(h.data[80 * nc + ct], 20.0);
-  EXPECT_NE(h.data[79 * nc + cw], 0.0);  // the PD loop is still acquiring at 20 s
-  for (uint64_t r = 80; r < h.rows; ++r) ASSERT_EQ(h.data[r * nc + cw], 0.0) << "row " << r;
+  EXPECT_EQ(h.data[30 * nc + ct], 7.5);
+  EXPECT_NE(h.data[29 * nc + cw], 0.0);  // the PD loop is acquiring at 7.25 s
+  for (uint64_t r = 30; r < h.rows; ++r) ASSERT_EQ(h.data[r * nc + cw], 0.0) << "row " << r;
   // the manifest: the scenario with both events, as a scenario file lists them
   const json man = json::parse(text_of(dir / "live" / "manifest.json"));
   ASSERT_EQ(man["scenario"]["events"].size(), 2u);
-  EXPECT_EQ(man["scenario"]["events"][0]["t"].get<double>(), 20.0);
+  EXPECT_EQ(man["scenario"]["events"][0]["t"].get<double>(), 7.5);
   EXPECT_EQ(man["result"]["events_applied"].size(), 2u);
   // rerun from the manifest (no controller): bit for bit
   harness::RunOptions opt2;
@@ -150,7 +151,7 @@ TEST(LiveControl, CommandsAtTickBoundariesReplayFromTheManifest)
   const harness::Hdf5Table h2 = harness::read_hdf5((dir / "replay" / "results.h5").string());
   EXPECT_TRUE(same(h.data, h2.data));
   ASSERT_EQ(h2.events.size(), 2u);
-  EXPECT_EQ(h2.events[1].tick, 81u);
+  EXPECT_EQ(h2.events[1].tick, 31u);
   // and a controller that adds nothing changes nothing: the run without one
   Scripted idle({});
   harness::RunOptions opt3;
@@ -269,13 +270,13 @@ TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
   EXPECT_EQ(s.post_ok({{"op", "step"}, {"ticks", 0}})->status, 400);
   EXPECT_EQ(s.cli.Post("/api/command", s.auth(s.srv.token()), "not json", "application/json")->status, 400);
 
-  // step 3 ticks while paused: the run is at the boundary before tick 4, paused
-  EXPECT_EQ(s.post_ok({{"op", "step"}, {"ticks", 3}})->status, 202);
+  // step 29 ticks while paused: the run is at the boundary before tick 30, paused
+  EXPECT_EQ(s.post_ok({{"op", "step"}, {"ticks", 29}})->status, 202);
   ASSERT_TRUE(wait_for([&] {
     const json f = s.frames();
-    return !f.is_null() && f["state"] == "paused" && !f["frames"].empty() && f["frames"].back()["tick"] == 4;
+    return !f.is_null() && f["state"] == "paused" && !f["frames"].empty() && f["frames"].back()["tick"] == 30;
   }));
-  // a good command enters at the next boundary (tick 4), then resume
+  // a good command enters at the next boundary (tick 30), then resume
   r = s.post_ok(fail2);
   EXPECT_EQ(r->status, 202);
   EXPECT_EQ(s.post_ok({{"op", "resume"}})->status, 202);
@@ -283,12 +284,12 @@ TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
   ASSERT_TRUE(res.ok) << res.failure;
   EXPECT_EQ(s.post_ok({{"op", "pause"}})->status, 409);  // ended
 
-  // exactly one event: the good one, at tick 4 (t = 1 s)
+  // exactly one event: the good one, at tick 30 (t = 7.5 s exactly: k tick_ns / 1e9)
   const json man = json::parse(text_of(dir / "run" / "manifest.json"));
   ASSERT_EQ(man["scenario"]["events"].size(), 1u);
-  EXPECT_EQ(man["scenario"]["events"][0]["t"].get<double>(), 1.0);
+  EXPECT_EQ(man["scenario"]["events"][0]["t"].get<double>(), 7.5);
   ASSERT_EQ(man["result"]["events_applied"].size(), 1u);
-  EXPECT_EQ(man["result"]["events_applied"][0]["tick"].get<uint64_t>(), 4u);
+  EXPECT_EQ(man["result"]["events_applied"][0]["tick"].get<uint64_t>(), 30u);
   EXPECT_EQ(man["result"]["events_applied"][0]["actions"], "rw2 fail_off");
   const harness::LiveCounters n = s.srv.counters();
   EXPECT_EQ(n.commands_applied, 3u);  // step, the event, resume

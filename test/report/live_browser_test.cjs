@@ -112,7 +112,8 @@ async function main() {
     const cmdRow = await page.evaluate(() => [...document.querySelectorAll('#commands tr')].find((r) => r.textContent.includes('rw2 fail_off')).textContent);
     const tick = Number((cmdRow.match(/tick (\d+)/) || [])[1]);
     console.log(`  command: ${cmdRow}`);
-    await page.screenshot({ path: path.join(outDir, 'live.png'), fullPage: false });
+    await page.waitForTimeout(500); // a few more frames and 3D drawings
+    await page.screenshot({ path: path.join(outDir, 'live.png'), fullPage: true });
     // the end: state and the report link
     await page.waitForFunction(() => window.kestrelLive.state === 'ended' && document.getElementById('report-link'), null, { timeout: 30000 });
     const reportOk = await page.evaluate(async () => {
