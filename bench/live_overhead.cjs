@@ -52,12 +52,15 @@ function run(extra, onUrl) {
     child.on('exit', (code) => {
       const w = out.match(/simulated in ([0-9.e+-]+) s/);
       const p = out.match(/paused ([0-9.e+-]+) s of wall time/);
+      const d = out.match(/(\d+) frames published, (\d+) dropped/);
+      if (d) drops.push(`${d[2]}/${d[1]}`);
       if (code !== 0 || !w) return reject(new Error(`kestrel exit ${code}:\n${out}\n${err}`));
       resolve(Number(w[1]) - (p ? Number(p[1]) : 0));
     });
   });
 }
 
+const drops = []; // "dropped/published" of each --live run, in order
 const median = (a) => a.slice().sort((x, y) => x - y)[Math.floor(a.length / 2)];
 const min = (a) => Math.min(...a);
 
@@ -130,6 +133,7 @@ async function main() {
   console.log(`  paced at ${PACE}x, ${PACED_DURATION} s: real-time factor without --live ${(PACED_DURATION / pm.plain).toFixed(2)}x ` +
     `(runs ${paced.plain.map((x) => (PACED_DURATION / x).toFixed(2)).join(' ')}), with the page ${(PACED_DURATION / pm.page).toFixed(2)}x ` +
     `(runs ${paced.page.map((x) => (PACED_DURATION / x).toFixed(2)).join(' ')}): ${(100 * pm.plain / pm.page).toFixed(1)} %`);
+  console.log(`  frames dropped/published by the server, every --live run in order: ${drops.join(' ')}`);
   console.log(`  --live, page in Chromium  ${m.page.toFixed(3)} s wall  (${rtf(m.page)}x)  ${(100 * m.plain / m.page).toFixed(1)} % of the real-time factor without  runs ${res.page.map((x) => x.toFixed(3)).join(' ')}; frames the page received ${frames.join(' ')}`);
 }
 

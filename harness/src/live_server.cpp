@@ -357,21 +357,23 @@ void LiveServer::Impl::post_command(const httplib::Request& req, httplib::Respon
 std::string LiveServer::Impl::frames_text(uint64_t since)
 {
   page_seen.store(true);
-  json frames = json::array();
   uint64_t last = 0, missed = 0;
+  std::vector<Frame> copy;  // copied under the lock (memcpy), the JSON is written after it
+  copy.reserve(kRingFrames);
   {
     std::lock_guard<std::mutex> lk(ring_mu);
     last = seq;
     const uint64_t oldest = seq >= kRingFrames ? seq - kRingFrames + 1 : 1;
-    uint64_t from = since + 1 < oldest ? oldest : since + 1;
+    const uint64_t from = since + 1 < oldest ? oldest : since + 1;
     if (from > since + 1) missed = from - since - 1;
-    for (uint64_t s = from; s <= seq; ++s) {
-      const Frame& f = ring[static_cast<size_t>(s % kRingFrames)];
-      json row = json::array();
-      for (double v : f.row) row.push_back(std::isfinite(v) ? json(v) : json(nullptr));
-      frames.push_back({{"seq", f.seq}, {"tick", f.tick}, {"wall", f.wall}, {"rate", f.rate}, {"paused", f.paused},
-                        {"row", std::move(row)}});
-    }
+    for (uint64_t s = from; s <= seq; ++s) copy.push_back(ring[static_cast<size_t>(s % kRingFrames)]);
+  }
+  json frames = json::array();
+  for (const Frame& f : copy) {
+    json row = json::array();
+    for (double v : f.row) row.push_back(std::isfinite(v) ? json(v) : json(nullptr));
+    frames.push_back({{"seq", f.seq}, {"tick", f.tick}, {"wall", f.wall}, {"rate", f.rate}, {"paused", f.paused},
+                      {"row", std::move(row)}});
   }
   uint64_t prev = max_read.load();
   while (last > prev && !max_read.compare_exchange_weak(prev, last)) {
