@@ -279,9 +279,18 @@ TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
   // a good command enters at the next boundary (tick 30), then resume
   r = s.post_ok(fail2);
   EXPECT_EQ(r->status, 202);
+  // a rate turns pacing on in this unpaced run: the rest (ticks 30..240) at
+  // 1000x real time, 0.25 ms of wall time a tick after the first, which is
+  // due at once (Pacer::restart)
+  EXPECT_EQ(s.post_ok({{"op", "rate"}, {"value", 1000}})->status, 202);
   EXPECT_EQ(s.post_ok({{"op", "resume"}})->status, 202);
   sim.join();
   ASSERT_TRUE(res.ok) << res.failure;
+  EXPECT_TRUE(res.paced);
+  EXPECT_EQ(res.pacing.scale, 1000.0);
+  EXPECT_EQ(res.pacing.ticks, 211u);
+  // the running wall time (the pauses taken off) covers the deadlines
+  EXPECT_GE(res.wall_seconds - s.srv.counters().paused_s, 210 * 0.25e-3);
   EXPECT_EQ(s.post_ok({{"op", "pause"}})->status, 409);  // ended
 
   // exactly one event: the good one, at tick 30 (t = 7.5 s exactly: k tick_ns / 1e9)
@@ -292,7 +301,7 @@ TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
   EXPECT_EQ(man["result"]["events_applied"][0]["tick"].get<uint64_t>(), 30u);
   EXPECT_EQ(man["result"]["events_applied"][0]["actions"], "rw2 fail_off");
   const harness::LiveCounters n = s.srv.counters();
-  EXPECT_EQ(n.commands_applied, 3u);  // step, the event, resume
+  EXPECT_EQ(n.commands_applied, 4u);  // step, the event, rate, resume
   EXPECT_EQ(n.commands_refused, 6u + 9u + 1u);  // 6 token refusals, 9 bad commands, 1 after the end
   const json f = s.frames();
   EXPECT_EQ(f["state"], "ended");
