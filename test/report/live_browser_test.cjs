@@ -5,7 +5,8 @@
 // the printed URL, resumes the run, sees the page update, clicks "fail_off" of rw2 (wheel 2), waits for
 // the run to end and the report link, and checks in the recorded
 // telemetry.csv that wheel 2's torque (wheel_torque_1) is 0 from the row of
-// the tick the command entered at, and not in the row before.  Requests to
+// the tick the command entered at, and not in the row before, and that
+// `kestrel run manifest.json` reproduces telemetry.csv byte for byte.  Requests to
 // anything but the live server are aborted and count as failures.
 //
 //   NODE_PATH=<build>/report/npm/node_modules node live_browser_test.cjs KESTREL S1.yaml OUT_DIR
@@ -146,6 +147,16 @@ async function main() {
     const man = JSON.parse(fs.readFileSync(path.join(outDir, 'run', 'manifest.json'), 'utf8'));
     const ev = man.scenario.events || [];
     if (ev.length !== 1 || ev[0].t !== tk || ev[0].actions[0].device !== 'rw2') fail(`manifest events ${JSON.stringify(ev)}`);
+    // the manifest replays the page-driven run bit for bit (telemetry.csv holds every value as %.17g)
+    const replayDir = path.join(outDir, 'replay');
+    const code = await new Promise((resolve) => {
+      const c = spawn(kestrel, ['run', path.join(outDir, 'run', 'manifest.json'), '--csv', '--force', '-o', replayDir], { stdio: 'ignore' });
+      c.on('exit', resolve);
+    });
+    if (code !== 0) fail(`kestrel run manifest.json exited ${code}`);
+    else if (fs.readFileSync(path.join(replayDir, 'telemetry.csv'), 'utf8') !== fs.readFileSync(path.join(outDir, 'run', 'telemetry.csv'), 'utf8'))
+      fail('the manifest replay differs from the live run (telemetry.csv)');
+    else console.log('  manifest replay: telemetry.csv identical');
   } finally {
     await ctx.close();
     if (run.child.exitCode === null) run.child.kill('SIGINT');
