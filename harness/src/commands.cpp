@@ -140,6 +140,7 @@ int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
   opt.link.delay = c.delay / 100.0;
   opt.link.delay_cycles = c.delay_cycles;
   opt.link.seed = c.link_seed;
+  opt.control = c.control;
   opt.notice = [&err, &c](const std::string& msg) {
     if (c.progress) err << "\n";
     err << "kestrel: " << msg << "\n";

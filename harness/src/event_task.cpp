@@ -21,49 +21,58 @@ uint64_t ceil_to_tick(double t_s, uint64_t tick_ns)
 EventTask::EventTask(const Scenario& sc, sim::Plant& plant, SensorSuite& sensors, const Recorder& rec)
     : sc_(sc), plant_(plant), sensors_(sensors), rec_(rec), tick_ns_(sc.tick_ns())
 {
-  for (size_t i = 0; i < sc.events.size(); ++i) {
-    const EventSpec& e = sc.events[i];
-    const std::string key = "events[" + std::to_string(i) + "]";
-    Ev ev;
-    if (e.t) ev.t_ns = ceil_to_tick(*e.t, tick_ns_);
-    if (!e.after.empty()) {
-      for (size_t j = 0; j < i; ++j)
-        if (sc.events[j].name == e.after) ev.after = static_cast<int>(j);
-      if (ev.after < 0) throw config_error(sc, key + ".after", "no earlier event named '" + e.after + "'");
-      ev.delay_ns = ceil_to_tick(e.delay, tick_ns_);
-    }
-    if (!e.when.empty()) {
-      try {
-        ev.column = rec.column_index(e.when);
-      } catch (const std::out_of_range&) {
-        throw config_error(sc, key + ".when", "this run records no column '" + e.when + "'");
-      }
-      ev.watch = true;
-      ev.below = e.below.has_value();
-      ev.threshold = e.below ? *e.below : e.above.value_or(0.0);
-    }
-    for (size_t j = 0; j < e.actions.size(); ++j) {
-      const EventActionSpec& a = e.actions[j];
-      std::string k;
-      const std::string why = check_event_action(sc, a, k);
-      if (!why.empty()) throw config_error(sc, key + ".actions[" + std::to_string(j) + "]." + k, why);
-      Act act;
-      resolve_event_device(sc, a.device, act.target);
-      act.action = find_event_action(act.target.device, a.action)->action;
-      act.value = a.value;
-      ev.acts.push_back(act);
-      ev.entry.what += (j ? "; " : "") + a.device + " " + a.action;
-      if (!std::isnan(a.value)) {
-        std::ostringstream v;
-        v.precision(10);
-        v << a.value;
-        ev.entry.what += " " + v.str();
-      }
-    }
-    ev.entry.name = e.name;
-    ev_.push_back(std::move(ev));
-  }
+  for (size_t i = 0; i < sc.events.size(); ++i) ev_.push_back(make(i));
   log_.reserve(ev_.size());
+}
+
+void EventTask::add()
+{
+  ev_.push_back(make(sc_.events.size() - 1));
+  log_.reserve(ev_.size());
+}
+
+EventTask::Ev EventTask::make(size_t i) const
+{
+  const EventSpec& e = sc_.events[i];
+  const std::string key = "events[" + std::to_string(i) + "]";
+  Ev ev;
+  if (e.t) ev.t_ns = ceil_to_tick(*e.t, tick_ns_);
+  if (!e.after.empty()) {
+    for (size_t j = 0; j < i; ++j)
+      if (sc_.events[j].name == e.after) ev.after = static_cast<int>(j);
+    if (ev.after < 0) throw config_error(sc_, key + ".after", "no earlier event named '" + e.after + "'");
+    ev.delay_ns = ceil_to_tick(e.delay, tick_ns_);
+  }
+  if (!e.when.empty()) {
+    try {
+      ev.column = rec_.column_index(e.when);
+    } catch (const std::out_of_range&) {
+      throw config_error(sc_, key + ".when", "this run records no column '" + e.when + "'");
+    }
+    ev.watch = true;
+    ev.below = e.below.has_value();
+    ev.threshold = e.below ? *e.below : e.above.value_or(0.0);
+  }
+  for (size_t j = 0; j < e.actions.size(); ++j) {
+    const EventActionSpec& a = e.actions[j];
+    std::string k;
+    const std::string why = check_event_action(sc_, a, k);
+    if (!why.empty()) throw config_error(sc_, key + ".actions[" + std::to_string(j) + "]." + k, why);
+    Act act;
+    resolve_event_device(sc_, a.device, act.target);
+    act.action = find_event_action(act.target.device, a.action)->action;
+    act.value = a.value;
+    ev.acts.push_back(act);
+    ev.entry.what += (j ? "; " : "") + a.device + " " + a.action;
+    if (!std::isnan(a.value)) {
+      std::ostringstream v;
+      v.precision(10);
+      v << a.value;
+      ev.entry.what += " " + v.str();
+    }
+  }
+  ev.entry.name = e.name;
+  return ev;
 }
 
 void EventTask::operator()(uint64_t k)

@@ -30,6 +30,10 @@ class EventTask {
   // check: a device or a watched column the run does not have.
   EventTask(const Scenario& sc, sim::Plant& plant, SensorSuite& sensors, const Recorder& rec);
   void operator()(uint64_t k);
+  // Takes the scenario's last event (just appended to sc.events, e.g. a
+  // command from the live view) into the run; throws like the constructor.
+  // Allocates (the live view's commands, not the scenario's own events).
+  void add();
   const std::vector<AppliedEvent>& log() const { return log_; }
 
  private:
@@ -50,6 +54,7 @@ class EventTask {
     AppliedEvent entry;  // built at setup, moved into the log when applied (no allocation)
   };
   void apply(const Act& a, uint64_t t_ns);
+  Ev make(size_t i) const;  // event i of the scenario, checked
 
   const Scenario& sc_;
   sim::Plant& plant_;

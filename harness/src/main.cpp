@@ -7,11 +7,15 @@
 #include <cstdio>
 #include <optional>
 #include <iostream>
+#include <memory>
 
 #include <CLI/CLI.hpp>
 
 #include "harness/commands.h"
 #include "harness/run.h"
+#ifdef KESTREL_HAVE_LIVE
+#include "live_server.h"
+#endif
 
 namespace {
 
@@ -80,6 +84,17 @@ int main(int argc, char** argv)
   run->add_option("--link-delay-cycles", rc.delay_cycles, "FSW cycles a delayed packet is late (default 2)")
       ->check(CLI::Range(1, 1000));
   run->add_option("--link-seed", rc.link_seed, "seed of the fault injector (default 1)");
+  bool live_on = false, live_paused = false;
+  int live_port = 0;
+  std::string live_host = "127.0.0.1";
+  double live_linger = 10.0;
+  run->add_flag("--live", live_on, "serve the live view while the run goes (docs/live.md): prints its URL");
+  run->add_option("--port", live_port, "with --live: TCP port (default 0: a free one, printed)")
+      ->check(CLI::Range(0, 65535));
+  run->add_option("--live-host", live_host, "with --live: address to bind (default 127.0.0.1)");
+  run->add_option("--live-linger", live_linger, "with --live: seconds the page stays served after the run (default 10)")
+      ->check(CLI::Range(0.0, 86400.0));
+  run->add_flag("--live-paused", live_paused, "with --live: start paused (resume from the page)");
 
   std::string cpath, cout_file;
   std::vector<std::string> csets;
@@ -129,7 +144,44 @@ int main(int argc, char** argv)
     rc.progress = isatty(STDERR_FILENO) != 0;
     rc.stop = &g_stop;
     install_stop_handlers();
+#ifdef KESTREL_HAVE_LIVE
+    std::unique_ptr<harness::LiveServer> live;
+    if (live_on) {
+      harness::LiveOptions lo;
+      lo.host = live_host;
+      lo.port = live_port;
+      lo.start_paused = live_paused;
+      try {
+        live = std::make_unique<harness::LiveServer>(lo);
+      } catch (const std::exception& e) {
+        std::cerr << "kestrel: " << e.what() << "\n";
+        return harness::kExitUsage;
+      }
+      std::cout << "live view: " << live->url() << std::endl;
+      rc.control = live.get();
+    }
+    const int code = harness::cmd_run(rc, std::cout, std::cerr);
+    if (live) {
+      const harness::LiveCounters n = live->counters();
+      std::cout << "live view: " << n.published << " frames published, " << n.dropped_busy + n.dropped_unread
+                << " dropped (" << n.dropped_busy << " while a page read, " << n.dropped_unread << " unread); "
+                << n.commands_applied << " commands applied, " << n.commands_refused << " refused; paused "
+                << n.paused_s << " s of wall time" << std::endl;
+      // the page shows the end and links the report (not when nothing ran, nor after Ctrl-C)
+      if (live_linger > 0 && g_stop.load() == 0 && (code == harness::kExitOk || code == harness::kExitRunFailed)) {
+        std::cout << "live view: the page stays at " << live->url() << " for " << live_linger
+                  << " s (Ctrl-C ends it)" << std::endl;
+        live->linger(live_linger, &g_stop);
+      }
+    }
+    return code;
+#else
+    if (live_on) {
+      std::cerr << "kestrel: this build has no live view (cpp-httplib was missing at build time)\n";
+      return harness::kExitUsage;
+    }
     return harness::cmd_run(rc, std::cout, std::cerr);
+#endif
   }
   if (*merge) return harness::cmd_mc_merge(merge_out, merge_in, merge_force, std::cout, std::cerr);
   if (*mcc) {

@@ -80,6 +80,21 @@ std::string manifest_text(const Scenario& sc, const std::vector<Override>& overr
   return j.dump(2) + "\n";
 }
 
+std::string geometry_json_text(const Run& run)
+{
+  const Scenario& sc = run.scenario();
+  json axes = json::array();
+  for (const auto& a : run.wheel_axes_B()) axes.push_back({a[0], a[1], a[2]});
+  json thr = json::array();
+  for (const ThrusterSpec& t : sc.thrusters)
+    thr.push_back({{"name", t.name},
+                   {"r_B", {t.r_B(0), t.r_B(1), t.r_B(2)}},
+                   {"dir_B", {t.dir_B(0), t.dir_B(1), t.dir_B(2)}}});
+  json wpos = json::array();
+  for (const WheelSpec& w : sc.wheels) wpos.push_back({w.params.r_WB_B(0), w.params.r_WB_B(1), w.params.r_WB_B(2)});
+  return json{{"wheel_axes_B", axes}, {"wheel_positions_B", wpos}, {"thrusters", thr}}.dump();
+}
+
 std::string report_data_text(const Run& run, const ReportSink& report, const RunStatus* status,
                              const PacingStats* pacing)
 {
@@ -111,16 +126,7 @@ std::string report_data_text(const Run& run, const ReportSink& report, const Run
     j["meta"]["rt_overruns"] = pacing->overruns;
     j["meta"]["rt_drift_s"] = pacing->drift_s;
   }
-  json axes = json::array();
-  for (const auto& a : run.wheel_axes_B()) axes.push_back({a[0], a[1], a[2]});
-  json thr = json::array();
-  for (const ThrusterSpec& t : sc.thrusters)
-    thr.push_back({{"name", t.name},
-                   {"r_B", {t.r_B(0), t.r_B(1), t.r_B(2)}},
-                   {"dir_B", {t.dir_B(0), t.dir_B(1), t.dir_B(2)}}});
-  json wpos = json::array();
-  for (const WheelSpec& w : sc.wheels) wpos.push_back({w.params.r_WB_B(0), w.params.r_WB_B(1), w.params.r_WB_B(2)});
-  j["geometry"] = {{"wheel_axes_B", axes}, {"wheel_positions_B", wpos}, {"thrusters", thr}};
+  j["geometry"] = json::parse(geometry_json_text(run));
   j["dataflow_dot"] = run.dataflow().to_dot(sc.name);
   if (!sc.events.empty()) {
     json ev = json::array();

@@ -70,6 +70,13 @@ std::string Pacer::request_realtime()
   return w + ": lateness may be larger; run as root or grant CAP_SYS_NICE and CAP_IPC_LOCK";
 }
 
+void Pacer::restart(double scale)
+{
+  if (!(scale > 0.0) || !std::isfinite(scale)) throw std::invalid_argument("pacing needs a real-time scale > 0");
+  scale_ = scale;
+  t0_ns_ = -1;  // wait_for fixes it again
+}
+
 int64_t Pacer::deadline_ns(uint64_t k) const
 {
   return t0_ns_ + static_cast<int64_t>(std::llround(static_cast<double>(k) * static_cast<double>(tick_ns_) / scale_));

@@ -169,7 +169,7 @@ void Run::Impl::wire(RunConfig& cfg)
   const RateGroup every{"every_tick", 1, 0};
   const RateGroup fsw_group{"fsw", sc.rates.fsw_divisor, sc.rates.fsw_offset};
   const RateGroup rec_group{"record", sc.rates.record_divisor, 0};
-  if (!sc.events.empty()) {
+  if (!sc.events.empty() || cfg.accept_events) {
     f.add_component("events", "harness: scenario events (docs/events.md) -> plant devices, sensor faults, FSW input");
     events.emplace(sc, plant, *sensors, rec);
   }
@@ -260,6 +260,19 @@ const DataFlow& Run::dataflow() const { return impl_->flow; }
 const Scheduler& Run::scheduler() const { return impl_->sched; }
 sim::Plant& Run::plant() { return impl_->plant; }
 const sim::Plant& Run::plant() const { return impl_->plant; }
+
+void Run::add_event(const EventSpec& e)
+{
+  Impl& m = *impl_;
+  if (!m.events) throw std::logic_error("Run::add_event: the run was built without RunConfig::accept_events");
+  m.sc.events.push_back(e);
+  try {
+    m.events->add();
+  } catch (...) {
+    m.sc.events.pop_back();
+    throw;
+  }
+}
 
 const std::vector<AppliedEvent>& Run::events_applied() const
 {

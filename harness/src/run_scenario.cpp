@@ -90,6 +90,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
     cfg.fsw = make_remote_fsw(sc, opt, remote, [&pacer, &pacing_tick] {
       return pacer ? pacer->seconds_to(pacing_tick + 1) : std::numeric_limits<double>::infinity();
     });
+  cfg.accept_events = opt.control != nullptr;  // the live view's commands are events
   Run run(sc, std::move(cfg));
   if (rdir) rdir->require_free_space(output_estimate(run, sc));
   const fs::path dir = files ? rdir->work() : fs::path();
@@ -104,7 +105,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   std::optional<CsvSink> csv;
   std::optional<ReportSink> report;
   if (files && sc.outputs.hdf5) {
-    h5.emplace((dir / "results.h5").string(), sc, manifest);
+    h5.emplace((dir / "results.h5").string(), run.scenario(), manifest);  // with the events added while running
     h5->set_events(&run.events_applied());
     run.add_sink(*h5);
   }
@@ -121,17 +122,30 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   const uint64_t total = run.total_ticks();
   const uint64_t chunk = std::clamp<uint64_t>(total / 200, 1, 1000);
   uint64_t notice_every = 1;  // paced: ticks per ~10 s of wall time (one notice at most)
-  if (opt.realtime_scale > 0.0) {
-    pacer.emplace(sc.tick_ns(), opt.realtime_scale);
-    const std::string w = pacer->request_realtime();
-    if (!w.empty() && opt.notice) opt.notice(w);
-    notice_every = std::max<uint64_t>(1, static_cast<uint64_t>(1e10 * opt.realtime_scale / static_cast<double>(sc.tick_ns())));
-  }
+  auto pace_at = [&](double scale) {
+    if (!pacer) {
+      pacer.emplace(sc.tick_ns(), scale);
+      const std::string w = pacer->request_realtime();
+      if (!w.empty() && opt.notice) opt.notice(w);
+    } else {
+      pacer->restart(scale);
+    }
+    notice_every = std::max<uint64_t>(1, static_cast<uint64_t>(1e10 * scale / static_cast<double>(sc.tick_ns())));
+  };
+  if (opt.realtime_scale > 0.0) pace_at(opt.realtime_scale);
+  if (opt.control) opt.control->started(run, opt.realtime_scale, opt.stop);
   const auto t0 = std::chrono::steady_clock::now();
   while (!run.done()) {
     if (opt.stop && opt.stop->load() != 0) {
       res.stopped_by_signal = opt.stop->load();
       break;
+    }
+    uint64_t limit = chunk;
+    if (opt.control) {  // commands enter here, at a tick boundary; a pause waits here
+      double pace = 0.0;
+      limit = std::min(chunk, opt.control->boundary(run, pace));
+      if (pace > 0.0) pace_at(pace);
+      if (opt.stop && opt.stop->load() != 0) continue;
     }
     if (pacer) {  // one tick at a time, each at its deadline
       const uint64_t k = run.tick();
@@ -148,7 +162,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
       if (opt.progress && (k + 1) % chunk == 0) opt.progress(static_cast<double>(run.tick()) / static_cast<double>(total));
       continue;
     }
-    if (!run.step_ticks(chunk)) break;
+    if (!run.step_ticks(limit)) break;
     if (opt.progress) opt.progress(static_cast<double>(run.tick()) / static_cast<double>(total));
   }
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -174,7 +188,10 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   st.t_reached = run.recorder().rows() > 0 ? run.recorder().last_row()[0] : 0.0;
   st.stopped_by = res.stopped_by_signal ? signal_name(res.stopped_by_signal) : res.failure;
   st.events = run.events_applied();
-  if (!files) return res;
+  if (!files) {
+    if (opt.control) opt.control->ended(run, res);
+    return res;
+  }
   if (h5) written.push_back("results.h5");
   if (csv) written.push_back("telemetry.csv");
   if (report) {
@@ -230,9 +247,11 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   write_text((dir / "summary.txt").string(), summ.str());
   written.push_back("summary.txt");
   // the manifest again, now saying how the run ended
-  write_text((dir / "manifest.json").string(), manifest_text(sc, opt.overrides, &st));
+  // (run.scenario(): with the events the live view added, so it replays them)
+  write_text((dir / "manifest.json").string(), manifest_text(run.scenario(), opt.overrides, &st));
   rdir->commit();
   for (const std::string& n : written) res.files.push_back((rdir->target() / n).string());
+  if (opt.control) opt.control->ended(run, res);
   return res;
 }
 

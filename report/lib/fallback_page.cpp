@@ -41,5 +41,15 @@ const char kMcPageSuffix[] = KESTREL_FALLBACK_SUFFIX;
 const std::size_t kMcPageSuffixSize = sizeof(kMcPageSuffix) - 1;
 
 const bool kHasBundle = false;
+extern const char kLivePage[];
+extern const std::size_t kLivePageSize;
+const char kLivePage[] = R"KRPT(<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>Kestrel live view (no page)</title></head>
+<body><h1>Kestrel live view</h1>
+<p>This build of Kestrel had no Node.js/npm, so the live page was not built (scripts/install-deps.sh host
+installs them). The API answers at /api/info, /api/frames and /api/command (docs/live.md).</p>
+</body></html>
+)KRPT";
+const std::size_t kLivePageSize = sizeof(kLivePage) - 1;
 }  // namespace detail
 }  // namespace report

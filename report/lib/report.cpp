@@ -18,6 +18,8 @@ extern const std::size_t kMcPagePrefixSize;
 extern const char kMcPageSuffix[];
 extern const std::size_t kMcPageSuffixSize;
 extern const bool kHasBundle;
+extern const char kLivePage[];
+extern const std::size_t kLivePageSize;
 }  // namespace detail
 
 namespace {
@@ -98,6 +100,12 @@ void write_mc_html(const std::string& mc_report_data_json, const std::string& ou
 }
 
 bool has_bundle() { return detail::kHasBundle; }
+
+const std::string& live_page()
+{
+  static const std::string page(detail::kLivePage, detail::kLivePageSize);
+  return page;
+}
 
 std::size_t page_size() { return detail::kPagePrefixSize + detail::kPageSuffixSize; }
 

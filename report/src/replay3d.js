@@ -9,7 +9,7 @@ import {
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { indexedKeys, alignSeries, isNumArray, sampleIndex, el, fmt } from './data.js';
-import { attitudeSamples } from './attitude.js';
+import { attitudeSamples, rendererQuat } from './attitude.js';
 import { PALETTE, AXIS_COLORS, setMarkerTime } from './plots.js';
 
 function label(text, color, size) {
@@ -55,7 +55,9 @@ function webglAvailable() {
   }
 }
 
-export function buildReplay(root, D, status) {
+// opts.live: no timeline; returns { show(t, q_BN, wheel_rpm[], thruster_level[]) } for
+// the live view (live.js), which poses the same scene with each new frame.
+export function buildReplay(root, D, status, opts = {}) {
   const att = attitudeSamples(D.attitude);
   const geom = D.geometry || {};
   const wheelAxes = [];
@@ -74,7 +76,7 @@ export function buildReplay(root, D, status) {
 
   const card = el('div', { class: 'card wide' });
   root.appendChild(card);
-  if (!att.t.length) card.appendChild(el('p', { class: 'absent', text: 'No attitude history in this run: the spacecraft is shown at the identity attitude.' }));
+  if (!att.t.length && !opts.live) card.appendChild(el('p', { class: 'absent', text: 'No attitude history in this run: the spacecraft is shown at the identity attitude.' }));
   if (!webglAvailable()) {
     card.appendChild(el('p', { class: 'absent', text: 'This browser offers no WebGL: the 3D replay cannot be shown.' }));
     status.replay = 'no-webgl';
@@ -146,7 +148,7 @@ export function buildReplay(root, D, status) {
     const k = wheelSpeedKeys.find((w) => w.index === i) || wheelSpeedKeys[i];
     return k ? alignSeries(series[k.key], t.length) : null;
   });
-  const maxRpm = wheelSpeeds.reduce((m, s) => Math.max(m, maxAbs(s)), 1);
+  const maxRpm = opts.maxRpm || wheelSpeeds.reduce((m, s) => Math.max(m, maxAbs(s)), 1);
   const spinners = wheelAxes.map((a, i) => {
     const color = PALETTE[(i + 3) % PALETTE.length];
     const holder = new Group();
@@ -222,6 +224,8 @@ export function buildReplay(root, D, status) {
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.target.set(0, 0, 0);
   controls.update();
+
+  if (opts.live) return liveScene(card, view, renderer, scene, camera, controls, body, spinners, plumes, maxRpm, S, status, width, H);
 
   // --- timeline ----------------------------------------------------------------
   const t0 = att.t.length ? att.t[0] : t.length ? t[0] : 0;
@@ -319,4 +323,63 @@ export function buildReplay(root, D, status) {
   requestAnimationFrame(frame);
   status.replay = 'ok';
   status.replayFrames = att.t.length;
+}
+
+// The live view's use of the scene: posed by show() with each frame, the
+// wheels turning with their speed's sign, plumes scaled by the level (force
+// relative to the largest seen, or 1 for an on-time > 0).
+function liveScene(card, view, renderer, scene, camera, controls, body, spinners, plumes, maxRpm, S, status, width, H) {
+  const readout = el('div', { class: 'readout' });
+  card.appendChild(view);
+  card.appendChild(readout);
+  card.appendChild(el('p', { class: 'note', text:
+    'Inertial frame N (faint axes n1 n2 n3); body axes b1 (red), b2 (green), b3 (blue); wheel discs turn with the sign of the wheel ' +
+    'speed and brighten with its magnitude; thruster plumes (orange) along -dir_B. Drag to orbit, wheel to zoom.' }));
+  let fmax = 1e-300;
+  const show = (t, q, speeds, levels) => {
+    const qr = rendererQuat(q);  // scalar-first passive q_BN -> the renderer's rotation (attitude.js)
+    if (qr) body.quaternion.copy(new Quaternion().fromArray(qr));
+    const parts = [`t = ${fmt(t, 6)} s`];
+    spinners.forEach((w, i) => {
+      const v = speeds[i];
+      w.speed = v === null || v === undefined ? 0 : v;
+      const mag = Math.min(1, Math.abs(w.speed) / maxRpm);
+      w.disc.material.color.copy(w.color).multiplyScalar(0.45 + 0.75 * mag);
+      parts.push(`w${i} ${fmt(v)} rpm`);
+    });
+    let firing = 0;
+    plumes.forEach((p, i) => {
+      const f = Math.abs(levels[i] || 0);
+      fmax = Math.max(fmax, f);
+      const lv = Math.min(1, f / fmax);
+      p.plume.visible = lv > 0;
+      if (lv > 0) { firing++; p.plume.scale.set(1, Math.max(0.15, lv) * 1.2 * S, 1); }
+    });
+    if (plumes.length) parts.push(`${firing}/${plumes.length} thrusters firing`);
+    readout.textContent = parts.join('   \u00b7   ');
+  };
+  // at most 10 drawings a second: the page shares the machine with the run
+  // (software WebGL in a headless or GPU-less browser costs a core at 60 Hz)
+  let last = performance.now();
+  const frame = (now) => {
+    requestAnimationFrame(frame);
+    if (now - last < 100) return;
+    const dtReal = Math.min(0.2, Math.max(0, (now - last) / 1000));
+    last = now;
+    for (const w of spinners) {
+      w.angle += Math.sign(w.speed || 0) * (0.5 + 3 * Math.min(1, Math.abs(w.speed || 0) / maxRpm)) * dtReal * 2 * Math.PI;
+      w.spin.rotation.y = w.angle;
+    }
+    controls.update();
+    renderer.render(scene, camera);
+  };
+  window.addEventListener('resize', () => {
+    renderer.setSize(width(), H);
+    camera.aspect = width() / H;
+    camera.updateProjectionMatrix();
+  });
+  renderer.render(scene, camera);
+  requestAnimationFrame(frame);
+  status.replay = 'ok';
+  return { show };
 }

@@ -27,6 +27,8 @@
 
 namespace harness {
 
+class RunControl;  // outputs.h
+
 enum ExitCode : int {
   kExitOk = 0,
   kExitRunFailed = 1,
@@ -57,6 +59,7 @@ struct RunCommand {
   double loss = 0, corrupt = 0, duplicate = 0, reorder = 0, delay = 0;  // fault probabilities [%]
   int delay_cycles = 2;
   uint64_t link_seed = 1;
+  RunControl* control = nullptr;    // steers the run while it goes: the live view (docs/live.md)
 };
 
 // Writes the FSW configuration image of a scenario (docs/hwil.md).

@@ -131,6 +131,9 @@ std::string manifest_text(const Scenario& sc, const std::vector<Override>& overr
 // figures of summary.txt).
 std::string report_data_text(const Run& run, const ReportSink& report, const RunStatus* status = nullptr,
                              const PacingStats* pacing = nullptr);
+// The report's "geometry" object (wheel axes and positions, thrusters), as
+// JSON text: report_data.json and the live view.
+std::string geometry_json_text(const Run& run);
 void write_text(const std::string& path, const std::string& text);
 
 // Read-back (tests, tools): the flat telemetry table of an HDF5 results file.
@@ -147,6 +150,28 @@ struct Hdf5Table {
 Hdf5Table read_hdf5(const std::string& path);
 
 // ---- a whole run to files ----------------------------------------------------------
+struct RunResult;
+
+// Something that steers a run at its tick boundaries while it goes: the live
+// view (harness/src/live_*.cpp, docs/live.md).  run_scenario() builds the run
+// with RunConfig::accept_events when one is given, calls started() once,
+// boundary() before every step (paced: every tick) and ended() once the
+// results are written.
+class RunControl {
+ public:
+  virtual ~RunControl() = default;
+  // After the run is built, before its first tick; `realtime_scale` 0: not paced.
+  virtual void started(Run& run, double realtime_scale, const std::atomic<int>* stop) = 0;
+  // At the boundary before tick run.tick(): applies what was asked
+  // (Run::add_event), may wait while paused (returns when resumed, stepped
+  // or stopped).  Returns the most ticks to run before the next call (>= 1);
+  // sets `pace` > 0 to (re)start pacing at that multiple of real time (a new
+  // rate, or the deadlines restarted after a pause).
+  virtual uint64_t boundary(Run& run, double& pace) = 0;
+  // Once, after the results are written (or the run failed).
+  virtual void ended(const Run& run, const RunResult& res) = 0;
+};
+
 struct RunOptions {
   std::string out_dir;                          // "" : write nothing (see results_dir.h)
   bool force = false;                           // replace an existing results folder whole
@@ -168,6 +193,8 @@ struct RunOptions {
   // Further sinks (caller-owned) fed with the same rows (a Monte Carlo
   // campaign's metrics, mc_campaign.cpp).
   std::vector<RecordSink*> extra_sinks;
+  // Optional: steers the run at its tick boundaries (the live view).
+  RunControl* control = nullptr;
 };
 
 struct RunResult {

@@ -46,6 +46,11 @@ class Pacer {
   // Wall time [s] left until tick k's deadline (negative: past it; +inf
   // before the first wait_for).  An FSW link bounds its waits with it.
   double seconds_to(uint64_t k) const;
+  // Restarts the deadlines at `scale` (> 0): the next wait_for(k) is due at
+  // once and later ticks follow from it (after a pause, or a new rate from
+  // the live view).  The lateness histogram and the overruns are kept.
+  void restart(double scale);
+  double scale() const { return scale_; }
   // Overruns since the last call (for "cannot keep up" notices).
   uint64_t take_new_overruns();
   PacingStats stats() const;

@@ -64,6 +64,9 @@ struct RunConfig {
   // configured from the scenario.
   std::unique_ptr<FswEndpoint> fsw;
   size_t chunk_rows = 1024;  // recorder rows per chunk handed to the sinks
+  // Build the events task even when the scenario has no events, so events
+  // can be added while the run goes (add_event; the live view).
+  bool accept_events = false;
 };
 
 // The FSW application configuration a scenario gives (what InProcessFsw is
@@ -107,6 +110,13 @@ class Run {
   sim::Plant& plant();
   const sim::Plant& plant() const;
 
+  // Appends an event to the run's scenario (scenario().events) and the
+  // events task, between steps: e.g. {t = t of tick(), actions} applies at
+  // the next tick, exactly as if the scenario had listed it (so the
+  // manifest of scenario() replays it).  Throws ScenarioError when an
+  // action does not fit the scenario (check_event_action) and
+  // std::logic_error without RunConfig::accept_events; nothing is added then.
+  void add_event(const EventSpec& e);
   // The events applied so far, in order.
   const std::vector<AppliedEvent>& events_applied() const;
 

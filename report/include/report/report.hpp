@@ -40,6 +40,11 @@ void write_html(const std::string& report_data_json, const std::string& out_html
 // embedded data.
 bool has_bundle();
 
+// The live view's page (report/live.html with src/live.js, the same bundled
+// libraries; docs/live.md): served by `kestrel run --live`, it reads
+// everything from the server that serves it.
+const std::string& live_page();
+
 // Size in bytes of the page without the data.
 std::size_t page_size();
 

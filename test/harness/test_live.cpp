@@ -1,0 +1,310 @@
+// The live view (docs/live.md): commands enter a run at tick boundaries as
+// scenario events and the manifest replays them bit for bit; the server
+// refuses bad commands (the scenario event validation) and requests without
+// the access token, and applies nothing then.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "harness/outputs.h"
+#include "harness/run.h"
+#include "harness/scenario.h"
+#include "live_server.h"
+
+// after Eigen (through the harness headers): <resolv.h> defines the macro
+// _res, a parameter name in Eigen's templates
+#include <httplib.h>
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+const std::string kS1 = std::string(KESTREL_SOURCE_DIR) + "/scenarios/s1_sun_pointing.yaml";
+
+// The closed-loop tests' fast S1 (test_closed_loop.cpp): 4 Hz plant and FSW,
+// balanced wheels, 60 s.
+std::vector<harness::Override> fast()
+{
+  return {{"rates.dt", "0.25"},
+          {"rates.fsw_divisor", "1"},
+          {"rates.record_divisor", "1"},
+          {"wheel_defaults.model", "balanced"},
+          {"duration", "60"}};
+}
+
+fs::path temp_dir(const std::string& what)
+{
+  const fs::path d = fs::temp_directory_path() / ("kestrel_live_" + what + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  return d;
+}
+
+std::string text_of(const fs::path& p)
+{
+  std::ifstream in(p);
+  std::ostringstream o;
+  o << in.rdbuf();
+  return o.str();
+}
+
+// A scripted controller: at given ticks it adds an action as the live view
+// does (an event {t = t_k, actions}), without a server.
+class Scripted : public harness::RunControl {
+ public:
+  struct At {
+    uint64_t tick;
+    harness::EventActionSpec action;
+  };
+  explicit Scripted(std::vector<At> plan) : plan_(std::move(plan)) {}
+  void started(harness::Run&, double, const std::atomic<int>*) override {}
+  uint64_t boundary(harness::Run& run, double&) override
+  {
+    const uint64_t k = run.tick();
+    for (const At& a : plan_)
+      if (a.tick == k) {
+        harness::EventSpec e;
+        e.name = "live" + std::to_string(++n_);
+        e.t = static_cast<double>(k * run.scenario().tick_ns()) / 1e9;
+        e.actions.push_back(a.action);
+        run.add_event(e);
+      }
+    // the next boundary at the next planned tick (tests the chunking too)
+    uint64_t next = run.total_ticks();
+    for (const At& a : plan_)
+      if (a.tick > k && a.tick < next) next = a.tick;
+    return next - k;
+  }
+  void ended(const harness::Run&, const harness::RunResult&) override { ended_ = true; }
+  bool ended_ = false;
+
+ private:
+  std::vector<At> plan_;
+  int n_ = 0;
+};
+
+bool same(const std::vector<double>& a, const std::vector<double>& b)
+{
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (!(a[i] == b[i] || (std::isnan(a[i]) && std::isnan(b[i])))) return false;
+  return true;
+}
+
+}  // namespace
+
+// rw2 failed at tick 30 (t = 7.5 s) and flagged unavailable at tick 31 by the
+// controller: its torque is zero in the row of tick 30 and after (fail_off
+// zeroes u_s at once, docs/events.md) and not in the row before; the manifest
+// lists both as scenario events (t = 7.5 exactly: 30 * 0.25e9 ns / 1e9, where
+// * 1e-9 would give 7.500000000000001) and reruns bit for bit.
+TEST(LiveControl, CommandsAtTickBoundariesReplayFromTheManifest)
+{
+  const fs::path dir = temp_dir("replay");
+  const harness::Scenario sc = harness::load_scenario(kS1, fast());
+  ASSERT_TRUE(sc.events.empty());
+  Scripted ctl({{30, {"rw2", "fail_off"}}, {31, {"rw2", "command_unavailable"}}});
+  harness::RunOptions opt;
+  opt.out_dir = (dir / "live").string();
+  opt.control = &ctl;
+  const harness::RunResult a = harness::run_scenario(sc, opt);
+  ASSERT_TRUE(a.ok) << a.failure;
+  EXPECT_TRUE(ctl.ended_);
+  const harness::Hdf5Table h = harness::read_hdf5((dir / "live" / "results.h5").string());
+  ASSERT_EQ(h.events.size(), 2u);
+  EXPECT_EQ(h.events[0].tick, 30u);
+  EXPECT_EQ(h.events[0].t, 7.5);
+  EXPECT_EQ(h.events[1].tick, 31u);
+  EXPECT_EQ(h.events[0].what, "rw2 fail_off");
+  // rw2 = wheel 1: torque zero from the row of tick 30 on, not before
+  size_t ct = 0, cw = 0;
+  for (size_t c = 0; c < h.names.size(); ++c) {
+    if (h.names[c] == "t") ct = c;
+    if (h.names[c] == "wheel_torque_1") cw = c;
+  }
+  ASSERT_GT(cw, 0u);
+  const size_t nc = h.names.size();
+  ASSERT_EQ(h.rows, 241u);  // 60 s at 4 Hz, both ends
+  EXPECT_EQ(h.data[30 * nc + ct], 7.5);
+  EXPECT_NE(h.data[29 * nc + cw], 0.0);  // the PD loop is acquiring at 7.25 s
+  for (uint64_t r = 30; r < h.rows; ++r) ASSERT_EQ(h.data[r * nc + cw], 0.0) << "row " << r;
+  // the manifest: the scenario with both events, as a scenario file lists them
+  const json man = json::parse(text_of(dir / "live" / "manifest.json"));
+  ASSERT_EQ(man["scenario"]["events"].size(), 2u);
+  EXPECT_EQ(man["scenario"]["events"][0]["t"].get<double>(), 7.5);
+  EXPECT_EQ(man["result"]["events_applied"].size(), 2u);
+  // rerun from the manifest (no controller): bit for bit
+  harness::RunOptions opt2;
+  opt2.out_dir = (dir / "replay").string();
+  const harness::Scenario again = harness::load_scenario((dir / "live" / "manifest.json").string());
+  ASSERT_EQ(again.events.size(), 2u);
+  const harness::RunResult b = harness::run_scenario(again, opt2);
+  ASSERT_TRUE(b.ok) << b.failure;
+  const harness::Hdf5Table h2 = harness::read_hdf5((dir / "replay" / "results.h5").string());
+  EXPECT_TRUE(same(h.data, h2.data));
+  ASSERT_EQ(h2.events.size(), 2u);
+  EXPECT_EQ(h2.events[1].tick, 31u);
+  // and a controller that adds nothing changes nothing: the run without one
+  Scripted idle({});
+  harness::RunOptions opt3;
+  opt3.out_dir = (dir / "idle").string();
+  opt3.control = &idle;
+  ASSERT_TRUE(harness::run_scenario(sc, opt3).ok);
+  harness::RunOptions opt4;
+  opt4.out_dir = (dir / "plain").string();
+  ASSERT_TRUE(harness::run_scenario(sc, opt4).ok);
+  EXPECT_TRUE(same(harness::read_hdf5((dir / "idle" / "results.h5").string()).data,
+                   harness::read_hdf5((dir / "plain" / "results.h5").string()).data));
+  fs::remove_all(dir);
+}
+
+// An action the scenario cannot take is refused by Run::add_event (the
+// scenario event validation) and nothing is added.
+TEST(LiveControl, AddEventRefusesWhatTheScenarioCannotTake)
+{
+  const harness::Scenario sc = harness::load_scenario(kS1, fast());
+  harness::RunConfig cfg;
+  cfg.accept_events = true;
+  harness::Run run(sc, std::move(cfg));
+  harness::EventSpec e;
+  e.name = "x";
+  e.t = 0.0;
+  e.actions.push_back({"rw9", "fail_off"});
+  EXPECT_THROW(run.add_event(e), harness::ScenarioError);
+  e.actions[0] = {"rw2", "stuck_open"};
+  EXPECT_THROW(run.add_event(e), harness::ScenarioError);
+  EXPECT_TRUE(run.scenario().events.empty());
+  harness::Run plain(sc);  // without accept_events
+  e.actions[0] = {"rw2", "fail_off"};
+  EXPECT_THROW(plain.add_event(e), std::logic_error);
+}
+
+namespace {
+
+struct Served {
+  harness::LiveServer srv;
+  httplib::Client cli;
+  explicit Served(harness::LiveOptions o) : srv(std::move(o)), cli("127.0.0.1", srv.port()) {}
+  httplib::Headers auth(const std::string& tok) const { return {{"X-Kestrel-Token", tok}}; }
+  httplib::Result post(const json& j, const std::string& tok)
+  {
+    return cli.Post("/api/command", auth(tok), j.dump(), "application/json");
+  }
+  httplib::Result post_ok(const json& j) { return post(j, srv.token()); }
+  json frames()
+  {
+    auto r = cli.Get("/api/frames", auth(srv.token()));
+    return r && r->status == 200 ? json::parse(r->body) : json();
+  }
+};
+
+// waits up to 20 s for `cond` (the run is short; the bound only ends a hung test)
+template <class F>
+bool wait_for(F cond)
+{
+  for (int i = 0; i < 2000; ++i) {
+    if (cond()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+std::string error_of(const httplib::Result& r) { return r ? json::parse(r->body).value("error", "") : ""; }
+
+}  // namespace
+
+TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
+{
+  const fs::path dir = temp_dir("server");
+  harness::LiveOptions lo;
+  lo.start_paused = true;  // the run waits at the boundary after tick 0
+  Served s(lo);
+  ASSERT_GT(s.srv.port(), 0);
+  EXPECT_EQ(s.srv.token().size(), 32u);  // 128 bits, hex
+  EXPECT_NE(s.srv.url().find("http://127.0.0.1:" + std::to_string(s.srv.port()) + "/?token=" + s.srv.token()),
+            std::string::npos);
+  const harness::Scenario sc = harness::load_scenario(kS1, fast());
+  harness::RunOptions opt;
+  opt.out_dir = (dir / "run").string();
+  opt.control = &s.srv;
+  harness::RunResult res;
+  std::thread sim([&] { res = harness::run_scenario(sc, opt); });
+  ASSERT_TRUE(wait_for([&] { auto r = s.cli.Get("/api/info", s.auth(s.srv.token())); return r && r->status == 200; }));
+
+  // the token: missing or wrong -> 403, for the page and the API
+  EXPECT_EQ(s.cli.Get("/")->status, 403);
+  EXPECT_EQ(s.cli.Get("/?token=" + std::string(32, '0'))->status, 403);
+  EXPECT_EQ(s.cli.Get("/?token=" + s.srv.token())->status, 200);
+  EXPECT_EQ(s.cli.Get("/api/info")->status, 403);
+  EXPECT_EQ(s.cli.Get("/api/frames", s.auth("nope"))->status, 403);
+  const json fail2 = {{"op", "event"}, {"device", "rw2"}, {"action", "fail_off"}};
+  EXPECT_EQ(s.post(fail2, "")->status, 403);
+  EXPECT_EQ(s.post(fail2, s.srv.token().substr(1) + "x")->status, 403);
+
+  // bad commands: the scenario event validation's messages (events.cpp)
+  auto r = s.post_ok({{"op", "event"}, {"device", "rw9"}, {"action", "fail_off"}});
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(error_of(r).find("device: no device named 'rw9' (devices: rw1, rw2, rw3, rw4"), std::string::npos)
+      << error_of(r);
+  r = s.post_ok({{"op", "event"}, {"device", "rw2"}, {"action", "stuck_open"}});
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(error_of(r).find("action: a wheel takes one of {fail_off"), std::string::npos) << error_of(r);
+  r = s.post_ok({{"op", "event"}, {"device", "rw2"}, {"action", "torque_limit"}});
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(error_of(r).find("needs a value > 0"), std::string::npos) << error_of(r);
+  r = s.post_ok({{"op", "event"}, {"device", "rw2"}, {"action", "fail_off"}, {"value", 3}});
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(error_of(r).find("takes no value"), std::string::npos) << error_of(r);
+  r = s.post_ok({{"op", "event"}, {"device", "gyro"}, {"action", "dropout"}, {"value", -1}});
+  EXPECT_EQ(r->status, 400);
+  EXPECT_EQ(s.post_ok({{"op", "explode"}})->status, 400);
+  EXPECT_EQ(s.post_ok({{"op", "rate"}, {"value", -1}})->status, 400);
+  EXPECT_EQ(s.post_ok({{"op", "step"}, {"ticks", 0}})->status, 400);
+  EXPECT_EQ(s.cli.Post("/api/command", s.auth(s.srv.token()), "not json", "application/json")->status, 400);
+
+  // step 29 ticks while paused: the run is at the boundary before tick 30, paused
+  EXPECT_EQ(s.post_ok({{"op", "step"}, {"ticks", 29}})->status, 202);
+  ASSERT_TRUE(wait_for([&] {
+    const json f = s.frames();
+    return !f.is_null() && f["state"] == "paused" && !f["frames"].empty() && f["frames"].back()["tick"] == 30;
+  }));
+  // a good command enters at the next boundary (tick 30), then resume
+  r = s.post_ok(fail2);
+  EXPECT_EQ(r->status, 202);
+  // a rate turns pacing on in this unpaced run: the rest (ticks 30..240) at
+  // 1000x real time, 0.25 ms of wall time a tick after the first, which is
+  // due at once (Pacer::restart)
+  EXPECT_EQ(s.post_ok({{"op", "rate"}, {"value", 1000}})->status, 202);
+  EXPECT_EQ(s.post_ok({{"op", "resume"}})->status, 202);
+  sim.join();
+  ASSERT_TRUE(res.ok) << res.failure;
+  EXPECT_TRUE(res.paced);
+  EXPECT_EQ(res.pacing.scale, 1000.0);
+  EXPECT_EQ(res.pacing.ticks, 211u);
+  // the running wall time (the pauses taken off) covers the deadlines
+  EXPECT_GE(res.wall_seconds - s.srv.counters().paused_s, 210 * 0.25e-3);
+  EXPECT_EQ(s.post_ok({{"op", "pause"}})->status, 409);  // ended
+
+  // exactly one event: the good one, at tick 30 (t = 7.5 s exactly: k tick_ns / 1e9)
+  const json man = json::parse(text_of(dir / "run" / "manifest.json"));
+  ASSERT_EQ(man["scenario"]["events"].size(), 1u);
+  EXPECT_EQ(man["scenario"]["events"][0]["t"].get<double>(), 7.5);
+  ASSERT_EQ(man["result"]["events_applied"].size(), 1u);
+  EXPECT_EQ(man["result"]["events_applied"][0]["tick"].get<uint64_t>(), 30u);
+  EXPECT_EQ(man["result"]["events_applied"][0]["actions"], "rw2 fail_off");
+  const harness::LiveCounters n = s.srv.counters();
+  EXPECT_EQ(n.commands_applied, 4u);  // step, the event, rate, resume
+  EXPECT_EQ(n.commands_refused, 6u + 9u + 1u);  // 6 token refusals, 9 bad commands, 1 after the end
+  const json f = s.frames();
+  EXPECT_EQ(f["state"], "ended");
+  EXPECT_EQ(f["report"], "/report");
+  fs::remove_all(dir);
+}
