@@ -371,7 +371,6 @@ std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const
   fs::create_directories(runs);
   std::vector<McRecord> out(opt.indices.size());
   std::vector<char> done(opt.indices.size(), 0);
-  std::atomic<size_t> next{0};
   std::mutex mu;
   McProgress prog;
   prog.total = opt.indices.size();
