@@ -18,8 +18,9 @@ uint64_t ceil_to_tick(double t_s, uint64_t tick_ns)
 }
 }  // namespace
 
-EventTask::EventTask(const Scenario& sc, sim::Plant& plant, SensorSuite& sensors, const Recorder& rec)
-    : sc_(sc), plant_(plant), sensors_(sensors), rec_(rec), tick_ns_(sc.tick_ns())
+EventTask::EventTask(const Scenario& sc, sim::Plant& plant, SensorSuite& sensors, const Recorder& rec,
+                     FswEndpoint& fsw, const FswAcsCmdMsg& initial)
+    : sc_(sc), plant_(plant), sensors_(sensors), rec_(rec), fsw_(fsw), cmd_(initial), tick_ns_(sc.tick_ns())
 {
   for (size_t i = 0; i < sc.events.size(); ++i) ev_.push_back(make(i));
   log_.reserve(ev_.size());
@@ -60,6 +61,9 @@ EventTask::Ev EventTask::make(size_t i) const
     if (!why.empty()) throw config_error(sc_, key + ".actions[" + std::to_string(j) + "]." + k, why);
     Act act;
     resolve_event_device(sc_, a.device, act.target);
+    if (act.target.device == EventDevice::Fsw && !fsw_.accepts_commands())
+      throw config_error(sc_, key + ".actions[" + std::to_string(j) + "].device",
+                         "this run's FSW (" + fsw_.describe() + ") takes no commands yet");
     act.action = find_event_action(act.target.device, a.action)->action;
     act.value = a.value;
     ev.acts.push_back(act);
@@ -143,6 +147,16 @@ void EventTask::apply(const Act& a, uint64_t t_ns)
       plant_.set_thruster_health(i, a.action == EventAction::ThrStuckClosed ? sim::ThrusterHealth::FailedOff
                                     : a.action == EventAction::ThrStuckOpen ? sim::ThrusterHealth::StuckOn
                                                                             : sim::ThrusterHealth::Nominal);
+      break;
+    case EventDevice::Fsw:
+      switch (a.action) {
+        case EventAction::FswModeInertial: cmd_.mode = FSW_ACS_MODE_INERTIAL; break;
+        case EventAction::FswModeSunSafe: cmd_.mode = FSW_ACS_MODE_SUN_SAFE; break;
+        case EventAction::FswActuationWheels: cmd_.actuation = FSW_ACS_ACT_WHEELS; break;
+        case EventAction::FswActuationThrusters: cmd_.actuation = FSW_ACS_ACT_THRUSTERS; break;
+        default: break;
+      }
+      fsw_.command(cmd_);  // in force from the FSW's next cycle (this tick's, when it runs now)
       break;
     case EventDevice::Gyro:
     case EventDevice::StarTracker:

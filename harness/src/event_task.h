@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "events.h"
+#include "harness/fsw_endpoint.h"
 #include "harness/recorder.h"
 #include "harness/run.h"
 #include "harness/scenario.h"
@@ -28,7 +29,9 @@ class EventTask {
  public:
   // Throws ScenarioError (at the event's key) for what only the run can
   // check: a device or a watched column the run does not have.
-  EventTask(const Scenario& sc, sim::Plant& plant, SensorSuite& sensors, const Recorder& rec);
+  // `fsw` takes the FSW commands (mode, actuation) starting from `initial`.
+  EventTask(const Scenario& sc, sim::Plant& plant, SensorSuite& sensors, const Recorder& rec, FswEndpoint& fsw,
+            const FswAcsCmdMsg& initial);
   void operator()(uint64_t k);
   // Takes the scenario's last event (just appended to sc.events, e.g. a
   // command from the live view) into the run; throws like the constructor.
@@ -60,6 +63,8 @@ class EventTask {
   sim::Plant& plant_;
   SensorSuite& sensors_;
   const Recorder& rec_;
+  FswEndpoint& fsw_;
+  FswAcsCmdMsg cmd_;  // the mode and actuation commanded so far
   uint64_t tick_ns_;
   std::vector<Ev> ev_;
   std::vector<AppliedEvent> log_;

@@ -33,6 +33,15 @@ const std::vector<EventActionDef> kSensorActions = {
     {"frozen", EventAction::SensorFrozen, EventValue::None, "-", "the output holds its last value"},
     {"restore", EventAction::Restore, EventValue::None, "-", "the output follows the sensor again"},
 };
+const std::vector<EventActionDef> kFswActions = {
+    {"mode_inertial", EventAction::FswModeInertial, EventValue::None, "-",
+     "command inertial pointing (guid_inertial -> att_track; needs an attitude: star tracker or truth)"},
+    {"mode_sun_safe", EventAction::FswModeSunSafe, EventValue::None, "-",
+     "command sun-safe pointing (css_sun -> guid_sunsafe; needs the coarse sun sensors)"},
+    {"actuation_wheels", EventAction::FswActuationWheels, EventValue::None, "-", "command control by the wheels"},
+    {"actuation_thrusters", EventAction::FswActuationThrusters, EventValue::None, "-",
+     "command control by the ACS thrusters"},
+};
 }  // namespace
 
 const char* to_string(EventDevice d)
@@ -43,6 +52,7 @@ const char* to_string(EventDevice d)
     case EventDevice::Gyro: return "gyro";
     case EventDevice::StarTracker: return "star tracker";
     case EventDevice::Css: return "coarse sun sensor";
+    case EventDevice::Fsw: return "flight software";
   }
   return "?";
 }
@@ -52,6 +62,7 @@ const std::vector<EventActionDef>& event_actions(EventDevice d)
   switch (d) {
     case EventDevice::Wheel: return kWheelActions;
     case EventDevice::Thruster: return kThrusterActions;
+    case EventDevice::Fsw: return kFswActions;
     default: return kSensorActions;
   }
 }
@@ -75,6 +86,10 @@ std::string resolve_event_device(const Scenario& sc, const std::string& name, Ev
       out = {EventDevice::Thruster, static_cast<int>(j)};
       return "";
     }
+  if (name == "fsw") {
+    out = {EventDevice::Fsw, 0};
+    return "";
+  }
   if (name == "gyro") {
     if (!sc.sensors.gyro.enabled) return "the gyro is not enabled (sensors.gyro.enabled: false)";
     out = {EventDevice::Gyro, 0};
@@ -100,7 +115,7 @@ std::string resolve_event_device(const Scenario& sc, const std::string& name, Ev
   std::string known;
   for (const WheelSpec& w : sc.wheels) known += w.name + ", ";
   for (const ThrusterSpec& t : sc.thrusters) known += t.name + ", ";
-  known += "gyro, star_tracker, css<i>";
+  known += "gyro, star_tracker, css<i>, fsw";
   return "no device named '" + escape_bytes(name) + "' (devices: " + known + ")";
 }
 
@@ -122,6 +137,19 @@ std::string check_event_action(const Scenario& sc, const EventActionSpec& a, std
                                           d->action == EventAction::TachBias) &&
       !sc.sensors.tachometer.enabled)
     return "'" + a.action + "' needs the tachometers (sensors.tachometer.enabled: true)";
+  if (tg.device == EventDevice::Fsw) {
+    const EventAction x = d->action;
+    if (x == EventAction::FswModeSunSafe && sc.sensors.css.normals_B.size() < 3)
+      return "'mode_sun_safe' needs the coarse sun sensors (sensors.css.normals: at least 3)";
+    if (x == EventAction::FswModeSunSafe && sc.environment.sun_position_N.norm() == 0.0)
+      return "'mode_sun_safe' needs a Sun position (environment.sun_position_N)";
+    if (x == EventAction::FswActuationWheels && sc.wheels.size() < 3)
+      return "'actuation_wheels' needs at least 3 wheels";
+    bool acs = false;
+    for (const ThrusterSpec& t : sc.thrusters) acs = acs || t.acs;
+    if (x == EventAction::FswActuationThrusters && !acs)
+      return "'actuation_thrusters' needs ACS thrusters (thrusters with acs: true)";
+  }
   key = "value";
   const double v = a.value;
   switch (d->value) {

@@ -12,7 +12,7 @@
 
 namespace harness {
 
-enum class EventDevice { Wheel, Thruster, Gyro, StarTracker, Css };
+enum class EventDevice { Wheel, Thruster, Gyro, StarTracker, Css, Fsw };
 
 enum class EventAction {
   // wheels (the plant's motor, limits, friction; the tachometer; the FSW's availability flag)
@@ -22,6 +22,8 @@ enum class EventAction {
   ThrStuckClosed, ThrStuckOpen,
   // sensors (gyro, star tracker, a coarse sun sensor)
   SensorDropout, SensorFrozen,
+  // the flight software (a ground/executive command, FswAcsCmdMsg)
+  FswModeInertial, FswModeSunSafe, FswActuationWheels, FswActuationThrusters,
   // every device: back to nominal (a wheel: motor, limits, friction, tachometer)
   Restore
 };
@@ -43,7 +45,7 @@ struct EventTarget {
 };
 
 // Resolves a device name (wheel or thruster name, "gyro", "star_tracker",
-// "css<i>"): "" or the reason it names nothing.
+// "css<i>", "fsw"): "" or the reason it names nothing.
 std::string resolve_event_device(const Scenario& sc, const std::string& name, EventTarget& out);
 // The actions a device takes.
 const std::vector<EventActionDef>& event_actions(EventDevice d);

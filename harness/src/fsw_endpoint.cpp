@@ -20,7 +20,8 @@ InProcessFsw::InProcessFsw(const FswAcsConfig& cfg) : cfg_(cfg)
 
 void InProcessFsw::cycle(const FswAcsSensorMsg& in, FswAcsActuatorMsg& out, FswAcsHealthMsg& health)
 {
-  fsw_acs_cycle(&st_, &cfg_, &in, nullptr, &out, &health);
+  fsw_acs_cycle(&st_, &cfg_, &in, have_cmd_ ? &cmd_ : nullptr, &out, &health);
+  have_cmd_ = false;
 }
 
 std::vector<std::string> fsw_health_summary(const FswAcsHealthMsg& h)

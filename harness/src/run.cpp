@@ -171,7 +171,8 @@ void Run::Impl::wire(RunConfig& cfg)
   const RateGroup rec_group{"record", sc.rates.record_divisor, 0};
   if (!sc.events.empty() || cfg.accept_events) {
     f.add_component("events", "harness: scenario events (docs/events.md) -> plant devices, sensor faults, FSW input");
-    events.emplace(sc, plant, *sensors, rec);
+    events.emplace(sc, plant, *sensors, rec, *fsw,
+                   FswAcsCmdMsg{fsw_setup.cfg.initial_mode, fsw_setup.cfg.initial_actuation});
   }
   auto fn_of = [this](const std::string& name) -> Scheduler::TaskFn {
     if (name == "events" && events) return [t = &*events](uint64_t k) { (*t)(k); };
@@ -273,6 +274,8 @@ void Run::add_event(const EventSpec& e)
     throw;
   }
 }
+
+bool Run::fsw_accepts_commands() const { return impl_->fsw->accepts_commands(); }
 
 const std::vector<AppliedEvent>& Run::events_applied() const
 {

@@ -502,3 +502,57 @@ TEST(Events, ThrusterStuckOpenThenRestored)
     }
   EXPECT_LT(sum / n, 0.5 * F);
 }
+
+// An FSW command from an event (device fsw): S1 starts sun-safe; at t = 400 s
+// (the Sun hold settled) the ground commands inertial pointing at
+// fsw.inertial.sigma_R0N.  From the
+// FSW cycle of that tick the health says inertial (one mode change), and the
+// loop then brings the body frame onto the reference (R0 = N: S1 leaves
+// sigma_R0N at zero): at the end the angle between [BN] and [R0 N], computed
+// here from the recorded truth MRP (phi = 4 atan|sigma|), is below 1 deg.  At
+// the command it is at least 90 deg: the Sun hold keeps body z on the Sun,
+// along N x.  Before the command the FSW is sun-safe.
+TEST(Events, FswModeCommandSwitchesToInertialPointing)
+{
+  const std::string text = s1_with(
+      "events:\n  - {name: go_inertial, t: 400.0, actions: [{device: fsw, action: mode_inertial}]}\n");
+  harness::Scenario sc = harness::load_scenario_text(text, "ev.yaml", fast({{"duration", "1000"}}));
+  harness::Run run(sc);
+  while (!run.done() && run.step_ticks(400)) {
+    if (static_cast<double>(run.tick()) * sc.rates.dt < 399.0) {
+      const auto h = run.fsw_health_lines();
+      ASSERT_NE(h.front().find("mode=sun_safe"), std::string::npos) << h.front();
+    }
+  }
+  run.finish();
+  ASSERT_TRUE(run.failure().empty()) << run.failure();
+  const auto h = run.fsw_health_lines();
+  EXPECT_NE(h.front().find("mode=inertial"), std::string::npos) << h.front();
+  EXPECT_NE(h.front().find("mode_changes=1"), std::string::npos) << h.front();
+  ASSERT_EQ(run.events_applied().size(), 1u);
+  EXPECT_EQ(run.events_applied()[0].what, "fsw mode_inertial");
+  const harness::MemorySink& m = run.memory();
+  auto angle_to_N = [&](uint64_t row) {  // principal angle of [BN] (R0 = N here)
+    const double s[3] = {m.at(row, m.column_index("sigma_BN_x")), m.at(row, m.column_index("sigma_BN_y")),
+                         m.at(row, m.column_index("sigma_BN_z"))};
+    const double s2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
+    return 4.0 * std::atan(std::sqrt(s2)) * 180.0 / M_PI;  // |sigma| = tan(phi / 4)
+  };
+  const uint64_t at_cmd = static_cast<uint64_t>(400.0 / 0.25);
+  EXPECT_GT(angle_to_N(at_cmd), 89.0);
+  EXPECT_LT(angle_to_N(m.rows() - 1), 1.0);
+}
+
+TEST(Events, FswCommandsAreCheckedAgainstTheScenario)
+{
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 1, actions: [{device: fsw, action: actuation_thrusters}]}\n"))
+                .find("needs ACS thrusters"),
+            std::string::npos);
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 1, actions: [{device: fsw, action: mode_safe}]}\n"))
+                .find("a flight software takes one of {mode_inertial, mode_sun_safe, actuation_wheels, actuation_thrusters}"),
+            std::string::npos);
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 1, actions: [{device: fsw, action: mode_inertial, value: 2}]}\n"))
+                .find("takes no value"),
+            std::string::npos);
+  EXPECT_EQ(problem(s1_with("events:\n  - {t: 1, actions: [{device: fsw, action: mode_inertial}]}\n")), "");
+}

@@ -39,6 +39,11 @@ class FswEndpoint {
   // Per-module health counters for fsw_health.txt (empty when the endpoint
   // cannot see them).
   virtual std::vector<std::string> module_health_lines() const { return {}; }
+  // A ground/executive command (mode, actuation; FswAcsCmdMsg) for the next
+  // cycle: scenario events (docs/events.md).  Endpoints that cannot deliver
+  // one say so (accepts_commands false; command throws FswEndpointError).
+  virtual bool accepts_commands() const { return false; }
+  virtual void command(const FswAcsCmdMsg&) { throw FswEndpointError(describe() + ": takes no FSW commands"); }
 };
 
 // The FSW application in this process.
@@ -49,10 +54,19 @@ class InProcessFsw : public FswEndpoint {
   std::string describe() const override { return "fsw_c application (fsw_acs_cycle, in process)"; }
   void cycle(const FswAcsSensorMsg& in, FswAcsActuatorMsg& out, FswAcsHealthMsg& health) override;
   std::vector<std::string> module_health_lines() const override;
+  bool accepts_commands() const override { return true; }
+  // Passed to fsw_acs_cycle with the next cycle (then NULL again: the mode stays).
+  void command(const FswAcsCmdMsg& cmd) override
+  {
+    cmd_ = cmd;
+    have_cmd_ = true;
+  }
 
  private:
   FswAcsConfig cfg_;
   FswAcsState st_;
+  FswAcsCmdMsg cmd_{};
+  bool have_cmd_ = false;
 };
 
 // Lines describing the last health message (status, mode, stages): the same

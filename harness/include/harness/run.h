@@ -117,6 +117,9 @@ class Run {
   // action does not fit the scenario (check_event_action) and
   // std::logic_error without RunConfig::accept_events; nothing is added then.
   void add_event(const EventSpec& e);
+  // Whether the FSW endpoint takes commands (scenario events on device fsw).
+  bool fsw_accepts_commands() const;
+
   // The events applied so far, in order.
   const std::vector<AppliedEvent>& events_applied() const;
 
