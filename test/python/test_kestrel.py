@@ -217,28 +217,48 @@ class RunTest(unittest.TestCase):
         self.assertIn("final_pointing_error_deg", res.summary)
         self.assertIn('"kestrel_manifest"', res.manifest)
 
-    def test_equals_cli_bit_for_bit(self):
+    def assert_same_as_cli(self, res, cli_dir):
+        """res equals the CLI run in cli_dir: every dataset of results.h5 bit
+        for bit, every figure of summary.txt (printed with 10 significant
+        digits: relative 1e-9)."""
         import h5py
 
-        cli_summary = read_summary(os.path.join(self.cli_dir, "summary.txt"))
-        # summary.txt prints 10 significant digits
-        self.assertAlmostEqual(self.res.summary["final_pointing_error_deg"] / cli_summary["final_pointing_error_deg"],
-                               1.0, delta=1e-9)
-        self.assertEqual(self.res.summary["final_pointing_error_deg"], self.res["pointing_error_deg"][-1, 0])
-        with h5py.File(os.path.join(self.cli_dir, "results.h5"), "r") as f:
+        cli_summary = read_summary(os.path.join(cli_dir, "summary.txt"))
+        self.assertEqual(set(cli_summary), set(res.summary))
+        for k, v in cli_summary.items():
+            if math.isnan(v):
+                self.assertTrue(math.isnan(res.summary[k]), k)
+            else:
+                self.assertAlmostEqual(res.summary[k], v, delta=1e-9 * abs(v), msg=k)
+        with h5py.File(os.path.join(cli_dir, "results.h5"), "r") as f:
             names = [n.decode() if isinstance(n, bytes) else n for n in f.attrs["column_names"]]
-            self.assertEqual(names, self.res.columns)
+            self.assertEqual(names, res.columns)
             compared = 0
-            for key, (unit, frame, cols) in self.res.quantities.items():
+            for key, (unit, frame, cols) in res.quantities.items():
                 if key not in f:
                     continue
-                ds = f[key][...]
-                np.testing.assert_array_equal(ds, self.res[key], err_msg=key)  # bit for bit
-                self.assertEqual(f[key].attrs["unit"].decode() if isinstance(f[key].attrs["unit"], bytes)
-                                 else f[key].attrs["unit"], unit)
+                np.testing.assert_array_equal(f[key][...], res[key], err_msg=key)  # bit for bit
+                u = f[key].attrs["unit"]
+                self.assertEqual(u.decode() if isinstance(u, bytes) else u, unit)
                 compared += 1
             self.assertGreater(compared, 10)
-            np.testing.assert_array_equal(f["t"][...].reshape(-1), self.res.t)
+            np.testing.assert_array_equal(f["t"][...].reshape(-1), res.t)
+
+    def test_s1_equals_cli_bit_for_bit(self):
+        self.assert_same_as_cli(self.res, self.cli_dir)
+        self.assertEqual(self.res.summary["final_pointing_error_deg"], self.res["pointing_error_deg"][-1, 0])
+
+    def test_s2_equals_cli_bit_for_bit(self):
+        # S2 shortened: 6 s with the main-engine burn from 1 s for 3 s (thrusters,
+        # tanks, burn summary and orbit figures all exercised)
+        sets = ["duration=6", "burn.start=1", "burn.duration=3"]
+        path = os.path.join(SRC, "scenarios", "s2_mars_orbit_insertion.yaml")
+        cdir = os.path.join(self.tmp.name, "cli_s2")
+        r = cli("run", path, *sum((["--set", x] for x in sets), []), "-o", cdir)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        res = kestrel.run(kestrel.Scenario.load(path, sets))
+        self.assertIn("propellant_used_kg", res.summary)
+        self.assert_same_as_cli(res, cdir)
 
     def test_out_dir_writes_cli_files(self):
         import h5py
