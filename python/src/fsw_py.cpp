@@ -9,10 +9,12 @@
 
 #include "common.h"
 
+#include "fsw/att_track.h"
 #include "fsw/fsw_status.h"
 #include "fsw/mrp_fb.h"
 #include "fsw/rw_map.h"
 #include "fsw/rw_sat.h"
+#include "fsw/trq_lpf.h"
 
 namespace kpy {
 
@@ -317,6 +319,36 @@ void bind_fsw(py::module_& m)
       {KPY_VEC(SI, Kind::Real, u_s, FSW_MAX_RW, true, "[N*m] (num_rw) commanded torques"),
        KPY_VEC(SI, Kind::U8, avail, FSW_MAX_RW, true, "(num_rw) 0 available, 1 unavailable")},
       {KPY_VEC(SO, Kind::Real, u_s, FSW_MAX_RW, true, "[N*m] limited torques")}, {KPY_SCALAR(SS, Kind::Int, ready, "")});
+
+  using LC = FswTrqLpfConfig;
+  using LI = FswTrqLpfIn;
+  using LO = FswTrqLpfOut;
+  using LS = FswTrqLpfState;
+  bind_algorithm<LC, LS, LI, LO>(
+      m, "TrqLpf", "Control-torque low-pass filter, first-order Tustin (fsw_c/include/fsw/trq_lpf.h, fsw-algorithms.md 3)",
+      fsw_trq_lpf_check, fsw_trq_lpf_init, fsw_trq_lpf_reset, fsw_trq_lpf_update,
+      {KPY_SCALAR(LC, Kind::Real, h, "[s] assumed call period"), KPY_SCALAR(LC, Kind::Real, omega_c, "[rad/s] cut-off")},
+      {KPY_VEC(LI, Kind::Real, Lr_B, 3, false, "[N*m] control torque"), KPY_SCALAR(LI, Kind::U64, t_ns, "[ns]")},
+      {KPY_VEC(LO, Kind::Real, LrF_B, 3, false, "[N*m] filtered torque")},
+      {KPY_SCALAR(LS, Kind::Int, ready, ""), KPY_VEC(LS, Kind::Real, Lr_prev, 3, false, "[N*m]"),
+       KPY_VEC(LS, Kind::Real, LrF_prev, 3, false, "[N*m]")});
+
+  using TC = FswAttTrackConfig;
+  using TI = FswAttTrackIn;
+  using TO = FswAttTrackOut;
+  using TS = FswAttTrackState;
+  bind_algorithm<TC, TS, TI, TO>(
+      m, "AttTrack", "Attitude tracking error (fsw_c/include/fsw/att_track.h, fsw-algorithms.md 1.3)",
+      fsw_att_track_check, fsw_att_track_init, fsw_att_track_reset, fsw_att_track_update,
+      {KPY_VEC(TC, Kind::Real, sigma_R0R, 3, false, "[-] nominal reference rel. the corrected one")},
+      {KPY_VEC(TI, Kind::Real, sigma_BN, 3, false, "[-]"), KPY_VEC(TI, Kind::Real, omega_BN_B, 3, false, "[rad/s]"),
+       KPY_VEC_AS(TI, "sigma_RN", ref.sigma_RN, 3, "[-] reference"),
+       KPY_VEC_AS(TI, "omega_RN_N", ref.omega_RN_N, 3, "[rad/s]"),
+       KPY_VEC_AS(TI, "omega_dot_RN_N", ref.omega_dot_RN_N, 3, "[rad/s^2]")},
+      {KPY_VEC(TO, Kind::Real, sigma_BR, 3, false, "[-]"), KPY_VEC(TO, Kind::Real, omega_BR_B, 3, false, "[rad/s]"),
+       KPY_VEC(TO, Kind::Real, omega_RN_B, 3, false, "[rad/s]"),
+       KPY_VEC(TO, Kind::Real, omega_dot_RN_B, 3, false, "[rad/s^2]")},
+      {KPY_SCALAR(TS, Kind::Int, ready, "")});
 }
 
 }  // namespace kpy

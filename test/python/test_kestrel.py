@@ -465,6 +465,62 @@ class FswTest(unittest.TestCase):
         np.testing.assert_allclose(Gs.T @ out["u_s"][:4], -Lr, rtol=0, atol=1e-14)
 
 
+class FswFilterTrackTest(unittest.TestCase):
+    def test_trq_lpf_tustin_closed_form(self):
+        # fsw-algorithms.md 3: hw = 2 tan(omega_c h / 2), a0 = 2 + hw, a1 = 2 - hw,
+        # LrF = (hw Lr + hw Lr_prev + a1 LrF_prev) / a0; first call: Lr_prev = Lr, LrF_prev = 0
+        h, wc = 0.1, 2.0
+        m = fsw.TrqLpf(h=h, omega_c=wc)
+        self.assertEqual(m.init(), fsw.OK)
+        hw = 2 * math.tan(wc * h / 2)
+        Lr = np.array([0.1, -0.2, 0.3])
+        y = np.zeros(3)
+        prev = Lr
+        for k in range(200):  # a step input, 20 s = 40 time constants
+            s, out = m.update(t_ns=k * 100_000_000, Lr_B=Lr)
+            self.assertEqual(s, fsw.OK)
+            y = (hw * Lr + hw * prev + (2 - hw) * y) / (2 + hw)
+            prev = Lr
+            # same recursion, other rounding: a few ulps of |Lr| ~ 0.3
+            np.testing.assert_allclose(out["LrF_B"], y, rtol=0, atol=1e-15)
+        # DC gain 1: after 40 time constants the step is reached (e^-40 ~ 4e-18)
+        np.testing.assert_allclose(out["LrF_B"], Lr, rtol=0, atol=1e-15)
+        # a period 2 % off h: FSW_W_RATE, output still computed
+        s, out = m.update(t_ns=199 * 100_000_000 + 102_000_000, Lr_B=Lr)
+        self.assertEqual(s, fsw.W_RATE)
+        self.assertEqual(fsw.TrqLpf(h=0.1, omega_c=40.0).check(), fsw.E_CONFIG)  # omega_c h >= pi
+
+    @staticmethod
+    def mrp_to_dcm(s):
+        # [BN] from the MRP of B rel. N (Schaub & Junkins 3.154)
+        s = np.asarray(s, float)
+        S = np.array([[0, -s[2], s[1]], [s[2], 0, -s[0]], [-s[1], s[0], 0]])
+        n2 = s @ s
+        return np.eye(3) + (8 * S @ S - 4 * (1 - n2) * S) / (1 + n2) ** 2
+
+    def test_att_track_against_dcm(self):
+        m = fsw.AttTrack()
+        self.assertEqual(m.init(), fsw.OK)
+        sBN = np.array([0.1, 0.2, -0.3])
+        wBN = np.array([0.01, -0.02, 0.005])
+        wRN_N = np.array([0.0, 0.001, 0.002])
+        wdRN_N = np.array([1e-5, 0.0, -2e-5])
+        # the reference equal to the attitude: no attitude error, the rates rotated into B
+        s, out = m.update(sigma_BN=sBN, omega_BN_B=wBN, sigma_RN=sBN, omega_RN_N=wRN_N, omega_dot_RN_N=wdRN_N)
+        self.assertEqual(s, fsw.OK)
+        C = self.mrp_to_dcm(sBN)
+        np.testing.assert_allclose(out["sigma_BR"], 0.0, rtol=0, atol=1e-16)
+        np.testing.assert_allclose(out["omega_RN_B"], C @ wRN_N, rtol=0, atol=1e-17)
+        np.testing.assert_allclose(out["omega_BR_B"], wBN - C @ wRN_N, rtol=0, atol=1e-17)
+        np.testing.assert_allclose(out["omega_dot_RN_B"], C @ wdRN_N, rtol=0, atol=1e-19)
+        # reference N: sigma_BR = sigma_BN
+        s, out = m.update(sigma_BN=sBN, omega_BN_B=wBN)
+        np.testing.assert_array_equal(out["sigma_BR"], sBN)
+        s, out = m.update(sigma_BN=[np.inf, 0, 0])
+        self.assertEqual(s, fsw.E_BAD_INPUT)
+        np.testing.assert_array_equal(out["omega_BR_B"], 0.0)
+
+
 def short_mc_scenario(path):
     """scenarios/s1_monte_carlo.yaml shortened to 2 s: the wheel failure at
     1 s (dispersed 0.5..1.5 s), `settled` after 1.5 s.  (--set cannot reach
