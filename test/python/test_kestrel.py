@@ -572,10 +572,23 @@ class MonteCarloTest(unittest.TestCase):
             np.testing.assert_array_equal(mc.passed, [row[2] == "pass" for row in body])
             compared = want.size
             self.assertGreater(compared, 3 * 5)
-            # the same campaign on one thread: identical records
-            mc1 = kestrel.monte_carlo(sc, runs=3, jobs=1)
+            # the same campaign on one thread, written like `kestrel mc`: the same summary.csv
+            pdir = os.path.join(tmp, "py")
+            mc1 = kestrel.monte_carlo(path, runs=3, jobs=1, out_dir=pdir)
             np.testing.assert_array_equal(mc1.metrics, mc.metrics)
             np.testing.assert_array_equal(mc1.drawn, mc.drawn)
+            with open(os.path.join(pdir, "summary.csv")) as a, open(os.path.join(cdir, "summary.csv")) as b:
+                self.assertEqual(a.read(), b.read())
+            # retention keep_first: 3 -> runs 0..2 keep full results; without
+            # out_dir they live in a temporary folder as long as the object
+            self.assertEqual(mc.retained, [0, 1, 2])
+            run0 = mc.run_dir(0)
+            self.assertTrue(os.path.isfile(os.path.join(run0, "results.h5")))
+            self.assertTrue(os.path.isfile(os.path.join(mc1.run_dir(0), "manifest.json")))
+            del mc
+            import gc
+            gc.collect()
+            self.assertFalse(os.path.exists(run0))
 
     def test_errors(self):
         with self.assertRaises(ValueError):
