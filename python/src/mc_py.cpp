@@ -197,7 +197,7 @@ void bind_mc(py::module_& m)
         const uint64_t n = runs.is_none() ? sc.monte_carlo->runs : count(runs, "runs");
         const uint64_t s = seed.is_none() ? sc.monte_carlo->seed : count(seed, "seed");
         if (n == 0) throw py::value_error("monte_carlo: runs must be at least 1");
-        if (jobs == 0) throw py::value_error("monte_carlo: jobs must be at least 1");
+        if (jobs == 0 || jobs > 1024) throw py::value_error("monte_carlo: jobs in 1..1024 (as kestrel mc -j)");
         auto res = std::make_shared<McResults>();
         {
           py::gil_scoped_release nogil;

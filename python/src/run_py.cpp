@@ -390,6 +390,8 @@ void bind_run(py::module_& m)
             if (idx < 0) throw py::value_error("apply_event: no wheel or thruster named '" + device + "'");
             auto number = [&](const char* what) {
               if (value.is_none()) throw py::value_error("apply_event: " + action + " takes a value (" + what + ")");
+              if (!(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)))
+                throw py::type_error("apply_event: " + action + " takes a number (" + what + ")");
               const double v = value.cast<double>();
               if (!std::isfinite(v) || v < 0) throw py::value_error("apply_event: " + action + ": a finite value >= 0");
               return v;

@@ -330,6 +330,8 @@ class RunTest(unittest.TestCase):
             r.apply_event("rw1", "explode")
         with self.assertRaises(ValueError):
             r.apply_event("rw1", "torque_limit", float("nan"))
+        with self.assertRaises(TypeError):
+            r.apply_event("rw1", "torque_limit", "0.1")
 
     def test_bad_input_raises(self):
         r = kestrel.Run(self.sc)
@@ -597,6 +599,12 @@ class MonteCarloTest(unittest.TestCase):
             kestrel.monte_carlo("/nonexistent.yaml", runs=2)
         with self.assertRaises(ValueError):
             kestrel.monte_carlo(S1_MC, runs=0)
+        with self.assertRaises(ValueError):
+            kestrel.monte_carlo(S1_MC, runs=-3)
+        with self.assertRaises(ValueError):
+            kestrel.monte_carlo(S1_MC, runs=2, jobs=10 ** 6)
+        with self.assertRaises(TypeError):
+            kestrel.monte_carlo(S1_MC, runs="2")
 
 
 if __name__ == "__main__":
