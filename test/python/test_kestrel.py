@@ -592,6 +592,28 @@ class MonteCarloTest(unittest.TestCase):
             gc.collect()
             self.assertFalse(os.path.exists(run0))
 
+    def test_overlay_example_headless(self):
+        # python/examples/mc_overlay.py on the short campaign, Agg backend
+        try:
+            import matplotlib  # noqa: F401
+        except ImportError:
+            self.skipTest("python3-matplotlib not installed (scripts/install-deps.sh host)")
+        import subprocess
+        import sys
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "s1_mc_short.yaml")
+            short_mc_scenario(path)
+            png = os.path.join(tmp, "overlay.png")
+            env = dict(os.environ, MPLBACKEND="Agg", MPLCONFIGDIR=tmp)
+            r = subprocess.run([sys.executable, os.path.join(SRC, "python", "examples", "mc_overlay.py"), path,
+                                "--runs", "3", "--jobs", "2", "-o", png], capture_output=True, text=True, env=env,
+                               timeout=120)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertIn("3 runs", r.stdout)
+            with open(png, "rb") as f:
+                self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+            self.assertGreater(os.path.getsize(png), 10000)  # a drawn figure, not an empty canvas
+
     def test_errors(self):
         with self.assertRaises(ValueError):
             kestrel.monte_carlo(kestrel.Scenario.load(S1, SHORT), runs=2)  # no monte_carlo section
