@@ -36,6 +36,8 @@ struct Results {
   std::string failure;
   std::vector<std::string> files;  // written (run(sc, out_dir=...))
   double wall_seconds = 0.0;
+  // The scenario of a whole run (kestrel.run): Results.write() reruns it.
+  std::shared_ptr<const harness::Scenario> scenario;
 };
 
 // Rows of a MemorySink (or `rows` rows of a raw table) into Results.

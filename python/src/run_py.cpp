@@ -199,6 +199,7 @@ Results run_to_results(const harness::Scenario& sc, const py::object& out_dir, b
     }
     Results r = results_of(*run, sc);
     r.wall_seconds = wall;
+    r.scenario = std::make_shared<const harness::Scenario>(sc);
     return r;
   }
   // the CLI's files and report (run_scenario), and the rows in memory too
@@ -225,6 +226,7 @@ Results run_to_results(const harness::Scenario& sc, const py::object& out_dir, b
     if (base == "manifest.json") r.manifest = read_file(f);
   }
   r.events = events_list(rr.status.events);
+  r.scenario = std::make_shared<const harness::Scenario>(sc);
   return r;
 }
 
@@ -305,6 +307,24 @@ void bind_run(py::module_& m)
       .def_readonly("complete", &Results::complete)
       .def_readonly("failure", &Results::failure)
       .def_readonly("files", &Results::files, "Files written (run(sc, out_dir=...))")
+      .def(
+          "write",
+          [](const Results& r, const py::object& out_dir, bool force) {
+            if (!r.scenario)
+              throw py::value_error("write(): only the Results of kestrel.run() (a Run's results() may hold faults "
+                                    "applied from Python that a rerun would not have)");
+            if (out_dir.is_none()) throw py::type_error("write(out_dir): a folder");
+            Results again = run_to_results(*r.scenario, out_dir, force);
+            // a run depends on its scenario only: the rerun's rows are these
+            const bool same = again.data.size() == r.data.size() &&
+                              std::memcmp(again.data.data(), r.data.data(), sizeof(double) * r.data.size()) == 0;
+            if (!same) throw std::runtime_error("write(): the rerun differs from these results (a bug: report it)");
+            return again.files;
+          },
+          py::arg("out_dir"), py::arg("force") = false,
+          "Writes the CLI's files and report of this run into out_dir by running its scenario again "
+          "(run_scenario; a run is deterministic, and the rerun's rows are checked equal to these).  Returns the "
+          "files written.")
       .def_readonly("wall_seconds", &Results::wall_seconds, "Wall time of the stepping (without the copy to NumPy)")
       .def("__repr__", [](const Results& r) {
         return "<kestrel.Results " + std::to_string(r.data.shape(0)) + " samples x " + std::to_string(r.columns.size()) +

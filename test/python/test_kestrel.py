@@ -273,6 +273,14 @@ class RunTest(unittest.TestCase):
         np.testing.assert_array_equal(res.data, self.res.data)
         self.assertEqual(res.summary["final_pointing_error_deg"], read_summary(
             os.path.join(self.cli_dir, "summary.txt"))["final_pointing_error_deg"])
+        # Results.write(): the same files from an in-memory run (rerun, checked equal)
+        wdir = os.path.join(self.tmp.name, "written")
+        files = self.res.write(wdir)
+        self.assertEqual(sorted(os.path.basename(f) for f in files), sorted(os.listdir(self.cli_dir)))
+        with open(os.path.join(wdir, "summary.txt")) as a, open(os.path.join(self.cli_dir, "summary.txt")) as b:
+            self.assertEqual(a.read(), b.read())
+        with self.assertRaises(ValueError):
+            kestrel.Run(self.sc).results().write(os.path.join(self.tmp.name, "no"))
         # an existing folder is refused like the CLI (nothing run)
         with self.assertRaises(kestrel.ResultsDirRefused):
             kestrel.run(self.sc, out_dir=out)
