@@ -1,0 +1,467 @@
+// kestrel.run, kestrel.Results, kestrel.Run (stepping).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <mutex>
+#include <sstream>
+
+#include "common.h"
+#include "harness/outputs.h"
+
+namespace kpy {
+
+namespace {
+
+std::string quantity_key(const harness::Column& c)
+{
+  return c.group.empty() ? c.quantity : c.group + "/" + c.quantity;
+}
+
+// columns [first, first + n) of a quantity or a column named `name`:
+// "omega_BN_B" (a quantity, if only one group records it), "truth/omega_BN_B"
+// (group/quantity) or a column name ("omega_BN_B_x").
+bool find_columns(const std::vector<harness::Column>& cols, const std::string& name, size_t& first, size_t& n,
+                  std::string& why)
+{
+  // a quantity by group/quantity or by its name alone
+  std::vector<std::string> groups;
+  size_t f = 0, cnt = 0;
+  std::string hit;
+  for (size_t i = 0; i < cols.size(); ++i) {
+    const std::string key = quantity_key(cols[i]);
+    if (key == name || cols[i].quantity == name) {
+      if (cnt == 0) {
+        hit = key;
+        f = i;
+      }
+      if (std::find(groups.begin(), groups.end(), key) == groups.end()) groups.push_back(key);
+      if (key == hit) ++cnt;
+    }
+  }
+  if (groups.size() > 1) {
+    why = "'" + name + "' is recorded by several messages: ";
+    for (size_t i = 0; i < groups.size(); ++i) why += (i ? ", " : "") + groups[i];
+    return false;
+  }
+  if (cnt > 0) {
+    first = f;
+    n = cnt;
+    return true;
+  }
+  for (size_t i = 0; i < cols.size(); ++i)
+    if (cols[i].name == name) {
+      first = i;
+      n = 1;
+      return true;
+    }
+  why = "no recorded quantity or column '" + name + "' (Results.columns, Results.quantities)";
+  return false;
+}
+
+py::array_t<double> slice(const Results& r, size_t first, size_t n)
+{
+  const py::ssize_t rows = r.data.shape(0), nc = r.data.shape(1);
+  py::array_t<double> out({rows, static_cast<py::ssize_t>(n)});
+  const double* src = r.data.data();
+  double* dst = out.mutable_data();
+  for (py::ssize_t i = 0; i < rows; ++i)
+    for (size_t j = 0; j < n; ++j) dst[static_cast<size_t>(i) * n + j] = src[i * nc + static_cast<py::ssize_t>(first + j)];
+  return out;
+}
+
+py::array_t<double> get_quantity(const Results& r, const std::string& name)
+{
+  size_t first = 0, n = 0;
+  std::string why;
+  if (!find_columns(r.columns, name, first, n, why)) throw py::key_error(why);
+  return slice(r, first, n);
+}
+
+void summary_from_items(Results& r, const std::vector<harness::SummaryItem>& items)
+{
+  for (const harness::SummaryItem& it : items) {
+    r.summary[py::str(it.key)] = it.value;
+    r.summary_units[py::str(it.key)] = it.unit;
+  }
+}
+
+py::list events_list(const std::vector<harness::AppliedEvent>& ev)
+{
+  py::list l;
+  for (const harness::AppliedEvent& e : ev) {
+    py::dict d;
+    d["name"] = e.name;
+    d["tick"] = e.tick;
+    d["t"] = e.t;
+    d["what"] = e.what;
+    l.append(d);
+  }
+  return l;
+}
+
+std::string read_file(const std::string& path)
+{
+  std::ifstream f(path, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// summary.txt "key = value unit    # what" -> summary, units
+void summary_from_text(Results& r, const std::string& text)
+{
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const size_t eq = line.find(" = ");
+    if (eq == std::string::npos) continue;
+    std::string rest = line.substr(eq + 3);
+    const size_t hash = rest.find('#');
+    if (hash != std::string::npos) rest = rest.substr(0, hash);
+    std::istringstream vs(rest);
+    std::string value, unit;
+    vs >> value >> unit;
+    const std::string key = line.substr(0, eq);
+    double v = std::numeric_limits<double>::quiet_NaN();
+    try {
+      v = std::stod(value);
+    } catch (const std::exception&) {
+    }
+    r.summary[py::str(key)] = v;
+    r.summary_units[py::str(key)] = unit;
+  }
+}
+
+// A Run owned by Python, with the scenario it was built from.
+struct PyRun {
+  explicit PyRun(const harness::Scenario& s) : sc(s)
+  {
+    validate_like_cli(sc, false);
+    harness::RunConfig cfg;
+    cfg.keep_in_memory = true;
+    cfg.chunk_rows = 1;  // every row reaches the memory sink at once: results() at any tick
+    run = std::make_unique<harness::Run>(sc, std::move(cfg));
+  }
+  harness::Scenario sc;
+  std::unique_ptr<harness::Run> run;
+  std::mutex mu;  // one Python thread at a time steps or reads this run
+  struct Applied {
+    uint64_t tick;
+    double t;
+    std::string what;
+  };
+  std::vector<Applied> applied;  // apply_event() log
+};
+
+Results results_of(harness::Run& run, const harness::Scenario& sc)
+{
+  Results r;
+  const harness::MemorySink& mem = run.memory();
+  fill_results(r, mem.columns(), mem.data(), mem.rows());
+  harness::RunStatus st;
+  st.complete = run.done() && run.failure().empty();
+  st.ticks = run.tick();
+  st.t_reached = run.recorder().rows() > 0 ? run.recorder().last_row()[0] : 0.0;
+  st.stopped_by = run.failure();
+  st.events = run.events_applied();
+  r.complete = st.complete;
+  r.failure = run.failure();
+  r.summary["complete"] = st.complete ? 1.0 : 0.0;
+  r.summary["t_reached"] = st.t_reached;
+  r.summary_units["complete"] = "";
+  r.summary_units["t_reached"] = "s";
+  summary_from_items(r, run.summary());
+  r.manifest = harness::manifest_text(sc, {}, &st);
+  r.events = events_list(st.events);
+  return r;
+}
+
+Results run_to_results(const harness::Scenario& sc, const py::object& out_dir, bool force)
+{
+  if (out_dir.is_none()) {
+    std::unique_ptr<harness::Run> run;
+    double wall = 0.0;
+    {
+      py::gil_scoped_release nogil;
+      validate_like_cli(sc, false);  // a scenario changed by set(): the checks of loading it
+      harness::RunConfig cfg;
+      cfg.keep_in_memory = true;
+      run = std::make_unique<harness::Run>(sc, std::move(cfg));
+      const auto t0 = std::chrono::steady_clock::now();
+      while (!run->done())
+        if (!run->step_ticks(1000)) break;
+      wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      run->finish();
+    }
+    Results r = results_of(*run, sc);
+    r.wall_seconds = wall;
+    r.scenario = std::make_shared<const harness::Scenario>(sc);
+    return r;
+  }
+  // the CLI's files and report (run_scenario), and the rows in memory too
+  harness::RunOptions opt;
+  opt.out_dir = py::str(out_dir).cast<std::string>();
+  opt.force = force;
+  harness::MemorySink mem;
+  opt.extra_sinks.push_back(&mem);
+  harness::RunResult rr;
+  {
+    py::gil_scoped_release nogil;
+    validate_like_cli(sc, false);
+    rr = harness::run_scenario(sc, opt);
+  }
+  Results r;
+  fill_results(r, mem.columns(), mem.data(), mem.rows());
+  r.complete = rr.status.complete;
+  r.failure = rr.failure;
+  r.files = rr.files;
+  r.wall_seconds = rr.wall_seconds;
+  for (const std::string& f : rr.files) {
+    const std::string base = f.substr(f.find_last_of('/') + 1);
+    if (base == "summary.txt") summary_from_text(r, read_file(f));
+    if (base == "manifest.json") r.manifest = read_file(f);
+  }
+  r.events = events_list(rr.status.events);
+  r.scenario = std::make_shared<const harness::Scenario>(sc);
+  return r;
+}
+
+}  // namespace
+
+void fill_results(Results& r, const std::vector<harness::Column>& cols, const double* data, uint64_t rows)
+{
+  r.columns = cols;
+  r.data = py::array_t<double>({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols.size())});
+  if (rows > 0 && !cols.empty()) std::memcpy(r.data.mutable_data(), data, sizeof(double) * rows * cols.size());
+}
+
+void bind_run(py::module_& m)
+{
+  py::class_<Results>(m, "Results",
+                      "The recorded rows of a run as NumPy arrays, with units, the summary, the manifest and the "
+                      "applied events")
+      .def("__getitem__", &get_quantity, py::arg("name"),
+           "A quantity ('omega_BN_B', 'truth/omega_BN_B') or one column ('omega_BN_B_x') as an array shaped "
+           "(samples, components).  KeyError if not recorded.")
+      .def("quantity", &get_quantity, py::arg("name"), "Same as res[name].")
+      .def(
+          "column",
+          [](const Results& r, const std::string& name) {
+            for (size_t i = 0; i < r.columns.size(); ++i)
+              if (r.columns[i].name == name) {
+                py::array_t<double> a = slice(r, i, 1);
+                return a.attr("reshape")(-1).cast<py::array_t<double>>();
+              }
+            throw py::key_error("no recorded column '" + name + "'");
+          },
+          py::arg("name"), "One flat column as a 1-D array (samples,).")
+      .def("unit",
+           [](const Results& r, const std::string& name) {
+             size_t first = 0, n = 0;
+             std::string why;
+             if (!find_columns(r.columns, name, first, n, why)) throw py::key_error(why);
+             return r.columns[first].unit;
+           })
+      .def("__contains__",
+           [](const Results& r, const std::string& name) {
+             size_t first = 0, n = 0;
+             std::string why;
+             return find_columns(r.columns, name, first, n, why);
+           })
+      .def("__len__", [](const Results& r) { return r.data.shape(0); })
+      .def_property_readonly("t", [](const Results& r) { return slice(r, 0, 1).attr("reshape")(-1); }, "[s] (samples,)")
+      .def_readonly("data", &Results::data, "The whole table (samples, columns), in the order of .columns")
+      .def_property_readonly("columns",
+                             [](const Results& r) {
+                               std::vector<std::string> v;
+                               for (const auto& c : r.columns) v.push_back(c.name);
+                               return v;
+                             })
+      .def_property_readonly("units",
+                             [](const Results& r) {
+                               py::dict d;
+                               for (const auto& c : r.columns) d[py::str(c.name)] = c.unit;
+                               return d;
+                             },
+                             "column name -> unit")
+      .def_property_readonly("quantities",
+                             [](const Results& r) {
+                               // "group/quantity" -> (unit, frame, [columns]) in recording order
+                               py::dict d;
+                               for (const auto& c : r.columns) {
+                                 const std::string key = quantity_key(c);
+                                 if (!d.contains(key)) d[py::str(key)] = py::make_tuple(c.unit, c.frame, py::list());
+                                 d[py::str(key)].cast<py::tuple>()[2].cast<py::list>().append(c.name);
+                               }
+                               return d;
+                             },
+                             "'group/quantity' -> (unit, frame, [column names])")
+      .def_readonly("summary", &Results::summary, "The figures of summary.txt: key -> value")
+      .def_readonly("summary_units", &Results::summary_units)
+      .def_readonly("manifest", &Results::manifest, "manifest.json text (the resolved scenario and how the run ended)")
+      .def_readonly("events", &Results::events, "Applied scenario events: dicts name, tick, t, what")
+      .def_readonly("complete", &Results::complete)
+      .def_readonly("failure", &Results::failure)
+      .def_readonly("files", &Results::files, "Files written (run(sc, out_dir=...))")
+      .def(
+          "write",
+          [](const Results& r, const py::object& out_dir, bool force) {
+            if (!r.scenario)
+              throw py::value_error("write(): only the Results of kestrel.run() (a Run's results() may hold faults "
+                                    "applied from Python that a rerun would not have)");
+            if (out_dir.is_none()) throw py::type_error("write(out_dir): a folder");
+            Results again = run_to_results(*r.scenario, out_dir, force);
+            // a run depends on its scenario only: the rerun's rows are these
+            const bool same = again.data.size() == r.data.size() &&
+                              std::memcmp(again.data.data(), r.data.data(), sizeof(double) * r.data.size()) == 0;
+            if (!same) throw std::runtime_error("write(): the rerun differs from these results (a bug: report it)");
+            return again.files;
+          },
+          py::arg("out_dir"), py::arg("force") = false,
+          "Writes the CLI's files and report of this run into out_dir by running its scenario again "
+          "(run_scenario; a run is deterministic, and the rerun's rows are checked equal to these).  Returns the "
+          "files written.")
+      .def_readonly("wall_seconds", &Results::wall_seconds, "Wall time of the stepping (without the copy to NumPy)")
+      .def("__repr__", [](const Results& r) {
+        return "<kestrel.Results " + std::to_string(r.data.shape(0)) + " samples x " + std::to_string(r.columns.size()) +
+               " columns" + (r.complete ? "" : ", incomplete") + ">";
+      });
+
+  m.def(
+      "run",
+      [](const PyScenario& s, const py::object& out_dir, bool force) { return run_to_results(s.sc, out_dir, force); },
+      py::arg("scenario"), py::arg("out_dir") = py::none(), py::arg("force") = false,
+      "Runs a scenario to its end (the GIL released) and returns Results.  With out_dir, also writes the CLI's "
+      "files and report there (run_scenario: results.h5, manifest.json, summary.txt, report.html, ...); force "
+      "replaces an existing results folder.");
+
+  py::class_<PyRun>(m, "Run", "A run stepped from Python: step(n), tick, t, state(), apply_event(), results()")
+      .def(py::init([](const PyScenario& s) {
+             py::gil_scoped_release nogil;
+             return std::make_unique<PyRun>(s.sc);
+           }),
+           py::arg("scenario"))
+      .def(
+          "step",
+          [](PyRun& r, py::object n_obj) {
+            if (!py::isinstance<py::int_>(n_obj)) throw py::type_error("step(n): n is an int");
+            // any non-negative int: more ticks than the run has is "to the end"
+            if (n_obj.cast<py::int_>() < py::int_(0)) throw py::value_error("step(n): n >= 0");
+            unsigned long long n = PyLong_AsUnsignedLongLong(n_obj.ptr());
+            if (PyErr_Occurred()) {
+              PyErr_Clear();
+              n = std::numeric_limits<unsigned long long>::max();
+            }
+            bool ok = false;
+            {
+              py::gil_scoped_release nogil;
+              std::lock_guard<std::mutex> g(r.mu);
+              ok = r.run->step_ticks(static_cast<uint64_t>(n));
+            }
+            return ok;
+          },
+          py::arg("n") = 1,
+          "Runs up to n more ticks (fewer at the end; the GIL released).  False once the run has failed (failure).")
+      .def(
+          "run_to_end",
+          [](PyRun& r) {
+            py::gil_scoped_release nogil;
+            std::lock_guard<std::mutex> g(r.mu);
+            while (!r.run->done())
+              if (!r.run->step_ticks(1000)) return false;
+            return true;
+          },
+          "Steps to the end.")
+      .def_property_readonly("tick", [](PyRun& r) { return r.run->tick(); }, "the next tick to run")
+      .def_property_readonly("total_ticks", [](PyRun& r) { return r.run->total_ticks(); })
+      .def_property_readonly("t", [](PyRun& r) { return static_cast<double>(r.run->tick()) * r.sc.rates.dt; },
+                             "[s] time of the next tick")
+      .def_property_readonly("done", [](PyRun& r) { return r.run->done(); })
+      .def_property_readonly("failure", [](PyRun& r) { return r.run->failure(); })
+      .def(
+          "state",
+          [](PyRun& r) {
+            std::lock_guard<std::mutex> g(r.mu);
+            py::dict d;
+            const double* row = r.run->recorder().last_row();
+            if (row == nullptr) return d;
+            for (size_t i = 0; i < r.run->recorder().columns().size(); ++i)
+              d[py::str(r.run->recorder().columns()[i].name)] = row[i];
+            return d;
+          },
+          "The latest recorded row: column name -> value ({} before the first row)")
+      .def(
+          "apply_event",
+          [](PyRun& r, const std::string& device, const std::string& action, const py::object& value) {
+            std::lock_guard<std::mutex> g(r.mu);
+            int idx = -1;
+            bool wheel = false;
+            for (size_t i = 0; i < r.sc.wheels.size(); ++i)
+              if (r.sc.wheels[i].name == device) {
+                idx = static_cast<int>(i);
+                wheel = true;
+              }
+            for (size_t j = 0; j < r.sc.thrusters.size() && idx < 0; ++j)
+              if (r.sc.thrusters[j].name == device) idx = static_cast<int>(j);
+            if (idx < 0) throw py::value_error("apply_event: no wheel or thruster named '" + device + "'");
+            auto number = [&](const char* what) {
+              if (value.is_none()) throw py::value_error("apply_event: " + action + " takes a value (" + what + ")");
+              if (!(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)))
+                throw py::type_error("apply_event: " + action + " takes a number (" + what + ")");
+              const double v = value.cast<double>();
+              if (!std::isfinite(v) || v < 0) throw py::value_error("apply_event: " + action + ": a finite value >= 0");
+              return v;
+            };
+            std::string what = device + " " + action;
+            if (wheel && action == "fail_off") r.run->plant().set_wheel_health(idx, sim::WheelHealth::Off);
+            else if (wheel && action == "restore") {
+              r.run->plant().set_wheel_health(idx, sim::WheelHealth::Nominal);
+              r.run->plant().set_wheel_u_max(idx, r.sc.wheels[static_cast<size_t>(idx)].params.u_max);
+            } else if (wheel && action == "torque_limit") {
+              const double v = number("N*m");
+              r.run->plant().set_wheel_u_max(idx, v);
+              what += " " + py::str(py::float_(v)).cast<std::string>();
+            } else if (!wheel && action == "stuck_closed")
+              r.run->plant().set_thruster_health(idx, sim::ThrusterHealth::FailedOff);
+            else if (!wheel && action == "stuck_open")
+              r.run->plant().set_thruster_health(idx, sim::ThrusterHealth::StuckOn);
+            else if (!wheel && action == "restore")
+              r.run->plant().set_thruster_health(idx, sim::ThrusterHealth::Nominal);
+            else
+              throw py::value_error("apply_event: '" + action + "' is not an action of " +
+                                    (wheel ? "a wheel (fail_off, torque_limit, restore)"
+                                           : "a thruster (stuck_closed, stuck_open, restore)"));
+            r.applied.push_back({r.run->tick(), static_cast<double>(r.run->tick()) * r.sc.rates.dt, what});
+          },
+          py::arg("device"), py::arg("action"), py::arg("value") = py::none(),
+          "Applies a plant fault now, before the next tick: a wheel (by name) fail_off, torque_limit VALUE [N*m], "
+          "restore; a thruster stuck_closed, stuck_open, restore.  The FSW is not told (as in the scenario's "
+          "events without command_unavailable).  Other event actions: the scenario's events (docs/events.md).")
+      .def_property_readonly(
+          "applied",
+          [](PyRun& r) {
+            py::list l;
+            for (const PyRun::Applied& a : r.applied) {
+              py::dict e;
+              e["tick"] = a.tick;
+              e["t"] = a.t;
+              e["what"] = a.what;
+              l.append(e);
+            }
+            return l;
+          },
+          "apply_event() log: dicts tick, t, what")
+      .def(
+          "results",
+          [](PyRun& r) {
+            std::lock_guard<std::mutex> g(r.mu);
+            return results_of(*r.run, r.sc);
+          },
+          "The rows recorded so far as Results (the run goes on).");
+}
+
+}  // namespace kpy
