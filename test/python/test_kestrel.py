@@ -601,7 +601,7 @@ class MonteCarloTest(unittest.TestCase):
             self.assertFalse(os.path.exists(run0))
 
     def test_overlay_example_headless(self):
-        # python/examples/mc_overlay.py on the short campaign, Agg backend
+        # examples/mc_overlay.py on the short campaign, Agg backend
         try:
             import matplotlib  # noqa: F401
         except ImportError:
@@ -613,7 +613,7 @@ class MonteCarloTest(unittest.TestCase):
             short_mc_scenario(path)
             png = os.path.join(tmp, "overlay.png")
             env = dict(os.environ, MPLBACKEND="Agg", MPLCONFIGDIR=tmp)
-            r = subprocess.run([sys.executable, os.path.join(SRC, "python", "examples", "mc_overlay.py"), path,
+            r = subprocess.run([sys.executable, os.path.join(SRC, "examples", "mc_overlay.py"), path,
                                 "--runs", "3", "--jobs", "2", "-o", png], capture_output=True, text=True, env=env,
                                timeout=120)
             self.assertEqual(r.returncode, 0, r.stderr)

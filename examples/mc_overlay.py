@@ -3,7 +3,7 @@
 time (passing runs blue, failing red) with the campaign's median and 5-95 %
 envelope, as in the papers' Monte Carlo figures (docs/python.md).
 
-  PYTHONPATH=build/host-release/python /usr/bin/python3 python/examples/mc_overlay.py \
+  PYTHONPATH=build/host-release/python /usr/bin/python3 examples/mc_overlay.py \
       scenarios/s1_monte_carlo.yaml --runs 50 --jobs 2 -o s1_mc_overlay.png
 
 Headless (no display needed): the Agg backend unless MPLBACKEND says otherwise.
