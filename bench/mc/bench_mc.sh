@@ -14,6 +14,10 @@ SC="$here/scenarios/s1_monte_carlo.yaml"
 W=$(mktemp -d /tmp/kestrel-bench-mc.XXXXXX)
 trap 'rm -rf "$W"' EXIT
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# The shipped campaign has failing runs, so rank 0 exits with 6; mpirun then
+# takes its abort path, which adds about 1 s after the ranks are done (a
+# fixed cost of mpirun, 10 % of these short campaigns).  Measured without it:
+export OMPI_MCA_orte_abort_on_non_zero_status=0
 have_mpi=0; command -v mpirun > /dev/null && have_mpi=1
 t() {  # seconds of wall time of "$@"
   local a b

@@ -376,6 +376,25 @@ std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const
   prog.total = opt.indices.size();
   const auto t0 = std::chrono::steady_clock::now();
   std::string error;  // an exception of a worker (output error): ends the campaign
+  std::atomic<uint32_t> failing_full{0};  // failing runs given full results during the pass
+  // A failing run's full results: run k again through run_scenario; its
+  // metrics must be the first pass's.
+  auto rerun_full = [&](size_t slot) {
+    const uint64_t k = opt.indices[slot];
+    McRecord r = run_mc_one(plan, k, runs / run_dir_name(k), true, opt.stop);
+    std::lock_guard<std::mutex> g(mu);
+    McRecord& first = out[slot];
+    if (r.interrupted) {  // the first pass's record stays; the folder holds a partial rerun, marked incomplete
+      first.full = false;
+      return;
+    }
+    if (!same_metrics(first, r) || first.pass != r.pass) {
+      r.pass = false;
+      r.reason = "NOT REPRODUCED: the full-results rerun gave other metrics than the first pass (" + first.reason + ")";
+    }
+    r.wall_seconds += first.wall_seconds;
+    first = std::move(r);
+  };
   auto work = [&](bool rerun_pass, const std::vector<size_t>& todo) {
     std::atomic<size_t> at{0};
     auto body = [&]() {
@@ -390,13 +409,20 @@ std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const
         const size_t slot = todo[j];
         const uint64_t k = opt.indices[slot];
         try {
-          if (!rerun_pass) {
-            McRecord r = run_mc_one(plan, k, runs / run_dir_name(k), k < ret.keep_first, opt.stop);
-            if (r.interrupted) {  // not part of the campaign: no folder
-              std::error_code ec;
-              fs::remove_all(runs / run_dir_name(k), ec);
-              return;
-            }
+          if (rerun_pass) {
+            rerun_full(slot);
+            continue;
+          }
+          McRecord r = run_mc_one(plan, k, runs / run_dir_name(k), k < ret.keep_first, opt.stop);
+          if (r.interrupted) {  // not part of the campaign: no folder
+            std::error_code ec;
+            fs::remove_all(runs / run_dir_name(k), ec);
+            return;
+          }
+          // a failing run gets its full results at once, by the same worker (the
+          // selection is made exact by index after the pass)
+          const bool keep = ret.keep_failing && !r.pass && !r.invalid && !r.full && failing_full.load() < ret.max_failing;
+          {
             std::lock_guard<std::mutex> g(mu);
             out[slot] = std::move(r);
             done[slot] = 1;
@@ -404,21 +430,10 @@ std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const
             if (!out[slot].pass) ++prog.failed;
             prog.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             if (opt.progress) opt.progress(prog);
-          } else {
-            McRecord r = run_mc_one(plan, k, runs / run_dir_name(k), true, opt.stop);
-            std::lock_guard<std::mutex> g(mu);
-            if (r.interrupted) {  // the first pass's record stays; the folder holds a partial rerun, marked incomplete
-              out[slot].full = false;
-              return;
-            }
-            McRecord& first = out[slot];
-            if (!same_metrics(first, r) || first.pass != r.pass) {
-              r.pass = false;
-              r.reason = "NOT REPRODUCED: the full-results rerun gave other metrics than the first pass (" +
-                         first.reason + ")";
-            }
-            r.wall_seconds += first.wall_seconds;
-            first = std::move(r);
+          }
+          if (keep) {
+            failing_full.fetch_add(1);
+            rerun_full(slot);
           }
         } catch (const std::exception& e) {
           std::lock_guard<std::mutex> g(mu);
@@ -440,15 +455,28 @@ std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const
   work(false, all);
   if (!error.empty()) throw std::runtime_error(error);
   stopped = opt.stop && opt.stop->load() != 0;
-  // retention: failing runs (by index) keep their full results
+  // retention, exact and independent of the threads: the first max_failing
+  // failing runs by index keep full results (rerun those that have none yet),
+  // the others keep their manifest only
   std::vector<size_t> order(opt.indices.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return opt.indices[a] < opt.indices[b]; });
   if (!stopped && ret.keep_failing) {
     std::vector<size_t> rerun;
-    for (size_t slot : order)
-      if (done[slot] && !out[slot].pass && !out[slot].invalid && !out[slot].full && rerun.size() < ret.max_failing)
-        rerun.push_back(slot);
+    uint32_t n_fail = 0;
+    for (size_t slot : order) {
+      McRecord& r = out[slot];
+      if (!done[slot] || r.pass || r.invalid || opt.indices[slot] < ret.keep_first) continue;
+      if (n_fail++ < ret.max_failing) {
+        if (!r.full) rerun.push_back(slot);
+      } else if (r.full) {  // beyond the first max_failing: the manifest only
+        const fs::path d = runs / run_dir_name(opt.indices[slot]);
+        std::error_code ec;
+        for (const fs::directory_entry& e : fs::directory_iterator(d, ec))
+          if (e.path().filename() != "manifest.json") fs::remove_all(e.path(), ec);
+        r.full = false;
+      }
+    }
     work(true, rerun);
     if (!error.empty()) throw std::runtime_error(error);
     stopped = opt.stop && opt.stop->load() != 0;

@@ -1,7 +1,9 @@
 // mc_comm.cpp: see mc_comm.h.
 #include "mc_comm.h"
 
+#include <chrono>
 #include <cstdlib>
+#include <thread>
 #include <stdexcept>
 
 #ifdef KESTREL_HAVE_MPI
@@ -65,6 +67,16 @@ std::string McComm::broadcast(const std::string& text) const
 std::vector<std::string> McComm::gather(const std::string& text) const
 {
   if (!active_) return {text};
+  // A rank that finished its runs first waits here without spinning: Open
+  // MPI's blocking collectives poll at full speed, which would take a core
+  // from the ranks still running (2 ranks on 2 cores).
+  MPI_Request req;
+  check(MPI_Ibarrier(MPI_COMM_WORLD, &req), "MPI_Ibarrier");
+  for (int flag = 0;;) {
+    check(MPI_Test(&req, &flag, MPI_STATUS_IGNORE), "MPI_Test");
+    if (flag) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
   // sizes first, then the texts (MPI_Gatherv counts are int: a rank's
   // records stay far below 2 GB -- a few kB per run)
   if (text.size() > 0x7fffffffULL) throw std::runtime_error("MPI gather: a rank's records exceed 2 GB");

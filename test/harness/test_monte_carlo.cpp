@@ -423,3 +423,30 @@ TEST(McCampaign, ARunIsReproducedFromItsManifest)
   }
   fs::remove_all(dir);
 }
+
+TEST(McCampaign, RetentionKeepsTheFirstFailingRunsWhateverTheThreads)
+{
+  // every run fails (the mean of t over 0..20 s is 10 s, not below 1); keep_first 1,
+  // max_failing 2: runs 0 (first), 1 and 2 (the first two failing ones after it)
+  // keep full results, the others their manifest only -- with 1 thread or 2
+  std::string mc = kCampaign;
+  auto sub = [&mc](const std::string& from, const std::string& to) { mc.replace(mc.find(from), from.size(), to); };
+  sub("stat: mean, below: 100}", "stat: mean, below: 1.0}");
+  sub("retention: {keep_first: 1,", "retention: {keep_first: 1, max_failing: 2,");
+  const McPlan plan = make_mc_plan(load(mc), 11, 6);
+  for (unsigned jobs : {1u, 2u}) {
+    const fs::path dir = fs::temp_directory_path() / ("kestrel_mc_test_ret" + std::to_string(jobs));
+    const std::vector<McRecord> r = campaign(plan, dir, jobs, {5, 4, 3, 2, 1, 0});
+    ASSERT_EQ(r.size(), 6u);
+    for (const McRecord& x : r) {
+      EXPECT_FALSE(x.pass);
+      EXPECT_EQ(x.full, x.index <= 2) << "run " << x.index << " with " << jobs << " threads";
+      char name[16];
+      std::snprintf(name, sizeof name, "%06llu", static_cast<unsigned long long>(x.index));
+      EXPECT_EQ(fs::exists(dir / "runs" / name / "summary.txt"), x.index <= 2);
+      EXPECT_TRUE(fs::exists(dir / "runs" / name / "manifest.json"));
+      EXPECT_EQ(x.reason.rfind("t_mean: ", 0), 0u) << x.reason;
+    }
+    fs::remove_all(dir);
+  }
+}
