@@ -472,8 +472,10 @@ std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const
       } else if (r.full) {  // beyond the first max_failing: the manifest only
         const fs::path d = runs / run_dir_name(opt.indices[slot]);
         std::error_code ec;
+        std::vector<fs::path> drop;  // listed first, removed after the listing
         for (const fs::directory_entry& e : fs::directory_iterator(d, ec))
-          if (e.path().filename() != "manifest.json") fs::remove_all(e.path(), ec);
+          if (e.path().filename() != "manifest.json") drop.push_back(e.path());
+        for (const fs::path& f : drop) fs::remove_all(f, ec);
         r.full = false;
       }
     }
