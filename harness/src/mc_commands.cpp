@@ -284,7 +284,6 @@ int cmd_mc(const McCommand& c, std::ostream& out, std::ostream& err)
   ro.indices = mine;
   ro.stop = c.stop;
   std::mutex pmu;
-  const uint64_t total_all = indices.size() / (c.shard_count > 0 ? c.shard_count : 1);
   if (c.progress && root) {
     ro.progress = [&](const McProgress& p) {
       std::lock_guard<std::mutex> g(pmu);
@@ -296,7 +295,6 @@ int cmd_mc(const McCommand& c, std::ostream& out, std::ostream& err)
           << " failed, " << duration_text(eta) << " left   " << std::flush;
     };
   }
-  (void)total_all;
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<McRecord> recs;
   bool stopped = false;
