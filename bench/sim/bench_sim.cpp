@@ -17,6 +17,7 @@
 
 #include "sim/plant.h"
 #include "sim/units.h"
+#include "s1_wheel.h"
 
 namespace {
 
@@ -34,17 +35,8 @@ sim::SpacecraftParams vehicle(int num_rw, sim::WheelModel model)
   p.hub.I_hBc_B = Eigen::Vector3d(900.0, 800.0, 600.0).asDiagonal();
   p.hub.r_BcB_B = Eigen::Vector3d(0.0, 0.0, 0.1);
   p.mu = sim::kMuEarth;
-  const double el = sim::rad_from_deg(40.0);
   for (int i = 0; i < num_rw; ++i) {
-    sim::ReactionWheelParams w;
-    w.model = model;
-    const double az = sim::rad_from_deg(45.0 + 90.0 * i);
-    w.gs_hat_nom_B = Eigen::Vector3d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
-    w.r_WB_B = Eigen::Vector3d(0.8 * std::cos(az), 0.8 * std::sin(az), 1.7907);
-    w.m_w = 9.0;
-    w.J_s = 0.0795775;
-    w.U_s = 2.8e-6;
-    w.U_d = 7.7e-7;
+    sim::ReactionWheelParams w = s1_wheel(i, model);
     w.Omega_0 = sim::rad_s_from_rpm(100.0 * (i + 1));
     w.friction.tau_c = 5e-4;
     p.wheels.push_back(w);

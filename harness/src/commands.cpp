@@ -64,6 +64,7 @@ int cmd_validate(const std::string& scenario, const std::vector<std::string>& se
       out << scenario << ": monte_carlo: " << plan.runs << " runs, " << plan.drawn.size() << " drawn values, "
           << sc.monte_carlo->criteria.size() << " criteria\n";
     }
+    for (const std::string& w : jitter_step_warnings(sc)) out << scenario << ": warning: " << w << "\n";
     out << scenario << ": ok (" << sc.name << ", " << sc.wheels.size() << " wheels, " << sc.thrusters.size()
         << " thrusters, " << sc.num_ticks() << " steps of " << sc.rates.dt << " s)\n";
     return kExitOk;
@@ -118,6 +119,7 @@ int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
     return kExitInvalidScenario;
   }
   if (c.csv) sc.outputs.csv = true;
+  for (const std::string& w : jitter_step_warnings(sc)) err << "kestrel: warning: " << w << "\n";
   RunOptions opt;
   opt.out_dir = c.out_dir.empty() ? (fs::path("runs") / sc.name).string() : c.out_dir;
   opt.overrides = ov;
@@ -191,6 +193,10 @@ int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
   out << sc.name << ": " << sc.duration << " s simulated in " << std::setprecision(3) << r.wall_seconds
       << " s (real-time factor " << std::setprecision(4) << (r.wall_seconds > 0 ? sc.duration / r.wall_seconds : 0.0)
       << "x); final pointing error " << std::setprecision(4) << r.final_pointing_error_deg << " deg\n";
+  if (r.max_jitter_step > kJitterStepLimit)
+    err << "kestrel: warning: a jittering wheel reached |Omega| h = " << std::setprecision(3) << r.max_jitter_step
+        << " rad per plant step (> " << kJitterStepLimit
+        << "): its imbalance jitter is under-resolved; raise rates.plant_substeps (docs/performance.md)\n";
   if (r.paced)
     out << "paced at " << r.pacing.scale << "x real time: tick lateness p50 " << r.pacing.lateness_p50_s * 1e6
         << " us, p99 " << r.pacing.lateness_p99_s * 1e6 << " us, max " << r.pacing.lateness_max_s * 1e6 << " us, "

@@ -4,9 +4,11 @@
 // protocol's tasks), telemetry_columns (what is recorded).
 #include "harness/run.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "build_error.h"
@@ -63,6 +65,9 @@ struct Run::Impl {
   uint64_t tick = 0;
   uint64_t n_ticks = 0;
   std::string failure;
+  int64_t substep_ns = 0;           // plant step: dt / rates.plant_substeps
+  std::vector<int> jitter_wheels;   // wheels whose imbalance makes jitter
+  double max_jitter_Omega = 0.0;    // [rad/s] largest |Omega| of those at a tick
 
   // tasks (optional ones absent when the run does not need them)
   std::optional<TruthTask> truth;
@@ -81,12 +86,16 @@ struct Run::Impl {
 
   explicit Impl(const Scenario& s) : sc(s), plant_owner(build_plant(s)), plant(*plant_owner), sched(s.tick_ns()) {}
   void wire(RunConfig& cfg);
+  bool step_plant();
 };
 
 void Run::Impl::wire(RunConfig& cfg)
 {
   const uint64_t tk = sc.tick_ns();
   n_ticks = sc.num_ticks();
+  substep_ns = static_cast<int64_t>(sc.tick_ns() / sc.rates.plant_substeps);  // exact (checked at load)
+  for (size_t i = 0; i < sc.wheels.size(); ++i)
+    if (wheel_jitters(sc.wheels[i].params)) jitter_wheels.push_back(static_cast<int>(i));
   fsw_setup = make_fsw_setup(sc, plant.mass_props());
   if (cfg.fsw) {
     fsw = std::move(cfg.fsw);
@@ -217,6 +226,45 @@ void Run::add_sink(RecordSink& sink)
   impl_->rec.add_sink(sink);
 }
 
+// The plant over one tick: rates.plant_substeps steps of dt / n (docs/harness.md).
+bool Run::Impl::step_plant()
+{
+  for (int i : jitter_wheels) max_jitter_Omega = std::max(max_jitter_Omega, std::fabs(plant.Omega(i)));
+  for (uint32_t s = 0; s < sc.rates.plant_substeps; ++s)
+    if (plant.step(substep_ns) != sim::StepStatus::Ok) return false;
+  return true;
+}
+
+bool wheel_jitters(const sim::ReactionWheelParams& p)
+{
+  return p.model != sim::WheelModel::Balanced && (p.U_s > 0.0 || p.U_d > 0.0);
+}
+
+uint32_t substeps_for(double Omega_abs, double dt)
+{
+  const double n = std::ceil(Omega_abs * dt / kJitterStepLimit);
+  return n < 1.0 ? 1u : n > 1e9 ? 1000000000u : static_cast<uint32_t>(n);
+}
+
+std::vector<std::string> jitter_step_warnings(const Scenario& sc)
+{
+  std::vector<std::string> out;
+  const double h = sc.rates.dt / sc.rates.plant_substeps;
+  for (size_t i = 0; i < sc.wheels.size(); ++i) {
+    const sim::ReactionWheelParams& p = sc.wheels[i].params;
+    const double step = std::fabs(p.Omega_0) * h;
+    if (!wheel_jitters(p) || !(step > kJitterStepLimit)) continue;
+    std::ostringstream w;
+    w.precision(3);
+    w << "wheels[" << i << "] (" << sc.wheels[i].name << "): its imbalance jitter is under-resolved: |Omega_0| h = "
+      << step << " rad per plant step (h = " << h << " s) > " << kJitterStepLimit
+      << " rad; rates.plant_substeps: " << substeps_for(std::fabs(p.Omega_0), sc.rates.dt)
+      << " or more keeps it within (docs/performance.md)";
+    out.push_back(w.str());
+  }
+  return out;
+}
+
 bool Run::step_ticks(uint64_t n)
 {
   Impl& m = *impl_;
@@ -236,7 +284,7 @@ bool Run::step_ticks(uint64_t n)
       return false;
     }
     if (m.tick < m.n_ticks) {
-      if (m.plant.step(static_cast<int64_t>(m.sched.tick_ns())) != sim::StepStatus::Ok) {
+      if (!m.step_plant()) {
         m.failure = "plant state became non-finite at t = " +
                     std::to_string(static_cast<double>(m.sched.t_ns(m.tick)) * 1e-9) + " s";
         ++m.tick;
@@ -310,12 +358,20 @@ std::vector<std::string> Run::fsw_health_lines() const
   return out;
 }
 
+double Run::max_jitter_step() const
+{
+  return impl_->max_jitter_Omega * static_cast<double>(impl_->substep_ns) * 1e-9;
+}
+
 std::vector<SummaryItem> Run::summary() const
 {
   const Impl& m = *impl_;
   std::vector<SummaryItem> out;
   if (m.rec.rows() > 0)
     out.push_back({"final_pointing_error_deg", final_pointing_error_deg(), "deg", "pointing error at the end of the run"});
+  if (!m.jitter_wheels.empty())
+    out.push_back({"max_jitter_step_rad", max_jitter_step(), "rad",
+                   "largest |Omega| h of a jittering wheel (under-resolved above 2: docs/performance.md)"});
   if (m.plant.num_thr() == 0) return out;
   double used = 0.0;
   for (int k = 0; k < m.plant.num_tanks(); ++k) used += m.plant.tanks()[static_cast<size_t>(k)].m_p0 - m.plant.m_prop(k);

@@ -182,6 +182,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
     res.link = remote->counters();
   }
   res.final_pointing_error_deg = run.final_pointing_error_deg();
+  res.max_jitter_step = run.max_jitter_step();
   RunStatus& st = res.status;
   st.complete = res.ok && run.done();
   st.ticks = run.tick();

@@ -6,6 +6,8 @@
 namespace harness::schema {
 
 namespace {
+constexpr uint32_t kMaxSubsteps = 10000;  // [-] dt / 10^4: finer than any jitter study needs
+
 // dt is a whole number of nanoseconds (the tick clock counts them).
 std::string whole_ns(double& dt)
 {
@@ -34,6 +36,8 @@ const Section& rates_section()
           integer("thruster_divisor", 1, kMaxDivisor,
                   [](auto& sc, size_t) -> auto& { return sc.rates.thruster_divisor; })
               .unit("ticks"),
+          integer("plant_substeps", 1, kMaxSubsteps, [](auto& sc, size_t) -> auto& { return sc.rates.plant_substeps; })
+              .unit("-"),
       },
       {}};
   return s;
@@ -45,6 +49,14 @@ void read_rates(MapReader r, Scenario& sc)
   if (r.has("fsw_offset") && sc.rates.fsw_offset >= sc.rates.fsw_divisor) {
     r.error_at("fsw_offset", "must be < fsw_divisor (" + std::to_string(sc.rates.fsw_divisor) + ")");
     sc.rates.fsw_offset = 0;
+  }
+  // The plant's sub-step is a whole number of nanoseconds too (the tick
+  // clock and the thruster latch instants count them).
+  const auto tick_ns = static_cast<uint64_t>(std::llround(sc.rates.dt * 1e9));
+  if (r.has("plant_substeps") && tick_ns > 0 && tick_ns % sc.rates.plant_substeps != 0) {
+    r.error_at("plant_substeps", "dt (" + std::to_string(tick_ns) + " ns) must be a whole number of sub-steps of whole nanoseconds (" +
+                                     std::to_string(sc.rates.plant_substeps) + " does not divide it)");
+    sc.rates.plant_substeps = 1;
   }
   r.finish();
 }

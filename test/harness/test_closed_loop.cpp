@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <memory>
 
 #include "harness/run.h"
 #include "harness/scenario.h"
@@ -133,4 +135,88 @@ TEST(ClosedLoop, DeterministicRepeat)
   ASSERT_EQ(a.memory().rows(), b.memory().rows());
   for (uint64_t i = 0; i < a.memory().rows(); ++i)
     for (size_t c = 0; c < a.memory().num_columns(); ++c) ASSERT_EQ(a.memory().at(i, c), b.memory().at(i, c));
+}
+
+// rates.plant_substeps: the plant takes n steps of dt / n per tick while
+// the FSW, the sensors and the recorder keep their rates.  Fully-coupled
+// jitter with wheels near 3,000 rpm at dt = 0.01 s turns a wheel by
+// |Omega| dt ~ 3 rad per RK4 step: under-resolved.  RK4's error in a forced
+// oscillation scales with (|Omega| h)^4, so against a reference at n = 100
+// (h = 1e-4 s) the body-rate error with n = 10 must be about 10^4 times
+// smaller than with n = 1 (the (10)^4 of the step ratio; asserted > 10^3 to
+// leave room for the non-jitter part of the error), and the n = 1 error is a
+// visible fraction of the jitter (bench_jitter_accuracy: ~4 % at 3 rad).
+TEST(ClosedLoop, PlantSubstepsResolveWheelJitter)
+{
+  auto run = [](const char* n) {
+    const harness::Scenario sc = harness::load_scenario(
+        kS1, {{"duration", "2"}, {"rates.record_divisor", "1"}, {"rates.plant_substeps", n},
+              // no tumble and a motor limit of 1e-6 N m (FSW torques ~1e-9 rad/s^2 on the
+              // hub): the body rate is the wheels' jitter alone
+              {"spacecraft.initial.omega_BN_B", "[0, 0, 0]"}, {"wheel_defaults.u_max", "1e-6"},
+              {"wheel_defaults.u_min", "0"},
+              {"wheels.0.Omega_0_rpm", "2200"}, {"wheels.1.Omega_0_rpm", "-2500"},
+              {"wheels.2.Omega_0_rpm", "2800"}, {"wheels.3.Omega_0_rpm", "-2950"}});
+    auto r = std::make_unique<harness::Run>(sc);
+    r->step_ticks(r->total_ticks());
+    EXPECT_TRUE(r->failure().empty()) << r->failure();
+    return r;
+  };
+  const auto ref = run("100"), fine = run("10"), coarse = run("1");
+  // same ticks, same rows: only the plant's step changed
+  ASSERT_EQ(ref->memory().rows(), 201u);
+  ASSERT_EQ(coarse->memory().rows(), 201u);
+  EXPECT_EQ(ref->plant().steps_taken(), 200u * 100u);
+  EXPECT_EQ(fine->plant().steps_taken(), 200u * 10u);
+  EXPECT_EQ(coarse->plant().steps_taken(), 200u);
+  EXPECT_EQ(ref->plant().t_ns(), coarse->plant().t_ns());
+  auto rms_err = [&ref](const harness::Run& r) {
+    double s = 0.0;
+    for (const char* c : {"omega_BN_B_x", "omega_BN_B_y", "omega_BN_B_z"}) {
+      const auto a = r.memory().column(c), b = ref->memory().column(c);
+      for (size_t i = 0; i < a.size(); ++i) s += (a[i] - b[i]) * (a[i] - b[i]);
+    }
+    return std::sqrt(s / 201.0);
+  };
+  // the jitter: body rate about its 2 s mean
+  double jit = 0.0;
+  for (const char* c : {"omega_BN_B_x", "omega_BN_B_y", "omega_BN_B_z"}) {
+    const auto a = ref->memory().column(c);
+    double m = 0.0;
+    for (double v : a) m += v / static_cast<double>(a.size());
+    for (double v : a) jit += (v - m) * (v - m);
+  }
+  jit = std::sqrt(jit / 201.0);
+  const double e1 = rms_err(*coarse), e10 = rms_err(*fine);
+  std::printf("body-rate jitter RMS %.3e rad/s; error vs n = 100: n = 1 %.3e, n = 10 %.3e\n", jit, e1, e10);
+  EXPECT_GT(e1, 1e-2 * jit) << "n = 1 resolves the jitter: the case does not test sub-steps";
+  EXPECT_LT(e10, 1e-3 * e1);
+  // the run's own check: |Omega| h seen at the ticks (2,950 rpm = 308.9 rad/s)
+  EXPECT_NEAR(coarse->max_jitter_step(), 308.9 * 0.01, 0.05);
+  EXPECT_NEAR(fine->max_jitter_step(), 308.9 * 0.001, 0.005);
+}
+
+// The pre-run check of kestrel validate and run: 3,000 rpm at dt = 0.01 s is
+// 314.16 rad/s * 0.01 s = 3.14 rad per step > kJitterStepLimit (2 rad), so
+// ceil(3.14 / 2) = 2 sub-steps meet it; balanced wheels and wheels without
+// imbalance never jitter.
+TEST(ClosedLoop, JitterStepWarnings)
+{
+  using harness::jitter_step_warnings;
+  EXPECT_TRUE(jitter_step_warnings(harness::load_scenario(kS1)).empty());  // 400 rpm: 0.42 rad
+  const auto w = jitter_step_warnings(harness::load_scenario(kS1, {{"wheels.2.Omega_0_rpm", "-3000"}}));
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("wheels[2] (rw3)"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("rates.plant_substeps: 2 or more"), std::string::npos) << w[0];
+  EXPECT_TRUE(jitter_step_warnings(harness::load_scenario(
+                  kS1, {{"wheels.2.Omega_0_rpm", "-3000"}, {"rates.plant_substeps", "2"}}))
+                  .empty());
+  EXPECT_TRUE(jitter_step_warnings(harness::load_scenario(
+                  kS1, {{"wheels.2.Omega_0_rpm", "-3000"}, {"wheel_defaults.model", "balanced"}}))
+                  .empty());
+  EXPECT_TRUE(jitter_step_warnings(harness::load_scenario(
+                  kS1, {{"wheels.2.Omega_0_rpm", "-3000"}, {"wheel_defaults.U_s", "0"}, {"wheel_defaults.U_d", "0"}}))
+                  .empty());
+  EXPECT_EQ(harness::substeps_for(314.159, 0.01), 2u);
+  EXPECT_EQ(harness::substeps_for(0.0, 0.01), 1u);
 }

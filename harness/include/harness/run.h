@@ -39,6 +39,20 @@ namespace harness {
 
 const char* version();
 
+// Resolution of wheel-imbalance jitter (docs/performance.md, "Accuracy per
+// cost"): a wheel whose imbalance makes jitter (simple_jitter or
+// fully_coupled with U_s or U_d > 0) turns by |Omega| h per plant step h =
+// dt / rates.plant_substeps.  Above kJitterStepLimit the RK4 step misses
+// the jitter amplitude by more than about 1 % (measured by
+// bench_jitter_accuracy: 0.6 % at 2 rad, 4.4 % at 3.1 rad; docs/performance.md).
+constexpr double kJitterStepLimit = 2.0;  // [rad]
+bool wheel_jitters(const sim::ReactionWheelParams& p);
+// Before a run: the jittering wheels whose initial speed breaks the limit,
+// each as "wheels[i] (name): ..." with the sub-steps that would meet it.
+std::vector<std::string> jitter_step_warnings(const Scenario& sc);
+// The sub-steps per tick that keep |Omega| dt / n within the limit.
+uint32_t substeps_for(double Omega_abs, double dt);
+
 // A scenario event as applied during a run (docs/events.md): logged in the
 // manifest's result, the HDF5 file and the report.
 struct AppliedEvent {
@@ -133,6 +147,10 @@ class Run {
   // Figures of the run: final pointing error; with thrusters the burn
   // (propellant vs the rocket equation, delivered delta-v) and the orbit.
   std::vector<SummaryItem> summary() const;
+  // [rad] the largest |Omega| h of a jittering wheel seen at the ticks so
+  // far (0 without one); above kJitterStepLimit the run's jitter is
+  // under-resolved (kestrel run warns, the summary lists it).
+  double max_jitter_step() const;
 
  private:
   struct Impl;

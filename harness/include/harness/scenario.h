@@ -64,6 +64,7 @@ struct RatesSpec {
   uint32_t fsw_offset = 0;      // [ticks] FSW phase, < fsw_divisor
   uint32_t record_divisor = 1;  // [ticks] recording period
   uint32_t thruster_divisor = 1;// [ticks] thruster latch period T_upd
+  uint32_t plant_substeps = 1;  // [-]     plant steps per tick (each dt / plant_substeps)
 };
 
 struct InitialSpec {
