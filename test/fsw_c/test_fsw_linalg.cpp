@@ -860,3 +860,60 @@ TEST(FswBoundedMinNorm, Issue21FreeSetInIndexOrder)
   const double c = (1 + d) / (1 + d * d);
   expect_x(r, {0.4 * c, 0.8 * c}, "index order");
 }
+
+// Issue 21 (seed 9001, fsw_linalg.c:436): phase 2's ratio test keeps the
+// smallest step of all blocking variables, variable 0 included.
+// A = [3 -1 2; 1 1 -3], b = (1, -2), box [0,2] x [0,1] x [0,2].  A x = b is
+// the line (0, 1, 1) + t (1, 11, 4) (the null vector is row 1 x row 2);
+// x0 >= 0 needs t >= 0 and x1 <= 1 needs t <= 0, so (0, 1, 1) is the only
+// admissible solution, and K4 delivers A x = b whenever one exists.
+TEST(FswBoundedMinNorm, Issue21OnlyAdmissibleSolutionIsFound)
+{
+  Box B = box(3, 0, 2);
+  B.hi[1] = 1;
+  const K4Run r = k4(mat(2, 3, {3, -1, 2, 1, 1, -3}), {1, -2}, 2, 3, B);
+  EXPECT_EQ(FSW_OK, r.s);
+  expect_x(r, {0.0, 1.0, 1.0}, "unique admissible solution");
+  EXPECT_LE(r.iter, 3 * 3);
+}
+
+// Issue 21 (seed 2112, fsw_linalg.c:371): phase 1 steps only as far as the
+// first bound (ratio test), not to the unconstrained point.
+// A = [-1 3 1; 2 -1 -1], b = (1, -3), box [0,3] x [0,1] x [0,4].  A x = b
+// is the line (0, -1, 4) + t (-2, 1, -5): x0 >= 0 needs t <= 0, x1 >= 0
+// needs t >= 1, so no admissible solution; least squares instead.  At
+// x = (0, 0, 2): r = b - A x = (-1, -1), the gradient of |r|^2 / 2 is
+// -A^T r = (1, 2, 0): x0 and x1 sit at their lower bound with a positive
+// gradient, x2 is inside with a zero one, the KKT conditions of this convex
+// problem.  The minimiser is unique: A x = (2, -2) along the null line
+// needs x0 = -2t >= 0 and x1 = t >= 0, t = 0.
+TEST(FswBoundedMinNorm, Issue21PhaseOneStopsAtTheFirstBound)
+{
+  Box B = box(3, 0, 3);
+  B.hi[1] = 1;
+  B.hi[2] = 4;
+  const K4Run r = k4(mat(2, 3, {-1, 3, 1, 2, -1, -1}), {1, -3}, 2, 3, B);
+  EXPECT_EQ(FSW_OK, r.s);
+  expect_x(r, {0.0, 0.0, 2.0}, "least squares in the box");
+}
+
+// Issue 21 (seed 9001, fsw_linalg.c:304): a column enters phase 1 only when
+// its gradient beats the round-off floor scaled by its own norm.
+// A = [1 -2 2; -3 3 -3; -1 2 -2] (row 3 = -row 1, rank 2), b = (-4, -3, 1),
+// box [0,2] x [0,1] x [-3,0].  With s = row1 . x and u = x1 - x2 (>= 0):
+// |A x - b|^2 = 2 (s + 5/2)^2 + 9 (x0 - u - 1)^2 + const, s = x0 - 2 u.
+// Unconstrained: u = 7/2, x0 = 9/2 > 2, so x0 = 2 (its partial derivative
+// at the optimum below is -90/17 < 0: it presses on the upper bound), and
+// d/du [2 (9/2 - 2u)^2 + 9 (1 - u)^2] = 34 u - 54 = 0 gives u = 27/17.  The
+// least-squares set is x0 = 2, x1 - x2 = 27/17; its minimum norm point is
+// x1 = -x2 = 27/34, inside the box.
+TEST(FswBoundedMinNorm, Issue21RankTwoLeastSquaresWithMinimumNorm)
+{
+  Box B = box(3, 0, 2);
+  B.hi[1] = 1;
+  B.lo[2] = -3;
+  B.hi[2] = 0;
+  const K4Run r = k4(mat(3, 3, {1, -2, 2, -3, 3, -3, -1, 2, -2}), {-4, -3, 1}, 3, 3, B);
+  EXPECT_EQ(FSW_OK, r.s);
+  expect_x(r, {2.0, 27.0 / 34, -27.0 / 34}, "minimum-norm least squares");
+}
