@@ -17,6 +17,7 @@ touched (the scratch copy is under build/mutation/).
   tools/mutate.py --sample 100 --seed 1            # one documented command
   tools/mutate.py --sample 150 --seed 7 --csv out.csv --module rw_map.c
   tools/mutate.py --rerun build/mutation/mutants.csv --csv rerun.csv   # survivors only, after new tests
+  tools/mutate.py --sample 150 --seed 7 --sanitize  # ASan + UBSan build: a memory error kills
 """
 import argparse
 import csv
@@ -124,6 +125,10 @@ def main():
     ap.add_argument("--rerun", metavar="CSV",
                     help="instead of sampling, run again the survivors of an earlier run's CSV "
                          "(e.g. after adding tests); --sample, --seed and --module are ignored")
+    ap.add_argument("--sanitize", action="store_true",
+                    help="build the scratch copy with AddressSanitizer + UBSan (KESTREL_SANITIZE, as the "
+                         "host-debug-asan preset; aborting on the first report), optimised (-O1): "
+                         "a mutant that reads or writes out of bounds is then killed, as in CI")
     a = ap.parse_args()
 
     srcs = sorted(os.path.join(ROOT, "fsw_c", "src", f) for f in os.listdir(os.path.join(ROOT, "fsw_c", "src"))
@@ -159,12 +164,17 @@ def main():
         (shutil.copytree if os.path.isdir(s) else shutil.copy2)(s, os.path.join(scratch, c))
     cfg = ["cmake", "-S", scratch, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
            "-DKESTREL_BUILD_SIM=OFF", "-DKESTREL_BUILD_HARNESS=OFF", "-DKESTREL_BUILD_BENCHMARKS=OFF",
-           "-DKESTREL_INSTALL=OFF", "-DKESTREL_WERROR=OFF"]
+           "-DKESTREL_INSTALL=OFF", "-DKESTREL_WERROR=OFF",
+           f"-DKESTREL_SANITIZE={'ON' if a.sanitize else 'OFF'}"]
+    if a.sanitize:  # -O1: instrumented code compiles and runs faster than at -O3, still optimised
+        cfg += ["-DCMAKE_C_FLAGS_RELEASE=-O1 -DNDEBUG", "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG"]
+    else:  # a workdir used with --sanitize before: back to the Release defaults
+        cfg += ["-UCMAKE_C_FLAGS_RELEASE", "-UCMAKE_CXX_FLAGS_RELEASE"]
     rc, out = run(cfg, ROOT, 600)
     if rc != 0:
         print(out)
         return 2
-    rc, out = run(["ninja", "-C", build], ROOT, 1800)
+    rc, out = run(["ninja", "-j2", "-C", build], ROOT, 1800)
     if rc != 0:
         print(out)
         return 2
@@ -186,7 +196,7 @@ def main():
         with open(path, "w") as f:
             f.writelines(lines)
         try:
-            rc, _ = run(["ninja", "-C", build], ROOT, 600)
+            rc, _ = run(["ninja", "-j2", "-C", build], ROOT, 600)
             if rc != 0:
                 m["result"] = "stillborn"
             else:
@@ -203,7 +213,7 @@ def main():
             m["equivalent"] = "identical text (the mutation does not change the line)"
         print(f"[{i}/{len(sample)}] {m['result']:9s} {m['file']}:{m['line']} {m['op']}: {m['mutant'].strip()}"
               + (f"  (equivalent: {m['equivalent']})" if m["equivalent"] else ""), flush=True)
-    run(["ninja", "-C", build], ROOT, 600)  # back to the unmutated build
+    run(["ninja", "-j2", "-C", build], ROOT, 600)  # back to the unmutated build
 
     with open(a.csv, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=["file", "line", "op", "original", "mutant", "result", "equivalent"])
@@ -224,7 +234,8 @@ def main():
     score = 100.0 * tot["k"] / live if live else 100.0
     print(f"{'total':28s} {tot['n']:7d} {tot['k']:6d} {tot['s']:5d} {tot['e']:6d} {tot['b']:6d}")
     print(f"mutation score {score:.1f} % of the non-equivalent, compiling mutants "
-          f"({'rerun of ' + a.rerun if a.rerun else f'seed {a.seed}'}, {time.time() - t0:.0f} s); CSV {a.csv}")
+          f"({'rerun of ' + a.rerun if a.rerun else f'seed {a.seed}'}{', ASan + UBSan' if a.sanitize else ''}, "
+          f"{time.time() - t0:.0f} s); CSV {a.csv}")
     for m in sample:
         if m["result"] == "survived" and not m["equivalent"]:
             print(f"  survived: {m['file']}:{m['line']} {m['op']}: {m['mutant'].strip()}")

@@ -959,3 +959,53 @@ TEST(FswAcsCycle, Issue21WheelErrorCycleWithoutNullOrVoltages)
   ASSERT_EQ(0, g_cfg.use_volt);
   expect_error_cycle_advances_no_state(1, "wheels, no null motion, no voltages");
 }
+
+// Issue 21 (seed 9001): the geometry copies are compared over the configured
+// wheels only.  Rows past num_rw are unused capacity (every stage reads its
+// first num_rw rows), so copies that differ only there must be accepted; a
+// difference in the last used row must still be refused.
+TEST(FswAcsIssue21, GeometryCopiesAreComparedOverTheUsedWheelsOnly)
+{
+  acsfix::wheel_config(g_cfg);
+  g_cfg.use_null = 1;
+  const int n = g_cfg.rw_map.num_rw;
+  ASSERT_LT(n, FSW_MAX_RW);  // there is an unused row to spoil
+  g_cfg.rw_null.gs_hat_B[n][0] = acsfix::R(1.0);
+  g_cfg.mrp_fb.gs_hat_B[n][1] = acsfix::R(1.0);
+  ASSERT_NE(g_cfg.rw_null.gs_hat_B[n][0], g_cfg.rw_map.gs_hat_B[n][0]);
+  const char* field = "x";
+  EXPECT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field));
+  EXPECT_EQ(nullptr, field);
+  // the same spoil one row up, in a used wheel: refused
+  acsfix::wheel_config(g_cfg);
+  g_cfg.use_null = 1;
+  g_cfg.rw_null.gs_hat_B[n - 1][0] = -g_cfg.rw_null.gs_hat_B[n - 1][0];
+  g_cfg.rw_null.gs_hat_B[n - 1][1] = -g_cfg.rw_null.gs_hat_B[n - 1][1];
+  g_cfg.rw_null.gs_hat_B[n - 1][2] = -g_cfg.rw_null.gs_hat_B[n - 1][2];  // still a unit vector
+  EXPECT_EQ(FSW_E_CONFIG, fsw_acs_check(&g_cfg, &field));
+  EXPECT_EQ(std::string("rw_null.gs_hat_B"), field);
+}
+
+// Issue 21 (seed 9001): an error cycle puts back the transition counter too.
+// One commanded transition (SUN_SAFE -> INERTIAL) counts 1; a following
+// cycle that fails inside a stage (an angular rate of half the real's
+// maximum overflows the control law) must leave mode and counter as they
+// were, 1 and INERTIAL, and the next good cycle still counts no transition.
+TEST(FswAcsCycle, Issue21ErrorCycleKeepsTheTransitionCount)
+{
+  acsfix::wheel_config(g_cfg);
+  ASSERT_EQ(FSW_ACS_MODE_SUN_SAFE, g_cfg.initial_mode);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  const FswAcsCmdMsg cmd = {FSW_ACS_MODE_INERTIAL, FSW_ACS_ACT_WHEELS};
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, &cmd, &g_act, &g_h)));
+  ASSERT_EQ(1u, g_st.mode_changes);
+  sensors_at_rest(g_sens, kPeriodNs);
+  g_sens.omega_BN_B[1] = static_cast<fsw_real>(0.5 * static_cast<double>(std::numeric_limits<fsw_real>::max()));
+  ASSERT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, &cmd, &g_act, &g_h));
+  EXPECT_EQ(1u, g_st.mode_changes);
+  EXPECT_EQ(FSW_ACS_MODE_INERTIAL, g_st.mode);
+  sensors_at_rest(g_sens, 2 * kPeriodNs);
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, &cmd, &g_act, &g_h)));
+  EXPECT_EQ(1u, g_h.mode_changes);
+}

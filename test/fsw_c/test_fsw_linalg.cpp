@@ -860,3 +860,134 @@ TEST(FswBoundedMinNorm, Issue21FreeSetInIndexOrder)
   const double c = (1 + d) / (1 + d * d);
   expect_x(r, {0.4 * c, 0.8 * c}, "index order");
 }
+
+// Issue 21 (seed 9001, fsw_linalg.c:436): phase 2's ratio test keeps the
+// smallest step of all blocking variables, variable 0 included.
+// A = [3 -1 2; 1 1 -3], b = (1, -2), box [0,2] x [0,1] x [0,2].  A x = b is
+// the line (0, 1, 1) + t (1, 11, 4) (the null vector is row 1 x row 2);
+// x0 >= 0 needs t >= 0 and x1 <= 1 needs t <= 0, so (0, 1, 1) is the only
+// admissible solution, and K4 delivers A x = b whenever one exists.
+TEST(FswBoundedMinNorm, Issue21OnlyAdmissibleSolutionIsFound)
+{
+  Box B = box(3, 0, 2);
+  B.hi[1] = 1;
+  const K4Run r = k4(mat(2, 3, {3, -1, 2, 1, 1, -3}), {1, -2}, 2, 3, B);
+  EXPECT_EQ(FSW_OK, r.s);
+  expect_x(r, {0.0, 1.0, 1.0}, "unique admissible solution");
+  EXPECT_LE(r.iter, 3 * 3);
+}
+
+// Issue 21 (seed 2112, fsw_linalg.c:371): phase 1 steps only as far as the
+// first bound (ratio test), not to the unconstrained point.
+// A = [-1 3 1; 2 -1 -1], b = (1, -3), box [0,3] x [0,1] x [0,4].  A x = b
+// is the line (0, -1, 4) + t (-2, 1, -5): x0 >= 0 needs t <= 0, x1 >= 0
+// needs t >= 1, so no admissible solution; least squares instead.  At
+// x = (0, 0, 2): r = b - A x = (-1, -1), the gradient of |r|^2 / 2 is
+// -A^T r = (1, 2, 0): x0 and x1 sit at their lower bound with a positive
+// gradient, x2 is inside with a zero one, the KKT conditions of this convex
+// problem.  The minimiser is unique: A x = (2, -2) along the null line
+// needs x0 = -2t >= 0 and x1 = t >= 0, t = 0.
+TEST(FswBoundedMinNorm, Issue21PhaseOneStopsAtTheFirstBound)
+{
+  Box B = box(3, 0, 3);
+  B.hi[1] = 1;
+  B.hi[2] = 4;
+  const K4Run r = k4(mat(2, 3, {-1, 3, 1, 2, -1, -1}), {1, -3}, 2, 3, B);
+  EXPECT_EQ(FSW_OK, r.s);
+  expect_x(r, {0.0, 0.0, 2.0}, "least squares in the box");
+}
+
+// Issue 21 (seed 9001, fsw_linalg.c:304): a column enters phase 1 only when
+// its gradient beats the round-off floor scaled by its own norm.
+// A = [1 -2 2; -3 3 -3; -1 2 -2] (row 3 = -row 1, rank 2), b = (-4, -3, 1),
+// box [0,2] x [0,1] x [-3,0].  With s = row1 . x and u = x1 - x2 (>= 0):
+// |A x - b|^2 = 2 (s + 5/2)^2 + 9 (x0 - u - 1)^2 + const, s = x0 - 2 u.
+// Unconstrained: u = 7/2, x0 = 9/2 > 2, so x0 = 2 (its partial derivative
+// at the optimum below is -90/17 < 0: it presses on the upper bound), and
+// d/du [2 (9/2 - 2u)^2 + 9 (1 - u)^2] = 34 u - 54 = 0 gives u = 27/17.  The
+// least-squares set is x0 = 2, x1 - x2 = 27/17; its minimum norm point is
+// x1 = -x2 = 27/34, inside the box.
+TEST(FswBoundedMinNorm, Issue21RankTwoLeastSquaresWithMinimumNorm)
+{
+  Box B = box(3, 0, 2);
+  B.hi[1] = 1;
+  B.lo[2] = -3;
+  B.hi[2] = 0;
+  const K4Run r = k4(mat(3, 3, {1, -2, 2, -3, 3, -3, -1, 2, -2}), {-4, -3, 1}, 3, 3, B);
+  EXPECT_EQ(FSW_OK, r.s);
+  expect_x(r, {2.0, 27.0 / 34, -27.0 / 34}, "minimum-norm least squares");
+}
+
+// Issue 21 (an exhaustive mutation pass over K4): scaling A and b by a power
+// of two changes nothing.  Every test of K4 is relative (residual against
+// K4_TOL |b|, gradient against K4_TOL |b| |a_i|, LDL^T pivot against
+// FSW_RANK_TOL times the largest diagonal, steps against the box), and
+// products by 2^k are exact, so x and the iteration count must be
+// bit-identical at 2^-20 and 2^20 (|A| ~ 1e-6 .. 1e6: no underflow or
+// overflow in float either).  The problems are the three above (a unique
+// admissible solution, a least-squares case, a rank-2 A).
+TEST(FswBoundedMinNorm, Issue21ScalingAAndBByAPowerOfTwoChangesNothing)
+{
+  struct Problem {
+    Mat3N A;
+    fsw_real b[3];
+    int m;
+    Box B;
+  };
+  Problem ps[3];
+  ps[0] = {mat(2, 3, {3, -1, 2, 1, 1, -3}), {1, -2, 0}, 2, box(3, 0, 2)};
+  ps[0].B.hi[1] = 1;
+  ps[1] = {mat(2, 3, {-1, 3, 1, 2, -1, -1}), {1, -3, 0}, 2, box(3, 0, 3)};
+  ps[1].B.hi[1] = 1;
+  ps[1].B.hi[2] = 4;
+  ps[2] = {mat(3, 3, {1, -2, 2, -3, 3, -3, -1, 2, -2}), {-4, -3, 1}, 3, box(3, 0, 2)};
+  ps[2].B.hi[1] = 1;
+  ps[2].B.lo[2] = -3;
+  ps[2].B.hi[2] = 0;
+  for (int k = 0; k < 3; k++) {
+    const Problem& p = ps[k];
+    fsw_real x1[FSW_MAX_EFF];
+    int it1 = -1;
+    ASSERT_EQ(FSW_OK, fsw_bounded_minnorm_solve(x1, p.A.a, p.b, p.m, 3, p.B.lo, p.B.hi, &it1));
+    for (const int e : {-20, 20}) {
+      const fsw_real s = static_cast<fsw_real>(std::ldexp(1.0, e));
+      Mat3N As = p.A;
+      fsw_real bs[3];
+      for (int i = 0; i < 3; i++) {
+        bs[i] = p.b[i] * s;
+        for (int j = 0; j < 3; j++) As.a[i][j] = p.A.a[i][j] * s;
+      }
+      fsw_real xs[FSW_MAX_EFF];
+      int its = -1;
+      ASSERT_EQ(FSW_OK, fsw_bounded_minnorm_solve(xs, As.a, bs, p.m, 3, p.B.lo, p.B.hi, &its));
+      for (int j = 0; j < 3; j++) EXPECT_EQ(x1[j], xs[j]) << "problem " << k << ", scale 2^" << e << ", entry " << j;
+      EXPECT_EQ(it1, its) << "problem " << k << ", scale 2^" << e;
+    }
+  }
+}
+
+// Issue 21 (an exhaustive mutation pass over K4): x receives exactly n
+// entries; the caller's entries past n are not written (the k4 helper
+// fills them with 99).  At full capacity (n = FSW_MAX_EFF, where a loop one
+// past would leave the arrays) the sum x_1 + ... + x_n = n / 2 in [0, 1]^n
+// has the minimum-norm solution x_i = 1/2 (equal entries by symmetry,
+// 1/2 each to meet the sum).
+TEST(FswBoundedMinNorm, Issue21WritesOnlyTheNEntriesOfX)
+{
+  const K4Run r = k4(mat(1, 2, {1, 1}), {1}, 1, 2, box(2, 0, 10));
+  ASSERT_EQ(FSW_OK, r.s);
+  expect_x(r, {0.5, 0.5}, "two entries");
+  for (int j = 2; j < FSW_MAX_EFF; j++) EXPECT_EQ(99, r.x[j]) << j;
+
+  const int n = FSW_MAX_EFF;
+  Mat3N A;
+  std::memset(&A, 0, sizeof A);
+  for (int j = 0; j < n; j++) A.a[0][j] = 1;
+  const Box B = box(n, 0, 1);
+  fsw_real b[3] = {static_cast<fsw_real>(n / 2.0), 0, 0};
+  fsw_real x[FSW_MAX_EFF];
+  int it = -1;
+  ASSERT_EQ(FSW_OK, fsw_bounded_minnorm_solve(x, A.a, b, 1, n, B.lo, B.hi, &it));
+  for (int j = 0; j < n; j++) EXPECT_NEAR(0.5, double(x[j]), kTol) << j;
+  EXPECT_LE(it, 3 * n);
+}

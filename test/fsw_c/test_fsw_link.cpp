@@ -9,6 +9,7 @@
 // and the stream deframer recovering after garbage and a corrupted packet.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -387,6 +388,44 @@ TEST(FswLink, DeframerRecoversAfterGarbageAndCorruption)
     EXPECT_GE(d.rejected, 1u);
     EXPECT_GE(d.sync_slips, 6u);
   }
+}
+
+// Issue 21 (seed 2112): the deframer's buffer holds a prefix of the marker,
+// or the marker and more, whenever a push returns: a byte that cannot start
+// the marker is skipped (and counted) in the call that brought it, even when
+// it is the last byte of the input, and a byte that can is kept.
+TEST(FswLink, Issue21DeframerKeepsOnlyAMarkerPrefixBetweenPushes)
+{
+  const uint8_t marker[4] = {0x1A, 0xCF, 0xFC, 0x1D};
+  const Bytes stream = {0x55, 0x1A, 0xCF, 0x00, 0x1A, 0x1A, 0xCF, 0xFC, 0x77};
+  for (size_t piece : {size_t{1}, size_t{2}, stream.size()}) {
+    FswLinkDeframer d;
+    fsw_link_deframer_init(&d);
+    size_t at = 0;
+    while (at < stream.size()) {
+      const uint8_t* pkt = nullptr;
+      size_t pl = 0;
+      const size_t n = std::min(piece, stream.size() - at);
+      EXPECT_EQ(fsw_link_deframer_push(&d, stream.data() + at, n, &pkt, &pl), n);  // no packet: all taken
+      EXPECT_EQ(pkt, nullptr);
+      at += n;
+      ASSERT_LE(d.have, sizeof marker) << "piece " << piece << " at " << at;
+      for (size_t i = 0; i < d.have; i++) EXPECT_EQ(d.buf[i], marker[i]) << "piece " << piece << " at " << at;
+    }
+    // the hunt: 0x55 skipped; 1A CF then 00 breaks it: 1A, CF, 00 skipped;
+    // 1A then 1A: the first 1A skipped; 1A CF FC then 77: all four skipped.
+    EXPECT_EQ(d.sync_slips, 1u + 3u + 1u + 4u) << "piece " << piece;
+    EXPECT_EQ(d.have, 0u) << "piece " << piece;
+    EXPECT_EQ(d.packets, 0u);
+  }
+  // a lone first byte of the marker is kept for the next push
+  FswLinkDeframer d;
+  fsw_link_deframer_init(&d);
+  const uint8_t* pkt = nullptr;
+  size_t pl = 0;
+  EXPECT_EQ(fsw_link_deframer_push(&d, marker, 1, &pkt, &pl), 1u);
+  EXPECT_EQ(d.have, 1u);
+  EXPECT_EQ(d.sync_slips, 0u);
 }
 
 // Every argument and range check of the encoders, the parser, the decoders,

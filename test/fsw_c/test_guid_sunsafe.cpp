@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "fsw/fsw_vec.h"
 #include "fsw/guid_sunsafe.h"
@@ -117,6 +118,50 @@ TEST_F(GuidSunsafe, ExactAntiparallelWithZeroDeadBandIsGuarded)
   ASSERT_EQ(FSW_OK, run());
   EXPECT_V3_NEAR(0.0, 1.0, 0.0, out_.guid.sigma_BR, kTol);
   for (int i = 0; i < 3; i++) EXPECT_TRUE(std::isfinite(static_cast<double>(out_.guid.sigma_BR[i])));
+}
+
+// Issue 21 (seed 9001): the Sun exactly on (or opposite) the commanded axis.
+// c = s_cmd_hat . s / |s| is then +-1 up to rounding, and rounding puts it
+// outside [-1, 1] for some directions; acos would return NaN there.  Over a
+// grid of 400 directions the cycle must succeed with theta within
+// acos(1 - 4 eps) ~ sqrt(8 eps) of 0 (resp. pi); where the computed c is
+// beyond +-1 (counted with the library's own dot and norm, the same
+// operations in the same order), the clamp makes theta exactly 0 (resp. pi).
+TEST_F(GuidSunsafe, Issue21SunOnTheCommandedAxisRoundsToAValidAngle)
+{
+  const double eps = static_cast<double>(std::numeric_limits<fsw_real>::epsilon());
+  const double bound = std::sqrt(8.0 * eps);  // acos(1 - d) = sqrt(2 d) + O(d^1.5), d <= 4 eps
+  int above = 0, below = 0;
+  for (int a = 0; a < 20; a++) {
+    for (int b = 0; b < 20; b++) {
+      const double az = 2.0 * gref::kPi * (a + 0.37) / 20.0, el = gref::kPi * ((b + 0.5) / 20.0 - 0.5);
+      gref::set3(cfg_.s_cmd_B, std::cos(az) * std::cos(el), std::sin(az) * std::cos(el), std::sin(el));
+      ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_init(&st_, &cfg_));
+      for (const double sign : {1.0, -1.0}) {
+        for (int k = 0; k < 3; k++) in_.sun_B[k] = static_cast<fsw_real>(sign * static_cast<double>(cfg_.s_cmd_B[k]));
+        const double c = static_cast<double>(fsw_v3_dot(st_.s_cmd_hat_B, in_.sun_B) / fsw_v3_norm(in_.sun_B));
+        ASSERT_EQ(FSW_OK, run()) << a << " " << b << " " << sign;
+        const double theta = static_cast<double>(out_.sun_angle_err);
+        if (sign > 0) {
+          EXPECT_LE(theta, bound) << a << " " << b;
+          if (c > 1.0) {
+            above++;
+            EXPECT_EQ(0.0, theta);
+          }
+        } else {
+          EXPECT_GE(theta, gref::kPi - bound) << a << " " << b;
+          if (c < -1.0) {
+            below++;
+            EXPECT_NEAR(gref::kPi, theta, kTol);  // acos(-1) = pi, rounded to the real type
+          }
+        }
+        for (int k = 0; k < 3; k++) EXPECT_TRUE(std::isfinite(static_cast<double>(out_.guid.sigma_BR[k])));
+      }
+    }
+  }
+  // the grid reaches both clamps (else the test would not test them)
+  EXPECT_GT(above, 0);
+  EXPECT_GT(below, 0);
 }
 
 TEST_F(GuidSunsafe, NoValidSunSearchSpin)

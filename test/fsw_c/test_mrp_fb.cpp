@@ -444,6 +444,15 @@ TEST_F(MrpFb, RejectsBadConfig)
          c.I_B[1][1] = FSW_R(-800.0);
          c.I_B[2][2] = FSW_R(800.0);
        }},
+      // diag(1000, 800, 0): m1 = 1000 > 0, m2 = 8e5 > 0, det = 0 exactly (a
+      // zero row): positive semi-definite, not definite; a zero principal
+      // inertia is not a rigid body (issue 21, seed 9001)
+      {"I semi-definite", FSW_E_CONFIG, [](FswMrpFbConfig& c) {
+         for (int j = 0; j < 3; j++)
+           for (int k = 0; k < 3; k++) c.I_B[j][k] = FSW_R(0.0);
+         c.I_B[0][0] = FSW_R(1000.0);
+         c.I_B[1][1] = FSW_R(800.0);
+       }},
       {"num_rw < 0", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.num_rw = -1; }},
       {"num_rw > max", FSW_E_CAPACITY, [](FswMrpFbConfig& c) { c.num_rw = FSW_MAX_RW + 1; }},
       {"gs not unit", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.gs_hat_B[1][0] = FSW_R(0.6); }},

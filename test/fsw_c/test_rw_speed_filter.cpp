@@ -94,6 +94,36 @@ TEST(RwSpeedFilterNominal, RejectHoldAndWideningBound)
   EXPECT_EQ(f.out->rejected, 1u);
 }
 
+// Issue 21 (seed 9001): a recovered wheel's reference is the recovery
+// sample, at the recovery time.  Fail at 0.3 s (k_reject = 3), recover with
+// 200, 200.5, 201 at 0.4-0.6 s (n_recover = 3).  At 0.7 s the bound is
+// 10 rad/s^2 * 0.1 s + 0.5 = 1.5 rad/s from 201: 202.4 is accepted, 202.7
+// rejected.  Measured from the last good sample before the failure (100 at
+// 0 s, 0.7 s earlier) the bound would be 7.5 rad/s and 202.7 would pass.
+TEST(RwSpeedFilterNominal, Issue21RecoveryRestartsTheBoundAtTheRecoveryTime)
+{
+  for (const double next : {202.4, 202.7}) {
+    Fixture f;
+    ASSERT_EQ(f.step(0, 100.0), FSW_OK);
+    ASSERT_EQ(f.step(kDt, 300.0), FSW_OK);
+    ASSERT_EQ(f.step(2 * kDt, 300.0), FSW_OK);
+    ASSERT_EQ(f.step(3 * kDt, 300.0), FSW_OK);
+    ASSERT_EQ(f.out->failed, 1u);
+    const double seq[3] = {200.0, 200.5, 201.0};
+    for (int k = 0; k < 3; k++) ASSERT_EQ(f.step(uint64_t(4 + k) * kDt, seq[k]), FSW_OK);
+    ASSERT_EQ(f.out->failed, 0u);
+    ASSERT_EQ(f.out->Omega[0], FSW_R(201.0));
+    ASSERT_EQ(f.step(7 * kDt, next), FSW_OK);
+    if (next < 202.5) {
+      EXPECT_EQ(f.out->rejected, 0u) << next;
+      EXPECT_EQ(f.out->Omega[0], static_cast<fsw_real>(next));
+    } else {
+      EXPECT_EQ(f.out->rejected, 1u) << next;
+      EXPECT_EQ(f.out->Omega[0], FSW_R(201.0));  // held
+    }
+  }
+}
+
 // k_reject = 3: three consecutive rejections (a NaN counts) mark the wheel
 // unavailable; three mutually consistent samples bring it back at the latest.
 TEST(RwSpeedFilterNominal, FailAfterKAndRecoverAfterN)
