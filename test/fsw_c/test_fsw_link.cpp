@@ -610,3 +610,180 @@ TEST(FswLink, EveryArgumentAndRangeCheckRejectsAlone)
   EXPECT_EQ(got, 1);
   EXPECT_GE(d.rejected, 1u);
 }
+
+// Issue 21 (branch coverage of fsw_link.c): att_valid travels as a flag
+// (docs/icd.md, sensor offset 2: 0 or 1): 0 stays 0, any non-zero value is
+// sent as 1, and the decoder gives back what was sent.
+TEST(FswLink, Issue21AttValidTravelsAsAFlag)
+{
+  const size_t att = FSW_LINK_HEADER_SIZE + 2;  // ICD: payload offset 2
+  for (const auto& c : std::vector<std::pair<uint8_t, uint8_t>>{{0, 0}, {1, 1}, {7, 1}, {255, 1}}) {
+    FswAcsSensorMsg m = sensor_msg(2, 3);
+    m.att_valid = c.first;
+    const Bytes b = encode_sensor(m, 2, 3);
+    ASSERT_EQ(b.size(), FSW_LINK_HEADER_SIZE + 76u + 9u * 2u + 9u * 3u + 2u);
+    EXPECT_EQ(b[att], c.second) << int(c.first);
+    FswLinkPacket p;
+    ASSERT_EQ(fsw_link_parse(b.data(), b.size(), &p, nullptr), FSW_OK);
+    FswAcsSensorMsg back;
+    std::memset(&back, 0x5A, sizeof back);
+    uint8_t nrw = 0, ncss = 0;
+    FswLinkError e = FSW_LINK_E_SPACE;
+    ASSERT_EQ(fsw_link_decode_sensor(&p, &back, &nrw, &ncss, &e), FSW_OK);
+    EXPECT_EQ(e, FSW_LINK_OK);
+    EXPECT_EQ(back.att_valid, c.second) << int(c.first);
+  }
+}
+
+// Issue 21 (branch coverage of fsw_link.c): every rw_avail byte is a flag
+// (docs/icd.md, sensor offset 76 + 8 n_rw, n_rw bytes): a value other than
+// 0 or 1 in any of them is refused with FSW_LINK_E_COUNT (the CRC made
+// right, so the flag is the only fault) and the message is not written; a
+// flag changed from 0 to 1 is accepted and decoded.
+TEST(FswLink, Issue21WheelAvailabilityFlagsAreZeroOrOne)
+{
+  const uint8_t nrw = 4, ncss = 6;
+  const Bytes good = encode_sensor(sensor_msg(nrw, ncss), nrw, ncss);
+  const size_t avail = FSW_LINK_HEADER_SIZE + 76u + 8u * nrw;  // ICD offset of rw_avail[0]
+  // sensor_msg sets rw_avail[i] = i % 2
+  EXPECT_EQ(Bytes(good.begin() + avail, good.begin() + avail + nrw), (Bytes{0, 1, 0, 1}));
+  auto decode = [&](const Bytes& b, FswAcsSensorMsg* m) {
+    FswLinkPacket p;
+    FswLinkError e = FSW_LINK_OK;
+    EXPECT_EQ(fsw_link_parse(b.data(), b.size(), &p, &e), FSW_OK);
+    uint8_t n1 = 99, n2 = 99;
+    const FswStatus st = fsw_link_decode_sensor(&p, m, &n1, &n2, &e);
+    EXPECT_EQ(st, e == FSW_LINK_OK ? FSW_OK : FSW_E_BAD_INPUT);
+    if (st != FSW_OK) {
+      EXPECT_EQ(n1, 99);  // counts are not written on failure either
+      EXPECT_EQ(n2, 99);
+    }
+    return e;
+  };
+  for (size_t i = 0; i < nrw; ++i) {
+    for (const uint8_t v : {uint8_t{2}, uint8_t{0x80}, uint8_t{0xFF}}) {
+      Bytes b = good;
+      b[avail + i] = v;
+      fix_crc(b);
+      FswAcsSensorMsg m;
+      std::memset(&m, 0x77, sizeof m);
+      unsigned char before[sizeof m];
+      std::memcpy(before, &m, sizeof m);
+      EXPECT_EQ(decode(b, &m), FSW_LINK_E_COUNT) << "wheel " << i << " value " << int(v);
+      EXPECT_EQ(std::memcmp(before, &m, sizeof m), 0) << "wheel " << i;
+    }
+  }
+  Bytes b = good;
+  b[avail] = 1;  // wheel 0 unavailable
+  fix_crc(b);
+  FswAcsSensorMsg m;
+  ASSERT_EQ(decode(b, &m), FSW_LINK_OK);
+  EXPECT_EQ(m.rw_avail[0], 1u);
+  EXPECT_EQ(m.rw_avail[1], 1u);
+  EXPECT_EQ(m.rw_avail[2], 0u);
+}
+
+// Issue 21 (branch coverage of fsw_link.c): init of a NULL deframer returns
+// without touching memory (the header's "void ... init" with the module's
+// NULL checks; a dereference would crash this test).
+TEST(FswLink, Issue21DeframerInitOfNullDoesNothing)
+{
+  fsw_link_deframer_init(nullptr);
+  FswLinkDeframer d;
+  std::memset(&d, 0xA5, sizeof d);
+  fsw_link_deframer_init(&d);
+  EXPECT_EQ(d.have, 0u);
+  EXPECT_EQ(d.packets, 0u);
+  EXPECT_EQ(d.sync_slips, 0u);
+  EXPECT_EQ(d.rejected, 0u);
+}
+
+namespace {
+
+// A packet of `total` bytes (header, zero payload, right CRC) that parses:
+// the parser judges header and CRC, not the APID's payload (docs/icd.md,
+// "Receiving rules").  Primary header 19 01 C0 00: version 0, TC, secondary
+// header, APID 0x101, unsegmented, count 0; data length total - 6 - 1.
+Bytes packet_of_size(size_t total)
+{
+  Bytes b(total, 0);
+  b[0] = 0x19;
+  b[1] = 0x01;
+  b[2] = 0xC0;
+  b[3] = 0x00;
+  b[4] = static_cast<uint8_t>((total - 7) >> 8);
+  b[5] = static_cast<uint8_t>((total - 7) & 0xFF);
+  fix_crc(b);
+  return b;
+}
+
+Bytes framed(const Bytes& pkt)
+{
+  Bytes f = {0x1A, 0xCF, 0xFC, 0x1D};
+  f.insert(f.end(), pkt.begin(), pkt.end());
+  return f;
+}
+
+}  // namespace
+
+// Issue 21 (branch coverage of fsw_link.c): the deframer takes the length
+// from the primary header and refuses a length beyond the largest packet
+// of this build's capacities (FSW_LINK_MAX_PACKET; docs/icd.md, "Byte
+// streams") as soon as the header is in, without waiting for (or buffering)
+// the bytes it announces; a candidate of exactly that size is collected and
+// delivered.  After the refusal the hunt goes on and the next packet is
+// delivered.
+TEST(FswLink, Issue21DeframerRefusesALengthBeyondTheLargestPacket)
+{
+  // the longest packet the buffer holds: delivered whole, byte for byte
+  {
+    const Bytes longest = packet_of_size(FSW_LINK_MAX_PACKET);
+    FswLinkPacket p;
+    ASSERT_EQ(fsw_link_parse(longest.data(), longest.size(), &p, nullptr), FSW_OK);  // a valid packet
+    const Bytes f = framed(longest);
+    FswLinkDeframer d;
+    fsw_link_deframer_init(&d);
+    const uint8_t* pkt = nullptr;
+    size_t pl = 0;
+    EXPECT_EQ(fsw_link_deframer_push(&d, f.data(), f.size(), &pkt, &pl), f.size());
+    ASSERT_NE(pkt, nullptr);
+    ASSERT_EQ(pl, longest.size());
+    EXPECT_EQ(Bytes(pkt, pkt + pl), longest);
+    EXPECT_EQ(d.packets, 1u);
+    EXPECT_EQ(d.rejected, 0u);
+    EXPECT_EQ(d.sync_slips, 0u);
+  }
+  // one byte longer (also a valid packet, CRC right): refused at its header
+  const Bytes too_long = packet_of_size(FSW_LINK_MAX_PACKET + 1u);
+  FswAcsSensorMsg m = sensor_msg(2, 2);
+  const Bytes next = encode_sensor(m, 2, 2, 321);
+  Bytes stream = framed(too_long);
+  const Bytes f2 = framed(next);
+  stream.insert(stream.end(), f2.begin(), f2.end());
+  FswLinkDeframer d;
+  fsw_link_deframer_init(&d);
+  const uint8_t* pkt = nullptr;
+  size_t pl = 0;
+  const size_t head = FSW_LINK_ASM_SIZE + FSW_LINK_PRIMARY_SIZE;  // marker and primary header
+  EXPECT_EQ(fsw_link_deframer_push(&d, stream.data(), head, &pkt, &pl), head);
+  EXPECT_EQ(pkt, nullptr);
+  EXPECT_EQ(d.rejected, 1u);  // refused on the header alone
+  EXPECT_LT(d.have, head);    // and nothing of its announced length buffered
+  std::vector<uint16_t> got;
+  size_t at = head;
+  while (at < stream.size()) {
+    at += fsw_link_deframer_push(&d, stream.data() + at, stream.size() - at, &pkt, &pl);
+    if (pkt != nullptr) {
+      FswLinkPacket p;
+      ASSERT_EQ(fsw_link_parse(pkt, pl, &p, nullptr), FSW_OK);
+      got.push_back(p.seq);
+    }
+  }
+  EXPECT_EQ(got, (std::vector<uint16_t>{321}));
+  EXPECT_EQ(d.packets, 1u);
+  EXPECT_EQ(d.rejected, 1u);
+  // every byte of the refused frame but the marker byte dropped by the
+  // rejection itself is skipped by the hunt: 4 + (MAX + 1) - 1 bytes
+  // (no four of them read 1A CF FC 1D: the payload is zero and the CRC is two bytes)
+  EXPECT_EQ(d.sync_slips, FSW_LINK_MAX_PACKET + 4u);
+}
