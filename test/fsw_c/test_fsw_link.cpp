@@ -717,10 +717,15 @@ Bytes packet_of_size(size_t total)
   return b;
 }
 
+// The attached sync marker 1A CF FC 1D and the packet (docs/icd.md).
 Bytes framed(const Bytes& pkt)
 {
-  Bytes f = {0x1A, 0xCF, 0xFC, 0x1D};
-  f.insert(f.end(), pkt.begin(), pkt.end());
+  Bytes f(FSW_LINK_ASM_SIZE + pkt.size());
+  f[0] = 0x1A;
+  f[1] = 0xCF;
+  f[2] = 0xFC;
+  f[3] = 0x1D;
+  for (size_t i = 0; i < pkt.size(); ++i) f[FSW_LINK_ASM_SIZE + i] = pkt[i];
   return f;
 }
 
