@@ -5,6 +5,7 @@
 #include "harness/run.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -33,7 +34,9 @@ namespace {
 
 constexpr double kRadToDeg = 180.0 / sim::kPi;
 
-enum class Group { EveryTick, Fsw, Record };
+// TruthReaders: due when a reader of `truth` is (the FSW input, metrics and
+// recorder; every tick when the burn monitor runs), not at every tick.
+enum class Group { EveryTick, Fsw, Record, TruthReaders };
 struct Slot {
   const char* task;
   Group group;
@@ -42,7 +45,7 @@ struct Slot {
 // run does not need (no thrusters, no sampled sensors, ...) is skipped.
 constexpr Slot kTickProtocol[] = {
     {"events", Group::EveryTick},
-    {"truth", Group::EveryTick},         {"burn_monitor", Group::EveryTick},
+    {"truth", Group::TruthReaders},      {"burn_monitor", Group::EveryTick},
     {"sample_sensors", Group::EveryTick}, {"css", Group::Fsw},
     {"sensors", Group::Fsw},             {"fsw_acs", Group::Fsw},
     {"actuators", Group::Fsw},           {"plant_input", Group::Fsw},
@@ -68,6 +71,7 @@ struct Run::Impl {
   int64_t substep_ns = 0;           // plant step: dt / rates.plant_substeps
   std::vector<int> jitter_wheels;   // wheels whose imbalance makes jitter
   double max_jitter_Omega = 0.0;    // [rad/s] largest |Omega| of those at a tick
+  uint64_t plant_ns = 0;            // [ns] plant steps while profiling (set_profiling)
 
   // tasks (optional ones absent when the run does not need them)
   std::optional<TruthTask> truth;
@@ -200,8 +204,11 @@ void Run::Impl::wire(RunConfig& cfg)
   for (const Slot& s : kTickProtocol) {
     Scheduler::TaskFn fn = fn_of(s.task);
     if (!fn) continue;
-    sched.add_task(s.task, s.group == Group::EveryTick ? every : s.group == Group::Fsw ? fsw_group : rec_group,
-                   std::move(fn));
+    std::vector<RateGroup> g;
+    if (s.group == Group::EveryTick || (s.group == Group::TruthReaders && burn)) g = {every};
+    else if (s.group == Group::TruthReaders) g = {fsw_group, rec_group};
+    else g = {s.group == Group::Fsw ? fsw_group : rec_group};
+    sched.add_task(s.task, std::move(g), std::move(fn));
   }
   // rows: every due tick in [0, n_ticks] (the final tick is sampled too)
   rec.allocate(rec_group.count_due(n_ticks + 1), cfg.chunk_rows);
@@ -230,9 +237,14 @@ void Run::add_sink(RecordSink& sink)
 bool Run::Impl::step_plant()
 {
   for (int i : jitter_wheels) max_jitter_Omega = std::max(max_jitter_Omega, std::fabs(plant.Omega(i)));
-  for (uint32_t s = 0; s < sc.rates.plant_substeps; ++s)
-    if (plant.step(substep_ns) != sim::StepStatus::Ok) return false;
-  return true;
+  const bool timed = sched.profiling();
+  const auto t0 = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+  bool ok = true;
+  for (uint32_t s = 0; s < sc.rates.plant_substeps && ok; ++s) ok = plant.step(substep_ns) == sim::StepStatus::Ok;
+  if (timed)
+    plant_ns += static_cast<uint64_t>(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
+  return ok;
 }
 
 bool wheel_jitters(const sim::ReactionWheelParams& p)
@@ -355,6 +367,17 @@ std::vector<std::string> Run::fsw_health_lines() const
 {
   std::vector<std::string> out = fsw_health_summary(impl_->health_ch->value());
   for (std::string& l : impl_->fsw->module_health_lines()) out.push_back(std::move(l));
+  return out;
+}
+
+void Run::set_profiling(bool on) { impl_->sched.set_profiling(on); }
+
+std::vector<std::pair<std::string, uint64_t>> Run::profile() const
+{
+  const Impl& m = *impl_;
+  std::vector<std::pair<std::string, uint64_t>> out;
+  for (size_t i = 0; i < m.sched.num_tasks(); ++i) out.emplace_back(m.sched.task_name(i), m.sched.elapsed_ns(i));
+  out.emplace_back("plant", m.plant_ns);
   return out;
 }
 

@@ -1,5 +1,6 @@
 #include "harness/scheduler.h"
 
+#include <chrono>
 #include <stdexcept>
 #include <utility>
 
@@ -21,9 +22,15 @@ Scheduler::Scheduler(uint64_t tick_ns) : tick_ns_(tick_ns)
 
 size_t Scheduler::add_task(std::string name, const RateGroup& g, TaskFn fn)
 {
-  validate(g);
+  return add_task(std::move(name), std::vector<RateGroup>{g}, std::move(fn));
+}
+
+size_t Scheduler::add_task(std::string name, std::vector<RateGroup> groups, TaskFn fn)
+{
+  if (groups.empty()) throw std::invalid_argument("scheduler: task '" + name + "' has no rate group");
+  for (const RateGroup& g : groups) validate(g);
   if (!fn) throw std::invalid_argument("scheduler: task '" + name + "' has no function");
-  tasks_.push_back(Task{std::move(name), g, std::move(fn), 0});
+  tasks_.push_back(Task{std::move(name), std::move(groups), std::move(fn), 0, 0});
   return tasks_.size() - 1;
 }
 
@@ -31,8 +38,17 @@ size_t Scheduler::run_tick(uint64_t tick)
 {
   size_t n = 0;
   for (Task& t : tasks_) {
-    if (t.group.due(tick)) {
-      t.fn(tick);
+    bool due = false;
+    for (const RateGroup& g : t.groups) due = due || g.due(tick);
+    if (due) {
+      if (profiling_) {
+        const auto t0 = std::chrono::steady_clock::now();
+        t.fn(tick);
+        t.ns += static_cast<uint64_t>(
+            std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
+      } else {
+        t.fn(tick);
+      }
       ++t.runs;
       ++n;
     }

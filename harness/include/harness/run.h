@@ -4,7 +4,7 @@
 // at k runs in the order of the table kTickProtocol (run.cpp):
 //   events         (every tick, scenarios with events) the events whose
 //                  trigger holds are applied (docs/events.md, event_task.h)
-//   truth          (every tick)  plant state -> `truth`
+//   truth          (FSW and record ticks; every tick with thrusters) plant state -> `truth`
 //   burn_monitor   (every tick, thruster runs) `truth` -> `burn_state`
 //   sample_sensors (every tick, sampled sensors) `truth` -> `sensor_samples`
 //   css            (FSW group, configured CSS) `truth` -> `css_readings`
@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harness/fsw_endpoint.h"
@@ -151,6 +152,12 @@ class Run {
   // far (0 without one); above kJitterStepLimit the run's jitter is
   // under-resolved (kestrel run warns, the summary lists it).
   double max_jitter_step() const;
+
+  // Per-tick cost split (`kestrel bench`): with profiling on, every task
+  // call and every plant step is timed (steady clock).  profile() lists
+  // {name, ns} for each task of the scheduler and "plant", summed so far.
+  void set_profiling(bool on);
+  std::vector<std::pair<std::string, uint64_t>> profile() const;
 
  private:
   struct Impl;

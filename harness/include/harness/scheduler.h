@@ -37,6 +37,9 @@ class Scheduler {
 
   // Registers a task in group g (validated); returns its index.
   size_t add_task(std::string name, const RateGroup& g, TaskFn fn);
+  // A task due whenever any of its groups is (e.g. `truth`: when one of its
+  // readers is due); at least one group.
+  size_t add_task(std::string name, std::vector<RateGroup> groups, TaskFn fn);
 
   // Runs every task due at `tick`, in registration order.  Returns the number run.
   size_t run_tick(uint64_t tick);
@@ -44,18 +47,26 @@ class Scheduler {
   uint64_t tick_ns() const { return tick_ns_; }
   uint64_t t_ns(uint64_t tick) const { return tick * tick_ns_; }
   size_t num_tasks() const { return tasks_.size(); }
-  const RateGroup& group(size_t task) const { return tasks_[task].group; }
+  const std::vector<RateGroup>& groups(size_t task) const { return tasks_[task].groups; }
   const std::string& task_name(size_t task) const { return tasks_[task].name; }
   uint64_t run_count(size_t task) const { return tasks_[task].runs; }
+
+  // Times every task call (steady clock, ~20 ns per reading) from now on;
+  // off by default (`kestrel bench` turns it on for its split).
+  void set_profiling(bool on) { profiling_ = on; }
+  bool profiling() const { return profiling_; }
+  uint64_t elapsed_ns(size_t task) const { return tasks_[task].ns; }  // [ns] while profiling
 
  private:
   struct Task {
     std::string name;
-    RateGroup group;
+    std::vector<RateGroup> groups;
     TaskFn fn;
     uint64_t runs = 0;
+    uint64_t ns = 0;
   };
   uint64_t tick_ns_;
+  bool profiling_ = false;
   std::vector<Task> tasks_;
 };
 
