@@ -125,6 +125,41 @@ TEST(FswMinNorm, ClosedFormCases)
   EXPECT_NEAR(2.0, x[2], kTol);
 }
 
+// Issue 21: the forward substitution L y = b must subtract row 0's term
+// L_10 y_0 from b_1.  A = [1 0; 1 d] (square, nearly parallel rows) with
+// d = 2^-19 in double, 2^-8 in float (d^2 = 3.6e-12 > FSW_RANK_TOL = 1e-12,
+// 1.5e-5 > 1e-5: full rank).  With the power-of-two scalings every number is
+// exact: A A^T = [1 1; 1 1 + d^2], L = [1 0; 1 d], and b = (0.3, 0.3) gives
+// y = (0.3, (0.3 - 1 * 0.3) / d) = (0.3, 0), z = (0.3, 0), x = A^T z =
+// (0.3, 0) = A^-1 b (x0 = b0, x1 = (b1 - b0) / d): exact, residual 0.  Were
+// the coupling dropped, y_1 = 0.3 / d and z_1 = 0.3 / d^2 (2^38 or 2^16 times
+// b): x_0 = z_0 + z_1 cancels 38 (16) bits, an error of ~2^-15 (2^-8)
+// relative, that the one refinement step does not remove (the residual
+// test then refuses it: FSW_E_SINGULAR).
+TEST(FswMinNorm, Issue21ForwardSubstitutionUsesTheCouplingToRowZero)
+{
+  const fsw_real d = static_cast<fsw_real>(kt::tol(std::ldexp(1.0, -19), std::ldexp(1.0, -8)));
+  ASSERT_GT(double(d) * double(d), double(FSW_RANK_TOL));  // full rank by the pivot test
+  Mat3N A;
+  std::memset(&A, 0, sizeof A);
+  A.a[0][0] = 1;
+  A.a[1][0] = 1;
+  A.a[1][1] = d;
+  fsw_real x[FSW_MAX_EFF], b[3] = {FSW_R(0.3), FSW_R(0.3), 0};
+  ASSERT_EQ(FSW_OK, fsw_minnorm_solve(x, A.a, b, 2, 2));
+  EXPECT_NEAR(double(b[0]), double(x[0]), kTol);
+  EXPECT_NEAR(0.0, double(x[1]), kTol);
+  // the same with a third row coupled to row 0 only: A = [1 0 0; 1 d 0; 1 0 d],
+  // b = (0.3, 0.3, 0.3) -> x = (0.3, 0, 0) (L_20 = 1 couples row 2 to row 0)
+  A.a[2][0] = 1;
+  A.a[2][2] = d;
+  b[2] = FSW_R(0.3);
+  ASSERT_EQ(FSW_OK, fsw_minnorm_solve(x, A.a, b, 3, 3));
+  EXPECT_NEAR(double(b[0]), double(x[0]), kTol);
+  EXPECT_NEAR(0.0, double(x[1]), kTol);
+  EXPECT_NEAR(0.0, double(x[2]), kTol);
+}
+
 TEST(FswMinNorm, MatchesIndependentSolverAndIsMinimumNorm)
 {
   kt::Rng r(201);
