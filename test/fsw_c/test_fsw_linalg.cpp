@@ -795,6 +795,40 @@ TEST(FswBoundedMinNorm, Issue21TwoVariablesReachTheirBoundsTogether)
   expect_x(dn, {-2.0, -2.0}, "lower bounds together");
 }
 
+// Issue 21: a free variable that reaches its bound in the same phase-1 step
+// as the blocking one is set exactly onto the bound (fsw_linalg.h: F never
+// leaves [lo, hi]); the step F + alpha (z - F) lands there only up to
+// round-off.  A = [0 -1.5 0 1; 0.5 -1.5 0.5 1], b = (-1/3, 4/3), box [0, 1]^4
+// (a geometry found by a search over small grids for such a tie; the step
+// lengths are ratios of thirds, not exact in binary, and x3 would be left at
+// -2^-55 in double).  Expected by hand: with u = x3 - 1.5 x1 and
+// w = (x0 + x2) / 2, A x = (u, w + u).  The exact fit needs w = 5/3 > 1, so
+// w = 1 (x0 = x2 = 1) and u minimises (u + 1/3)^2 + (u - 1/3)^2: u = 0; the
+// gradient in w, 2 (w + u - 4/3) < 0, keeps w at its top.  The least norm of
+// x1^2 + x3^2 with x3 = 1.5 x1 is x1 = x3 = 0: x = (1, 0, 1, 0).  Mirrored
+// (-b, box [-1, 0]): x = (-1, 0, -1, 0), the tie at the upper bound 0.
+TEST(FswBoundedMinNorm, Issue21VariableReachingItsBoundInTheSameStepIsSetOntoIt)
+{
+  const Mat3N A = mat(2, 4, {0.0, -1.5, 0.0, 1.0, 0.5, -1.5, 0.5, 1.0});
+  const double third = 1.0 / 3.0;
+  const Box up = box(4, 0, 1);
+  const K4Run r = k4(A, {-third, 4 * third}, 2, 4, up);
+  EXPECT_EQ(FSW_OK, r.s);
+  expect_x(r, {1.0, 0.0, 1.0, 0.0}, "tie at the lower bounds");
+  for (int j = 0; j < 4; j++) {  // exactly inside the box, not by round-off
+    EXPECT_GE(r.x[j], up.lo[j]) << j;
+    EXPECT_LE(r.x[j], up.hi[j]) << j;
+  }
+  const Box dn = box(4, -1, 0);
+  const K4Run rn = k4(A, {third, -4 * third}, 2, 4, dn);
+  EXPECT_EQ(FSW_OK, rn.s);
+  expect_x(rn, {-1.0, 0.0, -1.0, 0.0}, "tie at the upper bounds");
+  for (int j = 0; j < 4; j++) {
+    EXPECT_GE(rn.x[j], dn.lo[j]) << j;
+    EXPECT_LE(rn.x[j], dn.hi[j]) << j;
+  }
+}
+
 // Issue 21: every required pointer of K1, K2 and K4 NULL in turn (null_args.h);
 // K2's avail and rank and K4's iterations may be NULL by contract.
 TEST(FswLinalgIssue21, EveryNullArgumentAssertsAndReturns)
