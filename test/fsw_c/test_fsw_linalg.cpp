@@ -829,6 +829,37 @@ TEST(FswBoundedMinNorm, Issue21VariableReachingItsBoundInTheSameStepIsSetOntoIt)
   }
 }
 
+// Issue 21: phase 2's step F + alpha (z - F) of a free variable that is not
+// the blocking one but reaches its bound too is clamped into [lo, hi]
+// (round-off would leave x4 at -2^-56 below 0, or +2^-56 above 0 mirrored).
+// A = [-0.5 1 1.5 1.5 1; -0.5 0 -1.5 -1.5 0; 0 -1 -1 0 1.5], b = (-1, -5/3, 0),
+// box [0, 3]^5 (found by a search over small grids for such a tie).
+// Expected by hand: x = (8/3, 0, 0, 2/9, 0) fits exactly (rows:
+// -4/3 + 1/3 = -1, -4/3 - 1/3 = -5/3, 0) and is the least-norm point of the
+// box: with lam = (-70/27, -74/27, l2), a0.lam = 8/3 = x0 and a3.lam = 2/9 =
+// x3 (free), while a1.lam = -70/27 - l2, a2.lam = 2/9 - l2 and a4.lam =
+// -70/27 + 1.5 l2 are all <= 0 (at the lower bound 0) for l2 in
+// [2/9, 140/81]: the KKT conditions of min |x|^2 / 2 hold.  Mirrored (-b,
+// box [-3, 0]): -x.
+TEST(FswBoundedMinNorm, Issue21PhaseTwoStepIsClampedIntoTheBox)
+{
+  const Mat3N A = mat(3, 5, {-0.5, 1.0, 1.5, 1.5, 1.0, -0.5, 0.0, -1.5, -1.5, 0.0, 0.0, -1.0, -1.0, 0.0, 1.5});
+  const Box up = box(5, 0, 3);
+  const K4Run r = k4(A, {-1.0, -5.0 / 3, 0.0}, 3, 5, up);
+  EXPECT_EQ(FSW_OK, r.s);
+  expect_x(r, {8.0 / 3, 0.0, 0.0, 2.0 / 9, 0.0}, "box [0, 3]");
+  const Box dn = box(5, -3, 0);
+  const K4Run rn = k4(A, {1.0, 5.0 / 3, 0.0}, 3, 5, dn);
+  EXPECT_EQ(FSW_OK, rn.s);
+  expect_x(rn, {-8.0 / 3, 0.0, 0.0, -2.0 / 9, 0.0}, "box [-3, 0]");
+  for (int j = 0; j < 5; j++) {  // exactly inside the box, not by round-off
+    EXPECT_GE(r.x[j], up.lo[j]) << j;
+    EXPECT_LE(r.x[j], up.hi[j]) << j;
+    EXPECT_GE(rn.x[j], dn.lo[j]) << j;
+    EXPECT_LE(rn.x[j], dn.hi[j]) << j;
+  }
+}
+
 // Issue 21: every required pointer of K1, K2 and K4 NULL in turn (null_args.h);
 // K2's avail and rank and K4's iterations may be NULL by contract.
 TEST(FswLinalgIssue21, EveryNullArgumentAssertsAndReturns)
