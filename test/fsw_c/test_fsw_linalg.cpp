@@ -860,6 +860,30 @@ TEST(FswBoundedMinNorm, Issue21PhaseTwoStepIsClampedIntoTheBox)
   }
 }
 
+// Issue 21: the variable that stops a phase-2 step is fixed on its bound
+// exactly (a thruster held at its 0 bound is off, not at 1e-17 N); the step
+// itself lands there only up to round-off.  A = [0.5 1 0.5; -1.5 0.5 1.5],
+// b = (-1/3, -2/3), box [-1, 0]^3 (found by a search over small grids for a
+// step that stops 2^-56 short of the bound).  By hand: A A^T = [1.5 0.5;
+// 0.5 4.75], the unconstrained least-norm x = A^T (A A^T)^-1 b has x0 =
+// 1/11 > 0, so x0 goes to its bound 0; then [1 0.5; 0.5 1.5] (x1, x2) = b
+// gives x1 = -2/15, x2 = -2/5, inside the box; the multipliers lam = (0,
+// -4/15) of that solve give a0.lam = 2/5 >= 0, so x0 rightly stays at its
+// upper bound: x = (0, -2/15, -2/5).  Mirrored (-b, box [0, 1]): -x, x0 at
+// its lower bound 0.
+TEST(FswBoundedMinNorm, Issue21PhaseTwoBlockingVariableIsExactlyOnItsBound)
+{
+  const Mat3N A = mat(2, 3, {0.5, 1.0, 0.5, -1.5, 0.5, 1.5});
+  const K4Run r = k4(A, {-1.0 / 3, -2.0 / 3}, 2, 3, box(3, -1, 0));
+  EXPECT_EQ(FSW_OK, r.s);
+  expect_x(r, {0.0, -2.0 / 15, -2.0 / 5}, "box [-1, 0]");
+  EXPECT_EQ(fsw_real(0), r.x[0]);  // on the bound, not near it
+  const K4Run rn = k4(A, {1.0 / 3, 2.0 / 3}, 2, 3, box(3, 0, 1));
+  EXPECT_EQ(FSW_OK, rn.s);
+  expect_x(rn, {0.0, 2.0 / 15, 2.0 / 5}, "box [0, 1]");
+  EXPECT_EQ(fsw_real(0), rn.x[0]);
+}
+
 // Issue 21: every required pointer of K1, K2 and K4 NULL in turn (null_args.h);
 // K2's avail and rank and K4's iterations may be NULL by contract.
 TEST(FswLinalgIssue21, EveryNullArgumentAssertsAndReturns)
