@@ -125,6 +125,41 @@ TEST(FswMinNorm, ClosedFormCases)
   EXPECT_NEAR(2.0, x[2], kTol);
 }
 
+// Issue 21: the forward substitution L y = b must subtract row 0's term
+// L_10 y_0 from b_1.  A = [1 0; 1 d] (square, nearly parallel rows) with
+// d = 2^-19 in double, 2^-8 in float (d^2 = 3.6e-12 > FSW_RANK_TOL = 1e-12,
+// 1.5e-5 > 1e-5: full rank).  With the power-of-two scalings every number is
+// exact: A A^T = [1 1; 1 1 + d^2], L = [1 0; 1 d], and b = (0.3, 0.3) gives
+// y = (0.3, (0.3 - 1 * 0.3) / d) = (0.3, 0), z = (0.3, 0), x = A^T z =
+// (0.3, 0) = A^-1 b (x0 = b0, x1 = (b1 - b0) / d): exact, residual 0.  Were
+// the coupling dropped, y_1 = 0.3 / d and z_1 = 0.3 / d^2 (2^38 or 2^16 times
+// b): x_0 = z_0 + z_1 cancels 38 (16) bits, an error of ~2^-15 (2^-8)
+// relative, that the one refinement step does not remove (the residual
+// test then refuses it: FSW_E_SINGULAR).
+TEST(FswMinNorm, Issue21ForwardSubstitutionUsesTheCouplingToRowZero)
+{
+  const fsw_real d = static_cast<fsw_real>(kt::tol(std::ldexp(1.0, -19), std::ldexp(1.0, -8)));
+  ASSERT_GT(double(d) * double(d), double(FSW_RANK_TOL));  // full rank by the pivot test
+  Mat3N A;
+  std::memset(&A, 0, sizeof A);
+  A.a[0][0] = 1;
+  A.a[1][0] = 1;
+  A.a[1][1] = d;
+  fsw_real x[FSW_MAX_EFF], b[3] = {FSW_R(0.3), FSW_R(0.3), 0};
+  ASSERT_EQ(FSW_OK, fsw_minnorm_solve(x, A.a, b, 2, 2));
+  EXPECT_NEAR(double(b[0]), double(x[0]), kTol);
+  EXPECT_NEAR(0.0, double(x[1]), kTol);
+  // the same with a third row coupled to row 0 only: A = [1 0 0; 1 d 0; 1 0 d],
+  // b = (0.3, 0.3, 0.3) -> x = (0.3, 0, 0) (L_20 = 1 couples row 2 to row 0)
+  A.a[2][0] = 1;
+  A.a[2][2] = d;
+  b[2] = FSW_R(0.3);
+  ASSERT_EQ(FSW_OK, fsw_minnorm_solve(x, A.a, b, 3, 3));
+  EXPECT_NEAR(double(b[0]), double(x[0]), kTol);
+  EXPECT_NEAR(0.0, double(x[1]), kTol);
+  EXPECT_NEAR(0.0, double(x[2]), kTol);
+}
+
 TEST(FswMinNorm, MatchesIndependentSolverAndIsMinimumNorm)
 {
   kt::Rng r(201);
@@ -758,6 +793,95 @@ TEST(FswBoundedMinNorm, Issue21TwoVariablesReachTheirBoundsTogether)
   const K4Run dn = k4(A, {-1, -2}, 2, 2, box(2, -2, 0));
   EXPECT_EQ(FSW_OK, dn.s);
   expect_x(dn, {-2.0, -2.0}, "lower bounds together");
+}
+
+// Issue 21: a free variable that reaches its bound in the same phase-1 step
+// as the blocking one is set exactly onto the bound (fsw_linalg.h: F never
+// leaves [lo, hi]); the step F + alpha (z - F) lands there only up to
+// round-off.  A = [0 -1.5 0 1; 0.5 -1.5 0.5 1], b = (-1/3, 4/3), box [0, 1]^4
+// (a geometry found by a search over small grids for such a tie; the step
+// lengths are ratios of thirds, not exact in binary, and x3 would be left at
+// -2^-55 in double).  Expected by hand: with u = x3 - 1.5 x1 and
+// w = (x0 + x2) / 2, A x = (u, w + u).  The exact fit needs w = 5/3 > 1, so
+// w = 1 (x0 = x2 = 1) and u minimises (u + 1/3)^2 + (u - 1/3)^2: u = 0; the
+// gradient in w, 2 (w + u - 4/3) < 0, keeps w at its top.  The least norm of
+// x1^2 + x3^2 with x3 = 1.5 x1 is x1 = x3 = 0: x = (1, 0, 1, 0).  Mirrored
+// (-b, box [-1, 0]): x = (-1, 0, -1, 0), the tie at the upper bound 0.
+TEST(FswBoundedMinNorm, Issue21VariableReachingItsBoundInTheSameStepIsSetOntoIt)
+{
+  const Mat3N A = mat(2, 4, {0.0, -1.5, 0.0, 1.0, 0.5, -1.5, 0.5, 1.0});
+  const double third = 1.0 / 3.0;
+  const Box up = box(4, 0, 1);
+  const K4Run r = k4(A, {-third, 4 * third}, 2, 4, up);
+  EXPECT_EQ(FSW_OK, r.s);
+  expect_x(r, {1.0, 0.0, 1.0, 0.0}, "tie at the lower bounds");
+  for (int j = 0; j < 4; j++) {  // exactly inside the box, not by round-off
+    EXPECT_GE(r.x[j], up.lo[j]) << j;
+    EXPECT_LE(r.x[j], up.hi[j]) << j;
+  }
+  const Box dn = box(4, -1, 0);
+  const K4Run rn = k4(A, {third, -4 * third}, 2, 4, dn);
+  EXPECT_EQ(FSW_OK, rn.s);
+  expect_x(rn, {-1.0, 0.0, -1.0, 0.0}, "tie at the upper bounds");
+  for (int j = 0; j < 4; j++) {
+    EXPECT_GE(rn.x[j], dn.lo[j]) << j;
+    EXPECT_LE(rn.x[j], dn.hi[j]) << j;
+  }
+}
+
+// Issue 21: phase 2's step F + alpha (z - F) of a free variable that is not
+// the blocking one but reaches its bound too is clamped into [lo, hi]
+// (round-off would leave x4 at -2^-56 below 0, or +2^-56 above 0 mirrored).
+// A = [-0.5 1 1.5 1.5 1; -0.5 0 -1.5 -1.5 0; 0 -1 -1 0 1.5], b = (-1, -5/3, 0),
+// box [0, 3]^5 (found by a search over small grids for such a tie).
+// Expected by hand: x = (8/3, 0, 0, 2/9, 0) fits exactly (rows:
+// -4/3 + 1/3 = -1, -4/3 - 1/3 = -5/3, 0) and is the least-norm point of the
+// box: with lam = (-70/27, -74/27, l2), a0.lam = 8/3 = x0 and a3.lam = 2/9 =
+// x3 (free), while a1.lam = -70/27 - l2, a2.lam = 2/9 - l2 and a4.lam =
+// -70/27 + 1.5 l2 are all <= 0 (at the lower bound 0) for l2 in
+// [2/9, 140/81]: the KKT conditions of min |x|^2 / 2 hold.  Mirrored (-b,
+// box [-3, 0]): -x.
+TEST(FswBoundedMinNorm, Issue21PhaseTwoStepIsClampedIntoTheBox)
+{
+  const Mat3N A = mat(3, 5, {-0.5, 1.0, 1.5, 1.5, 1.0, -0.5, 0.0, -1.5, -1.5, 0.0, 0.0, -1.0, -1.0, 0.0, 1.5});
+  const Box up = box(5, 0, 3);
+  const K4Run r = k4(A, {-1.0, -5.0 / 3, 0.0}, 3, 5, up);
+  EXPECT_EQ(FSW_OK, r.s);
+  expect_x(r, {8.0 / 3, 0.0, 0.0, 2.0 / 9, 0.0}, "box [0, 3]");
+  const Box dn = box(5, -3, 0);
+  const K4Run rn = k4(A, {1.0, 5.0 / 3, 0.0}, 3, 5, dn);
+  EXPECT_EQ(FSW_OK, rn.s);
+  expect_x(rn, {-8.0 / 3, 0.0, 0.0, -2.0 / 9, 0.0}, "box [-3, 0]");
+  for (int j = 0; j < 5; j++) {  // exactly inside the box, not by round-off
+    EXPECT_GE(r.x[j], up.lo[j]) << j;
+    EXPECT_LE(r.x[j], up.hi[j]) << j;
+    EXPECT_GE(rn.x[j], dn.lo[j]) << j;
+    EXPECT_LE(rn.x[j], dn.hi[j]) << j;
+  }
+}
+
+// Issue 21: the variable that stops a phase-2 step is fixed on its bound
+// exactly (a thruster held at its 0 bound is off, not at 1e-17 N); the step
+// itself lands there only up to round-off.  A = [0.5 1 0.5; -1.5 0.5 1.5],
+// b = (-1/3, -2/3), box [-1, 0]^3 (found by a search over small grids for a
+// step that stops 2^-56 short of the bound).  By hand: A A^T = [1.5 0.5;
+// 0.5 4.75], the unconstrained least-norm x = A^T (A A^T)^-1 b has x0 =
+// 1/11 > 0, so x0 goes to its bound 0; then [1 0.5; 0.5 1.5] (x1, x2) = b
+// gives x1 = -2/15, x2 = -2/5, inside the box; the multipliers lam = (0,
+// -4/15) of that solve give a0.lam = 2/5 >= 0, so x0 rightly stays at its
+// upper bound: x = (0, -2/15, -2/5).  Mirrored (-b, box [0, 1]): -x, x0 at
+// its lower bound 0.
+TEST(FswBoundedMinNorm, Issue21PhaseTwoBlockingVariableIsExactlyOnItsBound)
+{
+  const Mat3N A = mat(2, 3, {0.5, 1.0, 0.5, -1.5, 0.5, 1.5});
+  const K4Run r = k4(A, {-1.0 / 3, -2.0 / 3}, 2, 3, box(3, -1, 0));
+  EXPECT_EQ(FSW_OK, r.s);
+  expect_x(r, {0.0, -2.0 / 15, -2.0 / 5}, "box [-1, 0]");
+  EXPECT_EQ(fsw_real(0), r.x[0]);  // on the bound, not near it
+  const K4Run rn = k4(A, {1.0 / 3, 2.0 / 3}, 2, 3, box(3, 0, 1));
+  EXPECT_EQ(FSW_OK, rn.s);
+  expect_x(rn, {0.0, 2.0 / 15, 2.0 / 5}, "box [0, 1]");
+  EXPECT_EQ(fsw_real(0), rn.x[0]);
 }
 
 // Issue 21: every required pointer of K1, K2 and K4 NULL in turn (null_args.h);
