@@ -321,3 +321,36 @@ TEST(ThrPulseRoundIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("thr_pulse_round", fsw_thr_pulse_round_check, fsw_thr_pulse_round_init, fsw_thr_pulse_round_reset, fsw_thr_pulse_round_update);
 }
+
+// Issue 21: in carry mode a negative residual makes t = T f / F_max + r
+// negative when the request drops to 0; the first clamp of the equations
+// (docs/fsw/thr_pulse_round.md: "t = clamp(t, 0, T)" before rounding) turns
+// it into +0, so the on-time is exactly +0.0 -- not -0.0, which rint(-0.2)
+// would give and which would go out as a different binary64 on the link and
+// in the bitwise host/target comparisons -- and the residual is carried on.
+// T = 1, q = 0.25, t_min = 0:
+//   F = 0.2: t' = 0.2   -> rint(0.8) = 1 -> 0.25, r = -0.05
+//   F = 0:   t' = -0.05 -> clamp 0 -> 0,          r = -0.05
+//   F = 0.3: t' = 0.25  -> rint(1) = 1  -> 0.25,  r = 0
+TEST(ThrPulseRoundIssue21, NegativeCarriedRequestGivesPlusZero)
+{
+  FswThrPulseRoundConfig c = basilisk_defaults(1);
+  c.resolution = static_cast<R>(0.25);
+  c.carry_residual = 1;
+  FswThrPulseRoundState st;
+  ASSERT_EQ(FSW_OK, fsw_thr_pulse_round_init(&st, &c));
+  FswThrPulseRoundIn in;
+  std::memset(&in, 0, sizeof in);
+  FswThrPulseRoundOut out;
+  const double F[] = {0.2, 0.0, 0.0, 0.3};
+  const double want_on[] = {0.25, 0, 0, 0.25};
+  const double want_r[] = {-0.05, -0.05, -0.05, 0.0};
+  for (int k = 0; k < 4; k++) {
+    in.t_ns = uint64_t(k) * 1000000000ull;
+    in.F[0] = static_cast<R>(F[k]);
+    EXPECT_EQ(FSW_OK, fsw_thr_pulse_round_update(&st, &c, &in, &out)) << k;
+    EXPECT_EQ(want_on[k], out.t_on[0]) << k;
+    EXPECT_FALSE(std::signbit(out.t_on[0])) << "on-time -0 at step " << k;
+    EXPECT_NEAR(want_r[k], st.resid[0], kt::tol(1e-12, 1e-6)) << k;
+  }
+}
