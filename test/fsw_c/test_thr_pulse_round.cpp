@@ -354,3 +354,33 @@ TEST(ThrPulseRoundIssue21, NegativeCarriedRequestGivesPlusZero)
     EXPECT_NEAR(want_r[k], st.resid[0], kt::tol(1e-12, 1e-6)) << k;
   }
 }
+
+// Issue 21: the carried residual is limited to one period
+// (docs/fsw/thr_pulse_round.md: "r_i = clamp(t' - t, -T, T)"), so a
+// saturated request does not build up a backlog that keeps firing after it
+// ends.  T = 1, q = 0.25, F_max = 1:
+//   F = 3: t' = 3 -> clamp 1 -> 1 (W_SAT), r = clamp(2) = 1
+//   F = 0: t' = 1 -> 1,                    r = 0
+//   F = 0: t' = 0 -> 0,                    r = 0   (unclamped: 1, 1, then 0)
+TEST(ThrPulseRoundIssue21, CarriedResidualIsLimitedToOnePeriod)
+{
+  FswThrPulseRoundConfig c = basilisk_defaults(1);
+  c.resolution = static_cast<R>(0.25);
+  c.carry_residual = 1;
+  FswThrPulseRoundState st;
+  ASSERT_EQ(FSW_OK, fsw_thr_pulse_round_init(&st, &c));
+  FswThrPulseRoundIn in;
+  std::memset(&in, 0, sizeof in);
+  FswThrPulseRoundOut out;
+  const double F[] = {3.0, 0.0, 0.0};
+  const FswStatus want_s[] = {FSW_W_SAT, FSW_OK, FSW_OK};
+  const double want_on[] = {1, 1, 0};
+  const double want_r[] = {1, 0, 0};
+  for (int k = 0; k < 3; k++) {
+    in.t_ns = uint64_t(k) * 1000000000ull;
+    in.F[0] = static_cast<R>(F[k]);
+    EXPECT_EQ(want_s[k], fsw_thr_pulse_round_update(&st, &c, &in, &out)) << k;
+    EXPECT_EQ(want_on[k], out.t_on[0]) << k;
+    EXPECT_EQ(want_r[k], st.resid[0]) << k;
+  }
+}
