@@ -322,6 +322,40 @@ TEST(ThrPulseRoundIssue21, EveryNullArgumentAssertsAndReturns)
   kt::module_null_args("thr_pulse_round", fsw_thr_pulse_round_check, fsw_thr_pulse_round_init, fsw_thr_pulse_round_reset, fsw_thr_pulse_round_update);
 }
 
+
+namespace {
+// One carry-mode step: request F, expected status, on-time and residual.
+struct CarryStep {
+  double F;
+  FswStatus s;
+  double on, r;
+};
+// Runs the steps, one per period of 1 s, on a fresh state of one thruster
+// (T = 1, q = 0.25, F_max = 1, t_min = 0, carry_residual = 1).  The on-time
+// must be exactly the expected value and never -0.
+void expect_carry_sequence(std::initializer_list<CarryStep> steps)
+{
+  FswThrPulseRoundConfig c = basilisk_defaults(1);
+  c.resolution = static_cast<R>(0.25);
+  c.carry_residual = 1;
+  FswThrPulseRoundState st;
+  ASSERT_EQ(FSW_OK, fsw_thr_pulse_round_init(&st, &c));
+  FswThrPulseRoundIn in;
+  std::memset(&in, 0, sizeof in);
+  FswThrPulseRoundOut out;
+  int k = 0;
+  for (const CarryStep& step : steps) {
+    in.t_ns = uint64_t(k) * 1000000000ull;
+    in.F[0] = static_cast<R>(step.F);
+    EXPECT_EQ(step.s, fsw_thr_pulse_round_update(&st, &c, &in, &out)) << k;
+    EXPECT_EQ(step.on, out.t_on[0]) << k;
+    EXPECT_FALSE(std::signbit(out.t_on[0])) << "on-time -0 at step " << k;
+    EXPECT_NEAR(step.r, st.resid[0], kt::tol(1e-12, 1e-6)) << k;
+    k++;
+  }
+}
+}  // namespace
+
 // Issue 21: in carry mode a negative residual makes t = T f / F_max + r
 // negative when the request drops to 0; the first clamp of the equations
 // (docs/fsw/thr_pulse_round.md: "t = clamp(t, 0, T)" before rounding) turns
@@ -334,25 +368,10 @@ TEST(ThrPulseRoundIssue21, EveryNullArgumentAssertsAndReturns)
 //   F = 0.3: t' = 0.25  -> rint(1) = 1  -> 0.25,  r = 0
 TEST(ThrPulseRoundIssue21, NegativeCarriedRequestGivesPlusZero)
 {
-  FswThrPulseRoundConfig c = basilisk_defaults(1);
-  c.resolution = static_cast<R>(0.25);
-  c.carry_residual = 1;
-  FswThrPulseRoundState st;
-  ASSERT_EQ(FSW_OK, fsw_thr_pulse_round_init(&st, &c));
-  FswThrPulseRoundIn in;
-  std::memset(&in, 0, sizeof in);
-  FswThrPulseRoundOut out;
-  const double F[] = {0.2, 0.0, 0.0, 0.3};
-  const double want_on[] = {0.25, 0, 0, 0.25};
-  const double want_r[] = {-0.05, -0.05, -0.05, 0.0};
-  for (int k = 0; k < 4; k++) {
-    in.t_ns = uint64_t(k) * 1000000000ull;
-    in.F[0] = static_cast<R>(F[k]);
-    EXPECT_EQ(FSW_OK, fsw_thr_pulse_round_update(&st, &c, &in, &out)) << k;
-    EXPECT_EQ(want_on[k], out.t_on[0]) << k;
-    EXPECT_FALSE(std::signbit(out.t_on[0])) << "on-time -0 at step " << k;
-    EXPECT_NEAR(want_r[k], st.resid[0], kt::tol(1e-12, 1e-6)) << k;
-  }
+  expect_carry_sequence({{0.2, FSW_OK, 0.25, -0.05},
+                         {0.0, FSW_OK, 0.0, -0.05},
+                         {0.0, FSW_OK, 0.0, -0.05},
+                         {0.3, FSW_OK, 0.25, 0.0}});
 }
 
 // Issue 21: the carried residual is limited to one period
@@ -364,23 +383,5 @@ TEST(ThrPulseRoundIssue21, NegativeCarriedRequestGivesPlusZero)
 //   F = 0: t' = 0 -> 0,                    r = 0   (unclamped: 1, 1, then 0)
 TEST(ThrPulseRoundIssue21, CarriedResidualIsLimitedToOnePeriod)
 {
-  FswThrPulseRoundConfig c = basilisk_defaults(1);
-  c.resolution = static_cast<R>(0.25);
-  c.carry_residual = 1;
-  FswThrPulseRoundState st;
-  ASSERT_EQ(FSW_OK, fsw_thr_pulse_round_init(&st, &c));
-  FswThrPulseRoundIn in;
-  std::memset(&in, 0, sizeof in);
-  FswThrPulseRoundOut out;
-  const double F[] = {3.0, 0.0, 0.0};
-  const FswStatus want_s[] = {FSW_W_SAT, FSW_OK, FSW_OK};
-  const double want_on[] = {1, 1, 0};
-  const double want_r[] = {1, 0, 0};
-  for (int k = 0; k < 3; k++) {
-    in.t_ns = uint64_t(k) * 1000000000ull;
-    in.F[0] = static_cast<R>(F[k]);
-    EXPECT_EQ(want_s[k], fsw_thr_pulse_round_update(&st, &c, &in, &out)) << k;
-    EXPECT_EQ(want_on[k], out.t_on[0]) << k;
-    EXPECT_EQ(want_r[k], st.resid[0]) << k;
-  }
+  expect_carry_sequence({{3.0, FSW_W_SAT, 1.0, 1.0}, {0.0, FSW_OK, 1.0, 0.0}, {0.0, FSW_OK, 0.0, 0.0}});
 }
