@@ -1009,3 +1009,88 @@ TEST(FswAcsCycle, Issue21ErrorCycleKeepsTheTransitionCount)
   ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, &cmd, &g_act, &g_h)));
   EXPECT_EQ(1u, g_h.mode_changes);
 }
+
+// Issue 21: the actuator message carries the mapper's thruster forces
+// (docs/fsw/fsw_acs.md: F[i] and t_on[i] with thruster actuation).  With the
+// exact (NNLS) mapping and a request the eight thrusters can deliver, the
+// forces in the message must give the published torque about the centre of
+// mass: sum_i ((r_i - r_CoM) x g_i) F_i = Lr_B (docs/fsw/thr_map.md, 8.6),
+// computed here from the fixture's geometry (kThrR, kThrG), with
+// 0 <= F_i <= F_max.  The request: at rest, sigma_BN = (0.01, -0.005, 0.002)
+// against sigma_R0N = 0 gives |Lr| ~ K |sigma| = 0.2 N m, well inside the
+// ~1.8 N m authority per axis, so the mapper reports FSW_OK (delivered), not
+// a warning.  Tolerance: the active-set solver stops at a relative residual
+// of 1000 eps (K4_TOL) of the request, 1e-9 N m in double; float as the
+// mapper's own property test (2e-3).
+TEST(FswAcsCycle, Issue21ThrusterForcesInTheMessageGiveTheRequestedTorque)
+{
+  for (int pulser : {FSW_ACS_PULSE_REMAINDER, FSW_ACS_PULSE_SCHMITT}) {
+    acsfix::thruster_config(g_cfg, pulser);
+    for (int i = 0; i < 3; i++) g_cfg.inertial.sigma_R0N[i] = 0;
+    ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+    sensors_at_rest(g_sens, 0);
+    g_sens.sigma_BN[0] = acsfix::R(0.01);
+    g_sens.sigma_BN[1] = acsfix::R(-0.005);
+    g_sens.sigma_BN[2] = acsfix::R(0.002);
+    const double com[3] = {0.02, -0.01, 0.03};
+    for (int i = 0; i < 3; i++) g_sens.r_CoM_B[i] = acsfix::R(com[i]);
+    ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+    ASSERT_EQ(1, g_act.thrusters_active);
+    EXPECT_EQ(FSW_OK, g_h.stage_status[FSW_ACS_STAGE_THR_MAP]) << "request not delivered";
+    double Lr2 = 0;
+    for (int i = 0; i < 3; i++) Lr2 += static_cast<double>(g_act.Lr_B[i]) * g_act.Lr_B[i];
+    ASSERT_GT(std::sqrt(Lr2), 0.1);  // a real request (K |sigma| = 0.23 N m)
+    double tau[3] = {0, 0, 0};
+    for (int j = 0; j < 8; j++) {
+      const double* g = acsfix::kThrG[j];
+      const double r[3] = {acsfix::kThrR[j][0] - com[0], acsfix::kThrR[j][1] - com[1], acsfix::kThrR[j][2] - com[2]};
+      const double d[3] = {r[1] * g[2] - r[2] * g[1], r[2] * g[0] - r[0] * g[2], r[0] * g[1] - r[1] * g[0]};
+      for (int k = 0; k < 3; k++) tau[k] += d[k] * g_act.F[j];
+      EXPECT_GE(g_act.F[j], 0) << j;
+      EXPECT_LE(g_act.F[j], acsfix::kFmax * (1 + 1e-9)) << j;
+    }
+    for (int k = 0; k < 3; k++) EXPECT_NEAR(g_act.Lr_B[k], tau[k], kt::tol(1e-9, 2e-3)) << "axis " << k;
+    for (int j = 8; j < FSW_MAX_THR; j++) EXPECT_EQ(0, g_act.F[j]) << j;
+  }
+}
+
+// Issue 21: an error cycle puts the dynamic state back but every stage
+// keeps its health counters (docs/fsw/fsw_acs.md, "keeping only the stages'
+// health counters"; they count this cycle's statuses).  One good cycle, then
+// a finite rate that overflows the control law: every stage that ran was
+// called twice, so its counter of calls is 2 (the control law's bad input
+// counted once), not the 1 of the snapshot taken before the bad cycle.
+namespace {
+void expect_stage_health_after_error_cycle(const char* why)
+{
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr)) << why;
+  sensors_at_rest(g_sens, 0);
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h))) << why;
+  sensors_at_rest(g_sens, kPeriodNs);
+  g_sens.omega_BN_B[0] = static_cast<fsw_real>(0.5 * static_cast<double>(std::numeric_limits<fsw_real>::max()));
+  ASSERT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)) << why;
+  EXPECT_EQ(2u, g_st.mrp_fb.health.calls) << why;
+  EXPECT_EQ(1u, g_st.mrp_fb.health.bad_input) << why;
+  if (g_cfg.use_lpf) EXPECT_EQ(2u, g_st.lpf.health.calls) << why;
+  if (g_cfg.has_wheels && g_cfg.use_volt) EXPECT_EQ(2u, g_st.rw_volt.health.calls) << why;
+  if (g_cfg.initial_actuation == FSW_ACS_ACT_THRUSTERS) {
+    if (g_cfg.pulser == FSW_ACS_PULSE_REMAINDER)
+      EXPECT_EQ(2u, g_st.pulse_rem.common.health.calls) << why;
+    else
+      EXPECT_EQ(2u, g_st.pulse_schmitt.common.health.calls) << why;
+  }
+}
+}  // namespace
+
+TEST(FswAcsCycle, Issue21ErrorCycleKeepsEveryStagesHealthCounters)
+{
+  acsfix::wheel_config(g_cfg);
+  g_cfg.use_lpf = 1;
+  g_cfg.use_volt = 1;
+  expect_stage_health_after_error_cycle("wheels, filter, voltages");
+  acsfix::thruster_config(g_cfg, FSW_ACS_PULSE_REMAINDER);
+  g_cfg.use_lpf = 1;
+  expect_stage_health_after_error_cycle("thrusters, filter, remainder pulser");
+  acsfix::thruster_config(g_cfg, FSW_ACS_PULSE_SCHMITT);
+  expect_stage_health_after_error_cycle("thrusters, Schmitt pulser");
+}

@@ -792,3 +792,35 @@ TEST(FswLink, Issue21DeframerRefusesALengthBeyondTheLargestPacket)
   // (no four of them read 1A CF FC 1D: the payload is zero and the CRC is two bytes)
   EXPECT_EQ(d.sync_slips, FSW_LINK_MAX_PACKET + 4u);
 }
+
+// Issue 21: link_safe is a flag on the wire (docs/icd.md, link status
+// payload offset 38, u8): 0 goes out as 0 and any non-zero value as 1; the
+// decoder gives the same flag back.  Byte positions from the ICD table, not
+// from the encoder.
+TEST(FswLink, Issue21LinkSafeTravelsAsAFlag)
+{
+  const size_t safe_at = FSW_LINK_HEADER_SIZE + 38u;  // ICD: payload offset 38
+  for (const auto& c : std::vector<std::pair<uint8_t, uint8_t>>{{0, 0}, {1, 1}, {9, 1}, {255, 1}}) {
+    FswLinkStatusMsg m;
+    std::memset(&m, 0, sizeof m);
+    m.rx_packets = 12;
+    m.cycles = 34;
+    m.last_seq = 56;
+    m.link_safe = c.first;
+    Bytes b(FSW_LINK_MAX_PACKET);
+    size_t len = 0;
+    ASSERT_EQ(fsw_link_encode_status(&m, 789u, 3u, b.data(), b.size(), &len, nullptr), FSW_OK);
+    ASSERT_EQ(len, FSW_LINK_HEADER_SIZE + 40u + FSW_LINK_CRC_SIZE);  // ICD: 40-byte payload
+    EXPECT_EQ(b[safe_at], c.second) << int(c.first);
+    EXPECT_EQ(b[safe_at + 1u], 0u) << "reserved byte, offset 39";
+    FswLinkPacket p;
+    ASSERT_EQ(fsw_link_parse(b.data(), len, &p, nullptr), FSW_OK);
+    FswLinkStatusMsg back;
+    std::memset(&back, 0x5A, sizeof back);
+    FswLinkError e = FSW_LINK_E_SPACE;
+    ASSERT_EQ(fsw_link_decode_status(&p, &back, &e), FSW_OK);
+    EXPECT_EQ(e, FSW_LINK_OK);
+    EXPECT_EQ(back.link_safe, c.second) << int(c.first);
+    EXPECT_EQ(back.last_seq, 56u);
+  }
+}

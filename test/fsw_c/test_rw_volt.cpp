@@ -352,3 +352,27 @@ TEST(RwVoltIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("rw_volt", fsw_rw_volt_check, fsw_rw_volt_init, fsw_rw_volt_reset, fsw_rw_volt_update);
 }
+
+// Issue 21: the V_max range is inclusive (rw_volt.h: "> V_min, <=
+// FSW_RW_V_MAX_MAX"): V_max equal to FSW_RW_V_MAX_MAX is accepted and a
+// command of u_max then gives exactly that voltage, (V_max - V_min)/u_max *
+// u_max + V_min = V_max (to rounding); the next representable value above
+// is refused.
+TEST(RwVoltIssue21, VMaxEqualToTheLargestIsAccepted)
+{
+  Fixture f(2);
+  f.cfg->V_max = FSW_RW_V_MAX_MAX;
+  EXPECT_EQ(FSW_OK, fsw_rw_volt_check(f.cfg.get()));
+  ASSERT_EQ(FSW_OK, f.init());
+  f.in->u_s[0] = FSW_R(0.2);  // u_max
+  f.in->u_s[1] = FSW_R(-0.1);  // half of -u_max: -(1e4 - 0.5)/2 - 0.5
+  f.in->avail[0] = FSW_AVAILABLE;
+  f.in->avail[1] = FSW_AVAILABLE;
+  EXPECT_FALSE(fsw_status_is_error(f.update(0)));  // first call: feed-forward only
+  const double V_max = static_cast<double>(FSW_RW_V_MAX_MAX);
+  EXPECT_NEAR(V_max, f.out->V[0], V_max * kt::tol(1e-12, 1e-6));
+  EXPECT_LE(f.out->V[0], FSW_RW_V_MAX_MAX);
+  EXPECT_NEAR(-(V_max - 0.5) / 2 - 0.5, f.out->V[1], V_max * kt::tol(1e-12, 1e-6));
+  f.cfg->V_max = std::nextafter(FSW_RW_V_MAX_MAX, 2 * FSW_RW_V_MAX_MAX);
+  EXPECT_EQ(FSW_E_CONFIG, fsw_rw_volt_check(f.cfg.get()));
+}

@@ -908,3 +908,64 @@ TEST(ThrMapIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("thr_map", fsw_thr_map_check, fsw_thr_map_init, fsw_thr_map_reset, fsw_thr_map_update);
 }
+
+// Issue 21: a refused init clears the state (docs/fsw-conventions.md, "init
+// calls check; on failure it clears the state, leaves st->ready = 0"): a
+// state that was in use (ready, three counted axes, diagnostics and health
+// counters set) keeps none of it after an init with a bad config, and the
+// counted axes are 0, not a stale or default count.
+TEST(ThrMapIssue21, RefusedInitClearsAUsedState)
+{
+  FswThrMapConfig c = six_axis_cfg();
+  c.ang_err_thresh = static_cast<R>(0.5);
+  MapRun r = map_once(c, 1, 0.5, 0);  // a used state: nc = 3, health counted
+  ASSERT_EQ(1, r.st.ready);
+  ASSERT_EQ(3, r.st.num_axes);
+  ASSERT_EQ(1u, r.st.health.calls);
+  FswThrMapConfig bad = c;
+  bad.num_thr = 0;
+  EXPECT_EQ(FSW_E_CONFIG, fsw_thr_map_init(&r.st, &bad));
+  EXPECT_EQ(0, r.st.ready);
+  EXPECT_EQ(0, r.st.num_axes);
+  for (int j = 0; j < 3; j++)
+    for (int k = 0; k < 3; k++) EXPECT_EQ(0, r.st.C[j][k]) << j << "," << k;
+  EXPECT_EQ(0, r.st.ang_err);
+  EXPECT_EQ(0, r.st.nnls_iter);
+  EXPECT_EQ(0u, r.st.health.calls);
+  // the same from a state never used: filled with a byte pattern first
+  FswThrMapState st;
+  std::memset(&st, 0x5A, sizeof st);
+  EXPECT_EQ(FSW_E_CONFIG, fsw_thr_map_init(&st, &bad));
+  EXPECT_EQ(0, st.ready);
+  EXPECT_EQ(0, st.num_axes);
+}
+
+// Issue 21: the torque angle error of 8.5 is defined as 0 for a request at
+// or below epsilon (docs/fsw/thr_map.md: "0 if |L̄| <= epsilon"): there is
+// no direction to compare with.  In min-norm mode a zero request, and a
+// request of norm 0.5 epsilon, leave ang_err = 0 (and the forces 0 for the
+// zero request) -- also after a cycle whose angle error was atan(0.5), so
+// the value is not a leftover.
+TEST(ThrMapIssue21, RequestAtOrBelowEpsilonHasNoAngleError)
+{
+  FswThrMapConfig c = six_axis_cfg();
+  c.epsilon = static_cast<R>(1e-3);
+  c.ang_err_thresh = static_cast<R>(0.5);
+  FswThrMapState st;
+  ASSERT_EQ(FSW_OK, fsw_thr_map_init(&st, &c));
+  FswThrMapIn in;
+  FswThrMapOut out;
+  set3(in.r_CoM_B, 0, 0, 0);
+  // as in SaturationScalingKeepsDirection: (4, 2, 0), threshold 0.5 above
+  // the angle: ang_err = atan(0.5)
+  set3(in.Lr_B, 4, 2, 0);
+  ASSERT_EQ(FSW_OK, fsw_thr_map_update(&st, &c, &in, &out));
+  ASSERT_NEAR(std::atan(0.5), st.ang_err, kt::tol(1e-12, 1e-5));
+  set3(in.Lr_B, 0, 0, 0);
+  EXPECT_EQ(FSW_OK, fsw_thr_map_update(&st, &c, &in, &out));
+  EXPECT_EQ(0, st.ang_err);
+  expect_forces(out, {0, 0, 0, 0, 0, 0});
+  set3(in.Lr_B, 3e-4, 0, 4e-4);  // norm 5e-4 = epsilon / 2
+  EXPECT_FALSE(fsw_status_is_error(fsw_thr_map_update(&st, &c, &in, &out)));
+  EXPECT_EQ(0, st.ang_err);
+}

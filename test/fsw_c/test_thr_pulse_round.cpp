@@ -321,3 +321,67 @@ TEST(ThrPulseRoundIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("thr_pulse_round", fsw_thr_pulse_round_check, fsw_thr_pulse_round_init, fsw_thr_pulse_round_reset, fsw_thr_pulse_round_update);
 }
+
+
+namespace {
+// One carry-mode step: request F, expected status, on-time and residual.
+struct CarryStep {
+  double F;
+  FswStatus s;
+  double on, r;
+};
+// Runs the steps, one per period of 1 s, on a fresh state of one thruster
+// (T = 1, q = 0.25, F_max = 1, t_min = 0, carry_residual = 1).  The on-time
+// must be exactly the expected value and never -0.
+void expect_carry_sequence(std::initializer_list<CarryStep> steps)
+{
+  FswThrPulseRoundConfig c = basilisk_defaults(1);
+  c.resolution = static_cast<R>(0.25);
+  c.carry_residual = 1;
+  FswThrPulseRoundState st;
+  ASSERT_EQ(FSW_OK, fsw_thr_pulse_round_init(&st, &c));
+  FswThrPulseRoundIn in;
+  std::memset(&in, 0, sizeof in);
+  FswThrPulseRoundOut out;
+  int k = 0;
+  for (const CarryStep& step : steps) {
+    in.t_ns = uint64_t(k) * 1000000000ull;
+    in.F[0] = static_cast<R>(step.F);
+    EXPECT_EQ(step.s, fsw_thr_pulse_round_update(&st, &c, &in, &out)) << k;
+    EXPECT_EQ(step.on, out.t_on[0]) << k;
+    EXPECT_FALSE(std::signbit(out.t_on[0])) << "on-time -0 at step " << k;
+    EXPECT_NEAR(step.r, st.resid[0], kt::tol(1e-12, 1e-6)) << k;
+    k++;
+  }
+}
+}  // namespace
+
+// Issue 21: in carry mode a negative residual makes t = T f / F_max + r
+// negative when the request drops to 0; the first clamp of the equations
+// (docs/fsw/thr_pulse_round.md: "t = clamp(t, 0, T)" before rounding) turns
+// it into +0, so the on-time is exactly +0.0 -- not -0.0, which rint(-0.2)
+// would give and which would go out as a different binary64 on the link and
+// in the bitwise host/target comparisons -- and the residual is carried on.
+// T = 1, q = 0.25, t_min = 0:
+//   F = 0.2: t' = 0.2   -> rint(0.8) = 1 -> 0.25, r = -0.05
+//   F = 0:   t' = -0.05 -> clamp 0 -> 0,          r = -0.05
+//   F = 0.3: t' = 0.25  -> rint(1) = 1  -> 0.25,  r = 0
+TEST(ThrPulseRoundIssue21, NegativeCarriedRequestGivesPlusZero)
+{
+  expect_carry_sequence({{0.2, FSW_OK, 0.25, -0.05},
+                         {0.0, FSW_OK, 0.0, -0.05},
+                         {0.0, FSW_OK, 0.0, -0.05},
+                         {0.3, FSW_OK, 0.25, 0.0}});
+}
+
+// Issue 21: the carried residual is limited to one period
+// (docs/fsw/thr_pulse_round.md: "r_i = clamp(t' - t, -T, T)"), so a
+// saturated request does not build up a backlog that keeps firing after it
+// ends.  T = 1, q = 0.25, F_max = 1:
+//   F = 3: t' = 3 -> clamp 1 -> 1 (W_SAT), r = clamp(2) = 1
+//   F = 0: t' = 1 -> 1,                    r = 0
+//   F = 0: t' = 0 -> 0,                    r = 0   (unclamped: 1, 1, then 0)
+TEST(ThrPulseRoundIssue21, CarriedResidualIsLimitedToOnePeriod)
+{
+  expect_carry_sequence({{3.0, FSW_W_SAT, 1.0, 1.0}, {0.0, FSW_OK, 1.0, 0.0}, {0.0, FSW_OK, 0.0, 0.0}});
+}
