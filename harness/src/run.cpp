@@ -394,7 +394,8 @@ std::vector<SummaryItem> Run::summary() const
     out.push_back({"final_pointing_error_deg", final_pointing_error_deg(), "deg", "pointing error at the end of the run"});
   if (!m.jitter_wheels.empty())
     out.push_back({"max_jitter_step_rad", max_jitter_step(), "rad",
-                   "largest |Omega| h of a jittering wheel (under-resolved above 2: docs/performance.md)"});
+                   "largest |Omega| h of a jittering wheel (under-resolved above " +
+                       std::to_string(static_cast<int>(kJitterStepLimit)) + ": docs/performance.md)"});
   if (m.plant.num_thr() == 0) return out;
   double used = 0.0;
   for (int k = 0; k < m.plant.num_tanks(); ++k) used += m.plant.tanks()[static_cast<size_t>(k)].m_p0 - m.plant.m_prop(k);

@@ -1,5 +1,6 @@
 #include "harness/scheduler.h"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <utility>
@@ -38,9 +39,7 @@ size_t Scheduler::run_tick(uint64_t tick)
 {
   size_t n = 0;
   for (Task& t : tasks_) {
-    bool due = false;
-    for (const RateGroup& g : t.groups) due = due || g.due(tick);
-    if (due) {
+    if (std::any_of(t.groups.begin(), t.groups.end(), [tick](const RateGroup& g) { return g.due(tick); })) {
       if (profiling_) {
         const auto t0 = std::chrono::steady_clock::now();
         t.fn(tick);

@@ -31,6 +31,22 @@ FswThrPulseRoundConfig basilisk_defaults(int n = 36)
   return c;
 }
 
+// One thruster in carry mode (T = 1, q = 0.25, F_max = 1, t_min = 0,
+// carry_residual = 1), initialised, with a zeroed input.
+struct Carry {
+  FswThrPulseRoundConfig c = basilisk_defaults(1);
+  FswThrPulseRoundState st;
+  FswThrPulseRoundIn in;
+  FswThrPulseRoundOut out;
+  Carry()
+  {
+    c.resolution = static_cast<R>(0.25);
+    c.carry_residual = 1;
+    EXPECT_EQ(FSW_OK, fsw_thr_pulse_round_init(&st, &c));
+    std::memset(&in, 0, sizeof in);
+  }
+};
+
 // Runs one update on a fresh state with forces f (rest 0).
 FswStatus run(const FswThrPulseRoundConfig& c, std::initializer_list<double> f, FswThrPulseRoundOut* out,
               uint64_t t_ns = 0)
@@ -186,15 +202,12 @@ TEST(ThrPulseRound, CarryResidualHandSequence)
   //  t' = 0.05 -> 0 -> 0,                r = 0.05
   //  t' = 0.15 -> rint(0.6) = 1 -> 0.25, r = -0.1
   //  t' = 0.0  -> 0,                     r = 0   (four periods: 0.5 s of 0.4 s + ...)
-  FswThrPulseRoundConfig c = basilisk_defaults(1);
-  c.resolution = static_cast<R>(0.25);
-  c.carry_residual = 1;
-  FswThrPulseRoundState st;
-  ASSERT_EQ(FSW_OK, fsw_thr_pulse_round_init(&st, &c));
-  FswThrPulseRoundIn in;
-  std::memset(&in, 0, sizeof in);
+  Carry f;
+  const FswThrPulseRoundConfig& c = f.c;
+  FswThrPulseRoundState& st = f.st;
+  FswThrPulseRoundIn& in = f.in;
+  FswThrPulseRoundOut& out = f.out;
   in.F[0] = static_cast<R>(0.1);
-  FswThrPulseRoundOut out;
   const double want_on[] = {0, 0.25, 0, 0.25, 0};
   const double want_r[] = {0.1, -0.05, 0.05, -0.1, 0.0};
   for (int k = 0; k < 5; k++) {
@@ -335,14 +348,11 @@ struct CarryStep {
 // must be exactly the expected value and never -0.
 void expect_carry_sequence(std::initializer_list<CarryStep> steps)
 {
-  FswThrPulseRoundConfig c = basilisk_defaults(1);
-  c.resolution = static_cast<R>(0.25);
-  c.carry_residual = 1;
-  FswThrPulseRoundState st;
-  ASSERT_EQ(FSW_OK, fsw_thr_pulse_round_init(&st, &c));
-  FswThrPulseRoundIn in;
-  std::memset(&in, 0, sizeof in);
-  FswThrPulseRoundOut out;
+  Carry f;
+  const FswThrPulseRoundConfig& c = f.c;
+  FswThrPulseRoundState& st = f.st;
+  FswThrPulseRoundIn& in = f.in;
+  FswThrPulseRoundOut& out = f.out;
   int k = 0;
   for (const CarryStep& step : steps) {
     in.t_ns = uint64_t(k) * 1000000000ull;
