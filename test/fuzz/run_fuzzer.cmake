@@ -1,4 +1,4 @@
-# Runs one libFuzzer harness for a bounded time (called by CTest, see
+# Runs one libFuzzer harness (seed SEED) for a bounded time (called by CTest, see
 # CMakeLists.txt): new inputs go to a scratch folder, the committed seed
 # corpus is only read.  Fails on any finding; the reproducer (crash-*,
 # timeout-*, oom-*) stays in WORK.
@@ -19,7 +19,7 @@ if(REGRESSIONS)
   endif()
 endif()
 execute_process(
-  COMMAND "${FUZZER}" -max_total_time=${SECONDS} -timeout=${TIMEOUT_S}
+  COMMAND "${FUZZER}" -seed=${SEED} -max_total_time=${SECONDS} -timeout=${TIMEOUT_S}
           -rss_limit_mb=${RSS_MB} -malloc_limit_mb=${RSS_MB} -print_final_stats=1
           -artifact_prefix=${WORK}/ "${WORK}/corpus" "${CORPUS}"
   WORKING_DIRECTORY "${WORK}"

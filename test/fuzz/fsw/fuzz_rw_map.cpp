@@ -55,10 +55,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_REQUIRE(fuzz_nonzero_from(out.u_s, n, FSW_MAX_RW) < 0, "rw_map: torque beyond num_rw");
     FUZZ_REQUIRE(fuzz_unavail_nonzero(out.u_s, x.avail, n) < 0, "rw_map: torque on an unavailable wheel");
     // delivered torque along every control axis: c_j . (sum_a g_i u_i) = -c_j . Lr, within 1e-5 of |[C] Lr|
-    // (plus round-off of the terms and a physically-zero floor of 1e-100 N*m)
-    long double req[3] = {0, 0, 0}, got[3] = {0, 0, 0}, scale = 0, rn = 0;
+    // (plus round-off of the delivered terms, round-off of the FSW's own
+    // projection c_j . Lr -- which cancels to ~1e-18 for a request nearly
+    // normal to c_j -- and a physically-zero floor of 1e-100 N*m)
+    long double req[3] = {0, 0, 0}, got[3] = {0, 0, 0}, scale = 0, rn = 0, req_terms[3] = {0, 0, 0};
     for (int j = 0; j < cfg.num_axes; j++) {
-      for (int k3 = 0; k3 < 3; k3++) req[j] -= static_cast<long double>(cfg.ctrl_axes_B[j][k3]) * x.Lr_B[k3];
+      for (int k3 = 0; k3 < 3; k3++) {
+        req[j] -= static_cast<long double>(cfg.ctrl_axes_B[j][k3]) * x.Lr_B[k3];
+        req_terms[j] += std::fabs(static_cast<long double>(cfg.ctrl_axes_B[j][k3]) * x.Lr_B[k3]);
+      }
       for (int i = 0; i < n; i++) {
         if (x.avail[i]) continue;
         long double cg = 0;
@@ -70,7 +75,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     for (int j = 0; j < cfg.num_axes; j++) {
       const double err = static_cast<double>(std::fabs(got[j] - req[j]));
-      FUZZ_REQUIRE(err <= 1e-5 * static_cast<double>(std::sqrt(rn)) + 1e-9 * static_cast<double>(scale) + 1e-100,
+      FUZZ_REQUIRE(err <= 1e-5 * static_cast<double>(std::sqrt(rn)) + 1e-9 * static_cast<double>(scale) +
+                              1e-12 * static_cast<double>(req_terms[j]) + 1e-100,
                    "rw_map: OK but axis %d gets torque %.17Lg instead of %.17Lg", j, got[j], req[j]);
     }
   }
