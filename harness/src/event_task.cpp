@@ -144,9 +144,15 @@ void EventTask::apply(const Act& a, uint64_t t_ns)
       break;
     }
     case EventDevice::Thruster:
-      plant_.set_thruster_health(i, a.action == EventAction::ThrStuckClosed ? sim::ThrusterHealth::FailedOff
-                                    : a.action == EventAction::ThrStuckOpen ? sim::ThrusterHealth::StuckOn
-                                                                            : sim::ThrusterHealth::Nominal);
+      switch (a.action) {
+        case EventAction::ThrStuckClosed: plant_.set_thruster_health(i, sim::ThrusterHealth::FailedOff); break;
+        case EventAction::ThrStuckOpen: plant_.set_thruster_health(i, sim::ThrusterHealth::StuckOn); break;
+        case EventAction::ThrThrustFactor: plant_.set_thruster_thrust_scale(i, a.value); break;
+        default:  // restore
+          plant_.set_thruster_health(i, sim::ThrusterHealth::Nominal);
+          plant_.set_thruster_thrust_scale(i, 1.0);
+          break;
+      }
       break;
     case EventDevice::Fsw:
       switch (a.action) {

@@ -25,7 +25,9 @@ const std::vector<EventActionDef> kWheelActions = {
 const std::vector<EventActionDef> kThrusterActions = {
     {"stuck_closed", EventAction::ThrStuckClosed, EventValue::None, "-", "valve closed: no thrust, requests ignored"},
     {"stuck_open", EventAction::ThrStuckOpen, EventValue::None, "-", "valve open: full thrust, requests ignored"},
-    {"restore", EventAction::Restore, EventValue::None, "-", "valve follows its commands again"},
+    {"thrust_factor", EventAction::ThrThrustFactor, EventValue::Positive, "-",
+     "force, swirl torque and mass flow times value (< 1 degraded; Isp and valve unchanged)"},
+    {"restore", EventAction::Restore, EventValue::None, "-", "valve follows its commands again, thrust factor 1"},
 };
 const std::vector<EventActionDef> kSensorActions = {
     {"dropout", EventAction::SensorDropout, EventValue::Positive, "s",

@@ -19,7 +19,7 @@ enum class EventAction {
   WheelFailOff, WheelTorqueLimit, WheelFriction, TachNan, TachFrozen, TachBias, CommandUnavailable,
   CommandAvailable,
   // thrusters
-  ThrStuckClosed, ThrStuckOpen,
+  ThrStuckClosed, ThrStuckOpen, ThrThrustFactor,
   // sensors (gyro, star tracker, a coarse sun sensor)
   SensorDropout, SensorFrozen,
   // the flight software (a ground/executive command, FswAcsCmdMsg)

@@ -125,6 +125,7 @@ void Plant::set_wheel_health(int i, WheelHealth h)
 }
 
 void Plant::set_thruster_health(int j, ThrusterHealth h) { thr_.set_health(j, h); }
+void Plant::set_thruster_thrust_scale(int j, double s) { thr_.set_thrust_scale(j, s); }
 
 // --------------------------------------------------------------- accessors
 

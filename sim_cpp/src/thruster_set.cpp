@@ -13,11 +13,23 @@
 
 namespace sim {
 
+namespace {
+// A thruster's effect with its force, torque and mass flow times s (exact for s = 1).
+ThrusterEffect scaled(ThrusterEffect e, double s)
+{
+  e.F_B *= s;
+  e.L_B *= s;
+  e.mdot *= s;
+  return e;
+}
+}  // namespace
+
 ThrusterSet::ThrusterSet(std::vector<ThrusterParams> thrusters, int num_tanks,
                          ThrusterCommandParams command)
     : p_(std::move(thrusters)), cmd_(command)
 {
   using namespace detail;
+  scale_.fill(1.0);
   const size_t n_thr = p_.size();
   if (n_thr > static_cast<size_t>(kMaxThrusters))
     fail("thrusters.size()", static_cast<double>(n_thr), "must be <= sim::kMaxThrusters");
@@ -63,7 +75,15 @@ ThrusterEffect ThrusterSet::effect(int j, const StateVector& x, const StateLayou
   const ThrusterParams& p = p_[uj];
   if (health_[uj] == ThrusterHealth::FailedOff) return ThrusterEffect{};
   if (p.tank >= 0 && !(x(L.m_p(p.tank)) > 0.0)) return ThrusterEffect{};  // §5.6 empty tank
-  return thruster_effect(p, kappa(j));
+  return scaled(thruster_effect(p, kappa(j)), scale_[uj]);
+}
+
+void ThrusterSet::set_thrust_scale(int j, double s)
+{
+  if (j < 0 || j >= num_thr()) detail::fail("thruster index", j, "must be in [0, num_thr)");
+  if (!(s >= 0.0) || !std::isfinite(s))
+    detail::fail("thrusters[" + std::to_string(j) + "].thrust_scale", s, "must be finite and >= 0");
+  scale_[static_cast<size_t>(j)] = s;
 }
 
 void ThrusterSet::set_health(int j, ThrusterHealth h)
@@ -125,7 +145,7 @@ void ThrusterSet::accumulate(const EffectorStage& stage, EffectorSums& sums) con
     const ThrusterParams& p = p_[uj];
     if (health_[uj] == ThrusterHealth::FailedOff) continue;
     if (p.tank >= 0 && !(stage.x(stage.layout.m_p(p.tank)) > 0.0)) continue;  // §5.6 empty tank
-    const ThrusterEffect e = thruster_effect(p, stage_kappa(j, stage.t));
+    const ThrusterEffect e = scaled(thruster_effect(p, stage_kappa(j, stage.t)), scale_[uj]);
     sums.F_B += e.F_B;
     sums.L_B += e.L_B;
     if (p.tank >= 0) sums.m_p_dot[static_cast<size_t>(p.tank)] -= e.mdot;

@@ -503,6 +503,46 @@ TEST(Events, ThrusterStuckOpenThenRestored)
   EXPECT_LT(sum / n, 0.5 * F);
 }
 
+// Thrust factor (S2 coast, no burn): acs3 stuck open at 10 s with its thrust
+// factor 0.5 at the same tick: its recorded force follows half the first-order
+// rise, 0.5 F_max (1 - e^{-10 (t - 10)}) <= f <= 0.5 F_max.  Restored at 15 s
+// (factor back to 1) and stuck open again at 20 s: by 21 s the force is past
+// 0.99 F_max, which a factor left at 0.5 could not give.
+TEST(Events, ThrusterThrustFactorThenRestored)
+{
+  const harness::Scenario sc = harness::load_scenario_text(
+      text_of(kDir + "s2_mars_orbit_insertion.yaml") +
+          "\nevents:\n  - {name: half, t: 10, actions: [{device: acs3, action: stuck_open},"
+          " {device: acs3, action: thrust_factor, value: 0.5}]}\n"
+          "  - {t: 15, actions: [{device: acs3, action: restore}]}\n"
+          "  - {t: 20, actions: [{device: acs3, action: stuck_open}]}\n",
+      "ev.yaml",
+      {{"rates.dt", "0.1"}, {"rates.fsw_divisor", "1"}, {"rates.record_divisor", "1"}, {"duration", "22"},
+       {"burn.start", "100"}, {"burn.duration", "10"}});
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 5, actions: [{device: gyro, action: thrust_factor, value: 0.5}]}\n"))
+                .find("a gyro takes one of"),
+            std::string::npos);
+  harness::Run run(sc);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  const harness::MemorySink& r = run.memory();
+  const auto t = r.column("t"), f = r.column("thruster_force_3");  // plant 3 = acs3 (0 is the engine)
+  ASSERT_EQ(sc.thrusters[3].name, "acs3");
+  const double F = sc.thrusters[3].F_max;
+  int n = 0;
+  for (size_t k = 0; k < t.size(); ++k)
+    if (t[k] >= 10.5 && t[k] <= 14.9) {
+      EXPECT_GT(f[k], 0.5 * F * (1.0 - std::exp(-10.0 * (t[k] - 10.0))) - 1e-9) << t[k];
+      EXPECT_LE(f[k], 0.5 * F + 1e-9) << t[k];
+      ++n;
+    }
+  EXPECT_GT(n, 40);
+  for (size_t k = 0; k < t.size(); ++k) {
+    if (t[k] >= 21.0) {
+      EXPECT_GT(f[k], 0.99 * F) << t[k];
+    }
+  }
+}
+
 // An FSW command from an event (device fsw): S1 starts sun-safe; at t = 400 s
 // (the Sun hold settled) the ground commands inertial pointing at
 // fsw.inertial.sigma_R0N.  From the

@@ -309,6 +309,52 @@ TEST(ThrusterEffect, PlantDerivativesApplyTorqueAboutB)
   EXPECT_NEAR((acc.r_ddot_BN_B - Vector3d(22.0 / kMass, 0.0, 0.0)).norm(), 0.0, 1e-16);
 }
 
+// A degraded thruster (Plant::set_thruster_thrust_scale, the event action
+// thrust_factor): force, torque and mass flow all times s, so the derivatives
+// of the test above are s times theirs; a pulse of T at s = 0.5 delivers the
+// impulse of a T/2 pulse at full thrust; s = 1 restores it exactly; a
+// negative or non-finite scale is refused with the field named.
+TEST(ThrusterEffect, ThrustScaleScalesForceTorqueAndMassFlow)
+{
+  sim::ThrusterParams p = axial(sim::ThrusterTransient::Instant);
+  p.r_TjB_B = Vector3d(0.3, -0.2, 1.0);
+  p.t_hat_B = Vector3d(1.0, 0.0, 0.0);
+  p.tau_sw = 0.5;
+  sim::Plant m({test_hub(), one_thruster(p)}, sim::InitialConditions{});
+  m.set_thruster_health(0, sim::ThrusterHealth::StuckOn);
+  m.set_thruster_thrust_scale(0, 0.3);
+  EXPECT_EQ(m.thrusters().thrust_scale(0), 0.3);
+  EXPECT_EQ(m.kappa(0), 1.0);  // the valve is unchanged: the flow is reduced
+  sim::Accelerations acc;
+  m.derivatives(0.0, m.state(), &acc);
+  const Vector3d L(0.5, 22.0, 4.4);  // as above, at full thrust
+  const Vector3d wdot(L.x() / 100.0, L.y() / 120.0, L.z() / 80.0);
+  EXPECT_NEAR((acc.omega_dot_BN_B - 0.3 * wdot).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((acc.r_ddot_BN_B - Vector3d(0.3 * 22.0 / kMass, 0.0, 0.0)).norm(), 0.0, 1e-16);
+  EXPECT_NEAR(m.thruster_effect(0).mdot, 0.3 * 22.0 / (9.80665 * 229.5), 1e-18);
+  m.set_thruster_thrust_scale(0, 1.0);
+  m.derivatives(0.0, m.state(), &acc);
+  EXPECT_NEAR((acc.omega_dot_BN_B - wdot).norm(), 0.0, 1e-15);
+  for (double bad : {-0.1, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    try {
+      m.set_thruster_thrust_scale(0, bad);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("thrusters[0].thrust_scale"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(m.thrusters().thrust_scale(0), 1.0);  // a refused value changes nothing
+
+  // delivered impulse of a 0.0537 s pulse at half thrust
+  sim::PropulsionParams pp = one_thruster(axial(sim::ThrusterTransient::Instant));
+  pp.command.T_sat = std::numeric_limits<double>::infinity();
+  sim::Plant v({test_hub(), pp}, sim::InitialConditions{});
+  v.set_thruster_thrust_scale(0, 0.5);
+  v.command_thrusters(req(0.0537));
+  for (int k = 0; k < 20; ++k) EXPECT_EQ(v.step(10 * kMs), sim::StepStatus::Ok);
+  EXPECT_NEAR(impulse_time(v, 22.0), 0.5 * 0.0537, 1e-12 * 0.0537);
+}
+
 // --------------------------------------------------------- delivered impulse
 
 // Runs one pulse request of T_req at t = 0 and then `n` steps of dt.

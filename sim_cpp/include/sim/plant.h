@@ -102,6 +102,7 @@ class Plant {
   void set_wheel_friction(int i, const WheelFrictionParams& f);  // next step
   void set_wheel_health(int i, WheelHealth h);        // Off: u_s = 0 now and at every latch
   void set_thruster_health(int j, ThrusterHealth h);  // now (see ThrusterHealth)
+  void set_thruster_thrust_scale(int j, double s);    // next derivative; F, L, mdot times s >= 0
 
   // ---------------------------------------------------- accessors (§13)
   const SpacecraftModel& model() const { return model_; }

@@ -35,7 +35,7 @@ struct ThrusterCounters {
 
 class ThrusterSet final : public ForceTorqueEffector {
  public:
-  ThrusterSet() = default;
+  ThrusterSet() { scale_.fill(1.0); }
   // Validates every thruster, the tank indices (< num_tanks or -1) and the
   // command settings (std::invalid_argument names the field).
   ThrusterSet(std::vector<ThrusterParams> thrusters, int num_tanks, ThrusterCommandParams command);
@@ -62,6 +62,11 @@ class ThrusterSet final : public ForceTorqueEffector {
 
   // Takes effect at the time of the last prepare_now (see ThrusterHealth).
   void set_health(int j, ThrusterHealth h);
+  // Degradation (or over-performance) of thruster j: its force, swirl torque
+  // and mass flow are multiplied by s (finite, >= 0; 1 nominal), so its Isp
+  // and valve behaviour are unchanged.  From the next derivative evaluation.
+  void set_thrust_scale(int j, double s);
+  double thrust_scale(int j) const { return scale_[static_cast<size_t>(j)]; }
 
   // ForceTorqueEffector
   void accumulate(const EffectorStage& stage, EffectorSums& sums) const override;
@@ -95,6 +100,7 @@ class ThrusterSet final : public ForceTorqueEffector {
   bool pending_ = false;
   std::array<ValveSchedule, kMaxThrusters> sched_{};
   std::array<ThrusterHealth, kMaxThrusters> health_{};
+  ThrusterArray scale_{};     // [-] thrust scale (set_thrust_scale), 1 nominal
   ThrusterArray kappa_fo_{};  // [-] FirstOrder kappa at the current sub-step start / now
   int64_t t0_ns_ = 0;         // [ns] current segment start (or now)
   ThrusterArray s_at_t0_{};   // [s] time since each thruster's latch at t0_ns_
