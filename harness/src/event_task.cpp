@@ -174,9 +174,18 @@ void EventTask::apply(const Act& a, uint64_t t_ns)
       const uint64_t until = f != F::Dropout ? 0
                              : a.value < 9e9 ? t_ns + static_cast<uint64_t>(std::llround(a.value * 1e9))
                                              : std::numeric_limits<uint64_t>::max();
-      if (a.target.device == EventDevice::Gyro) sensors_.set_gyro_fault(f, until);
-      else if (a.target.device == EventDevice::StarTracker) sensors_.set_star_tracker_fault(f, until);
-      else sensors_.set_css_fault(i, f, until);
+      const bool scale = a.action == EventAction::SensorNoiseScale, restore = a.action == EventAction::Restore;
+      const double k = scale ? a.value : 1.0;
+      if (a.target.device == EventDevice::Gyro) {
+        if (!scale) sensors_.set_gyro_fault(f, until);
+        if (scale || restore) sensors_.set_gyro_noise_scale(k);
+      } else if (a.target.device == EventDevice::StarTracker) {
+        if (!scale) sensors_.set_star_tracker_fault(f, until);
+        if (scale || restore) sensors_.set_star_tracker_noise_scale(k);
+      } else {
+        if (!scale) sensors_.set_css_fault(i, f, until);
+        if (scale || restore) sensors_.set_css_noise_scale(i, k);
+      }
       break;
     }
   }

@@ -33,7 +33,10 @@ const std::vector<EventActionDef> kSensorActions = {
     {"dropout", EventAction::SensorDropout, EventValue::Positive, "s",
      "no valid output for value seconds (star tracker: att_valid 0; gyro: NaN rates; CSS: unavailable)"},
     {"frozen", EventAction::SensorFrozen, EventValue::None, "-", "the output holds its last value"},
-    {"restore", EventAction::Restore, EventValue::None, "-", "the output follows the sensor again"},
+    {"noise_scale", EventAction::SensorNoiseScale, EventValue::NonNegative, "-",
+     "the model's random-error 1-sigmas times value (gyro ARW and RRW; star tracker cross and boresight; CSS "
+     "sigma)"},
+    {"restore", EventAction::Restore, EventValue::None, "-", "the output follows the sensor again, noise scale 1"},
 };
 const std::vector<EventActionDef> kFswActions = {
     {"mode_inertial", EventAction::FswModeInertial, EventValue::None, "-",
@@ -139,6 +142,8 @@ std::string check_event_action(const Scenario& sc, const EventActionSpec& a, std
                                           d->action == EventAction::TachBias) &&
       !sc.sensors.tachometer.enabled)
     return "'" + a.action + "' needs the tachometers (sensors.tachometer.enabled: true)";
+  if (d->action == EventAction::SensorNoiseScale && !sc.sensors.noise)
+    return "'noise_scale' needs sensor noise (sensors.noise: true)";
   if (tg.device == EventDevice::Fsw) {
     const EventAction x = d->action;
     if (x == EventAction::FswModeSunSafe && sc.sensors.css.normals_B.size() < 3)

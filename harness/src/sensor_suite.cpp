@@ -218,6 +218,22 @@ void SensorSuite::set_tach_fault(int i, Fault f, double bias)
   if (f == Fault::Frozen && tach_) tach_value_[u] = tach_->output().Omega[u];
 }
 
+void SensorSuite::set_gyro_noise_scale(double k)
+{
+  if (gyro_) gyro_->set_noise_scale(k);
+}
+
+void SensorSuite::set_star_tracker_noise_scale(double k)
+{
+  if (st_) st_->set_noise_scale(k);
+}
+
+void SensorSuite::set_css_noise_scale(int i, double k)
+{
+  const size_t u = static_cast<size_t>(i);
+  if (u < css_.size()) css_[u].set_noise_scale(k);
+}
+
 void SensorSuite::set_rw_commanded_unavailable(int i, bool unavailable)
 {
   any_fault_ = true;

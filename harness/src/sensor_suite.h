@@ -41,7 +41,8 @@ class SensorSuite {
   // ---- faults set by scenario events (event_task.cpp, docs/events.md) -------
   // They change what fsw_input() hands the FSW, never the models' own
   // outputs (recorded samples, noise streams): a run whose events never
-  // fire is bit-identical to one without events.
+  // fire is bit-identical to one without events (the noise scales below,
+  // 1 until an event sets them, act in the models).
   enum class Fault { None, Dropout, Frozen, Nan, Bias };
   // Gyro (which 0), star tracker (which 1) or CSS i (which 2): Dropout until
   // t_ns < until_ns; Frozen holds the model's last output (taken now).
@@ -52,6 +53,13 @@ class SensorSuite {
   void set_tach_fault(int i, Fault f, double bias);
   // The executive's availability flag for wheel i (FswAcsSensorMsg.rw_avail).
   void set_rw_commanded_unavailable(int i, bool unavailable);
+  // Random-error scale of the gyro, the star tracker or CSS i (the models'
+  // set_noise_scale; 1 restores).  Unlike the faults above this changes the
+  // model's own output, and so the recorded samples; the draws stay aligned
+  // with the nominal stream.  No model (ideal sensor): nothing to scale.
+  void set_gyro_noise_scale(double k);
+  void set_star_tracker_noise_scale(double k);
+  void set_css_noise_scale(int i, double k);
 
  private:
   struct SensorFault {

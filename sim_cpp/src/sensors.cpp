@@ -41,7 +41,17 @@ void require_name(const std::string& field, const std::string& n)
 
 bool due(int64_t t_ns, int64_t period_ns) { return t_ns % period_ns == 0; }
 
+double checked_noise_scale(const std::string& name, double k)
+{
+  if (!(k >= 0.0) || !std::isfinite(k)) detail::fail(name + ".noise_scale", k, "must be finite and >= 0");
+  return k;
+}
+
 }  // namespace
+
+void Gyro::set_noise_scale(double k) { k_noise_ = checked_noise_scale(p_.name, k); }
+void StarTracker::set_noise_scale(double k) { k_noise_ = checked_noise_scale(p_.name, k); }
+void CoarseSunSensor::set_noise_scale(double k) { k_noise_ = checked_noise_scale(p_.name, k); }
 
 double quantize(double x, double lsb)
 {
@@ -78,9 +88,9 @@ bool Gyro::update(const SensorTruth& truth)
     const double dt_s = static_cast<double>(p_.period_ns) * 1e-9;
     const Vector3d eta = rng_.normal3();
     const Vector3d nu = rng_.normal3();
-    w += b_ + p_.b0 + (p_.sigma_ARW / std::sqrt(dt_s)) * eta;
+    w += b_ + p_.b0 + (k_noise_ * p_.sigma_ARW / std::sqrt(dt_s)) * eta;
     w = w.cwiseProduct(Vector3d::Ones() + p_.scale_error);
-    b_ += (p_.sigma_RRW * std::sqrt(dt_s)) * nu;
+    b_ += (k_noise_ * p_.sigma_RRW * std::sqrt(dt_s)) * nu;
   }
   out_.saturated = false;
   for (int i = 0; i < 3; ++i) {
@@ -118,7 +128,8 @@ bool StarTracker::update(const SensorTruth& truth)
   Matrix3d dcm_CN = p_.dcm_CB * dcm_BN;
   if (noise_) {
     const Vector3d eta = rng_.normal3();
-    const Vector3d delta(p_.sigma_cross * eta.x(), p_.sigma_cross * eta.y(), p_.sigma_bore * eta.z());
+    const double sx = k_noise_ * p_.sigma_cross, sb = k_noise_ * p_.sigma_bore;
+    const Vector3d delta(sx * eta.x(), sx * eta.y(), sb * eta.z());
     dcm_CN = rotation_from_vector(-delta) * dcm_CN;
   }
   out_.q_CN = quaternion_from_dcm(dcm_CN);
@@ -165,7 +176,7 @@ bool CoarseSunSensor::update(const SensorTruth& truth)
   if (p_.k_kelly > kKellyOff) gamma *= 1.0 - std::exp(-gamma * gamma / p_.k_kelly);
   gamma *= solar_flux_scale(truth.r_BN_N, truth.r_SunN_N) * truth.f_illum;
   double signal = gamma + p_.albedo;
-  if (noise_) signal += p_.bias + p_.sigma * rng_.normal();
+  if (noise_) signal += p_.bias + (k_noise_ * p_.sigma) * rng_.normal();
   out_.gamma = gamma;
   out_.y = std::clamp(p_.scale * signal, p_.y_min, p_.y_max);
   out_.t_ns = truth.t_ns;

@@ -543,6 +543,59 @@ TEST(Events, ThrusterThrustFactorThenRestored)
   }
 }
 
+// Gyro noise_scale (S1, noise on, gyro sampled every 0.25 s tick, arw 1e-5
+// rad/sqrt(s), rrw 1e-8): the recorded rate error e = meas - truth changes
+// from row to row by the white noise, RMS sqrt(2) * 1e-5 / sqrt(0.25) = 2.8e-5
+// rad/s.  With the scale at 0 from 3 s the model's random terms vanish (its
+// bias walk stops where it was): e is constant, its row-to-row change only
+// round-off (< 1e-12 rad/s).  Restored at 6 s: the noise is back.  The RMS
+// of n differences spreads by about 1/sqrt(2n) (differences of neighbours
+// are correlated, so take n as half the count): 33 before the event, 144
+// after, i.e. 17 % and 8 %: the 0.5..2 band is over 3 sigma either way.
+TEST(Events, GyroNoiseScaleThenRestored)
+{
+  const harness::Scenario sc = harness::load_scenario_text(
+      s1_with("events:\n"
+              "  - {t: 3, actions: [{device: gyro, action: noise_scale, value: 0}]}\n"
+              "  - {t: 6, actions: [{device: gyro, action: restore}]}\n"),
+      "ev.yaml", fast({{"duration", "18"}}));
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 5, actions: [{device: gyro, action: noise_scale, value: -1}]}\n"))
+                .find("needs a value >= 0"),
+            std::string::npos);
+  harness::Scenario quiet = sc;
+  quiet.sensors.noise = false;
+  EXPECT_THROW(harness::validate_scenario(quiet), harness::ScenarioError);  // nothing to scale
+  harness::Run run(sc);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  const harness::MemorySink& r = run.memory();
+  const auto t = r.column("t");
+  double before = 0.0, during = 0.0, after = 0.0;
+  int nb = 0, na = 0;
+  for (const char* ax : {"x", "y", "z"}) {
+    const auto m = r.column(std::string("meas_omega_BN_B_") + ax), w = r.column(std::string("omega_BN_B_") + ax);
+    for (size_t k = 1; k < t.size(); ++k) {
+      const double de = (m[k] - w[k]) - (m[k - 1] - w[k - 1]);
+      if (t[k - 1] >= 3.0 && t[k] < 6.0) during = std::max(during, std::fabs(de));
+      if (t[k] < 3.0) {
+        before += de * de;
+        ++nb;
+      }
+      if (t[k - 1] >= 6.0) {
+        after += de * de;
+        ++na;
+      }
+    }
+  }
+  const double rms_b = std::sqrt(before / nb), rms_a = std::sqrt(after / na);
+  std::printf("[ figures ] gyro error change RMS %.3g before, max %.3g at scale 0, RMS %.3g restored (expected 2.8e-5)\n",
+              rms_b, during, rms_a);
+  EXPECT_GT(rms_b, 0.5 * 2.83e-5);
+  EXPECT_LT(rms_b, 2.0 * 2.83e-5);
+  EXPECT_LT(during, 1e-12);
+  EXPECT_GT(rms_a, 0.5 * 2.83e-5);
+  EXPECT_LT(rms_a, 2.0 * 2.83e-5);
+}
+
 // An FSW command from an event (device fsw): S1 starts sun-safe; at t = 400 s
 // (the Sun hold settled) the ground commands inertial pointing at
 // fsw.inertial.sigma_R0N.  From the

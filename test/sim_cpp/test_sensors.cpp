@@ -7,6 +7,7 @@
 // from the sample count (stats_test_util.h, 4.5 standard errors).
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -454,3 +455,74 @@ TEST(WheelTachometers, NoiseStatisticsPerWheel)
 }
 
 }  // namespace
+
+// Noise scale (the fault event noise_scale): twins on the same seed and name
+// draw the same normals, so a twin at scale k has k times the random error of
+// the nominal one, sample by sample: gyro (ARW and the bias walk it drives,
+// b0 = 0, no scale error or quantisation: e = b_k + sigma_ARW/sqrt(dt) eta,
+// both linear in k), star tracker (rotation angle k |delta|), CSS (y - s(gamma
+// + b) = s k sigma eta, inside the limits).  Scale 0 mid-run: the gyro error
+// is then its frozen bias walk, constant.  Bad scales are refused by name.
+TEST(SensorNoiseScale, TwinsDifferByTheScaleSampleBySample)
+{
+  sim::SensorContext ctx;
+  ctx.run_seed = 5;
+  sim::GyroParams gp;
+  gp.sigma_ARW = 1e-5;
+  gp.sigma_RRW = 1e-6;
+  gp.period_ns = 100 * kMs;
+  sim::Gyro g1(gp, ctx), g2(gp, ctx);
+  g2.set_noise_scale(2.5);
+  EXPECT_EQ(g2.noise_scale(), 2.5);
+  Vector3d frozen = Vector3d::Zero();
+  for (int k = 0; k < 400; ++k) {
+    const sim::SensorTruth t = truth_at(k * 100 * kMs);
+    ASSERT_TRUE(g1.update(t));
+    ASSERT_TRUE(g2.update(t));
+    const Vector3d e1 = g1.output().omega_PN_P - t.omega_BN_B, e2 = g2.output().omega_PN_P - t.omega_BN_B;
+    if (k < 200) {
+      EXPECT_LT((e2 - 2.5 * e1).norm(), 1e-9 * e1.norm() + 1e-18) << k;
+      if (k == 199) g2.set_noise_scale(0.0);
+    } else {
+      if (k == 200) frozen = e2;  // b_ as left by the last scaled sample
+      EXPECT_LT((e2 - frozen).norm(), 1e-15) << k;
+    }
+  }
+  EXPECT_GT(frozen.norm(), 1e-7);  // the bias walk had moved: a constant, not zero
+
+  sim::StarTrackerParams sp;
+  sp.sigma_cross = 20 * kArcsec;
+  sp.sigma_bore = 100 * kArcsec;
+  sim::StarTracker s1(sp, ctx), s2(sp, ctx);
+  s2.set_noise_scale(2.5);
+  sim::CssParams cp;
+  cp.sigma = 0.01;
+  cp.bias = 0.003;
+  cp.scale = 2.0;
+  sim::CoarseSunSensor c1(cp, ctx), c2(cp, ctx);
+  c2.set_noise_scale(2.5);
+  const sim::SensorTruth base = sun_at_angle_from_z(sim::rad_from_deg(45.0));
+  const Matrix3d CN_true = sp.dcm_CB * simtest::dcm_BN_via_quaternion(base.sigma_BN);
+  const double gb = 2.0 * (std::cos(sim::rad_from_deg(45.0)) + 0.003);  // s (gamma + b)
+  for (int k = 0; k < 100; ++k) {
+    sim::SensorTruth t = base;
+    t.t_ns = k * 1000 * kMs;
+    ASSERT_TRUE(s1.update(t));
+    ASSERT_TRUE(s2.update(t));
+    const double a1 = simtest::dcm_angle(simtest::dcm_BN_via_quaternion(s1.output().sigma_CN) * CN_true.transpose());
+    const double a2 = simtest::dcm_angle(simtest::dcm_BN_via_quaternion(s2.output().sigma_CN) * CN_true.transpose());
+    EXPECT_NEAR(a2, 2.5 * a1, 1e-6 * a1 + 1e-12) << k;
+    c1.update(t);
+    c2.update(t);
+    EXPECT_NEAR(c2.output().y - gb, 2.5 * (c1.output().y - gb), 1e-12) << k;
+  }
+  for (double bad : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    try {
+      c2.set_noise_scale(bad);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("css.noise_scale"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(c2.noise_scale(), 2.5);
+}

@@ -81,10 +81,16 @@ class Gyro {
   const GyroOutput& output() const { return out_; }
   const Eigen::Vector3d& bias_walk() const { return b_; }  // b_k for the next sample [rad/s]
   const GyroParams& params() const { return p_; }
+  // Multiplies the random-error 1-sigmas (a fault event's noise_scale):
+  // finite, >= 0 (std::invalid_argument "<name>.noise_scale"); 1 nominal;
+  // the draws per sample are unchanged, so the stream stays aligned.
+  void set_noise_scale(double k);
+  double noise_scale() const { return k_noise_; }
 
  private:
   GyroParams p_;
   bool noise_;
+  double k_noise_ = 1.0;
   Rng rng_;
   Eigen::Vector3d b_ = Eigen::Vector3d::Zero();
   GyroOutput out_;
@@ -116,10 +122,16 @@ class StarTracker {
   bool update(const SensorTruth& truth);
   const StarTrackerOutput& output() const { return out_; }
   const StarTrackerParams& params() const { return p_; }
+  // Multiplies the random-error 1-sigmas (a fault event's noise_scale):
+  // finite, >= 0 (std::invalid_argument "<name>.noise_scale"); 1 nominal;
+  // the draws per sample are unchanged, so the stream stays aligned.
+  void set_noise_scale(double k);
+  double noise_scale() const { return k_noise_; }
 
  private:
   StarTrackerParams p_;
   bool noise_;
+  double k_noise_ = 1.0;
   Rng rng_;
   StarTrackerOutput out_;
 };
@@ -160,10 +172,16 @@ class CoarseSunSensor {
   bool update(const SensorTruth& truth);
   const CssOutput& output() const { return out_; }
   const CssParams& params() const { return p_; }
+  // Multiplies the random-error 1-sigmas (a fault event's noise_scale):
+  // finite, >= 0 (std::invalid_argument "<name>.noise_scale"); 1 nominal;
+  // the draws per sample are unchanged, so the stream stays aligned.
+  void set_noise_scale(double k);
+  double noise_scale() const { return k_noise_; }
 
  private:
   CssParams p_;
   bool noise_;
+  double k_noise_ = 1.0;
   Rng rng_;
   CssOutput out_;
 };
