@@ -113,6 +113,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
       }
       req[j] = st.C[j][0] * Lr[0] + st.C[j][1] * Lr[1] + st.C[j][2] * Lr[2];
       r[j] -= req[j];
+      // the FSW's own projection c_j . Lr rounds relative to its terms, and
+      // cancels to round-off for a request nearly normal to c_j
+      for (int k3 = 0; k3 < 3; k3++) scale += std::fabs(st.C[j][k3] * Lr[k3]);
     }
     long double rn = 0, qn = 0, vv = 0, rv = 0;
     for (int j = 0; j < 3; j++) {
