@@ -144,6 +144,7 @@ struct PyRun {
     harness::RunConfig cfg;
     cfg.keep_in_memory = true;
     cfg.chunk_rows = 1;  // every row reaches the memory sink at once: results() at any tick
+    cfg.accept_events = true;  // apply_event()
     run = std::make_unique<harness::Run>(sc, std::move(cfg));
   }
   harness::Scenario sc;
@@ -398,49 +399,45 @@ void bind_run(py::module_& m)
           "apply_event",
           [](PyRun& r, const std::string& device, const std::string& action, const py::object& value) {
             std::lock_guard<std::mutex> g(r.mu);
-            int idx = -1;
-            bool wheel = false;
-            for (size_t i = 0; i < r.sc.wheels.size(); ++i)
-              if (r.sc.wheels[i].name == device) {
-                idx = static_cast<int>(i);
-                wheel = true;
-              }
-            for (size_t j = 0; j < r.sc.thrusters.size() && idx < 0; ++j)
-              if (r.sc.thrusters[j].name == device) idx = static_cast<int>(j);
-            if (idx < 0) throw py::value_error("apply_event: no wheel or thruster named '" + device + "'");
-            auto number = [&](const char* what) {
-              if (value.is_none()) throw py::value_error("apply_event: " + action + " takes a value (" + what + ")");
-              if (!(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)))
-                throw py::type_error("apply_event: " + action + " takes a number (" + what + ")");
-              const double v = value.cast<double>();
-              if (!std::isfinite(v) || v < 0) throw py::value_error("apply_event: " + action + ": a finite value >= 0");
-              return v;
-            };
+            harness::EventActionSpec a;
+            a.device = device;
+            a.action = action;
+            a.value = std::numeric_limits<double>::quiet_NaN();  // no value
+            if (!value.is_none()) {
+              if (!(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)) ||
+                  py::isinstance<py::bool_>(value))
+                throw py::type_error("apply_event: " + action + " takes a number as its value");
+              a.value = value.cast<double>();
+              if (std::isnan(a.value)) throw py::value_error("apply_event: " + action + ": the value is NaN");
+            }
+            // a scenario event at this tick boundary, exactly as if the
+            // scenario had listed it (Run::add_event: checked like one, logged
+            // in the results' events and replayed by the run's scenario)
+            const uint64_t k = r.run->tick();
+            harness::EventSpec e;
+            e.name = "py" + std::to_string(r.applied.size() + 1);
+            for (bool taken = true; taken;) {  // unique among the scenario's names
+              taken = false;
+              for (const harness::EventSpec& x : r.run->scenario().events) taken = taken || x.name == e.name;
+              if (taken) e.name += "_";
+            }
+            const double t = static_cast<double>(k * r.sc.tick_ns()) / 1e9;  // as the recorded t
+            e.t = t;
+            e.actions.push_back(a);
+            try {
+              r.run->add_event(e);
+            } catch (const harness::ScenarioError& ex) {
+              throw py::value_error(std::string("apply_event: ") + ex.what());
+            }
             std::string what = device + " " + action;
-            if (wheel && action == "fail_off") r.run->plant().set_wheel_health(idx, sim::WheelHealth::Off);
-            else if (wheel && action == "restore") {
-              r.run->plant().set_wheel_health(idx, sim::WheelHealth::Nominal);
-              r.run->plant().set_wheel_u_max(idx, r.sc.wheels[static_cast<size_t>(idx)].params.u_max);
-            } else if (wheel && action == "torque_limit") {
-              const double v = number("N*m");
-              r.run->plant().set_wheel_u_max(idx, v);
-              what += " " + py::str(py::float_(v)).cast<std::string>();
-            } else if (!wheel && action == "stuck_closed")
-              r.run->plant().set_thruster_health(idx, sim::ThrusterHealth::FailedOff);
-            else if (!wheel && action == "stuck_open")
-              r.run->plant().set_thruster_health(idx, sim::ThrusterHealth::StuckOn);
-            else if (!wheel && action == "restore")
-              r.run->plant().set_thruster_health(idx, sim::ThrusterHealth::Nominal);
-            else
-              throw py::value_error("apply_event: '" + action + "' is not an action of " +
-                                    (wheel ? "a wheel (fail_off, torque_limit, restore)"
-                                           : "a thruster (stuck_closed, stuck_open, restore)"));
-            r.applied.push_back({r.run->tick(), static_cast<double>(r.run->tick()) * r.sc.rates.dt, what});
+            if (!value.is_none()) what += " " + py::str(py::float_(a.value)).cast<std::string>();
+            r.applied.push_back({k, t, what});
           },
           py::arg("device"), py::arg("action"), py::arg("value") = py::none(),
-          "Applies a plant fault now, before the next tick: a wheel (by name) fail_off, torque_limit VALUE [N*m], "
-          "restore; a thruster stuck_closed, stuck_open, restore.  The FSW is not told (as in the scenario's "
-          "events without command_unavailable).  Other event actions: the scenario's events (docs/events.md).")
+          "Applies a scenario event action at this tick boundary (before the next tick): any device and action of "
+          "a scenario's events (docs/events.md), e.g. apply_event('rw2', 'fail_off'), ('rw1', 'torque_limit', 0.05), "
+          "('gyro', 'noise_scale', 3), ('fsw', 'mode_inertial').  Checked like a scenario event (ValueError naming "
+          "the problem); logged in r.applied and in the results' events.")
       .def_property_readonly(
           "applied",
           [](PyRun& r) {

@@ -321,6 +321,8 @@ class RunTest(unittest.TestCase):
         r.step(1000)
         res = r.results()
         self.assertEqual(r.applied, [{"tick": 100, "t": 1.0, "what": "rw2 fail_off"}])
+        # a scenario event of the run: in the results' events like the scenario's own
+        self.assertEqual(res.events, [{"name": "py1", "tick": 100, "t": 1.0, "what": "rw2 fail_off"}])
         before, after = res.t < 1.0 - 1e-9, res.t >= 1.0 - 1e-9
         # rows before the fault: the unfaulted run's, bit for bit
         np.testing.assert_array_equal(res.data[before], self.res.data[before])
@@ -340,6 +342,30 @@ class RunTest(unittest.TestCase):
             r.apply_event("rw1", "torque_limit", float("nan"))
         with self.assertRaises(TypeError):
             r.apply_event("rw1", "torque_limit", "0.1")
+
+    def test_apply_event_sensor_and_fsw_actions(self):
+        # any scenario event action: the gyro's random error off from tick 50
+        # (S1's gyro: white rate noise, so the error of the rate the FSW is
+        # given changes from row to row before; at scale 0 only the frozen
+        # bias walk is left, a constant), and an FSW mode command
+        r = kestrel.Run(self.sc)
+        r.step(50)
+        r.apply_event("gyro", "noise_scale", 0)
+        r.apply_event("fsw", "mode_inertial")
+        r.step(10**9)
+        res = r.results()
+        self.assertEqual([e["what"] for e in res.events], ["gyro noise_scale 0", "fsw mode_inertial"])
+        self.assertEqual([e["tick"] for e in res.events], [50, 50])
+        t = res.t
+        for ax in "xyz":
+            e = res.column("meas_omega_BN_B_" + ax) - res.column("omega_BN_B_" + ax)
+            de = np.abs(np.diff(e))
+            self.assertGreater(de[t[1:] < 0.5 - 1e-9].max(), 1e-7)  # noise of 1e-5/sqrt(dt) rad/s
+            self.assertLess(de[t[:-1] >= 0.5 - 1e-9].max(), 1e-12)
+        with self.assertRaises(ValueError):
+            r.apply_event("gyro", "noise_scale", -1.0)
+        with self.assertRaises(TypeError):
+            r.apply_event("gyro", "noise_scale", True)
 
     def test_bad_input_raises(self):
         r = kestrel.Run(self.sc)
