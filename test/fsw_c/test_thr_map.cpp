@@ -946,21 +946,32 @@ TEST(ThrMapIssue21, RefusedInitClearsAUsedState)
 // request of norm 0.5 epsilon, leave ang_err = 0 (and the forces 0 for the
 // zero request) -- also after a cycle whose angle error was atan(0.5), so
 // the value is not a leftover.
+// A state whose last cycle gave ang_err = atan(0.5) (the request l * (4, 2,
+// 0) of SaturationScalingKeepsDirection on arms scaled by l, threshold 0.5
+// above the angle: no scaling), with in/out ready for the next cycle.
+namespace {
+void start_at_atan_half(FswThrMapState& st, const FswThrMapConfig& c, FswThrMapIn& in, FswThrMapOut& out,
+                        double l)
+{
+  ASSERT_EQ(FSW_OK, fsw_thr_map_init(&st, &c));
+  set3(in.r_CoM_B, 0, 0, 0);
+  set3(in.Lr_B, 4 * l, 2 * l, 0);
+  ASSERT_EQ(FSW_OK, fsw_thr_map_update(&st, &c, &in, &out));
+  expect_forces(out, {4.0, 0.0, 3.0, 1.0, 2.0, 2.0});
+  ASSERT_NEAR(std::atan(0.5), st.ang_err, kt::tol(1e-12, 1e-5));
+}
+}  // namespace
+
 TEST(ThrMapIssue21, RequestAtOrBelowEpsilonHasNoAngleError)
 {
   FswThrMapConfig c = six_axis_cfg();
   c.epsilon = static_cast<R>(1e-3);
   c.ang_err_thresh = static_cast<R>(0.5);
   FswThrMapState st;
-  ASSERT_EQ(FSW_OK, fsw_thr_map_init(&st, &c));
   FswThrMapIn in;
   FswThrMapOut out;
-  set3(in.r_CoM_B, 0, 0, 0);
-  // as in SaturationScalingKeepsDirection: (4, 2, 0), threshold 0.5 above
-  // the angle: ang_err = atan(0.5)
-  set3(in.Lr_B, 4, 2, 0);
-  ASSERT_EQ(FSW_OK, fsw_thr_map_update(&st, &c, &in, &out));
-  ASSERT_NEAR(std::atan(0.5), st.ang_err, kt::tol(1e-12, 1e-5));
+  start_at_atan_half(st, c, in, out, 1.0);
+  if (HasFatalFailure()) return;
   set3(in.Lr_B, 0, 0, 0);
   EXPECT_EQ(FSW_OK, fsw_thr_map_update(&st, &c, &in, &out));
   EXPECT_EQ(0, st.ang_err);
@@ -987,14 +998,10 @@ TEST(ThrMapSeed31337, ErrorAfterTheMapperKeepsThePreviousAngleError)
     for (int k = 0; k < 3; k++) c.r_thr_B[i][k] = static_cast<R>(0.25 * c.r_thr_B[i][k]);
   c.ang_err_thresh = static_cast<R>(0.5);
   FswThrMapState st;
-  ASSERT_EQ(FSW_OK, fsw_thr_map_init(&st, &c));
   FswThrMapIn in;
   FswThrMapOut out;
-  set3(in.r_CoM_B, 0, 0, 0);
-  set3(in.Lr_B, 1, 0.5, 0);
-  ASSERT_EQ(FSW_OK, fsw_thr_map_update(&st, &c, &in, &out));
-  expect_forces(out, {4.0, 0.0, 3.0, 1.0, 2.0, 2.0});
-  ASSERT_NEAR(std::atan(0.5), st.ang_err, kt::tol(1e-12, 1e-5));
+  start_at_atan_half(st, c, in, out, 0.25);
+  if (HasFatalFailure()) return;
   set3(in.Lr_B, 0.99 * static_cast<double>(std::numeric_limits<R>::max()), 0, 0);
   EXPECT_EQ(FSW_E_BAD_INPUT, fsw_thr_map_update(&st, &c, &in, &out));
   for (int i = 0; i < FSW_MAX_THR; i++) EXPECT_EQ(0, out.F[i]);
