@@ -1094,3 +1094,28 @@ TEST(FswAcsCycle, Issue21ErrorCycleKeepsEveryStagesHealthCounters)
   acsfix::thruster_config(g_cfg, FSW_ACS_PULSE_SCHMITT);
   expect_stage_health_after_error_cycle("thrusters, Schmitt pulser");
 }
+
+// Mutation seed 31337 (fsw_acs.c:391): in inertial mode the health message
+// carries the attitude-tracking stage's own status.  A finite attitude of
+// half the real's maximum passes the cycle's finiteness check, but in the
+// tracking stage [BN] = MRP2C(sigma_BN) has |sigma|^2 = Inf, so every entry
+// is Inf / Inf = NaN and omega_RN_B = [BN] * 0 is NaN: the stage refuses it
+// (FSW_E_BAD_INPUT), the guidance stage before it (independent of the
+// sensors) is OK.  The message is zeroed at the start of every cycle, so a
+// TRACK entry of FSW_E_BAD_INPUT can only come from the stage.
+TEST(FswAcsCycle, Seed31337InertialHealthCarriesTheTrackingStatus)
+{
+  acsfix::wheel_config(g_cfg);
+  g_cfg.initial_mode = FSW_ACS_MODE_INERTIAL;
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  EXPECT_EQ(FSW_OK, g_h.stage_status[FSW_ACS_STAGE_TRACK]);
+  sensors_at_rest(g_sens, kPeriodNs);
+  g_sens.sigma_BN[0] = static_cast<fsw_real>(0.5 * static_cast<double>(std::numeric_limits<fsw_real>::max()));
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_EQ(FSW_E_BAD_INPUT, g_h.stage_status[FSW_ACS_STAGE_TRACK]);
+  EXPECT_EQ(FSW_OK, g_h.stage_status[FSW_ACS_STAGE_GUIDANCE]);
+  EXPECT_EQ(1u, g_st.track.health.bad_input);
+  EXPECT_TRUE(all_zero(g_act));
+}

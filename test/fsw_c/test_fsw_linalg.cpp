@@ -1115,3 +1115,32 @@ TEST(FswBoundedMinNorm, Issue21WritesOnlyTheNEntriesOfX)
   for (int j = 0; j < n; j++) EXPECT_NEAR(0.5, double(x[j]), kTol) << j;
   EXPECT_LE(it, 3 * n);
 }
+
+// Mutation seed 31337 (fsw_linalg.c:432): in phase 2 a free variable whose
+// minimum-norm value z lands exactly ON its bound does not block the step
+// (only z < lo or z > hi does): it stays free at the bound.  A = [1 1],
+// b = 2, box [0, 4] x [0, 1]; every number below is exact in binary.
+// Hand trace of the iterations (each inner phase-1 solve and each phase-2
+// pass counts one):
+//  1: phase 1 from x = 0, r = 2, gradients A^T r = (2, 2): the tie goes to
+//     index 0; its least-squares value 2 is inside [0, 4]: x = (2, 0);
+//     np = m = 1 ends phase 1.
+//  2: phase 2, free {0}: lam = 2, z0 = 2 = x0, stationary; x1 at its lower
+//     bound has multiplier A1 lam - lo1 = 2 > 0: released.
+//  3: free {0, 1}: A A^T = 2, c = A x = 2, lam = 1, z = (1, 1).  z1 = 1 is
+//     on hi1 = 1, not beyond: no blocking variable, full step x = (1, 1),
+//     nothing bound to release: done after 3 iterations.
+// x = (1, 1) is the least-norm solution of x0 + x1 = 2 (x0 = x1), inside the
+// box.  Treating z1 = hi1 as blocking would fix x1 at 1 and need a 4th pass
+// to find the same x.
+TEST(FswBoundedMinNorm, Seed31337PhaseTwoValueOnItsBoundDoesNotBlock)
+{
+  const Mat3N A = mat(1, 2, {1.0, 1.0});
+  Box B = box(2, 0, 4);
+  B.hi[1] = 1;
+  const K4Run r = k4(A, {2.0}, 1, 2, B);
+  EXPECT_EQ(FSW_OK, r.s);
+  EXPECT_EQ(1, r.x[0]);  // exact: 2 + 1 * (1 - 2)
+  EXPECT_EQ(1, r.x[1]);
+  EXPECT_EQ(3, r.iter);
+}

@@ -259,3 +259,46 @@ TEST(FswVecIssue21, NonFiniteAndAliasedArguments)
   fsw_m33_copy(m, m);
   EXPECT_EQ(6.0, m[1][2]);
 }
+
+// Mutation seed 31337 (fsw_vec.c:277): the singularity test is relative to
+// the product of all three row norms.  diag(s, 1, 1) with s = 1e-9 has
+// |det| = s and |a0| |a1| |a2| = s, so |det| / scale = 1 > rel_tol = 1e-6:
+// invertible, inverse diag(1/s, 1, 1), however small row 0 is.  A scale
+// that left row 0 out (|a1|^2 |a2| = 1) would call it singular (1e-9 < 1e-6).
+TEST(FswM33Seed31337, SingularityScaleUsesEveryRowNorm)
+{
+  const fsw_real s = FSW_R(1e-9);
+  const fsw_real A[3][3] = {{s, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  fsw_real inv[3][3];
+  ASSERT_EQ(1, fsw_m33_inverse(inv, A, FSW_R(1e-6)));
+  const double want00 = 1.0 / static_cast<double>(s);
+  EXPECT_NEAR(want00, inv[0][0], kTol * want00);
+  EXPECT_EQ(1, inv[1][1]);  // 1*1 / 1, exact
+  EXPECT_EQ(1, inv[2][2]);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      if (i != j) EXPECT_EQ(0, inv[i][j]) << i << "," << j;
+}
+
+// Mutation seed 31337 (fsw_vec.c:278): when the product of the row norms
+// underflows to 0 the relative test has no scale and the matrix is refused
+// (return 0, out = 0), even though the adjugate's determinant did not
+// underflow.  diag(x, x, 1/x) with x = 2^-600 (float: 2^-80): the scale is
+// (x * x) * (1/x) and x * x = 2^-1200 (float 2^-160) is below the smallest
+// subnormal, so it is 0; det = x * (x * (1/x)) = x is not 0 and passes
+// |det| > rel_tol * 0.  Only the 'scale > 0' guard refuses it.
+TEST(FswM33Seed31337, UnderflowedScaleIsRefused)
+{
+  const int e = kt::kFloat ? 80 : 600;
+  const fsw_real x = static_cast<fsw_real>(std::ldexp(1.0, -e));
+  const fsw_real y = static_cast<fsw_real>(std::ldexp(1.0, e));
+  ASSERT_EQ(0, x * x);  // the premise: the norm product underflows
+  ASSERT_NE(0, x * (x * y));
+  const fsw_real A[3][3] = {{x, 0, 0}, {0, x, 0}, {0, 0, y}};
+  fsw_real inv[3][3];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) inv[i][j] = 7;
+  EXPECT_EQ(0, fsw_m33_inverse(inv, A, FSW_R(1e-6)));
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) EXPECT_EQ(0, inv[i][j]) << i << "," << j;
+}

@@ -946,21 +946,32 @@ TEST(ThrMapIssue21, RefusedInitClearsAUsedState)
 // request of norm 0.5 epsilon, leave ang_err = 0 (and the forces 0 for the
 // zero request) -- also after a cycle whose angle error was atan(0.5), so
 // the value is not a leftover.
+// A state whose last cycle gave ang_err = atan(0.5) (the request l * (4, 2,
+// 0) of SaturationScalingKeepsDirection on arms scaled by l, threshold 0.5
+// above the angle: no scaling), with in/out ready for the next cycle.
+namespace {
+void start_at_atan_half(FswThrMapState& st, const FswThrMapConfig& c, FswThrMapIn& in, FswThrMapOut& out,
+                        double l)
+{
+  ASSERT_EQ(FSW_OK, fsw_thr_map_init(&st, &c));
+  set3(in.r_CoM_B, 0, 0, 0);
+  set3(in.Lr_B, 4 * l, 2 * l, 0);
+  ASSERT_EQ(FSW_OK, fsw_thr_map_update(&st, &c, &in, &out));
+  expect_forces(out, {4.0, 0.0, 3.0, 1.0, 2.0, 2.0});
+  ASSERT_NEAR(std::atan(0.5), st.ang_err, kt::tol(1e-12, 1e-5));
+}
+}  // namespace
+
 TEST(ThrMapIssue21, RequestAtOrBelowEpsilonHasNoAngleError)
 {
   FswThrMapConfig c = six_axis_cfg();
   c.epsilon = static_cast<R>(1e-3);
   c.ang_err_thresh = static_cast<R>(0.5);
   FswThrMapState st;
-  ASSERT_EQ(FSW_OK, fsw_thr_map_init(&st, &c));
   FswThrMapIn in;
   FswThrMapOut out;
-  set3(in.r_CoM_B, 0, 0, 0);
-  // as in SaturationScalingKeepsDirection: (4, 2, 0), threshold 0.5 above
-  // the angle: ang_err = atan(0.5)
-  set3(in.Lr_B, 4, 2, 0);
-  ASSERT_EQ(FSW_OK, fsw_thr_map_update(&st, &c, &in, &out));
-  ASSERT_NEAR(std::atan(0.5), st.ang_err, kt::tol(1e-12, 1e-5));
+  start_at_atan_half(st, c, in, out, 1.0);
+  if (HasFatalFailure()) return;
   set3(in.Lr_B, 0, 0, 0);
   EXPECT_EQ(FSW_OK, fsw_thr_map_update(&st, &c, &in, &out));
   EXPECT_EQ(0, st.ang_err);
@@ -968,4 +979,32 @@ TEST(ThrMapIssue21, RequestAtOrBelowEpsilonHasNoAngleError)
   set3(in.Lr_B, 3e-4, 0, 4e-4);  // norm 5e-4 = epsilon / 2
   EXPECT_FALSE(fsw_status_is_error(fsw_thr_map_update(&st, &c, &in, &out)));
   EXPECT_EQ(0, st.ang_err);
+}
+
+// Mutation seed 31337 (thr_map.c:301): a cycle that fails after the mapper
+// ran keeps the previous cycle's angle error ("an error changes no
+// diagnostics").  Six-thruster geometry with the arms scaled by 1/4
+// (thrusters at distance 0.25): [D][D]^T = 2 (1/4)^2 I = I/8.
+// Cycle 1, L = (1, 0.5, 0): F = [D]^T L * 8 = (2,-2,1,-1,0,0), shifted by +2
+// -> (4,0,3,1,2,2) as in SaturationScalingKeepsDirection; the saturated
+// torque (1,0,1,1,1,1) -> (1/4)(1,0,0) makes atan(0.5) with L, below the
+// threshold 0.5: ang_err = atan(0.5), no scaling.
+// Cycle 2, L = (0.99 max, 0, 0): the first pass F_0 = 8 * L_x / 4 = 2 L_x
+// overflows: FSW_E_BAD_INPUT, and ang_err must still be atan(0.5).
+TEST(ThrMapSeed31337, ErrorAfterTheMapperKeepsThePreviousAngleError)
+{
+  FswThrMapConfig c = six_axis_cfg();
+  for (int i = 0; i < 6; i++)
+    for (int k = 0; k < 3; k++) c.r_thr_B[i][k] = static_cast<R>(0.25 * c.r_thr_B[i][k]);
+  c.ang_err_thresh = static_cast<R>(0.5);
+  FswThrMapState st;
+  FswThrMapIn in;
+  FswThrMapOut out;
+  start_at_atan_half(st, c, in, out, 0.25);
+  if (HasFatalFailure()) return;
+  set3(in.Lr_B, 0.99 * static_cast<double>(std::numeric_limits<R>::max()), 0, 0);
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_thr_map_update(&st, &c, &in, &out));
+  for (int i = 0; i < FSW_MAX_THR; i++) EXPECT_EQ(0, out.F[i]);
+  EXPECT_NEAR(std::atan(0.5), st.ang_err, kt::tol(1e-12, 1e-5));
+  EXPECT_EQ(0, st.nnls_iter);  // min-norm mode: never written but by reset
 }
