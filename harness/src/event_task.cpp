@@ -119,6 +119,7 @@ void EventTask::apply(const Act& a, uint64_t t_ns)
       const sim::ReactionWheelParams& p = sc_.wheels[u].params;
       switch (a.action) {
         case EventAction::WheelFailOff: plant_.set_wheel_health(i, sim::WheelHealth::Off); break;
+        case EventAction::WheelStuck: plant_.set_wheel_health(i, sim::WheelHealth::Stuck); break;
         case EventAction::WheelTorqueLimit: plant_.set_wheel_u_max(i, a.value); break;
         case EventAction::WheelFriction: {
           sim::WheelFrictionParams f = p.friction;

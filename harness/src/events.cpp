@@ -9,6 +9,8 @@ namespace harness {
 namespace {
 const std::vector<EventActionDef> kWheelActions = {
     {"fail_off", EventAction::WheelFailOff, EventValue::None, "-", "motor unpowered: no torque (friction still acts)"},
+    {"stuck", EventAction::WheelStuck, EventValue::None, "-",
+     "rotor held at its present speed relative to the body: no motor or friction torque, its momentum stays"},
     {"torque_limit", EventAction::WheelTorqueLimit, EventValue::Positive, "N*m", "motor torque limit u_max reduced to value"},
     {"friction", EventAction::WheelFriction, EventValue::NonNegative, "-",
      "every friction term (Coulomb, static, viscous) times value"},
@@ -20,7 +22,7 @@ const std::vector<EventActionDef> kWheelActions = {
     {"command_available", EventAction::CommandAvailable, EventValue::None, "-",
      "the FSW is told the wheel is available again (rw_avail = 0)"},
     {"restore", EventAction::Restore, EventValue::None, "-",
-     "motor, torque limit, friction and tachometer back to the scenario's values"},
+     "rotor free, motor, torque limit, friction and tachometer back to the scenario's values"},
 };
 const std::vector<EventActionDef> kThrusterActions = {
     {"stuck_closed", EventAction::ThrStuckClosed, EventValue::None, "-", "valve closed: no thrust, requests ignored"},

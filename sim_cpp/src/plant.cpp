@@ -88,7 +88,7 @@ void Plant::latch_wheel_commands(const WheelArray& u_cmd)
 {
   for (int i = 0; i < num_rw(); ++i) {
     const auto ui = static_cast<size_t>(i);
-    held_.wheels.u_s[ui] = wheel_health_[ui] == WheelHealth::Off
+    held_.wheels.u_s[ui] = wheel_health_[ui] != WheelHealth::Nominal
                         ? 0.0
                         : command_pipeline(wheel_params(i), u_cmd[ui], Omega(i));
   }
@@ -119,9 +119,13 @@ void Plant::set_wheel_health(int i, WheelHealth h)
 {
   check_wheel_index(i);
   const int hv = static_cast<int>(h);
-  if (hv < 0 || hv > 1) detail::fail("wheels[" + std::to_string(i) + "].health", hv, "must be Nominal or Off");
-  wheel_health_[static_cast<size_t>(i)] = h;
-  if (h == WheelHealth::Off) held_.wheels.u_s[static_cast<size_t>(i)] = 0.0;
+  if (hv < 0 || hv > 2)
+    detail::fail("wheels[" + std::to_string(i) + "].health", hv, "must be Nominal, Off or Stuck");
+  const auto ui = static_cast<size_t>(i);
+  wheel_health_[ui] = h;
+  if (h != WheelHealth::Nominal) held_.wheels.u_s[ui] = 0.0;
+  held_.wheels.stuck[ui] = h == WheelHealth::Stuck;
+  if (h == WheelHealth::Stuck) held_.wheels.stribeck[ui] = false;  // no friction acts while held
 }
 
 void Plant::set_thruster_health(int j, ThrusterHealth h) { thr_.set_health(j, h); }

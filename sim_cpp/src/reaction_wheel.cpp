@@ -31,6 +31,7 @@ const char* to_string(WheelHealth h)
   switch (h) {
     case WheelHealth::Nominal: return "Nominal";
     case WheelHealth::Off: return "Off";
+    case WheelHealth::Stuck: return "Stuck";
   }
   return "?";
 }

@@ -257,15 +257,22 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
     const WheelStage& s = st[ui];
     const Vector3d& gs = s.ax.gs_hat_B;
     const double Omega = x(layout_.Omega(i));
-    const double u_tot =
-        in.u_s[ui] + sim::friction_torque(w.friction, Omega, in.stribeck[ui]);
+    const bool stuck = in.stuck[ui];  // Omega' = 0: no substitution of the wheel equation
+    const double u_tot = stuck ? 0.0 : in.u_s[ui] + sim::friction_torque(w.friction, Omega, in.stribeck[ui]);
 
     if (w.model != WheelModel::FullyCoupled) {
-      D.noalias() -= (w.J_s * gs) * gs.transpose();
-      v_rot -= gs * u_tot + w.J_s * Omega * omega.cross(gs);
-      a_Omega[ui].setZero();
-      b_Omega[ui] = -gs;
-      c_Omega[ui] = u_tot / w.J_s;
+      if (stuck) {  // the rotor turns with the hub: all of J_s stays in D, no axial torque
+        v_rot -= w.J_s * Omega * omega.cross(gs);
+        a_Omega[ui].setZero();
+        b_Omega[ui].setZero();
+        c_Omega[ui] = 0.0;
+      } else {
+        D.noalias() -= (w.J_s * gs) * gs.transpose();
+        v_rot -= gs * u_tot + w.J_s * Omega * omega.cross(gs);
+        a_Omega[ui].setZero();
+        b_Omega[ui] = -gs;
+        c_Omega[ui] = u_tot / w.J_s;
+      }
       if (w.model == WheelModel::SimpleJitter) {
         const double Omega2 = Omega * Omega;
         const Vector3d F_s = w.U_s * Omega2 * s.ax.w2_hat_B;
@@ -288,13 +295,23 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
     const Vector3d& r_Wc = s.r_WcB_B;
 
     const double md = mw * d;
+    const Vector3d Iw_gs = w.J_s * gs + dv.J13 * w3;  // [Iw_B] gs (fill_stages)
+    if (stuck) {  // the terms of the wheel equation's substitution all carry Omega': none
+      a_Omega[ui].setZero();
+      b_Omega[ui].setZero();
+      c_Omega[ui] = 0.0;
+      const double Omega2 = Omega * Omega;
+      v_trans += md * Omega2 * w2;
+      v_rot += md * Omega2 * r_Wc.cross(w2) + (Omega2 * dv.J13) * w2 -
+               omega.cross(Omega * Iw_gs + mw * r_Wc.cross(s.r_WcB_B_prime));
+      continue;
+    }
     const double inv_J = 1.0 / J_bar;
     const double kA = md * inv_J;
     a_Omega[ui] = -kA * w3;
     b_Omega[ui] = -gs - inv_J * (dv.J13 * w3 + md * r_W.cross(w3));
     c_Omega[ui] = inv_J * (omega_2 * omega_3 * (dv.J_t - dv.J_g - md * d) - dv.J13 * omega_2 * omega_s -
                            md * w3.dot(omega.cross(omega.cross(r_W))) + u_tot + md * w3.dot(g_B));
-    const Vector3d Iw_gs = w.J_s * gs + dv.J13 * w3;  // [Iw_B] gs (fill_stages)
     const Vector3d q = Iw_gs + md * r_Wc.cross(w3);
 
     // Outer products accumulated in place (noalias: no temporaries).

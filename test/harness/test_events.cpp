@@ -468,6 +468,44 @@ TEST(Events, SensorAndWheelActionsInTheFswInput)
   EXPECT_NE(ox[k6], ox[k6 + 3]);
 }
 
+// Wheel stuck at its speed (S1 fast, balanced wheels): rw3 is held at 5 s and
+// freed at 12 s.  Its recorded speed stays exactly the value at 5 s (the
+// plant integrates Omega' = 0) and its motor torque is 0 while held although
+// the FSW, not told, keeps commanding it; once freed its speed moves again.
+TEST(Events, WheelStuckThenRestored)
+{
+  const harness::Scenario sc = harness::load_scenario_text(
+      s1_with("events:\n"
+              "  - {t: 5, actions: [{device: rw3, action: stuck}]}\n"
+              "  - {t: 12, actions: [{device: rw3, action: restore}]}\n"),
+      "ev.yaml", fast({{"duration", "30"}}));
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 5, actions: [{device: rw3, action: stuck, value: 1}]}\n"))
+                .find("takes no value"),
+            std::string::npos);
+  harness::Run run(sc);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  const harness::MemorySink& r = run.memory();
+  const auto t = r.column("t"), w = r.column("wheel_speed_rpm_2"), u = r.column("wheel_torque_2"),
+             c = r.column("wheel_cmd_2");
+  size_t k5 = 0;
+  while (t[k5] < 5.0) ++k5;
+  bool commanded = false, moved_before = false, moved_after = false;
+  for (size_t k = 1; k < t.size(); ++k) {
+    if (t[k] > 5.0 && t[k] <= 12.0) {
+      EXPECT_EQ(w[k], w[k5]) << t[k];
+      commanded = commanded || c[k] != 0.0;
+    }
+    if (t[k] > 5.25 && t[k] <= 12.0) {
+      EXPECT_EQ(u[k], 0.0) << t[k];
+    }
+    if (t[k] <= 5.0) moved_before = moved_before || w[k] != w[k - 1];
+    if (t[k] > 12.5) moved_after = moved_after || w[k] != w[k - 1];
+  }
+  EXPECT_TRUE(commanded);
+  EXPECT_TRUE(moved_before);
+  EXPECT_TRUE(moved_after);
+}
+
 // Thruster stuck open, then restored (S2 coast, no burn): from the event the
 // valve is open whatever the FSW asks, the force rising to F_max with the
 // first-order transient (omega_on = 10 rad/s: 1 - e^-10 of F_max after 1 s);

@@ -176,6 +176,39 @@ TEST(Conservation, MixedBalancedAndFullyCoupledWheels)
   EXPECT_LT(d.E_orb, 1e-12);
 }
 
+// A wheel stuck at its speed (WheelHealth::Stuck): the bearing torque that
+// holds Omega' = 0 is internal, so H_C stays a constant of motion (1e-12 as
+// the other cases), while the rotor's relative speed stays exactly what it
+// was.  The other wheels coast (motors off); the vehicle tumbles, so a free
+// rotor's Omega would move (Omega' = -g . omega' for a balanced wheel): by
+// at least 1e-6 rad/s here.  Per model: balanced, fully coupled.
+TEST(Conservation, StuckWheelKeepsItsSpeedAndTheMomentum)
+{
+  for (WheelModel model : {WheelModel::Balanced, WheelModel::FullyCoupled}) {
+    sim::Plant sc({vehicle(model), {}}, simtest::leo_ic());
+    sim::Plant free_sc({vehicle(model), {}}, simtest::leo_ic());
+    sc.set_wheel_health(1, sim::WheelHealth::Stuck);
+    EXPECT_EQ(sc.wheel_health(1), sim::WheelHealth::Stuck);
+    const double Om1 = sc.Omega(1);
+    const sim::EnergyMomentum e0 = sc.energy_momentum();
+    Drift d;
+    const double dt = model == WheelModel::Balanced ? 1e-3 : 1e-4;
+    for (int k = 0; k < 10000; ++k) {
+      ASSERT_EQ(sc.step(simtest::ns(dt)), sim::StepStatus::Ok);
+      ASSERT_EQ(free_sc.step(simtest::ns(dt)), sim::StepStatus::Ok);
+      ASSERT_EQ(sc.Omega(1), Om1) << k;
+      track(d, e0, sc.energy_momentum());
+    }
+    EXPECT_LT(d.H_C, 1e-12) << sim::to_string(model);
+    EXPECT_LT(d.H_orb, 1e-12) << sim::to_string(model);
+    EXPECT_GT(std::abs(free_sc.Omega(1) - Om1), 1e-6) << sim::to_string(model);
+    // freed again: the wheel equation is back (its speed moves from here)
+    sc.set_wheel_health(1, sim::WheelHealth::Nominal);
+    for (int k = 0; k < 1000; ++k) ASSERT_EQ(sc.step(simtest::ns(dt)), sim::StepStatus::Ok);
+    EXPECT_NE(sc.Omega(1), Om1) << sim::to_string(model);
+  }
+}
+
 // SimpleJitter with zero imbalance is exactly Balanced, so it conserves too.
 TEST(Conservation, SimpleJitterWithoutImbalanceConserves)
 {

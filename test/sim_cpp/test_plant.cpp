@@ -158,6 +158,41 @@ TEST(PlantSetters, WheelOffIgnoresCommandsAndSpinsDownUnderFriction)
   EXPECT_EQ(plant.u_s(0), 0.05);
 }
 
+// A stuck balanced wheel turns with the hub: the vehicle is then a gyrostat
+// with the constant rotor momentum h = J_s Omega g and the full inertia I
+// (hub plus the rotor's J_s about g):  I omega' = -omega x (I omega + h).
+// Integrated here by the test's own RK4 at the plant's step, the body rate
+// agrees with the plant's to 1e-12 after 10 s; the gyrostat's 1/2 omega.I
+// omega is conserved (omega . (omega x ...) = 0); commands are ignored.
+TEST(PlantSetters, StuckWheelMakesTheVehicleAGyrostat)
+{
+  OneWheel s = one_wheel();
+  s.sc.wheels[0].friction.tau_c = 1e-3;  // friction acts no more while held
+  sim::InitialConditions ic;
+  ic.omega_BN_B = Vector3d(0.05, -0.03, 0.02);
+  sim::Plant plant({s.sc, {}}, ic);
+  plant.set_wheel_health(0, sim::WheelHealth::Stuck);
+  sim::WheelArray cmd{};
+  cmd[0] = 0.05;
+  plant.latch_wheel_commands(cmd);
+  EXPECT_EQ(plant.u_s(0), 0.0);
+  const Matrix3d I = Vector3d(10.0, 12.0, s.I_zz).asDiagonal();  // hub I_hBc_B: it holds the rotor's J_s
+  const Vector3d h = s.J_s * 20.0 * Vector3d::UnitZ();
+  const auto f = [&](const Vector3d& w) -> Vector3d { return I.inverse() * (-w.cross(I * w + h)); };
+  Vector3d w = ic.omega_BN_B;
+  const double T0 = 0.5 * w.dot(I * w), dt = 0.01;
+  for (int k = 0; k < 1000; ++k) {
+    const Vector3d k1 = f(w), k2 = f(w + 0.5 * dt * k1), k3 = f(w + 0.5 * dt * k2), k4 = f(w + dt * k3);
+    w += dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    ASSERT_EQ(plant.step(10 * kMs), sim::StepStatus::Ok);
+  }
+  EXPECT_EQ(plant.Omega(0), 20.0);
+  EXPECT_LT((plant.omega_BN_B() - w).norm(), 1e-12);
+  EXPECT_GT((w - ic.omega_BN_B).norm(), 1e-3);  // the gyrostat did move
+  const Vector3d wp = plant.omega_BN_B();
+  EXPECT_NEAR(0.5 * wp.dot(I * wp), T0, 1e-12 * T0);
+}
+
 // Lowering u_max keeps the held torque (zero-order hold) and clips the next latch.
 TEST(PlantSetters, LoweringUMaxClipsTheNextLatch)
 {

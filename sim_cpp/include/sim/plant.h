@@ -100,7 +100,7 @@ class Plant {
   void set_wheel_u_max(int i, double u_max);          // [N*m]   next latch; <= 0: unlimited
   void set_wheel_Omega_max(int i, double Omega_max);  // [rad/s] next latch; <= 0: none
   void set_wheel_friction(int i, const WheelFrictionParams& f);  // next step
-  void set_wheel_health(int i, WheelHealth h);        // Off: u_s = 0 now and at every latch
+  void set_wheel_health(int i, WheelHealth h);        // Off, Stuck: u_s = 0 now and at every latch
   void set_thruster_health(int j, ThrusterHealth h);  // now (see ThrusterHealth)
   void set_thruster_thrust_scale(int j, double s);    // next derivative; F, L, mdot times s >= 0
 

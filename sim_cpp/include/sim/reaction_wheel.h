@@ -34,7 +34,10 @@ struct WheelFrictionParams {
 // Health of a wheel, set by the Plant between steps (faults/events).
 enum class WheelHealth {
   Nominal,  // commands go through the §4.3 pipeline
-  Off       // motor unpowered: u_s forced to 0 at once and at every latch; friction still acts
+  Off,      // motor unpowered: u_s forced to 0 at once and at every latch; friction still acts
+  Stuck     // rotor held at its present speed relative to the hub (a speed-locked rotor): the
+            // bearing carries whatever axial torque keeps Omega' = 0; motor and friction do not
+            // act (u_s 0 as for Off); the rotor's spin momentum, imbalance and inertia remain
 };
 
 const char* to_string(WheelHealth h);

@@ -75,6 +75,8 @@ struct InitialConditions {  // given for the mass centre C (§1)
 struct WheelInputs {
   WheelArray u_s{};                         // [N*m] (num_rw) motor torque after §4.3
   std::array<bool, kMaxWheels> stribeck{};  // [-]   (num_rw) friction mode flag S (§4.6)
+  std::array<bool, kMaxWheels> stuck{};     // [-]   (num_rw) rotor held at its speed: Omega' = 0
+                                            //       (WheelHealth::Stuck; docs/dynamics.md)
 };
 
 // Total external force and torque on the hub at one derivative evaluation
