@@ -130,7 +130,11 @@ constexpr double kSpanRelTol = 1e-3;  // [-]
 std::string span_problem(const Eigen::Matrix<double, 3, Eigen::Dynamic>& A)
 {
   if (A.cols() == 0) return "there are none";
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullU);
+  // fewer than 3 columns (one or two ACS thrusters): zero columns added
+  // leave the span unchanged and give the SVD its 3 singular values
+  Eigen::MatrixXd A3 = Eigen::MatrixXd::Zero(3, std::max<Eigen::Index>(3, A.cols()));
+  A3.leftCols(A.cols()) = A;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A3, Eigen::ComputeFullU);
   const Eigen::Vector3d s = svd.singularValues();
   if (!(s(0) > 0.0)) return "all are zero";
   if (s(2) >= kSpanRelTol * s(0)) return "";
