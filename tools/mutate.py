@@ -112,6 +112,16 @@ def run(cmd, cwd, timeout):
         return None, "timeout"
 
 
+def write_csv(path, rows):
+    """Write the CSV whole, through a temporary file renamed into place."""
+    tmp = path + ".tmp"
+    with open(tmp, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=["file", "line", "op", "original", "mutant", "result", "equivalent"])
+        w.writeheader()
+        w.writerows(rows)
+    os.replace(tmp, path)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--sample", type=int, default=100, help="mutants to run (default 100)")
@@ -213,12 +223,10 @@ def main():
             m["equivalent"] = "identical text (the mutation does not change the line)"
         print(f"[{i}/{len(sample)}] {m['result']:9s} {m['file']}:{m['line']} {m['op']}: {m['mutant'].strip()}"
               + (f"  (equivalent: {m['equivalent']})" if m["equivalent"] else ""), flush=True)
+        write_csv(a.csv, sample[:i])  # after every mutant: an interrupted run keeps what it measured
     run(["ninja", "-j2", "-C", build], ROOT, 600)  # back to the unmutated build
 
-    with open(a.csv, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=["file", "line", "op", "original", "mutant", "result", "equivalent"])
-        w.writeheader()
-        w.writerows(sample)
+    write_csv(a.csv, sample)
     print(f"\n{'module':28s} {'mutants':>7s} {'killed':>6s} {'surv.':>5s} {'equiv.':>6s} {'still.':>6s}")
     tot = {"n": 0, "k": 0, "s": 0, "e": 0, "b": 0}
     for mod in sorted({m["file"] for m in sample}):
