@@ -81,6 +81,9 @@ FswStatus fsw_acs_config_set_geometry(FswAcsConfig *cfg, const FswAcsGeometry *g
   cfg->rw_volt.num_rw = nw;
   copy_n(cfg->rw_volt.u_max, geo->u_max, nw, FSW_MAX_RW);
   copy_n(cfg->rw_volt.J_s, geo->J_s, nw, FSW_MAX_RW);
+  cfg->speed_filter.num_rw = nw;
+  copy_n(cfg->speed_filter.u_max, geo->u_max, nw, FSW_MAX_RW);
+  copy_n(cfg->speed_filter.J_s, geo->J_s, nw, FSW_MAX_RW);
 
   /* thrusters */
   cfg->has_thrusters = (nt > 0) ? 1 : 0;
@@ -170,6 +173,14 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
       if (cfg->rw_volt.num_rw != n) return fail(bad_field, "rw_volt.num_rw", FSW_E_CONFIG);
       if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->rw_volt.J_s, cfg->mrp_fb.J_s, n))
         return fail(bad_field, "rw_volt.J_s", FSW_E_CONFIG);
+    }
+    if (!is_bool(cfg->use_speed_filter)) return fail(bad_field, "use_speed_filter", FSW_E_CONFIG);
+    if (cfg->use_speed_filter) {
+      if ((s = fsw_rw_speed_filter_check(&cfg->speed_filter)) != FSW_OK)
+        return fail(bad_field, "speed_filter", s);
+      if (cfg->speed_filter.num_rw != n) return fail(bad_field, "speed_filter.num_rw", FSW_E_CONFIG);
+      if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->speed_filter.J_s, cfg->mrp_fb.J_s, n))
+        return fail(bad_field, "speed_filter.J_s", FSW_E_CONFIG);
     }
   } else if (cfg->mrp_fb.num_rw != 0) {
     return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG); /* wheels in H but no wheel chain */
@@ -269,6 +280,8 @@ FswStatus fsw_acs_init(FswAcsState *st, const FswAcsConfig *cfg, const char **ba
     }
     ACS_INIT(fsw_rw_sat_init(&st->rw_sat, &cfg->rw_sat), "rw_sat");
     if (cfg->use_volt) ACS_INIT(fsw_rw_volt_init(&st->rw_volt, &cfg->rw_volt), "rw_volt");
+    if (cfg->use_speed_filter)
+      ACS_INIT(fsw_rw_speed_filter_init(&st->speed_filter, &cfg->speed_filter), "speed_filter");
   }
   if (cfg->has_thrusters) {
     ACS_INIT(fsw_thr_map_init(&st->thr_map, &cfg->thr_map), "thr_map");
@@ -297,7 +310,9 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg)
     fsw_rw_map_reset(&st->rw_map);
     if (cfg->use_null) fsw_rw_null_reset(&st->rw_null);
     fsw_rw_sat_reset(&st->rw_sat);
+    if (cfg->use_speed_filter) fsw_rw_speed_filter_reset(&st->speed_filter);
   }
+  st->work.u_last_valid = 0u;
   reset_dynamic(st, cfg);
   st->mode = cfg->initial_mode;
   st->actuation = cfg->initial_actuation;
@@ -343,6 +358,15 @@ static FswStatus combine(FswStatus acc, FswStatus s)
 
 static FswStatus finish(FswAcsState *st, FswAcsHealthMsg *h, FswStatus s)
 {
+  int i;
+  /* the speed filter's verdicts as they stand (all 0 when it is not used:
+   * init clears the whole state) */
+  h->rw_failed = 0u;
+  h->rw_latched = 0u;
+  for (i = 0; i < FSW_MAX_RW; i++) {
+    if (st->speed_filter.failed[i]) h->rw_failed |= (uint64_t)1u << i;
+    if (st->speed_filter.latched[i]) h->rw_latched |= (uint64_t)1u << i;
+  }
   h->status = fsw_health_record(&st->health, s);
   h->safe_output = (uint8_t)(fsw_status_is_error(s) ? 1 : 0);
   h->mode = st->mode;
@@ -404,8 +428,8 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   const fsw_real *u;
 
   fsw_v3_copy(w->map_in.Lr_B, Lr_B);
-  fsw_vn_copy(w->map_in.Omega, sens->Omega, n);
-  u8_copy(w->map_in.avail, sens->rw_avail, n);
+  fsw_vn_copy(w->map_in.Omega, w->Omega, n);
+  u8_copy(w->map_in.avail, w->rw_avail, n);
   s = fsw_rw_map_update(&st->rw_map, &cfg->rw_map, &w->map_in, &w->map_out);
   h->stage_status[FSW_ACS_STAGE_RW_MAP] = s;
   acc = combine(acc, s);
@@ -413,8 +437,8 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
 
   if (cfg->use_null) {
     fsw_vn_copy(w->null_in.u_s, u, n);
-    fsw_vn_copy(w->null_in.Omega, sens->Omega, n);
-    u8_copy(w->null_in.avail, sens->rw_avail, n);
+    fsw_vn_copy(w->null_in.Omega, w->Omega, n);
+    u8_copy(w->null_in.avail, w->rw_avail, n);
     s = fsw_rw_null_update(&st->rw_null, &cfg->rw_null, &w->null_in, &w->null_out);
     h->stage_status[FSW_ACS_STAGE_RW_NULL] = s;
     acc = combine(acc, s);
@@ -422,7 +446,7 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   }
 
   fsw_vn_copy(w->sat_in.u_s, u, n);
-  u8_copy(w->sat_in.avail, sens->rw_avail, n);
+  u8_copy(w->sat_in.avail, w->rw_avail, n);
   s = fsw_rw_sat_update(&st->rw_sat, &cfg->rw_sat, &w->sat_in, &w->sat_out);
   h->stage_status[FSW_ACS_STAGE_RW_SAT] = s;
   acc = combine(acc, s);
@@ -430,9 +454,9 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
 
   if (cfg->use_volt) {
     fsw_vn_copy(w->volt_in.u_s, w->sat_out.u_s, n);
-    fsw_vn_copy(w->volt_in.Omega, sens->Omega, n);
+    fsw_vn_copy(w->volt_in.Omega, w->Omega, n);
     w->volt_in.has_Omega = 1;
-    u8_copy(w->volt_in.avail, sens->rw_avail, n);
+    u8_copy(w->volt_in.avail, w->rw_avail, n);
     w->volt_in.t_ns = sens->t_ns;
     s = fsw_rw_volt_update(&st->rw_volt, &cfg->rw_volt, &w->volt_in, &w->volt_out);
     h->stage_status[FSW_ACS_STAGE_RW_VOLT] = s;
@@ -489,6 +513,7 @@ static void save_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   if (cfg->has_wheels && cfg->use_volt) w->saved.rw_volt = st->rw_volt;
   if (cfg->has_wheels && cfg->use_null)
     for (i = 0; i < FSW_MAX_RW; i++) w->saved.null_avail[i] = st->rw_null.proj.avail[i];
+  if (cfg->has_wheels && cfg->use_speed_filter) w->saved.speed_filter = st->speed_filter;
   if (cfg->has_thrusters) {
     w->saved.thr_ang_err = st->thr_map.ang_err;
     w->saved.thr_nnls_iter = st->thr_map.nnls_iter;
@@ -522,6 +547,11 @@ static void restore_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
     st->rw_volt.health = hh;
   }
   if (cfg->has_wheels && cfg->use_null) (void)fsw_rw_proj_refresh(&st->rw_null.proj, w->saved.null_avail);
+  if (cfg->has_wheels && cfg->use_speed_filter) {
+    hh = st->speed_filter.health;
+    st->speed_filter = w->saved.speed_filter;
+    st->speed_filter.health = hh;
+  }
   if (cfg->has_thrusters) {
     st->thr_map.ang_err = w->saved.thr_ang_err;
     st->thr_map.nnls_iter = w->saved.thr_nnls_iter;
@@ -545,6 +575,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   FswAttGuid guid;
   const fsw_real *Lr;
   int req_mode, req_act, i;
+  uint8_t u_known;
 
   FSW_ASSERT(st != NULL && cfg != NULL && sens != NULL && act != NULL && h != NULL);
   if (act != NULL) safe_output(act);
@@ -559,6 +590,10 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   }
   if (!st->ready) return finish(st, h, FSW_E_NOT_INIT);
   w = &st->work;
+  /* Whether last call's wheel torque held until now; from here on, until
+   * this cycle succeeds with wheels active, the next call cannot know. */
+  u_known = w->u_last_valid;
+  w->u_last_valid = 0u;
 
   /* 1. Everything that can be wrong with the inputs is checked before any
    *    stage runs, so a bad cycle advances no state at all. */
@@ -586,7 +621,9 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   if (cfg->has_wheels) {
     for (i = 0; i < cfg->rw_map.num_rw; i++)
       if (sens->rw_avail[i] > FSW_UNAVAILABLE) return finish(st, h, FSW_E_BAD_INPUT);
-    if (!avail_finite(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw))
+    /* with the speed filter, a non-finite speed is one wheel's fault (it
+     * fails that wheel), not bad input of the cycle */
+    if (!cfg->use_speed_filter && !avail_finite(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw))
       return finish(st, h, FSW_E_BAD_INPUT);
   }
   if (req_act == FSW_ACS_ACT_THRUSTERS && !fsw_v3_is_finite(sens->r_CoM_B))
@@ -604,6 +641,27 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     if (st->mode_changes < UINT32_MAX) st->mode_changes++;
   }
 
+  /* 2b. Wheel speeds and availability for every stage: screened by the
+   *     speed filter (in either actuation; the torque it is told of is
+   *     last cycle's, known only after a good cycle with wheels active). */
+  if (cfg->has_wheels) {
+    const int n = cfg->rw_map.num_rw;
+    if (cfg->use_speed_filter) {
+      fsw_vn_copy(w->filt_in.Omega_meas, sens->Omega, n);
+      u8_copy(w->filt_in.avail, sens->rw_avail, n);
+      w->filt_in.t_ns = sens->t_ns;
+      fsw_vn_copy(w->filt_in.u_applied, w->u_last, n);
+      w->filt_in.u_valid = u_known;
+      s = fsw_rw_speed_filter_update(&st->speed_filter, &cfg->speed_filter, &w->filt_in, &w->filt_out);
+      acc = combine(acc, s); /* OK: its inputs were validated above */
+      fsw_vn_copy(w->Omega, w->filt_out.Omega, n);
+      u8_copy(w->rw_avail, w->filt_out.avail, n);
+    } else {
+      fsw_vn_copy(w->Omega, sens->Omega, n);
+      u8_copy(w->rw_avail, sens->rw_avail, n);
+    }
+  }
+
   /* 3. Guidance and attitude error. */
   acc = combine(acc, run_guidance(st, cfg, sens, h, &guid));
 
@@ -611,8 +669,8 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   w->fb_in.t_ns = sens->t_ns;
   w->fb_in.guid = guid;
   if (cfg->mrp_fb.num_rw > 0) {
-    fsw_vn_copy(w->fb_in.Omega, sens->Omega, cfg->mrp_fb.num_rw);
-    u8_copy(w->fb_in.rw_avail, sens->rw_avail, cfg->mrp_fb.num_rw);
+    fsw_vn_copy(w->fb_in.Omega, w->Omega, cfg->mrp_fb.num_rw);
+    u8_copy(w->fb_in.rw_avail, w->rw_avail, cfg->mrp_fb.num_rw);
   }
   s = fsw_mrp_fb_update(&st->mrp_fb, &cfg->mrp_fb, &w->fb_in, &w->fb_out);
   h->stage_status[FSW_ACS_STAGE_CONTROL] = s;
@@ -647,5 +705,9 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   }
   fsw_clock_commit(&st->clock, sens->t_ns);
   if (st->cycles < UINT32_MAX) st->cycles++;
+  if (act->wheels_active) {
+    fsw_vn_copy(w->u_last, act->u_s, FSW_MAX_RW);
+    w->u_last_valid = 1u;
+  }
   return finish(st, h, acc);
 }

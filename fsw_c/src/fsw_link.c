@@ -271,6 +271,8 @@ FswStatus fsw_link_encode_health(const FswAcsHealthMsg *m, uint64_t t_ns, uint16
   put_u32(&w, m->health.other_error);
   put_u32(&w, m->health.calls);
   put_u16(&w, status_bits(m->health.last));
+  put_u64(&w, m->rw_failed);
+  put_u64(&w, m->rw_latched);
   return finish_packet(&w, len, err);
 }
 
@@ -428,6 +430,8 @@ FswStatus fsw_link_decode_health(const FswLinkPacket *p, FswAcsHealthMsg *m, Fsw
   out.health.other_error = get_u32(&r);
   out.health.calls = get_u32(&r);
   out.health.last = status_of(get_u16(&r));
+  out.rw_failed = get_u64(&r);
+  out.rw_latched = get_u64(&r);
   memcpy(m, &out, sizeof out);
   return link_ok(err);
 }

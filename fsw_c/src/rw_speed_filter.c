@@ -17,6 +17,9 @@ FswStatus fsw_rw_speed_filter_check(const FswRwSpeedFilterConfig *cfg)
   for (i = 0; i < n; i++)
     if (!isfinite(cfg->noise[i]) || cfg->noise[i] < FSW_R(0.0)) return FSW_E_CONFIG;
   if (cfg->k_reject < 1u || cfg->n_recover < 1u) return FSW_E_CONFIG;
+  if (cfg->n_window > 0u)
+    for (i = 0; i < n; i++)
+      if (!isfinite(cfg->resid_tol[i]) || cfg->resid_tol[i] < FSW_R(0.0)) return FSW_E_CONFIG;
   return FSW_OK;
 }
 
@@ -50,6 +53,14 @@ void fsw_rw_speed_filter_reset(FswRwSpeedFilterState *st)
     st->recover_run[i] = 0u;
     st->has_good[i] = 0u;
     st->failed[i] = 0u;
+    st->latched[i] = 0u;
+    st->last_raw[i] = FSW_R(0.0);
+    st->has_raw[i] = 0u;
+    st->stale_run[i] = 0u;
+    st->win_open[i] = 0u;
+    st->win_Omega0[i] = FSW_R(0.0);
+    st->win_exp[i] = FSW_R(0.0);
+    st->win_count[i] = 0u;
   }
   fsw_clock_reset(&st->clock);
 }
@@ -71,12 +82,67 @@ static void safe_output(const FswRwSpeedFilterState *st, int n, FswRwSpeedFilter
     for (i = 0; i < n; i++) out->Omega[i] = st->has_good[i] ? st->Omega_good[i] : FSW_R(0.0);
   out->rejected = 0u;
   out->failed = 0u;
+  out->latched = 0u;
+}
+
+/* The applied torques are read only by the torque test, and only when valid. */
+static int torques_valid(const FswRwSpeedFilterConfig *cfg, const FswRwSpeedFilterIn *in, int n)
+{
+  int i;
+  if (in->u_valid > 1u) return 0;
+  if (cfg->n_window == 0u || in->u_valid == 0u) return 1;
+  for (i = 0; i < n; i++)
+    if (!(FSW_FABS(in->u_applied[i]) <= FSW_R(2.0) * cfg->u_max[i])) return 0; /* NaN fails too */
+  return 1;
+}
+
+/* Stale test: a finite sample equal to the previous finite one extends the
+ * run; returns 1 when the run reaches n_stale. */
+static int stale(FswRwSpeedFilterState *st, const FswRwSpeedFilterConfig *cfg, int i, fsw_real x)
+{
+  if (!isfinite(x)) return 0; /* the outlier gate handles it; the run is kept */
+  if (st->has_raw[i] && x == st->last_raw[i]) {
+    if (st->stale_run[i] < UINT32_MAX) st->stale_run[i]++;
+  } else {
+    st->stale_run[i] = 0u;
+  }
+  st->last_raw[i] = x;
+  st->has_raw[i] = 1u;
+  return cfg->n_stale > 0u && st->stale_run[i] >= cfg->n_stale;
+}
+
+/* Torque test, after the accept/reject step of this call.  `open_before`:
+ * the window was running before this call (its interval then belongs to
+ * it).  Returns 1 when a closing window's residual exceeds resid_tol. */
+static int torque_inconsistent(FswRwSpeedFilterState *st, const FswRwSpeedFilterConfig *cfg,
+                               const FswRwSpeedFilterIn *in, int i, int accepted, fsw_real dt)
+{
+  if (cfg->n_window == 0u) return 0;
+  if (st->failed[i] || in->u_valid == 0u) st->win_open[i] = 0u; /* torque or speed unknown */
+  if (st->win_open[i]) {
+    st->win_exp[i] += in->u_applied[i] / cfg->J_s[i] * dt;
+    if (st->win_count[i] < UINT32_MAX) st->win_count[i]++;
+  }
+  if (!accepted) return 0; /* the window waits for an accepted sample */
+  if (st->win_open[i] && st->win_count[i] >= cfg->n_window) {
+    const fsw_real r = (st->Omega_good[i] - st->win_Omega0[i]) - st->win_exp[i];
+    if (!(FSW_FABS(r) <= cfg->resid_tol[i])) return 1;
+    st->win_open[i] = 0u; /* closed clean: the next one opens here */
+  }
+  if (!st->win_open[i] && !st->failed[i]) {
+    st->win_open[i] = 1u;
+    st->win_Omega0[i] = st->Omega_good[i];
+    st->win_exp[i] = FSW_R(0.0);
+    st->win_count[i] = 0u;
+  }
+  return 0;
 }
 
 FswStatus fsw_rw_speed_filter_update(FswRwSpeedFilterState *st, const FswRwSpeedFilterConfig *cfg,
                                      const FswRwSpeedFilterIn *in, FswRwSpeedFilterOut *out)
 {
   int n, i;
+  fsw_real dt = FSW_R(0.0);
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
     if (out != NULL) safe_output(st, FSW_MAX_RW, out, 0);
@@ -85,9 +151,11 @@ FswStatus fsw_rw_speed_filter_update(FswRwSpeedFilterState *st, const FswRwSpeed
   n = (cfg->num_rw < 0) ? 0 : (cfg->num_rw > FSW_MAX_RW ? FSW_MAX_RW : cfg->num_rw);
   safe_output(st, n, out, st->ready);
   if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
-  if (!fsw_rw_avail_valid(in->avail, n)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (!fsw_rw_avail_valid(in->avail, n) || !torques_valid(cfg, in, n))
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   {
-    fsw_real dt; /* [s] unused: the consistency test measures from each wheel's own sample */
+    /* dt: the torque window's interval (0 on the first call); the outlier
+     * gate measures from each wheel's own sample */
     const FswStatus s = fsw_clock_dt(&st->clock, in->t_ns, &dt); /* FSW_OK or FSW_E_TIME */
     if (s != FSW_OK) return fsw_health_record(&st->health, s);
   }
@@ -96,13 +164,17 @@ FswStatus fsw_rw_speed_filter_update(FswRwSpeedFilterState *st, const FswRwSpeed
     const fsw_real x = in->Omega_meas[i];
     const int finite = isfinite(x) != 0;
     const uint64_t bit = (uint64_t)1u << i;
-    if (!st->failed[i]) {
+    int accepted = 0;
+    if (st->latched[i]) {
+      /* held until reset: no test, no recovery */
+    } else if (!st->failed[i]) {
       if (finite && (!st->has_good[i] ||
                      consistent(cfg, i, x, st->Omega_good[i], in->t_ns, st->t_good_ns[i]))) {
         st->Omega_good[i] = x;
         st->t_good_ns[i] = in->t_ns;
         st->has_good[i] = 1u;
         st->reject_run[i] = 0u;
+        accepted = 1;
       } else {
         out->rejected |= bit;
         if (st->rejections[i] < UINT32_MAX) st->rejections[i]++;
@@ -131,8 +203,15 @@ FswStatus fsw_rw_speed_filter_update(FswRwSpeedFilterState *st, const FswRwSpeed
         st->has_good[i] = 1u;
       }
     }
+    if (!st->latched[i] &&
+        (stale(st, cfg, i, x) || torque_inconsistent(st, cfg, in, i, accepted, dt))) {
+      st->latched[i] = 1u;
+      st->failed[i] = 1u;
+      st->win_open[i] = 0u;
+    }
     out->Omega[i] = st->Omega_good[i];
     if (st->failed[i]) out->failed |= bit;
+    if (st->latched[i]) out->latched |= bit;
     out->avail[i] = (st->failed[i] || in->avail[i] != FSW_AVAILABLE) ? (uint8_t)FSW_UNAVAILABLE
                                                                      : (uint8_t)FSW_AVAILABLE;
   }

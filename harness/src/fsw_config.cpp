@@ -25,6 +25,7 @@ constexpr FieldKey kFieldKeys[] = {
     {"use_lpf", "fsw"},               {"rw_map", "fsw.rw_map"},
     {"rw_null", "fsw.rw_null"},       {"use_null", "fsw.rw_null"},
     {"Omega_des", "fsw.rw_null.Omega_des"}, {"rw_sat", "wheels"},
+    {"speed_filter", "fsw.speed_filter"}, {"use_speed_filter", "fsw.speed_filter"},
     {"rw_volt", "wheels"},            {"has_wheels", "wheels"},
     {"thr_map", "thrusters"},         {"has_thrusters", "thrusters"},
     {"pulse", "fsw.thr_pulse"},       {"pulser", "fsw.thr_pulse"},
@@ -126,6 +127,15 @@ FswSetup make_fsw_setup(const Scenario& sc, const sim::MassProps& mp)
     a.rw_null.k_null = R(sc.fsw.k_null);
     a.rw_null.scale_to_fit = sc.fsw.rw_null_scale_to_fit ? 1 : 0;
     a.rw_sat.mode = FSW_RW_SAT_SCALE;
+    a.use_speed_filter = sc.fsw.speed_filter ? 1 : 0;
+    a.speed_filter.k_reject = static_cast<uint32_t>(sc.fsw.sf_k_reject);
+    a.speed_filter.n_recover = static_cast<uint32_t>(sc.fsw.sf_n_recover);
+    a.speed_filter.n_stale = static_cast<uint32_t>(sc.fsw.sf_n_stale);
+    a.speed_filter.n_window = static_cast<uint32_t>(sc.fsw.sf_n_window);
+    for (int i = 0; i < n_rw; ++i) {
+      a.speed_filter.noise[i] = R(sc.fsw.sf_noise);
+      a.speed_filter.resid_tol[i] = R(sc.fsw.sf_resid_tol);
+    }
     for (int i = 0; i < n_rw; ++i)
       a.Omega_des[i] = i < static_cast<int>(sc.fsw.Omega_des.size()) ? R(sc.fsw.Omega_des[static_cast<size_t>(i)]) : 0;
   }

@@ -113,6 +113,23 @@ const Section& fsw_section()
                       omega_des(),
                   },
                   {}},
+          Section{"speed_filter",
+                  {
+                      boolean("enabled", KESTREL_FSW(speed_filter)),
+                      real("noise", KESTREL_FSW(sf_noise))
+                          .alt("_rpm", sim::kRadPerSecPerRpm)
+                          .bounds(non_negative("rad/s"))
+                          .unit("rad/s"),
+                      integer("k_reject", 1, 1000000, KESTREL_FSW(sf_k_reject)),
+                      integer("n_recover", 1, 1000000, KESTREL_FSW(sf_n_recover)),
+                      integer("n_stale", 0, 1000000, KESTREL_FSW(sf_n_stale)),
+                      integer("n_window", 0, 1000000, KESTREL_FSW(sf_n_window)),
+                      real("resid_tol", KESTREL_FSW(sf_resid_tol))
+                          .alt("_rpm", sim::kRadPerSecPerRpm)
+                          .bounds(non_negative("rad/s"))
+                          .unit("rad/s"),
+                  },
+                  {}},
           Section{"thr_pulse",
                   {
                       choice<ThrPulseMode>("mode",
@@ -149,6 +166,22 @@ void read_fsw(MapReader r, Scenario& sc)
     // Cross-field checks of a sub-section.
     if (c.name == "rw_null" && f.rw_null && !(f.k_null > 0.0) && !m.has("k_null"))
       m.missing("k_null", "needed when rw_null is enabled");
+    if (c.name == "speed_filter" && f.speed_filter) {
+      // The filter screens a tachometer: there must be one, sampled every
+      // FSW cycle; the stale test needs noise (an ideal reading of a coasting
+      // wheel repeats legitimately), the torque test a tolerance.
+      const TachSpec& t = sc.sensors.tachometer;
+      if (sc.wheels.empty()) m.error_at("enabled", "the speed filter needs wheels");
+      else if (!t.enabled) m.error_at("enabled", "the speed filter needs sensors.tachometer.enabled: true");
+      else if (t.divisor != 0 && t.divisor != sc.rates.fsw_divisor)
+        m.error_at("enabled", "the speed filter needs a tachometer sample every FSW cycle "
+                              "(sensors.tachometer divisor = rates.fsw_divisor)");
+      if (!m.has("noise") && !m.has("noise_rpm")) m.missing("noise", "outlier margin [rad/s], needed when enabled");
+      if (f.sf_n_stale > 0 && !(sc.sensors.noise && t.sigma > 0.0))
+        m.error_at("n_stale", "the stale test needs a noisy tachometer (sensors.noise: true, tachometer sigma > 0)");
+      if (f.sf_n_window > 0 && !m.has("resid_tol") && !m.has("resid_tol_rpm"))
+        m.missing("resid_tol", "torque-window tolerance [rad/s], needed when n_window > 0");
+    }
     if (c.name == "thr_pulse" && f.thr_level_off >= f.thr_level_on)
       m.error_at(m.has("level_off") ? "level_off" : "level_on", "level_off must be < level_on");
     m.finish();

@@ -136,6 +136,16 @@ void declare_telemetry(Recorder& rec, const RecordedChannels& ch, int n_rw, int 
                                   for (int i = 0; i < FSW_ACS_NUM_STAGES; ++i) o[2 + i] = static_cast<double>(h.stage_status[i]);
                                 });
   }
+  if (n_rw > 0)  // the FSW's speed-filter verdicts, 0/1 per wheel (all 0 without the filter)
+    rec.record<FswAcsHealthMsg>(*ch.fsw_health,
+                                {indexed("fsw_rw_failed", "-", "fsw_rw_failed_", n_rw),
+                                 indexed("fsw_rw_latched", "-", "fsw_rw_latched_", n_rw)},
+                                [n_rw](const FswAcsHealthMsg& h, double* o) {
+                                  for (int i = 0; i < n_rw; ++i) {
+                                    o[i] = static_cast<double>((h.rw_failed >> i) & 1u);
+                                    o[n_rw + i] = static_cast<double>((h.rw_latched >> i) & 1u);
+                                  }
+                                });
   if (ch.sun_heading)
     rec.record<SunHeadingMsg>(*ch.sun_heading,
                               {vec3("sun_B", "-", "B"), scalar("valid", "-", "sun_valid"),

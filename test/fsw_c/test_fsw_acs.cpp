@@ -89,6 +89,16 @@ const BadCfg kBadConfigs[] = {
     {"use_volt not boolean", [](FswAcsConfig& c) { c.use_volt = 2; }, "use_volt", FSW_E_CONFIG},
     {"voltage range empty", [](FswAcsConfig& c) { c.use_volt = 1; c.rw_volt.V_max = 0; }, "rw_volt", FSW_E_CONFIG},
     {"voltage wheel count", [](FswAcsConfig& c) { c.use_volt = 1; c.rw_volt.num_rw = 3; }, "rw_volt.num_rw", FSW_E_CONFIG},
+    // issue 14: the speed filter in the chain
+    {"use_speed_filter not boolean", [](FswAcsConfig& c) { c.use_speed_filter = 2; }, "use_speed_filter", FSW_E_CONFIG},
+    {"speed filter k_reject zero", [](FswAcsConfig& c) { c.use_speed_filter = 1; c.speed_filter.n_recover = 3; },
+     "speed_filter", FSW_E_CONFIG},
+    {"speed filter wheel count",
+     [](FswAcsConfig& c) { c.use_speed_filter = 1; c.speed_filter.k_reject = c.speed_filter.n_recover = 3; c.speed_filter.num_rw = 3; },
+     "speed_filter.num_rw", FSW_E_CONFIG},
+    {"speed filter J_s copy differs",
+     [](FswAcsConfig& c) { c.use_speed_filter = 1; c.speed_filter.k_reject = c.speed_filter.n_recover = 3; c.speed_filter.J_s[1] *= 2; },
+     "speed_filter.J_s", FSW_E_CONFIG},
     {"H wheels without a wheel chain",
      [](FswAcsConfig& c) { c.has_wheels = 0; c.has_thrusters = 1; c.initial_actuation = FSW_ACS_ACT_THRUSTERS; },
      "mrp_fb.num_rw", FSW_E_CONFIG},
@@ -739,6 +749,7 @@ void mask_health_and_scratch(FswAcsState& s, const FswAcsState& ref)
   s.rw_null.health = ref.rw_null.health;
   s.rw_sat.health = ref.rw_sat.health;
   s.rw_volt.health = ref.rw_volt.health;
+  s.speed_filter.health = ref.speed_filter.health;
   s.thr_map.health = ref.thr_map.health;
   s.thr_map.work = ref.thr_map.work;
   s.pulse_rem.common.health = ref.pulse_rem.common.health;
@@ -1118,4 +1129,130 @@ TEST(FswAcsCycle, Seed31337InertialHealthCarriesTheTrackingStatus)
   EXPECT_EQ(FSW_OK, g_h.stage_status[FSW_ACS_STAGE_GUIDANCE]);
   EXPECT_EQ(1u, g_st.track.health.bad_input);
   EXPECT_TRUE(all_zero(g_act));
+}
+
+// ---- issue 14: the speed filter in the chain ------------------------------
+
+namespace {
+void speed_filter_on(FswAcsConfig& c, uint32_t k_reject, uint32_t n_window)
+{
+  c.use_speed_filter = 1;
+  c.speed_filter.k_reject = k_reject;
+  c.speed_filter.n_recover = 3;
+  c.speed_filter.n_window = n_window;
+  for (int i = 0; i < 4; i++) {
+    c.speed_filter.noise[i] = acsfix::R(1.0);
+    c.speed_filter.resid_tol[i] = acsfix::R(1e-3);
+  }
+}
+}  // namespace
+
+// Without the filter a NaN speed of an available wheel is bad input (safe
+// output); with it, it is that wheel's outlier: held, then after k_reject = 2
+// cycles the wheel is failed, shows in rw_failed, gets 0 torque, and the
+// three others deliver the requested torque.
+TEST(FswAcsSpeedFilter, ANaNTachometerFailsItsWheelNotTheCycle)
+{
+  acsfix::wheel_config(g_cfg);
+  g_cfg.initial_mode = FSW_ACS_MODE_INERTIAL;
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  g_sens.sigma_BN[0] = acsfix::R(0.01);
+  g_sens.Omega[1] = kNaN;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+
+  speed_filter_on(g_cfg, 2, 0);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  for (int c = 0; c < 4; c++) {
+    sensors_at_rest(g_sens, c * kPeriodNs);
+    g_sens.sigma_BN[0] = acsfix::R(0.01);
+    for (int i = 0; i < 4; i++) g_sens.Omega[i] = acsfix::R(20.0 * i);
+    if (c >= 1) g_sens.Omega[1] = kNaN;
+    const FswStatus s = fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h);
+    ASSERT_FALSE(fsw_status_is_error(s)) << c;
+    EXPECT_EQ(0, g_h.safe_output);
+    EXPECT_EQ(c >= 2 ? 2u : 0u, g_h.rw_failed) << c;
+    EXPECT_EQ(0u, g_h.rw_latched);
+    EXPECT_EQ(g_st.work.Omega[1], acsfix::R(20.0)) << c;  // held, never NaN
+    if (c >= 2) EXPECT_EQ(0, g_act.u_s[1]) << c;
+    else EXPECT_NE(0, g_act.u_s[1]) << c;
+    EXPECT_NEAR(1.0, wheel_torque_alignment(g_act), kt::tol(1e-12, 1e-5)) << c;
+  }
+}
+
+// A tachometer frozen at 10 rad/s under an attitude error of 0.1 (MRP): the
+// commanded torques move every wheel by far more than resid_tol = 1e-3 rad/s
+// over a window of n_window = 3 cycles.  The window opens on the first
+// cycle's sample (k = 0) and closes at k = 3: wheel 2 latched there, not
+// before; the live wheels (speeds following their torque exactly) never.
+// An error cycle at k = 2 leaves the torque of that interval unknown: the
+// window restarts at the retry and the latch comes at k = 5.
+TEST(FswAcsSpeedFilter, AFrozenTachometerUnderTorqueIsLatchedAndAnErrorCycleRestartsTheWindow)
+{
+  for (int with_error = 0; with_error < 2; with_error++) {
+    acsfix::wheel_config(g_cfg);
+    g_cfg.initial_mode = FSW_ACS_MODE_INERTIAL;
+    speed_filter_on(g_cfg, 3, 3);
+    ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+    double Omega[4] = {0.0, 5.0, 10.0, 15.0};
+    const double dt = 1e-9 * static_cast<double>(kPeriodNs);
+    int latched_at = -1;
+    for (int k = 0; k <= 7 && latched_at < 0; k++) {
+      sensors_at_rest(g_sens, k * kPeriodNs);
+      g_sens.sigma_BN[0] = acsfix::R(0.1);
+      g_sens.sigma_BN[1] = acsfix::R(-0.05);
+      for (int i = 0; i < 4; i++) g_sens.Omega[i] = acsfix::R(i == 2 ? 10.0 : Omega[i]);
+      if (with_error && k == 2) {
+        g_sens.omega_BN_B[0] = kNaN;
+        ASSERT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+        EXPECT_EQ(0u, g_st.work.u_last_valid);
+        g_sens.omega_BN_B[0] = acsfix::R(0.0);  // good retry at the same time
+      }
+      ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h))) << k;
+      if (g_h.rw_latched != 0u) {
+        latched_at = k;
+        EXPECT_EQ(4u, g_h.rw_latched);
+        EXPECT_EQ(4u, g_h.rw_failed);
+        EXPECT_EQ(0, g_act.u_s[2]);
+        EXPECT_NEAR(1.0, wheel_torque_alignment(g_act), kt::tol(1e-12, 1e-5));
+      } else {
+        EXPECT_GT(std::fabs(g_act.u_s[2]), 1e-3) << k;  // torqued: the frozen reading cannot hide
+      }
+      // the live wheels follow their torque (J_s from the geometry)
+      for (int i = 0; i < 4; i++)
+        if (i != 2) Omega[i] += g_act.u_s[i] / g_cfg.speed_filter.J_s[i] * dt;
+    }
+    EXPECT_EQ(with_error ? 5 : 3, latched_at);
+  }
+}
+
+// The filter's state is put back on an error cycle like every stage's
+// (health and the work area aside), and reset clears a latched wheel.
+TEST(FswAcsSpeedFilter, ErrorCycleRestoresTheFilterAndResetClearsALatch)
+{
+  acsfix::wheel_config(g_cfg);
+  g_cfg.initial_mode = FSW_ACS_MODE_INERTIAL;
+  speed_filter_on(g_cfg, 2, 0);
+  g_cfg.speed_filter.n_stale = 2;
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  for (int k = 0; k < 3; k++) {  // wheel 0 reads 7.0 three times: latched by the stale test
+    sensors_at_rest(g_sens, k * kPeriodNs);
+    for (int i = 0; i < 4; i++) g_sens.Omega[i] = acsfix::R(i == 0 ? 7.0 : 1.0 + 0.01 * k);
+    ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  }
+  EXPECT_EQ(1u, g_h.rw_latched);
+  g_before = g_st;
+  sensors_at_rest(g_sens, 3 * kPeriodNs);
+  g_sens.Omega[1] = acsfix::R(500.0);  // an outlier the filter would count ...
+  g_sens.omega_BN_B[2] = kNaN;         // ... in a cycle that is bad input
+  ASSERT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_EQ(1u, g_h.rw_latched);  // the health message shows the filter as it stands
+  g_after = g_st;
+  mask_health_and_scratch(g_after, g_before);
+  EXPECT_EQ(0, std::memcmp(&g_before, &g_after, sizeof g_before));
+  fsw_acs_reset(&g_st, &g_cfg);
+  sensors_at_rest(g_sens, 4 * kPeriodNs);
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  EXPECT_EQ(0u, g_h.rw_latched);
+  EXPECT_EQ(0u, g_h.rw_failed);
 }

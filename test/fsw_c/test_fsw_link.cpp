@@ -102,6 +102,8 @@ FswAcsHealthMsg health_msg()
   m.sun_angle_err = R(-0.25);
   m.sun_valid = 1;
   m.num_lit = 5;
+  m.rw_failed = 0x8000000000000005ull;  // bit 63: all 64 bits travel
+  m.rw_latched = 0x4ull;
   m.health.bad_input = 1;
   m.health.bad_time = 2;
   m.health.saturated = 3;

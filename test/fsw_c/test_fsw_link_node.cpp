@@ -284,7 +284,7 @@ TEST(FswLinkStatus, RoundTripsAndChecksItsFields)
   reject(14 + 39, 1, FSW_LINK_E_COUNT);      // reserved byte
   reject(14 + 36, 0x40, FSW_LINK_E_COUNT);   // last_seq 16384 + ...
   reject(1, 0x82, FSW_LINK_E_APID);          // APID 0x182 (health)
-  // wrong length: a health packet's APID changed to 0x183 has 156 bytes
+  // wrong length: a health packet's APID changed to 0x183 has 172 bytes
   FswAcsHealthMsg h{};
   ASSERT_EQ(fsw_link_encode_health(&h, 1, 1, b.data(), b.size(), &len, nullptr), FSW_OK);
   b[1] = 0x83;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "fsw/rw_speed_filter.h"
@@ -289,4 +290,163 @@ INSTANTIATE_TEST_SUITE_P(Wheels, RwSpeedFilterProperties, ::testing::ValuesIn(rw
 TEST(RwSpeedFilterIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("rw_speed_filter", fsw_rw_speed_filter_check, fsw_rw_speed_filter_init, fsw_rw_speed_filter_reset, fsw_rw_speed_filter_update);
+}
+
+// ---- issue 14: the latched stale and torque-consistency tests ------------
+
+TEST(RwSpeedFilterConfig, TorqueToleranceIsCheckedOnlyWhenTheWindowIsOn)
+{
+  Fixture f(2);
+  f.cfg->resid_tol[1] = kNaN;  // torque test off: not read
+  EXPECT_EQ(fsw_rw_speed_filter_check(f.cfg.get()), FSW_OK);
+  f.cfg->n_window = 5;
+  EXPECT_EQ(fsw_rw_speed_filter_check(f.cfg.get()), FSW_E_CONFIG);
+  f.cfg->resid_tol[1] = FSW_R(-0.1);
+  EXPECT_EQ(fsw_rw_speed_filter_check(f.cfg.get()), FSW_E_CONFIG);
+  f.cfg->resid_tol[1] = std::numeric_limits<fsw_real>::infinity();
+  EXPECT_EQ(fsw_rw_speed_filter_check(f.cfg.get()), FSW_E_CONFIG);
+  f.cfg->resid_tol[1] = FSW_R(0.0);  // zero tolerance is allowed
+  EXPECT_EQ(fsw_rw_speed_filter_check(f.cfg.get()), FSW_OK);
+}
+
+// With the torque test on, the applied torques are inputs: not finite or
+// beyond 2 u_max (0.4 N*m) is bad input with no state change; u_valid must
+// be 0/1.  With the test off they are not read.
+TEST(RwSpeedFilterBadInput, AppliedTorqueOutOfRangeIsRejectedWithNoStateChange)
+{
+  Fixture f(2);
+  f.in->u_applied[1] = kNaN;
+  f.in->u_valid = 1;
+  ASSERT_EQ(f.step(0, 100.0), FSW_OK);  // n_window = 0: not read
+  f.cfg->n_window = 4;
+  f.cfg->resid_tol[0] = f.cfg->resid_tol[1] = FSW_R(0.3);
+  ASSERT_EQ(f.init(), FSW_OK);
+  f.in->u_applied[1] = FSW_R(0.0);
+  ASSERT_EQ(f.step(0, 100.0), FSW_OK);
+  const FswRwSpeedFilterState before = *f.st;
+  const fsw_real bad[] = {kNaN, FSW_R(0.41), FSW_R(-0.41), std::numeric_limits<fsw_real>::infinity()};
+  for (fsw_real u : bad) {
+    f.in->u_applied[1] = u;
+    EXPECT_EQ(f.step(kDt, 100.0), FSW_E_BAD_INPUT) << u;
+    EXPECT_EQ(f.out->avail[0], FSW_UNAVAILABLE);
+    EXPECT_EQ(0, std::memcmp(&before.win_exp, &f.st->win_exp, sizeof before.win_exp));
+    EXPECT_EQ(before.clock.t_prev_ns, f.st->clock.t_prev_ns);
+  }
+  f.in->u_applied[1] = FSW_R(0.4);  // 2 u_max exactly: allowed
+  EXPECT_EQ(f.step(kDt, 100.0), FSW_OK);
+  f.in->u_valid = 2;
+  EXPECT_EQ(f.step(2 * kDt, 100.0), FSW_E_BAD_INPUT);
+  f.in->u_applied[1] = kNaN;
+  f.in->u_valid = 0;  // not known: not read
+  EXPECT_EQ(f.step(2 * kDt, 100.0), FSW_OK);
+}
+
+// n_stale = 3: the fourth bit-identical sample in a row (three repeats)
+// fails and latches the wheel; the outlier rule's recovery (n_recover = 3
+// consistent samples) does not bring it back; reset does.  A tachometer
+// that reads 100.5 twice and then moves is not stale.
+TEST(RwSpeedFilterStale, ThreeRepeatsLatchAFrozenTachometerUntilReset)
+{
+  Fixture f(2);
+  f.cfg->n_stale = 3;
+  ASSERT_EQ(f.init(), FSW_OK);
+  const double w0[] = {100.0, 100.5, 100.5, 100.5, 100.6, 100.6, 100.6};
+  for (int k = 0; k < 7; k++) {
+    f.in->Omega_meas[1] = static_cast<fsw_real>(50.0 + 0.1 * k);
+    ASSERT_EQ(f.step(uint64_t(k) * kDt, w0[k]), FSW_OK);
+    EXPECT_EQ(f.out->latched, 0u) << k;
+  }
+  ASSERT_EQ(f.step(7 * kDt, 100.6), FSW_OK);  // third repeat of 100.6
+  EXPECT_EQ(f.out->latched, 1u);
+  EXPECT_EQ(f.out->failed, 1u);
+  EXPECT_EQ(f.out->avail[0], FSW_UNAVAILABLE);
+  EXPECT_EQ(f.out->avail[1], FSW_AVAILABLE);
+  EXPECT_EQ(f.out->Omega[0], FSW_R(100.6));
+  for (int k = 8; k < 20; k++) {  // live, mutually consistent samples again
+    f.in->Omega_meas[1] = static_cast<fsw_real>(50.0 + 0.1 * k);
+    ASSERT_EQ(f.step(uint64_t(k) * kDt, 100.6 + 0.1 * (k - 7)), FSW_OK);
+    EXPECT_EQ(f.out->latched, 1u) << k;
+    EXPECT_EQ(f.out->avail[0], FSW_UNAVAILABLE) << k;
+    EXPECT_EQ(f.out->Omega[0], FSW_R(100.6)) << k;  // held
+  }
+  fsw_rw_speed_filter_reset(f.st.get());
+  ASSERT_EQ(f.step(20 * kDt, 102.0), FSW_OK);
+  EXPECT_EQ(f.out->latched, 0u);
+  EXPECT_EQ(f.out->avail[0], FSW_AVAILABLE);
+  EXPECT_EQ(f.out->Omega[0], FSW_R(102.0));
+}
+
+namespace {
+// Torque test by hand: J_s = 0.02 kg*m^2, u = 0.1 N*m applied, calls every
+// 0.1 s: the speed rises 0.1/0.02*0.1 = 0.5 rad/s per call.  n_window = 5
+// calls, resid_tol = 0.3 rad/s.  The window opens on the first sample (k = 0)
+// and closes clean at k = 5, 10, ...
+struct TorqueFixture : Fixture {
+  TorqueFixture() : Fixture(2)
+  {
+    cfg->n_window = 5;
+    cfg->resid_tol[0] = cfg->resid_tol[1] = FSW_R(0.3);
+    EXPECT_EQ(init(), FSW_OK);
+    in->u_applied[0] = FSW_R(0.1);
+    in->u_applied[1] = FSW_R(0.0);
+    in->u_valid = 1;
+  }
+  FswStatus at(int k, double w0)
+  {
+    in->Omega_meas[1] = FSW_R(-30.0) + static_cast<fsw_real>(k % 2) * FSW_R(0.1);  // idle, noisy
+    return step(uint64_t(k) * kDt, w0);
+  }
+};
+}  // namespace
+
+TEST(RwSpeedFilterTorque, ASpeedThatFollowsTheTorqueWithinToleranceIsNeverLatched)
+{
+  TorqueFixture f;
+  for (int k = 0; k < 100; k++) {  // +-0.1 rad/s alternating noise: residual <= 0.2 < 0.3
+    ASSERT_EQ(f.at(k, 100.0 + 0.5 * k + ((k % 2) ? 0.1 : -0.1)), FSW_OK);
+    ASSERT_EQ(f.out->latched, 0u) << k;
+    ASSERT_EQ(f.out->avail[0], FSW_AVAILABLE) << k;
+  }
+}
+
+// Frozen at 102.5 from k = 5 on: the window opened at k = 5 closes at k = 10
+// with a measured change of 0 against 5 * 0.5 = 2.5 explained: latched at
+// k = 10, not before.  (A motor that does not deliver reads the same way.)
+TEST(RwSpeedFilterTorque, AFrozenReadingUnderTorqueLatchesAtTheWindowsEnd)
+{
+  TorqueFixture f;
+  for (int k = 0; k <= 10; k++) {
+    ASSERT_EQ(f.at(k, k <= 5 ? 100.0 + 0.5 * k : 102.5), FSW_OK);
+    EXPECT_EQ(f.out->latched, k == 10 ? 1u : 0u) << k;
+  }
+  EXPECT_EQ(f.out->failed, 1u);
+  EXPECT_EQ(f.out->avail[0], FSW_UNAVAILABLE);
+  EXPECT_EQ(f.out->rejected, 0u);  // the outlier gate alone never sees it
+  EXPECT_EQ(f.out->Omega[0], FSW_R(102.5));
+}
+
+// An interval with u_valid = 0 (k = 7) restarts the window there: the
+// frozen reading is latched five calls later, at k = 12.
+TEST(RwSpeedFilterTorque, AnUnknownTorqueRestartsTheWindow)
+{
+  TorqueFixture f;
+  for (int k = 0; k <= 12; k++) {
+    f.in->u_valid = (k == 7) ? 0u : 1u;
+    ASSERT_EQ(f.at(k, k <= 5 ? 100.0 + 0.5 * k : 102.5), FSW_OK);
+    EXPECT_EQ(f.out->latched, k == 12 ? 1u : 0u) << k;
+  }
+}
+
+// The residual is signed both ways: a tachometer that runs ahead of the
+// torque (bias ramp, or a motor delivering twice its command) is caught too.
+TEST(RwSpeedFilterTorque, ASpeedRisingTwiceAsFastAsTheTorqueExplainsIsLatched)
+{
+  TorqueFixture f;
+  int latched_at = -1;
+  for (int k = 0; k <= 10 && latched_at < 0; k++) {
+    ASSERT_EQ(f.at(k, 100.0 + 1.0 * k), FSW_OK);  // 1.0 rad/s per call, within the outlier bound
+    EXPECT_EQ(f.out->rejected, 0u);
+    if (f.out->latched) latched_at = k;
+  }
+  EXPECT_EQ(latched_at, 5);  // residual 5.0 - 2.5 = 2.5 > 0.3 at the first window's end
 }

@@ -3,6 +3,8 @@
  * test), wires the modules into
  *   guidance (css_sun -> guid_sunsafe | guid_inertial -> att_track) -> mrp_fb
  *   -> [trq_lpf] -> wheel chain:    rw_map -> [rw_null] -> rw_sat -> [rw_volt]
+ * with the tachometers screened first by [rw_speed_filter] (its speeds and
+ * availability feed mrp_fb and every wheel stage),
  *                -> thruster chain: thr_map -> thr_pulse_rem | thr_pulse_schmitt
  * over the messages of fsw_acs_msgs.h.  See docs/fsw/fsw_acs.md.
  *
@@ -33,6 +35,7 @@
 #include "fsw/rw_map.h"
 #include "fsw/rw_null.h"
 #include "fsw/rw_sat.h"
+#include "fsw/rw_speed_filter.h"
 #include "fsw/rw_volt.h"
 #include "fsw/thr_map.h"
 #include "fsw/thr_pulse_rem.h"
@@ -81,6 +84,10 @@ typedef struct {
   FswTrqLpfConfig lpf;
   /* wheel chain (used when has_wheels = 1) */
   int has_wheels;                  /* [-] 0/1                                       */
+  int use_speed_filter;            /* [-] 0/1: screen the tachometers (outliers, NaN,
+                                      stale and torque-inconsistent readings fail a
+                                      wheel: it is then unavailable to every stage) */
+  FswRwSpeedFilterConfig speed_filter;
   FswRwMapConfig rw_map;
   int use_null;                    /* [-] 0/1: null motion toward Omega_des         */
   FswRwNullConfig rw_null;
@@ -101,6 +108,16 @@ typedef struct {
  * by convention: its layout may change; an integrator reads FswAcsHealthMsg
  * (and the module health counters) instead. */
 typedef struct {
+  FswRwSpeedFilterIn filt_in;
+  FswRwSpeedFilterOut filt_out;
+  fsw_real Omega[FSW_MAX_RW];     /* wheel speeds the stages use (screened or raw)  */
+  uint8_t rw_avail[FSW_MAX_RW];   /* wheel availability the stages use              */
+  /* The wheel torque the last call wrote and whether it was applied over the
+   * whole interval since (a good cycle with wheels active); an error cycle or
+   * a thruster cycle clears u_last_valid, so the speed filter's torque window
+   * restarts.  A record of outputs, not algorithm state: errors change it. */
+  fsw_real u_last[FSW_MAX_RW];
+  uint8_t u_last_valid;
   FswCssSunIn css_in;
   FswCssSunOut css_out;
   FswGuidSunsafeIn sunsafe_in;
@@ -140,6 +157,7 @@ typedef struct {
     FswThrPulseRemState pulse_rem;
     FswThrPulseSchmittState pulse_schmitt;
     uint8_t null_avail[FSW_MAX_RW]; /* rw_null projector mask */
+    FswRwSpeedFilterState speed_filter;
   } saved;
 } FswAcsWork;
 
@@ -160,6 +178,7 @@ typedef struct {
   FswRwNullState rw_null;
   FswRwSatState rw_sat;
   FswRwVoltState rw_volt;
+  FswRwSpeedFilterState speed_filter;
   FswThrMapState thr_map;
   FswThrPulseRemState pulse_rem;
   FswThrPulseSchmittState pulse_schmitt;
@@ -171,7 +190,7 @@ typedef struct {
  *   wheels:    has_wheels = (num_rw > 0); num_rw, gs_hat_B and J_s of mrp_fb
  *              (the wheels in H); num_rw and gs_hat_B of rw_map; num_rw,
  *              gs_hat_B and u_max of rw_null; num_rw and u_max of rw_sat;
- *              num_rw, u_max and J_s of rw_volt;
+ *              num_rw, u_max and J_s of rw_volt and of speed_filter;
  *   thrusters: has_thrusters = (num_thr > 0); num_thr, r_thr_B, gt_hat_B and
  *              F_max of thr_map and common.num_thr and common.F_max of both
  *              pulsers (pulse_rem, pulse_schmitt).

@@ -93,6 +93,11 @@ typedef struct {
                                                        and on a rejected cycle)                  */
   uint8_t sun_valid;                        /* [-]     CSS heading valid this cycle              */
   uint8_t num_lit;                          /* [-]     lit CSS                                   */
+  uint64_t rw_failed;                       /* [-]     bit i: wheel i failed by the FSW's speed
+                                                       filter (unavailable to every stage); 0
+                                                       without the filter                        */
+  uint64_t rw_latched;                      /* [-]     bit i: ... by its stale or torque test
+                                                       (held until the application is reset)     */
   FswHealth health;                         /* [-]     counters of the application              */
 } FswAcsHealthMsg;
 

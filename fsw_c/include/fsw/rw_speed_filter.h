@@ -17,6 +17,19 @@
  *           a row that are mutually consistent bring the wheel back, anchored
  *           on the latest sample.  A NaN/Inf sample or an inconsistent one
  *           restarts the count (an inconsistent one counts as its first).
+ * Two latched tests (library extension, issue 14; both off when 0):
+ *   stale   n_stale > 0: a wheel whose finite sample equals its previous
+ *           finite sample bit for bit n_stale times in a row is failed and
+ *           latched (a frozen tachometer: a live one with noise never
+ *           repeats; use only with a fresh, noisy sample every call).
+ *   torque  n_window > 0: over a window of n_window calls the accepted speed
+ *           change is compared with the change the applied motor torque
+ *           explains, sum(u_applied_i dt) / J_s,i; a residual above
+ *           resid_tol_i fails and latches the wheel (a frozen or stuck
+ *           tachometer, or a motor that does not deliver).  An interval with
+ *           u_valid = 0 restarts the window (the torque is not known).
+ *   A latched wheel stays failed (output held, UNAVAILABLE) until reset:
+ *   the outlier recovery rule does not apply to it.
  * The first finite sample after reset is accepted as it is (no reference).
  * Non-finite samples are outliers of one wheel, not bad input of the module.
  * Out.avail = In.avail OR failed.  Units: SI.
@@ -42,6 +55,13 @@ typedef struct {
   fsw_real noise[FSW_MAX_RW]; /* [rad/s]    (num_rw) margin, finite, >= 0         */
   uint32_t k_reject;          /* [-]        consecutive rejections to fail, >= 1  */
   uint32_t n_recover;         /* [-]        consistent samples to recover, >= 1   */
+  uint32_t n_stale;           /* [-]        identical samples in a row to latch;
+                                            0: stale test off                      */
+  uint32_t n_window;          /* [-]        calls per torque-consistency window;
+                                            0: torque test off                     */
+  fsw_real resid_tol[FSW_MAX_RW]; /* [rad/s] (num_rw) allowed |measured - explained|
+                                            speed change over a window, finite,
+                                            >= 0 (checked when n_window > 0)      */
 } FswRwSpeedFilterConfig;
 
 typedef struct {
@@ -56,6 +76,15 @@ typedef struct {
                                       kept by reset like the health counters */
   uint8_t has_good[FSW_MAX_RW];    /* [-]     Omega_good valid                */
   uint8_t failed[FSW_MAX_RW];      /* [-]     held UNAVAILABLE by the filter  */
+  uint8_t latched[FSW_MAX_RW];     /* [-]     failed by the stale or torque test:
+                                      held until reset                      */
+  fsw_real last_raw[FSW_MAX_RW];   /* [rad/s] previous finite raw sample      */
+  uint8_t has_raw[FSW_MAX_RW];     /* [-]     last_raw valid                   */
+  uint32_t stale_run[FSW_MAX_RW];  /* [-]     samples equal to their predecessor */
+  uint8_t win_open[FSW_MAX_RW];    /* [-]     a torque window is running      */
+  fsw_real win_Omega0[FSW_MAX_RW]; /* [rad/s] accepted sample that opened it  */
+  fsw_real win_exp[FSW_MAX_RW];    /* [rad/s] speed change the torque explains */
+  uint32_t win_count[FSW_MAX_RW];  /* [-]     intervals in the window         */
   FswClock clock;                  /* [-]     previous accepted call (0.3)    */
   FswHealth health;
 } FswRwSpeedFilterState;
@@ -64,6 +93,12 @@ typedef struct {
   fsw_real Omega_meas[FSW_MAX_RW]; /* [rad/s] (num_rw) raw tachometer samples    */
   uint8_t avail[FSW_MAX_RW];       /* [-]     (num_rw) upstream mask, 0/1        */
   uint64_t t_ns;                   /* [ns]    sample time                        */
+  fsw_real u_applied[FSW_MAX_RW];  /* [N*m]   (num_rw) motor torque applied since the
+                                      previous call, |u| <= 2 u_max (read when
+                                      n_window > 0 and u_valid = 1)           */
+  uint8_t u_valid;                 /* [-]     1: u_applied held over the whole
+                                      interval since the previous call; 0: not
+                                      known (every torque window restarts)    */
 } FswRwSpeedFilterIn;
 
 typedef struct {
@@ -71,14 +106,17 @@ typedef struct {
   uint8_t avail[FSW_MAX_RW];  /* [-]     (num_rw) In.avail OR failed; 0 beyond     */
   uint64_t rejected;          /* [-]     bit i: this call's sample i rejected     */
   uint64_t failed;            /* [-]     bit i: wheel i held unavailable          */
+  uint64_t latched;           /* [-]     bit i: ... by the stale or torque test  */
 } FswRwSpeedFilterOut;
 
 FswStatus fsw_rw_speed_filter_check(const FswRwSpeedFilterConfig *cfg);
 FswStatus fsw_rw_speed_filter_init(FswRwSpeedFilterState *st, const FswRwSpeedFilterConfig *cfg);
-/* Clears samples, runs, failures and timing; keeps `rejections` and health. */
+/* Clears samples, runs, failures (latched ones too), windows and timing;
+ * keeps `rejections` and health. */
 void fsw_rw_speed_filter_reset(FswRwSpeedFilterState *st);
 /* FSW_OK (rejections are reported in Out, not as a status); FSW_E_BAD_INPUT
- * (mask entry not 0/1); FSW_E_TIME (t_ns <= previous); FSW_E_NOT_INIT.
+ * (mask entry not 0/1, u_valid not 0/1, or with n_window > 0 and u_valid = 1
+ * an applied torque that is not finite or exceeds 2 u_max); FSW_E_TIME (t_ns <= previous); FSW_E_NOT_INIT.
  * Errors advance no state. */
 FswStatus fsw_rw_speed_filter_update(FswRwSpeedFilterState *st, const FswRwSpeedFilterConfig *cfg,
                                      const FswRwSpeedFilterIn *in, FswRwSpeedFilterOut *out);

@@ -184,6 +184,14 @@ struct FswSpec {
   double k_null = 0.0;                                        // [N*m*s]
   bool rw_null_scale_to_fit = true;
   std::vector<double> Omega_des;                              // [rad/s] (num_rw)
+  // rw_speed_filter ahead of the wheel chain (docs/fsw/rw_speed_filter.md)
+  bool speed_filter = false;
+  double sf_noise = 0.0;        // [rad/s] outlier-gate margin (required when enabled)
+  int sf_k_reject = 3;          // [-] consecutive outliers that fail a wheel
+  int sf_n_recover = 3;         // [-] consistent samples that bring it back
+  int sf_n_stale = 0;           // [-] repeats of a bit-identical reading that latch it; 0: off
+  int sf_n_window = 0;          // [-] FSW cycles per torque-consistency window; 0: off
+  double sf_resid_tol = 0.0;    // [rad/s] allowed torque-window residual
   ThrPulseMode thr_pulse = ThrPulseMode::Remainder;
   Actuation actuation = Actuation::Wheels;                    // default: wheels if any, else thrusters
   ThrMapMode thr_map = ThrMapMode::Nnls;
