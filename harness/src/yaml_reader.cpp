@@ -605,6 +605,11 @@ void MapReader::finish(const std::set<std::string>& ignore)
     if (!it->first.IsScalar()) continue;
     const std::string k = it->first.Scalar();
     if (used_.count(k) || ignore.count(k)) continue;
+    if (k.empty()) {  // `: 1`, a bare tag `!` or `""` as a key: name where it is, not ""
+      ctx_->error(it->first, path_.empty() ? std::string("(top level)") : path_,
+                  "a key with no name (empty, \"\" or a bare tag)");
+      continue;
+    }
     std::string msg = "unknown key";
     const std::string near = did_you_mean(k, known);
     if (!near.empty()) msg += " (did you mean '" + near + "'?)";
