@@ -477,6 +477,7 @@ static FswStatus run_thrusters(FswAcsState *st, const FswAcsConfig *cfg,
 
   fsw_v3_copy(w->thr_in.Lr_B, Lr_B);
   fsw_v3_copy(w->thr_in.r_CoM_B, sens->r_CoM_B);
+  u8_copy(w->thr_in.avail, sens->thr_avail, n);
   s = fsw_thr_map_update(&st->thr_map, &cfg->thr_map, &w->thr_in, &w->thr_out);
   h->stage_status[FSW_ACS_STAGE_THR_MAP] = s;
   acc = combine(acc, s);
@@ -496,6 +497,11 @@ static FswStatus run_thrusters(FswAcsState *st, const FswAcsConfig *cfg,
   }
   h->stage_status[FSW_ACS_STAGE_THR_PULSE] = s;
   acc = combine(acc, s);
+  { /* a flagged thruster stays off whatever its pulser remembers */
+    int i;
+    for (i = 0; i < n; i++)
+      if (sens->thr_avail[i] != FSW_AVAILABLE) act->t_on[i] = FSW_R(0.0);
+  }
   act->thrusters_active = 1u;
   return acc;
 }
@@ -628,6 +634,9 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   }
   if (req_act == FSW_ACS_ACT_THRUSTERS && !fsw_v3_is_finite(sens->r_CoM_B))
     return finish(st, h, FSW_E_BAD_INPUT);
+  if (cfg->has_thrusters)
+    for (i = 0; i < cfg->thr_map.num_thr; i++)
+      if (sens->thr_avail[i] > FSW_UNAVAILABLE) return finish(st, h, FSW_E_BAD_INPUT);
 
   /* 2. Mode transition: clear the memory that belongs to the old mode.
    *    From here on the stages advance their own state; an error status of

@@ -180,6 +180,11 @@ FswStatus fsw_link_encode_sensor(const FswAcsSensorMsg *m, uint8_t num_rw, uint8
   const size_t payload = FSW_LINK_SENSOR_PAYLOAD(num_rw, num_css);
   if (m == NULL || buf == NULL || len == NULL) return FSW_E_NULL_ARG;
   if (num_rw > FSW_MAX_RW || num_css > FSW_MAX_CSS) return link_fail(err, FSW_LINK_E_COUNT);
+  {
+    size_t i; /* the thruster flags travel as bits: a flag other than 0/1 cannot */
+    for (i = 0u; i < (size_t)FSW_MAX_THR; ++i)
+      if (m->thr_avail[i] > 1u) return link_fail(err, FSW_LINK_E_COUNT);
+  }
   if (!begin_packet(&w, buf, cap, payload)) return link_fail(err, FSW_LINK_E_SPACE);
   put_headers(&w, FSW_LINK_APID_SENSOR, 1u, seq, m->t_ns, payload);
   put_u8(&w, num_rw);
@@ -193,6 +198,13 @@ FswStatus fsw_link_encode_sensor(const FswAcsSensorMsg *m, uint8_t num_rw, uint8
   put_flags(&w, m->rw_avail, num_rw);
   put_reals(&w, m->css, num_css);
   put_flags(&w, m->css_avail, num_css);
+  {
+    uint64_t bits = 0u;
+    size_t i;
+    for (i = 0u; i < (size_t)FSW_MAX_THR; ++i)
+      if (m->thr_avail[i] != 0u) bits |= (uint64_t)1u << i;
+    put_u64(&w, bits);
+  }
   return finish_packet(&w, len, err);
 }
 
@@ -342,6 +354,15 @@ FswStatus fsw_link_decode_sensor(const FswLinkPacket *p, FswAcsSensorMsg *m, uin
   ok = get_flags(&r, out.rw_avail, nrw) && ok;
   get_reals(&r, out.css, ncss);
   ok = get_flags(&r, out.css_avail, ncss) && ok;
+  {
+    const uint64_t bits = get_u64(&r);
+    size_t i;
+    for (i = 0u; i < 64u; ++i) {
+      const uint8_t b = (uint8_t)((bits >> i) & 1u);
+      if (i < (size_t)FSW_MAX_THR) out.thr_avail[i] = b;
+      else if (b != 0u) ok = 0; /* a thruster beyond the capacity */
+    }
+  }
   if (!ok) return link_fail(err, FSW_LINK_E_COUNT);
   memcpy(m, &out, sizeof out);
   *num_rw = (uint8_t)nrw;

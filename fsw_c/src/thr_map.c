@@ -155,7 +155,7 @@ static fsw_real torque_angle_error(const FswThrMapState *st, const FswThrMapConf
 }
 
 static FswStatus map_min_norm(FswThrMapState *st, const FswThrMapConfig *cfg,
-                              const fsw_real Lbar[3], fsw_real F[FSW_MAX_EFF])
+                              const fsw_real Lbar[3], const uint8_t *avail, fsw_real F[FSW_MAX_EFF])
 {
   fsw_real *Fbar = st->work.Fbar;
   const int n = cfg->num_thr, nc = st->num_axes, sF = cfg->thr_force_sign;
@@ -168,6 +168,9 @@ static FswStatus map_min_norm(FswThrMapState *st, const FswThrMapConfig *cfg,
   if (ks == FSW_E_BAD_INPUT) return ks;
   if (ks != FSW_OK) singular = 1;
   if (sF > 0) shift_min(F, n);
+  /* an unavailable thruster (zero column: 0 from the solve) is not shifted on */
+  for (i = 0; i < n; i++)
+    if (avail[i] != FSW_AVAILABLE) F[i] = FSW_R(0.0);
 
   /* 8.4 second pass over S = {i : sF F_i > 0} */
   if (sF < 0 || cfg->use_2nd_loop) {
@@ -218,7 +221,7 @@ static FswStatus map_min_norm(FswThrMapState *st, const FswThrMapConfig *cfg,
 /* ---- Exact bounded mode (8.6) -------------------------------------------- */
 
 static FswStatus map_nnls(FswThrMapState *st, const FswThrMapConfig *cfg,
-                          const fsw_real Lbar[3], fsw_real F[FSW_MAX_EFF])
+                          const fsw_real Lbar[3], const uint8_t *avail, fsw_real F[FSW_MAX_EFF])
 {
   fsw_real *lo = st->work.lo, *hi = st->work.hi, r[3];
   const int n = cfg->num_thr, nc = st->num_axes;
@@ -226,6 +229,7 @@ static FswStatus map_nnls(FswThrMapState *st, const FswThrMapConfig *cfg,
   for (i = 0; i < n; i++) {
     lo[i] = (cfg->thr_force_sign > 0) ? FSW_R(0.0) : -cfg->F_max[i];
     hi[i] = (cfg->thr_force_sign > 0) ? cfg->F_max[i] : FSW_R(0.0);
+    if (avail[i] != FSW_AVAILABLE) lo[i] = hi[i] = FSW_R(0.0); /* absent */
   }
   /* K4; its input checks cannot fail here: [C][D] and Lbar were checked
    * finite by the caller and the bounds come from a checked config */
@@ -260,10 +264,12 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
     return FSW_E_NULL_ARG;
   }
   if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  n = cfg->num_thr;
   if (!fsw_v3_is_finite(in->Lr_B) || !fsw_v3_is_finite(in->r_CoM_B) ||
       fsw_vn_max_abs(in->r_CoM_B, 3) > FSW_THR_MAP_R_MAX)
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
-  n = cfg->num_thr;
+  for (i = 0; i < n; i++)
+    if (in->avail[i] > FSW_UNAVAILABLE) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   nc = st->num_axes;
 
   /* 8.2: d_i = (r_i - r_CoM) x gt_i; off-pulsing removes the all-on torque */
@@ -275,6 +281,7 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
       fsw_real rel[3], d[3];
       fsw_v3_sub(rel, cfg->r_thr_B[i], in->r_CoM_B);
       fsw_v3_cross(d, rel, cfg->gt_hat_B[i]);
+      if (in->avail[i] != FSW_AVAILABLE) fsw_v3_zero(d); /* absent: no torque arm, not on */
       for (k = 0; k < 3; k++) st->work.D_B[k][i] = d[k];
       if (cfg->thr_force_sign < 0) {
         fsw_real Ld[3];
@@ -302,15 +309,17 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
   nnls_iter_prev = st->nnls_iter;
   st->nnls_iter = 0;
   if (cfg->mode == FSW_THR_MAP_NNLS)
-    s = map_nnls(st, cfg, Lbar, F);
+    s = map_nnls(st, cfg, Lbar, in->avail, F);
   else
-    s = map_min_norm(st, cfg, Lbar, F);
+    s = map_min_norm(st, cfg, Lbar, in->avail, F);
   /* overflow of a finite request is bad input; no NaN/Inf leaves */
   if (fsw_status_is_error(s) || !fsw_vn_is_finite(F, n) || !isfinite(st->ang_err)) {
     st->ang_err = ang_err_prev; /* an error changes no diagnostics either */
     st->nnls_iter = nnls_iter_prev;
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   }
+  for (i = 0; i < n; i++) /* an unavailable thruster is commanded off */
+    if (in->avail[i] != FSW_AVAILABLE) F[i] = (cfg->thr_force_sign > 0) ? FSW_R(0.0) : -cfg->F_max[i];
   fsw_vn_copy(out->F, F, n);
   return fsw_health_record(&st->health, s);
 }

@@ -149,7 +149,14 @@ void EventTask::apply(const Act& a, uint64_t t_ns)
         case EventAction::ThrStuckClosed: plant_.set_thruster_health(i, sim::ThrusterHealth::FailedOff); break;
         case EventAction::ThrStuckOpen: plant_.set_thruster_health(i, sim::ThrusterHealth::StuckOn); break;
         case EventAction::ThrThrustFactor: plant_.set_thruster_thrust_scale(i, a.value); break;
-        default:  // restore
+        case EventAction::CommandUnavailable:
+        case EventAction::CommandAvailable: {
+          int j = 0;  // the FSW's index: the ACS thrusters in scenario order
+          for (int m = 0; m < i; ++m) j += sc_.thrusters[static_cast<size_t>(m)].acs ? 1 : 0;
+          sensors_.set_thr_commanded_unavailable(j, a.action == EventAction::CommandUnavailable);
+          break;
+        }
+        default:  // restore (the availability flag is a command of its own)
           plant_.set_thruster_health(i, sim::ThrusterHealth::Nominal);
           plant_.set_thruster_thrust_scale(i, 1.0);
           break;

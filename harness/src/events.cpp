@@ -29,6 +29,10 @@ const std::vector<EventActionDef> kThrusterActions = {
     {"stuck_open", EventAction::ThrStuckOpen, EventValue::None, "-", "valve open: full thrust, requests ignored"},
     {"thrust_factor", EventAction::ThrThrustFactor, EventValue::Positive, "-",
      "force, swirl torque and mass flow times value (< 1 degraded; Isp and valve unchanged)"},
+    {"command_unavailable", EventAction::CommandUnavailable, EventValue::None, "-",
+     "the FSW is told the ACS thruster is unavailable (FswAcsSensorMsg.thr_avail = 1): mapped as absent, kept off"},
+    {"command_available", EventAction::CommandAvailable, EventValue::None, "-",
+     "the FSW is told the ACS thruster is available again (thr_avail = 0)"},
     {"restore", EventAction::Restore, EventValue::None, "-", "valve follows its commands again, thrust factor 1"},
 };
 const std::vector<EventActionDef> kSensorActions = {
@@ -144,6 +148,11 @@ std::string check_event_action(const Scenario& sc, const EventActionSpec& a, std
                                           d->action == EventAction::TachBias) &&
       !sc.sensors.tachometer.enabled)
     return "'" + a.action + "' needs the tachometers (sensors.tachometer.enabled: true)";
+  if (tg.device == EventDevice::Thruster &&
+      (d->action == EventAction::CommandUnavailable || d->action == EventAction::CommandAvailable) &&
+      !sc.thrusters[static_cast<size_t>(tg.index)].acs)
+    return "'" + a.action + "' flags an ACS thruster for the FSW; '" + a.device +
+           "' is not one (acs: false: the FSW does not command it)";
   if (d->action == EventAction::SensorNoiseScale && !sc.sensors.noise)
     return "'noise_scale' needs sensor noise (sensors.noise: true)";
   if (tg.device == EventDevice::Fsw) {

@@ -182,6 +182,7 @@ void SensorSuite::apply_faults(uint64_t t_ns, FswAcsSensorMsg& msg) const
     }
     msg.rw_avail[i] = rw_unavail_[u];
   }
+  for (size_t j = 0; j < thr_unavail_.size(); ++j) msg.thr_avail[j] = thr_unavail_[j];
 }
 
 void SensorSuite::set_gyro_fault(Fault f, uint64_t until_ns)
@@ -238,6 +239,12 @@ void SensorSuite::set_rw_commanded_unavailable(int i, bool unavailable)
 {
   any_fault_ = true;
   rw_unavail_[static_cast<size_t>(i)] = unavailable ? 1 : 0;
+}
+
+void SensorSuite::set_thr_commanded_unavailable(int j, bool unavailable)
+{
+  any_fault_ = true;
+  if (static_cast<size_t>(j) < thr_unavail_.size()) thr_unavail_[static_cast<size_t>(j)] = unavailable ? 1 : 0;
 }
 
 }  // namespace harness

@@ -53,6 +53,9 @@ class SensorSuite {
   void set_tach_fault(int i, Fault f, double bias);
   // The executive's availability flag for wheel i (FswAcsSensorMsg.rw_avail).
   void set_rw_commanded_unavailable(int i, bool unavailable);
+  // The executive's flag for ACS thruster j, the FSW's index
+  // (FswAcsSensorMsg.thr_avail).
+  void set_thr_commanded_unavailable(int j, bool unavailable);
   // Random-error scale of the gyro, the star tracker or CSS i (the models'
   // set_noise_scale; 1 restores).  Unlike the faults above this changes the
   // model's own output, and so the recorded samples; the draws stay aligned
@@ -74,6 +77,7 @@ class SensorSuite {
   std::array<Fault, kMaxRw> tach_fault_{};
   std::array<double, kMaxRw> tach_value_{};  // [rad/s] frozen reading or bias
   std::array<uint8_t, kMaxRw> rw_unavail_{};
+  std::array<uint8_t, FSW_MAX_THR> thr_unavail_{};
   bool any_fault_ = false;  // a fault was ever set (the nominal path stays as it was)
 
   const sim::SensorTruth& truth_now();

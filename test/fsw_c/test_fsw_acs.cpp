@@ -1033,13 +1033,18 @@ TEST(FswAcsCycle, Issue21ErrorCycleKeepsTheTransitionCount)
 // a warning.  Tolerance: the active-set solver stops at a relative residual
 // of 1000 eps (K4_TOL) of the request, 1e-9 N m in double; float as the
 // mapper's own property test (2e-3).
+// Issue 14: the same with one thruster flagged unavailable (thr_avail):
+// it gets no force and no on-time, and the seven left still deliver Lr.
 TEST(FswAcsCycle, Issue21ThrusterForcesInTheMessageGiveTheRequestedTorque)
 {
+  for (int flagged : {-1, 2, 5})
   for (int pulser : {FSW_ACS_PULSE_REMAINDER, FSW_ACS_PULSE_SCHMITT}) {
+    SCOPED_TRACE(flagged);
     acsfix::thruster_config(g_cfg, pulser);
     for (int i = 0; i < 3; i++) g_cfg.inertial.sigma_R0N[i] = 0;
     ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
     sensors_at_rest(g_sens, 0);
+    if (flagged >= 0) g_sens.thr_avail[flagged] = FSW_UNAVAILABLE;
     g_sens.sigma_BN[0] = acsfix::R(0.01);
     g_sens.sigma_BN[1] = acsfix::R(-0.005);
     g_sens.sigma_BN[2] = acsfix::R(0.002);
@@ -1062,7 +1067,26 @@ TEST(FswAcsCycle, Issue21ThrusterForcesInTheMessageGiveTheRequestedTorque)
     }
     for (int k = 0; k < 3; k++) EXPECT_NEAR(g_act.Lr_B[k], tau[k], kt::tol(1e-9, 2e-3)) << "axis " << k;
     for (int j = 8; j < FSW_MAX_THR; j++) EXPECT_EQ(0, g_act.F[j]) << j;
+    if (flagged >= 0) {
+      EXPECT_EQ(0, g_act.F[flagged]);
+      EXPECT_EQ(0, g_act.t_on[flagged]);
+    }
   }
+}
+
+// A thruster flag other than 0/1 is bad input of the cycle (safe output);
+// beyond num_thr it is not read.
+TEST(FswAcsCycle, ThrusterFlagsAreZeroOrOne)
+{
+  acsfix::thruster_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  g_sens.thr_avail[7] = 2;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_TRUE(all_zero(g_act));
+  g_sens.thr_avail[7] = 0;
+  g_sens.thr_avail[8] = 9;
+  EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
 }
 
 // Issue 21: an error cycle puts the dynamic state back but every stage

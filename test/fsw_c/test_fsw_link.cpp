@@ -61,6 +61,8 @@ FswAcsSensorMsg sensor_msg(uint8_t nrw, uint8_t ncss)
     m.css[i] = R(0.0625) * R(i);
     m.css_avail[i] = static_cast<uint8_t>((i + 1) % 2);
   }
+  m.thr_avail[0] = 1;  // bits 0 and FSW_MAX_THR - 1: both ends of the mask travel
+  m.thr_avail[FSW_MAX_THR - 1] = 1;
   return m;
 }
 
@@ -188,7 +190,7 @@ TEST(FswLink, RealsAreBigEndianBinary64)
   m.sigma_BN[1] = R(-2.5);   // C004 0000 0000 0000
   m.sigma_BN[2] = R(0.1);    // 3FB9 9999 9999 999A in double; the float 0.1 widened in float builds
   const Bytes b = encode_sensor(m, 0, 0);
-  ASSERT_EQ(b.size(), FSW_LINK_HEADER_SIZE + 76u + 2u);
+  ASSERT_EQ(b.size(), FSW_LINK_HEADER_SIZE + 84u + 2u);
   const size_t s = FSW_LINK_HEADER_SIZE + 4;  // sigma_BN[0]
   EXPECT_EQ(Bytes(b.begin() + s, b.begin() + s + 8), (Bytes{0x3F, 0xF0, 0, 0, 0, 0, 0, 0}));
   EXPECT_EQ(Bytes(b.begin() + s + 8, b.begin() + s + 16), (Bytes{0xC0, 0x04, 0, 0, 0, 0, 0, 0}));
@@ -300,7 +302,7 @@ TEST(FswLink, DecodersCheckApidLengthCountsAndFlags)
   b[pay + 3] = 1;  // reserved byte
   EXPECT_EQ(decode(b), FSW_LINK_E_COUNT);
   b = good;
-  b[b.size() - 3] = 7;  // the last css_avail flag
+  b[b.size() - 3 - 8] = 7;  // the last css_avail flag (before the u64 thruster mask)
   EXPECT_EQ(decode(b), FSW_LINK_E_COUNT);
   b = good;
   b[1] = 0x81;  // APID 0x181: an actuator packet's
@@ -623,7 +625,7 @@ TEST(FswLink, Issue21AttValidTravelsAsAFlag)
     FswAcsSensorMsg m = sensor_msg(2, 3);
     m.att_valid = c.first;
     const Bytes b = encode_sensor(m, 2, 3);
-    ASSERT_EQ(b.size(), FSW_LINK_HEADER_SIZE + 76u + 9u * 2u + 9u * 3u + 2u);
+    ASSERT_EQ(b.size(), FSW_LINK_HEADER_SIZE + 84u + 9u * 2u + 9u * 3u + 2u);
     EXPECT_EQ(b[att], c.second) << int(c.first);
     FswLinkPacket p;
     ASSERT_EQ(fsw_link_parse(b.data(), b.size(), &p, nullptr), FSW_OK);
@@ -825,4 +827,42 @@ TEST(FswLink, Issue21LinkSafeTravelsAsAFlag)
     EXPECT_EQ(back.link_safe, c.second) << int(c.first);
     EXPECT_EQ(back.last_seq, 56u);
   }
+}
+
+// Issue 14: the thruster flags travel as a big-endian u64 after css_avail
+// (docs/icd.md, offset 76 + 9 n_rw + 9 n_css): bit i = thruster i
+// unavailable.  sensor_msg flags thrusters 0 and FSW_MAX_THR - 1.  A bit at
+// or above FSW_MAX_THR is refused (FSW_LINK_E_COUNT); an encoder refuses a
+// flag other than 0/1 (it could not travel as a bit).
+TEST(FswLink, ThrusterAvailabilityTravelsAsABitMask)
+{
+  const uint8_t nrw = 2, ncss = 3;
+  FswAcsSensorMsg m = sensor_msg(nrw, ncss);
+  const Bytes good = encode_sensor(m, nrw, ncss);
+  const size_t at = FSW_LINK_HEADER_SIZE + 76u + 9u * nrw + 9u * ncss;
+  uint64_t want = 1u | (uint64_t(1) << (FSW_MAX_THR - 1));
+  Bytes be(8);
+  for (int k = 0; k < 8; ++k) be[size_t(k)] = static_cast<uint8_t>(want >> (8 * (7 - k)));
+  EXPECT_EQ(Bytes(good.begin() + static_cast<long>(at), good.begin() + static_cast<long>(at) + 8), be);
+  FswLinkPacket p;
+  ASSERT_EQ(fsw_link_parse(good.data(), good.size(), &p, nullptr), FSW_OK);
+  FswAcsSensorMsg back;
+  uint8_t n1 = 0, n2 = 0;
+  ASSERT_EQ(fsw_link_decode_sensor(&p, &back, &n1, &n2, nullptr), FSW_OK);
+  EXPECT_EQ(std::memcmp(back.thr_avail, m.thr_avail, sizeof m.thr_avail), 0);
+  if (FSW_MAX_THR < 64) {
+    Bytes b = good;
+    b[at] |= 0x80u;  // bit 63
+    fix_crc(b);
+    ASSERT_EQ(fsw_link_parse(b.data(), b.size(), &p, nullptr), FSW_OK);
+    FswLinkError e = FSW_LINK_OK;
+    EXPECT_EQ(fsw_link_decode_sensor(&p, &back, &n1, &n2, &e), FSW_E_BAD_INPUT);
+    EXPECT_EQ(e, FSW_LINK_E_COUNT);
+  }
+  m.thr_avail[3] = 2;
+  Bytes buf(FSW_LINK_MAX_PACKET);
+  size_t len = 0;
+  FswLinkError e = FSW_LINK_OK;
+  EXPECT_EQ(fsw_link_encode_sensor(&m, nrw, ncss, 1, buf.data(), buf.size(), &len, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_COUNT);
 }

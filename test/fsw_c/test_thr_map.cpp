@@ -84,7 +84,7 @@ MapRun map_once(const FswThrMapConfig& c, double lx, double ly, double lz,
 {
   MapRun r;
   EXPECT_EQ(FSW_OK, fsw_thr_map_init(&r.st, &c));
-  FswThrMapIn in;
+  FswThrMapIn in{};
   set3(in.Lr_B, lx, ly, lz);
   set3(in.r_CoM_B, cx, cy, cz);
   r.s = fsw_thr_map_update(&r.st, &c, &in, &r.out);
@@ -166,7 +166,7 @@ TEST(ThrMap, ConfigRejectionTable)
     EXPECT_EQ(row.want, fsw_thr_map_init(&st, &c)) << row.why;
     EXPECT_EQ(0, st.ready) << row.why;
     // a refused state only ever gives the safe output
-    FswThrMapIn in;
+    FswThrMapIn in{};
     set3(in.Lr_B, 1, 2, 3);
     set3(in.r_CoM_B, 0, 0, 0);
     FswThrMapOut out;
@@ -334,7 +334,7 @@ TEST(ThrMap, BadInputGivesSafeOutputAndCounts)
   ASSERT_EQ(FSW_OK, fsw_thr_map_init(&st, &c));
   const R nan = std::numeric_limits<R>::quiet_NaN();
   const R inf = std::numeric_limits<R>::infinity();
-  FswThrMapIn ins[3];
+  FswThrMapIn ins[3]{};
   for (FswThrMapIn& in : ins) {
     set3(in.Lr_B, 1, 0, 0);
     set3(in.r_CoM_B, 0, 0, 0);
@@ -369,7 +369,7 @@ TEST(ThrMap, RepeatableAfterReset)
     FswThrMapState st;
     ASSERT_EQ(FSW_OK, fsw_thr_map_init(&st, &c));
     kt::Rng rng(11);
-    FswThrMapIn in[5];
+    FswThrMapIn in[5]{};
     FswThrMapOut first[5], again;
     for (int k = 0; k < 5; k++) {
       for (int j = 0; j < 3; j++) {
@@ -968,7 +968,7 @@ TEST(ThrMapIssue21, RequestAtOrBelowEpsilonHasNoAngleError)
   c.epsilon = static_cast<R>(1e-3);
   c.ang_err_thresh = static_cast<R>(0.5);
   FswThrMapState st;
-  FswThrMapIn in;
+  FswThrMapIn in{};
   FswThrMapOut out;
   start_at_atan_half(st, c, in, out, 1.0);
   if (HasFatalFailure()) return;
@@ -998,7 +998,7 @@ TEST(ThrMapSeed31337, ErrorAfterTheMapperKeepsThePreviousAngleError)
     for (int k = 0; k < 3; k++) c.r_thr_B[i][k] = static_cast<R>(0.25 * c.r_thr_B[i][k]);
   c.ang_err_thresh = static_cast<R>(0.5);
   FswThrMapState st;
-  FswThrMapIn in;
+  FswThrMapIn in{};
   FswThrMapOut out;
   start_at_atan_half(st, c, in, out, 0.25);
   if (HasFatalFailure()) return;
@@ -1007,4 +1007,99 @@ TEST(ThrMapSeed31337, ErrorAfterTheMapperKeepsThePreviousAngleError)
   for (int i = 0; i < FSW_MAX_THR; i++) EXPECT_EQ(0, out.F[i]);
   EXPECT_NEAR(std::atan(0.5), st.ang_err, kt::tol(1e-12, 1e-5));
   EXPECT_EQ(0, st.nnls_iter);  // min-norm mode: never written but by reset
+}
+
+// ---- issue 14: thrusters flagged unavailable --------------------------------
+
+// The six-axis set plus a seventh thruster duplicating thruster 0 (arm +x),
+// request L = (1, 0, 0) N*m.
+//  NNLS (min ||F|| with [D]F = L, 0 <= F <= 2): F0 = F6 = 0.5; with thruster
+//    0 unavailable its column is absent: F6 = 1, F0 = 0.
+//  min-norm (8.3): the pseudo-inverse gives F0 = F6 = 1/3, F1 = -1/3, the
+//    shift +1/3 (all thrusters): F0 = F6 = 2/3; with thruster 0 absent:
+//    F6 = 1/2, F1 = -1/2, shifted: F6 = 1, F1 = 0 and the pure couples
+//    2-3, 4-5 at 1/2 each.
+// Both modes then deliver exactly L from the thrusters left (the torque is
+// summed here from the arms +x, -x, +y, -y, +z, -z, +x).
+TEST(ThrMapAvailability, AnUnavailableThrusterIsMappedAsAbsent)
+{
+  for (int mode : {FSW_THR_MAP_MIN_NORM, FSW_THR_MAP_NNLS}) {
+    SCOPED_TRACE(mode);
+    FswThrMapConfig c = six_axis_cfg(2.0);
+    c.mode = mode;
+    c.num_thr = 7;
+    set3(c.r_thr_B[6], 0, 1, 0);
+    set3(c.gt_hat_B[6], 0, 0, 1);
+    c.F_max[6] = 2;
+    FswThrMapState st;
+    ASSERT_EQ(FSW_OK, fsw_thr_map_init(&st, &c));
+    FswThrMapIn in{};
+    set3(in.Lr_B, 1, 0, 0);
+    FswThrMapOut out;
+    ASSERT_EQ(FSW_OK, fsw_thr_map_update(&st, &c, &in, &out));
+    const double both = mode == FSW_THR_MAP_NNLS ? 0.5 : 2.0 / 3.0;
+    EXPECT_NEAR(both, out.F[0], kTol);
+    EXPECT_NEAR(both, out.F[6], kTol);
+    in.avail[0] = FSW_UNAVAILABLE;
+    ASSERT_EQ(FSW_OK, fsw_thr_map_update(&st, &c, &in, &out));
+    EXPECT_EQ(0, out.F[0]);
+    EXPECT_NEAR(1.0, out.F[6], kTol);
+    EXPECT_NEAR(0.0, out.F[1], kTol);
+    const double tau[3] = {out.F[0] - out.F[1] + out.F[6], out.F[2] - out.F[3], out.F[4] - out.F[5]};
+    EXPECT_NEAR(1.0, tau[0], kTol);
+    EXPECT_NEAR(0.0, tau[1], kTol);
+    EXPECT_NEAR(0.0, tau[2], kTol);
+  }
+}
+
+// Off-pulsing DV set (dv_cfg, 3 control axes with the z row zero: 2 axes),
+// thruster 0 flagged: it is commanded off (F = -F_max), its nominal torque is
+// not counted, and the three left deliver the request about x and y:
+// tau = sum_{i != 0} (F_max + F_i) d_i = L (the thrusters' own torque,
+// computed here from the arms, not by the module).  Arms d = (r_y, -r_x):
+// (1,-1), (1,1), (-1,1), (-1,-1); without thruster 0 the all-on torque is
+// (-1, 1), so the others must change by T = L + (1, -1): F2 = (T_y - T_x)/2
+// and F1 - F3 = (T_x + T_y)/2 with every F in [-1, 0].  L = (-0.2, 0.1, 0):
+// T = (0.8, -0.9), F2 = -0.85, reachable.  (L = (0.2, -0.1) would need F2 =
+// -1.15: out of reach with thruster 0 gone, FSW_W_SAT.)
+TEST(ThrMapAvailability, OffPulsingUnavailableThrusterIsOffAndTheOthersDeliver)
+{
+  FswThrMapConfig c = dv_cfg(2);
+  c.mode = FSW_THR_MAP_NNLS;
+  FswThrMapState st;
+  ASSERT_EQ(FSW_OK, fsw_thr_map_init(&st, &c));
+  FswThrMapIn in{};
+  set3(in.Lr_B, 0.2, -0.1, 0);
+  in.avail[0] = FSW_UNAVAILABLE;
+  FswThrMapOut out;
+  EXPECT_EQ(FSW_W_SAT, fsw_thr_map_update(&st, &c, &in, &out));
+  set3(in.Lr_B, -0.2, 0.1, 0);
+  ASSERT_EQ(FSW_OK, fsw_thr_map_update(&st, &c, &in, &out));
+  EXPECT_NEAR(-0.85, out.F[2], kTol);
+  EXPECT_EQ(-1, out.F[0]);
+  double tau[2] = {0, 0};
+  for (int i = 1; i < 4; i++) {
+    EXPECT_LE(out.F[i], 0.0);
+    EXPECT_GE(out.F[i], -1.0);
+    const double d[2] = {c.r_thr_B[i][1], -c.r_thr_B[i][0]};  // (r x z)_xy = (r_y, -r_x)
+    for (int k = 0; k < 2; k++) tau[k] += (1.0 + out.F[i]) * d[k];
+  }
+  EXPECT_NEAR(-0.2, tau[0], kTol);
+  EXPECT_NEAR(0.1, tau[1], kTol);
+}
+
+TEST(ThrMapAvailability, AFlagOtherThanZeroOrOneIsBadInput)
+{
+  const FswThrMapConfig c = six_axis_cfg();
+  FswThrMapState st;
+  ASSERT_EQ(FSW_OK, fsw_thr_map_init(&st, &c));
+  FswThrMapIn in{};
+  set3(in.Lr_B, 1, 0, 0);
+  in.avail[5] = 2;
+  FswThrMapOut out;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_thr_map_update(&st, &c, &in, &out));
+  for (int i = 0; i < FSW_MAX_THR; i++) EXPECT_EQ(0, out.F[i]);
+  in.avail[5] = 0;
+  in.avail[6] = 7;  // beyond num_thr: not read
+  EXPECT_EQ(FSW_OK, fsw_thr_map_update(&st, &c, &in, &out));
 }

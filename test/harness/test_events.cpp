@@ -532,6 +532,60 @@ TEST(Events, S2StuckThrusterMidBurnAttitudeHeld)
               peak, bound_deg, max_between(r, "pointing_error_deg", 560.0, 840.0));
 }
 
+// The same failure, flagged to the FSW 0.1 s later (thruster command_unavailable,
+// FswAcsSensorMsg.thr_avail): the exact mapping (NNLS) then leaves acs1 out
+// and the seven others deliver the request, so the attitude loses torque
+// only during the 0.1 s (one FSW period) between the failure and the flag.
+// Bound: a missing torque of at most tau = F_max |r - r_C| for d = 0.1 s
+// kicks the rate by tau d / I_min; the loop (omega_n = 1 rad/s, zeta = 1,
+// the scenario's gains) turns a rate kick dw into an attitude excursion of
+// at most dw / omega_n (critically damped: dw t e^(-omega_n t) peaks at
+// dw / (e omega_n)), on top of the error the burn alone gives (the nominal
+// twin's).  Without the flag the missing torque lasts for the whole burn
+// (bounded in S2StuckThrusterMidBurnAttitudeHeld by tau / (K/4)).
+TEST(Events, S2StuckThrusterFlaggedIsMappedOutAndAttitudeHeld)
+{
+#ifdef KESTREL_TEST_SANITIZE
+  GTEST_SKIP() << "heavy: host-release only";
+#endif
+  std::string text = text_of(kDir + "s2_thruster_stuck.yaml");
+  const std::string stuck = "      - {device: acs1, action: stuck_closed}\n";
+  ASSERT_NE(text.find(stuck), std::string::npos);
+  text.replace(text.find(stuck), stuck.size(),
+               stuck + "  - {name: acs1_flagged, after: acs1_stuck, delay: 0.1, actions: "
+                       "[{device: acs1, action: command_unavailable}]}\n");
+  const harness::Scenario sc = harness::load_scenario_text(
+      text, "s2_flagged.yaml",
+      {{"rates.dt", "0.1"}, {"rates.fsw_divisor", "1"}, {"rates.record_divisor", "1"}, {"duration", "900"}});
+  harness::Run run(sc);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  const harness::MemorySink& r = run.memory();
+  ASSERT_EQ(run.events_applied().size(), 2u);
+  EXPECT_NEAR(run.events_applied()[1].t, 500.1, 1e-9);
+  // the FSW never asks acs1 (plant thruster 1) to fire once flagged
+  const auto t = r.column("t"), on1 = r.column("thruster_on_time_1");
+  double fired_after = 0.0;
+  for (size_t k = 0; k < t.size(); ++k)
+    if (t[k] > 500.15) fired_after = std::max(fired_after, on1[k]);
+  EXPECT_EQ(fired_after, 0.0);
+  EXPECT_GT(max_between(r, "thruster_on_time_1", 360.0, 499.9), 0.0);  // it was commanded before
+
+  const harness::ThrusterSpec& acs1 = sc.thrusters[1];
+  const double tau = acs1.F_max * (acs1.r_B - sc.spacecraft.com).norm();
+  const double I_min = sc.spacecraft.inertia.diagonal().minCoeff();
+  const double dw = tau * 0.1 / I_min, omega_n = 1.0;
+  const auto ref = run_without_events(sc);
+  const double dmax = max_diff(r, ref->memory(), "pointing_error_deg");
+  const double bound_deg = dw / omega_n * 180.0 / M_PI;
+  EXPECT_LT(dmax, bound_deg);
+  std::map<std::string, double> s;
+  for (const auto& it : run.summary()) s[it.key] = it.value;
+  EXPECT_EQ(s.at("burn_complete"), 1.0);
+  std::printf("[ figures ] S2 acs1 stuck closed at 500 s, flagged at 500.1 s: max |err - err_nominal| = %.3g deg "
+              "(bound %.3g), peak error [500, 560] s = %.3g deg\n",
+              dmax, bound_deg, max_between(r, "pointing_error_deg", 500.0, 560.0));
+}
+
 // ---- each sensor and wheel action, seen in what the FSW was given -------------------------------
 
 // Noise-free sensors sampled at every tick (dt = FSW period = record period

@@ -42,6 +42,8 @@ typedef struct {
   fsw_real Omega[FSW_MAX_RW];     /* [rad/s] (num_rw) wheel speeds relative to the body      */
   uint8_t rw_avail[FSW_MAX_RW];   /* [-]     (num_rw) 0 available, 1 unavailable             */
   fsw_real r_CoM_B[3];            /* [m]     centre of mass, B (thruster mapping)            */
+  uint8_t thr_avail[FSW_MAX_THR]; /* [-]     (num_thr) 0 available, 1 unavailable: a thruster
+                                             flagged failed is mapped as absent and kept off */
 } FswAcsSensorMsg;
 
 typedef struct {

@@ -22,6 +22,8 @@
 #ifndef FSW_THR_MAP_H
 #define FSW_THR_MAP_H
 
+#include <stdint.h>
+
 #include "fsw/fsw_config.h" /* FSW_MAX_THR, FSW_MAX_EFF, fsw_real */
 #include "fsw/fsw_status.h" /* FswStatus, FswHealth */
 
@@ -90,6 +92,11 @@ typedef struct {
   fsw_real Lr_B[3];    /* [N*m] requested external control torque, B        */
   fsw_real r_CoM_B[3]; /* [m]   centre of mass location, B, |component| <=
                           FSW_THR_MAP_R_MAX (else FSW_E_BAD_INPUT)          */
+  uint8_t avail[FSW_MAX_THR]; /* [-] (num_thr) 0 available, 1 unavailable (a
+                          thruster flagged failed: it is mapped as absent,
+                          its torque arm taken out of [D] and, off-pulsing,
+                          its nominal torque out of the offset; its command
+                          is "off": F = 0 on-pulsing, -F_max off-pulsing) */
 } FswThrMapIn;
 
 typedef struct {
@@ -110,7 +117,8 @@ void fsw_thr_map_reset(FswThrMapState *st);
  * reach, e.g. a reduced-axis (rank-deficient) set, and the least-squares
  * torque is delivered); FSW_W_SINGULAR (min-norm: rank-deficient [C][D] by
  * the K1 test, pivot floor or delivered residual, fsw_linalg.h; F = 0);
- * FSW_E_BAD_INPUT (NaN/Inf input, r_CoM_B out of range, or a finite request
+ * FSW_E_BAD_INPUT (NaN/Inf input, r_CoM_B out of range, an avail entry not
+ * 0/1, or a finite request
  * so large that the forces overflow; F = 0); FSW_E_NOT_INIT;
  * FSW_E_NULL_ARG.  OK and warnings change the diagnostics (ang_err,
  * nnls_iter); every status may change the scratch and the health counters,
