@@ -132,6 +132,7 @@ void EventTask::apply(const Act& a, uint64_t t_ns)
         case EventAction::TachNan: sensors_.set_tach_fault(i, F::Nan, 0.0); break;
         case EventAction::TachFrozen: sensors_.set_tach_fault(i, F::Frozen, 0.0); break;
         case EventAction::TachBias: sensors_.set_tach_fault(i, F::Bias, a.value); break;
+        case EventAction::TachNoiseScale: sensors_.set_tach_noise_scale(i, a.value); break;
         case EventAction::CommandUnavailable: sensors_.set_rw_commanded_unavailable(i, true); break;
         case EventAction::CommandAvailable: sensors_.set_rw_commanded_unavailable(i, false); break;
         case EventAction::Restore:
@@ -139,6 +140,7 @@ void EventTask::apply(const Act& a, uint64_t t_ns)
           plant_.set_wheel_u_max(i, p.u_max);
           plant_.set_wheel_friction(i, p.friction);
           sensors_.set_tach_fault(i, F::None, 0.0);
+          sensors_.set_tach_noise_scale(i, 1.0);
           break;
         default: break;
       }

@@ -17,6 +17,8 @@ const std::vector<EventActionDef> kWheelActions = {
     {"tach_nan", EventAction::TachNan, EventValue::None, "-", "its tachometer reads NaN"},
     {"tach_frozen", EventAction::TachFrozen, EventValue::None, "-", "its tachometer holds its last reading"},
     {"tach_bias", EventAction::TachBias, EventValue::Finite, "rad/s", "value added to its tachometer reading"},
+    {"tach_noise_scale", EventAction::TachNoiseScale, EventValue::NonNegative, "-",
+     "its tachometer's noise 1-sigma times value (draws stay aligned)"},
     {"command_unavailable", EventAction::CommandUnavailable, EventValue::None, "-",
      "the FSW is told the wheel is unavailable (FswAcsSensorMsg.rw_avail = 1)"},
     {"command_available", EventAction::CommandAvailable, EventValue::None, "-",
@@ -145,7 +147,7 @@ std::string check_event_action(const Scenario& sc, const EventActionSpec& a, std
            "'";
   }
   if (tg.device == EventDevice::Wheel && (d->action == EventAction::TachNan || d->action == EventAction::TachFrozen ||
-                                          d->action == EventAction::TachBias) &&
+                                          d->action == EventAction::TachBias || d->action == EventAction::TachNoiseScale) &&
       !sc.sensors.tachometer.enabled)
     return "'" + a.action + "' needs the tachometers (sensors.tachometer.enabled: true)";
   if (tg.device == EventDevice::Thruster &&
@@ -153,8 +155,8 @@ std::string check_event_action(const Scenario& sc, const EventActionSpec& a, std
       !sc.thrusters[static_cast<size_t>(tg.index)].acs)
     return "'" + a.action + "' flags an ACS thruster for the FSW; '" + a.device +
            "' is not one (acs: false: the FSW does not command it)";
-  if (d->action == EventAction::SensorNoiseScale && !sc.sensors.noise)
-    return "'noise_scale' needs sensor noise (sensors.noise: true)";
+  if ((d->action == EventAction::SensorNoiseScale || d->action == EventAction::TachNoiseScale) && !sc.sensors.noise)
+    return "'" + a.action + "' needs sensor noise (sensors.noise: true)";
   if (tg.device == EventDevice::Fsw) {
     const EventAction x = d->action;
     if (x == EventAction::FswModeSunSafe && sc.sensors.css.normals_B.size() < 3)

@@ -16,7 +16,7 @@ enum class EventDevice { Wheel, Thruster, Gyro, StarTracker, Css, Fsw };
 
 enum class EventAction {
   // wheels (the plant's motor, limits, friction; the tachometer; the FSW's availability flag)
-  WheelFailOff, WheelStuck, WheelTorqueLimit, WheelFriction, TachNan, TachFrozen, TachBias, CommandUnavailable,
+  WheelFailOff, WheelStuck, WheelTorqueLimit, WheelFriction, TachNan, TachFrozen, TachBias, TachNoiseScale, CommandUnavailable,
   CommandAvailable,
   // thrusters
   ThrStuckClosed, ThrStuckOpen, ThrThrustFactor,

@@ -235,6 +235,11 @@ void SensorSuite::set_css_noise_scale(int i, double k)
   if (u < css_.size()) css_[u].set_noise_scale(k);
 }
 
+void SensorSuite::set_tach_noise_scale(int i, double k)
+{
+  if (tach_) tach_->set_noise_scale(i, k);
+}
+
 void SensorSuite::set_rw_commanded_unavailable(int i, bool unavailable)
 {
   any_fault_ = true;

@@ -63,6 +63,7 @@ class SensorSuite {
   void set_gyro_noise_scale(double k);
   void set_star_tracker_noise_scale(double k);
   void set_css_noise_scale(int i, double k);
+  void set_tach_noise_scale(int i, double k);  // wheel i's tachometer
 
  private:
   struct SensorFault {

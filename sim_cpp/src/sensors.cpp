@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "sim/attitude.h"
@@ -52,6 +54,11 @@ double checked_noise_scale(const std::string& name, double k)
 void Gyro::set_noise_scale(double k) { k_noise_ = checked_noise_scale(p_.name, k); }
 void StarTracker::set_noise_scale(double k) { k_noise_ = checked_noise_scale(p_.name, k); }
 void CoarseSunSensor::set_noise_scale(double k) { k_noise_ = checked_noise_scale(p_.name, k); }
+void WheelTachometers::set_noise_scale(int i, double k)
+{
+  if (i < 0 || i >= p_.num_rw) throw std::out_of_range("tach(" + p_.name + ").noise_scale: no wheel " + std::to_string(i));
+  k_noise_[static_cast<size_t>(i)] = checked_noise_scale(p_.name, k);
+}
 
 double quantize(double x, double lsb)
 {
@@ -197,6 +204,7 @@ WheelTachometers::WheelTachometers(TachParams p, const SensorContext& ctx)
   require_non_negative(n + ".sigma", p_.sigma);
   require_non_negative(n + ".lsb", p_.lsb);
   require_period(n + ".period_ns", p_.period_ns);
+  k_noise_.fill(1.0);
 }
 
 bool WheelTachometers::update(const SensorTruth& truth)
@@ -205,7 +213,7 @@ bool WheelTachometers::update(const SensorTruth& truth)
   for (int i = 0; i < p_.num_rw; ++i) {
     const auto ui = static_cast<size_t>(i);
     double w = truth.Omega[ui];
-    if (noise_) w += p_.sigma * rng_.normal();
+    if (noise_) w += p_.sigma * k_noise_[ui] * rng_.normal();  // sigma * 1.0: bit for bit the nominal
     out_.Omega[ui] = quantize(w, p_.lsb);
   }
   out_.t_ns = truth.t_ns;

@@ -814,6 +814,46 @@ TEST(Events, GyroNoiseScaleThenRestored)
   EXPECT_LT(rms_a, 2.0 * 2.83e-5);
 }
 
+// tach_noise_scale on rw3 (wheel 2): its tachometer's error (measured minus
+// true speed, both recorded) is 4 times the nominal twin's, sample for sample
+// (the draws stay aligned), from the event on, and back to the twin's after
+// restore; the other wheels' readings are the twin's bit for bit.  Needs
+// sensor noise and the tachometers (validation).
+TEST(Events, TachometerNoiseScaleThenRestored)
+{
+  const harness::Scenario sc = harness::load_scenario_text(
+      s1_with("events:\n"
+              "  - {t: 3, actions: [{device: rw3, action: tach_noise_scale, value: 4}]}\n"
+              "  - {t: 6, actions: [{device: rw3, action: restore}]}\n"),
+      "ev.yaml", fast({{"duration", "9"}}));
+  harness::Scenario quiet = sc;
+  quiet.sensors.noise = false;
+  EXPECT_THROW(harness::validate_scenario(quiet), harness::ScenarioError);
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 5, actions: [{device: rw3, action: tach_noise_scale}]}\n"))
+                .find("needs a value >= 0"),
+            std::string::npos);
+  harness::Run run(sc);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  const auto ref = run_without_events(sc);
+  const harness::MemorySink &r = run.memory(), &r0 = ref->memory();
+  const auto t = r.column("t");
+  // the FSW's torques differ once the readings do, so compare errors, not speeds
+  const auto m = r.column("meas_wheel_speed_rpm_2"), w = r.column("wheel_speed_rpm_2");
+  const auto m0 = r0.column("meas_wheel_speed_rpm_2"), w0 = r0.column("wheel_speed_rpm_2");
+  size_t scaled = 0;
+  for (size_t k = 0; k < t.size(); ++k) {
+    const double e = m[k] - w[k], e0 = m0[k] - w0[k];
+    if (t[k] >= 3.0 && t[k] < 6.0) {
+      EXPECT_NEAR(e, 4.0 * e0, 1e-9 * std::fabs(w[k]) + 1e-12) << t[k];
+      ++scaled;
+    } else {
+      EXPECT_NEAR(e, e0, 1e-9 * std::fabs(w[k]) + 1e-12) << t[k];
+    }
+  }
+  EXPECT_EQ(scaled, 12u);  // 3 s of 0.25 s samples
+  EXPECT_EQ(r.column("meas_wheel_speed_rpm_0").front(), r0.column("meas_wheel_speed_rpm_0").front());
+}
+
 // An FSW command from an event (device fsw): S1 starts sun-safe; at t = 400 s
 // (the Sun hold settled) the ground commands inertial pointing at
 // fsw.inertial.sigma_R0N.  From the

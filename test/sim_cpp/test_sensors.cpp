@@ -525,4 +525,26 @@ TEST(SensorNoiseScale, TwinsDifferByTheScaleSampleBySample)
     }
   }
   EXPECT_EQ(c2.noise_scale(), 2.5);
+
+  // tachometers: per wheel; wheel 1 at scale 3, wheels 0 and 2 untouched
+  // (bit for bit the nominal twin): Omega - truth = k sigma eta
+  sim::TachParams tp;
+  tp.num_rw = 3;
+  tp.sigma = 0.01;
+  tp.period_ns = 100 * kMs;
+  sim::WheelTachometers w1(tp, ctx), w2(tp, ctx);
+  w2.set_noise_scale(1, 3.0);
+  EXPECT_EQ(w2.noise_scale(1), 3.0);
+  EXPECT_EQ(w2.noise_scale(0), 1.0);
+  for (int k = 0; k < 100; ++k) {
+    sim::SensorTruth t = truth_at(k * 100 * kMs);
+    for (size_t i = 0; i < 3; ++i) t.Omega[i] = 100.0 * static_cast<double>(i + 1);
+    ASSERT_TRUE(w1.update(t));
+    ASSERT_TRUE(w2.update(t));
+    EXPECT_EQ(w2.output().Omega[0], w1.output().Omega[0]) << k;
+    EXPECT_EQ(w2.output().Omega[2], w1.output().Omega[2]) << k;
+    EXPECT_NEAR(w2.output().Omega[1] - 200.0, 3.0 * (w1.output().Omega[1] - 200.0), 1e-12) << k;
+  }
+  EXPECT_THROW(w2.set_noise_scale(3, 1.0), std::out_of_range);
+  EXPECT_THROW(w2.set_noise_scale(0, -1.0), std::invalid_argument);
 }

@@ -208,12 +208,19 @@ class WheelTachometers {
   WheelTachometers(TachParams p, const SensorContext& ctx);
   bool update(const SensorTruth& truth);
   const TachOutput& output() const { return out_; }
+  // Multiplies wheel i's noise 1-sigma (a fault event's tach_noise_scale):
+  // i in [0, num_rw) (std::out_of_range), k finite, >= 0
+  // (std::invalid_argument "<name>.noise_scale"); 1 nominal; the draws are
+  // unchanged, so the stream stays aligned.
+  void set_noise_scale(int i, double k);
+  double noise_scale(int i) const { return k_noise_.at(static_cast<size_t>(i)); }
 
  private:
   TachParams p_;
   bool noise_;
   Rng rng_;
   TachOutput out_;
+  WheelArray k_noise_;
 };
 
 }  // namespace sim
