@@ -184,17 +184,25 @@ void EventTask::apply(const Act& a, uint64_t t_ns)
       const uint64_t until = f != F::Dropout ? 0
                              : a.value < 9e9 ? t_ns + static_cast<uint64_t>(std::llround(a.value * 1e9))
                                              : std::numeric_limits<uint64_t>::max();
-      const bool scale = a.action == EventAction::SensorNoiseScale, restore = a.action == EventAction::Restore;
+      const EventAction x = a.action;
+      const bool scale = x == EventAction::SensorNoiseScale, restore = x == EventAction::Restore;
+      const int axis = x == EventAction::SensorBiasX ? 0 : x == EventAction::SensorBiasY ? 1 : x == EventAction::SensorBiasZ ? 2 : -1;
+      const bool fault = !scale && axis < 0 && x != EventAction::SensorBias;  // dropout, frozen, restore
       const double k = scale ? a.value : 1.0;
       if (a.target.device == EventDevice::Gyro) {
-        if (!scale) sensors_.set_gyro_fault(f, until);
+        if (fault) sensors_.set_gyro_fault(f, until);
         if (scale || restore) sensors_.set_gyro_noise_scale(k);
+        if (axis >= 0) sensors_.set_gyro_bias(axis, a.value);
+        for (int b = 0; restore && b < 3; ++b) sensors_.set_gyro_bias(b, 0.0);
       } else if (a.target.device == EventDevice::StarTracker) {
-        if (!scale) sensors_.set_star_tracker_fault(f, until);
+        if (fault) sensors_.set_star_tracker_fault(f, until);
         if (scale || restore) sensors_.set_star_tracker_noise_scale(k);
+        if (axis >= 0) sensors_.set_star_tracker_bias(axis, a.value);
+        for (int b = 0; restore && b < 3; ++b) sensors_.set_star_tracker_bias(b, 0.0);
       } else {
-        if (!scale) sensors_.set_css_fault(i, f, until);
+        if (fault) sensors_.set_css_fault(i, f, until);
         if (scale || restore) sensors_.set_css_noise_scale(i, k);
+        if (x == EventAction::SensorBias || restore) sensors_.set_css_bias(i, restore ? 0.0 : a.value);
       }
       break;
     }

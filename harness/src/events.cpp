@@ -44,7 +44,12 @@ const std::vector<EventActionDef> kSensorActions = {
     {"noise_scale", EventAction::SensorNoiseScale, EventValue::NonNegative, "-",
      "the model's random-error 1-sigmas times value (gyro ARW and RRW; star tracker cross and boresight; CSS "
      "sigma)"},
-    {"restore", EventAction::Restore, EventValue::None, "-", "the output follows the sensor again, noise scale 1"},
+    {"bias_x", EventAction::SensorBiasX, EventValue::Finite, "rad/s or rad",
+     "gyro: value added to its x rate; star tracker: the measured attitude turned by value about body x"},
+    {"bias_y", EventAction::SensorBiasY, EventValue::Finite, "rad/s or rad", "as bias_x, about y"},
+    {"bias_z", EventAction::SensorBiasZ, EventValue::Finite, "rad/s or rad", "as bias_x, about z"},
+    {"bias", EventAction::SensorBias, EventValue::Finite, "css units", "coarse sun sensor: value added to its reading"},
+    {"restore", EventAction::Restore, EventValue::None, "-", "the output follows the sensor again, noise scale 1, no bias"},
 };
 const std::vector<EventActionDef> kFswActions = {
     {"mode_inertial", EventAction::FswModeInertial, EventValue::None, "-",
@@ -155,6 +160,19 @@ std::string check_event_action(const Scenario& sc, const EventActionSpec& a, std
       !sc.thrusters[static_cast<size_t>(tg.index)].acs)
     return "'" + a.action + "' flags an ACS thruster for the FSW; '" + a.device +
            "' is not one (acs: false: the FSW does not command it)";
+  {
+    const EventAction x = d->action;
+    const bool axis = x == EventAction::SensorBiasX || x == EventAction::SensorBiasY || x == EventAction::SensorBiasZ;
+    if (axis && tg.device == EventDevice::Css)
+      return "a coarse sun sensor has one output: its bias step is 'bias', not '" + a.action + "'";
+    if (x == EventAction::SensorBias && tg.device != EventDevice::Css)
+      return "'bias' is a coarse sun sensor's; the " + std::string(to_string(tg.device)) +
+             " takes bias_x, bias_y, bias_z (body axes)";
+    if (axis && tg.device == EventDevice::StarTracker && std::fabs(a.value) > 3.141592653589793) {
+      key = "value";
+      return "a star tracker bias is a rotation angle: |value| <= pi [rad]";
+    }
+  }
   if ((d->action == EventAction::SensorNoiseScale || d->action == EventAction::TachNoiseScale) && !sc.sensors.noise)
     return "'" + a.action + "' needs sensor noise (sensors.noise: true)";
   if (tg.device == EventDevice::Fsw) {

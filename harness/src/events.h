@@ -21,7 +21,7 @@ enum class EventAction {
   // thrusters
   ThrStuckClosed, ThrStuckOpen, ThrThrustFactor,
   // sensors (gyro, star tracker, a coarse sun sensor)
-  SensorDropout, SensorFrozen, SensorNoiseScale,
+  SensorDropout, SensorFrozen, SensorNoiseScale, SensorBiasX, SensorBiasY, SensorBiasZ, SensorBias,
   // the flight software (a ground/executive command, FswAcsCmdMsg)
   FswModeInertial, FswModeSunSafe, FswActuationWheels, FswActuationThrusters,
   // every device: back to nominal (a wheel: motor, limits, friction, tachometer)

@@ -183,6 +183,38 @@ void SensorSuite::apply_faults(uint64_t t_ns, FswAcsSensorMsg& msg) const
     msg.rw_avail[i] = rw_unavail_[u];
   }
   for (size_t j = 0; j < thr_unavail_.size(); ++j) msg.thr_avail[j] = thr_unavail_[j];
+  // bias steps, on top of what the faults above left
+  for (int a = 0; a < 3; ++a)
+    msg.omega_BN_B[a] = static_cast<fsw_real>(static_cast<double>(msg.omega_BN_B[a]) + gyro_bias_(a));
+  if (st_bias_.squaredNorm() > 0.0 && msg.att_valid) {
+    // the measured body frame turned by st_bias_: C_B'N = exp([delta~])^T C_BN
+    Eigen::Vector3d s;
+    for (int a = 0; a < 3; ++a) s(a) = static_cast<double>(msg.sigma_BN[a]);
+    const Eigen::Matrix3d C = sim::rotation_from_vector(st_bias_).transpose() * sim::dcm_BN_from_sigma(s);
+    const Eigen::Vector3d sb = sim::sigma_from_quaternion(sim::quaternion_from_dcm(C));
+    for (int a = 0; a < 3; ++a) msg.sigma_BN[a] = static_cast<fsw_real>(sb(a));
+  }
+  for (int i = 0; i < num_css_; ++i)
+    if (msg.css_avail[i] == 0)
+      msg.css[i] = static_cast<fsw_real>(static_cast<double>(msg.css[i]) + css_bias_[static_cast<size_t>(i)]);
+}
+
+void SensorSuite::set_gyro_bias(int a, double v)
+{
+  any_fault_ = true;
+  gyro_bias_(a) = v;
+}
+
+void SensorSuite::set_star_tracker_bias(int a, double v)
+{
+  any_fault_ = true;
+  st_bias_(a) = v;
+}
+
+void SensorSuite::set_css_bias(int i, double v)
+{
+  any_fault_ = true;
+  if (static_cast<size_t>(i) < css_bias_.size()) css_bias_[static_cast<size_t>(i)] = v;
 }
 
 void SensorSuite::set_gyro_fault(Fault f, uint64_t until_ns)

@@ -64,6 +64,13 @@ class SensorSuite {
   void set_star_tracker_noise_scale(double k);
   void set_css_noise_scale(int i, double k);
   void set_tach_noise_scale(int i, double k);  // wheel i's tachometer
+  // Bias steps on what the FSW is given (events bias_x/y/z, bias; 0 clears):
+  // the gyro's rate about body axis a [rad/s]; the star tracker's attitude,
+  // turned by v about body axis a [rad] (a rotation of the measured body
+  // frame); CSS i's reading [its units].
+  void set_gyro_bias(int a, double v);
+  void set_star_tracker_bias(int a, double v);
+  void set_css_bias(int i, double v);
 
  private:
   struct SensorFault {
@@ -79,6 +86,8 @@ class SensorSuite {
   std::array<double, kMaxRw> tach_value_{};  // [rad/s] frozen reading or bias
   std::array<uint8_t, kMaxRw> rw_unavail_{};
   std::array<uint8_t, FSW_MAX_THR> thr_unavail_{};
+  Eigen::Vector3d gyro_bias_ = Eigen::Vector3d::Zero(), st_bias_ = Eigen::Vector3d::Zero();  // [rad/s], [rad]
+  std::array<double, FSW_MAX_CSS> css_bias_{};
   bool any_fault_ = false;  // a fault was ever set (the nominal path stays as it was)
 
   const sim::SensorTruth& truth_now();

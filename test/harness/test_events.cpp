@@ -13,9 +13,11 @@
 
 #include <unistd.h>
 
+#include "fsw/fsw_config.h"
 #include "harness/outputs.h"
 #include "harness/run.h"
 #include "harness/scenario.h"
+#include "sim/attitude.h"
 
 namespace fs = std::filesystem;
 
@@ -852,6 +854,62 @@ TEST(Events, TachometerNoiseScaleThenRestored)
   }
   EXPECT_EQ(scaled, 12u);  // 3 s of 0.25 s samples
   EXPECT_EQ(r.column("meas_wheel_speed_rpm_0").front(), r0.column("meas_wheel_speed_rpm_0").front());
+}
+
+// Bias steps (noise-free sensors, S1 fast): at 3 s the gyro's y rate gets
+// +1e-3 rad/s, the star tracker's attitude is turned by 2e-3 rad about body
+// z and coarse sun sensor css5 (pointing away from the Sun here: unlit)
+// reads +0.5 (scale 2: 0.25 of full, above the 0.1 lit threshold); restore
+// at 6 s.  The FSW input then differs from truth by exactly the bias
+// (gyro: meas - truth; star tracker: the angle of [B'N][BN]^T, from the
+// recorded MRPs), and css5 counts as one more lit sensor than in the
+// nominal twin.  Bad uses are refused (bias_x on a CSS, bias on the gyro,
+// a star tracker angle beyond pi).
+TEST(Events, SensorBiasStepsThenRestored)
+{
+  const harness::Scenario sc = harness::load_scenario_text(
+      s1_with("events:\n"
+              "  - {t: 3, actions: [{device: gyro, action: bias_y, value: 1.0e-3},\n"
+              "                     {device: star_tracker, action: bias_z, value: 2.0e-3},\n"
+              "                     {device: css5, action: bias, value: 0.5}]}\n"
+              "  - {t: 6, actions: [{device: gyro, action: restore}, {device: star_tracker, action: restore},\n"
+              "                     {device: css5, action: restore}]}\n"),
+      "ev.yaml", fast({{"duration", "9"}, {"sensors.noise", "false"}}));
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 5, actions: [{device: css2, action: bias_x, value: 1}]}\n"))
+                .find("its bias step is 'bias'"),
+            std::string::npos);
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 5, actions: [{device: gyro, action: bias, value: 1}]}\n"))
+                .find("takes bias_x, bias_y, bias_z"),
+            std::string::npos);
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 5, actions: [{device: star_tracker, action: bias_x, value: 4}]}\n"))
+                .find("|value| <= pi"),
+            std::string::npos);
+  harness::Run run(sc);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  const auto ref = run_without_events(sc);
+  const harness::MemorySink &r = run.memory(), &r0 = ref->memory();
+  const auto t = r.column("t"), gy = r.column("meas_omega_BN_B_y"), wy = r.column("omega_BN_B_y");
+  const auto lit = r.column("css_num_lit"), lit0 = r0.column("css_num_lit");
+  // the FSW input is in the FSW's real type: a float rate of ~0.03 rad/s
+  // carries ~2e-9 rad/s, an MRP component ~3e-8
+  const bool dbl = sizeof(fsw_real) == sizeof(double);
+  const double tol = dbl ? 1e-12 : 1e-8;
+  for (size_t k = 0; k < t.size(); ++k) {
+    const bool on = t[k] >= 3.0 && t[k] < 6.0;
+    EXPECT_NEAR(gy[k] - wy[k], on ? 1e-3 : 0.0, tol) << t[k];
+    Eigen::Vector3d sm, st;
+    for (int a = 0; a < 3; ++a) {
+      sm(a) = r.column(std::string("meas_sigma_BN_") + "xyz"[a])[k];
+      st(a) = r.column(std::string("sigma_BN_") + "xyz"[a])[k];
+    }
+    const Eigen::Matrix3d D = sim::dcm_BN_from_sigma(sm) * sim::dcm_BN_from_sigma(st).transpose();
+    const double angle = std::acos(std::clamp((D.trace() - 1.0) / 2.0, -1.0, 1.0));
+    EXPECT_NEAR(angle, on ? 2e-3 : 0.0, dbl ? 1e-6 : 2e-6) << t[k];  // acos near 1: ~1e-8 rad of round-off
+    if (on) {
+      EXPECT_NEAR(D(0, 1), std::sin(2e-3), dbl ? 1e-9 : 1e-6) << t[k];  // about +z: the frame turned by +2e-3
+      EXPECT_EQ(lit[k], lit0[k] + 1.0) << t[k];
+    }
+  }
 }
 
 // An FSW command from an event (device fsw): S1 starts sun-safe; at t = 400 s
