@@ -1106,7 +1106,10 @@ void expect_stage_health_after_error_cycle(const char* why)
   ASSERT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)) << why;
   EXPECT_EQ(2u, g_st.mrp_fb.health.calls) << why;
   EXPECT_EQ(1u, g_st.mrp_fb.health.bad_input) << why;
-  if (g_cfg.use_lpf) EXPECT_EQ(2u, g_st.lpf.health.calls) << why;
+  if (g_cfg.use_lpf) {
+    EXPECT_EQ(2u, g_st.lpf.health.calls) << why;
+    EXPECT_EQ(0u, g_st.lpf.health.bad_input) << why;  // its own counters, not the control law's (seed 20261203)
+  }
   if (g_cfg.has_wheels && g_cfg.use_volt) EXPECT_EQ(2u, g_st.rw_volt.health.calls) << why;
   if (g_cfg.initial_actuation == FSW_ACS_ACT_THRUSTERS) {
     if (g_cfg.pulser == FSW_ACS_PULSE_REMAINDER)
@@ -1279,4 +1282,51 @@ TEST(FswAcsSpeedFilter, ErrorCycleRestoresTheFilterAndResetClearsALatch)
   ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
   EXPECT_EQ(0u, g_h.rw_latched);
   EXPECT_EQ(0u, g_h.rw_failed);
+}
+
+// ---- mutation seed 20261203: gaps its survivors showed ---------------------
+
+// An off-pulsing thruster set (thr_map sign -1) needs off-pulsing pulsing
+// (base_thrust_state 1): that pairing is accepted, the mismatch refused by
+// name, for both pulsers (docs/fsw/fsw_acs.md, "Checking the whole").
+TEST(FswAcsConfig, OffPulsingThrustersNeedOffPulsingPulsing)
+{
+  for (int pulser : {FSW_ACS_PULSE_REMAINDER, FSW_ACS_PULSE_SCHMITT}) {
+    acsfix::thruster_config(g_cfg, pulser);
+    g_cfg.thr_map.thr_force_sign = -1;
+    g_cfg.pulse_rem.common.base_thrust_state = 1;
+    g_cfg.pulse_schmitt.common.base_thrust_state = 1;
+    const char* field = nullptr;
+    EXPECT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field)) << (field ? field : "");
+    g_cfg.pulse_rem.common.base_thrust_state = 0;
+    g_cfg.pulse_schmitt.common.base_thrust_state = 0;
+    EXPECT_EQ(FSW_E_CONFIG, fsw_acs_check(&g_cfg, &field));
+    ASSERT_NE(nullptr, field);
+    EXPECT_EQ(std::string(pulser == FSW_ACS_PULSE_REMAINDER ? "pulse_rem.base_thrust_state"
+                                                            : "pulse_schmitt.base_thrust_state"),
+              field);
+  }
+}
+
+// With the speed filter on, the sensor message's own availability flags
+// still reach every stage (the filter ORs them with its verdicts): a wheel
+// flagged unavailable gets no torque, the three others deliver Lr, and the
+// flag is not a filter failure.
+TEST(FswAcsSpeedFilter, FlaggedWheelsStayUnavailableThroughTheFilter)
+{
+  acsfix::wheel_config(g_cfg);
+  g_cfg.initial_mode = FSW_ACS_MODE_INERTIAL;
+  speed_filter_on(g_cfg, 3, 0);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  for (int c = 0; c < 3; c++) {
+    sensors_at_rest(g_sens, c * kPeriodNs);
+    g_sens.sigma_BN[0] = acsfix::R(0.01);
+    g_sens.sigma_BN[2] = acsfix::R(-0.02);
+    g_sens.rw_avail[3] = FSW_UNAVAILABLE;
+    ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+    EXPECT_EQ(0, g_act.u_s[3]) << c;
+    EXPECT_NE(0, g_act.u_s[0]) << c;
+    EXPECT_EQ(0u, g_h.rw_failed) << c;
+    EXPECT_NEAR(1.0, wheel_torque_alignment(g_act), kt::tol(1e-12, 1e-5)) << c;
+  }
 }

@@ -1103,3 +1103,22 @@ TEST(ThrMapAvailability, AFlagOtherThanZeroOrOneIsBadInput)
   in.avail[6] = 7;  // beyond num_thr: not read
   EXPECT_EQ(FSW_OK, fsw_thr_map_update(&st, &c, &in, &out));
 }
+
+// Found by fuzz_fsw_thr_map (2026-12-03, with the flags): min-norm
+// off-pulsing DV set with three control axes (no torque about z: rank 2,
+// FSW_W_SINGULAR, F = 0) and thruster 0 flagged: F = 0 would be "full
+// thrust" off-pulsing, so the flagged thruster keeps its off command -F_max
+// under W_SINGULAR too; the others get 0.
+TEST(ThrMapAvailability, RankDeficientOffPulsingKeepsTheFlaggedThrusterOff)
+{
+  FswThrMapConfig c = dv_cfg(3);
+  FswThrMapState st;
+  ASSERT_EQ(FSW_OK, fsw_thr_map_init(&st, &c));
+  FswThrMapIn in{};
+  set3(in.Lr_B, 0.1, 0.2, 0.3);
+  in.avail[0] = FSW_UNAVAILABLE;
+  FswThrMapOut out;
+  ASSERT_EQ(FSW_W_SINGULAR, fsw_thr_map_update(&st, &c, &in, &out));
+  EXPECT_EQ(-1, out.F[0]);
+  for (int i = 1; i < FSW_MAX_THR; i++) EXPECT_EQ(0, out.F[i]) << i;
+}

@@ -124,6 +124,7 @@ TEST(ThrPulseRem, HandSequenceWithRemainder)
   // negative force is clipped to 0; a plain request passes through
   EXPECT_EQ(FSW_OK, p.step(5 * kSec, -0.3, 1.0));  // thruster 1: 1 N of 2 N -> 0.5 s
   EXPECT_EQ(0, p.out.t_on[0]);
+  EXPECT_EQ(0, p.st.rem[0]);  // clipped before the remainder: no negative on-time is carried (seed 20261203)
   EXPECT_NEAR(0.5, p.out.t_on[1], kTol);
   expect_rest_zero(p.out, 2);
 }

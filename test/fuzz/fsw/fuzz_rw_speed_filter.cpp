@@ -17,6 +17,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   in.reals(cfg.noise, n, nullptr, 0.5);
   cfg.k_reject = in.u32(3);
   cfg.n_recover = in.u32(2);
+  // issue 14: the latched tests (stale, torque consistency), on now and then
+  cfg.n_stale = in.u8() >= 128 ? in.u32(4) : 0u;
+  cfg.n_window = in.u8() >= 128 ? in.u32(5) : 0u;
+  in.reals(cfg.resid_tol, n, nullptr, 0.3);
   static FswRwSpeedFilterState st;
   FswRwSpeedFilterIn x{};
   FswRwSpeedFilterOut out;
@@ -25,7 +29,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
       const fsw_real held = (i < n && st.ready && st.has_good[i]) ? st.Omega_good[i] : 0;
       if (o.Omega[i] != held || o.avail[i] != (i < n ? 1 : 0)) return false;
     }
-    return o.rejected == 0 && o.failed == 0;
+    return o.rejected == 0 && o.failed == 0 && o.latched == 0;
   };
   const auto step = [&]() {
     return fuzz_call("rw_speed_filter", st, out, {FSW_OK, FSW_E_BAD_INPUT, FSW_E_TIME, FSW_E_NOT_INIT},
@@ -35,11 +39,22 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   if (!fuzz_init("rw_speed_filter", st, cfg, fsw_rw_speed_filter_check, fsw_rw_speed_filter_init,
                  [](const FswRwSpeedFilterState &s) { return s.ready; }, step))
     return 0;
-  uint64_t t = 0;
+  uint64_t t = 0, latched_before = 0;
   for (int k = 0, steps = in.steps(12, 48); k < steps; k++) {
-    if (in.op()) fsw_rw_speed_filter_reset(&st);
+    if (in.op()) {
+      fsw_rw_speed_filter_reset(&st);
+      latched_before = 0;
+    }
     fuzz_speeds(in, x.Omega_meas, n, 100.0 + 0.1 * k);
     in.avail_mask(x.avail, n);
+    // the torque applied since the previous call: near the limits, any value
+    // now and then (beyond 2 u_max or non-finite is bad input); u_valid mostly
+    // 1, sometimes 0, rarely neither
+    for (int i = 0; i < n; i++) x.u_applied[i] = static_cast<fsw_real>(in.real(0.05));
+    {
+      const uint8_t v = in.u8();
+      x.u_valid = static_cast<uint8_t>(v < 32 ? 0 : (v == 255 ? 2 : 1));
+    }
     x.t_ns = t = (k == 0) ? in.next_time(0, 0) : in.next_time(t, 100000000ull);
     fuzz_trace("Omega_meas", x.Omega_meas, n);
     const int s = step();
@@ -52,7 +67,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
       FUZZ_REQUIRE(out.avail[i] == expect, "rw_speed_filter: avail[%d] = %d, In.avail OR failed = %d", i,
                    out.avail[i], expect);
     }
-    FUZZ_REQUIRE(n >= 64 || ((out.failed | out.rejected) >> n) == 0, "rw_speed_filter: bits beyond num_rw");
+    FUZZ_REQUIRE(n >= 64 || ((out.failed | out.rejected | out.latched) >> n) == 0,
+                 "rw_speed_filter: bits beyond num_rw");
+    FUZZ_REQUIRE((out.latched & ~out.failed) == 0, "rw_speed_filter: a latched wheel that is not failed");
+    FUZZ_REQUIRE((latched_before & ~out.latched) == 0, "rw_speed_filter: a latched wheel came back without reset");
+    latched_before = out.latched;
   }
   return 0;
 }

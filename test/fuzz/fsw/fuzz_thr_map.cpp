@@ -1,7 +1,9 @@
 // fsw_thr_map_update: control axes, thruster count, locations, force axes,
 // limits, force sign, thresholds, second loop and mode; a sequence of torque
 // requests and centre-of-mass locations.  OK/warnings: finite forces,
-// nothing beyond num_thr; W_SINGULAR: F = 0; NNLS: lo <= F <= hi and under OK
+// nothing beyond num_thr; W_SINGULAR: F = 0; thrusters flagged unavailable
+// (issue 14): commanded off (0, or -F_max off-pulsing) under every non-error
+// status and left out of the delivered torque; NNLS: lo <= F <= hi and under OK
 // the delivered torque [C][D] F equals [C] Lr (+ the all-on torque when
 // off-pulsing); min-norm on-pulsing without the second loop: F >= 0 and
 // under OK the torque error lies along the min-shift direction [C][D] 1;
@@ -26,7 +28,9 @@ static const double kG[8][3] = {{1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {-1, 0, 0},
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
   FuzzIn in(data, size);
-  const int variant = in.u8() % 4;  // mode x force sign
+  const int v8 = in.u8();
+  const int variant = v8 % 4;            // mode x force sign
+  const bool with_flags = (v8 & 4) != 0;  // issue 14: availability flags (inputs from before read none)
   FswThrMapConfig cfg{};
   cfg.mode = in.flag(variant & 1);
   cfg.thr_force_sign = in.flag((variant & 2) ? -1 : 1);
@@ -69,6 +73,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (in.op()) fsw_thr_map_reset(&st);
     in.reals(x.Lr_B, 3, L0);
     in.reals(x.r_CoM_B, 3, c0);
+    // issue 14: thrusters flagged unavailable (now and then a flag that is
+    // neither 0 nor 1: bad input)
+    const bool flags = with_flags && in.u8() >= 128;
+    for (int i = 0; i < n; i++) {
+      const int b = flags ? in.u8() : 128;
+      x.avail[i] = static_cast<uint8_t>(b < 64 ? 1 : (b == 255 ? 2 : 0));
+    }
     fuzz_trace("Lr_B", x.Lr_B, 3);
     fuzz_trace("r_CoM_B", x.r_CoM_B, 3);
     const int s = step();
@@ -77,11 +88,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_REQUIRE(fuzz_finite(out.F, FSW_MAX_THR), "thr_map: non-finite force under %s",
                  fsw_status_name(static_cast<FswStatus>(s)));
     FUZZ_REQUIRE(fuzz_nonzero_from(out.F, n, FSW_MAX_THR) < 0, "thr_map: force beyond num_thr");
-    if (s == FSW_W_SINGULAR) {
-      FUZZ_REQUIRE(fuzz_nonzero_from(out.F, 0, FSW_MAX_THR) < 0, "thr_map: W_SINGULAR with non-zero forces");
-      continue;
+    if (s == FSW_W_SINGULAR) {  // F = 0, but a flagged thruster keeps its off command (checked below)
+      for (int i = 0; i < n; i++)
+        FUZZ_REQUIRE(x.avail[i] != 0 || out.F[i] == 0, "thr_map: W_SINGULAR with F[%d] = %.17g", i, out.F[i]);
+      FUZZ_REQUIRE(fuzz_nonzero_from(out.F, n, FSW_MAX_THR) < 0, "thr_map: W_SINGULAR with forces beyond num_thr");
     }
     const int sF = cfg.thr_force_sign;
+    for (int i = 0; i < n; i++)  // an unavailable thruster is commanded off
+      FUZZ_REQUIRE(x.avail[i] == 0 || out.F[i] == (sF > 0 ? 0 : -cfg.F_max[i]),
+                   "thr_map: unavailable thruster %d has F = %.17g", i, out.F[i]);
+    if (s == FSW_W_SINGULAR) continue;
     for (int i = 0; i < n; i++) {
       const double lo = sF > 0 ? 0.0 : -cfg.F_max[i], hi = sF > 0 ? cfg.F_max[i] : 0.0;
       FUZZ_REQUIRE(cfg.mode != FSW_THR_MAP_NNLS || (out.F[i] >= lo && out.F[i] <= hi),
@@ -95,6 +111,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
       long double Lr[3];
       for (int k3 = 0; k3 < 3; k3++) Lr[k3] = x.Lr_B[k3];
       for (int i = 0; i < n; i++) {
+        if (x.avail[i] != 0) continue;  // mapped as absent: no arm, not on
         const long double rel[3] = {static_cast<long double>(cfg.r_thr_B[i][0]) - x.r_CoM_B[0],
                                     static_cast<long double>(cfg.r_thr_B[i][1]) - x.r_CoM_B[1],
                                     static_cast<long double>(cfg.r_thr_B[i][2]) - x.r_CoM_B[2]};
