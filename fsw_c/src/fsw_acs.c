@@ -267,6 +267,8 @@ FswStatus fsw_acs_init(FswAcsState *st, const FswAcsConfig *cfg, const char **ba
 
   ACS_INIT(fsw_css_sun_init(&st->css, &cfg->css), "css");
   ACS_INIT(fsw_guid_sunsafe_init(&st->sunsafe, &cfg->sunsafe), "sunsafe");
+  st->inertial_cfg = cfg->inertial;
+  st->mrp_cfg = cfg->mrp_fb;
   ACS_INIT(fsw_guid_inertial_init(&st->inertial, &cfg->inertial), "inertial");
   ACS_INIT(fsw_att_track_init(&st->track, &cfg->track), "track");
   ACS_INIT(fsw_mrp_fb_init(&st->mrp_fb, &cfg->mrp_fb), "mrp_fb");
@@ -304,7 +306,14 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg)
   if (st == NULL || cfg == NULL || !st->ready) return;
   fsw_css_sun_reset(&st->css);
   fsw_guid_sunsafe_reset(&st->sunsafe);
-  fsw_guid_inertial_reset(&st->inertial);
+  /* back to the configured reference and gains */
+  st->mrp_cfg = cfg->mrp_fb;
+  {
+    const FswHealth hh = st->inertial.health;
+    st->inertial_cfg = cfg->inertial;
+    (void)fsw_guid_inertial_init(&st->inertial, &st->inertial_cfg); /* checked by fsw_acs_init */
+    st->inertial.health = hh;
+  }
   fsw_att_track_reset(&st->track);
   if (cfg->has_wheels) {
     fsw_rw_map_reset(&st->rw_map);
@@ -405,7 +414,7 @@ static FswStatus run_guidance(FswAcsState *st, const FswAcsConfig *cfg,
     h->sun_valid = (uint8_t)(w->css_out.sun_valid ? 1 : 0);
     h->num_lit = (uint8_t)w->css_out.num_lit;
   } else {
-    s = fsw_guid_inertial_update(&st->inertial, &cfg->inertial, &w->inertial_out);
+    s = fsw_guid_inertial_update(&st->inertial, &st->inertial_cfg, &w->inertial_out);
     h->stage_status[FSW_ACS_STAGE_GUIDANCE] = s;
     acc = combine(acc, s);
     fsw_v3_copy(w->track_in.sigma_BN, sens->sigma_BN);
@@ -506,12 +515,44 @@ static FswStatus run_thrusters(FswAcsState *st, const FswAcsConfig *cfg,
   return acc;
 }
 
+/* The set fields of a command: flags 0/1, a finite reference, gains finite
+ * and > 0 (what fsw_guid_inertial_check and fsw_mrp_fb_check ask of them). */
+static int set_command_ok(const FswAcsCmdMsg *cmd)
+{
+  if (cmd->set_ref > 1u || cmd->set_gains > 1u) return 0;
+  if (cmd->set_ref && (!fsw_v3_is_finite(cmd->sigma_R0N) || !isfinite(fsw_v3_norm2(cmd->sigma_R0N)))) return 0;
+  if (cmd->set_gains &&
+      (!isfinite(cmd->K) || !(cmd->K > FSW_R(0.0)) || !isfinite(cmd->P) || !(cmd->P > FSW_R(0.0))))
+    return 0;
+  return 1;
+}
+
+/* Apply a checked command's set fields (after save_dynamic: an error cycle
+ * puts the previous reference and gains back). */
+static void apply_set_command(FswAcsState *st, const FswAcsCmdMsg *cmd)
+{
+  if (cmd->set_ref) {
+    const FswHealth hh = st->inertial.health;
+    fsw_v3_copy(st->inertial_cfg.sigma_R0N, cmd->sigma_R0N);
+    (void)fsw_guid_inertial_init(&st->inertial, &st->inertial_cfg); /* checked by set_command_ok */
+    st->inertial.health = hh;
+  }
+  if (cmd->set_gains) {
+    st->mrp_cfg.K = cmd->K;
+    st->mrp_cfg.P = cmd->P;
+  }
+}
+
 /* Snapshot of the dynamic state before the stages run (see FswAcsWork). */
 static void save_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
 {
   FswAcsWork *w = &st->work;
   int i;
   w->saved.mode = st->mode;
+  fsw_v3_copy(w->saved.sigma_R0N, st->inertial_cfg.sigma_R0N);
+  w->saved.inertial = st->inertial;
+  w->saved.K = st->mrp_cfg.K;
+  w->saved.P = st->mrp_cfg.P;
   w->saved.actuation = st->actuation;
   w->saved.mode_changes = st->mode_changes;
   w->saved.mrp_fb = st->mrp_fb;
@@ -538,6 +579,12 @@ static void restore_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   FswHealth hh;
   st->mode = w->saved.mode;
   st->actuation = w->saved.actuation;
+  fsw_v3_copy(st->inertial_cfg.sigma_R0N, w->saved.sigma_R0N);
+  hh = st->inertial.health;
+  st->inertial = w->saved.inertial;
+  st->inertial.health = hh;
+  st->mrp_cfg.K = w->saved.K;
+  st->mrp_cfg.P = w->saved.P;
   st->mode_changes = w->saved.mode_changes;
   hh = st->mrp_fb.health;
   st->mrp_fb = w->saved.mrp_fb;
@@ -610,6 +657,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   if (!((req_act == FSW_ACS_ACT_WHEELS && cfg->has_wheels) ||
         (req_act == FSW_ACS_ACT_THRUSTERS && cfg->has_thrusters)))
     return finish(st, h, FSW_E_BAD_INPUT);
+  if (cmd != NULL && !set_command_ok(cmd)) return finish(st, h, FSW_E_BAD_INPUT);
   {
     fsw_real dt; /* [s] unused: the stages derive their own */
     s = fsw_clock_dt(&st->clock, sens->t_ns, &dt);
@@ -643,6 +691,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
    *    the cycle puts the snapshot back (validate, compute, commit only on
    *    success). */
   save_dynamic(st, cfg);
+  if (cmd != NULL) apply_set_command(st, cmd);
   if (req_mode != st->mode || req_act != st->actuation) {
     reset_dynamic(st, cfg);
     st->mode = req_mode;
@@ -681,7 +730,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     fsw_vn_copy(w->fb_in.Omega, w->Omega, cfg->mrp_fb.num_rw);
     u8_copy(w->fb_in.rw_avail, w->rw_avail, cfg->mrp_fb.num_rw);
   }
-  s = fsw_mrp_fb_update(&st->mrp_fb, &cfg->mrp_fb, &w->fb_in, &w->fb_out);
+  s = fsw_mrp_fb_update(&st->mrp_fb, &st->mrp_cfg, &w->fb_in, &w->fb_out);
   h->stage_status[FSW_ACS_STAGE_CONTROL] = s;
   acc = combine(acc, s);
   Lr = w->fb_out.torque_B;

@@ -213,12 +213,18 @@ FswStatus fsw_link_encode_cmd(const FswAcsCmdMsg *m, uint64_t t_ns, uint16_t seq
 {
   Writer w;
   if (m == NULL || buf == NULL || len == NULL) return FSW_E_NULL_ARG;
-  if (m->mode < 0 || m->mode > 255 || m->actuation < 0 || m->actuation > 255) return link_fail(err, FSW_LINK_E_COUNT);
+  if (m->mode < 0 || m->mode > 255 || m->actuation < 0 || m->actuation > 255 || m->set_ref > 1u ||
+      m->set_gains > 1u)
+    return link_fail(err, FSW_LINK_E_COUNT);
   if (!begin_packet(&w, buf, cap, FSW_LINK_CMD_PAYLOAD)) return link_fail(err, FSW_LINK_E_SPACE);
   put_headers(&w, FSW_LINK_APID_CMD, 1u, seq, t_ns, FSW_LINK_CMD_PAYLOAD);
   put_u8(&w, (uint32_t)m->mode);
   put_u8(&w, (uint32_t)m->actuation);
-  put_u16(&w, 0u);
+  put_u8(&w, m->set_ref);
+  put_u8(&w, m->set_gains);
+  put_reals(&w, m->sigma_R0N, 3u);
+  put_real(&w, m->K);
+  put_real(&w, m->P);
   return finish_packet(&w, len, err);
 }
 
@@ -373,15 +379,22 @@ FswStatus fsw_link_decode_sensor(const FswLinkPacket *p, FswAcsSensorMsg *m, uin
 FswStatus fsw_link_decode_cmd(const FswLinkPacket *p, FswAcsCmdMsg *m, FswLinkError *err)
 {
   Reader r;
-  uint32_t mode, act;
+  uint32_t mode, act, set_ref, set_gains;
   if (p == NULL || m == NULL || p->payload == NULL) return FSW_E_NULL_ARG;
   if (expect(p, FSW_LINK_APID_CMD, 1u, &r, err) != FSW_OK) return FSW_E_BAD_INPUT;
   if (p->payload_len != FSW_LINK_CMD_PAYLOAD) return link_fail(err, FSW_LINK_E_LENGTH);
   mode = get_u8(&r);
   act = get_u8(&r);
-  if (get_u16(&r) != 0u) return link_fail(err, FSW_LINK_E_COUNT);
+  set_ref = get_u8(&r);
+  set_gains = get_u8(&r);
+  if (set_ref > 1u || set_gains > 1u) return link_fail(err, FSW_LINK_E_COUNT);
   m->mode = (int)mode;
   m->actuation = (int)act;
+  m->set_ref = (uint8_t)set_ref;
+  m->set_gains = (uint8_t)set_gains;
+  get_reals(&r, m->sigma_R0N, 3u);
+  m->K = get_real(&r);
+  m->P = get_real(&r);
   return link_ok(err);
 }
 

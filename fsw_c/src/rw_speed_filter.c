@@ -102,7 +102,7 @@ static int stale(FswRwSpeedFilterState *st, const FswRwSpeedFilterConfig *cfg, i
 {
   if (!isfinite(x)) return 0; /* the outlier gate handles it; the run is kept */
   if (st->has_raw[i] && x == st->last_raw[i]) {
-    if (st->stale_run[i] < UINT32_MAX) st->stale_run[i]++;
+    if (st->stale_run[i] < cfg->n_stale) st->stale_run[i]++; /* counted up to the limit only */
   } else {
     st->stale_run[i] = 0u;
   }
@@ -121,7 +121,7 @@ static int torque_inconsistent(FswRwSpeedFilterState *st, const FswRwSpeedFilter
   if (st->failed[i] || in->u_valid == 0u) st->win_open[i] = 0u; /* torque or speed unknown */
   if (st->win_open[i]) {
     st->win_exp[i] += in->u_applied[i] / cfg->J_s[i] * dt;
-    if (st->win_count[i] < UINT32_MAX) st->win_count[i]++;
+    if (st->win_count[i] < cfg->n_window) st->win_count[i]++; /* waits there for an accepted sample */
   }
   if (!accepted) return 0; /* the window waits for an accepted sample */
   if (st->win_open[i] && st->win_count[i] >= cfg->n_window) {
@@ -129,7 +129,7 @@ static int torque_inconsistent(FswRwSpeedFilterState *st, const FswRwSpeedFilter
     if (!(FSW_FABS(r) <= cfg->resid_tol[i])) return 1;
     st->win_open[i] = 0u; /* closed clean: the next one opens here */
   }
-  if (!st->win_open[i] && !st->failed[i]) {
+  if (!st->win_open[i]) { /* (a failed wheel never gets here: it has no accepted sample) */
     st->win_open[i] = 1u;
     st->win_Omega0[i] = st->Omega_good[i];
     st->win_exp[i] = FSW_R(0.0);

@@ -170,6 +170,21 @@ void EventTask::apply(const Act& a, uint64_t t_ns)
         case EventAction::FswModeSunSafe: cmd_.mode = FSW_ACS_MODE_SUN_SAFE; break;
         case EventAction::FswActuationWheels: cmd_.actuation = FSW_ACS_ACT_WHEELS; break;
         case EventAction::FswActuationThrusters: cmd_.actuation = FSW_ACS_ACT_THRUSTERS; break;
+        case EventAction::FswReferenceX:
+        case EventAction::FswReferenceY:
+        case EventAction::FswReferenceZ:
+          cmd_.set_ref = 1;
+          cmd_.sigma_R0N[a.action == EventAction::FswReferenceX ? 0 : a.action == EventAction::FswReferenceY ? 1 : 2] =
+              static_cast<fsw_real>(a.value);
+          break;
+        case EventAction::FswGainK:
+          cmd_.set_gains = 1;
+          cmd_.K = static_cast<fsw_real>(a.value);
+          break;
+        case EventAction::FswGainP:
+          cmd_.set_gains = 1;
+          cmd_.P = static_cast<fsw_real>(a.value);
+          break;
         default: break;
       }
       fsw_.command(cmd_);  // in force from the FSW's next cycle (this tick's, when it runs now)

@@ -59,6 +59,13 @@ const std::vector<EventActionDef> kFswActions = {
     {"actuation_wheels", EventAction::FswActuationWheels, EventValue::None, "-", "command control by the wheels"},
     {"actuation_thrusters", EventAction::FswActuationThrusters, EventValue::None, "-",
      "command control by the ACS thrusters"},
+    {"reference_x", EventAction::FswReferenceX, EventValue::Finite, "-",
+     "command a new inertial reference: component x of sigma_R0N (MRP; the others as last set; one event "
+     "with reference_x, _y, _z sets all three)"},
+    {"reference_y", EventAction::FswReferenceY, EventValue::Finite, "-", "as reference_x, component y"},
+    {"reference_z", EventAction::FswReferenceZ, EventValue::Finite, "-", "as reference_x, component z"},
+    {"gain_K", EventAction::FswGainK, EventValue::Positive, "N*m", "command mrp_fb's attitude gain K"},
+    {"gain_P", EventAction::FswGainP, EventValue::Positive, "N*m*s", "command mrp_fb's rate gain P"},
 };
 }  // namespace
 

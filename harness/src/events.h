@@ -23,7 +23,8 @@ enum class EventAction {
   // sensors (gyro, star tracker, a coarse sun sensor)
   SensorDropout, SensorFrozen, SensorNoiseScale, SensorBiasX, SensorBiasY, SensorBiasZ, SensorBias,
   // the flight software (a ground/executive command, FswAcsCmdMsg)
-  FswModeInertial, FswModeSunSafe, FswActuationWheels, FswActuationThrusters,
+  FswModeInertial, FswModeSunSafe, FswActuationWheels, FswActuationThrusters, FswReferenceX, FswReferenceY,
+  FswReferenceZ, FswGainK, FswGainP,
   // every device: back to nominal (a wheel: motor, limits, friction, tachometer)
   Restore
 };

@@ -317,6 +317,13 @@ void RemoteFsw::cycle(const FswAcsSensorMsg& in, FswAcsActuatorMsg& out, FswAcsH
 {
   std::vector<uint8_t> pkt(FSW_LINK_MAX_PACKET);
   size_t len = 0;
+  if (have_cmd_) {  // a ground command goes out first, so that this cycle applies it
+    if (fsw_link_encode_cmd(&cmd_, in.t_ns, cmd_seq_, pkt.data(), pkt.size(), &len, nullptr) != FSW_OK)
+      throw FswEndpointError("FSW link: cannot encode the command");
+    cmd_seq_ = static_cast<uint16_t>((cmd_seq_ + 1u) % FSW_LINK_SEQ_MODULO);
+    put(std::vector<uint8_t>(pkt.begin(), pkt.begin() + static_cast<std::ptrdiff_t>(len)));
+    have_cmd_ = false;
+  }
   if (fsw_link_encode_sensor(&in, num_rw_, num_css_, seq_, pkt.data(), pkt.size(), &len, nullptr) != FSW_OK)
     throw FswEndpointError("FSW link: cannot encode the sensor message");
   pkt.resize(len);

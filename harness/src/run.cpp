@@ -184,8 +184,15 @@ void Run::Impl::wire(RunConfig& cfg)
   const RateGroup rec_group{"record", sc.rates.record_divisor, 0};
   if (!sc.events.empty() || cfg.accept_events) {
     f.add_component("events", "harness: scenario events (docs/events.md) -> plant devices, sensor faults, FSW input");
-    events.emplace(sc, plant, *sensors, rec, *fsw,
-                   FswAcsCmdMsg{fsw_setup.cfg.initial_mode, fsw_setup.cfg.initial_actuation});
+    // the commands start from the configuration: mode, actuation, and the
+    // reference and gains a set command changes one field of
+    FswAcsCmdMsg cmd0{};
+    cmd0.mode = fsw_setup.cfg.initial_mode;
+    cmd0.actuation = fsw_setup.cfg.initial_actuation;
+    for (int a = 0; a < 3; ++a) cmd0.sigma_R0N[a] = fsw_setup.cfg.inertial.sigma_R0N[a];
+    cmd0.K = fsw_setup.cfg.mrp_fb.K;
+    cmd0.P = fsw_setup.cfg.mrp_fb.P;
+    events.emplace(sc, plant, *sensors, rec, *fsw, cmd0);
   }
   auto fn_of = [this](const std::string& name) -> Scheduler::TaskFn {
     if (name == "events" && events) return [t = &*events](uint64_t k) { (*t)(k); };

@@ -1270,8 +1270,10 @@ TEST(FswAcsSpeedFilter, ErrorCycleRestoresTheFilterAndResetClearsALatch)
   EXPECT_EQ(1u, g_h.rw_latched);
   g_before = g_st;
   sensors_at_rest(g_sens, 3 * kPeriodNs);
-  g_sens.Omega[1] = acsfix::R(500.0);  // an outlier the filter would count ...
-  g_sens.omega_BN_B[2] = kNaN;         // ... in a cycle that is bad input
+  g_sens.Omega[1] = acsfix::R(500.0);  // an outlier the filter counts ...
+  // ... in a cycle that fails after the filter ran: the control law
+  // overflows on a huge finite rate
+  g_sens.omega_BN_B[2] = static_cast<fsw_real>(0.5 * static_cast<double>(std::numeric_limits<fsw_real>::max()));
   ASSERT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
   EXPECT_EQ(1u, g_h.rw_latched);  // the health message shows the filter as it stands
   g_after = g_st;
@@ -1329,4 +1331,113 @@ TEST(FswAcsSpeedFilter, FlaggedWheelsStayUnavailableThroughTheFilter)
     EXPECT_EQ(0u, g_h.rw_failed) << c;
     EXPECT_NEAR(1.0, wheel_torque_alignment(g_act), kt::tol(1e-12, 1e-5)) << c;
   }
+}
+
+// ---- issue 14: reference and gain commands ----------------------------------
+
+namespace {
+FswAcsCmdMsg inertial_cmd()
+{
+  FswAcsCmdMsg c{};
+  c.mode = FSW_ACS_MODE_INERTIAL;
+  c.actuation = FSW_ACS_ACT_WHEELS;
+  return c;
+}
+}  // namespace
+
+// At rest (sigma_BN = 0, omega = 0, wheels at 0) Lr = K sigma_RN
+// (InertialAtRestGivesKSigmaRN).  A set_ref command makes the reference
+// (0.1, -0.2, 0.05) from the cycle that receives it, held on the cycles
+// after (no command); a set_gains command K = 2.88 (twice the fixture's
+// 1.44) doubles Lr; reset brings back the configured reference and gains.
+TEST(FswAcsCommands, ReferenceAndGainsAreSetHeldAndResetBack)
+{
+  acsfix::wheel_config(g_cfg);
+  g_cfg.initial_mode = FSW_ACS_MODE_INERTIAL;
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  const double K = g_cfg.mrp_fb.K, ref[3] = {0.1, -0.2, 0.05};
+  FswAcsCmdMsg c = inertial_cmd();
+  c.set_ref = 1;
+  for (int i = 0; i < 3; i++) c.sigma_R0N[i] = acsfix::R(ref[i]);
+  for (int k = 0; k < 3; k++) {
+    sensors_at_rest(g_sens, k * kPeriodNs);
+    ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, k == 0 ? &c : nullptr, &g_act, &g_h)));
+    for (int i = 0; i < 3; i++) {
+      EXPECT_NEAR(-ref[i], g_h.sigma_BR[i], kTol) << k;
+      EXPECT_NEAR(K * ref[i], g_act.Lr_B[i], kt::tol(1e-12, 1e-6)) << k;
+    }
+  }
+  EXPECT_EQ(0u, g_st.mode_changes);  // a set command is not a transition
+  FswAcsCmdMsg g = inertial_cmd();
+  g.set_gains = 1;
+  g.K = acsfix::R(2.0 * K);
+  g.P = g_cfg.mrp_fb.P;
+  sensors_at_rest(g_sens, 3 * kPeriodNs);
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, &g, &g_act, &g_h)));
+  for (int i = 0; i < 3; i++) EXPECT_NEAR(2.0 * K * ref[i], g_act.Lr_B[i], kt::tol(1e-12, 1e-6));
+  fsw_acs_reset(&g_st, &g_cfg);
+  sensors_at_rest(g_sens, 4 * kPeriodNs);
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  for (int i = 0; i < 3; i++) EXPECT_NEAR(K * g_cfg.inertial.sigma_R0N[i], g_act.Lr_B[i], kTol);
+}
+
+// A bad set command is bad input of its cycle (safe output) and applies
+// nothing; so is a good one in a cycle that fails later (here the control
+// law overflows on a huge finite rate): the reference stays the configured
+// one on the next good cycle.
+TEST(FswAcsCommands, BadOrFailedCommandsApplyNothing)
+{
+  acsfix::wheel_config(g_cfg);
+  g_cfg.initial_mode = FSW_ACS_MODE_INERTIAL;
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  const double K = g_cfg.mrp_fb.K;
+  struct Bad {
+    const char* why;
+    void (*spoil)(FswAcsCmdMsg&);
+  } bad[] = {
+      {"set_ref 2", [](FswAcsCmdMsg& c) { c.set_ref = 2; }},
+      {"set_gains 7", [](FswAcsCmdMsg& c) { c.set_gains = 7; }},
+      {"NaN reference", [](FswAcsCmdMsg& c) { c.set_ref = 1; c.sigma_R0N[1] = kNaN; }},
+      {"huge reference", [](FswAcsCmdMsg& c) {
+         c.set_ref = 1;
+         c.sigma_R0N[0] = std::numeric_limits<fsw_real>::max();
+       }},
+      {"K zero", [](FswAcsCmdMsg& c) { c.set_gains = 1; c.K = 0; c.P = 1; }},
+      {"P negative", [](FswAcsCmdMsg& c) { c.set_gains = 1; c.K = 1; c.P = -1; }},
+      {"P NaN", [](FswAcsCmdMsg& c) { c.set_gains = 1; c.K = 1; c.P = kNaN; }},
+      {"K infinite", [](FswAcsCmdMsg& c) { c.set_gains = 1; c.K = std::numeric_limits<fsw_real>::infinity(); c.P = 1; }},
+  };
+  uint64_t t = 0;
+  for (const Bad& b : bad) {
+    FswAcsCmdMsg c = inertial_cmd();
+    b.spoil(c);
+    sensors_at_rest(g_sens, t);
+    EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, &c, &g_act, &g_h)) << b.why;
+    EXPECT_TRUE(all_zero(g_act)) << b.why;
+  }
+  // a good command in a failing cycle
+  FswAcsCmdMsg c = inertial_cmd();
+  c.set_ref = 1;
+  c.sigma_R0N[2] = acsfix::R(0.3);
+  c.set_gains = 1;
+  c.K = acsfix::R(5.0);
+  c.P = acsfix::R(5.0);
+  sensors_at_rest(g_sens, t);
+  g_sens.omega_BN_B[0] = static_cast<fsw_real>(0.5 * static_cast<double>(std::numeric_limits<fsw_real>::max()));
+  ASSERT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, &c, &g_act, &g_h));
+  sensors_at_rest(g_sens, t);  // retry at the same time, no command
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  for (int i = 0; i < 3; i++) EXPECT_NEAR(K * g_cfg.inertial.sigma_R0N[i], g_act.Lr_B[i], kTol);
+}
+
+// The speed filter with no wheels in the control law's H (mrp_fb.num_rw =
+// 0: its J_s copy is then not compared) is a valid configuration.
+TEST(FswAcsSpeedFilter, AcceptedWithoutWheelsInTheControlLaw)
+{
+  acsfix::wheel_config(g_cfg);
+  speed_filter_on(g_cfg, 3, 0);
+  g_cfg.mrp_fb.num_rw = 0;
+  g_cfg.speed_filter.J_s[1] = acsfix::R(5.0);  // differs from the geometry: not compared without wheels in H
+  const char* field = nullptr;
+  EXPECT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field)) << (field ? field : "");
 }

@@ -156,16 +156,27 @@ TEST(FswLink, CrcMatchesTheCheckValueAndATableImplementation)
 // A command packet assembled by hand from the ICD's byte table.
 TEST(FswLink, CommandPacketBytesAreTheIcdsBytes)
 {
-  const FswAcsCmdMsg cmd = {FSW_ACS_MODE_INERTIAL, FSW_ACS_ACT_WHEELS};
-  uint8_t buf[64];
+  FswAcsCmdMsg cmd{};
+  cmd.mode = FSW_ACS_MODE_INERTIAL;
+  cmd.actuation = FSW_ACS_ACT_WHEELS;
+  cmd.set_gains = 1;
+  cmd.sigma_R0N[1] = R(-2.5);  // sent although set_ref = 0 (the receiver ignores it)
+  cmd.K = R(0.5);
+  cmd.P = R(30.0);
+  uint8_t buf[96];
   size_t len = 0;
   ASSERT_EQ(fsw_link_encode_cmd(&cmd, 0x0102030405060708ull, 16389 /* wraps to 5 */, buf, sizeof buf, &len, nullptr),
             FSW_OK);
   Bytes want = {0x19, 0x02,  // version 0, type 1 (TC), sec. header 1, APID 0x102
                 0xC0, 0x05,  // unsegmented, sequence count 5
-                0x00, 0x0D,  // data length 8 + 4 + 2 - 1 = 13
+                0x00, 0x35,  // data length 8 + 44 + 2 - 1 = 53
                 0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x07, 0x08,  // t_ns
-                0x01, 0x00, 0x00, 0x00,                          // mode, actuation, reserved
+                0x01, 0x00, 0x00, 0x01,                          // mode, actuation, set_ref, set_gains
+                0, 0, 0, 0, 0, 0, 0, 0,                          // sigma_R0N[0] = 0
+                0xC0, 0x04, 0, 0, 0, 0, 0, 0,                    // sigma_R0N[1] = -2.5
+                0, 0, 0, 0, 0, 0, 0, 0,                          // sigma_R0N[2] = 0
+                0x3F, 0xE0, 0, 0, 0, 0, 0, 0,                    // K = 0.5
+                0x40, 0x3E, 0, 0, 0, 0, 0, 0,                    // P = 30
                 0x00, 0x00};                                     // CRC
   fix_crc(want);
   ASSERT_EQ(len, want.size());
@@ -180,6 +191,27 @@ TEST(FswLink, CommandPacketBytesAreTheIcdsBytes)
   ASSERT_EQ(fsw_link_decode_cmd(&p, &back, nullptr), FSW_OK);
   EXPECT_EQ(back.mode, FSW_ACS_MODE_INERTIAL);
   EXPECT_EQ(back.actuation, FSW_ACS_ACT_WHEELS);
+  EXPECT_EQ(back.set_ref, 0);
+  EXPECT_EQ(back.set_gains, 1);
+  EXPECT_EQ(back.sigma_R0N[1], R(-2.5));
+  EXPECT_EQ(back.K, R(0.5));
+  EXPECT_EQ(back.P, R(30.0));
+  // a flag other than 0/1 is refused both ways, and the message is not written
+  Bytes b(buf, buf + len);
+  b[FSW_LINK_HEADER_SIZE + 2] = 2;  // set_ref
+  fix_crc(b);
+  ASSERT_EQ(fsw_link_parse(b.data(), b.size(), &p, nullptr), FSW_OK);
+  FswAcsCmdMsg untouched = {-7, -7};
+  FswLinkError e = FSW_LINK_OK;
+  EXPECT_EQ(fsw_link_decode_cmd(&p, &untouched, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_COUNT);
+  EXPECT_EQ(untouched.mode, -7);
+  cmd.set_gains = 3;
+  EXPECT_EQ(fsw_link_encode_cmd(&cmd, 0, 0, buf, sizeof buf, &len, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_COUNT);
+  cmd.set_gains = 0;
+  cmd.set_ref = 2;
+  EXPECT_EQ(fsw_link_encode_cmd(&cmd, 0, 0, buf, sizeof buf, &len, &e), FSW_E_BAD_INPUT);
 }
 
 // Reals are IEEE-754 binary64, big-endian, on every host.
@@ -548,8 +580,9 @@ TEST(FswLink, EveryArgumentAndRangeCheckRejectsAlone)
   q = with(FSW_LINK_APID_CMD, 1, short3);
   EXPECT_EQ(fsw_link_decode_cmd(&q, &mc, &e), FSW_E_BAD_INPUT);
   EXPECT_EQ(e, FSW_LINK_E_LENGTH);
-  const Bytes cmd_reserved = {0, 0, 0, 1};
-  q = with(FSW_LINK_APID_CMD, 1, cmd_reserved);
+  Bytes cmd_flag(FSW_LINK_CMD_PAYLOAD, 0);
+  cmd_flag[3] = 2;  // set_gains not 0/1
+  q = with(FSW_LINK_APID_CMD, 1, cmd_flag);
   EXPECT_EQ(fsw_link_decode_cmd(&q, &mc, &e), FSW_E_BAD_INPUT);
   EXPECT_EQ(e, FSW_LINK_E_COUNT);
   q = with(FSW_LINK_APID_ACTUATOR, 1, Bytes(FSW_LINK_ACTUATOR_PAYLOAD(0, 0), 0));

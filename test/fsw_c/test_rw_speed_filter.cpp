@@ -450,3 +450,35 @@ TEST(RwSpeedFilterTorque, ASpeedRisingTwiceAsFastAsTheTorqueExplainsIsLatched)
   }
   EXPECT_EQ(latched_at, 5);  // residual 5.0 - 2.5 = 2.5 > 0.3 at the first window's end
 }
+
+// A window whose closing sample is an outlier (k = 5 reads 150, rejected)
+// waits for the next accepted one: at k = 6 the speed 103.0 has moved
+// 3.0 rad/s from the window's start, as the six intervals of torque explain
+// (6 x 0.5): clean, no latch.  A wheel failed by outliers (three NaN, k_reject
+// = 3) takes no part in the torque test: its window closes, nothing latches,
+// and after recovery (n_recover = 3 consistent samples) it runs again: a
+// reading frozen from then on is latched one window later.
+TEST(RwSpeedFilterTorque, OutliersAndOutlierFailuresPauseTheWindow)
+{
+  TorqueFixture f;
+  for (int k = 0; k <= 6; k++) {
+    ASSERT_EQ(f.at(k, k == 5 ? 150.0 : 100.0 + 0.5 * k), FSW_OK);
+    EXPECT_EQ(f.out->rejected, k == 5 ? 1u : 0u) << k;
+    EXPECT_EQ(f.out->latched, 0u) << k;
+  }
+  for (int k = 7; k <= 9; k++) {  // NaN: failed at k = 9
+    ASSERT_EQ(f.at(k, std::nan("")), FSW_OK);
+    EXPECT_EQ(f.out->latched, 0u) << k;
+  }
+  EXPECT_EQ(f.out->failed, 1u);
+  int k = 10;
+  for (; k <= 12; k++) ASSERT_EQ(f.at(k, 100.0 + 0.5 * k), FSW_OK);  // three consistent: back at k = 12
+  EXPECT_EQ(f.out->failed, 0u);
+  EXPECT_EQ(f.out->latched, 0u);
+  int latched_at = -1;
+  for (; k <= 20 && latched_at < 0; k++) {  // frozen at 106 from k = 12 on
+    ASSERT_EQ(f.at(k, 106.0), FSW_OK);
+    if (f.out->latched) latched_at = k;
+  }
+  EXPECT_EQ(latched_at, 18);  // the window opened at k = 13 (the first accepted sample after recovery) closes at 18
+}

@@ -952,13 +952,68 @@ TEST(Events, FswModeCommandSwitchesToInertialPointing)
   EXPECT_LT(angle_to_N(m.rows() - 1), 1.0);
 }
 
+// A new inertial reference and new gains from events (FswAcsCmdMsg set_ref,
+// set_gains).  (a) S1 fast: at 400 s the ground commands inertial pointing
+// and the reference sigma_R0N = (0.1, -0.05, 0.2) in one event (a 137 deg
+// slew from the Sun hold, wheel torque limited); at 1400 s the angle between
+// [BN] and [R0 N] (from the recorded truth MRP and the commanded one) is
+// below 1 deg, and the angle to N itself is the reference's principal
+// angle, 4 atan |sigma_R0N| = 4 atan 0.22913 = 51.62 deg.
+// (b) Gains commanded at t = 0 give bit for bit the run configured with them.
+TEST(Events, FswReferenceAndGainCommands)
+{
+  const double ref[3] = {0.1, -0.05, 0.2};
+  harness::Scenario sc = harness::load_scenario_text(
+      s1_with("events:\n  - {t: 400.0, actions: [{device: fsw, action: mode_inertial},\n"
+              "      {device: fsw, action: reference_x, value: 0.1}, {device: fsw, action: reference_y, value: -0.05},\n"
+              "      {device: fsw, action: reference_z, value: 0.2}]}\n"),
+      "ev.yaml", fast({{"duration", "1400"}}));
+  harness::Run run(sc);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  const harness::MemorySink& m = run.memory();
+  const uint64_t last = m.rows() - 1;
+  Eigen::Vector3d s, r(ref[0], ref[1], ref[2]);
+  for (int a = 0; a < 3; ++a) s(a) = m.at(last, m.column_index(std::string("sigma_BN_") + "xyz"[a]));
+  const Eigen::Matrix3d D = sim::dcm_BN_from_sigma(s) * sim::dcm_BN_from_sigma(r).transpose();
+  const double to_ref = std::acos(std::clamp((D.trace() - 1.0) / 2.0, -1.0, 1.0)) * 180.0 / M_PI;
+  const double to_N = 4.0 * std::atan(s.norm()) * 180.0 / M_PI, ref_angle = 4.0 * std::atan(r.norm()) * 180.0 / M_PI;
+  EXPECT_LT(to_ref, 1.0);
+  EXPECT_NEAR(to_N, ref_angle, 1.0);
+  EXPECT_NEAR(ref_angle, 51.62, 0.01);
+  std::printf("[ figures ] commanded reference: %.3g deg from it at 1400 s (%.3g deg from N)\n", to_ref, to_N);
+
+  const std::vector<harness::Override> short_run = {{"duration", "60"}};
+  const harness::Scenario commanded = harness::load_scenario_text(
+      s1_with("events:\n  - {t: 0, actions: [{device: fsw, action: gain_K, value: 7.0},"
+              " {device: fsw, action: gain_P, value: 45.0}]}\n"),
+      "ev.yaml", fast(short_run));
+  const harness::Scenario configured =
+      harness::load_scenario(kS1, fast({{"duration", "60"}, {"fsw.mrp_fb.K", "7.0"}, {"fsw.mrp_fb.P", "45.0"}}));
+  harness::Run a(commanded), b(configured);
+  ASSERT_TRUE(a.step_ticks(a.total_ticks())) << a.failure();
+  ASSERT_TRUE(b.step_ticks(b.total_ticks())) << b.failure();
+  EXPECT_EQ(max_diff(a.memory(), b.memory(), "pointing_error_deg"), 0.0);
+  EXPECT_EQ(max_diff(a.memory(), b.memory(), "Lr_B_x"), 0.0);
+  const harness::Scenario plain = harness::load_scenario(kS1, fast(short_run));
+  harness::Run c(plain);
+  ASSERT_TRUE(c.step_ticks(c.total_ticks()));
+  EXPECT_GT(max_diff(a.memory(), c.memory(), "Lr_B_x"), 0.0);  // the gains did change the control
+}
+
 TEST(Events, FswCommandsAreCheckedAgainstTheScenario)
 {
   EXPECT_NE(problem(s1_with("events:\n  - {t: 1, actions: [{device: fsw, action: actuation_thrusters}]}\n"))
                 .find("needs ACS thrusters"),
             std::string::npos);
   EXPECT_NE(problem(s1_with("events:\n  - {t: 1, actions: [{device: fsw, action: mode_safe}]}\n"))
-                .find("a flight software takes one of {mode_inertial, mode_sun_safe, actuation_wheels, actuation_thrusters}"),
+                .find("a flight software takes one of {mode_inertial, mode_sun_safe, actuation_wheels, "
+                      "actuation_thrusters, reference_x, reference_y, reference_z, gain_K, gain_P}"),
+            std::string::npos);
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 1, actions: [{device: fsw, action: gain_K, value: -1}]}\n"))
+                .find("'gain_K' needs a value > 0 [N*m]"),
+            std::string::npos);
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 1, actions: [{device: fsw, action: reference_y}]}\n"))
+                .find("'reference_y' needs a finite value"),
             std::string::npos);
   EXPECT_NE(problem(s1_with("events:\n  - {t: 1, actions: [{device: fsw, action: mode_inertial, value: 2}]}\n"))
                 .find("takes no value"),

@@ -9,6 +9,8 @@
 // chosen by the kernel (port 0).  host-release only (label hwil).
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -98,9 +100,8 @@ void expect_identical(const harness::MemorySink& a, const harness::MemorySink& b
   EXPECT_EQ(differing, 0u);
 }
 
-void lockstep_equals_in_process(const std::string& scenario, const std::string& transport)
+void lockstep_equals_in_process(const harness::Scenario& sc, const std::string& transport)
 {
-  const harness::Scenario sc = harness::load_scenario(scenario, {});
   harness::Run local(sc);
   ASSERT_TRUE(local.step_ticks(local.total_ticks())) << local.failure();
 
@@ -135,7 +136,32 @@ void lockstep_equals_in_process(const std::string& scenario, const std::string& 
   EXPECT_EQ(c.fsw.rx_crc + c.fsw.rx_rejected + c.fsw.rx_stale + c.fsw.missed, 0u);
 }
 
+void lockstep_equals_in_process(const std::string& scenario, const std::string& transport)
+{
+  lockstep_equals_in_process(harness::load_scenario(scenario, {}), transport);
+}
+
 }  // namespace
+
+// FSW commands from scenario events over the link (APID 0x102, the harness
+// end: harness::RemoteFsw::command): S1 switched to inertial pointing at a
+// new reference with new gains at 100 s, and the rate gain changed again at
+// 150 s, over UDP: bit for bit the in-process run (the command packet goes
+// out before the sensor packet of the cycle that applies it, as the
+// in-process FSW gets it with that cycle).
+TEST(Hwil, FswCommandsOverTheLinkEqualInProcess)
+{
+  std::ifstream in(kS1);
+  std::stringstream text;
+  text << in.rdbuf()
+       << "\nevents:\n"
+          "  - {t: 100, actions: [{device: fsw, action: mode_inertial}, {device: fsw, action: reference_z, value: 0.1},\n"
+          "                       {device: fsw, action: gain_K, value: 5.0}]}\n"
+          "  - {t: 150, actions: [{device: fsw, action: gain_P, value: 40.0}]}\n";
+  const harness::Scenario sc =
+      harness::load_scenario_text(text.str(), "s1_commands.yaml", {{"duration", "200"}});
+  lockstep_equals_in_process(sc, "udp");
+}
 
 TEST(Hwil, LockstepS1OverUdpEqualsInProcess) { lockstep_equals_in_process(kS1, "udp"); }
 TEST(Hwil, LockstepS2OverUdpEqualsInProcess) { lockstep_equals_in_process(kS2, "udp"); }

@@ -158,6 +158,8 @@ typedef struct {
     FswThrPulseSchmittState pulse_schmitt;
     uint8_t null_avail[FSW_MAX_RW]; /* rw_null projector mask */
     FswRwSpeedFilterState speed_filter;
+    fsw_real sigma_R0N[3], K, P;     /* commanded reference and gains */
+    FswGuidInertialState inertial;
   } saved;
 } FswAcsWork;
 
@@ -179,6 +181,11 @@ typedef struct {
   FswRwSatState rw_sat;
   FswRwVoltState rw_volt;
   FswRwSpeedFilterState speed_filter;
+  /* The configurations in force for guid_inertial and mrp_fb: the
+   * configuration's, with the reference and gains of the last set command
+   * (FswAcsCmdMsg set_ref, set_gains); reset restores the configuration's. */
+  FswGuidInertialConfig inertial_cfg;
+  FswMrpFbConfig mrp_cfg;
   FswThrMapState thr_map;
   FswThrPulseRemState pulse_rem;
   FswThrPulseSchmittState pulse_schmitt;
@@ -222,10 +229,11 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg);
  * writes `act` fully and `hlth` fully.  Returns the cycle status (also in
  * hlth->status): FSW_OK or a warning with valid commands; an error with the
  * safe output (FSW_E_BAD_INPUT: non-finite sensor values or an invalid mode
- * request, or a stage's error such as an overflow of finite sensor values;
+ * request or set command (a flag not 0/1, a non-finite reference, a gain
+ * not finite and > 0), or a stage's error such as an overflow of finite sensor values;
  * FSW_E_TIME: t_ns not after the previous cycle; FSW_E_NOT_INIT).  An error
- * cycle advances no state at all: mode, clock, cycle count and every
- * stage's memory are as before the call (only health counters and the
+ * cycle advances no state at all: mode, clock, cycle count, commanded
+ * reference and gains and every stage's memory are as before the call (only health counters and the
  * scratch `work` change), so a good retry at the same t_ns is accepted. */
 FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
                         const FswAcsCmdMsg *cmd, FswAcsActuatorMsg *act, FswAcsHealthMsg *hlth);

@@ -46,9 +46,20 @@ typedef struct {
                                              flagged failed is mapped as absent and kept off */
 } FswAcsSensorMsg;
 
+/* A ground/executive command.  Mode and actuation are always requested;
+ * the reference and gain fields are "set" commands, applied when their flag
+ * is 1 at the start of the cycle that receives them and held until another
+ * such command or a reset (fsw_acs_reset: back to the configuration).
+ * Sending the same command every cycle is harmless (a link node does). */
 typedef struct {
-  int mode;      /* [-] requested FswAcsMode       */
-  int actuation; /* [-] requested FswAcsActuation  */
+  int mode;              /* [-]     requested FswAcsMode                              */
+  int actuation;         /* [-]     requested FswAcsActuation                         */
+  uint8_t set_ref;       /* [-]     0/1: the inertial reference becomes sigma_R0N     */
+  fsw_real sigma_R0N[3]; /* [-]     new reference R0 relative to N (MRP, finite,
+                                    shadow-switched), read when set_ref = 1           */
+  uint8_t set_gains;     /* [-]     0/1: mrp_fb's K and P become the two below        */
+  fsw_real K;            /* [N*m]   attitude gain, finite, > 0 (set_gains = 1)        */
+  fsw_real P;            /* [N*m*s] rate gain, finite, > 0 (set_gains = 1)            */
 } FswAcsCmdMsg;
 
 typedef struct {

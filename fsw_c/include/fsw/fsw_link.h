@@ -53,7 +53,7 @@ extern "C" {
 
 /* Payload sizes [bytes] (docs/icd.md). */
 #define FSW_LINK_SENSOR_PAYLOAD(num_rw, num_css) (84u + 9u * (size_t)(num_rw) + 9u * (size_t)(num_css))
-#define FSW_LINK_CMD_PAYLOAD 4u
+#define FSW_LINK_CMD_PAYLOAD 44u
 #define FSW_LINK_ACTUATOR_PAYLOAD(num_rw, num_thr) (28u + 16u * (size_t)(num_rw) + 16u * (size_t)(num_thr))
 #define FSW_LINK_HEALTH_PAYLOAD (16u + 2u * (size_t)FSW_ACS_NUM_STAGES + 88u + 30u + 16u)
 #define FSW_LINK_STATUS_PAYLOAD 40u

@@ -99,6 +99,15 @@ class RemoteFsw : public FswEndpoint {
   void cycle(const FswAcsSensorMsg& in, FswAcsActuatorMsg& out, FswAcsHealthMsg& health) override;
   std::vector<std::string> module_health_lines() const override;
   const LinkCounters& counters() const { return c_; }
+  // Sent as a command packet (APID 0x102) just before the next cycle's
+  // sensor packet, outside the fault injection: the FSW end holds it and
+  // applies it from that cycle (docs/hwil.md).
+  bool accepts_commands() const override { return true; }
+  void command(const FswAcsCmdMsg& cmd) override
+  {
+    cmd_ = cmd;
+    have_cmd_ = true;
+  }
 
  private:
   void put(std::vector<uint8_t> pkt);
@@ -120,6 +129,9 @@ class RemoteFsw : public FswEndpoint {
   FswAcsActuatorMsg last_act_{};
   FswAcsHealthMsg last_health_{};
   std::vector<uint8_t> rx_;
+  FswAcsCmdMsg cmd_{};
+  bool have_cmd_ = false;
+  uint16_t cmd_seq_ = 0;
 };
 
 }  // namespace harness

@@ -66,7 +66,7 @@ void check_packet(const uint8_t* data, size_t size)
     if (fsw_link_decode_cmd(&p, &m, &e) == FSW_OK) {
       if (fsw_link_encode_cmd(&m, p.t_ns, p.seq, out.data(), out.size(), &len, nullptr) != FSW_OK)
         violation("a decoded command does not encode");
-      same_bytes(data, p.packet_len, out, len, "command packet does not re-encode to its bytes");
+      if (exact) same_bytes(data, p.packet_len, out, len, "command packet does not re-encode to its bytes");
     } else if (!untouched(m)) {
       violation("command decoder wrote on failure");
     }
