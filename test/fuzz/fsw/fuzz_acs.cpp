@@ -10,6 +10,11 @@
 // counted; errors: the safe output (all 0, nothing active) and the
 // application state byte-identical to before the cycle apart from health
 // counters and scratch (issue 13 finding 1).
+// Issue 14 (gated on bit 2 of the first byte, so inputs from before decode
+// as they did): the speed filter in the chain (its counts, margins and
+// tolerances), thruster availability flags and the reference / gain set
+// commands.  Checks: a flagged thruster gets no on-time; the filter's bits
+// stay within the wheels and latched implies failed.
 #include "acs_fixture.hpp"
 #include "fsw/fsw_acs.h"
 #include "fuzz_input.h"
@@ -30,6 +35,7 @@ static void mask(FswAcsState &s)
   fuzz_mask_health(s.rw_null);
   fuzz_mask_health(s.rw_sat);
   fuzz_mask_health(s.rw_volt);
+  fuzz_mask_health(s.speed_filter);
   fuzz_mask_health(s.thr_map);
   fuzz_mask_common_health(s.pulse_rem);
   fuzz_mask_common_health(s.pulse_schmitt);
@@ -43,9 +49,11 @@ static bool act_safe(const FswAcsActuatorMsg &a, int)
 }
 
 // Decode the configuration: a reference config, then single fields.
-static void decode_config(FuzzIn &in, FswAcsConfig &c)
+static void decode_config(FuzzIn &in, FswAcsConfig &c, bool &issue14)
 {
-  const int variant = in.u8() % 4;
+  const int v8 = in.u8();
+  const int variant = v8 % 4;
+  issue14 = (v8 & 4) != 0;
   if (variant <= 1) {
     acsfix::golden_config(0, c);  // wheels: null motion, filter, voltages
     c.rw_map.mode = variant;      // 1: power-optimal mapping
@@ -85,6 +93,18 @@ static void decode_config(FuzzIn &in, FswAcsConfig &c)
   c.pulser = in.flag(c.pulser);
   c.pulse_rem.common.t_min = static_cast<fsw_real>(in.real(c.pulse_rem.common.t_min));
   c.pulse_schmitt.common.t_min = static_cast<fsw_real>(in.real(c.pulse_schmitt.common.t_min));
+  if (issue14) {
+    c.use_speed_filter = in.flag(1);
+    c.speed_filter.k_reject = in.u32(3);
+    c.speed_filter.n_recover = in.u32(3);
+    c.speed_filter.n_stale = in.u32(4);
+    c.speed_filter.n_window = in.u32(5);
+    for (int i = 0; i < c.speed_filter.num_rw && i < FSW_MAX_RW; i++) {
+      c.speed_filter.noise[i] = static_cast<fsw_real>(in.real(1.0));
+      c.speed_filter.resid_tol[i] = static_cast<fsw_real>(in.real(0.2));
+    }
+    fuzz_trace_int("use_speed_filter", c.use_speed_filter);
+  }
   fuzz_trace_int("variant", variant);
   for (int i = 0; i < g.num_rw; i++) fuzz_trace("gs_hat_B[i]", g.gs_hat_B[i], 3);
   fuzz_trace("J_s", g.J_s, g.num_rw);
@@ -111,7 +131,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
   FuzzIn in(data, size);
   static FswAcsConfig cfg;
-  decode_config(in, cfg);
+  bool issue14 = false;
+  decode_config(in, cfg, issue14);
   static FswAcsState st;
   FswAcsSensorMsg sens{};
   FswAcsCmdMsg cmd{};
@@ -147,10 +168,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fuzz_speeds(in, sens.Omega, cfg.mrp_fb.num_rw, 20.0);
     in.avail_mask(sens.rw_avail, cfg.mrp_fb.num_rw);
     in.reals(sens.r_CoM_B, 3, z);
+    if (issue14) in.avail_mask(sens.thr_avail, cfg.has_thrusters ? cfg.thr_map.num_thr : 0);
     cmdp = nullptr;
     if (in.u8() >= 200) {
       cmd.mode = in.flag(cfg.initial_mode == 0 ? 1 : 0);
       cmd.actuation = in.flag(cfg.initial_actuation);
+      if (issue14) {
+        const double ref0[3] = {0.2, -0.1, 0.3};
+        cmd.set_ref = static_cast<uint8_t>(in.flag(1));
+        in.reals(cmd.sigma_R0N, 3, ref0);
+        cmd.set_gains = static_cast<uint8_t>(in.flag(0));
+        cmd.K = static_cast<fsw_real>(in.real(cfg.mrp_fb.K));
+        cmd.P = static_cast<fsw_real>(in.real(cfg.mrp_fb.P));
+      }
       cmdp = &cmd;
     }
     fuzz_trace_int("t_ns", static_cast<long long>(sens.t_ns));
@@ -181,6 +211,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                      act.V[i]);
       }
     }
+    FUZZ_REQUIRE((hlth.rw_latched & ~hlth.rw_failed) == 0, "fsw_acs_cycle: a latched wheel not failed");
+    FUZZ_REQUIRE(cfg.mrp_fb.num_rw >= 64 || (hlth.rw_failed >> cfg.rw_map.num_rw) == 0 || !cfg.has_wheels,
+                 "fsw_acs_cycle: failed bits beyond the wheels");
+    if (act.thrusters_active)
+      for (int i = 0; i < cfg.thr_map.num_thr; i++)
+        FUZZ_REQUIRE(sens.thr_avail[i] == 0 || act.t_on[i] == 0, "fsw_acs_cycle: flagged thruster %d fires %.17g s",
+                     i, act.t_on[i]);
     if (act.thrusters_active) {
       const FswThrPulseCommon &pc =
           cfg.pulser == FSW_ACS_PULSE_SCHMITT ? cfg.pulse_schmitt.common : cfg.pulse_rem.common;
