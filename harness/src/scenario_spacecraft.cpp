@@ -2,6 +2,10 @@
 // properties and the initial state, optionally from an approach hyperbola).
 #include "scenario_schema.h"
 
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
 #include "sim/environment.h"
 #include "sim/units.h"
 
@@ -97,11 +101,22 @@ void read_spacecraft(MapReader r, Scenario& sc)
       ic.error_at("hyperbola", "needs gravity: environment.mu > 0");
     else if (rp && vinf && tp) {
       const double e = sim::hyperbolic_eccentricity(sc.environment.mu, *rp, *vinf);
-      const sim::OrbitState os = sim::conic_state_from_periapsis(sc.environment.mu, *rp, e, -*tp);
-      if (!os.r_N.allFinite() || !os.v_N.allFinite())
-        ic.error_at("hyperbola", "no finite state on this hyperbola (time_to_periapsis too large?)");
-      sc.spacecraft.initial.r_CN_N = os.r_N;
-      sc.spacecraft.initial.v_CN_N = os.v_N;
+      if (!(e > 1.0) || !std::isfinite(e)) {
+        // e = 1 + r_p v_inf^2 / mu: a tiny r_p v_inf^2 / mu rounds e to 1
+        // (found by fuzz_scenario_reader with mu = 4.28e34)
+        ic.error_at("hyperbola", "not a hyperbola in double precision: e = 1 + periapsis_radius v_inf^2 / mu = " +
+                                     std::to_string(e) + " (mu too large for these values?)");
+      } else {
+        try {
+          const sim::OrbitState os = sim::conic_state_from_periapsis(sc.environment.mu, *rp, e, -*tp);
+          if (!os.r_N.allFinite() || !os.v_N.allFinite())
+            ic.error_at("hyperbola", "no finite state on this hyperbola (time_to_periapsis too large?)");
+          sc.spacecraft.initial.r_CN_N = os.r_N;
+          sc.spacecraft.initial.v_CN_N = os.v_N;
+        } catch (const std::invalid_argument& ex) {  // the plant refuses the conic: say where
+          ic.error_at("hyperbola", ex.what());
+        }
+      }
     }
   }
   ic.finish();
