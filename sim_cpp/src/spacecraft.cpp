@@ -108,6 +108,52 @@ MassProps mass_props_from_stages(const SpacecraftParams& p, const HubParams& h,
   return mp;
 }
 
+// Rank updates of 3x3 matrices written out (Eigen's outer-product
+// assignment is an out-of-line loop, measurably slower here).
+// M += a b^T + b a^T
+inline void add_sym2(Matrix3d& M, const Vector3d& a, const Vector3d& b)
+{
+  const double xx = 2.0 * a.x() * b.x(), yy = 2.0 * a.y() * b.y(), zz = 2.0 * a.z() * b.z();
+  const double xy = a.x() * b.y() + a.y() * b.x();
+  const double xz = a.x() * b.z() + a.z() * b.x();
+  const double yz = a.y() * b.z() + a.z() * b.y();
+  M(0, 0) += xx; M(1, 1) += yy; M(2, 2) += zz;
+  M(0, 1) += xy; M(1, 0) += xy;
+  M(0, 2) += xz; M(2, 0) += xz;
+  M(1, 2) += yz; M(2, 1) += yz;
+}
+
+// M += s a a^T
+inline void add_sym1(Matrix3d& M, double s, const Vector3d& a)
+{
+  const Vector3d sa = s * a;
+  const double xy = sa.x() * a.y(), xz = sa.x() * a.z(), yz = sa.y() * a.z();
+  M(0, 0) += sa.x() * a.x(); M(1, 1) += sa.y() * a.y(); M(2, 2) += sa.z() * a.z();
+  M(0, 1) += xy; M(1, 0) += xy;
+  M(0, 2) += xz; M(2, 0) += xz;
+  M(1, 2) += yz; M(2, 1) += yz;
+}
+
+// M += a b^T
+inline void add_outer(Matrix3d& M, const Vector3d& a, const Vector3d& b)
+{
+  for (int col = 0; col < 3; ++col)
+    for (int row = 0; row < 3; ++row) M(row, col) += a(row) * b(col);
+}
+
+// Inverse of a symmetric 3x3 matrix by cofactors, from its lower triangle.
+inline Matrix3d inverse_sym3(const Matrix3d& M)
+{
+  const double a = M(0, 0), b = M(1, 0), c = M(2, 0), d = M(1, 1), e = M(2, 1), f = M(2, 2);
+  const double c00 = d * f - e * e, c01 = c * e - b * f, c02 = b * e - c * d;
+  const double inv_det = 1.0 / (a * c00 + b * c01 + c * c02);
+  const double i00 = c00 * inv_det, i01 = c01 * inv_det, i02 = c02 * inv_det;
+  const double i11 = (a * f - c * c) * inv_det, i12 = (b * c - a * e) * inv_det, i22 = (a * d - b * b) * inv_det;
+  Matrix3d R;
+  R << i00, i01, i02, i01, i11, i12, i02, i12, i22;
+  return R;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------- validation
@@ -147,6 +193,42 @@ SpacecraftModel::SpacecraftModel(SpacecraftParams params, int num_tanks) : p_(st
     fail("tanks.size()", num_tanks, "must be <= sim::kMaxTanks");
   layout_.num_rw = static_cast<int>(n);
   layout_.num_tanks = num_tanks;
+  init_rotor_constants();
+}
+
+void SpacecraftModel::init_rotor_constants()
+{
+  // docs/dynamics.md "The derivative as computed": with w2 w2^T + w3 w3^T =
+  // I - gs gs^T, a fully-coupled rotor's [I_w] plus its parallel-axis term
+  // m_w ((r.r) I - r r^T), r = r_W + d w2, is
+  //   J_g I + (J_s - J_g) gs gs^T + m_w (|r_W|^2 + d^2) I - m_w r_W r_W^T     (fixed in B)
+  //   + alpha w2 w2^T + J13 sym(gs, w3) + 2 m_w d (r_W.w2) I - m_w d sym(r_W, w2)
+  // with alpha = J_t - J_g - m_w d^2 and sym(a, b) = a b^T + b a^T.
+  rc_.assign(p_.wheels.size(), RotorConstants{});
+  for (size_t i = 0; i < p_.wheels.size(); ++i) {
+    const ReactionWheelParams& w = p_.wheels[i];
+    const ReactionWheelDerived& dv = derived_[i];
+    RotorConstants& k = rc_[i];
+    const Vector3d& gs = dv.gs_hat_B;
+    k.inv_J = 1.0 / dv.J_bar;
+    if (w.model != WheelModel::FullyCoupled) {
+      J_spin_B_.noalias() += (w.J_s * gs) * gs.transpose();
+      continue;
+    }
+    any_fc_ = true;
+    k.md = w.m_w * dv.d;
+    k.kA = k.md * k.inv_J;
+    k.alpha = dv.J_t - dv.J_g - k.md * dv.d;
+    k.rW_w2_0 = w.r_WB_B.dot(dv.w2_0_hat_B);
+    k.rW_w3_0 = w.r_WB_B.dot(dv.w3_0_hat_B);
+    k.rW_x_w2_0 = w.r_WB_B.cross(dv.w2_0_hat_B);
+    k.rW_x_w3_0 = w.r_WB_B.cross(dv.w3_0_hat_B);
+    m_fc_ += w.m_w;
+    first_moment_fc_ += w.m_w * w.r_WB_B;
+    I_fc_const_B_.diagonal().array() += dv.J_g + w.m_w * (w.r_WB_B.squaredNorm() + dv.d * dv.d);
+    I_fc_const_B_.noalias() += ((w.J_s - dv.J_g) * gs) * gs.transpose();
+    I_fc_const_B_.noalias() -= (w.m_w * w.r_WB_B) * w.r_WB_B.transpose();
+  }
 }
 
 void SpacecraftModel::check_wheel_index(int i) const
@@ -216,17 +298,69 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
                                          const ExternalLoads& loads, const HubParams& hub,
                                          Accelerations* acc) const
 {
+  // docs/dynamics.md "The derivative as computed": the equations of §3 and
+  // §4.9 with the rotor-angle-dependent inertia terms formed as vectors, the
+  // parts fixed in B taken from init_rotor_constants, and the block system
+  // written symmetric (B = C^T, D symmetric).
   const int n = num_rw();
-  const Vector3d v_BN_N = x.segment<3>(StateLayout::v_BN_N);
   const Vector3d sigma_BN = x.segment<3>(StateLayout::sigma_BN);
   const Vector3d omega = x.segment<3>(StateLayout::omega_BN_B);
   const Matrix3d dcm_BN = dcm_BN_from_sigma(sigma_BN);
 
-  WheelStages st;
-  fill_stages(p_, derived_, layout_, x, st);
-  const MassProps mp = mass_props_from_stages(p_, hub, layout_, st);
-  const double m = mp.m_sc;
-  const Vector3d& c = mp.c_B;
+  // Pass 1: rotor axes and the rotor-angle-dependent mass properties.
+  struct Rotor {
+    Vector3d w2, w3;          // rotor axes (jitter wheels)
+    double cth, sth;          // cos, sin theta
+    double om_s, om_2, om_3;  // omega . gs, w2, w3 (FC)
+    double rW_w3;             // r_W . w3 (FC)
+  };
+  std::array<Rotor, kMaxWheels> ro;
+  const double m = hub.m_h + m_fc_;
+  Vector3d first_moment = hub.m_h * hub.r_BcB_B + first_moment_fc_;
+  Vector3d first_moment_prime = Vector3d::Zero();
+  Matrix3d I_sc = hub.I_hBc_B + I_fc_const_B_;  // about B
+  I_sc.diagonal().array() += hub.m_h * hub.r_BcB_B.squaredNorm();
+  I_sc.noalias() -= (hub.m_h * hub.r_BcB_B) * hub.r_BcB_B.transpose();
+  Vector3d I_prime_omega = Vector3d::Zero();  // [I_sc]' omega
+  for (int i = 0; i < n; ++i) {
+    const auto ui = static_cast<size_t>(i);
+    const WheelModel model = p_.wheels[ui].model;
+    if (model == WheelModel::Balanced) continue;
+    const ReactionWheelDerived& dv = derived_[ui];
+    Rotor& r = ro[ui];
+    const double th = x(layout_.theta(i));
+    r.cth = std::cos(th);
+    r.sth = std::sin(th);
+    r.w2 = r.cth * dv.w2_0_hat_B + r.sth * dv.w3_0_hat_B;
+    r.w3 = r.cth * dv.w3_0_hat_B - r.sth * dv.w2_0_hat_B;
+    if (model != WheelModel::FullyCoupled) continue;
+    const RotorConstants& k = rc_[ui];
+    const Vector3d& gs = dv.gs_hat_B;
+    const Vector3d& w2 = r.w2;
+    const Vector3d& w3 = r.w3;
+    const Vector3d& r_W = p_.wheels[ui].r_WB_B;
+    const double Omega = x(layout_.Omega(i));
+    const double J13 = dv.J13;
+    r.om_s = gs.dot(omega);
+    r.om_2 = w2.dot(omega);
+    r.om_3 = w3.dot(omega);
+    const double rW_w2 = r.cth * k.rW_w2_0 + r.sth * k.rW_w3_0;
+    r.rW_w3 = r.cth * k.rW_w3_0 - r.sth * k.rW_w2_0;
+    first_moment += k.md * w2;
+    first_moment_prime += (k.md * Omega) * w3;
+    // alpha w2 w2^T - m d sym(r_W, w2) = sym(w2, alpha/2 w2 - m d r_W)
+    const Vector3d p2 = (0.5 * k.alpha) * w2 - k.md * r_W;
+    const Vector3d p3 = J13 * w3;
+    add_sym2(I_sc, w2, p2);
+    add_sym2(I_sc, gs, p3);
+    I_sc.diagonal().array() += 2.0 * k.md * rW_w2;
+    // d/dt of those terms (w2' = Omega w3, w3' = -Omega w2), times omega
+    I_prime_omega += Omega * (k.alpha * (r.om_2 * w3 + r.om_3 * w2) - J13 * (r.om_2 * gs + r.om_s * w2) +
+                              (2.0 * k.md * r.rW_w3) * omega -
+                              k.md * (r.om_3 * r_W + r_W.dot(omega) * w3));
+  }
+  const Vector3d c = first_moment / m;
+  const Vector3d c_prime = first_moment_prime / m;
 
   // Point-mass gravity at the system CoM (§3).
   Vector3d g_B = Vector3d::Zero();
@@ -236,117 +370,123 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
     g_B = dcm_BN * (-p_.mu / (r * r * r) * r_CN_N);
   }
 
-  // Hub part (§3).
+  // Hub part (§3): [A C^T; C D] [r_ddot; omega_dot] = [v_trans; v_rot].
   Matrix3d A = m * Matrix3d::Identity();
-  Matrix3d B = -m * skew(c);
   Matrix3d C = m * skew(c);
-  Matrix3d D = mp.I_sc_B;
-  Vector3d v_trans = loads.F_ext_B + m * g_B - 2.0 * m * omega.cross(mp.c_prime_B) -
-                     m * omega.cross(omega.cross(c));
-  Vector3d v_rot = loads.L_ext_B + c.cross(m * g_B) - omega.cross(mp.I_sc_B * omega) -
-                   mp.I_sc_prime_B * omega;
+  Matrix3d D = I_sc - J_spin_B_;
+  Vector3d v_trans = loads.F_ext_B + m * g_B - 2.0 * m * omega.cross(c_prime) - m * omega.cross(omega.cross(c));
+  Vector3d v_rot = loads.L_ext_B + c.cross(m * g_B) - omega.cross(I_sc * omega) - I_prime_omega;
 
-  // Wheel contributions (§4.9); Omega_dot = a_Omega . r_ddot_B + b_Omega . omega_dot + c_Omega.
-  std::array<Vector3d, kMaxWheels> a_Omega;
-  std::array<Vector3d, kMaxWheels> b_Omega;
-  WheelArray c_Omega;  // entries [0, n) written below
+  // Pass 2, the wheel equations (§4.9):
+  //   Omega_dot = -kA w3 . r_ddot - (q . omega_dot) / J_bar + c_Omega
+  // with q = J_bar gs + J13 w3 + m d (r_W x w3) for a FC wheel (q = gs,
+  // kA = 0 otherwise); substituted, they add -kA m d w3 w3^T to A,
+  // -kA q w3^T to C and -q q^T / J_bar to D.
+  std::array<Vector3d, kMaxWheels> q;
+  WheelArray kA;
+  WheelArray inv_J;
+  WheelArray c_Omega;
+  const double omega_sq = omega.squaredNorm();
   for (int i = 0; i < n; ++i) {
     const auto ui = static_cast<size_t>(i);
     const ReactionWheelParams& w = p_.wheels[ui];
     const ReactionWheelDerived& dv = derived_[ui];
-    const WheelStage& s = st[ui];
-    const Vector3d& gs = s.ax.gs_hat_B;
+    const RotorConstants& k = rc_[ui];
+    const Rotor& r = ro[ui];
+    const Vector3d& gs = dv.gs_hat_B;
     const double Omega = x(layout_.Omega(i));
     const bool stuck = in.stuck[ui];  // Omega' = 0: no substitution of the wheel equation
     const double u_tot = stuck ? 0.0 : in.u_s[ui] + sim::friction_torque(w.friction, Omega, in.stribeck[ui]);
 
     if (w.model != WheelModel::FullyCoupled) {
+      v_rot -= (w.J_s * Omega) * omega.cross(gs);
       if (stuck) {  // the rotor turns with the hub: all of J_s stays in D, no axial torque
-        v_rot -= w.J_s * Omega * omega.cross(gs);
-        a_Omega[ui].setZero();
-        b_Omega[ui].setZero();
+        add_sym1(D, w.J_s, gs);
+        q[ui].setZero();
+        kA[ui] = 0.0;
+        inv_J[ui] = 0.0;
         c_Omega[ui] = 0.0;
       } else {
-        D.noalias() -= (w.J_s * gs) * gs.transpose();
-        v_rot -= gs * u_tot + w.J_s * Omega * omega.cross(gs);
-        a_Omega[ui].setZero();
-        b_Omega[ui] = -gs;
-        c_Omega[ui] = u_tot / w.J_s;
+        v_rot -= u_tot * gs;
+        q[ui] = gs;
+        kA[ui] = 0.0;
+        inv_J[ui] = 1.0;
+        c_Omega[ui] = u_tot * k.inv_J;
       }
       if (w.model == WheelModel::SimpleJitter) {
         const double Omega2 = Omega * Omega;
-        const Vector3d F_s = w.U_s * Omega2 * s.ax.w2_hat_B;
+        const Vector3d F_s = (w.U_s * Omega2) * r.w2;
         v_trans += F_s;
-        v_rot += w.r_WB_B.cross(F_s) + w.U_d * Omega2 * s.ax.w2_hat_B;
+        v_rot += w.r_WB_B.cross(F_s) + (w.U_d * Omega2) * r.w2;
       }
       continue;
     }
 
     // FullyCoupled.
-    const Vector3d& w2 = s.ax.w2_hat_B;
-    const Vector3d& w3 = s.ax.w3_hat_B;
-    const double mw = w.m_w;
-    const double d = dv.d;
-    const double J_bar = dv.J_bar;
-    const double omega_s = gs.dot(omega);
-    const double omega_2 = w2.dot(omega);
-    const double omega_3 = w3.dot(omega);
-    const Vector3d& r_W = w.r_WB_B;
-    const Vector3d& r_Wc = s.r_WcB_B;
-
-    const double md = mw * d;
-    const Vector3d Iw_gs = w.J_s * gs + dv.J13 * w3;  // [Iw_B] gs (fill_stages)
+    const Vector3d& w2 = r.w2;
+    const Vector3d& w3 = r.w3;
+    const double md = k.md;
+    const double J13 = dv.J13;
+    const Vector3d rW_x_w3 = r.cth * k.rW_x_w3_0 - r.sth * k.rW_x_w2_0;
+    const Vector3d rW_x_w2 = r.cth * k.rW_x_w2_0 + r.sth * k.rW_x_w3_0;
+    const Vector3d qi = dv.J_bar * gs + J13 * w3 + md * rW_x_w3;
+    // The rotor's relative-motion terms: Omega^2 (m d (r_Wc x w2) + J13 w2)
+    // and -omega x (Omega q) (its momentum Omega [I_w] gs + m_w r_Wc x r_Wc').
+    const double Omega2 = Omega * Omega;
+    v_trans += (md * Omega2) * w2;
+    v_rot += Omega2 * (md * rW_x_w2 + J13 * w2) - Omega * omega.cross(qi);
     if (stuck) {  // the terms of the wheel equation's substitution all carry Omega': none
-      a_Omega[ui].setZero();
-      b_Omega[ui].setZero();
+      q[ui].setZero();
+      kA[ui] = 0.0;
+      inv_J[ui] = 0.0;
       c_Omega[ui] = 0.0;
-      const double Omega2 = Omega * Omega;
-      v_trans += md * Omega2 * w2;
-      v_rot += md * Omega2 * r_Wc.cross(w2) + (Omega2 * dv.J13) * w2 -
-               omega.cross(Omega * Iw_gs + mw * r_Wc.cross(s.r_WcB_B_prime));
       continue;
     }
-    const double inv_J = 1.0 / J_bar;
-    const double kA = md * inv_J;
-    a_Omega[ui] = -kA * w3;
-    b_Omega[ui] = -gs - inv_J * (dv.J13 * w3 + md * r_W.cross(w3));
-    c_Omega[ui] = inv_J * (omega_2 * omega_3 * (dv.J_t - dv.J_g - md * d) - dv.J13 * omega_2 * omega_s -
-                           md * w3.dot(omega.cross(omega.cross(r_W))) + u_tot + md * w3.dot(g_B));
-    const Vector3d q = Iw_gs + md * r_Wc.cross(w3);
-
-    // Outer products accumulated in place (noalias: no temporaries).
-    A.noalias() -= (md * kA) * w3 * w3.transpose();  // (m_w d) w3 a_Omega^T
-    B.noalias() += (md * w3) * b_Omega[ui].transpose();
-    C.noalias() -= (kA * q) * w3.transpose();  // q a_Omega^T
-    D.noalias() += q * b_Omega[ui].transpose();
-    const double Omega2 = Omega * Omega;
-    v_trans += md * (Omega2 * w2 - c_Omega[ui] * w3);
-    v_rot += md * Omega2 * r_Wc.cross(w2) + (Omega2 * dv.J13) * w2 -
-             omega.cross(Omega * Iw_gs + mw * r_Wc.cross(s.r_WcB_B_prime)) - c_Omega[ui] * q;
+    // w3 . (omega x (omega x r_W)) = om_3 (omega . r_W) - |omega|^2 (r_W . w3)
+    const double w3_wwr = r.om_3 * w.r_WB_B.dot(omega) - omega_sq * r.rW_w3;
+    const double cO = k.inv_J * (r.om_2 * r.om_3 * k.alpha - J13 * r.om_2 * r.om_s - md * w3_wwr + u_tot +
+                                 md * w3.dot(g_B));
+    add_sym1(A, -md * k.kA, w3);
+    add_outer(C, -k.kA * qi, w3);
+    add_sym1(D, -k.inv_J, qi);
+    v_trans -= (cO * md) * w3;
+    v_rot -= cO * qi;
+    q[ui] = qi;
+    kA[ui] = k.kA;
+    inv_J[ui] = k.inv_J;
+    c_Omega[ui] = cO;
   }
 
   // Back-substitution solve (§3).  A is m I less a positive semi-definite
-  // wheel part and D - C A^-1 B an inertia-like matrix (slightly
-  // non-symmetric with FC terms: never Cholesky): both well conditioned, so
-  // the 3x3 inverses by cofactors (Eigen's fixed-size path) are as accurate
-  // as a pivoted LU and several times cheaper.
-  const Matrix3d A_inv = A.inverse();
-  Matrix3d Ainv_B;
-  Ainv_B.noalias() = A_inv * B;
-  const Vector3d Ainv_v = A_inv * v_trans;
-  Matrix3d M = D;
-  M.noalias() -= C * Ainv_B;
-  const Vector3d omega_dot = M.inverse() * (v_rot - C * Ainv_v);
-  const Vector3d r_ddot_B = Ainv_v - Ainv_B * omega_dot;
+  // wheel part and M = D - C A^-1 C^T the system's inertia about B less the
+  // rotors' spin parts: both symmetric positive definite and well
+  // conditioned, so the 3x3 inverses by cofactors are as accurate as a
+  // pivoted LU and several times cheaper.
+  // Without fully-coupled wheels A = m I exactly.
+  Matrix3d Ainv_Ct;
+  Vector3d Ainv_v;
+  if (any_fc_) {
+    const Matrix3d A_inv = inverse_sym3(A);
+    Ainv_Ct.noalias() = A_inv * C.transpose();
+    Ainv_v.noalias() = A_inv * v_trans;
+  } else {
+    Ainv_Ct = C.transpose() / m;
+    Ainv_v = v_trans / m;
+  }
+  Matrix3d M = D;  // symmetric: its lower triangle is used
+  M.noalias() -= C * Ainv_Ct;
+  const Vector3d omega_dot = inverse_sym3(M) * (v_rot - C * Ainv_v);
+  const Vector3d r_ddot_B = Ainv_v - Ainv_Ct * omega_dot;
 
   StateVector xd(layout_.size());
-  xd.segment<3>(StateLayout::r_BN_N) = v_BN_N;
+  xd.segment<3>(StateLayout::r_BN_N) = x.segment<3>(StateLayout::v_BN_N);
   xd.segment<3>(StateLayout::v_BN_N) = dcm_BN.transpose() * r_ddot_B;
   xd.segment<3>(StateLayout::sigma_BN) = sigma_dot_from_omega(sigma_BN, omega);
   xd.segment<3>(StateLayout::omega_BN_B) = omega_dot;
   for (int i = 0; i < n; ++i) {
     const auto ui = static_cast<size_t>(i);
-    xd(layout_.Omega(i)) = a_Omega[ui].dot(r_ddot_B) + b_Omega[ui].dot(omega_dot) + c_Omega[ui];
+    const double a_r = kA[ui] == 0.0 ? 0.0 : kA[ui] * ro[ui].w3.dot(r_ddot_B);
+    xd(layout_.Omega(i)) = c_Omega[ui] - a_r - inv_J[ui] * q[ui].dot(omega_dot);
     xd(layout_.theta(i)) = x(layout_.Omega(i));
   }
   for (int k = 0; k < layout_.num_tanks; ++k) xd(layout_.m_p(k)) = 0.0;  // mass flows: the Plant's

@@ -22,13 +22,20 @@ inline Eigen::Matrix3d skew(const Eigen::Vector3d& a)
 }
 
 // [BN](sigma_BN) = I + (8[s~]^2 - 4(1 - s^2)[s~]) / (1 + s^2)^2     (§7.4)
+// written out with [s~]^2 = s s^T - s^2 I (a hot path of the plant's derivative).
 inline Eigen::Matrix3d dcm_BN_from_sigma(const Eigen::Vector3d& sigma_BN)
 {
-  const double s2 = sigma_BN.squaredNorm();
-  const Eigen::Matrix3d s_tilde = skew(sigma_BN);
-  const double den = (1.0 + s2) * (1.0 + s2);
-  return Eigen::Matrix3d::Identity() +
-         (8.0 * s_tilde * s_tilde - 4.0 * (1.0 - s2) * s_tilde) / den;
+  const double x = sigma_BN.x(), y = sigma_BN.y(), z = sigma_BN.z();
+  const double s2 = x * x + y * y + z * z;
+  const double inv_den = 1.0 / ((1.0 + s2) * (1.0 + s2));
+  const double a = 8.0 * inv_den;               // on [s~]^2
+  const double b = 4.0 * (1.0 - s2) * inv_den;  // on -[s~]
+  const double axy = a * x * y, axz = a * x * z, ayz = a * y * z;
+  Eigen::Matrix3d m;
+  m << 1.0 + a * (x * x - s2), axy + b * z, axz - b * y,
+       axy - b * z, 1.0 + a * (y * y - s2), ayz + b * x,
+       axz + b * y, ayz - b * x, 1.0 + a * (z * z - s2);
+  return m;
 }
 
 // [B(sigma)] = (1 - s^2) I + 2[s~] + 2 s s^T, so that sigma_dot = 1/4 [B] omega_BN_B.
@@ -39,10 +46,13 @@ inline Eigen::Matrix3d mrp_B_matrix(const Eigen::Vector3d& sigma_BN)
          2.0 * sigma_BN * sigma_BN.transpose();
 }
 
+// = 1/4 ((1 - s^2) omega + 2 s x omega + 2 s (s . omega)), the product written out.
 inline Eigen::Vector3d sigma_dot_from_omega(const Eigen::Vector3d& sigma_BN,
                                             const Eigen::Vector3d& omega_BN_B)
 {
-  return 0.25 * (mrp_B_matrix(sigma_BN) * omega_BN_B);
+  const double s2 = sigma_BN.squaredNorm();
+  return 0.25 * ((1.0 - s2) * omega_BN_B + 2.0 * sigma_BN.cross(omega_BN_B) +
+                 (2.0 * sigma_BN.dot(omega_BN_B)) * sigma_BN);
 }
 
 // Shadow set -sigma / |sigma|^2: the same attitude, other branch.

@@ -151,10 +151,32 @@ class SpacecraftModel {
 
  private:
   void check_wheel_index(int i) const;
+  void init_rotor_constants();
 
   SpacecraftParams p_;
   std::vector<ReactionWheelDerived> derived_;
   StateLayout layout_;
+
+  // Per-configuration constants of the derivative (docs/dynamics.md,
+  // "The derivative as computed"), set once by the constructor: the parts of
+  // the mass properties that do not turn with the rotors, and per wheel the
+  // scalars and B-frame vectors its rotor-angle-dependent terms are made of.
+  struct RotorConstants {
+    double md = 0.0;             // [kg*m]     m_w d (FullyCoupled; 0 otherwise)
+    double inv_J = 0.0;          // [1/(kg*m^2)] 1 / J_bar
+    double kA = 0.0;             // [1/m]      m_w d / J_bar
+    double alpha = 0.0;          // [kg*m^2]   J_t - J_g - m_w d^2
+    double rW_w2_0 = 0.0;        // [m]        r_W . w2_0
+    double rW_w3_0 = 0.0;        // [m]        r_W . w3_0
+    Eigen::Vector3d rW_x_w2_0;   // [m]        r_W x w2_0
+    Eigen::Vector3d rW_x_w3_0;   // [m]        r_W x w3_0
+  };
+  std::vector<RotorConstants> rc_;
+  double m_fc_ = 0.0;                                        // [kg]     sum of FC rotor masses
+  Eigen::Vector3d first_moment_fc_ = Eigen::Vector3d::Zero();  // [kg*m]   sum m_w r_W (FC)
+  Eigen::Matrix3d I_fc_const_B_ = Eigen::Matrix3d::Zero();     // [kg*m^2] FC inertia parts fixed in B
+  Eigen::Matrix3d J_spin_B_ = Eigen::Matrix3d::Zero();         // [kg*m^2] sum J_s gs gs^T (Balanced/SimpleJitter)
+  bool any_fc_ = false;
 };
 
 }  // namespace sim
