@@ -24,7 +24,7 @@ void TruthTask::operator()(uint64_t k) const
 {
   const sim::Plant& p = *plant;
   const sim::StateVector& x = p.state();
-  const sim::MassProps mp = p.mass_props();
+  const sim::MassCentre mp = p.mass_centre();
   TruthMsg t{};
   for (int i = 0; i < 3; ++i) {
     t.r_BN_N[i] = x(sim::StateLayout::r_BN_N + i);

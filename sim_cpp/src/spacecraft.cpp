@@ -286,6 +286,23 @@ MassProps SpacecraftModel::mass_props(const StateVector& x, const HubParams& hub
   return mass_props_from_stages(p_, hub, layout_, st);
 }
 
+MassCentre SpacecraftModel::mass_centre(const StateVector& x, const HubParams& hub) const
+{
+  // as in derivatives(): sum m_w r_Wc = sum m_w r_W + m_w d w2(theta)
+  MassCentre mc;
+  mc.m_sc = hub.m_h + m_fc_;
+  Vector3d first_moment = hub.m_h * hub.r_BcB_B + first_moment_fc_;
+  for (int i = 0; i < num_rw(); ++i) {
+    const auto ui = static_cast<size_t>(i);
+    if (p_.wheels[ui].model != WheelModel::FullyCoupled) continue;
+    const ReactionWheelDerived& dv = derived_[ui];
+    const double th = x(layout_.theta(i));
+    first_moment += rc_[ui].md * (std::cos(th) * dv.w2_0_hat_B + std::sin(th) * dv.w3_0_hat_B);
+  }
+  mc.c_B = first_moment / mc.m_sc;
+  return mc;
+}
+
 double SpacecraftModel::friction_torque(int i, const StateVector& x, bool stribeck) const
 {
   return sim::friction_torque(p_.wheels[static_cast<size_t>(i)].friction, x(layout_.Omega(i)),

@@ -311,6 +311,22 @@ TEST(DerivativeReference, MixedSixWheels)
           300, 5);
 }
 
+// The cheap mass centre (per-configuration constants) is the mass
+// properties' m_sc and c_B, for every wheel model.
+TEST(DerivativeReference, MassCentreIsTheMassPropertiesOne)
+{
+  std::mt19937_64 rng(7);
+  for (int k = 0; k < 200; ++k) {
+    const Case c = random_case(rng, {WheelModel::FullyCoupled, WheelModel::Balanced, WheelModel::SimpleJitter,
+                                     WheelModel::FullyCoupled});
+    const sim::SpacecraftModel model(c.params);
+    const sim::MassProps mp = model.mass_props(c.x, c.params.hub);
+    const sim::MassCentre mc = model.mass_centre(c.x, c.params.hub);
+    EXPECT_NEAR(mc.m_sc, mp.m_sc, 1e-14 * mp.m_sc);
+    EXPECT_LE((mc.c_B - mp.c_B).norm(), 1e-15 * (1.0 + mp.c_B.norm())) << "case " << k;
+  }
+}
+
 // The reference itself is not the code under test copied: it must see a
 // change of any physical term.  Dropping one wheel's imbalance from the model
 // (U_s -> 0) moves the derivative far outside the tolerance.

@@ -144,6 +144,8 @@ class Plant {
   // whole vehicle
   HubParams hub_with_propellant(const StateVector& x) const;  // §5.6 (params hub without tanks)
   MassProps mass_props() const { return model_.mass_props(x_, hub_with_propellant(x_)); }
+  // m_sc and c_B of mass_props() without the inertias (the per-tick truth).
+  MassCentre mass_centre() const { return model_.mass_centre(x_, hub_with_propellant(x_)); }
   EnergyMomentum energy_momentum() const { return model_.energy_momentum(x_, hub_with_propellant(x_)); }
   const HeldInputs& held_inputs() const { return held_; }
   uint64_t mrp_switch_count() const { return switches_; }

@@ -100,6 +100,11 @@ struct MassProps {  // §2, about/relative to point B, B components
   Eigen::Matrix3d I_sc_prime_B;  // [kg*m^2/s] B-frame derivative of I_sc_B
 };
 
+struct MassCentre {  // the first two members of MassProps
+  double m_sc = 0.0;  // [kg]
+  Eigen::Vector3d c_B = Eigen::Vector3d::Zero();  // [m] r_CB_B
+};
+
 struct EnergyMomentum {  // §8
   Eigen::Vector3d r_CN_N, v_CN_N;  // [m], [m/s]
   Eigen::Vector3d H_C_B, H_C_N;    // [kg*m^2/s] rotational angular momentum about C
@@ -129,6 +134,8 @@ class SpacecraftModel {
   StateVector initial_state(const InitialConditions& ic, const HubParams& hub) const;
 
   MassProps mass_props(const StateVector& x, const HubParams& hub) const;
+  // m_sc and c_B alone, from the per-configuration constants (cheap).
+  MassCentre mass_centre(const StateVector& x, const HubParams& hub) const;
 
   // Pure: x_dot = f(x, wheel inputs, loads, hub).  Autonomous (t is accepted
   // for rk4_step only).  The tank entries of x_dot are 0; the Plant adds the
