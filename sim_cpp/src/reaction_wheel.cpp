@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "sim/attitude.h"
+#include "sim/sin_cos.h"
 #include "validate_util.h"
 
 namespace sim {
@@ -111,8 +112,9 @@ ReactionWheelDerived derive(const ReactionWheelParams& p)
 
 WheelAxes wheel_axes(const ReactionWheelDerived& dv, double theta)
 {
-  const double c = std::cos(theta);
-  const double s = std::sin(theta);
+  const SinCos sc = sin_cos(theta);
+  const double c = sc.c;
+  const double s = sc.s;
   WheelAxes ax;
   ax.gs_hat_B = dv.gs_hat_B;
   ax.w2_hat_B = c * dv.w2_0_hat_B + s * dv.w3_0_hat_B;

@@ -9,6 +9,7 @@
 #include <Eigen/LU>
 
 #include "sim/attitude.h"
+#include "sim/sin_cos.h"
 #include "validate_util.h"
 
 namespace sim {
@@ -296,8 +297,8 @@ MassCentre SpacecraftModel::mass_centre(const StateVector& x, const HubParams& h
     const auto ui = static_cast<size_t>(i);
     if (p_.wheels[ui].model != WheelModel::FullyCoupled) continue;
     const ReactionWheelDerived& dv = derived_[ui];
-    const double th = x(layout_.theta(i));
-    first_moment += rc_[ui].md * (std::cos(th) * dv.w2_0_hat_B + std::sin(th) * dv.w3_0_hat_B);
+    const SinCos th = sin_cos(x(layout_.theta(i)));
+    first_moment += rc_[ui].md * (th.c * dv.w2_0_hat_B + th.s * dv.w3_0_hat_B);
   }
   mc.c_B = first_moment / mc.m_sc;
   return mc;
@@ -345,9 +346,9 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
     if (model == WheelModel::Balanced) continue;
     const ReactionWheelDerived& dv = derived_[ui];
     Rotor& r = ro[ui];
-    const double th = x(layout_.theta(i));
-    r.cth = std::cos(th);
-    r.sth = std::sin(th);
+    const SinCos th = sin_cos(x(layout_.theta(i)));
+    r.cth = th.c;
+    r.sth = th.s;
     r.w2 = r.cth * dv.w2_0_hat_B + r.sth * dv.w3_0_hat_B;
     r.w3 = r.cth * dv.w3_0_hat_B - r.sth * dv.w2_0_hat_B;
     if (model != WheelModel::FullyCoupled) continue;
