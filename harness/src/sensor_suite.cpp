@@ -107,8 +107,9 @@ bool SensorSuite::sample(uint64_t k, SensorSampleMsg& out)
 void SensorSuite::read_css(CssMsg& out)
 {
   const sim::SensorTruth& st = truth_now();
+  const sim::SunGeometry sun = sim::sun_geometry(st);  // once for the set
   for (size_t i = 0; i < css_.size(); ++i) {
-    css_[i].update(st);
+    css_[i].update(st, sun);
     out.y[i] = css_[i].output().y;
   }
 }

@@ -116,7 +116,7 @@ bool Gyro::update(const SensorTruth& truth)
 // ---------------------------------------------------------- star tracker
 
 StarTracker::StarTracker(StarTrackerParams p, const SensorContext& ctx)
-    : p_(std::move(p)), noise_(ctx.noise), rng_(ctx.run_seed, p_.name)
+    : p_(std::move(p)), cos_exclusion_(std::cos(p_.sun_exclusion)), noise_(ctx.noise), rng_(ctx.run_seed, p_.name)
 {
   using namespace detail;
   const std::string n = "star_tracker(" + p_.name + ")";
@@ -144,7 +144,10 @@ bool StarTracker::update(const SensorTruth& truth)
   out_.valid = true;
   if (p_.sun_exclusion > 0.0) {
     const Vector3d s_C = p_.dcm_CB * sun_direction_B(dcm_BN, truth.r_BN_N, truth.r_SunN_N);
-    if (std::acos(std::clamp(s_C.z(), -1.0, 1.0)) < p_.sun_exclusion) out_.valid = false;
+    // angle(s_C, z_C) < sun_exclusion, compared as cosines (acos is decreasing;
+    // they differ only within an ulp of the boundary, and >= keeps an exclusion
+    // whose cosine rounds to 1 excluding the exactly-aligned Sun as acos did)
+    if (std::clamp(s_C.z(), -1.0, 1.0) >= cos_exclusion_) out_.valid = false;
   }
   out_.t_ns = truth.t_ns;
   return true;
@@ -153,7 +156,7 @@ bool StarTracker::update(const SensorTruth& truth)
 // ---------------------------------------------------- coarse sun sensors
 
 CoarseSunSensor::CoarseSunSensor(CssParams p, const SensorContext& ctx)
-    : p_(std::move(p)), noise_(ctx.noise), rng_(ctx.run_seed, p_.name)
+    : p_(std::move(p)), cos_fov_(std::cos(p_.fov_half)), noise_(ctx.noise), rng_(ctx.run_seed, p_.name)
 {
   using namespace detail;
   const std::string n = "css(" + p_.name + ")";
@@ -173,15 +176,27 @@ CoarseSunSensor::CoarseSunSensor(CssParams p, const SensorContext& ctx)
   require_period(n + ".period_ns", p_.period_ns);
 }
 
+SunGeometry sun_geometry(const SensorTruth& truth)
+{
+  SunGeometry g;
+  g.s_B = sun_direction_B(dcm_BN_from_sigma(truth.sigma_BN), truth.r_BN_N, truth.r_SunN_N);
+  g.flux = solar_flux_scale(truth.r_BN_N, truth.r_SunN_N) * truth.f_illum;
+  return g;
+}
+
 bool CoarseSunSensor::update(const SensorTruth& truth)
 {
   if (!due(truth.t_ns, p_.period_ns)) return false;
-  const Matrix3d dcm_BN = dcm_BN_from_sigma(truth.sigma_BN);
-  const Vector3d s_B = sun_direction_B(dcm_BN, truth.r_BN_N, truth.r_SunN_N);
-  const double cos_inc = p_.n_hat_B.dot(s_B);
-  double gamma = cos_inc >= std::cos(p_.fov_half) ? cos_inc : 0.0;
+  return update(truth, sun_geometry(truth));
+}
+
+bool CoarseSunSensor::update(const SensorTruth& truth, const SunGeometry& sun)
+{
+  if (!due(truth.t_ns, p_.period_ns)) return false;
+  const double cos_inc = p_.n_hat_B.dot(sun.s_B);
+  double gamma = cos_inc >= cos_fov_ ? cos_inc : 0.0;
   if (p_.k_kelly > kKellyOff) gamma *= 1.0 - std::exp(-gamma * gamma / p_.k_kelly);
-  gamma *= solar_flux_scale(truth.r_BN_N, truth.r_SunN_N) * truth.f_illum;
+  gamma *= sun.flux;
   double signal = gamma + p_.albedo;
   if (noise_) signal += p_.bias + (k_noise_ * p_.sigma) * rng_.normal();
   out_.gamma = gamma;

@@ -145,7 +145,9 @@ void ThrusterSet::accumulate(const EffectorStage& stage, EffectorSums& sums) con
     const ThrusterParams& p = p_[uj];
     if (health_[uj] == ThrusterHealth::FailedOff) continue;
     if (p.tank >= 0 && !(stage.x(stage.layout.m_p(p.tank)) > 0.0)) continue;  // §5.6 empty tank
-    const ThrusterEffect e = scaled(thruster_effect(p, stage_kappa(j, stage.t)), scale_[uj]);
+    const double kappa = stage_kappa(j, stage.t);
+    if (kappa == 0.0) continue;  // closed and decayed: no force, torque or flow (most thrusters, most of the time)
+    const ThrusterEffect e = scaled(thruster_effect(p, kappa), scale_[uj]);
     sums.F_B += e.F_B;
     sums.L_B += e.L_B;
     if (p.tank >= 0) sums.m_p_dot[static_cast<size_t>(p.tank)] -= e.mdot;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -340,7 +341,7 @@ TEST(StarTracker, UpdateRateQuaternionBranchAndSunExclusion)
     EXPECT_NEAR(st.output().q_CN.norm(), 1.0, 1e-15);
   }
   // Case z (= body z) pointed 10 deg from the Sun (at N +x): invalid; 40 deg: valid.
-  for (double off_deg : {10.0, 40.0}) {
+  for (double off_deg : {10.0, 29.99, 30.01, 40.0}) {
     sim::SensorTruth t = truth_at(0);
     // [BN] = rotation taking N x to B z-ish: rotate body about y by -(90 - off) deg
     const Matrix3d dcm_NB = simtest::rot(Vector3d::UnitY(), sim::rad_from_deg(90.0 - off_deg));
@@ -392,6 +393,44 @@ TEST(CoarseSunSensor, CosineFovKellyDistanceEclipseAndLimits)
   EXPECT_NEAR(ck.output().y, 2.0 * g * (1.0 - std::exp(-g * g / 0.1)), 1e-15);
   ck.update(sun_at_angle_from_z(0.0));
   EXPECT_EQ(ck.output().y, 0.5);  // upper limit
+}
+
+// The set's Sun geometry computed once per instant (SensorSuite::read_css)
+// gives each sensor the reading, bit for bit, that it computes alone from
+// the truth, noise draws included; and it is the geometry by hand.
+TEST(CoarseSunSensor, SharedSunGeometryGivesTheSameReadings)
+{
+  sim::SensorContext ctx;
+  ctx.run_seed = 99;
+  std::vector<sim::CoarseSunSensor> alone, shared;
+  for (int i = 0; i < 6; ++i) {
+    sim::CssParams cp;
+    cp.name = "css" + std::to_string(i);
+    cp.n_hat_B = Vector3d(i % 3 == 0, i % 3 == 1, i % 3 == 2) * (i < 3 ? 1.0 : -1.0);
+    cp.fov_half = sim::rad_from_deg(60.0 + 5.0 * i);
+    cp.k_kelly = i % 2 ? 0.05 : 0.0;
+    cp.sigma = 0.01;
+    cp.y_max = 2.0;
+    alone.emplace_back(cp, ctx);
+    shared.emplace_back(cp, ctx);
+  }
+  std::mt19937_64 g(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int k = 0; k < 2000; ++k) {
+    sim::SensorTruth t = truth_at(k * 100 * kMs);
+    t.sigma_BN = Vector3d(u(g), u(g), u(g)) * 0.5;
+    t.r_BN_N = 1e7 * Vector3d(u(g), u(g), u(g));
+    t.f_illum = 0.5 * (1.0 + u(g));
+    const sim::SunGeometry sun = sim::sun_geometry(t);
+    const Vector3d d = t.r_SunN_N - t.r_BN_N;
+    ASSERT_NEAR((sun.s_B - sim::dcm_BN_from_sigma(t.sigma_BN) * d / d.norm()).norm(), 0.0, 1e-15);
+    ASSERT_NEAR(sun.flux, t.f_illum * (sim::kAU / d.norm()) * (sim::kAU / d.norm()), 1e-15);
+    for (size_t i = 0; i < alone.size(); ++i) {
+      ASSERT_EQ(alone[i].update(t), shared[i].update(t, sun));
+      ASSERT_EQ(alone[i].output().y, shared[i].output().y) << k << " " << i;
+      ASSERT_EQ(alone[i].output().gamma, shared[i].output().gamma) << k << " " << i;
+    }
+  }
 }
 
 TEST(CoarseSunSensor, NoiseAndBiasStatisticsAndIndependentStreams)

@@ -46,6 +46,15 @@ struct SensorTruth {
   WheelArray Omega{};                                    // [rad/s] (num_rw) wheel speeds
 };
 
+// The Sun as every coarse sun sensor sees it at one sample: computed once
+// per instant for the whole set (§9.3), the same values each sensor would
+// compute from the truth.
+struct SunGeometry {
+  Eigen::Vector3d s_B = Eigen::Vector3d::Zero();  // [-] unit vector to the Sun, B
+  double flux = 0.0;                              // [-] (1 AU / |r_Sun - r_B|)^2 f_illum
+};
+SunGeometry sun_geometry(const SensorTruth& truth);
+
 // q(x) = sign(x) LSB floor(|x| / LSB) (§9.1); identity for lsb <= 0.
 double quantize(double x, double lsb);
 
@@ -130,6 +139,7 @@ class StarTracker {
 
  private:
   StarTrackerParams p_;
+  double cos_exclusion_;  // cos(sun_exclusion)
   bool noise_;
   double k_noise_ = 1.0;
   Rng rng_;
@@ -170,6 +180,8 @@ class CoarseSunSensor {
  public:
   CoarseSunSensor(CssParams p, const SensorContext& ctx);
   bool update(const SensorTruth& truth);
+  // The same with the instant's Sun geometry given (sun_geometry(truth)).
+  bool update(const SensorTruth& truth, const SunGeometry& sun);
   const CssOutput& output() const { return out_; }
   const CssParams& params() const { return p_; }
   // Multiplies the random-error 1-sigmas (a fault event's noise_scale):
@@ -180,6 +192,7 @@ class CoarseSunSensor {
 
  private:
   CssParams p_;
+  double cos_fov_;  // cos(fov_half)
   bool noise_;
   double k_noise_ = 1.0;
   Rng rng_;
