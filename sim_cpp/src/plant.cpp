@@ -38,6 +38,7 @@ SpacecraftModel make_model(SpacecraftParams sc, const PropulsionParams& prop)
 Plant::Plant(PlantParams params, const InitialConditions& ic)
     : model_(make_model(std::move(params.sc), params.prop)),
       tanks_(std::move(params.prop.tanks)),
+      merger_(model_.params().hub, tanks_.data(), static_cast<int>(tanks_.size())),
       thr_(std::move(params.prop.thrusters), static_cast<int>(tanks_.size()), params.prop.command)
 {
   extra_.reserve(static_cast<size_t>(kMaxEffectors - 1));
@@ -149,7 +150,7 @@ HubParams Plant::hub_with_propellant(const StateVector& x) const
 {
   TankArray m_p{};
   for (int k = 0; k < num_tanks(); ++k) m_p[static_cast<size_t>(k)] = x(layout().m_p(k));
-  return merge_tanks_into_hub(model_.params().hub, tanks_.data(), num_tanks(), m_p);
+  return merger_.merge(m_p);
 }
 
 void Plant::fill_sensor_truth(SensorTruth& out, const Eigen::Vector3d& r_SunN_N, double f_illum) const

@@ -22,6 +22,15 @@ ThrusterEffect scaled(ThrusterEffect e, double s)
   e.mdot *= s;
   return e;
 }
+
+ThrusterEffect times(double kappa, const ThrusterEffect& unit)
+{
+  ThrusterEffect e;
+  e.F_B = kappa * unit.F_B;
+  e.L_B = kappa * unit.L_B;
+  e.mdot = kappa * unit.mdot;
+  return e;
+}
 }  // namespace
 
 ThrusterSet::ThrusterSet(std::vector<ThrusterParams> thrusters, int num_tanks,
@@ -39,9 +48,14 @@ ThrusterSet::ThrusterSet(std::vector<ThrusterParams> thrusters, int num_tanks,
     if (p_[j].tank >= num_tanks) fail(name + ".tank", p_[j].tank, "must be < tanks.size() (or -1)");
   }
   validate(cmd_, "command");
-  for (size_t j = 0; j < n_thr; ++j) sched_[j] = initial_schedule(p_[j]);
+  for (size_t j = 0; j < n_thr; ++j) {
+    sched_[j] = initial_schedule(p_[j]);
+    refresh_unit(j);
+  }
   prepare_now(0);
 }
+
+void ThrusterSet::refresh_unit(size_t j) { unit_[j] = scaled(thruster_effect(p_[j], 1.0), scale_[j]); }
 
 void ThrusterSet::command(const ThrusterArray& T_req)
 {
@@ -75,7 +89,7 @@ ThrusterEffect ThrusterSet::effect(int j, const StateVector& x, const StateLayou
   const ThrusterParams& p = p_[uj];
   if (health_[uj] == ThrusterHealth::FailedOff) return ThrusterEffect{};
   if (p.tank >= 0 && !(x(L.m_p(p.tank)) > 0.0)) return ThrusterEffect{};  // §5.6 empty tank
-  return scaled(thruster_effect(p, kappa(j)), scale_[uj]);
+  return times(kappa(j), unit_[uj]);
 }
 
 void ThrusterSet::set_thrust_scale(int j, double s)
@@ -84,6 +98,7 @@ void ThrusterSet::set_thrust_scale(int j, double s)
   if (!(s >= 0.0) || !std::isfinite(s))
     detail::fail("thrusters[" + std::to_string(j) + "].thrust_scale", s, "must be finite and >= 0");
   scale_[static_cast<size_t>(j)] = s;
+  refresh_unit(static_cast<size_t>(j));
 }
 
 void ThrusterSet::set_health(int j, ThrusterHealth h)
@@ -147,10 +162,10 @@ void ThrusterSet::accumulate(const EffectorStage& stage, EffectorSums& sums) con
     if (p.tank >= 0 && !(stage.x(stage.layout.m_p(p.tank)) > 0.0)) continue;  // §5.6 empty tank
     const double kappa = stage_kappa(j, stage.t);
     if (kappa == 0.0) continue;  // closed and decayed: no force, torque or flow (most thrusters, most of the time)
-    const ThrusterEffect e = scaled(thruster_effect(p, kappa), scale_[uj]);
-    sums.F_B += e.F_B;
-    sums.L_B += e.L_B;
-    if (p.tank >= 0) sums.m_p_dot[static_cast<size_t>(p.tank)] -= e.mdot;
+    const ThrusterEffect& u = unit_[uj];
+    sums.F_B += kappa * u.F_B;
+    sums.L_B += kappa * u.L_B;
+    if (p.tank >= 0) sums.m_p_dot[static_cast<size_t>(p.tank)] -= kappa * u.mdot;
   }
 }
 

@@ -2,6 +2,7 @@
 // mass properties by hand, tank config rejection, mass bookkeeping against
 // the mass-flow formula, the rocket equation through depletion (THR-8), an
 // empty tank stopping its thrusters, and conservation with full tanks.
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -125,6 +126,44 @@ TEST(TankMassProps, MatchHandSumsForPointAndSphereTanks)
 
 // Mass used by a pulse = F_max (1 + disp) T / (g0 Isp) per thruster, charged
 // to the right tank; thrusters with tank -1 deplete nothing.
+// The per-derivative merge with its constant parts formed once equals the
+// term-by-term merge (whose hand sums the test above checks) to rounding,
+// for empty, negative (counted as 0), small and large propellant masses.
+TEST(TankMassProps, MergerEqualsTheTermByTermMerge)
+{
+  sim::HubParams hub;
+  hub.m_h = 750.0;
+  hub.r_BcB_B = Vector3d(0.02, -0.01, 0.15);
+  hub.I_hBc_B << 900.0, 12.0, -7.0, 12.0, 800.0, 5.0, -7.0, 5.0, 600.0;
+  std::array<sim::TankParams, 3> tanks;
+  tanks[0].r_TB_B = Vector3d(0.0, 0.0, -0.4);
+  tanks[0].R_T = 0.55;
+  tanks[1].r_TB_B = Vector3d(0.8, 0.3, 0.1);
+  tanks[2].r_TB_B = Vector3d(-0.6, 0.7, -0.2);
+  tanks[2].R_T = 0.2;
+  const sim::TankMerger none(hub, tanks.data(), 0);
+  const sim::HubParams h0 = none.merge(sim::TankArray{});
+  EXPECT_EQ(h0.m_h, hub.m_h);
+  EXPECT_EQ(h0.r_BcB_B, hub.r_BcB_B);
+  EXPECT_EQ(h0.I_hBc_B, hub.I_hBc_B);
+  const sim::TankMerger merger(hub, tanks.data(), 3);
+  const double masses[] = {0.0, -1.0, 1e-9, 0.37, 12.5, 480.0, 2500.0};
+  for (const double a : masses)
+    for (const double b : masses)
+      for (const double c : {0.0, 35.0}) {
+        sim::TankArray m_p{};
+        m_p[0] = a;
+        m_p[1] = b;
+        m_p[2] = c;
+        const sim::HubParams ref = sim::merge_tanks_into_hub(hub, tanks.data(), 3, m_p);
+        const sim::HubParams got = merger.merge(m_p);
+        EXPECT_NEAR(got.m_h, ref.m_h, 1e-15 * ref.m_h);
+        EXPECT_LE((got.r_BcB_B - ref.r_BcB_B).norm(), 1e-15) << a << " " << b << " " << c;
+        EXPECT_LE((got.I_hBc_B - ref.I_hBc_B).cwiseAbs().maxCoeff(), 2e-15 * ref.I_hBc_B.cwiseAbs().maxCoeff())
+            << a << " " << b << " " << c;
+      }
+}
+
 TEST(TankDepletion, MassUsedMatchesMassFlowPerTank)
 {
   sim::PropulsionParams p = s2_main_engine(50.0);

@@ -172,6 +172,7 @@ class Plant {
 
   SpacecraftModel model_;
   std::vector<TankParams> tanks_;
+  TankMerger merger_;  // the hub with the tanks' propellant, per derivative
   ThrusterSet thr_;
   std::vector<std::unique_ptr<ForceTorqueEffector>> extra_;  // reserved to kMaxEffectors - 1
   StateVector x_;

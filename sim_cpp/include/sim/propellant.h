@@ -40,6 +40,26 @@ Eigen::Matrix3d tank_inertia(const TankParams& p, double m_p);
 HubParams merge_tanks_into_hub(const HubParams& hub, const TankParams* tanks, int num_tanks,
                                const TankArray& m_p);
 
+// merge_tanks_into_hub with the parts that do not depend on m_p formed once:
+// the hub's mass moment and inertia about B, and each tank's inertia about B
+// per kilogram, (2/5 R_T^2 + |r_T|^2) I - r_T r_T^T (both of its terms are
+// linear in m_p).  merge() is what the plant evaluates in every derivative;
+// it equals merge_tanks_into_hub to rounding (sim_test_propellant).
+class TankMerger {
+ public:
+  TankMerger() = default;
+  TankMerger(const HubParams& hub, const TankParams* tanks, int num_tanks);
+  HubParams merge(const TankArray& m_p) const;
+
+ private:
+  HubParams hub_;
+  Eigen::Vector3d first_moment_h_ = Eigen::Vector3d::Zero();  // [kg m]    m_h r_BcB
+  Eigen::Matrix3d I_h_B_ = Eigen::Matrix3d::Zero();           // [kg m^2]  hub about B
+  int n_ = 0;
+  std::array<Eigen::Vector3d, kMaxTanks> r_{};                // [m]       tank centres
+  std::array<Eigen::Matrix3d, kMaxTanks> I_per_kg_B_{};       // [m^2]     tank about B per kg
+};
+
 // Rocket equation (§5.6, THR-8): delta-v [m/s] of a burn from mass m0 to m1.
 inline double rocket_delta_v(double Isp, double m0, double m1)
 {

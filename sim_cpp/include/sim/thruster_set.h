@@ -90,6 +90,7 @@ class ThrusterSet final : public ForceTorqueEffector {
     double kappa_end = 0.0;             // [-] closed form at tau + h
   };
 
+  void refresh_unit(size_t j);  // unit_[j] from the parameters and the thrust scale
   double s_since_latch(int j, int64_t t_ns) const;
   double stage_kappa(int j, double t) const;
   void latch(int64_t t_L_ns);
@@ -101,6 +102,11 @@ class ThrusterSet final : public ForceTorqueEffector {
   std::array<ValveSchedule, kMaxThrusters> sched_{};
   std::array<ThrusterHealth, kMaxThrusters> health_{};
   ThrusterArray scale_{};     // [-] thrust scale (set_thrust_scale), 1 nominal
+  // The effect at kappa = 1 with the thrust scale: §5.4 is linear in kappa
+  // (F, the torque r x F + kappa tau_sw t and mdot = F / (g0 Isp)), so a
+  // thruster's effect is kappa times it; formed once per configuration
+  // instead of in every derivative evaluation.
+  std::array<ThrusterEffect, kMaxThrusters> unit_{};
   ThrusterArray kappa_fo_{};  // [-] FirstOrder kappa at the current sub-step start / now
   int64_t t0_ns_ = 0;         // [ns] current segment start (or now)
   ThrusterArray s_at_t0_{};   // [s] time since each thruster's latch at t0_ns_
