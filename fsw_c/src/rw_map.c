@@ -68,7 +68,7 @@ void fsw_rw_map_reset(FswRwMapState *st)
 FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
                             const FswRwMapIn *in, FswRwMapOut *out)
 {
-  fsw_real b[3], r[3];
+  fsw_real b[3], r[3], d, d_max = FSW_R(0.0);
   /* scratch in the state (see FswRwMapWork): A = [C][Gs_a] diag(sqrt(y)),
    * sy = sqrt(y_k) and idx = indices of the available wheels, ascending */
   fsw_real(*A)[FSW_MAX_EFF];
@@ -107,8 +107,21 @@ FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
 
   for (j = 0; j < nc; j++) {
     b[j] = -fsw_v3_dot(cfg->ctrl_axes_B[j], in->Lr_B);
-    for (k = 0; k < na; k++) A[j][k] = fsw_v3_dot(cfg->ctrl_axes_B[j], cfg->gs_hat_B[idx[k]]) * sy[k];
+    d = FSW_R(0.0);
+    for (k = 0; k < na; k++) {
+      const fsw_real m = fsw_v3_dot(cfg->ctrl_axes_B[j], cfg->gs_hat_B[idx[k]]);
+      d += m * m;
+      A[j][k] = m * sy[k];
+    }
+    if (d > d_max) d_max = d;
   }
+  /* The geometry [C][Gs_a] is dimensionless (unit rows and columns, so
+   * each entry is at most 1 in size): when every entry is at the rounding
+   * level of such products (sum of squares of the largest row <=
+   * FSW_RANK_TOL), no control axis can be reached, however the entries'
+   * rounding noise makes K1's scale-invariant test see a full-rank A
+   * (a single wheel at 90 deg to a single control axis: c . g ~ 1e-17). */
+  if (!(d_max > FSW_RANK_TOL)) return fsw_health_record(&st->health, FSW_W_SINGULAR);
   /* K1 judges rank by its pivot floor and by the delivered residual
    * (fsw_linalg.h); FSW_E_BAD_INPUT from it means b = -[C] Lr or the
    * solution overflows the real type (finite but huge Lr). */

@@ -497,6 +497,56 @@ TEST(RwMapIssue13, OverflowIsBadInputAndEpsPIsBounded)
   EXPECT_LE(rel_residual(*f.cfg, f.out->u_s, f.in->Lr_B), kt::tol(1e-12, 1e-5));
 }
 
+// Found by fuzz_fsw_rw_map (2026-12-04, reproducer
+// regressions/rw_map/h2-wheel-normal-to-the-axis): one available wheel of a
+// pyramid, g = (-s, -s', c) with s and s' = sin 50 deg / sqrt 2 one ulp
+// apart (as the fuzzer's rotated pyramid had them), and one control axis
+// c = (-1, 1, 0) / sqrt 2 at 90 deg to it.  c . g = (s - s') / sqrt 2 =
+// 7.9e-17, rounding noise: before the fix K1's scale-invariant
+// test saw a full-rank 1 x 1 system and the map returned OK with u ~ 1e14
+// N*m delivering a torque off by 30 %.  Now W_SINGULAR with u = 0 in both
+// modes; and a wheel at 0.01 rad from 90 deg (c . g = sin 0.01, far above
+// rounding) is still solved exactly: u = -(c . Lr) / (c . g).
+TEST(RwMapIssue13, WheelNormalToTheOnlyAxisIsSingular)
+{
+  const double g[1][3] = {{-0.54167522041970195, -0.54167522041970184, 0.64278760968653925}};
+  const double r2 = 1.0 / std::sqrt(2.0);
+  for (int mode : {FSW_RW_MAP_MIN_NORM, FSW_RW_MAP_POWER}) {
+    Fixture f;
+    f.setup(g, 1, mode);
+    f.cfg->num_axes = 1;
+    f.cfg->ctrl_axes_B[0][0] = static_cast<fsw_real>(-r2);
+    f.cfg->ctrl_axes_B[0][1] = static_cast<fsw_real>(r2);
+    f.cfg->ctrl_axes_B[0][2] = 0;
+    ASSERT_EQ(f.init(), FSW_OK) << mode;
+    f.in->Omega[0] = static_cast<fsw_real>(-300.6625);
+    f.set_Lr(-5.9616249999999997, -6.0507499999999999, -5.9370624999999997);  // the fuzzer's request
+    f.fill_out_with_garbage();
+    EXPECT_EQ(f.update(), FSW_W_SINGULAR) << mode;
+    expect_all_zero(*f.out);
+  }
+  // the same axis with the wheel tilted 0.01 rad towards it
+  const double t = 0.01;
+  double gt[1][3];
+  for (int r = 0; r < 3; r++) gt[0][r] = std::cos(t) * g[0][r];
+  gt[0][0] += std::sin(t) * -r2;
+  gt[0][1] += std::sin(t) * r2;
+  for (int mode : {FSW_RW_MAP_MIN_NORM, FSW_RW_MAP_POWER}) {
+    Fixture f;
+    f.setup(gt, 1, mode);
+    f.cfg->num_axes = 1;
+    f.cfg->ctrl_axes_B[0][0] = static_cast<fsw_real>(-r2);
+    f.cfg->ctrl_axes_B[0][1] = static_cast<fsw_real>(r2);
+    f.cfg->ctrl_axes_B[0][2] = 0;
+    ASSERT_EQ(f.init(), FSW_OK) << mode;
+    f.set_Lr(0.0, 0.01, 0.0);  // c . Lr = 0.01 / sqrt 2
+    f.in->Omega[0] = static_cast<fsw_real>(100.0);
+    ASSERT_EQ(f.update(), FSW_OK) << mode;
+    const double expect = -(0.01 * r2) / std::sin(t);
+    EXPECT_NEAR(f.out->u_s[0], expect, kt::tol(1e-13, 1e-4) * std::fabs(expect)) << mode;
+  }
+}
+
 // ---- issue 21: a single wheel is a legal configuration ----------------------
 
 // One wheel g = (0.6, 0, 0.8) controlling the body z axis alone: A = [C][g]

@@ -79,9 +79,10 @@ FswStatus fsw_rw_map_init(FswRwMapState *st, const FswRwMapConfig *cfg);
 void fsw_rw_map_reset(FswRwMapState *st);
 /* FSW_OK: u finite and [C][Gs] u = -[C] Lr within FSW_RESID_TOL relative
  * (in practice ~1e-15); FSW_W_SINGULAR (u = 0) when the available wheels
- * cannot produce torque about every control axis (fewer than nc available,
- * or [C][Gs_a] rank deficient by the K1 test: pivot floor or delivered
- * residual, fsw_linalg.h); FSW_E_BAD_INPUT (u = 0) for non-finite Lr,
+ * cannot produce torque about every control axis (fewer than nc available;
+ * every entry of the dimensionless [C][Gs_a] at rounding level: the largest
+ * row's sum of squares <= FSW_RANK_TOL; or [C][Gs_a] rank deficient by the
+ * K1 test: pivot floor or delivered residual, fsw_linalg.h); FSW_E_BAD_INPUT (u = 0) for non-finite Lr,
  * non-finite Omega in POWER mode, a mask entry other than 0/1, or a finite
  * Lr so large that -[C] Lr or u overflows; FSW_E_NOT_INIT.  Stateless: no
  * status changes anything but the health counters and the scratch. */
