@@ -13,7 +13,7 @@
 //   series to r^17 and r^16 (truncation < 1e-19), in Estrin form;
 //   the quadrant k mod 4 picks and signs them.
 // Beyond that bound, and for inf or NaN, std::sin and std::cos.
-// Accuracy (sim_test_sin_cos, against std::sin/std::cos over 4 10^6
+// Accuracy (sim_test_sin_cos, against std::sin/std::cos over 3 10^6
 // arguments up to the bound): |error| <= 4.5e-16 absolute; the rotor angle
 // itself carries an absolute rounding of ulp(x)/2 = 1.2e-16 at x = 2 and
 // 1e-6 at x = 1e10, so the reduction adds nothing the state does not
