@@ -22,15 +22,6 @@ ThrusterEffect scaled(ThrusterEffect e, double s)
   e.mdot *= s;
   return e;
 }
-
-ThrusterEffect times(double kappa, const ThrusterEffect& unit)
-{
-  ThrusterEffect e;
-  e.F_B = kappa * unit.F_B;
-  e.L_B = kappa * unit.L_B;
-  e.mdot = kappa * unit.mdot;
-  return e;
-}
 }  // namespace
 
 ThrusterSet::ThrusterSet(std::vector<ThrusterParams> thrusters, int num_tanks,
@@ -89,7 +80,7 @@ ThrusterEffect ThrusterSet::effect(int j, const StateVector& x, const StateLayou
   const ThrusterParams& p = p_[uj];
   if (health_[uj] == ThrusterHealth::FailedOff) return ThrusterEffect{};
   if (p.tank >= 0 && !(x(L.m_p(p.tank)) > 0.0)) return ThrusterEffect{};  // §5.6 empty tank
-  return times(kappa(j), unit_[uj]);
+  return scaled(unit_[uj], kappa(j));
 }
 
 void ThrusterSet::set_thrust_scale(int j, double s)

@@ -511,13 +511,17 @@ TEST(RwMapIssue13, WheelNormalToTheOnlyAxisIsSingular)
 {
   const double g[1][3] = {{-0.54167522041970195, -0.54167522041970184, 0.64278760968653925}};
   const double r2 = 1.0 / std::sqrt(2.0);
-  for (int mode : {FSW_RW_MAP_MIN_NORM, FSW_RW_MAP_POWER}) {
-    Fixture f;
-    f.setup(g, 1, mode);
+  // one wheel g1, one control axis c = (-1, 1, 0) / sqrt 2
+  const auto one_wheel_one_axis = [r2](Fixture &f, const double (&g1)[1][3], int mode) {
+    f.setup(g1, 1, mode);
     f.cfg->num_axes = 1;
     f.cfg->ctrl_axes_B[0][0] = static_cast<fsw_real>(-r2);
     f.cfg->ctrl_axes_B[0][1] = static_cast<fsw_real>(r2);
     f.cfg->ctrl_axes_B[0][2] = 0;
+  };
+  for (int mode : {FSW_RW_MAP_MIN_NORM, FSW_RW_MAP_POWER}) {
+    Fixture f;
+    one_wheel_one_axis(f, g, mode);
     ASSERT_EQ(f.init(), FSW_OK) << mode;
     f.in->Omega[0] = static_cast<fsw_real>(-300.6625);
     f.set_Lr(-5.9616249999999997, -6.0507499999999999, -5.9370624999999997);  // the fuzzer's request
@@ -533,11 +537,7 @@ TEST(RwMapIssue13, WheelNormalToTheOnlyAxisIsSingular)
   gt[0][1] += std::sin(t) * r2;
   for (int mode : {FSW_RW_MAP_MIN_NORM, FSW_RW_MAP_POWER}) {
     Fixture f;
-    f.setup(gt, 1, mode);
-    f.cfg->num_axes = 1;
-    f.cfg->ctrl_axes_B[0][0] = static_cast<fsw_real>(-r2);
-    f.cfg->ctrl_axes_B[0][1] = static_cast<fsw_real>(r2);
-    f.cfg->ctrl_axes_B[0][2] = 0;
+    one_wheel_one_axis(f, gt, mode);
     ASSERT_EQ(f.init(), FSW_OK) << mode;
     f.set_Lr(0.0, 0.01, 0.0);  // c . Lr = 0.01 / sqrt 2
     f.in->Omega[0] = static_cast<fsw_real>(100.0);
