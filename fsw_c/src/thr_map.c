@@ -253,7 +253,7 @@ static FswStatus map_nnls(FswThrMapState *st, const FswThrMapConfig *cfg,
 FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
                              const FswThrMapIn *in, FswThrMapOut *out)
 {
-  fsw_real *F, Lr_B[3], Lbar[3], ang_err_prev;
+  fsw_real *F, Lr_B[3], Lbar[3], ang_err_prev, geo[3] = {FSW_R(0.0), FSW_R(0.0), FSW_R(0.0)};
   FswStatus s;
   int i, j, k, n, nc, nnls_iter_prev;
 
@@ -283,6 +283,16 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
       fsw_v3_cross(d, rel, cfg->gt_hat_B[i]);
       if (in->avail[i] != FSW_AVAILABLE) fsw_v3_zero(d); /* absent: no torque arm, not on */
       for (k = 0; k < 3; k++) st->work.D_B[k][i] = d[k];
+      {
+        /* the geometry on its own scale: c_j . (rel x g) / (|rel| |g|),
+         * at most 1 in size (unit rows c_j); row sums of squares in geo */
+        const fsw_real len = fsw_v3_norm(rel) * fsw_v3_norm(cfg->gt_hat_B[i]);
+        if (len > FSW_R(0.0))
+          for (j = 0; j < nc; j++) {
+            const fsw_real e = fsw_v3_dot(st->C[j], d) / len;
+            geo[j] += e * e;
+          }
+      }
       if (cfg->thr_force_sign < 0) {
         fsw_real Ld[3];
         fsw_v3_scale(Ld, cfg->F_max[i], d);
@@ -308,7 +318,14 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
   ang_err_prev = st->ang_err;
   nnls_iter_prev = st->nnls_iter;
   st->nnls_iter = 0;
-  if (cfg->mode == FSW_THR_MAP_NNLS)
+  if (!(fsw_vn_max_abs(geo, nc) > FSW_RANK_TOL)) {
+    /* Every torque arm is normal to every control axis or passes through
+     * the CoM, to within rounding: the entries of [C][D] are noise that
+     * K1's scale-invariant test (and K4's residual) would take as a
+     * full-rank geometry (docs/fsw-conventions.md "Rank test"). */
+    s = FSW_W_SINGULAR; /* F = 0; the diagnostics as each mode sets them */
+    st->ang_err = (cfg->mode == FSW_THR_MAP_NNLS) ? FSW_R(0.0) : torque_angle_error(st, cfg, Lbar, F);
+  } else if (cfg->mode == FSW_THR_MAP_NNLS)
     s = map_nnls(st, cfg, Lbar, in->avail, F);
   else
     s = map_min_norm(st, cfg, Lbar, in->avail, F);

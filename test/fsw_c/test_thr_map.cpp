@@ -1122,3 +1122,54 @@ TEST(ThrMapAvailability, RankDeficientOffPulsingKeepsTheFlaggedThrusterOff)
   EXPECT_EQ(-1, out.F[0]);
   for (int i = 1; i < FSW_MAX_THR; i++) EXPECT_EQ(0, out.F[i]) << i;
 }
+
+// Issue 13, the blind spot rw_map had (b1d2eda): when every torque arm is
+// normal to every control axis, or passes through the CoM, the entries of
+// [C][D] are rounding noise of size ~1e-17 |r|; K1's scale-invariant test
+// sees a full-rank matrix and solves with it.  The geometry is judged on its
+// own scale: c . (r x g) / (|r| |g|), at most 1, must exceed the rounding
+// level on some axis (FSW_RANK_TOL on the largest row's sum of squares),
+// else W_SINGULAR with F = 0, in both modes.
+TEST(ThrMapIssue13, TorqueArmsNormalToEveryAxisAreSingular)
+{
+  kt::Rng rng(1313);
+  int noisy = 0;  // cases where the x torque arm computes to a non-zero value
+  for (int trial = 0; trial < 400; trial++) {
+    FswThrMapConfig c = base_cfg();
+    set3(c.control_axes_B[1], 0, 0, 0);  // one control axis, x
+    set3(c.control_axes_B[2], 0, 0, 0);
+    c.num_thr = rng.uniform_int(1, 4);
+    for (int i = 0; i < c.num_thr; i++) {
+      double g[3] = {0, rng.uniform(-1, 1), rng.uniform(-1, 1)};
+      const bool through_com = rng.uniform() < 0.3;
+      if (through_com) g[0] = rng.uniform(-1, 1);
+      const double gn = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+      set3(c.gt_hat_B[i], g[0] / gn, g[1] / gn, g[2] / gn);
+      const double s = rng.uniform(0.1, 3.0);
+      const R* gh = c.gt_hat_B[i];
+      // in the plane of x and g (arm normal to x), or along g (no arm)
+      set3(c.r_thr_B[i], through_com ? s * gh[0] : rng.uniform(-2, 2), s * gh[1], s * gh[2]);
+      const R* r = c.r_thr_B[i];
+      if (r[1] * gh[2] - r[2] * gh[1] != 0) noisy++;
+      c.F_max[i] = 1;
+    }
+    for (int mode : {FSW_THR_MAP_MIN_NORM, FSW_THR_MAP_NNLS}) {
+      c.mode = mode;
+      for (double lx : {0.5, 1e-12, 1e-20}) {
+        MapRun r = map_once(c, lx, 0.1, -0.2);
+        ASSERT_EQ(FSW_W_SINGULAR, r.s) << "trial " << trial << " mode " << mode << " Lx " << lx;
+        for (int i = 0; i < FSW_MAX_THR; i++) ASSERT_EQ(0, r.out.F[i]) << "trial " << trial;
+      }
+      // control: one more thruster with a real arm about x (|d_x| / |r| =
+      // 0.05, far above the floor in either real type) makes it solvable
+      FswThrMapConfig d = c;
+      const int k = d.num_thr++;
+      set3(d.r_thr_B[k], 0, 1, 0);  // d = (0.05, 0, -0.9987)
+      set3(d.gt_hat_B[k], std::sqrt(1 - 0.0025), 0, 0.05);
+      d.F_max[k] = 1;
+      MapRun r = map_once(d, 1e-3, 0, 0);
+      EXPECT_NE(FSW_W_SINGULAR, r.s) << "trial " << trial << " mode " << mode;
+    }
+  }
+  EXPECT_GT(noisy, 50);  // the test exercises the rounding-noise case
+}

@@ -115,9 +115,12 @@ void fsw_thr_map_reset(FswThrMapState *st);
  * relative; min-norm: the solve met the K1 rank and residual tests);
  * FSW_W_SAT (min-norm: forces were scaled down; NNLS: the request is out of
  * reach, e.g. a reduced-axis (rank-deficient) set, and the least-squares
- * torque is delivered); FSW_W_SINGULAR (min-norm: rank-deficient [C][D] by
- * the K1 test, pivot floor or delivered residual, fsw_linalg.h; F = 0, a
- * thruster flagged unavailable keeping its off command);
+ * torque is delivered); FSW_W_SINGULAR (either mode: no torque arm reaches
+ * any control axis beyond rounding, i.e. the largest over axes c_j of
+ * sum_i (c_j . (r_i - r_CoM) x g_i / (|r_i - r_CoM| |g_i|))^2 is
+ * <= FSW_RANK_TOL; min-norm also: rank-deficient [C][D] by the K1 test,
+ * pivot floor or delivered residual, fsw_linalg.h; F = 0, a thruster
+ * flagged unavailable keeping its off command);
  * FSW_E_BAD_INPUT (NaN/Inf input, r_CoM_B out of range, an avail entry not
  * 0/1, or a finite request
  * so large that the forces overflow; F = 0); FSW_E_NOT_INIT;
