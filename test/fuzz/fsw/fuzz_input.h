@@ -252,6 +252,10 @@ inline double fuzz_norm3(const fsw_real *v)
 // First byte in which a and b differ, or -1.
 inline long fuzz_first_diff(const void *a, const void *b, size_t n)
 {
+  // memcmp first: the byte loop, instrumented for coverage (two traced
+  // comparisons per byte), took 60 % of fuzz_fsw_acs's time on its states
+  // of tens of KiB; it only runs to locate a difference for the report.
+  if (std::memcmp(a, b, n) == 0) return -1;
   const unsigned char *x = static_cast<const unsigned char *>(a), *y = static_cast<const unsigned char *>(b);
   for (size_t i = 0; i < n; i++)
     if (x[i] != y[i]) return static_cast<long>(i);
