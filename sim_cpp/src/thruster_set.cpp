@@ -129,30 +129,30 @@ void ThrusterSet::set_health(int j, ThrusterHealth h)
 
 // ------------------------------------------------------------------ physics
 
-double ThrusterSet::stage_kappa(int j, double t) const
+double ThrusterSet::first_order_closed_form(size_t j, double t) const
 {
-  const auto uj = static_cast<size_t>(j);
-  const ThrusterParams& p = p_[uj];
-  if (p.transient != ThrusterTransient::FirstOrder)
-    return scheduled_kappa(p, sched_[uj], s_at_t0_[uj] + t, open_[uj]);
-  const FirstOrderStage& f = fo_[uj];
-  if (t == f.t[0]) return f.kappa[0];
-  if (t == f.t[1]) return f.kappa[1];
-  if (t == f.t[2]) return f.kappa[2];
-  // Not an RK4 stage time of the current sub-step (a caller evaluating the
-  // derivatives elsewhere): the closed form itself.
-  return f.kappa_c + f.d0 * std::exp(-f.w * (t - f.tau)) + f.delta;
+  const FirstOrderStage& f = fo_[j];
+  return f.kappa_c + f.d0 * std::exp(-f.w * (t - stage_t_[0])) + f.delta;
 }
 
 void ThrusterSet::accumulate(const EffectorStage& stage, EffectorSums& sums) const
 {
-  for (int j = 0; j < num_thr(); ++j) {
-    const auto uj = static_cast<size_t>(j);
+  // Which RK4 stage time of the current sub-step t is (the same for every
+  // FirstOrder thruster), or -1.
+  const double t = stage.t;
+  const int k = t == stage_t_[0] ? 0 : t == stage_t_[1] ? 1 : t == stage_t_[2] ? 2 : -1;
+  for (int a = 0; a < num_active_; ++a) {
+    const auto uj = static_cast<size_t>(active_[static_cast<size_t>(a)]);
     const ThrusterParams& p = p_[uj];
-    if (health_[uj] == ThrusterHealth::FailedOff) continue;
     if (p.tank >= 0 && !(stage.x(stage.layout.m_p(p.tank)) > 0.0)) continue;  // §5.6 empty tank
-    const double kappa = stage_kappa(j, stage.t);
-    if (kappa == 0.0) continue;  // closed and decayed: no force, torque or flow (most thrusters, most of the time)
+    // FirstOrder: the stage value, or the closed form itself at a time that
+    // is not a stage time (a caller evaluating the derivatives elsewhere).
+    double kappa;
+    if (p.transient != ThrusterTransient::FirstOrder)
+      kappa = scheduled_kappa(p, sched_[uj], s_at_t0_[uj] + t, open_[uj]);
+    else
+      kappa = k >= 0 ? fo_[uj].kappa[k] : first_order_closed_form(uj, t);
+    if (kappa == 0.0) continue;  // closed and decayed: no force, torque or flow
     const ThrusterEffect& u = unit_[uj];
     sums.F_B += kappa * u.F_B;
     sums.L_B += kappa * u.L_B;
@@ -225,40 +225,61 @@ void ThrusterSet::begin_substep(double tau, double tau_end)
 {
   const double mid = 0.5 * (tau + tau_end);
   const double h = tau_end - tau;  // as Plant passes it to rk4_step
+  stage_t_[0] = tau;               // RK4 stage times, formed exactly as rk4_step forms them
+  stage_t_[1] = tau + 0.5 * h;
+  stage_t_[2] = tau + h;
+  // The exponentials depend on w h alone, and h is the sub-step's: one set
+  // per distinct rate (thrusters mostly share omega_on = omega_off).
+  struct Decay {
+    double w, e_half, e_full, corr;  // corr: exact mean of e^{-w s} over [0, h] less RK4's weighting
+  };
+  std::array<Decay, 2 * kMaxThrusters> memo;
+  size_t n_memo = 0;
+  num_active_ = 0;
   for (int j = 0; j < num_thr(); ++j) {
     const auto uj = static_cast<size_t>(j);
     const bool open = sim::valve_open(sched_[uj], s_at_t0_[uj] + mid);
     open_[uj] = open;
     const ThrusterParams& p = p_[uj];
-    if (p.transient != ThrusterTransient::FirstOrder) continue;
+    if (p.transient != ThrusterTransient::FirstOrder) {
+      if (health_[uj] != ThrusterHealth::FailedOff) active_[static_cast<size_t>(num_active_++)] = j;
+      continue;
+    }
     // kappa(s) = kappa_c + d0 e^{-w s} on [0, h] (§5.3 in closed form).
     FirstOrderStage& f = fo_[uj];
     const double kappa0 = kappa_fo_[uj];
-    f.tau = tau;
-    f.t[0] = tau;  // RK4 stage times, formed exactly as rk4_step forms them
-    f.t[1] = tau + 0.5 * h;
-    f.t[2] = tau + h;
     f.kappa_c = open ? 1.0 : 0.0;
     f.w = open ? p.omega_on : p.omega_off;
     f.d0 = kappa0 - f.kappa_c;
+    // Zero at every stage (closed and decayed) or failed: accumulate skips it.
+    if (health_[uj] != ThrusterHealth::FailedOff && !(f.d0 == 0.0 && kappa0 == 0.0))
+      active_[static_cast<size_t>(num_active_++)] = j;
     if (f.d0 == 0.0 || !(h > 0.0)) {  // at rest (0 closed, 1 open) or no interval
       f.delta = 0.0;
       f.kappa[0] = f.kappa[1] = f.kappa[2] = f.kappa_end = kappa0;
       continue;
     }
-    const double wh = f.w * h;
-    const double e_half = std::exp(-0.5 * wh);
-    const double e_full = std::exp(-wh);
-    // Exact mean of e^{-w s} over [0, h] minus RK4's weighting of it
-    // (1/6, 4/6, 1/6 at 0, h/2, h): an O((w h)^4 / 2880) correction added to
-    // every stage, so that the RK4 sum of kappa (and of F and mdot, linear in
-    // kappa) over the sub-step is the exact integral.
-    const double mean_exact = -std::expm1(-wh) / wh;
-    const double mean_rk4 = (1.0 + 4.0 * e_half + e_full) / 6.0;
-    f.delta = f.d0 * (mean_exact - mean_rk4);
-    f.kappa_end = f.kappa_c + f.d0 * e_full;
+    size_t m = 0;
+    while (m < n_memo && memo[m].w != f.w) ++m;
+    if (m == n_memo) {
+      const double wh = f.w * h;
+      Decay& d = memo[n_memo++];
+      d.w = f.w;
+      d.e_half = std::exp(-0.5 * wh);
+      d.e_full = std::exp(-wh);
+      // Exact mean of e^{-w s} over [0, h] minus RK4's weighting of it
+      // (1/6, 4/6, 1/6 at 0, h/2, h): an O((w h)^4 / 2880) correction added
+      // to every stage, so that the RK4 sum of kappa (and of F and mdot,
+      // linear in kappa) over the sub-step is the exact integral.
+      const double mean_exact = -std::expm1(-wh) / wh;
+      const double mean_rk4 = (1.0 + 4.0 * d.e_half + d.e_full) / 6.0;
+      d.corr = mean_exact - mean_rk4;
+    }
+    const Decay& d = memo[m];
+    f.delta = f.d0 * d.corr;
+    f.kappa_end = f.kappa_c + f.d0 * d.e_full;
     f.kappa[0] = kappa0 + f.delta;
-    f.kappa[1] = f.kappa_c + f.d0 * e_half + f.delta;
+    f.kappa[1] = f.kappa_c + f.d0 * d.e_half + f.delta;
     f.kappa[2] = f.kappa_end + f.delta;
   }
 }

@@ -497,6 +497,59 @@ TEST(ThrusterClosedForm, FirstOrderFiringKappaForceImpulseAndPropellantAreExact)
   }
 }
 
+// Two FirstOrder thrusters with four different rates fire together, closing
+// at different times inside steps: open-open, open-closed and closed-closed
+// sub-steps each hold two distinct rates (the set forms its exponentials
+// once per distinct rate and sub-step).  Each factor against its own closed
+// form and the delivered impulse F1 I1 + F2 I2 to 1e-12 relative, at every
+// step end.
+TEST(ThrusterClosedForm, TwoThrustersWithDistinctRatesEachFollowTheirClosedForm)
+{
+  struct Firing {
+    double F, w_on, w_off, T;
+    double kappa(double tn) const
+    {
+      const double k_T = -std::expm1(-w_on * T);
+      return tn < T ? -std::expm1(-w_on * tn) : k_T * std::exp(-w_off * (tn - T));
+    }
+    double integral(double tn) const
+    {
+      const double k_T = -std::expm1(-w_on * T);
+      return tn < T ? tn + std::expm1(-w_on * tn) / w_on
+                    : T - k_T / w_on - k_T * std::expm1(-w_off * (tn - T)) / w_off;
+    }
+  };
+  const Firing f[2] = {{10.0, 10.0, 25.0, 0.0537}, {4.0, 40.0, 5.0, 0.0871}};
+  sim::PropulsionParams p;
+  for (const Firing& fi : f) {
+    auto t = axial(sim::ThrusterTransient::FirstOrder);
+    t.F_max = fi.F;
+    t.omega_on = fi.w_on;
+    t.omega_off = fi.w_off;
+    p.thrusters.push_back(t);
+  }
+  p.command.T_upd_ns = 100 * kMs;
+  sim::Plant v({test_hub(), p}, sim::InitialConditions{});
+  sim::ThrusterArray T{};
+  T[0] = f[0].T;
+  T[1] = f[1].T;
+  v.command_thrusters(T);
+  double worst_kappa[2] = {0.0, 0.0}, worst_I = 0.0;
+  for (int k = 1; k <= 100; ++k) {
+    ASSERT_EQ(v.step(10 * kMs), sim::StepStatus::Ok);
+    const double tn = k * 0.01;
+    for (int j = 0; j < 2; ++j) {
+      const double kt = f[j].kappa(tn);
+      worst_kappa[j] = std::max(worst_kappa[j], std::abs(v.kappa(j) - kt) / kt);
+    }
+    const double I = f[0].F * f[0].integral(tn) + f[1].F * f[1].integral(tn);
+    worst_I = std::max(worst_I, std::abs(kMass * v.v_BN_N().z() - I) / I);
+  }
+  EXPECT_LT(worst_kappa[0], 1e-12);
+  EXPECT_LT(worst_kappa[1], 1e-12);
+  EXPECT_LT(worst_I, 1e-12);
+}
+
 // The closed form is the exact solution whatever the step: the factor after a
 // pulse does not depend on dt (the RK4-integrated factor did, at 5th order).
 TEST(ThrusterClosedForm, FirstOrderFactorIndependentOfStep)

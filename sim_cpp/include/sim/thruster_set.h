@@ -83,16 +83,16 @@ class ThrusterSet final : public ForceTorqueEffector {
   // forms them), factors at those times plus the quadrature correction, and
   // the factor at the sub-step end.
   struct FirstOrderStage {
-    double t[3] = {0.0, 0.0, 0.0};      // [s] tau, tau + h/2, tau + h
-    double kappa[3] = {0.0, 0.0, 0.0};  // [-] stage values (with delta)
-    double tau = 0.0;                   // [s] sub-step start
+    double kappa[3] = {0.0, 0.0, 0.0};  // [-] stage values (with delta) at stage_t_
     double kappa_c = 0.0, d0 = 0.0, w = 0.0, delta = 0.0;
     double kappa_end = 0.0;             // [-] closed form at tau + h
   };
 
   void refresh_unit(size_t j);  // unit_[j] from the parameters and the thrust scale
   double s_since_latch(int j, int64_t t_ns) const;
-  double stage_kappa(int j, double t) const;
+  // FirstOrder thruster j's factor at time t of the current sub-step in
+  // closed form (without the stage correction at RK4 stage times).
+  double first_order_closed_form(size_t j, double t) const;
   void latch(int64_t t_L_ns);
 
   std::vector<ThrusterParams> p_;
@@ -112,6 +112,11 @@ class ThrusterSet final : public ForceTorqueEffector {
   ThrusterArray s_at_t0_{};   // [s] time since each thruster's latch at t0_ns_
   std::array<bool, kMaxThrusters> open_{};  // valve state over the current sub-step
   std::array<FirstOrderStage, kMaxThrusters> fo_{};
+  double stage_t_[3] = {0.0, 0.0, 0.0};  // [s] the sub-step's RK4 stage times: tau, tau + h/2, tau + h
+  // Thrusters that may act over the current sub-step (accumulate's loop):
+  // not failed off, and not a FirstOrder factor at rest at 0.
+  std::array<int, kMaxThrusters> active_{};
+  int num_active_ = 0;
   ThrusterCounters counters_;
 };
 
