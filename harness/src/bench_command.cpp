@@ -63,6 +63,7 @@ const char* category(const std::string& task)
 }
 
 struct Case {
+  std::string id;  // --case name
   std::string label;
   std::string file;
   std::vector<Override> ov;
@@ -86,14 +87,15 @@ RunConfig bench_config()
 
 }  // namespace
 
-int cmd_bench(const std::string& dir, std::ostream& out, std::ostream& err)
+int cmd_bench(const std::string& dir, const std::vector<std::string>& only, std::ostream& out, std::ostream& err)
 {
   const std::string s1 = (fs::path(dir) / "s1_sun_pointing.yaml").string();
   const std::string s2 = (fs::path(dir) / "s2_mars_orbit_insertion.yaml").string();
   std::vector<Case> cases;
   for (const char* dt : {"0.01", "0.1"}) {
     const bool fine = std::string(dt) == "0.01";
-    Case c{fine ? "S1 fully-coupled, dt = 0.01 s" : "S1 fully-coupled, dt = 0.1 s", s1, {}, true};
+    Case c{fine ? "s1-0.01" : "s1-0.1", fine ? "S1 fully-coupled, dt = 0.01 s" : "S1 fully-coupled, dt = 0.1 s", s1,
+           {}, true};
     c.ov = {{"rates.dt", dt},
             {"rates.fsw_divisor", fine ? "10" : "1"},
             {"rates.fsw_offset", "0"},
@@ -103,11 +105,25 @@ int cmd_bench(const std::string& dir, std::ostream& out, std::ostream& err)
   }
   {
     Case c = cases[0];
+    c.id = "s1-substeps";
     c.label = "S1, dt = 0.01 s, 2 plant sub-steps";
     c.ov.push_back({"rates.plant_substeps", "2"});
     cases.push_back(c);
   }
-  cases.push_back({"S2 Mars orbit insertion, as shipped", s2, {}, false});
+  cases.push_back({"s2", "S2 Mars orbit insertion, as shipped", s2, {}, false});
+  // --case: the named cases only, in the usual order
+  for (const std::string& name : only) {
+    if (std::none_of(cases.begin(), cases.end(), [&name](const Case& c) { return c.id == name; })) {
+      err << "kestrel bench: no case '" << name << "'; the cases are:";
+      for (const Case& c : cases) err << " " << c.id;
+      err << "\n";
+      return kExitUsage;
+    }
+  }
+  if (!only.empty())
+    cases.erase(std::remove_if(cases.begin(), cases.end(),
+                               [&only](const Case& c) { return std::find(only.begin(), only.end(), c.id) == only.end(); }),
+                cases.end());
 
   const double pair_ns = timer_pair_ns();
   out << "kestrel bench (" << version() << "): one core, FSW at 10 Hz, recording at 1 Hz (S2 as shipped), no files;\n"

@@ -133,6 +133,8 @@ int main(int argc, char** argv)
 
   auto* list = app.add_subcommand("list", "list the shipped scenarios");
   auto* bench = app.add_subcommand("bench", "print real-time factors of the reference scenarios");
+  std::vector<std::string> bench_cases;
+  bench->add_option("--case", bench_cases, "only these cases: s1-0.01, s1-0.1, s1-substeps, s2 (repeatable)");
 
   try {
     app.parse(argc, argv);
@@ -207,6 +209,6 @@ int main(int argc, char** argv)
   if (*val) return harness::cmd_validate(vpath, vsets, std::cout, std::cerr);
   if (*fcfg) return harness::cmd_fsw_config(cpath, csets, cout_file, std::cout, std::cerr);
   if (*list) return harness::cmd_list(harness::scenario_dir(), std::cout, std::cerr);
-  if (*bench) return harness::cmd_bench(harness::scenario_dir(), std::cout, std::cerr);
+  if (*bench) return harness::cmd_bench(harness::scenario_dir(), bench_cases, std::cout, std::cerr);
   return harness::kExitUsage;
 }

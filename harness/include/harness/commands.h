@@ -90,7 +90,9 @@ int cmd_mc_merge(const std::string& out_dir, const std::vector<std::string>& sha
 int cmd_validate(const std::string& scenario, const std::vector<std::string>& sets, std::ostream& out,
                  std::ostream& err);
 int cmd_list(const std::string& dir, std::ostream& out, std::ostream& err);
-int cmd_bench(const std::string& dir, std::ostream& out, std::ostream& err);
+// `kestrel bench`: the reference cases (only those named in `only`, when
+// it is not empty: s1-0.01, s1-0.1, s1-substeps, s2); exit 2 on an unknown name.
+int cmd_bench(const std::string& dir, const std::vector<std::string>& only, std::ostream& out, std::ostream& err);
 
 // Directory of the shipped scenarios: $KESTREL_SCENARIO_DIR, else the
 // source tree's scenarios/ (compiled in), else ./scenarios.
