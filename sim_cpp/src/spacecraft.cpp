@@ -227,6 +227,7 @@ void SpacecraftModel::init_rotor_constants()
     RotorConstants& k = rc_[i];
     const Vector3d& gs = dv.gs_hat_B;
     k.inv_J = 1.0 / dv.J_bar;
+    if (w.model != WheelModel::Balanced) any_rotor_angle_ = true;
     if (w.model != WheelModel::FullyCoupled) {
       J_spin_B_.noalias() += (w.J_s * gs) * gs.transpose();
       continue;
@@ -349,7 +350,7 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
   };
   std::array<Rotor, kMaxWheels> ro;
   std::array<SinCos, kMaxWheels> rotor_sc;
-  rotor_sin_cos(p_, layout_, x, rotor_sc);
+  if (any_rotor_angle_) rotor_sin_cos(p_, layout_, x, rotor_sc);
   const double m = hub.m_h + m_fc_;
   Vector3d first_moment = hub.m_h * hub.r_BcB_B + first_moment_fc_;
   Vector3d first_moment_prime = Vector3d::Zero();

@@ -137,6 +137,7 @@ double ThrusterSet::first_order_closed_form(size_t j, double t) const
 
 void ThrusterSet::accumulate(const EffectorStage& stage, EffectorSums& sums) const
 {
+  if (num_active_ == 0) return;
   // Which RK4 stage time of the current sub-step t is (the same for every
   // FirstOrder thruster), or -1.
   const double t = stage.t;

@@ -184,6 +184,7 @@ class SpacecraftModel {
   Eigen::Matrix3d I_fc_const_B_ = Eigen::Matrix3d::Zero();     // [kg*m^2] FC inertia parts fixed in B
   Eigen::Matrix3d J_spin_B_ = Eigen::Matrix3d::Zero();         // [kg*m^2] sum J_s gs gs^T (Balanced/SimpleJitter)
   bool any_fc_ = false;
+  bool any_rotor_angle_ = false;  // a SimpleJitter or FullyCoupled wheel: the derivative needs cos/sin theta
 };
 
 }  // namespace sim
