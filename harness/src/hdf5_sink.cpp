@@ -84,7 +84,7 @@ void Hdf5Sink::begin(const RecordLayout& layout, uint64_t expected_rows)
     hsize_t chunk[2] = {chunk_rows, q.num_cols};
     H5Pset_chunk(dcpl, 2, chunk);
     H5Pset_shuffle(dcpl);
-    H5Pset_deflate(dcpl, 4);
+    H5Pset_deflate(dcpl, 1);
     const std::string p = dataset_path(q);
     File::Ds d;
     // rows arrive in whole chunks: no raw-data chunk cache (it would hold up

@@ -69,15 +69,17 @@ void write_file(const Page& p, const std::string& json, const std::string& out_h
 }  // namespace
 
 std::string escape_json_for_script(const std::string& json) {
+  // '<' becomes \u003c (no "</script>" can end the element early); the text
+  // between two '<' is copied whole, not a character at a time.
   std::string out;
   out.reserve(json.size() + json.size() / 64 + 16);
-  for (char c : json) {
-    if (c == '<') {
-      out += "\\u003c";
-    } else {
-      out += c;
-    }
+  std::size_t from = 0;
+  for (std::size_t lt = json.find('<'); lt != std::string::npos; lt = json.find('<', from)) {
+    out.append(json, from, lt - from);
+    out += "\\u003c";
+    from = lt + 1;
   }
+  out.append(json, from, std::string::npos);
   return out;
 }
 

@@ -78,6 +78,10 @@ TEST(ReportEmbed, DataCannotCloseTheScriptElement) {
 TEST(ReportEmbed, EscapeOnlyTouchesLessThan) {
   EXPECT_EQ(report::escape_json_for_script(R"({"a":"<b>&\u2028"})"), R"({"a":"\u003cb>&\u2028"})");
   EXPECT_EQ(report::escape_json_for_script(""), "");
+  // at the ends and back to back
+  EXPECT_EQ(report::escape_json_for_script("<<a<"), R"(\u003c\u003ca\u003c)");
+  EXPECT_EQ(report::escape_json_for_script("<"), R"(\u003c)");
+  EXPECT_EQ(report::escape_json_for_script("a</script>b"), R"(a\u003c/script>b)");
   const std::string utf8 = "{\"s\":\"\xc3\xa9\xe2\x80\xa8\"}";
   EXPECT_EQ(report::escape_json_for_script(utf8), utf8);
 }
