@@ -137,6 +137,7 @@ double ThrusterSet::first_order_closed_form(size_t j, double t) const
 
 void ThrusterSet::accumulate(const EffectorStage& stage, EffectorSums& sums) const
 {
+  if (!substep_formed_) form_substep(0.0, 0.0);  // between steps: the state of now
   if (num_active_ == 0) return;
   // Which RK4 stage time of the current sub-step t is (the same for every
   // FirstOrder thruster), or -1.
@@ -222,8 +223,11 @@ double ThrusterSet::next_event(double tau, double H, double snap) const
   return next;
 }
 
-void ThrusterSet::begin_substep(double tau, double tau_end)
+void ThrusterSet::begin_substep(double tau, double tau_end) { form_substep(tau, tau_end); }
+
+void ThrusterSet::form_substep(double tau, double tau_end) const
 {
+  substep_formed_ = true;
   const double mid = 0.5 * (tau + tau_end);
   const double h = tau_end - tau;  // as Plant passes it to rk4_step
   stage_t_[0] = tau;               // RK4 stage times, formed exactly as rk4_step forms them
@@ -234,7 +238,7 @@ void ThrusterSet::begin_substep(double tau, double tau_end)
   struct Decay {
     double w, e_half, e_full, corr;  // corr: exact mean of e^{-w s} over [0, h] less RK4's weighting
   };
-  std::array<Decay, 2 * kMaxThrusters> memo;
+  std::array<Decay, kMaxThrusters> memo;  // at most one rate per thruster
   size_t n_memo = 0;
   num_active_ = 0;
   for (int j = 0; j < num_thr(); ++j) {
@@ -299,7 +303,7 @@ void ThrusterSet::end_substep()
 void ThrusterSet::prepare_now(int64_t t_ns)
 {
   begin_segment(t_ns);
-  begin_substep(0.0, 0.0);
+  substep_formed_ = false;  // formed by accumulate if a derivative is evaluated before the next step
 }
 
 }  // namespace sim

@@ -436,6 +436,40 @@ TEST(ThrusterImpulse, FirstOrderFactorMatchesClosedForm)
   EXPECT_NEAR(impulse_time(v, t.F_max) + v.kappa(0) / 25.0, I_true, 1e-10);
 }
 
+// Plant::derivatives evaluated between steps sees the thrusters as they are
+// now, t seconds ahead in closed form (the state of "now" is formed only on
+// such a call, not after every step): a FirstOrder thruster through the CoM
+// (B = C, no tank) gives r_ddot_z = F_max kappa(t_now + t) / m with
+//   kappa = 1 - e^{-w_on s} (s < T),  kappa_T e^{-w_off (s - T)} (s >= T),
+// here 20 ms into a 53.7 ms pulse (at t = 0 and t = 10 ms ahead, the valve
+// still open) and 80 ms in (closed, decaying), to 1e-13 relative.
+TEST(ThrusterClosedForm, DerivativesBetweenStepsSeeTheThrustersNow)
+{
+  auto t = axial(sim::ThrusterTransient::FirstOrder);
+  t.omega_on = 10.0;
+  t.omega_off = 25.0;
+  const double T = 0.0537;
+  sim::Plant v({test_hub(), one_thruster(t)}, sim::InitialConditions{});
+  v.command_thrusters(req(T));
+  const double k_T = 1.0 - std::exp(-10.0 * T);
+  const auto kappa_true = [&](double s) {
+    return s < T ? 1.0 - std::exp(-10.0 * s) : k_T * std::exp(-25.0 * (s - T));
+  };
+  const auto a_z = [&](double t_ahead) {
+    sim::Accelerations acc;
+    v.derivatives(t_ahead, v.state(), &acc);
+    return acc.r_ddot_BN_B.z();
+  };
+  for (int k = 1; k <= 20; ++k) ASSERT_EQ(v.step(kMs), sim::StepStatus::Ok);
+  for (double ahead : {0.0, 0.01}) {
+    const double expect = t.F_max * kappa_true(0.02 + ahead) / kMass;
+    EXPECT_NEAR(a_z(ahead), expect, 1e-13 * expect) << "ahead " << ahead;
+  }
+  for (int k = 21; k <= 80; ++k) ASSERT_EQ(v.step(kMs), sim::StepStatus::Ok);
+  const double expect = t.F_max * kappa_true(0.08) / kMass;
+  EXPECT_NEAR(a_z(0.0), expect, 1e-13 * expect);
+}
+
 // One firing with on and off transients (omega_on != omega_off, the close
 // inside a step, w dt = 0.1 and 0.25: coarse for RK4) against the closed form
 // of §5.3, at every step end:

@@ -94,6 +94,9 @@ class ThrusterSet final : public ForceTorqueEffector {
   // closed form (without the stage correction at RK4 stage times).
   double first_order_closed_form(size_t j, double t) const;
   void latch(int64_t t_L_ns);
+  // begin_substep's work; const so that accumulate can form the state of
+  // "now" (tau = tau_end = 0) on first use after prepare_now (below).
+  void form_substep(double tau, double tau_end) const;
 
   std::vector<ThrusterParams> p_;
   ThrusterCommandParams cmd_;
@@ -110,13 +113,19 @@ class ThrusterSet final : public ForceTorqueEffector {
   ThrusterArray kappa_fo_{};  // [-] FirstOrder kappa at the current sub-step start / now
   int64_t t0_ns_ = 0;         // [ns] current segment start (or now)
   ThrusterArray s_at_t0_{};   // [s] time since each thruster's latch at t0_ns_
-  std::array<bool, kMaxThrusters> open_{};  // valve state over the current sub-step
-  std::array<FirstOrderStage, kMaxThrusters> fo_{};
-  double stage_t_[3] = {0.0, 0.0, 0.0};  // [s] the sub-step's RK4 stage times: tau, tau + h/2, tau + h
+  // The sub-step state, formed by begin_substep.  prepare_now (after every
+  // step) only marks it stale: the next step's begin_substep replaces it,
+  // and only a derivative evaluated between steps (Plant::derivatives from
+  // outside) needs the state of "now", which accumulate then forms.  Mutable
+  // for that lazy formation alone; a ThrusterSet is not shared across threads.
+  mutable bool substep_formed_ = false;
+  mutable std::array<bool, kMaxThrusters> open_{};  // valve state over the current sub-step
+  mutable std::array<FirstOrderStage, kMaxThrusters> fo_{};
+  mutable double stage_t_[3] = {0.0, 0.0, 0.0};  // [s] the sub-step's RK4 stage times: tau, tau + h/2, tau + h
   // Thrusters that may act over the current sub-step (accumulate's loop):
   // not failed off, and not a FirstOrder factor at rest at 0.
-  std::array<int, kMaxThrusters> active_{};
-  int num_active_ = 0;
+  mutable std::array<int, kMaxThrusters> active_{};
+  mutable int num_active_ = 0;
   ThrusterCounters counters_;
 };
 
