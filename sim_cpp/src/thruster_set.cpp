@@ -143,23 +143,35 @@ void ThrusterSet::accumulate(const EffectorStage& stage, EffectorSums& sums) con
   // FirstOrder thruster), or -1.
   const double t = stage.t;
   const int k = t == stage_t_[0] ? 0 : t == stage_t_[1] ? 1 : t == stage_t_[2] ? 2 : -1;
+  // §5.6: a thruster whose tank is empty at this stage gives nothing.
+  std::array<bool, kMaxTanks> dry{};
+  for (int m = 0; m < stage.layout.num_tanks; ++m)
+    dry[static_cast<size_t>(m)] = !(stage.x(stage.layout.m_p(m)) > 0.0);
+  // Summed in locals: the same additions in the same order, without a store
+  // to sums per term (the compiler cannot rule out that sums aliases unit_).
+  Eigen::Vector3d F = sums.F_B, L = sums.L_B;
+  TankArray mdot = sums.m_p_dot;
   for (int a = 0; a < num_active_; ++a) {
-    const auto uj = static_cast<size_t>(active_[static_cast<size_t>(a)]);
-    const ThrusterParams& p = p_[uj];
-    if (p.tank >= 0 && !(stage.x(stage.layout.m_p(p.tank)) > 0.0)) continue;  // §5.6 empty tank
+    const ActiveThruster& at = active_[static_cast<size_t>(a)];
+    const auto uj = static_cast<size_t>(at.j);
+    const auto tank = static_cast<size_t>(at.tank);
+    if (at.tank >= 0 && dry[tank]) continue;
     // FirstOrder: the stage value, or the closed form itself at a time that
     // is not a stage time (a caller evaluating the derivatives elsewhere).
     double kappa;
-    if (p.transient != ThrusterTransient::FirstOrder)
-      kappa = scheduled_kappa(p, sched_[uj], s_at_t0_[uj] + t, open_[uj]);
+    if (!at.first_order)
+      kappa = scheduled_kappa(p_[uj], sched_[uj], s_at_t0_[uj] + t, open_[uj]);
     else
       kappa = k >= 0 ? fo_[uj].kappa[k] : first_order_closed_form(uj, t);
     if (kappa == 0.0) continue;  // closed and decayed: no force, torque or flow
     const ThrusterEffect& u = unit_[uj];
-    sums.F_B += kappa * u.F_B;
-    sums.L_B += kappa * u.L_B;
-    if (p.tank >= 0) sums.m_p_dot[static_cast<size_t>(p.tank)] -= kappa * u.mdot;
+    F += kappa * u.F_B;
+    L += kappa * u.L_B;
+    if (at.tank >= 0) mdot[tank] -= kappa * u.mdot;
   }
+  sums.F_B = F;
+  sums.L_B = L;
+  sums.m_p_dot = mdot;
 }
 
 // ------------------------------------------------------------ step protocol
@@ -247,7 +259,7 @@ void ThrusterSet::form_substep(double tau, double tau_end) const
     open_[uj] = open;
     const ThrusterParams& p = p_[uj];
     if (p.transient != ThrusterTransient::FirstOrder) {
-      if (health_[uj] != ThrusterHealth::FailedOff) active_[static_cast<size_t>(num_active_++)] = j;
+      if (health_[uj] != ThrusterHealth::FailedOff) active_[static_cast<size_t>(num_active_++)] = {j, p.tank, false};
       continue;
     }
     // kappa(s) = kappa_c + d0 e^{-w s} on [0, h] (§5.3 in closed form).
@@ -258,7 +270,7 @@ void ThrusterSet::form_substep(double tau, double tau_end) const
     f.d0 = kappa0 - f.kappa_c;
     // Zero at every stage (closed and decayed) or failed: accumulate skips it.
     if (health_[uj] != ThrusterHealth::FailedOff && !(f.d0 == 0.0 && kappa0 == 0.0))
-      active_[static_cast<size_t>(num_active_++)] = j;
+      active_[static_cast<size_t>(num_active_++)] = {j, p.tank, true};
     if (f.d0 == 0.0 || !(h > 0.0)) {  // at rest (0 closed, 1 open) or no interval
       f.delta = 0.0;
       f.kappa[0] = f.kappa[1] = f.kappa[2] = f.kappa_end = kappa0;

@@ -123,8 +123,14 @@ class ThrusterSet final : public ForceTorqueEffector {
   mutable std::array<FirstOrderStage, kMaxThrusters> fo_{};
   mutable double stage_t_[3] = {0.0, 0.0, 0.0};  // [s] the sub-step's RK4 stage times: tau, tau + h/2, tau + h
   // Thrusters that may act over the current sub-step (accumulate's loop):
-  // not failed off, and not a FirstOrder factor at rest at 0.
-  mutable std::array<int, kMaxThrusters> active_{};
+  // not failed off, and not a FirstOrder factor at rest at 0; with what
+  // that loop reads of their parameters.
+  struct ActiveThruster {
+    int j = 0;                 // thruster index
+    int tank = -1;             // its tank, or -1
+    bool first_order = false;  // FirstOrder transient (else Instant or Table)
+  };
+  mutable std::array<ActiveThruster, kMaxThrusters> active_{};
   mutable int num_active_ = 0;
   ThrusterCounters counters_;
 };
