@@ -136,16 +136,6 @@ ValveSchedule initial_schedule(const ThrusterParams& p)
   return s;
 }
 
-bool valve_open(const ValveSchedule& s, double s_since_latch)
-{
-  return s_since_latch >= 0.0 && s_since_latch < s.T_on;
-}
-
-bool valve_firing(const ValveSchedule& s, double s_since_latch)
-{
-  return s.T_on > 0.0 && s_since_latch >= 0.0 && s_since_latch <= s.T_on;
-}
-
 double scheduled_kappa(const ThrusterParams& p, const ValveSchedule& s, double s_since_latch,
                        bool open)
 {

@@ -103,7 +103,11 @@ struct ValveSchedule {
 // Schedule before any command: closed, kappa = 0 (Table: at the end of the off-ramp).
 ValveSchedule initial_schedule(const ThrusterParams& p);
 
-bool valve_open(const ValveSchedule& s, double s_since_latch);
+// Valve open at time s since the latch (inline: every sub-step asks it of every thruster).
+inline bool valve_open(const ValveSchedule& s, double s_since_latch)
+{
+  return s_since_latch >= 0.0 && s_since_latch < s.T_on;
+}
 
 // Thrust factor of a Table or Instant thruster at time s since the latch.
 // `open` selects the branch (the caller fixes it per sub-step, §7.3).
@@ -119,7 +123,10 @@ enum class LatchResult {
 // Valve open at, or right up to, time s since the latch: a thruster whose
 // running command ends exactly at the next latch instant (continuous firing)
 // still counts as firing there (§5.2 step 2).
-bool valve_firing(const ValveSchedule& s, double s_since_latch);
+inline bool valve_firing(const ValveSchedule& s, double s_since_latch)
+{
+  return s.T_on > 0.0 && s_since_latch >= 0.0 && s_since_latch <= s.T_on;
+}
 
 // §5.2 steps 1-4 at latch instant t_L_ns.  kappa_now: thrust factor at t_L;
 // firing: valve_firing() of the old schedule at t_L.  A thruster is idle when
