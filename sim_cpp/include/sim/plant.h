@@ -92,6 +92,9 @@ class Plant {
   // Pure: x_dot = f(t, x) with every discrete input frozen as it is now
   // (held torques, Stribeck flags, valve states, kappa in closed form from
   // now; t [s] after now).  RW-0 style checks compare this directly.
+  // Const, but the first call after a step forms the thrusters' sub-step
+  // state of now (ThrusterSet): not to be called on one Plant from two
+  // threads at once (each run, and each Monte Carlo worker, owns its Plant).
   StateVector derivatives(double t, const StateVector& x, Accelerations* acc = nullptr) const;
 
   // ------------------------------------- device parameters between steps
