@@ -8,24 +8,8 @@
 
 namespace sim {
 
-namespace {
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
-
-// m [r~][r~]^T = m ((r.r) I - r r^T), element by element as the Eigen
-// expression m * ((r.r) * Identity - r * r^T) forms it: the same bits, and
-// about 35 instructions fewer per call than the expression's product
-// evaluation (the tank merge calls it in every derivative evaluation).
-Matrix3d parallel_axis(double m, const Vector3d& r)
-{
-  const double s = r.squaredNorm();
-  const double off = s * 0.0;  // the Identity's zeros times s (+0 for finite s)
-  Matrix3d P;
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) P(i, j) = m * ((i == j ? s : off) - r(i) * r(j));
-  return P;
-}
-}  // namespace
 
 void validate(const TankParams& p, const std::string& name)
 {

@@ -87,12 +87,6 @@ void fill_stages(const SpacecraftParams& p, const std::vector<ReactionWheelDeriv
   }
 }
 
-// m [r~][r~]^T = m ((r.r) I - r r^T)
-Matrix3d parallel_axis(double m, const Vector3d& r)
-{
-  return m * (r.squaredNorm() * Matrix3d::Identity() - r * r.transpose());
-}
-
 MassProps mass_props_from_stages(const SpacecraftParams& p, const HubParams& h,
                                  const StateLayout& L, const WheelStages& st)
 {

@@ -436,6 +436,15 @@ TEST(ThrusterImpulse, FirstOrderFactorMatchesClosedForm)
   EXPECT_NEAR(impulse_time(v, t.F_max) + v.kappa(0) / 25.0, I_true, 1e-10);
 }
 
+// The closed form of §5.3 for one FirstOrder pulse of on-time T from rest,
+// at time s since the latch:
+//   kappa = 1 - e^{-w_on s} (s < T),  kappa_T e^{-w_off (s - T)} (s >= T).
+double first_order_pulse_kappa(double w_on, double w_off, double T, double s)
+{
+  const double k_T = 1.0 - std::exp(-w_on * T);
+  return s < T ? -std::expm1(-w_on * s) : k_T * std::exp(-w_off * (s - T));
+}
+
 // Plant::derivatives evaluated between steps sees the thrusters as they are
 // now, t seconds ahead in closed form (the state of "now" is formed only on
 // such a call, not after every step): a FirstOrder thruster through the CoM
@@ -451,10 +460,7 @@ TEST(ThrusterClosedForm, DerivativesBetweenStepsSeeTheThrustersNow)
   const double T = 0.0537;
   sim::Plant v({test_hub(), one_thruster(t)}, sim::InitialConditions{});
   v.command_thrusters(req(T));
-  const double k_T = 1.0 - std::exp(-10.0 * T);
-  const auto kappa_true = [&](double s) {
-    return s < T ? 1.0 - std::exp(-10.0 * s) : k_T * std::exp(-25.0 * (s - T));
-  };
+  const auto kappa_true = [&](double s) { return first_order_pulse_kappa(10.0, 25.0, T, s); };
   const auto a_z = [&](double t_ahead) {
     sim::Accelerations acc;
     v.derivatives(t_ahead, v.state(), &acc);
@@ -489,9 +495,7 @@ TEST(ThrusterClosedForm, FirstOrderFiringKappaForceImpulseAndPropellantAreExact)
   t.omega_off = 25.0;
   const double T = 0.0537;
   const double k_T = 1.0 - std::exp(-10.0 * T);
-  const auto kappa_true = [&](double tn) {
-    return tn < T ? -std::expm1(-10.0 * tn) : k_T * std::exp(-25.0 * (tn - T));
-  };
+  const auto kappa_true = [&](double tn) { return first_order_pulse_kappa(10.0, 25.0, T, tn); };
   const auto integral_true = [&](double tn) {
     return tn < T ? tn + std::expm1(-10.0 * tn) / 10.0
                   : T - k_T / 10.0 - k_T * std::expm1(-25.0 * (tn - T)) / 25.0;
