@@ -272,20 +272,34 @@ static fsw_real col_dot(const fsw_real A[3][FSW_MAX_EFF], int i, const fsw_real 
  * from F = 0, keeping at most m independent free columns; phase 2 (primal
  * active set) keeps A F fixed and minimises |F|, stepping in the null space
  * of the free columns.  Ties go to the lowest index; F never leaves
- * [lo, hi].  Returns the iteration count. */
+ * [lo, hi].  Returns the iteration count.
+ * Every sum runs over ascending column index.  The loops over the fixed
+ * (phase 1) or free (phase 2) columns walk a list of their indices formed
+ * once per iteration, and the per-column quantities that do not change
+ * within a call (the gradient floor K4_TOL |b| |a_i|) or within an
+ * iteration (a_i . lam) are formed once: the same operations on the same
+ * operands as testing each column's status inside every sum. */
 static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_EFF],
                            const fsw_real b[3], int m, int n, const fsw_real lo[FSW_MAX_EFF],
                            const fsw_real hi[FSW_MAX_EFF])
 {
   signed char stat[FSW_MAX_EFF];
-  int P[3], np = 0, it = 0, i, j, k, q;
+  fsw_real gfloor[FSW_MAX_EFF]; /* phase 1: K4_TOL |b| |a_i| */
+  fsw_real za[FSW_MAX_EFF];     /* phase 2: a_i . lam of the listed free columns */
+  int idx[FSW_MAX_EFF];         /* the columns a loop walks, ascending */
+  int P[3], np = 0, it = 0, ni, i, j, k, q;
   const int budget = K4_ITER_PER_COL * n;
-  fsw_real bnorm = fsw_vn_norm(b, m), fscale = FSW_R(0.0);
+  const fsw_real bnorm = fsw_vn_norm(b, m);
+  const fsw_real btol = K4_TOL * bnorm;
+  fsw_real fscale = FSW_R(0.0);
 
   for (i = 0; i < n; i++) {
+    fsw_real an2 = FSW_R(0.0);
     F[i] = FSW_R(0.0);
     stat[i] = (lo[i] == FSW_R(0.0)) ? K4_AT_LO : K4_AT_HI;
     if (hi[i] - lo[i] > fscale) fscale = hi[i] - lo[i];
+    for (k = 0; k < m; k++) an2 += A[k][i] * A[k][i];
+    gfloor[i] = btol * FSW_SQRT(an2);
   }
 
   /* ---- phase 1 ---- */
@@ -297,14 +311,13 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
       for (i = 0; i < n; i++) v -= A[k][i] * F[i];
       r[k] = v;
     }
-    if (fsw_vn_norm(r, m) <= K4_TOL * bnorm) break;
+    if (fsw_vn_norm(r, m) <= btol) break;
     for (i = 0; i < n; i++) {
-      fsw_real g, an2 = FSW_R(0.0);
+      fsw_real g;
       if (stat[i] == K4_FREE) continue;
-      for (k = 0; k < m; k++) an2 += A[k][i] * A[k][i];
       g = col_dot(A, i, r, m);
       if (stat[i] == K4_AT_HI) g = -g;
-      if (g > K4_TOL * bnorm * FSW_SQRT(an2) && g > gbest) {
+      if (g > gfloor[i] && g > gbest) {
         gbest = g;
         best = i;
       }
@@ -323,10 +336,11 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
         int blk = -1;
         it++;
         /* r0 = b - sum over fixed columns; LS on the free columns */
+        for (ni = 0, i = 0; i < n; i++)
+          if (stat[i] != K4_FREE) idx[ni++] = i;
         for (k = 0; k < m; k++) {
           fsw_real v = b[k];
-          for (i = 0; i < n; i++)
-            if (stat[i] != K4_FREE) v -= A[k][i] * F[i];
+          for (q = 0; q < ni; q++) v -= A[k][idx[q]] * F[idx[q]];
           r0[k] = v;
         }
         for (q = 0; q < np; q++) {
@@ -401,34 +415,34 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
     fsw_real M[3][3], c[3], lam[3], alpha = FSW_R(1.0), pmax = FSW_R(0.0), vbest;
     int blk = -1, best = -1, blk_lo = 0;
     it++;
+    for (ni = 0, i = 0; i < n; i++)
+      if (stat[i] == K4_FREE) idx[ni++] = i;
     for (k = 0; k < m; k++) {
       for (j = 0; j <= k; j++) {
         fsw_real v = FSW_R(0.0);
-        for (i = 0; i < n; i++)
-          if (stat[i] == K4_FREE) v += A[k][i] * A[j][i];
+        for (q = 0; q < ni; q++) v += A[k][idx[q]] * A[j][idx[q]];
         M[k][j] = v;
         M[j][k] = v;
       }
       {
         fsw_real v = FSW_R(0.0);
-        for (i = 0; i < n; i++)
-          if (stat[i] == K4_FREE) v += A[k][i] * F[i];
+        for (q = 0; q < ni; q++) v += A[k][idx[q]] * F[idx[q]];
         c[k] = v;
       }
     }
     psd_solve(lam, FSW_CM33(M), c, m);
-    for (i = 0; i < n; i++) {
+    for (q = 0; q < ni; q++) {
       fsw_real p;
-      if (stat[i] != K4_FREE) continue;
-      p = col_dot(A, i, lam, m) - F[i];
+      i = idx[q];
+      za[q] = col_dot(A, i, lam, m);
+      p = za[q] - F[i];
       if (FSW_FABS(p) > pmax) pmax = FSW_FABS(p);
     }
     if (pmax > K4_TOL * fscale) {
       /* step toward the minimum-norm point of the free set, ratio test */
-      for (i = 0; i < n; i++) {
-        fsw_real z;
-        if (stat[i] != K4_FREE) continue;
-        z = col_dot(A, i, lam, m);
+      for (q = 0; q < ni; q++) {
+        const fsw_real z = za[q];
+        i = idx[q];
         if (z < lo[i] || z > hi[i]) {
           fsw_real bound = (z < lo[i]) ? lo[i] : hi[i];
           fsw_real a = (bound - F[i]) / (z - F[i]);
@@ -441,11 +455,9 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
         }
       }
       if (alpha > FSW_R(1.0)) alpha = FSW_R(1.0);
-      for (i = 0; i < n; i++) {
-        fsw_real z;
-        if (stat[i] != K4_FREE) continue;
-        z = col_dot(A, i, lam, m);
-        F[i] = F[i] + alpha * (z - F[i]);
+      for (q = 0; q < ni; q++) {
+        i = idx[q];
+        F[i] = F[i] + alpha * (za[q] - F[i]);
         if (F[i] < lo[i]) F[i] = lo[i];
         if (F[i] > hi[i]) F[i] = hi[i];
       }

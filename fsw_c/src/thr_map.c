@@ -104,16 +104,19 @@ void fsw_thr_map_reset(FswThrMapState *st)
 FswStatus fsw_thr_map_init(FswThrMapState *st, const FswThrMapConfig *cfg)
 {
   FswStatus s;
+  int i;
   FSW_ASSERT(st != NULL && cfg != NULL);
   if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
   st->ready = 0;
   st->num_axes = 0;
   fsw_m33_zero(st->C);
+  fsw_vn_zero(st->gt_norm, FSW_MAX_THR);
   fsw_health_clear(&st->health);
   fsw_thr_map_reset(st);
   s = fsw_thr_map_check(cfg);
   if (s != FSW_OK) return s;
   st->num_axes = count_axes(st->C, cfg);
+  for (i = 0; i < cfg->num_thr; i++) st->gt_norm[i] = fsw_v3_norm(cfg->gt_hat_B[i]);
   st->ready = 1;
   return FSW_OK;
 }
@@ -283,13 +286,15 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
       fsw_v3_cross(d, rel, cfg->gt_hat_B[i]);
       if (in->avail[i] != FSW_AVAILABLE) fsw_v3_zero(d); /* absent: no torque arm, not on */
       for (k = 0; k < 3; k++) st->work.D_B[k][i] = d[k];
+      /* [C][D] */
+      for (j = 0; j < nc; j++) st->work.CD[j][i] = fsw_v3_dot(st->C[j], d);
       {
         /* the geometry on its own scale: c_j . (rel x g) / (|rel| |g|),
          * at most 1 in size (unit rows c_j); row sums of squares in geo */
-        const fsw_real len = fsw_v3_norm(rel) * fsw_v3_norm(cfg->gt_hat_B[i]);
+        const fsw_real len = fsw_v3_norm(rel) * st->gt_norm[i];
         if (len > FSW_R(0.0))
           for (j = 0; j < nc; j++) {
-            const fsw_real e = fsw_v3_dot(st->C[j], d) / len;
+            const fsw_real e = st->work.CD[j][i] / len;
             geo[j] += e * e;
           }
       }
@@ -301,16 +306,9 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
     }
     fsw_v3_add(Lr_B, Lr_offset, Lr_B);
   }
-  /* Lbar = [C] Lr; [C][D] */
+  /* Lbar = [C] Lr */
   for (j = 0; j < 3; j++) Lbar[j] = FSW_R(0.0);
-  for (j = 0; j < nc; j++) {
-    Lbar[j] = fsw_v3_dot(st->C[j], Lr_B);
-    for (i = 0; i < n; i++) {
-      fsw_real d[3];
-      for (k = 0; k < 3; k++) d[k] = st->work.D_B[k][i];
-      st->work.CD[j][i] = fsw_v3_dot(st->C[j], d);
-    }
-  }
+  for (j = 0; j < nc; j++) Lbar[j] = fsw_v3_dot(st->C[j], Lr_B);
   if (!fsw_vn_is_finite(Lbar, nc)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
 
   F = st->work.F;

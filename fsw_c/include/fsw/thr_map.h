@@ -81,6 +81,7 @@ typedef struct {
   int ready;                /* [-] 1 once init accepted the config          */
   int num_axes;             /* [-] counted control axes nc (1..3), by init  */
   fsw_real C[3][3];         /* [-] normalised control axes (nc rows), by init */
+  fsw_real gt_norm[FSW_MAX_THR]; /* [-] |gt_hat_B[i]| (num_thr), by init      */
   fsw_real ang_err;         /* [rad] torque angle error of the last update
                                (min-norm mode), 0 otherwise                 */
   int nnls_iter;            /* [-] active-set iterations of the last update */
