@@ -62,40 +62,39 @@ static fsw_real k1_apply(fsw_real x[FSW_MAX_EFF], fsw_real r[3], const fsw_real 
   return fsw_vn_norm(r, m);
 }
 
-FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_EFF],
-                            const fsw_real b[3], int m, int n)
+FswStatus fsw_minnorm_factor(FswMinnormFactor *f, const fsw_real A[3][FSW_MAX_EFF], int m, int n)
 {
-  fsw_real bs[3], r[3], dz[3];
-  fsw_real M[3][3], L[3][3], z[3];
-  fsw_real amax = FSW_R(0.0), s, t, dmax, bnorm, rnorm;
-  int i, j, k, eb;
+  fsw_real M[3][3], amax = FSW_R(0.0), s, dmax;
+  int i, j, k;
 
-  FSW_ASSERT(x != NULL && A != NULL && b != NULL);
-  if (x == NULL || A == NULL || b == NULL) return FSW_E_NULL_ARG;
-  fsw_vn_zero(x, n < 0 ? 0 : (n > FSW_MAX_EFF ? FSW_MAX_EFF : n)); /* safe output */
-  if (m < 1 || m > 3 || n < 0 || n > FSW_MAX_EFF) return FSW_E_CAPACITY;
+  FSW_ASSERT(f != NULL && A != NULL);
+  if (f == NULL) return FSW_E_NULL_ARG;
+  f->m = m;
+  f->n = n;
+  f->s = FSW_R(0.0);
+  fsw_m33_zero(f->L);
+  f->status = FSW_E_NULL_ARG;
+  if (A == NULL) return f->status;
+  f->status = FSW_E_CAPACITY;
+  if (m < 1 || m > 3 || n < 0 || n > FSW_MAX_EFF) return f->status;
 
+  f->status = FSW_E_BAD_INPUT;
   for (i = 0; i < m; i++) {
-    if (!fsw_vn_is_finite(A[i], n) || !isfinite(b[i])) return FSW_E_BAD_INPUT;
-    {
-      fsw_real v = fsw_vn_max_abs(A[i], n);
-      if (v > amax) amax = v;
-    }
+    fsw_real v;
+    if (!fsw_vn_is_finite(A[i], n)) return f->status;
+    v = fsw_vn_max_abs(A[i], n);
+    if (v > amax) amax = v;
   }
-  if (n < m || amax == FSW_R(0.0)) return FSW_E_SINGULAR;
+  f->status = FSW_E_SINGULAR;
+  if (n < m || amax == FSW_R(0.0)) return f->status;
   /* a matrix whose largest entry is subnormal cannot be scaled exactly and
    * its solution overflows for any ordinary b: bad input */
-  if (amax < K1_MIN_NORMAL) return FSW_E_BAD_INPUT;
+  f->status = FSW_E_BAD_INPUT;
+  if (amax < K1_MIN_NORMAL) return f->status;
 
   /* As = s A with s a power of two, formed on the fly (no copy of A: the
-   * products (s A_ik)(s A_jk) are exact scalings of A_ik A_jk).  b is
-   * scaled too, by s and by a power of two t = 2^-eb that brings max |b|
-   * into [1/2, 1): the solve cannot overflow, and x = (solution) 2^eb at the end
-   * (exact scalings: the digits are those of the unscaled solve). */
+   * products (s A_ik)(s A_jk) are exact scalings of A_ik A_jk). */
   s = fsw_pow2_scale(amax);
-  eb = pow2_exp(fsw_vn_max_abs(b, m));
-  t = FSW_LDEXP(FSW_R(1.0), -eb);
-  for (i = 0; i < m; i++) bs[i] = (b[i] * t) * s;
 
   /* M = As As^T (lower triangle used) */
   dmax = FSW_R(0.0);
@@ -107,23 +106,57 @@ FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX
     }
     if (M[i][i] > dmax) dmax = M[i][i];
   }
-  if (!(dmax > FSW_R(0.0))) return FSW_E_SINGULAR;
+  f->status = FSW_E_SINGULAR;
+  if (!(dmax > FSW_R(0.0))) return f->status;
 
   /* Cholesky M = L L^T in fixed order; pivot test relative to max diag. */
   for (k = 0; k < m; k++) {
     fsw_real d = M[k][k];
-    for (j = 0; j < k; j++) d -= L[k][j] * L[k][j];
-    if (d <= FSW_RANK_TOL * dmax) return FSW_E_SINGULAR;
-    L[k][k] = FSW_SQRT(d);
+    for (j = 0; j < k; j++) d -= f->L[k][j] * f->L[k][j];
+    if (d <= FSW_RANK_TOL * dmax) {
+      fsw_m33_zero(f->L);
+      return f->status;
+    }
+    f->L[k][k] = FSW_SQRT(d);
     for (i = k + 1; i < m; i++) {
       fsw_real v = M[i][k];
-      for (j = 0; j < k; j++) v -= L[i][j] * L[k][j];
-      L[i][k] = v / L[k][k];
+      for (j = 0; j < k; j++) v -= f->L[i][j] * f->L[k][j];
+      f->L[i][k] = v / f->L[k][k];
     }
   }
+  f->s = s;
+  f->status = FSW_OK;
+  return f->status;
+}
+
+FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFactor *f,
+                                     const fsw_real A[3][FSW_MAX_EFF], const fsw_real b[3])
+{
+  fsw_real bs[3], r[3], dz[3], z[3];
+  fsw_real s, t, bnorm, rnorm;
+  int i, j, eb, m, n;
+
+  FSW_ASSERT(x != NULL && f != NULL && A != NULL && b != NULL);
+  if (x == NULL || f == NULL || A == NULL || b == NULL) return FSW_E_NULL_ARG;
+  m = f->m;
+  n = f->n;
+  fsw_vn_zero(x, n < 0 ? 0 : (n > FSW_MAX_EFF ? FSW_MAX_EFF : n)); /* safe output */
+  if (f->status == FSW_E_CAPACITY || f->status == FSW_E_NULL_ARG) return f->status;
+  for (i = 0; i < m; i++)
+    if (!isfinite(b[i])) return FSW_E_BAD_INPUT;
+  if (f->status != FSW_OK) return f->status;
+
+  /* b is scaled by s and by a power of two t = 2^-eb that brings max |b|
+   * into [1/2, 1): the solve cannot overflow, and x = (solution) 2^eb at the
+   * end (exact scalings: the digits are those of the unscaled solve). */
+  s = f->s;
+  eb = pow2_exp(fsw_vn_max_abs(b, m));
+  t = FSW_LDEXP(FSW_R(1.0), -eb);
+  for (i = 0; i < m; i++) bs[i] = (b[i] * t) * s;
+
   /* L L^T z = bs; x = As^T z (the two scale factors s cancel:
    * As^T (As As^T)^-1 bs = A^T (A A^T)^-1 b t) */
-  chol_solve(z, FSW_CM33(L), bs, m);
+  chol_solve(z, FSW_CM33(f->L), bs, m);
   bnorm = fsw_vn_norm(bs, m);
   rnorm = k1_apply(x, r, A, s, z, bs, m, n);
   /* Delivered-residual rank test (docs/fsw-conventions.md "Rank test"):
@@ -131,7 +164,7 @@ FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX
    * from b.  One refinement step first (a full-rank A that passes the
    * pivot floor always meets FSW_RESID_TOL after it), then reject. */
   if (!(rnorm <= FSW_RESID_TOL * bnorm)) {
-    chol_solve(dz, FSW_CM33(L), r, m);
+    chol_solve(dz, FSW_CM33(f->L), r, m);
     for (i = 0; i < m; i++) z[i] += dz[i];
     rnorm = k1_apply(x, r, A, s, z, bs, m, n);
     if (!(rnorm <= FSW_RESID_TOL * bnorm)) {
@@ -146,6 +179,16 @@ FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX
     return FSW_E_BAD_INPUT;
   }
   return FSW_OK;
+}
+
+FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_EFF],
+                            const fsw_real b[3], int m, int n)
+{
+  FswMinnormFactor f;
+  FSW_ASSERT(x != NULL && A != NULL && b != NULL);
+  if (x == NULL || A == NULL || b == NULL) return FSW_E_NULL_ARG;
+  (void)fsw_minnorm_factor(&f, A, m, n);
+  return fsw_minnorm_solve_factored(x, &f, A, b);
 }
 
 FswStatus fsw_null_projector(fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF],

@@ -50,6 +50,7 @@ FswStatus fsw_rw_map_init(FswRwMapState *st, const FswRwMapConfig *cfg)
   FSW_ASSERT(st != NULL && cfg != NULL);
   if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
   st->ready = 0;
+  st->work.mn_valid = 0;
   fsw_health_clear(&st->health);
   s = fsw_rw_map_check(cfg);
   if (s != FSW_OK) return s;
@@ -61,57 +62,37 @@ FswStatus fsw_rw_map_init(FswRwMapState *st, const FswRwMapConfig *cfg)
 void fsw_rw_map_reset(FswRwMapState *st)
 {
   FSW_ASSERT(st != NULL);
-  /* stateless: nothing time-varying to clear */
-  (void)st;
+  /* stateless: nothing time-varying to clear; the MIN_NORM factor kept for
+   * the last mask (FswRwMapWork) is formed anew at the next update */
+  if (st != NULL) st->work.mn_valid = 0;
 }
 
-FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
-                            const FswRwMapIn *in, FswRwMapOut *out)
+/* A = [C][Gs_a] diag(sqrt(y)) over the available wheels, with idx, sy and
+ * the count na, and the geometric verdict: FSW_W_SINGULAR when fewer than
+ * nc wheels are available or no control axis is reachable (the floor
+ * below), else FSW_OK with K1's factor of A in w->k1. */
+static FswStatus form_map(FswRwMapWork *w, const FswRwMapConfig *cfg, const FswRwMapIn *in, int *na_out)
 {
-  fsw_real b[3], r[3], d, d_max = FSW_R(0.0);
-  /* scratch in the state (see FswRwMapWork): A = [C][Gs_a] diag(sqrt(y)),
-   * sy = sqrt(y_k) and idx = indices of the available wheels, ascending */
-  fsw_real(*A)[FSW_MAX_EFF];
-  fsw_real *x, *dx, *sy;
-  int *idx;
-  int n, nc, na = 0, i, j, k;
-  FswStatus s;
-
-  FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) fsw_rw_zero(out->u_s); /* safe output */
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
-  A = st->work.A;
-  x = st->work.x;
-  dx = st->work.dx;
-  sy = st->work.sy;
-  idx = st->work.idx;
-  n = cfg->num_rw;
-  nc = cfg->num_axes;
-
-  if (!fsw_v3_is_finite(in->Lr_B) || !fsw_rw_avail_valid(in->avail, n) ||
-      (cfg->mode == FSW_RW_MAP_POWER && !fsw_rw_avail_finite(in->Omega, in->avail, n)))
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
-  if (nc == 0) return fsw_health_record(&st->health, FSW_OK);
-
+  fsw_real d, d_max = FSW_R(0.0);
+  const int n = cfg->num_rw, nc = cfg->num_axes;
+  int na = 0, i, j, k;
   for (i = 0; i < n; i++) {
     if (in->avail[i] != FSW_AVAILABLE) continue;
-    idx[na] = i;
+    w->idx[na] = i;
     /* y = 1/W, W = Omega^2 + eps_P (5.2); Omega^2 overflowing gives y = 0 */
-    sy[na] = (cfg->mode == FSW_RW_MAP_POWER)
-                 ? FSW_SQRT(FSW_R(1.0) / (in->Omega[i] * in->Omega[i] + cfg->eps_P))
-                 : FSW_R(1.0);
+    w->sy[na] = (cfg->mode == FSW_RW_MAP_POWER)
+                    ? FSW_SQRT(FSW_R(1.0) / (in->Omega[i] * in->Omega[i] + cfg->eps_P))
+                    : FSW_R(1.0);
     na++;
   }
-  if (na < nc) return fsw_health_record(&st->health, FSW_W_SINGULAR);
-
+  *na_out = na;
+  if (na < nc) return FSW_W_SINGULAR;
   for (j = 0; j < nc; j++) {
-    b[j] = -fsw_v3_dot(cfg->ctrl_axes_B[j], in->Lr_B);
     d = FSW_R(0.0);
     for (k = 0; k < na; k++) {
-      const fsw_real m = fsw_v3_dot(cfg->ctrl_axes_B[j], cfg->gs_hat_B[idx[k]]);
+      const fsw_real m = fsw_v3_dot(cfg->ctrl_axes_B[j], cfg->gs_hat_B[w->idx[k]]);
       d += m * m;
-      A[j][k] = m * sy[k];
+      w->A[j][k] = m * w->sy[k];
     }
     if (d > d_max) d_max = d;
   }
@@ -121,23 +102,68 @@ FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
    * FSW_RANK_TOL), no control axis can be reached, however the entries'
    * rounding noise makes K1's scale-invariant test see a full-rank A
    * (a single wheel at 90 deg to a single control axis: c . g ~ 1e-17). */
-  if (!(d_max > FSW_RANK_TOL)) return fsw_health_record(&st->health, FSW_W_SINGULAR);
+  if (!(d_max > FSW_RANK_TOL)) return FSW_W_SINGULAR;
+  (void)fsw_minnorm_factor(&w->k1, FSW_CM3N(w->A), nc, na);
+  return FSW_OK;
+}
+
+FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
+                            const FswRwMapIn *in, FswRwMapOut *out)
+{
+  fsw_real b[3], r[3];
+  FswRwMapWork *w;
+  int n, nc, na, i, j, k;
+  FswStatus s;
+
+  FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
+  if (out != NULL) fsw_rw_zero(out->u_s); /* safe output */
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
+  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  w = &st->work;
+  n = cfg->num_rw;
+  nc = cfg->num_axes;
+
+  if (!fsw_v3_is_finite(in->Lr_B) || !fsw_rw_avail_valid(in->avail, n) ||
+      (cfg->mode == FSW_RW_MAP_POWER && !fsw_rw_avail_finite(in->Omega, in->avail, n)))
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (nc == 0) return fsw_health_record(&st->health, FSW_OK);
+
+  if (cfg->mode == FSW_RW_MAP_MIN_NORM && w->mn_valid) {
+    for (i = 0; i < n && w->mn_avail[i] == in->avail[i]; i++) {
+    }
+    if (i < n) w->mn_valid = 0; /* another mask */
+  }
+  if (cfg->mode == FSW_RW_MAP_MIN_NORM && w->mn_valid) {
+    na = w->mn_na; /* A, idx, sy and k1 as formed for this mask */
+    s = w->mn_geo;
+  } else {
+    s = form_map(w, cfg, in, &na);
+    if (cfg->mode == FSW_RW_MAP_MIN_NORM) {
+      for (i = 0; i < n; i++) w->mn_avail[i] = in->avail[i];
+      w->mn_na = na;
+      w->mn_geo = s;
+      w->mn_valid = 1;
+    }
+  }
+  if (s != FSW_OK) return fsw_health_record(&st->health, s);
+
+  for (j = 0; j < nc; j++) b[j] = -fsw_v3_dot(cfg->ctrl_axes_B[j], in->Lr_B);
   /* K1 judges rank by its pivot floor and by the delivered residual
    * (fsw_linalg.h); FSW_E_BAD_INPUT from it means b = -[C] Lr or the
    * solution overflows the real type (finite but huge Lr). */
-  s = fsw_minnorm_solve(x, FSW_CM3N(A), b, nc, na);
+  s = fsw_minnorm_solve_factored(w->x, &w->k1, FSW_CM3N(w->A), b);
   if (s == FSW_E_SINGULAR) return fsw_health_record(&st->health, FSW_W_SINGULAR);
   if (s != FSW_OK) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
-  for (j = 0; j < nc; j++) r[j] = b[j] - fsw_vn_dot(A[j], x, na);
-  if (fsw_minnorm_solve(dx, FSW_CM3N(A), r, nc, na) == FSW_OK)
-    for (k = 0; k < na; k++) x[k] += dx[k];
+  for (j = 0; j < nc; j++) r[j] = b[j] - fsw_vn_dot(w->A[j], w->x, na);
+  if (fsw_minnorm_solve_factored(w->dx, &w->k1, FSW_CM3N(w->A), r) == FSW_OK)
+    for (k = 0; k < na; k++) w->x[k] += w->dx[k];
   for (k = 0; k < na; k++) {
-    const fsw_real u = x[k] * sy[k];
+    const fsw_real u = w->x[k] * w->sy[k];
     if (!isfinite(u)) { /* overflow of a finite request: bad input, u = 0 */
       fsw_rw_zero(out->u_s);
       return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
     }
-    out->u_s[idx[k]] = u;
+    out->u_s[w->idx[k]] = u;
   }
   return fsw_health_record(&st->health, FSW_OK);
 }

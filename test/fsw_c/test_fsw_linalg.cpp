@@ -306,6 +306,84 @@ TEST(FswMinNorm, Repeatable)
   EXPECT_EQ(0, std::memcmp(x1, x2, 9 * sizeof(fsw_real)));
 }
 
+TEST(FswMinNormFactor, FactorThenSolveIsTheOneCallSolveBitForBit)
+{
+  // fsw_minnorm_solve is factor + solve_factored; this checks the split
+  // against the one-call solve over shapes and every status the solve
+  // returns: well and badly conditioned, rank deficient, zero, non-finite
+  // A or b, subnormal A, out of range m and n, and several b per factor.
+  kt::Rng r(206);
+  const fsw_real inf = std::numeric_limits<fsw_real>::infinity();
+  int seen[8] = {0};
+  for (int trial = 0; trial < 3000; trial++) {
+    const int m = 1 + trial % 3, n = (trial / 3) % 10;
+    Mat3N A = random_matrix(r, 3, FSW_MAX_EFF);
+    switch (trial % 11) {
+      case 1: for (int k = 0; k < n; k++) A.a[m - 1][k] = A.a[0][k]; break;  // dependent rows
+      case 2: std::memset(&A, 0, sizeof A); break;
+      case 3: A.a[0][n > 0 ? n - 1 : 0] = kNaN; break;
+      case 4: for (int i = 0; i < 3; i++) for (int k = 0; k < FSW_MAX_EFF; k++) A.a[i][k] *= std::numeric_limits<fsw_real>::denorm_min(); break;
+      case 5: A.a[0][0] = inf; break;
+      case 6: for (int k = 0; k < n; k++) A.a[m - 1][k] = A.a[0][k] * (1 + 8 * std::numeric_limits<fsw_real>::epsilon()); break;
+      default: break;
+    }
+    const int mm = (trial % 97 == 0) ? 4 : m, nn = (trial % 89 == 0) ? FSW_MAX_EFF + 1 : n;
+    FswMinnormFactor f;
+    const FswStatus fs = fsw_minnorm_factor(&f, A.a, mm, nn);
+    for (int q = 0; q < 3; q++) {
+      fsw_real b[3] = {static_cast<fsw_real>(r.uniform(-1, 1)), static_cast<fsw_real>(r.uniform(-1e3, 1e3)),
+                       static_cast<fsw_real>(r.uniform(-1e-3, 1e-3))};
+      if (trial % 13 == 0 && q == 1) b[m - 1] = kNaN;
+      if (trial % 17 == 0 && q == 2) b[0] = std::numeric_limits<fsw_real>::max();
+      fsw_real x1[FSW_MAX_EFF], x2[FSW_MAX_EFF];
+      for (int k = 0; k < FSW_MAX_EFF; k++) x1[k] = x2[k] = 7;
+      const FswStatus s1 = fsw_minnorm_solve(x1, A.a, b, mm, nn);
+      const FswStatus s2 = fsw_minnorm_solve_factored(x2, &f, A.a, b);
+      ASSERT_EQ(s1, s2) << "trial " << trial;
+      ASSERT_EQ(0, std::memcmp(x1, x2, sizeof x1)) << "trial " << trial;
+      if (s1 != FSW_OK && s1 != FSW_E_BAD_INPUT) EXPECT_EQ(fs, s1);  // a finite b: the factor's verdict
+      seen[s1 == FSW_OK ? 0 : s1 == FSW_E_SINGULAR ? 1 : s1 == FSW_E_BAD_INPUT ? 2 : s1 == FSW_E_CAPACITY ? 3 : 4]++;
+    }
+  }
+  EXPECT_GT(seen[0], 100);
+  EXPECT_GT(seen[1], 100);
+  EXPECT_GT(seen[2], 100);
+  EXPECT_GT(seen[3], 10);
+  EXPECT_EQ(0, seen[4]);
+}
+
+TEST(FswMinNormFactor, ClosedFormAndNullArguments)
+{
+  // A = [2 0; 0 4] (m = n = 2): s = 2^-e with 2^(e-1) <= 4 < 2^e, so
+  // 1/8 (the largest entry to 1/2); (sA)(sA)^T = diag(1/16, 1/4),
+  // L = diag(1/4, 1/2); x = A^-1 b.
+  Mat3N A;
+  std::memset(&A, 0, sizeof A);
+  A.a[0][0] = 2;
+  A.a[1][1] = 4;
+  FswMinnormFactor f;
+  ASSERT_EQ(FSW_OK, fsw_minnorm_factor(&f, A.a, 2, 2));
+  EXPECT_EQ(FSW_R(0.125), f.s);
+  EXPECT_EQ(FSW_R(0.25), f.L[0][0]);
+  EXPECT_EQ(FSW_R(0.5), f.L[1][1]);
+  EXPECT_EQ(FSW_R(0.0), f.L[1][0]);
+  fsw_real b[3] = {1, 1, 0}, x[FSW_MAX_EFF];
+  ASSERT_EQ(FSW_OK, fsw_minnorm_solve_factored(x, &f, A.a, b));
+  EXPECT_EQ(FSW_R(0.5), x[0]);
+  EXPECT_EQ(FSW_R(0.25), x[1]);
+  kestrel_assert_reset();
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_minnorm_factor(nullptr, A.a, 2, 2));
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_minnorm_factor(&f, nullptr, 2, 2));
+  EXPECT_EQ(FSW_E_NULL_ARG, f.status);
+  for (int k = 0; k < FSW_MAX_EFF; k++) x[k] = 7;
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_minnorm_solve_factored(x, &f, A.a, b));  // a factor of nothing
+  for (int k = 0; k < 2; k++) EXPECT_EQ(0, x[k]);
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_minnorm_solve_factored(nullptr, &f, A.a, b));
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_minnorm_solve_factored(x, nullptr, A.a, b));
+  EXPECT_EQ(4ul, kestrel_assert_count());
+  kestrel_assert_reset();
+}
+
 /* ---- K2 ---- */
 
 fsw_real g_tau[FSW_MAX_EFF][FSW_MAX_EFF];

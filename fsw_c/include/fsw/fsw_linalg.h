@@ -38,6 +38,30 @@ extern "C" {
 FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_EFF],
                             const fsw_real b[3], int m, int n);
 
+/* K1 in two parts, for a caller that solves with one A for several b (a
+ * refinement step, or an A that changes only with a wheel mask):
+ * fsw_minnorm_factor does the part of fsw_minnorm_solve that depends on A
+ * alone (its checks of A, the power-of-two scaling, M and its Cholesky
+ * factor with the pivot test) and fsw_minnorm_solve_factored the rest, so
+ * that factor + solve_factored gives bit for bit what fsw_minnorm_solve
+ * gives (fsw_minnorm_solve is written as exactly that).  `status` is what
+ * the solve returns for any finite b when it is not FSW_OK (FSW_E_CAPACITY,
+ * FSW_E_BAD_INPUT for non-finite or subnormal-scaled A, FSW_E_SINGULAR);
+ * fsw_minnorm_solve_factored checks b first (FSW_E_BAD_INPUT), as the
+ * one-call solve does.  A must be unchanged between the two calls. */
+typedef struct {
+  int m, n;          /* [-] the shape factored */
+  FswStatus status;  /* FSW_OK, or the solve's answer for any finite b */
+  fsw_real s;        /* [-] power of two scaling A (0 unless status OK) */
+  fsw_real L[3][3];  /* Cholesky factor of (s A)(s A)^T (m x m, lower) */
+} FswMinnormFactor;
+/* Returns f->status (FSW_E_NULL_ARG and nothing written when f is NULL). */
+FswStatus fsw_minnorm_factor(FswMinnormFactor *f, const fsw_real A[3][FSW_MAX_EFF], int m, int n);
+/* As fsw_minnorm_solve(x, A, b, f->m, f->n) for the A that f was formed
+ * from; x[0..f->n-1] is always fully written (when x is not NULL). */
+FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFactor *f,
+                                     const fsw_real A[3][FSW_MAX_EFF], const fsw_real b[3]);
+
 /* K2.  G is 3 x n.  tau (n x n, rows/columns beyond n untouched) becomes
  * I - Q^T Q, Q an orthonormal basis of the row space of G by modified
  * Gram-Schmidt over the rows in index order (one re-orthogonalisation pass),

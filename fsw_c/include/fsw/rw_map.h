@@ -15,6 +15,7 @@
 #include <stdint.h>
 
 #include "fsw/fsw_config.h"
+#include "fsw/fsw_linalg.h"
 #include "fsw/fsw_status.h"
 
 #ifdef __cplusplus
@@ -49,11 +50,24 @@ typedef struct {
 typedef struct {
   /* scratch of one update, kept here so that the update's own stack stays
    * small (flight stack budget): [C][Gs_a] diag(sqrt(y)), solutions, the
-   * available-wheel indices and their sqrt(y) */
+   * available-wheel indices and their sqrt(y), and K1's factor of A (one
+   * factorisation for the solve and its refinement step) */
   fsw_real A[3][FSW_MAX_EFF];
   fsw_real x[FSW_MAX_EFF], dx[FSW_MAX_EFF];
   fsw_real sy[FSW_MAX_RW];
   int idx[FSW_MAX_RW];
+  FswMinnormFactor k1;
+  /* MIN_NORM only: A depends on the mask alone (sqrt(y) = 1), so A, idx,
+   * na, the geometric verdict and k1 are kept for the mask of the last
+   * update and reused while the mask is the same.  Never a different
+   * output: with mn_valid = 0 or another mask they are formed anew, and
+   * they are a function of the config (fixed after init) and the mask
+   * alone.  init and reset clear mn_valid. */
+  int mn_valid;                 /* [-] 1: the members below hold mn_avail */
+  uint8_t mn_avail[FSW_MAX_RW]; /* [-] (num_rw) the mask they were formed for */
+  int mn_na;                    /* [-] available wheels of that mask */
+  FswStatus mn_geo;             /* FSW_OK, or FSW_W_SINGULAR: too few wheels or
+                                   no control axis reachable (the floor) */
 } FswRwMapWork;
 
 typedef struct {
