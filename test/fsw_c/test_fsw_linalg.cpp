@@ -341,7 +341,9 @@ TEST(FswMinNormFactor, FactorThenSolveIsTheOneCallSolveBitForBit)
       const FswStatus s2 = fsw_minnorm_solve_factored(x2, &f, A.a, b);
       ASSERT_EQ(s1, s2) << "trial " << trial;
       ASSERT_EQ(0, std::memcmp(x1, x2, sizeof x1)) << "trial " << trial;
-      if (s1 != FSW_OK && s1 != FSW_E_BAD_INPUT) EXPECT_EQ(fs, s1);  // a finite b: the factor's verdict
+      // a factor that is not OK is the answer for every finite b (an OK
+      // factor can still end SINGULAR by the delivered-residual test)
+      if (fs != FSW_OK && std::isfinite(b[0]) && std::isfinite(b[1]) && std::isfinite(b[2])) EXPECT_EQ(fs, s1);
       seen[s1 == FSW_OK ? 0 : s1 == FSW_E_SINGULAR ? 1 : s1 == FSW_E_BAD_INPUT ? 2 : s1 == FSW_E_CAPACITY ? 3 : 4]++;
     }
   }
