@@ -382,7 +382,9 @@ TEST(FswMinNormFactor, ClosedFormAndNullArguments)
   for (int k = 0; k < 2; k++) EXPECT_EQ(0, x[k]);
   EXPECT_EQ(FSW_E_NULL_ARG, fsw_minnorm_solve_factored(nullptr, &f, A.a, b));
   EXPECT_EQ(FSW_E_NULL_ARG, fsw_minnorm_solve_factored(x, nullptr, A.a, b));
-  EXPECT_EQ(4ul, kestrel_assert_count());
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_minnorm_solve_factored(x, &f, nullptr, b));
+  EXPECT_EQ(FSW_E_NULL_ARG, fsw_minnorm_solve_factored(x, &f, A.a, nullptr));
+  EXPECT_EQ(6ul, kestrel_assert_count());
   kestrel_assert_reset();
 }
 
