@@ -317,8 +317,8 @@ static fsw_real col_dot(const fsw_real A[3][FSW_MAX_EFF], int i, const fsw_real 
  * of the free columns.  Ties go to the lowest index; F never leaves
  * [lo, hi].  Returns the iteration count.
  * Every sum runs over ascending column index.  The loops over the fixed
- * (phase 1) or free (phase 2) columns walk a list of their indices formed
- * once per iteration, and the per-column quantities that do not change
+ * columns in phase 1 and the unbounded ones in phase 2 walk an index list
+ * formed once per iteration, and the per-column quantities that do not change
  * within a call (the gradient floor K4_TOL |b| |a_i|) or within an
  * iteration (a_i . lam) are formed once: the same operations on the same
  * operands as testing each column's status inside every sum. */
