@@ -8,7 +8,7 @@
 #   pil/cortex-m4f/fsw_baremetal/kestrel-fsw-m4f.elf        qemu-system-arm mps2-an386, fsw_real double
 #   pil/cortex-m4f-float/fsw_baremetal/kestrel-fsw-m4f.elf  the same, fsw_real float
 #
-# Their paths are compiled into the harness (harness/src/pil.cpp) as the
+# Their paths are compiled into the harness (harness/src/link/pil.cpp) as the
 # defaults of `kestrel run --fsw pil:TARGET`; `--pil-bin FILE` overrides.
 # A target whose cross compiler or emulator is missing is left out (its
 # default path is then empty and the harness says so).
@@ -64,13 +64,13 @@ kestrel_pil_target(cortex-m4f cortex-m4f.cmake double fsw_baremetal/kestrel-fsw-
 kestrel_pil_target(cortex-m4f-float cortex-m4f.cmake float fsw_baremetal/kestrel-fsw-m4f.elf kestrel_fsw_m4f
                    arm-none-eabi-gcc qemu-system-arm)
 
-if(TARGET harness_core)
-  target_compile_definitions(harness_core PRIVATE
+if(TARGET harness_link)
+  target_compile_definitions(harness_link PRIVATE
     KESTREL_PIL_BIN_AARCH64_LINUX="${KESTREL_PIL_BIN_AARCH64_LINUX}"
     KESTREL_PIL_BIN_ARMHF_LINUX="${KESTREL_PIL_BIN_ARMHF_LINUX}"
     KESTREL_PIL_BIN_CORTEX_M4F="${KESTREL_PIL_BIN_CORTEX_M4F}"
     KESTREL_PIL_BIN_CORTEX_M4F_FLOAT="${KESTREL_PIL_BIN_CORTEX_M4F_FLOAT}")
   if(KESTREL_PIL_TARGETS)
-    add_dependencies(harness_core ${KESTREL_PIL_TARGETS})
+    add_dependencies(harness_link ${KESTREL_PIL_TARGETS})
   endif()
 endif()

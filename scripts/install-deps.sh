@@ -4,6 +4,7 @@
 set -euo pipefail
 what="${1:-all}"
 host_pkgs=(cmake ninja-build g++ gcc clang libgtest-dev googletest libbenchmark-dev
+           universal-ctags  # tools/harness_shape_check.py: function lengths of the harness
            libeigen3-dev binutils python3 pkgconf libyaml-cpp-dev libhdf5-dev libcli11-dev nlohmann-json3-dev
            nodejs chromium python3-h5py lcov  # report: npm bundle at build time, headless test
            socat  # HWIL: the serial link tested over a pseudo-terminal pair

@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "harness/remote_fsw.h"
-#include "harness/run.h"
-#include "harness/scenario.h"
+#include "harness/link/remote_fsw.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
 #include "hwil_support.hpp"
 
 extern "C" void fsw_assert_failed(const char* file, int line)

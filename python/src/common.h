@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "harness/recorder.h"
-#include "harness/run.h"
-#include "harness/scenario.h"
+#include "harness/core/recorder.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
 
 namespace kpy {
 

@@ -8,8 +8,8 @@
 #include <system_error>
 
 #include "common.h"
-#include "harness/monte_carlo.h"
-#include "harness/results_dir.h"
+#include "harness/mc/monte_carlo.h"
+#include "harness/output/results_dir.h"
 
 namespace kpy {
 

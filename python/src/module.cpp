@@ -3,9 +3,9 @@
 #include <stdexcept>
 
 #include "common.h"
-#include "harness/monte_carlo.h"
-#include "harness/outputs.h"
-#include "harness/results_dir.h"
+#include "harness/mc/monte_carlo.h"
+#include "harness/drive/run_scenario.h"
+#include "harness/output/results_dir.h"
 
 // The FSW library's assert hook (fsw_status.h): the module returns
 // FSW_E_NULL_ARG; nothing is printed or aborted inside the interpreter.

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "common.h"
-#include "harness/outputs.h"
+#include "harness/drive/run_scenario.h"
 
 namespace kpy {
 

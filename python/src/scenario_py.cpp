@@ -3,7 +3,7 @@
 #include <limits>
 
 #include "common.h"
-#include "harness/monte_carlo.h"
+#include "harness/mc/monte_carlo.h"
 
 namespace kpy {
 

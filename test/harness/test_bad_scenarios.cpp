@@ -32,8 +32,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/commands.h"
-#include "harness/scenario.h"
+#include "harness/cli/commands.h"
+#include "harness/scenario/scenario.h"
 
 namespace fs = std::filesystem;
 

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <memory>
 
-#include "harness/run.h"
-#include "harness/scenario.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
 
 namespace {
 

@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "harness/fsw_endpoint.h"
-#include "harness/run.h"
-#include "harness/scenario.h"
+#include "harness/core/fsw_endpoint.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
 
 namespace {
 

@@ -14,9 +14,9 @@
 #include <unistd.h>
 
 #include "fsw/fsw_config.h"
-#include "harness/outputs.h"
-#include "harness/run.h"
-#include "harness/scenario.h"
+#include "harness/drive/run_scenario.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
 #include "sim/attitude.h"
 
 namespace fs = std::filesystem;

@@ -22,10 +22,10 @@
 #include <thread>
 #include <vector>
 
-#include "harness/outputs.h"
-#include "harness/remote_fsw.h"
-#include "harness/run.h"
-#include "harness/scenario.h"
+#include "harness/drive/run_scenario.h"
+#include "harness/link/remote_fsw.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
 #include "hwil_support.hpp"
 
 namespace {

@@ -14,10 +14,10 @@
 #include <sstream>
 #include <thread>
 
-#include "harness/outputs.h"
-#include "harness/run.h"
-#include "harness/scenario.h"
-#include "live_server.h"
+#include "harness/drive/run_scenario.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
+#include "live/live_server.h"
 
 // after Eigen (through the harness headers): <resolv.h> defines the macro
 // _res, a parameter name in Eigen's templates

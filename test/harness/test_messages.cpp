@@ -1,7 +1,7 @@
 // Messages and the data-flow map.
 #include <gtest/gtest.h>
 
-#include "harness/messages.h"
+#include "harness/core/messages.h"
 
 namespace {
 struct Att {

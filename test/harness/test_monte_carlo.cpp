@@ -15,10 +15,10 @@
 #include <numeric>
 #include <sstream>
 
-#include "harness/monte_carlo.h"
-#include "harness/run.h"
-#include "harness/scenario.h"
-#include "mc_draw.h"
+#include "harness/mc/monte_carlo.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
+#include "scenario/mc_draw.h"
 #include "sim/attitude.h"
 
 namespace fs = std::filesystem;

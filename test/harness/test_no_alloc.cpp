@@ -8,9 +8,9 @@
 #include <cstdlib>
 #include <new>
 
-#include "harness/recorder.h"
-#include "harness/run.h"
-#include "harness/scenario.h"
+#include "harness/core/recorder.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
 
 namespace {
 std::atomic<unsigned long> g_news{0};

@@ -8,10 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/commands.h"
-#include "harness/outputs.h"
-#include "harness/run.h"
-#include "harness/scenario.h"
+#include "harness/cli/commands.h"
+#include "harness/drive/run_scenario.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
 
 namespace fs = std::filesystem;
 

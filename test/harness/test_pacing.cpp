@@ -10,9 +10,9 @@
 #include <iterator>
 #include <string>
 
-#include "harness/outputs.h"
-#include "harness/pacer.h"
-#include "harness/scenario.h"
+#include "harness/drive/run_scenario.h"
+#include "harness/core/pacer.h"
+#include "harness/scenario/scenario.h"
 
 namespace fs = std::filesystem;
 

@@ -30,11 +30,11 @@
 #include <thread>
 #include <vector>
 
-#include "harness/outputs.h"
-#include "harness/pil.h"
-#include "harness/remote_fsw.h"
-#include "harness/run.h"
-#include "harness/scenario.h"
+#include "harness/drive/run_scenario.h"
+#include "harness/link/pil.h"
+#include "harness/link/remote_fsw.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
 #include "hwil_support.hpp"
 
 namespace {

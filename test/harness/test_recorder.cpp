@@ -5,7 +5,7 @@
 
 #include <stdexcept>
 
-#include "harness/recorder.h"
+#include "harness/core/recorder.h"
 
 namespace {
 struct Msg {

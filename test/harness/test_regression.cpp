@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/run.h"
-#include "harness/scenario.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
 
 namespace {
 

@@ -24,9 +24,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/outputs.h"
-#include "harness/results_dir.h"
-#include "harness/scenario.h"
+#include "harness/drive/run_scenario.h"
+#include "harness/output/results_dir.h"
+#include "harness/scenario/scenario.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <map>
 
-#include "harness/outputs.h"
-#include "harness/run.h"
-#include "harness/scenario.h"
+#include "harness/drive/run_scenario.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "harness/scenario.h"
+#include "harness/scenario/scenario.h"
 
 namespace {
 

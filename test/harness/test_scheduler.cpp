@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "harness/scheduler.h"
+#include "harness/core/scheduler.h"
 
 using harness::RateGroup;
 using harness::Scheduler;

@@ -19,9 +19,9 @@
 #include <hdf5.h>
 #include <nlohmann/json.hpp>
 
-#include "harness/outputs.h"
-#include "harness/run.h"
-#include "harness/scenario.h"
+#include "harness/drive/run_scenario.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
 
 namespace fs = std::filesystem;
 

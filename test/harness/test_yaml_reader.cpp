@@ -8,7 +8,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "yaml_reader.h"
+#include "scenario/yaml_reader.h"
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/scenario.h"
+#include "harness/scenario/scenario.h"
 
 namespace kestrel_fuzz {
 

@@ -1,0 +1,127 @@
+// monte_carlo: a campaign of dispersed runs of one scenario (docs/monte-carlo.md).
+//
+// The scenario's `monte_carlo` section declares the dispersions (keys by
+// path, list elements included, `wheels[*].axis` for every wheel), the
+// pass/fail criteria and the retention policy.  Run k's draws depend on
+// (master seed, k) only (mc_draw.h), so a campaign gives the same records
+// with any number of threads, MPI ranks or shards, in any order.
+//
+// Every run writes runs/NNNNNN/manifest.json (its resolved scenario:
+// `kestrel run` on it reproduces the run bit for bit); the first
+// retention.keep_first runs and the failing ones (at most
+// retention.max_failing) also keep their full results and report there.
+// Every run's thinned channels (retention.thin_samples samples) and metrics
+// go into the summary (summary.csv, summary.h5, mc_report_data.json).
+#ifndef HARNESS_MONTE_CARLO_H
+#define HARNESS_MONTE_CARLO_H
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "harness/scenario/mc_column.h"
+#include "harness/scenario/scenario.h"
+
+namespace harness {
+
+// A figure computed from each run's recorded rows: `stat` of `column` over
+// after <= t <= until (CriterionSpec); a criterion adds a threshold.
+struct McMetric {
+  McColumn col;             // name, unit, description
+  std::string column;       // column, quantity (norm per row) or prefix*
+  std::string stat;         // max, min, max_abs, final, mean, rms, error_count, drop
+  double after = 0.0;
+  double until = -1.0;      // < 0: to the end
+  int criterion = -1;       // index into the criteria, -1: a plain metric
+  bool below = true;        // criterion: pass when value < threshold (else >)
+  double threshold = 0.0;
+};
+
+// What a campaign records, fixed before the first run.
+struct McPlan {
+  Scenario nominal;            // with its monte_carlo section
+  uint64_t master_seed = 1;
+  uint64_t runs = 0;
+  std::vector<McColumn> drawn;      // the drawn values' columns
+  std::vector<McMetric> metrics;    // default metrics, then one per criterion
+  std::vector<std::string> series_columns;  // thinned channel columns
+  std::vector<std::pair<std::string, std::vector<std::string>>> channels;  // name -> its columns
+  std::vector<std::string> channel_units;
+  std::vector<uint64_t> series_rows;  // recorded row index of each thinned sample
+  std::vector<double> series_t;       // [s] their times
+};
+
+// The plan of a loaded scenario (throws ScenarioError: no monte_carlo
+// section, a criterion naming a column the run does not record).
+McPlan make_mc_plan(const Scenario& nominal, uint64_t master_seed, uint64_t runs);
+
+// One run's outcome.
+struct McRecord {
+  uint64_t index = 0;
+  uint64_t seed = 0;           // the run's Scenario::seed
+  bool invalid = false;        // the draw is not a valid spacecraft (not run)
+  bool complete = false;       // ran to its duration without failure
+  bool pass = false;           // complete, valid and every criterion met
+  std::string reason;          // why it did not pass
+  std::vector<double> drawn;   // McPlan::drawn (NaN: not drawn)
+  std::vector<double> metrics; // McPlan::metrics (NaN: not computed)
+  std::vector<float> series;   // samples x series_columns, row-major (NaN where not recorded)
+  bool full = false;           // runs/NNNNNN holds full results and a report
+  bool interrupted = false;    // stopped by a signal before its end (not recorded)
+  double wall_seconds = 0.0;
+};
+
+// Runs one run of the plan: its folder `dir` (runs/NNNNNN) gets the
+// manifest, and with `full` the whole results (run_scenario).  A stop
+// request (set to a signal number) ends the run at a tick boundary: the
+// record then says `interrupted` (run_mc_runs drops it and its folder: the
+// run is not part of the campaign; rerun it with --only).
+McRecord run_mc_one(const McPlan& plan, uint64_t k, const std::filesystem::path& dir, bool full,
+                    const std::atomic<int>* stop = nullptr);
+
+struct McProgress {
+  uint64_t done = 0, total = 0, failed = 0;
+  double elapsed_s = 0.0;
+};
+
+struct McRunOptions {
+  unsigned jobs = 1;
+  std::vector<uint64_t> indices;   // the runs to do (any order)
+  const std::atomic<int>* stop = nullptr;
+  std::function<void(const McProgress&)> progress;  // called from worker threads, serialised
+};
+
+// Runs the given indices on `jobs` threads into dir/runs/; returns the
+// records sorted by index.  After the first pass, failing runs beyond
+// keep_first are rerun with full results (retention), and the rerun must
+// give the same metrics (else the record says so).
+std::vector<McRecord> run_mc_runs(const McPlan& plan, const std::filesystem::path& dir, const McRunOptions& opt,
+                                  bool& stopped);
+
+// Summary files of a campaign in `dir`: summary.csv, summary.h5,
+// mc_report_data.json, mc_runs.json (lossless, for merging) and the
+// report page when the report library is in the build.
+struct McSummaryInfo {
+  std::string source;
+  std::vector<std::string> overrides;
+  bool complete = true;          // every planned run is in `records`
+  double wall_seconds = 0.0;
+  std::string partition;         // e.g. "shard 1/4", "" for a whole campaign
+};
+void write_mc_outputs(const McPlan& plan, const std::vector<McRecord>& records, const McSummaryInfo& info,
+                      const std::filesystem::path& dir);
+
+// mc_runs.json <-> records (merge).
+std::string mc_records_json(const std::vector<McRecord>& records);
+std::vector<McRecord> mc_records_from_json(const std::string& text);
+
+// Records ordered for the summary table: failing (invalid, failed) first,
+// then by index.
+std::vector<size_t> mc_table_order(const std::vector<McRecord>& records);
+
+}  // namespace harness
+
+#endif  // HARNESS_MONTE_CARLO_H

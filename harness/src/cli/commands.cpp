@@ -1,0 +1,240 @@
+#include "harness/cli/commands.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "cli/command_util.h"
+#include "harness/mc/monte_carlo.h"
+#include "harness/drive/run_scenario.h"
+#include "harness/output/results_dir.h"
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
+
+#ifndef KESTREL_SCENARIO_DIR
+#define KESTREL_SCENARIO_DIR "scenarios"
+#endif
+
+namespace harness {
+
+namespace fs = std::filesystem;
+
+bool parse_sets(const std::vector<std::string>& sets, std::vector<Override>& out, std::ostream& err)
+{
+  for (const std::string& s : sets) {
+    try {
+      out.push_back(parse_override(s));
+    } catch (const std::exception& e) {
+      err << "kestrel: " << e.what() << "\n";
+      return false;
+    }
+  }
+  return true;
+}
+
+void print_issues(const ScenarioError& e, std::ostream& err)
+{
+  for (const ScenarioIssue& is : e.issues()) err << is.str() << "\n";
+  err << "kestrel: scenario rejected (" << e.issues().size() << " problem" << (e.issues().size() == 1 ? "" : "s")
+      << "); nothing was run\n";
+}
+
+
+std::string scenario_dir()
+{
+  if (const char* d = std::getenv("KESTREL_SCENARIO_DIR")) return d;
+  if (fs::is_directory(KESTREL_SCENARIO_DIR)) return KESTREL_SCENARIO_DIR;
+  return "scenarios";
+}
+
+int cmd_validate(const std::string& scenario, const std::vector<std::string>& sets, std::ostream& out,
+                 std::ostream& err)
+{
+  std::vector<Override> ov;
+  if (!parse_sets(sets, ov, err)) return kExitUsage;
+  try {
+    const Scenario sc = load_scenario(scenario, ov);
+    check_run_configuration(sc);  // the plant and FSW checks of a run, no run storage
+    if (sc.monte_carlo) {           // the campaign's criteria name recorded columns
+      const McPlan plan = make_mc_plan(sc, sc.monte_carlo->seed, sc.monte_carlo->runs);
+      out << scenario << ": monte_carlo: " << plan.runs << " runs, " << plan.drawn.size() << " drawn values, "
+          << sc.monte_carlo->criteria.size() << " criteria\n";
+    }
+    for (const std::string& w : jitter_step_warnings(sc)) out << scenario << ": warning: " << w << "\n";
+    out << scenario << ": ok (" << sc.name << ", " << sc.wheels.size() << " wheels, " << sc.thrusters.size()
+        << " thrusters, " << sc.num_ticks() << " steps of " << sc.rates.dt << " s)\n";
+    return kExitOk;
+  } catch (const ScenarioError& e) {
+    print_issues(e, err);
+    return kExitInvalidScenario;
+  } catch (const std::exception& e) {
+    err << scenario << ": internal error: " << e.what() << "\n";
+    return kExitRunFailed;
+  }
+}
+
+int cmd_fsw_config(const std::string& scenario, const std::vector<std::string>& sets, const std::string& out_file,
+                   std::ostream& out, std::ostream& err)
+{
+  std::vector<Override> ov;
+  if (!parse_sets(sets, ov, err)) return kExitUsage;
+  FswAcsConfig cfg;
+  try {
+    cfg = fsw_acs_config_of(load_scenario(scenario, ov));
+  } catch (const ScenarioError& e) {
+    print_issues(e, err);
+    return kExitInvalidScenario;
+  }
+  std::vector<uint8_t> img(fsw_link_config_size());
+  size_t len = 0;
+  if (fsw_link_config_encode(&cfg, img.data(), img.size(), &len, nullptr) != FSW_OK) {
+    err << "kestrel: cannot encode the FSW configuration image\n";
+    return kExitRunFailed;
+  }
+  std::ofstream f(out_file, std::ios::binary | std::ios::trunc);
+  f.write(reinterpret_cast<const char*>(img.data()), static_cast<std::streamsize>(len));
+  f.close();
+  if (!f) {
+    err << "kestrel: cannot write " << out_file << "\n";
+    return kExitOutput;
+  }
+  out << out_file << ": FSW configuration image of " << scenario << " (" << len << " bytes, format "
+      << FSW_LINK_CONFIG_VERSION << ")\n";
+  return kExitOk;
+}
+
+int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
+{
+  std::vector<Override> ov;
+  if (!parse_sets(c.sets, ov, err)) return kExitUsage;
+  Scenario sc;
+  try {
+    sc = load_scenario(c.scenario, ov);
+  } catch (const ScenarioError& e) {
+    print_issues(e, err);
+    return kExitInvalidScenario;
+  }
+  if (c.csv) sc.outputs.csv = true;
+  for (const std::string& w : jitter_step_warnings(sc)) err << "kestrel: warning: " << w << "\n";
+  RunOptions opt;
+  opt.out_dir = c.out_dir.empty() ? (fs::path("runs") / sc.name).string() : c.out_dir;
+  opt.overrides = ov;
+  opt.force = c.force;
+  opt.stop = c.stop;
+  if (c.realtime) opt.realtime_scale = c.rt_scale;
+  opt.fsw_link = c.fsw;
+  opt.link.timeout_s = c.link_timeout;
+  opt.link.pil_bin = c.pil_bin;
+  opt.link.pil_emulator = c.pil_emulator;
+  opt.link.reply_timeout_s = c.reply_timeout;
+  if (!c.on_missing.empty()) {
+    opt.link.on_missing_set = true;
+    opt.link.on_missing = c.on_missing == "zero" ? LinkOptions::Missing::kZero : LinkOptions::Missing::kHold;
+  }
+  opt.link.loss = c.loss / 100.0;
+  opt.link.corrupt = c.corrupt / 100.0;
+  opt.link.duplicate = c.duplicate / 100.0;
+  opt.link.reorder = c.reorder / 100.0;
+  opt.link.delay = c.delay / 100.0;
+  opt.link.delay_cycles = c.delay_cycles;
+  opt.link.seed = c.link_seed;
+  opt.control = c.control;
+  opt.notice = [&err, &c](const std::string& msg) {
+    if (c.progress) err << "\n";
+    err << "kestrel: " << msg << "\n";
+  };
+  int last_pct = -1;
+  if (c.progress) {
+    opt.progress = [&err, &last_pct](double f) {
+      const int pct = static_cast<int>(f * 100.0);
+      if (pct == last_pct) return;
+      last_pct = pct;
+      const int w = 40, filled = pct * w / 100;
+      err << "\r[" << std::string(static_cast<size_t>(filled), '#') << std::string(static_cast<size_t>(w - filled), ' ')
+          << "] " << std::setw(3) << pct << "%" << std::flush;
+    };
+  }
+  RunResult r;
+  try {
+    r = run_scenario(sc, opt);
+  } catch (const ScenarioError& e) {
+    if (c.progress) err << "\n";
+    print_issues(e, err);
+    return kExitInvalidScenario;
+  } catch (const ResultsDirRefused& e) {
+    if (c.progress) err << "\n";
+    err << "kestrel: " << e.what() << "\n";
+    return kExitRefused;
+  } catch (const OutputError& e) {
+    if (c.progress) err << "\n";
+    err << "kestrel: output error: " << e.what() << "\n";
+    err << "kestrel: nothing was written to " << opt.out_dir << " (its previous contents, if any, are unchanged)\n";
+    return kExitOutput;
+  } catch (const std::exception& e) {
+    if (c.progress) err << "\n";
+    err << "kestrel: run failed: " << e.what() << "\n";
+    return kExitRunFailed;
+  }
+  if (c.progress) err << "\n";
+  if (r.stopped_by_signal != 0) {
+    err << "kestrel: interrupted by " << r.status.stopped_by << " at t = " << r.status.t_reached << " s of "
+        << sc.duration << " s; the results so far are in " << opt.out_dir << ", marked incomplete\n";
+    return kExitInterruptedBase + r.stopped_by_signal;
+  }
+  if (!r.ok) {
+    err << "kestrel: run failed: " << r.failure << "\n";
+    for (const auto& f : r.files) err << "  partial results: " << f << "\n";
+    return kExitRunFailed;
+  }
+  out << sc.name << ": " << sc.duration << " s simulated in " << std::setprecision(3) << r.wall_seconds
+      << " s (real-time factor " << std::setprecision(4) << (r.wall_seconds > 0 ? sc.duration / r.wall_seconds : 0.0)
+      << "x); final pointing error " << std::setprecision(4) << r.final_pointing_error_deg << " deg\n";
+  if (r.max_jitter_step > kJitterStepLimit)
+    err << "kestrel: warning: a jittering wheel reached |Omega| h = " << std::setprecision(3) << r.max_jitter_step
+        << " rad per plant step (> " << kJitterStepLimit
+        << "): its imbalance jitter is under-resolved; raise rates.plant_substeps (docs/performance.md)\n";
+  if (r.paced)
+    out << "paced at " << r.pacing.scale << "x real time: tick lateness p50 " << r.pacing.lateness_p50_s * 1e6
+        << " us, p99 " << r.pacing.lateness_p99_s * 1e6 << " us, max " << r.pacing.lateness_max_s * 1e6 << " us, "
+        << r.pacing.overruns << " overruns in " << r.pacing.ticks << " ticks, drift at the end "
+        << r.pacing.drift_s * 1e6 << " us\n";
+  if (r.linked)
+    out << "FSW link (" << c.fsw << "): " << r.link.cycles << " cycles, " << r.link.sent << " sensor packets sent, "
+        << r.link.lost << " lost, " << r.link.corrupted << " corrupted, " << r.link.missing
+        << " cycles without a reply, " << r.link.rejected << " replies rejected; FSW end: " << r.link.fsw.rx_crc
+        << " CRC rejections, " << r.link.fsw.rx_stale << " stale, " << r.link.fsw.missed << " missed cycles\n";
+  out << "results: " << opt.out_dir << "\n";
+  for (const auto& f : r.files)
+    if (fs::path(f).filename() == "report.html") out << "report: " << f << "\n";
+  for (const auto& f : r.files) out << "  " << f << "\n";
+  return kExitOk;
+}
+
+int cmd_list(const std::string& dir, std::ostream& out, std::ostream& err)
+{
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) {
+    err << "kestrel: no scenario directory '" << dir << "'\n";
+    return kExitUsage;
+  }
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    if (e.path().extension() == ".yaml" || e.path().extension() == ".yml") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  for (const fs::path& p : files) {
+    try {
+      const Scenario sc = load_scenario(p.string());
+      out << std::left << std::setw(28) << p.filename().string() << " " << sc.description << "\n";
+    } catch (const ScenarioError& e) {
+      out << std::left << std::setw(28) << p.filename().string() << " (invalid: " << e.issues().size()
+          << " problems; run kestrel validate)\n";
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace harness

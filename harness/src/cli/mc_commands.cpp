@@ -1,0 +1,466 @@
+// mc_commands.cpp: `kestrel mc` and `kestrel mc merge` (docs/monte-carlo.md).
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/command_util.h"
+#include "harness/cli/commands.h"
+#include "harness/mc/monte_carlo.h"
+#include "harness/drive/run_scenario.h"
+#include "harness/output/results_dir.h"
+#include "harness/core/run.h"
+#include "scenario/json_util.h"
+#include "mc/mc_comm.h"
+
+namespace harness {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+std::string read_file(const fs::path& p)
+{
+  std::ifstream in(p, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + p.string());
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string mc_manifest_text(const McPlan& plan, const std::string& source, const std::vector<Override>& ov,
+                             const json& partition, const std::vector<uint64_t>& only, bool complete,
+                             uint64_t runs_done, const json& merged_from = nullptr)
+{
+  json j;
+  j["kestrel_mc_manifest"] = 1;
+  j["kestrel_version"] = version();
+  j["source"] = source;
+  json o = json::array();
+  for (const Override& x : ov) o.push_back(x.path + "=" + x.value);
+  j["overrides"] = o;
+  j["master_seed"] = plan.master_seed;
+  j["runs"] = plan.runs;
+  j["partition"] = partition;
+  j["only"] = only;
+  j["complete"] = complete;
+  j["runs_done"] = runs_done;
+  if (!merged_from.is_null()) j["merged_from"] = merged_from;
+  j["scenario"] = scenario_to_json(plan.nominal);
+  return j.dump(2) + "\n";
+}
+
+std::string duration_text(double s)
+{
+  std::ostringstream o;
+  if (!(s >= 0.0) || s > 1e7) return "?";
+  const long t = static_cast<long>(s + 0.5);
+  if (t >= 3600) o << t / 3600 << "h" << std::setw(2) << std::setfill('0') << (t % 3600) / 60 << "m";
+  else if (t >= 60) o << t / 60 << "m" << std::setw(2) << std::setfill('0') << t % 60 << "s";
+  else o << t << "s";
+  return o.str();
+}
+
+// "17,42,100-120" -> indices (sorted, unique); false on a malformed list.
+bool parse_only(const std::string& s, uint64_t runs, std::vector<uint64_t>& out, std::string& why)
+{
+  std::set<uint64_t> got;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const size_t dash = item.find('-');
+    auto num = [&](const std::string& t, uint64_t& v) {
+      if (t.empty() || t.size() > 12 || t.find_first_not_of("0123456789") != std::string::npos) return false;
+      v = std::stoull(t);
+      return true;
+    };
+    uint64_t a = 0, b = 0;
+    if (dash == std::string::npos ? !num(item, a) : !(num(item.substr(0, dash), a) && num(item.substr(dash + 1), b))) {
+      why = "--only: '" + item + "' is not a run index or a range a-b";
+      return false;
+    }
+    if (dash == std::string::npos) b = a;
+    if (b < a || b >= runs) {
+      why = "--only: '" + item + "' is outside the campaign's runs 0.." + std::to_string(runs - 1);
+      return false;
+    }
+    if (b - a > 10000000) {
+      why = "--only: range too long";
+      return false;
+    }
+    for (uint64_t k = a; k <= b; ++k) got.insert(k);
+  }
+  if (got.empty()) {
+    why = "--only: no run index given";
+    return false;
+  }
+  out.assign(got.begin(), got.end());
+  return true;
+}
+
+std::string shell_quote(const std::string& s)
+{
+  std::string o = "'";
+  for (char c : s) o += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return o + "'";
+}
+
+std::string self_exe()
+{
+  std::error_code ec;
+  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string("kestrel") : p.string();
+}
+
+int print_outcome(const std::vector<McRecord>& recs, const std::string& dir, double wall, std::ostream& out)
+{
+  size_t failed = 0, invalid = 0;
+  std::vector<uint64_t> bad;
+  for (const McRecord& r : recs) {
+    if (r.pass) continue;
+    ++failed;
+    invalid += r.invalid ? 1 : 0;
+    bad.push_back(r.index);
+  }
+  out << recs.size() << " runs in " << std::setprecision(4) << wall << " s: " << recs.size() - failed << " passed, "
+      << failed << " failed";
+  if (invalid) out << " (" << invalid << " invalid draws)";
+  out << "\n";
+  if (!bad.empty()) {
+    out << "failing runs:";
+    for (size_t i = 0; i < bad.size() && i < 20; ++i) out << " " << bad[i];
+    if (bad.size() > 20) out << " ... (" << bad.size() - 20 << " more)";
+    out << "\n";
+  }
+  out << "summary: " << (fs::path(dir) / "summary.csv").string() << "\n";
+  out << "report: " << (fs::path(dir) / "mc_report.html").string() << "\n";
+  return failed ? kExitMcFailures : kExitOk;
+}
+
+int write_slurm(const McCommand& c, const McPlan& plan, const std::vector<Override>& ov, std::ostream& out,
+                std::ostream& err)
+{
+  const fs::path target = fs::absolute(c.out_dir);
+  const fs::path sdir = fs::path(target.string() + ".slurm");
+  std::error_code ec;
+  if (fs::exists(sdir, ec) && !c.force) {
+    err << "kestrel: " << sdir.string() << " exists; use --force to rewrite the batch scripts\n";
+    return kExitRefused;
+  }
+  fs::create_directories(sdir / "logs", ec);
+  if (ec) {
+    err << "kestrel: cannot create " << sdir.string() << ": " << ec.message() << "\n";
+    return kExitOutput;
+  }
+  const unsigned n = c.slurm_tasks;
+  const std::string exe = self_exe();
+  const std::string scen = (sdir / "scenario.json").string();
+  try {
+    write_text(scen, manifest_text(plan.nominal, ov));
+    std::ostringstream a;
+    a << "#!/bin/bash\n"
+      << "# Kestrel Monte Carlo: " << plan.runs << " runs of " << plan.nominal.name << " (master seed "
+      << plan.master_seed << ") as a Slurm array of " << n << " shards.\n"
+      << "# Submit with submit.sh (the array, then the merge once every shard succeeded).\n"
+      << "#SBATCH --job-name=kestrel-mc-" << plan.nominal.name << "\n"
+      << "#SBATCH --array=0-" << n - 1 << "\n"
+      << "#SBATCH --ntasks=1\n"
+      << "#SBATCH --cpus-per-task=" << c.jobs << "\n"
+      << "#SBATCH --output=" << (sdir / "logs" / "shard-%a.out").string() << "\n"
+      << "# exit 6 (the shard ran; some runs failed their criteria) is a result, not a job failure\n"
+      << shell_quote(exe) << " mc " << shell_quote(scen) << " --runs " << plan.runs << " --seed "
+      << plan.master_seed << " -j " << c.jobs << " --force --shard \"${SLURM_ARRAY_TASK_ID}/" << n << "\" -o "
+      << shell_quote((sdir / "shards").string()) << "/shard-\"${SLURM_ARRAY_TASK_ID}\"\n"
+      << "rc=$?\n[ \"$rc\" -eq 6 ] && exit 0\nexit \"$rc\"\n";
+    write_text((sdir / "array.sbatch").string(), a.str());
+    std::ostringstream m;
+    m << "#!/bin/bash\n"
+      << "# Kestrel Monte Carlo: joins the shards of array.sbatch into " << target.string() << "\n"
+      << "#SBATCH --job-name=kestrel-mc-merge\n"
+      << "#SBATCH --ntasks=1\n"
+      << "#SBATCH --output=" << (sdir / "logs" / "merge.out").string() << "\n"
+      << "exec " << shell_quote(exe) << " mc merge --force -o " << shell_quote(target.string()) << " "
+      << shell_quote((sdir / "shards").string()) << "/shard-*\n";
+    write_text((sdir / "merge.sbatch").string(), m.str());
+    std::ostringstream s;
+    s << "#!/bin/sh\n# Submits the shards, then the merge (after every shard succeeded).\nset -e\n"
+      << "cd " << shell_quote(sdir.string()) << "\n"
+      << "jid=$(sbatch --parsable array.sbatch)\njid=${jid%%;*}\n"
+      << "sbatch --parsable --dependency=afterok:\"$jid\" merge.sbatch\n";
+    write_text((sdir / "submit.sh").string(), s.str());
+    fs::permissions(sdir / "submit.sh", fs::perms::owner_exec | fs::perms::group_exec, fs::perm_options::add);
+  } catch (const std::exception& e) {
+    err << "kestrel: output error: " << e.what() << "\n";
+    return kExitOutput;
+  }
+  out << "Slurm batch scripts for " << plan.runs << " runs in " << n << " shards: " << sdir.string() << "\n"
+      << "  submit: " << (sdir / "submit.sh").string() << "   (array.sbatch, then merge.sbatch into "
+      << target.string() << ")\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+int cmd_mc(const McCommand& c, std::ostream& out, std::ostream& err)
+{
+  McComm comm;  // MPI when started by mpirun
+  const bool root = comm.rank() == 0;
+  std::ostringstream sink;
+  std::ostream& rerr = root ? err : sink;  // one rank speaks
+  std::vector<Override> ov;
+  if (!parse_sets(c.sets, ov, rerr)) return kExitUsage;
+  McPlan plan;
+  try {
+    const Scenario sc = load_scenario(c.scenario, ov);
+    if (!sc.monte_carlo) {
+      rerr << c.scenario << ": no monte_carlo section: nothing to disperse (docs/monte-carlo.md)\n";
+      return kExitInvalidScenario;
+    }
+    plan = make_mc_plan(sc, c.seed ? *c.seed : sc.monte_carlo->seed, c.runs ? *c.runs : sc.monte_carlo->runs);
+  } catch (const ScenarioError& e) {
+    print_issues(e, rerr);
+    return kExitInvalidScenario;
+  }
+  if (plan.runs == 0) {
+    rerr << "kestrel: --runs must be at least 1\n";
+    return kExitUsage;
+  }
+  std::vector<uint64_t> indices;
+  if (!c.only.empty()) {
+    std::string why;
+    if (!parse_only(c.only, plan.runs, indices, why)) {
+      rerr << "kestrel: " << why << "\n";
+      return kExitUsage;
+    }
+  } else {
+    for (uint64_t k = 0; k < plan.runs; ++k) indices.push_back(k);
+  }
+  if (c.slurm_tasks > 0) {
+    if (!root) return kExitOk;
+    return write_slurm(c, plan, ov, out, err);
+  }
+  // this process's slice: shard i of N, then rank r of P within it
+  const uint64_t slots = static_cast<uint64_t>(c.shard_count) * static_cast<uint64_t>(comm.size());
+  const uint64_t slot = static_cast<uint64_t>(c.shard_index) * static_cast<uint64_t>(comm.size()) +
+                        static_cast<uint64_t>(comm.rank());
+  std::vector<uint64_t> mine;
+  for (uint64_t k : indices)
+    if (k % slots == slot) mine.push_back(k);
+  const std::string out_dir = c.out_dir.empty() ? (fs::path("runs") / (plan.nominal.name + "_mc")).string() : c.out_dir;
+  // rank 0 owns the results folder; the others write their runs into its
+  // working folder (a shared file system, as on any cluster)
+  std::optional<ResultsDir> rdir;
+  std::string work, problem;
+  int problem_code = kExitOk;
+  if (root) {
+    try {
+      rdir.emplace(out_dir, c.force);
+      work = rdir->work().string();
+    } catch (const ResultsDirRefused& e) {
+      problem = e.what();
+      problem_code = kExitRefused;
+    } catch (const std::exception& e) {
+      problem = std::string("output error: ") + e.what();
+      problem_code = kExitOutput;
+    }
+  }
+  work = comm.broadcast(problem.empty() ? work : std::string());
+  if (work.empty()) {
+    rerr << "kestrel: " << problem << "\n";
+    return problem_code == kExitOk ? kExitOutput : problem_code;
+  }
+  McRunOptions ro;
+  ro.jobs = std::max(1u, c.jobs);
+  ro.indices = mine;
+  ro.stop = c.stop;
+  std::mutex pmu;
+  if (c.progress && root) {
+    ro.progress = [&](const McProgress& p) {
+      std::lock_guard<std::mutex> g(pmu);
+      const double f = p.total ? static_cast<double>(p.done) / static_cast<double>(p.total) : 1.0;
+      const int w = 30, filled = static_cast<int>(f * w);
+      const double eta = p.done ? p.elapsed_s * static_cast<double>(p.total - p.done) / static_cast<double>(p.done) : -1.0;
+      err << "\r[" << std::string(static_cast<size_t>(filled), '#') << std::string(static_cast<size_t>(w - filled), ' ')
+          << "] " << p.done << "/" << p.total << " runs" << (comm.size() > 1 ? " (rank 0)" : "") << ", " << p.failed
+          << " failed, " << duration_text(eta) << " left   " << std::flush;
+    };
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<McRecord> recs;
+  bool stopped = false;
+  std::string run_error;
+  try {
+    recs = run_mc_runs(plan, work, ro, stopped);
+  } catch (const std::exception& e) {
+    run_error = e.what();
+  }
+  if (c.progress && root) err << "\n";
+  // every rank's records (and error) to rank 0
+  json mine_j = {{"error", run_error}, {"stopped", stopped}, {"records", json::parse(mc_records_json(recs))}};
+  const std::vector<std::string> parts = comm.gather(mine_j.dump());
+  if (!root) return run_error.empty() ? kExitOk : kExitRunFailed;
+  std::vector<McRecord> all;
+  for (const std::string& p : parts) {
+    const json j = json::parse(p);
+    if (!j.at("error").get<std::string>().empty() && run_error.empty()) run_error = j.at("error").get<std::string>();
+    stopped = stopped || j.at("stopped").get<bool>();
+    const std::vector<McRecord> r = mc_records_from_json(j.at("records").dump());
+    all.insert(all.end(), r.begin(), r.end());
+  }
+  std::sort(all.begin(), all.end(), [](const McRecord& a, const McRecord& b) { return a.index < b.index; });
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!run_error.empty()) {
+    err << "kestrel: campaign failed: " << run_error << "\n";
+    err << "kestrel: nothing was written to " << out_dir << "\n";
+    return kExitOutput;
+  }
+  McSummaryInfo info;
+  info.source = c.scenario;
+  for (const Override& o : ov) info.overrides.push_back(o.path + "=" + o.value);
+  uint64_t planned = 0;
+  for (uint64_t k : indices)
+    if (k % c.shard_count == c.shard_index) ++planned;
+  info.complete = !stopped && all.size() == planned;
+  info.wall_seconds = wall;
+  const json partition =
+      c.shard_count > 1 ? json({{"shard", c.shard_index}, {"shards", c.shard_count}}) : json(nullptr);
+  if (c.shard_count > 1) info.partition = "shard " + std::to_string(c.shard_index) + "/" + std::to_string(c.shard_count);
+  try {
+    write_text((fs::path(work) / "mc_manifest.json").string(),
+               mc_manifest_text(plan, c.scenario, ov, partition, c.only.empty() ? std::vector<uint64_t>{} : indices,
+                                info.complete, all.size()));
+    write_mc_outputs(plan, all, info, work);
+    rdir->commit();
+  } catch (const std::exception& e) {
+    err << "kestrel: output error: " << e.what() << "\n";
+    err << "kestrel: nothing was written to " << out_dir << " (its previous contents, if any, are unchanged)\n";
+    return kExitOutput;
+  }
+  if (stopped) {
+    err << "kestrel: interrupted after " << all.size() << " of " << planned << " runs; the finished runs are in "
+        << out_dir << ", marked incomplete\n";
+    return kExitInterruptedBase + (c.stop ? c.stop->load() : 0);
+  }
+  return print_outcome(all, out_dir, wall, out);
+}
+
+int cmd_mc_merge(const std::string& out_dir, const std::vector<std::string>& shards, bool force, std::ostream& out,
+                 std::ostream& err)
+{
+  if (shards.empty()) {
+    err << "kestrel: mc merge: no shard folders given\n";
+    return kExitUsage;
+  }
+  json first;
+  std::vector<McRecord> all;
+  std::set<uint64_t> seen;
+  std::set<uint64_t> expected;
+  bool any_only = false;
+  json merged = json::array();
+  for (const std::string& s : shards) {
+    json m;
+    try {
+      m = json::parse(read_file(fs::path(s) / "mc_manifest.json"));
+    } catch (const std::exception& e) {
+      err << "kestrel: mc merge: " << s << " is not a campaign folder (mc_manifest.json: " << e.what() << ")\n";
+      return kExitUsage;
+    }
+    if (first.is_null()) {
+      first = m;
+    } else if (m.at("scenario") != first.at("scenario") || m.at("master_seed") != first.at("master_seed") ||
+               m.at("runs") != first.at("runs")) {
+      err << "kestrel: mc merge: " << s << " is a shard of another campaign (scenario, master seed or runs differ from "
+          << shards.front() << ")\n";
+      return kExitUsage;
+    }
+    if (!m.at("complete").get<bool>()) {
+      err << "kestrel: mc merge: " << s << " is incomplete (interrupted): rerun that shard first\n";
+      return kExitUsage;
+    }
+    if (!m.at("only").empty()) {
+      any_only = true;
+      for (const json& k : m.at("only")) expected.insert(k.get<uint64_t>());
+    }
+    std::vector<McRecord> r;
+    try {
+      r = mc_records_from_json(read_file(fs::path(s) / "mc_runs.json"));
+    } catch (const std::exception& e) {
+      err << "kestrel: mc merge: " << s << "/mc_runs.json: " << e.what() << "\n";
+      return kExitUsage;
+    }
+    for (const McRecord& x : r)
+      if (!seen.insert(x.index).second) {
+        err << "kestrel: mc merge: run " << x.index << " is in more than one shard (" << s << ")\n";
+        return kExitUsage;
+      }
+    all.insert(all.end(), r.begin(), r.end());
+    merged.push_back(fs::absolute(s).string());
+  }
+  const uint64_t runs = first.at("runs").get<uint64_t>();
+  if (!any_only)
+    for (uint64_t k = 0; k < runs; ++k) expected.insert(k);
+  std::vector<uint64_t> missing;
+  for (uint64_t k : expected)
+    if (!seen.count(k)) missing.push_back(k);
+  if (!missing.empty()) {
+    err << "kestrel: mc merge: " << missing.size() << " runs are in no shard (first: " << missing.front()
+        << "); give every shard of the campaign\n";
+    return kExitUsage;
+  }
+  McPlan plan;
+  try {
+    const Scenario sc =
+        load_scenario_text(json({{"kestrel_manifest", 1}, {"scenario", first.at("scenario")}}).dump(),
+                           (fs::path(shards.front()) / "mc_manifest.json").string());
+    plan = make_mc_plan(sc, first.at("master_seed").get<uint64_t>(), runs);
+  } catch (const ScenarioError& e) {
+    print_issues(e, err);
+    return kExitInvalidScenario;
+  }
+  std::sort(all.begin(), all.end(), [](const McRecord& a, const McRecord& b) { return a.index < b.index; });
+  try {
+    ResultsDir rdir(out_dir, force);
+    const fs::path runs_dir = rdir.work() / "runs";
+    fs::create_directories(runs_dir);
+    for (const std::string& s : shards) {
+      std::error_code ec;
+      if (!fs::is_directory(fs::path(s) / "runs", ec)) continue;
+      fs::copy(fs::path(s) / "runs", runs_dir, fs::copy_options::recursive, ec);  // the shards stay as they were
+      if (ec) throw OutputError("copying the runs of " + s + ": " + ec.message());
+    }
+    McSummaryInfo info;
+    info.source = first.at("source").get<std::string>();
+    info.complete = true;
+    for (const McRecord& r : all) info.wall_seconds += r.wall_seconds;
+    std::vector<Override> ov;
+    for (const json& o : first.at("overrides")) ov.push_back(parse_override(o.get<std::string>()));
+    write_text((rdir.work() / "mc_manifest.json").string(),
+               mc_manifest_text(plan, info.source, ov, nullptr,
+                                any_only ? std::vector<uint64_t>(expected.begin(), expected.end()) : std::vector<uint64_t>{},
+                                true, all.size(), merged));
+    write_mc_outputs(plan, all, info, rdir.work());
+    rdir.commit();
+  } catch (const ResultsDirRefused& e) {
+    err << "kestrel: " << e.what() << "\n";
+    return kExitRefused;
+  } catch (const std::exception& e) {
+    err << "kestrel: output error: " << e.what() << "\n";
+    return kExitOutput;
+  }
+  out << "merged " << shards.size() << " shards: ";
+  double cpu = 0.0;
+  for (const McRecord& r : all) cpu += r.wall_seconds;
+  return print_outcome(all, out_dir, cpu, out);
+}
+
+}  // namespace harness

@@ -1,0 +1,227 @@
+#include "core/event_task.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/build_error.h"
+
+namespace harness {
+
+namespace {
+// [ns] a time in seconds as the first whole tick at or after it
+uint64_t ceil_to_tick(double t_s, uint64_t tick_ns)
+{
+  if (!(t_s < 9e9)) return std::numeric_limits<uint64_t>::max();  // beyond any run (kMaxTicks)
+  const uint64_t t_ns = static_cast<uint64_t>(std::llround(t_s * 1e9));
+  return (t_ns + tick_ns - 1) / tick_ns * tick_ns;
+}
+}  // namespace
+
+EventTask::EventTask(const Scenario& sc, sim::Plant& plant, SensorSuite& sensors, const Recorder& rec,
+                     FswEndpoint& fsw, const FswAcsCmdMsg& initial)
+    : sc_(sc), plant_(plant), sensors_(sensors), rec_(rec), fsw_(fsw), cmd_(initial), tick_ns_(sc.tick_ns())
+{
+  for (size_t i = 0; i < sc.events.size(); ++i) ev_.push_back(make(i));
+  log_.reserve(ev_.size());
+}
+
+void EventTask::add()
+{
+  ev_.push_back(make(sc_.events.size() - 1));
+  log_.reserve(ev_.size());
+}
+
+EventTask::Ev EventTask::make(size_t i) const
+{
+  const EventSpec& e = sc_.events[i];
+  const std::string key = "events[" + std::to_string(i) + "]";
+  Ev ev;
+  if (e.t) ev.t_ns = ceil_to_tick(*e.t, tick_ns_);
+  if (!e.after.empty()) {
+    for (size_t j = 0; j < i; ++j)
+      if (sc_.events[j].name == e.after) ev.after = static_cast<int>(j);
+    if (ev.after < 0) throw config_error(sc_, key + ".after", "no earlier event named '" + e.after + "'");
+    ev.delay_ns = ceil_to_tick(e.delay, tick_ns_);
+  }
+  if (!e.when.empty()) {
+    try {
+      ev.column = rec_.column_index(e.when);
+    } catch (const std::out_of_range&) {
+      throw config_error(sc_, key + ".when", "this run records no column '" + e.when + "'");
+    }
+    ev.watch = true;
+    ev.below = e.below.has_value();
+    ev.threshold = e.below ? *e.below : e.above.value_or(0.0);
+  }
+  for (size_t j = 0; j < e.actions.size(); ++j) {
+    const EventActionSpec& a = e.actions[j];
+    std::string k;
+    const std::string why = check_event_action(sc_, a, k);
+    if (!why.empty()) throw config_error(sc_, key + ".actions[" + std::to_string(j) + "]." + k, why);
+    Act act;
+    resolve_event_device(sc_, a.device, act.target);
+    if (act.target.device == EventDevice::Fsw && !fsw_.accepts_commands())
+      throw config_error(sc_, key + ".actions[" + std::to_string(j) + "].device",
+                         "this run's FSW (" + fsw_.describe() + ") takes no commands yet");
+    act.action = find_event_action(act.target.device, a.action)->action;
+    act.value = a.value;
+    ev.acts.push_back(act);
+    ev.entry.what += (j ? "; " : "") + a.device + " " + a.action;
+    if (!std::isnan(a.value)) {
+      std::ostringstream v;
+      v.precision(10);
+      v << a.value;
+      ev.entry.what += " " + v.str();
+    }
+  }
+  ev.entry.name = e.name;
+  return ev;
+}
+
+void EventTask::operator()(uint64_t k)
+{
+  const uint64_t t_ns = k * tick_ns_;
+  const double* row = nullptr;
+  for (size_t i = 0; i < ev_.size(); ++i) {
+    Ev& e = ev_[i];
+    if (e.applied) continue;
+    bool fire = false;
+    if (e.watch) {
+      if (!row) row = rec_.last_row();
+      if (row) {
+        const double x = row[e.column];
+        fire = e.below ? x < e.threshold : x > e.threshold;
+      }
+    } else {
+      fire = t_ns >= e.t_ns;
+    }
+    if (!fire) continue;
+    for (const Act& a : e.acts) apply(a, t_ns);
+    e.applied = true;
+    e.entry.tick = k;
+    e.entry.t = static_cast<double>(t_ns) / 1e9;  // as the recorded t
+    log_.push_back(std::move(e.entry));
+    for (Ev& f : ev_)  // events that follow this one: their time is now known
+      if (f.after == static_cast<int>(i))
+        f.t_ns = f.delay_ns > std::numeric_limits<uint64_t>::max() - t_ns ? std::numeric_limits<uint64_t>::max()
+                                                                          : t_ns + f.delay_ns;
+  }
+}
+
+void EventTask::apply(const Act& a, uint64_t t_ns)
+{
+  const int i = a.target.index;
+  const size_t u = static_cast<size_t>(i);
+  using F = SensorSuite::Fault;
+  switch (a.target.device) {
+    case EventDevice::Wheel: {
+      const sim::ReactionWheelParams& p = sc_.wheels[u].params;
+      switch (a.action) {
+        case EventAction::WheelFailOff: plant_.set_wheel_health(i, sim::WheelHealth::Off); break;
+        case EventAction::WheelStuck: plant_.set_wheel_health(i, sim::WheelHealth::Stuck); break;
+        case EventAction::WheelTorqueLimit: plant_.set_wheel_u_max(i, a.value); break;
+        case EventAction::WheelFriction: {
+          sim::WheelFrictionParams f = p.friction;
+          f.tau_c *= a.value;
+          f.tau_st *= a.value;
+          f.c_v *= a.value;
+          plant_.set_wheel_friction(i, f);
+          break;
+        }
+        case EventAction::TachNan: sensors_.set_tach_fault(i, F::Nan, 0.0); break;
+        case EventAction::TachFrozen: sensors_.set_tach_fault(i, F::Frozen, 0.0); break;
+        case EventAction::TachBias: sensors_.set_tach_fault(i, F::Bias, a.value); break;
+        case EventAction::TachNoiseScale: sensors_.set_tach_noise_scale(i, a.value); break;
+        case EventAction::CommandUnavailable: sensors_.set_rw_commanded_unavailable(i, true); break;
+        case EventAction::CommandAvailable: sensors_.set_rw_commanded_unavailable(i, false); break;
+        case EventAction::Restore:
+          plant_.set_wheel_health(i, sim::WheelHealth::Nominal);
+          plant_.set_wheel_u_max(i, p.u_max);
+          plant_.set_wheel_friction(i, p.friction);
+          sensors_.set_tach_fault(i, F::None, 0.0);
+          sensors_.set_tach_noise_scale(i, 1.0);
+          break;
+        default: break;
+      }
+      break;
+    }
+    case EventDevice::Thruster:
+      switch (a.action) {
+        case EventAction::ThrStuckClosed: plant_.set_thruster_health(i, sim::ThrusterHealth::FailedOff); break;
+        case EventAction::ThrStuckOpen: plant_.set_thruster_health(i, sim::ThrusterHealth::StuckOn); break;
+        case EventAction::ThrThrustFactor: plant_.set_thruster_thrust_scale(i, a.value); break;
+        case EventAction::CommandUnavailable:
+        case EventAction::CommandAvailable: {
+          int j = 0;  // the FSW's index: the ACS thrusters in scenario order
+          for (int m = 0; m < i; ++m) j += sc_.thrusters[static_cast<size_t>(m)].acs ? 1 : 0;
+          sensors_.set_thr_commanded_unavailable(j, a.action == EventAction::CommandUnavailable);
+          break;
+        }
+        default:  // restore (the availability flag is a command of its own)
+          plant_.set_thruster_health(i, sim::ThrusterHealth::Nominal);
+          plant_.set_thruster_thrust_scale(i, 1.0);
+          break;
+      }
+      break;
+    case EventDevice::Fsw:
+      switch (a.action) {
+        case EventAction::FswModeInertial: cmd_.mode = FSW_ACS_MODE_INERTIAL; break;
+        case EventAction::FswModeSunSafe: cmd_.mode = FSW_ACS_MODE_SUN_SAFE; break;
+        case EventAction::FswActuationWheels: cmd_.actuation = FSW_ACS_ACT_WHEELS; break;
+        case EventAction::FswActuationThrusters: cmd_.actuation = FSW_ACS_ACT_THRUSTERS; break;
+        case EventAction::FswReferenceX:
+        case EventAction::FswReferenceY:
+        case EventAction::FswReferenceZ:
+          cmd_.set_ref = 1;
+          cmd_.sigma_R0N[a.action == EventAction::FswReferenceX ? 0 : a.action == EventAction::FswReferenceY ? 1 : 2] =
+              static_cast<fsw_real>(a.value);
+          break;
+        case EventAction::FswGainK:
+          cmd_.set_gains = 1;
+          cmd_.K = static_cast<fsw_real>(a.value);
+          break;
+        case EventAction::FswGainP:
+          cmd_.set_gains = 1;
+          cmd_.P = static_cast<fsw_real>(a.value);
+          break;
+        default: break;
+      }
+      fsw_.command(cmd_);  // in force from the FSW's next cycle (this tick's, when it runs now)
+      break;
+    case EventDevice::Gyro:
+    case EventDevice::StarTracker:
+    case EventDevice::Css: {
+      const F f = a.action == EventAction::SensorDropout ? F::Dropout
+                  : a.action == EventAction::SensorFrozen ? F::Frozen
+                                                          : F::None;
+      // a dropout longer than any run (> 9e9 s) lasts to the end
+      const uint64_t until = f != F::Dropout ? 0
+                             : a.value < 9e9 ? t_ns + static_cast<uint64_t>(std::llround(a.value * 1e9))
+                                             : std::numeric_limits<uint64_t>::max();
+      const EventAction x = a.action;
+      const bool scale = x == EventAction::SensorNoiseScale, restore = x == EventAction::Restore;
+      const int axis = x == EventAction::SensorBiasX ? 0 : x == EventAction::SensorBiasY ? 1 : x == EventAction::SensorBiasZ ? 2 : -1;
+      const bool fault = !scale && axis < 0 && x != EventAction::SensorBias;  // dropout, frozen, restore
+      const double k = scale ? a.value : 1.0;
+      if (a.target.device == EventDevice::Gyro) {
+        if (fault) sensors_.set_gyro_fault(f, until);
+        if (scale || restore) sensors_.set_gyro_noise_scale(k);
+        if (axis >= 0) sensors_.set_gyro_bias(axis, a.value);
+        for (int b = 0; restore && b < 3; ++b) sensors_.set_gyro_bias(b, 0.0);
+      } else if (a.target.device == EventDevice::StarTracker) {
+        if (fault) sensors_.set_star_tracker_fault(f, until);
+        if (scale || restore) sensors_.set_star_tracker_noise_scale(k);
+        if (axis >= 0) sensors_.set_star_tracker_bias(axis, a.value);
+        for (int b = 0; restore && b < 3; ++b) sensors_.set_star_tracker_bias(b, 0.0);
+      } else {
+        if (fault) sensors_.set_css_fault(i, f, until);
+        if (scale || restore) sensors_.set_css_noise_scale(i, k);
+        if (x == EventAction::SensorBias || restore) sensors_.set_css_bias(i, restore ? 0.0 : a.value);
+      }
+      break;
+    }
+  }
+}
+
+}  // namespace harness

@@ -1,0 +1,170 @@
+// fsw_config.cpp: the scenario's fsw/wheels/thrusters/sensors.css keys mapped
+// onto FswAcsConfig.  fsw_real may be float: every value is converted here.
+#include "core/fsw_config.h"
+#include "core/convert.h"
+
+#include <cstring>
+
+#include "core/build_error.h"
+
+namespace harness {
+
+namespace {
+
+fsw_real R(double x) { return static_cast<fsw_real>(x); }
+
+// FswAcsConfig field (prefix, as fsw_acs_check names it) -> scenario key.
+struct FieldKey {
+  const char* field_prefix;
+  const char* key;
+};
+constexpr FieldKey kFieldKeys[] = {
+    {"css", "sensors.css"},           {"sunsafe", "fsw.sun_safe"},
+    {"inertial", "fsw.inertial"},     {"track", "fsw.inertial"},
+    {"mrp_fb", "fsw.mrp_fb"},         {"lpf", "fsw"},
+    {"use_lpf", "fsw"},               {"rw_map", "fsw.rw_map"},
+    {"rw_null", "fsw.rw_null"},       {"use_null", "fsw.rw_null"},
+    {"Omega_des", "fsw.rw_null.Omega_des"}, {"rw_sat", "wheels"},
+    {"speed_filter", "fsw.speed_filter"}, {"use_speed_filter", "fsw.speed_filter"},
+    {"rw_volt", "wheels"},            {"has_wheels", "wheels"},
+    {"thr_map", "thrusters"},         {"has_thrusters", "thrusters"},
+    {"pulse", "fsw.thr_pulse"},       {"pulser", "fsw.thr_pulse"},
+    {"initial_mode", "fsw.mode"},     {"initial_actuation", "fsw.actuation"},
+};
+
+}  // namespace
+
+std::string scenario_key_of_fsw_field(const std::string& field)
+{
+  for (const FieldKey& fk : kFieldKeys)
+    if (field.rfind(fk.field_prefix, 0) == 0) return fk.key;
+  return "fsw";
+}
+
+FswSetup make_fsw_setup(const Scenario& sc, const sim::MassProps& mp)
+{
+  FswSetup out;
+  const Eigen::Vector3d c = mp.c_B;
+  const Eigen::Matrix3d I_C =
+      mp.I_sc_B - mp.m_sc * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  const Eigen::Matrix3d I_fsw = sc.fsw.mrp_fb.inertia ? *sc.fsw.mrp_fb.inertia : I_C;
+  const int n_rw = static_cast<int>(sc.wheels.size());
+
+  FswAcsConfig& a = out.cfg;
+  std::memset(&a, 0, sizeof a);
+  a.initial_mode = sc.fsw.mode == FswMode::Inertial ? FSW_ACS_MODE_INERTIAL : FSW_ACS_MODE_SUN_SAFE;
+  a.initial_actuation = sc.fsw.actuation == Actuation::Wheels ? FSW_ACS_ACT_WHEELS : FSW_ACS_ACT_THRUSTERS;
+  // guidance
+  out.ideal_css = sc.sensors.css.normals_B.empty();
+  if (out.ideal_css) {
+    a.css.num_css = kIdealCss;
+    for (int i = 0; i < kIdealCss; ++i) {
+      Eigen::Vector3d n = Eigen::Vector3d::Zero();
+      n(i / 2) = (i % 2 == 0) ? 1.0 : -1.0;
+      out.ideal_normals[static_cast<size_t>(i)] = n;
+      put3(a.css.n_hat_B[i], n);
+      a.css.scale[i] = R(1.0);
+    }
+    a.css.lit_threshold = R(0.0);
+  } else {
+    a.css.num_css = static_cast<int>(sc.sensors.css.normals_B.size());
+    a.css.lit_threshold = R(sc.fsw.css_lit_threshold);
+    for (size_t i = 0; i < sc.sensors.css.normals_B.size(); ++i) {
+      put3(a.css.n_hat_B[i], sc.sensors.css.normals_B[i]);
+      a.css.scale[i] = R(sc.sensors.css.scale);
+    }
+  }
+  put3(a.sunsafe.s_cmd_B, sc.fsw.sun_axis_B);
+  a.sunsafe.min_unit_mag = R(kSunMinUnitMag);
+  a.sunsafe.small_angle = R(sc.fsw.sun_small_angle);
+  put3(a.sunsafe.omega_search_B, sc.fsw.omega_search_B);
+  a.sunsafe.sun_axis_spin_rate = 0;
+  put3(a.inertial.sigma_R0N, sc.fsw.sigma_R0N);
+  // control
+  FswMrpFbConfig& mf = a.mrp_fb;
+  mf.K = R(sc.fsw.mrp_fb.K);
+  mf.P = R(sc.fsw.mrp_fb.P);
+  mf.K_i = R(sc.fsw.mrp_fb.K_i);
+  mf.integral_limit = R(sc.fsw.mrp_fb.integral_limit);
+  mf.control_law_type = sc.fsw.mrp_fb.control_law;
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) mf.I_B[r][k] = R(I_fsw(r, k));
+  a.use_lpf = 0;
+  // actuator geometry, given once: fsw_acs_config_set_geometry() writes the
+  // module copies (and has_wheels / has_thrusters from the counts).  ACS
+  // thrusters (acs: true) only: the main engine follows the burn schedule.
+  FswAcsGeometry geo;
+  std::memset(&geo, 0, sizeof geo);
+  geo.num_rw = n_rw;
+  for (int i = 0; i < n_rw; ++i) {
+    const sim::ReactionWheelParams& p = sc.wheels[static_cast<size_t>(i)].params;
+    put3(geo.gs_hat_B[i], p.gs_hat_nom_B);
+    geo.J_s[i] = R(p.J_s);
+    geo.u_max[i] = R(p.u_max);
+  }
+  for (size_t j = 0; j < sc.thrusters.size(); ++j)
+    if (sc.thrusters[j].acs) {
+      if (out.n_acs >= FSW_MAX_THR)
+        throw config_error(sc, "thrusters", "at most " + std::to_string(FSW_MAX_THR) + " ACS thrusters (FSW_MAX_THR)");
+      out.acs_to_plant[static_cast<size_t>(out.n_acs++)] = static_cast<int>(j);
+    }
+  geo.num_thr = out.n_acs;
+  for (int i = 0; i < out.n_acs; ++i) {
+    const ThrusterSpec& t = sc.thrusters[static_cast<size_t>(out.acs_to_plant[static_cast<size_t>(i)])];
+    put3(geo.r_thr_B[i], t.r_B);
+    put3(geo.gt_hat_B[i], t.dir_B);  // nominal axis: the misalignment is truth only
+    geo.F_max[i] = R(t.F_max);
+  }
+  if (fsw_acs_config_set_geometry(&a, &geo) != FSW_OK)
+    throw config_error(sc, n_rw > FSW_MAX_RW ? "wheels" : "thrusters", "more wheels or thrusters than the FSW holds");
+  // wheel chain: rw_map -> [rw_null] -> rw_sat (limits = the wheels' u_max)
+  if (a.has_wheels) {
+    a.rw_map.num_axes = 3;
+    for (int r = 0; r < 3; ++r) a.rw_map.ctrl_axes_B[r][r] = 1;
+    a.rw_map.mode = sc.fsw.rw_map == RwMapMode::Power ? FSW_RW_MAP_POWER : FSW_RW_MAP_MIN_NORM;
+    a.rw_map.eps_P = R(sc.fsw.eps_P);
+    a.use_null = sc.fsw.rw_null ? 1 : 0;
+    a.rw_null.k_null = R(sc.fsw.k_null);
+    a.rw_null.scale_to_fit = sc.fsw.rw_null_scale_to_fit ? 1 : 0;
+    a.rw_sat.mode = FSW_RW_SAT_SCALE;
+    a.use_speed_filter = sc.fsw.speed_filter ? 1 : 0;
+    a.speed_filter.k_reject = static_cast<uint32_t>(sc.fsw.sf_k_reject);
+    a.speed_filter.n_recover = static_cast<uint32_t>(sc.fsw.sf_n_recover);
+    a.speed_filter.n_stale = static_cast<uint32_t>(sc.fsw.sf_n_stale);
+    a.speed_filter.n_window = static_cast<uint32_t>(sc.fsw.sf_n_window);
+    for (int i = 0; i < n_rw; ++i) {
+      a.speed_filter.noise[i] = R(sc.fsw.sf_noise);
+      a.speed_filter.resid_tol[i] = R(sc.fsw.sf_resid_tol);
+    }
+    for (int i = 0; i < n_rw; ++i)
+      a.Omega_des[i] = i < static_cast<int>(sc.fsw.Omega_des.size()) ? R(sc.fsw.Omega_des[static_cast<size_t>(i)]) : 0;
+  }
+  // thruster chain: map -> pulser
+  if (a.has_thrusters) {
+    for (int k = 0; k < 3; ++k) a.thr_map.control_axes_B[k][k] = R(1.0);
+    a.thr_map.thr_force_sign = 1;
+    a.thr_map.ang_err_thresh = R(0.0);
+    a.thr_map.epsilon = R(0.0);
+    a.thr_map.use_2nd_loop = 0;
+    a.thr_map.mode = sc.fsw.thr_map == ThrMapMode::Nnls ? FSW_THR_MAP_NNLS : FSW_THR_MAP_MIN_NORM;
+    a.pulser = sc.fsw.thr_pulse == ThrPulseMode::Schmitt ? FSW_ACS_PULSE_SCHMITT : FSW_ACS_PULSE_REMAINDER;
+    a.pulse_rem.common.t_min = R(sc.fsw.thr_t_min);
+    a.pulse_rem.common.base_thrust_state = 0;
+    a.pulse_rem.common.init_off_pulse_on_time = R(0.0);
+    a.pulse_schmitt.common.t_min = R(sc.fsw.thr_t_min);
+    a.pulse_schmitt.level_on = R(sc.fsw.thr_level_on);
+    a.pulse_schmitt.level_off = R(sc.fsw.thr_level_off);
+    a.pulse_schmitt.common.base_thrust_state = 0;
+    a.pulse_schmitt.common.init_off_pulse_on_time = R(0.0);
+  }
+  const char* bad = nullptr;
+  const FswStatus s = fsw_acs_check(&a, &bad);
+  if (s != FSW_OK) {
+    const std::string field = bad ? bad : "(unknown)";
+    throw config_error(sc, scenario_key_of_fsw_field(field),
+                       std::string("rejected by fsw_acs_check: field '") + field + "': " + fsw_status_name(s));
+  }
+  return out;
+}
+
+}  // namespace harness

@@ -1,0 +1,75 @@
+#include "harness/core/fsw_endpoint.h"
+
+#include <cstring>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace harness {
+
+
+InProcessFsw::InProcessFsw(const FswAcsConfig& cfg) : cfg_(cfg)
+{
+  std::memset(&st_, 0, sizeof st_);
+  const char* bad = nullptr;
+  const FswStatus s = fsw_acs_init(&st_, &cfg_, &bad);
+  if (s != FSW_OK)
+    throw std::invalid_argument(std::string("fsw_acs_init: field '") + (bad ? bad : "(unknown)") +
+                                "': " + fsw_status_name(s));
+}
+
+void InProcessFsw::cycle(const FswAcsSensorMsg& in, FswAcsActuatorMsg& out, FswAcsHealthMsg& health)
+{
+  fsw_acs_cycle(&st_, &cfg_, &in, have_cmd_ ? &cmd_ : nullptr, &out, &health);
+  have_cmd_ = false;
+}
+
+std::vector<std::string> fsw_health_summary(const FswAcsHealthMsg& h)
+{
+  std::vector<std::string> out;
+  std::ostringstream os;
+  os << "fsw_acs last cycle: status=" << fsw_status_name(h.status) << " safe_output=" << int(h.safe_output)
+     << " mode=" << (h.mode == FSW_ACS_MODE_INERTIAL ? "inertial" : "sun_safe")
+     << " actuation=" << (h.actuation == FSW_ACS_ACT_THRUSTERS ? "thrusters" : "wheels") << " cycles=" << h.cycles
+     << " mode_changes=" << h.mode_changes;
+  out.push_back(os.str());
+  std::ostringstream ss;
+  ss << "fsw_acs last cycle stages:";
+  for (int i = 0; i < FSW_ACS_NUM_STAGES; ++i) ss << " " << fsw_acs_stage_name(i) << "=" << fsw_status_name(h.stage_status[i]);
+  out.push_back(ss.str());
+  return out;
+}
+
+std::vector<std::string> InProcessFsw::module_health_lines() const
+{
+  std::vector<std::string> out;
+  auto line = [&out](const char* name, const FswHealth& hh) {
+    std::ostringstream os;
+    os << name << ": calls=" << hh.calls << " bad_input=" << hh.bad_input << " bad_time=" << hh.bad_time
+       << " saturated=" << hh.saturated << " singular=" << hh.singular << " other_error=" << hh.other_error
+       << " last=" << fsw_status_name(hh.last);
+    out.push_back(os.str());
+  };
+  line("fsw_acs", st_.health);
+  if (cfg_.initial_mode == FSW_ACS_MODE_INERTIAL) {
+    line("guid_inertial", st_.inertial.health);
+    line("att_track", st_.track.health);
+  } else {
+    line("css_sun", st_.css.health);
+    line("guid_sunsafe", st_.sunsafe.health);
+  }
+  line("mrp_fb", st_.mrp_fb.health);
+  if (cfg_.has_wheels) {
+    line("rw_map", st_.rw_map.health);
+    if (cfg_.use_null) line("rw_null", st_.rw_null.health);
+    line("rw_sat", st_.rw_sat.health);
+  }
+  if (cfg_.has_thrusters) {
+    line("thr_map", st_.thr_map.health);
+    if (cfg_.pulser == FSW_ACS_PULSE_REMAINDER) line("thr_pulse_rem", st_.pulse_rem.common.health);
+    else line("thr_pulse_schmitt", st_.pulse_schmitt.common.health);
+  }
+  return out;
+}
+
+}  // namespace harness

@@ -1,0 +1,39 @@
+// plant_builder: Scenario -> the plant of a run, and the main-engine burn
+// schedule.
+#ifndef HARNESS_PLANT_BUILDER_H
+#define HARNESS_PLANT_BUILDER_H
+
+#include <cstdint>
+#include <memory>
+
+#include <Eigen/Dense>
+
+#include "harness/core/scenario_types.h"
+#include "sim/plant.h"
+
+namespace harness {
+
+// Builds the plant (sim::Plant: hub, wheels and, with thrusters, the
+// thruster set and the tanks); throws ScenarioError (at the key's line) when
+// the plant rejects the configuration.
+std::unique_ptr<sim::Plant> build_plant(const Scenario& sc);
+
+// Main-engine burn: the engine opens at the first thruster command instant
+// at or after burn.start and closes at start + duration.
+struct BurnSchedule {
+  int engine = -1;        // plant index of the engine, -1 without a burn
+  int64_t on_ns = 0;      // [ns]
+  int64_t off_ns = 0;     // [ns]
+  int64_t T_upd_ns = 0;   // [ns] thruster command period
+  // On-time [s] of the engine for the command latched at the first command
+  // instant at or after now_ns (0 outside the burn).
+  double on_time(int64_t now_ns) const;
+};
+BurnSchedule burn_schedule(const Scenario& sc, const sim::Plant& plant);
+
+// Truth thrust axis of a thruster misaligned by `delta` [rad] (see .cpp).
+Eigen::Vector3d misaligned_axis(const Eigen::Vector3d& d, double delta);
+
+}  // namespace harness
+
+#endif  // HARNESS_PLANT_BUILDER_H

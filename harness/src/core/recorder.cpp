@@ -1,0 +1,131 @@
+#include "harness/core/recorder.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+namespace harness {
+
+size_t RecordLayout::column_index(const std::string& col) const
+{
+  for (size_t i = 0; i < columns.size(); ++i)
+    if (columns[i].name == col) return i;
+  throw std::out_of_range("recorder '" + name + "': no column '" + col + "'");
+}
+
+void Recorder::add_source(const std::string& group, const std::vector<Quantity>& qs, FillFn fill)
+{
+  if (allocated_) throw std::logic_error("recorder '" + name_ + "': add a source before allocate()");
+  if (!fill) throw std::invalid_argument("recorder '" + name_ + "': source without a fill function");
+  const size_t first = layout_.columns.size();
+  std::vector<Column> added;
+  for (const Quantity& q : qs) {
+    if (q.name.empty() || q.columns.empty())
+      throw std::invalid_argument("recorder '" + name_ + "': a quantity needs a name and at least one column");
+    for (const QuantityInfo& d : layout_.quantities)
+      if (d.group == group && d.name == q.name)
+        throw std::invalid_argument("recorder '" + name_ + "': quantity '" + group + "/" + q.name + "' declared twice");
+    QuantityInfo info{group, q.name, q.unit, q.frame, first + added.size(), q.columns.size()};
+    for (size_t k = 0; k < q.columns.size(); ++k) {
+      const std::string& c = q.columns[k];
+      if (c.empty()) throw std::invalid_argument("recorder '" + name_ + "': empty column name");
+      auto same = [&c](const Column& d) { return d.name == c; };
+      if (std::any_of(layout_.columns.begin(), layout_.columns.end(), same) ||
+          std::any_of(added.begin(), added.end(), same))
+        throw std::invalid_argument("recorder '" + name_ + "': column '" + c + "' declared twice");
+      added.push_back(Column{c, q.unit, group, q.name, q.frame, static_cast<int>(k)});
+    }
+    layout_.quantities.push_back(info);
+  }
+  sources_.push_back(Source{first, added.size(), std::move(fill)});
+  layout_.columns.insert(layout_.columns.end(), added.begin(), added.end());
+}
+
+void Recorder::add_source(const std::vector<Column>& cols, FillFn fill)
+{
+  std::vector<Quantity> qs;
+  for (const Column& c : cols) qs.push_back(Quantity{c.name, c.unit, c.frame, {c.name}});
+  add_source(name_, qs, std::move(fill));
+}
+
+void Recorder::allocate(uint64_t rows, size_t chunk_rows)
+{
+  if (allocated_) throw std::logic_error("recorder '" + name_ + "': allocate() called twice");
+  if (chunk_rows == 0) throw std::invalid_argument("recorder '" + name_ + "': chunk_rows must be > 0");
+  layout_.name = name_;
+  chunk_rows_ = chunk_rows;
+  chunk_.assign(chunk_rows_ * std::max<size_t>(1, layout_.columns.size()), 0.0);
+  capacity_ = rows;
+  allocated_ = true;
+}
+
+void Recorder::add_sink(RecordSink& sink)
+{
+  if (!allocated_) throw std::logic_error("recorder '" + name_ + "': add a sink after allocate()");
+  if (rows_ > 0 || finished_) throw std::logic_error("recorder '" + name_ + "': add a sink before the first sample");
+  sink.begin(layout_, capacity_);
+  sinks_.push_back(&sink);
+}
+
+bool Recorder::sample()
+{
+  if (rows_ >= capacity_ || finished_) {
+    ++overflow_;
+    return false;
+  }
+  double* row = chunk_.data() + pending_ * layout_.columns.size();
+  for (const Source& s : sources_) s.fill(row + s.first_col);
+  ++rows_;
+  if (++pending_ == chunk_rows_) flush();
+  return true;
+}
+
+void Recorder::flush()
+{
+  if (pending_ == 0) return;
+  const size_t n = pending_;
+  pending_ = 0;  // a throwing sink must not see the same rows twice
+  for (RecordSink* s : sinks_) s->write(chunk_.data(), n);
+}
+
+void Recorder::finish(bool complete)
+{
+  if (finished_ || !allocated_) return;
+  finished_ = true;
+  flush();
+  for (RecordSink* s : sinks_) s->end(complete);
+}
+
+const double* Recorder::last_row() const
+{
+  if (rows_ == 0) return nullptr;
+  // row r sits in chunk slot r % chunk_rows (a flush does not clear it)
+  const size_t slot = static_cast<size_t>((rows_ - 1) % chunk_rows_);
+  return chunk_.data() + slot * layout_.columns.size();
+}
+
+void MemorySink::begin(const RecordLayout& layout, uint64_t expected_rows)
+{
+  layout_ = layout;
+  capacity_ = expected_rows;
+  rows_ = 0;
+  data_.assign(static_cast<size_t>(expected_rows) * layout_.columns.size(), 0.0);
+}
+
+void MemorySink::write(const double* rows, size_t n)
+{
+  if (rows_ + n > capacity_) throw std::logic_error("memory sink: more rows than announced");
+  const size_t nc = layout_.columns.size();
+  if (n > 0 && nc > 0) std::memcpy(data_.data() + static_cast<size_t>(rows_) * nc, rows, n * nc * sizeof(double));
+  rows_ += n;
+}
+
+std::vector<double> MemorySink::column(const std::string& name) const
+{
+  const size_t c = column_index(name);
+  std::vector<double> out(static_cast<size_t>(rows_));
+  for (uint64_t r = 0; r < rows_; ++r) out[static_cast<size_t>(r)] = at(r, c);
+  return out;
+}
+
+}  // namespace harness

@@ -1,0 +1,467 @@
+// run.cpp: builds a run from its parts and steps it.  The parts live in
+// their own files: plant_builder (plant, burn schedule), fsw_config (the
+// FSW's configuration), sensor_suite (sensor models), tasks (the tick
+// protocol's tasks), telemetry_columns (what is recorded).
+#include "harness/core/run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/build_error.h"
+#include "core/event_task.h"
+#include "core/fsw_config.h"
+#include "core/plant_builder.h"
+#include "core/sensor_suite.h"
+#include "sim/environment.h"
+#include "sim/units.h"
+#include "core/tasks.h"
+#include "core/telemetry_columns.h"
+
+#ifndef KESTREL_VERSION
+#define KESTREL_VERSION "0.0.0"
+#endif
+
+namespace harness {
+
+const char* version() { return KESTREL_VERSION; }
+
+namespace {
+
+constexpr double kRadToDeg = 180.0 / sim::kPi;
+
+// TruthReaders: due when a reader of `truth` is (the FSW input, metrics and
+// recorder; every tick when the burn monitor runs), not at every tick.
+enum class Group { EveryTick, Fsw, Record, TruthReaders };
+struct Slot {
+  const char* task;
+  Group group;
+};
+// The tick protocol: the order of the tasks within a tick (run.h).  A task a
+// run does not need (no thrusters, no sampled sensors, ...) is skipped.
+constexpr Slot kTickProtocol[] = {
+    {"events", Group::EveryTick},
+    {"truth", Group::TruthReaders},      {"burn_monitor", Group::EveryTick},
+    {"sample_sensors", Group::EveryTick}, {"css", Group::Fsw},
+    {"sensors", Group::Fsw},             {"fsw_acs", Group::Fsw},
+    {"actuators", Group::Fsw},           {"plant_input", Group::Fsw},
+    {"metrics", Group::Record},          {"recorder", Group::Record},
+};
+
+}  // namespace
+
+struct Run::Impl {
+  Scenario sc;
+  std::unique_ptr<sim::Plant> plant_owner;
+  sim::Plant& plant;
+  FswSetup fsw_setup;
+  std::unique_ptr<FswEndpoint> fsw;
+  std::unique_ptr<SensorSuite> sensors;
+  Scheduler sched;
+  DataFlow flow;
+  Recorder rec{"telemetry"};
+  std::optional<MemorySink> mem;
+  uint64_t tick = 0;
+  uint64_t n_ticks = 0;
+  std::string failure;
+  int64_t substep_ns = 0;           // plant step: dt / rates.plant_substeps
+  std::vector<int> jitter_wheels;   // wheels whose imbalance makes jitter
+  double max_jitter_Omega = 0.0;    // [rad/s] largest |Omega| of those at a tick
+  uint64_t plant_ns = 0;            // [ns] plant steps while profiling (set_profiling)
+
+  // tasks (optional ones absent when the run does not need them)
+  std::optional<TruthTask> truth;
+  std::optional<BurnMonitor> burn;
+  std::optional<SampleSensorsTask> sample;
+  std::optional<CssTask> css;
+  std::optional<FswInputTask> fsw_input;
+  std::optional<FswTask> fsw_task;
+  std::optional<ActuatorTask> actuators;
+  std::optional<PlantInputTask> plant_input;
+  std::optional<MetricsTask> metrics;
+  std::optional<EventTask> events;  // scenarios with events only
+
+  Channel<TruthMsg>* truth_ch = nullptr;
+  Channel<FswAcsHealthMsg>* health_ch = nullptr;
+
+  explicit Impl(const Scenario& s) : sc(s), plant_owner(build_plant(s)), plant(*plant_owner), sched(s.tick_ns()) {}
+  void wire(RunConfig& cfg);
+  bool step_plant();
+};
+
+void Run::Impl::wire(RunConfig& cfg)
+{
+  const uint64_t tk = sc.tick_ns();
+  n_ticks = sc.num_ticks();
+  substep_ns = static_cast<int64_t>(sc.tick_ns() / sc.rates.plant_substeps);  // exact (checked at load)
+  for (size_t i = 0; i < sc.wheels.size(); ++i)
+    if (wheel_jitters(sc.wheels[i].params)) jitter_wheels.push_back(static_cast<int>(i));
+  fsw_setup = make_fsw_setup(sc, plant.mass_props());
+  if (cfg.fsw) {
+    fsw = std::move(cfg.fsw);
+  } else {
+    try {
+      fsw = std::make_unique<InProcessFsw>(fsw_setup.cfg);
+    } catch (const std::invalid_argument& e) {
+      throw config_error(sc, "fsw", e.what());
+    }
+  }
+  sensors = std::make_unique<SensorSuite>(sc, fsw_setup, plant);
+
+  // ---- messages --------------------------------------------------------------
+  DataFlow& f = flow;
+  f.add_component("plant", "sim::Plant");
+  f.add_component("sensors", "FSW input: sampled sensor outputs (truth where a sensor is disabled)");
+  f.add_component("fsw_acs", fsw->describe());
+  f.add_component("actuators", "harness: FSW actuator message -> plant commands");
+  auto& truth_m = f.add_message<TruthMsg>("truth");
+  auto& sens_m = f.add_message<FswAcsSensorMsg>("fsw_sensors");
+  auto& act_m = f.add_message<FswAcsActuatorMsg>("fsw_actuators");
+  auto& health_m = f.add_message<FswAcsHealthMsg>("fsw_health");
+  auto& cmd_m = f.add_message<PlantCmdMsg>("plant_cmd");
+  auto& metrics_m = f.add_message<MetricsMsg>("metrics");
+  Channel<SunHeadingMsg>* sun_m = sc.fsw.mode == FswMode::SunSafe ? &f.add_message<SunHeadingMsg>("sun_heading") : nullptr;
+  Channel<BurnStateMsg>* burn_m = plant.num_thr() > 0 ? &f.add_message<BurnStateMsg>("burn_state") : nullptr;
+  Channel<SensorSampleMsg>* samples_m =
+      sensors->has_sampled_models() ? &f.add_message<SensorSampleMsg>("sensor_samples") : nullptr;
+  Channel<CssMsg>* css_m = sensors->has_css_models() ? &f.add_message<CssMsg>("css_readings") : nullptr;
+  truth_ch = &truth_m;
+  health_ch = &health_m;
+
+  // ---- tasks -----------------------------------------------------------------
+  truth.emplace(TruthTask{&plant, tk, f.writer("plant", truth_m)});
+  const BurnSchedule burn_sched = burn_schedule(sc, plant);
+  if (burn_m) {
+    f.add_component("burn_monitor", "harness");
+    const double F_eng = burn_sched.engine >= 0 ? sc.thrusters[static_cast<size_t>(burn_sched.engine)].F_max : 0.0;
+    burn.emplace(&plant, tk, sc.rates.dt, sc.environment.mu, burn_sched, F_eng, f.reader("burn_monitor", truth_m),
+                 f.writer("burn_monitor", *burn_m));
+  }
+  if (samples_m) {
+    f.add_component("sample_sensors", "sim::Gyro, sim::StarTracker, sim::WheelTachometers on the plant's sensor truth");
+    sample.emplace(SampleSensorsTask{sensors.get(), tk, f.writer("sample_sensors", *samples_m)});
+  }
+  if (css_m) {
+    f.add_component("css", "sim::CoarseSunSensor on the plant's sensor truth");
+    css.emplace(CssTask{sensors.get(), tk, f.writer("css", *css_m)});
+  }
+  fsw_input.emplace(FswInputTask{sensors.get(), tk, f.reader("sensors", truth_m),
+                                 samples_m ? f.reader("sensors", *samples_m) : Reader<SensorSampleMsg>(),
+                                 css_m ? f.reader("sensors", *css_m) : Reader<CssMsg>(),
+                                 f.writer("sensors", sens_m)});
+  fsw_task.emplace(FswTask{fsw.get(), tk, f.reader("fsw_acs", sens_m), f.writer("fsw_acs", act_m),
+                           f.writer("fsw_acs", health_m),
+                           sun_m ? f.writer("fsw_acs", *sun_m) : Writer<SunHeadingMsg>(), sun_m != nullptr});
+  actuators.emplace(ActuatorTask{tk, plant.num_rw(), plant.num_thr(), fsw_setup.n_acs, fsw_setup.acs_to_plant,
+                                 burn_sched, f.reader("actuators", act_m), f.writer("actuators", cmd_m)});
+  plant_input.emplace(PlantInputTask{&plant, f.reader("plant", cmd_m)});
+  f.add_component("metrics", "harness");
+  metrics.emplace(&plant, tk, sc.fsw.mode == FswMode::Inertial, sc.fsw.sigma_R0N, sc.fsw.sun_axis_B,
+                  sc.environment.sun_position_N, sc.environment.mu, f.reader("metrics", truth_m),
+                  burn_m ? f.reader("metrics", *burn_m) : Reader<BurnStateMsg>(), burn_m != nullptr,
+                  f.writer("metrics", metrics_m));
+
+  // ---- recorder --------------------------------------------------------------
+  f.add_component("recorder", "harness: recorded columns -> sinks");
+  RecordedChannels rc;
+  rc.truth = &f.reader("recorder", truth_m).channel();
+  rc.metrics = &f.reader("recorder", metrics_m).channel();
+  rc.fsw_sensors = &f.reader("recorder", sens_m).channel();
+  rc.fsw_actuators = &f.reader("recorder", act_m).channel();
+  rc.fsw_health = &f.reader("recorder", health_m).channel();
+  if (plant.num_thr() > 0) rc.plant_cmd = &f.reader("recorder", cmd_m).channel();
+  if (sun_m) rc.sun_heading = &f.reader("recorder", *sun_m).channel();
+  declare_telemetry(rec, rc, plant.num_rw(), plant.num_thr(), sc.environment.mu > 0.0,
+                    [this] { return sched.t_ns(tick); });
+
+  // ---- schedule: the tick protocol's table ------------------------------------
+  const RateGroup every{"every_tick", 1, 0};
+  const RateGroup fsw_group{"fsw", sc.rates.fsw_divisor, sc.rates.fsw_offset};
+  const RateGroup rec_group{"record", sc.rates.record_divisor, 0};
+  if (!sc.events.empty() || cfg.accept_events) {
+    f.add_component("events", "harness: scenario events (docs/events.md) -> plant devices, sensor faults, FSW input");
+    // the commands start from the configuration: mode, actuation, and the
+    // reference and gains a set command changes one field of
+    FswAcsCmdMsg cmd0{};
+    cmd0.mode = fsw_setup.cfg.initial_mode;
+    cmd0.actuation = fsw_setup.cfg.initial_actuation;
+    for (int a = 0; a < 3; ++a) cmd0.sigma_R0N[a] = fsw_setup.cfg.inertial.sigma_R0N[a];
+    cmd0.K = fsw_setup.cfg.mrp_fb.K;
+    cmd0.P = fsw_setup.cfg.mrp_fb.P;
+    events.emplace(sc, plant, *sensors, rec, *fsw, cmd0);
+  }
+  auto fn_of = [this](const std::string& name) -> Scheduler::TaskFn {
+    if (name == "events" && events) return [t = &*events](uint64_t k) { (*t)(k); };
+    if (name == "truth") return [t = &*truth](uint64_t k) { (*t)(k); };
+    if (name == "burn_monitor" && burn) return [t = &*burn](uint64_t k) { (*t)(k); };
+    if (name == "sample_sensors" && sample) return [t = &*sample](uint64_t k) { (*t)(k); };
+    if (name == "css" && css) return [t = &*css](uint64_t k) { (*t)(k); };
+    if (name == "sensors") return [t = &*fsw_input](uint64_t k) { (*t)(k); };
+    if (name == "fsw_acs") return [t = &*fsw_task](uint64_t k) { (*t)(k); };
+    if (name == "actuators") return [t = &*actuators](uint64_t k) { (*t)(k); };
+    if (name == "plant_input") return [t = &*plant_input](uint64_t k) { (*t)(k); };
+    if (name == "metrics") return [t = &*metrics](uint64_t k) { (*t)(k); };
+    if (name == "recorder") return [r = &rec](uint64_t) { r->sample(); };
+    return nullptr;
+  };
+  for (const Slot& s : kTickProtocol) {
+    Scheduler::TaskFn fn = fn_of(s.task);
+    if (!fn) continue;
+    std::vector<RateGroup> g;
+    if (s.group == Group::EveryTick || (s.group == Group::TruthReaders && burn)) g = {every};
+    else if (s.group == Group::TruthReaders) g = {fsw_group, rec_group};
+    else g = {s.group == Group::Fsw ? fsw_group : rec_group};
+    sched.add_task(s.task, std::move(g), std::move(fn));
+  }
+  // rows: every due tick in [0, n_ticks] (the final tick is sampled too)
+  rec.allocate(rec_group.count_due(n_ticks + 1), cfg.chunk_rows);
+  if (cfg.keep_in_memory) {
+    mem.emplace();
+    rec.add_sink(*mem);
+  }
+}
+
+FswAcsConfig fsw_acs_config_of(const Scenario& sc)
+{
+  return make_fsw_setup(sc, build_plant(sc)->mass_props()).cfg;
+}
+
+Run::Run(const Scenario& sc, RunConfig cfg) : impl_(std::make_unique<Impl>(sc)) { impl_->wire(cfg); }
+
+Run::~Run() = default;
+
+void Run::add_sink(RecordSink& sink)
+{
+  if (impl_->tick > 0) throw std::logic_error("Run::add_sink: the run has started");
+  impl_->rec.add_sink(sink);
+}
+
+// The plant over one tick: rates.plant_substeps steps of dt / n (docs/harness.md).
+bool Run::Impl::step_plant()
+{
+  for (int i : jitter_wheels) max_jitter_Omega = std::max(max_jitter_Omega, std::fabs(plant.Omega(i)));
+  const bool timed = sched.profiling();
+  const auto t0 = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+  bool ok = true;
+  for (uint32_t s = 0; s < sc.rates.plant_substeps && ok; ++s) ok = plant.step(substep_ns) == sim::StepStatus::Ok;
+  if (timed)
+    plant_ns += static_cast<uint64_t>(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
+  return ok;
+}
+
+bool wheel_jitters(const sim::ReactionWheelParams& p)
+{
+  return p.model != sim::WheelModel::Balanced && (p.U_s > 0.0 || p.U_d > 0.0);
+}
+
+uint32_t substeps_for(double Omega_abs, double dt)
+{
+  const double n = std::ceil(Omega_abs * dt / kJitterStepLimit);
+  return n < 1.0 ? 1u : n > 1e9 ? 1000000000u : static_cast<uint32_t>(n);
+}
+
+std::vector<std::string> jitter_step_warnings(const Scenario& sc)
+{
+  std::vector<std::string> out;
+  const double h = sc.rates.dt / sc.rates.plant_substeps;
+  for (size_t i = 0; i < sc.wheels.size(); ++i) {
+    const sim::ReactionWheelParams& p = sc.wheels[i].params;
+    const double step = std::fabs(p.Omega_0) * h;
+    if (!wheel_jitters(p) || !(step > kJitterStepLimit)) continue;
+    std::ostringstream w;
+    w.precision(3);
+    w << "wheels[" << i << "] (" << sc.wheels[i].name << "): its imbalance jitter is under-resolved: |Omega_0| h = "
+      << step << " rad per plant step (h = " << h << " s) > " << kJitterStepLimit
+      << " rad; rates.plant_substeps: " << substeps_for(std::fabs(p.Omega_0), sc.rates.dt)
+      << " or more keeps it within (docs/performance.md)";
+    out.push_back(w.str());
+  }
+  return out;
+}
+
+bool Run::step_ticks(uint64_t n)
+{
+  Impl& m = *impl_;
+  if (!m.failure.empty()) return false;
+  for (uint64_t i = 0; i < n && m.tick <= m.n_ticks; ++i) {
+    try {
+      m.sched.run_tick(m.tick);
+    } catch (const FswEndpointError& e) {  // e.g. a remote FSW endpoint's link
+      m.failure = std::string("FSW endpoint at t = ") + std::to_string(static_cast<double>(m.sched.t_ns(m.tick)) * 1e-9) +
+                  " s: " + e.what();
+      finish();
+      return false;
+    }
+    if (m.rec.overflow() > 0) {
+      m.failure = "recorder overflow at tick " + std::to_string(m.tick) + " (internal error)";
+      finish();
+      return false;
+    }
+    if (m.tick < m.n_ticks) {
+      if (!m.step_plant()) {
+        m.failure = "plant state became non-finite at t = " +
+                    std::to_string(static_cast<double>(m.sched.t_ns(m.tick)) * 1e-9) + " s";
+        ++m.tick;
+        finish();
+        return false;
+      }
+    }
+    ++m.tick;
+  }
+  if (m.tick > m.n_ticks) finish();  // the last row reaches the sinks
+  return true;
+}
+
+void Run::finish() { impl_->rec.finish(impl_->failure.empty() && impl_->tick > impl_->n_ticks); }
+bool Run::done() const { return impl_->tick > impl_->n_ticks || !impl_->failure.empty(); }
+uint64_t Run::tick() const { return impl_->tick; }
+uint64_t Run::total_ticks() const { return impl_->n_ticks + 1; }
+const std::string& Run::failure() const { return impl_->failure; }
+const Scenario& Run::scenario() const { return impl_->sc; }
+const Recorder& Run::recorder() const { return impl_->rec; }
+const DataFlow& Run::dataflow() const { return impl_->flow; }
+const Scheduler& Run::scheduler() const { return impl_->sched; }
+sim::Plant& Run::plant() { return impl_->plant; }
+const sim::Plant& Run::plant() const { return impl_->plant; }
+
+void Run::add_event(const EventSpec& e)
+{
+  Impl& m = *impl_;
+  if (!m.events) throw std::logic_error("Run::add_event: the run was built without RunConfig::accept_events");
+  m.sc.events.push_back(e);
+  try {
+    m.events->add();
+  } catch (...) {
+    m.sc.events.pop_back();
+    throw;
+  }
+}
+
+bool Run::fsw_accepts_commands() const { return impl_->fsw->accepts_commands(); }
+
+const std::vector<AppliedEvent>& Run::events_applied() const
+{
+  static const std::vector<AppliedEvent> kNone;
+  return impl_->events ? impl_->events->log() : kNone;
+}
+
+const MemorySink& Run::memory() const
+{
+  if (!impl_->mem) throw std::logic_error("Run::memory: this run does not keep its rows in memory");
+  return *impl_->mem;
+}
+
+double Run::final_pointing_error_deg() const
+{
+  const double* row = impl_->rec.last_row();
+  return row ? row[impl_->rec.column_index("pointing_error_deg")] : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::vector<std::array<double, 3>> Run::wheel_axes_B() const
+{
+  std::vector<std::array<double, 3>> out;
+  for (const WheelSpec& w : impl_->sc.wheels)
+    out.push_back({w.params.gs_hat_nom_B(0), w.params.gs_hat_nom_B(1), w.params.gs_hat_nom_B(2)});
+  return out;
+}
+
+std::vector<std::string> Run::fsw_health_lines() const
+{
+  std::vector<std::string> out = fsw_health_summary(impl_->health_ch->value());
+  for (std::string& l : impl_->fsw->module_health_lines()) out.push_back(std::move(l));
+  return out;
+}
+
+void Run::set_profiling(bool on) { impl_->sched.set_profiling(on); }
+
+std::vector<std::pair<std::string, uint64_t>> Run::profile() const
+{
+  const Impl& m = *impl_;
+  std::vector<std::pair<std::string, uint64_t>> out;
+  for (size_t i = 0; i < m.sched.num_tasks(); ++i) out.emplace_back(m.sched.task_name(i), m.sched.elapsed_ns(i));
+  out.emplace_back("plant", m.plant_ns);
+  return out;
+}
+
+double Run::max_jitter_step() const
+{
+  return impl_->max_jitter_Omega * static_cast<double>(impl_->substep_ns) * 1e-9;
+}
+
+std::vector<SummaryItem> Run::summary() const
+{
+  const Impl& m = *impl_;
+  std::vector<SummaryItem> out;
+  if (m.rec.rows() > 0)
+    out.push_back({"final_pointing_error_deg", final_pointing_error_deg(), "deg", "pointing error at the end of the run"});
+  if (!m.jitter_wheels.empty())
+    out.push_back({"max_jitter_step_rad", max_jitter_step(), "rad",
+                   "largest |Omega| h of a jittering wheel (under-resolved above " +
+                       std::to_string(static_cast<int>(kJitterStepLimit)) + ": docs/performance.md)"});
+  if (m.plant.num_thr() == 0) return out;
+  double used = 0.0;
+  for (int k = 0; k < m.plant.num_tanks(); ++k) used += m.plant.tanks()[static_cast<size_t>(k)].m_p0 - m.plant.m_prop(k);
+  out.push_back({"propellant_used_kg", used, "kg", "all tanks, whole run"});
+  const double mu = m.sc.environment.mu;
+  const BurnMonitor& bm = *m.burn;
+  if (bm.burn.engine >= 0 && bm.start.set) {
+    const BurnMonitor::Snap& a = bm.start;
+    const bool ended = bm.end.set;
+    const BurnMonitor::Snap& b = ended ? bm.end : a;
+    const ThrusterSpec& eng = m.sc.thrusters[static_cast<size_t>(bm.burn.engine)];
+    out.push_back({"burn_start_s", a.t, "s", "engine open (first command instant at or after burn.start)"});
+    out.push_back({"burn_end_s", ended ? b.t : std::numeric_limits<double>::quiet_NaN(), "s",
+                   "engine closed and its thrust below 1e-3 F_max"});
+    out.push_back({"burn_complete", ended ? 1.0 : 0.0, "-", "1 if the burn ended before the end of the run"});
+    out.push_back({"max_pointing_error_burn_deg", m.metrics->max_err_burn * kRadToDeg, "deg",
+                   "largest recorded pointing error between burn start and end"});
+    if (ended) {
+      const double m0 = a.m, m1 = b.m;
+      // propellant of the engine's tank (tank 0); with rcs_tank the ACS
+      // thrusters draw from tank 1, so tank 0 is the engine's alone
+      const double dm_main = a.m_p[0] - b.m_p[0];
+      const double dm_rcs = m.plant.num_tanks() > 1 ? a.m_p[1] - b.m_p[1] : 0.0;
+      const double dv = (b.dv_ng - a.dv_ng).norm();
+      const double ve = sim::kG0 * eng.Isp;
+      const double dm_rocket = m0 * (1.0 - std::exp(-dv / ve));
+      out.push_back({"mass_before_burn_kg", m0, "kg", "total mass at burn start"});
+      out.push_back({"mass_after_burn_kg", m1, "kg", "total mass at burn end"});
+      out.push_back({"propellant_engine_kg", dm_main, "kg", "tank 0 propellant used during the burn"});
+      out.push_back({"propellant_rcs_burn_kg", dm_rcs, "kg", "rcs_tank propellant used during the burn"});
+      out.push_back({"dv_nongrav_mps", dv, "m/s",
+                     "|v_C(end) - v_C(start) - integral of gravity|: the delivered (sensed) delta-v"});
+      out.push_back({"dv_rocket_mps", ve * std::log(m0 / (m0 - dm_main)), "m/s",
+                     "g0 Isp ln(m0 / (m0 - engine propellant)): rocket equation"});
+      out.push_back({"propellant_rocket_kg", dm_rocket, "kg", "m0 (1 - exp(-dv_nongrav / (g0 Isp)))"});
+      out.push_back({"propellant_vs_rocket_rel", dm_main / dm_rocket - 1.0, "-",
+                     "engine propellant / rocket-equation propellant - 1"});
+    }
+    if (mu > 0.0) {
+      const sim::OrbitElements o0 = sim::elements_from_rv(mu, a.r, a.v);
+      out.push_back({"orbit_before_e", o0.e, "-", "osculating eccentricity at burn start"});
+      out.push_back({"orbit_before_r_p_km", o0.r_p * 1e-3, "km", "periapsis radius at burn start"});
+    }
+  }
+  if (mu > 0.0) {
+    const TruthMsg& t = m.truth_ch->value();  // the last tick run
+    const Eigen::Vector3d r(t.r_CN_N[0], t.r_CN_N[1], t.r_CN_N[2]), v(t.v_CN_N[0], t.v_CN_N[1], t.v_CN_N[2]);
+    const sim::OrbitElements o = sim::elements_from_rv(mu, r, v);
+    out.push_back({"orbit_after_e", o.e, "-", "osculating eccentricity at the end of the run"});
+    out.push_back({"orbit_after_r_p_km", o.r_p * 1e-3, "km", "periapsis radius"});
+    out.push_back({"orbit_after_r_a_km", o.e < 1.0 ? o.r_a * 1e-3 : std::numeric_limits<double>::quiet_NaN(), "km",
+                   "apoapsis radius (NaN: not captured)"});
+    out.push_back({"orbit_after_period_h",
+                   o.e < 1.0 ? 2.0 * sim::kPi * std::sqrt(o.a * o.a * o.a / mu) / 3600.0
+                             : std::numeric_limits<double>::quiet_NaN(),
+                   "h", "orbital period (NaN: not captured)"});
+    out.push_back({"captured", o.e < 1.0 ? 1.0 : 0.0, "-", "1 if the orbit after the run is an ellipse"});
+  }
+  return out;
+}
+
+}  // namespace harness

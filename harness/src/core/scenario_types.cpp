@@ -1,0 +1,90 @@
+// scenario_types.cpp: the parts of the Scenario types that a run needs
+// without the YAML schema (harness_core): problems, tick arithmetic, names.
+#include <cmath>
+#include <cstdio>
+
+#include "harness/core/scenario_types.h"
+
+namespace harness {
+
+namespace {
+// An issue is one line: every control byte is escaped, line feeds too.
+bool is_control(unsigned char c) { return c < 0x20 || c == 0x7f; }
+
+// Length of the valid UTF-8 sequence at s[i] (0: invalid).
+size_t utf8_len(const std::string& s, size_t i)
+{
+  const unsigned char c = static_cast<unsigned char>(s[i]);
+  size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
+  if (n == 0 || i + n > s.size()) return 0;
+  for (size_t k = 1; k < n; ++k)
+    if ((static_cast<unsigned char>(s[i + k]) >> 6) != 0x2) return 0;
+  return n;
+}
+
+}  // namespace
+
+std::string escape_bytes(const std::string& s)
+{
+  std::string out;
+  for (size_t i = 0; i < s.size();) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    const size_t n = utf8_len(s, i);
+    if (n == 0 || (n == 1 && is_control(c))) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02X", c);
+      out += buf;
+      ++i;
+    } else {
+      out.append(s, i, n);
+      i += n;
+    }
+  }
+  return out;
+}
+
+std::string ScenarioIssue::str() const
+{
+  std::string s = file;
+  if (!where.empty()) s += ": " + where;
+  else if (line > 0) s += ":" + std::to_string(line) + ":" + std::to_string(column);
+  return escape_bytes(s + ": " + key + ": " + message);
+}
+
+namespace {
+std::string join_issues(const std::vector<ScenarioIssue>& v)
+{
+  std::string s;
+  for (const auto& is : v) s += (s.empty() ? "" : "\n") + is.str();
+  return s;
+}
+}  // namespace
+
+ScenarioError::ScenarioError(std::vector<ScenarioIssue> issues)
+    : std::runtime_error(join_issues(issues)), issues_(std::move(issues))
+{
+}
+
+uint64_t Scenario::tick_ns() const { return static_cast<uint64_t>(std::llround(rates.dt * 1e9)); }
+uint64_t Scenario::num_ticks() const
+{
+  return static_cast<uint64_t>(std::llround(duration / rates.dt));
+}
+
+const char* to_string(FswMode m) { return m == FswMode::Inertial ? "inertial" : "sun_safe"; }
+const char* to_string(RwMapMode m) { return m == RwMapMode::MinNorm ? "min_norm" : "power"; }
+const char* to_string(ThrPulseMode m) { return m == ThrPulseMode::Remainder ? "remainder" : "schmitt"; }
+const char* to_string(ThrTransient m) { return m == ThrTransient::Instant ? "instant" : "first_order"; }
+const char* to_string(Actuation m) { return m == Actuation::Wheels ? "wheels" : "thrusters"; }
+const char* to_string(ThrMapMode m) { return m == ThrMapMode::MinNorm ? "min_norm" : "nnls"; }
+const char* wheel_model_key(sim::WheelModel m)
+{
+  switch (m) {
+    case sim::WheelModel::Balanced: return "balanced";
+    case sim::WheelModel::SimpleJitter: return "simple_jitter";
+    case sim::WheelModel::FullyCoupled: return "fully_coupled";
+  }
+  return "balanced";
+}
+
+}  // namespace harness

@@ -1,0 +1,288 @@
+#include "core/sensor_suite.h"
+#include "core/convert.h"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include "core/build_error.h"
+#include "sim/attitude.h"
+
+namespace harness {
+
+SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant)
+    : plant_(plant),
+      n_rw_(static_cast<int>(sc.wheels.size())),
+      num_css_(fsw.cfg.css.num_css),
+      r_sun_N_(sc.environment.sun_position_N),
+      ideal_css_(fsw.ideal_css),
+      ideal_normals_(fsw.ideal_normals),
+      div_gyro_(sc.sensors.gyro.divisor),
+      div_st_(sc.sensors.star_tracker.divisor),
+      div_tach_(sc.sensors.tachometer.divisor)
+{
+  const int64_t tk = static_cast<int64_t>(sc.tick_ns());
+  if (!ideal_css_) {
+    const sim::SensorContext sctx{sc.seed, sc.sensors.noise && sc.sensors.css.noise_std > 0.0};
+    for (size_t i = 0; i < sc.sensors.css.normals_B.size(); ++i) {
+      sim::CssParams cp;
+      cp.name = "css" + std::to_string(i);
+      cp.n_hat_B = sc.sensors.css.normals_B[i];
+      cp.fov_half = sc.sensors.css.fov;
+      cp.scale = sc.sensors.css.scale;
+      cp.sigma = sc.sensors.css.noise_std;
+      cp.period_ns = tk;  // sampled at FSW ticks
+      built_by_plant(sc, "sensors.css", [&] { css_.emplace_back(cp, sctx); });
+    }
+  }
+  const sim::SensorContext sctx{sc.seed, sc.sensors.noise};
+  built_by_plant(sc, "sensors.gyro", [&] {
+    if (sc.sensors.gyro.enabled) {
+      sim::GyroParams gp;
+      gp.name = "gyro";
+      gp.period_ns = static_cast<int64_t>(sc.sensors.gyro.divisor) * tk;
+      gp.sigma_ARW = sc.sensors.gyro.arw;
+      gp.sigma_RRW = sc.sensors.gyro.rrw;
+      gp.lsb = sc.sensors.gyro.lsb;
+      gyro_ = std::make_unique<sim::Gyro>(gp, sctx);
+    }
+  });
+  built_by_plant(sc, "sensors.star_tracker", [&] {
+    if (sc.sensors.star_tracker.enabled) {
+      sim::StarTrackerParams sp;
+      sp.name = "star_tracker";
+      sp.period_ns = static_cast<int64_t>(sc.sensors.star_tracker.divisor) * tk;
+      sp.sigma_cross = sc.sensors.star_tracker.sigma_cross;
+      sp.sigma_bore = sc.sensors.star_tracker.sigma_bore;
+      sp.sun_exclusion = sc.sensors.star_tracker.sun_exclusion;
+      st_ = std::make_unique<sim::StarTracker>(sp, sctx);
+    }
+  });
+  built_by_plant(sc, "sensors.tachometer", [&] {
+    if (sc.sensors.tachometer.enabled && n_rw_ > 0) {
+      sim::TachParams tp;
+      tp.name = "tachometer";
+      tp.num_rw = n_rw_;
+      tp.period_ns = static_cast<int64_t>(sc.sensors.tachometer.divisor) * tk;
+      tp.sigma = sc.sensors.tachometer.sigma;
+      tp.lsb = sc.sensors.tachometer.lsb;
+      tach_ = std::make_unique<sim::WheelTachometers>(tp, sctx);
+    }
+  });
+}
+
+const sim::SensorTruth& SensorSuite::truth_now()
+{
+  plant_.fill_sensor_truth(truth_, r_sun_N_);
+  return truth_;
+}
+
+bool SensorSuite::sample(uint64_t k, SensorSampleMsg& out)
+{
+  const bool g = gyro_ && k % div_gyro_ == 0, a = st_ && k % div_st_ == 0, w = tach_ && k % div_tach_ == 0;
+  if (!(g || a || w)) return false;
+  const sim::SensorTruth& st = truth_now();
+  if (g && gyro_->update(st)) {
+    const sim::GyroOutput& o = gyro_->output();
+    put3(out.omega_PN_P, o.omega_PN_P);
+    out.gyro_t_ns = o.t_ns;
+    out.gyro_valid = o.valid ? 1 : 0;
+  }
+  if (a && st_->update(st)) {
+    const sim::StarTrackerOutput& o = st_->output();
+    put3(out.sigma_CN, o.sigma_CN);
+    out.st_t_ns = o.t_ns;
+    out.st_valid = o.valid ? 1 : 0;
+  }
+  if (w && tach_->update(st)) {
+    const sim::TachOutput& o = tach_->output();
+    for (int i = 0; i < n_rw_; ++i) out.Omega[i] = o.Omega[static_cast<size_t>(i)];
+    out.tach_t_ns = o.t_ns;
+    out.tach_valid = o.valid ? 1 : 0;
+  }
+  return true;
+}
+
+void SensorSuite::read_css(CssMsg& out)
+{
+  const sim::SensorTruth& st = truth_now();
+  const sim::SunGeometry sun = sim::sun_geometry(st);  // once for the set
+  for (size_t i = 0; i < css_.size(); ++i) {
+    css_[i].update(st, sun);
+    out.y[i] = css_[i].output().y;
+  }
+}
+
+void SensorSuite::fsw_input(uint64_t t_ns, const TruthMsg& t, const SensorSampleMsg& sm, const CssMsg& css,
+                            FswAcsSensorMsg& msg) const
+{
+  std::memset(&msg, 0, sizeof msg);
+  msg.t_ns = t_ns;
+  if (st_) {
+    // sigma_BN = sigma_CN (case = body); no valid sample yet or Sun-excluded: att_valid 0
+    copy3(msg.sigma_BN, sm.sigma_CN);
+    msg.att_valid = sm.st_valid;
+  } else {
+    copy3(msg.sigma_BN, t.sigma_BN);
+    msg.att_valid = 1;
+  }
+  if (gyro_) copy3(msg.omega_BN_B, sm.omega_PN_P);  // P = B
+  else copy3(msg.omega_BN_B, t.omega_BN_B);
+  if (ideal_css_) {
+    const Eigen::Vector3d d_B = sim::dcm_BN_from_sigma(ev(t.sigma_BN)) * (r_sun_N_ - ev(t.r_BN_N)).normalized();
+    for (int i = 0; i < kIdealCss; ++i)
+      msg.css[i] = static_cast<fsw_real>(std::max(0.0, ideal_normals_[static_cast<size_t>(i)].dot(d_B)));
+  } else {
+    for (int i = 0; i < num_css_; ++i) msg.css[i] = static_cast<fsw_real>(css.y[i]);
+  }
+  if (tach_) {
+    for (int i = 0; i < n_rw_; ++i) msg.Omega[i] = static_cast<fsw_real>(sm.Omega[i]);
+  } else {
+    for (int i = 0; i < n_rw_; ++i) msg.Omega[i] = static_cast<fsw_real>(t.Omega[i]);
+  }
+  copy3(msg.r_CoM_B, t.r_CoM_B);
+  if (any_fault_) apply_faults(t_ns, msg);
+}
+
+void SensorSuite::apply_faults(uint64_t t_ns, FswAcsSensorMsg& msg) const
+{
+  const auto active = [t_ns](const SensorFault& f) {
+    return f.fault == Fault::Frozen || (f.fault == Fault::Dropout && t_ns < f.until_ns);
+  };
+  if (active(gyro_fault_)) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const Eigen::Vector3d w = gyro_fault_.fault == Fault::Frozen ? gyro_frozen_ : Eigen::Vector3d(nan, nan, nan);
+    for (int a = 0; a < 3; ++a) msg.omega_BN_B[a] = static_cast<fsw_real>(w(a));
+  }
+  if (active(st_fault_)) {
+    if (st_fault_.fault == Fault::Frozen) {
+      for (int a = 0; a < 3; ++a) msg.sigma_BN[a] = static_cast<fsw_real>(st_frozen_(a));
+      msg.att_valid = st_frozen_valid_;
+    } else {
+      msg.att_valid = 0;
+    }
+  }
+  for (int i = 0; i < num_css_; ++i) {
+    const SensorFault& f = css_fault_[static_cast<size_t>(i)];
+    if (!active(f)) continue;
+    if (f.fault == Fault::Frozen) {
+      msg.css[i] = static_cast<fsw_real>(css_frozen_[static_cast<size_t>(i)]);
+    } else {
+      msg.css[i] = 0;
+      msg.css_avail[i] = 1;
+    }
+  }
+  for (int i = 0; i < n_rw_; ++i) {
+    const size_t u = static_cast<size_t>(i);
+    switch (tach_fault_[u]) {
+      case Fault::Nan: msg.Omega[i] = static_cast<fsw_real>(std::numeric_limits<double>::quiet_NaN()); break;
+      case Fault::Frozen: msg.Omega[i] = static_cast<fsw_real>(tach_value_[u]); break;
+      case Fault::Bias: msg.Omega[i] = static_cast<fsw_real>(static_cast<double>(msg.Omega[i]) + tach_value_[u]); break;
+      default: break;
+    }
+    msg.rw_avail[i] = rw_unavail_[u];
+  }
+  for (size_t j = 0; j < thr_unavail_.size(); ++j) msg.thr_avail[j] = thr_unavail_[j];
+  // bias steps, on top of what the faults above left
+  for (int a = 0; a < 3; ++a)
+    msg.omega_BN_B[a] = static_cast<fsw_real>(static_cast<double>(msg.omega_BN_B[a]) + gyro_bias_(a));
+  if (st_bias_.squaredNorm() > 0.0 && msg.att_valid) {
+    // the measured body frame turned by st_bias_: C_B'N = exp([delta~])^T C_BN
+    Eigen::Vector3d s;
+    for (int a = 0; a < 3; ++a) s(a) = static_cast<double>(msg.sigma_BN[a]);
+    const Eigen::Matrix3d C = sim::rotation_from_vector(st_bias_).transpose() * sim::dcm_BN_from_sigma(s);
+    const Eigen::Vector3d sb = sim::sigma_from_quaternion(sim::quaternion_from_dcm(C));
+    for (int a = 0; a < 3; ++a) msg.sigma_BN[a] = static_cast<fsw_real>(sb(a));
+  }
+  for (int i = 0; i < num_css_; ++i)
+    if (msg.css_avail[i] == 0)
+      msg.css[i] = static_cast<fsw_real>(static_cast<double>(msg.css[i]) + css_bias_[static_cast<size_t>(i)]);
+}
+
+void SensorSuite::set_gyro_bias(int a, double v)
+{
+  any_fault_ = true;
+  gyro_bias_(a) = v;
+}
+
+void SensorSuite::set_star_tracker_bias(int a, double v)
+{
+  any_fault_ = true;
+  st_bias_(a) = v;
+}
+
+void SensorSuite::set_css_bias(int i, double v)
+{
+  any_fault_ = true;
+  if (static_cast<size_t>(i) < css_bias_.size()) css_bias_[static_cast<size_t>(i)] = v;
+}
+
+void SensorSuite::set_gyro_fault(Fault f, uint64_t until_ns)
+{
+  any_fault_ = true;
+  gyro_fault_ = {f, until_ns};
+  if (f == Fault::Frozen && gyro_) gyro_frozen_ = gyro_->output().omega_PN_P;
+}
+
+void SensorSuite::set_star_tracker_fault(Fault f, uint64_t until_ns)
+{
+  any_fault_ = true;
+  st_fault_ = {f, until_ns};
+  if (f == Fault::Frozen && st_) {
+    st_frozen_ = st_->output().sigma_CN;
+    st_frozen_valid_ = st_->output().valid ? 1 : 0;
+  }
+}
+
+void SensorSuite::set_css_fault(int i, Fault f, uint64_t until_ns)
+{
+  any_fault_ = true;
+  const size_t u = static_cast<size_t>(i);
+  css_fault_[u] = {f, until_ns};
+  if (f == Fault::Frozen && u < css_.size()) css_frozen_[u] = css_[u].output().y;
+}
+
+void SensorSuite::set_tach_fault(int i, Fault f, double bias)
+{
+  any_fault_ = true;
+  const size_t u = static_cast<size_t>(i);
+  tach_fault_[u] = f;
+  tach_value_[u] = bias;
+  if (f == Fault::Frozen && tach_) tach_value_[u] = tach_->output().Omega[u];
+}
+
+void SensorSuite::set_gyro_noise_scale(double k)
+{
+  if (gyro_) gyro_->set_noise_scale(k);
+}
+
+void SensorSuite::set_star_tracker_noise_scale(double k)
+{
+  if (st_) st_->set_noise_scale(k);
+}
+
+void SensorSuite::set_css_noise_scale(int i, double k)
+{
+  const size_t u = static_cast<size_t>(i);
+  if (u < css_.size()) css_[u].set_noise_scale(k);
+}
+
+void SensorSuite::set_tach_noise_scale(int i, double k)
+{
+  if (tach_) tach_->set_noise_scale(i, k);
+}
+
+void SensorSuite::set_rw_commanded_unavailable(int i, bool unavailable)
+{
+  any_fault_ = true;
+  rw_unavail_[static_cast<size_t>(i)] = unavailable ? 1 : 0;
+}
+
+void SensorSuite::set_thr_commanded_unavailable(int j, bool unavailable)
+{
+  any_fault_ = true;
+  if (static_cast<size_t>(j) < thr_unavail_.size()) thr_unavail_[static_cast<size_t>(j)] = unavailable ? 1 : 0;
+}
+
+}  // namespace harness

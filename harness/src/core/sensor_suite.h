@@ -1,0 +1,111 @@
+// sensor_suite: the plant-side sensor models of a run (coarse sun sensors,
+// gyro, star tracker, wheel tachometers) and the mapping of their outputs
+// (or truth, for a disabled sensor) onto the FSW's FswAcsSensorMsg.
+#ifndef HARNESS_SENSOR_SUITE_H
+#define HARNESS_SENSOR_SUITE_H
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/fsw_config.h"
+#include "harness/core/loop_messages.h"
+#include "harness/core/scenario_types.h"
+#include "sim/plant.h"
+#include "sim/sensors.h"
+
+namespace harness {
+
+class SensorSuite {
+ public:
+  // Each model on its own stream Rng(seed, name); one noise switch.  Throws
+  // ScenarioError (at the sensor's key) when a model rejects its parameters.
+  // The models sample the plant's own sensor truth (sim::Plant::fill_sensor_truth).
+  SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant);
+
+  bool has_css_models() const { return !css_.empty(); }
+  bool has_sampled_models() const { return gyro_ || st_ || tach_; }
+
+  // Every tick: the models whose own period is due at tick k sample truth;
+  // `out` keeps the held outputs of the others.  False when none was due.
+  bool sample(uint64_t k, SensorSampleMsg& out);
+  // The coarse sun sensors at an FSW tick.
+  void read_css(CssMsg& out);
+  // The FSW input: the held samples (gyro -> omega_BN_B, star tracker ->
+  // sigma_BN + att_valid, tachometers -> Omega), CSS readings (or the ideal
+  // cube-face readings), truth for a disabled sensor and for r_CoM_B.
+  void fsw_input(uint64_t t_ns, const TruthMsg& truth, const SensorSampleMsg& samples, const CssMsg& css,
+                 FswAcsSensorMsg& msg) const;
+
+  // ---- faults set by scenario events (event_task.cpp, docs/events.md) -------
+  // They change what fsw_input() hands the FSW, never the models' own
+  // outputs (recorded samples, noise streams): a run whose events never
+  // fire is bit-identical to one without events (the noise scales below,
+  // 1 until an event sets them, act in the models).
+  enum class Fault { None, Dropout, Frozen, Nan, Bias };
+  // Gyro (which 0), star tracker (which 1) or CSS i (which 2): Dropout until
+  // t_ns < until_ns; Frozen holds the model's last output (taken now).
+  void set_gyro_fault(Fault f, uint64_t until_ns);
+  void set_star_tracker_fault(Fault f, uint64_t until_ns);
+  void set_css_fault(int i, Fault f, uint64_t until_ns);
+  // Tachometer of wheel i: Nan, Frozen (last output, taken now), Bias [rad/s].
+  void set_tach_fault(int i, Fault f, double bias);
+  // The executive's availability flag for wheel i (FswAcsSensorMsg.rw_avail).
+  void set_rw_commanded_unavailable(int i, bool unavailable);
+  // The executive's flag for ACS thruster j, the FSW's index
+  // (FswAcsSensorMsg.thr_avail).
+  void set_thr_commanded_unavailable(int j, bool unavailable);
+  // Random-error scale of the gyro, the star tracker or CSS i (the models'
+  // set_noise_scale; 1 restores).  Unlike the faults above this changes the
+  // model's own output, and so the recorded samples; the draws stay aligned
+  // with the nominal stream.  No model (ideal sensor): nothing to scale.
+  void set_gyro_noise_scale(double k);
+  void set_star_tracker_noise_scale(double k);
+  void set_css_noise_scale(int i, double k);
+  void set_tach_noise_scale(int i, double k);  // wheel i's tachometer
+  // Bias steps on what the FSW is given (events bias_x/y/z, bias; 0 clears):
+  // the gyro's rate about body axis a [rad/s]; the star tracker's attitude,
+  // turned by v about body axis a [rad] (a rotation of the measured body
+  // frame); CSS i's reading [its units].
+  void set_gyro_bias(int a, double v);
+  void set_star_tracker_bias(int a, double v);
+  void set_css_bias(int i, double v);
+
+ private:
+  struct SensorFault {
+    Fault fault = Fault::None;
+    uint64_t until_ns = 0;
+  };
+  SensorFault gyro_fault_, st_fault_;
+  Eigen::Vector3d gyro_frozen_ = Eigen::Vector3d::Zero(), st_frozen_ = Eigen::Vector3d::Zero();
+  uint8_t st_frozen_valid_ = 0;
+  std::array<SensorFault, FSW_MAX_CSS> css_fault_{};
+  std::array<double, FSW_MAX_CSS> css_frozen_{};
+  std::array<Fault, kMaxRw> tach_fault_{};
+  std::array<double, kMaxRw> tach_value_{};  // [rad/s] frozen reading or bias
+  std::array<uint8_t, kMaxRw> rw_unavail_{};
+  std::array<uint8_t, FSW_MAX_THR> thr_unavail_{};
+  Eigen::Vector3d gyro_bias_ = Eigen::Vector3d::Zero(), st_bias_ = Eigen::Vector3d::Zero();  // [rad/s], [rad]
+  std::array<double, FSW_MAX_CSS> css_bias_{};
+  bool any_fault_ = false;  // a fault was ever set (the nominal path stays as it was)
+
+  const sim::SensorTruth& truth_now();
+  void apply_faults(uint64_t t_ns, FswAcsSensorMsg& msg) const;
+  const sim::Plant& plant_;
+  sim::SensorTruth truth_;
+  int n_rw_ = 0;
+  int num_css_ = 0;
+  Eigen::Vector3d r_sun_N_;
+  bool ideal_css_ = false;
+  std::array<Eigen::Vector3d, kIdealCss> ideal_normals_{};
+  uint64_t div_gyro_ = 1, div_st_ = 1, div_tach_ = 1;
+  std::vector<sim::CoarseSunSensor> css_;
+  std::unique_ptr<sim::Gyro> gyro_;
+  std::unique_ptr<sim::StarTracker> st_;
+  std::unique_ptr<sim::WheelTachometers> tach_;
+};
+
+}  // namespace harness
+
+#endif  // HARNESS_SENSOR_SUITE_H

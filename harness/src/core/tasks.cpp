@@ -1,0 +1,182 @@
+// tasks.cpp: the bodies of the tick protocol's tasks.
+#include "core/tasks.h"
+#include "core/convert.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "sim/attitude.h"
+#include "sim/environment.h"
+
+namespace harness {
+
+double principal_angle(const Eigen::Vector3d& sigma_BN, const Eigen::Vector3d& sigma_RN)
+{
+  const Eigen::Vector4d b = sim::quaternion_from_sigma(sigma_BN), r = sim::quaternion_from_sigma(sigma_RN);
+  // q_BR = q_BN (x) q_RN^-1: scalar part and vector norm
+  const double q0 = b(0) * r(0) + b.tail<3>().dot(r.tail<3>());
+  const Eigen::Vector3d qv = r(0) * b.tail<3>() - b(0) * r.tail<3>() - b.tail<3>().cross(r.tail<3>());
+  return 2.0 * std::atan2(qv.norm(), std::fabs(q0));
+}
+
+void TruthTask::operator()(uint64_t k) const
+{
+  const sim::Plant& p = *plant;
+  const sim::StateVector& x = p.state();
+  const sim::MassCentre mp = p.mass_centre();
+  TruthMsg t{};
+  for (int i = 0; i < 3; ++i) {
+    t.r_BN_N[i] = x(sim::StateLayout::r_BN_N + i);
+    t.v_BN_N[i] = x(sim::StateLayout::v_BN_N + i);
+    t.sigma_BN[i] = x(sim::StateLayout::sigma_BN + i);
+    t.omega_BN_B[i] = x(sim::StateLayout::omega_BN_B + i);
+    t.r_CoM_B[i] = mp.c_B(i);
+  }
+  // mass centre: r_C = r_B + [NB] c, v_C = v_B + [NB](omega x c) (c' neglected, §5.6)
+  const Eigen::Matrix3d NB = sim::dcm_BN_from_sigma(ev(t.sigma_BN)).transpose();
+  const Eigen::Vector3d rC = ev(t.r_BN_N) + NB * mp.c_B;
+  const Eigen::Vector3d vC = ev(t.v_BN_N) + NB * ev(t.omega_BN_B).cross(mp.c_B);
+  for (int i = 0; i < 3; ++i) {
+    t.r_CN_N[i] = rC(i);
+    t.v_CN_N[i] = vC(i);
+  }
+  t.m_sc = mp.m_sc;
+  for (int k2 = 0; k2 < p.num_tanks(); ++k2) t.m_prop += p.m_prop(k2);
+  for (int i = 0; i < p.num_rw(); ++i) {
+    t.Omega[i] = p.Omega(i);
+    t.u_s[i] = p.u_s(i);
+  }
+  for (int j = 0; j < p.num_thr(); ++j) t.F_thr[j] = p.thruster_effect(j).F_B.norm();
+  out.write(t, k * tick_ns);
+}
+
+void BurnMonitor::snap(Snap& s, double t, const TruthMsg& tr) const
+{
+  s.set = true;
+  s.t = t;
+  s.m = tr.m_sc;
+  for (int k = 0; k < plant->num_tanks(); ++k) s.m_p[static_cast<size_t>(k)] = plant->m_prop(k);
+  s.dv_ng = dv_ng;
+  s.r = ev(tr.r_CN_N);
+  s.v = ev(tr.v_CN_N);
+}
+
+void BurnMonitor::operator()(uint64_t k)
+{
+  const TruthMsg& t = truth.read();
+  const Eigen::Vector3d r = ev(t.r_CN_N), v = ev(t.v_CN_N);
+  if (have_prev) {
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    if (mu > 0.0) g = 0.5 * (sim::point_mass_gravity(mu, r_prev) + sim::point_mass_gravity(mu, r));
+    dv_ng += (v - v_prev) - dt * g;
+  }
+  have_prev = true;
+  r_prev = r;
+  v_prev = v;
+  if (burn.engine >= 0) {
+    const int64_t t_ns = static_cast<int64_t>(k * tick_ns);
+    const double tt = static_cast<double>(t_ns) * 1e-9;
+    if (!start.set && t_ns >= burn.on_ns) snap(start, tt, t);
+    // the engine is off (and its thrust decayed, 5 time constants) at burn end
+    if (start.set && !end.set && t_ns >= burn.off_ns && t.F_thr[burn.engine] < 1e-3 * engine_F_max)
+      snap(end, tt, t);
+  }
+  BurnStateMsg m{};
+  for (int i = 0; i < 3; ++i) m.dv_ng_N[i] = dv_ng(i);
+  m.in_burn = start.set && !end.set ? 1 : 0;
+  out.write(m, k * tick_ns);
+}
+
+void SampleSensorsTask::operator()(uint64_t k) const
+{
+  SensorSampleMsg s = out.channel().value();  // held outputs of the models not due
+  if (sensors->sample(k, s)) out.write(s, k * tick_ns);
+}
+
+void CssTask::operator()(uint64_t k) const
+{
+  CssMsg m{};
+  sensors->read_css(m);
+  out.write(m, k * tick_ns);
+}
+
+void FswInputTask::operator()(uint64_t k) const
+{
+  static const SensorSampleMsg kNoSamples{};
+  static const CssMsg kNoCss{};
+  FswAcsSensorMsg msg;
+  sensors->fsw_input(k * tick_ns, truth.read(), samples.valid() ? samples.read() : kNoSamples,
+                     css.valid() ? css.read() : kNoCss, msg);
+  out.write(msg, msg.t_ns);
+}
+
+void FswTask::operator()(uint64_t k) const
+{
+  const uint64_t t_ns = k * tick_ns;
+  FswAcsActuatorMsg a = act.channel().value();
+  FswAcsHealthMsg h = health.channel().value();
+  fsw->cycle(in.read(), a, h);
+  act.write(a, t_ns);
+  health.write(h, t_ns);
+  if (has_sun) {
+    // the css_sun estimate the cycle used
+    SunHeadingMsg s{};
+    copy3(s.sun_B, h.sun_hat_B);
+    s.valid = h.sun_valid;
+    s.num_lit = h.num_lit;
+    sun.write(s, t_ns);
+  }
+}
+
+void ActuatorTask::operator()(uint64_t k) const
+{
+  const FswAcsActuatorMsg& a = in.read();
+  PlantCmdMsg c{};
+  if (a.wheels_active)
+    for (int i = 0; i < n_rw; ++i) c.u_s[i] = static_cast<double>(a.u_s[i]);
+  if (a.thrusters_active)
+    for (int i = 0; i < n_acs; ++i) c.T_on[acs_to_plant[static_cast<size_t>(i)]] = static_cast<double>(a.t_on[i]);
+  if (burn.engine >= 0) c.T_on[burn.engine] = burn.on_time(static_cast<int64_t>(k * tick_ns));
+  out.write(c, k * tick_ns);
+}
+
+void PlantInputTask::operator()(uint64_t) const
+{
+  const PlantCmdMsg& c = in.read();
+  sim::WheelArray u{};
+  for (int i = 0; i < plant->num_rw(); ++i) u[static_cast<size_t>(i)] = c.u_s[i];
+  plant->latch_wheel_commands(u);
+  if (plant->num_thr() > 0) {
+    sim::ThrusterArray T{};
+    for (int j = 0; j < plant->num_thr(); ++j) T[static_cast<size_t>(j)] = c.T_on[j];
+    plant->command_thrusters(T);
+  }
+}
+
+void MetricsTask::operator()(uint64_t k)
+{
+  const TruthMsg& t = truth.read();
+  MetricsMsg m{};
+  const Eigen::Vector3d sigma = ev(t.sigma_BN);
+  if (inertial) {
+    m.pointing_error = principal_angle(sigma, sigma_R0N);  // guid_inertial: constant reference
+  } else {
+    const Eigen::Vector3d d_B = sim::dcm_BN_from_sigma(sigma) * (r_sun_N - ev(t.r_BN_N)).normalized();
+    m.pointing_error = std::atan2(sun_axis_B.cross(d_B).norm(), sun_axis_B.dot(d_B));
+  }
+  const sim::EnergyMomentum em = plant->energy_momentum();
+  for (int i = 0; i < 3; ++i) m.H_C_N[i] = em.H_C_N(i);
+  m.E_rot = em.E_rot;
+  if (has_burn) m.dv_ng = ev(burn.read().dv_ng_N).norm();
+  if (mu > 0.0) {
+    const sim::OrbitElements oe = sim::elements_from_rv(mu, ev(t.r_CN_N), ev(t.v_CN_N));
+    m.orbit_e = oe.e;
+    m.orbit_r_p = oe.r_p;
+    m.orbit_energy = oe.energy;
+  }
+  if (has_burn && burn.read().in_burn) max_err_burn = std::max(max_err_burn, m.pointing_error);
+  out.write(m, k * tick_ns);
+}
+
+}  // namespace harness

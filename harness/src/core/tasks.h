@@ -1,0 +1,167 @@
+// tasks: the tasks of the tick protocol (docs/harness.md), one named object
+// each.  A task holds the Reader/Writer of every message it uses (the
+// data-flow map is built from these) and the models it drives; it runs as
+// task(k) at tick k.  run.cpp registers them in the protocol's order.
+#ifndef HARNESS_TASKS_H
+#define HARNESS_TASKS_H
+
+#include <array>
+#include <cstdint>
+
+#include <Eigen/Dense>
+
+#include "core/fsw_config.h"
+#include "harness/core/fsw_endpoint.h"
+#include "harness/core/loop_messages.h"
+#include "harness/core/messages.h"
+#include "harness/core/recorder.h"
+#include "core/plant_builder.h"
+#include "sim/plant.h"
+#include "core/sensor_suite.h"
+#include "sim/propellant.h"
+
+namespace harness {
+
+// Wheel torques and thruster on-times for the plant, latched at FSW ticks.
+struct PlantCmdMsg {
+  double u_s[kMaxRw];    // [N*m] wheel motor torque commands (zero-order hold)
+  double T_on[kMaxThr];  // [s]   on-time requests (plant thruster order; ACS from the FSW, the engine from the burn)
+};
+
+// Non-gravitational velocity change of C and the burn window (thruster runs).
+struct BurnStateMsg {
+  double dv_ng_N[3];  // [m/s] accumulated non-gravitational velocity change of C
+  uint8_t in_burn;    // [-] 1 between burn start and burn end
+};
+
+// Plant state -> `truth` (every tick).
+struct TruthTask {
+  const sim::Plant* plant;
+  uint64_t tick_ns;
+  Writer<TruthMsg> out;
+  void operator()(uint64_t k) const;
+};
+
+// Burn monitor (thruster runs, every tick): dv += (v_C(k+1) - v_C(k)) -
+// dt/2 (g(r_C(k)) + g(r_C(k+1))), and the state at the burn's start and end.
+struct BurnMonitor {
+  struct Snap {
+    bool set = false;
+    double t = 0.0, m = 0.0;
+    std::array<double, sim::kMaxTanks> m_p{};
+    Eigen::Vector3d dv_ng = Eigen::Vector3d::Zero(), r = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero();
+  };
+  BurnMonitor(const sim::Plant* p, uint64_t tk, double dt_s, double mu_, BurnSchedule b, double F_eng,
+              Reader<TruthMsg> in, Writer<BurnStateMsg> w)
+      : plant(p), tick_ns(tk), dt(dt_s), mu(mu_), burn(b), engine_F_max(F_eng), truth(in), out(w)
+  {
+  }
+  const sim::Plant* plant;
+  uint64_t tick_ns;
+  double dt;              // [s]
+  double mu;              // [m^3/s^2]
+  BurnSchedule burn;
+  double engine_F_max;    // [N]
+  Reader<TruthMsg> truth;
+  Writer<BurnStateMsg> out;
+  bool have_prev = false;
+  Eigen::Vector3d r_prev = Eigen::Vector3d::Zero(), v_prev = Eigen::Vector3d::Zero();
+  Eigen::Vector3d dv_ng = Eigen::Vector3d::Zero();
+  Snap start, end;
+  void operator()(uint64_t k);
+
+ private:
+  void snap(Snap& s, double t, const TruthMsg& tr) const;
+};
+
+// Gyro, star tracker, tachometers (every tick; each samples the plant's
+// sensor truth when its own period is due, its output held in between)
+// -> `sensor_samples`.
+struct SampleSensorsTask {
+  SensorSuite* sensors;  // samples the plant's sensor truth
+  uint64_t tick_ns;
+  Writer<SensorSampleMsg> out;
+  void operator()(uint64_t k) const;
+};
+
+// Coarse sun sensors (FSW ticks) -> `css_readings`.
+struct CssTask {
+  SensorSuite* sensors;  // samples the plant's sensor truth
+  uint64_t tick_ns;
+  Writer<CssMsg> out;
+  void operator()(uint64_t k) const;
+};
+
+// FSW input (FSW ticks) -> `fsw_sensors`.
+struct FswInputTask {
+  const SensorSuite* sensors;
+  uint64_t tick_ns;
+  Reader<TruthMsg> truth;
+  Reader<SensorSampleMsg> samples;  // unset without sampled models
+  Reader<CssMsg> css;               // unset without CSS models
+  Writer<FswAcsSensorMsg> out;
+  void operator()(uint64_t k) const;
+};
+
+// The FSW (FSW ticks): `fsw_sensors` -> endpoint -> `fsw_actuators`,
+// `fsw_health` (and `sun_heading` in sun-safe runs).
+struct FswTask {
+  FswEndpoint* fsw;
+  uint64_t tick_ns;
+  Reader<FswAcsSensorMsg> in;
+  Writer<FswAcsActuatorMsg> act;
+  Writer<FswAcsHealthMsg> health;
+  Writer<SunHeadingMsg> sun;  // unset outside sun-safe runs
+  bool has_sun = false;
+  void operator()(uint64_t k) const;
+};
+
+// FSW actuator message -> plant commands (FSW ticks): wheel torques
+// (zero when the FSW's wheels are inactive), ACS on-times in plant order,
+// the engine's on-time from the burn schedule.
+struct ActuatorTask {
+  uint64_t tick_ns;
+  int n_rw, n_thr, n_acs;
+  std::array<int, FSW_MAX_THR> acs_to_plant;
+  BurnSchedule burn;
+  Reader<FswAcsActuatorMsg> in;
+  Writer<PlantCmdMsg> out;
+  void operator()(uint64_t k) const;
+};
+
+// The plant takes `plant_cmd` (FSW ticks): wheel torques latched (§4.3),
+// thruster requests latched at its next command instant (§5.2).
+struct PlantInputTask {
+  sim::Plant* plant;
+  Reader<PlantCmdMsg> in;
+  void operator()(uint64_t k) const;
+};
+
+// Figures of merit (record ticks) -> `metrics`.
+struct MetricsTask {
+  MetricsTask(const sim::Plant* p, uint64_t tk, bool inertial_, const Eigen::Vector3d& sigma_R0N_,
+              const Eigen::Vector3d& sun_axis_B_, const Eigen::Vector3d& r_sun_N_, double mu_, Reader<TruthMsg> t,
+              Reader<BurnStateMsg> b, bool has_b, Writer<MetricsMsg> w)
+      : plant(p), tick_ns(tk), inertial(inertial_), sigma_R0N(sigma_R0N_), sun_axis_B(sun_axis_B_),
+        r_sun_N(r_sun_N_), mu(mu_), truth(t), burn(b), has_burn(has_b), out(w)
+  {
+  }
+  const sim::Plant* plant;
+  uint64_t tick_ns;
+  bool inertial;
+  Eigen::Vector3d sigma_R0N, sun_axis_B, r_sun_N;
+  double mu;
+  Reader<TruthMsg> truth;
+  Reader<BurnStateMsg> burn;  // unset without thrusters
+  bool has_burn = false;
+  Writer<MetricsMsg> out;
+  double max_err_burn = 0.0;  // [rad] largest pointing error between burn start and end
+  void operator()(uint64_t k);
+};
+
+// Principal angle [rad] of B relative to R from two MRPs.
+double principal_angle(const Eigen::Vector3d& sigma_BN, const Eigen::Vector3d& sigma_RN);
+
+}  // namespace harness
+
+#endif  // HARNESS_TASKS_H

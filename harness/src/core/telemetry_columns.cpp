@@ -1,0 +1,160 @@
+// telemetry_columns.cpp: the recorded quantities, in the order of the flat
+// table (CSV, report).  Dataset names are the quantity names; column names
+// are the flat names kept since the first harness (scripts rely on them).
+#include "core/telemetry_columns.h"
+#include "core/convert.h"
+
+#include <string>
+#include <vector>
+
+#include "sim/attitude.h"
+#include "sim/units.h"
+
+namespace harness {
+
+namespace {
+
+constexpr double kRadToDeg = 180.0 / sim::kPi;
+constexpr double kRpmPerRadS = 1.0 / sim::kRadPerSecPerRpm;
+
+// A 3-vector quantity with columns <prefix>_x/_y/_z.
+Quantity vec3(const std::string& name, const std::string& unit, const std::string& frame,
+              const std::string& prefix = "")
+{
+  const std::string p = prefix.empty() ? name : prefix;
+  return {name, unit, frame, {p + "_x", p + "_y", p + "_z"}};
+}
+Quantity scalar(const std::string& name, const std::string& unit, const std::string& column = "")
+{
+  return {name, unit, "", {column.empty() ? name : column}};
+}
+// One component per wheel or thruster: <prefix><i>.
+Quantity indexed(const std::string& name, const std::string& unit, const std::string& prefix, int n)
+{
+  Quantity q{name, unit, "", {}};
+  for (int i = 0; i < n; ++i) q.columns.push_back(prefix + std::to_string(i));
+  return q;
+}
+
+}  // namespace
+
+void declare_telemetry(Recorder& rec, const RecordedChannels& ch, int n_rw, int n_thr, bool orbit,
+                       std::function<uint64_t()> t_now_ns)
+{
+  rec.add_source("", {scalar("t", "s")}, [t_now_ns](double* o) {
+    o[0] = static_cast<double>(t_now_ns()) / 1e9;  // correctly rounded: 30 s is 30.0
+  });
+  rec.record<MetricsMsg>(*ch.metrics, {scalar("pointing_error", "deg", "pointing_error_deg")},
+                         [](const MetricsMsg& x, double* o) { o[0] = x.pointing_error * kRadToDeg; });
+  rec.record<TruthMsg>(*ch.truth,
+                       {vec3("sigma_BN", "-", "B/N MRP"),
+                        {"q_BN", "-", "B/N quaternion (scalar first)", {"q_BN_0", "q_BN_1", "q_BN_2", "q_BN_3"}},
+                        vec3("omega_BN_B", "rad/s", "B"), vec3("r_BN_N", "m", "N"), vec3("v_BN_N", "m/s", "N")},
+                       [](const TruthMsg& x, double* o) {
+                         const Eigen::Vector4d q = sim::quaternion_from_sigma(ev(x.sigma_BN));
+                         for (int i = 0; i < 3; ++i) o[i] = x.sigma_BN[i];
+                         for (int i = 0; i < 4; ++i) o[3 + i] = q(i);
+                         for (int i = 0; i < 3; ++i) {
+                           o[7 + i] = x.omega_BN_B[i];
+                           o[10 + i] = x.r_BN_N[i];
+                           o[13 + i] = x.v_BN_N[i];
+                         }
+                       });
+  // what the FSW was given (FswAcsSensorMsg): the measured values next to truth
+  rec.record<FswAcsSensorMsg>(*ch.fsw_sensors,
+                              {vec3("sigma_BN", "-", "B/N MRP", "meas_sigma_BN"),
+                               scalar("att_valid", "-", "meas_att_valid"),
+                               vec3("omega_BN_B", "rad/s", "B", "meas_omega_BN_B")},
+                              [](const FswAcsSensorMsg& x, double* o) {
+                                copy3(o, x.sigma_BN);
+                                o[3] = x.att_valid;
+                                copy3(o + 4, x.omega_BN_B);
+                              });
+  if (n_rw > 0) {
+    rec.record<FswAcsSensorMsg>(*ch.fsw_sensors, {indexed("wheel_speed", "rpm", "meas_wheel_speed_rpm_", n_rw)},
+                                [n_rw](const FswAcsSensorMsg& x, double* o) {
+                                  for (int i = 0; i < n_rw; ++i) o[i] = static_cast<double>(x.Omega[i]) * kRpmPerRadS;
+                                });
+    rec.record<TruthMsg>(*ch.truth,
+                         {indexed("wheel_speed", "rpm", "wheel_speed_rpm_", n_rw),
+                          indexed("wheel_torque", "N*m", "wheel_torque_", n_rw)},
+                         [n_rw](const TruthMsg& x, double* o) {
+                           for (int i = 0; i < n_rw; ++i) o[i] = x.Omega[i] * kRpmPerRadS;
+                           for (int i = 0; i < n_rw; ++i) o[n_rw + i] = x.u_s[i];
+                         });
+    rec.record<FswAcsActuatorMsg>(*ch.fsw_actuators, {indexed("wheel_cmd", "N*m", "wheel_cmd_", n_rw)},
+                                  [n_rw](const FswAcsActuatorMsg& x, double* o) {
+                                    for (int i = 0; i < n_rw; ++i) o[i] = static_cast<double>(x.u_s[i]);
+                                  });
+  }
+  if (n_thr > 0) {
+    rec.record<PlantCmdMsg>(*ch.plant_cmd, {indexed("thruster_on_time", "s", "thruster_on_time_", n_thr)},
+                            [n_thr](const PlantCmdMsg& x, double* o) {
+                              for (int j = 0; j < n_thr; ++j) o[j] = x.T_on[j];
+                            });
+    rec.record<TruthMsg>(*ch.truth,
+                         {indexed("thruster_force", "N", "thruster_force_", n_thr),
+                          scalar("propellant", "kg", "propellant_kg"), scalar("mass", "kg", "mass_kg")},
+                         [n_thr](const TruthMsg& x, double* o) {
+                           for (int j = 0; j < n_thr; ++j) o[j] = x.F_thr[j];
+                           o[n_thr] = x.m_prop;
+                           o[n_thr + 1] = x.m_sc;
+                         });
+    rec.record<MetricsMsg>(*ch.metrics, {scalar("dv_nongrav", "m/s")},
+                           [](const MetricsMsg& x, double* o) { o[0] = x.dv_ng; });
+  }
+  if (orbit)
+    rec.record<MetricsMsg>(*ch.metrics,
+                           {scalar("orbit_e", "-"), scalar("orbit_r_p", "km", "orbit_r_p_km"),
+                            scalar("orbit_energy", "J/kg")},
+                           [](const MetricsMsg& x, double* o) {
+                             o[0] = x.orbit_e;
+                             o[1] = x.orbit_r_p * 1e-3;
+                             o[2] = x.orbit_energy;
+                           });
+  rec.record<FswAcsHealthMsg>(*ch.fsw_health,
+                              {vec3("sigma_BR", "-", "B/R MRP"), vec3("omega_BR_B", "rad/s", "B")},
+                              [](const FswAcsHealthMsg& g, double* o) {
+                                copy3(o, g.sigma_BR);
+                                copy3(o + 3, g.omega_BR_B);
+                              });
+  rec.record<FswAcsActuatorMsg>(*ch.fsw_actuators, {vec3("Lr_B", "N*m", "B")},
+                                [](const FswAcsActuatorMsg& x, double* o) { copy3(o, x.Lr_B); });
+  rec.record<MetricsMsg>(*ch.metrics, {vec3("H_C_N", "kg*m^2/s", "N"), scalar("E_rot", "J")},
+                         [](const MetricsMsg& x, double* o) {
+                           for (int i = 0; i < 3; ++i) o[i] = x.H_C_N[i];
+                           o[3] = x.E_rot;
+                         });
+  {
+    Quantity stages{"stage_status", "-", "", {}};
+    for (int i = 0; i < FSW_ACS_NUM_STAGES; ++i) stages.columns.push_back(std::string("fsw_stage_") + fsw_acs_stage_name(i));
+    rec.record<FswAcsHealthMsg>(*ch.fsw_health,
+                                {scalar("status", "-", "fsw_status"), scalar("safe_output", "-", "fsw_safe_output"), stages},
+                                [](const FswAcsHealthMsg& h, double* o) {
+                                  o[0] = static_cast<double>(h.status);
+                                  o[1] = h.safe_output;
+                                  for (int i = 0; i < FSW_ACS_NUM_STAGES; ++i) o[2 + i] = static_cast<double>(h.stage_status[i]);
+                                });
+  }
+  if (n_rw > 0)  // the FSW's speed-filter verdicts, 0/1 per wheel (all 0 without the filter)
+    rec.record<FswAcsHealthMsg>(*ch.fsw_health,
+                                {indexed("fsw_rw_failed", "-", "fsw_rw_failed_", n_rw),
+                                 indexed("fsw_rw_latched", "-", "fsw_rw_latched_", n_rw)},
+                                [n_rw](const FswAcsHealthMsg& h, double* o) {
+                                  for (int i = 0; i < n_rw; ++i) {
+                                    o[i] = static_cast<double>((h.rw_failed >> i) & 1u);
+                                    o[n_rw + i] = static_cast<double>((h.rw_latched >> i) & 1u);
+                                  }
+                                });
+  if (ch.sun_heading)
+    rec.record<SunHeadingMsg>(*ch.sun_heading,
+                              {vec3("sun_B", "-", "B"), scalar("valid", "-", "sun_valid"),
+                               scalar("num_lit", "-", "css_num_lit")},
+                              [](const SunHeadingMsg& h, double* o) {
+                                for (int i = 0; i < 3; ++i) o[i] = h.sun_B[i];
+                                o[3] = h.valid;
+                                o[4] = h.num_lit;
+                              });
+}
+
+}  // namespace harness

@@ -1,0 +1,32 @@
+// telemetry_columns: what a run records, declared once.  Each entry names a
+// message, its quantities (unit, frame, components) and how they are read
+// from the message; the HDF5 datasets (/<message>/<quantity>), the flat CSV
+// and report columns (<column>) all follow from these declarations.
+#ifndef HARNESS_TELEMETRY_COLUMNS_H
+#define HARNESS_TELEMETRY_COLUMNS_H
+
+#include "harness/core/loop_messages.h"
+#include "harness/core/recorder.h"
+#include "core/tasks.h"
+
+namespace harness {
+
+// The channels a run records (optional ones may be null).
+struct RecordedChannels {
+  const Channel<TruthMsg>* truth = nullptr;
+  const Channel<MetricsMsg>* metrics = nullptr;
+  const Channel<FswAcsSensorMsg>* fsw_sensors = nullptr;
+  const Channel<FswAcsActuatorMsg>* fsw_actuators = nullptr;
+  const Channel<FswAcsHealthMsg>* fsw_health = nullptr;
+  const Channel<PlantCmdMsg>* plant_cmd = nullptr;      // thruster runs
+  const Channel<SunHeadingMsg>* sun_heading = nullptr;  // sun-safe runs
+};
+
+// Declares every recorded column on `rec` (t first).  `t_now_ns` gives the
+// time of the row being sampled.
+void declare_telemetry(Recorder& rec, const RecordedChannels& ch, int n_rw, int n_thr, bool orbit,
+                       std::function<uint64_t()> t_now_ns);
+
+}  // namespace harness
+
+#endif  // HARNESS_TELEMETRY_COLUMNS_H

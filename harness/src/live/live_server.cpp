@@ -1,0 +1,660 @@
+// live_server.cpp: the live view's server and run control (live_server.h).
+#include "live/live_server.h"
+
+// after Eigen (through live_server.h): <resolv.h> defines the macro _res,
+// a parameter name in Eigen's templates
+#include <httplib.h>
+
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <deque>
+#include <fstream>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "core/events.h"
+#include "scenario/scenario_limits.h"
+#include "harness/core/run.h"
+
+#ifdef KESTREL_HAVE_REPORT
+#include "report/report.hpp"
+#endif
+
+namespace harness {
+
+using json = nlohmann::json;
+
+namespace {
+
+std::string random_token()
+{
+  std::random_device rd;
+  std::ostringstream o;
+  for (int i = 0; i < 4; ++i) {
+    const uint32_t w = rd();
+    const char* hex = "0123456789abcdef";
+    for (int b = 7; b >= 0; --b) o << hex[(w >> (4 * b)) & 0xfu];
+  }
+  return o.str();
+}
+
+// compares without stopping at the first difference
+bool same_token(const std::string& a, const std::string& b)
+{
+  if (a.size() != b.size() || a.empty()) return false;
+  unsigned d = 0;
+  for (size_t i = 0; i < a.size(); ++i) d |= static_cast<unsigned>(a[i] ^ b[i]);
+  return d == 0;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+const char* value_kind(EventValue v)
+{
+  switch (v) {
+    case EventValue::None: return "none";
+    case EventValue::Positive: return "positive";
+    case EventValue::NonNegative: return "non_negative";
+    case EventValue::Finite: return "finite";
+  }
+  return "none";
+}
+
+#ifndef KESTREL_HAVE_REPORT
+const char* kNoPage =
+    "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>Kestrel live view</title></head><body>"
+    "<h1>Kestrel live view</h1><p>This build has no bundled page (Node.js/npm were missing at build time). "
+    "The API answers at /api/info, /api/frames and /api/command.</p></body></html>";
+#endif
+
+}  // namespace
+
+struct LiveServer::Impl {
+  LiveOptions opt;
+  std::string token;
+  int port = 0;
+  httplib::Server srv;
+  std::thread thread;
+  const std::chrono::steady_clock::time_point t_start = std::chrono::steady_clock::now();
+
+  // ---- set once at started() (read by the server after `info_ready`) --------
+  std::mutex info_mu;
+  bool info_ready = false;
+  Scenario sc;               // the scenario as started: what commands are checked against
+  std::string info_text;     // /api/info
+  size_t ncols = 0;
+  uint64_t total_ticks = 0;
+  uint64_t tick_ns = 1;
+  size_t max_live_events = 0;  // kMaxScenarioEvents - the scenario's own
+  const std::atomic<int>* stop = nullptr;
+
+  // ---- frames: the ring (producer: the sim thread, try_lock only) --------------
+  struct Frame {
+    uint64_t seq = 0, tick = 0;
+    double wall = 0.0, rate = 0.0;
+    bool paused = false;
+    std::vector<double> row;
+  };
+  std::mutex ring_mu;
+  std::vector<Frame> ring;
+  uint64_t seq = 0;  // frames published (the last one's seq)
+  std::atomic<uint64_t> max_read{0};
+  std::atomic<bool> page_seen{false};
+  std::atomic<uint64_t> dropped_busy{0}, dropped_unread{0};
+  double last_publish = -1.0;
+
+  // ---- commands ------------------------------------------------------------------
+  struct Command {
+    uint64_t id = 0;
+    std::string op;  // pause, resume, step, rate, event
+    uint64_t ticks = 0;
+    double value = 0.0;
+    EventActionSpec action;
+  };
+  struct LogEntry {
+    uint64_t id = 0;
+    std::string text, status;  // status: queued, applied, refused
+    std::string detail;
+    uint64_t tick = 0;
+    double t = 0.0;
+  };
+  std::mutex cmd_mu;
+  std::condition_variable cmd_cv;
+  std::deque<Command> queue;
+  std::atomic<bool> has_cmd{false};
+  std::vector<LogEntry> log;  // every command, by id - 1 (under cmd_mu)
+  uint64_t next_id = 1;
+  size_t live_events = 0;  // event commands accepted (under cmd_mu)
+  std::atomic<uint64_t> applied{0}, refused{0};
+  std::atomic<double> paused_s{0.0};
+
+  // ---- run state (sim thread; mirrored for the server) -----------------------
+  std::atomic<int> state{0};  // 0 starting, 1 running, 2 paused, 3 ended
+  bool paced = false;
+  double rate = 0.0;          // pacing scale (0: as fast as possible)
+  std::atomic<double> rate_shown{0.0};
+  bool paused = false;
+  uint64_t step_until = 0;  // paused: run up to this tick (step)
+  std::string report_path;    // after ended()
+  std::string end_text;
+
+  void serve();
+  bool authorised(const httplib::Request& req, httplib::Response& res);
+  void refuse(httplib::Response& res, int status, const std::string& msg)
+  {
+    ++refused;
+    res.status = status;
+    res.set_content(json{{"ok", false}, {"error", msg}}.dump(), "application/json");
+  }
+  void post_command(const httplib::Request& req, httplib::Response& res);
+  std::string frames_text(uint64_t since);
+  void publish(const Run& run, bool force);
+  // the sim thread: applies what is queued at the boundary before tick k
+  void drain(Run& run, double& pace);
+  void set_log(uint64_t id, const std::string& status, const std::string& detail, uint64_t tick, double t)
+  {
+    std::lock_guard<std::mutex> lk(cmd_mu);
+    LogEntry& e = log[static_cast<size_t>(id - 1)];
+    e.status = status;
+    e.detail = detail;
+    e.tick = tick;
+    e.t = t;
+  }
+};
+
+bool LiveServer::Impl::authorised(const httplib::Request& req, httplib::Response& res)
+{
+  std::string given = req.get_header_value("X-Kestrel-Token");
+  if (given.empty() && req.has_param("token")) given = req.get_param_value("token");
+  if (same_token(given, token)) return true;
+  refuse(res, 403, given.empty() ? "no access token: open the URL kestrel printed (it carries ?token=...)"
+                                 : "wrong access token: open the URL kestrel printed");
+  return false;
+}
+
+void LiveServer::Impl::serve()
+{
+  srv.Get("/", [this](const httplib::Request& req, httplib::Response& res) {
+    if (!authorised(req, res)) {
+      res.set_content(
+          "Kestrel live view: this page needs the access token. Open the URL `kestrel run --live` printed.\n",
+          "text/plain");
+      return;
+    }
+#ifdef KESTREL_HAVE_REPORT
+    res.set_content(report::live_page(), "text/html; charset=utf-8");
+#else
+    res.set_content(kNoPage, "text/html; charset=utf-8");
+#endif
+  });
+  srv.Get("/api/info", [this](const httplib::Request& req, httplib::Response& res) {
+    if (!authorised(req, res)) return;
+    std::lock_guard<std::mutex> lk(info_mu);
+    if (!info_ready) {
+      res.status = 503;
+      res.set_content(json{{"state", "starting"}}.dump(), "application/json");
+      return;
+    }
+    res.set_content(info_text, "application/json");
+  });
+  srv.Get("/api/frames", [this](const httplib::Request& req, httplib::Response& res) {
+    if (!authorised(req, res)) return;
+    uint64_t since = 0;
+    if (req.has_param("since")) {
+      try {
+        since = std::stoull(req.get_param_value("since"));
+      } catch (const std::exception&) {
+        refuse(res, 400, "since: expected a frame number");
+        return;
+      }
+    }
+    res.set_content(frames_text(since), "application/json");
+  });
+  srv.Post("/api/command", [this](const httplib::Request& req, httplib::Response& res) {
+    if (!authorised(req, res)) return;
+    post_command(req, res);
+  });
+  srv.Get("/report", [this](const httplib::Request& req, httplib::Response& res) {
+    if (!authorised(req, res)) return;
+    std::string path;
+    {
+      std::lock_guard<std::mutex> lk(info_mu);
+      path = report_path;
+    }
+    std::ifstream f(path, std::ios::binary);
+    if (path.empty() || !f) {
+      res.status = 404;
+      res.set_content("no report (yet): the run writes it when it ends\n", "text/plain");
+      return;
+    }
+    std::ostringstream o;
+    o << f.rdbuf();
+    res.set_content(o.str(), "text/html; charset=utf-8");
+  });
+}
+
+void LiveServer::Impl::post_command(const httplib::Request& req, httplib::Response& res)
+{
+  json j;
+  try {
+    j = json::parse(req.body);
+  } catch (const std::exception&) {
+    refuse(res, 400, "the command is not JSON");
+    return;
+  }
+  if (!j.is_object() || !j.contains("op") || !j["op"].is_string()) {
+    refuse(res, 400, "a command is {\"op\": pause|resume|step|rate|event, ...}");
+    return;
+  }
+  {
+    std::lock_guard<std::mutex> lk(info_mu);
+    if (!info_ready) {
+      refuse(res, 409, "the run has not started yet");
+      return;
+    }
+  }
+  if (state.load() == 3) {
+    refuse(res, 409, "the run has ended: nothing can be applied");
+    return;
+  }
+  Command c;
+  c.op = j["op"].get<std::string>();
+  std::string text = c.op;
+  if (c.op == "pause" || c.op == "resume") {
+  } else if (c.op == "step") {
+    const json n = j.value("ticks", json(1));
+    if (!n.is_number_integer() || n.get<int64_t>() < 1 || n.get<int64_t>() > 1000000) {
+      refuse(res, 400, "step: ticks must be an integer in [1, 1000000]");
+      return;
+    }
+    c.ticks = n.get<uint64_t>();
+    text += " " + std::to_string(c.ticks) + " tick" + (c.ticks == 1 ? "" : "s");
+  } else if (c.op == "rate") {
+    const json v = j.value("value", json());
+    if (!v.is_number() || !(v.get<double>() > 0.0) || !(v.get<double>() <= 1e6)) {
+      refuse(res, 400, "rate: value must be a multiple of real time in (0, 1e6]");
+      return;
+    }
+    c.value = v.get<double>();
+    std::ostringstream o;
+    o << "rate " << c.value << "x";
+    text = o.str();
+  } else if (c.op == "event") {
+    if (!j.contains("device") || !j["device"].is_string() || !j.contains("action") || !j["action"].is_string()) {
+      refuse(res, 400, "event: needs \"device\" and \"action\" (strings) and, when the action takes one, \"value\"");
+      return;
+    }
+    c.action.device = j["device"].get<std::string>();
+    c.action.action = j["action"].get<std::string>();
+    if (j.contains("value") && !j["value"].is_null()) {
+      if (!j["value"].is_number()) {
+        refuse(res, 400, "event: value must be a number");
+        return;
+      }
+      c.action.value = j["value"].get<double>();
+    }
+    // the scenario event validation (events.cpp), as for a scenario file
+    std::string key;
+    const std::string why = check_event_action(sc, c.action, key);
+    if (!why.empty()) {
+      refuse(res, 400, key + ": " + why);
+      return;
+    }
+    text = c.action.device + " " + c.action.action;
+    if (!std::isnan(c.action.value)) {
+      std::ostringstream o;
+      o.precision(10);
+      o << c.action.value;
+      text += " " + o.str();
+    }
+  } else {
+    refuse(res, 400, "unknown command '" + escape_bytes(c.op) + "' (pause, resume, step, rate, event)");
+    return;
+  }
+  uint64_t id = 0;
+  {
+    std::lock_guard<std::mutex> lk(cmd_mu);
+    if (queue.size() >= kMaxQueued) {
+      ++refused;
+      res.status = 429;
+      res.set_content(json{{"ok", false}, {"error", "too many commands waiting for the run"}}.dump(),
+                      "application/json");
+      return;
+    }
+    if (c.op == "event") {
+      if (live_events >= max_live_events) {
+        ++refused;
+        res.status = 409;
+        res.set_content(json{{"ok", false},
+                             {"error", "the run holds the most events a scenario may have (" +
+                                           std::to_string(kMaxScenarioEvents) + ")"}}
+                            .dump(),
+                        "application/json");
+        return;
+      }
+      ++live_events;
+    }
+    id = next_id++;
+    c.id = id;
+    log.push_back({id, text, "queued", "", 0, 0.0});
+    queue.push_back(c);
+    has_cmd.store(true);
+  }
+  cmd_cv.notify_all();
+  res.status = 202;
+  res.set_content(json{{"ok", true}, {"id", id}, {"command", text}}.dump(), "application/json");
+}
+
+std::string LiveServer::Impl::frames_text(uint64_t since)
+{
+  page_seen.store(true);
+  uint64_t last = 0, missed = 0;
+  std::vector<Frame> copy;  // copied under the lock (memcpy), the JSON is written after it
+  copy.reserve(kRingFrames);
+  {
+    std::lock_guard<std::mutex> lk(ring_mu);
+    last = seq;
+    const uint64_t oldest = seq >= kRingFrames ? seq - kRingFrames + 1 : 1;
+    const uint64_t from = since + 1 < oldest ? oldest : since + 1;
+    if (from > since + 1) missed = from - since - 1;
+    for (uint64_t s = from; s <= seq; ++s) copy.push_back(ring[static_cast<size_t>(s % kRingFrames)]);
+  }
+  json frames = json::array();
+  for (const Frame& f : copy) {
+    json row = json::array();
+    for (double v : f.row) row.push_back(std::isfinite(v) ? json(v) : json(nullptr));
+    frames.push_back({{"seq", f.seq}, {"tick", f.tick}, {"wall", f.wall}, {"rate", f.rate}, {"paused", f.paused},
+                      {"row", std::move(row)}});
+  }
+  uint64_t prev = max_read.load();
+  while (last > prev && !max_read.compare_exchange_weak(prev, last)) {
+  }
+  json cmds = json::array();
+  {
+    std::lock_guard<std::mutex> lk(cmd_mu);
+    for (const LogEntry& e : log)
+      cmds.push_back({{"id", e.id}, {"command", e.text}, {"status", e.status}, {"detail", e.detail}, {"tick", e.tick},
+                      {"t", e.t}});
+  }
+  static const char* kStates[] = {"starting", "running", "paused", "ended"};
+  json j = {{"state", kStates[state.load()]},
+            {"last", last},
+            {"missed", missed},
+            {"dropped_busy", dropped_busy.load()},
+            {"dropped_unread", dropped_unread.load()},
+            {"wall", seconds_since(t_start)},
+            {"rate", rate_shown.load()},
+            {"frames", std::move(frames)},
+            {"commands", std::move(cmds)}};
+  if (state.load() == 3) {
+    std::lock_guard<std::mutex> lk(info_mu);
+    j["end"] = end_text;
+    if (!report_path.empty()) j["report"] = "/report";
+  }
+  return j.dump();
+}
+
+void LiveServer::Impl::publish(const Run& run, bool force)
+{
+  const double now = seconds_since(t_start);
+  if (!force && now - last_publish < kPublishPeriod) return;
+  const double* row = run.recorder().last_row();
+  if (!row) return;
+  if (!ring_mu.try_lock()) {  // a page request is copying: drop this frame, never wait
+    ++dropped_busy;
+    return;
+  }
+  last_publish = now;
+  const uint64_t s = ++seq;
+  Frame& f = ring[static_cast<size_t>(s % kRingFrames)];
+  if (f.seq != 0 && f.seq > max_read.load() && page_seen.load()) ++dropped_unread;
+  f.seq = s;
+  f.tick = run.tick();
+  f.wall = now;
+  f.rate = rate;
+  f.paused = paused;
+  std::copy(row, row + ncols, f.row.begin());
+  ring_mu.unlock();
+}
+
+void LiveServer::Impl::drain(Run& run, double& pace)
+{
+  std::deque<Command> cmds;
+  {
+    std::lock_guard<std::mutex> lk(cmd_mu);
+    cmds.swap(queue);
+    has_cmd.store(false);
+  }
+  const uint64_t k = run.tick();
+  const double t_k = static_cast<double>(k * tick_ns) / 1e9;  // as the recorded t (correctly rounded: k dt)
+  for (const Command& c : cmds) {
+    if (c.op == "pause") {
+      paused = true;
+      step_until = 0;  // a step under way ends here
+    } else if (c.op == "resume") {
+      if (paused && paced) pace = rate;  // deadlines restart from now
+      paused = false;
+    } else if (c.op == "step") {
+      paused = true;  // from a running run: pause after the steps
+      step_until = (step_until > k ? step_until : k) + c.ticks;
+      if (paced) pace = rate;
+    } else if (c.op == "rate") {
+      rate = c.value;
+      paced = true;
+      rate_shown.store(rate);
+      if (!paused) pace = rate;
+    } else if (c.op == "event") {
+      if (k + 1 >= total_ticks) {  // t_k would be the run's end: the manifest would not take it
+        ++refused;
+        set_log(c.id, "refused", "the run is at its last tick", k, t_k);
+        continue;
+      }
+      EventSpec e;
+      e.name = "live" + std::to_string(c.id);
+      for (bool taken = true; taken;) {  // unique among the scenario's names
+        taken = false;
+        for (const EventSpec& x : run.scenario().events) taken = taken || x.name == e.name;
+        if (taken) e.name += "_";
+      }
+      e.t = t_k;
+      e.actions.push_back(c.action);
+      try {
+        run.add_event(e);
+      } catch (const std::exception& ex) {
+        ++refused;
+        set_log(c.id, "refused", ex.what(), k, t_k);
+        continue;
+      }
+      ++applied;
+      set_log(c.id, "applied", "event " + e.name, k, t_k);
+      continue;
+    }
+    ++applied;
+    set_log(c.id, "applied", "", k, t_k);
+  }
+}
+
+LiveServer::LiveServer(LiveOptions opt) : impl_(std::make_unique<Impl>())
+{
+  Impl& m = *impl_;
+  m.opt = std::move(opt);
+  m.token = m.opt.token.empty() ? random_token() : m.opt.token;
+  m.ring.resize(kRingFrames);
+  m.serve();
+  if (m.opt.port == 0) {
+    m.port = m.srv.bind_to_any_port(m.opt.host);
+    if (m.port <= 0) throw std::runtime_error("live view: cannot bind " + m.opt.host + " to a free port");
+  } else {
+    if (!m.srv.bind_to_port(m.opt.host, m.opt.port))
+      throw std::runtime_error("live view: cannot bind " + m.opt.host + ":" + std::to_string(m.opt.port) +
+                               " (in use, or not an address of this host)");
+    m.port = m.opt.port;
+  }
+  m.thread = std::thread([&m] { m.srv.listen_after_bind(); });
+}
+
+LiveServer::~LiveServer()
+{
+  impl_->srv.stop();
+  if (impl_->thread.joinable()) impl_->thread.join();
+}
+
+int LiveServer::port() const { return impl_->port; }
+const std::string& LiveServer::token() const { return impl_->token; }
+std::string LiveServer::url() const
+{
+  const std::string& h = impl_->opt.host;
+  const bool v6 = h.find(':') != std::string::npos;
+  return "http://" + (v6 ? "[" + h + "]" : h) + ":" + std::to_string(impl_->port) + "/?token=" + impl_->token;
+}
+
+void LiveServer::started(Run& run, double realtime_scale, const std::atomic<int>* stop)
+{
+  Impl& m = *impl_;
+  const Scenario& sc = run.scenario();
+  const Recorder& rec = run.recorder();
+  m.stop = stop;
+  m.paused = m.opt.start_paused;
+  m.step_until = m.opt.start_paused ? 1 : 0;  // tick 0 runs, so the page shows the state at t = 0
+  m.paced = realtime_scale > 0.0;
+  m.rate = realtime_scale;
+  m.rate_shown.store(realtime_scale);
+  m.ncols = rec.num_columns();
+  m.total_ticks = run.total_ticks();
+  m.tick_ns = sc.tick_ns();
+  for (auto& f : m.ring) f.row.assign(m.ncols, 0.0);
+  json cols = json::array(), units = json::array();
+  for (const Column& c : rec.columns()) {
+    cols.push_back(c.name);
+    units.push_back(c.unit);
+  }
+  // the device panel: every device of the scenario and the actions it takes
+  // here (an action check_event_action refuses in this scenario is left out)
+  json devices = json::array();
+  auto add_device = [&](const std::string& name) {
+    EventTarget tg;
+    if (!resolve_event_device(sc, name, tg).empty()) return;
+    json acts = json::array();
+    for (const EventActionDef& d : event_actions(tg.device)) {
+      EventActionSpec probe{name, d.word, d.value == EventValue::None ? std::numeric_limits<double>::quiet_NaN() : 1.0};
+      std::string key;
+      if (!check_event_action(sc, probe, key).empty()) continue;
+      acts.push_back({{"action", d.word}, {"value", value_kind(d.value)}, {"unit", d.unit}, {"what", d.what}});
+    }
+    devices.push_back({{"name", name}, {"kind", to_string(tg.device)}, {"index", tg.index}, {"actions", acts}});
+  };
+  for (const WheelSpec& w : sc.wheels) add_device(w.name);
+  for (const ThrusterSpec& t : sc.thrusters) add_device(t.name);
+  if (sc.sensors.gyro.enabled) add_device("gyro");
+  if (sc.sensors.star_tracker.enabled) add_device("star_tracker");
+  for (size_t i = 0; i < sc.sensors.css.normals_B.size(); ++i) add_device("css" + std::to_string(i));
+  if (run.fsw_accepts_commands()) add_device("fsw");  // mode and actuation commands
+  json wheels = json::array();
+  for (const WheelSpec& w : sc.wheels) wheels.push_back({{"name", w.name}, {"Omega_max", w.params.Omega_max}});
+  json info = {{"scenario", sc.name},
+               {"description", sc.description},
+               {"version", version()},
+               {"dt", sc.rates.dt},
+               {"duration", sc.duration},
+               {"ticks", m.total_ticks},
+               {"fsw_mode", to_string(sc.fsw.mode)},
+               {"paced", m.paced},
+               {"rate", m.rate},
+               {"columns", cols},
+               {"units", units},
+               {"devices", devices},
+               {"wheels", wheels},
+               {"geometry", json::parse(geometry_json_text(run))},
+               {"publish_period", kPublishPeriod},
+               {"ring_frames", kRingFrames}};
+  std::lock_guard<std::mutex> lk(m.info_mu);
+  m.sc = sc;
+  m.max_live_events = kMaxScenarioEvents > sc.events.size() ? kMaxScenarioEvents - sc.events.size() : 0;
+  m.info_text = info.dump();
+  m.info_ready = true;
+  m.state.store(1);
+}
+
+uint64_t LiveServer::boundary(Run& run, double& pace)
+{
+  Impl& m = *impl_;
+  if (m.has_cmd.load(std::memory_order_relaxed)) m.drain(run, pace);
+  if (!m.paused) {
+    m.publish(run, false);
+    return 1;
+  }
+  if (run.tick() < m.step_until) {  // stepping while paused
+    m.publish(run, false);
+    return m.step_until - run.tick();
+  }
+  // paused: show it, then wait for a command (or a stop request)
+  m.state.store(2);
+  m.publish(run, true);
+  const auto wait0 = std::chrono::steady_clock::now();
+  while (m.paused && run.tick() >= m.step_until) {
+    if (m.stop && m.stop->load() != 0) return 1;
+    {
+      std::unique_lock<std::mutex> lk(m.cmd_mu);
+      m.cmd_cv.wait_for(lk, std::chrono::milliseconds(100), [&m] { return m.has_cmd.load(); });
+    }
+    if (m.has_cmd.load()) m.drain(run, pace);
+  }
+  m.paused_s.store(m.paused_s.load() + seconds_since(wait0));
+  if (!m.paused) m.state.store(1);
+  m.publish(run, true);
+  return m.paused ? m.step_until - run.tick() : 1;
+}
+
+void LiveServer::ended(const Run& run, const RunResult& res)
+{
+  Impl& m = *impl_;
+  m.paused = false;
+  m.publish(run, true);
+  std::ostringstream o;
+  o << (res.ok ? "complete" : res.stopped_by_signal ? "interrupted" : "failed: " + res.failure) << " at t = "
+    << res.status.t_reached << " s";
+  std::lock_guard<std::mutex> lk(m.info_mu);
+  for (const std::string& f : res.files)
+    if (f.size() >= 11 && f.compare(f.size() - 11, 11, "report.html") == 0) m.report_path = f;
+  m.end_text = o.str();
+  m.state.store(3);
+  // commands still queued will never apply
+  std::lock_guard<std::mutex> lc(m.cmd_mu);
+  for (const Impl::Command& c : m.queue) {
+    m.log[static_cast<size_t>(c.id - 1)].status = "refused";
+    m.log[static_cast<size_t>(c.id - 1)].detail = "the run ended first";
+    ++m.refused;
+  }
+  m.queue.clear();
+}
+
+void LiveServer::linger(double seconds, const std::atomic<int>* stop)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  while (seconds_since(t0) < seconds && !(stop && stop->load() != 0))
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+}
+
+LiveCounters LiveServer::counters() const
+{
+  const Impl& m = *impl_;
+  LiveCounters c;
+  c.published = m.seq;
+  c.dropped_busy = m.dropped_busy.load();
+  c.dropped_unread = m.dropped_unread.load();
+  c.commands_applied = m.applied.load();
+  c.commands_refused = m.refused.load();
+  c.paused_s = m.paused_s.load();
+  return c;
+}
+
+}  // namespace harness

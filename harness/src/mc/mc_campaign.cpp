@@ -1,0 +1,505 @@
+// mc_campaign.cpp: the plan, the per-run metrics and the runs of a Monte
+// Carlo campaign (harness/monte_carlo.h).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include "harness/mc/monte_carlo.h"
+#include "harness/drive/run_scenario.h"
+#include "harness/core/run.h"
+#include "scenario/mc_draw.h"
+
+namespace harness {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The columns a metric reads, and whether it takes their norm per row.
+struct Selection {
+  std::vector<size_t> cols;
+  bool norm = false;
+};
+
+// column: exact name; a quantity's name (its columns, norm per row); a
+// prefix ending in '*'.  Empty when nothing matches.
+Selection select_columns(const RecordLayout& l, const std::string& column)
+{
+  Selection s;
+  if (column.empty()) return s;
+  if (column.back() == '*') {
+    const std::string pre = column.substr(0, column.size() - 1);
+    for (size_t i = 0; i < l.columns.size(); ++i)
+      if (l.columns[i].name.compare(0, pre.size(), pre) == 0) s.cols.push_back(i);
+    return s;
+  }
+  for (size_t i = 0; i < l.columns.size(); ++i)
+    if (l.columns[i].name == column) {
+      s.cols.push_back(i);
+      return s;
+    }
+  for (const QuantityInfo& q : l.quantities)
+    if (q.name == column && q.num_cols > 1) {
+      for (size_t c = 0; c < q.num_cols; ++c) s.cols.push_back(q.first_col + c);
+      s.norm = true;
+      return s;
+    }
+  return s;
+}
+
+std::string unit_of(const RecordLayout& l, const Selection& s)
+{
+  return s.cols.empty() ? "" : l.columns[s.cols.front()].unit;
+}
+
+// The recorded rows of a run reduced to the plan's metrics and thinned
+// series, streaming (memory bounded for any duration).
+class McSink : public RecordSink {
+ public:
+  explicit McSink(const McPlan& plan) : plan_(plan) {}
+
+  void begin(const RecordLayout& layout, uint64_t) override
+  {
+    sel_.clear();
+    for (const McMetric& m : plan_.metrics) sel_.push_back(select_columns(layout, m.column));
+    acc_.assign(plan_.metrics.size(), Acc{});
+    series_cols_.clear();
+    for (const std::string& c : plan_.series_columns) {
+      const Selection s = select_columns(layout, c);
+      series_cols_.push_back(s.cols.empty() ? SIZE_MAX : s.cols.front());
+    }
+    series_.assign(plan_.series_rows.size() * plan_.series_columns.size(), std::nanf(""));
+    ncols_ = layout.columns.size();
+    row_ = 0;
+    next_sample_ = 0;
+  }
+
+  void write(const double* rows, size_t n) override
+  {
+    for (size_t r = 0; r < n; ++r, ++row_) {
+      const double* x = rows + r * ncols_;
+      const double t = x[0];
+      for (size_t m = 0; m < plan_.metrics.size(); ++m) {
+        const McMetric& mt = plan_.metrics[m];
+        if (t < mt.after || (mt.until >= 0.0 && t > mt.until)) continue;
+        const Selection& s = sel_[m];
+        if (s.norm) {
+          double q = 0.0;
+          for (size_t c : s.cols) q += x[c] * x[c];
+          acc_[m].add(std::sqrt(q));
+          acc_[m].end_row(1);
+        } else {
+          for (size_t c : s.cols) acc_[m].add(x[c]);
+          acc_[m].end_row(s.cols.size());
+        }
+      }
+      if (next_sample_ < plan_.series_rows.size() && row_ == plan_.series_rows[next_sample_]) {
+        for (size_t c = 0; c < series_cols_.size(); ++c)
+          if (series_cols_[c] != SIZE_MAX)
+            series_[next_sample_ * series_cols_.size() + c] = static_cast<float>(x[series_cols_[c]]);
+        ++next_sample_;
+      }
+    }
+  }
+
+  void end(bool) override {}
+
+  std::vector<double> metrics() const
+  {
+    std::vector<double> out;
+    for (size_t m = 0; m < plan_.metrics.size(); ++m) out.push_back(acc_[m].value(plan_.metrics[m].stat));
+    return out;
+  }
+  std::vector<float> series() const { return series_; }
+
+ private:
+  struct Acc {
+    uint64_t n = 0, errors = 0;
+    bool nan = false;
+    double mx = -INFINITY, mn = INFINITY, mxabs = 0.0, sum = 0.0, sum2 = 0.0;
+    double first = NAN, last = NAN;       // first / last value (several columns: their maximum)
+    double row_max = -INFINITY;
+    void add(double v)
+    {
+      if (std::isnan(v)) nan = true;
+      ++n;
+      mx = std::max(mx, v);
+      mn = std::min(mn, v);
+      mxabs = std::max(mxabs, std::fabs(v));
+      sum += v;
+      sum2 += v * v;
+      if (v < 0.0) ++errors;
+      row_max = std::max(row_max, v);
+    }
+    // a row of k separate columns ends: its largest value is the row's "final"
+    void end_row(size_t k)
+    {
+      if (k == 0) return;
+      if (std::isnan(first)) first = row_max;
+      last = row_max;
+      row_max = -INFINITY;
+    }
+    double value(const std::string& stat) const
+    {
+      if (n == 0 || nan) return NAN;
+      if (stat == "max") return mx;
+      if (stat == "min") return mn;
+      if (stat == "max_abs") return mxabs;
+      if (stat == "mean") return sum / static_cast<double>(n);
+      if (stat == "rms") return std::sqrt(sum2 / static_cast<double>(n));
+      if (stat == "error_count") return static_cast<double>(errors);
+      if (stat == "final") return last;
+      if (stat == "drop") return first - last;
+      return NAN;
+    }
+  };
+  const McPlan& plan_;
+  std::vector<Selection> sel_;
+  std::vector<Acc> acc_;
+  std::vector<size_t> series_cols_;
+  std::vector<float> series_;
+  size_t ncols_ = 0;
+  uint64_t row_ = 0;
+  size_t next_sample_ = 0;
+};
+
+}  // namespace
+
+McPlan make_mc_plan(const Scenario& nominal, uint64_t master_seed, uint64_t runs)
+{
+  if (!nominal.monte_carlo) {
+    ScenarioIssue is;
+    is.file = nominal.source_file;
+    is.key = "monte_carlo";
+    is.message = "the scenario has no monte_carlo section (docs/monte-carlo.md)";
+    throw ScenarioError({is});
+  }
+  McPlan p;
+  p.nominal = nominal;
+  p.master_seed = master_seed;
+  p.runs = runs;
+  p.drawn = drawn_columns(nominal);
+  // The recorded layout: the nominal run's (a draw changes values, not columns).
+  Scenario probe = nominal;
+  probe.monte_carlo.reset();
+  RunConfig rc;
+  rc.keep_in_memory = false;
+  const Run run(probe, std::move(rc));
+  const RecordLayout& l = run.recorder().layout();
+  auto add_default = [&](const std::string& name, const std::string& column, const std::string& stat,
+                         const std::string& what) {
+    const Selection s = select_columns(l, column);
+    if (s.cols.empty()) return;
+    McMetric m;
+    m.col = {name, stat == "error_count" ? "-" : unit_of(l, s), what};
+    m.column = column;
+    m.stat = stat;
+    p.metrics.push_back(m);
+  };
+  add_default("pointing_error_final", "pointing_error_deg", "final", "pointing error at the end");
+  add_default("omega_max", "omega_BN_B", "max", "largest body rate |omega_BN_B|");
+  add_default("wheel_speed_max", "wheel_speed_rpm_*", "max_abs", "largest wheel speed, any wheel");
+  add_default("propellant_used", "propellant_kg", "drop", "propellant used");
+  add_default("fsw_errors", "fsw_status", "error_count", "recorded rows with an FSW error status");
+  const std::vector<CriterionSpec>& crit = nominal.monte_carlo->criteria;
+  for (size_t i = 0; i < crit.size(); ++i) {
+    const CriterionSpec& c = crit[i];
+    const Selection s = select_columns(l, c.column);
+    if (s.cols.empty()) {
+      ScenarioIssue is;
+      is.file = nominal.source_file;
+      is.line = c.line;
+      is.column = c.column_no;
+      is.key = "monte_carlo.criteria[" + std::to_string(i) + "].column";
+      is.message = "'" + c.column + "' is not recorded by this scenario (a column, a vector quantity or a prefix*; "
+                   "see the columns of results.h5 / telemetry.csv)";
+      throw ScenarioError({is});
+    }
+    McMetric m;
+    std::string range = c.after > 0.0 ? " for t >= " + fmt(c.after) + " s" : "";
+    if (c.until) range += (range.empty() ? " for t <= " : " and t <= ") + fmt(*c.until) + " s";
+    m.col = {c.name, c.stat == "error_count" ? "-" : unit_of(l, s), c.stat + " of " + c.column + range};
+    m.column = c.column;
+    m.stat = c.stat;
+    m.after = c.after;
+    m.until = c.until ? *c.until : -1.0;
+    m.criterion = static_cast<int>(i);
+    m.below = c.below.has_value();
+    m.threshold = c.below ? *c.below : *c.above;
+    p.metrics.push_back(m);
+  }
+  // thinned channels: what the campaign report overlays
+  auto channel = [&](const std::string& name, const std::string& column) {
+    const Selection s = select_columns(l, column);
+    if (s.cols.empty()) return;
+    std::vector<std::string> cols;
+    for (size_t c : s.cols) cols.push_back(l.columns[c].name);
+    for (const std::string& c : cols) p.series_columns.push_back(c);
+    p.channels.emplace_back(name, cols);
+    p.channel_units.push_back(unit_of(l, s));
+  };
+  channel("pointing_error", "pointing_error_deg");
+  channel("omega_BN_B", "omega_BN_B");
+  channel("wheel_speed", "wheel_speed_rpm_*");
+  channel("thruster_force", "thruster_force_*");
+  channel("propellant", "propellant_kg");
+  const uint64_t rows = run.recorder().capacity();
+  const uint64_t S = std::min<uint64_t>(nominal.monte_carlo->retention.thin_samples, rows);
+  const double record_dt = nominal.rates.dt * nominal.rates.record_divisor;
+  for (uint64_t j = 0; j < S; ++j) {
+    const uint64_t r = S > 1 ? (j * (rows - 1) + (S - 1) / 2) / (S - 1) : 0;
+    if (!p.series_rows.empty() && r == p.series_rows.back()) continue;
+    p.series_rows.push_back(r);
+    p.series_t.push_back(static_cast<double>(r) * record_dt);
+  }
+  return p;
+}
+
+McRecord run_mc_one(const McPlan& plan, uint64_t k, const fs::path& dir, bool full, const std::atomic<int>* stop)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  McRecord rec;
+  rec.index = k;
+  McDraw d = draw_run(plan.nominal, plan.master_seed, k);
+  rec.seed = d.sc.seed;
+  rec.drawn = d.drawn;
+  rec.metrics.assign(plan.metrics.size(), NAN);
+  rec.series.assign(plan.series_rows.size() * plan.series_columns.size(), std::nanf(""));
+  d.sc.source_file = plan.nominal.source_file;
+  if (!d.invalid.empty()) {
+    rec.invalid = true;
+    rec.reason = "invalid draw: " + d.invalid;
+    fs::create_directories(dir);
+    write_text((dir / "manifest.json").string(), manifest_text(d.sc, {}));
+  } else {
+    McSink sink(plan);
+    RunStatus st;
+    std::string failure;
+    try {
+      if (full) {
+        RunOptions o;
+        o.out_dir = dir.string();
+        o.force = true;  // the folder holds at most this run's manifest (a retention rerun)
+        o.extra_sinks.push_back(&sink);
+        o.stop = stop;
+        const RunResult r = run_scenario(d.sc, o);
+        rec.interrupted = r.stopped_by_signal != 0;
+        // the run folder's lock file: no other process writes into a campaign's runs/
+        std::error_code ec;
+        fs::remove(dir.parent_path() / ("." + dir.filename().string() + ".kestrel-lock"), ec);
+        failure = r.failure;
+        rec.complete = r.status.complete;
+        rec.full = true;
+      } else {
+        RunConfig rc;
+        rc.keep_in_memory = false;
+        Run run(d.sc, std::move(rc));
+        run.add_sink(sink);
+        while (!run.done() && run.step_ticks(1000)) {  // a stop request is seen within ~1000 ticks
+          if (stop && stop->load() != 0) {
+            rec.interrupted = true;
+            break;
+          }
+        }
+        run.finish();
+        failure = run.failure();
+        rec.complete = failure.empty() && run.done();
+        st.complete = rec.complete;
+        st.ticks = run.tick();
+        st.t_reached = run.recorder().rows() > 0 ? run.recorder().last_row()[0] : 0.0;
+        st.stopped_by = failure;
+        st.events = run.events_applied();
+        fs::create_directories(dir);
+        write_text((dir / "manifest.json").string(), manifest_text(d.sc, {}, &st));
+      }
+    } catch (const ScenarioError& e) {  // a configuration the plant or FSW refuses: an invalid draw
+      const ScenarioIssue& is = e.issues().front();
+      rec.invalid = true;
+      rec.reason = "invalid draw: " + is.key + ": " + is.message;
+      fs::create_directories(dir);
+      write_text((dir / "manifest.json").string(), manifest_text(d.sc, {}));
+    }
+    if (rec.interrupted) return rec;
+    if (!rec.invalid) {
+      rec.metrics = sink.metrics();
+      rec.series = sink.series();
+    }
+    if (!rec.invalid && !rec.complete) rec.reason = "run failed: " + (failure.empty() ? std::string("incomplete") : failure);
+  }
+  if (rec.reason.empty()) {
+    for (size_t m = 0; m < plan.metrics.size(); ++m) {
+      const McMetric& mt = plan.metrics[m];
+      if (mt.criterion < 0) continue;
+      const double v = rec.metrics[m];
+      const bool ok = mt.below ? v < mt.threshold : v > mt.threshold;
+      if (!ok) {
+        rec.reason = mt.col.name + ": " + mt.col.what + " = " + (std::isnan(v) ? std::string("not available") : fmt(v)) +
+                     (mt.below ? ", not below " : ", not above ") + fmt(mt.threshold) +
+                     (mt.col.unit.empty() || mt.col.unit == "-" ? "" : " " + mt.col.unit);
+        break;
+      }
+    }
+  }
+  rec.pass = rec.reason.empty();
+  rec.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return rec;
+}
+
+namespace {
+std::string run_dir_name(uint64_t k)
+{
+  char b[32];
+  std::snprintf(b, sizeof b, "%06llu", static_cast<unsigned long long>(k));
+  return b;
+}
+
+bool same_metrics(const McRecord& a, const McRecord& b)
+{
+  if (a.metrics.size() != b.metrics.size()) return false;
+  for (size_t i = 0; i < a.metrics.size(); ++i)
+    if (!(a.metrics[i] == b.metrics[i] || (std::isnan(a.metrics[i]) && std::isnan(b.metrics[i])))) return false;
+  return true;
+}
+}  // namespace
+
+std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const McRunOptions& opt, bool& stopped)
+{
+  const RetentionSpec& ret = plan.nominal.monte_carlo->retention;
+  const fs::path runs = dir / "runs";
+  fs::create_directories(runs);
+  std::vector<McRecord> out(opt.indices.size());
+  std::vector<char> done(opt.indices.size(), 0);
+  std::mutex mu;
+  McProgress prog;
+  prog.total = opt.indices.size();
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string error;  // an exception of a worker (output error): ends the campaign
+  std::atomic<uint32_t> failing_full{0};  // failing runs given full results during the pass
+  // A failing run's full results: run k again through run_scenario; its
+  // metrics must be the first pass's.
+  auto rerun_full = [&](size_t slot) {
+    const uint64_t k = opt.indices[slot];
+    McRecord r = run_mc_one(plan, k, runs / run_dir_name(k), true, opt.stop);
+    std::lock_guard<std::mutex> g(mu);
+    McRecord& first = out[slot];
+    if (r.interrupted) {  // the first pass's record stays; the folder holds a partial rerun, marked incomplete
+      first.full = false;
+      return;
+    }
+    if (!same_metrics(first, r) || first.pass != r.pass) {
+      r.pass = false;
+      r.reason = "NOT REPRODUCED: the full-results rerun gave other metrics than the first pass (" + first.reason + ")";
+    }
+    r.wall_seconds += first.wall_seconds;
+    first = std::move(r);
+  };
+  auto work = [&](bool rerun_pass, const std::vector<size_t>& todo) {
+    std::atomic<size_t> at{0};
+    auto body = [&]() {
+      for (;;) {
+        if (opt.stop && opt.stop->load() != 0) return;
+        {
+          std::lock_guard<std::mutex> g(mu);
+          if (!error.empty()) return;
+        }
+        const size_t j = at.fetch_add(1);
+        if (j >= todo.size()) return;
+        const size_t slot = todo[j];
+        const uint64_t k = opt.indices[slot];
+        try {
+          if (rerun_pass) {
+            rerun_full(slot);
+            continue;
+          }
+          McRecord r = run_mc_one(plan, k, runs / run_dir_name(k), k < ret.keep_first, opt.stop);
+          if (r.interrupted) {  // not part of the campaign: no folder
+            std::error_code ec;
+            fs::remove_all(runs / run_dir_name(k), ec);
+            return;
+          }
+          // a failing run gets its full results at once, by the same worker (the
+          // selection is made exact by index after the pass)
+          const bool keep = ret.keep_failing && !r.pass && !r.invalid && !r.full && failing_full.load() < ret.max_failing;
+          {
+            std::lock_guard<std::mutex> g(mu);
+            out[slot] = std::move(r);
+            done[slot] = 1;
+            ++prog.done;
+            if (!out[slot].pass) ++prog.failed;
+            prog.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            if (opt.progress) opt.progress(prog);
+          }
+          if (keep) {
+            failing_full.fetch_add(1);
+            rerun_full(slot);
+          }
+        } catch (const std::exception& e) {
+          std::lock_guard<std::mutex> g(mu);
+          if (error.empty()) error = "run " + std::to_string(k) + ": " + e.what();
+          return;
+        }
+      }
+    };
+    const unsigned n = std::max(1u, std::min<unsigned>(opt.jobs, static_cast<unsigned>(todo.size())));
+    std::vector<std::thread> th;
+    for (unsigned i = 1; i < n; ++i) th.emplace_back(body);
+    body();
+    for (std::thread& t : th) t.join();
+  };
+  std::vector<size_t> all(opt.indices.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  // the longest-known first would balance better; index order keeps the
+  // progress readable and the result does not depend on it
+  work(false, all);
+  if (!error.empty()) throw std::runtime_error(error);
+  stopped = opt.stop && opt.stop->load() != 0;
+  // retention, exact and independent of the threads: the first max_failing
+  // failing runs by index keep full results (rerun those that have none yet),
+  // the others keep their manifest only
+  std::vector<size_t> order(opt.indices.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return opt.indices[a] < opt.indices[b]; });
+  if (!stopped && ret.keep_failing) {
+    std::vector<size_t> rerun;
+    uint32_t n_fail = 0;
+    for (size_t slot : order) {
+      McRecord& r = out[slot];
+      if (!done[slot] || r.pass || r.invalid || opt.indices[slot] < ret.keep_first) continue;
+      if (n_fail++ < ret.max_failing) {
+        if (!r.full) rerun.push_back(slot);
+      } else if (r.full) {  // beyond the first max_failing: the manifest only
+        const fs::path d = runs / run_dir_name(opt.indices[slot]);
+        std::error_code ec;
+        std::vector<fs::path> drop;  // listed first, removed after the listing
+        for (const fs::directory_entry& e : fs::directory_iterator(d, ec))
+          if (e.path().filename() != "manifest.json") drop.push_back(e.path());
+        for (const fs::path& f : drop) fs::remove_all(f, ec);
+        r.full = false;
+      }
+    }
+    work(true, rerun);
+    if (!error.empty()) throw std::runtime_error(error);
+    stopped = opt.stop && opt.stop->load() != 0;
+  }
+  std::vector<McRecord> res;
+  for (size_t slot : order)
+    if (done[slot]) res.push_back(std::move(out[slot]));
+  return res;
+}
+
+std::vector<size_t> mc_table_order(const std::vector<McRecord>& records)
+{
+  std::vector<size_t> o(records.size());
+  for (size_t i = 0; i < o.size(); ++i) o[i] = i;
+  std::stable_sort(o.begin(), o.end(), [&](size_t a, size_t b) {
+    const int ra = records[a].invalid ? 0 : records[a].pass ? 2 : 1;
+    const int rb = records[b].invalid ? 0 : records[b].pass ? 2 : 1;
+    if (ra != rb) return ra < rb;
+    return records[a].index < records[b].index;
+  });
+  return o;
+}
+
+}  // namespace harness

@@ -1,0 +1,151 @@
+// outputs.cpp: CSV sink, manifest, report data and text files.
+#include "harness/output/outputs.h"
+#include "harness/core/pacer.h"
+
+#include <cmath>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "scenario/json_util.h"
+
+namespace harness {
+
+using nlohmann::json;
+
+CsvSink::~CsvSink()
+{
+  if (f_) std::fclose(f_);
+}
+
+void CsvSink::begin(const RecordLayout& layout, uint64_t)
+{
+  f_ = std::fopen(path_.c_str(), "wb");
+  if (!f_) throw OutputError(path_ + ": cannot open for writing");
+  nc_ = layout.columns.size();
+  for (size_t c = 0; c < nc_; ++c)
+    std::fprintf(f_, "%s%s [%s]", c ? "," : "", layout.columns[c].name.c_str(), layout.columns[c].unit.c_str());
+  std::fputc('\n', f_);
+  if (std::ferror(f_)) throw OutputError(path_ + ": write failed");
+}
+
+void CsvSink::write(const double* rows, size_t n)
+{
+  for (size_t r = 0; r < n; ++r) {
+    for (size_t c = 0; c < nc_; ++c) std::fprintf(f_, "%s%.17g", c ? "," : "", rows[r * nc_ + c]);
+    std::fputc('\n', f_);
+  }
+  if (std::ferror(f_)) throw OutputError(path_ + ": write failed (disk full?)");
+}
+
+void CsvSink::end(bool)
+{
+  if (!f_) return;
+  const bool bad = std::ferror(f_) != 0;
+  const bool closed = std::fclose(f_) == 0;
+  f_ = nullptr;
+  if (bad || !closed) throw OutputError(path_ + ": write failed (disk full?)");
+}
+
+void write_text(const std::string& path, const std::string& text)
+{
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw OutputError(path + ": cannot open for writing");
+  out << text;
+  out.flush();
+  if (!out) throw OutputError(path + ": write failed");
+}
+
+std::string manifest_text(const Scenario& sc, const std::vector<Override>& overrides, const RunStatus* status)
+{
+  json j;
+  j["kestrel_manifest"] = 1;
+  j["kestrel_version"] = version();
+  j["source"] = sc.source_file;
+  json ov = json::array();
+  for (const Override& o : overrides) ov.push_back(o.path + "=" + o.value);
+  j["overrides"] = ov;
+  j["scenario"] = scenario_to_json(sc);
+  if (status)
+    j["result"] = {{"complete", status->complete},
+                   {"ticks", status->ticks},
+                   {"t_reached", status->t_reached},
+                   {"duration", sc.duration},
+                   {"stopped_by", status->stopped_by}};
+  if (status && !sc.events.empty()) {
+    json ev = json::array();
+    for (const AppliedEvent& e : status->events)
+      ev.push_back({{"name", e.name}, {"tick", e.tick}, {"t", e.t}, {"actions", e.what}});
+    j["result"]["events_applied"] = ev;
+  }
+  return j.dump(2) + "\n";
+}
+
+std::string geometry_json_text(const Run& run)
+{
+  const Scenario& sc = run.scenario();
+  json axes = json::array();
+  for (const auto& a : run.wheel_axes_B()) axes.push_back({a[0], a[1], a[2]});
+  json thr = json::array();
+  for (const ThrusterSpec& t : sc.thrusters)
+    thr.push_back({{"name", t.name},
+                   {"r_B", {t.r_B(0), t.r_B(1), t.r_B(2)}},
+                   {"dir_B", {t.dir_B(0), t.dir_B(1), t.dir_B(2)}}});
+  json wpos = json::array();
+  for (const WheelSpec& w : sc.wheels) wpos.push_back({w.params.r_WB_B(0), w.params.r_WB_B(1), w.params.r_WB_B(2)});
+  return json{{"wheel_axes_B", axes}, {"wheel_positions_B", wpos}, {"thrusters", thr}}.dump();
+}
+
+std::string report_data_text(const Run& run, const ReportSink& report, const RunStatus* status,
+                             const PacingStats* pacing)
+{
+  const Scenario& sc = run.scenario();
+  json j;
+  j["meta"] = {{"scenario", sc.name},
+               {"description", sc.description},
+               {"seed", sc.seed},
+               {"version", version()},
+               {"dt", sc.rates.dt},
+               {"duration", sc.duration},
+               {"record_period", sc.rates.dt * sc.rates.record_divisor},
+               {"fsw_period", sc.rates.dt * sc.rates.fsw_divisor},
+               {"fsw_mode", to_string(sc.fsw.mode)},
+               {"num_wheels", sc.wheels.size()},
+               {"num_thrusters", sc.thrusters.size()},
+               {"rows", run.recorder().rows()},
+               {"complete", run.done() && run.failure().empty()},
+               {"decimated", report.decimated()}};
+  if (status) {
+    j["meta"]["t_reached"] = status->t_reached;
+    j["meta"]["stopped_by"] = status->stopped_by;
+  }
+  if (pacing) {
+    j["meta"]["rt_scale"] = pacing->scale;
+    j["meta"]["rt_lateness_p50_s"] = pacing->lateness_p50_s;
+    j["meta"]["rt_lateness_p99_s"] = pacing->lateness_p99_s;
+    j["meta"]["rt_lateness_max_s"] = pacing->lateness_max_s;
+    j["meta"]["rt_overruns"] = pacing->overruns;
+    j["meta"]["rt_drift_s"] = pacing->drift_s;
+  }
+  j["geometry"] = json::parse(geometry_json_text(run));
+  j["dataflow_dot"] = run.dataflow().to_dot(sc.name);
+  if (!sc.events.empty()) {
+    json ev = json::array();
+    for (const AppliedEvent& e : run.events_applied())
+      ev.push_back({{"name", e.name}, {"tick", e.tick}, {"t", e.t}, {"actions", e.what}});
+    j["events"] = ev;
+  }
+  json summ = json::object();
+  for (const SummaryItem& it : run.summary())
+    summ[it.key] = {{"value", std::isfinite(it.value) ? json(it.value) : json(nullptr)}, {"unit", it.unit}, {"what", it.what}};
+  j["summary"] = summ;
+  // the (large) series are written by the sink directly, not through a JSON tree
+  std::string text = j.dump();
+  text.pop_back();  // the closing brace
+  text += ',';
+  text += report.series_json();
+  text += "}\n";
+  return text;
+}
+
+}  // namespace harness

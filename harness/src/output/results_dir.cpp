@@ -1,0 +1,185 @@
+// results_dir.cpp: lock, working folder and atomic swap of a results folder.
+#include "harness/output/results_dir.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
+#include <cstring>
+
+#include "harness/output/outputs.h"
+
+namespace harness {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string sys_error(int err) { return std::strerror(err); }
+
+fs::path beside(const fs::path& target, const std::string& suffix)
+{
+  return target.parent_path() / ("." + target.filename().string() + suffix);
+}
+
+std::string mib(uint64_t bytes)
+{
+  return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
+}
+
+}  // namespace
+
+bool ResultsDir::is_result_file_name(const std::string& name)
+{
+  static const std::array<const char*, 8> kNames = {"manifest.json",    "results.h5",  "telemetry.csv",
+                                                    "report_data.json", "report.html", "dataflow.dot",
+                                                    "fsw_health.txt",   "summary.txt"};
+  for (const char* n : kNames)
+    if (name == n) return true;
+  return false;
+}
+
+bool ResultsDir::is_campaign_file_name(const std::string& name)
+{
+  static const std::array<const char*, 7> kNames = {"mc_manifest.json", "summary.csv",  "summary.h5",
+                                                    "mc_report_data.json", "mc_report.html", "mc_runs.json",
+                                                    "mc.sbatch"};
+  for (const char* n : kNames)
+    if (name == n) return true;
+  return false;
+}
+
+uint64_t free_bytes(const fs::path& p)
+{
+  struct statvfs s {};
+  if (::statvfs(p.c_str(), &s) != 0) throw OutputError(p.string() + ": cannot read free space: " + sys_error(errno));
+  return static_cast<uint64_t>(s.f_bavail) * static_cast<uint64_t>(s.f_frsize);
+}
+
+ResultsDir::ResultsDir(const std::string& target, bool force)
+{
+  if (target.empty()) throw OutputError("no results folder given");
+  fs::path t = fs::absolute(fs::path(target)).lexically_normal();
+  if (!t.has_filename()) t = t.parent_path();  // "runs/s1/" -> "runs/s1"
+  const std::string name = t.filename().string();
+  if (name.empty() || name == "." || name == ".." || t == t.root_path())
+    throw OutputError(target + ": not usable as a results folder");
+  target_ = t;
+  std::error_code ec;
+  fs::create_directories(t.parent_path(), ec);
+  if (ec || !fs::is_directory(t.parent_path()))
+    throw OutputError(target + ": cannot create its parent folder " + t.parent_path().string() +
+                      (ec ? ": " + ec.message() : ""));
+
+  // 1. the lock (before looking at the target: another run may be swapping it)
+  lock_path_ = beside(t, ".kestrel-lock");
+  lock_.fd = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_.fd < 0)
+    throw OutputError(target + ": cannot write in " + t.parent_path().string() + " (lock file " +
+                      lock_path_.filename().string() + ": " + sys_error(errno) + ")");
+  if (::flock(lock_.fd, LOCK_EX | LOCK_NB) != 0) {
+    const int err = errno;
+    char buf[32] = {0};
+    const ssize_t n = ::pread(lock_.fd, buf, sizeof buf - 1, 0);
+    lock_.reset();
+    if (err == EWOULDBLOCK) {
+      const std::string pid = n > 0 ? std::string(buf, static_cast<size_t>(n)) : std::string("?");
+      throw ResultsDirRefused(target + ": another kestrel run (pid " + pid.substr(0, pid.find('\n')) +
+                              ") is writing these results; wait for it to end or choose another -o");
+    }
+    throw OutputError(target + ": cannot lock " + lock_path_.string() + ": " + sys_error(err));
+  }
+  const std::string me = std::to_string(::getpid()) + "\n";
+  if (::ftruncate(lock_.fd, 0) != 0 || ::pwrite(lock_.fd, me.data(), me.size(), 0) != static_cast<ssize_t>(me.size())) {
+    // the lock holds without the pid; only the refusal message is poorer
+  }
+
+  // 2. what is there already
+  const fs::file_status st = fs::symlink_status(t, ec);
+  if (fs::exists(st)) {
+    if (!fs::is_directory(st)) {
+      throw ResultsDirRefused(target + ": exists and is not a folder; not touching it");
+    }
+    std::string foreign;
+    bool empty = true;
+    // a Monte Carlo campaign's folder (docs/monte-carlo.md) also holds its
+    // runs/ folder (run folders of result files) and shards/
+    const bool campaign = fs::is_regular_file(t / "mc_manifest.json", ec);
+    for (const fs::directory_entry& e : fs::directory_iterator(t, ec)) {
+      empty = false;
+      const std::string n = e.path().filename().string();
+      const bool campaign_part = campaign && (is_campaign_file_name(n) || ((n == "runs" || n == "shards") && e.is_directory()));
+      if (!campaign_part && (!is_result_file_name(n) || !e.is_regular_file())) {
+        foreign = n;
+        break;
+      }
+    }
+    if (ec) {
+      throw OutputError(target + ": cannot read the existing folder: " + ec.message());
+    }
+    if (!empty && !foreign.empty()) {
+      throw ResultsDirRefused(target + ": exists and holds '" + foreign +
+                              "', which is not a Kestrel result file; not replacing it (choose another -o)");
+    }
+    if (!empty && !force) {
+      throw ResultsDirRefused(target +
+                              ": already holds the results of a run; use --force to replace them whole, or "
+                              "choose another -o");
+    }
+  }
+
+  // 3. the working folder (the writability check, before simulating)
+  work_ = beside(t, ".kestrel-work-" + std::to_string(::getpid()));
+  fs::remove_all(work_, ec);  // a stale one of a crashed run with our pid
+  if (!fs::create_directory(work_, ec) || ec) {
+    throw OutputError(target + ": cannot create the working folder " + work_.string() +
+                      (ec ? ": " + ec.message() : ""));
+  }
+}
+
+void ResultsDir::Fd::reset()
+{
+  if (fd >= 0) ::close(fd);
+  fd = -1;
+}
+
+ResultsDir::~ResultsDir()
+{
+  if (!committed_ && !work_.empty()) {
+    std::error_code ec;
+    fs::remove_all(work_, ec);
+  }
+}
+
+void ResultsDir::require_free_space(uint64_t bytes) const
+{
+  const uint64_t have = free_bytes(work_);
+  if (have < bytes)
+    throw OutputError(target_.string() + ": not enough free space on its file system (the run needs about " +
+                      mib(bytes) + ", " + mib(have) + " are available); nothing was simulated");
+}
+
+void ResultsDir::commit()
+{
+  std::error_code ec;
+  fs::path old;
+  if (fs::exists(fs::symlink_status(target_, ec))) {
+    old = beside(target_, ".kestrel-old-" + std::to_string(::getpid()));
+    fs::remove_all(old, ec);
+    fs::rename(target_, old, ec);
+    if (ec) throw OutputError(target_.string() + ": cannot move the previous results aside: " + ec.message());
+  }
+  fs::rename(work_, target_, ec);
+  if (ec) {
+    std::error_code ec2;
+    if (!old.empty()) fs::rename(old, target_, ec2);  // put the previous results back
+    throw OutputError(target_.string() + ": cannot move the results into place: " + ec.message());
+  }
+  committed_ = true;
+  if (!old.empty()) fs::remove_all(old, ec);
+}
+
+}  // namespace harness

@@ -1,0 +1,336 @@
+// mc_draw.cpp: see mc_draw.h.
+#include "scenario/mc_draw.h"
+
+#include <cmath>
+
+#include "scenario/overrides.h"
+#include "scenario/scenario_schema.h"
+#include "sim/attitude.h"
+
+namespace harness {
+
+namespace {
+
+constexpr double kRadToDeg = 180.0 / M_PI;
+
+uint64_t mix(uint64_t z)  // SplitMix64's finaliser
+{
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+constexpr uint64_t kGolden = 0x9e3779b97f4a7c15ULL;
+
+double as_double(const ParameterValue& p)
+{
+  if (std::holds_alternative<double>(p.value)) return std::get<double>(p.value);
+  if (std::holds_alternative<long long>(p.value)) return static_cast<double>(std::get<long long>(p.value));
+  if (std::holds_alternative<uint64_t>(p.value)) return static_cast<double>(std::get<uint64_t>(p.value));
+  return std::nan("");
+}
+
+// A number drawn for a key of type Integer/Unsigned is rounded to the
+// nearest whole number (documented).
+ParameterValue number_for(const ParameterValue& nominal, double x)
+{
+  if (std::holds_alternative<long long>(nominal.value)) return ParameterValue(static_cast<long long>(std::llround(x)));
+  if (std::holds_alternative<uint64_t>(nominal.value))
+    return ParameterValue(static_cast<uint64_t>(x <= 0.0 ? 0 : std::llround(x)));
+  return ParameterValue(x);
+}
+
+// Two unit vectors completing n to a right-handed orthonormal basis.
+void perpendiculars(const Eigen::Vector3d& n, Eigen::Vector3d& e1, Eigen::Vector3d& e2)
+{
+  Eigen::Index k = 0;
+  n.cwiseAbs().minCoeff(&k);
+  Eigen::Vector3d a = Eigen::Vector3d::Zero();
+  a(k) = 1.0;
+  e1 = n.cross(a).normalized();
+  e2 = n.cross(e1);
+}
+
+// A rotation vector: isotropic normal (angle_std per axis) or a uniformly
+// random axis with an angle uniform in [0, angle_max].
+Eigen::Vector3d rotation_vector(McStream& r, const DispersionSpec& s)
+{
+  if (s.angle_std) return *s.angle_std * Eigen::Vector3d(r.normal(), r.normal(), r.normal());
+  Eigen::Vector3d axis;
+  do {
+    axis = Eigen::Vector3d(r.normal(), r.normal(), r.normal());
+  } while (!(axis.norm() > 1e-12));
+  return axis.normalized() * (*s.angle_max * r.uniform());
+}
+
+std::string unit_of(const schema::KeyDef& k, bool suffixed)
+{
+  if (!suffixed) return k.doc.size() <= 12 ? k.doc : "";
+  std::string u = k.suffix.substr(1);
+  const size_t us = u.find('_');
+  if (us != std::string::npos) u[us] = '/';
+  return u;
+}
+
+const schema::KeyDef* key_def(const Scenario& sc, const std::string& path, bool& suffixed)
+{
+  const KeyTarget t = resolve_path(split_path(path), [&sc](const schema::Section& list, size_t) {
+    return list.count ? list.count(sc) : 0;
+  });
+  suffixed = t.suffixed;
+  return t.key;
+}
+
+}  // namespace
+
+McStream::McStream(uint64_t master, uint64_t run, const std::string& key)
+{
+  uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a of the key path
+  for (unsigned char c : key) h = (h ^ c) * 0x100000001b3ULL;
+  uint64_t s = mix(master ^ 0x6b65737472656c4dULL);  // "kestrelM"
+  s = mix(s ^ mix(run + kGolden));
+  s_ = mix(s ^ mix(h));
+}
+
+uint64_t McStream::next()
+{
+  s_ += kGolden;
+  return mix(s_);
+}
+
+double McStream::uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+
+double McStream::normal()
+{
+  const double u1 = 1.0 - uniform();  // (0, 1]: the log is finite
+  const double u2 = uniform();
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+}
+
+uint64_t mc_run_seed(uint64_t master, uint64_t run)
+{
+  return mix(mix(master ^ 0x73656e736f727321ULL) ^ mix(run + kGolden)) & ((1ULL << 53) - 1);
+}
+
+std::string try_choice_value(Scenario& sc, const std::string& path, const std::string& value)
+{
+  bool suffixed = false;
+  const schema::KeyDef* k = key_def(sc, path, suffixed);
+  if (!k) return "unknown key";
+  try {
+    switch (k->type) {
+      case schema::Type::Real: {
+        double x = 0.0;
+        if (!decode_double(YAML::Node(value), x)) return "not a number";
+        set_parameter(sc, path, ParameterValue(x));
+        break;
+      }
+      case schema::Type::Integer:
+      case schema::Type::Unsigned: {
+        long long x = 0;
+        if (!decode_int(YAML::Node(value), x)) return "not a whole number";
+        if (k->type == schema::Type::Unsigned) {
+          if (x < 0) return "must be >= 0";
+          set_parameter(sc, path, ParameterValue(static_cast<uint64_t>(x)));
+        } else {
+          set_parameter(sc, path, ParameterValue(x));
+        }
+        break;
+      }
+      case schema::Type::Bool:
+        if (value != "true" && value != "false") return "expected true or false";
+        set_parameter(sc, path, ParameterValue(value == "true"));
+        break;
+      default: set_parameter(sc, path, ParameterValue(value)); break;
+    }
+  } catch (const ScenarioError& e) {
+    return e.issues().front().message;
+  }
+  return "";
+}
+
+std::vector<McColumn> drawn_columns(const Scenario& nominal)
+{
+  std::vector<McColumn> out;
+  if (!nominal.monte_carlo) return out;
+  for (const DispersionSpec& s : nominal.monte_carlo->dispersions) {
+    std::string why;
+    for (const std::string& k : expand_dispersion_key(nominal, s.key, why)) {
+      const std::string name = normalise_path(split_path(k));
+      bool suffixed = false;
+      const schema::KeyDef* def = key_def(nominal, k, suffixed);
+      const std::string unit = def ? unit_of(*def, suffixed) : "";
+      switch (s.dist) {
+        case DistKind::Normal:
+        case DistKind::TruncatedNormal:
+        case DistKind::Uniform: out.push_back({name, unit}); break;
+        case DistKind::Choice: out.push_back({name + ".choice", "index"}); break;
+        case DistKind::NormalVector:
+          for (const char* c : {"_x", "_y", "_z"}) out.push_back({name + c, unit});
+          break;
+        case DistKind::UnitVector:
+        case DistKind::Attitude: out.push_back({name + ".angle_deg", "deg"}); break;
+        case DistKind::Inertia:
+          out.push_back({name + ".angle_deg", "deg"});
+          if (s.principal_std_rel > 0.0)
+            for (const char* c : {".scale_1", ".scale_2", ".scale_3"}) out.push_back({name + c, "-"});
+          break;
+      }
+    }
+  }
+  return out;
+}
+
+McDraw draw_run(const Scenario& nominal, uint64_t master, uint64_t run, bool check)
+{
+  McDraw d;
+  d.sc = nominal;
+  d.sc.monte_carlo.reset();
+  d.sc.seed = mc_run_seed(master, run);
+  if (!nominal.monte_carlo) return d;
+  const std::vector<DispersionSpec>& disp = nominal.monte_carlo->dispersions;
+  for (size_t i = 0; i < disp.size(); ++i) {
+    const DispersionSpec& s = disp[i];
+    std::string why;
+    const std::vector<std::string> keys = expand_dispersion_key(nominal, s.key, why);
+    for (size_t e = 0; e < keys.size(); ++e) {
+      const std::string& k = keys[e];
+      McStream r(master, run, normalise_path(split_path(k)));
+      try {
+        const ParameterValue nom = get_parameter(nominal, k);
+        switch (s.dist) {
+          case DistKind::Normal: {
+            const double x = s.mean.value_or(as_double(nom)) + s.std * r.normal();
+            set_parameter(d.sc, k, number_for(nom, x));
+            d.drawn.push_back(x);
+            break;
+          }
+          case DistKind::TruncatedNormal: {
+            const double m = s.mean.value_or(as_double(nom));
+            double x = std::nan("");
+            for (int tries = 0; tries < 10000; ++tries) {  // acceptance >= 1 % (checked when read)
+              const double c = m + s.std * r.normal();
+              if (c >= *s.min && c <= *s.max) {
+                x = c;
+                break;
+              }
+            }
+            if (!std::isfinite(x)) throw std::runtime_error("truncated_normal: no value in bounds after 10000 draws");
+            set_parameter(d.sc, k, number_for(nom, x));
+            d.drawn.push_back(x);
+            break;
+          }
+          case DistKind::Uniform: {
+            const double lo = s.half_width ? as_double(nom) - *s.half_width : *s.min;
+            const double hi = s.half_width ? as_double(nom) + *s.half_width : *s.max;
+            const double x = lo + (hi - lo) * r.uniform();
+            set_parameter(d.sc, k, number_for(nom, x));
+            d.drawn.push_back(x);
+            break;
+          }
+          case DistKind::Choice: {
+            std::vector<double> w = s.weights;
+            if (w.empty()) w.assign(s.values.size(), 1.0);
+            double total = 0.0;
+            for (double x : w) total += x;
+            const double u = r.uniform() * total;
+            size_t pick = 0;
+            double acc = 0.0;
+            for (pick = 0; pick + 1 < w.size(); ++pick) {
+              acc += w[pick];
+              if (u < acc) break;
+            }
+            while (w[pick] == 0.0 && pick > 0) --pick;  // u at a boundary of zero-weight values
+            const std::string bad = try_choice_value(d.sc, k, s.values[pick]);
+            if (!bad.empty()) throw std::runtime_error(bad);
+            d.drawn.push_back(static_cast<double>(pick));
+            break;
+          }
+          case DistKind::NormalVector: {
+            const Eigen::Vector3d v0 = std::get<Eigen::Vector3d>(nom.value);
+            const Eigen::Vector3d dv(s.std_vec(0) * r.normal(), s.std_vec(1) * r.normal(), s.std_vec(2) * r.normal());
+            const Eigen::Vector3d v = v0 + dv;
+            set_parameter(d.sc, k, v);
+            for (int c = 0; c < 3; ++c) d.drawn.push_back(v(c));
+            break;
+          }
+          case DistKind::UnitVector: {
+            const Eigen::Vector3d n = std::get<Eigen::Vector3d>(nom.value).normalized();
+            Eigen::Vector3d e1, e2;
+            perpendiculars(n, e1, e2);
+            double theta = 0.0, phi = 0.0;
+            if (s.angle_std) {  // tilt components in the plane normal to n: N(0, sigma) each (Rayleigh angle)
+              const double a = *s.angle_std * r.normal(), b = *s.angle_std * r.normal();
+              theta = std::hypot(a, b);
+              phi = std::atan2(b, a);
+            } else {  // uniform on the spherical cap of half-angle angle_max
+              const double c = 1.0 - r.uniform() * (1.0 - std::cos(*s.angle_max));
+              theta = std::acos(c);
+              phi = 2.0 * M_PI * r.uniform();
+            }
+            const Eigen::Vector3d v =
+                std::cos(theta) * n + std::sin(theta) * (std::cos(phi) * e1 + std::sin(phi) * e2);
+            set_parameter(d.sc, k, Eigen::Vector3d(v.normalized()));
+            d.drawn.push_back(theta * kRadToDeg);
+            break;
+          }
+          case DistKind::Attitude: {
+            const Eigen::Vector3d sigma = std::get<Eigen::Vector3d>(nom.value);
+            const Eigen::Vector3d phi = rotation_vector(r, s);
+            const Eigen::Matrix3d C = sim::rotation_from_vector(phi) * sim::dcm_BN_from_sigma(sigma);
+            set_parameter(d.sc, k, sim::sigma_from_quaternion(sim::quaternion_from_dcm(C)));
+            d.drawn.push_back(phi.norm() * kRadToDeg);
+            break;
+          }
+          case DistKind::Inertia: {
+            const Eigen::Matrix3d I = std::get<Eigen::Matrix3d>(nom.value);
+            const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(I);
+            Eigen::Vector3d lam = es.eigenvalues();
+            Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+            if (s.principal_std_rel > 0.0)
+              for (int c = 0; c < 3; ++c) scale(c) = 1.0 + s.principal_std_rel * r.normal();
+            lam = lam.cwiseProduct(scale);
+            Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+            double angle = 0.0;
+            if (s.angle_std) {
+              const Eigen::Vector3d phi = *s.angle_std * Eigen::Vector3d(r.normal(), r.normal(), r.normal());
+              R = sim::rotation_from_vector(phi);
+              angle = phi.norm();
+            }
+            const Eigen::Matrix3d V = R * es.eigenvectors();
+            Eigen::Matrix3d Ip = V * lam.asDiagonal() * V.transpose();
+            Ip = 0.5 * (Ip + Ip.transpose()).eval();
+            d.drawn.push_back(angle * kRadToDeg);
+            if (s.principal_std_rel > 0.0)
+              for (int c = 0; c < 3; ++c) d.drawn.push_back(scale(c));
+            set_parameter(d.sc, k, Ip);
+            break;
+          }
+        }
+      } catch (const ScenarioError& e) {
+        if (d.invalid.empty()) d.invalid = normalise_path(split_path(k)) + ": " + e.issues().front().message;
+      } catch (const std::exception& e) {
+        if (d.invalid.empty()) d.invalid = normalise_path(split_path(k)) + ": " + e.what();
+      }
+      if (!d.invalid.empty()) {  // the remaining columns are not drawn
+        d.drawn.resize(drawn_columns(nominal).size(), std::nan(""));
+        return d;
+      }
+    }
+  }
+  if (!check) return d;
+  try {
+    // the run is the reloaded canonical form: exactly what its manifest
+    // gives `kestrel run` (every check of a scenario file on the way)
+    const std::string src = d.sc.source_file;
+    d.sc = load_scenario_text(scenario_to_json_text(d.sc), "(drawn scenario)");
+    d.sc.source_file = src;
+    d.sc.key_lines.clear();  // lines of the canonical text, not of the file
+    check_run_configuration(d.sc);
+  } catch (const ScenarioError& e) {
+    const ScenarioIssue& is = e.issues().front();
+    d.invalid = is.key + ": " + is.message;
+  }
+  return d;
+}
+
+}  // namespace harness
