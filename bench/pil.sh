@@ -35,7 +35,7 @@ echo "== Cortex-M4F program (kestrel-fsw-m4f.elf), bytes"
 printf "%-8s %8s %8s %8s %12s\n" real .text .data .bss "stack (w.c.)"
 for v in cortex-m4f:double cortex-m4f-float:float; do
   dir="$build/pil/${v%%:*}"
-  read -r text data bss _ < <(arm-none-eabi-size "$dir/fsw_baremetal/kestrel-fsw-m4f.elf" | tail -1)
+  read -r text data bss _ < <(arm-none-eabi-size "$dir/flight/m4f/kestrel-fsw-m4f.elf" | tail -1)
   report=$(/usr/bin/python3 tools/fsw_stack_report.py --objdir "$dir/fsw_c/CMakeFiles/fsw.dir" \
            --archive "$dir/fsw_c/libkestrel_fsw.a" --nm arm-none-eabi-nm --objdump arm-none-eabi-objdump --limit 1000000)
   w() { echo "$report" | awk -v f="$1" '$3 == f { print $1 }'; }
@@ -44,7 +44,7 @@ for v in cortex-m4f:double cortex-m4f-float:float; do
   # like any call out of the library) run before the loop, not under it
   start=$(printf "%s\n" "$(w fsw_link_config_decode)" "$(w fsw_acs_check)" "$(w fsw_link_node_init)" 256 | sort -n | tail -1)
   deep=$(( node > start ? node : start ))
-  su="$dir/fsw_baremetal/CMakeFiles/kestrel_fsw_m4f.dir/kestrel_fsw_m4f.c.su"
+  su="$dir/flight/m4f/CMakeFiles/kestrel_fsw_m4f.dir/kestrel_fsw_m4f.c.su"
   main=$(awk -F'\t' '$1 ~ /:main$/ { print $2 }' "$su")
   isr=$(awk -F'\t' '$1 ~ /:uart0_rx_isr$/ { print $2 }' "$su")
   # main (load_config and send_replies inlined) + its deepest call (fsw_link_frame and

@@ -3,10 +3,10 @@
 # same source tree with a target toolchain file (only the flight library and
 # the one program are built there):
 #
-#   pil/aarch64-linux/fsw_app/kestrel-fsw          qemu-aarch64 (qemu-user)
-#   pil/armhf-linux/fsw_app/kestrel-fsw            qemu-arm (qemu-user)
-#   pil/cortex-m4f/fsw_baremetal/kestrel-fsw-m4f.elf        qemu-system-arm mps2-an386, fsw_real double
-#   pil/cortex-m4f-float/fsw_baremetal/kestrel-fsw-m4f.elf  the same, fsw_real float
+#   pil/aarch64-linux/flight/posix/kestrel-fsw          qemu-aarch64 (qemu-user)
+#   pil/armhf-linux/flight/posix/kestrel-fsw            qemu-arm (qemu-user)
+#   pil/cortex-m4f/flight/m4f/kestrel-fsw-m4f.elf        qemu-system-arm mps2-an386, fsw_real double
+#   pil/cortex-m4f-float/flight/m4f/kestrel-fsw-m4f.elf  the same, fsw_real float
 #
 # Their paths are compiled into the harness (harness/src/link/pil.cpp) as the
 # defaults of `kestrel run --fsw pil:TARGET`; `--pil-bin FILE` overrides.
@@ -55,13 +55,13 @@ function(kestrel_pil_target name toolchain real subdir program compiler emulator
   set(KESTREL_PIL_BIN_${_up} "${_bin}" PARENT_SCOPE)
 endfunction()
 
-kestrel_pil_target(aarch64-linux aarch64-linux-gnu.cmake double fsw_app/kestrel-fsw kestrel_fsw
+kestrel_pil_target(aarch64-linux aarch64-linux-gnu.cmake double flight/posix/kestrel-fsw kestrel_fsw
                    aarch64-linux-gnu-gcc qemu-aarch64)
-kestrel_pil_target(armhf-linux arm-linux-gnueabihf.cmake double fsw_app/kestrel-fsw kestrel_fsw
+kestrel_pil_target(armhf-linux arm-linux-gnueabihf.cmake double flight/posix/kestrel-fsw kestrel_fsw
                    arm-linux-gnueabihf-gcc qemu-arm)
-kestrel_pil_target(cortex-m4f cortex-m4f.cmake double fsw_baremetal/kestrel-fsw-m4f.elf kestrel_fsw_m4f
+kestrel_pil_target(cortex-m4f cortex-m4f.cmake double flight/m4f/kestrel-fsw-m4f.elf kestrel_fsw_m4f
                    arm-none-eabi-gcc qemu-system-arm)
-kestrel_pil_target(cortex-m4f-float cortex-m4f.cmake float fsw_baremetal/kestrel-fsw-m4f.elf kestrel_fsw_m4f
+kestrel_pil_target(cortex-m4f-float cortex-m4f.cmake float flight/m4f/kestrel-fsw-m4f.elf kestrel_fsw_m4f
                    arm-none-eabi-gcc qemu-system-arm)
 
 if(TARGET harness_link)

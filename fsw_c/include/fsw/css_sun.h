@@ -37,14 +37,7 @@
 extern "C" {
 #endif
 
-/* Capacity: coarse sun sensors per estimator, allowed 3..64.  Memory cost
- * 5 reals + 1 byte per sensor in the config/input structs. */
-#ifndef FSW_MAX_CSS
-#define FSW_MAX_CSS 32
-#endif
-#if FSW_MAX_CSS < 3 || FSW_MAX_CSS > 64
-#error "FSW_MAX_CSS must be in 3..64"
-#endif
+/* Capacity: FSW_MAX_CSS (fsw/fsw_config.h, with every capacity). */
 
 /* Relative pivot tolerance deciding that the lit geometry does not span 3-D
  * (WLS) or that two normals are parallel (TWO).  1e-4 means: normals within

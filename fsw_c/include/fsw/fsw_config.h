@@ -65,7 +65,8 @@ typedef double fsw_real;
 #endif
 
 /* ---- Capacities -----------------------------------------------------------
- * Fixed array sizes of every FSW struct.  Memory cost grows linearly (per
+ * Fixed array sizes of every FSW struct, all of them here (a build sets any
+ * of them with -D).  Memory cost grows linearly (per
  * wheel/thruster arrays) and quadratically (the wheel null-space projector,
  * FSW_MAX_EFF^2 reals = 10.4 KiB at 36 in double). */
 #ifndef FSW_MAX_RW
@@ -75,11 +76,21 @@ typedef double fsw_real;
 #define FSW_MAX_THR 36 /* [-] thrusters, allowed 1..64 (Basilisk MAX_EFF_CNT) */
 #endif
 
+#ifndef FSW_MAX_CSS
+#define FSW_MAX_CSS 32 /* [-] coarse sun sensors per estimator, allowed 3..64 (5 reals + 1 byte each) */
+#endif
+#ifndef FSW_LINK_NODE_MAX_REPLIES
+#define FSW_LINK_NODE_MAX_REPLIES 3 /* [-] packets one link-node receive may answer with (fsw_link_node.h) */
+#endif
+
 #if FSW_MAX_RW < 3 || FSW_MAX_RW > 64
 #error "FSW_MAX_RW must be in 3..64"
 #endif
 #if FSW_MAX_THR < 1 || FSW_MAX_THR > 64
 #error "FSW_MAX_THR must be in 1..64"
+#endif
+#if FSW_MAX_CSS < 3 || FSW_MAX_CSS > 64
+#error "FSW_MAX_CSS must be in 3..64"
 #endif
 
 /* Column capacity of the shared kernels (K1, K2): the larger of the two. */

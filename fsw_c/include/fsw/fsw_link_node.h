@@ -35,7 +35,7 @@
 extern "C" {
 #endif
 
-#define FSW_LINK_NODE_MAX_REPLIES 3
+/* Capacity: FSW_LINK_NODE_MAX_REPLIES (fsw/fsw_config.h, with every capacity). */
 
 typedef struct {
   FswAcsState acs;

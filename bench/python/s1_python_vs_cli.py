@@ -2,7 +2,7 @@
 """S1 (600 s, 60 000 ticks) through Python and through the CLI: wall times
 and equality of the recorded arrays (docs/python.md, "Figures").
 
-  PYTHONPATH=build/host-release/python /usr/bin/python3 python/bench/s1_python_vs_cli.py \
+  PYTHONPATH=build/host-release/python /usr/bin/python3 bench/python/s1_python_vs_cli.py \
       build/host-release/harness/kestrel scenarios/s1_sun_pointing.yaml
 
 Prints numbers only; not a test (speed figures are not asserted)."""
