@@ -22,12 +22,13 @@ std::string errno_text() { return std::strerror(errno); }
 // are all there; this class turns its results into packets and exceptions.
 class CTransport : public LinkTransport {
  public:
+  enum class Kind { kUdp, kSerial };
   // a connected UDP socket ("HOST:PORT") or a serial line ("DEVICE:BAUD")
-  CTransport(bool udp, const std::string& spec) : t_(std::make_unique<FswTransport>())
+  CTransport(Kind kind, const std::string& spec) : t_(std::make_unique<FswTransport>())
   {
     char err[256] = "";
-    const int rc = udp ? fsw_transport_connect_udp(t_.get(), spec.c_str(), err, sizeof err)
-                       : fsw_transport_open_serial(t_.get(), spec.c_str(), err, sizeof err);
+    const int rc = kind == Kind::kUdp ? fsw_transport_connect_udp(t_.get(), spec.c_str(), err, sizeof err)
+                                      : fsw_transport_open_serial(t_.get(), spec.c_str(), err, sizeof err);
     if (rc != 0) throw FswEndpointError(std::string("FSW link: ") + err);
   }
   // a byte stream already open; owns fd
@@ -99,8 +100,8 @@ std::unique_ptr<LinkTransport> connect_unix_transport(const std::string& path, c
 
 std::unique_ptr<LinkTransport> open_link_transport(const std::string& spec)
 {
-  if (spec.rfind("udp:", 0) == 0) return std::make_unique<CTransport>(true, spec.substr(4));
-  if (spec.rfind("serial:", 0) == 0) return std::make_unique<CTransport>(false, spec.substr(7));
+  if (spec.rfind("udp:", 0) == 0) return std::make_unique<CTransport>(CTransport::Kind::kUdp, spec.substr(4));
+  if (spec.rfind("serial:", 0) == 0) return std::make_unique<CTransport>(CTransport::Kind::kSerial, spec.substr(7));
   throw FswEndpointError("FSW link: unknown transport '" + spec + "' (expected udp:HOST:PORT or serial:DEVICE:BAUD)");
 }
 

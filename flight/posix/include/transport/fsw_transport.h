@@ -16,8 +16,8 @@
  * Serial lines and streams carry each packet behind the attached sync
  * marker (fsw_link_frame) and are re-framed on receive (FswLinkDeframer):
  * fsw_transport_send and fsw_transport_recv move whole packets on every
- * kind.  Open and close never fail silently: a failed open leaves fd -1 and
- * a message (without a "who" prefix) in err. */
+ * kind.  A failed open leaves fd -1 and a message (without a "who" prefix)
+ * in err. */
 #ifndef KESTREL_FSW_TRANSPORT_H
 #define KESTREL_FSW_TRANSPORT_H
 
