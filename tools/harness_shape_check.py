@@ -7,8 +7,9 @@ and header of the harness must sit in a room folder, src/<room>/ or
 include/harness/<room>/.  A quoted include is resolved to the room it names
 ("harness/<room>/..." for a public header, "<room>/..." for a private one);
 it must be the file's own room or one listed before it.  Includes of the
-other components (fsw/, sim/, report/) are allowed everywhere; any other
-quoted include is an error (a stale path).
+other components (fsw/, sim/, report/, and transport/: the C transport
+module of the FSW link, flight/posix/include/transport/, kestrel::transport)
+are allowed everywhere; any other quoted include is an error (a stale path).
 
 Function lengths come from Universal Ctags (--fields=+ne): the lines from a
 definition's first line to its closing brace.
@@ -27,7 +28,7 @@ import subprocess
 import sys
 import tempfile
 
-OTHER_COMPONENTS = ("fsw/", "sim/", "report/")
+OTHER_COMPONENTS = ("fsw/", "sim/", "report/", "transport/")
 SOURCE_ENDINGS = (".h", ".hpp", ".cpp", ".cc", ".c")
 INCLUDE_RE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 

@@ -1,17 +1,21 @@
-/* fsw_transport: POSIX UDP and serial transports of kestrel-fsw. */
-#define _DEFAULT_SOURCE 1 /* cfmakeraw, getaddrinfo */
-#include "fsw_transport.h"
+/* fsw_transport: POSIX UDP, serial and stream transports of the FSW link,
+ * for kestrel-fsw and the harness (include/transport/fsw_transport.h). */
+#define _DEFAULT_SOURCE 1 /* cfmakeraw, getaddrinfo, MSG_NOSIGNAL */
+#include "transport/fsw_transport.h"
 
 #include <arpa/inet.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <netdb.h>
 #include <poll.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/un.h>
 #include <termios.h>
+#include <time.h>
 #include <unistd.h>
 
 /* Splits "A:B" at the last colon into a (copied) and b. */
@@ -28,17 +32,27 @@ static int split_spec(const char *spec, char *a, size_t a_len, const char **b)
   return 0;
 }
 
-int fsw_transport_open_udp(FswTransport *t, const char *spec, char *err, size_t err_len)
+static void reset(FswTransport *t)
+{
+  t->fd = -1;
+  t->stream = 0;
+  t->is_socket = 0;
+  t->connected = 0;
+  t->peer_len = 0u;
+  t->have = 0u;
+  t->used = 0u;
+  t->desc[0] = '\0';
+  fsw_link_deframer_init(&t->deframer);
+}
+
+/* A UDP socket bound (connect == 0) or connected to spec's address. */
+static int open_udp(FswTransport *t, const char *spec, int connect_to, char *err, size_t err_len)
 {
   char host[128];
   const char *port;
   struct addrinfo hints, *res = NULL;
-  struct sockaddr_storage bound;
-  socklen_t blen = sizeof bound;
-  char hbuf[64], pbuf[16];
   int rc;
-  memset(t, 0, sizeof *t);
-  t->fd = -1;
+  reset(t);
   if (split_spec(spec, host, sizeof host, &port) != 0) {
     snprintf(err, err_len, "bad UDP address '%s' (expected HOST:PORT)", spec);
     return -1;
@@ -46,20 +60,31 @@ int fsw_transport_open_udp(FswTransport *t, const char *spec, char *err, size_t 
   memset(&hints, 0, sizeof hints);
   hints.ai_family = AF_UNSPEC;
   hints.ai_socktype = SOCK_DGRAM;
-  hints.ai_flags = AI_PASSIVE | AI_NUMERICSERV;
+  hints.ai_flags = connect_to ? AI_NUMERICSERV : (AI_PASSIVE | AI_NUMERICSERV);
   rc = getaddrinfo(host, port, &hints, &res);
   if (rc != 0) {
     snprintf(err, err_len, "cannot resolve '%s': %s", spec, gai_strerror(rc));
     return -1;
   }
   t->fd = socket(res->ai_family, SOCK_DGRAM, 0);
-  if (t->fd < 0 || bind(t->fd, res->ai_addr, res->ai_addrlen) != 0) {
-    snprintf(err, err_len, "cannot bind UDP %s: %s", spec, strerror(errno));
+  rc = t->fd < 0 ? -1 : connect_to ? connect(t->fd, res->ai_addr, res->ai_addrlen) : bind(t->fd, res->ai_addr, res->ai_addrlen);
+  if (rc != 0) {
+    snprintf(err, err_len, connect_to ? "cannot open UDP to %s: %s" : "cannot bind UDP %s: %s", spec, strerror(errno));
     freeaddrinfo(res);
     fsw_transport_close(t);
     return -1;
   }
   freeaddrinfo(res);
+  t->connected = connect_to;
+  return 0;
+}
+
+int fsw_transport_open_udp(FswTransport *t, const char *spec, char *err, size_t err_len)
+{
+  struct sockaddr_storage bound;
+  socklen_t blen = sizeof bound;
+  char hbuf[64], pbuf[16];
+  if (open_udp(t, spec, 0, err, err_len) != 0) return -1;
   if (getsockname(t->fd, (struct sockaddr *)&bound, &blen) != 0 ||
       getnameinfo((struct sockaddr *)&bound, blen, hbuf, sizeof hbuf, pbuf, sizeof pbuf,
                   NI_NUMERICHOST | NI_NUMERICSERV) != 0) {
@@ -68,6 +93,13 @@ int fsw_transport_open_udp(FswTransport *t, const char *spec, char *err, size_t 
     return -1;
   }
   snprintf(t->desc, sizeof t->desc, "udp %s:%s", hbuf, pbuf);
+  return 0;
+}
+
+int fsw_transport_connect_udp(FswTransport *t, const char *spec, char *err, size_t err_len)
+{
+  if (open_udp(t, spec, 1, err, err_len) != 0) return -1;
+  snprintf(t->desc, sizeof t->desc, "udp %s", spec);
   return 0;
 }
 
@@ -86,6 +118,20 @@ static speed_t baud_of(long baud)
   }
 }
 
+/* Raw, 8N1, no flow control, blocking reads of at least one byte. */
+static int set_raw(int fd, speed_t sp)
+{
+  struct termios tio;
+  if (tcgetattr(fd, &tio) != 0) return -1;
+  cfmakeraw(&tio);
+  tio.c_cflag |= (tcflag_t)(CLOCAL | CREAD);
+  tio.c_cflag &= (tcflag_t)~(tcflag_t)(CSTOPB | CRTSCTS);
+  tio.c_cc[VMIN] = 1;
+  tio.c_cc[VTIME] = 0;
+  if (cfsetispeed(&tio, sp) != 0 || cfsetospeed(&tio, sp) != 0 || tcsetattr(fd, TCSANOW, &tio) != 0) return -2;
+  return 0;
+}
+
 int fsw_transport_open_serial(FswTransport *t, const char *spec, char *err, size_t err_len)
 {
   char dev[128];
@@ -93,10 +139,8 @@ int fsw_transport_open_serial(FswTransport *t, const char *spec, char *err, size
   char *end;
   long baud;
   speed_t sp;
-  struct termios tio;
-  memset(t, 0, sizeof *t);
-  t->fd = -1;
-  t->serial = 1;
+  int rc, fd;
+  reset(t);
   if (split_spec(spec, dev, sizeof dev, &bs) != 0) {
     snprintf(err, err_len, "bad serial line '%s' (expected DEVICE:BAUD)", spec);
     return -1;
@@ -107,72 +151,165 @@ int fsw_transport_open_serial(FswTransport *t, const char *spec, char *err, size
     snprintf(err, err_len, "unsupported baud rate '%s' (9600 ... 921600)", bs);
     return -1;
   }
-  t->fd = open(dev, O_RDWR | O_NOCTTY);
-  if (t->fd < 0) {
+  fd = open(dev, O_RDWR | O_NOCTTY);
+  if (fd < 0) {
     snprintf(err, err_len, "cannot open %s: %s", dev, strerror(errno));
     return -1;
   }
-  if (tcgetattr(t->fd, &tio) != 0) {
-    snprintf(err, err_len, "%s is not a terminal: %s", dev, strerror(errno));
-    fsw_transport_close(t);
+  rc = set_raw(fd, sp);
+  if (rc != 0) {
+    snprintf(err, err_len, rc == -1 ? "%s is not a terminal: %s" : "cannot configure %s: %s", dev, strerror(errno));
+    close(fd);
     return -1;
   }
-  cfmakeraw(&tio);
-  tio.c_cflag |= (tcflag_t)(CLOCAL | CREAD);
-  tio.c_cflag &= (tcflag_t)~(tcflag_t)(CSTOPB | CRTSCTS);
-  tio.c_cc[VMIN] = 1;
-  tio.c_cc[VTIME] = 0;
-  if (cfsetispeed(&tio, sp) != 0 || cfsetospeed(&tio, sp) != 0 || tcsetattr(t->fd, TCSANOW, &tio) != 0) {
-    snprintf(err, err_len, "cannot configure %s: %s", dev, strerror(errno));
-    fsw_transport_close(t);
-    return -1;
-  }
-  snprintf(t->desc, sizeof t->desc, "serial %s %ld", dev, baud);
+  fsw_transport_open_stream(t, fd, "");
+  snprintf(t->desc, sizeof t->desc, "serial %s %ld baud", dev, baud);
   return 0;
 }
 
-long fsw_transport_recv(FswTransport *t, uint8_t *buf, size_t cap, int timeout_ms)
+void fsw_transport_open_stream(FswTransport *t, int fd, const char *desc)
 {
-  struct pollfd p;
-  ssize_t n;
-  int rc;
-  p.fd = t->fd;
-  p.events = POLLIN;
-  p.revents = 0;
-  rc = poll(&p, 1, timeout_ms);
-  if (rc == 0) return 0;
-  if (rc < 0) return -1;
-  if (t->serial) {
-    n = read(t->fd, buf, cap);
-  } else {
-    struct sockaddr_storage from;
-    socklen_t flen = sizeof from;
-    n = recvfrom(t->fd, buf, cap, 0, (struct sockaddr *)&from, &flen);
-    if (n >= 0) {
-      memcpy(t->peer, &from, flen);
-      t->peer_len = (unsigned int)flen;
-    }
-  }
-  if (n == 0 && t->serial) return -1; /* hang-up */
-  return n < 0 ? -1 : (long)n;
+  int type = 0;
+  socklen_t tl = sizeof type;
+  reset(t);
+  t->fd = fd;
+  t->stream = 1;
+  t->is_socket = getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &tl) == 0;
+  snprintf(t->desc, sizeof t->desc, "%s", desc);
 }
 
-int fsw_transport_send(FswTransport *t, const uint8_t *buf, size_t n)
+int fsw_transport_connect_unix(FswTransport *t, const char *path, const char *desc, char *err, size_t err_len)
 {
-  if (t->serial) {
-    size_t done = 0;
-    while (done < n) {
-      const ssize_t w = write(t->fd, buf + done, n - done);
-      if (w < 0) {
-        if (errno == EINTR || errno == EAGAIN) continue;
-        return -1;
+  struct sockaddr_un a;
+  int fd, type = SOCK_STREAM;
+#ifdef SOCK_CLOEXEC
+  type |= SOCK_CLOEXEC;
+#endif
+  reset(t);
+  fd = socket(AF_UNIX, type, 0);
+  if (fd < 0) {
+    snprintf(err, err_len, "socket: %s", strerror(errno));
+    return -1;
+  }
+  memset(&a, 0, sizeof a);
+  a.sun_family = AF_UNIX;
+  snprintf(a.sun_path, sizeof a.sun_path, "%s", path);
+  if (connect(fd, (const struct sockaddr *)&a, sizeof a) != 0) {
+    const int e = errno;
+    snprintf(err, err_len, "cannot connect to %s: %s", path, strerror(e));
+    close(fd);
+    errno = e;
+    return FSW_TRANSPORT_NOT_LISTENING;
+  }
+  fsw_transport_open_stream(t, fd, desc);
+  return 0;
+}
+
+static long long now_ms(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (long long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
+}
+
+/* Waits for fd to be readable until deadline (ms, now_ms(); -1: forever).
+ * 1: readable, 0: deadline passed, -1: error (errno, EINTR included). */
+static int wait_readable(int fd, long long deadline)
+{
+  struct pollfd p;
+  int rc;
+  long long left = deadline < 0 ? -1 : deadline - now_ms();
+  if (deadline >= 0 && left < 0) left = 0;
+  if (left > INT_MAX) left = INT_MAX;
+  p.fd = fd;
+  p.events = POLLIN;
+  p.revents = 0;
+  rc = poll(&p, 1, (int)left);
+  return rc > 0 ? 1 : rc;
+}
+
+static int recv_datagram(FswTransport *t, const uint8_t **pkt, size_t *len, long long deadline)
+{
+  for (;;) {
+    struct sockaddr_storage from;
+    socklen_t flen = sizeof from;
+    ssize_t n;
+    const int w = wait_readable(t->fd, deadline);
+    if (w <= 0) return w == 0 ? FSW_TRANSPORT_TIMEOUT : FSW_TRANSPORT_ERROR;
+    n = recvfrom(t->fd, t->rx, sizeof t->rx, 0, (struct sockaddr *)&from, &flen);
+    if (n >= 0) {
+      if (!t->connected) {
+        memcpy(t->peer, &from, flen);
+        t->peer_len = (unsigned int)flen;
       }
-      done += (size_t)w;
+      *pkt = t->rx;
+      *len = (size_t)n;
+      return FSW_TRANSPORT_PACKET;
     }
+    if (!t->connected || errno != ECONNREFUSED) return FSW_TRANSPORT_ERROR;
+    deadline = now_ms(); /* ICMP refusal seen: look once more, then report a timeout */
+  }
+}
+
+static int recv_framed(FswTransport *t, const uint8_t **pkt, size_t *len, long long deadline)
+{
+  for (;;) {
+    ssize_t n;
+    int w;
+    while (t->used < t->have) {
+      *pkt = NULL;
+      t->used += fsw_link_deframer_push(&t->deframer, t->rx + t->used, t->have - t->used, pkt, len);
+      if (*pkt != NULL) return FSW_TRANSPORT_PACKET;
+    }
+    w = wait_readable(t->fd, deadline);
+    if (w <= 0) return w == 0 ? FSW_TRANSPORT_TIMEOUT : FSW_TRANSPORT_ERROR;
+    n = read(t->fd, t->rx, sizeof t->rx);
+    if (n < 0) return FSW_TRANSPORT_ERROR;
+    if (n == 0) return FSW_TRANSPORT_CLOSED;
+    t->have = (size_t)n;
+    t->used = 0u;
+  }
+}
+
+int fsw_transport_recv(FswTransport *t, const uint8_t **pkt, size_t *len, int timeout_ms)
+{
+  const long long deadline = timeout_ms < 0 ? -1 : now_ms() + timeout_ms;
+  *pkt = NULL;
+  *len = 0u;
+  return t->stream ? recv_framed(t, pkt, len, deadline) : recv_datagram(t, pkt, len, deadline);
+}
+
+static int write_all(FswTransport *t, const uint8_t *buf, size_t n)
+{
+  size_t done = 0;
+  while (done < n) {
+    /* a socket whose peer has gone must not raise SIGPIPE */
+    const ssize_t w = t->is_socket ? send(t->fd, buf + done, n - done, MSG_NOSIGNAL) : write(t->fd, buf + done, n - done);
+    if (w < 0) {
+      if (errno == EINTR || errno == EAGAIN) continue;
+      return -1;
+    }
+    done += (size_t)w;
+  }
+  return 0;
+}
+
+int fsw_transport_send(FswTransport *t, const uint8_t *pkt, size_t n)
+{
+  size_t len = 0;
+  if (t->stream) {
+    if (fsw_link_frame(pkt, n, t->tx, sizeof t->tx, &len) != FSW_OK) {
+      errno = EMSGSIZE;
+      return -1;
+    }
+    return write_all(t, t->tx, len);
+  }
+  if (t->connected) {
+    (void)send(t->fd, pkt, n, 0); /* a refused datagram (no process on the port yet) is a lost packet */
     return 0;
   }
   if (t->peer_len == 0u) return 0; /* nobody to answer yet */
-  return sendto(t->fd, buf, n, 0, (const struct sockaddr *)t->peer, (socklen_t)t->peer_len) == (ssize_t)n ? 0 : -1;
+  return sendto(t->fd, pkt, n, 0, (const struct sockaddr *)t->peer, (socklen_t)t->peer_len) == (ssize_t)n ? 0 : -1;
 }
 
 void fsw_transport_close(FswTransport *t)

@@ -1,7 +1,7 @@
 /* kestrel-fsw: the flight application fsw_acs as its own process, behind the
  * FSW link (docs/hwil.md, docs/icd.md).  C99, no heap: the node, the
  * configuration and the buffers are static storage of this file; the link
- * logic is fsw_c/ (fsw_link, fsw_link_node), the transports fsw_transport.c.
+ * logic is fsw_c/ (fsw_link, fsw_link_node), the transports fsw_transport.c (shared with the harness).
  *
  *   kestrel-fsw (--udp HOST:PORT | --serial DEVICE:BAUD) [--config IMAGE]
  *               [--max-missed N] [--watchdog-ms MS] [--quiet]
@@ -21,7 +21,7 @@
 
 #include "fsw/fsw_link.h"
 #include "fsw/fsw_link_node.h"
-#include "fsw_transport.h"
+#include "transport/fsw_transport.h"
 
 /* The integrator's assert hook: report and return (the module then returns
  * FSW_E_NULL_ARG and the cycle its safe output). */
@@ -35,9 +35,7 @@ void fsw_assert_failed(const char *file, int line) { fprintf(stderr, "kestrel-fs
 static FswLinkNode g_node;
 static FswAcsConfig g_cfg;
 static uint8_t g_image[65536];
-static uint8_t g_rx[4096];
-static uint8_t g_tx[FSW_LINK_ASM_SIZE + FSW_LINK_MAX_PACKET];
-static FswLinkDeframer g_deframer;
+static FswTransport g_transport;
 static volatile sig_atomic_t g_stop = 0;
 
 static void on_signal(int sig)
@@ -105,16 +103,40 @@ static int load_config(const char *path)
 static int send_replies(FswTransport *t, int count)
 {
   int i;
-  for (i = 0; i < count; ++i) {
-    size_t len = g_node.out_len[i];
-    const uint8_t *p = g_node.out[i];
-    if (t->serial) {
-      if (fsw_link_frame(g_node.out[i], len, g_tx, sizeof g_tx, &len) != FSW_OK) return -1;
-      p = g_tx;
-    }
-    if (fsw_transport_send(t, p, len) != 0) return -1;
-  }
+  for (i = 0; i < count; ++i)
+    if (fsw_transport_send(t, g_node.out[i], g_node.out_len[i]) != 0) return -1;
   return 0;
+}
+
+/* Receives and answers until a signal or a broken link. */
+static void serve(FswTransport *t, long watchdog_ms)
+{
+  uint32_t deframer_rejected = 0;
+  while (!g_stop) {
+    const uint8_t *pkt = NULL;
+    size_t plen = 0;
+    const int rc = fsw_transport_recv(t, &pkt, &plen, watchdog_ms > 0 ? (int)watchdog_ms : -1);
+    /* on a byte stream the deframer rejects damaged candidates (header,
+     * length or CRC) before the node sees them: counted as CRC rejections */
+    g_node.link.rx_crc += t->deframer.rejected - deframer_rejected;
+    deframer_rejected = t->deframer.rejected;
+    if (rc == FSW_TRANSPORT_ERROR) {
+      if (g_stop) break;
+      if (errno == EINTR) continue;
+      fprintf(stderr, "kestrel-fsw: receive failed: %s\n", strerror(errno));
+      break;
+    }
+    if (rc == FSW_TRANSPORT_CLOSED) {
+      fprintf(stderr, "kestrel-fsw: receive failed: the serial line closed\n");
+      break;
+    }
+    if (rc == FSW_TRANSPORT_TIMEOUT) { /* a watchdog period without a packet */
+      /* the safe output carries the last accepted sample time */
+      if (send_replies(t, fsw_link_node_watchdog(&g_node, g_node.last_t_ns)) != 0) break;
+      continue;
+    }
+    if (send_replies(t, fsw_link_node_receive(&g_node, &g_cfg, pkt, plen)) != 0) break;
+  }
 }
 
 int main(int argc, char **argv)
@@ -123,10 +145,9 @@ int main(int argc, char **argv)
   long max_missed = 3, watchdog_ms = 0;
   int quiet = 0, i;
   char err[256];
-  FswTransport t;
+  FswTransport *const t = &g_transport;
   FswStatus s;
   struct sigaction sa;
-  uint32_t deframer_rejected = 0;
   for (i = 1; i < argc; ++i) {
     const char *a = argv[i];
     const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -167,47 +188,18 @@ int main(int argc, char **argv)
             bad != NULL ? bad : "?");
     return 1;
   }
-  if ((udp != NULL ? fsw_transport_open_udp(&t, udp, err, sizeof err)
-                   : fsw_transport_open_serial(&t, serial, err, sizeof err)) != 0) {
+  if ((udp != NULL ? fsw_transport_open_udp(t, udp, err, sizeof err)
+                   : fsw_transport_open_serial(t, serial, err, sizeof err)) != 0) {
     fprintf(stderr, "kestrel-fsw: %s\n", err);
     return 1;
   }
-  fsw_link_deframer_init(&g_deframer);
   memset(&sa, 0, sizeof sa);
   sa.sa_handler = on_signal;
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
-  printf("kestrel-fsw: ready %s\n", t.desc);
+  printf("kestrel-fsw: ready %s\n", t->desc);
   fflush(stdout);
-  while (!g_stop) {
-    const long n = fsw_transport_recv(&t, g_rx, sizeof g_rx, watchdog_ms > 0 ? (int)watchdog_ms : -1);
-    if (n < 0) {
-      if (g_stop) break;
-      if (errno == EINTR) continue;
-      fprintf(stderr, "kestrel-fsw: receive failed: %s\n", strerror(errno));
-      break;
-    }
-    if (n == 0) { /* a watchdog period without data */
-      /* the safe output carries the last accepted sample time */
-      if (send_replies(&t, fsw_link_node_watchdog(&g_node, g_node.last_t_ns)) != 0) break;
-      continue;
-    }
-    if (!t.serial) {
-      if (send_replies(&t, fsw_link_node_receive(&g_node, &g_cfg, g_rx, (size_t)n)) != 0) break;
-    } else {
-      size_t used = 0;
-      while (used < (size_t)n) {
-        const uint8_t *pkt = NULL;
-        size_t plen = 0;
-        used += fsw_link_deframer_push(&g_deframer, g_rx + used, (size_t)n - used, &pkt, &plen);
-        if (pkt != NULL && send_replies(&t, fsw_link_node_receive(&g_node, &g_cfg, pkt, plen)) != 0) break;
-      }
-      /* on a byte stream the deframer rejects damaged candidates (header,
-       * length or CRC) before the node sees them: counted as CRC rejections */
-      g_node.link.rx_crc += g_deframer.rejected - deframer_rejected;
-      deframer_rejected = g_deframer.rejected;
-    }
-  }
+  serve(t, watchdog_ms);
   if (!quiet)
     fprintf(stderr,
             "kestrel-fsw: %lu packets, %lu cycles, rejected: %lu CRC, %lu other, %lu stale; %lu missed, "
@@ -216,6 +208,6 @@ int main(int argc, char **argv)
             (unsigned long)g_node.link.rx_crc, (unsigned long)g_node.link.rx_rejected,
             (unsigned long)g_node.link.rx_stale, (unsigned long)g_node.link.missed,
             (unsigned long)g_node.link.safe_entries, (unsigned long)g_node.link.recoveries);
-  fsw_transport_close(&t);
+  fsw_transport_close(t);
   return 0;
 }

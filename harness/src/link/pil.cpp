@@ -4,8 +4,6 @@
 #include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
-#include <sys/socket.h>
-#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -312,18 +310,14 @@ void write_image(const FswAcsConfig& cfg, const fs::path& file)
 }
 
 // Connects to the emulator's UART socket; retries until it listens.
-int connect_unix(const fs::path& sock, PilTransport& t, double timeout_s, const std::string& what)
+std::unique_ptr<LinkTransport> connect_uart(const fs::path& sock, PilTransport& t, double timeout_s,
+                                            const std::string& what)
 {
   const auto t0 = Clock::now();
   for (;;) {
     t.check_alive("before its UART socket opened");
-    const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    if (fd < 0) throw FswEndpointError(std::string("PIL (harness side): socket: ") + std::strerror(errno));
-    sockaddr_un a{};
-    a.sun_family = AF_UNIX;
-    std::snprintf(a.sun_path, sizeof a.sun_path, "%s", sock.c_str());
-    if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0) return fd;
-    ::close(fd);
+    auto link = connect_unix_transport(sock.string(), "UART0 on unix socket " + sock.string());
+    if (link) return link;
     if (seconds_since(t0) > timeout_s)
       throw FswEndpointError("PIL (FSW side): the emulator (" + what + ") did not open its UART socket within " +
                              std::to_string(timeout_s) + " s; it was stopped. Its output: " +
@@ -391,8 +385,7 @@ std::unique_ptr<LinkTransport> open_pil_transport(const std::string& spec, const
   auto child = std::make_unique<ChildProcess>(argv, err);
   auto t = std::make_unique<PilTransport>(what, std::move(dir), std::move(child));
   if (tgt->bare_metal) {
-    const int fd = connect_unix(sock, *t, opt.timeout_s, what);
-    t->set_link(make_stream_transport(fd, "UART0 on unix socket " + sock.string()));
+    t->set_link(connect_uart(sock, *t, opt.timeout_s, what));
     return t;
   }
   // kestrel-fsw prints "kestrel-fsw: ready udp 127.0.0.1:PORT" when it listens

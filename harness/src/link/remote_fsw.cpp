@@ -1,18 +1,12 @@
 #include "harness/link/remote_fsw.h"
 
-#include <arpa/inet.h>
-#include <fcntl.h>
-#include <netdb.h>
-#include <poll.h>
-#include <sys/socket.h>
-#include <termios.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <sstream>
+
+#include "transport/fsw_transport.h"
 
 namespace harness {
 
@@ -22,188 +16,70 @@ using Clock = std::chrono::steady_clock;
 
 std::string errno_text() { return std::strerror(errno); }
 
-// Splits "A:B" at the last colon.
-bool split_last(const std::string& s, std::string& a, std::string& b)
-{
-  const auto c = s.rfind(':');
-  if (c == std::string::npos || c == 0 || c + 1 == s.size()) return false;
-  a = s.substr(0, c);
-  b = s.substr(c + 1);
-  return true;
-}
-
-// Waits for fd to be readable for at most timeout_s; false on timeout.
-bool wait_readable(int fd, double timeout_s)
-{
-  const auto end = Clock::now() + std::chrono::duration<double>(std::max(0.0, timeout_s));
-  for (;;) {
-    const double left = std::chrono::duration<double>(end - Clock::now()).count();
-    pollfd p{fd, POLLIN, 0};
-    const int ms = left <= 0 ? 0 : static_cast<int>(left * 1000.0) + 1;
-    const int rc = ::poll(&p, 1, ms);
-    if (rc > 0) return true;
-    if (rc == 0) return false;
-    if (errno != EINTR) throw FswEndpointError("FSW link: poll failed: " + errno_text());
-  }
-}
-
-class UdpTransport : public LinkTransport {
+// The harness's side of the link: an RAII owner of the C transport
+// (flight/posix/fsw_transport.c, which kestrel-fsw runs too): opening,
+// framing on byte streams, receiving with a timeout, sending and closing
+// are all there; this class turns its results into packets and exceptions.
+class CTransport : public LinkTransport {
  public:
-  explicit UdpTransport(const std::string& spec)
+  enum class Kind { kUdp, kSerial };
+  // a connected UDP socket ("HOST:PORT") or a serial line ("DEVICE:BAUD")
+  CTransport(Kind kind, const std::string& spec) : t_(std::make_unique<FswTransport>())
   {
-    std::string host, port;
-    if (!split_last(spec, host, port))
-      throw FswEndpointError("FSW link: bad UDP address '" + spec + "' (expected udp:HOST:PORT)");
-    addrinfo hints{};
-    hints.ai_family = AF_UNSPEC;
-    hints.ai_socktype = SOCK_DGRAM;
-    hints.ai_flags = AI_NUMERICSERV;
-    addrinfo* res = nullptr;
-    const int rc = ::getaddrinfo(host.c_str(), port.c_str(), &hints, &res);
-    if (rc != 0) throw FswEndpointError("FSW link: cannot resolve '" + spec + "': " + ::gai_strerror(rc));
-    fd_ = ::socket(res->ai_family, SOCK_DGRAM, 0);
-    if (fd_ < 0 || ::connect(fd_, res->ai_addr, res->ai_addrlen) != 0) {
-      const std::string why = errno_text();
-      ::freeaddrinfo(res);
-      if (fd_ >= 0) ::close(fd_);
-      throw FswEndpointError("FSW link: cannot open UDP to " + spec + ": " + why);
-    }
-    ::freeaddrinfo(res);
-    desc_ = "udp " + spec;
+    char err[256] = "";
+    const int rc = kind == Kind::kUdp ? fsw_transport_connect_udp(t_.get(), spec.c_str(), err, sizeof err)
+                                      : fsw_transport_open_serial(t_.get(), spec.c_str(), err, sizeof err);
+    if (rc != 0) throw FswEndpointError(std::string("FSW link: ") + err);
   }
-  ~UdpTransport() override { ::close(fd_); }
-  std::string describe() const override { return desc_; }
+  // a byte stream already open; owns fd
+  CTransport(int fd, const std::string& desc) : t_(std::make_unique<FswTransport>())
+  {
+    fsw_transport_open_stream(t_.get(), fd, desc.c_str());
+  }
+  // a stream socket connected to a unix socket; *listening false: nothing
+  // accepts there yet (no transport)
+  CTransport(const std::string& path, const std::string& desc, bool* listening)
+      : t_(std::make_unique<FswTransport>())
+  {
+    char err[256] = "";
+    const int rc = fsw_transport_connect_unix(t_.get(), path.c_str(), desc.c_str(), err, sizeof err);
+    if (rc == -1) throw FswEndpointError(std::string("PIL (harness side): ") + err);
+    *listening = rc == 0;
+  }
+  ~CTransport() override { fsw_transport_close(t_.get()); }
+  CTransport(const CTransport&) = delete;
+  CTransport& operator=(const CTransport&) = delete;
+
+  std::string describe() const override { return t_->desc; }
   void send(const uint8_t* p, size_t n) override
   {
-    // a refused datagram (no process on the port yet) is a lost packet
-    (void)::send(fd_, p, n, 0);
+    if (fsw_transport_send(t_.get(), p, n) != 0 && errno != EMSGSIZE)  // a packet too long to frame: not sent
+      throw FswEndpointError("FSW link: write failed: " + errno_text());
   }
   bool recv(std::vector<uint8_t>& pkt, double timeout_s) override
   {
+    const auto end = Clock::now() + std::chrono::duration<double>(std::max(0.0, timeout_s));
     for (;;) {
-      if (!wait_readable(fd_, timeout_s)) return false;
-      pkt.resize(65536);
-      const ssize_t n = ::recv(fd_, pkt.data(), pkt.size(), 0);
-      if (n >= 0) {
-        pkt.resize(static_cast<size_t>(n));
+      const double left = std::chrono::duration<double>(end - Clock::now()).count();
+      const int ms = left <= 0 ? 0 : static_cast<int>(std::min(left, 2.0e6) * 1000.0) + 1;
+      const uint8_t* p = nullptr;
+      size_t len = 0;
+      const int rc = fsw_transport_recv(t_.get(), &p, &len, ms);
+      if (rc == FSW_TRANSPORT_PACKET) {
+        pkt.assign(p, p + len);
         return true;
       }
-      if (errno != EINTR && errno != ECONNREFUSED) throw FswEndpointError("FSW link: receive failed: " + errno_text());
-      timeout_s = 0.0;  // ICMP refusal seen: look once more, then report a timeout
+      if (rc == FSW_TRANSPORT_TIMEOUT) return false;
+      if (rc == FSW_TRANSPORT_ERROR && errno == EINTR) continue;
+      if (t_->stream)
+        throw FswEndpointError("FSW link: the " + std::string(t_->is_socket ? "socket" : "serial line") + " closed");
+      throw FswEndpointError("FSW link: receive failed: " + errno_text());
     }
   }
 
  private:
-  int fd_ = -1;
-  std::string desc_;
+  std::unique_ptr<FswTransport> t_;  // 67 kB of buffers: not on the stack
 };
-
-speed_t baud_of(long b)
-{
-  switch (b) {
-    case 9600: return B9600;
-    case 19200: return B19200;
-    case 38400: return B38400;
-    case 57600: return B57600;
-    case 115200: return B115200;
-    case 230400: return B230400;
-    case 460800: return B460800;
-    case 921600: return B921600;
-    default: return 0;
-  }
-}
-
-// A byte stream (serial line, socket): packets framed by the attached sync
-// marker, deframed by the flight code's FswLinkDeframer.  Owns fd.
-class StreamTransport : public LinkTransport {
- public:
-  StreamTransport(int fd, std::string desc) : fd_(fd), desc_(std::move(desc))
-  {
-    int type = 0;
-    socklen_t tl = sizeof type;
-    socket_ = ::getsockopt(fd_, SOL_SOCKET, SO_TYPE, &type, &tl) == 0;
-    fsw_link_deframer_init(&d_);
-  }
-  ~StreamTransport() override { ::close(fd_); }
-  std::string describe() const override { return desc_; }
-  void send(const uint8_t* p, size_t n) override
-  {
-    std::vector<uint8_t> f(n + FSW_LINK_ASM_SIZE);
-    size_t len = 0;
-    if (fsw_link_frame(p, n, f.data(), f.size(), &len) != FSW_OK) return;
-    size_t done = 0;
-    while (done < len) {
-      // a socket whose peer has gone must not raise SIGPIPE
-      const ssize_t w = socket_ ? ::send(fd_, f.data() + done, len - done, MSG_NOSIGNAL)
-                                : ::write(fd_, f.data() + done, len - done);
-      if (w < 0) {
-        if (errno == EINTR || errno == EAGAIN) continue;
-        throw FswEndpointError("FSW link: write failed: " + errno_text());
-      }
-      done += static_cast<size_t>(w);
-    }
-  }
-  bool recv(std::vector<uint8_t>& pkt, double timeout_s) override
-  {
-    const auto end = Clock::now() + std::chrono::duration<double>(timeout_s);
-    for (;;) {
-      while (used_ < have_) {
-        const uint8_t* p = nullptr;
-        size_t plen = 0;
-        used_ += fsw_link_deframer_push(&d_, buf_ + used_, have_ - used_, &p, &plen);
-        if (p != nullptr) {
-          pkt.assign(p, p + plen);
-          return true;
-        }
-      }
-      const double left = std::chrono::duration<double>(end - Clock::now()).count();
-      if (!wait_readable(fd_, left)) return false;
-      const ssize_t n = ::read(fd_, buf_, sizeof buf_);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) throw FswEndpointError("FSW link: the " + std::string(socket_ ? "socket" : "serial line") + " closed");
-      have_ = static_cast<size_t>(n);
-      used_ = 0;
-    }
-  }
-
- private:
-  int fd_ = -1;
-  bool socket_ = false;
-  std::string desc_;
-  FswLinkDeframer d_;
-  uint8_t buf_[4096];
-  size_t have_ = 0, used_ = 0;
-};
-
-// A serial line: a terminal set raw at the given baud rate.
-int open_serial_line(const std::string& spec, std::string& desc)
-{
-  std::string dev, baud;
-  if (!split_last(spec, dev, baud))
-    throw FswEndpointError("FSW link: bad serial line '" + spec + "' (expected serial:DEVICE:BAUD)");
-  char* end = nullptr;
-  const long b = std::strtol(baud.c_str(), &end, 10);
-  const speed_t sp = baud_of(b);
-  if (*end != '\0' || sp == 0)
-    throw FswEndpointError("FSW link: unsupported baud rate '" + baud + "' (9600 ... 921600)");
-  const int fd = ::open(dev.c_str(), O_RDWR | O_NOCTTY);
-  if (fd < 0) throw FswEndpointError("FSW link: cannot open " + dev + ": " + errno_text());
-  termios tio{};
-  if (::tcgetattr(fd, &tio) != 0) {
-    ::close(fd);
-    throw FswEndpointError("FSW link: " + dev + " is not a terminal");
-  }
-  ::cfmakeraw(&tio);
-  tio.c_cflag |= CLOCAL | CREAD;
-  tio.c_cflag &= ~(CSTOPB | CRTSCTS);
-  tio.c_cc[VMIN] = 1;
-  tio.c_cc[VTIME] = 0;
-  ::cfsetispeed(&tio, sp);
-  ::cfsetospeed(&tio, sp);
-  ::tcsetattr(fd, TCSANOW, &tio);
-  desc = "serial " + dev + " " + baud + " baud";
-  return fd;
-}
 
 uint8_t clamp_count(int n, int cap) { return static_cast<uint8_t>(std::clamp(n, 0, cap)); }
 
@@ -211,17 +87,21 @@ uint8_t clamp_count(int n, int cap) { return static_cast<uint8_t>(std::clamp(n, 
 
 std::unique_ptr<LinkTransport> make_stream_transport(int fd, const std::string& desc)
 {
-  return std::make_unique<StreamTransport>(fd, desc);
+  return std::make_unique<CTransport>(fd, desc);
+}
+
+std::unique_ptr<LinkTransport> connect_unix_transport(const std::string& path, const std::string& desc)
+{
+  bool listening = false;
+  auto t = std::make_unique<CTransport>(path, desc, &listening);
+  if (!listening) return nullptr;
+  return t;
 }
 
 std::unique_ptr<LinkTransport> open_link_transport(const std::string& spec)
 {
-  if (spec.rfind("udp:", 0) == 0) return std::make_unique<UdpTransport>(spec.substr(4));
-  if (spec.rfind("serial:", 0) == 0) {
-    std::string desc;
-    const int fd = open_serial_line(spec.substr(7), desc);
-    return std::make_unique<StreamTransport>(fd, desc);
-  }
+  if (spec.rfind("udp:", 0) == 0) return std::make_unique<CTransport>(CTransport::Kind::kUdp, spec.substr(4));
+  if (spec.rfind("serial:", 0) == 0) return std::make_unique<CTransport>(CTransport::Kind::kSerial, spec.substr(7));
   throw FswEndpointError("FSW link: unknown transport '" + spec + "' (expected udp:HOST:PORT or serial:DEVICE:BAUD)");
 }
 

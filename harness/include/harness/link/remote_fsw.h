@@ -67,9 +67,19 @@ class LinkTransport {
   virtual std::string diagnose() const { return ""; }
 };
 
+// The transports below are RAII wrappers over the C transport module that
+// kestrel-fsw runs too (flight/posix/include/transport/fsw_transport.h):
+// opening, framing on byte streams, receiving with a timeout, sending and
+// closing are written once, there.
+
 // A byte stream already open (a serial line, a connected socket): packets
 // framed by the attached sync marker.  Takes ownership of fd.
 std::unique_ptr<LinkTransport> make_stream_transport(int fd, const std::string& desc);
+
+// A stream socket connected to the unix socket at path (an emulator's UART),
+// framed as above; nullptr while nothing accepts there.  Throws
+// FswEndpointError when no socket can be made.
+std::unique_ptr<LinkTransport> connect_unix_transport(const std::string& path, const std::string& desc);
 
 // "udp:HOST:PORT" or "serial:DEVICE:BAUD"; throws FswEndpointError with the
 // reason (bad address, cannot open).
