@@ -43,8 +43,12 @@ bool parse_index(const std::string& part, size_t size, size_t& out)
   return true;
 }
 
-KeyTarget resolve_path(const std::vector<std::string>& parts,
-                       const std::function<size_t(const schema::Section&, size_t)>& list_size)
+ListSizeFn list_sizes(const Scenario& sc)
+{
+  return [&sc](const schema::Section& list, size_t) { return list.count ? list.count(sc) : 0; };
+}
+
+KeyTarget resolve_path(const std::vector<std::string>& parts, const ListSizeFn& list_size)
 {
   KeyTarget t;
   const schema::Section* sec = &schema::schema();
@@ -233,8 +237,7 @@ KeyTarget settable_key(const Scenario& sc, const std::string& path, const char* 
     throw ScenarioError({is});
   };
   if (parts.empty()) fail("empty key path");
-  const KeyTarget t =
-      resolve_path(parts, [&sc](const schema::Section& list, size_t) { return list.count ? list.count(sc) : 0; });
+  const KeyTarget t = resolve_path(parts, list_sizes(sc));
   if (!t.error.empty()) {
     is.key = t.error_key;
     fail(t.error);

@@ -376,9 +376,7 @@ std::vector<std::string> expand_dispersion_key(const Scenario& sc, const std::st
     why = "at most one [*] in a key";
     return {};
   }
-  const std::vector<std::string> parts = split_path(key.substr(0, star));
-  const KeyTarget t =
-      resolve_path(parts, [&sc](const schema::Section& list, size_t) { return list.count ? list.count(sc) : 0; });
+  const KeyTarget t = resolve_path(split_path(key.substr(0, star)), list_sizes(sc));
   if (!t.error.empty() || t.key || !t.section || !t.section->list) {
     why = "[*] must follow a list (wheels, thrusters, events)";
     return {};
@@ -390,78 +388,99 @@ std::vector<std::string> expand_dispersion_key(const Scenario& sc, const std::st
   return out;
 }
 
-void check_monte_carlo(const Ctx& ctx, Scenario& sc)
+namespace {
+
+// What is wrong with dispersing bound key t ("" when nothing); `seen`: the
+// keys dispersed so far (without their unit suffix).
+std::string target_problem(const McTarget& t, const DispersionSpec& s, std::set<std::string>& seen)
 {
-  if (!sc.monte_carlo) return;
-  const std::string base = "monte_carlo.dispersions";
+  static const std::set<std::string> kStructure = {"name",  "description", "seed",   "duration",
+                                                   "rates", "monte_carlo", "outputs"};
+  const std::vector<std::string> parts = split_path(t.path);
+  if (!parts.empty() && kStructure.count(parts[0]))
+    return "cannot be dispersed: it sets the run's structure (the time grid, the seeds, the outputs)";
+  if (!t.error.empty()) return t.error;
+  if (!dist_fits(s.dist, t.key->type, t.key->name))
+    return "dist " + kDistNames[static_cast<size_t>(s.dist)] + " needs " + dist_needs(s.dist);
+  const std::string& k = t.path;
+  const std::string norm = normalise_path(split_path(t.suffixed ? k.substr(0, k.size() - t.key->suffix.size()) : k));
+  if (!seen.insert(norm).second) return "dispersed twice (" + norm + ")";
+  if (s.dist == DistKind::TruncatedNormal && !s.mean) {
+    const ParameterValue& nominal = t.nominal;
+    const double mean = std::holds_alternative<double>(nominal.value) ? std::get<double>(nominal.value)
+                        : std::holds_alternative<long long>(nominal.value)
+                            ? static_cast<double>(std::get<long long>(nominal.value))
+                            : static_cast<double>(std::get<uint64_t>(nominal.value));
+    const double p = normal_cdf((*s.max - mean) / s.std) - normal_cdf((*s.min - mean) / s.std);
+    if (!(p >= kMinTruncMass))
+      return "the bounds [" + fmt(*s.min) + ", " + fmt(*s.max) + "] about the nominal " + fmt(mean) + " keep only " +
+             fmt(p) + " of the normal distribution (at least 0.01 is needed)";
+  }
+  return "";
+}
+
+// The first value of a choice that key t refuses (each set in turn on a copy
+// of sc), or "".
+std::string choice_problem(const McTarget& t, const DispersionSpec& s, const Scenario& sc)
+{
+  Scenario probe = sc;
+  for (size_t v = 0; v < s.values.size(); ++v) {
+    std::string bad = t.choice_errors[v];
+    if (bad.empty()) bad = t.key->set(*t.key, probe, t.index, t.choices[v], t.suffixed);
+    if (!bad.empty()) return "value " + std::to_string(v) + " ('" + s.values[v] + "'): " + bad;
+  }
+  return "";
+}
+
+// The problems of the binding of sc's dispersions, each at the line of its
+// dispersion, key monte_carlo.dispersions[i].key.  A dispersion's keys are
+// checked until one has a problem (a choice's values: each key).
+void report_problems(const Ctx& ctx, const Scenario& sc, const McBinding& b)
+{
   std::set<std::string> seen;
-  const std::set<std::string> fixed = {"name", "description", "seed", "duration"};
-  for (size_t i = 0; i < sc.monte_carlo->dispersions.size(); ++i) {
-    const DispersionSpec& s = sc.monte_carlo->dispersions[i];
-    const std::string at = base + "[" + std::to_string(i) + "].key";
+  size_t t = 0;  // b.targets: dispersion by dispersion
+  for (size_t i = 0; i < b.specs.size(); ++i) {
+    const DispersionSpec& s = b.specs[i];
     auto error = [&](const std::string& msg) {
       ScenarioIssue is;
       is.file = ctx.file;
       is.line = s.line;
       is.column = s.column;
-      is.key = at;
+      is.key = "monte_carlo.dispersions[" + std::to_string(i) + "].key";
       is.message = "'" + s.key + "': " + msg;
       ctx.issues->push_back(is);
     };
-    std::string why;
-    const std::vector<std::string> keys = expand_dispersion_key(sc, s.key, why);
-    if (!why.empty()) {
-      error(why);
-      continue;
-    }
-    for (const std::string& k : keys) {
-      const std::vector<std::string> parts = split_path(k);
-      if (!parts.empty() && (fixed.count(parts[0]) || parts[0] == "rates" || parts[0] == "monte_carlo" || parts[0] == "outputs")) {
-        error("cannot be dispersed: it sets the run's structure (the time grid, the seeds, the outputs)");
-        break;
-      }
-      ParameterValue nominal(0.0);
-      try {
-        nominal = get_parameter(sc, k);
-      } catch (const ScenarioError& e) {
-        error(e.issues().front().message);
-        break;
-      }
-      const KeyTarget t =
-          resolve_path(parts, [&sc](const schema::Section& list, size_t) { return list.count ? list.count(sc) : 0; });
-      if (!dist_fits(s.dist, t.key->type, t.key->name)) {
-        error("dist " + kDistNames[static_cast<size_t>(s.dist)] + " needs " + dist_needs(s.dist));
-        break;
-      }
-      const std::string norm = normalise_path(split_path(t.suffixed ? k.substr(0, k.size() - t.key->suffix.size()) : k));
-      if (!seen.insert(norm).second) {
-        error("dispersed twice (" + norm + ")");
-        break;
-      }
-      if (s.dist == DistKind::TruncatedNormal && !s.mean) {
-        const double mean = std::holds_alternative<double>(nominal.value) ? std::get<double>(nominal.value)
-                            : std::holds_alternative<long long>(nominal.value)
-                                ? static_cast<double>(std::get<long long>(nominal.value))
-                                : static_cast<double>(std::get<uint64_t>(nominal.value));
-        const double p = normal_cdf((*s.max - mean) / s.std) - normal_cdf((*s.min - mean) / s.std);
-        if (!(p >= kMinTruncMass)) {
-          error("the bounds [" + fmt(*s.min) + ", " + fmt(*s.max) + "] about the nominal " + fmt(mean) + " keep only " +
-                fmt(p) + " of the normal distribution (at least 0.01 is needed)");
-          break;
-        }
-      }
-      if (s.dist == DistKind::Choice) {
-        Scenario probe = sc;
-        for (size_t v = 0; v < s.values.size(); ++v) {
-          const std::string bad = try_choice_value(probe, k, s.values[v]);
-          if (!bad.empty()) {
-            error("value " + std::to_string(v) + " ('" + s.values[v] + "'): " + bad);
-            break;
-          }
-        }
+    if (!b.spec_errors[i].empty()) error(b.spec_errors[i]);
+    bool stop = false;
+    for (; t < b.targets.size() && b.targets[t].dispersion == i; ++t) {
+      if (stop) continue;
+      const std::string bad = target_problem(b.targets[t], s, seen);
+      if (!bad.empty()) {
+        error(bad);
+        stop = true;
+      } else if (s.dist == DistKind::Choice) {
+        const std::string v = choice_problem(b.targets[t], s, sc);
+        if (!v.empty()) error(v);
       }
     }
   }
+}
+
+}  // namespace
+
+void check_monte_carlo(const Ctx& ctx, Scenario& sc)
+{
+  if (sc.monte_carlo) report_problems(ctx, sc, bind_dispersions(sc));
+}
+
+McBinding bind_campaign(const Scenario& nominal)
+{
+  McBinding b = bind_dispersions(nominal);
+  std::vector<ScenarioIssue> issues;
+  const Ctx ctx{nominal.source_file, &issues, {}};
+  report_problems(ctx, nominal, b);
+  if (!issues.empty()) throw ScenarioError(issues);
+  return b;
 }
 
 }  // namespace harness
