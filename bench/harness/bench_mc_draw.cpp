@@ -3,12 +3,13 @@
 // keys), k = 0, 1, ... 99 in turn.  Prints microseconds per run; not a
 // pass/fail test.
 //
-//   BM_DrawRun/0       the draws only (draw_run with check = false), the
-//                      dispersions bound once (as the campaign's plan does)
-//   BM_DrawRun/1       the draws and the checks of the drawn scenario (what a
-//                      campaign does before each run: reload, plant and FSW checks)
-//   BM_BindAndDraw/0   the draws only, the dispersions bound for each run
-//   BM_BindAndDraw/1   the same with the checks
+//   BM_DrawRun/check:0/bound:1  the draws only (draw_run with check = false),
+//                               the dispersions bound once (as a campaign's plan
+//                               does: bind_campaign)
+//   BM_DrawRun/check:0/bound:0  the same, the dispersions bound for each run
+//   BM_DrawRun/check:1/...      the draws and the checks of the drawn scenario
+//                               (what a campaign does before each run: reload,
+//                               plant and FSW checks)
 //
 // Run: build/host-release/bench/harness/bench_mc_draw --benchmark_repetitions=9
 //      --benchmark_report_aggregates_only=true   (quote the medians)
@@ -30,31 +31,18 @@ const harness::Scenario& campaign()
 void BM_DrawRun(benchmark::State& state)
 {
   const harness::Scenario& sc = campaign();
+  const bool check = state.range(0) != 0, bind_once = state.range(1) != 0;
   const harness::McBinding bound = harness::bind_campaign(sc);
-  const bool check = state.range(0) != 0;
   const uint64_t master = sc.monte_carlo->seed, runs = sc.monte_carlo->runs;
   uint64_t k = 0;
   for (auto _ : state) {
-    harness::McDraw d = harness::draw_run(sc, bound, master, k, check);
+    harness::McDraw d = bind_once ? harness::draw_run(sc, bound, master, k, check)
+                                  : harness::draw_run(sc, master, k, check);
     benchmark::DoNotOptimize(d.drawn.data());
     k = (k + 1) % runs;
   }
 }
-BENCHMARK(BM_DrawRun)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
-
-void BM_BindAndDraw(benchmark::State& state)
-{
-  const harness::Scenario& sc = campaign();
-  const bool check = state.range(0) != 0;
-  const uint64_t master = sc.monte_carlo->seed, runs = sc.monte_carlo->runs;
-  uint64_t k = 0;
-  for (auto _ : state) {
-    harness::McDraw d = harness::draw_run(sc, master, k, check);
-    benchmark::DoNotOptimize(d.drawn.data());
-    k = (k + 1) % runs;
-  }
-}
-BENCHMARK(BM_BindAndDraw)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DrawRun)->ArgNames({"check", "bound"})->ArgsProduct({{0, 1}, {1, 0}})->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
