@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstring>
 #include <numeric>
+#include <set>
 #include <sstream>
 
 #include "harness/mc/monte_carlo.h"
@@ -305,6 +306,102 @@ TEST(McDraw, RunKDependsOnSeedAndIndexAndKeyOnly)
     EXPECT_NE(x.sc.events[0].t, draw_run(a, 42, k + 1).sc.events[0].t);
     EXPECT_LT(x.sc.seed, 1ULL << 53);
     EXPECT_FALSE(x.sc.monte_carlo.has_value());
+  }
+}
+
+namespace {
+
+// One dispersion of every kind (DistKind), a list expanded with [*] and a
+// key written with its unit suffix among them.
+const char* kEveryKind =
+    "  seed: 17\n  dispersions:\n"
+    "    - {key: spacecraft.mass, dist: normal, std: 10}\n"
+    "    - {key: fsw.mrp_fb.K, dist: truncated_normal, std: 0.5, min: 2.5, max: 4.5}\n"
+    "    - {key: \"events[0].t\", dist: uniform, min: 2, max: 18}\n"
+    "    - {key: \"wheels[*].model\", dist: choice, values: [balanced, simple_jitter], weights: [2, 1]}\n"
+    "    - {key: \"wheels[*].axis\", dist: unit_vector, angle_std_deg: 0.5}\n"
+    "    - {key: spacecraft.initial.omega_BN_B, dist: normal_vector, std: [0.001, 0.002, 0.004]}\n"
+    "    - {key: spacecraft.initial.sigma_BN, dist: attitude, angle_max_deg: 20}\n"
+    "    - {key: spacecraft.inertia, dist: inertia, angle_std_deg: 2, principal_std_rel: 0.03}\n"
+    "    - {key: \"wheels[2].Omega_0_rpm\", dist: uniform, half_width: 50}\n";
+
+void expect_same_draw(const McDraw& a, const McDraw& b, uint64_t k)
+{
+  EXPECT_EQ(a.invalid, b.invalid) << "run " << k;
+  ASSERT_EQ(a.drawn.size(), b.drawn.size()) << "run " << k;
+  EXPECT_EQ(0, std::memcmp(a.drawn.data(), b.drawn.data(), a.drawn.size() * sizeof(double))) << "run " << k;
+  EXPECT_EQ(scenario_to_json_text(a.sc), scenario_to_json_text(b.sc)) << "run " << k;
+}
+
+}  // namespace
+
+TEST(McBinding, ACampaignBoundOnceDrawsWhatAFreshBindingDraws)
+{
+  const Scenario sc = load(kEveryKind);
+  const McPlan plan = make_mc_plan(sc, 17, 40);
+  ASSERT_TRUE(plan.bound);
+  std::set<DistKind> kinds;
+  for (const DispersionSpec& s : plan.bound->specs) kinds.insert(s.dist);
+  EXPECT_EQ(kinds.size(), 8u);                // every distribution
+  EXPECT_EQ(plan.bound->targets.size(), 13u);  // 6 keys + 3 wheels' models + 3 wheels' axes + Omega_0_rpm
+  EXPECT_EQ(plan.drawn.size(), 1u + 1 + 1 + 3 + 3 + 3 + 1 + 4 + 1);
+  // runs in reverse order, then forward: a draw leaves nothing in the binding
+  std::vector<uint64_t> order;
+  for (uint64_t k = 40; k-- > 0;) order.push_back(k);
+  for (uint64_t k = 0; k < 40; ++k) order.push_back(k);
+  for (uint64_t k : order) {
+    const McDraw bound = draw_run(sc, *plan.bound, 17, k, false);
+    const McDraw fresh = draw_run(sc, 17, k, false);  // bound for this run alone
+    ASSERT_TRUE(bound.invalid.empty()) << bound.invalid;
+    ASSERT_EQ(bound.drawn.size(), plan.drawn.size());
+    expect_same_draw(bound, fresh, k);
+    // the values are set where the keys point
+    EXPECT_EQ(bound.sc.spacecraft.mass, bound.drawn[0]);
+    EXPECT_EQ(bound.sc.fsw.mrp_fb.K, bound.drawn[1]);
+    EXPECT_EQ(bound.sc.events[0].t, bound.drawn[2]);
+    for (size_t w = 0; w < 3; ++w)
+      EXPECT_EQ(bound.sc.wheels[w].params.model == sim::WheelModel::SimpleJitter ? 1.0 : 0.0, bound.drawn[3 + w]);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(bound.sc.spacecraft.initial.omega_BN_B(c), bound.drawn[9 + static_cast<size_t>(c)]);
+    // stored in rad/s: read back in rpm to rounding
+    EXPECT_DOUBLE_EQ(std::get<double>(get_parameter(bound.sc, "wheels[2].Omega_0_rpm").value), bound.drawn.back());
+  }
+  for (uint64_t k : {0ULL, 39ULL})  // with the checks of the drawn scenario
+    expect_same_draw(draw_run(sc, *plan.bound, 17, k), draw_run(sc, 17, k), k);
+}
+
+TEST(McBinding, ABadKeyIsRejectedWhenTheCampaignIsReadOrPlanned)
+{
+  // read: the file's line, the dispersion's key
+  std::string text = base_text(kEveryKind);
+  text.replace(text.find("fsw.mrp_fb.K,"), 13, "fsw.mrp_fb.Q,");
+  try {
+    (void)load_scenario_text(text, "mc_test.yaml");
+    ADD_FAILURE() << "a dispersion of an unknown key was read";
+  } catch (const ScenarioError& e) {
+    const ScenarioIssue& is = e.issues().front();
+    EXPECT_EQ(is.file, "mc_test.yaml");
+    EXPECT_EQ(is.line, 27);  // "    - {key: fsw.mrp_fb.Q, ..."
+    EXPECT_EQ(is.key, "monte_carlo.dispersions[1].key");
+    EXPECT_NE(is.message.find("unknown key"), std::string::npos) << is.message;
+  }
+  // planned: a campaign changed after it was read
+  Scenario sc = load(kEveryKind);
+  const int line = sc.monte_carlo->dispersions[1].line;
+  EXPECT_EQ(line, 27);
+  sc.monte_carlo->dispersions[1].key = "fsw.mrp_fb.Q";
+  sc.monte_carlo->dispersions[3].values[1] = "wobbly";
+  try {
+    (void)make_mc_plan(sc, 17, 4);
+    ADD_FAILURE() << "a campaign with an unknown key was planned";
+  } catch (const ScenarioError& e) {
+    ASSERT_EQ(e.issues().size(), 4u);  // the key; the choice's value, once per wheel
+    const ScenarioIssue& is = e.issues()[0];
+    EXPECT_EQ(is.file, "mc_test.yaml");
+    EXPECT_EQ(is.line, line);
+    EXPECT_EQ(is.key, "monte_carlo.dispersions[1].key");
+    EXPECT_NE(is.message.find("unknown key"), std::string::npos) << is.message;
+    EXPECT_EQ(e.issues()[1].key, "monte_carlo.dispersions[3].key");
+    EXPECT_NE(e.issues()[1].message.find("value 1 ('wobbly')"), std::string::npos) << e.issues()[1].message;
   }
 }
 

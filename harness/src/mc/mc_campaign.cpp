@@ -167,29 +167,22 @@ class McSink : public RecordSink {
 
 }  // namespace
 
-McPlan make_mc_plan(const Scenario& nominal, uint64_t master_seed, uint64_t runs)
+namespace {
+
+void require_monte_carlo(const Scenario& nominal)
 {
-  if (!nominal.monte_carlo) {
-    ScenarioIssue is;
-    is.file = nominal.source_file;
-    is.key = "monte_carlo";
-    is.message = "the scenario has no monte_carlo section (docs/monte-carlo.md)";
-    throw ScenarioError({is});
-  }
-  McPlan p;
-  p.nominal = nominal;
-  p.master_seed = master_seed;
-  p.runs = runs;
-  p.drawn = drawn_columns(nominal);
-  // The recorded layout: the nominal run's (a draw changes values, not columns).
-  Scenario probe = nominal;
-  probe.monte_carlo.reset();
-  RunConfig rc;
-  rc.keep_in_memory = false;
-  const Run run(probe, std::move(rc));
-  const RecordLayout& l = run.recorder().layout();
-  auto add_default = [&](const std::string& name, const std::string& column, const std::string& stat,
-                         const std::string& what) {
+  if (nominal.monte_carlo) return;
+  ScenarioIssue is;
+  is.file = nominal.source_file;
+  is.key = "monte_carlo";
+  is.message = "the scenario has no monte_carlo section (docs/monte-carlo.md)";
+  throw ScenarioError({is});
+}
+
+// The metrics every campaign records (those the layout has columns for).
+void add_default_metrics(McPlan& p, const RecordLayout& l)
+{
+  auto add = [&](const std::string& name, const std::string& column, const std::string& stat, const std::string& what) {
     const Selection s = select_columns(l, column);
     if (s.cols.empty()) return;
     McMetric m;
@@ -198,39 +191,46 @@ McPlan make_mc_plan(const Scenario& nominal, uint64_t master_seed, uint64_t runs
     m.stat = stat;
     p.metrics.push_back(m);
   };
-  add_default("pointing_error_final", "pointing_error_deg", "final", "pointing error at the end");
-  add_default("omega_max", "omega_BN_B", "max", "largest body rate |omega_BN_B|");
-  add_default("wheel_speed_max", "wheel_speed_rpm_*", "max_abs", "largest wheel speed, any wheel");
-  add_default("propellant_used", "propellant_kg", "drop", "propellant used");
-  add_default("fsw_errors", "fsw_status", "error_count", "recorded rows with an FSW error status");
-  const std::vector<CriterionSpec>& crit = nominal.monte_carlo->criteria;
-  for (size_t i = 0; i < crit.size(); ++i) {
-    const CriterionSpec& c = crit[i];
-    const Selection s = select_columns(l, c.column);
-    if (s.cols.empty()) {
-      ScenarioIssue is;
-      is.file = nominal.source_file;
-      is.line = c.line;
-      is.column = c.column_no;
-      is.key = "monte_carlo.criteria[" + std::to_string(i) + "].column";
-      is.message = "'" + c.column + "' is not recorded by this scenario (a column, a vector quantity or a prefix*; "
-                   "see the columns of results.h5 / telemetry.csv)";
-      throw ScenarioError({is});
-    }
-    McMetric m;
-    std::string range = c.after > 0.0 ? " for t >= " + fmt(c.after) + " s" : "";
-    if (c.until) range += (range.empty() ? " for t <= " : " and t <= ") + fmt(*c.until) + " s";
-    m.col = {c.name, c.stat == "error_count" ? "-" : unit_of(l, s), c.stat + " of " + c.column + range};
-    m.column = c.column;
-    m.stat = c.stat;
-    m.after = c.after;
-    m.until = c.until ? *c.until : -1.0;
-    m.criterion = static_cast<int>(i);
-    m.below = c.below.has_value();
-    m.threshold = c.below ? *c.below : *c.above;
-    p.metrics.push_back(m);
+  add("pointing_error_final", "pointing_error_deg", "final", "pointing error at the end");
+  add("omega_max", "omega_BN_B", "max", "largest body rate |omega_BN_B|");
+  add("wheel_speed_max", "wheel_speed_rpm_*", "max_abs", "largest wheel speed, any wheel");
+  add("propellant_used", "propellant_kg", "drop", "propellant used");
+  add("fsw_errors", "fsw_status", "error_count", "recorded rows with an FSW error status");
+}
+
+// Criterion i as a metric (throws ScenarioError when its column is not recorded).
+McMetric criterion_metric(const Scenario& nominal, const RecordLayout& l, size_t i)
+{
+  const CriterionSpec& c = nominal.monte_carlo->criteria[i];
+  const Selection s = select_columns(l, c.column);
+  if (s.cols.empty()) {
+    ScenarioIssue is;
+    is.file = nominal.source_file;
+    is.line = c.line;
+    is.column = c.column_no;
+    is.key = "monte_carlo.criteria[" + std::to_string(i) + "].column";
+    is.message = "'" + c.column + "' is not recorded by this scenario (a column, a vector quantity or a prefix*; "
+                 "see the columns of results.h5 / telemetry.csv)";
+    throw ScenarioError({is});
   }
-  // thinned channels: what the campaign report overlays
+  McMetric m;
+  std::string range = c.after > 0.0 ? " for t >= " + fmt(c.after) + " s" : "";
+  if (c.until) range += (range.empty() ? " for t <= " : " and t <= ") + fmt(*c.until) + " s";
+  m.col = {c.name, c.stat == "error_count" ? "-" : unit_of(l, s), c.stat + " of " + c.column + range};
+  m.column = c.column;
+  m.stat = c.stat;
+  m.after = c.after;
+  m.until = c.until ? *c.until : -1.0;
+  m.criterion = static_cast<int>(i);
+  m.below = c.below.has_value();
+  m.threshold = c.below ? *c.below : *c.above;
+  return m;
+}
+
+// The thinned channels (what the campaign report overlays) and the recorded
+// rows they sample.
+void add_series(McPlan& p, const RecordLayout& l, uint64_t rows)
+{
   auto channel = [&](const std::string& name, const std::string& column) {
     const Selection s = select_columns(l, column);
     if (s.cols.empty()) return;
@@ -245,15 +245,37 @@ McPlan make_mc_plan(const Scenario& nominal, uint64_t master_seed, uint64_t runs
   channel("wheel_speed", "wheel_speed_rpm_*");
   channel("thruster_force", "thruster_force_*");
   channel("propellant", "propellant_kg");
-  const uint64_t rows = run.recorder().capacity();
-  const uint64_t S = std::min<uint64_t>(nominal.monte_carlo->retention.thin_samples, rows);
-  const double record_dt = nominal.rates.dt * nominal.rates.record_divisor;
+  const uint64_t S = std::min<uint64_t>(p.nominal.monte_carlo->retention.thin_samples, rows);
+  const double record_dt = p.nominal.rates.dt * p.nominal.rates.record_divisor;
   for (uint64_t j = 0; j < S; ++j) {
     const uint64_t r = S > 1 ? (j * (rows - 1) + (S - 1) / 2) / (S - 1) : 0;
     if (!p.series_rows.empty() && r == p.series_rows.back()) continue;
     p.series_rows.push_back(r);
     p.series_t.push_back(static_cast<double>(r) * record_dt);
   }
+}
+
+}  // namespace
+
+McPlan make_mc_plan(const Scenario& nominal, uint64_t master_seed, uint64_t runs)
+{
+  require_monte_carlo(nominal);
+  McPlan p;
+  p.nominal = nominal;
+  p.master_seed = master_seed;
+  p.runs = runs;
+  p.bound = std::make_shared<const McBinding>(bind_campaign(nominal));
+  p.drawn = p.bound->columns;
+  // The recorded layout: the nominal run's (a draw changes values, not columns).
+  Scenario probe = nominal;
+  probe.monte_carlo.reset();
+  RunConfig rc;
+  rc.keep_in_memory = false;
+  const Run run(probe, std::move(rc));
+  const RecordLayout& l = run.recorder().layout();
+  add_default_metrics(p, l);
+  for (size_t i = 0; i < nominal.monte_carlo->criteria.size(); ++i) p.metrics.push_back(criterion_metric(nominal, l, i));
+  add_series(p, l, run.recorder().capacity());
   return p;
 }
 

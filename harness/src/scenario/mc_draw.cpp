@@ -71,15 +71,6 @@ std::string unit_of(const schema::KeyDef& k, bool suffixed)
   return u;
 }
 
-const schema::KeyDef* key_def(const Scenario& sc, const std::string& path, bool& suffixed)
-{
-  const KeyTarget t = resolve_path(split_path(path), [&sc](const schema::Section& list, size_t) {
-    return list.count ? list.count(sc) : 0;
-  });
-  suffixed = t.suffixed;
-  return t.key;
-}
-
 }  // namespace
 
 McStream::McStream(uint64_t master, uint64_t run, const std::string& key)
@@ -111,216 +102,253 @@ uint64_t mc_run_seed(uint64_t master, uint64_t run)
   return mix(mix(master ^ 0x73656e736f727321ULL) ^ mix(run + kGolden)) & ((1ULL << 53) - 1);
 }
 
-std::string try_choice_value(Scenario& sc, const std::string& path, const std::string& value)
+namespace {
+
+// A choice's value (as written) as a value of key k: "" or why it is not one.
+std::string decode_choice(const schema::KeyDef& k, const std::string& value, ParameterValue& out)
 {
-  bool suffixed = false;
-  const schema::KeyDef* k = key_def(sc, path, suffixed);
-  if (!k) return "unknown key";
+  switch (k.type) {
+    case schema::Type::Real: {
+      double x = 0.0;
+      if (!decode_double(YAML::Node(value), x)) return "not a number";
+      out = ParameterValue(x);
+      return "";
+    }
+    case schema::Type::Integer:
+    case schema::Type::Unsigned: {
+      long long x = 0;
+      if (!decode_int(YAML::Node(value), x)) return "not a whole number";
+      if (k.type == schema::Type::Integer) out = ParameterValue(x);
+      else if (x < 0) return "must be >= 0";
+      else out = ParameterValue(static_cast<uint64_t>(x));
+      return "";
+    }
+    case schema::Type::Bool:
+      if (value != "true" && value != "false") return "expected true or false";
+      out = ParameterValue(value == "true");
+      return "";
+    default: out = ParameterValue(value); return "";
+  }
+}
+
+McTarget bind_target(const Scenario& nominal, const DispersionSpec& s, size_t i, const std::string& path)
+{
+  McTarget t;
+  t.dispersion = i;
+  t.path = path;
+  const std::vector<std::string> parts = split_path(path);
+  t.name = normalise_path(parts);
+  const KeyTarget k = resolve_path(parts, list_sizes(nominal));
+  t.key = k.key;
+  t.suffixed = k.suffixed;
+  t.index = k.index;
   try {
-    switch (k->type) {
-      case schema::Type::Real: {
-        double x = 0.0;
-        if (!decode_double(YAML::Node(value), x)) return "not a number";
-        set_parameter(sc, path, ParameterValue(x));
-        break;
-      }
-      case schema::Type::Integer:
-      case schema::Type::Unsigned: {
-        long long x = 0;
-        if (!decode_int(YAML::Node(value), x)) return "not a whole number";
-        if (k->type == schema::Type::Unsigned) {
-          if (x < 0) return "must be >= 0";
-          set_parameter(sc, path, ParameterValue(static_cast<uint64_t>(x)));
-        } else {
-          set_parameter(sc, path, ParameterValue(x));
-        }
-        break;
-      }
-      case schema::Type::Bool:
-        if (value != "true" && value != "false") return "expected true or false";
-        set_parameter(sc, path, ParameterValue(value == "true"));
-        break;
-      default: set_parameter(sc, path, ParameterValue(value)); break;
+    t.nominal = get_parameter(nominal, path);  // a settable key: t.key is set
+  } catch (const ScenarioError& e) {
+    t.error = e.issues().front().message;
+    return t;
+  } catch (const std::exception& e) {
+    t.error = e.what();
+    return t;
+  }
+  if (s.dist != DistKind::Choice) return t;
+  for (const std::string& v : s.values) {
+    t.choices.emplace_back(0.0);
+    t.choice_errors.push_back(decode_choice(*t.key, v, t.choices.back()));
+  }
+  return t;
+}
+
+void add_columns(const McTarget& t, const DispersionSpec& s, std::vector<McColumn>& out)
+{
+  const std::string& name = t.name;
+  const std::string unit = t.key ? unit_of(*t.key, t.suffixed) : "";
+  switch (s.dist) {
+    case DistKind::Normal:
+    case DistKind::TruncatedNormal:
+    case DistKind::Uniform: out.push_back({name, unit}); break;
+    case DistKind::Choice: out.push_back({name + ".choice", "index"}); break;
+    case DistKind::NormalVector:
+      for (const char* c : {"_x", "_y", "_z"}) out.push_back({name + c, unit});
+      break;
+    case DistKind::UnitVector:
+    case DistKind::Attitude: out.push_back({name + ".angle_deg", "deg"}); break;
+    case DistKind::Inertia:
+      out.push_back({name + ".angle_deg", "deg"});
+      if (s.principal_std_rel > 0.0)
+        for (const char* c : {".scale_1", ".scale_2", ".scale_3"}) out.push_back({name + c, "-"});
+      break;
+  }
+}
+
+}  // namespace
+
+McBinding bind_dispersions(const Scenario& nominal)
+{
+  McBinding b;
+  if (!nominal.monte_carlo) return b;
+  b.specs = nominal.monte_carlo->dispersions;
+  for (size_t i = 0; i < b.specs.size(); ++i) {
+    std::string why;
+    for (const std::string& k : expand_dispersion_key(nominal, b.specs[i].key, why)) {
+      b.targets.push_back(bind_target(nominal, b.specs[i], i, k));
+      add_columns(b.targets.back(), b.specs[i], b.columns);
+    }
+    b.spec_errors.push_back(why);
+  }
+  return b;
+}
+
+// ---- the draws of one bound key ---------------------------------------------
+// Each returns "" or why the draw is invalid; the values drawn go to d.drawn
+// (not those of a draw the key refuses, except inertia's).
+
+namespace {
+
+std::string set_value(const McTarget& t, Scenario& sc, const ParameterValue& v)
+{
+  return t.key->set(*t.key, sc, t.index, v, t.suffixed);
+}
+
+std::string set_number(const McTarget& t, McDraw& d, double x)
+{
+  const std::string bad = set_value(t, d.sc, number_for(t.nominal, x));
+  if (bad.empty()) d.drawn.push_back(x);
+  return bad;
+}
+
+std::string draw_truncated_normal(const DispersionSpec& s, const McTarget& t, McStream& r, McDraw& d)
+{
+  const double m = s.mean.value_or(as_double(t.nominal));
+  for (int tries = 0; tries < 10000; ++tries) {  // acceptance >= 1 % (checked when read)
+    const double c = m + s.std * r.normal();
+    if (c >= *s.min && c <= *s.max) return set_number(t, d, c);
+  }
+  return "truncated_normal: no value in bounds after 10000 draws";
+}
+
+std::string draw_uniform(const DispersionSpec& s, const McTarget& t, McStream& r, McDraw& d)
+{
+  const double lo = s.half_width ? as_double(t.nominal) - *s.half_width : *s.min;
+  const double hi = s.half_width ? as_double(t.nominal) + *s.half_width : *s.max;
+  return set_number(t, d, lo + (hi - lo) * r.uniform());
+}
+
+std::string draw_choice(const DispersionSpec& s, const McTarget& t, McStream& r, McDraw& d)
+{
+  std::vector<double> w = s.weights;
+  if (w.empty()) w.assign(s.values.size(), 1.0);
+  double total = 0.0;
+  for (double x : w) total += x;
+  const double u = r.uniform() * total;
+  size_t pick = 0;
+  double acc = 0.0;
+  for (pick = 0; pick + 1 < w.size(); ++pick) {
+    acc += w[pick];
+    if (u < acc) break;
+  }
+  while (w[pick] == 0.0 && pick > 0) --pick;  // u at a boundary of zero-weight values
+  const std::string bad = t.choice_errors[pick].empty() ? set_value(t, d.sc, t.choices[pick]) : t.choice_errors[pick];
+  if (bad.empty()) d.drawn.push_back(static_cast<double>(pick));
+  return bad;
+}
+
+std::string draw_normal_vector(const DispersionSpec& s, const McTarget& t, McStream& r, McDraw& d)
+{
+  const Eigen::Vector3d v0 = std::get<Eigen::Vector3d>(t.nominal.value);
+  const Eigen::Vector3d dv(s.std_vec(0) * r.normal(), s.std_vec(1) * r.normal(), s.std_vec(2) * r.normal());
+  const Eigen::Vector3d v = v0 + dv;
+  const std::string bad = set_value(t, d.sc, v);
+  if (bad.empty())
+    for (int c = 0; c < 3; ++c) d.drawn.push_back(v(c));
+  return bad;
+}
+
+std::string draw_unit_vector(const DispersionSpec& s, const McTarget& t, McStream& r, McDraw& d)
+{
+  const Eigen::Vector3d n = std::get<Eigen::Vector3d>(t.nominal.value).normalized();
+  Eigen::Vector3d e1, e2;
+  perpendiculars(n, e1, e2);
+  double theta = 0.0, phi = 0.0;
+  if (s.angle_std) {  // tilt components in the plane normal to n: N(0, sigma) each (Rayleigh angle)
+    const double a = *s.angle_std * r.normal(), b = *s.angle_std * r.normal();
+    theta = std::hypot(a, b);
+    phi = std::atan2(b, a);
+  } else {  // uniform on the spherical cap of half-angle angle_max
+    const double c = 1.0 - r.uniform() * (1.0 - std::cos(*s.angle_max));
+    theta = std::acos(c);
+    phi = 2.0 * M_PI * r.uniform();
+  }
+  const Eigen::Vector3d v = std::cos(theta) * n + std::sin(theta) * (std::cos(phi) * e1 + std::sin(phi) * e2);
+  const std::string bad = set_value(t, d.sc, Eigen::Vector3d(v.normalized()));
+  if (bad.empty()) d.drawn.push_back(theta * kRadToDeg);
+  return bad;
+}
+
+std::string draw_attitude(const DispersionSpec& s, const McTarget& t, McStream& r, McDraw& d)
+{
+  const Eigen::Vector3d sigma = std::get<Eigen::Vector3d>(t.nominal.value);
+  const Eigen::Vector3d phi = rotation_vector(r, s);
+  const Eigen::Matrix3d C = sim::rotation_from_vector(phi) * sim::dcm_BN_from_sigma(sigma);
+  const std::string bad = set_value(t, d.sc, sim::sigma_from_quaternion(sim::quaternion_from_dcm(C)));
+  if (bad.empty()) d.drawn.push_back(phi.norm() * kRadToDeg);
+  return bad;
+}
+
+// The drawn values stay even when the key refuses the inertia (the table
+// shows what broke it).
+std::string draw_inertia(const DispersionSpec& s, const McTarget& t, McStream& r, McDraw& d)
+{
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(std::get<Eigen::Matrix3d>(t.nominal.value));
+  Eigen::Vector3d lam = es.eigenvalues();
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  if (s.principal_std_rel > 0.0)
+    for (int c = 0; c < 3; ++c) scale(c) = 1.0 + s.principal_std_rel * r.normal();
+  lam = lam.cwiseProduct(scale);
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  double angle = 0.0;
+  if (s.angle_std) {
+    const Eigen::Vector3d phi = *s.angle_std * Eigen::Vector3d(r.normal(), r.normal(), r.normal());
+    R = sim::rotation_from_vector(phi);
+    angle = phi.norm();
+  }
+  const Eigen::Matrix3d V = R * es.eigenvectors();
+  Eigen::Matrix3d Ip = V * lam.asDiagonal() * V.transpose();
+  Ip = 0.5 * (Ip + Ip.transpose()).eval();
+  d.drawn.push_back(angle * kRadToDeg);
+  if (s.principal_std_rel > 0.0)
+    for (int c = 0; c < 3; ++c) d.drawn.push_back(scale(c));
+  return set_value(t, d.sc, Ip);
+}
+
+std::string draw_target(const DispersionSpec& s, const McTarget& t, uint64_t master, uint64_t run, McDraw& d)
+{
+  if (!t.error.empty()) return t.error;
+  McStream r(master, run, t.name);
+  try {
+    switch (s.dist) {
+      case DistKind::Normal: return set_number(t, d, s.mean.value_or(as_double(t.nominal)) + s.std * r.normal());
+      case DistKind::TruncatedNormal: return draw_truncated_normal(s, t, r, d);
+      case DistKind::Uniform: return draw_uniform(s, t, r, d);
+      case DistKind::Choice: return draw_choice(s, t, r, d);
+      case DistKind::NormalVector: return draw_normal_vector(s, t, r, d);
+      case DistKind::UnitVector: return draw_unit_vector(s, t, r, d);
+      case DistKind::Attitude: return draw_attitude(s, t, r, d);
+      case DistKind::Inertia: return draw_inertia(s, t, r, d);
     }
   } catch (const ScenarioError& e) {
     return e.issues().front().message;
+  } catch (const std::exception& e) {
+    return e.what();
   }
   return "";
 }
 
-std::vector<McColumn> drawn_columns(const Scenario& nominal)
+// The checks of a scenario file on the drawn scenario: the run is the
+// reloaded canonical form, exactly what its manifest gives `kestrel run`.
+void check_draw(McDraw& d)
 {
-  std::vector<McColumn> out;
-  if (!nominal.monte_carlo) return out;
-  for (const DispersionSpec& s : nominal.monte_carlo->dispersions) {
-    std::string why;
-    for (const std::string& k : expand_dispersion_key(nominal, s.key, why)) {
-      const std::string name = normalise_path(split_path(k));
-      bool suffixed = false;
-      const schema::KeyDef* def = key_def(nominal, k, suffixed);
-      const std::string unit = def ? unit_of(*def, suffixed) : "";
-      switch (s.dist) {
-        case DistKind::Normal:
-        case DistKind::TruncatedNormal:
-        case DistKind::Uniform: out.push_back({name, unit}); break;
-        case DistKind::Choice: out.push_back({name + ".choice", "index"}); break;
-        case DistKind::NormalVector:
-          for (const char* c : {"_x", "_y", "_z"}) out.push_back({name + c, unit});
-          break;
-        case DistKind::UnitVector:
-        case DistKind::Attitude: out.push_back({name + ".angle_deg", "deg"}); break;
-        case DistKind::Inertia:
-          out.push_back({name + ".angle_deg", "deg"});
-          if (s.principal_std_rel > 0.0)
-            for (const char* c : {".scale_1", ".scale_2", ".scale_3"}) out.push_back({name + c, "-"});
-          break;
-      }
-    }
-  }
-  return out;
-}
-
-McDraw draw_run(const Scenario& nominal, uint64_t master, uint64_t run, bool check)
-{
-  McDraw d;
-  d.sc = nominal;
-  d.sc.monte_carlo.reset();
-  d.sc.seed = mc_run_seed(master, run);
-  if (!nominal.monte_carlo) return d;
-  const std::vector<DispersionSpec>& disp = nominal.monte_carlo->dispersions;
-  for (size_t i = 0; i < disp.size(); ++i) {
-    const DispersionSpec& s = disp[i];
-    std::string why;
-    const std::vector<std::string> keys = expand_dispersion_key(nominal, s.key, why);
-    for (size_t e = 0; e < keys.size(); ++e) {
-      const std::string& k = keys[e];
-      McStream r(master, run, normalise_path(split_path(k)));
-      try {
-        const ParameterValue nom = get_parameter(nominal, k);
-        switch (s.dist) {
-          case DistKind::Normal: {
-            const double x = s.mean.value_or(as_double(nom)) + s.std * r.normal();
-            set_parameter(d.sc, k, number_for(nom, x));
-            d.drawn.push_back(x);
-            break;
-          }
-          case DistKind::TruncatedNormal: {
-            const double m = s.mean.value_or(as_double(nom));
-            double x = std::nan("");
-            for (int tries = 0; tries < 10000; ++tries) {  // acceptance >= 1 % (checked when read)
-              const double c = m + s.std * r.normal();
-              if (c >= *s.min && c <= *s.max) {
-                x = c;
-                break;
-              }
-            }
-            if (!std::isfinite(x)) throw std::runtime_error("truncated_normal: no value in bounds after 10000 draws");
-            set_parameter(d.sc, k, number_for(nom, x));
-            d.drawn.push_back(x);
-            break;
-          }
-          case DistKind::Uniform: {
-            const double lo = s.half_width ? as_double(nom) - *s.half_width : *s.min;
-            const double hi = s.half_width ? as_double(nom) + *s.half_width : *s.max;
-            const double x = lo + (hi - lo) * r.uniform();
-            set_parameter(d.sc, k, number_for(nom, x));
-            d.drawn.push_back(x);
-            break;
-          }
-          case DistKind::Choice: {
-            std::vector<double> w = s.weights;
-            if (w.empty()) w.assign(s.values.size(), 1.0);
-            double total = 0.0;
-            for (double x : w) total += x;
-            const double u = r.uniform() * total;
-            size_t pick = 0;
-            double acc = 0.0;
-            for (pick = 0; pick + 1 < w.size(); ++pick) {
-              acc += w[pick];
-              if (u < acc) break;
-            }
-            while (w[pick] == 0.0 && pick > 0) --pick;  // u at a boundary of zero-weight values
-            const std::string bad = try_choice_value(d.sc, k, s.values[pick]);
-            if (!bad.empty()) throw std::runtime_error(bad);
-            d.drawn.push_back(static_cast<double>(pick));
-            break;
-          }
-          case DistKind::NormalVector: {
-            const Eigen::Vector3d v0 = std::get<Eigen::Vector3d>(nom.value);
-            const Eigen::Vector3d dv(s.std_vec(0) * r.normal(), s.std_vec(1) * r.normal(), s.std_vec(2) * r.normal());
-            const Eigen::Vector3d v = v0 + dv;
-            set_parameter(d.sc, k, v);
-            for (int c = 0; c < 3; ++c) d.drawn.push_back(v(c));
-            break;
-          }
-          case DistKind::UnitVector: {
-            const Eigen::Vector3d n = std::get<Eigen::Vector3d>(nom.value).normalized();
-            Eigen::Vector3d e1, e2;
-            perpendiculars(n, e1, e2);
-            double theta = 0.0, phi = 0.0;
-            if (s.angle_std) {  // tilt components in the plane normal to n: N(0, sigma) each (Rayleigh angle)
-              const double a = *s.angle_std * r.normal(), b = *s.angle_std * r.normal();
-              theta = std::hypot(a, b);
-              phi = std::atan2(b, a);
-            } else {  // uniform on the spherical cap of half-angle angle_max
-              const double c = 1.0 - r.uniform() * (1.0 - std::cos(*s.angle_max));
-              theta = std::acos(c);
-              phi = 2.0 * M_PI * r.uniform();
-            }
-            const Eigen::Vector3d v =
-                std::cos(theta) * n + std::sin(theta) * (std::cos(phi) * e1 + std::sin(phi) * e2);
-            set_parameter(d.sc, k, Eigen::Vector3d(v.normalized()));
-            d.drawn.push_back(theta * kRadToDeg);
-            break;
-          }
-          case DistKind::Attitude: {
-            const Eigen::Vector3d sigma = std::get<Eigen::Vector3d>(nom.value);
-            const Eigen::Vector3d phi = rotation_vector(r, s);
-            const Eigen::Matrix3d C = sim::rotation_from_vector(phi) * sim::dcm_BN_from_sigma(sigma);
-            set_parameter(d.sc, k, sim::sigma_from_quaternion(sim::quaternion_from_dcm(C)));
-            d.drawn.push_back(phi.norm() * kRadToDeg);
-            break;
-          }
-          case DistKind::Inertia: {
-            const Eigen::Matrix3d I = std::get<Eigen::Matrix3d>(nom.value);
-            const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(I);
-            Eigen::Vector3d lam = es.eigenvalues();
-            Eigen::Vector3d scale = Eigen::Vector3d::Ones();
-            if (s.principal_std_rel > 0.0)
-              for (int c = 0; c < 3; ++c) scale(c) = 1.0 + s.principal_std_rel * r.normal();
-            lam = lam.cwiseProduct(scale);
-            Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-            double angle = 0.0;
-            if (s.angle_std) {
-              const Eigen::Vector3d phi = *s.angle_std * Eigen::Vector3d(r.normal(), r.normal(), r.normal());
-              R = sim::rotation_from_vector(phi);
-              angle = phi.norm();
-            }
-            const Eigen::Matrix3d V = R * es.eigenvectors();
-            Eigen::Matrix3d Ip = V * lam.asDiagonal() * V.transpose();
-            Ip = 0.5 * (Ip + Ip.transpose()).eval();
-            d.drawn.push_back(angle * kRadToDeg);
-            if (s.principal_std_rel > 0.0)
-              for (int c = 0; c < 3; ++c) d.drawn.push_back(scale(c));
-            set_parameter(d.sc, k, Ip);
-            break;
-          }
-        }
-      } catch (const ScenarioError& e) {
-        if (d.invalid.empty()) d.invalid = normalise_path(split_path(k)) + ": " + e.issues().front().message;
-      } catch (const std::exception& e) {
-        if (d.invalid.empty()) d.invalid = normalise_path(split_path(k)) + ": " + e.what();
-      }
-      if (!d.invalid.empty()) {  // the remaining columns are not drawn
-        d.drawn.resize(drawn_columns(nominal).size(), std::nan(""));
-        return d;
-      }
-    }
-  }
-  if (!check) return d;
   try {
-    // the run is the reloaded canonical form: exactly what its manifest
-    // gives `kestrel run` (every check of a scenario file on the way)
     const std::string src = d.sc.source_file;
     d.sc = load_scenario_text(scenario_to_json_text(d.sc), "(drawn scenario)");
     d.sc.source_file = src;
@@ -330,7 +358,31 @@ McDraw draw_run(const Scenario& nominal, uint64_t master, uint64_t run, bool che
     const ScenarioIssue& is = e.issues().front();
     d.invalid = is.key + ": " + is.message;
   }
+}
+
+}  // namespace
+
+McDraw draw_run(const Scenario& nominal, const McBinding& bound, uint64_t master, uint64_t run, bool check)
+{
+  McDraw d;
+  d.sc = nominal;
+  d.sc.monte_carlo.reset();
+  d.sc.seed = mc_run_seed(master, run);
+  for (const McTarget& t : bound.targets) {
+    const std::string bad = draw_target(bound.specs[t.dispersion], t, master, run, d);
+    if (!bad.empty()) {  // the remaining columns are not drawn
+      d.invalid = t.name + ": " + bad;
+      d.drawn.resize(bound.columns.size(), std::nan(""));
+      return d;
+    }
+  }
+  if (check) check_draw(d);
   return d;
+}
+
+McDraw draw_run(const Scenario& nominal, uint64_t master, uint64_t run, bool check)
+{
+  return draw_run(nominal, bind_dispersions(nominal), master, run, check);
 }
 
 }  // namespace harness

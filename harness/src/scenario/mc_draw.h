@@ -50,28 +50,59 @@ uint64_t mc_run_seed(uint64_t master, uint64_t run);
 // the key cannot be expanded.
 std::vector<std::string> expand_dispersion_key(const Scenario& sc, const std::string& key, std::string& why);
 
+// One dispersed key bound to the nominal scenario: its key definition, list
+// element and nominal value resolved once, a choice's values decoded once.
+struct McTarget {
+  size_t dispersion = 0;                // index into McBinding::specs
+  std::string path;                     // as expanded: "wheels[2].axis"
+  std::string name;                     // normalised: the stream's key, the columns' prefix
+  const schema::KeyDef* key = nullptr;  // null: the path names no key
+  size_t index = 0;                     // the element of the key's list
+  bool suffixed = false;                // written with the key's unit suffix
+  ParameterValue nominal{0.0};
+  std::vector<ParameterValue> choices;     // choice: each value as the key's type
+  std::vector<std::string> choice_errors;  // choice: "" or why value v is not of that type
+  std::string error;                    // non-empty: no value to disperse (each draw is invalid)
+};
+
+// The dispersions of a campaign bound to its nominal scenario, in the order
+// of the draws (dispersion by dispersion, list element by list element).
+struct McBinding {
+  std::vector<DispersionSpec> specs;     // monte_carlo.dispersions
+  std::vector<std::string> spec_errors;  // per dispersion: why its key does not expand, or ""
+  std::vector<McTarget> targets;
+  std::vector<McColumn> columns;         // the drawn values' columns (summary table, scatter
+                                         // plots), e.g. "wheels[1].axis.angle_deg", "events[0].t"
+};
+
+// Binds what the keys name in `nominal`; problems stay in the binding (a
+// target's error makes each draw invalid), as check_monte_carlo reports them.
+McBinding bind_dispersions(const Scenario& nominal);
+
+// The binding of a campaign: bind_dispersions after the checks of
+// check_monte_carlo, which throw ScenarioError (file:line of the dispersion,
+// key monte_carlo.dispersions[i].key).
+McBinding bind_campaign(const Scenario& nominal);
+
 // The dispersed keys checked against a read scenario (names, types, list
 // elements, a key dispersed twice, choice values); problems go to ctx.
 void check_monte_carlo(const Ctx& ctx, Scenario& sc);
 
-// "" when `value` (a choice, as written) sets key `path` of sc, else why not.
-std::string try_choice_value(Scenario& sc, const std::string& path, const std::string& value);
-
-// The columns of the drawn values (summary table, scatter plots), e.g.
-// "wheels[1].axis.angle_deg", "events[0].t".
-std::vector<McColumn> drawn_columns(const Scenario& nominal);
-
 // Run k of the campaign: the scenario with its draws applied (monte_carlo
-// removed, seed = mc_run_seed), the drawn values by drawn_columns(), and
+// removed, seed = mc_run_seed), the drawn values by McBinding::columns, and
 // "" or why the draw is not a valid spacecraft (the checks of a scenario
-// file: set_parameter, then validate_scenario and check_run_configuration).
+// file: the key's own checks, then validate_scenario and
+// check_run_configuration).
 struct McDraw {
   Scenario sc;
   std::vector<double> drawn;
   std::string invalid;
 };
-// `check` false: the draws and each key's own checks only (no reload, no
-// plant or FSW check): the sample-statistics tests.
+// `bound`: bind_dispersions(nominal) or bind_campaign(nominal).  `check`
+// false: the draws and each key's own checks only (no reload, no plant or
+// FSW check): the sample-statistics tests.
+McDraw draw_run(const Scenario& nominal, const McBinding& bound, uint64_t master, uint64_t run, bool check = true);
+// The same, binding `nominal` for this run alone.
 McDraw draw_run(const Scenario& nominal, uint64_t master, uint64_t run, bool check = true);
 
 }  // namespace harness

@@ -43,8 +43,12 @@ bool parse_index(const std::string& part, size_t size, size_t& out)
   return true;
 }
 
-KeyTarget resolve_path(const std::vector<std::string>& parts,
-                       const std::function<size_t(const schema::Section&, size_t)>& list_size)
+ListSizeFn list_sizes(const Scenario& sc)
+{
+  return [&sc](const schema::Section& list, size_t) { return list.count ? list.count(sc) : 0; };
+}
+
+KeyTarget resolve_path(const std::vector<std::string>& parts, const ListSizeFn& list_size)
 {
   KeyTarget t;
   const schema::Section* sec = &schema::schema();
@@ -109,6 +113,74 @@ YAML::Node node_at(const YAML::Node& root, const std::vector<std::string>& parts
   return cur;
 }
 
+std::string no_element(const std::string& part, size_t size)
+{
+  return "no list element '" + part + "' (the list has " + std::to_string(size) + " entries)";
+}
+
+// The value of an override by the key's type: a word stays a word; anything
+// else is YAML.  "" or why it is not a value.
+std::string override_value(const KeyTarget& t, const std::string& text, const std::string& file, YAML::Node& value)
+{
+  const bool word =
+      t.key && t.rest.empty() && (t.key->type == schema::Type::String || t.key->type == schema::Type::Choice);
+  if (word) {
+    value = YAML::Node(text);
+    return "";
+  }
+  // the same bounds as a file (aliases, depth, one document, binary bytes)
+  const std::vector<ScenarioIssue> bounds = check_yaml_text(text, file);
+  if (!bounds.empty()) {
+    const std::string& m = bounds.front().message;
+    const std::string syntax = "YAML syntax error: ";
+    return m.rfind(syntax, 0) == 0 ? "value is not valid YAML: " + m.substr(syntax.size()) : "value: " + m;
+  }
+  try {
+    value = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    return std::string("value is not valid YAML: ") + e.msg;
+  }
+  return "";
+}
+
+// Puts `value` at `parts` of the document: walks down, creating maps as
+// needed; list indices exist (resolved before) unless an element index of a
+// vector key is out of its list.  "" or why it cannot be put there.
+std::string put_value(YAML::Node& root, const std::vector<std::string>& parts, const KeyTarget& t,
+                      const YAML::Node& value)
+{
+  std::vector<YAML::Node> chain{root};
+  for (size_t i = 0; i + 1 < parts.size(); ++i) {
+    YAML::Node cur = chain.back();
+    const std::string& p = parts[i];
+    size_t k = 0;
+    if (cur.IsSequence()) {
+      if (!parse_index(p, cur.size(), k)) return no_element(p, cur.size());
+      chain.push_back(cur[k]);
+    } else if (cur.IsMap() || cur.IsNull()) {
+      if (!cur[p].IsDefined() || cur[p].IsNull()) cur[p] = YAML::Node(YAML::NodeType::Map);
+      chain.push_back(cur[p]);
+    } else {
+      return "'" + p + "' is inside a scalar";
+    }
+  }
+  YAML::Node last = chain.back();
+  const std::string& leaf = parts.back();
+  size_t k = 0;
+  if (last.IsSequence()) {
+    if (!parse_index(leaf, last.size(), k)) return no_element(leaf, last.size());
+    last[k] = value;
+  } else if (last.IsMap()) {
+    last[leaf] = value;
+    // One spelling replaces the other (Omega_0 and Omega_0_rpm).
+    if (t.key && t.rest.empty() && !t.key->suffix.empty())
+      last.remove(t.suffixed ? t.key->name : t.key->name + t.key->suffix);
+  } else {
+    return "cannot set a key inside a scalar";
+  }
+  return "";
+}
+
 }  // namespace
 
 void apply_override(Ctx& ctx, YAML::Node& root, const Override& o)
@@ -120,17 +192,15 @@ void apply_override(Ctx& ctx, YAML::Node& root, const Override& o)
   is.file = ctx.file;
   is.key = norm;
   is.where = "--set " + o.path + "=" + o.value;
+  auto fail = [&](const std::string& msg) {
+    is.message = msg;
+    ctx.issues->push_back(is);
+  };
   if (parts.empty()) {
     is.key = "(--set)";
-    is.message = "empty key path";
-    ctx.issues->push_back(is);
-    return;
+    return fail("empty key path");
   }
-  if (!root.IsMap()) {
-    is.message = "the scenario is not a map";
-    ctx.issues->push_back(is);
-    return;
-  }
+  if (!root.IsMap()) return fail("the scenario is not a map");
   // Resolve against the key definitions first.
   const KeyTarget t = resolve_path(parts, [&root, &parts](const schema::Section&, size_t depth) {
     const YAML::Node l = node_at(root, parts, depth);
@@ -138,83 +208,16 @@ void apply_override(Ctx& ctx, YAML::Node& root, const Override& o)
   });
   if (!t.error.empty()) {
     is.key = t.error_key;
-    is.message = t.error;
     if (t.error.rfind("unknown key", 0) == 0) is.where = "--set " + norm;
-    ctx.issues->push_back(is);
-    return;
+    return fail(t.error);
   }
   // One element of a vector key: only of a list the document has.
-  if (t.key && !t.rest.empty() && !node_at(root, parts, parts.size() - 1).IsSequence()) {
-    is.message = "'" + t.key->name + "' is not a list in the file: set the whole vector";
-    ctx.issues->push_back(is);
-    return;
-  }
-  // The value, by the key's type: a word stays a word; anything else is YAML.
+  if (t.key && !t.rest.empty() && !node_at(root, parts, parts.size() - 1).IsSequence())
+    return fail("'" + t.key->name + "' is not a list in the file: set the whole vector");
   YAML::Node value;
-  const bool word = t.key && t.rest.empty() &&
-                    (t.key->type == schema::Type::String || t.key->type == schema::Type::Choice);
-  if (word) {
-    value = YAML::Node(o.value);
-  } else {
-    // the same bounds as a file (aliases, depth, one document, binary bytes)
-    const std::vector<ScenarioIssue> bounds = check_yaml_text(o.value, ctx.file);
-    if (!bounds.empty()) {
-      const std::string& m = bounds.front().message;
-      const std::string syntax = "YAML syntax error: ";
-      is.message = m.rfind(syntax, 0) == 0 ? "value is not valid YAML: " + m.substr(syntax.size()) : "value: " + m;
-      ctx.issues->push_back(is);
-      return;
-    }
-    try {
-      value = YAML::Load(o.value);
-    } catch (const YAML::Exception& e) {
-      is.message = std::string("value is not valid YAML: ") + e.msg;
-      ctx.issues->push_back(is);
-      return;
-    }
-  }
-  // Walk down, creating maps as needed; list indices exist (resolved above)
-  // unless an element index of a vector key is out of its list.
-  std::vector<YAML::Node> chain{root};
-  for (size_t i = 0; i + 1 < parts.size(); ++i) {
-    YAML::Node cur = chain.back();
-    const std::string& p = parts[i];
-    if (cur.IsSequence()) {
-      size_t k = 0;
-      if (!parse_index(p, cur.size(), k)) {
-        is.message = "no list element '" + p + "' (the list has " + std::to_string(cur.size()) + " entries)";
-        ctx.issues->push_back(is);
-        return;
-      }
-      chain.push_back(cur[k]);
-    } else if (cur.IsMap() || cur.IsNull()) {
-      if (!cur[p].IsDefined() || cur[p].IsNull()) cur[p] = YAML::Node(YAML::NodeType::Map);
-      chain.push_back(cur[p]);
-    } else {
-      is.message = "'" + p + "' is inside a scalar";
-      ctx.issues->push_back(is);
-      return;
-    }
-  }
-  YAML::Node last = chain.back();
-  const std::string& leaf = parts.back();
-  if (last.IsSequence()) {
-    size_t k = 0;
-    if (!parse_index(leaf, last.size(), k)) {
-      is.message = "no list element '" + leaf + "' (the list has " + std::to_string(last.size()) + " entries)";
-      ctx.issues->push_back(is);
-      return;
-    }
-    last[k] = value;
-  } else if (last.IsMap()) {
-    last[leaf] = value;
-    // One spelling replaces the other (Omega_0 and Omega_0_rpm).
-    if (t.key && t.rest.empty() && !t.key->suffix.empty())
-      last.remove(t.suffixed ? t.key->name : t.key->name + t.key->suffix);
-  } else {
-    is.message = "cannot set a key inside a scalar";
-    ctx.issues->push_back(is);
-  }
+  std::string bad = override_value(t, o.value, ctx.file, value);
+  if (bad.empty()) bad = put_value(root, parts, t, value);
+  if (!bad.empty()) fail(bad);
 }
 
 // ---- the typed setter (harness/scenario.h) -------------------------------------
@@ -233,8 +236,7 @@ KeyTarget settable_key(const Scenario& sc, const std::string& path, const char* 
     throw ScenarioError({is});
   };
   if (parts.empty()) fail("empty key path");
-  const KeyTarget t =
-      resolve_path(parts, [&sc](const schema::Section& list, size_t) { return list.count ? list.count(sc) : 0; });
+  const KeyTarget t = resolve_path(parts, list_sizes(sc));
   if (!t.error.empty()) {
     is.key = t.error_key;
     fail(t.error);

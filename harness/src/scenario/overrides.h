@@ -46,8 +46,10 @@ struct KeyTarget {
   std::string error_key;                          // the key path the error names
 };
 // `list_size(list, depth)`: elements of the list named by parts[0..depth).
-KeyTarget resolve_path(const std::vector<std::string>& parts,
-                       const std::function<size_t(const schema::Section&, size_t)>& list_size);
+using ListSizeFn = std::function<size_t(const schema::Section&, size_t)>;
+KeyTarget resolve_path(const std::vector<std::string>& parts, const ListSizeFn& list_size);
+// The lists' sizes in a scenario (resolve_path against a Scenario).
+ListSizeFn list_sizes(const Scenario& sc);
 
 // Applies one override to the document `root`; problems go to ctx.issues
 // (and ctx.overridden records the path for attributing later problems).

@@ -54,6 +54,103 @@ Check in_range_closed_open(double lo, double hi, const char* msg)
   return [lo, hi, msg](double x, bool) { return x >= lo && x < hi ? std::string() : std::string(msg); };
 }
 
+// fsw.sun_safe: the Sun-pointing guidance.
+Section sun_safe_section()
+{
+  return Section{"sun_safe",
+                 {
+                     vec3("sun_axis_B", KESTREL_FSW(sun_axis_B), true),
+                     real("small_angle", KESTREL_FSW(sun_small_angle))
+                         .alt("_deg", sim::kRadPerDeg)
+                         .bounds(angle_below(90.0))
+                         .unit("rad"),
+                     vec3("omega_search_B", KESTREL_FSW(omega_search_B))
+                         .vcheck(rate_within(kMaxBodyRateDegS))
+                         .unit("rad/s"),
+                     real("lit_threshold", KESTREL_FSW(css_lit_threshold))
+                         .bounds(in_range_closed_open(0.0, 1.0, "must be in [0, 1)")).unit("-"),
+                 },
+                 {}};
+}
+
+// fsw.mrp_fb: the attitude control law's gains.
+Section mrp_fb_section()
+{
+  return Section{"mrp_fb",
+                 {
+                     real("K", KESTREL_FSW(mrp_fb.K)).req("attitude gain [N*m]").bounds(positive("N*m")).unit("N*m"),
+                     real("P", KESTREL_FSW(mrp_fb.P)).req("rate gain [N*m*s]").bounds(positive("N*m*s")).unit("N*m*s"),
+                     real("K_i", KESTREL_FSW(mrp_fb.K_i)).unit("1/(kg*m^2)"),
+                     real("integral_limit", KESTREL_FSW(mrp_fb.integral_limit))
+                         .bounds(non_negative("N*m*s")).unit("N*m*s"),
+                     integer("control_law", 0, 1, KESTREL_FSW(mrp_fb.control_law)),
+                     inertia("inertia", KESTREL_FSW(mrp_fb.inertia)).unit("kg*m^2"),
+                 },
+                 {}};
+}
+
+// fsw.rw_null: wheel null motion.
+Section rw_null_section()
+{
+  return Section{"rw_null",
+                 {
+                     boolean("enabled", KESTREL_FSW(rw_null)),
+                     [] {
+                       KeyDef k = real("k_null", KESTREL_FSW(k_null)).bounds(positive("N*m*s")).unit("N*m*s");
+                       // 0 (not given) is not written: the manifest then reloads to 0 too
+                       WriteFn plain = k.write;
+                       k.write = [plain](const KeyDef& d, nlohmann::json& j, const Scenario& sc, size_t i) {
+                         if (sc.fsw.k_null > 0.0) plain(d, j, sc, i);
+                       };
+                       return k;
+                     }(),
+                     boolean("scale_to_fit", KESTREL_FSW(rw_null_scale_to_fit)),
+                     omega_des(),
+                 },
+                 {}};
+}
+
+// fsw.speed_filter: the screening of the wheel tachometers.
+Section speed_filter_section()
+{
+  return Section{"speed_filter",
+                 {
+                     boolean("enabled", KESTREL_FSW(speed_filter)),
+                     real("noise", KESTREL_FSW(sf_noise))
+                         .alt("_rpm", sim::kRadPerSecPerRpm)
+                         .bounds(non_negative("rad/s"))
+                         .unit("rad/s"),
+                     integer("k_reject", 1, 1000000, KESTREL_FSW(sf_k_reject)),
+                     integer("n_recover", 1, 1000000, KESTREL_FSW(sf_n_recover)),
+                     integer("n_stale", 0, 1000000, KESTREL_FSW(sf_n_stale)),
+                     integer("n_window", 0, 1000000, KESTREL_FSW(sf_n_window)),
+                     real("resid_tol", KESTREL_FSW(sf_resid_tol))
+                         .alt("_rpm", sim::kRadPerSecPerRpm)
+                         .bounds(non_negative("rad/s"))
+                         .unit("rad/s"),
+                 },
+                 {}};
+}
+
+// fsw.thr_pulse: thruster pulse modulation.
+Section thr_pulse_section()
+{
+  return Section{"thr_pulse",
+                 {
+                     choice<ThrPulseMode>("mode",
+                                          {{"remainder", ThrPulseMode::Remainder}, {"schmitt", ThrPulseMode::Schmitt}},
+                                          KESTREL_FSW(thr_pulse)),
+                     real("t_min", KESTREL_FSW(thr_t_min)).bounds(positive("s")).unit("s"),
+                     real("level_on", KESTREL_FSW(thr_level_on))
+                         .bounds([](double x, bool) {
+                           return x > 0.0 && x <= 1.0 ? std::string() : std::string("must be in (0, 1]");
+                         })
+                         .unit("-"),
+                     real("level_off", KESTREL_FSW(thr_level_off)).bounds(non_negative("-")).unit("-"),
+                 },
+                 {}};
+}
+
 }  // namespace
 
 const Section& fsw_section()
@@ -67,29 +164,8 @@ const Section& fsw_section()
       },
       {
           Section{"inertial", {vec3("sigma_R0N", KESTREL_FSW(sigma_R0N)).unit("-")}, {}},
-          Section{"sun_safe",
-                  {
-                      vec3("sun_axis_B", KESTREL_FSW(sun_axis_B), true),
-                      real("small_angle", KESTREL_FSW(sun_small_angle))
-                          .alt("_deg", sim::kRadPerDeg)
-                          .bounds(angle_below(90.0))
-                          .unit("rad"),
-                      vec3("omega_search_B", KESTREL_FSW(omega_search_B)).vcheck(rate_within(kMaxBodyRateDegS)).unit("rad/s"),
-                      real("lit_threshold", KESTREL_FSW(css_lit_threshold))
-                          .bounds(in_range_closed_open(0.0, 1.0, "must be in [0, 1)")).unit("-"),
-                  },
-                  {}},
-          Section{"mrp_fb",
-                  {
-                      real("K", KESTREL_FSW(mrp_fb.K)).req("attitude gain [N*m]").bounds(positive("N*m")).unit("N*m"),
-                      real("P", KESTREL_FSW(mrp_fb.P)).req("rate gain [N*m*s]").bounds(positive("N*m*s")).unit("N*m*s"),
-                      real("K_i", KESTREL_FSW(mrp_fb.K_i)).unit("1/(kg*m^2)"),
-                      real("integral_limit", KESTREL_FSW(mrp_fb.integral_limit))
-                          .bounds(non_negative("N*m*s")).unit("N*m*s"),
-                      integer("control_law", 0, 1, KESTREL_FSW(mrp_fb.control_law)),
-                      inertia("inertia", KESTREL_FSW(mrp_fb.inertia)).unit("kg*m^2"),
-                  },
-                  {}},
+          sun_safe_section(),
+          mrp_fb_section(),
           Section{"rw_map",
                   {
                       choice<RwMapMode>("mode", {{"min_norm", RwMapMode::MinNorm}, {"power", RwMapMode::Power}},
@@ -97,53 +173,9 @@ const Section& fsw_section()
                       real("eps_P", KESTREL_FSW(eps_P)).bounds(positive("rad^2/s^2")).unit("rad^2/s^2"),
                   },
                   {}},
-          Section{"rw_null",
-                  {
-                      boolean("enabled", KESTREL_FSW(rw_null)),
-                      [] {
-                        KeyDef k = real("k_null", KESTREL_FSW(k_null)).bounds(positive("N*m*s")).unit("N*m*s");
-                        // 0 (not given) is not written: the manifest then reloads to 0 too
-                        WriteFn plain = k.write;
-                        k.write = [plain](const KeyDef& d, nlohmann::json& j, const Scenario& sc, size_t i) {
-                          if (sc.fsw.k_null > 0.0) plain(d, j, sc, i);
-                        };
-                        return k;
-                      }(),
-                      boolean("scale_to_fit", KESTREL_FSW(rw_null_scale_to_fit)),
-                      omega_des(),
-                  },
-                  {}},
-          Section{"speed_filter",
-                  {
-                      boolean("enabled", KESTREL_FSW(speed_filter)),
-                      real("noise", KESTREL_FSW(sf_noise))
-                          .alt("_rpm", sim::kRadPerSecPerRpm)
-                          .bounds(non_negative("rad/s"))
-                          .unit("rad/s"),
-                      integer("k_reject", 1, 1000000, KESTREL_FSW(sf_k_reject)),
-                      integer("n_recover", 1, 1000000, KESTREL_FSW(sf_n_recover)),
-                      integer("n_stale", 0, 1000000, KESTREL_FSW(sf_n_stale)),
-                      integer("n_window", 0, 1000000, KESTREL_FSW(sf_n_window)),
-                      real("resid_tol", KESTREL_FSW(sf_resid_tol))
-                          .alt("_rpm", sim::kRadPerSecPerRpm)
-                          .bounds(non_negative("rad/s"))
-                          .unit("rad/s"),
-                  },
-                  {}},
-          Section{"thr_pulse",
-                  {
-                      choice<ThrPulseMode>("mode",
-                                           {{"remainder", ThrPulseMode::Remainder}, {"schmitt", ThrPulseMode::Schmitt}},
-                                           KESTREL_FSW(thr_pulse)),
-                      real("t_min", KESTREL_FSW(thr_t_min)).bounds(positive("s")).unit("s"),
-                      real("level_on", KESTREL_FSW(thr_level_on))
-                          .bounds([](double x, bool) {
-                            return x > 0.0 && x <= 1.0 ? std::string() : std::string("must be in (0, 1]");
-                          })
-                          .unit("-"),
-                      real("level_off", KESTREL_FSW(thr_level_off)).bounds(non_negative("-")).unit("-"),
-                  },
-                  {}},
+          rw_null_section(),
+          speed_filter_section(),
+          thr_pulse_section(),
           Section{"thr_map",
                   {choice<ThrMapMode>("mode", {{"min_norm", ThrMapMode::MinNorm}, {"nnls", ThrMapMode::Nnls}},
                                       KESTREL_FSW(thr_map))},

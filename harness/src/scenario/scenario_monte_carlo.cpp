@@ -44,6 +44,150 @@ const std::vector<std::set<std::string>> kDistKeys = {
 
 double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 
+// Every key a distribution may take (besides key and dist), in the order
+// they are checked.
+const std::vector<std::string> kDistKeyOrder = {"mean",          "std",       "min",           "max",
+                                                "half_width",    "values",    "weights",       "angle_std",
+                                                "angle_std_deg", "angle_max", "angle_max_deg", "principal_std_rel"};
+const std::set<std::string> kAllDistKeys(kDistKeyOrder.begin(), kDistKeyOrder.end());
+
+// Required key k: false (and a "missing" problem) when absent.
+bool need(MapReader& d, const char* k, const char* what)
+{
+  if (d.has(k)) return true;
+  d.missing(k, what);
+  return false;
+}
+
+// min < max, both required; false when one is missing.
+bool read_bounds(MapReader& d, DispersionSpec& s, const char* min_what)
+{
+  const bool has_min = need(d, "min", min_what);
+  const bool ok = need(d, "max", "upper bound, in the key's unit") && has_min;
+  s.min = d.real("min");
+  s.max = d.real("max");
+  if (s.min && s.max && !(*s.min < *s.max)) d.error_at("max", "must be > min");
+  return ok;
+}
+
+// normal, truncated_normal; false when a required key is missing or std is not > 0.
+bool read_normal(MapReader& d, DispersionSpec& s)
+{
+  if (d.has("mean")) s.mean = d.real("mean");
+  bool ok = need(d, "std", "standard deviation, in the key's unit");
+  if (auto v = d.real("std", [](double x) { return x > 0.0 ? "" : "must be > 0"; })) s.std = *v;
+  else ok = false;
+  if (s.dist == DistKind::TruncatedNormal) ok = read_bounds(d, s, "lower bound, in the key's unit") && ok;
+  return ok;
+}
+
+void read_uniform(MapReader& d, DispersionSpec& s)
+{
+  if (!d.has("half_width")) {
+    read_bounds(d, s, "lower bound, in the key's unit (or half_width about the nominal value)");
+    return;
+  }
+  s.half_width = d.real("half_width", [](double x) { return x > 0.0 ? "" : "must be > 0"; });
+  if (d.has("min") || d.has("max")) d.error_at_key("half_width", "give half_width or min and max, not both");
+}
+
+void read_choice_weights(MapReader& d, DispersionSpec& s, size_t values)
+{
+  const YAML::Node w = d.get("weights");
+  if (!w.IsDefined()) return;
+  if (!w.IsSequence() || w.size() != values) {
+    d.error_at("weights", "expected a list of " + std::to_string(values) + " weights (one per value)");
+    return;
+  }
+  double sum = 0.0;
+  for (size_t i = 0; i < w.size(); ++i) {
+    double x = 0.0;
+    if (!decode_double(w[i], x) || !std::isfinite(x) || x < 0.0) {
+      d.ctx().error(w[i], d.key_path("weights") + "[" + std::to_string(i) + "]", "must be a number >= 0");
+      continue;
+    }
+    s.weights.push_back(x);
+    sum += x;
+  }
+  if (s.weights.size() == w.size() && !(sum > 0.0)) d.error_at("weights", "must not all be zero");
+}
+
+void read_choice(MapReader& d, DispersionSpec& s)
+{
+  const YAML::Node v = d.get("values");
+  if (!v.IsDefined()) {
+    d.missing("values", "a list of the values to choose from");
+    return;
+  }
+  if (!v.IsSequence() || v.size() == 0 || v.size() > kMaxChoices) {
+    d.error_at("values", "expected a list of 1 to " + std::to_string(kMaxChoices) + " values, got " + kind_name(v));
+    return;
+  }
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (!v[i].IsScalar()) {
+      d.ctx().error(v[i], d.key_path("values") + "[" + std::to_string(i) + "]", "expected a value, got " + kind_name(v[i]));
+      continue;
+    }
+    s.values.push_back(v[i].Scalar());
+  }
+  read_choice_weights(d, s, v.size());
+}
+
+void read_normal_vector(MapReader& d, DispersionSpec& s)
+{
+  const YAML::Node v = d.get("std");
+  if (!v.IsDefined()) {
+    d.missing("std", "standard deviation per axis: one number or [x, y, z], in the key's unit");
+    return;
+  }
+  double x = 0.0;
+  if (v.IsScalar() && decode_double(v, x)) {
+    s.std_vec = Eigen::Vector3d::Constant(x);
+  } else if (auto vec = d.vec3_of(v, d.key_path("std"))) {
+    s.std_vec = *vec;
+  } else {
+    return;
+  }
+  if (!(s.std_vec.minCoeff() >= 0.0 && s.std_vec.maxCoeff() > 0.0 && s.std_vec.allFinite()))
+    d.error_at("std", "must be >= 0 on every axis and > 0 on one");
+}
+
+// unit_vector, attitude, inertia: the angles (and inertia's principal_std_rel).
+void read_angles(MapReader& d, DispersionSpec& s)
+{
+  auto angle = [&](const char* k) -> std::optional<double> {
+    if (!d.has(k) && !d.has(std::string(k) + "_deg")) return std::nullopt;
+    return d.quantity(k, "_deg", kDeg, [](double) { return std::string(); });
+  };
+  s.angle_std = angle("angle_std");
+  if (s.dist != DistKind::Inertia) s.angle_max = angle("angle_max");
+  const bool both = s.angle_std && s.angle_max;
+  if (both) d.error_at_key("angle_std", "give angle_std or angle_max, not both");
+  for (const auto& [a, name] : {std::pair{s.angle_std, "angle_std"}, std::pair{s.angle_max, "angle_max"}})
+    if (a && !(*a > 0.0 && *a <= kMaxAngleDeg * kDeg))
+      d.error_at_key(d.has(name) ? name : std::string(name) + "_deg", "must be > 0 and at most 180 deg");
+  if (s.dist == DistKind::Inertia) {
+    if (d.has("principal_std_rel"))
+      if (auto p = d.real("principal_std_rel", [](double x) { return x >= 0.0 && x <= 0.5 ? "" : "must be in [0, 0.5]"; }))
+        s.principal_std_rel = *p;
+    if (!s.angle_std && s.principal_std_rel == 0.0)
+      d.error_self("an inertia dispersion needs angle_std(_deg) and/or principal_std_rel > 0");
+  } else if (!s.angle_std && !s.angle_max) {
+    d.missing("angle_std_deg", "the dispersion angle: angle_std(_deg) (normal per axis) or angle_max(_deg) (uniform)");
+  }
+}
+
+// truncated_normal with its own mean: the bounds keep enough of the normal
+// (about the nominal value: checked per key in check_monte_carlo).
+void check_truncated_mass(MapReader& d, const DispersionSpec& s)
+{
+  if (!(s.min && s.max && *s.min < *s.max && s.std > 0.0 && s.mean)) return;
+  const double p = normal_cdf((*s.max - *s.mean) / s.std) - normal_cdf((*s.min - *s.mean) / s.std);
+  if (!(p >= kMinTruncMass))
+    d.error_self("the bounds [" + fmt(*s.min) + ", " + fmt(*s.max) + "] keep only " + fmt(p) +
+                 " of the normal distribution (at least 0.01 is needed): widen them or move the mean");
+}
+
 void read_dispersion(MapReader& d, MonteCarloSpec& mc)
 {
   DispersionSpec s;
@@ -55,145 +199,29 @@ void read_dispersion(MapReader& d, MonteCarloSpec& mc)
   if (!dist && !d.has("dist")) d.missing("dist", "one of normal, truncated_normal, uniform, choice, unit_vector, "
                                                  "normal_vector, attitude, inertia");
   if (!key || !dist) {
-    d.finish({"mean", "std", "min", "max", "half_width", "values", "weights", "angle_std", "angle_std_deg",
-              "angle_max", "angle_max_deg", "principal_std_rel"});
+    d.finish(kAllDistKeys);
     return;
   }
   s.key = *key;
   s.dist = static_cast<DistKind>(*dist);
-  const std::set<std::string>& allowed = kDistKeys[*dist];
-  for (const char* k : {"mean", "std", "min", "max", "half_width", "values", "weights", "angle_std", "angle_std_deg",
-                        "angle_max", "angle_max_deg", "principal_std_rel"})
-    if (d.has(k) && allowed.count(k) == 0) {
+  for (const std::string& k : kDistKeyOrder)
+    if (d.has(k) && kDistKeys[*dist].count(k) == 0) {
       d.mark_known(k);
       d.error_at_key(k, "does not apply to dist " + kDistNames[*dist]);
     }
   bool ok = true;
-  auto need = [&](const char* k, const char* what) {
-    if (!d.has(k)) {
-      d.missing(k, what);
-      ok = false;
-    }
-  };
-  auto bounds = [&](const char* min_what) {  // min < max, both required
-    need("min", min_what);
-    need("max", "upper bound, in the key's unit");
-    s.min = d.real("min");
-    s.max = d.real("max");
-    if (s.min && s.max && !(*s.min < *s.max)) d.error_at("max", "must be > min");
-  };
   switch (s.dist) {
     case DistKind::Normal:
-    case DistKind::TruncatedNormal: {
-      if (d.has("mean")) s.mean = d.real("mean");
-      need("std", "standard deviation, in the key's unit");
-      if (auto v = d.real("std", [](double x) { return x > 0.0 ? "" : "must be > 0"; })) s.std = *v;
-      else ok = false;
-      if (s.dist == DistKind::TruncatedNormal) bounds("lower bound, in the key's unit");
-      break;
-    }
-    case DistKind::Uniform: {
-      if (d.has("half_width")) {
-        s.half_width = d.real("half_width", [](double x) { return x > 0.0 ? "" : "must be > 0"; });
-        if (d.has("min") || d.has("max")) d.error_at_key("half_width", "give half_width or min and max, not both");
-      } else {
-        bounds("lower bound, in the key's unit (or half_width about the nominal value)");
-      }
-      break;
-    }
-    case DistKind::Choice: {
-      const YAML::Node v = d.get("values");
-      if (!v.IsDefined()) {
-        d.missing("values", "a list of the values to choose from");
-        break;
-      }
-      if (!v.IsSequence() || v.size() == 0 || v.size() > kMaxChoices) {
-        d.error_at("values", "expected a list of 1 to " + std::to_string(kMaxChoices) + " values, got " + kind_name(v));
-        break;
-      }
-      for (size_t i = 0; i < v.size(); ++i) {
-        if (!v[i].IsScalar()) {
-          d.ctx().error(v[i], d.key_path("values") + "[" + std::to_string(i) + "]", "expected a value, got " + kind_name(v[i]));
-          continue;
-        }
-        s.values.push_back(v[i].Scalar());
-      }
-      const YAML::Node w = d.get("weights");
-      if (w.IsDefined()) {
-        if (!w.IsSequence() || w.size() != v.size()) {
-          d.error_at("weights", "expected a list of " + std::to_string(v.size()) + " weights (one per value)");
-          break;
-        }
-        double sum = 0.0;
-        for (size_t i = 0; i < w.size(); ++i) {
-          double x = 0.0;
-          if (!decode_double(w[i], x) || !std::isfinite(x) || x < 0.0) {
-            d.ctx().error(w[i], d.key_path("weights") + "[" + std::to_string(i) + "]", "must be a number >= 0");
-            continue;
-          }
-          s.weights.push_back(x);
-          sum += x;
-        }
-        if (s.weights.size() == w.size() && !(sum > 0.0)) d.error_at("weights", "must not all be zero");
-      }
-      break;
-    }
-    case DistKind::NormalVector: {
-      const YAML::Node v = d.get("std");
-      if (!v.IsDefined()) {
-        d.missing("std", "standard deviation per axis: one number or [x, y, z], in the key's unit");
-        break;
-      }
-      double x = 0.0;
-      if (v.IsScalar() && decode_double(v, x)) {
-        s.std_vec = Eigen::Vector3d::Constant(x);
-      } else if (auto vec = d.vec3_of(v, d.key_path("std"))) {
-        s.std_vec = *vec;
-      } else {
-        break;
-      }
-      if (!(s.std_vec.minCoeff() >= 0.0 && s.std_vec.maxCoeff() > 0.0 && s.std_vec.allFinite()))
-        d.error_at("std", "must be >= 0 on every axis and > 0 on one");
-      break;
-    }
+    case DistKind::TruncatedNormal: ok = read_normal(d, s); break;
+    case DistKind::Uniform: read_uniform(d, s); break;
+    case DistKind::Choice: read_choice(d, s); break;
+    case DistKind::NormalVector: read_normal_vector(d, s); break;
     case DistKind::UnitVector:
     case DistKind::Attitude:
-    case DistKind::Inertia: {
-      auto angle = [&](const char* k) -> std::optional<double> {
-        if (!d.has(k) && !d.has(std::string(k) + "_deg")) return std::nullopt;
-        return d.quantity(k, "_deg", kDeg, [](double) { return std::string(); });
-      };
-      s.angle_std = angle("angle_std");
-      if (s.dist != DistKind::Inertia) s.angle_max = angle("angle_max");
-      const bool both = s.angle_std && s.angle_max;
-      if (both) d.error_at_key("angle_std", "give angle_std or angle_max, not both");
-      for (const auto& [a, name] : {std::pair{s.angle_std, "angle_std"}, std::pair{s.angle_max, "angle_max"}})
-        if (a && !(*a > 0.0 && *a <= kMaxAngleDeg * kDeg))
-          d.error_at_key(d.has(name) ? name : std::string(name) + "_deg", "must be > 0 and at most 180 deg");
-      if (s.dist == DistKind::Inertia) {
-        if (d.has("principal_std_rel"))
-          if (auto p = d.real("principal_std_rel",
-                              [](double x) { return x >= 0.0 && x <= 0.5 ? "" : "must be in [0, 0.5]"; }))
-            s.principal_std_rel = *p;
-        if (!s.angle_std && s.principal_std_rel == 0.0)
-          d.error_self("an inertia dispersion needs angle_std(_deg) and/or principal_std_rel > 0");
-      } else if (!s.angle_std && !s.angle_max) {
-        d.missing("angle_std_deg", "the dispersion angle: angle_std(_deg) (normal per axis) or angle_max(_deg) (uniform)");
-      }
-      break;
-    }
+    case DistKind::Inertia: read_angles(d, s); break;
   }
-  d.finish({"mean", "std", "min", "max", "half_width", "values", "weights", "angle_std", "angle_std_deg", "angle_max",
-            "angle_max_deg", "principal_std_rel"});
-  if (ok && s.dist == DistKind::TruncatedNormal && s.min && s.max && *s.min < *s.max && s.std > 0.0) {
-    // the mean is the nominal value when absent: checked per key in check_monte_carlo
-    if (s.mean) {
-      const double p = normal_cdf((*s.max - *s.mean) / s.std) - normal_cdf((*s.min - *s.mean) / s.std);
-      if (!(p >= kMinTruncMass))
-        d.error_self("the bounds [" + fmt(*s.min) + ", " + fmt(*s.max) + "] keep only " + fmt(p) +
-                     " of the normal distribution (at least 0.01 is needed): widen them or move the mean");
-    }
-  }
+  d.finish(kAllDistKeys);
+  if (ok && s.dist == DistKind::TruncatedNormal) check_truncated_mass(d, s);
   mc.dispersions.push_back(s);
 }
 
@@ -376,9 +404,7 @@ std::vector<std::string> expand_dispersion_key(const Scenario& sc, const std::st
     why = "at most one [*] in a key";
     return {};
   }
-  const std::vector<std::string> parts = split_path(key.substr(0, star));
-  const KeyTarget t =
-      resolve_path(parts, [&sc](const schema::Section& list, size_t) { return list.count ? list.count(sc) : 0; });
+  const KeyTarget t = resolve_path(split_path(key.substr(0, star)), list_sizes(sc));
   if (!t.error.empty() || t.key || !t.section || !t.section->list) {
     why = "[*] must follow a list (wheels, thrusters, events)";
     return {};
@@ -390,78 +416,99 @@ std::vector<std::string> expand_dispersion_key(const Scenario& sc, const std::st
   return out;
 }
 
-void check_monte_carlo(const Ctx& ctx, Scenario& sc)
+namespace {
+
+// What is wrong with dispersing bound key t ("" when nothing); `seen`: the
+// keys dispersed so far (without their unit suffix).
+std::string target_problem(const McTarget& t, const DispersionSpec& s, std::set<std::string>& seen)
 {
-  if (!sc.monte_carlo) return;
-  const std::string base = "monte_carlo.dispersions";
+  static const std::set<std::string> kStructure = {"name",  "description", "seed",   "duration",
+                                                   "rates", "monte_carlo", "outputs"};
+  const std::vector<std::string> parts = split_path(t.path);
+  if (!parts.empty() && kStructure.count(parts[0]))
+    return "cannot be dispersed: it sets the run's structure (the time grid, the seeds, the outputs)";
+  if (!t.error.empty()) return t.error;
+  if (!dist_fits(s.dist, t.key->type, t.key->name))
+    return "dist " + kDistNames[static_cast<size_t>(s.dist)] + " needs " + dist_needs(s.dist);
+  const std::string& k = t.path;
+  const std::string norm = normalise_path(split_path(t.suffixed ? k.substr(0, k.size() - t.key->suffix.size()) : k));
+  if (!seen.insert(norm).second) return "dispersed twice (" + norm + ")";
+  if (s.dist == DistKind::TruncatedNormal && !s.mean) {
+    const ParameterValue& nominal = t.nominal;
+    const double mean = std::holds_alternative<double>(nominal.value) ? std::get<double>(nominal.value)
+                        : std::holds_alternative<long long>(nominal.value)
+                            ? static_cast<double>(std::get<long long>(nominal.value))
+                            : static_cast<double>(std::get<uint64_t>(nominal.value));
+    const double p = normal_cdf((*s.max - mean) / s.std) - normal_cdf((*s.min - mean) / s.std);
+    if (!(p >= kMinTruncMass))
+      return "the bounds [" + fmt(*s.min) + ", " + fmt(*s.max) + "] about the nominal " + fmt(mean) + " keep only " +
+             fmt(p) + " of the normal distribution (at least 0.01 is needed)";
+  }
+  return "";
+}
+
+// The first value of a choice that key t refuses (each set in turn on a copy
+// of sc), or "".
+std::string choice_problem(const McTarget& t, const DispersionSpec& s, const Scenario& sc)
+{
+  Scenario probe = sc;
+  for (size_t v = 0; v < s.values.size(); ++v) {
+    std::string bad = t.choice_errors[v];
+    if (bad.empty()) bad = t.key->set(*t.key, probe, t.index, t.choices[v], t.suffixed);
+    if (!bad.empty()) return "value " + std::to_string(v) + " ('" + s.values[v] + "'): " + bad;
+  }
+  return "";
+}
+
+// The problems of the binding of sc's dispersions, each at the line of its
+// dispersion, key monte_carlo.dispersions[i].key.  A dispersion's keys are
+// checked until one has a problem (a choice's values: each key).
+void report_problems(const Ctx& ctx, const Scenario& sc, const McBinding& b)
+{
   std::set<std::string> seen;
-  const std::set<std::string> fixed = {"name", "description", "seed", "duration"};
-  for (size_t i = 0; i < sc.monte_carlo->dispersions.size(); ++i) {
-    const DispersionSpec& s = sc.monte_carlo->dispersions[i];
-    const std::string at = base + "[" + std::to_string(i) + "].key";
+  size_t t = 0;  // b.targets: dispersion by dispersion
+  for (size_t i = 0; i < b.specs.size(); ++i) {
+    const DispersionSpec& s = b.specs[i];
     auto error = [&](const std::string& msg) {
       ScenarioIssue is;
       is.file = ctx.file;
       is.line = s.line;
       is.column = s.column;
-      is.key = at;
+      is.key = "monte_carlo.dispersions[" + std::to_string(i) + "].key";
       is.message = "'" + s.key + "': " + msg;
       ctx.issues->push_back(is);
     };
-    std::string why;
-    const std::vector<std::string> keys = expand_dispersion_key(sc, s.key, why);
-    if (!why.empty()) {
-      error(why);
-      continue;
-    }
-    for (const std::string& k : keys) {
-      const std::vector<std::string> parts = split_path(k);
-      if (!parts.empty() && (fixed.count(parts[0]) || parts[0] == "rates" || parts[0] == "monte_carlo" || parts[0] == "outputs")) {
-        error("cannot be dispersed: it sets the run's structure (the time grid, the seeds, the outputs)");
-        break;
-      }
-      ParameterValue nominal(0.0);
-      try {
-        nominal = get_parameter(sc, k);
-      } catch (const ScenarioError& e) {
-        error(e.issues().front().message);
-        break;
-      }
-      const KeyTarget t =
-          resolve_path(parts, [&sc](const schema::Section& list, size_t) { return list.count ? list.count(sc) : 0; });
-      if (!dist_fits(s.dist, t.key->type, t.key->name)) {
-        error("dist " + kDistNames[static_cast<size_t>(s.dist)] + " needs " + dist_needs(s.dist));
-        break;
-      }
-      const std::string norm = normalise_path(split_path(t.suffixed ? k.substr(0, k.size() - t.key->suffix.size()) : k));
-      if (!seen.insert(norm).second) {
-        error("dispersed twice (" + norm + ")");
-        break;
-      }
-      if (s.dist == DistKind::TruncatedNormal && !s.mean) {
-        const double mean = std::holds_alternative<double>(nominal.value) ? std::get<double>(nominal.value)
-                            : std::holds_alternative<long long>(nominal.value)
-                                ? static_cast<double>(std::get<long long>(nominal.value))
-                                : static_cast<double>(std::get<uint64_t>(nominal.value));
-        const double p = normal_cdf((*s.max - mean) / s.std) - normal_cdf((*s.min - mean) / s.std);
-        if (!(p >= kMinTruncMass)) {
-          error("the bounds [" + fmt(*s.min) + ", " + fmt(*s.max) + "] about the nominal " + fmt(mean) + " keep only " +
-                fmt(p) + " of the normal distribution (at least 0.01 is needed)");
-          break;
-        }
-      }
-      if (s.dist == DistKind::Choice) {
-        Scenario probe = sc;
-        for (size_t v = 0; v < s.values.size(); ++v) {
-          const std::string bad = try_choice_value(probe, k, s.values[v]);
-          if (!bad.empty()) {
-            error("value " + std::to_string(v) + " ('" + s.values[v] + "'): " + bad);
-            break;
-          }
-        }
+    if (!b.spec_errors[i].empty()) error(b.spec_errors[i]);
+    bool stop = false;
+    for (; t < b.targets.size() && b.targets[t].dispersion == i; ++t) {
+      if (stop) continue;
+      const std::string bad = target_problem(b.targets[t], s, seen);
+      if (!bad.empty()) {
+        error(bad);
+        stop = true;
+      } else if (s.dist == DistKind::Choice) {
+        const std::string v = choice_problem(b.targets[t], s, sc);
+        if (!v.empty()) error(v);
       }
     }
   }
+}
+
+}  // namespace
+
+void check_monte_carlo(const Ctx& ctx, Scenario& sc)
+{
+  if (sc.monte_carlo) report_problems(ctx, sc, bind_dispersions(sc));
+}
+
+McBinding bind_campaign(const Scenario& nominal)
+{
+  McBinding b = bind_dispersions(nominal);
+  std::vector<ScenarioIssue> issues;
+  const Ctx ctx{nominal.source_file, &issues, {}};
+  report_problems(ctx, nominal, b);
+  if (!issues.empty()) throw ScenarioError(issues);
+  return b;
 }
 
 }  // namespace harness

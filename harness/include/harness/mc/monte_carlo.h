@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -40,11 +41,17 @@ struct McMetric {
   double threshold = 0.0;
 };
 
+struct McBinding;  // the dispersions bound to the nominal scenario (private)
+
 // What a campaign records, fixed before the first run.
 struct McPlan {
   Scenario nominal;            // with its monte_carlo section
   uint64_t master_seed = 1;
   uint64_t runs = 0;
+  // Each dispersion's key resolved once (key definition, list element,
+  // nominal value, a choice's values decoded): a run's draws only draw and
+  // set values.  Shared by copies of the plan; never changed.
+  std::shared_ptr<const McBinding> bound;
   std::vector<McColumn> drawn;      // the drawn values' columns
   std::vector<McMetric> metrics;    // default metrics, then one per criterion
   std::vector<std::string> series_columns;  // thinned channel columns
@@ -55,7 +62,8 @@ struct McPlan {
 };
 
 // The plan of a loaded scenario (throws ScenarioError: no monte_carlo
-// section, a criterion naming a column the run does not record).
+// section, a dispersion whose key does not fit the scenario, a criterion
+// naming a column the run does not record).
 McPlan make_mc_plan(const Scenario& nominal, uint64_t master_seed, uint64_t runs);
 
 // One run's outcome.
