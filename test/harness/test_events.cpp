@@ -520,7 +520,7 @@ TEST(Events, S2StuckThrusterMidBurnAttitudeHeld)
   EXPECT_GT(max_between(r, "thruster_force_1", 360.0, 499.9), 0.0);  // it was firing before
   const harness::ThrusterSpec& acs1 = sc.thrusters[1];
   ASSERT_EQ(acs1.name, "acs1");
-  const double tau = acs1.F_max * (acs1.r_B - sc.spacecraft.com).norm();
+  const double tau = acs1.F_max * (acs1.r_TjB_B - sc.spacecraft.r_BcB_B).norm();
   const double bound_deg = tau / (sc.fsw.mrp_fb.K / 4.0) * 180.0 / M_PI;
   const double peak = max_between(r, "pointing_error_deg", 500.0, 560.0);
   EXPECT_LT(peak, bound_deg);
@@ -573,7 +573,7 @@ TEST(Events, S2StuckThrusterFlaggedIsMappedOutAndAttitudeHeld)
   EXPECT_GT(max_between(r, "thruster_on_time_1", 360.0, 499.9), 0.0);  // it was commanded before
 
   const harness::ThrusterSpec& acs1 = sc.thrusters[1];
-  const double tau = acs1.F_max * (acs1.r_B - sc.spacecraft.com).norm();
+  const double tau = acs1.F_max * (acs1.r_TjB_B - sc.spacecraft.r_BcB_B).norm();
   const double I_min = sc.spacecraft.inertia.diagonal().minCoeff();
   const double dw = tau * 0.1 / I_min, omega_n = 1.0;
   const auto ref = run_without_events(sc);

@@ -109,118 +109,136 @@ void EventTask::operator()(uint64_t k)
   }
 }
 
+// One action on the device it names.
 void EventTask::apply(const Act& a, uint64_t t_ns)
 {
-  const int i = a.target.index;
-  const size_t u = static_cast<size_t>(i);
-  using F = SensorSuite::Fault;
   switch (a.target.device) {
-    case EventDevice::Wheel: {
-      const sim::ReactionWheelParams& p = sc_.wheels[u].params;
-      switch (a.action) {
-        case EventAction::WheelFailOff: plant_.set_wheel_health(i, sim::WheelHealth::Off); break;
-        case EventAction::WheelStuck: plant_.set_wheel_health(i, sim::WheelHealth::Stuck); break;
-        case EventAction::WheelTorqueLimit: plant_.set_wheel_u_max(i, a.value); break;
-        case EventAction::WheelFriction: {
-          sim::WheelFrictionParams f = p.friction;
-          f.tau_c *= a.value;
-          f.tau_st *= a.value;
-          f.c_v *= a.value;
-          plant_.set_wheel_friction(i, f);
-          break;
-        }
-        case EventAction::TachNan: sensors_.set_tach_fault(i, F::Nan, 0.0); break;
-        case EventAction::TachFrozen: sensors_.set_tach_fault(i, F::Frozen, 0.0); break;
-        case EventAction::TachBias: sensors_.set_tach_fault(i, F::Bias, a.value); break;
-        case EventAction::TachNoiseScale: sensors_.set_tach_noise_scale(i, a.value); break;
-        case EventAction::CommandUnavailable: sensors_.set_rw_commanded_unavailable(i, true); break;
-        case EventAction::CommandAvailable: sensors_.set_rw_commanded_unavailable(i, false); break;
-        case EventAction::Restore:
-          plant_.set_wheel_health(i, sim::WheelHealth::Nominal);
-          plant_.set_wheel_u_max(i, p.u_max);
-          plant_.set_wheel_friction(i, p.friction);
-          sensors_.set_tach_fault(i, F::None, 0.0);
-          sensors_.set_tach_noise_scale(i, 1.0);
-          break;
-        default: break;
-      }
-      break;
-    }
-    case EventDevice::Thruster:
-      switch (a.action) {
-        case EventAction::ThrStuckClosed: plant_.set_thruster_health(i, sim::ThrusterHealth::FailedOff); break;
-        case EventAction::ThrStuckOpen: plant_.set_thruster_health(i, sim::ThrusterHealth::StuckOn); break;
-        case EventAction::ThrThrustFactor: plant_.set_thruster_thrust_scale(i, a.value); break;
-        case EventAction::CommandUnavailable:
-        case EventAction::CommandAvailable: {
-          int j = 0;  // the FSW's index: the ACS thrusters in scenario order
-          for (int m = 0; m < i; ++m) j += sc_.thrusters[static_cast<size_t>(m)].acs ? 1 : 0;
-          sensors_.set_thr_commanded_unavailable(j, a.action == EventAction::CommandUnavailable);
-          break;
-        }
-        default:  // restore (the availability flag is a command of its own)
-          plant_.set_thruster_health(i, sim::ThrusterHealth::Nominal);
-          plant_.set_thruster_thrust_scale(i, 1.0);
-          break;
-      }
-      break;
-    case EventDevice::Fsw:
-      switch (a.action) {
-        case EventAction::FswModeInertial: cmd_.mode = FSW_ACS_MODE_INERTIAL; break;
-        case EventAction::FswModeSunSafe: cmd_.mode = FSW_ACS_MODE_SUN_SAFE; break;
-        case EventAction::FswActuationWheels: cmd_.actuation = FSW_ACS_ACT_WHEELS; break;
-        case EventAction::FswActuationThrusters: cmd_.actuation = FSW_ACS_ACT_THRUSTERS; break;
-        case EventAction::FswReferenceX:
-        case EventAction::FswReferenceY:
-        case EventAction::FswReferenceZ:
-          cmd_.set_ref = 1;
-          cmd_.sigma_R0N[a.action == EventAction::FswReferenceX ? 0 : a.action == EventAction::FswReferenceY ? 1 : 2] =
-              static_cast<fsw_real>(a.value);
-          break;
-        case EventAction::FswGainK:
-          cmd_.set_gains = 1;
-          cmd_.K = static_cast<fsw_real>(a.value);
-          break;
-        case EventAction::FswGainP:
-          cmd_.set_gains = 1;
-          cmd_.P = static_cast<fsw_real>(a.value);
-          break;
-        default: break;
-      }
-      fsw_.command(cmd_);  // in force from the FSW's next cycle (this tick's, when it runs now)
-      break;
+    case EventDevice::Wheel: apply_wheel(a); break;
+    case EventDevice::Thruster: apply_thruster(a); break;
+    case EventDevice::Fsw: apply_fsw(a); break;
     case EventDevice::Gyro:
     case EventDevice::StarTracker:
-    case EventDevice::Css: {
-      const F f = a.action == EventAction::SensorDropout ? F::Dropout
-                  : a.action == EventAction::SensorFrozen ? F::Frozen
-                                                          : F::None;
-      // a dropout longer than any run (> 9e9 s) lasts to the end
-      const uint64_t until = f != F::Dropout ? 0
-                             : a.value < 9e9 ? t_ns + static_cast<uint64_t>(std::llround(a.value * 1e9))
-                                             : std::numeric_limits<uint64_t>::max();
-      const EventAction x = a.action;
-      const bool scale = x == EventAction::SensorNoiseScale, restore = x == EventAction::Restore;
-      const int axis = x == EventAction::SensorBiasX ? 0 : x == EventAction::SensorBiasY ? 1 : x == EventAction::SensorBiasZ ? 2 : -1;
-      const bool fault = !scale && axis < 0 && x != EventAction::SensorBias;  // dropout, frozen, restore
-      const double k = scale ? a.value : 1.0;
-      if (a.target.device == EventDevice::Gyro) {
-        if (fault) sensors_.set_gyro_fault(f, until);
-        if (scale || restore) sensors_.set_gyro_noise_scale(k);
-        if (axis >= 0) sensors_.set_gyro_bias(axis, a.value);
-        for (int b = 0; restore && b < 3; ++b) sensors_.set_gyro_bias(b, 0.0);
-      } else if (a.target.device == EventDevice::StarTracker) {
-        if (fault) sensors_.set_star_tracker_fault(f, until);
-        if (scale || restore) sensors_.set_star_tracker_noise_scale(k);
-        if (axis >= 0) sensors_.set_star_tracker_bias(axis, a.value);
-        for (int b = 0; restore && b < 3; ++b) sensors_.set_star_tracker_bias(b, 0.0);
-      } else {
-        if (fault) sensors_.set_css_fault(i, f, until);
-        if (scale || restore) sensors_.set_css_noise_scale(i, k);
-        if (x == EventAction::SensorBias || restore) sensors_.set_css_bias(i, restore ? 0.0 : a.value);
-      }
+    case EventDevice::Css: apply_sensor(a, t_ns); break;
+  }
+}
+
+// Wheel health, limits and friction (plant); tachometer faults and the
+// commanded availability (FSW input).
+void EventTask::apply_wheel(const Act& a)
+{
+  const int i = a.target.index;
+  using F = SensorSuite::Fault;
+  const sim::ReactionWheelParams& p = sc_.wheels[static_cast<size_t>(i)].params;
+  switch (a.action) {
+    case EventAction::WheelFailOff: plant_.set_wheel_health(i, sim::WheelHealth::Off); break;
+    case EventAction::WheelStuck: plant_.set_wheel_health(i, sim::WheelHealth::Stuck); break;
+    case EventAction::WheelTorqueLimit: plant_.set_wheel_u_max(i, a.value); break;
+    case EventAction::WheelFriction: {
+      sim::WheelFrictionParams f = p.friction;
+      f.tau_c *= a.value;
+      f.tau_st *= a.value;
+      f.c_v *= a.value;
+      plant_.set_wheel_friction(i, f);
       break;
     }
+    case EventAction::TachNan: sensors_.set_tach_fault(i, F::Nan, 0.0); break;
+    case EventAction::TachFrozen: sensors_.set_tach_fault(i, F::Frozen, 0.0); break;
+    case EventAction::TachBias: sensors_.set_tach_fault(i, F::Bias, a.value); break;
+    case EventAction::TachNoiseScale: sensors_.set_tach_noise_scale(i, a.value); break;
+    case EventAction::CommandUnavailable: sensors_.set_rw_commanded_unavailable(i, true); break;
+    case EventAction::CommandAvailable: sensors_.set_rw_commanded_unavailable(i, false); break;
+    case EventAction::Restore:
+      plant_.set_wheel_health(i, sim::WheelHealth::Nominal);
+      plant_.set_wheel_u_max(i, p.u_max);
+      plant_.set_wheel_friction(i, p.friction);
+      sensors_.set_tach_fault(i, F::None, 0.0);
+      sensors_.set_tach_noise_scale(i, 1.0);
+      break;
+    default: break;
+  }
+}
+
+// Thruster health and thrust scale (plant); the commanded availability (FSW input).
+void EventTask::apply_thruster(const Act& a)
+{
+  const int i = a.target.index;
+  switch (a.action) {
+    case EventAction::ThrStuckClosed: plant_.set_thruster_health(i, sim::ThrusterHealth::FailedOff); break;
+    case EventAction::ThrStuckOpen: plant_.set_thruster_health(i, sim::ThrusterHealth::StuckOn); break;
+    case EventAction::ThrThrustFactor: plant_.set_thruster_thrust_scale(i, a.value); break;
+    case EventAction::CommandUnavailable:
+    case EventAction::CommandAvailable: {
+      int j = 0;  // the FSW's index: the ACS thrusters in scenario order
+      for (int m = 0; m < i; ++m) j += sc_.thrusters[static_cast<size_t>(m)].acs ? 1 : 0;
+      sensors_.set_thr_commanded_unavailable(j, a.action == EventAction::CommandUnavailable);
+      break;
+    }
+    default:  // restore (the availability flag is a command of its own)
+      plant_.set_thruster_health(i, sim::ThrusterHealth::Nominal);
+      plant_.set_thruster_thrust_scale(i, 1.0);
+      break;
+  }
+}
+
+// Mode, actuation, reference and gains: a command to the FSW.
+void EventTask::apply_fsw(const Act& a)
+{
+  switch (a.action) {
+    case EventAction::FswModeInertial: cmd_.mode = FSW_ACS_MODE_INERTIAL; break;
+    case EventAction::FswModeSunSafe: cmd_.mode = FSW_ACS_MODE_SUN_SAFE; break;
+    case EventAction::FswActuationWheels: cmd_.actuation = FSW_ACS_ACT_WHEELS; break;
+    case EventAction::FswActuationThrusters: cmd_.actuation = FSW_ACS_ACT_THRUSTERS; break;
+    case EventAction::FswReferenceX:
+    case EventAction::FswReferenceY:
+    case EventAction::FswReferenceZ:
+      cmd_.set_ref = 1;
+      cmd_.sigma_R0N[a.action == EventAction::FswReferenceX ? 0 : a.action == EventAction::FswReferenceY ? 1 : 2] =
+          static_cast<fsw_real>(a.value);
+      break;
+    case EventAction::FswGainK:
+      cmd_.set_gains = 1;
+      cmd_.K = static_cast<fsw_real>(a.value);
+      break;
+    case EventAction::FswGainP:
+      cmd_.set_gains = 1;
+      cmd_.P = static_cast<fsw_real>(a.value);
+      break;
+    default: break;
+  }
+  fsw_.command(cmd_);  // in force from the FSW's next cycle (this tick's, when it runs now)
+}
+
+// Gyro, star tracker and coarse sun sensor faults, noise scale and bias.
+void EventTask::apply_sensor(const Act& a, uint64_t t_ns)
+{
+  const int i = a.target.index;
+  using F = SensorSuite::Fault;
+  const F f = a.action == EventAction::SensorDropout ? F::Dropout
+              : a.action == EventAction::SensorFrozen ? F::Frozen
+                                                      : F::None;
+  // a dropout longer than any run (> 9e9 s) lasts to the end
+  const uint64_t until = f != F::Dropout ? 0
+                         : a.value < 9e9 ? t_ns + static_cast<uint64_t>(std::llround(a.value * 1e9))
+                                         : std::numeric_limits<uint64_t>::max();
+  const EventAction x = a.action;
+  const bool scale = x == EventAction::SensorNoiseScale, restore = x == EventAction::Restore;
+  const int axis = x == EventAction::SensorBiasX ? 0 : x == EventAction::SensorBiasY ? 1 : x == EventAction::SensorBiasZ ? 2 : -1;
+  const bool fault = !scale && axis < 0 && x != EventAction::SensorBias;  // dropout, frozen, restore
+  const double k = scale ? a.value : 1.0;
+  if (a.target.device == EventDevice::Gyro) {
+    if (fault) sensors_.set_gyro_fault(f, until);
+    if (scale || restore) sensors_.set_gyro_noise_scale(k);
+    if (axis >= 0) sensors_.set_gyro_bias(axis, a.value);
+    for (int b = 0; restore && b < 3; ++b) sensors_.set_gyro_bias(b, 0.0);
+  } else if (a.target.device == EventDevice::StarTracker) {
+    if (fault) sensors_.set_star_tracker_fault(f, until);
+    if (scale || restore) sensors_.set_star_tracker_noise_scale(k);
+    if (axis >= 0) sensors_.set_star_tracker_bias(axis, a.value);
+    for (int b = 0; restore && b < 3; ++b) sensors_.set_star_tracker_bias(b, 0.0);
+  } else {
+    if (fault) sensors_.set_css_fault(i, f, until);
+    if (scale || restore) sensors_.set_css_noise_scale(i, k);
+    if (x == EventAction::SensorBias || restore) sensors_.set_css_bias(i, restore ? 0.0 : a.value);
   }
 }
 

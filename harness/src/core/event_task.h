@@ -57,6 +57,10 @@ class EventTask {
     AppliedEvent entry;  // built at setup, moved into the log when applied (no allocation)
   };
   void apply(const Act& a, uint64_t t_ns);
+  void apply_wheel(const Act& a);
+  void apply_thruster(const Act& a);
+  void apply_fsw(const Act& a);
+  void apply_sensor(const Act& a, uint64_t t_ns);
   Ev make(size_t i) const;  // event i of the scenario, checked
 
   const Scenario& sc_;

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/build_error.h"
+#include "harness/core/vehicle_geometry.h"
 
 namespace harness {
 
@@ -41,20 +42,22 @@ std::string scenario_key_of_fsw_field(const std::string& field)
   return "fsw";
 }
 
-FswSetup make_fsw_setup(const Scenario& sc, const sim::MassProps& mp)
+namespace {
+
+// The FSW inertia: the scenario's fsw.mrp_fb.inertia, else the plant's at t0
+// moved from B to the mass centre C (parallel axis).
+Eigen::Matrix3d fsw_inertia(const Scenario& sc, const sim::MassProps& mp)
 {
-  FswSetup out;
   const Eigen::Vector3d c = mp.c_B;
   const Eigen::Matrix3d I_C =
       mp.I_sc_B - mp.m_sc * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
-  const Eigen::Matrix3d I_fsw = sc.fsw.mrp_fb.inertia ? *sc.fsw.mrp_fb.inertia : I_C;
-  const int n_rw = static_cast<int>(sc.wheels.size());
+  return sc.fsw.mrp_fb.inertia ? *sc.fsw.mrp_fb.inertia : I_C;
+}
 
+// Coarse sun sensors: the scenario's, or the six ideal cube-face sensors.
+void set_css(const Scenario& sc, FswSetup& out)
+{
   FswAcsConfig& a = out.cfg;
-  std::memset(&a, 0, sizeof a);
-  a.initial_mode = sc.fsw.mode == FswMode::Inertial ? FSW_ACS_MODE_INERTIAL : FSW_ACS_MODE_SUN_SAFE;
-  a.initial_actuation = sc.fsw.actuation == Actuation::Wheels ? FSW_ACS_ACT_WHEELS : FSW_ACS_ACT_THRUSTERS;
-  // guidance
   out.ideal_css = sc.sensors.css.normals_B.empty();
   if (out.ideal_css) {
     a.css.num_css = kIdealCss;
@@ -66,21 +69,30 @@ FswSetup make_fsw_setup(const Scenario& sc, const sim::MassProps& mp)
       a.css.scale[i] = R(1.0);
     }
     a.css.lit_threshold = R(0.0);
-  } else {
-    a.css.num_css = static_cast<int>(sc.sensors.css.normals_B.size());
-    a.css.lit_threshold = R(sc.fsw.css_lit_threshold);
-    for (size_t i = 0; i < sc.sensors.css.normals_B.size(); ++i) {
-      put3(a.css.n_hat_B[i], sc.sensors.css.normals_B[i]);
-      a.css.scale[i] = R(sc.sensors.css.scale);
-    }
+    return;
   }
+  a.css.num_css = static_cast<int>(sc.sensors.css.normals_B.size());
+  a.css.lit_threshold = R(sc.fsw.css_lit_threshold);
+  for (size_t i = 0; i < sc.sensors.css.normals_B.size(); ++i) {
+    put3(a.css.n_hat_B[i], sc.sensors.css.normals_B[i]);
+    a.css.scale[i] = R(sc.sensors.css.scale);
+  }
+}
+
+// Sun-safe and inertial pointing.
+void set_guidance(const Scenario& sc, FswAcsConfig& a)
+{
   put3(a.sunsafe.s_cmd_B, sc.fsw.sun_axis_B);
   a.sunsafe.min_unit_mag = R(kSunMinUnitMag);
   a.sunsafe.small_angle = R(sc.fsw.sun_small_angle);
   put3(a.sunsafe.omega_search_B, sc.fsw.omega_search_B);
   a.sunsafe.sun_axis_spin_rate = 0;
   put3(a.inertial.sigma_R0N, sc.fsw.sigma_R0N);
-  // control
+}
+
+// The control law (its wheel set comes with the geometry).
+void set_control(const Scenario& sc, const Eigen::Matrix3d& I_fsw, FswAcsConfig& a)
+{
   FswMrpFbConfig& mf = a.mrp_fb;
   mf.K = R(sc.fsw.mrp_fb.K);
   mf.P = R(sc.fsw.mrp_fb.P);
@@ -90,80 +102,97 @@ FswSetup make_fsw_setup(const Scenario& sc, const sim::MassProps& mp)
   for (int r = 0; r < 3; ++r)
     for (int k = 0; k < 3; ++k) mf.I_B[r][k] = R(I_fsw(r, k));
   a.use_lpf = 0;
-  // actuator geometry, given once: fsw_acs_config_set_geometry() writes the
-  // module copies (and has_wheels / has_thrusters from the counts).  ACS
-  // thrusters (acs: true) only: the main engine follows the burn schedule.
-  FswAcsGeometry geo;
-  std::memset(&geo, 0, sizeof geo);
-  geo.num_rw = n_rw;
+}
+
+// Actuator geometry, given once: vehicle_geometry() forms it, fsw_geometry()
+// gives the FSW's view and fsw_acs_config_set_geometry() writes the module
+// copies (and has_wheels / has_thrusters from the counts).  ACS thrusters
+// (acs: true) only: the main engine follows the burn schedule.
+void set_geometry(const Scenario& sc, FswSetup& out)
+{
+  const VehicleGeometry g = vehicle_geometry(sc);
+  if (g.acs_to_plant.size() > static_cast<size_t>(FSW_MAX_THR))
+    throw config_error(sc, "thrusters", "at most " + std::to_string(FSW_MAX_THR) + " ACS thrusters (FSW_MAX_THR)");
+  out.n_acs = static_cast<int>(g.acs_to_plant.size());
+  for (size_t i = 0; i < g.acs_to_plant.size(); ++i) out.acs_to_plant[i] = g.acs_to_plant[i];
+  const FswAcsGeometry geo = fsw_geometry(sc, g);
+  if (fsw_acs_config_set_geometry(&out.cfg, &geo) != FSW_OK)
+    throw config_error(sc, geo.num_rw > FSW_MAX_RW ? "wheels" : "thrusters",
+                       "more wheels or thrusters than the FSW holds");
+}
+
+// Wheel chain: rw_map -> [rw_null] -> rw_sat (limits = the wheels' u_max).
+void set_wheel_chain(const Scenario& sc, FswAcsConfig& a)
+{
+  const int n_rw = static_cast<int>(sc.wheels.size());
+  a.rw_map.num_axes = 3;
+  for (int r = 0; r < 3; ++r) a.rw_map.ctrl_axes_B[r][r] = 1;
+  a.rw_map.mode = sc.fsw.rw_map == RwMapMode::Power ? FSW_RW_MAP_POWER : FSW_RW_MAP_MIN_NORM;
+  a.rw_map.eps_P = R(sc.fsw.eps_P);
+  a.use_null = sc.fsw.rw_null ? 1 : 0;
+  a.rw_null.k_null = R(sc.fsw.k_null);
+  a.rw_null.scale_to_fit = sc.fsw.rw_null_scale_to_fit ? 1 : 0;
+  a.rw_sat.mode = FSW_RW_SAT_SCALE;
+  a.use_speed_filter = sc.fsw.speed_filter ? 1 : 0;
+  a.speed_filter.k_reject = static_cast<uint32_t>(sc.fsw.sf_k_reject);
+  a.speed_filter.n_recover = static_cast<uint32_t>(sc.fsw.sf_n_recover);
+  a.speed_filter.n_stale = static_cast<uint32_t>(sc.fsw.sf_n_stale);
+  a.speed_filter.n_window = static_cast<uint32_t>(sc.fsw.sf_n_window);
   for (int i = 0; i < n_rw; ++i) {
-    const sim::ReactionWheelParams& p = sc.wheels[static_cast<size_t>(i)].params;
-    put3(geo.gs_hat_B[i], p.gs_hat_nom_B);
-    geo.J_s[i] = R(p.J_s);
-    geo.u_max[i] = R(p.u_max);
+    a.speed_filter.noise[i] = R(sc.fsw.sf_noise);
+    a.speed_filter.resid_tol[i] = R(sc.fsw.sf_resid_tol);
   }
-  for (size_t j = 0; j < sc.thrusters.size(); ++j)
-    if (sc.thrusters[j].acs) {
-      if (out.n_acs >= FSW_MAX_THR)
-        throw config_error(sc, "thrusters", "at most " + std::to_string(FSW_MAX_THR) + " ACS thrusters (FSW_MAX_THR)");
-      out.acs_to_plant[static_cast<size_t>(out.n_acs++)] = static_cast<int>(j);
-    }
-  geo.num_thr = out.n_acs;
-  for (int i = 0; i < out.n_acs; ++i) {
-    const ThrusterSpec& t = sc.thrusters[static_cast<size_t>(out.acs_to_plant[static_cast<size_t>(i)])];
-    put3(geo.r_thr_B[i], t.r_B);
-    put3(geo.gt_hat_B[i], t.dir_B);  // nominal axis: the misalignment is truth only
-    geo.F_max[i] = R(t.F_max);
-  }
-  if (fsw_acs_config_set_geometry(&a, &geo) != FSW_OK)
-    throw config_error(sc, n_rw > FSW_MAX_RW ? "wheels" : "thrusters", "more wheels or thrusters than the FSW holds");
-  // wheel chain: rw_map -> [rw_null] -> rw_sat (limits = the wheels' u_max)
-  if (a.has_wheels) {
-    a.rw_map.num_axes = 3;
-    for (int r = 0; r < 3; ++r) a.rw_map.ctrl_axes_B[r][r] = 1;
-    a.rw_map.mode = sc.fsw.rw_map == RwMapMode::Power ? FSW_RW_MAP_POWER : FSW_RW_MAP_MIN_NORM;
-    a.rw_map.eps_P = R(sc.fsw.eps_P);
-    a.use_null = sc.fsw.rw_null ? 1 : 0;
-    a.rw_null.k_null = R(sc.fsw.k_null);
-    a.rw_null.scale_to_fit = sc.fsw.rw_null_scale_to_fit ? 1 : 0;
-    a.rw_sat.mode = FSW_RW_SAT_SCALE;
-    a.use_speed_filter = sc.fsw.speed_filter ? 1 : 0;
-    a.speed_filter.k_reject = static_cast<uint32_t>(sc.fsw.sf_k_reject);
-    a.speed_filter.n_recover = static_cast<uint32_t>(sc.fsw.sf_n_recover);
-    a.speed_filter.n_stale = static_cast<uint32_t>(sc.fsw.sf_n_stale);
-    a.speed_filter.n_window = static_cast<uint32_t>(sc.fsw.sf_n_window);
-    for (int i = 0; i < n_rw; ++i) {
-      a.speed_filter.noise[i] = R(sc.fsw.sf_noise);
-      a.speed_filter.resid_tol[i] = R(sc.fsw.sf_resid_tol);
-    }
-    for (int i = 0; i < n_rw; ++i)
-      a.Omega_des[i] = i < static_cast<int>(sc.fsw.Omega_des.size()) ? R(sc.fsw.Omega_des[static_cast<size_t>(i)]) : 0;
-  }
-  // thruster chain: map -> pulser
-  if (a.has_thrusters) {
-    for (int k = 0; k < 3; ++k) a.thr_map.control_axes_B[k][k] = R(1.0);
-    a.thr_map.thr_force_sign = 1;
-    a.thr_map.ang_err_thresh = R(0.0);
-    a.thr_map.epsilon = R(0.0);
-    a.thr_map.use_2nd_loop = 0;
-    a.thr_map.mode = sc.fsw.thr_map == ThrMapMode::Nnls ? FSW_THR_MAP_NNLS : FSW_THR_MAP_MIN_NORM;
-    a.pulser = sc.fsw.thr_pulse == ThrPulseMode::Schmitt ? FSW_ACS_PULSE_SCHMITT : FSW_ACS_PULSE_REMAINDER;
-    a.pulse_rem.common.t_min = R(sc.fsw.thr_t_min);
-    a.pulse_rem.common.base_thrust_state = 0;
-    a.pulse_rem.common.init_off_pulse_on_time = R(0.0);
-    a.pulse_schmitt.common.t_min = R(sc.fsw.thr_t_min);
-    a.pulse_schmitt.level_on = R(sc.fsw.thr_level_on);
-    a.pulse_schmitt.level_off = R(sc.fsw.thr_level_off);
-    a.pulse_schmitt.common.base_thrust_state = 0;
-    a.pulse_schmitt.common.init_off_pulse_on_time = R(0.0);
-  }
+  for (int i = 0; i < n_rw; ++i)
+    a.Omega_des[i] = i < static_cast<int>(sc.fsw.Omega_des.size()) ? R(sc.fsw.Omega_des[static_cast<size_t>(i)]) : 0;
+}
+
+// Thruster chain: map -> pulser.
+void set_thruster_chain(const Scenario& sc, FswAcsConfig& a)
+{
+  for (int k = 0; k < 3; ++k) a.thr_map.control_axes_B[k][k] = R(1.0);
+  a.thr_map.thr_force_sign = 1;
+  a.thr_map.ang_err_thresh = R(0.0);
+  a.thr_map.epsilon = R(0.0);
+  a.thr_map.use_2nd_loop = 0;
+  a.thr_map.mode = sc.fsw.thr_map == ThrMapMode::Nnls ? FSW_THR_MAP_NNLS : FSW_THR_MAP_MIN_NORM;
+  a.pulser = sc.fsw.thr_pulse == ThrPulseMode::Schmitt ? FSW_ACS_PULSE_SCHMITT : FSW_ACS_PULSE_REMAINDER;
+  a.pulse_rem.common.t_min = R(sc.fsw.thr_t_min);
+  a.pulse_rem.common.base_thrust_state = 0;
+  a.pulse_rem.common.init_off_pulse_on_time = R(0.0);
+  a.pulse_schmitt.common.t_min = R(sc.fsw.thr_t_min);
+  a.pulse_schmitt.level_on = R(sc.fsw.thr_level_on);
+  a.pulse_schmitt.level_off = R(sc.fsw.thr_level_off);
+  a.pulse_schmitt.common.base_thrust_state = 0;
+  a.pulse_schmitt.common.init_off_pulse_on_time = R(0.0);
+}
+
+// fsw_acs_check; a rejection names the scenario key of the bad field.
+void check_config(const Scenario& sc, const FswAcsConfig& a)
+{
   const char* bad = nullptr;
   const FswStatus s = fsw_acs_check(&a, &bad);
-  if (s != FSW_OK) {
-    const std::string field = bad ? bad : "(unknown)";
-    throw config_error(sc, scenario_key_of_fsw_field(field),
-                       std::string("rejected by fsw_acs_check: field '") + field + "': " + fsw_status_name(s));
-  }
+  if (s == FSW_OK) return;
+  const std::string field = bad ? bad : "(unknown)";
+  throw config_error(sc, scenario_key_of_fsw_field(field),
+                     std::string("rejected by fsw_acs_check: field '") + field + "': " + fsw_status_name(s));
+}
+
+}  // namespace
+
+FswSetup make_fsw_setup(const Scenario& sc, const sim::MassProps& mp)
+{
+  FswSetup out;
+  FswAcsConfig& a = out.cfg;
+  std::memset(&a, 0, sizeof a);
+  a.initial_mode = sc.fsw.mode == FswMode::Inertial ? FSW_ACS_MODE_INERTIAL : FSW_ACS_MODE_SUN_SAFE;
+  a.initial_actuation = sc.fsw.actuation == Actuation::Wheels ? FSW_ACS_ACT_WHEELS : FSW_ACS_ACT_THRUSTERS;
+  set_css(sc, out);
+  set_guidance(sc, a);
+  set_control(sc, fsw_inertia(sc, mp), a);
+  set_geometry(sc, out);
+  if (a.has_wheels) set_wheel_chain(sc, a);
+  if (a.has_thrusters) set_thruster_chain(sc, a);
+  check_config(sc, a);
   return out;
 }
 

@@ -1,8 +1,11 @@
-// plant_builder.cpp: scenario keys -> sim parameters (SI throughout).
+// plant_builder.cpp: scenario -> sim parameters (SI throughout); the
+// geometry (mass centre, wheel axes, thruster and tank positions, thrust
+// axes) comes from vehicle_geometry(), the one place it is formed.
 #include "core/plant_builder.h"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "core/build_error.h"
@@ -10,52 +13,55 @@
 
 namespace harness {
 
-// The nominal axis d tilted by delta about a = unit(d x x_B) (or unit(d x y_B)
-// when d is within 25 deg of x_B): d' = cos(delta) d + sin(delta) (a x d).
-// For d = +z_B this tilts toward +x_B.
-Eigen::Vector3d misaligned_axis(const Eigen::Vector3d& d, double delta)
-{
-  if (delta == 0.0) return d;
-  Eigen::Vector3d a = d.cross(Eigen::Vector3d::UnitX());
-  if (a.norm() < 0.42) a = d.cross(Eigen::Vector3d::UnitY());
-  a.normalize();
-  return (std::cos(delta) * d + std::sin(delta) * a.cross(d)).normalized();
-}
+namespace {
 
-std::unique_ptr<sim::Plant> build_plant(const Scenario& sc)
+// Hub, wheels and gravity; the hub mass centre and the wheel axes and
+// origins from the vehicle's geometry.
+sim::SpacecraftParams spacecraft_params(const Scenario& sc, const VehicleGeometry& g)
 {
-  std::unique_ptr<sim::Plant> p;  // the plant checks its own capacities (built_by_plant reports them)
   sim::SpacecraftParams params;
   params.hub.m_h = sc.spacecraft.mass;
   params.hub.I_hBc_B = sc.spacecraft.inertia;
-  params.hub.r_BcB_B = sc.spacecraft.com;
+  params.hub.r_BcB_B = g.r_BcB_B;
   params.mu = sc.environment.mu;
-  for (const WheelSpec& w : sc.wheels) params.wheels.push_back(w.params);
+  for (size_t i = 0; i < sc.wheels.size(); ++i) {
+    params.wheels.push_back(sc.wheels[i].params);
+    params.wheels.back().gs_hat_nom_B = g.gs_hat_B[i];
+    params.wheels.back().r_WB_B = g.r_WB_B[i];
+  }
+  return params;
+}
+
+sim::InitialConditions initial_conditions(const Scenario& sc)
+{
   sim::InitialConditions ic;
   ic.r_CN_N = sc.spacecraft.initial.r_CN_N;
   ic.v_CN_N = sc.spacecraft.initial.v_CN_N;
   ic.sigma_BN = sc.spacecraft.initial.sigma_BN;
   ic.omega_BN_B = sc.spacecraft.initial.omega_BN_B;
-  if (sc.thrusters.empty()) {
-    built_by_plant(sc, "spacecraft", [&] { p = std::make_unique<sim::Plant>(sim::PlantParams{params, {}}, ic); });
-    return p;
-  }
+  return ic;
+}
+
+// Tanks (tank, then rcs_tank) and thrusters (truth axes) with their positions
+// from the vehicle's geometry.
+sim::PropulsionParams propulsion_params(const Scenario& sc, const VehicleGeometry& g)
+{
   sim::PropulsionParams prop;
-  sim::TankParams tk;
-  tk.r_TB_B = sc.tank->r_B;
-  tk.m_p0 = sc.tank->mass;
-  prop.tanks.push_back(tk);
-  if (sc.rcs_tank) {
-    sim::TankParams rt;
-    rt.r_TB_B = sc.rcs_tank->r_B;
-    rt.m_p0 = sc.rcs_tank->mass;
-    prop.tanks.push_back(rt);
-  }
-  for (const ThrusterSpec& t : sc.thrusters) {
+  const std::optional<TankSpec>* tanks[] = {&sc.tank, &sc.rcs_tank};
+  size_t k = 0;
+  for (const std::optional<TankSpec>* t : tanks)
+    if (*t) {
+      sim::TankParams tk;
+      tk.r_TB_B = g.r_TB_B[k++];
+      tk.m_p0 = (*t)->mass;
+      prop.tanks.push_back(tk);
+    }
+  for (size_t j = 0; j < sc.thrusters.size(); ++j) {
+    const ThrusterSpec& t = sc.thrusters[j];
     sim::ThrusterParams tp;
-    tp.r_TjB_B = t.r_B;
-    tp.t_hat_B = misaligned_axis(t.dir_B, t.misalignment);
-    tp.F_max = t.F_max;
+    tp.r_TjB_B = g.thrusters[j].r_TjB_B;
+    tp.t_hat_B = g.thrusters[j].t_hat_true_B;
+    tp.F_max = g.thrusters[j].F_max;
     tp.Isp = t.Isp;
     tp.T_min = t.T_min;
     tp.transient = t.transient == ThrTransient::Instant ? sim::ThrusterTransient::Instant
@@ -66,6 +72,22 @@ std::unique_ptr<sim::Plant> build_plant(const Scenario& sc)
     prop.thrusters.push_back(tp);
   }
   prop.command.T_upd_ns = static_cast<int64_t>(sc.rates.thruster_divisor) * static_cast<int64_t>(sc.tick_ns());
+  return prop;
+}
+
+}  // namespace
+
+std::unique_ptr<sim::Plant> build_plant(const Scenario& sc)
+{
+  std::unique_ptr<sim::Plant> p;  // the plant checks its own capacities (built_by_plant reports them)
+  const VehicleGeometry g = vehicle_geometry(sc);
+  const sim::SpacecraftParams params = spacecraft_params(sc, g);
+  const sim::InitialConditions ic = initial_conditions(sc);
+  if (sc.thrusters.empty()) {
+    built_by_plant(sc, "spacecraft", [&] { p = std::make_unique<sim::Plant>(sim::PlantParams{params, {}}, ic); });
+    return p;
+  }
+  const sim::PropulsionParams prop = propulsion_params(sc, g);
   built_by_plant(sc, "thrusters", [&] { p = std::make_unique<sim::Plant>(sim::PlantParams{params, prop}, ic); });
   return p;
 }

@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "harness/core/scenario_types.h"
+#include "harness/core/vehicle_geometry.h"
 #include "sim/plant.h"
 
 namespace harness {
@@ -30,9 +31,6 @@ struct BurnSchedule {
   double on_time(int64_t now_ns) const;
 };
 BurnSchedule burn_schedule(const Scenario& sc, const sim::Plant& plant);
-
-// Truth thrust axis of a thruster misaligned by `delta` [rad] (see .cpp).
-Eigen::Vector3d misaligned_axis(const Eigen::Vector3d& d, double delta);
 
 }  // namespace harness
 

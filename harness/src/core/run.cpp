@@ -88,18 +88,60 @@ struct Run::Impl {
   Channel<TruthMsg>* truth_ch = nullptr;
   Channel<FswAcsHealthMsg>* health_ch = nullptr;
 
+  // The messages of the data flow (optional ones null when the run does not
+  // need them).
+  struct Messages {
+    Channel<TruthMsg>* truth = nullptr;
+    Channel<FswAcsSensorMsg>* sens = nullptr;
+    Channel<FswAcsActuatorMsg>* act = nullptr;
+    Channel<FswAcsHealthMsg>* health = nullptr;
+    Channel<PlantCmdMsg>* cmd = nullptr;
+    Channel<MetricsMsg>* metrics = nullptr;
+    Channel<SunHeadingMsg>* sun = nullptr;
+    Channel<BurnStateMsg>* burn = nullptr;
+    Channel<SensorSampleMsg>* samples = nullptr;
+    Channel<CssMsg>* css = nullptr;
+  };
+
   explicit Impl(const Scenario& s) : sc(s), plant_owner(build_plant(s)), plant(*plant_owner), sched(s.tick_ns()) {}
   void wire(RunConfig& cfg);
+  void build_fsw(RunConfig& cfg);
+  Messages add_messages();
+  void add_tasks(const Messages& m);
+  void add_recorder(const Messages& m);
+  void add_events();
+  void schedule(const RateGroup& fsw_group, const RateGroup& rec_group);
   bool step_plant();
 };
 
+// The run in named steps: the FSW and the sensors, the messages, the tasks,
+// the recorder, the events and the tick protocol's schedule.
 void Run::Impl::wire(RunConfig& cfg)
 {
-  const uint64_t tk = sc.tick_ns();
   n_ticks = sc.num_ticks();
   substep_ns = static_cast<int64_t>(sc.tick_ns() / sc.rates.plant_substeps);  // exact (checked at load)
   for (size_t i = 0; i < sc.wheels.size(); ++i)
     if (wheel_jitters(sc.wheels[i].params)) jitter_wheels.push_back(static_cast<int>(i));
+  build_fsw(cfg);
+  const Messages m = add_messages();
+  add_tasks(m);
+  add_recorder(m);
+  const RateGroup fsw_group{"fsw", sc.rates.fsw_divisor, sc.rates.fsw_offset};
+  const RateGroup rec_group{"record", sc.rates.record_divisor, 0};
+  if (!sc.events.empty() || cfg.accept_events) add_events();
+  schedule(fsw_group, rec_group);
+  // rows: every due tick in [0, n_ticks] (the final tick is sampled too)
+  rec.allocate(rec_group.count_due(n_ticks + 1), cfg.chunk_rows);
+  if (cfg.keep_in_memory) {
+    mem.emplace();
+    rec.add_sink(*mem);
+  }
+}
+
+// The FSW's configuration, its endpoint (RunConfig's, else in process) and
+// the sensor models.
+void Run::Impl::build_fsw(RunConfig& cfg)
+{
   fsw_setup = make_fsw_setup(sc, plant.mass_props());
   if (cfg.fsw) {
     fsw = std::move(cfg.fsw);
@@ -111,89 +153,102 @@ void Run::Impl::wire(RunConfig& cfg)
     }
   }
   sensors = std::make_unique<SensorSuite>(sc, fsw_setup, plant);
+}
 
-  // ---- messages --------------------------------------------------------------
+Run::Impl::Messages Run::Impl::add_messages()
+{
   DataFlow& f = flow;
   f.add_component("plant", "sim::Plant");
   f.add_component("sensors", "FSW input: sampled sensor outputs (truth where a sensor is disabled)");
   f.add_component("fsw_acs", fsw->describe());
   f.add_component("actuators", "harness: FSW actuator message -> plant commands");
-  auto& truth_m = f.add_message<TruthMsg>("truth");
-  auto& sens_m = f.add_message<FswAcsSensorMsg>("fsw_sensors");
-  auto& act_m = f.add_message<FswAcsActuatorMsg>("fsw_actuators");
-  auto& health_m = f.add_message<FswAcsHealthMsg>("fsw_health");
-  auto& cmd_m = f.add_message<PlantCmdMsg>("plant_cmd");
-  auto& metrics_m = f.add_message<MetricsMsg>("metrics");
-  Channel<SunHeadingMsg>* sun_m = sc.fsw.mode == FswMode::SunSafe ? &f.add_message<SunHeadingMsg>("sun_heading") : nullptr;
-  Channel<BurnStateMsg>* burn_m = plant.num_thr() > 0 ? &f.add_message<BurnStateMsg>("burn_state") : nullptr;
-  Channel<SensorSampleMsg>* samples_m =
-      sensors->has_sampled_models() ? &f.add_message<SensorSampleMsg>("sensor_samples") : nullptr;
-  Channel<CssMsg>* css_m = sensors->has_css_models() ? &f.add_message<CssMsg>("css_readings") : nullptr;
-  truth_ch = &truth_m;
-  health_ch = &health_m;
+  Messages m;
+  m.truth = &f.add_message<TruthMsg>("truth");
+  m.sens = &f.add_message<FswAcsSensorMsg>("fsw_sensors");
+  m.act = &f.add_message<FswAcsActuatorMsg>("fsw_actuators");
+  m.health = &f.add_message<FswAcsHealthMsg>("fsw_health");
+  m.cmd = &f.add_message<PlantCmdMsg>("plant_cmd");
+  m.metrics = &f.add_message<MetricsMsg>("metrics");
+  if (sc.fsw.mode == FswMode::SunSafe) m.sun = &f.add_message<SunHeadingMsg>("sun_heading");
+  if (plant.num_thr() > 0) m.burn = &f.add_message<BurnStateMsg>("burn_state");
+  if (sensors->has_sampled_models()) m.samples = &f.add_message<SensorSampleMsg>("sensor_samples");
+  if (sensors->has_css_models()) m.css = &f.add_message<CssMsg>("css_readings");
+  truth_ch = m.truth;
+  health_ch = m.health;
+  return m;
+}
 
-  // ---- tasks -----------------------------------------------------------------
-  truth.emplace(TruthTask{&plant, tk, f.writer("plant", truth_m)});
+void Run::Impl::add_tasks(const Messages& m)
+{
+  DataFlow& f = flow;
+  const uint64_t tk = sc.tick_ns();
+  truth.emplace(TruthTask{&plant, tk, f.writer("plant", *m.truth)});
   const BurnSchedule burn_sched = burn_schedule(sc, plant);
-  if (burn_m) {
+  if (m.burn) {
     f.add_component("burn_monitor", "harness");
     const double F_eng = burn_sched.engine >= 0 ? sc.thrusters[static_cast<size_t>(burn_sched.engine)].F_max : 0.0;
-    burn.emplace(&plant, tk, sc.rates.dt, sc.environment.mu, burn_sched, F_eng, f.reader("burn_monitor", truth_m),
-                 f.writer("burn_monitor", *burn_m));
+    burn.emplace(&plant, tk, sc.rates.dt, sc.environment.mu, burn_sched, F_eng, f.reader("burn_monitor", *m.truth),
+                 f.writer("burn_monitor", *m.burn));
   }
-  if (samples_m) {
+  if (m.samples) {
     f.add_component("sample_sensors", "sim::Gyro, sim::StarTracker, sim::WheelTachometers on the plant's sensor truth");
-    sample.emplace(SampleSensorsTask{sensors.get(), tk, f.writer("sample_sensors", *samples_m)});
+    sample.emplace(SampleSensorsTask{sensors.get(), tk, f.writer("sample_sensors", *m.samples)});
   }
-  if (css_m) {
+  if (m.css) {
     f.add_component("css", "sim::CoarseSunSensor on the plant's sensor truth");
-    css.emplace(CssTask{sensors.get(), tk, f.writer("css", *css_m)});
+    css.emplace(CssTask{sensors.get(), tk, f.writer("css", *m.css)});
   }
-  fsw_input.emplace(FswInputTask{sensors.get(), tk, f.reader("sensors", truth_m),
-                                 samples_m ? f.reader("sensors", *samples_m) : Reader<SensorSampleMsg>(),
-                                 css_m ? f.reader("sensors", *css_m) : Reader<CssMsg>(),
-                                 f.writer("sensors", sens_m)});
-  fsw_task.emplace(FswTask{fsw.get(), tk, f.reader("fsw_acs", sens_m), f.writer("fsw_acs", act_m),
-                           f.writer("fsw_acs", health_m),
-                           sun_m ? f.writer("fsw_acs", *sun_m) : Writer<SunHeadingMsg>(), sun_m != nullptr});
+  fsw_input.emplace(FswInputTask{sensors.get(), tk, f.reader("sensors", *m.truth),
+                                 m.samples ? f.reader("sensors", *m.samples) : Reader<SensorSampleMsg>(),
+                                 m.css ? f.reader("sensors", *m.css) : Reader<CssMsg>(),
+                                 f.writer("sensors", *m.sens)});
+  fsw_task.emplace(FswTask{fsw.get(), tk, f.reader("fsw_acs", *m.sens), f.writer("fsw_acs", *m.act),
+                           f.writer("fsw_acs", *m.health),
+                           m.sun ? f.writer("fsw_acs", *m.sun) : Writer<SunHeadingMsg>(), m.sun != nullptr});
   actuators.emplace(ActuatorTask{tk, plant.num_rw(), plant.num_thr(), fsw_setup.n_acs, fsw_setup.acs_to_plant,
-                                 burn_sched, f.reader("actuators", act_m), f.writer("actuators", cmd_m)});
-  plant_input.emplace(PlantInputTask{&plant, f.reader("plant", cmd_m)});
+                                 burn_sched, f.reader("actuators", *m.act), f.writer("actuators", *m.cmd)});
+  plant_input.emplace(PlantInputTask{&plant, f.reader("plant", *m.cmd)});
   f.add_component("metrics", "harness");
   metrics.emplace(&plant, tk, sc.fsw.mode == FswMode::Inertial, sc.fsw.sigma_R0N, sc.fsw.sun_axis_B,
-                  sc.environment.sun_position_N, sc.environment.mu, f.reader("metrics", truth_m),
-                  burn_m ? f.reader("metrics", *burn_m) : Reader<BurnStateMsg>(), burn_m != nullptr,
-                  f.writer("metrics", metrics_m));
+                  sc.environment.sun_position_N, sc.environment.mu, f.reader("metrics", *m.truth),
+                  m.burn ? f.reader("metrics", *m.burn) : Reader<BurnStateMsg>(), m.burn != nullptr,
+                  f.writer("metrics", *m.metrics));
+}
 
-  // ---- recorder --------------------------------------------------------------
+void Run::Impl::add_recorder(const Messages& m)
+{
+  DataFlow& f = flow;
   f.add_component("recorder", "harness: recorded columns -> sinks");
   RecordedChannels rc;
-  rc.truth = &f.reader("recorder", truth_m).channel();
-  rc.metrics = &f.reader("recorder", metrics_m).channel();
-  rc.fsw_sensors = &f.reader("recorder", sens_m).channel();
-  rc.fsw_actuators = &f.reader("recorder", act_m).channel();
-  rc.fsw_health = &f.reader("recorder", health_m).channel();
-  if (plant.num_thr() > 0) rc.plant_cmd = &f.reader("recorder", cmd_m).channel();
-  if (sun_m) rc.sun_heading = &f.reader("recorder", *sun_m).channel();
+  rc.truth = &f.reader("recorder", *m.truth).channel();
+  rc.metrics = &f.reader("recorder", *m.metrics).channel();
+  rc.fsw_sensors = &f.reader("recorder", *m.sens).channel();
+  rc.fsw_actuators = &f.reader("recorder", *m.act).channel();
+  rc.fsw_health = &f.reader("recorder", *m.health).channel();
+  if (plant.num_thr() > 0) rc.plant_cmd = &f.reader("recorder", *m.cmd).channel();
+  if (m.sun) rc.sun_heading = &f.reader("recorder", *m.sun).channel();
   declare_telemetry(rec, rc, plant.num_rw(), plant.num_thr(), sc.environment.mu > 0.0,
                     [this] { return sched.t_ns(tick); });
+}
 
-  // ---- schedule: the tick protocol's table ------------------------------------
+void Run::Impl::add_events()
+{
+  flow.add_component("events", "harness: scenario events (docs/events.md) -> plant devices, sensor faults, FSW input");
+  // the commands start from the configuration: mode, actuation, and the
+  // reference and gains a set command changes one field of
+  FswAcsCmdMsg cmd0{};
+  cmd0.mode = fsw_setup.cfg.initial_mode;
+  cmd0.actuation = fsw_setup.cfg.initial_actuation;
+  for (int a = 0; a < 3; ++a) cmd0.sigma_R0N[a] = fsw_setup.cfg.inertial.sigma_R0N[a];
+  cmd0.K = fsw_setup.cfg.mrp_fb.K;
+  cmd0.P = fsw_setup.cfg.mrp_fb.P;
+  events.emplace(sc, plant, *sensors, rec, *fsw, cmd0);
+}
+
+// The tick protocol's table: each task the run has, in its rate groups.
+void Run::Impl::schedule(const RateGroup& fsw_group, const RateGroup& rec_group)
+{
   const RateGroup every{"every_tick", 1, 0};
-  const RateGroup fsw_group{"fsw", sc.rates.fsw_divisor, sc.rates.fsw_offset};
-  const RateGroup rec_group{"record", sc.rates.record_divisor, 0};
-  if (!sc.events.empty() || cfg.accept_events) {
-    f.add_component("events", "harness: scenario events (docs/events.md) -> plant devices, sensor faults, FSW input");
-    // the commands start from the configuration: mode, actuation, and the
-    // reference and gains a set command changes one field of
-    FswAcsCmdMsg cmd0{};
-    cmd0.mode = fsw_setup.cfg.initial_mode;
-    cmd0.actuation = fsw_setup.cfg.initial_actuation;
-    for (int a = 0; a < 3; ++a) cmd0.sigma_R0N[a] = fsw_setup.cfg.inertial.sigma_R0N[a];
-    cmd0.K = fsw_setup.cfg.mrp_fb.K;
-    cmd0.P = fsw_setup.cfg.mrp_fb.P;
-    events.emplace(sc, plant, *sensors, rec, *fsw, cmd0);
-  }
   auto fn_of = [this](const std::string& name) -> Scheduler::TaskFn {
     if (name == "events" && events) return [t = &*events](uint64_t k) { (*t)(k); };
     if (name == "truth") return [t = &*truth](uint64_t k) { (*t)(k); };
@@ -216,12 +271,6 @@ void Run::Impl::wire(RunConfig& cfg)
     else if (s.group == Group::TruthReaders) g = {fsw_group, rec_group};
     else g = {s.group == Group::Fsw ? fsw_group : rec_group};
     sched.add_task(s.task, std::move(g), std::move(fn));
-  }
-  // rows: every due tick in [0, n_ticks] (the final tick is sampled too)
-  rec.allocate(rec_group.count_due(n_ticks + 1), cfg.chunk_rows);
-  if (cfg.keep_in_memory) {
-    mem.emplace();
-    rec.add_sink(*mem);
   }
 }
 

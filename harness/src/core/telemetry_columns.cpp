@@ -5,6 +5,7 @@
 #include "core/convert.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim/attitude.h"
@@ -36,10 +37,8 @@ Quantity indexed(const std::string& name, const std::string& unit, const std::st
   return q;
 }
 
-}  // namespace
-
-void declare_telemetry(Recorder& rec, const RecordedChannels& ch, int n_rw, int n_thr, bool orbit,
-                       std::function<uint64_t()> t_now_ns)
+// t, pointing error, attitude and orbit truth, and what the FSW was given.
+void record_state(Recorder& rec, const RecordedChannels& ch, std::function<uint64_t()> t_now_ns)
 {
   rec.add_source("", {scalar("t", "s")}, [t_now_ns](double* o) {
     o[0] = static_cast<double>(t_now_ns()) / 1e9;  // correctly rounded: 30 s is 30.0
@@ -70,48 +69,63 @@ void declare_telemetry(Recorder& rec, const RecordedChannels& ch, int n_rw, int 
                                 o[3] = x.att_valid;
                                 copy3(o + 4, x.omega_BN_B);
                               });
-  if (n_rw > 0) {
-    rec.record<FswAcsSensorMsg>(*ch.fsw_sensors, {indexed("wheel_speed", "rpm", "meas_wheel_speed_rpm_", n_rw)},
-                                [n_rw](const FswAcsSensorMsg& x, double* o) {
-                                  for (int i = 0; i < n_rw; ++i) o[i] = static_cast<double>(x.Omega[i]) * kRpmPerRadS;
+}
+
+// Wheel speeds (measured and truth), torques and commands.
+void record_wheels(Recorder& rec, const RecordedChannels& ch, int n_rw)
+{
+  rec.record<FswAcsSensorMsg>(*ch.fsw_sensors, {indexed("wheel_speed", "rpm", "meas_wheel_speed_rpm_", n_rw)},
+                              [n_rw](const FswAcsSensorMsg& x, double* o) {
+                                for (int i = 0; i < n_rw; ++i) o[i] = static_cast<double>(x.Omega[i]) * kRpmPerRadS;
+                              });
+  rec.record<TruthMsg>(*ch.truth,
+                       {indexed("wheel_speed", "rpm", "wheel_speed_rpm_", n_rw),
+                        indexed("wheel_torque", "N*m", "wheel_torque_", n_rw)},
+                       [n_rw](const TruthMsg& x, double* o) {
+                         for (int i = 0; i < n_rw; ++i) o[i] = x.Omega[i] * kRpmPerRadS;
+                         for (int i = 0; i < n_rw; ++i) o[n_rw + i] = x.u_s[i];
+                       });
+  rec.record<FswAcsActuatorMsg>(*ch.fsw_actuators, {indexed("wheel_cmd", "N*m", "wheel_cmd_", n_rw)},
+                                [n_rw](const FswAcsActuatorMsg& x, double* o) {
+                                  for (int i = 0; i < n_rw; ++i) o[i] = static_cast<double>(x.u_s[i]);
                                 });
-    rec.record<TruthMsg>(*ch.truth,
-                         {indexed("wheel_speed", "rpm", "wheel_speed_rpm_", n_rw),
-                          indexed("wheel_torque", "N*m", "wheel_torque_", n_rw)},
-                         [n_rw](const TruthMsg& x, double* o) {
-                           for (int i = 0; i < n_rw; ++i) o[i] = x.Omega[i] * kRpmPerRadS;
-                           for (int i = 0; i < n_rw; ++i) o[n_rw + i] = x.u_s[i];
+}
+
+// Thruster on-times and forces, propellant, mass and the non-gravitational delta-v.
+void record_thrusters(Recorder& rec, const RecordedChannels& ch, int n_thr)
+{
+  rec.record<PlantCmdMsg>(*ch.plant_cmd, {indexed("thruster_on_time", "s", "thruster_on_time_", n_thr)},
+                          [n_thr](const PlantCmdMsg& x, double* o) {
+                            for (int j = 0; j < n_thr; ++j) o[j] = x.T_on[j];
+                          });
+  rec.record<TruthMsg>(*ch.truth,
+                       {indexed("thruster_force", "N", "thruster_force_", n_thr),
+                        scalar("propellant", "kg", "propellant_kg"), scalar("mass", "kg", "mass_kg")},
+                       [n_thr](const TruthMsg& x, double* o) {
+                         for (int j = 0; j < n_thr; ++j) o[j] = x.F_thr[j];
+                         o[n_thr] = x.m_prop;
+                         o[n_thr + 1] = x.m_sc;
+                       });
+  rec.record<MetricsMsg>(*ch.metrics, {scalar("dv_nongrav", "m/s")},
+                         [](const MetricsMsg& x, double* o) { o[0] = x.dv_ng; });
+}
+
+void record_orbit(Recorder& rec, const RecordedChannels& ch)
+{
+  rec.record<MetricsMsg>(*ch.metrics,
+                         {scalar("orbit_e", "-"), scalar("orbit_r_p", "km", "orbit_r_p_km"),
+                          scalar("orbit_energy", "J/kg")},
+                         [](const MetricsMsg& x, double* o) {
+                           o[0] = x.orbit_e;
+                           o[1] = x.orbit_r_p * 1e-3;
+                           o[2] = x.orbit_energy;
                          });
-    rec.record<FswAcsActuatorMsg>(*ch.fsw_actuators, {indexed("wheel_cmd", "N*m", "wheel_cmd_", n_rw)},
-                                  [n_rw](const FswAcsActuatorMsg& x, double* o) {
-                                    for (int i = 0; i < n_rw; ++i) o[i] = static_cast<double>(x.u_s[i]);
-                                  });
-  }
-  if (n_thr > 0) {
-    rec.record<PlantCmdMsg>(*ch.plant_cmd, {indexed("thruster_on_time", "s", "thruster_on_time_", n_thr)},
-                            [n_thr](const PlantCmdMsg& x, double* o) {
-                              for (int j = 0; j < n_thr; ++j) o[j] = x.T_on[j];
-                            });
-    rec.record<TruthMsg>(*ch.truth,
-                         {indexed("thruster_force", "N", "thruster_force_", n_thr),
-                          scalar("propellant", "kg", "propellant_kg"), scalar("mass", "kg", "mass_kg")},
-                         [n_thr](const TruthMsg& x, double* o) {
-                           for (int j = 0; j < n_thr; ++j) o[j] = x.F_thr[j];
-                           o[n_thr] = x.m_prop;
-                           o[n_thr + 1] = x.m_sc;
-                         });
-    rec.record<MetricsMsg>(*ch.metrics, {scalar("dv_nongrav", "m/s")},
-                           [](const MetricsMsg& x, double* o) { o[0] = x.dv_ng; });
-  }
-  if (orbit)
-    rec.record<MetricsMsg>(*ch.metrics,
-                           {scalar("orbit_e", "-"), scalar("orbit_r_p", "km", "orbit_r_p_km"),
-                            scalar("orbit_energy", "J/kg")},
-                           [](const MetricsMsg& x, double* o) {
-                             o[0] = x.orbit_e;
-                             o[1] = x.orbit_r_p * 1e-3;
-                             o[2] = x.orbit_energy;
-                           });
+}
+
+// The FSW: tracking error, control torque, momentum and energy, stage and
+// speed-filter health, and the Sun heading in sun-safe runs.
+void record_fsw(Recorder& rec, const RecordedChannels& ch, int n_rw)
+{
   rec.record<FswAcsHealthMsg>(*ch.fsw_health,
                               {vec3("sigma_BR", "-", "B/R MRP"), vec3("omega_BR_B", "rad/s", "B")},
                               [](const FswAcsHealthMsg& g, double* o) {
@@ -155,6 +169,18 @@ void declare_telemetry(Recorder& rec, const RecordedChannels& ch, int n_rw, int 
                                 o[3] = h.valid;
                                 o[4] = h.num_lit;
                               });
+}
+
+}  // namespace
+
+void declare_telemetry(Recorder& rec, const RecordedChannels& ch, int n_rw, int n_thr, bool orbit,
+                       std::function<uint64_t()> t_now_ns)
+{
+  record_state(rec, ch, std::move(t_now_ns));
+  if (n_rw > 0) record_wheels(rec, ch, n_rw);
+  if (n_thr > 0) record_thrusters(rec, ch, n_thr);
+  if (orbit) record_orbit(rec, ch);
+  record_fsw(rec, ch, n_rw);
 }
 
 }  // namespace harness

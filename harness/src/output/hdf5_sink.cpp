@@ -160,6 +160,64 @@ void Hdf5Sink::end(bool complete)
   if (!flushed || !closed) throw OutputError(path_ + ": cannot flush and close (disk full?)");
 }
 
+namespace {
+
+// Storage of the first dataset: chunked, deflated.
+void read_layout(hid_t ds, Hdf5Table& t)
+{
+  H5Id dcpl(H5Dget_create_plist(ds), H5Pclose);
+  t.chunked = H5Pget_layout(dcpl) == H5D_CHUNKED;
+  const int nf = H5Pget_nfilters(dcpl);
+  for (int i = 0; i < nf; ++i) {
+    unsigned flags = 0, vals[8], cfg = 0;
+    size_t n = 8;
+    char nm[64];
+    if (H5Pget_filter2(dcpl, static_cast<unsigned>(i), &flags, &n, vals, sizeof nm, nm, &cfg) == H5Z_FILTER_DEFLATE)
+      t.deflate = true;
+  }
+}
+
+// The file's attributes: version, scenario, manifest, seed, dt, duration, complete.
+void read_run_attributes(hid_t file, Hdf5Table& t)
+{
+  t.version = read_attr_string(file, "kestrel_version");
+  t.scenario = read_attr_string(file, "scenario");
+  t.manifest = read_attr_string(file, "manifest");
+  auto read_scalar = [file](const char* name, hid_t type, void* out) {
+    if (H5Aexists(file, name) <= 0) return;
+    H5Id a(H5Aopen(file, name, H5P_DEFAULT), H5Aclose);
+    if (a >= 0) H5Aread(a, type, out);
+  };
+  unsigned long long seed = 0;
+  int complete = 0;
+  read_scalar("seed", H5T_NATIVE_ULLONG, &seed);
+  read_scalar("dt", H5T_NATIVE_DOUBLE, &t.dt);
+  read_scalar("duration", H5T_NATIVE_DOUBLE, &t.duration);
+  read_scalar("complete", H5T_NATIVE_INT, &complete);
+  t.seed = seed;
+  t.complete = complete != 0;
+}
+
+// The /events dataset: (tick, t) per applied event, names and actions as attributes.
+void read_events(hid_t file, const std::string& path, Hdf5Table& t)
+{
+  H5Id ds(H5Dopen2(file, "/events", H5P_DEFAULT), H5Dclose);
+  h5check(ds, "opening /events", path);
+  H5Id space(H5Dget_space(ds), H5Sclose);
+  hsize_t dims[2] = {0, 0};
+  H5Sget_simple_extent_dims(space, dims, nullptr);
+  std::vector<double> buf(static_cast<size_t>(dims[0] * dims[1]));
+  if (!buf.empty() && H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0)
+    throw OutputError(path + ": cannot read /events");
+  if (dims[0] > 0) {
+    const std::vector<std::string> names = read_attr_strings(ds, "names"), what = read_attr_strings(ds, "actions");
+    for (size_t i = 0; i < dims[0] && i < names.size() && i < what.size(); ++i)
+      t.events.push_back({names[i], static_cast<uint64_t>(buf[2 * i]), buf[2 * i + 1], what[i]});
+  }
+}
+
+}  // namespace
+
 Hdf5Table read_hdf5(const std::string& path)
 {
   h5_setup();
@@ -185,16 +243,7 @@ Hdf5Table read_hdf5(const std::string& path)
     if (seen.size() == 1) {
       t.rows = dims[0];
       t.data.assign(static_cast<size_t>(t.rows) * t.names.size(), 0.0);
-      H5Id dcpl(H5Dget_create_plist(ds), H5Pclose);
-      t.chunked = H5Pget_layout(dcpl) == H5D_CHUNKED;
-      const int nf = H5Pget_nfilters(dcpl);
-      for (int i = 0; i < nf; ++i) {
-        unsigned flags = 0, vals[8], cfg = 0;
-        size_t n = 8;
-        char nm[64];
-        if (H5Pget_filter2(dcpl, static_cast<unsigned>(i), &flags, &n, vals, sizeof nm, nm, &cfg) == H5Z_FILTER_DEFLATE)
-          t.deflate = true;
-      }
+      read_layout(ds, t);
     }
     if (dims[0] != t.rows) throw OutputError(path + ": " + dp + " has a different number of samples");
     std::vector<double> buf(static_cast<size_t>(dims[0] * dims[1]));
@@ -208,37 +257,8 @@ Hdf5Table read_hdf5(const std::string& path)
       for (uint64_t r = 0; r < t.rows; ++r) t.data[r * t.names.size() + col] = buf[r * dims[1] + k];
     }
   }
-  t.version = read_attr_string(file, "kestrel_version");
-  t.scenario = read_attr_string(file, "scenario");
-  t.manifest = read_attr_string(file, "manifest");
-  auto read_scalar = [&file](const char* name, hid_t type, void* out) {
-    if (H5Aexists(file, name) <= 0) return;
-    H5Id a(H5Aopen(file, name, H5P_DEFAULT), H5Aclose);
-    if (a >= 0) H5Aread(a, type, out);
-  };
-  unsigned long long seed = 0;
-  int complete = 0;
-  read_scalar("seed", H5T_NATIVE_ULLONG, &seed);
-  read_scalar("dt", H5T_NATIVE_DOUBLE, &t.dt);
-  read_scalar("duration", H5T_NATIVE_DOUBLE, &t.duration);
-  read_scalar("complete", H5T_NATIVE_INT, &complete);
-  t.seed = seed;
-  t.complete = complete != 0;
-  if (H5Lexists(file, "/events", H5P_DEFAULT) > 0) {
-    H5Id ds(H5Dopen2(file, "/events", H5P_DEFAULT), H5Dclose);
-    h5check(ds, "opening /events", path);
-    H5Id space(H5Dget_space(ds), H5Sclose);
-    hsize_t dims[2] = {0, 0};
-    H5Sget_simple_extent_dims(space, dims, nullptr);
-    std::vector<double> buf(static_cast<size_t>(dims[0] * dims[1]));
-    if (!buf.empty() && H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0)
-      throw OutputError(path + ": cannot read /events");
-    if (dims[0] > 0) {
-      const std::vector<std::string> names = read_attr_strings(ds, "names"), what = read_attr_strings(ds, "actions");
-      for (size_t i = 0; i < dims[0] && i < names.size() && i < what.size(); ++i)
-        t.events.push_back({names[i], static_cast<uint64_t>(buf[2 * i]), buf[2 * i + 1], what[i]});
-    }
-  }
+  read_run_attributes(file, t);
+  if (H5Lexists(file, "/events", H5P_DEFAULT) > 0) read_events(file, path, t);
   return t;
 }
 

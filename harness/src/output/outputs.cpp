@@ -89,8 +89,8 @@ std::string geometry_json_text(const Run& run)
   json thr = json::array();
   for (const ThrusterSpec& t : sc.thrusters)
     thr.push_back({{"name", t.name},
-                   {"r_B", {t.r_B(0), t.r_B(1), t.r_B(2)}},
-                   {"dir_B", {t.dir_B(0), t.dir_B(1), t.dir_B(2)}}});
+                   {"r_B", {t.r_TjB_B(0), t.r_TjB_B(1), t.r_TjB_B(2)}},
+                   {"dir_B", {t.t_hat_B(0), t.t_hat_B(1), t.t_hat_B(2)}}});
   json wpos = json::array();
   for (const WheelSpec& w : sc.wheels) wpos.push_back({w.params.r_WB_B(0), w.params.r_WB_B(1), w.params.r_WB_B(2)});
   return json{{"wheel_axes_B", axes}, {"wheel_positions_B", wpos}, {"thrusters", thr}}.dump();

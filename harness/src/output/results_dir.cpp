@@ -59,6 +59,50 @@ uint64_t free_bytes(const fs::path& p)
   return static_cast<uint64_t>(s.f_bavail) * static_cast<uint64_t>(s.f_frsize);
 }
 
+namespace {
+
+// Step 2 of ResultsDir: what is at `t` already.  Absent, empty, or Kestrel
+// result files (with force) are fine; anything else is refused.
+void check_existing(const fs::path& t, const std::string& target, bool force)
+{
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(t, ec);
+  if (fs::exists(st)) {
+    if (!fs::is_directory(st)) {
+      throw ResultsDirRefused(target + ": exists and is not a folder; not touching it");
+    }
+    std::string foreign;
+    bool empty = true;
+    // a Monte Carlo campaign's folder (docs/monte-carlo.md) also holds its
+    // runs/ folder (run folders of result files) and shards/
+    const bool campaign = fs::is_regular_file(t / "mc_manifest.json", ec);
+    for (const fs::directory_entry& e : fs::directory_iterator(t, ec)) {
+      empty = false;
+      const std::string n = e.path().filename().string();
+      const bool campaign_part =
+          campaign && (ResultsDir::is_campaign_file_name(n) || ((n == "runs" || n == "shards") && e.is_directory()));
+      if (!campaign_part && (!ResultsDir::is_result_file_name(n) || !e.is_regular_file())) {
+        foreign = n;
+        break;
+      }
+    }
+    if (ec) {
+      throw OutputError(target + ": cannot read the existing folder: " + ec.message());
+    }
+    if (!empty && !foreign.empty()) {
+      throw ResultsDirRefused(target + ": exists and holds '" + foreign +
+                              "', which is not a Kestrel result file; not replacing it (choose another -o)");
+    }
+    if (!empty && !force) {
+      throw ResultsDirRefused(target +
+                              ": already holds the results of a run; use --force to replace them whole, or "
+                              "choose another -o");
+    }
+  }
+}
+
+}  // namespace
+
 ResultsDir::ResultsDir(const std::string& target, bool force)
 {
   if (target.empty()) throw OutputError("no results folder given");
@@ -98,38 +142,7 @@ ResultsDir::ResultsDir(const std::string& target, bool force)
   }
 
   // 2. what is there already
-  const fs::file_status st = fs::symlink_status(t, ec);
-  if (fs::exists(st)) {
-    if (!fs::is_directory(st)) {
-      throw ResultsDirRefused(target + ": exists and is not a folder; not touching it");
-    }
-    std::string foreign;
-    bool empty = true;
-    // a Monte Carlo campaign's folder (docs/monte-carlo.md) also holds its
-    // runs/ folder (run folders of result files) and shards/
-    const bool campaign = fs::is_regular_file(t / "mc_manifest.json", ec);
-    for (const fs::directory_entry& e : fs::directory_iterator(t, ec)) {
-      empty = false;
-      const std::string n = e.path().filename().string();
-      const bool campaign_part = campaign && (is_campaign_file_name(n) || ((n == "runs" || n == "shards") && e.is_directory()));
-      if (!campaign_part && (!is_result_file_name(n) || !e.is_regular_file())) {
-        foreign = n;
-        break;
-      }
-    }
-    if (ec) {
-      throw OutputError(target + ": cannot read the existing folder: " + ec.message());
-    }
-    if (!empty && !foreign.empty()) {
-      throw ResultsDirRefused(target + ": exists and holds '" + foreign +
-                              "', which is not a Kestrel result file; not replacing it (choose another -o)");
-    }
-    if (!empty && !force) {
-      throw ResultsDirRefused(target +
-                              ": already holds the results of a run; use --force to replace them whole, or "
-                              "choose another -o");
-    }
-  }
+  check_existing(t, target, force);
 
   // 3. the working folder (the writability check, before simulating)
   work_ = beside(t, ".kestrel-work-" + std::to_string(::getpid()));

@@ -161,18 +161,18 @@ void check_actuator_span(MapReader& top, const Scenario& sc)
   if (sc.fsw.actuation == Actuation::Thrusters) {
     // torque directions about the mass centre at t0 (hub and full tanks)
     double m = sc.spacecraft.mass;
-    Eigen::Vector3d mc = sc.spacecraft.mass * sc.spacecraft.com;
+    Eigen::Vector3d mc = sc.spacecraft.mass * sc.spacecraft.r_BcB_B;
     for (const std::optional<TankSpec>* t : {&sc.tank, &sc.rcs_tank})
       if (*t) {
         m += (*t)->mass;
-        mc += (*t)->mass * (*t)->r_B;
+        mc += (*t)->mass * (*t)->r_TB_B;
       }
-    const Eigen::Vector3d c = m > 0.0 ? Eigen::Vector3d(mc / m) : sc.spacecraft.com;
+    const Eigen::Vector3d c = m > 0.0 ? Eigen::Vector3d(mc / m) : sc.spacecraft.r_BcB_B;
     Eigen::Matrix<double, 3, Eigen::Dynamic> A(3, 0);
     for (const ThrusterSpec& t : sc.thrusters)
       if (t.acs) {
         A.conservativeResize(3, A.cols() + 1);
-        A.col(A.cols() - 1) = (t.r_B - c).cross(t.dir_B);
+        A.col(A.cols() - 1) = (t.r_TjB_B - c).cross(t.t_hat_B);
       }
     if (A.cols() == 0) return;  // reported at fsw.actuation
     const std::string why = span_problem(A);

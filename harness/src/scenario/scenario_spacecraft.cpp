@@ -61,7 +61,7 @@ const Section& spacecraft_section()
               .req("hub mass [kg]").bounds(positive("kg")).unit("kg"),
           inertia("inertia", [](auto& sc, size_t) -> auto& { return sc.spacecraft.inertia; })
               .req("hub inertia about its CoM [kg*m^2]").unit("kg*m^2"),
-          vec3("com", [](auto& sc, size_t) -> auto& { return sc.spacecraft.com; }).unit("m"),
+          vec3("com", [](auto& sc, size_t) -> auto& { return sc.spacecraft.r_BcB_B; }).unit("m"),
       },
       {Section{"initial",
                {

@@ -14,8 +14,8 @@ const Section& thrusters_section()
     Section t{"thrusters",
               {
                   string("name", KESTREL_THR(name)).unit("default thr<j+1>, unique"),
-                  vec3("position", KESTREL_THR(r_B)).req("nozzle location in B [m]").unit("m"),
-                  vec3("direction", KESTREL_THR(dir_B), true).req("unit thrust direction in B"),
+                  vec3("position", KESTREL_THR(r_TjB_B)).req("nozzle location in B [m]").unit("m"),
+                  vec3("direction", KESTREL_THR(t_hat_B), true).req("unit thrust direction in B"),
                   real("F_max", KESTREL_THR(F_max)).req("thrust [N]").bounds(positive("N")).unit("N"),
                   real("Isp", KESTREL_THR(Isp)).req("specific impulse [s]").bounds(positive("s")).unit("s"),
                   real("T_min", KESTREL_THR(T_min)).bounds(non_negative("s")).unit("s"),
@@ -72,7 +72,7 @@ Section make_tank_section(const std::string& name, std::optional<TankSpec> Scena
             {
                 real("mass", [tank](auto& sc, size_t) -> auto& { return (sc.*tank)->mass; })
                     .req("initial propellant [kg]").bounds(non_negative("kg")).unit("kg"),
-                vec3("position", [tank](auto& sc, size_t) -> auto& { return (sc.*tank)->r_B; }).unit("m"),
+                vec3("position", [tank](auto& sc, size_t) -> auto& { return (sc.*tank)->r_TB_B; }).unit("m"),
             },
             {}};
   s.present = [tank](const Scenario& sc) { return (sc.*tank).has_value(); };

@@ -70,7 +70,7 @@ struct InitialSpec {
 struct SpacecraftSpec {
   double mass = 0.0;                                   // [kg]     hub mass
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();   // [kg*m^2] hub inertia about hub CoM
-  Eigen::Vector3d com = Eigen::Vector3d::Zero();       // [m]      hub CoM rel. B
+  Eigen::Vector3d r_BcB_B = Eigen::Vector3d::Zero();   // [m]      hub mass centre Bc rel. B (key: com)
   InitialSpec initial;
 };
 
@@ -81,13 +81,13 @@ struct EnvironmentSpec {
 
 struct WheelSpec {
   std::string name;
-  sim::ReactionWheelParams params;  // SI; gs_hat_nom_B normalised
+  sim::ReactionWheelParams params;  // SI; gs_hat_nom_B (key: axis) normalised
 };
 
 struct ThrusterSpec {
   std::string name;
-  Eigen::Vector3d r_B = Eigen::Vector3d::Zero();    // [m]
-  Eigen::Vector3d dir_B = Eigen::Vector3d::UnitZ(); // [-] nominal unit thrust direction
+  Eigen::Vector3d r_TjB_B = Eigen::Vector3d::Zero();  // [m] nozzle Tj rel. B (key: position)
+  Eigen::Vector3d t_hat_B = Eigen::Vector3d::UnitZ(); // [-] nominal unit thrust axis (key: direction)
   double F_max = 0.0;                               // [N]
   double Isp = 0.0;                                 // [s]
   double T_min = 0.0;                               // [s]
@@ -99,8 +99,8 @@ struct ThrusterSpec {
 };
 
 struct TankSpec {
-  double mass = 0.0;                                // [kg] initial propellant
-  Eigen::Vector3d r_B = Eigen::Vector3d::Zero();    // [m]
+  double mass = 0.0;                                  // [kg] initial propellant
+  Eigen::Vector3d r_TB_B = Eigen::Vector3d::Zero();   // [m]  tank centre T rel. B (key: position)
 };
 
 // Main-engine burn: the named (non-ACS) thruster fires continuously from the
