@@ -254,6 +254,28 @@ TEST(Hwil, S1InRealTimeAtScale10OverUdpKeepsItsBound)
   ASSERT_TRUE(r.linked);
   EXPECT_EQ(r.link.cycles, 6001u);
   EXPECT_EQ(r.link.replies + r.link.missing, r.link.cycles);
+  // summary.txt ends with the link figures, in the order and format of
+  // 79e1e00's summary.txt, after the seven pacing figures
+  {
+    std::ifstream in(tmp.p / "rt10" / "summary.txt");
+    std::vector<std::string> lines;
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+    const harness::LinkCounters& l = r.link;
+    const std::vector<std::string> want = {
+        "link_cycles = " + std::to_string(l.cycles) + "     # FSW cycles over the link",
+        "link_sent = " + std::to_string(l.sent) + "     # sensor packets sent (duplicates included)",
+        "link_lost = " + std::to_string(l.lost) + "     # dropped by the loss injector",
+        "link_corrupted = " + std::to_string(l.corrupted) + "     # sent with flipped bits",
+        "link_missing = " + std::to_string(l.missing) + "     # cycles without a reply (last command held or zero applied)",
+        "link_rejected = " + std::to_string(l.rejected) + "     # received packets the harness rejected",
+        "link_fsw_rx_crc = " + std::to_string(l.fsw.rx_crc) + "     # FSW end: packets rejected on CRC",
+        "link_fsw_rx_stale = " + std::to_string(l.fsw.rx_stale) +
+            "     # FSW end: duplicate, old or out-of-order sensor packets",
+        "link_fsw_missed = " + std::to_string(l.fsw.missed) + "     # FSW end: control cycles without a sensor packet"};
+    ASSERT_GE(lines.size(), want.size() + 7);
+    EXPECT_EQ(std::vector<std::string>(lines.end() - static_cast<long>(want.size()), lines.end()), want);
+    EXPECT_EQ(lines[lines.size() - want.size() - 7].rfind("rt_scale = 10     # ", 0), 0u);
+  }
   std::ifstream csv(tmp.p / "rt10" / "telemetry.csv");
   std::string line;
   ASSERT_TRUE(std::getline(csv, line));

@@ -205,3 +205,73 @@ TEST(Outputs, ListShowsShippedScenarios)
   EXPECT_EQ(harness::cmd_list(std::string(KESTREL_SOURCE_DIR) + "/scenarios", out, err), harness::kExitOk);
   EXPECT_NE(out.str().find("s1_sun_pointing.yaml"), std::string::npos);
 }
+
+// The run command holds the link's options (what the --on-missing, --link-*,
+// --reply-timeout and --pil-* flags set) and hands them to the run unchanged.
+TEST(Outputs, RunCommandPassesItsLinkOptionsUnchanged)
+{
+  harness::RunCommand c;
+  c.scenario = kS1;
+  c.fsw = "udp:127.0.0.1:4711";
+  c.realtime = true;
+  c.rt_scale = 3.0;
+  c.link.on_missing = harness::LinkOptions::Missing::kZero;
+  c.link.on_missing_set = true;
+  c.link.timeout_s = 7.5;
+  c.link.reply_timeout_s = 0.25;
+  c.link.loss = 0.1;
+  c.link.corrupt = 0.02;
+  c.link.duplicate = 0.03;
+  c.link.reorder = 0.04;
+  c.link.delay = 0.05;
+  c.link.delay_cycles = 9;
+  c.link.seed = 1234567;
+  c.link.pil_bin = "/opt/fsw.elf";
+  c.link.pil_emulator = "qemu-arm -cpu cortex-a7";
+  const harness::Scenario sc = harness::load_scenario(kS1);
+  const harness::RunOptions o = harness::run_options_of(c, sc, {});
+  EXPECT_EQ(o.fsw_link, c.fsw);
+  EXPECT_EQ(o.realtime_scale, 3.0);
+  EXPECT_EQ(o.out_dir, (fs::path("runs") / sc.name).string());
+  const harness::LinkOptions& l = o.link;
+  EXPECT_EQ(l.on_missing, c.link.on_missing);
+  EXPECT_EQ(l.on_missing_set, c.link.on_missing_set);
+  EXPECT_EQ(l.timeout_s, c.link.timeout_s);
+  EXPECT_EQ(l.reply_timeout_s, c.link.reply_timeout_s);
+  EXPECT_EQ(l.loss, c.link.loss);
+  EXPECT_EQ(l.corrupt, c.link.corrupt);
+  EXPECT_EQ(l.duplicate, c.link.duplicate);
+  EXPECT_EQ(l.reorder, c.link.reorder);
+  EXPECT_EQ(l.delay, c.link.delay);
+  EXPECT_EQ(l.delay_cycles, c.link.delay_cycles);
+  EXPECT_EQ(l.seed, c.link.seed);
+  EXPECT_EQ(l.pil_bin, c.link.pil_bin);
+  EXPECT_EQ(l.pil_emulator, c.link.pil_emulator);
+}
+
+// The defaulting rules of a run's link options (LinkOptions::for_run).
+TEST(Outputs, LinkOptionsForARun)
+{
+  using M = harness::LinkOptions::Missing;
+  harness::LinkOptions given;  // lockstep: a missing reply fails the run
+  harness::LinkOptions lo = given.for_run(0.1, 0.0, nullptr);
+  EXPECT_EQ(lo.on_missing, M::kFail);
+  EXPECT_FALSE(lo.on_missing_set);
+  EXPECT_EQ(lo.reply_timeout_s, 0.5);
+  EXPECT_FALSE(lo.time_left);
+  given.loss = 0.01;  // faults: hold
+  lo = given.for_run(0.1, 0.0, nullptr);
+  EXPECT_EQ(lo.on_missing, M::kHold);
+  EXPECT_TRUE(lo.on_missing_set);
+  given.loss = 0.0;  // paced: hold, one FSW period of wall time, the deadline
+  lo = given.for_run(0.1, 4.0, [] { return 0.5; });
+  EXPECT_EQ(lo.on_missing, M::kHold);
+  EXPECT_EQ(lo.reply_timeout_s, 0.1 / 4.0);
+  ASSERT_TRUE(lo.time_left);
+  EXPECT_EQ(lo.time_left(), 0.5);
+  given.on_missing = M::kZero;  // given: kept
+  given.on_missing_set = true;
+  given.loss = 0.2;
+  EXPECT_EQ(given.for_run(0.1, 4.0, nullptr).on_missing, M::kZero);
+  EXPECT_EQ(given.for_run(0.1, 0.0, nullptr).on_missing, M::kZero);
+}

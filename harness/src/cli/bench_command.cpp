@@ -85,9 +85,9 @@ RunConfig bench_config()
   return cfg;
 }
 
-}  // namespace
-
-int cmd_bench(const std::string& dir, const std::vector<std::string>& only, std::ostream& out, std::ostream& err)
+// The reference cases: S1 fully coupled at dt = 0.01 s and 0.1 s, S1 with
+// plant sub-steps, S2 as shipped.
+std::vector<Case> reference_cases(const std::string& dir)
 {
   const std::string s1 = (fs::path(dir) / "s1_sun_pointing.yaml").string();
   const std::string s2 = (fs::path(dir) / "s2_mars_orbit_insertion.yaml").string();
@@ -111,67 +111,105 @@ int cmd_bench(const std::string& dir, const std::vector<std::string>& only, std:
     cases.push_back(c);
   }
   cases.push_back({"s2", "S2 Mars orbit insertion, as shipped", s2, {}, false});
-  // --case: the named cases only, in the usual order
+  return cases;
+}
+
+// --case: the named cases only, in the usual order; false (after a
+// message) on an unknown name.
+bool select_cases(const std::vector<std::string>& only, std::vector<Case>& cases, std::ostream& err)
+{
   for (const std::string& name : only) {
     if (std::none_of(cases.begin(), cases.end(), [&name](const Case& c) { return c.id == name; })) {
       err << "kestrel bench: no case '" << name << "'; the cases are:";
       for (const Case& c : cases) err << " " << c.id;
       err << "\n";
-      return kExitUsage;
+      return false;
     }
   }
   if (!only.empty())
     cases.erase(std::remove_if(cases.begin(), cases.end(),
                                [&only](const Case& c) { return std::find(only.begin(), only.end(), c.id) == only.end(); }),
                 cases.end());
+  return true;
+}
 
+// The real-time factors of kRepeats runs, sorted; empty (after a message)
+// when a run failed.
+std::vector<double> speeds(const Case& c, const Scenario& sc, std::ostream& err)
+{
+  std::vector<double> rtf;
+  for (int r = 0; r < kRepeats; ++r) {
+    Run run(sc, bench_config());
+    const double c0 = cpu_seconds();
+    run.step_ticks(run.total_ticks());
+    const double cpu = cpu_seconds() - c0;
+    if (!run.failure().empty()) {
+      err << c.label << ": run failed: " << run.failure() << "\n";
+      return {};
+    }
+    rtf.push_back(sc.duration / cpu);
+  }
+  std::sort(rtf.begin(), rtf.end());
+  return rtf;
+}
+
+// Where a tick's time goes, from one profiled run [ns in all]: plant,
+// sensors, fsw, recording, other; `calls`: the timed calls.
+std::map<std::string, double> split_of(const Scenario& sc, double& calls)
+{
+  Run run(sc, bench_config());
+  run.set_profiling(true);
+  const auto w0 = std::chrono::steady_clock::now();
+  run.step_ticks(run.total_ticks());
+  const double wall_ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - w0).count();
+  std::map<std::string, double> split{{"plant", 0}, {"sensors", 0}, {"fsw", 0}, {"recording", 0}, {"other", 0}};
+  double timed = 0.0;
+  calls = 0.0;
+  const auto prof = run.profile();
+  for (const auto& [name, ns] : prof) {
+    split[category(name)] += static_cast<double>(ns);
+    timed += static_cast<double>(ns);
+  }
+  for (size_t i = 0; i < run.scheduler().num_tasks(); ++i) calls += static_cast<double>(run.scheduler().run_count(i));
+  calls += static_cast<double>(sc.num_ticks());  // the plant's
+  split["other"] += wall_ns - timed;             // the loop itself: between the timed calls
+  return split;
+}
+
+// One case's two lines; false when a run failed.
+bool bench_case(const Case& c, double pair_ns, std::ostream& out, std::ostream& err)
+{
+  const Scenario sc = load_case(c);
+  const std::vector<double> rtf = speeds(c, sc, err);
+  if (rtf.empty()) return false;
+  const double ticks = static_cast<double>(sc.num_ticks() + 1);
+  const double us_tick = sc.duration / rtf[kRepeats / 2] / ticks * 1e6;
+  double calls = 0.0;
+  std::map<std::string, double> split = split_of(sc, calls);
+  const auto us = [ticks](double ns) { return ns / ticks / 1e3; };  // [us per tick]
+  out << "  " << std::left << std::setw(38) << c.label << std::right << std::fixed << std::setprecision(0)
+      << std::setw(8) << rtf[kRepeats / 2] << "x real time (" << rtf[0] << " / " << rtf[kRepeats / 2] << " / "
+      << rtf[kRepeats - 1] << ")  " << std::setprecision(2) << us_tick << " us per tick\n"
+      << "      split [us per tick]: plant " << us(split["plant"]) << ", sensors " << us(split["sensors"])
+      << ", FSW " << us(split["fsw"]) << ", recording " << us(split["recording"]) << ", other "
+      << us(split["other"]) << "  (timer cost in these: " << us(pair_ns * calls) << ")\n";
+  out.unsetf(std::ios::fixed);
+  return true;
+}
+
+}  // namespace
+
+int cmd_bench(const std::string& dir, const std::vector<std::string>& only, std::ostream& out, std::ostream& err)
+{
+  std::vector<Case> cases = reference_cases(dir);
+  if (!select_cases(only, cases, err)) return kExitUsage;
   const double pair_ns = timer_pair_ns();
   out << "kestrel bench (" << version() << "): one core, FSW at 10 Hz, recording at 1 Hz (S2 as shipped), no files;\n"
       << "speed = simulated s per process-CPU s over " << kRepeats
       << " runs (min / median / max); split = one timed run, us per tick\n";
   for (const Case& c : cases) {
     try {
-      const Scenario sc = load_case(c);
-      std::vector<double> rtf;
-      for (int r = 0; r < kRepeats; ++r) {
-        Run run(sc, bench_config());
-        const double c0 = cpu_seconds();
-        run.step_ticks(run.total_ticks());
-        const double cpu = cpu_seconds() - c0;
-        if (!run.failure().empty()) {
-          err << c.label << ": run failed: " << run.failure() << "\n";
-          return kExitRunFailed;
-        }
-        rtf.push_back(sc.duration / cpu);
-      }
-      std::sort(rtf.begin(), rtf.end());
-      const double ticks = static_cast<double>(sc.num_ticks() + 1);
-      const double us_tick = sc.duration / rtf[kRepeats / 2] / ticks * 1e6;
-
-      Run run(sc, bench_config());
-      run.set_profiling(true);
-      const auto w0 = std::chrono::steady_clock::now();
-      run.step_ticks(run.total_ticks());
-      const double wall_ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - w0).count();
-      std::map<std::string, double> split{{"plant", 0}, {"sensors", 0}, {"fsw", 0}, {"recording", 0}, {"other", 0}};
-      double timed = 0.0, calls = 0.0;
-      const auto prof = run.profile();
-      for (const auto& [name, ns] : prof) {
-        split[category(name)] += static_cast<double>(ns);
-        timed += static_cast<double>(ns);
-      }
-      for (size_t i = 0; i < run.scheduler().num_tasks(); ++i) calls += static_cast<double>(run.scheduler().run_count(i));
-      calls += static_cast<double>(sc.num_ticks());  // the plant's
-      split["other"] += wall_ns - timed;             // the loop itself: between the timed calls
-      const auto us = [ticks](double ns) { return ns / ticks / 1e3; };  // [us per tick]
-
-      out << "  " << std::left << std::setw(38) << c.label << std::right << std::fixed << std::setprecision(0)
-          << std::setw(8) << rtf[kRepeats / 2] << "x real time (" << rtf[0] << " / " << rtf[kRepeats / 2] << " / "
-          << rtf[kRepeats - 1] << ")  " << std::setprecision(2) << us_tick << " us per tick\n"
-          << "      split [us per tick]: plant " << us(split["plant"]) << ", sensors " << us(split["sensors"])
-          << ", FSW " << us(split["fsw"]) << ", recording " << us(split["recording"]) << ", other "
-          << us(split["other"]) << "  (timer cost in these: " << us(pair_ns * calls) << ")\n";
-      out.unsetf(std::ios::fixed);
+      if (!bench_case(c, pair_ns, out, err)) return kExitRunFailed;
     } catch (const ScenarioError& e) {
       print_issues(e, err);
       return kExitInvalidScenario;

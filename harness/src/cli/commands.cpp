@@ -1,11 +1,15 @@
 #include "harness/cli/commands.h"
 
+#include <signal.h>
+
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "cli/command_util.h"
@@ -107,11 +111,27 @@ int cmd_fsw_config(const std::string& scenario, const std::vector<std::string>& 
   return kExitOk;
 }
 
-int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
+RunOptions run_options_of(const RunCommand& c, const Scenario& sc, const std::vector<Override>& overrides)
 {
-  std::vector<Override> ov;
+  RunOptions opt;
+  opt.out_dir = c.out_dir.empty() ? (fs::path("runs") / sc.name).string() : c.out_dir;
+  opt.overrides = overrides;
+  opt.force = c.force;
+  opt.stop = c.stop;
+  if (c.realtime) opt.realtime_scale = c.rt_scale;
+  opt.fsw_link = c.fsw;
+  opt.link = c.link;
+  opt.control = c.control;
+  return opt;
+}
+
+namespace {
+
+// The scenario of a run command (--set applied, --csv); an exit code when
+// it cannot be loaded.
+std::optional<int> load_run_scenario(const RunCommand& c, Scenario& sc, std::vector<Override>& ov, std::ostream& err)
+{
   if (!parse_sets(c.sets, ov, err)) return kExitUsage;
-  Scenario sc;
   try {
     sc = load_scenario(c.scenario, ov);
   } catch (const ScenarioError& e) {
@@ -120,76 +140,59 @@ int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
   }
   if (c.csv) sc.outputs.csv = true;
   for (const std::string& w : jitter_step_warnings(sc)) err << "kestrel: warning: " << w << "\n";
-  RunOptions opt;
-  opt.out_dir = c.out_dir.empty() ? (fs::path("runs") / sc.name).string() : c.out_dir;
-  opt.overrides = ov;
-  opt.force = c.force;
-  opt.stop = c.stop;
-  if (c.realtime) opt.realtime_scale = c.rt_scale;
-  opt.fsw_link = c.fsw;
-  opt.link.timeout_s = c.link_timeout;
-  opt.link.pil_bin = c.pil_bin;
-  opt.link.pil_emulator = c.pil_emulator;
-  opt.link.reply_timeout_s = c.reply_timeout;
-  if (!c.on_missing.empty()) {
-    opt.link.on_missing_set = true;
-    opt.link.on_missing = c.on_missing == "zero" ? LinkOptions::Missing::kZero : LinkOptions::Missing::kHold;
-  }
-  opt.link.loss = c.loss / 100.0;
-  opt.link.corrupt = c.corrupt / 100.0;
-  opt.link.duplicate = c.duplicate / 100.0;
-  opt.link.reorder = c.reorder / 100.0;
-  opt.link.delay = c.delay / 100.0;
-  opt.link.delay_cycles = c.delay_cycles;
-  opt.link.seed = c.link_seed;
-  opt.control = c.control;
-  opt.notice = [&err, &c](const std::string& msg) {
-    if (c.progress) err << "\n";
+  return std::nullopt;
+}
+
+// Notices while running and the progress bar (on a terminal) on `err`.
+void attach_messages(const RunCommand& c, RunOptions& opt, std::ostream& err)
+{
+  const bool bar = c.progress;
+  opt.notice = [&err, bar](const std::string& msg) {
+    if (bar) err << "\n";
     err << "kestrel: " << msg << "\n";
   };
-  int last_pct = -1;
-  if (c.progress) {
-    opt.progress = [&err, &last_pct](double f) {
-      const int pct = static_cast<int>(f * 100.0);
-      if (pct == last_pct) return;
-      last_pct = pct;
-      const int w = 40, filled = pct * w / 100;
-      err << "\r[" << std::string(static_cast<size_t>(filled), '#') << std::string(static_cast<size_t>(w - filled), ' ')
-          << "] " << std::setw(3) << pct << "%" << std::flush;
-    };
-  }
-  RunResult r;
+  if (!bar) return;
+  opt.progress = [&err, last_pct = -1](double f) mutable {
+    const int pct = static_cast<int>(f * 100.0);
+    if (pct == last_pct) return;
+    last_pct = pct;
+    const int w = 40, filled = pct * w / 100;
+    err << "\r[" << std::string(static_cast<size_t>(filled), '#') << std::string(static_cast<size_t>(w - filled), ' ')
+        << "] " << std::setw(3) << pct << "%" << std::flush;
+  };
+}
+
+// run_scenario, its exceptions as exit codes (with their message on err).
+std::optional<int> run_caught(const Scenario& sc, const RunOptions& opt, bool bar, RunResult& r, std::ostream& err)
+{
   try {
     r = run_scenario(sc, opt);
+    if (bar) err << "\n";
+    return std::nullopt;
   } catch (const ScenarioError& e) {
-    if (c.progress) err << "\n";
+    if (bar) err << "\n";
     print_issues(e, err);
     return kExitInvalidScenario;
   } catch (const ResultsDirRefused& e) {
-    if (c.progress) err << "\n";
+    if (bar) err << "\n";
     err << "kestrel: " << e.what() << "\n";
     return kExitRefused;
   } catch (const OutputError& e) {
-    if (c.progress) err << "\n";
+    if (bar) err << "\n";
     err << "kestrel: output error: " << e.what() << "\n";
     err << "kestrel: nothing was written to " << opt.out_dir << " (its previous contents, if any, are unchanged)\n";
     return kExitOutput;
   } catch (const std::exception& e) {
-    if (c.progress) err << "\n";
+    if (bar) err << "\n";
     err << "kestrel: run failed: " << e.what() << "\n";
     return kExitRunFailed;
   }
-  if (c.progress) err << "\n";
-  if (r.stopped_by_signal != 0) {
-    err << "kestrel: interrupted by " << r.status.stopped_by << " at t = " << r.status.t_reached << " s of "
-        << sc.duration << " s; the results so far are in " << opt.out_dir << ", marked incomplete\n";
-    return kExitInterruptedBase + r.stopped_by_signal;
-  }
-  if (!r.ok) {
-    err << "kestrel: run failed: " << r.failure << "\n";
-    for (const auto& f : r.files) err << "  partial results: " << f << "\n";
-    return kExitRunFailed;
-  }
+}
+
+// The figures of a run that went to its end: speed, pacing, link, files.
+void print_run(const RunCommand& c, const Scenario& sc, const RunOptions& opt, const RunResult& r, std::ostream& out,
+               std::ostream& err)
+{
   out << sc.name << ": " << sc.duration << " s simulated in " << std::setprecision(3) << r.wall_seconds
       << " s (real-time factor " << std::setprecision(4) << (r.wall_seconds > 0 ? sc.duration / r.wall_seconds : 0.0)
       << "x); final pointing error " << std::setprecision(4) << r.final_pointing_error_deg << " deg\n";
@@ -211,7 +214,54 @@ int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
   for (const auto& f : r.files)
     if (fs::path(f).filename() == "report.html") out << "report: " << f << "\n";
   for (const auto& f : r.files) out << "  " << f << "\n";
+}
+
+}  // namespace
+
+int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
+{
+  std::vector<Override> ov;
+  Scenario sc;
+  if (const std::optional<int> code = load_run_scenario(c, sc, ov, err)) return *code;
+  RunOptions opt = run_options_of(c, sc, ov);
+  attach_messages(c, opt, err);
+  RunResult r;
+  if (const std::optional<int> code = run_caught(sc, opt, c.progress, r, err)) return *code;
+  if (r.stopped_by_signal != 0) {
+    err << "kestrel: interrupted by " << r.status.stopped_by << " at t = " << r.status.t_reached << " s of "
+        << sc.duration << " s; the results so far are in " << opt.out_dir << ", marked incomplete\n";
+    return kExitInterruptedBase + r.stopped_by_signal;
+  }
+  if (!r.ok) {
+    err << "kestrel: run failed: " << r.failure << "\n";
+    for (const auto& f : r.files) err << "  partial results: " << f << "\n";
+    return kExitRunFailed;
+  }
+  print_run(c, sc, opt, r, out, err);
   return kExitOk;
+}
+
+namespace {
+
+std::atomic<int> g_stop{0};
+static_assert(std::atomic<int>::is_always_lock_free, "signal handler needs a lock-free flag");
+
+extern "C" void on_stop_signal(int sig)
+{
+  g_stop.store(sig);
+}
+
+}  // namespace
+
+const std::atomic<int>* stop_on_signals()
+{
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sa.sa_flags = SA_RESETHAND;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  return &g_stop;
 }
 
 int cmd_list(const std::string& dir, std::ostream& out, std::ostream& err)

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <functional>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
@@ -209,17 +211,11 @@ int write_slurm(const McCommand& c, const McPlan& plan, const std::vector<Overri
   return kExitOk;
 }
 
-}  // namespace
-
-int cmd_mc(const McCommand& c, std::ostream& out, std::ostream& err)
+// The campaign's plan from the command (--set, --seed, --runs); an exit
+// code when the scenario is refused.
+std::optional<int> load_plan(const McCommand& c, std::vector<Override>& ov, McPlan& plan, std::ostream& rerr)
 {
-  McComm comm;  // MPI when started by mpirun
-  const bool root = comm.rank() == 0;
-  std::ostringstream sink;
-  std::ostream& rerr = root ? err : sink;  // one rank speaks
-  std::vector<Override> ov;
   if (!parse_sets(c.sets, ov, rerr)) return kExitUsage;
-  McPlan plan;
   try {
     const Scenario sc = load_scenario(c.scenario, ov);
     if (!sc.monte_carlo) {
@@ -235,66 +231,166 @@ int cmd_mc(const McCommand& c, std::ostream& out, std::ostream& err)
     rerr << "kestrel: --runs must be at least 1\n";
     return kExitUsage;
   }
-  std::vector<uint64_t> indices;
-  if (!c.only.empty()) {
-    std::string why;
-    if (!parse_only(c.only, plan.runs, indices, why)) {
-      rerr << "kestrel: " << why << "\n";
-      return kExitUsage;
-    }
-  } else {
+  return std::nullopt;
+}
+
+// The runs asked for (--only, else all of them).
+std::optional<int> select_runs(const McCommand& c, const McPlan& plan, std::vector<uint64_t>& indices, std::ostream& rerr)
+{
+  if (c.only.empty()) {
     for (uint64_t k = 0; k < plan.runs; ++k) indices.push_back(k);
+    return std::nullopt;
   }
-  if (c.slurm_tasks > 0) {
-    if (!root) return kExitOk;
-    return write_slurm(c, plan, ov, out, err);
-  }
-  // this process's slice: shard i of N, then rank r of P within it
+  std::string why;
+  if (parse_only(c.only, plan.runs, indices, why)) return std::nullopt;
+  rerr << "kestrel: " << why << "\n";
+  return kExitUsage;
+}
+
+// This process's slice: shard i of N, then rank r of P within it.
+std::vector<uint64_t> my_runs(const McCommand& c, const McComm& comm, const std::vector<uint64_t>& indices)
+{
   const uint64_t slots = static_cast<uint64_t>(c.shard_count) * static_cast<uint64_t>(comm.size());
   const uint64_t slot = static_cast<uint64_t>(c.shard_index) * static_cast<uint64_t>(comm.size()) +
                         static_cast<uint64_t>(comm.rank());
   std::vector<uint64_t> mine;
   for (uint64_t k : indices)
     if (k % slots == slot) mine.push_back(k);
-  const std::string out_dir = c.out_dir.empty() ? (fs::path("runs") / (plan.nominal.name + "_mc")).string() : c.out_dir;
-  // rank 0 owns the results folder; the others write their runs into its
-  // working folder (a shared file system, as on any cluster)
-  std::optional<ResultsDir> rdir;
+  return mine;
+}
+
+// Rank 0 owns the results folder; the others write their runs into its
+// working folder (a shared file system, as on any cluster).  Returns the
+// working folder on every rank, "" (after a message) when it is refused.
+std::string open_campaign_dir(const McComm& comm, const std::string& out_dir, bool force,
+                              std::optional<ResultsDir>& rdir, int& code, std::ostream& rerr)
+{
   std::string work, problem;
-  int problem_code = kExitOk;
-  if (root) {
+  code = kExitOk;
+  if (comm.rank() == 0) {
     try {
-      rdir.emplace(out_dir, c.force);
+      rdir.emplace(out_dir, force);
       work = rdir->work().string();
     } catch (const ResultsDirRefused& e) {
       problem = e.what();
-      problem_code = kExitRefused;
+      code = kExitRefused;
     } catch (const std::exception& e) {
       problem = std::string("output error: ") + e.what();
-      problem_code = kExitOutput;
+      code = kExitOutput;
     }
   }
   work = comm.broadcast(problem.empty() ? work : std::string());
   if (work.empty()) {
     rerr << "kestrel: " << problem << "\n";
-    return problem_code == kExitOk ? kExitOutput : problem_code;
+    if (code == kExitOk) code = kExitOutput;
   }
+  return work;
+}
+
+// The progress bar of rank 0 (on err, from any worker thread).
+std::function<void(const McProgress&)> progress_bar(std::ostream& err, const McComm& comm, std::mutex& pmu)
+{
+  return [&err, &comm, &pmu](const McProgress& p) {
+    std::lock_guard<std::mutex> g(pmu);
+    const double f = p.total ? static_cast<double>(p.done) / static_cast<double>(p.total) : 1.0;
+    const int w = 30, filled = static_cast<int>(f * w);
+    const double eta = p.done ? p.elapsed_s * static_cast<double>(p.total - p.done) / static_cast<double>(p.done) : -1.0;
+    err << "\r[" << std::string(static_cast<size_t>(filled), '#') << std::string(static_cast<size_t>(w - filled), ' ')
+        << "] " << p.done << "/" << p.total << " runs" << (comm.size() > 1 ? " (rank 0)" : "") << ", " << p.failed
+        << " failed, " << duration_text(eta) << " left   " << std::flush;
+  };
+}
+
+// Every rank's records (and error, and stop) on rank 0, sorted by index.
+std::vector<McRecord> gather_records(const McComm& comm, const std::vector<McRecord>& recs, bool& stopped,
+                                     std::string& run_error)
+{
+  json mine_j = {{"error", run_error}, {"stopped", stopped}, {"records", json::parse(mc_records_json(recs))}};
+  const std::vector<std::string> parts = comm.gather(mine_j.dump());
+  std::vector<McRecord> all;
+  for (const std::string& p : parts) {
+    const json j = json::parse(p);
+    if (!j.at("error").get<std::string>().empty() && run_error.empty()) run_error = j.at("error").get<std::string>();
+    stopped = stopped || j.at("stopped").get<bool>();
+    const std::vector<McRecord> r = mc_records_from_json(j.at("records").dump());
+    all.insert(all.end(), r.begin(), r.end());
+  }
+  std::sort(all.begin(), all.end(), [](const McRecord& a, const McRecord& b) { return a.index < b.index; });
+  return all;
+}
+
+// The campaign's files into its working folder, then the folder committed.
+int write_campaign(const McCommand& c, const McPlan& plan, const std::vector<Override>& ov,
+                   const std::vector<uint64_t>& indices, const std::vector<McRecord>& all, McSummaryInfo& info,
+                   const std::string& work, ResultsDir& rdir, std::ostream& err)
+{
+  const json partition =
+      c.shard_count > 1 ? json({{"shard", c.shard_index}, {"shards", c.shard_count}}) : json(nullptr);
+  if (c.shard_count > 1) info.partition = "shard " + std::to_string(c.shard_index) + "/" + std::to_string(c.shard_count);
+  try {
+    write_text((fs::path(work) / "mc_manifest.json").string(),
+               mc_manifest_text(plan, c.scenario, ov, partition, c.only.empty() ? std::vector<uint64_t>{} : indices,
+                                info.complete, all.size()));
+    write_mc_outputs(plan, all, info, work);
+    rdir.commit();
+  } catch (const std::exception& e) {
+    err << "kestrel: output error: " << e.what() << "\n";
+    return kExitOutput;
+  }
+  return kExitOk;
+}
+
+// What rank 0 does once the runs are in: the files, then the outcome.
+int finish_campaign(const McCommand& c, const McPlan& plan, const std::vector<Override>& ov,
+                    const std::vector<uint64_t>& indices, const std::vector<McRecord>& all, bool stopped, double wall,
+                    const std::string& work, std::optional<ResultsDir>& rdir, std::ostream& out, std::ostream& err)
+{
+  McSummaryInfo info;
+  info.source = c.scenario;
+  for (const Override& o : ov) info.overrides.push_back(o.path + "=" + o.value);
+  uint64_t planned = 0;
+  for (uint64_t k : indices)
+    if (k % c.shard_count == c.shard_index) ++planned;
+  info.complete = !stopped && all.size() == planned;
+  info.wall_seconds = wall;
+  if (write_campaign(c, plan, ov, indices, all, info, work, *rdir, err) != kExitOk) {
+    err << "kestrel: nothing was written to " << c.out_dir << " (its previous contents, if any, are unchanged)\n";
+    return kExitOutput;
+  }
+  if (stopped) {
+    err << "kestrel: interrupted after " << all.size() << " of " << planned << " runs; the finished runs are in "
+        << c.out_dir << ", marked incomplete\n";
+    return kExitInterruptedBase + (c.stop ? c.stop->load() : 0);
+  }
+  return print_outcome(all, c.out_dir, wall, out);
+}
+
+}  // namespace
+
+int cmd_mc(const McCommand& c0, std::ostream& out, std::ostream& err)
+{
+  McComm comm;  // MPI when started by mpirun
+  const bool root = comm.rank() == 0;
+  std::ostringstream sink;
+  std::ostream& rerr = root ? err : sink;  // one rank speaks
+  std::vector<Override> ov;
+  McPlan plan;
+  if (const std::optional<int> code = load_plan(c0, ov, plan, rerr)) return *code;
+  std::vector<uint64_t> indices;
+  if (const std::optional<int> code = select_runs(c0, plan, indices, rerr)) return *code;
+  if (c0.slurm_tasks > 0) return root ? write_slurm(c0, plan, ov, out, err) : kExitOk;
+  McCommand c = c0;
+  if (c.out_dir.empty()) c.out_dir = (fs::path("runs") / (plan.nominal.name + "_mc")).string();
+  std::optional<ResultsDir> rdir;
+  int code = kExitOk;
+  const std::string work = open_campaign_dir(comm, c.out_dir, c.force, rdir, code, rerr);
+  if (work.empty()) return code;
   McRunOptions ro;
   ro.jobs = std::max(1u, c.jobs);
-  ro.indices = mine;
+  ro.indices = my_runs(c, comm, indices);
   ro.stop = c.stop;
   std::mutex pmu;
-  if (c.progress && root) {
-    ro.progress = [&](const McProgress& p) {
-      std::lock_guard<std::mutex> g(pmu);
-      const double f = p.total ? static_cast<double>(p.done) / static_cast<double>(p.total) : 1.0;
-      const int w = 30, filled = static_cast<int>(f * w);
-      const double eta = p.done ? p.elapsed_s * static_cast<double>(p.total - p.done) / static_cast<double>(p.done) : -1.0;
-      err << "\r[" << std::string(static_cast<size_t>(filled), '#') << std::string(static_cast<size_t>(w - filled), ' ')
-          << "] " << p.done << "/" << p.total << " runs" << (comm.size() > 1 ? " (rank 0)" : "") << ", " << p.failed
-          << " failed, " << duration_text(eta) << " left   " << std::flush;
-    };
-  }
+  if (c.progress && root) ro.progress = progress_bar(err, comm, pmu);
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<McRecord> recs;
   bool stopped = false;
@@ -305,54 +401,136 @@ int cmd_mc(const McCommand& c, std::ostream& out, std::ostream& err)
     run_error = e.what();
   }
   if (c.progress && root) err << "\n";
-  // every rank's records (and error) to rank 0
-  json mine_j = {{"error", run_error}, {"stopped", stopped}, {"records", json::parse(mc_records_json(recs))}};
-  const std::vector<std::string> parts = comm.gather(mine_j.dump());
+  const std::vector<McRecord> all = gather_records(comm, recs, stopped, run_error);
   if (!root) return run_error.empty() ? kExitOk : kExitRunFailed;
-  std::vector<McRecord> all;
-  for (const std::string& p : parts) {
-    const json j = json::parse(p);
-    if (!j.at("error").get<std::string>().empty() && run_error.empty()) run_error = j.at("error").get<std::string>();
-    stopped = stopped || j.at("stopped").get<bool>();
-    const std::vector<McRecord> r = mc_records_from_json(j.at("records").dump());
-    all.insert(all.end(), r.begin(), r.end());
-  }
-  std::sort(all.begin(), all.end(), [](const McRecord& a, const McRecord& b) { return a.index < b.index; });
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!run_error.empty()) {
     err << "kestrel: campaign failed: " << run_error << "\n";
-    err << "kestrel: nothing was written to " << out_dir << "\n";
+    err << "kestrel: nothing was written to " << c.out_dir << "\n";
     return kExitOutput;
+  }
+  return finish_campaign(c, plan, ov, indices, all, stopped, wall, work, rdir, out, err);
+}
+
+int cmd_mc_program(McCommand c, const std::string& shard, std::ostream& out, std::ostream& err)
+{
+  if (c.scenario.empty()) {
+    err << "kestrel mc: a scenario file is required (or: kestrel mc merge -o DIR SHARD...)\n";
+    return kExitUsage;
+  }
+  if (!shard.empty()) {
+    unsigned long long i = 0, n = 0;
+    char extra = 0;
+    if (std::sscanf(shard.c_str(), "%llu/%llu%c", &i, &n, &extra) != 2 || n < 1 || i >= n || n > 100000) {
+      err << "kestrel mc: --shard expects i/N with 0 <= i < N <= 100000, got '" << shard << "'\n";
+      return kExitUsage;
+    }
+    c.shard_index = static_cast<uint32_t>(i);
+    c.shard_count = static_cast<uint32_t>(n);
+  }
+  c.progress = isatty(STDERR_FILENO) != 0;
+  c.stop = stop_on_signals();
+  return cmd_mc(c, out, err);
+}
+
+namespace {
+
+// The shards of one campaign, read and checked: the first one's manifest,
+// every record, the runs expected and the folders merged.
+struct ShardSet {
+  json first;
+  std::vector<McRecord> all;
+  std::set<uint64_t> seen, expected;
+  bool any_only = false;
+  json merged = json::array();
+};
+
+// One shard folder into the set; false (after a message) when it does not fit.
+bool read_shard(const std::string& s, const std::string& first_name, ShardSet& set, std::ostream& err)
+{
+  json m;
+  try {
+    m = json::parse(read_file(fs::path(s) / "mc_manifest.json"));
+  } catch (const std::exception& e) {
+    err << "kestrel: mc merge: " << s << " is not a campaign folder (mc_manifest.json: " << e.what() << ")\n";
+    return false;
+  }
+  if (set.first.is_null()) {
+    set.first = m;
+  } else if (m.at("scenario") != set.first.at("scenario") || m.at("master_seed") != set.first.at("master_seed") ||
+             m.at("runs") != set.first.at("runs")) {
+    err << "kestrel: mc merge: " << s << " is a shard of another campaign (scenario, master seed or runs differ from "
+        << first_name << ")\n";
+    return false;
+  }
+  if (!m.at("complete").get<bool>()) {
+    err << "kestrel: mc merge: " << s << " is incomplete (interrupted): rerun that shard first\n";
+    return false;
+  }
+  if (!m.at("only").empty()) {
+    set.any_only = true;
+    for (const json& k : m.at("only")) set.expected.insert(k.get<uint64_t>());
+  }
+  std::vector<McRecord> r;
+  try {
+    r = mc_records_from_json(read_file(fs::path(s) / "mc_runs.json"));
+  } catch (const std::exception& e) {
+    err << "kestrel: mc merge: " << s << "/mc_runs.json: " << e.what() << "\n";
+    return false;
+  }
+  for (const McRecord& x : r)
+    if (!set.seen.insert(x.index).second) {
+      err << "kestrel: mc merge: run " << x.index << " is in more than one shard (" << s << ")\n";
+      return false;
+    }
+  set.all.insert(set.all.end(), r.begin(), r.end());
+  set.merged.push_back(fs::absolute(s).string());
+  return true;
+}
+
+// Every run of the campaign (or of its --only list) is in some shard.
+bool check_complete(ShardSet& set, std::ostream& err)
+{
+  const uint64_t runs = set.first.at("runs").get<uint64_t>();
+  if (!set.any_only)
+    for (uint64_t k = 0; k < runs; ++k) set.expected.insert(k);
+  std::vector<uint64_t> missing;
+  for (uint64_t k : set.expected)
+    if (!set.seen.count(k)) missing.push_back(k);
+  if (missing.empty()) return true;
+  err << "kestrel: mc merge: " << missing.size() << " runs are in no shard (first: " << missing.front()
+      << "); give every shard of the campaign\n";
+  return false;
+}
+
+// The merged campaign folder: the shards' runs/ copied, the manifest and outputs.
+void write_merged(const std::string& out_dir, const std::vector<std::string>& shards, bool force, const McPlan& plan,
+                  const ShardSet& set)
+{
+  ResultsDir rdir(out_dir, force);
+  const fs::path runs_dir = rdir.work() / "runs";
+  fs::create_directories(runs_dir);
+  for (const std::string& s : shards) {
+    std::error_code ec;
+    if (!fs::is_directory(fs::path(s) / "runs", ec)) continue;
+    fs::copy(fs::path(s) / "runs", runs_dir, fs::copy_options::recursive, ec);  // the shards stay as they were
+    if (ec) throw OutputError("copying the runs of " + s + ": " + ec.message());
   }
   McSummaryInfo info;
-  info.source = c.scenario;
-  for (const Override& o : ov) info.overrides.push_back(o.path + "=" + o.value);
-  uint64_t planned = 0;
-  for (uint64_t k : indices)
-    if (k % c.shard_count == c.shard_index) ++planned;
-  info.complete = !stopped && all.size() == planned;
-  info.wall_seconds = wall;
-  const json partition =
-      c.shard_count > 1 ? json({{"shard", c.shard_index}, {"shards", c.shard_count}}) : json(nullptr);
-  if (c.shard_count > 1) info.partition = "shard " + std::to_string(c.shard_index) + "/" + std::to_string(c.shard_count);
-  try {
-    write_text((fs::path(work) / "mc_manifest.json").string(),
-               mc_manifest_text(plan, c.scenario, ov, partition, c.only.empty() ? std::vector<uint64_t>{} : indices,
-                                info.complete, all.size()));
-    write_mc_outputs(plan, all, info, work);
-    rdir->commit();
-  } catch (const std::exception& e) {
-    err << "kestrel: output error: " << e.what() << "\n";
-    err << "kestrel: nothing was written to " << out_dir << " (its previous contents, if any, are unchanged)\n";
-    return kExitOutput;
-  }
-  if (stopped) {
-    err << "kestrel: interrupted after " << all.size() << " of " << planned << " runs; the finished runs are in "
-        << out_dir << ", marked incomplete\n";
-    return kExitInterruptedBase + (c.stop ? c.stop->load() : 0);
-  }
-  return print_outcome(all, out_dir, wall, out);
+  info.source = set.first.at("source").get<std::string>();
+  info.complete = true;
+  for (const McRecord& r : set.all) info.wall_seconds += r.wall_seconds;
+  std::vector<Override> ov;
+  for (const json& o : set.first.at("overrides")) ov.push_back(parse_override(o.get<std::string>()));
+  const std::vector<uint64_t> only =
+      set.any_only ? std::vector<uint64_t>(set.expected.begin(), set.expected.end()) : std::vector<uint64_t>{};
+  write_text((rdir.work() / "mc_manifest.json").string(),
+             mc_manifest_text(plan, info.source, ov, nullptr, only, true, set.all.size(), set.merged));
+  write_mc_outputs(plan, set.all, info, rdir.work());
+  rdir.commit();
 }
+
+}  // namespace
 
 int cmd_mc_merge(const std::string& out_dir, const std::vector<std::string>& shards, bool force, std::ostream& out,
                  std::ostream& err)
@@ -361,95 +539,23 @@ int cmd_mc_merge(const std::string& out_dir, const std::vector<std::string>& sha
     err << "kestrel: mc merge: no shard folders given\n";
     return kExitUsage;
   }
-  json first;
-  std::vector<McRecord> all;
-  std::set<uint64_t> seen;
-  std::set<uint64_t> expected;
-  bool any_only = false;
-  json merged = json::array();
-  for (const std::string& s : shards) {
-    json m;
-    try {
-      m = json::parse(read_file(fs::path(s) / "mc_manifest.json"));
-    } catch (const std::exception& e) {
-      err << "kestrel: mc merge: " << s << " is not a campaign folder (mc_manifest.json: " << e.what() << ")\n";
-      return kExitUsage;
-    }
-    if (first.is_null()) {
-      first = m;
-    } else if (m.at("scenario") != first.at("scenario") || m.at("master_seed") != first.at("master_seed") ||
-               m.at("runs") != first.at("runs")) {
-      err << "kestrel: mc merge: " << s << " is a shard of another campaign (scenario, master seed or runs differ from "
-          << shards.front() << ")\n";
-      return kExitUsage;
-    }
-    if (!m.at("complete").get<bool>()) {
-      err << "kestrel: mc merge: " << s << " is incomplete (interrupted): rerun that shard first\n";
-      return kExitUsage;
-    }
-    if (!m.at("only").empty()) {
-      any_only = true;
-      for (const json& k : m.at("only")) expected.insert(k.get<uint64_t>());
-    }
-    std::vector<McRecord> r;
-    try {
-      r = mc_records_from_json(read_file(fs::path(s) / "mc_runs.json"));
-    } catch (const std::exception& e) {
-      err << "kestrel: mc merge: " << s << "/mc_runs.json: " << e.what() << "\n";
-      return kExitUsage;
-    }
-    for (const McRecord& x : r)
-      if (!seen.insert(x.index).second) {
-        err << "kestrel: mc merge: run " << x.index << " is in more than one shard (" << s << ")\n";
-        return kExitUsage;
-      }
-    all.insert(all.end(), r.begin(), r.end());
-    merged.push_back(fs::absolute(s).string());
-  }
-  const uint64_t runs = first.at("runs").get<uint64_t>();
-  if (!any_only)
-    for (uint64_t k = 0; k < runs; ++k) expected.insert(k);
-  std::vector<uint64_t> missing;
-  for (uint64_t k : expected)
-    if (!seen.count(k)) missing.push_back(k);
-  if (!missing.empty()) {
-    err << "kestrel: mc merge: " << missing.size() << " runs are in no shard (first: " << missing.front()
-        << "); give every shard of the campaign\n";
-    return kExitUsage;
-  }
+  ShardSet set;
+  for (const std::string& s : shards)
+    if (!read_shard(s, shards.front(), set, err)) return kExitUsage;
+  if (!check_complete(set, err)) return kExitUsage;
   McPlan plan;
   try {
     const Scenario sc =
-        load_scenario_text(json({{"kestrel_manifest", 1}, {"scenario", first.at("scenario")}}).dump(),
+        load_scenario_text(json({{"kestrel_manifest", 1}, {"scenario", set.first.at("scenario")}}).dump(),
                            (fs::path(shards.front()) / "mc_manifest.json").string());
-    plan = make_mc_plan(sc, first.at("master_seed").get<uint64_t>(), runs);
+    plan = make_mc_plan(sc, set.first.at("master_seed").get<uint64_t>(), set.first.at("runs").get<uint64_t>());
   } catch (const ScenarioError& e) {
     print_issues(e, err);
     return kExitInvalidScenario;
   }
-  std::sort(all.begin(), all.end(), [](const McRecord& a, const McRecord& b) { return a.index < b.index; });
+  std::sort(set.all.begin(), set.all.end(), [](const McRecord& a, const McRecord& b) { return a.index < b.index; });
   try {
-    ResultsDir rdir(out_dir, force);
-    const fs::path runs_dir = rdir.work() / "runs";
-    fs::create_directories(runs_dir);
-    for (const std::string& s : shards) {
-      std::error_code ec;
-      if (!fs::is_directory(fs::path(s) / "runs", ec)) continue;
-      fs::copy(fs::path(s) / "runs", runs_dir, fs::copy_options::recursive, ec);  // the shards stay as they were
-      if (ec) throw OutputError("copying the runs of " + s + ": " + ec.message());
-    }
-    McSummaryInfo info;
-    info.source = first.at("source").get<std::string>();
-    info.complete = true;
-    for (const McRecord& r : all) info.wall_seconds += r.wall_seconds;
-    std::vector<Override> ov;
-    for (const json& o : first.at("overrides")) ov.push_back(parse_override(o.get<std::string>()));
-    write_text((rdir.work() / "mc_manifest.json").string(),
-               mc_manifest_text(plan, info.source, ov, nullptr,
-                                any_only ? std::vector<uint64_t>(expected.begin(), expected.end()) : std::vector<uint64_t>{},
-                                true, all.size(), merged));
-    write_mc_outputs(plan, all, info, rdir.work());
-    rdir.commit();
+    write_merged(out_dir, shards, force, plan, set);
   } catch (const ResultsDirRefused& e) {
     err << "kestrel: " << e.what() << "\n";
     return kExitRefused;
@@ -459,8 +565,8 @@ int cmd_mc_merge(const std::string& out_dir, const std::vector<std::string>& sha
   }
   out << "merged " << shards.size() << " shards: ";
   double cpu = 0.0;
-  for (const McRecord& r : all) cpu += r.wall_seconds;
-  return print_outcome(all, out_dir, cpu, out);
+  for (const McRecord& r : set.all) cpu += r.wall_seconds;
+  return print_outcome(set.all, out_dir, cpu, out);
 }
 
 }  // namespace harness

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "harness/drive/run_scenario.h"
+#include "harness/drive/run_steps.h"
 #include "harness/link/pil.h"
 #include "harness/output/results_dir.h"
 
@@ -51,92 +52,171 @@ std::string signal_name(int s)
   }
 }
 
-// The endpoint behind the link.  With real-time pacing a cycle waits at most
-// one FSW period of wall time and, unless told otherwise, holds the last
-// command when its reply is late.
+// The endpoint behind the link, with the options of this run
+// (LinkOptions::for_run: the defaulting rules).
 std::unique_ptr<FswEndpoint> make_remote_fsw(const Scenario& sc, const RunOptions& opt, RemoteFsw*& remote,
                                              std::function<double()> time_left)
 {
-  LinkOptions lo = opt.link;
-  if (opt.realtime_scale > 0) {
-    if (!lo.on_missing_set) lo.on_missing = LinkOptions::Missing::kHold;
-    lo.on_missing_set = true;
-    lo.reply_timeout_s = sc.rates.dt * sc.rates.fsw_divisor / opt.realtime_scale;
-    lo.time_left = std::move(time_left);
-  }
+  const LinkOptions lo =
+      opt.link.for_run(sc.rates.dt * sc.rates.fsw_divisor, opt.realtime_scale, std::move(time_left));
   const FswAcsConfig fcfg = fsw_acs_config_of(sc);
   auto r = std::make_unique<RemoteFsw>(open_fsw_transport(opt.fsw_link, fcfg, lo), fcfg, lo);
   remote = r.get();
   return r;
 }
 
+void add_item(std::vector<SummaryItem>& v, const char* key, double value, const char* unit, const char* what)
+{
+  v.push_back({key, value, unit, what});
+}
+
+void add_pacing_items(std::vector<SummaryItem>& v, const PacingStats& p)
+{
+  add_item(v, "rt_scale", p.scale, "", "paced at this multiple of real time");
+  add_item(v, "rt_lateness_p50", p.lateness_p50_s, "s", "tick wake-up after its deadline, median");
+  add_item(v, "rt_lateness_p99", p.lateness_p99_s, "s", "99th percentile");
+  add_item(v, "rt_lateness_max", p.lateness_max_s, "s", "maximum");
+  add_item(v, "rt_overruns", static_cast<double>(p.overruns), "", "ticks whose work ended after the next deadline");
+  add_item(v, "rt_drift", p.drift_s, "s", "last tick's lateness (absolute deadlines: no accumulation)");
+  add_item(v, "rt_priority", p.realtime_priority ? 1 : 0, "", "1: SCHED_FIFO and locked memory");
+}
+
+void add_link_items(std::vector<SummaryItem>& v, const LinkCounters& l)
+{
+  const auto n = [](uint64_t x) { return static_cast<double>(x); };
+  add_item(v, "link_cycles", n(l.cycles), "", "FSW cycles over the link");
+  add_item(v, "link_sent", n(l.sent), "", "sensor packets sent (duplicates included)");
+  add_item(v, "link_lost", n(l.lost), "", "dropped by the loss injector");
+  add_item(v, "link_corrupted", n(l.corrupted), "", "sent with flipped bits");
+  add_item(v, "link_missing", n(l.missing), "", "cycles without a reply (last command held or zero applied)");
+  add_item(v, "link_rejected", n(l.rejected), "", "received packets the harness rejected");
+  add_item(v, "link_fsw_rx_crc", n(l.fsw.rx_crc), "", "FSW end: packets rejected on CRC");
+  add_item(v, "link_fsw_rx_stale", n(l.fsw.rx_stale), "", "FSW end: duplicate, old or out-of-order sensor packets");
+  add_item(v, "link_fsw_missed", n(l.fsw.missed), "", "FSW end: control cycles without a sensor packet");
+}
+
 }  // namespace
 
-RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
+// ---- the outputs --------------------------------------------------------
+
+RunOutputs::RunOutputs(const std::string& out_dir, bool force)
 {
-  RunResult res;
-  const bool files = !opt.out_dir.empty();
-  // lock, refuse or replace, working folder: before anything is simulated
-  std::optional<ResultsDir> rdir;
-  if (files) rdir.emplace(opt.out_dir, opt.force);
-  RunConfig cfg;
-  cfg.keep_in_memory = false;  // streamed: memory does not grow with the duration
-  RemoteFsw* remote = nullptr;
-  // paced: the FSW link waits for a reply at most until the deadline of the
-  // tick after the one being computed (pacer below, created after the run)
-  std::optional<Pacer> pacer;
-  uint64_t pacing_tick = 0;
-  if (!opt.fsw_link.empty())
-    cfg.fsw = make_remote_fsw(sc, opt, remote, [&pacer, &pacing_tick] {
-      return pacer ? pacer->seconds_to(pacing_tick + 1) : std::numeric_limits<double>::infinity();
-    });
-  cfg.accept_events = opt.control != nullptr;  // the live view's commands are events
-  Run run(sc, std::move(cfg));
-  if (rdir) rdir->require_free_space(output_estimate(run, sc));
-  const fs::path dir = files ? rdir->work() : fs::path();
-  const std::string manifest = files ? manifest_text(sc, opt.overrides) : std::string();
-  std::vector<std::string> written;  // names in the results folder, in order
-  if (files) {
-    // the input record first: a run killed outright leaves it in the working folder
-    write_text((dir / "manifest.json").string(), manifest);
-    written.push_back("manifest.json");
+  if (!out_dir.empty()) {
+    dir_.emplace(out_dir, force);
+    work_ = dir_->work();
   }
-  std::optional<Hdf5Sink> h5;
-  std::optional<CsvSink> csv;
-  std::optional<ReportSink> report;
-  if (files && sc.outputs.hdf5) {
-    h5.emplace((dir / "results.h5").string(), run.scenario(), manifest);  // with the events added while running
-    h5->set_events(&run.events_applied());
-    run.add_sink(*h5);
+}
+
+void RunOutputs::write_file(const std::string& name, const std::string& text)
+{
+  write_text((work_ / name).string(), text);
+  written_.push_back(name);
+}
+
+void RunOutputs::open(Run& run, const std::vector<Override>& overrides, const std::vector<RecordSink*>& extra)
+{
+  if (files()) {
+    const Scenario& sc = run.scenario();
+    dir_->require_free_space(output_estimate(run, sc));
+    manifest_ = manifest_text(sc, overrides);
+    write_file("manifest.json", manifest_);
+    if (sc.outputs.hdf5) {
+      h5_.emplace((work_ / "results.h5").string(), sc, manifest_);
+      h5_->set_events(&run.events_applied());  // with the events added while running
+      run.add_sink(*h5_);
+    }
+    if (sc.outputs.csv) {
+      csv_.emplace((work_ / "telemetry.csv").string());
+      run.add_sink(*csv_);
+    }
+    if (sc.outputs.report_data) {
+      report_.emplace();
+      run.add_sink(*report_);
+    }
   }
-  if (files && sc.outputs.csv) {
-    csv.emplace((dir / "telemetry.csv").string());
-    run.add_sink(*csv);
+  for (RecordSink* s : extra) run.add_sink(*s);
+}
+
+void RunOutputs::write_report(const Run& run, const RunResult& res)
+{
+  const std::string data = report_data_text(run, *report_, &res.status, res.paced ? &res.pacing : nullptr);
+  write_file("report_data.json", data);
+#ifdef KESTREL_HAVE_REPORT
+  try {
+    report::write_html(data, (work_ / "report.html").string());
+  } catch (const std::exception& e) {
+    throw OutputError(e.what());
   }
-  if (files && sc.outputs.report_data) {
-    report.emplace();
-    run.add_sink(*report);
+  written_.push_back("report.html");
+#endif
+}
+
+void RunOutputs::write(const Run& run, RunResult& res, const std::vector<Override>& overrides)
+{
+  if (!files()) return;
+  const Scenario& sc = run.scenario();
+  if (h5_) written_.push_back("results.h5");
+  if (csv_) written_.push_back("telemetry.csv");
+  if (report_) write_report(run, res);
+  write_file("dataflow.dot", run.dataflow().to_dot(sc.name));
+  std::ostringstream health;
+  for (const std::string& l : run.fsw_health_lines()) health << l << "\n";
+  write_file("fsw_health.txt", health.str());
+  write_file("summary.txt", summary_text(res.status, sc.duration, summary_items(run, res)));
+  // the manifest again, now saying how the run ended
+  // (run.scenario(): with the events the live view added, so it replays them)
+  write_text((work_ / "manifest.json").string(), manifest_text(sc, overrides, &res.status));
+  dir_->commit();
+  for (const std::string& n : written_) res.files.push_back((dir_->target() / n).string());
+}
+
+// ---- pacing and the loop ------------------------------------------------
+
+void RunPacing::pace_at(const Scenario& sc, double scale, const std::function<void(const std::string&)>& notice)
+{
+  if (!pacer_) {
+    pacer_.emplace(sc.tick_ns(), scale);
+    const std::string w = pacer_->request_realtime();
+    if (!w.empty() && notice) notice(w);
+  } else {
+    pacer_->restart(scale);
   }
-  for (RecordSink* s : opt.extra_sinks) run.add_sink(*s);
+  notice_every_ = std::max<uint64_t>(1, static_cast<uint64_t>(1e10 * scale / static_cast<double>(sc.tick_ns())));
+}
+
+double RunPacing::time_left() const
+{
+  return pacer_ ? pacer_->seconds_to(tick_ + 1) : std::numeric_limits<double>::infinity();
+}
+
+bool RunPacing::step(Run& run, const std::function<void(const std::string&)>& notice)
+{
+  const uint64_t k = run.tick();
+  pacer_->wait_for(k);
+  tick_ = k;
+  if (!run.step_ticks(1)) return false;
+  pacer_->done(k);
+  if ((k + 1) % notice_every_ == 0) {
+    const uint64_t late = pacer_->take_new_overruns();
+    if (late > 0 && notice)
+      notice("cannot keep up: " + std::to_string(late) + " of the last " + std::to_string(notice_every_) +
+             " ticks overran their deadline");
+  }
+  return true;
+}
+
+void drive(Run& run, const RunOptions& opt, RunPacing& pacing, RunResult& res)
+{
+  const Scenario& sc = run.scenario();
   // chunks of at most 1000 ticks: a stop request is seen within milliseconds
   const uint64_t total = run.total_ticks();
   const uint64_t chunk = std::clamp<uint64_t>(total / 200, 1, 1000);
-  uint64_t notice_every = 1;  // paced: ticks per ~10 s of wall time (one notice at most)
-  auto pace_at = [&](double scale) {
-    if (!pacer) {
-      pacer.emplace(sc.tick_ns(), scale);
-      const std::string w = pacer->request_realtime();
-      if (!w.empty() && opt.notice) opt.notice(w);
-    } else {
-      pacer->restart(scale);
-    }
-    notice_every = std::max<uint64_t>(1, static_cast<uint64_t>(1e10 * scale / static_cast<double>(sc.tick_ns())));
-  };
-  if (opt.realtime_scale > 0.0) pace_at(opt.realtime_scale);
+  const auto stop_asked = [&opt] { return opt.stop && opt.stop->load() != 0; };
+  if (opt.realtime_scale > 0.0) pacing.pace_at(sc, opt.realtime_scale, opt.notice);
   if (opt.control) opt.control->started(run, opt.realtime_scale, opt.stop);
   const auto t0 = std::chrono::steady_clock::now();
   while (!run.done()) {
-    if (opt.stop && opt.stop->load() != 0) {
+    if (stop_asked()) {
       res.stopped_by_signal = opt.stop->load();
       break;
     }
@@ -144,34 +224,31 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
     if (opt.control) {  // commands enter here, at a tick boundary; a pause waits here
       double pace = 0.0;
       limit = std::min(chunk, opt.control->boundary(run, pace));
-      if (pace > 0.0) pace_at(pace);
-      if (opt.stop && opt.stop->load() != 0) continue;
+      if (pace > 0.0) pacing.pace_at(sc, pace, opt.notice);
+      if (stop_asked()) continue;
     }
-    if (pacer) {  // one tick at a time, each at its deadline
-      const uint64_t k = run.tick();
-      pacer->wait_for(k);
-      pacing_tick = k;
-      if (!run.step_ticks(1)) break;
-      pacer->done(k);
-      if ((k + 1) % notice_every == 0) {
-        const uint64_t late = pacer->take_new_overruns();
-        if (late > 0 && opt.notice)
-          opt.notice("cannot keep up: " + std::to_string(late) + " of the last " + std::to_string(notice_every) +
-                     " ticks overran their deadline");
-      }
-      if (opt.progress && (k + 1) % chunk == 0) opt.progress(static_cast<double>(run.tick()) / static_cast<double>(total));
+    if (pacing.on()) {  // one tick at a time, each at its deadline
+      if (!pacing.step(run, opt.notice)) break;
+      if (opt.progress && run.tick() % chunk == 0)
+        opt.progress(static_cast<double>(run.tick()) / static_cast<double>(total));
       continue;
     }
     if (!run.step_ticks(limit)) break;
     if (opt.progress) opt.progress(static_cast<double>(run.tick()) / static_cast<double>(total));
   }
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (pacer) {
+  if (pacing.on()) {
     res.paced = true;
-    res.pacing = pacer->stats();
+    res.pacing = pacing.stats();
   }
+}
+
+// ---- the end of a run ---------------------------------------------------
+
+void finish_run(Run& run, const RemoteFsw* remote, RunResult& res)
+{
   res.ticks = run.tick();
-  res.sim_seconds = sc.duration;
+  res.sim_seconds = run.scenario().duration;
   res.failure = run.failure();
   res.ok = res.failure.empty() && res.stopped_by_signal == 0;
   // Results are written also for a failed or interrupted run (never lose
@@ -189,69 +266,49 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   st.t_reached = run.recorder().rows() > 0 ? run.recorder().last_row()[0] : 0.0;
   st.stopped_by = res.stopped_by_signal ? signal_name(res.stopped_by_signal) : res.failure;
   st.events = run.events_applied();
-  if (!files) {
-    if (opt.control) opt.control->ended(run, res);
-    return res;
-  }
-  if (h5) written.push_back("results.h5");
-  if (csv) written.push_back("telemetry.csv");
-  if (report) {
-    const std::string data = report_data_text(run, *report, &st, res.paced ? &res.pacing : nullptr);
-    write_text((dir / "report_data.json").string(), data);
-    written.push_back("report_data.json");
-#ifdef KESTREL_HAVE_REPORT
-    try {
-      report::write_html(data, (dir / "report.html").string());
-    } catch (const std::exception& e) {
-      throw OutputError(e.what());
-    }
-    written.push_back("report.html");
-#endif
-  }
-  write_text((dir / "dataflow.dot").string(), run.dataflow().to_dot(sc.name));
-  written.push_back("dataflow.dot");
-  std::ostringstream health;
-  for (const std::string& l : run.fsw_health_lines()) health << l << "\n";
-  write_text((dir / "fsw_health.txt").string(), health.str());
-  written.push_back("fsw_health.txt");
+}
+
+std::vector<SummaryItem> summary_items(const Run& run, const RunResult& res)
+{
+  std::vector<SummaryItem> v;
+  add_item(v, "complete", res.status.complete ? 1 : 0, "", "1: the run reached its duration");
+  add_item(v, "t_reached", res.status.t_reached, "s", "time of the last recorded row");
+  for (const SummaryItem& it : run.summary()) v.push_back(it);
+  if (res.paced) add_pacing_items(v, res.pacing);
+  if (res.linked) add_link_items(v, res.link);
+  return v;
+}
+
+std::string summary_text(const RunStatus& st, double duration, const std::vector<SummaryItem>& items)
+{
   std::ostringstream summ;
   summ << std::setprecision(10);
   if (!st.complete)
     summ << "# INCOMPLETE: stopped" << (st.stopped_by.empty() ? "" : " (" + st.stopped_by + ")") << " at t = "
-         << st.t_reached << " s of " << sc.duration << " s\n";
-  summ << "complete = " << (st.complete ? 1 : 0) << "     # 1: the run reached its duration\n";
-  summ << "t_reached = " << st.t_reached << " s    # time of the last recorded row\n";
-  for (const SummaryItem& it : run.summary())
+         << st.t_reached << " s of " << duration << " s\n";
+  for (const SummaryItem& it : items)
     summ << it.key << " = " << it.value << " " << it.unit << "    # " << it.what << "\n";
-  if (res.paced) {
-    const PacingStats& p = res.pacing;
-    summ << "rt_scale = " << p.scale << "     # paced at this multiple of real time\n";
-    summ << "rt_lateness_p50 = " << p.lateness_p50_s << " s    # tick wake-up after its deadline, median\n";
-    summ << "rt_lateness_p99 = " << p.lateness_p99_s << " s    # 99th percentile\n";
-    summ << "rt_lateness_max = " << p.lateness_max_s << " s    # maximum\n";
-    summ << "rt_overruns = " << p.overruns << "     # ticks whose work ended after the next deadline\n";
-    summ << "rt_drift = " << p.drift_s << " s    # last tick's lateness (absolute deadlines: no accumulation)\n";
-    summ << "rt_priority = " << (p.realtime_priority ? 1 : 0) << "     # 1: SCHED_FIFO and locked memory\n";
-  }
-  if (res.linked) {
-    const LinkCounters& l = res.link;
-    summ << "link_cycles = " << l.cycles << "     # FSW cycles over the link\n";
-    summ << "link_sent = " << l.sent << "     # sensor packets sent (duplicates included)\n";
-    summ << "link_lost = " << l.lost << "     # dropped by the loss injector\n";
-    summ << "link_corrupted = " << l.corrupted << "     # sent with flipped bits\n";
-    summ << "link_missing = " << l.missing << "     # cycles without a reply (last command held or zero applied)\n";
-    summ << "link_rejected = " << l.rejected << "     # received packets the harness rejected\n";
-    summ << "link_fsw_rx_crc = " << l.fsw.rx_crc << "     # FSW end: packets rejected on CRC\n";
-    summ << "link_fsw_rx_stale = " << l.fsw.rx_stale << "     # FSW end: duplicate, old or out-of-order sensor packets\n";
-    summ << "link_fsw_missed = " << l.fsw.missed << "     # FSW end: control cycles without a sensor packet\n";
-  }
-  write_text((dir / "summary.txt").string(), summ.str());
-  written.push_back("summary.txt");
-  // the manifest again, now saying how the run ended
-  // (run.scenario(): with the events the live view added, so it replays them)
-  write_text((dir / "manifest.json").string(), manifest_text(run.scenario(), opt.overrides, &st));
-  rdir->commit();
-  for (const std::string& n : written) res.files.push_back((rdir->target() / n).string());
+  return summ.str();
+}
+
+// ---- the whole run ------------------------------------------------------
+
+RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
+{
+  RunResult res;
+  RunOutputs outputs(opt.out_dir, opt.force);  // lock, refuse or replace: before anything is simulated
+  RunPacing pacing;
+  RunConfig cfg;
+  cfg.keep_in_memory = false;  // streamed: memory does not grow with the duration
+  RemoteFsw* remote = nullptr;
+  if (!opt.fsw_link.empty())
+    cfg.fsw = make_remote_fsw(sc, opt, remote, [&pacing] { return pacing.time_left(); });
+  cfg.accept_events = opt.control != nullptr;  // the live view's commands are events
+  Run run(sc, std::move(cfg));
+  outputs.open(run, opt.overrides, opt.extra_sinks);
+  drive(run, opt, pacing, res);
+  finish_run(run, remote, res);
+  outputs.write(run, res, opt.overrides);
   if (opt.control) opt.control->ended(run, res);
   return res;
 }

@@ -156,6 +156,13 @@ struct LiveServer::Impl {
     res.set_content(json{{"ok", false}, {"error", msg}}.dump(), "application/json");
   }
   void post_command(const httplib::Request& req, httplib::Response& res);
+  // A command's JSON into c and the text of its log entry; "" or why it is
+  // refused (400).
+  std::string read_command(const json& j, Command& c, std::string& text);
+  std::string read_event(const json& j, Command& c, std::string& text);
+  // Queues c (its id set); false after refusing it (too many waiting, or
+  // the most events a scenario may have).
+  bool enqueue(Command& c, const std::string& text, httplib::Response& res);
   std::string frames_text(uint64_t since);
   void publish(const Run& run, bool force);
   // the sim thread: applies what is queued at the boundary before tick k
@@ -242,6 +249,86 @@ void LiveServer::Impl::serve()
   });
 }
 
+std::string LiveServer::Impl::read_event(const json& j, Command& c, std::string& text)
+{
+  if (!j.contains("device") || !j["device"].is_string() || !j.contains("action") || !j["action"].is_string())
+    return "event: needs \"device\" and \"action\" (strings) and, when the action takes one, \"value\"";
+  c.action.device = j["device"].get<std::string>();
+  c.action.action = j["action"].get<std::string>();
+  if (j.contains("value") && !j["value"].is_null()) {
+    if (!j["value"].is_number()) return "event: value must be a number";
+    c.action.value = j["value"].get<double>();
+  }
+  // the scenario event validation (events.cpp), as for a scenario file
+  std::string key;
+  const std::string why = check_event_action(sc, c.action, key);
+  if (!why.empty()) return key + ": " + why;
+  text = c.action.device + " " + c.action.action;
+  if (!std::isnan(c.action.value)) {
+    std::ostringstream o;
+    o.precision(10);
+    o << c.action.value;
+    text += " " + o.str();
+  }
+  return "";
+}
+
+std::string LiveServer::Impl::read_command(const json& j, Command& c, std::string& text)
+{
+  c.op = j["op"].get<std::string>();
+  text = c.op;
+  if (c.op == "pause" || c.op == "resume") return "";
+  if (c.op == "step") {
+    const json n = j.value("ticks", json(1));
+    if (!n.is_number_integer() || n.get<int64_t>() < 1 || n.get<int64_t>() > 1000000)
+      return "step: ticks must be an integer in [1, 1000000]";
+    c.ticks = n.get<uint64_t>();
+    text += " " + std::to_string(c.ticks) + " tick" + (c.ticks == 1 ? "" : "s");
+    return "";
+  }
+  if (c.op == "rate") {
+    const json v = j.value("value", json());
+    if (!v.is_number() || !(v.get<double>() > 0.0) || !(v.get<double>() <= 1e6))
+      return "rate: value must be a multiple of real time in (0, 1e6]";
+    c.value = v.get<double>();
+    std::ostringstream o;
+    o << "rate " << c.value << "x";
+    text = o.str();
+    return "";
+  }
+  if (c.op == "event") return read_event(j, c, text);
+  return "unknown command '" + escape_bytes(c.op) + "' (pause, resume, step, rate, event)";
+}
+
+bool LiveServer::Impl::enqueue(Command& c, const std::string& text, httplib::Response& res)
+{
+  std::lock_guard<std::mutex> lk(cmd_mu);
+  if (queue.size() >= kMaxQueued) {
+    ++refused;
+    res.status = 429;
+    res.set_content(json{{"ok", false}, {"error", "too many commands waiting for the run"}}.dump(), "application/json");
+    return false;
+  }
+  if (c.op == "event") {
+    if (live_events >= max_live_events) {
+      ++refused;
+      res.status = 409;
+      res.set_content(json{{"ok", false},
+                           {"error", "the run holds the most events a scenario may have (" +
+                                         std::to_string(kMaxScenarioEvents) + ")"}}
+                          .dump(),
+                      "application/json");
+      return false;
+    }
+    ++live_events;
+  }
+  c.id = next_id++;
+  log.push_back({c.id, text, "queued", "", 0, 0.0});
+  queue.push_back(c);
+  has_cmd.store(true);
+  return true;
+}
+
 void LiveServer::Impl::post_command(const httplib::Request& req, httplib::Response& res)
 {
   json j;
@@ -267,91 +354,16 @@ void LiveServer::Impl::post_command(const httplib::Request& req, httplib::Respon
     return;
   }
   Command c;
-  c.op = j["op"].get<std::string>();
-  std::string text = c.op;
-  if (c.op == "pause" || c.op == "resume") {
-  } else if (c.op == "step") {
-    const json n = j.value("ticks", json(1));
-    if (!n.is_number_integer() || n.get<int64_t>() < 1 || n.get<int64_t>() > 1000000) {
-      refuse(res, 400, "step: ticks must be an integer in [1, 1000000]");
-      return;
-    }
-    c.ticks = n.get<uint64_t>();
-    text += " " + std::to_string(c.ticks) + " tick" + (c.ticks == 1 ? "" : "s");
-  } else if (c.op == "rate") {
-    const json v = j.value("value", json());
-    if (!v.is_number() || !(v.get<double>() > 0.0) || !(v.get<double>() <= 1e6)) {
-      refuse(res, 400, "rate: value must be a multiple of real time in (0, 1e6]");
-      return;
-    }
-    c.value = v.get<double>();
-    std::ostringstream o;
-    o << "rate " << c.value << "x";
-    text = o.str();
-  } else if (c.op == "event") {
-    if (!j.contains("device") || !j["device"].is_string() || !j.contains("action") || !j["action"].is_string()) {
-      refuse(res, 400, "event: needs \"device\" and \"action\" (strings) and, when the action takes one, \"value\"");
-      return;
-    }
-    c.action.device = j["device"].get<std::string>();
-    c.action.action = j["action"].get<std::string>();
-    if (j.contains("value") && !j["value"].is_null()) {
-      if (!j["value"].is_number()) {
-        refuse(res, 400, "event: value must be a number");
-        return;
-      }
-      c.action.value = j["value"].get<double>();
-    }
-    // the scenario event validation (events.cpp), as for a scenario file
-    std::string key;
-    const std::string why = check_event_action(sc, c.action, key);
-    if (!why.empty()) {
-      refuse(res, 400, key + ": " + why);
-      return;
-    }
-    text = c.action.device + " " + c.action.action;
-    if (!std::isnan(c.action.value)) {
-      std::ostringstream o;
-      o.precision(10);
-      o << c.action.value;
-      text += " " + o.str();
-    }
-  } else {
-    refuse(res, 400, "unknown command '" + escape_bytes(c.op) + "' (pause, resume, step, rate, event)");
+  std::string text;
+  const std::string why = read_command(j, c, text);
+  if (!why.empty()) {
+    refuse(res, 400, why);
     return;
   }
-  uint64_t id = 0;
-  {
-    std::lock_guard<std::mutex> lk(cmd_mu);
-    if (queue.size() >= kMaxQueued) {
-      ++refused;
-      res.status = 429;
-      res.set_content(json{{"ok", false}, {"error", "too many commands waiting for the run"}}.dump(),
-                      "application/json");
-      return;
-    }
-    if (c.op == "event") {
-      if (live_events >= max_live_events) {
-        ++refused;
-        res.status = 409;
-        res.set_content(json{{"ok", false},
-                             {"error", "the run holds the most events a scenario may have (" +
-                                           std::to_string(kMaxScenarioEvents) + ")"}}
-                            .dump(),
-                        "application/json");
-        return;
-      }
-      ++live_events;
-    }
-    id = next_id++;
-    c.id = id;
-    log.push_back({id, text, "queued", "", 0, 0.0});
-    queue.push_back(c);
-    has_cmd.store(true);
-  }
+  if (!enqueue(c, text, res)) return;
   cmd_cv.notify_all();
   res.status = 202;
-  res.set_content(json{{"ok", true}, {"id", id}, {"command", text}}.dump(), "application/json");
+  res.set_content(json{{"ok", true}, {"id", c.id}, {"command", text}}.dump(), "application/json");
 }
 
 std::string LiveServer::Impl::frames_text(uint64_t since)

@@ -8,6 +8,7 @@
 
 #include "harness/mc/monte_carlo.h"
 #include "harness/drive/run_scenario.h"
+#include "harness/drive/run_steps.h"
 #include "harness/core/run.h"
 #include "scenario/mc_draw.h"
 
@@ -279,6 +280,92 @@ McPlan make_mc_plan(const Scenario& nominal, uint64_t master_seed, uint64_t runs
   return p;
 }
 
+namespace {
+
+// An invalid draw's folder: its manifest only.
+void write_draw_manifest(const fs::path& dir, const Scenario& sc)
+{
+  fs::create_directories(dir);
+  write_text((dir / "manifest.json").string(), manifest_text(sc, {}));
+}
+
+// A run with full results: run_scenario() into dir, the campaign's sink fed too.
+RunResult run_full(const Scenario& sc, const fs::path& dir, McSink& sink, const std::atomic<int>* stop)
+{
+  RunOptions o;
+  o.out_dir = dir.string();
+  o.force = true;  // the folder holds at most this run's manifest (a retention rerun)
+  o.extra_sinks.push_back(&sink);
+  o.stop = stop;
+  const RunResult r = run_scenario(sc, o);
+  // the run folder's lock file: no other process writes into a campaign's runs/
+  std::error_code ec;
+  fs::remove(dir.parent_path() / ("." + dir.filename().string() + ".kestrel-lock"), ec);
+  return r;
+}
+
+// A run without files but its manifest (with how it ended): the same steps
+// as run_scenario(), the campaign's sink the only one.
+RunResult run_light(const Scenario& sc, const fs::path& dir, McSink& sink, const std::atomic<int>* stop)
+{
+  RunOptions o;
+  o.stop = stop;
+  RunResult r;
+  RunOutputs outputs("", false);
+  RunPacing pacing;
+  RunConfig rc;
+  rc.keep_in_memory = false;
+  Run run(sc, std::move(rc));
+  outputs.open(run, {}, {&sink});
+  drive(run, o, pacing, r);
+  finish_run(run, nullptr, r);
+  fs::create_directories(dir);
+  write_text((dir / "manifest.json").string(), manifest_text(sc, {}, &r.status));
+  return r;
+}
+
+// A drawn run to its metrics: full results (run_scenario) or the light run.
+void run_draw(const McPlan& plan, const Scenario& sc, const fs::path& dir, bool full, const std::atomic<int>* stop,
+              McRecord& rec)
+{
+  McSink sink(plan);
+  std::string failure;
+  try {
+    const RunResult r = full ? run_full(sc, dir, sink, stop) : run_light(sc, dir, sink, stop);
+    rec.interrupted = r.stopped_by_signal != 0;
+    failure = r.failure;
+    rec.complete = r.status.complete;
+    rec.full = full;
+  } catch (const ScenarioError& e) {  // a configuration the plant or FSW refuses: an invalid draw
+    const ScenarioIssue& is = e.issues().front();
+    rec.invalid = true;
+    rec.reason = "invalid draw: " + is.key + ": " + is.message;
+    write_draw_manifest(dir, sc);
+  }
+  if (rec.interrupted || rec.invalid) return;
+  rec.metrics = sink.metrics();
+  rec.series = sink.series();
+  if (!rec.complete) rec.reason = "run failed: " + (failure.empty() ? std::string("incomplete") : failure);
+}
+
+// The first criterion a run's metrics fail ("" : all pass).
+std::string failed_criterion(const McPlan& plan, const std::vector<double>& metrics)
+{
+  for (size_t m = 0; m < plan.metrics.size(); ++m) {
+    const McMetric& mt = plan.metrics[m];
+    if (mt.criterion < 0) continue;
+    const double v = metrics[m];
+    const bool ok = mt.below ? v < mt.threshold : v > mt.threshold;
+    if (!ok)
+      return mt.col.name + ": " + mt.col.what + " = " + (std::isnan(v) ? std::string("not available") : fmt(v)) +
+             (mt.below ? ", not below " : ", not above ") + fmt(mt.threshold) +
+             (mt.col.unit.empty() || mt.col.unit == "-" ? "" : " " + mt.col.unit);
+  }
+  return "";
+}
+
+}  // namespace
+
 McRecord run_mc_one(const McPlan& plan, uint64_t k, const fs::path& dir, bool full, const std::atomic<int>* stop)
 {
   const auto t0 = std::chrono::steady_clock::now();
@@ -293,77 +380,12 @@ McRecord run_mc_one(const McPlan& plan, uint64_t k, const fs::path& dir, bool fu
   if (!d.invalid.empty()) {
     rec.invalid = true;
     rec.reason = "invalid draw: " + d.invalid;
-    fs::create_directories(dir);
-    write_text((dir / "manifest.json").string(), manifest_text(d.sc, {}));
+    write_draw_manifest(dir, d.sc);
   } else {
-    McSink sink(plan);
-    RunStatus st;
-    std::string failure;
-    try {
-      if (full) {
-        RunOptions o;
-        o.out_dir = dir.string();
-        o.force = true;  // the folder holds at most this run's manifest (a retention rerun)
-        o.extra_sinks.push_back(&sink);
-        o.stop = stop;
-        const RunResult r = run_scenario(d.sc, o);
-        rec.interrupted = r.stopped_by_signal != 0;
-        // the run folder's lock file: no other process writes into a campaign's runs/
-        std::error_code ec;
-        fs::remove(dir.parent_path() / ("." + dir.filename().string() + ".kestrel-lock"), ec);
-        failure = r.failure;
-        rec.complete = r.status.complete;
-        rec.full = true;
-      } else {
-        RunConfig rc;
-        rc.keep_in_memory = false;
-        Run run(d.sc, std::move(rc));
-        run.add_sink(sink);
-        while (!run.done() && run.step_ticks(1000)) {  // a stop request is seen within ~1000 ticks
-          if (stop && stop->load() != 0) {
-            rec.interrupted = true;
-            break;
-          }
-        }
-        run.finish();
-        failure = run.failure();
-        rec.complete = failure.empty() && run.done();
-        st.complete = rec.complete;
-        st.ticks = run.tick();
-        st.t_reached = run.recorder().rows() > 0 ? run.recorder().last_row()[0] : 0.0;
-        st.stopped_by = failure;
-        st.events = run.events_applied();
-        fs::create_directories(dir);
-        write_text((dir / "manifest.json").string(), manifest_text(d.sc, {}, &st));
-      }
-    } catch (const ScenarioError& e) {  // a configuration the plant or FSW refuses: an invalid draw
-      const ScenarioIssue& is = e.issues().front();
-      rec.invalid = true;
-      rec.reason = "invalid draw: " + is.key + ": " + is.message;
-      fs::create_directories(dir);
-      write_text((dir / "manifest.json").string(), manifest_text(d.sc, {}));
-    }
+    run_draw(plan, d.sc, dir, full, stop, rec);
     if (rec.interrupted) return rec;
-    if (!rec.invalid) {
-      rec.metrics = sink.metrics();
-      rec.series = sink.series();
-    }
-    if (!rec.invalid && !rec.complete) rec.reason = "run failed: " + (failure.empty() ? std::string("incomplete") : failure);
   }
-  if (rec.reason.empty()) {
-    for (size_t m = 0; m < plan.metrics.size(); ++m) {
-      const McMetric& mt = plan.metrics[m];
-      if (mt.criterion < 0) continue;
-      const double v = rec.metrics[m];
-      const bool ok = mt.below ? v < mt.threshold : v > mt.threshold;
-      if (!ok) {
-        rec.reason = mt.col.name + ": " + mt.col.what + " = " + (std::isnan(v) ? std::string("not available") : fmt(v)) +
-                     (mt.below ? ", not below " : ", not above ") + fmt(mt.threshold) +
-                     (mt.col.unit.empty() || mt.col.unit == "-" ? "" : " " + mt.col.unit);
-        break;
-      }
-    }
-  }
+  if (rec.reason.empty()) rec.reason = failed_criterion(plan, rec.metrics);
   rec.pass = rec.reason.empty();
   rec.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return rec;
@@ -386,26 +408,125 @@ bool same_metrics(const McRecord& a, const McRecord& b)
 }
 }  // namespace
 
-std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const McRunOptions& opt, bool& stopped)
-{
-  const RetentionSpec& ret = plan.nominal.monte_carlo->retention;
-  const fs::path runs = dir / "runs";
-  fs::create_directories(runs);
-  std::vector<McRecord> out(opt.indices.size());
-  std::vector<char> done(opt.indices.size(), 0);
-  std::mutex mu;
-  McProgress prog;
-  prog.total = opt.indices.size();
-  const auto t0 = std::chrono::steady_clock::now();
-  std::string error;  // an exception of a worker (output error): ends the campaign
-  std::atomic<uint32_t> failing_full{0};  // failing runs given full results during the pass
+namespace {
+
+// The runs of one process: worker threads over a list of slots (positions
+// in McRunOptions::indices), the records and the retention of full results.
+class McRunner {
+ public:
+  McRunner(const McPlan& plan, const fs::path& dir, const McRunOptions& opt)
+      : plan_(plan), ret_(plan.nominal.monte_carlo->retention), runs_(dir / "runs"), opt_(opt),
+        out_(opt.indices.size()), done_(opt.indices.size(), 0), t0_(std::chrono::steady_clock::now())
+  {
+    fs::create_directories(runs_);
+    prog_.total = opt.indices.size();
+  }
+
+  // The slots, on opt.jobs threads (the first pass, or the reruns of
+  // failing runs for their full results).  Throws a worker's exception.
+  void work(bool rerun_pass, const std::vector<size_t>& todo)
+  {
+    std::atomic<size_t> at{0};
+    auto body = [&]() {
+      for (;;) {
+        if (stop_asked() || failed()) return;
+        const size_t j = at.fetch_add(1);
+        if (j >= todo.size()) return;
+        try {
+          if (rerun_pass)
+            rerun_full(todo[j]);
+          else if (!run_slot(todo[j]))
+            return;
+        } catch (const std::exception& e) {
+          std::lock_guard<std::mutex> g(mu_);
+          if (error_.empty()) error_ = "run " + std::to_string(opt_.indices[todo[j]]) + ": " + e.what();
+          return;
+        }
+      }
+    };
+    const unsigned n = std::max(1u, std::min<unsigned>(opt_.jobs, static_cast<unsigned>(todo.size())));
+    std::vector<std::thread> th;
+    for (unsigned i = 1; i < n; ++i) th.emplace_back(body);
+    body();
+    for (std::thread& t : th) t.join();
+    if (!error_.empty()) throw std::runtime_error(error_);
+  }
+
+  // Retention, exact and independent of the threads: the first max_failing
+  // failing runs by index keep full results (returns those that have none
+  // yet, to rerun), the others keep their manifest only.
+  std::vector<size_t> retain(const std::vector<size_t>& order)
+  {
+    std::vector<size_t> rerun;
+    uint32_t n_fail = 0;
+    for (size_t slot : order) {
+      McRecord& r = out_[slot];
+      if (!done_[slot] || r.pass || r.invalid || opt_.indices[slot] < ret_.keep_first) continue;
+      if (n_fail++ < ret_.max_failing) {
+        if (!r.full) rerun.push_back(slot);
+      } else if (r.full) {  // beyond the first max_failing: the manifest only
+        drop_all_but_manifest(runs_ / run_dir_name(opt_.indices[slot]));
+        r.full = false;
+      }
+    }
+    return rerun;
+  }
+
+  bool stop_asked() const { return opt_.stop && opt_.stop->load() != 0; }
+
+  // The finished runs' records, in `order`.
+  std::vector<McRecord> take(const std::vector<size_t>& order)
+  {
+    std::vector<McRecord> res;
+    for (size_t slot : order)
+      if (done_[slot]) res.push_back(std::move(out_[slot]));
+    return res;
+  }
+
+ private:
+  bool failed()
+  {
+    std::lock_guard<std::mutex> g(mu_);
+    return !error_.empty();
+  }
+
+  // First pass of one run; false when it was interrupted (not part of the
+  // campaign: no folder).  A failing run gets its full results at once, by
+  // the same worker (the selection is made exact by index after the pass).
+  bool run_slot(size_t slot)
+  {
+    const uint64_t k = opt_.indices[slot];
+    McRecord r = run_mc_one(plan_, k, runs_ / run_dir_name(k), k < ret_.keep_first, opt_.stop);
+    if (r.interrupted) {
+      std::error_code ec;
+      fs::remove_all(runs_ / run_dir_name(k), ec);
+      return false;
+    }
+    const bool keep = ret_.keep_failing && !r.pass && !r.invalid && !r.full && failing_full_.load() < ret_.max_failing;
+    {
+      std::lock_guard<std::mutex> g(mu_);
+      out_[slot] = std::move(r);
+      done_[slot] = 1;
+      ++prog_.done;
+      if (!out_[slot].pass) ++prog_.failed;
+      prog_.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+      if (opt_.progress) opt_.progress(prog_);
+    }
+    if (keep) {
+      failing_full_.fetch_add(1);
+      rerun_full(slot);
+    }
+    return true;
+  }
+
   // A failing run's full results: run k again through run_scenario; its
   // metrics must be the first pass's.
-  auto rerun_full = [&](size_t slot) {
-    const uint64_t k = opt.indices[slot];
-    McRecord r = run_mc_one(plan, k, runs / run_dir_name(k), true, opt.stop);
-    std::lock_guard<std::mutex> g(mu);
-    McRecord& first = out[slot];
+  void rerun_full(size_t slot)
+  {
+    const uint64_t k = opt_.indices[slot];
+    McRecord r = run_mc_one(plan_, k, runs_ / run_dir_name(k), true, opt_.stop);
+    std::lock_guard<std::mutex> g(mu_);
+    McRecord& first = out_[slot];
     if (r.interrupted) {  // the first pass's record stays; the folder holds a partial rerun, marked incomplete
       first.full = false;
       return;
@@ -416,99 +537,48 @@ std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const
     }
     r.wall_seconds += first.wall_seconds;
     first = std::move(r);
-  };
-  auto work = [&](bool rerun_pass, const std::vector<size_t>& todo) {
-    std::atomic<size_t> at{0};
-    auto body = [&]() {
-      for (;;) {
-        if (opt.stop && opt.stop->load() != 0) return;
-        {
-          std::lock_guard<std::mutex> g(mu);
-          if (!error.empty()) return;
-        }
-        const size_t j = at.fetch_add(1);
-        if (j >= todo.size()) return;
-        const size_t slot = todo[j];
-        const uint64_t k = opt.indices[slot];
-        try {
-          if (rerun_pass) {
-            rerun_full(slot);
-            continue;
-          }
-          McRecord r = run_mc_one(plan, k, runs / run_dir_name(k), k < ret.keep_first, opt.stop);
-          if (r.interrupted) {  // not part of the campaign: no folder
-            std::error_code ec;
-            fs::remove_all(runs / run_dir_name(k), ec);
-            return;
-          }
-          // a failing run gets its full results at once, by the same worker (the
-          // selection is made exact by index after the pass)
-          const bool keep = ret.keep_failing && !r.pass && !r.invalid && !r.full && failing_full.load() < ret.max_failing;
-          {
-            std::lock_guard<std::mutex> g(mu);
-            out[slot] = std::move(r);
-            done[slot] = 1;
-            ++prog.done;
-            if (!out[slot].pass) ++prog.failed;
-            prog.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            if (opt.progress) opt.progress(prog);
-          }
-          if (keep) {
-            failing_full.fetch_add(1);
-            rerun_full(slot);
-          }
-        } catch (const std::exception& e) {
-          std::lock_guard<std::mutex> g(mu);
-          if (error.empty()) error = "run " + std::to_string(k) + ": " + e.what();
-          return;
-        }
-      }
-    };
-    const unsigned n = std::max(1u, std::min<unsigned>(opt.jobs, static_cast<unsigned>(todo.size())));
-    std::vector<std::thread> th;
-    for (unsigned i = 1; i < n; ++i) th.emplace_back(body);
-    body();
-    for (std::thread& t : th) t.join();
-  };
+  }
+
+  static void drop_all_but_manifest(const fs::path& d)
+  {
+    std::error_code ec;
+    std::vector<fs::path> drop;  // listed first, removed after the listing
+    for (const fs::directory_entry& e : fs::directory_iterator(d, ec))
+      if (e.path().filename() != "manifest.json") drop.push_back(e.path());
+    for (const fs::path& f : drop) fs::remove_all(f, ec);
+  }
+
+  const McPlan& plan_;
+  const RetentionSpec& ret_;
+  const fs::path runs_;
+  const McRunOptions& opt_;
+  std::vector<McRecord> out_;
+  std::vector<char> done_;
+  std::mutex mu_;
+  McProgress prog_;
+  const std::chrono::steady_clock::time_point t0_;
+  std::string error_;                     // an exception of a worker (output error): ends the campaign
+  std::atomic<uint32_t> failing_full_{0};  // failing runs given full results during the pass
+};
+
+}  // namespace
+
+std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const McRunOptions& opt, bool& stopped)
+{
+  McRunner runner(plan, dir, opt);
   std::vector<size_t> all(opt.indices.size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
   // the longest-known first would balance better; index order keeps the
   // progress readable and the result does not depend on it
-  work(false, all);
-  if (!error.empty()) throw std::runtime_error(error);
-  stopped = opt.stop && opt.stop->load() != 0;
-  // retention, exact and independent of the threads: the first max_failing
-  // failing runs by index keep full results (rerun those that have none yet),
-  // the others keep their manifest only
-  std::vector<size_t> order(opt.indices.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  runner.work(false, all);
+  stopped = runner.stop_asked();
+  std::vector<size_t> order = all;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return opt.indices[a] < opt.indices[b]; });
-  if (!stopped && ret.keep_failing) {
-    std::vector<size_t> rerun;
-    uint32_t n_fail = 0;
-    for (size_t slot : order) {
-      McRecord& r = out[slot];
-      if (!done[slot] || r.pass || r.invalid || opt.indices[slot] < ret.keep_first) continue;
-      if (n_fail++ < ret.max_failing) {
-        if (!r.full) rerun.push_back(slot);
-      } else if (r.full) {  // beyond the first max_failing: the manifest only
-        const fs::path d = runs / run_dir_name(opt.indices[slot]);
-        std::error_code ec;
-        std::vector<fs::path> drop;  // listed first, removed after the listing
-        for (const fs::directory_entry& e : fs::directory_iterator(d, ec))
-          if (e.path().filename() != "manifest.json") drop.push_back(e.path());
-        for (const fs::path& f : drop) fs::remove_all(f, ec);
-        r.full = false;
-      }
-    }
-    work(true, rerun);
-    if (!error.empty()) throw std::runtime_error(error);
-    stopped = opt.stop && opt.stop->load() != 0;
+  if (!stopped && plan.nominal.monte_carlo->retention.keep_failing) {
+    runner.work(true, runner.retain(order));
+    stopped = runner.stop_asked();
   }
-  std::vector<McRecord> res;
-  for (size_t slot : order)
-    if (done[slot]) res.push_back(std::move(out[slot]));
-  return res;
+  return runner.take(order);
 }
 
 std::vector<size_t> mc_table_order(const std::vector<McRecord>& records)

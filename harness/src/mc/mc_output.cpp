@@ -161,6 +161,104 @@ double percentile(const std::vector<double>& s, double p)
   return s[lo] + (x - static_cast<double>(lo)) * (s[hi] - s[lo]);
 }
 
+// The report's metrics, criteria and drawn values (names, units, what).
+void add_columns(const McPlan& plan, json& j)
+{
+  json crit = json::array(), metrics = json::array(), drawn = json::array();
+  for (const McMetric& m : plan.metrics) {
+    metrics.push_back({{"name", m.col.name}, {"unit", m.col.unit}, {"what", m.col.what}});
+    if (m.criterion >= 0)
+      crit.push_back({{"name", m.col.name},
+                      {"metric", m.col.name},
+                      {"op", m.below ? "below" : "above"},
+                      {"threshold", m.threshold},
+                      {"unit", m.col.unit},
+                      {"what", m.col.what}});
+  }
+  for (const McColumn& c : plan.drawn) drawn.push_back({{"name", c.name}, {"unit", c.unit}});
+  j["criteria"] = crit;
+  j["metrics"] = metrics;
+  j["drawn"] = drawn;
+}
+
+// One row per run, in table order.
+json table_json(const std::vector<McRecord>& recs, const std::vector<size_t>& order)
+{
+  json table = json::array();
+  for (size_t i : order) {
+    const McRecord& r = recs[i];
+    json d = json::array(), m = json::array();
+    for (double v : r.drawn) d.push_back(finite_or_null(v));
+    for (double v : r.metrics) m.push_back(finite_or_null(v));
+    char dir[32];
+    std::snprintf(dir, sizeof dir, "runs/%06llu/report.html", static_cast<unsigned long long>(r.index));
+    table.push_back({{"index", r.index},
+                     {"seed", std::to_string(r.seed)},
+                     {"pass", r.pass},
+                     {"invalid", r.invalid},
+                     {"reason", r.reason},
+                     {"drawn", d},
+                     {"metrics", m},
+                     {"report", r.full ? json(dir) : json(nullptr)}});
+  }
+  return table;
+}
+
+// The percentiles (kLevels) of every thinned column over the valid runs.
+json percentiles_json(const McPlan& plan, const std::vector<McRecord>& recs)
+{
+  const size_t S = plan.series_rows.size(), C = plan.series_columns.size();
+  json pct;
+  pct["levels"] = json::array();
+  for (double l : kLevels) pct["levels"].push_back(l);
+  json pcols = json::object();
+  std::vector<double> vals;
+  for (size_t c = 0; c < C; ++c) {
+    std::vector<json> lv(std::size(kLevels), json::array());
+    for (size_t s = 0; s < S; ++s) {
+      vals.clear();
+      for (const McRecord& r : recs)
+        if (!r.invalid && std::isfinite(r.series[s * C + c])) vals.push_back(r.series[s * C + c]);
+      std::sort(vals.begin(), vals.end());
+      for (size_t l = 0; l < std::size(kLevels); ++l) lv[l].push_back(finite_or_null(percentile(vals, kLevels[l])));
+    }
+    pcols[plan.series_columns[c]] = lv;
+  }
+  pct["columns"] = pcols;
+  return pct;
+}
+
+// The thinned series: times, channels, percentiles and the first
+// kReportRuns valid runs in table order.
+json series_json(const McPlan& plan, const std::vector<McRecord>& recs, const std::vector<size_t>& order)
+{
+  json series;
+  json t = json::array();
+  for (double x : plan.series_t) t.push_back(x);
+  series["t"] = t;
+  json ch = json::array();
+  for (size_t c = 0; c < plan.channels.size(); ++c)
+    ch.push_back({{"name", plan.channels[c].first}, {"unit", plan.channel_units[c]}, {"columns", plan.channels[c].second}});
+  series["channels"] = ch;
+  series["percentiles"] = percentiles_json(plan, recs);
+  const size_t S = plan.series_rows.size(), C = plan.series_columns.size();
+  json runs = json::array();
+  for (size_t i : order) {
+    const McRecord& r = recs[i];
+    if (r.invalid) continue;
+    if (runs.size() >= kReportRuns) break;
+    json cols = json::object();
+    for (size_t c = 0; c < C; ++c) {
+      json v = json::array();
+      for (size_t s = 0; s < S; ++s) v.push_back(finite_or_null(r.series[s * C + c]));
+      cols[plan.series_columns[c]] = v;
+    }
+    runs.push_back({{"index", r.index}, {"pass", r.pass}, {"columns", cols}});
+  }
+  series["runs"] = runs;
+  return series;
+}
+
 std::string report_json(const McPlan& plan, const std::vector<McRecord>& recs, const std::vector<size_t>& order,
                         const McSummaryInfo& info)
 {
@@ -181,81 +279,9 @@ std::string report_json(const McPlan& plan, const std::vector<McRecord>& recs, c
   j["failed"] = failed;
   j["invalid"] = invalid;
   j["wall_seconds"] = info.wall_seconds;
-  json crit = json::array(), metrics = json::array(), drawn = json::array();
-  for (const McMetric& m : plan.metrics) {
-    metrics.push_back({{"name", m.col.name}, {"unit", m.col.unit}, {"what", m.col.what}});
-    if (m.criterion >= 0)
-      crit.push_back({{"name", m.col.name},
-                      {"metric", m.col.name},
-                      {"op", m.below ? "below" : "above"},
-                      {"threshold", m.threshold},
-                      {"unit", m.col.unit},
-                      {"what", m.col.what}});
-  }
-  for (const McColumn& c : plan.drawn) drawn.push_back({{"name", c.name}, {"unit", c.unit}});
-  j["criteria"] = crit;
-  j["metrics"] = metrics;
-  j["drawn"] = drawn;
-  json table = json::array();
-  for (size_t i : order) {
-    const McRecord& r = recs[i];
-    json d = json::array(), m = json::array();
-    for (double v : r.drawn) d.push_back(finite_or_null(v));
-    for (double v : r.metrics) m.push_back(finite_or_null(v));
-    char dir[32];
-    std::snprintf(dir, sizeof dir, "runs/%06llu/report.html", static_cast<unsigned long long>(r.index));
-    table.push_back({{"index", r.index},
-                     {"seed", std::to_string(r.seed)},
-                     {"pass", r.pass},
-                     {"invalid", r.invalid},
-                     {"reason", r.reason},
-                     {"drawn", d},
-                     {"metrics", m},
-                     {"report", r.full ? json(dir) : json(nullptr)}});
-  }
-  j["table"] = table;
-  json series;
-  json t = json::array();
-  for (double x : plan.series_t) t.push_back(x);
-  series["t"] = t;
-  json ch = json::array();
-  for (size_t c = 0; c < plan.channels.size(); ++c)
-    ch.push_back({{"name", plan.channels[c].first}, {"unit", plan.channel_units[c]}, {"columns", plan.channels[c].second}});
-  series["channels"] = ch;
-  const size_t S = plan.series_rows.size(), C = plan.series_columns.size();
-  json pct;
-  pct["levels"] = json::array();
-  for (double l : kLevels) pct["levels"].push_back(l);
-  json pcols = json::object();
-  std::vector<double> vals;
-  for (size_t c = 0; c < C; ++c) {
-    std::vector<json> lv(std::size(kLevels), json::array());
-    for (size_t s = 0; s < S; ++s) {
-      vals.clear();
-      for (const McRecord& r : recs)
-        if (!r.invalid && std::isfinite(r.series[s * C + c])) vals.push_back(r.series[s * C + c]);
-      std::sort(vals.begin(), vals.end());
-      for (size_t l = 0; l < std::size(kLevels); ++l) lv[l].push_back(finite_or_null(percentile(vals, kLevels[l])));
-    }
-    pcols[plan.series_columns[c]] = lv;
-  }
-  pct["columns"] = pcols;
-  series["percentiles"] = pct;
-  json runs = json::array();
-  for (size_t i : order) {
-    const McRecord& r = recs[i];
-    if (r.invalid) continue;
-    if (runs.size() >= kReportRuns) break;
-    json cols = json::object();
-    for (size_t c = 0; c < C; ++c) {
-      json v = json::array();
-      for (size_t s = 0; s < S; ++s) v.push_back(finite_or_null(r.series[s * C + c]));
-      cols[plan.series_columns[c]] = v;
-    }
-    runs.push_back({{"index", r.index}, {"pass", r.pass}, {"columns", cols}});
-  }
-  series["runs"] = runs;
-  j["series"] = series;
+  add_columns(plan, j);
+  j["table"] = table_json(recs, order);
+  j["series"] = series_json(plan, recs, order);
   return j.dump();
 }
 

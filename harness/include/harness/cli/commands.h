@@ -1,5 +1,6 @@
 // commands: everything the `kestrel` program does, as library functions.
-// The executable (src/main.cpp) only parses arguments and calls these.
+// The executable (src/cli/main.cpp) only parses arguments and calls these
+// (and cmd_run_program, src/cli/run_program.h, for the live view).
 //
 // Exit codes (docs/harness.md):
 //   0  ok
@@ -25,9 +26,10 @@
 #include <string>
 #include <vector>
 
-namespace harness {
+#include "harness/drive/run_scenario.h"
+#include "harness/link/remote_fsw.h"
 
-class RunControl;  // outputs.h
+namespace harness {
 
 enum ExitCode : int {
   kExitOk = 0,
@@ -40,6 +42,16 @@ enum ExitCode : int {
   kExitInterruptedBase = 128,  // + the signal number
 };
 
+// --live and its options (docs/live.md): the live view the run command
+// serves while the run goes (cmd_run_program, src/cli/run_program.h).
+struct LiveRequest {
+  bool on = false;                  // serve the live view
+  bool paused = false;              // start paused
+  int port = 0;                     // TCP port (0: a free one, printed)
+  std::string host = "127.0.0.1";   // address to bind
+  double linger = 10.0;             // [s] the page stays served after the run
+};
+
 struct RunCommand {
   std::string scenario;             // YAML scenario or manifest.json
   std::string out_dir;              // "" : runs/<scenario name>
@@ -49,16 +61,14 @@ struct RunCommand {
   bool force = false;               // replace an existing results folder whole
   bool realtime = false;            // pace to the wall clock (pacer.h)
   double rt_scale = 1.0;            // ... at this multiple of real time
-  const std::atomic<int>* stop = nullptr;  // set to a signal number to stop the run (main.cpp)
-  std::string fsw;                  // "" in process; udp:HOST:PORT / serial:DEVICE:BAUD (docs/hwil.md)
-  std::string on_missing;           // "" (fail in lockstep, hold with faults or --realtime), hold, zero
-  double link_timeout = 10.0;       // lockstep reply timeout [s]
-  std::string pil_bin;              // --fsw pil:TARGET: the FSW program ("" : the build's, docs/pil.md)
-  std::string pil_emulator;         // ... and the emulator command ("" : the target's QEMU)
-  double reply_timeout = 0.5;       // hold/zero: give a cycle up after [s]
-  double loss = 0, corrupt = 0, duplicate = 0, reorder = 0, delay = 0;  // fault probabilities [%]
-  int delay_cycles = 2;
-  uint64_t link_seed = 1;
+  const std::atomic<int>* stop = nullptr;  // set to a signal number to stop the run (stop_on_signals())
+  std::string fsw;                  // "" in process; udp:HOST:PORT / serial:DEVICE:BAUD / pil:TARGET (docs/hwil.md)
+  // The link's options as given (--on-missing, --link-*, --reply-timeout,
+  // --pil-bin, --pil-emulator; fault probabilities in [0, 1]), passed to the
+  // run unchanged; LinkOptions::for_run applies a run's defaulting rules
+  // (on_missing: fail in lockstep, hold with faults or --realtime).
+  LinkOptions link;
+  LiveRequest live;                 // --live (cmd_run_program)
   RunControl* control = nullptr;    // steers the run while it goes: the live view (docs/live.md)
 };
 
@@ -66,7 +76,17 @@ struct RunCommand {
 int cmd_fsw_config(const std::string& scenario, const std::vector<std::string>& sets, const std::string& out_file,
                    std::ostream& out, std::ostream& err);
 
+// The run's options of a run command and its loaded scenario: results
+// folder (default runs/<name>), overrides, pacing, the FSW link and its
+// options (c.link, as given), the run control.
+RunOptions run_options_of(const RunCommand& c, const Scenario& sc, const std::vector<Override>& overrides);
 int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err);
+
+// SIGINT/SIGTERM during a run or a campaign: installs handlers that set the
+// returned flag to the signal number (the run stops at the next tick
+// boundary and writes what it has); SA_RESETHAND: a second signal ends the
+// process at once.
+const std::atomic<int>* stop_on_signals();
 
 // `kestrel mc` (docs/monte-carlo.md).
 struct McCommand {
@@ -84,6 +104,9 @@ struct McCommand {
   const std::atomic<int>* stop = nullptr;
 };
 int cmd_mc(const McCommand& c, std::ostream& out, std::ostream& err);
+// `kestrel mc` as the program runs it: the scenario is required, --shard
+// "i/N" is checked and set, a progress bar on a terminal, stop on signals.
+int cmd_mc_program(McCommand c, const std::string& shard, std::ostream& out, std::ostream& err);
 // Joins the shard folders of one campaign into out_dir.
 int cmd_mc_merge(const std::string& out_dir, const std::vector<std::string>& shards, bool force, std::ostream& out,
                  std::ostream& err);

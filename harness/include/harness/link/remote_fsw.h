@@ -53,6 +53,24 @@ struct LinkOptions {
   std::string pil_bin;
   std::string pil_emulator;
   bool any_fault() const { return loss > 0 || corrupt > 0 || duplicate > 0 || reorder > 0 || delay > 0; }
+  // The options a run uses, from these as given (the `kestrel run` flags,
+  // RunCommand::link): the defaulting rules in one place.
+  //   - on_missing not given: fail (lockstep), but hold the last command
+  //     with injected faults or with real-time pacing;
+  //   - paced (realtime_scale > 0): a cycle waits for its reply at most one
+  //     FSW period of wall time (fsw_period_s / realtime_scale), and never
+  //     past `deadline` (the time left until the next tick's deadline).
+  LinkOptions for_run(double fsw_period_s, double realtime_scale, std::function<double()> deadline) const
+  {
+    LinkOptions lo = *this;
+    if (!lo.on_missing_set && (lo.any_fault() || realtime_scale > 0)) lo.on_missing = Missing::kHold;
+    lo.on_missing_set = lo.on_missing_set || lo.any_fault() || realtime_scale > 0;
+    if (realtime_scale > 0) {
+      lo.reply_timeout_s = fsw_period_s / realtime_scale;
+      lo.time_left = std::move(deadline);
+    }
+    return lo;
+  }
 };
 
 // Moves whole packets.  recv() returns false on timeout.
