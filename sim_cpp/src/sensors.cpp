@@ -54,6 +54,7 @@ double checked_noise_scale(const std::string& name, double k)
 void Gyro::set_noise_scale(double k) { k_noise_ = checked_noise_scale(p_.name, k); }
 void StarTracker::set_noise_scale(double k) { k_noise_ = checked_noise_scale(p_.name, k); }
 void CoarseSunSensor::set_noise_scale(double k) { k_noise_ = checked_noise_scale(p_.name, k); }
+void Magnetometer::set_noise_scale(double k) { k_noise_ = checked_noise_scale(p_.name, k); }
 void WheelTachometers::set_noise_scale(int i, double k)
 {
   if (i < 0 || i >= p_.num_rw) throw std::out_of_range("tach(" + p_.name + ").noise_scale: no wheel " + std::to_string(i));
@@ -232,6 +233,50 @@ bool WheelTachometers::update(const SensorTruth& truth)
     out_.Omega[ui] = quantize(w, p_.lsb);
   }
   out_.t_ns = truth.t_ns;
+  out_.valid = true;
+  return true;
+}
+
+// ---------------------------------------------------------- magnetometer
+
+Magnetometer::Magnetometer(MagnetometerParams p, const SensorContext& ctx)
+    : p_(std::move(p)), noise_(ctx.noise), rng_(ctx.run_seed, p_.name)
+{
+  using namespace detail;
+  const std::string n = "magnetometer(" + p_.name + ")";
+  require_name(n + ".name", p_.name);
+  require_dcm(n + ".dcm_SB", p_.dcm_SB);
+  require_period(n + ".period_ns", p_.period_ns);
+  require_non_negative(n + ".sigma", p_.sigma);
+  require_finite(n + ".bias", p_.bias);
+  require_finite(n + ".scale_error", p_.scale_error);
+  if (!(p_.scale_error.minCoeff() > -1.0))
+    fail(n + ".scale_error (min)", p_.scale_error.minCoeff(), "must be > -1");
+  require_non_negative(n + ".lsb", p_.lsb);
+  require_non_negative(n + ".range", p_.range);
+  if (!p_.interference_B.allFinite())
+    fail(n + ".interference_B", p_.interference_B.cwiseAbs().maxCoeff(), "must be finite");
+}
+
+bool Magnetometer::update(int64_t t_ns, const Vector3d& B_B, const MagnetorquerArray& m)
+{
+  if (!due(t_ns, p_.period_ns)) return false;
+  const Eigen::Map<const Eigen::Matrix<double, kMaxMagnetorquers, 1>> mv(m.data());
+  Vector3d b = p_.dcm_SB * (B_B + p_.interference_B * mv);
+  if (noise_) {
+    const Vector3d eta = rng_.normal3();
+    b = b.cwiseProduct(Vector3d::Ones() + p_.scale_error) + p_.bias + (k_noise_ * p_.sigma) * eta;
+  }
+  out_.saturated = false;
+  for (int i = 0; i < 3; ++i) {
+    b(i) = quantize(b(i), p_.lsb);
+    if (p_.range > 0.0 && std::abs(b(i)) > p_.range) {
+      b(i) = std::copysign(p_.range, b(i));
+      out_.saturated = true;
+    }
+  }
+  out_.B_S = b;
+  out_.t_ns = t_ns;
   out_.valid = true;
   return true;
 }

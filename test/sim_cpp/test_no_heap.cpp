@@ -11,7 +11,9 @@
 #include "sim/earth_time.h"
 #include "sim/gravity_gradient.h"
 #include "sim/magnetic_field.h"
+#include "sim/magnetorquer.h"
 #include "sim/plant.h"
+#include "sim/sensors.h"
 #include "sim/sun_almanac.h"
 #include "sim/surface_forces.h"
 #include "sim_test_util.h"
@@ -73,7 +75,8 @@ TEST(NoHeap, StepAndAccessorsDoNotAllocate)
 }
 
 // The Earth-orbit environment models (docs/environment.md) on a per-step
-// path: time and rotation, Sun, gravity gradient, SRP, drag, density, IGRF.
+// path: time and rotation, Sun, gravity gradient, SRP, drag, density, IGRF,
+// magnetorquer and magnetometer.
 TEST(NoHeap, EnvironmentModelsDoNotAllocate)
 {
   sim::UtcEpoch epoch;
@@ -90,6 +93,12 @@ TEST(NoHeap, EnvironmentModelsDoNotAllocate)
   const sim::Igrf14 igrf(2026.9);
   const sim::ExponentialAtmosphere atm;
   const Eigen::Matrix3d I = Eigen::Vector3d(10.0, 12.0, 8.0).asDiagonal();
+  sim::MagnetometerParams mp;
+  mp.sigma = 1e-7;
+  mp.lsb = 1e-8;
+  sim::Magnetometer mag(mp, sim::SensorContext{3, true});
+  sim::Magnetorquer rod(sim::MagnetorquerParams{});
+  sim::MagnetorquerArray dipoles{};
 
   const long before = g_news.load();
   double sink = 0.0;
@@ -104,6 +113,10 @@ TEST(NoHeap, EnvironmentModelsDoNotAllocate)
     sink += sim::drag_load(facets, sim::wind_velocity_N(r, v), rho).F_B.norm();
     sink += igrf.field_E(E * r).norm() + sim::dipole_field_E(sim::igrf14_dipole(2026.9), E * r).norm();
     sink += sim::earth_rotation_angle(d);
+    rod.command(0.01 * k - 0.5);
+    dipoles[0] = rod.dipole();
+    mag.update(int64_t(k) * mp.period_ns, E * r * 1e-12, dipoles);
+    sink += mag.output().B_S.norm() + sim::magnetic_torque(rod.dipole_B(), mag.output().B_S).norm();
   }
   EXPECT_EQ(g_news.load() - before, 0);
   EXPECT_TRUE(std::isfinite(sink));
