@@ -15,18 +15,6 @@ using Eigen::Vector3d;
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
-sim::UtcEpoch utc(int y, int mo, int d, int h = 0, int mi = 0, double s = 0.0)
-{
-  sim::UtcEpoch e;
-  e.year = y;
-  e.month = mo;
-  e.day = d;
-  e.hour = h;
-  e.minute = mi;
-  e.second = s;
-  return e;
-}
-
 double ra_deg(const Vector3d& r)
 {
   const double a = std::atan2(r.y(), r.x()) / kDeg;
@@ -43,7 +31,7 @@ double dec_deg(const Vector3d& r) { return std::asin(r.z() / r.norm()) / kDeg; }
 // component and 1e-4 deg in direction, both far inside the series' 0.01 deg.
 TEST(SunAlmanac, ValladoExample5_1)
 {
-  const Vector3d r = sim::sun_position_almanac(sim::days_since_j2000(utc(2006, 4, 2))) / sim::kAU;
+  const Vector3d r = sim::sun_position_almanac(sim::days_since_j2000(sim::UtcEpoch{2006, 4, 2, 0})) / sim::kAU;
   const Vector3d printed(0.9771945, 0.1924424, 0.0834308);
   EXPECT_NEAR(r.x(), printed.x(), 1.5e-6);
   EXPECT_NEAR(r.y(), printed.y(), 1.5e-6);
@@ -58,7 +46,7 @@ TEST(SunAlmanac, ValladoExample5_1)
 // series is quoted to 0.01 deg: that is the tolerance.
 TEST(SunAlmanac, MeeusExample25a)
 {
-  const Vector3d r = sim::sun_position_almanac(sim::days_since_j2000(utc(1992, 10, 13)));
+  const Vector3d r = sim::sun_position_almanac(sim::days_since_j2000(sim::UtcEpoch{1992, 10, 13, 0}));
   EXPECT_NEAR(ra_deg(r), 198.38083, 0.01);
   EXPECT_NEAR(dec_deg(r), -7.78507, 0.01);
   EXPECT_NEAR(r.norm() / sim::kAU, 0.99766, 1e-5);
@@ -71,16 +59,16 @@ TEST(SunAlmanac, MeeusExample25a)
 // equinox and 0.0007 deg in RA at the solstice, so 0.012 deg checks the series.
 TEST(SunAlmanac, EquinoxAndSolstice2000)
 {
-  const Vector3d eq = sim::sun_position_almanac(sim::days_since_j2000(utc(2000, 3, 20, 7, 35)));
+  const Vector3d eq = sim::sun_position_almanac(sim::days_since_j2000(sim::UtcEpoch{2000, 3, 20, 7, 35}));
   EXPECT_NEAR(dec_deg(eq), 0.0, 0.012);
   EXPECT_NEAR(std::remainder(ra_deg(eq), 360.0), 0.0, 0.012 / std::cos(23.44 * kDeg));
-  const Vector3d so = sim::sun_position_almanac(sim::days_since_j2000(utc(2000, 6, 21, 1, 48)));
+  const Vector3d so = sim::sun_position_almanac(sim::days_since_j2000(sim::UtcEpoch{2000, 6, 21, 1, 48}));
   EXPECT_NEAR(ra_deg(so), 90.0, 0.012);
   EXPECT_NEAR(dec_deg(so), 23.439, 0.012);  // the obliquity of date
   // Distance bounds over a year: perihelion ~0.98329 AU (Jan), aphelion ~1.01671 AU (Jul).
   double rmin = 2.0, rmax = 0.0;
   for (int k = 0; k < 366; ++k) {
-    const double r = sim::sun_position_almanac(sim::days_since_j2000(utc(2000, 1, 1), k * 86400.0)).norm() / sim::kAU;
+    const double r = sim::sun_position_almanac(sim::days_since_j2000(sim::UtcEpoch{2000, 1, 1, 0}, k * 86400.0)).norm() / sim::kAU;
     rmin = std::min(rmin, r);
     rmax = std::max(rmax, r);
   }
