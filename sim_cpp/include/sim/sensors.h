@@ -1,6 +1,7 @@
 // sensors: gyro, star tracker, coarse sun sensors and wheel tachometers
-// (spec plant-dynamics §9, §10, §13).  Frames: N, B, P (gyro platform),
-// C (star-tracker case, boresight = case z).  Units: SI; time tags are
+// (spec plant-dynamics §9, §10, §13), and a magnetometer (docs/environment.md).
+// Frames: N, B, P (gyro platform), C (star-tracker case, boresight = case z),
+// S (magnetometer axes).  Units: SI; time tags are
 // integer nanoseconds of the plant clock.
 //
 // Every sensor owns a random stream Rng(ctx.run_seed, params.name) and never
