@@ -43,6 +43,26 @@ void require_name(const std::string& field, const std::string& n)
 
 bool due(int64_t t_ns, int64_t period_ns) { return t_ns % period_ns == 0; }
 
+void require_scale_error(const std::string& field, const Vector3d& e)
+{
+  detail::require_finite(field, e);
+  if (!(e.minCoeff() > -1.0)) detail::fail(field + " (min)", e.minCoeff(), "must be > -1");
+}
+
+// Quantises each axis, then clips it at +-limit (limit > 0); true if any axis was clipped.
+bool quantize_and_clip(Vector3d& v, double lsb, double limit)
+{
+  bool clipped = false;
+  for (int i = 0; i < 3; ++i) {
+    v(i) = quantize(v(i), lsb);
+    if (limit > 0.0 && std::abs(v(i)) > limit) {
+      v(i) = std::copysign(limit, v(i));
+      clipped = true;
+    }
+  }
+  return clipped;
+}
+
 double checked_noise_scale(const std::string& name, double k)
 {
   if (!(k >= 0.0) || !std::isfinite(k)) detail::fail(name + ".noise_scale", k, "must be finite and >= 0");
@@ -54,6 +74,7 @@ double checked_noise_scale(const std::string& name, double k)
 void Gyro::set_noise_scale(double k) { k_noise_ = checked_noise_scale(p_.name, k); }
 void StarTracker::set_noise_scale(double k) { k_noise_ = checked_noise_scale(p_.name, k); }
 void CoarseSunSensor::set_noise_scale(double k) { k_noise_ = checked_noise_scale(p_.name, k); }
+void Magnetometer::set_noise_scale(double k) { k_noise_ = checked_noise_scale(p_.name, k); }
 void WheelTachometers::set_noise_scale(int i, double k)
 {
   if (i < 0 || i >= p_.num_rw) throw std::out_of_range("tach(" + p_.name + ").noise_scale: no wheel " + std::to_string(i));
@@ -80,9 +101,7 @@ Gyro::Gyro(GyroParams p, const SensorContext& ctx)
   require_non_negative(n + ".sigma_ARW", p_.sigma_ARW);
   require_non_negative(n + ".sigma_RRW", p_.sigma_RRW);
   require_finite(n + ".b0", p_.b0);
-  require_finite(n + ".scale_error", p_.scale_error);
-  if (!(p_.scale_error.minCoeff() > -1.0))
-    fail(n + ".scale_error (min)", p_.scale_error.minCoeff(), "must be > -1");
+  require_scale_error(n + ".scale_error", p_.scale_error);
   require_non_negative(n + ".lsb", p_.lsb);
   require_non_negative(n + ".omega_max", p_.omega_max);
 }
@@ -99,14 +118,7 @@ bool Gyro::update(const SensorTruth& truth)
     w = w.cwiseProduct(Vector3d::Ones() + p_.scale_error);
     b_ += (k_noise_ * p_.sigma_RRW * std::sqrt(dt_s)) * nu;
   }
-  out_.saturated = false;
-  for (int i = 0; i < 3; ++i) {
-    w(i) = quantize(w(i), p_.lsb);
-    if (p_.omega_max > 0.0 && std::abs(w(i)) > p_.omega_max) {
-      w(i) = std::copysign(p_.omega_max, w(i));
-      out_.saturated = true;
-    }
-  }
+  out_.saturated = quantize_and_clip(w, p_.lsb, p_.omega_max);
   out_.omega_PN_P = w;
   out_.t_ns = truth.t_ns;
   out_.valid = true;
@@ -232,6 +244,41 @@ bool WheelTachometers::update(const SensorTruth& truth)
     out_.Omega[ui] = quantize(w, p_.lsb);
   }
   out_.t_ns = truth.t_ns;
+  out_.valid = true;
+  return true;
+}
+
+// ---------------------------------------------------------- magnetometer
+
+Magnetometer::Magnetometer(MagnetometerParams p, const SensorContext& ctx)
+    : p_(std::move(p)), noise_(ctx.noise), rng_(ctx.run_seed, p_.name)
+{
+  using namespace detail;
+  const std::string n = "magnetometer(" + p_.name + ")";
+  require_name(n + ".name", p_.name);
+  require_dcm(n + ".dcm_SB", p_.dcm_SB);
+  require_period(n + ".period_ns", p_.period_ns);
+  require_non_negative(n + ".sigma", p_.sigma);
+  require_finite(n + ".bias", p_.bias);
+  require_scale_error(n + ".scale_error", p_.scale_error);
+  require_non_negative(n + ".lsb", p_.lsb);
+  require_non_negative(n + ".range", p_.range);
+  if (!p_.interference_B.allFinite())
+    fail(n + ".interference_B", p_.interference_B.cwiseAbs().maxCoeff(), "must be finite");
+}
+
+bool Magnetometer::update(int64_t t_ns, const Vector3d& B_B, const MagnetorquerArray& m)
+{
+  if (!due(t_ns, p_.period_ns)) return false;
+  const Eigen::Map<const Eigen::Matrix<double, kMaxMagnetorquers, 1>> mv(m.data());
+  Vector3d b = p_.dcm_SB * (B_B + p_.interference_B * mv);
+  if (noise_) {
+    const Vector3d eta = rng_.normal3();
+    b = b.cwiseProduct(Vector3d::Ones() + p_.scale_error) + p_.bias + (k_noise_ * p_.sigma) * eta;
+  }
+  out_.saturated = quantize_and_clip(b, p_.lsb, p_.range);
+  out_.B_S = b;
+  out_.t_ns = t_ns;
   out_.valid = true;
   return true;
 }

@@ -8,7 +8,14 @@
 
 #include <gtest/gtest.h>
 
+#include "sim/earth_time.h"
+#include "sim/gravity_gradient.h"
+#include "sim/magnetic_field.h"
+#include "sim/magnetorquer.h"
 #include "sim/plant.h"
+#include "sim/sensors.h"
+#include "sim/sun_almanac.h"
+#include "sim/surface_forces.h"
 #include "sim_test_util.h"
 
 namespace {
@@ -62,6 +69,54 @@ TEST(NoHeap, StepAndAccessorsDoNotAllocate)
     const sim::StateVector xd = sc.derivatives(0.0, sc.state());
     sink += xd(0) + sc.energy_momentum().E_rot + sc.mass_props().m_sc + sc.tau_f(0) + sc.u_s(1) +
             sc.sensor_truth(Eigen::Vector3d(1.0, 0.0, 0.0)).Omega[2];
+  }
+  EXPECT_EQ(g_news.load() - before, 0);
+  EXPECT_TRUE(std::isfinite(sink));
+}
+
+// The Earth-orbit environment models (docs/environment.md) on a per-step
+// path: time and rotation, Sun, gravity gradient, SRP, drag, density, IGRF,
+// magnetorquer and magnetometer.
+TEST(NoHeap, EnvironmentModelsDoNotAllocate)
+{
+  sim::UtcEpoch epoch;
+  epoch.year = 2026;
+  epoch.month = 12;
+  epoch.day = 5;
+  sim::FacetSet facets;
+  facets.count = 6;
+  for (int k = 0; k < 6; ++k) {
+    facets.facets[k].area = 0.5;
+    facets.facets[k].n_B = (k < 3 ? 1.0 : -1.0) * Eigen::Vector3d::Unit(k % 3);
+    facets.facets[k].r_B = 0.4 * facets.facets[k].n_B;
+  }
+  const sim::Igrf14 igrf(2026.9);
+  const sim::ExponentialAtmosphere atm;
+  const Eigen::Matrix3d I = Eigen::Vector3d(10.0, 12.0, 8.0).asDiagonal();
+  sim::MagnetometerParams mp;
+  mp.sigma = 1e-7;
+  mp.lsb = 1e-8;
+  sim::Magnetometer mag(mp, sim::SensorContext{3, true});
+  sim::Magnetorquer rod(sim::MagnetorquerParams{});
+  sim::MagnetorquerArray dipoles{};
+
+  const long before = g_news.load();
+  double sink = 0.0;
+  for (int k = 0; k < 100; ++k) {
+    const sim::J2000Days d = sim::days_since_j2000(epoch, 10.0 * k);
+    const Eigen::Matrix3d E = sim::dcm_EN(sim::gmst_iau1982(d));
+    const Eigen::Vector3d r(6.9e6, 1.0e5 * k, 1.0e6), v(-100.0, 7500.0, 900.0);
+    const Eigen::Vector3d s = sim::sun_position_almanac(d).normalized();
+    sink += sim::gravity_gradient_torque(sim::kMuEarth, r, I).norm();
+    sink += sim::srp_load(facets, s, 1.0).L_B.norm();
+    const double rho = sim::density(atm, sim::ellipsoid_height(r));
+    sink += sim::drag_load(facets, sim::wind_velocity_N(r, v), rho).F_B.norm();
+    sink += igrf.field_E(E * r).norm() + sim::dipole_field_E(sim::igrf14_dipole(2026.9), E * r).norm();
+    sink += sim::earth_rotation_angle(d);
+    rod.command(0.01 * k - 0.5);
+    dipoles[0] = rod.dipole();
+    mag.update(int64_t(k) * mp.period_ns, E * r * 1e-12, dipoles);
+    sink += mag.output().B_S.norm() + sim::magnetic_torque(rod.dipole_B(), mag.output().B_S).norm();
   }
   EXPECT_EQ(g_news.load() - before, 0);
   EXPECT_TRUE(std::isfinite(sink));

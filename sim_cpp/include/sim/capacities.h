@@ -25,6 +25,8 @@ constexpr int kMaxThrusters = 36;  // [-] thrusters (>= FSW_MAX_THR)
 constexpr int kMaxTanks = 4;       // [-] propellant tanks (the FSW has no tank capacity)
 constexpr int kMaxCss = 32;        // [-] coarse sun sensors in one array (>= FSW_MAX_CSS)
 constexpr int kMaxEffectors = 8;   // [-] force/torque effectors in a Plant, the thruster set included
+constexpr int kMaxFacets = 64;     // [-] surface facets for radiation pressure and drag (sim/surface_forces.h)
+constexpr int kMaxMagnetorquers = 6;  // [-] magnetorquers seen by one magnetometer (sim/sensors.h)
 
 // State vector (sim/spacecraft.h StateLayout): hub 12, wheel speeds and angles, tank masses.
 constexpr int kHubStateDim = 12;                                       // [-]
@@ -33,6 +35,7 @@ constexpr int kMaxStateDim = kHubStateDim + 2 * kMaxWheels + kMaxTanks;  // [-]
 using WheelArray = std::array<double, kMaxWheels>;        // (num_rw)
 using ThrusterArray = std::array<double, kMaxThrusters>;  // (num_thr)
 using TankArray = std::array<double, kMaxTanks>;          // (num_tanks)
+using MagnetorquerArray = std::array<double, kMaxMagnetorquers>;  // (magnetorquers)
 
 }  // namespace sim
 

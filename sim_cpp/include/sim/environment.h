@@ -6,7 +6,8 @@
 // Gravity in the dynamics is applied by SpacecraftModel at the mass centre
 // with SpacecraftParams::mu (§3); point_mass_gravity() is the same law for
 // scenario code and tests.  No gravity gradient, SRP, drag or magnetic
-// torques (§6).
+// torques act in the plant (§6); models of them exist but are not wired in
+// yet (docs/environment.md).
 #ifndef SIM_ENVIRONMENT_H
 #define SIM_ENVIRONMENT_H
 

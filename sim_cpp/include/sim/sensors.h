@@ -1,6 +1,7 @@
 // sensors: gyro, star tracker, coarse sun sensors and wheel tachometers
-// (spec plant-dynamics §9, §10, §13).  Frames: N, B, P (gyro platform),
-// C (star-tracker case, boresight = case z).  Units: SI; time tags are
+// (spec plant-dynamics §9, §10, §13), and a magnetometer (docs/environment.md).
+// Frames: N, B, P (gyro platform), C (star-tracker case, boresight = case z),
+// S (magnetometer axes).  Units: SI; time tags are
 // integer nanoseconds of the plant clock.
 //
 // Every sensor owns a random stream Rng(ctx.run_seed, params.name) and never
@@ -26,7 +27,7 @@
 
 #include "sim/attitude.h"  // quaternion_from_dcm, sigma_from_quaternion
 #include "sim/rng.h"
-#include "sim/capacities.h"  // kMaxWheels, WheelArray
+#include "sim/capacities.h"  // kMaxWheels, WheelArray, kMaxMagnetorquers
 
 namespace sim {
 
@@ -234,6 +235,53 @@ class WheelTachometers {
   Rng rng_;
   TachOutput out_;
   WheelArray k_noise_;
+};
+
+// ---------------------------------------------------------- magnetometer
+
+// Three-axis magnetometer (frame S, sensor axes).  The field it reads is the
+// Earth's at the spacecraft plus the magnetorquers' own field at the sensor,
+// interference_B * m (a linear map, tesla per A m^2 of each rod's dipole).
+struct MagnetometerParams {
+  std::string name = "mag";
+  Eigen::Matrix3d dcm_SB = Eigen::Matrix3d::Identity();  // [-] sensor from body
+  int64_t period_ns = 100'000'000;                        // [ns] sample period, > 0
+  double sigma = 0.0;                                     // [T] white-noise 1-sigma per axis
+  Eigen::Vector3d bias = Eigen::Vector3d::Zero();         // [T] constant bias, S
+  Eigen::Vector3d scale_error = Eigen::Vector3d::Zero();  // [-] diagonal; output *= 1 + e, each > -1
+  double lsb = 0.0;    // [T] quantisation step; 0: off
+  double range = 0.0;  // [T] per-axis saturation; 0: off
+  Eigen::Matrix<double, 3, kMaxMagnetorquers> interference_B =
+      Eigen::Matrix<double, 3, kMaxMagnetorquers>::Zero();  // [T/(A m^2)] column j: field at the sensor per unit dipole of rod j, B
+};
+
+struct MagnetometerOutput {
+  int64_t t_ns = 0;                                 // [ns] time tag
+  Eigen::Vector3d B_S = Eigen::Vector3d::Zero();    // [T] measured field, S
+  bool valid = false;                               // a sample exists
+  bool saturated = false;                           // any axis clipped
+};
+
+// Per sample: draws 3 normals (x, y, z).
+//   b = [SB] (B_B + interference_B m)
+//   b = (1 + scale_error) .* b + bias + sigma eta     (noise on; else b unchanged)
+//   quantise; saturate at +-range
+class Magnetometer {
+ public:
+  Magnetometer(MagnetometerParams p, const SensorContext& ctx);  // validates (std::invalid_argument)
+  // B_B [T] the Earth's field at the spacecraft, B; m [A m^2] the rods' dipoles.
+  bool update(int64_t t_ns, const Eigen::Vector3d& B_B, const MagnetorquerArray& m);
+  const MagnetometerOutput& output() const { return out_; }
+  const MagnetometerParams& params() const { return p_; }
+  void set_noise_scale(double k);  // as the other sensors
+  double noise_scale() const { return k_noise_; }
+
+ private:
+  MagnetometerParams p_;
+  bool noise_;
+  double k_noise_ = 1.0;
+  Rng rng_;
+  MagnetometerOutput out_;
 };
 
 }  // namespace sim
