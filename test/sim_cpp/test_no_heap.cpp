@@ -76,6 +76,19 @@ TEST(NoHeap, StepAndAccessorsDoNotAllocate)
   EXPECT_TRUE(std::isfinite(sink));
 }
 
+// A 0.8 m cube of six 0.5 m^2 facets.
+sim::FacetSet cube_facets()
+{
+  sim::FacetSet facets;
+  facets.count = 6;
+  for (int k = 0; k < 6; ++k) {
+    facets.facets[k].area = 0.5;
+    facets.facets[k].n_B = (k < 3 ? 1.0 : -1.0) * Eigen::Vector3d::Unit(k % 3);
+    facets.facets[k].r_B = 0.4 * facets.facets[k].n_B;
+  }
+  return facets;
+}
+
 // The Earth-orbit environment models (docs/environment.md) on a per-step
 // path: time and rotation, Sun, gravity gradient, SRP, drag, density, IGRF,
 // magnetorquer and magnetometer.
@@ -85,13 +98,7 @@ TEST(NoHeap, EnvironmentModelsDoNotAllocate)
   epoch.year = 2026;
   epoch.month = 12;
   epoch.day = 5;
-  sim::FacetSet facets;
-  facets.count = 6;
-  for (int k = 0; k < 6; ++k) {
-    facets.facets[k].area = 0.5;
-    facets.facets[k].n_B = (k < 3 ? 1.0 : -1.0) * Eigen::Vector3d::Unit(k % 3);
-    facets.facets[k].r_B = 0.4 * facets.facets[k].n_B;
-  }
+  const sim::FacetSet facets = cube_facets();
   const sim::Igrf14 igrf(2026.9);
   const sim::ExponentialAtmosphere atm;
   const Eigen::Matrix3d I = Eigen::Vector3d(10.0, 12.0, 8.0).asDiagonal();
@@ -137,13 +144,7 @@ TEST(NoHeap, EnvironmentEffectorsDoNotAllocate)
   sim::EarthContextParams ep;
   ep.epoch = {2026, 12, 5, 0, 0, 0.0};
   const sim::EarthContext ctx(ep);
-  sim::FacetSet facets;
-  facets.count = 6;
-  for (int k = 0; k < 6; ++k) {
-    facets.facets[k].area = 0.5;
-    facets.facets[k].n_B = (k < 3 ? 1.0 : -1.0) * Eigen::Vector3d::Unit(k % 3);
-    facets.facets[k].r_B = 0.4 * facets.facets[k].n_B;
-  }
+  const sim::FacetSet facets = cube_facets();
   sim::GravityGradientParams gp;
   sim::SolarPressureParams sp;
   sim::DragParams dp;
