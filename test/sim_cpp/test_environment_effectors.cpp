@@ -119,13 +119,23 @@ TEST(GravityGradientEffector, PitchLibrationPeriod)
   EXPECT_GT(std::abs(T * std::sqrt(3.0) * n / (2.0 * M_PI) - 1.0), 2e-7);
 }
 
-// The torque uses the full inertia about the mass centre: hub plus a
-// point-mass tank, with the parallel axes about C written out here.
+// The torque uses the full inertia about the mass centre: hub, a fully
+// coupled wheel (a separate rotor: balanced, J_t = J_g = J_s/2 by default,
+// so its inertia does not depend on the rotor angle) and a point-mass tank,
+// with the parallel axes about C written out here.
 TEST(GravityGradientEffector, FullInertiaAboutTheMassCentre)
 {
   sim::PlantParams pp;
   pp.sc.hub = simtest::reference_hub();
   pp.sc.mu = sim::kMuEarth;
+  sim::ReactionWheelParams w;
+  w.model = sim::WheelModel::FullyCoupled;
+  w.gs_hat_nom_B = Vector3d(1.0, 2.0, 2.0) / 3.0;
+  w.r_WB_B = Vector3d(-0.6, 0.3, 1.2);
+  w.m_w = 12.0;
+  w.J_s = 0.09;
+  w.Omega_0 = 150.0;
+  pp.sc.wheels = {w};
   sim::TankParams tank;
   tank.r_TB_B = Vector3d(0.4, 0.7, -0.9);
   tank.m_p0 = 80.0;
@@ -135,12 +145,15 @@ TEST(GravityGradientEffector, FullInertiaAboutTheMassCentre)
   auto& gg = plant.add_effector(std::make_unique<sim::GravityGradientEffector>(plant, context()));
 
   const sim::HubParams& h = pp.sc.hub;
-  const double m = h.m_h + tank.m_p0;
-  const Vector3d c = (h.m_h * h.r_BcB_B + tank.m_p0 * tank.r_TB_B) / m;
+  const double m = h.m_h + w.m_w + tank.m_p0;
+  const Vector3d c = (h.m_h * h.r_BcB_B + w.m_w * w.r_WB_B + tank.m_p0 * tank.r_TB_B) / m;
   auto pa = [](double mass, const Vector3d& d) {
     return Matrix3d(mass * (d.dot(d) * Matrix3d::Identity() - d * d.transpose()));
   };
-  const Matrix3d I_C = h.I_hBc_B + pa(h.m_h, h.r_BcB_B - c) + pa(tank.m_p0, tank.r_TB_B - c);
+  const Vector3d g = w.gs_hat_nom_B;
+  const Matrix3d I_rotor = w.J_s * g * g.transpose() + 0.5 * w.J_s * (Matrix3d::Identity() - g * g.transpose());
+  const Matrix3d I_C = h.I_hBc_B + pa(h.m_h, h.r_BcB_B - c) + I_rotor + pa(w.m_w, w.r_WB_B - c) +
+                       pa(tank.m_p0, tank.r_TB_B - c);
   const Matrix3d C_BN = simtest::dcm_BN_via_quaternion(plant.sigma_BN());
   const Vector3d R_B = C_BN * plant.r_BN_N() + c;  // position of C, B components
   const Vector3d expected = 3.0 * sim::kMuEarth / std::pow(R_B.norm(), 5) * R_B.cross(I_C * R_B);
