@@ -4,11 +4,13 @@
 // run exists.  (Thrusters and tanks: test_thruster.cpp ThrusterNoHeap.)
 #include <atomic>
 #include <cstdlib>
+#include <memory>
 #include <new>
 
 #include <gtest/gtest.h>
 
 #include "sim/earth_time.h"
+#include "sim/environment_effectors.h"
 #include "sim/gravity_gradient.h"
 #include "sim/magnetic_field.h"
 #include "sim/magnetorquer.h"
@@ -74,6 +76,19 @@ TEST(NoHeap, StepAndAccessorsDoNotAllocate)
   EXPECT_TRUE(std::isfinite(sink));
 }
 
+// A 0.8 m cube of six 0.5 m^2 facets.
+sim::FacetSet cube_facets()
+{
+  sim::FacetSet facets;
+  facets.count = 6;
+  for (int k = 0; k < 6; ++k) {
+    facets.facets[k].area = 0.5;
+    facets.facets[k].n_B = (k < 3 ? 1.0 : -1.0) * Eigen::Vector3d::Unit(k % 3);
+    facets.facets[k].r_B = 0.4 * facets.facets[k].n_B;
+  }
+  return facets;
+}
+
 // The Earth-orbit environment models (docs/environment.md) on a per-step
 // path: time and rotation, Sun, gravity gradient, SRP, drag, density, IGRF,
 // magnetorquer and magnetometer.
@@ -83,13 +98,7 @@ TEST(NoHeap, EnvironmentModelsDoNotAllocate)
   epoch.year = 2026;
   epoch.month = 12;
   epoch.day = 5;
-  sim::FacetSet facets;
-  facets.count = 6;
-  for (int k = 0; k < 6; ++k) {
-    facets.facets[k].area = 0.5;
-    facets.facets[k].n_B = (k < 3 ? 1.0 : -1.0) * Eigen::Vector3d::Unit(k % 3);
-    facets.facets[k].r_B = 0.4 * facets.facets[k].n_B;
-  }
+  const sim::FacetSet facets = cube_facets();
   const sim::Igrf14 igrf(2026.9);
   const sim::ExponentialAtmosphere atm;
   const Eigen::Matrix3d I = Eigen::Vector3d(10.0, 12.0, 8.0).asDiagonal();
@@ -117,6 +126,51 @@ TEST(NoHeap, EnvironmentModelsDoNotAllocate)
     dipoles[0] = rod.dipole();
     mag.update(int64_t(k) * mp.period_ns, E * r * 1e-12, dipoles);
     sink += mag.output().B_S.norm() + sim::magnetic_torque(rod.dipole_B(), mag.output().B_S).norm();
+  }
+  EXPECT_EQ(g_news.load() - before, 0);
+  EXPECT_TRUE(std::isfinite(sink));
+}
+
+// The environment effectors in a run (docs/environment.md, "In the plant"):
+// every one sampled at every stage and held, rods commanded and faulted,
+// the density scale changed, between and inside steps.
+TEST(NoHeap, EnvironmentEffectorsDoNotAllocate)
+{
+  sim::SpacecraftParams p;
+  p.hub = simtest::reference_hub();
+  p.wheels = simtest::pyramid_wheels(sim::WheelModel::Balanced);
+  p.mu = sim::kMuEarth;
+  sim::Plant sc({p, {}}, simtest::leo_ic());
+  sim::EarthContextParams ep;
+  ep.epoch = {2026, 12, 5, 0, 0, 0.0};
+  const sim::EarthContext ctx(ep);
+  const sim::FacetSet facets = cube_facets();
+  sim::GravityGradientParams gp;
+  sim::SolarPressureParams sp;
+  sim::DragParams dp;
+  sim::MagneticParams mp;
+  sp.facets = dp.facets = facets;
+  sp.period_ns = dp.period_ns = mp.period_ns = 0;
+  mp.m_residual_B = Eigen::Vector3d(0.1, 0.2, 0.3);
+  mp.rods.resize(3);
+  sc.add_effector(std::make_unique<sim::GravityGradientEffector>(sc, ctx, gp));
+  sc.add_effector(std::make_unique<sim::SolarPressureEffector>(sc, ctx, sp));
+  auto& drag = sc.add_effector(std::make_unique<sim::DragEffector>(sc, ctx, dp));
+  auto& mag = sc.add_effector(std::make_unique<sim::MagneticEffector>(sc, ctx, mp));
+  gp.period_ns = sp.period_ns = dp.period_ns = mp.period_ns = simtest::ns(2e-3);
+  sc.add_effector(std::make_unique<sim::GravityGradientEffector>(sc, ctx, gp));
+  sc.add_effector(std::make_unique<sim::SolarPressureEffector>(sc, ctx, sp));
+  sc.add_effector(std::make_unique<sim::DragEffector>(sc, ctx, dp));
+
+  const long before = g_news.load();
+  double sink = 0.0;
+  for (int k = 0; k < 100; ++k) {
+    mag.command_dipoles({0.01 * k, -0.5, 0.3});
+    if (k == 50) mag.set_rod_health(1, sim::MagnetorquerHealth::Stuck);
+    if (k == 60) mag.set_rod_scale(2, 0.5);
+    drag.set_density_scale(1.0 + 0.01 * k);
+    ASSERT_EQ(sc.step(simtest::ns(1e-3)), sim::StepStatus::Ok);
+    sink += sc.derivatives(0.0, sc.state())(9) + mag.load(0.0, sc.state()).L_B.norm();
   }
   EXPECT_EQ(g_news.load() - before, 0);
   EXPECT_TRUE(std::isfinite(sink));

@@ -5,9 +5,9 @@
 //
 // Gravity in the dynamics is applied by SpacecraftModel at the mass centre
 // with SpacecraftParams::mu (§3); point_mass_gravity() is the same law for
-// scenario code and tests.  No gravity gradient, SRP, drag or magnetic
-// torques act in the plant (§6); models of them exist but are not wired in
-// yet (docs/environment.md).
+// scenario code and tests.  Gravity gradient, SRP, drag and magnetic
+// torques act only through the effectors of sim/environment_effectors.h,
+// when they are added to a plant (docs/environment.md, "In the plant").
 #ifndef SIM_ENVIRONMENT_H
 #define SIM_ENVIRONMENT_H
 

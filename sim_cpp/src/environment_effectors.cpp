@@ -1,0 +1,248 @@
+// environment_effectors: see sim/environment_effectors.h.
+#include "sim/environment_effectors.h"
+
+#include <cmath>
+#include <string>
+
+#include "sim/attitude.h"
+#include "sim/environment.h"
+#include "sim/gravity_gradient.h"
+#include "sim/units.h"
+#include "validate_util.h"
+
+namespace sim {
+
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+int64_t checked_period(int64_t period_ns, const char* name)
+{
+  if (period_ns < 0) detail::fail(std::string(name) + ".period_ns", static_cast<double>(period_ns), "must be >= 0");
+  return period_ns;
+}
+
+Vector3d position_N(const StateVector& x) { return x.segment<3>(StateLayout::r_BN_N); }
+
+Matrix3d dcm_BN(const StateVector& x) { return dcm_BN_from_sigma(x.segment<3>(StateLayout::sigma_BN)); }
+
+}  // namespace
+
+// ---------------------------------------------------------- sampling base
+
+SampledEnvironmentEffector::SampledEnvironmentEffector(const Plant& plant, const EarthContext& ctx,
+                                                       int64_t period_ns, const char* name)
+    : plant_(plant), ctx_(ctx), period_ns_(checked_period(period_ns, name))
+{
+}
+
+void SampledEnvironmentEffector::take_sample(int64_t t_ns)
+{
+  sample(seconds_from_ns(t_ns), plant_.state());
+  sample_ns_ = t_ns;
+}
+
+void SampledEnvironmentEffector::at_instant(int64_t t_ns)
+{
+  // The first segment start at or after the next multiple of the period.
+  if (period_ns_ == 0) return;
+  const bool none = sample_ns_ == std::numeric_limits<int64_t>::min();
+  if (none || t_ns / period_ns_ > sample_ns_ / period_ns_) take_sample(t_ns);
+}
+
+void SampledEnvironmentEffector::prepare_now(int64_t t_ns)
+{
+  t0_ns_ = t_ns;
+  // First use (added to the plant): a sample of now, so that a derivative
+  // evaluated before the first step sees an environment.
+  if (period_ns_ > 0 && sample_ns_ == std::numeric_limits<int64_t>::min()) take_sample(t_ns);
+}
+
+void SampledEnvironmentEffector::accumulate(const EffectorStage& stage, EffectorSums& sums) const
+{
+  const BodyLoad l = load(seconds_from_ns(t0_ns_) + stage.t, stage.x);
+  sums.F_B += l.F_B;
+  sums.L_B += l.L_B;
+}
+
+// ------------------------------------------------------- gravity gradient
+
+GravityGradientEffector::GravityGradientEffector(const Plant& plant, const EarthContext& ctx,
+                                                 const GravityGradientParams& p)
+    : SampledEnvironmentEffector(plant, ctx, p.period_ns, "gravity_gradient")
+{
+}
+
+void GravityGradientEffector::sample(double /*t_s*/, const StateVector& x)
+{
+  const MassCentre mc = plant_.model().mass_centre(x, plant_.hub_with_propellant(x));
+  R_held_N_ = position_N(x) + dcm_BN(x).transpose() * mc.c_B;
+}
+
+BodyLoad GravityGradientEffector::load(double /*t_s*/, const StateVector& x) const
+{
+  const MassProps mp = plant_.model().mass_props(x, plant_.hub_with_propellant(x));
+  const Matrix3d I_C = mp.I_sc_B - parallel_axis(mp.m_sc, mp.c_B);  // [kg*m^2] about C
+  const Matrix3d C_BN = dcm_BN(x);
+  const Vector3d R_N = period_ns() > 0 ? R_held_N_ : Vector3d(position_N(x) + C_BN.transpose() * mp.c_B);
+  BodyLoad l;
+  l.L_B = gravity_gradient_torque(plant_.model().params().mu, C_BN * R_N, I_C);  // a couple: about C = about B
+  return l;
+}
+
+// --------------------------------------------- solar radiation pressure
+
+SolarPressureEffector::SolarPressureEffector(const Plant& plant, const EarthContext& ctx,
+                                             const SolarPressureParams& p)
+    : SampledEnvironmentEffector(plant, ctx, p.period_ns, "solar_pressure"), facets_(p.facets)
+{
+  validate(facets_, "solar_pressure.facets");
+}
+
+void SolarPressureEffector::sample(double t_s, const StateVector& x)
+{
+  const Vector3d r = position_N(x);
+  const Vector3d r_sun = ctx_.sun_position_N(t_s);
+  s_held_N_ = (r_sun - r).normalized();
+  flux_held_ = solar_flux_scale(r, r_sun) * illumination_factor(r, r_sun, ctx_.params().shadow_radius);
+}
+
+BodyLoad SolarPressureEffector::load(double t_s, const StateVector& x) const
+{
+  Vector3d s_N = s_held_N_;
+  double flux = flux_held_;
+  if (period_ns() == 0) {
+    const Vector3d r = position_N(x);
+    const Vector3d r_sun = ctx_.sun_position_N(t_s);
+    s_N = (r_sun - r).normalized();
+    flux = solar_flux_scale(r, r_sun) * illumination_factor(r, r_sun, ctx_.params().shadow_radius);
+  }
+  BodyLoad l;
+  if (flux == 0.0 || facets_.count == 0) return l;  // umbra: nothing
+  const SurfaceLoad s = srp_load(facets_, dcm_BN(x) * s_N, flux);  // about B (r_ref = 0)
+  l.F_B = s.F_B;
+  l.L_B = s.L_B;
+  return l;
+}
+
+// ------------------------------------------------------------- drag
+
+DragEffector::DragEffector(const Plant& plant, const EarthContext& ctx, const DragParams& p)
+    : SampledEnvironmentEffector(plant, ctx, p.period_ns, "drag"), facets_(p.facets)
+{
+  validate(facets_, "drag.facets");
+  validate(p.atmosphere, "drag.atmosphere");
+  atm_ = p.atmosphere;
+}
+
+void DragEffector::set_density_scale(double scale)
+{
+  // Checked here (a validate() call would form the field name on every call).
+  if (!(scale >= 0.0) || !std::isfinite(scale)) detail::fail("drag.atmosphere.scale", scale, "must be finite and >= 0");
+  atm_.scale = scale;
+}
+
+void DragEffector::sample(double /*t_s*/, const StateVector& x)
+{
+  rho_held_ = density(ExponentialAtmosphere{}, ellipsoid_height(position_N(x)));
+}
+
+BodyLoad DragEffector::load(double /*t_s*/, const StateVector& x) const
+{
+  BodyLoad l;
+  if (facets_.count == 0) return l;
+  const Vector3d r = position_N(x);
+  const double rho_nominal = period_ns() > 0 ? rho_held_ : density(ExponentialAtmosphere{}, ellipsoid_height(r));
+  const Vector3d v_rel_N = wind_velocity_N(r, x.segment<3>(StateLayout::v_BN_N));
+  const SurfaceLoad s = drag_load(facets_, dcm_BN(x) * v_rel_N, atm_.scale * rho_nominal);  // about B
+  l.F_B = s.F_B;
+  l.L_B = s.L_B;
+  return l;
+}
+
+// --------------------------------------------------------- magnetism
+
+namespace {
+Igrf14 make_igrf(const EarthContext& ctx, int degree)
+{
+  if (degree < 1 || degree > kIgrfMaxDegree) detail::fail("magnetic.igrf_degree", degree, "must be in [1, 13]");
+  return Igrf14(ctx.decimal_year(), degree);
+}
+}  // namespace
+
+MagneticEffector::MagneticEffector(const Plant& plant, const EarthContext& ctx, const MagneticParams& p)
+    : SampledEnvironmentEffector(plant, ctx, p.period_ns, "magnetic"),
+      igrf_(make_igrf(ctx, p.igrf_degree)),
+      m_residual_B_(p.m_residual_B)
+{
+  detail::require_finite("magnetic.m_residual_B", m_residual_B_);
+  if (p.rods.size() > static_cast<size_t>(kMaxMagnetorquers))
+    detail::fail("magnetic.rods.size()", static_cast<double>(p.rods.size()), "must be <= sim::kMaxMagnetorquers");
+  num_rods_ = static_cast<int>(p.rods.size());
+  rods_.reserve(p.rods.size());
+  for (size_t i = 0; i < p.rods.size(); ++i)
+    rods_.emplace_back(p.rods[i], ("magnetic.rods[" + std::to_string(i) + "]").c_str());
+  scale_.fill(1.0);
+  refresh_dipole();
+}
+
+void MagneticEffector::refresh_dipole()
+{
+  Vector3d m = m_residual_B_;
+  for (int i = 0; i < num_rods_; ++i) {
+    const auto ui = static_cast<size_t>(i);
+    dipole_[ui] = rods_[ui].dipole();
+    m += rods_[ui].dipole_B();
+  }
+  m_total_B_ = m;
+}
+
+void MagneticEffector::command_dipoles(const std::array<double, kMaxMagnetorquers>& m_cmd)
+{
+  for (int i = 0; i < num_rods_; ++i) {
+    const auto ui = static_cast<size_t>(i);
+    if (health_[ui] != MagnetorquerHealth::Nominal) continue;
+    rods_[ui].command(scale_[ui] * m_cmd[ui]);
+  }
+  refresh_dipole();
+}
+
+void MagneticEffector::set_rod_health(int i, MagnetorquerHealth h)
+{
+  if (i < 0 || i >= num_rods_) detail::fail("magnetorquer index", i, "must be in [0, num_rods)");
+  const int hv = static_cast<int>(h);
+  if (hv < 0 || hv > 2)
+    detail::fail("magnetic.rods[" + std::to_string(i) + "].health", hv, "must be Nominal, FailedOff or Stuck");
+  const auto ui = static_cast<size_t>(i);
+  health_[ui] = h;
+  if (h == MagnetorquerHealth::FailedOff) rods_[ui].command(0.0);  // coil off: remanence only
+  refresh_dipole();
+}
+
+void MagneticEffector::set_rod_scale(int i, double s)
+{
+  if (i < 0 || i >= num_rods_) detail::fail("magnetorquer index", i, "must be in [0, num_rods)");
+  if (!(s >= 0.0) || !std::isfinite(s))
+    detail::fail("magnetic.rods[" + std::to_string(i) + "].scale", s, "must be finite and >= 0");
+  scale_[static_cast<size_t>(i)] = s;
+}
+
+Vector3d MagneticEffector::field_N(double t_s, const Vector3d& r_N) const
+{
+  const Matrix3d C_EN = ctx_.dcm_EN(t_s);
+  return C_EN.transpose() * igrf_.field_E(C_EN * r_N);
+}
+
+void MagneticEffector::sample(double t_s, const StateVector& x) { B_held_N_ = field_N(t_s, position_N(x)); }
+
+BodyLoad MagneticEffector::load(double t_s, const StateVector& x) const
+{
+  BodyLoad l;
+  if (m_total_B_.isZero(0.0)) return l;
+  const Vector3d B_N = period_ns() > 0 ? B_held_N_ : field_N(t_s, position_N(x));
+  l.L_B = magnetic_torque(m_total_B_, dcm_BN(x) * B_N);  // a couple: about C = about B
+  return l;
+}
+
+}  // namespace sim
