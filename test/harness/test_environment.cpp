@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,22 @@ TEST(Environment, GravityGradientTorqueAtStartMatchesTheClosedForm)
   const char* axes[] = {"x", "y", "z"};
   for (int i = 0; i < 3; ++i)
     EXPECT_NEAR(m.column(std::string("torque_gravity_gradient_") + axes[i]).front(), L(i), 1e-12 * L.norm()) << axes[i];
+
+  // The last row (t = 2 s), from that row's recorded attitude and position
+  // of B: the mass centre is at r_B + [NB] c with c the file's com (the
+  // inertia about B would differ by m (c.c I - c c^T), ~10 kg*m^2, and miss).
+  const uint64_t last = m.rows() - 1;
+  auto at = [&m, last](const std::string& stem) {
+    return Eigen::Vector3d(m.column(stem + "_x")[last], m.column(stem + "_y")[last], m.column(stem + "_z")[last]);
+  };
+  const Eigen::Matrix3d BN = dcm_from_mrp(at("sigma_BN"));
+  const Eigen::Vector3d c_B(0.05, -0.02, 0.10);
+  const Eigen::Vector3d R2_N = at("r_BN_N") + BN.transpose() * c_B;
+  const Eigen::Vector3d r2_B = BN * R2_N.normalized();
+  const Eigen::Vector3d L2 = 3.0 * mu / std::pow(R2_N.norm(), 3) * r2_B.cross(I * r2_B);
+  EXPECT_EQ(m.column("t")[last], 2.0);
+  EXPECT_GT((L2 - L).norm(), 1e-3 * L.norm());  // the attitude moved: a different torque
+  EXPECT_LT((at("torque_gravity_gradient") - L2).norm(), 1e-10 * L2.norm());
 }
 
 // Scenarios without the keys build no effector and record no torque column.

@@ -96,7 +96,9 @@ void check_env_models(MapReader& r, const Scenario& sc)
     if (!env_model(e, src).enabled) continue;
     const std::string name = env_source_name(src);
     if (e.epoch.empty()) r.error_at(name, "needs environment.epoch (the UTC date of t = 0)");
-    if (!earth) r.error_at(name, "needs an Earth orbit: environment.mu = " + fmt(sim::kMuEarth) + " m^3/s^2 (within 0.1%), got " + fmt(e.mu));
+    if (!earth)
+      r.error_at(name, "needs an Earth orbit: environment.mu = " + fmt(sim::kMuEarth) + " m^3/s^2 (within 0.1%), got " +
+                           fmt(e.mu));
   }
   std::string why;
   const std::optional<sim::UtcEpoch> ep = e.epoch.empty() ? std::nullopt : parse_utc_epoch(e.epoch, &why);
