@@ -75,9 +75,56 @@ sim::PropulsionParams propulsion_params(const Scenario& sc, const VehicleGeometr
   return prop;
 }
 
+int64_t period_ns(const EnvModelSpec& m) { return static_cast<int64_t>(std::llround(m.period * 1e9)); }
+
+sim::FacetSet facet_set(const Scenario& sc)
+{
+  sim::FacetSet f;
+  for (const sim::Facet& x : sc.spacecraft.facets) f.facets[static_cast<size_t>(f.count++)] = x;
+  return f;
+}
+
+// The environment effectors the scenario enables, in EnvSource order, with
+// one Earth context (the epoch of t = 0; gravity gradient alone needs no date).
+EnvEffectors add_environment(const Scenario& sc, sim::Plant& p)
+{
+  EnvEffectors out{};
+  const EnvironmentSpec& e = sc.environment;
+  sim::EarthContextParams cp;
+  std::string why;
+  if (!e.epoch.empty()) cp.epoch = parse_utc_epoch(e.epoch, &why).value_or(sim::UtcEpoch{});
+  const sim::EarthContext ctx(cp);
+  if (e.gravity_gradient.enabled) {
+    sim::GravityGradientParams gp;
+    gp.period_ns = period_ns(e.gravity_gradient);
+    out[0] = &p.add_effector(std::make_unique<sim::GravityGradientEffector>(p, ctx, gp));
+  }
+  if (e.solar_pressure.enabled) {
+    sim::SolarPressureParams sp;
+    sp.facets = facet_set(sc);
+    sp.period_ns = period_ns(e.solar_pressure);
+    out[1] = &p.add_effector(std::make_unique<sim::SolarPressureEffector>(p, ctx, sp));
+  }
+  if (e.drag.enabled) {
+    sim::DragParams dp;
+    dp.facets = facet_set(sc);
+    dp.atmosphere.scale = e.drag_density_scale;
+    dp.period_ns = period_ns(e.drag);
+    out[2] = &p.add_effector(std::make_unique<sim::DragEffector>(p, ctx, dp));
+  }
+  if (e.magnetic.enabled) {
+    sim::MagneticParams mp;
+    mp.m_residual_B = sc.spacecraft.residual_dipole_B;
+    mp.igrf_degree = e.igrf_degree;
+    mp.period_ns = period_ns(e.magnetic);
+    out[3] = &p.add_effector(std::make_unique<sim::MagneticEffector>(p, ctx, mp));
+  }
+  return out;
+}
+
 }  // namespace
 
-std::unique_ptr<sim::Plant> build_plant(const Scenario& sc)
+std::unique_ptr<sim::Plant> build_plant(const Scenario& sc, EnvEffectors* env)
 {
   std::unique_ptr<sim::Plant> p;  // the plant checks its own capacities (built_by_plant reports them)
   const VehicleGeometry g = vehicle_geometry(sc);
@@ -85,10 +132,13 @@ std::unique_ptr<sim::Plant> build_plant(const Scenario& sc)
   const sim::InitialConditions ic = initial_conditions(sc);
   if (sc.thrusters.empty()) {
     built_by_plant(sc, "spacecraft", [&] { p = std::make_unique<sim::Plant>(sim::PlantParams{params, {}}, ic); });
-    return p;
+  } else {
+    const sim::PropulsionParams prop = propulsion_params(sc, g);
+    built_by_plant(sc, "thrusters", [&] { p = std::make_unique<sim::Plant>(sim::PlantParams{params, prop}, ic); });
   }
-  const sim::PropulsionParams prop = propulsion_params(sc, g);
-  built_by_plant(sc, "thrusters", [&] { p = std::make_unique<sim::Plant>(sim::PlantParams{params, prop}, ic); });
+  EnvEffectors added{};
+  built_by_plant(sc, "environment", [&] { added = add_environment(sc, *p); });
+  if (env) *env = added;
   return p;
 }
 

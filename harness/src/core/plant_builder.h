@@ -3,6 +3,7 @@
 #ifndef HARNESS_PLANT_BUILDER_H
 #define HARNESS_PLANT_BUILDER_H
 
+#include <array>
 #include <cstdint>
 #include <memory>
 
@@ -10,14 +11,20 @@
 
 #include "harness/core/scenario_types.h"
 #include "harness/core/vehicle_geometry.h"
+#include "sim/environment_effectors.h"
 #include "sim/plant.h"
 
 namespace harness {
 
+// The environment effectors of a run (owned by its plant), indexed by
+// EnvSource; null where the scenario leaves that model off.
+using EnvEffectors = std::array<const sim::SampledEnvironmentEffector*, kNumEnvSources>;
+
 // Builds the plant (sim::Plant: hub, wheels and, with thrusters, the
-// thruster set and the tanks); throws ScenarioError (at the key's line) when
-// the plant rejects the configuration.
-std::unique_ptr<sim::Plant> build_plant(const Scenario& sc);
+// thruster set and the tanks, then the environment effectors the scenario
+// enables); throws ScenarioError (at the key's line) when the plant rejects
+// the configuration.  `env` (optional) receives the environment effectors.
+std::unique_ptr<sim::Plant> build_plant(const Scenario& sc, EnvEffectors* env = nullptr);
 
 // Main-engine burn: the engine opens at the first thruster command instant
 // at or after burn.start and closes at start + duration.

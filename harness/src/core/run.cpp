@@ -5,6 +5,7 @@
 #include "harness/core/run.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -56,6 +57,7 @@ constexpr Slot kTickProtocol[] = {
 
 struct Run::Impl {
   Scenario sc;
+  EnvEffectors env{};  // filled by build_plant (before plant_owner)
   std::unique_ptr<sim::Plant> plant_owner;
   sim::Plant& plant;
   FswSetup fsw_setup;
@@ -103,7 +105,7 @@ struct Run::Impl {
     Channel<CssMsg>* css = nullptr;
   };
 
-  explicit Impl(const Scenario& s) : sc(s), plant_owner(build_plant(s)), plant(*plant_owner), sched(s.tick_ns()) {}
+  explicit Impl(const Scenario& s) : sc(s), plant_owner(build_plant(s, &env)), plant(*plant_owner), sched(s.tick_ns()) {}
   void wire(RunConfig& cfg);
   void build_fsw(RunConfig& cfg);
   Messages add_messages();
@@ -182,7 +184,7 @@ void Run::Impl::add_tasks(const Messages& m)
 {
   DataFlow& f = flow;
   const uint64_t tk = sc.tick_ns();
-  truth.emplace(TruthTask{&plant, tk, f.writer("plant", *m.truth)});
+  truth.emplace(TruthTask{&plant, tk, f.writer("plant", *m.truth), env});
   const BurnSchedule burn_sched = burn_schedule(sc, plant);
   if (m.burn) {
     f.add_component("burn_monitor", "harness");
@@ -227,8 +229,11 @@ void Run::Impl::add_recorder(const Messages& m)
   rc.fsw_health = &f.reader("recorder", *m.health).channel();
   if (plant.num_thr() > 0) rc.plant_cmd = &f.reader("recorder", *m.cmd).channel();
   if (m.sun) rc.sun_heading = &f.reader("recorder", *m.sun).channel();
+  std::array<bool, kNumEnvSources> env_on{};
+  for (size_t s = 0; s < env_on.size(); ++s) env_on[s] = env[s] != nullptr;
   declare_telemetry(rec, rc, plant.num_rw(), plant.num_thr(), sc.environment.mu > 0.0,
                     [this] { return sched.t_ns(tick); });
+  declare_disturbances(rec, rc, env_on);
 }
 
 void Run::Impl::add_events()

@@ -2,6 +2,7 @@
 // without the YAML schema (harness_core): problems, tick arithmetic, names.
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "harness/core/scenario_types.h"
 
@@ -85,6 +86,49 @@ const char* wheel_model_key(sim::WheelModel m)
     case sim::WheelModel::FullyCoupled: return "fully_coupled";
   }
   return "balanced";
+}
+
+const char* env_source_name(EnvSource s)
+{
+  switch (s) {
+    case EnvSource::GravityGradient: return "gravity_gradient";
+    case EnvSource::SolarPressure: return "solar_pressure";
+    case EnvSource::Drag: return "drag";
+    case EnvSource::Magnetic: return "magnetic";
+  }
+  return "gravity_gradient";
+}
+
+const EnvModelSpec& env_model(const EnvironmentSpec& e, EnvSource s)
+{
+  switch (s) {
+    case EnvSource::GravityGradient: return e.gravity_gradient;
+    case EnvSource::SolarPressure: return e.solar_pressure;
+    case EnvSource::Drag: return e.drag;
+    case EnvSource::Magnetic: return e.magnetic;
+  }
+  return e.gravity_gradient;
+}
+
+std::optional<sim::UtcEpoch> parse_utc_epoch(const std::string& text, std::string* why)
+{
+  sim::UtcEpoch e;
+  int n = 0;
+  char z = 0;
+  const int got = std::sscanf(text.c_str(), "%4d-%2d-%2dT%2d:%2d:%lf%c%n", &e.year, &e.month, &e.day, &e.hour,
+                              &e.minute, &e.second, &z, &n);
+  if (got != 7 || z != 'Z' || static_cast<size_t>(n) != text.size() || text.size() < 20 || text[4] != '-' ||
+      text[7] != '-' || text[13] != ':' || text[16] != ':') {
+    *why = "expected a UTC date-time YYYY-MM-DDThh:mm:ssZ (seconds may have a fraction)";
+    return std::nullopt;
+  }
+  try {
+    sim::validate(e, "epoch");
+  } catch (const std::invalid_argument& ex) {
+    *why = ex.what();
+    return std::nullopt;
+  }
+  return e;
 }
 
 }  // namespace harness

@@ -48,6 +48,14 @@ void TruthTask::operator()(uint64_t k) const
     t.u_s[i] = p.u_s(i);
   }
   for (int j = 0; j < p.num_thr(); ++j) t.F_thr[j] = p.thruster_effect(j).F_B.norm();
+  static_assert(kMaxEnvSources == kNumEnvSources, "one torque per environment source");
+  const double t_s = static_cast<double>(k * tick_ns) * 1e-9;
+  for (int s = 0; s < kNumEnvSources; ++s)
+    if (const sim::SampledEnvironmentEffector* e = env[static_cast<size_t>(s)]) {
+      const sim::BodyLoad l = e->load(t_s, x);
+      const Eigen::Vector3d L_C = l.L_B - mp.c_B.cross(l.F_B);
+      for (int i = 0; i < 3; ++i) t.L_env_C_B[s][i] = L_C(i);
+    }
   out.write(t, k * tick_ns);
 }
 

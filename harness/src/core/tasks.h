@@ -39,6 +39,7 @@ struct TruthTask {
   const sim::Plant* plant;
   uint64_t tick_ns;
   Writer<TruthMsg> out;
+  EnvEffectors env{};  // the run's environment effectors (null: off)
   void operator()(uint64_t k) const;
 };
 

@@ -183,4 +183,14 @@ void declare_telemetry(Recorder& rec, const RecordedChannels& ch, int n_rw, int 
   record_fsw(rec, ch, n_rw);
 }
 
+void declare_disturbances(Recorder& rec, const RecordedChannels& ch, const std::array<bool, kNumEnvSources>& on)
+{
+  for (int s = 0; s < kNumEnvSources; ++s) {
+    if (!on[static_cast<size_t>(s)]) continue;
+    const std::string name = std::string("torque_") + env_source_name(static_cast<EnvSource>(s));
+    rec.record<TruthMsg>(*ch.truth, {vec3(name, "N*m", "B, about the mass centre")},
+                         [s](const TruthMsg& x, double* o) { copy3(o, x.L_env_C_B[s]); });
+  }
+}
+
 }  // namespace harness

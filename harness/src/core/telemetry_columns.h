@@ -5,6 +5,8 @@
 #ifndef HARNESS_TELEMETRY_COLUMNS_H
 #define HARNESS_TELEMETRY_COLUMNS_H
 
+#include <array>
+
 #include "harness/core/loop_messages.h"
 #include "harness/core/recorder.h"
 #include "core/tasks.h"
@@ -26,6 +28,11 @@ struct RecordedChannels {
 // time of the row being sampled.
 void declare_telemetry(Recorder& rec, const RecordedChannels& ch, int n_rw, int n_thr, bool orbit,
                        std::function<uint64_t()> t_now_ns);
+
+// The disturbance torque about the mass centre of each environment source
+// that is on (EnvSource order): torque_<source>_x/_y/_z [N*m], B components.
+// None when every source is off.
+void declare_disturbances(Recorder& rec, const RecordedChannels& ch, const std::array<bool, kNumEnvSources>& on);
 
 }  // namespace harness
 

@@ -228,6 +228,10 @@ void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
                                           std::to_string(sc.wheels.size()));
   if (sc.fsw.mode == FswMode::SunSafe && sc.environment.sun_position_N.norm() == 0.0)
     ctx.error(root["environment"], "environment.sun_position_N", "sun_safe mode needs a Sun position");
+  for (EnvSource src : {EnvSource::SolarPressure, EnvSource::Drag})
+    if (env_model(sc.environment, src).enabled && sc.spacecraft.facets.empty())
+      ctx.error(root["environment"][env_source_name(src)], std::string("environment.") + env_source_name(src),
+                "needs spacecraft.facets (the surfaces it acts on)");
   if (!sc.thrusters.empty() && !sc.tank)
     ctx.error(root["thrusters"], "tank", "thrusters need a propellant tank (key 'tank')");
   if (sc.rcs_tank && sc.thrusters.empty())

@@ -99,6 +99,7 @@ nlohmann::json write_section(const Section& s, const Scenario& sc, size_t i)
   for (const Section& c : s.children) {
     if (c.input_only) continue;
     if (c.list) {
+      if (c.present && !c.present(sc)) continue;  // an optional list (facets) absent
       nlohmann::json a = nlohmann::json::array();
       for (size_t n = 0; n < c.count(sc); ++n) a.push_back(write_section(c, sc, n));
       j[c.name] = a;

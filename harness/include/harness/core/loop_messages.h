@@ -16,6 +16,7 @@ extern "C" {
 namespace harness {
 
 constexpr int kMaxRw = sim::kMaxWheels;
+constexpr int kMaxEnvSources = 4;  // gravity gradient, solar pressure, drag, magnetic
 constexpr int kMaxThr = sim::kMaxThrusters;
 
 // Plant truth at the tick (written every tick by the truth task).
@@ -32,6 +33,10 @@ struct TruthMsg {
   double Omega[kMaxRw];     // [rad/s] wheel speeds rel. B
   double u_s[kMaxRw];       // [N*m]   motor torque held by the plant
   double F_thr[kMaxThr];    // [N]     thrust magnitude of each thruster now
+  // [N*m] disturbance torque about the mass centre C, B components, of each
+  // environment source (EnvSource order; zero where a source is off):
+  // L_C = L_B - c x F_B from the effector's load at this state.
+  double L_env_C_B[kMaxEnvSources][3];
 };
 
 // Sampled outputs of the gyro, star tracker and wheel tachometers, held

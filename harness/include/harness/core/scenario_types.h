@@ -16,8 +16,10 @@
 
 #include <Eigen/Dense>
 
+#include "sim/earth_time.h"
 #include "sim/reaction_wheel.h"
 #include "sim/spacecraft.h"
+#include "sim/surface_forces.h"
 
 namespace harness {
 
@@ -72,12 +74,38 @@ struct SpacecraftSpec {
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();   // [kg*m^2] hub inertia about hub CoM
   Eigen::Vector3d r_BcB_B = Eigen::Vector3d::Zero();   // [m]      hub mass centre Bc rel. B (key: com)
   InitialSpec initial;
+  std::vector<sim::Facet> facets;                      // surfaces for solar pressure and drag (none: default)
+  Eigen::Vector3d residual_dipole_B = Eigen::Vector3d::Zero();  // [A*m^2] residual magnetic dipole, B
+};
+
+// An Earth-orbit disturbance model of the plant (sim/environment_effectors.h):
+// on or off and the period its environment is evaluated at (0: every RK4
+// stage).  Off by default; a run without any has none of the effectors.
+struct EnvModelSpec {
+  bool enabled = false;
+  double period = 1.0;  // [s] >= 0, whole nanoseconds
 };
 
 struct EnvironmentSpec {
   double mu = 0.0;                                             // [m^3/s^2]
   Eigen::Vector3d sun_position_N{1.495978707e11, 0.0, 0.0};    // [m]
+  std::string epoch;       // UTC of t = 0, "YYYY-MM-DDThh:mm:ss[.s]Z"; "" none
+  EnvModelSpec gravity_gradient{false, 0.0};
+  EnvModelSpec solar_pressure;
+  EnvModelSpec drag;
+  double drag_density_scale = 1.0;  // [-] >= 0
+  EnvModelSpec magnetic;
+  int igrf_degree = 13;             // [-] 1 .. 13
 };
+
+// The disturbance sources of a run, in the order recorded.
+enum class EnvSource { GravityGradient = 0, SolarPressure = 1, Drag = 2, Magnetic = 3 };
+constexpr int kNumEnvSources = 4;
+const char* env_source_name(EnvSource s);  // "gravity_gradient", ...
+const EnvModelSpec& env_model(const EnvironmentSpec& e, EnvSource s);
+// "YYYY-MM-DDThh:mm:ss[.s]Z" -> the epoch (sim::validate'd: year 1900 .. 2100);
+// nullopt with the reason in *why otherwise.
+std::optional<sim::UtcEpoch> parse_utc_epoch(const std::string& text, std::string* why);
 
 struct WheelSpec {
   std::string name;

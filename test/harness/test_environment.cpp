@@ -1,0 +1,179 @@
+// Earth-orbit disturbance models reached from scenario keys (environment.*,
+// spacecraft.facets, spacecraft.residual_dipole): the recorded torques, the
+// manifest round trip, and that scenarios without them record nothing new.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "harness/core/run.h"
+#include "harness/scenario/scenario.h"
+
+namespace {
+
+const std::string kLeo = std::string(KESTREL_SOURCE_DIR) + "/test/harness/data/leo_environment.yaml";
+const std::string kS1 = std::string(KESTREL_SOURCE_DIR) + "/scenarios/s1_sun_pointing.yaml";
+
+// Every model on, with the facets and the dipole of the file.
+const std::vector<harness::Override> kAllOn{{"environment.solar_pressure.enabled", "true"},
+                                            {"environment.solar_pressure.period", "0.5"},
+                                            {"environment.drag.enabled", "true"},
+                                            {"environment.drag.density_scale", "2.5"},
+                                            {"environment.magnetic.enabled", "true"},
+                                            {"environment.magnetic.igrf_degree", "8"}};
+
+// [BN] of an MRP, formed here (Schaub & Junkins, eq. 3.152):
+// [BN] = I + (8 [s~]^2 - 4 (1 - s.s) [s~]) / (1 + s.s)^2.
+Eigen::Matrix3d dcm_from_mrp(const Eigen::Vector3d& s)
+{
+  Eigen::Matrix3d t;
+  t << 0.0, -s(2), s(1), s(2), 0.0, -s(0), -s(1), s(0), 0.0;
+  const double ss = s.squaredNorm();
+  return Eigen::Matrix3d::Identity() + (8.0 * t * t - 4.0 * (1.0 - ss) * t) / ((1.0 + ss) * (1.0 + ss));
+}
+
+std::vector<std::string> torque_columns(const harness::MemorySink& m)
+{
+  std::vector<std::string> out;
+  for (const auto& c : m.columns())
+    if (c.name.rfind("torque_", 0) == 0) out.push_back(c.name);
+  return out;
+}
+
+}  // namespace
+
+// Gravity gradient alone at t = 0: L = 3 mu/R^3 r x (I r), r the unit
+// position of the mass centre in B.  With balanced wheels (no separate
+// rotor) the inertia about the mass centre is the hub's as written, and C is
+// the hub's mass centre, whose position the file gives (r_CN_N).
+TEST(Environment, GravityGradientTorqueAtStartMatchesTheClosedForm)
+{
+  const harness::Scenario sc = harness::load_scenario(kLeo);
+  harness::Run run(sc);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  const harness::MemorySink& m = run.memory();
+  EXPECT_EQ(torque_columns(m),
+            (std::vector<std::string>{"torque_gravity_gradient_x", "torque_gravity_gradient_y", "torque_gravity_gradient_z"}));
+
+  const double mu = 3.986004415e14;  // the file's environment.mu
+  Eigen::Matrix3d I;                  // the file's spacecraft.inertia
+  I << 900.0, 12.0, -30.0, 12.0, 800.0, 25.0, -30.0, 25.0, 600.0;
+  const Eigen::Vector3d R_N(7.0e6, 0.0, 0.0);  // spacecraft.initial.r_CN_N
+  const Eigen::Vector3d r_B = dcm_from_mrp(Eigen::Vector3d(0.1, 0.2, -0.3)) * R_N.normalized();
+  const Eigen::Vector3d L = 3.0 * mu / std::pow(R_N.norm(), 3) * r_B.cross(I * r_B);
+  ASSERT_GT(L.cwiseAbs().minCoeff(), 1e-6);  // every component resolved (|L| ~ 1e-4 N*m)
+  EXPECT_EQ(m.column("t").front(), 0.0);
+  const char* axes[] = {"x", "y", "z"};
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(m.column(std::string("torque_gravity_gradient_") + axes[i]).front(), L(i), 1e-12 * L.norm()) << axes[i];
+
+  // The last row (t = 2 s), from that row's recorded attitude and position
+  // of B: the mass centre is at r_B + [NB] c with c the file's com (the
+  // inertia about B would differ by m (c.c I - c c^T), ~10 kg*m^2, and miss).
+  const uint64_t last = m.rows() - 1;
+  auto at = [&m, last](const std::string& stem) {
+    return Eigen::Vector3d(m.column(stem + "_x")[last], m.column(stem + "_y")[last], m.column(stem + "_z")[last]);
+  };
+  const Eigen::Matrix3d BN = dcm_from_mrp(at("sigma_BN"));
+  const Eigen::Vector3d c_B(0.05, -0.02, 0.10);
+  const Eigen::Vector3d R2_N = at("r_BN_N") + BN.transpose() * c_B;
+  const Eigen::Vector3d r2_B = BN * R2_N.normalized();
+  const Eigen::Vector3d L2 = 3.0 * mu / std::pow(R2_N.norm(), 3) * r2_B.cross(I * r2_B);
+  EXPECT_EQ(m.column("t")[last], 2.0);
+  EXPECT_GT((L2 - L).norm(), 1e-3 * L.norm());  // the attitude moved: a different torque
+  EXPECT_LT((at("torque_gravity_gradient") - L2).norm(), 1e-10 * L2.norm());
+}
+
+// Scenarios without the keys build no effector and record no torque column.
+TEST(Environment, OffByDefaultRecordsNoTorque)
+{
+  harness::Scenario sc = harness::load_scenario(kS1, {{"duration", "1"}});
+  EXPECT_FALSE(sc.environment.gravity_gradient.enabled || sc.environment.solar_pressure.enabled ||
+               sc.environment.drag.enabled || sc.environment.magnetic.enabled);
+  EXPECT_TRUE(sc.spacecraft.facets.empty());
+  const std::string json = harness::scenario_to_json_text(sc);
+  for (const char* k : {"epoch", "gravity_gradient", "solar_pressure", "drag", "magnetic", "facets", "residual_dipole"})
+    EXPECT_EQ(json.find(std::string("\"") + k + "\""), std::string::npos) << k;
+  harness::Run run(sc);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  EXPECT_TRUE(torque_columns(run.memory()).empty());
+}
+
+// Every model on: one column group per source, each torque finite and
+// non-zero at every row (the plates face the flow and the Sun).
+TEST(Environment, EveryModelRecordsItsOwnTorque)
+{
+  const harness::Scenario sc = harness::load_scenario(kLeo, kAllOn);
+  harness::Run run(sc);
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  const harness::MemorySink& m = run.memory();
+  ASSERT_EQ(torque_columns(m).size(), 12u);
+  for (const char* src : {"gravity_gradient", "solar_pressure", "drag", "magnetic"}) {
+    SCOPED_TRACE(src);
+    const std::string p = std::string("torque_") + src + "_";
+    const auto x = m.column(p + "x"), y = m.column(p + "y"), z = m.column(p + "z");
+    for (size_t k = 0; k < x.size(); ++k) {
+      const double n = std::sqrt(x[k] * x[k] + y[k] * y[k] + z[k] * z[k]);
+      EXPECT_TRUE(std::isfinite(n));
+      EXPECT_GT(n, 0.0);
+    }
+  }
+}
+
+TEST(Environment, ManifestFormReloadsIdentically)
+{
+  const harness::Scenario a = harness::load_scenario(kLeo, kAllOn);
+  const std::string ja = harness::scenario_to_json_text(a);
+  const harness::Scenario b = harness::load_scenario_text(ja, "m.json");
+  EXPECT_EQ(harness::scenario_to_json_text(b), ja);
+  EXPECT_EQ(b.environment.epoch, "2027-03-21T12:00:00Z");
+  EXPECT_TRUE(b.environment.gravity_gradient.enabled && b.environment.solar_pressure.enabled &&
+              b.environment.drag.enabled && b.environment.magnetic.enabled);
+  EXPECT_EQ(b.environment.gravity_gradient.period, 0.0);
+  EXPECT_EQ(b.environment.solar_pressure.period, 0.5);
+  EXPECT_EQ(b.environment.drag_density_scale, 2.5);
+  EXPECT_EQ(b.environment.igrf_degree, 8);
+  ASSERT_EQ(b.spacecraft.facets.size(), 2u);
+  EXPECT_EQ(b.spacecraft.facets[0].specular, 0.3);
+  EXPECT_EQ(b.spacecraft.facets[1].absorbed, 1.0);  // default
+  EXPECT_EQ(b.spacecraft.facets[1].n_B, Eigen::Vector3d(-1.0, 0.0, 0.0));
+  EXPECT_EQ(b.spacecraft.residual_dipole_B, Eigen::Vector3d(0.5, -0.2, 1.0));
+}
+
+// Cross-field rules, each named at its key.
+TEST(Environment, RulesNameTheKey)
+{
+  struct Case {
+    std::vector<harness::Override> set;
+    const char* key;
+    const char* words;
+  };
+  const std::vector<Case> cases{
+      {{{"environment.epoch", "2027-13-01T00:00:00Z"}}, "environment.epoch", "month"},
+      {{{"environment.epoch", "2027-03-21 12:00"}}, "environment.epoch", "YYYY-MM-DDThh:mm:ssZ"},
+      {{{"environment.epoch", "2031-01-02T00:00:00Z"}, {"environment.magnetic.enabled", "true"}},
+       "environment.epoch", "2020 to 2030"},
+      {{{"environment.mu", "4.282837e13"}, {"environment.drag.enabled", "true"}}, "environment.drag", "Earth orbit"},
+      {{{"environment.mu", "0"}}, "environment.gravity_gradient", "mu > 0"},
+      {{{"spacecraft.facets", "[]"}, {"environment.solar_pressure.enabled", "true"}},
+       "environment.solar_pressure", "facets"},
+      {{{"environment.magnetic.igrf_degree", "14"}}, "environment.magnetic.igrf_degree", "13"},
+      {{{"environment.gravity_gradient.period", "-1"}}, "environment.gravity_gradient.period", "[0, 86400]"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.key);
+    try {
+      harness::load_scenario(kLeo, c.set);
+      ADD_FAILURE() << "accepted";
+    } catch (const harness::ScenarioError& e) {
+      bool found = false;
+      for (const auto& is : e.issues())
+        found = found || (is.key == c.key && is.message.find(c.words) != std::string::npos);
+      EXPECT_TRUE(found) << e.what();
+    }
+  }
+}
