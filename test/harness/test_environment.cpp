@@ -3,6 +3,7 @@
 // manifest round trip, and that scenarios without them record nothing new.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -163,6 +164,8 @@ TEST(Environment, RulesNameTheKey)
        "environment.solar_pressure", "facets"},
       {{{"environment.magnetic.igrf_degree", "14"}}, "environment.magnetic.igrf_degree", "13"},
       {{{"environment.gravity_gradient.period", "-1"}}, "environment.gravity_gradient.period", "[0, 86400]"},
+      {{{"environment.mu", "0"}}, "environment.epoch", "Earth orbit"},
+      {{{"environment.sun_position_N", "[1.0e11, 0.0, 0.0]"}}, "environment.sun_position_N", "from the date"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.key);
@@ -174,6 +177,57 @@ TEST(Environment, RulesNameTheKey)
       for (const auto& is : e.issues())
         found = found || (is.key == c.key && is.message.find(c.words) != std::string::npos);
       EXPECT_TRUE(found) << e.what();
+    }
+  }
+}
+
+// A dated run takes its Sun from the almanac of the epoch and the Earth's
+// shadow: the coarse sun sensors of a sun-safe hold see nothing behind the
+// Earth and see the almanac Sun on the day side.  At 2027-06-21 12:00 UTC,
+// 2.2 h before the June solstice, the Sun stands at right ascension 90 deg
+// and declination epsilon = 23.44 deg within 0.1 deg: unit vector
+// (0, cos eps, sin eps) in N, 90 deg from the fixed default Sun (+x).  A
+// spacecraft 7,000 km from the Earth's centre on the anti-Sun side is deep
+// in the umbra (the cone is ~6,300 km wide there); on the Sun side it is lit
+// and the parallax is 5e-5 rad.
+TEST(Environment, DatedRunTakesTheAlmanacSunAndTheEarthShadow)
+{
+  const double eps = 23.4393 * M_PI / 180.0;
+  const Eigen::Vector3d sun(0.0, std::cos(eps), std::sin(eps));
+  const std::vector<harness::Override> sun_safe{
+      {"environment.epoch", "2027-06-21T12:00:00Z"},
+      {"fsw.mode", "sun_safe"},
+      {"fsw.sun_safe.sun_axis_B", "[0.0, 0.0, 1.0]"},
+      {"sensors.noise", "false"},
+      {"sensors.css.fov_deg", "90"},
+      {"sensors.css.normals", "[[1,0,0],[-1,0,0],[0,1,0],[0,-1,0],[0,0,1],[0,0,-1]]"},
+      {"duration", "1.0"}};
+  for (const double side : {-1.0, 1.0}) {
+    SCOPED_TRACE(side);
+    std::vector<harness::Override> set = sun_safe;
+    const Eigen::Vector3d r = side * 7.0e6 * sun;
+    set.push_back({"spacecraft.initial.r_CN_N",
+                   "[" + std::to_string(r(0)) + ", " + std::to_string(r(1)) + ", " + std::to_string(r(2)) + "]"});
+    set.push_back({"spacecraft.initial.v_CN_N", "[7546.0, 0.0, 0.0]"});
+    const harness::Scenario sc = harness::load_scenario(kLeo, set);
+    harness::Run run(sc);
+    ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+    const harness::MemorySink& m = run.memory();
+    const auto lit = m.column("css_num_lit"), valid = m.column("sun_valid");
+    const auto bx = m.column("sun_B_x"), by = m.column("sun_B_y"), bz = m.column("sun_B_z");
+    const auto s0 = m.column("sigma_BN_x"), s1 = m.column("sigma_BN_y"), s2 = m.column("sigma_BN_z");
+    ASSERT_FALSE(lit.empty());
+    for (size_t k = 0; k < lit.size(); ++k) {
+      if (side < 0.0) {
+        EXPECT_EQ(lit[k], 0.0) << k;
+        EXPECT_EQ(valid[k], 0.0) << k;
+        continue;
+      }
+      EXPECT_GT(lit[k], 0.0) << k;
+      // the estimate against the solstice Sun turned into B by the recorded attitude
+      const Eigen::Vector3d d_B = dcm_from_mrp(Eigen::Vector3d(s0[k], s1[k], s2[k])) * sun;
+      const double ang = std::acos(std::clamp(d_B.dot(Eigen::Vector3d(bx[k], by[k], bz[k]).normalized()), -1.0, 1.0));
+      EXPECT_LT(ang, 3e-3) << k;  // 0.17 deg: the 0.1 deg of the date plus the parallax
     }
   }
 }

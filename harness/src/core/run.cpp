@@ -212,7 +212,7 @@ void Run::Impl::add_tasks(const Messages& m)
   plant_input.emplace(PlantInputTask{&plant, f.reader("plant", *m.cmd)});
   f.add_component("metrics", "harness");
   metrics.emplace(&plant, tk, sc.fsw.mode == FswMode::Inertial, sc.fsw.sigma_R0N, sc.fsw.sun_axis_B,
-                  sc.environment.sun_position_N, sc.environment.mu, f.reader("metrics", *m.truth),
+                  sc.environment, sc.environment.mu, f.reader("metrics", *m.truth),
                   m.burn ? f.reader("metrics", *m.burn) : Reader<BurnStateMsg>(), m.burn != nullptr,
                   f.writer("metrics", *m.metrics));
 }

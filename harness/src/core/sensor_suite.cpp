@@ -15,7 +15,7 @@ SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Pla
     : plant_(plant),
       n_rw_(static_cast<int>(sc.wheels.size())),
       num_css_(fsw.cfg.css.num_css),
-      r_sun_N_(sc.environment.sun_position_N),
+      sun_(sc.environment),
       ideal_css_(fsw.ideal_css),
       ideal_normals_(fsw.ideal_normals),
       div_gyro_(sc.sensors.gyro.divisor),
@@ -74,7 +74,12 @@ SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Pla
 
 const sim::SensorTruth& SensorSuite::truth_now()
 {
-  plant_.fill_sensor_truth(truth_, r_sun_N_);
+  if (!sun_.dated()) {
+    plant_.fill_sensor_truth(truth_, sun_.position_N(0));
+    return truth_;
+  }
+  const Eigen::Vector3d r_sun_N = sun_.position_N(plant_.t_ns());
+  plant_.fill_sensor_truth(truth_, r_sun_N, sun_.illumination(plant_.r_BN_N(), r_sun_N));
   return truth_;
 }
 
@@ -130,9 +135,12 @@ void SensorSuite::fsw_input(uint64_t t_ns, const TruthMsg& t, const SensorSample
   if (gyro_) copy3(msg.omega_BN_B, sm.omega_PN_P);  // P = B
   else copy3(msg.omega_BN_B, t.omega_BN_B);
   if (ideal_css_) {
-    const Eigen::Vector3d d_B = sim::dcm_BN_from_sigma(ev(t.sigma_BN)) * (r_sun_N_ - ev(t.r_BN_N)).normalized();
+    // cube-face cosines, times the visible fraction of the Sun (1 without an epoch)
+    const Eigen::Vector3d r_sun_N = sun_.position_N(static_cast<int64_t>(t_ns));
+    const Eigen::Vector3d d_B = sim::dcm_BN_from_sigma(ev(t.sigma_BN)) * (r_sun_N - ev(t.r_BN_N)).normalized();
+    const double f = sun_.illumination(ev(t.r_BN_N), r_sun_N);
     for (int i = 0; i < kIdealCss; ++i)
-      msg.css[i] = static_cast<fsw_real>(std::max(0.0, ideal_normals_[static_cast<size_t>(i)].dot(d_B)));
+      msg.css[i] = static_cast<fsw_real>(f * std::max(0.0, ideal_normals_[static_cast<size_t>(i)].dot(d_B)));
   } else {
     for (int i = 0; i < num_css_; ++i) msg.css[i] = static_cast<fsw_real>(css.y[i]);
   }

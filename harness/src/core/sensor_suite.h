@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/fsw_config.h"
+#include "core/sun_source.h"
 #include "harness/core/loop_messages.h"
 #include "harness/core/scenario_types.h"
 #include "sim/plant.h"
@@ -96,7 +97,7 @@ class SensorSuite {
   sim::SensorTruth truth_;
   int n_rw_ = 0;
   int num_css_ = 0;
-  Eigen::Vector3d r_sun_N_;
+  SunSource sun_;  // fixed, or the almanac Sun of the epoch with the Earth's shadow
   bool ideal_css_ = false;
   std::array<Eigen::Vector3d, kIdealCss> ideal_normals_{};
   uint64_t div_gyro_ = 1, div_st_ = 1, div_tach_ = 1;

@@ -170,6 +170,7 @@ void MetricsTask::operator()(uint64_t k)
   if (inertial) {
     m.pointing_error = principal_angle(sigma, sigma_R0N);  // guid_inertial: constant reference
   } else {
+    const Eigen::Vector3d r_sun_N = sun.position_N(static_cast<int64_t>(k * tick_ns));
     const Eigen::Vector3d d_B = sim::dcm_BN_from_sigma(sigma) * (r_sun_N - ev(t.r_BN_N)).normalized();
     m.pointing_error = std::atan2(sun_axis_B.cross(d_B).norm(), sun_axis_B.dot(d_B));
   }

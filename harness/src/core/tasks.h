@@ -18,6 +18,7 @@
 #include "core/plant_builder.h"
 #include "sim/plant.h"
 #include "core/sensor_suite.h"
+#include "core/sun_source.h"
 #include "sim/propellant.h"
 
 namespace harness {
@@ -141,16 +142,17 @@ struct PlantInputTask {
 // Figures of merit (record ticks) -> `metrics`.
 struct MetricsTask {
   MetricsTask(const sim::Plant* p, uint64_t tk, bool inertial_, const Eigen::Vector3d& sigma_R0N_,
-              const Eigen::Vector3d& sun_axis_B_, const Eigen::Vector3d& r_sun_N_, double mu_, Reader<TruthMsg> t,
+              const Eigen::Vector3d& sun_axis_B_, const EnvironmentSpec& env, double mu_, Reader<TruthMsg> t,
               Reader<BurnStateMsg> b, bool has_b, Writer<MetricsMsg> w)
       : plant(p), tick_ns(tk), inertial(inertial_), sigma_R0N(sigma_R0N_), sun_axis_B(sun_axis_B_),
-        r_sun_N(r_sun_N_), mu(mu_), truth(t), burn(b), has_burn(has_b), out(w)
+        sun(env), mu(mu_), truth(t), burn(b), has_burn(has_b), out(w)
   {
   }
   const sim::Plant* plant;
   uint64_t tick_ns;
   bool inertial;
-  Eigen::Vector3d sigma_R0N, sun_axis_B, r_sun_N;
+  Eigen::Vector3d sigma_R0N, sun_axis_B;
+  SunSource sun;  // the Sun of the pointing error
   double mu;
   Reader<TruthMsg> truth;
   Reader<BurnStateMsg> burn;  // unset without thrusters

@@ -62,7 +62,9 @@ const Section& environment_section()
       {
           real("mu", [](auto& sc, size_t) -> auto& { return sc.environment.mu; })
               .bounds(non_negative("m^3/s^2")).unit("m^3/s^2"),
-          vec3("sun_position_N", [](auto& sc, size_t) -> auto& { return sc.environment.sun_position_N; }).unit("m"),
+          written_if(vec3("sun_position_N", [](auto& sc, size_t) -> auto& { return sc.environment.sun_position_N; })
+                         .unit("m"),
+                     [](const Scenario& sc) { return sc.environment.epoch.empty(); }),
           written_if(string("epoch", [](auto& sc, size_t) -> auto& { return sc.environment.epoch; })
                          .scheck(utc_epoch_text).unit("UTC YYYY-MM-DDThh:mm:ssZ"),
                      [](const Scenario& sc) { return !sc.environment.epoch.empty(); }),
@@ -99,6 +101,14 @@ void check_env_models(MapReader& r, const Scenario& sc)
     if (!earth)
       r.error_at(name, "needs an Earth orbit: environment.mu = " + fmt(sim::kMuEarth) + " m^3/s^2 (within 0.1%), got " +
                            fmt(e.mu));
+  }
+  if (!e.epoch.empty()) {
+    // a dated run is an Earth orbit: its Sun is the almanac's (sun_source.h)
+    if (!earth)
+      r.error_at("epoch", "a dated run is an Earth orbit: needs environment.mu = " + fmt(sim::kMuEarth) +
+                              " m^3/s^2 (within 0.1%), got " + fmt(e.mu));
+    if (r.has("sun_position_N"))
+      r.error_at("sun_position_N", "with environment.epoch the Sun comes from the date (almanac); remove this key");
   }
   std::string why;
   const std::optional<sim::UtcEpoch> ep = e.epoch.empty() ? std::nullopt : parse_utc_epoch(e.epoch, &why);

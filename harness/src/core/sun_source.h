@@ -1,0 +1,58 @@
+// sun_source.h: where a run's Sun is, for the sensors, sun-safe pointing and
+// the metrics (the solar-pressure effector takes the same Sun from its own
+// sim::EarthContext).
+//   * No environment.epoch: the scenario's fixed environment.sun_position_N
+//     in N, never eclipsed (deep space, or an orbit without a date).
+//   * environment.epoch set (an Earth orbit): the geocentric almanac Sun of
+//     the epoch plus plant time (sim/sun_almanac.h) and the Earth's umbra
+//     and penumbra (sim::illumination_factor, shadowing sphere of radius
+//     sim::kRadiusEarth).
+// See docs/environment.md, "The Sun of a dated run".
+#ifndef HARNESS_CORE_SUN_SOURCE_H
+#define HARNESS_CORE_SUN_SOURCE_H
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "harness/core/scenario_types.h"
+#include "sim/earth_context.h"
+#include "sim/environment.h"
+
+namespace harness {
+
+class SunSource {
+ public:
+  explicit SunSource(const EnvironmentSpec& e) : fixed_N_(e.sun_position_N)
+  {
+    if (e.epoch.empty()) return;
+    std::string why;
+    const std::optional<sim::UtcEpoch> ep = parse_utc_epoch(e.epoch, &why);
+    if (!ep) return;  // rejected when the scenario was read
+    sim::EarthContextParams p;
+    p.epoch = *ep;
+    earth_.emplace(p);
+  }
+  bool dated() const { return earth_.has_value(); }
+  // [m] the Sun's position in N at plant time t_ns
+  Eigen::Vector3d position_N(int64_t t_ns) const
+  {
+    return earth_ ? earth_->sun_position_N(1e-9 * static_cast<double>(t_ns)) : fixed_N_;
+  }
+  // [-] visible fraction of the solar disk from r_N [m] with the Sun at
+  // r_sun_N: 1 without an epoch
+  double illumination(const Eigen::Vector3d& r_N, const Eigen::Vector3d& r_sun_N) const
+  {
+    return earth_ ? sim::illumination_factor(r_N, r_sun_N, earth_->params().shadow_radius) : 1.0;
+  }
+
+ private:
+  Eigen::Vector3d fixed_N_;
+  std::optional<sim::EarthContext> earth_;
+};
+
+}  // namespace harness
+
+#endif  // HARNESS_CORE_SUN_SOURCE_H
