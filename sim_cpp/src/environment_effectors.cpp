@@ -57,10 +57,24 @@ void SampledEnvironmentEffector::prepare_now(int64_t t_ns)
   // First use (added to the plant): a sample of now, so that a derivative
   // evaluated before the first step sees an environment.
   if (period_ns_ > 0 && sample_ns_ == std::numeric_limits<int64_t>::min()) take_sample(t_ns);
+  in_step_ = false;  // a derivative between steps: the load of its own state
+}
+
+void SampledEnvironmentEffector::begin_substep(double tau, double /*h*/)
+{
+  // the plant's state is the (sub-)step's start here
+  if (period_ns_ == 0) return;
+  step_load_ = load(seconds_from_ns(t0_ns_) + tau, plant_.state());
+  in_step_ = true;
 }
 
 void SampledEnvironmentEffector::accumulate(const EffectorStage& stage, EffectorSums& sums) const
 {
+  if (period_ns_ > 0 && in_step_) {
+    sums.F_B += step_load_.F_B;
+    sums.L_B += step_load_.L_B;
+    return;
+  }
   const BodyLoad l = load(seconds_from_ns(t0_ns_) + stage.t, stage.x);
   sums.F_B += l.F_B;
   sums.L_B += l.L_B;
@@ -76,17 +90,22 @@ GravityGradientEffector::GravityGradientEffector(const Plant& plant, const Earth
 
 void GravityGradientEffector::sample(double /*t_s*/, const StateVector& x)
 {
-  const MassCentre mc = plant_.model().mass_centre(x, plant_.hub_with_propellant(x));
-  R_held_N_ = position_N(x) + dcm_BN(x).transpose() * mc.c_B;
+  const MassProps mp = plant_.model().mass_props(x, plant_.hub_with_propellant(x));
+  I_held_C_B_ = mp.I_sc_B - parallel_axis(mp.m_sc, mp.c_B);
+  R_held_N_ = position_N(x) + dcm_BN(x).transpose() * mp.c_B;
 }
 
 BodyLoad GravityGradientEffector::load(double /*t_s*/, const StateVector& x) const
 {
+  const Matrix3d C_BN = dcm_BN(x);
+  BodyLoad l;
+  if (period_ns() > 0) {
+    l.L_B = gravity_gradient_torque(plant_.model().params().mu, C_BN * R_held_N_, I_held_C_B_);
+    return l;
+  }
   const MassProps mp = plant_.model().mass_props(x, plant_.hub_with_propellant(x));
   const Matrix3d I_C = mp.I_sc_B - parallel_axis(mp.m_sc, mp.c_B);  // [kg*m^2] about C
-  const Matrix3d C_BN = dcm_BN(x);
-  const Vector3d R_N = period_ns() > 0 ? R_held_N_ : Vector3d(position_N(x) + C_BN.transpose() * mp.c_B);
-  BodyLoad l;
+  const Vector3d R_N = position_N(x) + C_BN.transpose() * mp.c_B;
   l.L_B = gravity_gradient_torque(plant_.model().params().mu, C_BN * R_N, I_C);  // a couple: about C = about B
   return l;
 }

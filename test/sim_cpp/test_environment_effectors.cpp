@@ -359,6 +359,54 @@ TEST(EnvironmentEffectors, HeldEnvironmentIsSampledAtThePeriod)
   EXPECT_LT((held.F_B - now.F_B).norm(), 1e-3 * now.F_B.norm());  // 0.3 s of altitude change
 }
 
+// With period_ns > 0 the load is evaluated once per step, at its start, and
+// held in B through the step's RK4 stages.  The same run made by hand: a
+// plant without the effectors whose held external force and torque are set
+// before every step to the effectors' load at the step's start state
+// (sim::Plant::set_external): every step bit-identical.  The held
+// environment of the effectors comes from the first plant; both plants
+// pass through the same states, so the loads are the same numbers.
+TEST(EnvironmentEffectors, HeldLoadIsConstantInBThroughAStep)
+{
+  sim::PlantParams pp;
+  pp.sc.hub = simtest::reference_hub();
+  pp.sc.mu = sim::kMuEarth;
+  sim::InitialConditions ic = circular(6778e3, 0.9);
+  ic.omega_BN_B = Vector3d(0.02, -0.05, 0.08);  // tumbling: the load moves within a step
+  sim::Plant with(pp, ic), by_hand(pp, ic);
+  sim::SolarPressureParams sp;
+  sp.facets = box_and_panel();
+  sp.period_ns = simtest::ns(1.0);
+  sim::DragParams dp;
+  dp.facets = box_and_panel();
+  dp.period_ns = simtest::ns(1.0);
+  sim::GravityGradientParams gp;
+  gp.period_ns = simtest::ns(1.0);
+  std::vector<const sim::SampledEnvironmentEffector*> eff;
+  eff.push_back(&with.add_effector(std::make_unique<sim::GravityGradientEffector>(with, context(), gp)));
+  eff.push_back(&with.add_effector(std::make_unique<sim::SolarPressureEffector>(with, context(), sp)));
+  eff.push_back(&with.add_effector(std::make_unique<sim::DragEffector>(with, context(), dp)));
+  Vector3d L_first = Vector3d::Zero(), L_last = Vector3d::Zero();
+  for (int k = 0; k < 40; ++k) {
+    // the step start; `with` samples its environment there (every 1 s)
+    const sim::StateVector x0 = with.state();
+    const double t0 = 1e-9 * static_cast<double>(with.t_ns());
+    ASSERT_EQ(with.step(simtest::ns(0.25)), sim::StepStatus::Ok);
+    Vector3d F = Vector3d::Zero(), L = Vector3d::Zero();
+    for (const auto* e : eff) {
+      const sim::BodyLoad l = e->load(t0, x0);
+      F += l.F_B;
+      L += l.L_B;
+    }
+    by_hand.set_external(F, L);
+    ASSERT_EQ(by_hand.step(simtest::ns(0.25)), sim::StepStatus::Ok);
+    ASSERT_EQ(with.state(), by_hand.state()) << k;
+    (k == 0 ? L_first : L_last) = L;
+  }
+  // the load moved from step to step: a hold through a step, not through the run
+  EXPECT_GT((L_last - L_first).norm(), 0.1 * L_first.norm());
+}
+
 // ------------------------------------------------------------------- SRP
 
 TEST(SolarPressureEffector, SunlitPlateAndUmbra)

@@ -68,6 +68,7 @@ struct Case {
   std::string file;
   std::vector<Override> ov;
   bool fully_coupled = false;
+  bool extra = false;  // run only when named with --case
 };
 
 Scenario load_case(const Case& c)
@@ -86,7 +87,7 @@ RunConfig bench_config()
 }
 
 // The reference cases: S1 fully coupled at dt = 0.01 s and 0.1 s, S1 with
-// plant sub-steps, S2 as shipped.
+// plant sub-steps, S2 as shipped; and the extra cases, run when named.
 std::vector<Case> reference_cases(const std::string& dir)
 {
   const std::string s1 = (fs::path(dir) / "s1_sun_pointing.yaml").string();
@@ -111,6 +112,15 @@ std::vector<Case> reference_cases(const std::string& dir)
     cases.push_back(c);
   }
   cases.push_back({"s2", "S2 Mars orbit insertion, as shipped", s2, {}, false});
+  // Extra: S1's dt = 0.01 s case flown in LEO with every disturbance model
+  // on, and the same orbit with every model off (the environment's cost).
+  const std::string leo = (fs::path(dir) / "s1_leo_environment.yaml").string();
+  Case env{"s1-leo-env", "S1 in LEO, every disturbance model on", leo, cases[0].ov, true, true};
+  Case off{"s1-leo-off", "S1 in LEO, every disturbance model off", leo, cases[0].ov, true, true};
+  for (const char* m : {"gravity_gradient", "solar_pressure", "drag", "magnetic"})
+    off.ov.push_back({std::string("environment.") + m + ".enabled", "false"});
+  cases.push_back(env);
+  cases.push_back(off);
   return cases;
 }
 
@@ -126,7 +136,9 @@ bool select_cases(const std::vector<std::string>& only, std::vector<Case>& cases
       return false;
     }
   }
-  if (!only.empty())
+  if (only.empty())
+    cases.erase(std::remove_if(cases.begin(), cases.end(), [](const Case& c) { return c.extra; }), cases.end());
+  else
     cases.erase(std::remove_if(cases.begin(), cases.end(),
                                [&only](const Case& c) { return std::find(only.begin(), only.end(), c.id) == only.end(); }),
                 cases.end());

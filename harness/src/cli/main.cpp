@@ -152,7 +152,7 @@ int main(int argc, char** argv)
   auto* list = app.add_subcommand("list", "list the shipped scenarios");
   auto* bench = app.add_subcommand("bench", "print real-time factors of the reference scenarios");
   std::vector<std::string> bench_cases;
-  bench->add_option("--case", bench_cases, "only these cases: s1-0.01, s1-0.1, s1-substeps, s2 (repeatable)");
+  bench->add_option("--case", bench_cases, "only these cases: s1-0.01, s1-0.1, s1-substeps, s2; extra (only when named): s1-leo-env, s1-leo-off (repeatable)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

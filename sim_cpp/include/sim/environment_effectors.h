@@ -13,12 +13,19 @@
 //     magnetism), and
 //   * the body part: what depends on the attitude, the rates and the mass
 //     properties (rotation to B, the inertia, the facet sums, m x B).
-// The body part is evaluated at every RK4 stage.  The environment is
-// evaluated at every RK4 stage too when period_ns = 0 (exact), or, with
-// period_ns = T > 0, sampled from the plant state at the first segment
-// start at or after each k T and held (in N) until the next sample.  The
-// sample instants do not cut the plant's steps: with a plant step dt > T
-// the environment is sampled once per step.
+// With period_ns = 0 (exact) both are evaluated at every RK4 stage.  With
+// period_ns = T > 0:
+//   * the environment is sampled from the plant state at the first segment
+//     start at or after each k T and held (in N) until the next sample (the
+//     sample instants do not cut the plant's steps: with a plant step
+//     dt > T it is sampled once per step);
+//   * the body part is evaluated once per plant (sub-)step, at its start,
+//     from the held environment and the state there, and the load (F_B,
+//     L_B) is held in B through that step's RK4 stages (a derivative
+//     evaluated between steps takes the load of its own state);
+//   * the gravity-gradient effector also holds the inertia about the mass
+//     centre (B components) from its sample.
+// A setter (density scale, rod commands, faults) acts from the next step.
 //
 // Torque about B.  The plant sums forces and torques about point B.  A
 // load made of a force F (through the facets' centres of pressure r_i) has
@@ -68,6 +75,7 @@ class SampledEnvironmentEffector : public ForceTorqueEffector {
   void accumulate(const EffectorStage& stage, EffectorSums& sums) const final;
   void at_instant(int64_t t_ns) final;
   void begin_segment(int64_t t0_ns) final { t0_ns_ = t0_ns; }
+  void begin_substep(double tau, double h) final;
   void prepare_now(int64_t t_ns) final;
 
  protected:
@@ -86,6 +94,8 @@ class SampledEnvironmentEffector : public ForceTorqueEffector {
   int64_t period_ns_ = 0;
   int64_t t0_ns_ = 0;  // [ns] current segment start (or now)
   int64_t sample_ns_ = std::numeric_limits<int64_t>::min();  // [ns] last sample (min: none)
+  BodyLoad step_load_;    // period_ns > 0: the load held through the current (sub-)step
+  bool in_step_ = false;  // inside a step (else a derivative evaluates its own stage)
 };
 
 // ------------------------------------------------------- gravity gradient
@@ -99,7 +109,7 @@ struct GravityGradientParams {
 // I_C the full inertia about C at the stage: hub, wheels (rotor positions
 // of fully coupled wheels at the stage angles) and tanks with their stage
 // propellant, I_C = I_sc,B - m [c~][c~]^T.  A pure couple: added to L_B as is.
-// Held environment (period_ns > 0): R in N.
+// Held (period_ns > 0): R in N and I_C in B, from the sample.
 class GravityGradientEffector final : public SampledEnvironmentEffector {
  public:
   GravityGradientEffector(const Plant& plant, const EarthContext& ctx,
@@ -110,6 +120,7 @@ class GravityGradientEffector final : public SampledEnvironmentEffector {
  private:
   void sample(double t_s, const StateVector& x) override;
   Eigen::Vector3d R_held_N_ = Eigen::Vector3d::Zero();  // [m] held position of C
+  Eigen::Matrix3d I_held_C_B_ = Eigen::Matrix3d::Zero();  // [kg*m^2] held inertia about C, B
 };
 
 // --------------------------------------------- solar radiation pressure
