@@ -3,11 +3,12 @@
 //   eval/<model>_exact   CPU time per iteration = one load() with the
 //                        environment evaluated (period_ns = 0: every RK4 stage)
 //   eval/<model>_held    the same with the held environment (the part done
-//                        at every RK4 stage when period_ns > 0)
-//   step/<model>         us_per_sim_s: extra thread-CPU microseconds per
+//                        once per plant step when period_ns > 0)
+//   step/<model>_dt<dt>  us_per_sim_s: extra thread-CPU microseconds per
 //                           simulated second for a plant stepping at
-//                           dt = 0.1 s with that effector at its default rate,
-//                           over the same plant without it
+//                           dt = 0.1 s or 0.01 s with that effector at its
+//                           default rate (or held 1 s), over the same plant
+//                           without it
 // Vehicle: the S1 hub in a 400 km, 51.6 deg orbit, four balanced wheels,
 // 8 facets (a 1 m box and a two-sided 4 m^2 panel), IGRF degree 13, one rod.
 #include <cmath>
@@ -126,25 +127,27 @@ void eval(benchmark::State& state, Model m, bool held)
   }
 }
 
-// Thread-CPU seconds of n steps of 0.1 s, with or without the effector.
-double step_cost(Model m, bool with, int n)
+// Thread-CPU seconds of n steps of dt_ns, with or without the effector
+// (its default period, or period_ns >= 0).
+double step_cost(Model m, bool with, int n, int64_t dt_ns, int64_t period_ns)
 {
   auto plant = make_plant();
-  if (with) plant->add_effector(make(m, *plant, -1));
+  if (with) plant->add_effector(make(m, *plant, period_ns));
   const double t0 = thread_cpu_seconds();
-  for (int k = 0; k < n; ++k) plant->step(100000000);
+  for (int k = 0; k < n; ++k) plant->step(dt_ns);
   return thread_cpu_seconds() - t0;
 }
 
-void step(benchmark::State& state, Model m)
+// 200 simulated seconds per iteration at a plant step of dt_ns.
+void step(benchmark::State& state, Model m, int64_t dt_ns, int64_t period_ns)
 {
-  const int n = 2000;  // 200 s simulated per iteration
+  const int n = static_cast<int>(200000000000LL / dt_ns);
   double with = 0.0, without = 0.0;
   for (auto _ : state) {
-    with += step_cost(m, true, n);
-    without += step_cost(m, false, n);
+    with += step_cost(m, true, n, dt_ns, period_ns);
+    without += step_cost(m, false, n, dt_ns, period_ns);
   }
-  const double sim_s = 0.1 * n * static_cast<double>(state.iterations());
+  const double sim_s = 1e-9 * static_cast<double>(dt_ns) * n * static_cast<double>(state.iterations());
   state.counters["us_per_sim_s"] = 1e6 * (with - without) / sim_s;
   state.counters["us_per_sim_s_plant_alone"] = 1e6 * without / sim_s;
 }
@@ -159,9 +162,16 @@ BENCHMARK_CAPTURE(eval, Drag_exact, Model::Drag, false);
 BENCHMARK_CAPTURE(eval, Drag_held, Model::Drag, true);
 BENCHMARK_CAPTURE(eval, Magnetic_exact, Model::Magnetic, false);
 BENCHMARK_CAPTURE(eval, Magnetic_held, Model::Magnetic, true);
-BENCHMARK_CAPTURE(step, GravityGradient, Model::GravityGradient)->Iterations(20);
-BENCHMARK_CAPTURE(step, SolarPressure, Model::SolarPressure)->Iterations(20);
-BENCHMARK_CAPTURE(step, Drag, Model::Drag)->Iterations(20);
-BENCHMARK_CAPTURE(step, Magnetic, Model::Magnetic)->Iterations(20);
+// at the default rates (gravity gradient every RK4 stage, the others 1 s), dt = 0.1 s and 0.01 s
+BENCHMARK_CAPTURE(step, GravityGradient_dt0_1, Model::GravityGradient, 100000000, -1)->Iterations(10);
+BENCHMARK_CAPTURE(step, SolarPressure_dt0_1, Model::SolarPressure, 100000000, -1)->Iterations(10);
+BENCHMARK_CAPTURE(step, Drag_dt0_1, Model::Drag, 100000000, -1)->Iterations(10);
+BENCHMARK_CAPTURE(step, Magnetic_dt0_1, Model::Magnetic, 100000000, -1)->Iterations(10);
+BENCHMARK_CAPTURE(step, GravityGradient_dt0_01, Model::GravityGradient, 10000000, -1)->Iterations(3);
+BENCHMARK_CAPTURE(step, SolarPressure_dt0_01, Model::SolarPressure, 10000000, -1)->Iterations(3);
+BENCHMARK_CAPTURE(step, Drag_dt0_01, Model::Drag, 10000000, -1)->Iterations(3);
+BENCHMARK_CAPTURE(step, Magnetic_dt0_01, Model::Magnetic, 10000000, -1)->Iterations(3);
+// gravity gradient held 1 s (position and inertia), dt = 0.01 s
+BENCHMARK_CAPTURE(step, GravityGradient_held1s_dt0_01, Model::GravityGradient, 10000000, 1000000000)->Iterations(3);
 
 BENCHMARK_MAIN();
