@@ -41,6 +41,14 @@ Eigen::Matrix3d dcm_from_mrp(const Eigen::Vector3d& s)
   return Eigen::Matrix3d::Identity() + (8.0 * t * t - 4.0 * (1.0 - ss) * t) / ((1.0 + ss) * (1.0 + ss));
 }
 
+// The magnetometer's dcm_SB of the file: turned 90 deg about z.
+Eigen::Matrix3d sensor_from_body()
+{
+  Eigen::Matrix3d SB;
+  SB << 0.0, 1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0;
+  return SB;
+}
+
 // The geomagnetic field [T] in N at plant time t [s] and position r_N [m]
 // for the file's epoch and degree 13.
 struct Field {
@@ -159,8 +167,7 @@ TEST(Magnetics, MagnetometerReadsFieldPlusInterference)
   run_to_end(run);
   const Rows r{run.memory()};
   const Field f;
-  Eigen::Matrix3d SB;
-  SB << 0.0, 1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0;
+  const Eigen::Matrix3d SB = sensor_from_body();
   Eigen::Matrix<double, 3, 2> D;
   D << 1.0e-6, 0.0, 0.0, 2.0e-6, 5.0e-7, -1.0e-6;
   double largest_interference = 0.0;
@@ -189,8 +196,7 @@ TEST(Magnetics, MagnetometerDropoutFrozenBias)
   run_to_end(run);
   const Rows r{run.memory()};
   const Field f;
-  Eigen::Matrix3d SB;
-  SB << 0.0, 1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0;
+  const Eigen::Matrix3d SB = sensor_from_body();
   auto ideal = [&](size_t k) { return Eigen::Vector3d(SB * r.B_B(f, k)); };
   for (size_t k = 4; k <= 7; ++k) {  // 0.4 .. 0.7 s: dropped (0.7: no sample since, the dropout held)
     EXPECT_EQ(r.at("mag_valid", k), 0.0) << r.t(k);
@@ -355,8 +361,7 @@ TEST(Magnetics, MonteCarloDispersesResidualDipoleAndMagnetometerBias)
 )";
   const harness::Scenario nominal = harness::load_scenario_text(text, "mc_magnetics.yaml");
   const harness::McBinding bound = harness::bind_campaign(nominal);
-  Eigen::Matrix3d SB;
-  SB << 0.0, 1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0;
+  const Eigen::Matrix3d SB = sensor_from_body();
   const Field f;
   for (uint64_t k = 0; k < 3; ++k) {
     SCOPED_TRACE(k);
