@@ -387,3 +387,43 @@ TEST(Magnetics, MonteCarloDispersesResidualDipoleAndMagnetometerBias)
     EXPECT_LT((r.v("torque_magnetic", 0) - L).norm(), 1e-9 * L.norm());
   }
 }
+
+// noise_scale on the magnetometer: twin runs with sigma 1e-7 T, one scaled by
+// 3 from 1.0 s: before, the readings are equal; after, its error (reading
+// minus the ideal [SB] B_B) is 3 times the twin's, sample by sample.
+TEST(Magnetics, MagnetometerNoiseScaleTwins)
+{
+  const std::vector<harness::Override> base{{"sensors.magnetometer.sigma", "1e-7"}};
+  std::vector<harness::Override> scaled = base;
+  scaled.push_back({"events", events_yaml({{1.0, "magnetometer", "noise_scale", 3.0}})});
+  harness::Run a(harness::load_scenario(kFile, base)), b(harness::load_scenario(kFile, scaled));
+  run_to_end(a);
+  run_to_end(b);
+  const Rows ra{a.memory()}, rb{b.memory()};
+  const Field f;
+  const Eigen::Matrix3d SB = sensor_from_body();
+  for (size_t k = 0; k < ra.m.rows(); k += 2) {
+    const Eigen::Vector3d ideal = SB * ra.B_B(f, k);
+    const Eigen::Vector3d ea = ra.v("mag_B_S", k) - ideal, eb = rb.v("mag_B_S", k) - ideal;
+    EXPECT_GT(ea.norm(), 1e-9) << ra.t(k);  // the noise is there (3 sigma ~ 1.7e-7 T)
+    const double k_scale = ra.t(k) < 0.95 ? 1.0 : 3.0;
+    EXPECT_LT((eb - k_scale * ea).norm(), 1e-15) << ra.t(k);
+  }
+}
+
+// PWM and a stuck rod: stuck during the on-phase of the first cycle, the rod
+// stays at +m_max (and its power) for the rest of the run.
+TEST(Magnetics, PwmRodStuckHoldsItsLevel)
+{
+  const harness::Scenario sc = harness::load_scenario(
+      kFile, {{"rates.fsw_divisor", "10"},
+              {"magnetorquer_drive", "{mode: pwm}"},
+              {"events", events_yaml({{0.0, "mtq_a", "dipole", 3.33}, {0.2, "mtq_a", "stuck"}})}});
+  harness::Run run(sc);
+  run_to_end(run);
+  const Rows r{run.memory()};
+  for (size_t k = 1; k < r.m.rows(); ++k) {
+    EXPECT_EQ(r.at("mtq_dipole_0", k), kMaxA) << r.t(k);
+    EXPECT_EQ(r.at("mtq_power_0", k), kPowA) << r.t(k);
+  }
+}
