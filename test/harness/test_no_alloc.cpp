@@ -125,3 +125,25 @@ TEST(NoAlloc, RunWithEventsDoesNotAllocate)
   ASSERT_EQ(run.events_applied().size(), 2u);  // both applied inside the counted loop
   EXPECT_EQ(n, 0u);
 }
+
+// Magnetorquers driven by PWM (the driver cuts the plant's steps), rod
+// faults and a magnetometer with its faults, all applied inside the counted
+// loop (test/harness/data/leo_magnetics.yaml, docs/environment.md).
+TEST(NoAlloc, MagnetorquersAndMagnetometerDoNotAllocate)
+{
+  const harness::Scenario sc = harness::load_scenario(
+      KESTREL_SOURCE_DIR "/test/harness/data/leo_magnetics.yaml",
+      {{"magnetorquer_drive", "{mode: pwm, pwm_period: 0.05}"},
+       {"sensors.magnetometer.sigma", "1e-7"},
+       {"events", "[{t: 0.2, actions: [{device: mtq_a, action: dipole, value: 3.3}, "
+                  "{device: mtq_z, action: dipole, value: -1.2}]}, "
+                  "{t: 0.6, actions: [{device: mtq_z, action: stuck}, {device: magnetometer, action: dropout, value: 0.3}]}, "
+                  "{t: 1.2, actions: [{device: mtq_a, action: scale, value: 0.5}, {device: magnetometer, action: frozen}]}, "
+                  "{t: 1.5, actions: [{device: mtq_a, action: fail_off}, {device: magnetometer, action: restore}]}]"}});
+  harness::Run run(sc);
+  const unsigned long n = count_during([&run] { run.step_ticks(run.total_ticks()); });
+  EXPECT_TRUE(run.done());
+  EXPECT_EQ(run.failure(), "");
+  ASSERT_EQ(run.events_applied().size(), 4u);
+  EXPECT_EQ(n, 0u);
+}

@@ -116,6 +116,8 @@ void EventTask::apply(const Act& a, uint64_t t_ns)
     case EventDevice::Wheel: apply_wheel(a); break;
     case EventDevice::Thruster: apply_thruster(a); break;
     case EventDevice::Fsw: apply_fsw(a); break;
+    case EventDevice::Magnetorquer: apply_magnetorquer(a, t_ns); break;
+    case EventDevice::Magnetometer:
     case EventDevice::Gyro:
     case EventDevice::StarTracker:
     case EventDevice::Css: apply_sensor(a, t_ns); break;
@@ -235,10 +237,44 @@ void EventTask::apply_sensor(const Act& a, uint64_t t_ns)
     if (scale || restore) sensors_.set_star_tracker_noise_scale(k);
     if (axis >= 0) sensors_.set_star_tracker_bias(axis, a.value);
     for (int b = 0; restore && b < 3; ++b) sensors_.set_star_tracker_bias(b, 0.0);
+  } else if (a.target.device == EventDevice::Magnetometer) {
+    if (fault) sensors_.set_magnetometer_fault(f, until);
+    if (scale || restore) sensors_.set_magnetometer_noise_scale(k);
+    if (axis >= 0) sensors_.set_magnetometer_bias(axis, a.value);
+    for (int b = 0; restore && b < 3; ++b) sensors_.set_magnetometer_bias(b, 0.0);
   } else {
     if (fault) sensors_.set_css_fault(i, f, until);
     if (scale || restore) sensors_.set_css_noise_scale(i, k);
     if (x == EventAction::SensorBias || restore) sensors_.set_css_bias(i, restore ? 0.0 : a.value);
+  }
+}
+
+void EventTask::attach_magnetorquers(sim::MagneticEffector* mag, Writer<MtqCmdMsg> cmd)
+{
+  mag_ = mag;
+  mtq_cmd_ = cmd;
+}
+
+// Rod health and scale (the plant's magnetic effector); a dipole command
+// (the `mtq_cmd` message, taken by the rods at the next control instant).
+void EventTask::apply_magnetorquer(const Act& a, uint64_t t_ns)
+{
+  if (!mag_) return;
+  const int i = a.target.index;
+  switch (a.action) {
+    case EventAction::MtqFailOff: mag_->set_rod_health(i, sim::MagnetorquerHealth::FailedOff); break;
+    case EventAction::MtqStuck: mag_->set_rod_health(i, sim::MagnetorquerHealth::Stuck); break;
+    case EventAction::MtqScale: mag_->set_rod_scale(i, a.value); break;
+    case EventAction::MtqDipole: {
+      MtqCmdMsg c = mtq_cmd_.channel().value();
+      c.m_cmd[i] = a.value;
+      mtq_cmd_.write(c, t_ns);
+      break;
+    }
+    default:  // restore
+      mag_->set_rod_health(i, sim::MagnetorquerHealth::Nominal);
+      mag_->set_rod_scale(i, 1.0);
+      break;
   }
 }
 

@@ -21,6 +21,9 @@
 #include "harness/core/run.h"
 #include "harness/core/scenario_types.h"
 #include "core/sensor_suite.h"
+#include "harness/core/loop_messages.h"
+#include "harness/core/messages.h"
+#include "sim/environment_effectors.h"
 #include "sim/plant.h"
 
 namespace harness {
@@ -38,6 +41,9 @@ class EventTask {
   // Allocates (the live view's commands, not the scenario's own events).
   void add();
   const std::vector<AppliedEvent>& log() const { return log_; }
+  // The run's rods and their command message (runs with magnetorquers):
+  // the magnetorquer actions act on them.
+  void attach_magnetorquers(sim::MagneticEffector* mag, Writer<MtqCmdMsg> cmd);
 
  private:
   struct Act {
@@ -61,6 +67,7 @@ class EventTask {
   void apply_thruster(const Act& a);
   void apply_fsw(const Act& a);
   void apply_sensor(const Act& a, uint64_t t_ns);
+  void apply_magnetorquer(const Act& a, uint64_t t_ns);
   Ev make(size_t i) const;  // event i of the scenario, checked
 
   const Scenario& sc_;
@@ -70,6 +77,8 @@ class EventTask {
   FswEndpoint& fsw_;
   FswAcsCmdMsg cmd_;  // the mode and actuation commanded so far
   uint64_t tick_ns_;
+  sim::MagneticEffector* mag_ = nullptr;
+  Writer<MtqCmdMsg> mtq_cmd_;
   std::vector<Ev> ev_;
   std::vector<AppliedEvent> log_;
 };

@@ -51,6 +51,27 @@ const std::vector<EventActionDef> kSensorActions = {
     {"bias", EventAction::SensorBias, EventValue::Finite, "css units", "coarse sun sensor: value added to its reading"},
     {"restore", EventAction::Restore, EventValue::None, "-", "the output follows the sensor again, noise scale 1, no bias"},
 };
+const std::vector<EventActionDef> kMagnetorquerActions = {
+    {"fail_off", EventAction::MtqFailOff, EventValue::None, "-",
+     "coil dead: the remanent dipole of its last command stays, commands ignored"},
+    {"stuck", EventAction::MtqStuck, EventValue::None, "-", "dipole held at its present value, commands ignored"},
+    {"scale", EventAction::MtqScale, EventValue::NonNegative, "-",
+     "its dipole commands times value (then saturation) from the next command"},
+    {"dipole", EventAction::MtqDipole, EventValue::Finite, "A*m^2",
+     "command its dipole (mtq_cmd), applied at the next control instant (FSW tick)"},
+    {"restore", EventAction::Restore, EventValue::None, "-", "commands act again, scale 1 (from the next command)"},
+};
+const std::vector<EventActionDef> kMagnetometerActions = {
+    {"dropout", EventAction::SensorDropout, EventValue::Positive, "s",
+     "no valid reading for value seconds (mag_valid 0, NaN field)"},
+    {"frozen", EventAction::SensorFrozen, EventValue::None, "-", "the reading holds its present value"},
+    {"noise_scale", EventAction::SensorNoiseScale, EventValue::NonNegative, "-", "its noise 1-sigma times value"},
+    {"bias_x", EventAction::SensorBiasX, EventValue::Finite, "T",
+     "value added to its x reading (sensor axes), from its next sample"},
+    {"bias_y", EventAction::SensorBiasY, EventValue::Finite, "T", "as bias_x, its y reading"},
+    {"bias_z", EventAction::SensorBiasZ, EventValue::Finite, "T", "as bias_x, its z reading"},
+    {"restore", EventAction::Restore, EventValue::None, "-", "the reading follows the sensor again, noise scale 1, no bias"},
+};
 const std::vector<EventActionDef> kFswActions = {
     {"mode_inertial", EventAction::FswModeInertial, EventValue::None, "-",
      "command inertial pointing (guid_inertial -> att_track; needs an attitude: star tracker or truth)"},
@@ -78,6 +99,8 @@ const char* to_string(EventDevice d)
     case EventDevice::StarTracker: return "star tracker";
     case EventDevice::Css: return "coarse sun sensor";
     case EventDevice::Fsw: return "flight software";
+    case EventDevice::Magnetorquer: return "magnetorquer";
+    case EventDevice::Magnetometer: return "magnetometer";
   }
   return "?";
 }
@@ -88,6 +111,8 @@ const std::vector<EventActionDef>& event_actions(EventDevice d)
     case EventDevice::Wheel: return kWheelActions;
     case EventDevice::Thruster: return kThrusterActions;
     case EventDevice::Fsw: return kFswActions;
+    case EventDevice::Magnetorquer: return kMagnetorquerActions;
+    case EventDevice::Magnetometer: return kMagnetometerActions;
     default: return kSensorActions;
   }
 }
@@ -111,8 +136,18 @@ std::string resolve_event_device(const Scenario& sc, const std::string& name, Ev
       out = {EventDevice::Thruster, static_cast<int>(j)};
       return "";
     }
+  for (size_t i = 0; i < sc.magnetorquers.size(); ++i)
+    if (sc.magnetorquers[i].name == name) {
+      out = {EventDevice::Magnetorquer, static_cast<int>(i)};
+      return "";
+    }
   if (name == "fsw") {
     out = {EventDevice::Fsw, 0};
+    return "";
+  }
+  if (name == "magnetometer") {
+    if (!sc.sensors.magnetometer.enabled) return "the magnetometer is not enabled (sensors.magnetometer.enabled: false)";
+    out = {EventDevice::Magnetometer, 0};
     return "";
   }
   if (name == "gyro") {
@@ -140,7 +175,8 @@ std::string resolve_event_device(const Scenario& sc, const std::string& name, Ev
   std::string known;
   for (const WheelSpec& w : sc.wheels) known += w.name + ", ";
   for (const ThrusterSpec& t : sc.thrusters) known += t.name + ", ";
-  known += "gyro, star_tracker, css<i>, fsw";
+  for (const MagnetorquerSpec& m : sc.magnetorquers) known += m.name + ", ";
+  known += "gyro, star_tracker, css<i>, magnetometer, fsw";
   return "no device named '" + escape_bytes(name) + "' (devices: " + known + ")";
 }
 

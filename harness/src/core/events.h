@@ -12,7 +12,7 @@
 
 namespace harness {
 
-enum class EventDevice { Wheel, Thruster, Gyro, StarTracker, Css, Fsw };
+enum class EventDevice { Wheel, Thruster, Gyro, StarTracker, Css, Fsw, Magnetorquer, Magnetometer };
 
 enum class EventAction {
   // wheels (the plant's motor, limits, friction; the tachometer; the FSW's availability flag)
@@ -20,7 +20,9 @@ enum class EventAction {
   CommandAvailable,
   // thrusters
   ThrStuckClosed, ThrStuckOpen, ThrThrustFactor,
-  // sensors (gyro, star tracker, a coarse sun sensor)
+  // magnetorquer rods (the plant's sim::MagneticEffector; the `mtq_cmd` message)
+  MtqFailOff, MtqStuck, MtqScale, MtqDipole,
+  // sensors (gyro, star tracker, a coarse sun sensor, the magnetometer)
   SensorDropout, SensorFrozen, SensorNoiseScale, SensorBiasX, SensorBiasY, SensorBiasZ, SensorBias,
   // the flight software (a ground/executive command, FswAcsCmdMsg)
   FswModeInertial, FswModeSunSafe, FswActuationWheels, FswActuationThrusters, FswReferenceX, FswReferenceY,
@@ -42,11 +44,11 @@ struct EventActionDef {
 
 struct EventTarget {
   EventDevice device = EventDevice::Wheel;
-  int index = 0;  // wheel, thruster or CSS index; 0 for gyro and star tracker
+  int index = 0;  // wheel, thruster, magnetorquer or CSS index; 0 for gyro, star tracker, magnetometer
 };
 
-// Resolves a device name (wheel or thruster name, "gyro", "star_tracker",
-// "css<i>", "fsw"): "" or the reason it names nothing.
+// Resolves a device name (wheel, thruster or magnetorquer name, "gyro",
+// "star_tracker", "css<i>", "magnetometer", "fsw"): "" or the reason it names nothing.
 std::string resolve_event_device(const Scenario& sc, const std::string& name, EventTarget& out);
 // The actions a device takes.
 const std::vector<EventActionDef>& event_actions(EventDevice d);

@@ -84,9 +84,40 @@ sim::FacetSet facet_set(const Scenario& sc)
   return f;
 }
 
+// The residual dipole and the rods (axes renormalised: the scenario checks
+// them to 1e-6, the plant to 1e-9).
+sim::MagneticParams magnetic_params(const Scenario& sc)
+{
+  sim::MagneticParams mp;
+  mp.m_residual_B = sc.spacecraft.residual_dipole_B;
+  mp.igrf_degree = sc.environment.igrf_degree;
+  mp.period_ns = period_ns(sc.environment.magnetic);
+  for (const MagnetorquerSpec& m : sc.magnetorquers) {
+    sim::MagnetorquerParams r;
+    r.axis_B = m.axis_B.normalized();
+    r.m_max = m.m_max;
+    r.m_remanent = m.m_remanent;
+    r.power_max = m.power_max;
+    mp.rods.push_back(r);
+  }
+  return mp;
+}
+
+// The magnetic effector and, for PWM commands, the driver that switches its
+// rods (cycle: magnetorquer_drive.pwm_period, 0: the FSW period).
+void add_magnetic(const Scenario& sc, sim::Plant& p, const sim::EarthContext& ctx, MagneticParts& out)
+{
+  out.effector = &p.add_effector(std::make_unique<sim::MagneticEffector>(p, ctx, magnetic_params(sc)));
+  if (sc.magnetorquers.empty() || sc.magnetorquer_drive.mode != MtqDriveMode::Pwm) return;
+  const double T = sc.magnetorquer_drive.pwm_period;
+  const int64_t T_ns = T > 0.0 ? static_cast<int64_t>(std::llround(T * 1e9))
+                               : static_cast<int64_t>(sc.rates.fsw_divisor) * static_cast<int64_t>(sc.tick_ns());
+  out.pwm = &p.add_effector(std::make_unique<MtqPwmDriver>(*out.effector, T_ns));
+}
+
 // The environment effectors the scenario enables, in EnvSource order, with
 // one Earth context (the epoch of t = 0; gravity gradient alone needs no date).
-EnvEffectors add_environment(const Scenario& sc, sim::Plant& p)
+EnvEffectors add_environment(const Scenario& sc, sim::Plant& p, MagneticParts& mag)
 {
   EnvEffectors out{};
   const EnvironmentSpec& e = sc.environment;
@@ -113,18 +144,15 @@ EnvEffectors add_environment(const Scenario& sc, sim::Plant& p)
     out[2] = &p.add_effector(std::make_unique<sim::DragEffector>(p, ctx, dp));
   }
   if (e.magnetic.enabled) {
-    sim::MagneticParams mp;
-    mp.m_residual_B = sc.spacecraft.residual_dipole_B;
-    mp.igrf_degree = e.igrf_degree;
-    mp.period_ns = period_ns(e.magnetic);
-    out[3] = &p.add_effector(std::make_unique<sim::MagneticEffector>(p, ctx, mp));
+    add_magnetic(sc, p, ctx, mag);
+    out[3] = mag.effector;
   }
   return out;
 }
 
 }  // namespace
 
-std::unique_ptr<sim::Plant> build_plant(const Scenario& sc, EnvEffectors* env)
+std::unique_ptr<sim::Plant> build_plant(const Scenario& sc, EnvEffectors* env, MagneticParts* mag)
 {
   std::unique_ptr<sim::Plant> p;  // the plant checks its own capacities (built_by_plant reports them)
   const VehicleGeometry g = vehicle_geometry(sc);
@@ -137,8 +165,10 @@ std::unique_ptr<sim::Plant> build_plant(const Scenario& sc, EnvEffectors* env)
     built_by_plant(sc, "thrusters", [&] { p = std::make_unique<sim::Plant>(sim::PlantParams{params, prop}, ic); });
   }
   EnvEffectors added{};
-  built_by_plant(sc, "environment", [&] { added = add_environment(sc, *p); });
+  MagneticParts parts{};
+  built_by_plant(sc, "environment", [&] { added = add_environment(sc, *p, parts); });
   if (env) *env = added;
+  if (mag) *mag = parts;
   return p;
 }
 

@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 
 #include "harness/core/scenario_types.h"
+#include "core/magnetorquer_drive.h"
 #include "harness/core/vehicle_geometry.h"
 #include "sim/environment_effectors.h"
 #include "sim/plant.h"
@@ -20,11 +21,20 @@ namespace harness {
 // EnvSource; null where the scenario leaves that model off.
 using EnvEffectors = std::array<const sim::SampledEnvironmentEffector*, kNumEnvSources>;
 
+// The magnetic parts of a run (owned by its plant): the effector of the
+// residual dipole and the rods (null when environment.magnetic is off) and,
+// in PWM mode with rods, the driver that switches them (else null).
+struct MagneticParts {
+  sim::MagneticEffector* effector = nullptr;
+  MtqPwmDriver* pwm = nullptr;
+};
+
 // Builds the plant (sim::Plant: hub, wheels and, with thrusters, the
 // thruster set and the tanks, then the environment effectors the scenario
 // enables); throws ScenarioError (at the key's line) when the plant rejects
-// the configuration.  `env` (optional) receives the environment effectors.
-std::unique_ptr<sim::Plant> build_plant(const Scenario& sc, EnvEffectors* env = nullptr);
+// the configuration.  `env` (optional) receives the environment effectors,
+// `mag` (optional) the magnetic parts.
+std::unique_ptr<sim::Plant> build_plant(const Scenario& sc, EnvEffectors* env = nullptr, MagneticParts* mag = nullptr);
 
 // Main-engine burn: the engine opens at the first thruster command instant
 // at or after burn.start and closes at start + duration.

@@ -46,11 +46,13 @@ struct Slot {
 // run does not need (no thrusters, no sampled sensors, ...) is skipped.
 constexpr Slot kTickProtocol[] = {
     {"events", Group::EveryTick},
-    {"truth", Group::TruthReaders},      {"burn_monitor", Group::EveryTick},
-    {"sample_sensors", Group::EveryTick}, {"css", Group::Fsw},
+    {"truth", Group::TruthReaders},      {"mtq_state", Group::Record},
+    {"burn_monitor", Group::EveryTick},  {"sample_sensors", Group::EveryTick},
+    {"magnetometer", Group::EveryTick},  {"css", Group::Fsw},
     {"sensors", Group::Fsw},             {"fsw_acs", Group::Fsw},
     {"actuators", Group::Fsw},           {"plant_input", Group::Fsw},
-    {"metrics", Group::Record},          {"recorder", Group::Record},
+    {"magnetorquers", Group::Fsw},       {"metrics", Group::Record},
+    {"recorder", Group::Record},
 };
 
 }  // namespace
@@ -58,6 +60,7 @@ constexpr Slot kTickProtocol[] = {
 struct Run::Impl {
   Scenario sc;
   EnvEffectors env{};  // filled by build_plant (before plant_owner)
+  MagneticParts mag{};  // likewise
   std::unique_ptr<sim::Plant> plant_owner;
   sim::Plant& plant;
   FswSetup fsw_setup;
@@ -86,6 +89,9 @@ struct Run::Impl {
   std::optional<PlantInputTask> plant_input;
   std::optional<MetricsTask> metrics;
   std::optional<EventTask> events;  // scenarios with events only
+  std::optional<MagnetometerTask> magnetometer;  // sensors.magnetometer only
+  std::optional<MagnetorquerTask> magnetorquers;  // magnetorquers only
+  std::optional<MtqStateTask> mtq_state;          // magnetorquers only
 
   Channel<TruthMsg>* truth_ch = nullptr;
   Channel<FswAcsHealthMsg>* health_ch = nullptr;
@@ -103,13 +109,21 @@ struct Run::Impl {
     Channel<BurnStateMsg>* burn = nullptr;
     Channel<SensorSampleMsg>* samples = nullptr;
     Channel<CssMsg>* css = nullptr;
+    Channel<MtqCmdMsg>* mtq_cmd = nullptr;
+    Channel<MtqStateMsg>* mtq_state = nullptr;
+    Channel<MagnetometerMsg>* mag = nullptr;
   };
+  Channel<MtqCmdMsg>* mtq_cmd_ch = nullptr;  // events write it (until the FSW commands the rods)
 
-  explicit Impl(const Scenario& s) : sc(s), plant_owner(build_plant(s, &env)), plant(*plant_owner), sched(s.tick_ns()) {}
+  explicit Impl(const Scenario& s)
+      : sc(s), plant_owner(build_plant(s, &env, &mag)), plant(*plant_owner), sched(s.tick_ns())
+  {
+  }
   void wire(RunConfig& cfg);
   void build_fsw(RunConfig& cfg);
   Messages add_messages();
   void add_tasks(const Messages& m);
+  void add_magnetic_tasks(const Messages& m);
   void add_recorder(const Messages& m);
   void add_events();
   void schedule(const RateGroup& fsw_group, const RateGroup& rec_group);
@@ -154,7 +168,7 @@ void Run::Impl::build_fsw(RunConfig& cfg)
       throw config_error(sc, "fsw", e.what());
     }
   }
-  sensors = std::make_unique<SensorSuite>(sc, fsw_setup, plant);
+  sensors = std::make_unique<SensorSuite>(sc, fsw_setup, plant, mag.effector);
 }
 
 Run::Impl::Messages Run::Impl::add_messages()
@@ -175,7 +189,13 @@ Run::Impl::Messages Run::Impl::add_messages()
   if (plant.num_thr() > 0) m.burn = &f.add_message<BurnStateMsg>("burn_state");
   if (sensors->has_sampled_models()) m.samples = &f.add_message<SensorSampleMsg>("sensor_samples");
   if (sensors->has_css_models()) m.css = &f.add_message<CssMsg>("css_readings");
+  if (mag.effector && mag.effector->num_rods() > 0) {
+    m.mtq_cmd = &f.add_message<MtqCmdMsg>("mtq_cmd");
+    m.mtq_state = &f.add_message<MtqStateMsg>("mtq_state");
+  }
+  if (sensors->has_magnetometer()) m.mag = &f.add_message<MagnetometerMsg>("magnetometer");
   truth_ch = m.truth;
+  mtq_cmd_ch = m.mtq_cmd;
   health_ch = m.health;
   return m;
 }
@@ -211,10 +231,28 @@ void Run::Impl::add_tasks(const Messages& m)
                                  burn_sched, f.reader("actuators", *m.act), f.writer("actuators", *m.cmd)});
   plant_input.emplace(PlantInputTask{&plant, f.reader("plant", *m.cmd)});
   f.add_component("metrics", "harness");
+  add_magnetic_tasks(m);
   metrics.emplace(&plant, tk, sc.fsw.mode == FswMode::Inertial, sc.fsw.sigma_R0N, sc.fsw.sun_axis_B,
                   sc.environment, sc.environment.mu, f.reader("metrics", *m.truth),
                   m.burn ? f.reader("metrics", *m.burn) : Reader<BurnStateMsg>(), m.burn != nullptr,
                   f.writer("metrics", *m.metrics));
+}
+
+// The magnetometer and the magnetorquers (environment.magnetic, docs/environment.md).
+void Run::Impl::add_magnetic_tasks(const Messages& m)
+{
+  DataFlow& f = flow;
+  const uint64_t tk = sc.tick_ns();
+  if (m.mag) {
+    f.add_component("magnetometer", "sim::Magnetometer on the field model and the rods' dipoles");
+    magnetometer.emplace(MagnetometerTask{sensors.get(), tk, f.writer("magnetometer", *m.mag)});
+  }
+  if (m.mtq_cmd) {
+    f.add_component("magnetorquers", mag.pwm ? "harness: dipole commands -> PWM drive of the rods"
+                                             : "harness: dipole commands -> the rods (sim::MagneticEffector)");
+    magnetorquers.emplace(MagnetorquerTask{mag.effector, mag.pwm, tk, f.reader("magnetorquers", *m.mtq_cmd)});
+    mtq_state.emplace(MtqStateTask{mag.effector, tk, f.writer("plant", *m.mtq_state)});
+  }
 }
 
 void Run::Impl::add_recorder(const Messages& m)
@@ -234,6 +272,11 @@ void Run::Impl::add_recorder(const Messages& m)
   declare_telemetry(rec, rc, plant.num_rw(), plant.num_thr(), sc.environment.mu > 0.0,
                     [this] { return sched.t_ns(tick); });
   declare_disturbances(rec, rc, env_on);
+  if (m.mtq_state) {
+    const int n = mag.effector->num_rods();
+    declare_magnetorquers(rec, f.reader("recorder", *m.mtq_state).channel(), n);
+  }
+  if (m.mag) declare_magnetometer(rec, f.reader("recorder", *m.mag).channel());
 }
 
 void Run::Impl::add_events()
@@ -248,6 +291,7 @@ void Run::Impl::add_events()
   cmd0.K = fsw_setup.cfg.mrp_fb.K;
   cmd0.P = fsw_setup.cfg.mrp_fb.P;
   events.emplace(sc, plant, *sensors, rec, *fsw, cmd0);
+  if (mtq_cmd_ch) events->attach_magnetorquers(mag.effector, flow.writer("events", *mtq_cmd_ch));
 }
 
 // The tick protocol's table: each task the run has, in its rate groups.
@@ -259,6 +303,9 @@ void Run::Impl::schedule(const RateGroup& fsw_group, const RateGroup& rec_group)
     if (name == "truth") return [t = &*truth](uint64_t k) { (*t)(k); };
     if (name == "burn_monitor" && burn) return [t = &*burn](uint64_t k) { (*t)(k); };
     if (name == "sample_sensors" && sample) return [t = &*sample](uint64_t k) { (*t)(k); };
+    if (name == "magnetometer" && magnetometer) return [t = &*magnetometer](uint64_t k) { (*t)(k); };
+    if (name == "magnetorquers" && magnetorquers) return [t = &*magnetorquers](uint64_t k) { (*t)(k); };
+    if (name == "mtq_state" && mtq_state) return [t = &*mtq_state](uint64_t k) { (*t)(k); };
     if (name == "css" && css) return [t = &*css](uint64_t k) { (*t)(k); };
     if (name == "sensors") return [t = &*fsw_input](uint64_t k) { (*t)(k); };
     if (name == "fsw_acs") return [t = &*fsw_task](uint64_t k) { (*t)(k); };

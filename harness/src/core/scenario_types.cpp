@@ -78,6 +78,7 @@ const char* to_string(ThrPulseMode m) { return m == ThrPulseMode::Remainder ? "r
 const char* to_string(ThrTransient m) { return m == ThrTransient::Instant ? "instant" : "first_order"; }
 const char* to_string(Actuation m) { return m == Actuation::Wheels ? "wheels" : "thrusters"; }
 const char* to_string(ThrMapMode m) { return m == ThrMapMode::MinNorm ? "min_norm" : "nnls"; }
+const char* to_string(MtqDriveMode m) { return m == MtqDriveMode::Dipole ? "dipole" : "pwm"; }
 const char* wheel_model_key(sim::WheelModel m)
 {
   switch (m) {

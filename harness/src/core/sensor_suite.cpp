@@ -11,7 +11,8 @@
 
 namespace harness {
 
-SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant)
+SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant,
+                         const sim::MagneticEffector* field)
     : plant_(plant),
       n_rw_(static_cast<int>(sc.wheels.size())),
       num_css_(fsw.cfg.css.num_css),
@@ -20,7 +21,9 @@ SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Pla
       ideal_normals_(fsw.ideal_normals),
       div_gyro_(sc.sensors.gyro.divisor),
       div_st_(sc.sensors.star_tracker.divisor),
-      div_tach_(sc.sensors.tachometer.divisor)
+      div_tach_(sc.sensors.tachometer.divisor),
+      field_(field),
+      tick_ns_(sc.tick_ns())
 {
   const int64_t tk = static_cast<int64_t>(sc.tick_ns());
   if (!ideal_css_) {
@@ -70,6 +73,72 @@ SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Pla
       tach_ = std::make_unique<sim::WheelTachometers>(tp, sctx);
     }
   });
+  build_magnetometer(sc);
+}
+
+// sensors.magnetometer (period 0: the FSW period); needs the field (the
+// scenario checks environment.magnetic).
+void SensorSuite::build_magnetometer(const Scenario& sc)
+{
+  const MagnetometerSpec& g = sc.sensors.magnetometer;
+  if (!g.enabled || !field_) return;
+  const uint64_t p_ns = g.period > 0.0 ? static_cast<uint64_t>(std::llround(g.period * 1e9))
+                                       : static_cast<uint64_t>(sc.rates.fsw_divisor) * tick_ns_;
+  div_mag_ = std::max<uint64_t>(1, p_ns / tick_ns_);
+  sim::MagnetometerParams mp;
+  mp.name = "magnetometer";
+  mp.dcm_SB = g.dcm_SB;
+  mp.period_ns = static_cast<int64_t>(div_mag_ * tick_ns_);
+  mp.sigma = g.sigma;
+  mp.bias = g.bias;
+  mp.scale_error = g.scale_error;
+  mp.lsb = g.lsb;
+  mp.range = g.range;
+  const Eigen::Index n = std::min<Eigen::Index>(g.interference.cols(), sim::kMaxMagnetorquers);
+  mp.interference_B.leftCols(n) = g.interference.leftCols(n);
+  const sim::SensorContext sctx{sc.seed, sc.sensors.noise};
+  built_by_plant(sc, "sensors.magnetometer", [&] { mag_ = std::make_unique<sim::Magnetometer>(mp, sctx); });
+}
+
+void SensorSuite::magnetometer(uint64_t k, MagnetometerMsg& out)
+{
+  const uint64_t t_ns = k * tick_ns_;
+  if (k % div_mag_ == 0) {
+    const sim::StateVector& x = plant_.state();
+    const Eigen::Vector3d r_N = x.segment<3>(sim::StateLayout::r_BN_N);
+    const Eigen::Vector3d B_B = sim::dcm_BN_from_sigma(x.segment<3>(sim::StateLayout::sigma_BN)) *
+                                field_->field_N(static_cast<double>(t_ns) * 1e-9, r_N);
+    sim::MagnetorquerArray m{};
+    for (int i = 0; i < field_->num_rods(); ++i) m[static_cast<size_t>(i)] = field_->rod_dipole(i);
+    if (mag_->update(static_cast<int64_t>(t_ns), B_B, m)) {
+      const sim::MagnetometerOutput& o = mag_->output();
+      put3(out.B_S, o.B_S + mag_bias_);
+      out.t_ns = o.t_ns;
+      out.valid = o.valid ? 1 : 0;
+      out.saturated = o.saturated ? 1 : 0;
+    }
+  }
+  if (mag_fault_.fault == Fault::Frozen) {
+    out = mag_frozen_;
+  } else if (mag_fault_.fault == Fault::Dropout && t_ns < mag_fault_.until_ns) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    put3(out.B_S, Eigen::Vector3d(nan, nan, nan));
+    out.valid = 0;
+  }
+  mag_last_ = out;
+}
+
+void SensorSuite::set_magnetometer_fault(Fault f, uint64_t until_ns)
+{
+  mag_fault_ = {f, until_ns};
+  if (f == Fault::Frozen) mag_frozen_ = mag_last_;
+}
+
+void SensorSuite::set_magnetometer_bias(int a, double v) { mag_bias_(a) = v; }
+
+void SensorSuite::set_magnetometer_noise_scale(double k)
+{
+  if (mag_) mag_->set_noise_scale(k);
 }
 
 const sim::SensorTruth& SensorSuite::truth_now()

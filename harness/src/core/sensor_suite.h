@@ -13,6 +13,7 @@
 #include "core/sun_source.h"
 #include "harness/core/loop_messages.h"
 #include "harness/core/scenario_types.h"
+#include "sim/environment_effectors.h"
 #include "sim/plant.h"
 #include "sim/sensors.h"
 
@@ -23,10 +24,20 @@ class SensorSuite {
   // Each model on its own stream Rng(seed, name); one noise switch.  Throws
   // ScenarioError (at the sensor's key) when a model rejects its parameters.
   // The models sample the plant's own sensor truth (sim::Plant::fill_sensor_truth).
-  SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant);
+  // `field`: the run's magnetic effector (the field model and the rods the
+  // magnetometer reads; null without environment.magnetic).
+  SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant,
+              const sim::MagneticEffector* field = nullptr);
 
   bool has_css_models() const { return !css_.empty(); }
   bool has_sampled_models() const { return gyro_ || st_ || tach_; }
+  bool has_magnetometer() const { return mag_ != nullptr; }
+
+  // Every tick (with a magnetometer): when its period is due at tick k it
+  // samples the field model at the position and attitude of B and the rods'
+  // acting dipoles (its interference); `out` is the reading handed on, the
+  // held sample with the magnetometer faults below applied.
+  void magnetometer(uint64_t k, MagnetometerMsg& out);
 
   // Every tick: the models whose own period is due at tick k sample truth;
   // `out` keeps the held outputs of the others.  False when none was due.
@@ -72,6 +83,13 @@ class SensorSuite {
   void set_gyro_bias(int a, double v);
   void set_star_tracker_bias(int a, double v);
   void set_css_bias(int i, double v);
+  // Magnetometer (events dropout, frozen, bias_x/y/z, noise_scale, restore):
+  // unlike the faults above they act on the `magnetometer` message itself.
+  // Dropout: valid 0 and NaN until t_ns < until_ns; Frozen: the message
+  // handed on now is held; bias [T] added along sensor axis a (0 clears).
+  void set_magnetometer_fault(Fault f, uint64_t until_ns);
+  void set_magnetometer_bias(int a, double v);
+  void set_magnetometer_noise_scale(double k);
 
  private:
   struct SensorFault {
@@ -105,6 +123,14 @@ class SensorSuite {
   std::unique_ptr<sim::Gyro> gyro_;
   std::unique_ptr<sim::StarTracker> st_;
   std::unique_ptr<sim::WheelTachometers> tach_;
+  // magnetometer
+  const sim::MagneticEffector* field_ = nullptr;
+  std::unique_ptr<sim::Magnetometer> mag_;
+  uint64_t tick_ns_ = 0, div_mag_ = 1;
+  SensorFault mag_fault_;
+  MagnetometerMsg mag_frozen_{}, mag_last_{};  // held by a Frozen fault; the last handed on
+  Eigen::Vector3d mag_bias_ = Eigen::Vector3d::Zero();  // [T] S
+  void build_magnetometer(const Scenario& sc);
 };
 
 }  // namespace harness

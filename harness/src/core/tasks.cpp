@@ -162,6 +162,32 @@ void PlantInputTask::operator()(uint64_t) const
   }
 }
 
+void MagnetometerTask::operator()(uint64_t k) const
+{
+  MagnetometerMsg m = out.channel().value();  // the held reading
+  sensors->magnetometer(k, m);
+  out.write(m, k * tick_ns);
+}
+
+void MagnetorquerTask::operator()(uint64_t k) const
+{
+  const MtqCmdMsg& c = in.read();
+  sim::MagnetorquerArray m{};
+  for (int i = 0; i < mag->num_rods(); ++i) m[static_cast<size_t>(i)] = c.m_cmd[i];
+  if (pwm) pwm->command(m, static_cast<int64_t>(k * tick_ns));
+  else mag->command_dipoles(m);
+}
+
+void MtqStateTask::operator()(uint64_t k) const
+{
+  MtqStateMsg s{};
+  for (int i = 0; i < mag->num_rods(); ++i) {
+    s.dipole[i] = mag->rod_dipole(i);
+    s.power[i] = mag->rod(i).power();
+  }
+  out.write(s, k * tick_ns);
+}
+
 void MetricsTask::operator()(uint64_t k)
 {
   const TruthMsg& t = truth.read();

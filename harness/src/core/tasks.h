@@ -139,6 +139,34 @@ struct PlantInputTask {
   void operator()(uint64_t k) const;
 };
 
+// Magnetometer (every tick, with sensors.magnetometer): samples when its
+// period is due; the reading handed on, faults applied -> `magnetometer`.
+struct MagnetometerTask {
+  SensorSuite* sensors;
+  uint64_t tick_ns;
+  Writer<MagnetometerMsg> out;
+  void operator()(uint64_t k) const;
+};
+
+// The rods take `mtq_cmd` (FSW ticks, the control instants): dipole mode
+// commands the effector (held until the next); PWM mode starts the driver's
+// cycles there.
+struct MagnetorquerTask {
+  sim::MagneticEffector* mag;
+  MtqPwmDriver* pwm;  // null: dipole mode
+  uint64_t tick_ns;
+  Reader<MtqCmdMsg> in;
+  void operator()(uint64_t k) const;
+};
+
+// The rods' acting dipoles and coil power (record ticks) -> `mtq_state`.
+struct MtqStateTask {
+  const sim::MagneticEffector* mag;
+  uint64_t tick_ns;
+  Writer<MtqStateMsg> out;
+  void operator()(uint64_t k) const;
+};
+
 // Figures of merit (record ticks) -> `metrics`.
 struct MetricsTask {
   MetricsTask(const sim::Plant* p, uint64_t tk, bool inertial_, const Eigen::Vector3d& sigma_R0N_,

@@ -193,4 +193,26 @@ void declare_disturbances(Recorder& rec, const RecordedChannels& ch, const std::
   }
 }
 
+void declare_magnetorquers(Recorder& rec, const Channel<MtqStateMsg>& ch, int n_rods)
+{
+  rec.record<MtqStateMsg>(ch,
+                          {indexed("mtq_dipole", "A*m^2", "mtq_dipole_", n_rods),
+                           indexed("mtq_power", "W", "mtq_power_", n_rods)},
+                          [n_rods](const MtqStateMsg& x, double* o) {
+                            for (int i = 0; i < n_rods; ++i) {
+                              o[i] = x.dipole[i];
+                              o[n_rods + i] = x.power[i];
+                            }
+                          });
+}
+
+void declare_magnetometer(Recorder& rec, const Channel<MagnetometerMsg>& ch)
+{
+  rec.record<MagnetometerMsg>(ch, {vec3("B_S", "T", "S (magnetometer axes)", "mag_B_S"), scalar("valid", "-", "mag_valid")},
+                              [](const MagnetometerMsg& x, double* o) {
+                                copy3(o, x.B_S);
+                                o[3] = x.valid;
+                              });
+}
+
 }  // namespace harness

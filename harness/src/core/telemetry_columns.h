@@ -34,6 +34,14 @@ void declare_telemetry(Recorder& rec, const RecordedChannels& ch, int n_rw, int 
 // None when every source is off.
 void declare_disturbances(Recorder& rec, const RecordedChannels& ch, const std::array<bool, kNumEnvSources>& on);
 
+// The magnetorquers (`mtq_state`): mtq_dipole_<i> [A*m^2] acting dipole
+// along rod i's axis, mtq_power_<i> [W] its coil power.
+void declare_magnetorquers(Recorder& rec, const Channel<MtqStateMsg>& ch, int n_rods);
+
+// The magnetometer's reading as handed on (`magnetometer`): mag_B_S_x/_y/_z
+// [T] in its sensor axes (NaN during a dropout), mag_valid [-].
+void declare_magnetometer(Recorder& rec, const Channel<MagnetometerMsg>& ch);
+
 }  // namespace harness
 
 #endif  // HARNESS_TELEMETRY_COLUMNS_H

@@ -52,7 +52,8 @@ schema::Section make_schema()
           monte_carlo_key(),
       },
       {rates_section(), environment_section(), spacecraft_section(), wheel_section(true), wheel_section(),
-       thrusters_section(), tank_section("tank"), tank_section("rcs_tank"), burn_section(), sensors_section(),
+       thrusters_section(), tank_section("tank"), tank_section("rcs_tank"), burn_section(),
+       magnetorquers_section(), magnetorquer_drive_section(), sensors_section(),
        fsw_section(), outputs_section(), events_section()}};
   return top;
 }
@@ -209,6 +210,7 @@ void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
   read_tank(top.sub("tank"), sc, "tank");
   read_tank(top.sub("rcs_tank"), sc, "rcs_tank");
   read_burn(top.sub("burn"), sc);
+  read_magnetorquers(top, sc);
   read_sensors(top.sub("sensors"), sc);
   if (!top.has("fsw")) top.missing("fsw", "flight software gains and modes");
   read_fsw(top.sub("fsw"), sc);

@@ -15,14 +15,15 @@ namespace harness {
 void check_run_configuration(const Scenario& sc)
 {
   // The same builders Run uses, in the same order (run.cpp: Impl, wire).
-  const std::unique_ptr<sim::Plant> plant = build_plant(sc);
+  MagneticParts mag{};
+  const std::unique_ptr<sim::Plant> plant = build_plant(sc, nullptr, &mag);
   const FswSetup fsw = make_fsw_setup(sc, plant->mass_props());
   try {
     const InProcessFsw init(fsw.cfg);  // fsw_acs_init
   } catch (const std::invalid_argument& e) {
     throw config_error(sc, "fsw", e.what());
   }
-  const SensorSuite sensors(sc, fsw, *plant);
+  const SensorSuite sensors(sc, fsw, *plant, mag.effector);
   (void)burn_schedule(sc, *plant);
 }
 

@@ -123,6 +123,9 @@ const Section& thrusters_section();
 const Section& tank_section(const std::string& name);  // "tank" / "rcs_tank"
 const Section& burn_section();
 const Section& sensors_section();
+const Section& magnetorquers_section();       // scenario_magnetics.cpp
+const Section& magnetorquer_drive_section();  // scenario_magnetics.cpp
+Section magnetometer_section();               // scenario_magnetics.cpp (a child of sensors)
 const Section& fsw_section();
 const Section& outputs_section();
 const Section& events_section();
@@ -134,7 +137,9 @@ void read_wheels(MapReader& top, Scenario& sc);
 void read_thrusters(MapReader& top, Scenario& sc);
 void read_tank(MapReader r, Scenario& sc, const std::string& name);
 void read_burn(MapReader r, Scenario& sc);
+void read_magnetorquers(MapReader& top, Scenario& sc);  // with magnetorquer_drive; after rates, environment, wheels, thrusters
 void read_sensors(MapReader r, Scenario& sc);
+void check_magnetometer(MapReader& m, const Scenario& sc);  // after its keys; the magnetorquers read
 void read_fsw(MapReader r, Scenario& sc);
 void read_outputs(MapReader r, Scenario& sc);
 void read_events(MapReader& top, Scenario& sc);  // after every other section

@@ -1,5 +1,5 @@
 // scenario_sensors.cpp: `sensors` (coarse sun sensors, star tracker, gyro,
-// wheel tachometers and the noise switch).
+// wheel tachometers, the magnetometer (scenario_magnetics.cpp) and the noise switch).
 #include "scenario/scenario_limits.h"
 #include "scenario/scenario_schema.h"
 
@@ -106,6 +106,7 @@ const Section& sensors_section()
                       integer("divisor", 1, kMaxDivisor, KESTREL_SENSOR(tachometer.divisor)).unit("ticks"),
                   },
                   {}},
+          magnetometer_section(),
       }};
   return s;
 }
@@ -117,6 +118,7 @@ void read_sensors(MapReader r, Scenario& sc)
   for (const Section& c : def.children) {
     MapReader m = r.sub(c.name);
     read_keys(m, c, sc);
+    if (c.name == "magnetometer") check_magnetometer(m, sc);
     m.finish();
   }
   read_keys(r, def, sc);

@@ -227,7 +227,9 @@ const Section& spacecraft_section()
           vec3("com", [](auto& sc, size_t) -> auto& { return sc.spacecraft.r_BcB_B; }).unit("m"),
           written_if(vec3("residual_dipole", [](auto& sc, size_t) -> auto& { return sc.spacecraft.residual_dipole_B; })
                          .unit("A*m^2"),
-                     [](const Scenario& sc) { return !sc.spacecraft.residual_dipole_B.isZero(0.0); }),
+                     [](const Scenario& sc) {  // with the field on, also when zero (Monte Carlo disperses it)
+                       return sc.environment.magnetic.enabled || !sc.spacecraft.residual_dipole_B.isZero(0.0);
+                     }),
       },
       {Section{"initial",
                {

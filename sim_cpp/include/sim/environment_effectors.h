@@ -216,10 +216,12 @@ class MagneticEffector final : public SampledEnvironmentEffector {
   const Magnetorquer& rod(int i) const { return rods_[static_cast<size_t>(i)]; }
   Eigen::Vector3d dipole_B() const { return m_total_B_; }  // [A*m^2] residual + rods, B
   Eigen::Vector3d field_held_N() const { return B_held_N_; }  // [T] held field, N
+  // [T] the field model evaluated (not held) at plant time t_s [s] and
+  // position r_N [m], N components (what a magnetometer reads).
+  Eigen::Vector3d field_N(double t_s, const Eigen::Vector3d& r_N) const;
 
  private:
   void sample(double t_s, const StateVector& x) override;
-  Eigen::Vector3d field_N(double t_s, const Eigen::Vector3d& r_N) const;  // [T]
   void refresh_dipole();
 
   Igrf14 igrf_;

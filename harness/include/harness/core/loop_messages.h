@@ -18,6 +18,7 @@ namespace harness {
 constexpr int kMaxRw = sim::kMaxWheels;
 constexpr int kMaxEnvSources = 4;  // gravity gradient, solar pressure, drag, magnetic
 constexpr int kMaxThr = sim::kMaxThrusters;
+constexpr int kMaxMtq = sim::kMaxMagnetorquers;
 
 // Plant truth at the tick (written every tick by the truth task).
 struct TruthMsg {
@@ -66,6 +67,29 @@ struct SunHeadingMsg {
 
 struct ThrCmdMsg {
   double T_on[kMaxThr];  // [s] on-time requests sent to the plant (plant thruster order)
+};
+
+// Magnetorquer dipole commands (`mtq_cmd`): applied to the rods at each FSW
+// tick (dipole mode: held; PWM mode: the duty cycle's dipole).  Written by
+// scenario events (action `dipole`) until the flight software commands the
+// rods; zero (rods off) until written.
+struct MtqCmdMsg {
+  double m_cmd[kMaxMtq];  // [A*m^2] (num magnetorquers) dipole along each rod's axis
+};
+
+// The rods as they act (`mtq_state`, record ticks).
+struct MtqStateMsg {
+  double dipole[kMaxMtq];  // [A*m^2] acting dipole along each rod's axis
+  double power[kMaxMtq];   // [W] coil power
+};
+
+// The magnetometer's reading as handed on (`magnetometer`), held between
+// samples; scenario faults (dropout, frozen, bias) are applied to it.
+struct MagnetometerMsg {
+  double B_S[3];      // [T] measured field, sensor axes S (NaN during a dropout)
+  int64_t t_ns;       // [ns] time tag of the sample
+  uint8_t valid;      // [-] 1 once sampled and not dropped out
+  uint8_t saturated;  // [-] 1 if an axis was clipped at the range
 };
 
 struct MetricsMsg {

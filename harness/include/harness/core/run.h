@@ -5,14 +5,17 @@
 //   events         (every tick, scenarios with events) the events whose
 //                  trigger holds are applied (docs/events.md, event_task.h)
 //   truth          (FSW and record ticks; every tick with thrusters) plant state -> `truth`
+//   mtq_state      (record group, magnetorquers) the rods' dipoles and power -> `mtq_state`
 //   burn_monitor   (every tick, thruster runs) `truth` -> `burn_state`
 //   sample_sensors (every tick, sampled sensors) `truth` -> `sensor_samples`
+//   magnetometer   (every tick, sensors.magnetometer) field model, rods -> `magnetometer`
 //   css            (FSW group, configured CSS) `truth` -> `css_readings`
 //   sensors        (FSW group)   `truth`, `sensor_samples`, `css_readings` -> `fsw_sensors`
 //   fsw_acs        (FSW group)   FswEndpoint::cycle: `fsw_sensors` -> `fsw_actuators`, `fsw_health`
 //                                (+ `sun_heading` in sun-safe runs)
 //   actuators      (FSW group)   `fsw_actuators` (+ burn schedule) -> `plant_cmd`
 //   plant_input    (FSW group)   `plant_cmd` latched by the plant (zero-order hold)
+//   magnetorquers  (FSW group, magnetorquers) `mtq_cmd` -> the rods (dipole or PWM drive)
 //   metrics        (record group) `truth`, `burn_state` -> `metrics`
 //   recorder       (record group) one row -> the sinks
 // then the plant integrates [t_k, t_k + dt] with the held commands.  The last

@@ -139,6 +139,26 @@ struct BurnSpec {
   double duration = 0.0;  // [s]
 };
 
+// A magnetic torque rod (sim::MagnetorquerParams); scenario key `magnetorquers`.
+struct MagnetorquerSpec {
+  std::string name;                                   // default mtq<i+1>, unique among devices
+  Eigen::Vector3d axis_B = Eigen::Vector3d::UnitX();  // [-] unit dipole axis (key: axis)
+  double m_max = 0.0;                                 // [A*m^2] saturation dipole, > 0
+  double m_remanent = 0.0;                            // [A*m^2] remanent dipole, in [0, m_max)
+  double power_max = 0.0;                             // [W] coil power at m_max, >= 0
+};
+
+// How the rods follow their dipole commands (key `magnetorquer_drive`).
+// Dipole: each rod holds clamp(command, +-m_max) from the control instant.
+// Pwm: each rod is driven at sign(command) m_max for duty x pwm_period from
+// the control instant (duty = min(|command| / m_max, 1)), then off
+// (remanence) for the rest, repeated every pwm_period until the next command.
+enum class MtqDriveMode { Dipole, Pwm };
+struct MtqDriveSpec {
+  MtqDriveMode mode = MtqDriveMode::Dipole;
+  double pwm_period = 0.0;  // [s] 0: the FSW period; the FSW period must be a whole number of it
+};
+
 struct CssSpec {
   std::vector<Eigen::Vector3d> normals_B;  // [-] unit
   double fov = 80.0 * 3.14159265358979323846 / 180.0;  // [rad] half angle
@@ -174,12 +194,28 @@ struct TachSpec {
   uint32_t divisor = 0;  // [ticks]
 };
 
+// Three-axis magnetometer (sim::Magnetometer); off by default.
+struct MagnetometerSpec {
+  bool enabled = false;
+  Eigen::Matrix3d dcm_SB = Eigen::Matrix3d::Identity();  // [-] sensor axes S from B (rows: x_S, y_S, z_S in B)
+  double period = 0.0;                                    // [s] sample period; 0: the FSW period
+  double sigma = 0.0;                                     // [T] white noise 1-sigma per axis
+  Eigen::Vector3d bias = Eigen::Vector3d::Zero();         // [T] S
+  Eigen::Vector3d scale_error = Eigen::Vector3d::Zero();  // [-] per axis, each > -1
+  double lsb = 0.0;                                       // [T] quantisation step; 0: off
+  double range = 0.0;                                     // [T] per-axis saturation; 0: off
+  // [T/(A*m^2)] 3 x (number of magnetorquers), B: column j is rod j's field
+  // at the sensor per unit dipole; empty: no interference
+  Eigen::Matrix<double, 3, Eigen::Dynamic> interference = Eigen::Matrix<double, 3, Eigen::Dynamic>(3, 0);
+};
+
 struct SensorsSpec {
   bool noise = true;  // false: every sensor ideal (sim::SensorContext::noise)
   CssSpec css;
   StarTrackerSpec star_tracker;
   GyroSpec gyro;
   TachSpec tachometer;
+  MagnetometerSpec magnetometer;
 };
 
 struct MrpFbSpec {
@@ -317,6 +353,8 @@ struct Scenario {
   std::optional<TankSpec> tank;       // feeds every thruster (and the main engine)
   std::optional<TankSpec> rcs_tank;   // if given, feeds the ACS thrusters (acs: true)
   std::optional<BurnSpec> burn;
+  std::vector<MagnetorquerSpec> magnetorquers;  // need environment.magnetic (docs/environment.md)
+  MtqDriveSpec magnetorquer_drive;
   SensorsSpec sensors;
   FswSpec fsw;
   std::vector<EventSpec> events;  // applied at tick boundaries (docs/events.md)
@@ -338,6 +376,7 @@ const char* to_string(ThrPulseMode m);
 const char* to_string(ThrTransient m);
 const char* to_string(Actuation m);
 const char* to_string(ThrMapMode m);
+const char* to_string(MtqDriveMode m);
 // Schema name of a wheel model ("balanced", "simple_jitter", "fully_coupled").
 const char* wheel_model_key(sim::WheelModel m);
 
