@@ -44,6 +44,24 @@ Vector3d point_mass_gravity(double mu, const Vector3d& r_N)
   return (-mu / (r * r * r)) * r_N;
 }
 
+Vector3d j2_acceleration(double mu, double J2, double R, const Vector3d& r_N)
+{
+  if (J2 == 0.0 || mu == 0.0) return Vector3d::Zero();
+  const double r2 = r_N.squaredNorm();
+  const double r = std::sqrt(r2);
+  const double k = -1.5 * J2 * mu * R * R / (r2 * r2 * r);  // -(3/2) J2 mu R^2 / r^5
+  const double q = 5.0 * r_N.z() * r_N.z() / r2;
+  return Vector3d(k * r_N.x() * (1.0 - q), k * r_N.y() * (1.0 - q), k * r_N.z() * (3.0 - q));
+}
+
+double j2_potential(double mu, double J2, double R, const Vector3d& r_N)
+{
+  if (J2 == 0.0 || mu == 0.0) return 0.0;
+  const double r2 = r_N.squaredNorm();
+  const double r = std::sqrt(r2);
+  return 0.5 * mu * J2 * R * R / (r2 * r) * (3.0 * r_N.z() * r_N.z() / r2 - 1.0);
+}
+
 Vector3d sun_position_N(const SunParams& p, double t)
 {
   if (p.n == 0.0) return p.r_SunN_N0;
