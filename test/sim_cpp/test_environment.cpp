@@ -426,3 +426,170 @@ TEST(Gravity, J2NodalRegressionMatchesSecularTheory)
     EXPECT_LT(worst_E, 1e-9);
   }
 }
+
+// ------------------------------------------------------------- eclipses
+
+namespace {
+
+// The exact umbra and penumbra of two spheres (Sun radius R_S at distance D
+// along s_hat from the Earth's centre, Earth radius R), as cones about the
+// axis -s_hat.  Let s = -P.s_hat be a point's distance behind the Earth's
+// centre along the axis and rho its distance from the axis.
+//   Umbra: the cone tangent to both spheres on the same side, apex behind
+//   the Earth at x_u = R D / (R_S - R) (similar triangles R/x_u =
+//   R_S/(x_u + D)), half-angle sin(alpha_u) = (R_S - R)/D; a point is in
+//   umbra where rho <= (x_u - s) tan(alpha_u).
+//   Penumbra (any part of the Sun hidden): the cone tangent on opposite
+//   sides, apex towards the Sun at x_p = R D / (R_S + R), sin(alpha_p) =
+//   (R_S + R)/D; the shadow is where rho <= (x_p + s) tan(alpha_p), s > 0.
+// On a circular orbit of radius r in a plane at beta angle beta to the Sun
+// direction, P = r (cos th e1 + sin th e2) with s_hat = cos(beta) e1 +
+// sin(beta) n, so s = -r cos(beta) cos(th) and rho^2 = r^2 - s^2.  On the
+// umbra cone r^2 - s^2 = (x_u - s)^2 t^2 (t = tan alpha_u):
+//   (1 + t^2) s^2 - 2 x_u t^2 s + t^2 x_u^2 - r^2 = 0,
+//   s_u = [x_u t^2 + sqrt(r^2 (1 + t^2) - t^2 x_u^2)] / (1 + t^2)
+// (the root behind the Earth); on the penumbra cone, with x_p -> -x_p,
+//   s_p = [-x_p t^2 + sqrt(r^2 (1 + t^2) - t^2 x_p^2)] / (1 + t^2).
+// The shadow is the arc |th - pi| <= phi, cos(phi) = s_b / (r cos beta).
+// This is the geometry sim::illumination_factor resolves: a point is in
+// umbra exactly when the Earth's apparent disk covers the Sun's (c <= b - a
+// with the apparent radii asin(R/d) of spheres), which happens exactly
+// inside the cone tangent to both.
+struct ShadowArc {
+  double phi_umbra, phi_penumbra;  // [rad] half-arcs about the anti-Sun point
+};
+
+ShadowArc shadow_arc(double r, double beta, double R, double R_S, double D)
+{
+  const double x_u = R * D / (R_S - R), x_p = R * D / (R_S + R);
+  const double t_u = std::tan(std::asin((R_S - R) / D)), t_p = std::tan(std::asin((R_S + R) / D));
+  const double s_u = (x_u * t_u * t_u + std::sqrt(r * r * (1.0 + t_u * t_u) - t_u * t_u * x_u * x_u)) / (1.0 + t_u * t_u);
+  const double s_p = (-x_p * t_p * t_p + std::sqrt(r * r * (1.0 + t_p * t_p) - t_p * t_p * x_p * x_p)) / (1.0 + t_p * t_p);
+  return {std::acos(s_u / (r * std::cos(beta))), std::acos(s_p / (r * std::cos(beta)))};
+}
+
+}  // namespace
+
+// Umbra and penumbra entry and exit of a circular 7000 km orbit (plant,
+// RK4, dt = 1 s, no J2), the Sun fixed at 1 AU at beta = 0, 30 and 60 deg
+// from the orbit plane (no umbra above 65.4 deg here).  The times where
+// sim::illumination_factor first reaches 0 (umbra) and first drops below 1
+// (penumbra), and where it leaves them, are found by bisection to 1 ns
+// between the step ends (the plant restarted from the step start with the
+// step cut at the trial time), and compared to th / n from the cone geometry
+// above (th = pi -+ phi, the orbit starting at th = 0, n = sqrt(mu/r^3)).
+// First the geometry itself: the same bisection on Kepler's positions with
+// the contact condition c = b -+ a written here (c by atan2, well
+// conditioned) reproduces the cones to 1e-9 s (measured ~1e-12 s).
+// Tolerance for the plant: 1e-8 s.  The plant's orbit is Kepler's to
+// 3e-7 m at these times (4e-11 s at 7.5 km/s), the bisection resolves 1 ns,
+// and illumination_factor forms the near-contact factors of its disk
+// overlap directly, so the factor keeps ~1e-14 absolute there and the
+// contact moves by < 1e-11 rad.  Measured: up to 9e-10 s (printed).  (With
+// acos of (c^2 + a^2 - b^2)/(2ac), as before 2026-12-05, an argument
+// rounding of 1e-16 near +-1 became 1.5e-8 rad, times b^2 = 1.3 rad^2
+// against the Sun's disk pi a^2 = 6.8e-5 rad^2: the factor was off by up to
+// ~3e-4 near a contact and the times here by up to 3.8e-4 s.)
+// Eclipse duration against the textbook cylinder: a shadow of radius R
+// behind the Earth (the Sun at infinity) covers the points with s > 0 and
+// rho <= R, i.e.
+//   s = r cos(beta) cos(phi) >= sqrt(r^2 - R^2) = sqrt(h^2 + 2 R h),
+// so the eclipse arc theta = 2 phi has cos(theta/2) = sqrt(h^2 + 2 R h) /
+// (r cos beta), h = r - R.  The Sun's angular radius a = R_S/D = 4.65e-3 rad
+// moves the umbra's edge in by ~ s a (13.5 km) and the penumbra's out by as
+// much: the cylinder's duration lies between the two, and their mean equals
+// it to first order; the second-order rest is ~ s a / s = a of the
+// difference (measured 4.6e-3, 4.4e-3, 3.4e-4 of it): bound 2 a.
+TEST(Sun, EclipseEntryAndExitMatchConicalGeometry)
+{
+  const double mu = sim::kMuEarth, R = sim::kRadiusEarth, r = 7.0e6, D = sim::kAU;
+  const double n = std::sqrt(mu / (r * r * r));
+  const double T = 2.0 * sim::kPi / n;
+  sim::SpacecraftParams hub;
+  hub.hub.m_h = 20.0;
+  hub.hub.I_hBc_B = Vector3d(0.3, 0.4, 0.5).asDiagonal();
+  hub.mu = mu;
+  for (double beta_deg : {0.0, 30.0, 60.0}) {
+    SCOPED_TRACE(beta_deg);
+    const double beta = beta_deg * sim::kPi / 180.0;
+    const Vector3d r_sun = D * Vector3d(std::cos(beta), 0.0, std::sin(beta));
+    const auto illum = [&](const Vector3d& p) { return sim::illumination_factor(p, r_sun, R); };
+    sim::InitialConditions ic;
+    ic.r_CN_N = Vector3d(r, 0.0, 0.0);
+    ic.v_CN_N = Vector3d(0.0, std::sqrt(mu / r), 0.0);
+    sim::Plant plant({hub, {}}, ic);
+    // f(t) test on the plant state restarted at (r_k, v_k) and stepped tau_ns.
+    const auto state_after = [&](const Vector3d& r_k, const Vector3d& v_k, int64_t tau_ns) {
+      sim::InitialConditions c;
+      c.r_CN_N = r_k;
+      c.v_CN_N = v_k;
+      sim::Plant p({hub, {}}, c);
+      if (tau_ns > 0) {
+        EXPECT_EQ(p.step(tau_ns), sim::StepStatus::Ok);
+      }
+      return p.r_BN_N();
+    };
+    // Bisection for the first time in (t_k, t_k + 1 s] at which pred holds.
+    const auto bisect = [&](const Vector3d& r_k, const Vector3d& v_k, double t_k, auto pred) {
+      int64_t lo = 0, hi = 1'000'000'000;
+      while (hi - lo > 1) {
+        const int64_t mid = (lo + hi) / 2;
+        (pred(illum(state_after(r_k, v_k, mid))) ? hi : lo) = mid;
+      }
+      return t_k + static_cast<double>(hi) * 1e-9;
+    };
+    double t_pen_in = NAN, t_umb_in = NAN, t_umb_out = NAN, t_pen_out = NAN;
+    const int steps = static_cast<int>(T) + 1;
+    double f_prev = illum(plant.r_BN_N());
+    ASSERT_EQ(f_prev, 1.0);
+    for (int k = 0; k < steps; ++k) {
+      const Vector3d r_k = plant.r_BN_N(), v_k = plant.v_BN_N();
+      ASSERT_EQ(plant.step(1'000'000'000), sim::StepStatus::Ok);
+      const double f = illum(plant.r_BN_N());
+      const double t_k = k;
+      if (f_prev == 1.0 && f < 1.0) t_pen_in = bisect(r_k, v_k, t_k, [](double x) { return x < 1.0; });
+      if (f_prev > 0.0 && f == 0.0) t_umb_in = bisect(r_k, v_k, t_k, [](double x) { return x == 0.0; });
+      if (f_prev == 0.0 && f > 0.0) t_umb_out = bisect(r_k, v_k, t_k, [](double x) { return x > 0.0; });
+      if (f_prev < 1.0 && f == 1.0) t_pen_out = bisect(r_k, v_k, t_k, [](double x) { return x == 1.0; });
+      f_prev = f;
+    }
+    const ShadowArc arc = shadow_arc(r, beta, R, sim::kRadiusSun, D);
+    {  // the geometry against the contact condition on Kepler's orbit
+      const auto contact = [&](double th, double sign) {  // c - (b + sign a), >0 outside
+        const Vector3d p = r * Vector3d(std::cos(th), std::sin(th), 0.0);
+        const Vector3d to_sun = r_sun - p, to_body = -p;
+        const double c = std::atan2(to_sun.cross(to_body).norm(), to_sun.dot(to_body));
+        return c - (std::asin(R / p.norm()) + sign * std::asin(sim::kRadiusSun / to_sun.norm()));
+      };
+      for (double sign : {-1.0, 1.0}) {
+        double lo = 0.5 * sim::kPi, hi = sim::kPi;  // contact < 0 at pi (in shadow)
+        for (int it = 0; it < 200; ++it) {
+          const double mid = 0.5 * (lo + hi);
+          (contact(mid, sign) <= 0.0 ? hi : lo) = mid;
+        }
+        const double phi = sign < 0.0 ? arc.phi_umbra : arc.phi_penumbra;
+        EXPECT_NEAR(hi / n, (sim::kPi - phi) / n, 1e-9) << "sign " << sign;
+      }
+    }
+    const double want[4] = {(sim::kPi - arc.phi_penumbra) / n, (sim::kPi - arc.phi_umbra) / n,
+                            (sim::kPi + arc.phi_umbra) / n, (sim::kPi + arc.phi_penumbra) / n};
+    const double got[4] = {t_pen_in, t_umb_in, t_umb_out, t_pen_out};
+    const char* what[4] = {"penumbra entry", "umbra entry", "umbra exit", "penumbra exit"};
+    for (int i = 0; i < 4; ++i) {
+      std::printf("beta %2.0f deg: %-14s sim %.9f s, cones %.9f s, difference %.1e s\n", beta_deg, what[i], got[i],
+                  want[i], got[i] - want[i]);
+      EXPECT_NEAR(got[i], want[i], 1e-8) << what[i];
+    }
+    // Duration against the textbook cylinder formula.
+    const double h = r - R;
+    const double theta_cyl = 2.0 * std::acos(std::sqrt(h * h + 2.0 * R * h) / (r * std::cos(beta)));
+    const double T_cyl = theta_cyl / n, T_umb = t_umb_out - t_umb_in, T_pen = t_pen_out - t_pen_in;
+    std::printf("beta %2.0f deg: eclipse duration: umbra %.3f s, penumbra %.3f s, cylinder %.3f s, "
+                "mean of umbra and penumbra - cylinder %.3e s\n", beta_deg, T_umb, T_pen, T_cyl,
+                0.5 * (T_umb + T_pen) - T_cyl);
+    EXPECT_LT(T_umb, T_cyl);
+    EXPECT_GT(T_pen, T_cyl);
+    const double a_sun = sim::kRadiusSun / D;
+    EXPECT_LT(std::abs(0.5 * (T_umb + T_pen) - T_cyl), 2.0 * a_sun * (T_pen - T_umb));
+  }
+}
