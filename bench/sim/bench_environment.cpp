@@ -9,6 +9,9 @@
 //                           dt = 0.1 s or 0.01 s with that effector at its
 //                           default rate (or held 1 s), over the same plant
 //                           without it
+//   eval/J2              one sim::j2_acceleration (the plant evaluates it in
+//                        every derivative when SpacecraftParams::J2 is set)
+//   step/J2              us_per_sim_s at dt = 0.1 s, J2 on in the plant's gravity
 // Vehicle: the S1 hub in a 400 km, 51.6 deg orbit, four balanced wheels,
 // 8 facets (a 1 m box and a two-sided 4 m^2 panel), IGRF degree 13, one rod.
 #include <cmath>
@@ -25,13 +28,17 @@ namespace {
 
 using Eigen::Vector3d;
 
-std::unique_ptr<sim::Plant> make_plant()
+std::unique_ptr<sim::Plant> make_plant(bool j2 = false)
 {
   sim::SpacecraftParams p;
   p.hub.m_h = 750.0;
   p.hub.I_hBc_B = Vector3d(900.0, 800.0, 600.0).asDiagonal();
   p.hub.r_BcB_B = Vector3d(0.0, 0.0, 0.1);
   p.mu = sim::kMuEarth;
+  if (j2) {
+    p.J2 = sim::kJ2Earth;
+    p.R_J2 = sim::kRadiusJ2Earth;
+  }
   for (int i = 0; i < 4; ++i) {
     sim::ReactionWheelParams w = s1_wheel(i, sim::WheelModel::Balanced);
     w.Omega_0 = sim::rad_s_from_rpm(100.0 * (i + 1));
@@ -152,6 +159,37 @@ void step(benchmark::State& state, Model m, int64_t dt_ns, int64_t period_ns)
   state.counters["us_per_sim_s_plant_alone"] = 1e6 * without / sim_s;
 }
 
+void j2_eval(benchmark::State& state)
+{
+  Vector3d r(4.1e6, -3.3e6, 4.6e6), sink = Vector3d::Zero();
+  for (auto _ : state) {
+    sink += sim::j2_acceleration(sim::kMuEarth, sim::kJ2Earth, sim::kRadiusJ2Earth, r);
+    r.x() += 1.0;
+    benchmark::DoNotOptimize(sink);
+  }
+}
+
+double j2_step_cost(bool with, int n)
+{
+  auto plant = make_plant(with);
+  const double t0 = thread_cpu_seconds();
+  for (int k = 0; k < n; ++k) plant->step(100000000);
+  return thread_cpu_seconds() - t0;
+}
+
+void j2_step(benchmark::State& state)
+{
+  const int n = 2000;
+  double with = 0.0, without = 0.0;
+  for (auto _ : state) {
+    with += j2_step_cost(true, n);
+    without += j2_step_cost(false, n);
+  }
+  const double sim_s = 0.1 * n * static_cast<double>(state.iterations());
+  state.counters["us_per_sim_s"] = 1e6 * (with - without) / sim_s;
+  state.counters["us_per_sim_s_plant_alone"] = 1e6 * without / sim_s;
+}
+
 }  // namespace
 
 BENCHMARK_CAPTURE(eval, GravityGradient_exact, Model::GravityGradient, false);
@@ -173,5 +211,8 @@ BENCHMARK_CAPTURE(step, Drag_dt0_01, Model::Drag, 10000000, -1)->Iterations(3);
 BENCHMARK_CAPTURE(step, Magnetic_dt0_01, Model::Magnetic, 10000000, -1)->Iterations(3);
 // gravity gradient held 1 s (position and inertia), dt = 0.01 s
 BENCHMARK_CAPTURE(step, GravityGradient_held1s_dt0_01, Model::GravityGradient, 10000000, 1000000000)->Iterations(3);
+
+BENCHMARK(j2_eval)->Name("eval/J2");
+BENCHMARK(j2_step)->Name("step/J2")->Iterations(20);
 
 BENCHMARK_MAIN();

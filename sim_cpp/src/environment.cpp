@@ -44,6 +44,24 @@ Vector3d point_mass_gravity(double mu, const Vector3d& r_N)
   return (-mu / (r * r * r)) * r_N;
 }
 
+Vector3d j2_acceleration(double mu, double J2, double R, const Vector3d& r_N)
+{
+  if (J2 == 0.0 || mu == 0.0) return Vector3d::Zero();
+  const double r2 = r_N.squaredNorm();
+  const double r = std::sqrt(r2);
+  const double k = -1.5 * J2 * mu * R * R / (r2 * r2 * r);  // -(3/2) J2 mu R^2 / r^5
+  const double q = 5.0 * r_N.z() * r_N.z() / r2;
+  return Vector3d(k * r_N.x() * (1.0 - q), k * r_N.y() * (1.0 - q), k * r_N.z() * (3.0 - q));
+}
+
+double j2_potential(double mu, double J2, double R, const Vector3d& r_N)
+{
+  if (J2 == 0.0 || mu == 0.0) return 0.0;
+  const double r2 = r_N.squaredNorm();
+  const double r = std::sqrt(r2);
+  return 0.5 * mu * J2 * R * R / (r2 * r) * (3.0 * r_N.z() * r_N.z() / r2 - 1.0);
+}
+
 Vector3d sun_position_N(const SunParams& p, double t)
 {
   if (p.n == 0.0) return p.r_SunN_N0;
@@ -73,16 +91,28 @@ double illumination_factor(const Vector3d& r_scN_N, const Vector3d& r_SunN_N, do
   if (d_body <= R_body) return 0.0;  // inside the body
   const double a = std::asin(std::min(1.0, R_sun / d_sun));  // apparent Sun radius
   const double b = std::asin(R_body / d_body);               // apparent body radius
-  const double cos_c = std::clamp(to_sun.dot(to_body) / (d_sun * d_body), -1.0, 1.0);
-  const double c = std::acos(cos_c);  // angular separation of the disk centres
+  // Angular separation of the disk centres, by atan2 (acos of the cosine
+  // loses sqrt(eps) near 0 and pi).
+  const double c = std::atan2(to_sun.cross(to_body).norm(), to_sun.dot(to_body));
   if (c >= a + b) return 1.0;              // no overlap
   if (c <= b - a) return 0.0;              // total eclipse
   if (c <= a - b) return 1.0 - (b * b) / (a * a);  // annular
-  // Partial overlap of two disks (flat-disk approximation, angles ~< 0.1 rad).
-  const double x = (c * c + a * a - b * b) / (2.0 * c);
-  const double y = std::sqrt(std::max(0.0, a * a - x * x));
-  const double area = a * a * std::acos(std::clamp(x / a, -1.0, 1.0)) +
-                      b * b * std::acos(std::clamp((c - x) / b, -1.0, 1.0)) - c * y;
+  // Partial overlap of two disks (flat-disk approximation, angles ~< 0.1 rad):
+  // the lens a^2 al + b^2 be - c y, with y the half-chord and al, be its
+  // half-angles seen from the Sun's and the body's disk centres.  Near a
+  // contact (c -> a + b, or c -> b - a at the edge of the umbra) the small
+  // factors of the triangle (a, b, c) are formed directly, so that y, the
+  // chord's distances x1, x2 from the centres and the angles keep their
+  // relative precision (acos of (c^2 + a^2 - b^2)/(2ac) near +-1 lost
+  // sqrt(eps) ~ 1.5e-8 rad there, up to ~3e-4 of the factor).
+  const double p1 = a + b - c;  // > 0: the disks overlap
+  const double p2 = c + a - b;  // > 0: not total
+  const double p3 = c + b - a;  // > 0: not annular
+  const double p4 = a + b + c;
+  const double y = std::sqrt(p1 * p2 * p3 * p4) / (2.0 * c);
+  const double x1 = (p2 * p4 - p1 * p3) / (4.0 * c);  // (c^2 + a^2 - b^2) / (2c)
+  const double x2 = (p3 * p4 - p1 * p2) / (4.0 * c);  // (c^2 + b^2 - a^2) / (2c)
+  const double area = a * a * std::atan2(y, x1) + b * b * std::atan2(y, x2) - c * y;
   return std::clamp(1.0 - area / (kPi * a * a), 0.0, 1.0);
 }
 

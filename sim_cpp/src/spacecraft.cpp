@@ -9,6 +9,7 @@
 #include <Eigen/LU>
 
 #include "sim/attitude.h"
+#include "sim/environment.h"
 #include "sim/sin_cos.h"
 #include "validate_util.h"
 
@@ -182,6 +183,10 @@ SpacecraftModel::SpacecraftModel(SpacecraftParams params, int num_tanks) : p_(st
   const double min_eig = Eigen::SelfAdjointEigenSolver<Matrix3d>(I_sym).eigenvalues().minCoeff();
   if (!(min_eig > 0.0)) fail("hub.I_hBc_B (min eigenvalue)", min_eig, "must be positive definite");
   require_non_negative("mu", p_.mu);
+  require_non_negative("J2", p_.J2);
+  require_non_negative("R_J2", p_.R_J2);
+  if (p_.J2 > 0.0 && !(p_.mu > 0.0)) fail("J2", p_.J2, "needs gravity: mu > 0");
+  if (p_.J2 > 0.0 && !(p_.R_J2 > 0.0)) fail("R_J2", p_.R_J2, "must be > 0 when J2 > 0");
 
   const size_t n = p_.wheels.size();
   if (n > static_cast<size_t>(kMaxWheels))
@@ -391,12 +396,15 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
   const Vector3d c = first_moment / m;
   const Vector3d c_prime = first_moment_prime / m;
 
-  // Point-mass gravity at the system CoM (§3).
+  // Point-mass gravity at the system CoM (§3), and J2 when set.
   Vector3d g_B = Vector3d::Zero();
   if (p_.mu > 0.0) {
     const Vector3d r_CN_N = x.segment<3>(StateLayout::r_BN_N) + dcm_BN.transpose() * c;
     const double r = r_CN_N.norm();
-    g_B = dcm_BN * (-p_.mu / (r * r * r) * r_CN_N);
+    if (p_.J2 == 0.0)
+      g_B = dcm_BN * (-p_.mu / (r * r * r) * r_CN_N);
+    else
+      g_B = dcm_BN * (-p_.mu / (r * r * r) * r_CN_N + j2_acceleration(p_.mu, p_.J2, p_.R_J2, r_CN_N));
   }
 
   // Hub part (§3): [A C^T; C D] [r_ddot; omega_dot] = [v_trans; v_rot].
@@ -544,6 +552,7 @@ EnergyMomentum SpacecraftModel::energy_momentum(const StateVector& x, const HubP
   em.v_CN_N = x.segment<3>(StateLayout::v_BN_N) + dcm_NB * c_dot;
   const double r = em.r_CN_N.norm();
   em.E_orb = 0.5 * mp.m_sc * em.v_CN_N.squaredNorm() - (p_.mu > 0.0 ? p_.mu * mp.m_sc / r : 0.0);
+  if (p_.J2 != 0.0 && p_.mu > 0.0) em.E_orb += mp.m_sc * j2_potential(p_.mu, p_.J2, p_.R_J2, em.r_CN_N);
   em.H_orb_N = mp.m_sc * em.r_CN_N.cross(em.v_CN_N);
 
   const Vector3d hub_vel = omega.cross(h.r_BcB_B);

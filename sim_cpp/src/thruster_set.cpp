@@ -2,6 +2,7 @@
 #include "sim/thruster_set.h"
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <limits>
@@ -21,6 +22,35 @@ ThrusterEffect scaled(ThrusterEffect e, double s)
   e.L_B *= s;
   e.mdot *= s;
   return e;
+}
+
+// RK4's defect in the first moment of e^{-w s} over a sub-step, per unit
+// amplitude, z = w h > 0, e_half = e^{-z/2}:
+//   (z - 1 + e^{-z}) / z^2 - (1 + 2 e^{-z/2}) / 6
+//   = sum_{k>=3} (-z)^k [1/(k+2)! - 1/(3 2^k k!)]  (= -z^3/720 + ...).
+// Below z = 1 the series (the closed form's leading terms cancel there, to
+// eps/z absolute); its 20 terms leave < 1/24! ~ 2e-24.
+constexpr int kMomentTerms = 20;  // k = 3 .. 22
+constexpr std::array<double, kMomentTerms> moment_series()
+{
+  std::array<double, kMomentTerms> c{};
+  double fact = 2.0;  // k! at k = 2
+  for (int k = 3; k < 3 + kMomentTerms; ++k) {
+    fact *= k;
+    double pow2 = 1.0;
+    for (int i = 0; i < k; ++i) pow2 *= 2.0;
+    c[static_cast<size_t>(k - 3)] = 1.0 / (fact * (k + 1) * (k + 2)) - 1.0 / (3.0 * pow2 * fact);
+  }
+  return c;
+}
+constexpr std::array<double, kMomentTerms> kMomentSeries = moment_series();
+
+double first_moment_rk4_defect(double z, double e_half)
+{
+  if (z >= 1.0) return (std::expm1(-z) + z) / (z * z) - (1.0 + 2.0 * e_half) / 6.0;
+  double sum = 0.0;
+  for (int i = kMomentTerms - 1; i >= 0; --i) sum = sum * (-z) + kMomentSeries[static_cast<size_t>(i)];
+  return -z * z * z * sum;
 }
 }  // namespace
 
@@ -132,7 +162,8 @@ void ThrusterSet::set_health(int j, ThrusterHealth h)
 double ThrusterSet::first_order_closed_form(size_t j, double t) const
 {
   const FirstOrderStage& f = fo_[j];
-  return f.kappa_c + f.d0 * std::exp(-f.w * (t - stage_t_[0])) + f.delta;
+  const double s = t - stage_t_[0];
+  return f.kappa_c + f.d0 * std::exp(-f.w * s) + f.delta + f.slope * s;
 }
 
 void ThrusterSet::accumulate(const EffectorStage& stage, EffectorSums& sums) const
@@ -248,7 +279,8 @@ void ThrusterSet::form_substep(double tau, double tau_end) const
   // The exponentials depend on w h alone, and h is the sub-step's: one set
   // per distinct rate (thrusters mostly share omega_on = omega_off).
   struct Decay {
-    double w, e_half, e_full, corr;  // corr: exact mean of e^{-w s} over [0, h] less RK4's weighting
+    // per unit d0: the stage corrections at s = 0, h/2 and h (see below)
+    double w, e_half, e_full, c0, c_half, c_full;
   };
   std::array<Decay, kMaxThrusters> memo;  // at most one rate per thruster
   size_t n_memo = 0;
@@ -273,6 +305,7 @@ void ThrusterSet::form_substep(double tau, double tau_end) const
       active_[static_cast<size_t>(num_active_++)] = {j, p.tank, true};
     if (f.d0 == 0.0 || !(h > 0.0)) {  // at rest (0 closed, 1 open) or no interval
       f.delta = 0.0;
+      f.slope = 0.0;
       f.kappa[0] = f.kappa[1] = f.kappa[2] = f.kappa_end = kappa0;
       continue;
     }
@@ -284,20 +317,36 @@ void ThrusterSet::form_substep(double tau, double tau_end) const
       d.w = f.w;
       d.e_half = std::exp(-0.5 * wh);
       d.e_full = std::exp(-wh);
-      // Exact mean of e^{-w s} over [0, h] minus RK4's weighting of it
-      // (1/6, 4/6, 1/6 at 0, h/2, h): an O((w h)^4 / 2880) correction added
-      // to every stage, so that the RK4 sum of kappa (and of F and mdot,
-      // linear in kappa) over the sub-step is the exact integral.
-      const double mean_exact = -std::expm1(-wh) / wh;
-      const double mean_rk4 = (1.0 + 4.0 * d.e_half + d.e_full) / 6.0;
-      d.corr = mean_exact - mean_rk4;
+      // For a stage acceleration a(t) that does not depend on the state,
+      // RK4 over [0, h] gives (stages a1 at 0, a2 = a3 at h/2, a4 at h)
+      //   v(h) = v0 + h (a1 + 2 a2 + 2 a3 + a4) / 6
+      //   x(h) = x0 + h v0 + h^2 (a1 + a2 + a3) / 6,
+      // where the exact values need the mean of a, (1/h) int a ds, and its
+      // first moment, (1/h^2) int (h - s) a ds.  Per unit d0, with z = w h:
+      //   e0 = exact mean of e^{-w s} less RK4's (1 + 4 e^{-z/2} + e^{-z}) / 6
+      //      = -z^4/2880 + O(z^5),
+      //   e1 = exact moment (z - 1 + e^{-z}) / z^2 less (1 + 2 e^{-z/2}) / 6
+      //      = -z^3/720 + O(z^4).
+      // A correction linear in s, delta(s) = c0 + (c_full - c0) s / h,
+      // added to the closed form at every stage meets both:
+      //   (c0 + 4 c_half + c_full) / 6 = e0,  (c0 + 2 c_half) / 6 = e1
+      // with c0 = 6 e1 - 2 e0, c_half = e0, c_full = 4 e0 - 6 e1.  Then the
+      // RK4 sums of kappa (so of F, the torque and mdot, linear in kappa) and
+      // of its first moment over the sub-step are exact: impulse, propellant
+      // and the sub-step's position and attitude increments from the thrust.
+      const double e0 = -std::expm1(-wh) / wh - (1.0 + 4.0 * d.e_half + d.e_full) / 6.0;
+      const double e1 = first_moment_rk4_defect(wh, d.e_half);
+      d.c0 = 6.0 * e1 - 2.0 * e0;
+      d.c_half = e0;
+      d.c_full = 4.0 * e0 - 6.0 * e1;
     }
     const Decay& d = memo[m];
-    f.delta = f.d0 * d.corr;
+    f.delta = f.d0 * d.c0;
+    f.slope = f.d0 * (d.c_full - d.c0) / h;
     f.kappa_end = f.kappa_c + f.d0 * d.e_full;
     f.kappa[0] = kappa0 + f.delta;
-    f.kappa[1] = f.kappa_c + f.d0 * d.e_half + f.delta;
-    f.kappa[2] = f.kappa_end + f.delta;
+    f.kappa[1] = f.kappa_c + f.d0 * d.e_half + f.d0 * d.c_half;
+    f.kappa[2] = f.kappa_end + f.d0 * d.c_full;
   }
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -95,9 +96,10 @@ TEST(Environment, OffByDefaultRecordsNoTorque)
   harness::Scenario sc = harness::load_scenario(kS1, {{"duration", "1"}});
   EXPECT_FALSE(sc.environment.gravity_gradient.enabled || sc.environment.solar_pressure.enabled ||
                sc.environment.drag.enabled || sc.environment.magnetic.enabled);
+  EXPECT_FALSE(sc.environment.j2);
   EXPECT_TRUE(sc.spacecraft.facets.empty());
   const std::string json = harness::scenario_to_json_text(sc);
-  for (const char* k : {"epoch", "gravity_gradient", "solar_pressure", "drag", "magnetic", "facets", "residual_dipole"})
+  for (const char* k : {"epoch", "gravity_gradient", "solar_pressure", "drag", "magnetic", "facets", "residual_dipole", "j2"})
     EXPECT_EQ(json.find(std::string("\"") + k + "\""), std::string::npos) << k;
   harness::Run run(sc);
   ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
@@ -160,6 +162,8 @@ TEST(Environment, RulesNameTheKey)
        "environment.epoch", "2020 to 2030"},
       {{{"environment.mu", "4.282837e13"}, {"environment.drag.enabled", "true"}}, "environment.drag", "Earth orbit"},
       {{{"environment.mu", "0"}}, "environment.gravity_gradient", "mu > 0"},
+      {{{"environment.mu", "4.282837e13"}, {"environment.j2", "true"}}, "environment.j2", "Earth orbit"},
+      {{{"environment.j2", "1.08e-3"}}, "environment.j2", "true or false"},
       {{{"spacecraft.facets", "[]"}, {"environment.solar_pressure.enabled", "true"}},
        "environment.solar_pressure", "facets"},
       {{{"environment.magnetic.igrf_degree", "14"}}, "environment.magnetic.igrf_degree", "13"},
@@ -230,4 +234,36 @@ TEST(Environment, DatedRunTakesTheAlmanacSunAndTheEarthShadow)
       EXPECT_LT(ang, 3e-3) << k;  // 0.17 deg: the 0.1 deg of the date plus the parallax
     }
   }
+}
+
+// environment.j2 reaches the plant's gravity.  The file's orbit starts on the
+// equator at r = 7000 km (x axis) with v = (0, 5000, 5500) m/s, where the J2
+// acceleration is a_x = -k, k = (3/2) J2 mu R^2 / r^4 = 1.0967390e-2 m/s^2
+// (J2 = 1.08262668e-3, R = 6378137 m; by hand in sim_test_environment), and
+// a_z = -3 k z / r grows with z = 5500 t.  So after 2 s the runs with and
+// without it differ by
+//   x: -k t^2 / 2             = -2.1934780e-2 m
+//   z: -k v_z t^3 / (2 r)     = -3.4468e-5 m.
+// Over the 2 s, |r| changes by ~16 m and 5 z^2/r^2 reaches 1.2e-5, so the
+// acceleration changes by ~1e-5 of itself: tolerance 1e-4 on x, 1 % on z.
+// The key is written to the manifest when on and reloads.
+TEST(Environment, J2KeyReachesThePlantGravity)
+{
+  harness::Scenario off = harness::load_scenario(kLeo);
+  harness::Scenario on = harness::load_scenario(kLeo, {{"environment.j2", "true"}});
+  EXPECT_TRUE(on.environment.j2);
+  const std::string ja = harness::scenario_to_json_text(on);
+  EXPECT_NE(ja.find("\"j2\": true"), std::string::npos);
+  EXPECT_TRUE(harness::load_scenario_text(ja, "m.json").environment.j2);
+  harness::Run a(off), b(on);
+  ASSERT_TRUE(a.step_ticks(a.total_ticks())) << a.failure();
+  ASSERT_TRUE(b.step_ticks(b.total_ticks())) << b.failure();
+  const uint64_t last = a.memory().rows() - 1;
+  ASSERT_EQ(a.memory().column("t")[last], 2.0);
+  const double dx = b.memory().column("r_BN_N_x")[last] - a.memory().column("r_BN_N_x")[last];
+  const double dz = b.memory().column("r_BN_N_z")[last] - a.memory().column("r_BN_N_z")[last];
+  std::printf("environment.j2: x(2 s) with J2 - without = %.7e m (expected -2.1934780e-2), z: %.5e m "
+              "(expected -3.4468e-5)\n", dx, dz);
+  EXPECT_NEAR(dx, -2.1934780e-2, 1e-4 * 2.1934780e-2);
+  EXPECT_NEAR(dz, -3.4468e-5, 1e-2 * 3.4468e-5);
 }

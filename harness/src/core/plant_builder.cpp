@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/build_error.h"
+#include "sim/environment.h"
 #include "sim/propellant.h"
 
 namespace harness {
@@ -24,6 +25,10 @@ sim::SpacecraftParams spacecraft_params(const Scenario& sc, const VehicleGeometr
   params.hub.I_hBc_B = sc.spacecraft.inertia;
   params.hub.r_BcB_B = g.r_BcB_B;
   params.mu = sc.environment.mu;
+  if (sc.environment.j2) {  // the reader allows it with Earth's mu only
+    params.J2 = sim::kJ2Earth;
+    params.R_J2 = sim::kRadiusJ2Earth;
+  }
   for (size_t i = 0; i < sc.wheels.size(); ++i) {
     params.wheels.push_back(sc.wheels[i].params);
     params.wheels.back().gs_hat_nom_B = g.gs_hat_B[i];

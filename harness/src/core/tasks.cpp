@@ -77,6 +77,9 @@ void BurnMonitor::operator()(uint64_t k)
   if (have_prev) {
     Eigen::Vector3d g = Eigen::Vector3d::Zero();
     if (mu > 0.0) g = 0.5 * (sim::point_mass_gravity(mu, r_prev) + sim::point_mass_gravity(mu, r));
+    const sim::SpacecraftParams& sp = plant->model().params();
+    if (mu > 0.0 && sp.J2 != 0.0)  // environment.j2: the plant's gravity has it too
+      g += 0.5 * (sim::j2_acceleration(mu, sp.J2, sp.R_J2, r_prev) + sim::j2_acceleration(mu, sp.J2, sp.R_J2, r));
     dv_ng += (v - v_prev) - dt * g;
   }
   have_prev = true;

@@ -68,6 +68,9 @@ const Section& environment_section()
           written_if(string("epoch", [](auto& sc, size_t) -> auto& { return sc.environment.epoch; })
                          .scheck(utc_epoch_text).unit("UTC YYYY-MM-DDThh:mm:ssZ"),
                      [](const Scenario& sc) { return !sc.environment.epoch.empty(); }),
+          written_if(boolean("j2", [](auto& sc, size_t) -> auto& { return sc.environment.j2; })
+                         .unit("default false: Earth's J2 in the gravity"),
+                     [](const Scenario& sc) { return sc.environment.j2; }),
       },
       {
           env_model_section("gravity_gradient", KESTREL_ENV(gravity_gradient)),
@@ -86,14 +89,17 @@ const Section& environment_section()
 }
 
 namespace {
-// Models that need an Earth orbit: a dated Sun, the atmosphere or the field
-// (not gravity gradient, which needs only mu > 0).
+// Models that need an Earth orbit: J2, a dated Sun, the atmosphere or the
+// field (not gravity gradient, which needs only mu > 0).
 void check_env_models(MapReader& r, const Scenario& sc)
 {
   const EnvironmentSpec& e = sc.environment;
   if (e.gravity_gradient.enabled && !(e.mu > 0.0))
     r.error_at("gravity_gradient", "needs gravity: environment.mu > 0");
   const bool earth = std::fabs(e.mu - sim::kMuEarth) <= 1e-3 * sim::kMuEarth;
+  if (e.j2 && !earth)
+    r.error_at("j2", "Earth's J2 needs an Earth orbit: environment.mu = " + fmt(sim::kMuEarth) +
+                         " m^3/s^2 (within 0.1%), got " + fmt(e.mu));
   for (EnvSource src : {EnvSource::SolarPressure, EnvSource::Drag, EnvSource::Magnetic}) {
     if (!env_model(e, src).enabled) continue;
     const std::string name = env_source_name(src);

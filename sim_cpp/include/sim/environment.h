@@ -4,8 +4,9 @@
 // the central body), B body.  Units: SI.
 //
 // Gravity in the dynamics is applied by SpacecraftModel at the mass centre
-// with SpacecraftParams::mu (§3); point_mass_gravity() is the same law for
-// scenario code and tests.  Gravity gradient, SRP, drag and magnetic
+// with SpacecraftParams::mu (§3), plus j2_acceleration() when
+// SpacecraftParams::J2 is set; point_mass_gravity() is the point-mass law
+// for scenario code and tests.  Gravity gradient, SRP, drag and magnetic
 // torques act only through the effectors of sim/environment_effectors.h,
 // when they are added to a plant (docs/environment.md, "In the plant").
 #ifndef SIM_ENVIRONMENT_H
@@ -31,6 +32,22 @@ CentralBody earth();  // mu 3.986004415e14, R 6378.1363 km
 
 // g_N = -mu r / |r|^3; zero for mu = 0.
 Eigen::Vector3d point_mass_gravity(double mu, const Eigen::Vector3d& r_N);
+
+// Earth's second zonal harmonic and its reference radius, WGS 84 (NIMA
+// TR8350.2, 3rd ed., 2000: the normalised C(2,0) = -0.484166774985e-3,
+// J2 = -sqrt(5) C(2,0); a = 6378137 m).
+constexpr double kJ2Earth = 1.08262668e-3;       // [-]
+constexpr double kRadiusJ2Earth = 6378137.0;     // [m]
+
+// The J2 part of a central body's gravity, N components, with N z along the
+// body's rotation axis (for the Earth: N is the mean equator of date):
+//   a = -(3/2) J2 mu R^2 / r^5 [x (1 - 5 z^2/r^2), y (1 - 5 z^2/r^2), z (3 - 5 z^2/r^2)],
+// the gradient of the potential's J2 term (j2_potential).  Zero for J2 = 0.
+Eigen::Vector3d j2_acceleration(double mu, double J2, double R, const Eigen::Vector3d& r_N);
+// The J2 term of the potential energy per unit mass [J/kg], so that the
+// total is -mu/r + j2_potential and a = -grad of it:
+//   U_J2 = (mu J2 R^2 / (2 r^3)) (3 z^2/r^2 - 1).
+double j2_potential(double mu, double J2, double R, const Eigen::Vector3d& r_N);
 
 // Sun position relative to the central body: r_SunN_N(t) = R_z(n t) r0,
 // i.e. fixed for n = 0 (scenario S1: (1 AU, 0, 0)), or the central body's

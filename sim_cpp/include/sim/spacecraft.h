@@ -77,6 +77,10 @@ struct SpacecraftParams {
   HubParams hub;  // Balanced/SimpleJitter wheels INSIDE, FullyCoupled wheels OUTSIDE (trap 2)
   std::vector<ReactionWheelParams> wheels;  // (num_rw <= kMaxWheels)
   double mu = 0.0;  // [m^3/s^2] point-mass gravity parameter, >= 0 (0: gravity off)
+  // Oblateness: the J2 term of the central body's gravity (sim::j2_acceleration,
+  // N z = the body's rotation axis), at the mass centre.  0: off (default).
+  double J2 = 0.0;    // [-] finite, >= 0; > 0 needs mu > 0 and R_J2 > 0
+  double R_J2 = 0.0;  // [m] its reference (equatorial) radius
 };
 
 struct InitialConditions {  // given for the mass centre C (§1)
@@ -125,7 +129,7 @@ struct EnergyMomentum {  // §8
   Eigen::Vector3d H_C_B, H_C_N;    // [kg*m^2/s] rotational angular momentum about C
   Eigen::Vector3d H_orb_N;         // [kg*m^2/s] m_sc r_C x v_C
   double E_rot = 0.0;              // [J] rotational kinetic energy about C
-  double E_orb = 0.0;              // [J] orbital energy of C
+  double E_orb = 0.0;              // [J] orbital energy of C (with the J2 potential when SpacecraftParams::J2 is set)
 };
 
 struct Accelerations {  // solved hub accelerations (§3)

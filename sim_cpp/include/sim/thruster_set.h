@@ -8,9 +8,11 @@
 //   FirstOrder      kappa advanced in closed form across each sub-step
 //                   (kappa(t+h) = kappa_c + (kappa - kappa_c) e^{-w h}); the
 //                   RK4 stages see the closed form at their own times plus a
-//                   constant O(h^4) correction chosen so that the RK4
-//                   quadrature of the thrust over the sub-step equals its
-//                   exact integral (docs/dynamics.md "Thrust factor").
+//                   correction linear in time (O((w h)^3)) chosen so that the
+//                   RK4 quadratures of the thrust over the sub-step, its
+//                   integral and its first moment, are exact: impulse,
+//                   propellant and position (docs/thrusters-propellant-
+//                   sensors.md "Thrust factor").
 // Event splitting (§7.3): next_event() proposes valve closings and Table
 // breakpoints; next_cut_ns() the latch instant while a message is pending.
 #ifndef SIM_THRUSTER_SET_H
@@ -83,8 +85,10 @@ class ThrusterSet final : public ForceTorqueEffector {
   // forms them), factors at those times plus the quadrature correction, and
   // the factor at the sub-step end.
   struct FirstOrderStage {
-    double kappa[3] = {0.0, 0.0, 0.0};  // [-] stage values (with delta) at stage_t_
-    double kappa_c = 0.0, d0 = 0.0, w = 0.0, delta = 0.0;
+    double kappa[3] = {0.0, 0.0, 0.0};  // [-] stage values (with the correction) at stage_t_
+    double kappa_c = 0.0, d0 = 0.0, w = 0.0;
+    double delta = 0.0;  // [-]   stage correction at the sub-step start
+    double slope = 0.0;  // [1/s] its rate: delta + slope (t - tau) at time t
     double kappa_end = 0.0;             // [-] closed form at tau + h
   };
 

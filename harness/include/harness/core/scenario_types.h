@@ -96,6 +96,7 @@ struct EnvironmentSpec {
   double drag_density_scale = 1.0;  // [-] >= 0
   EnvModelSpec magnetic;
   int igrf_degree = 13;             // [-] 1 .. 13
+  bool j2 = false;                  // Earth's J2 in the translational gravity (needs Earth's mu)
 };
 
 // The disturbance sources of a run, in the order recorded.
