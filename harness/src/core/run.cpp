@@ -58,6 +58,7 @@ constexpr Slot kTickProtocol[] = {
 struct Run::Impl {
   Scenario sc;
   EnvEffectors env{};  // filled by build_plant (before plant_owner)
+  std::optional<sim::EarthContext> earth;  // environment.epoch's (illumination)
   std::unique_ptr<sim::Plant> plant_owner;
   sim::Plant& plant;
   FswSetup fsw_setup;
@@ -184,7 +185,8 @@ void Run::Impl::add_tasks(const Messages& m)
 {
   DataFlow& f = flow;
   const uint64_t tk = sc.tick_ns();
-  truth.emplace(TruthTask{&plant, tk, f.writer("plant", *m.truth), env});
+  earth = earth_context(sc);
+  truth.emplace(TruthTask{&plant, tk, f.writer("plant", *m.truth), env, earth ? &*earth : nullptr});
   const BurnSchedule burn_sched = burn_schedule(sc, plant);
   if (m.burn) {
     f.add_component("burn_monitor", "harness");
@@ -234,6 +236,7 @@ void Run::Impl::add_recorder(const Messages& m)
   declare_telemetry(rec, rc, plant.num_rw(), plant.num_thr(), sc.environment.mu > 0.0,
                     [this] { return sched.t_ns(tick); });
   declare_disturbances(rec, rc, env_on);
+  declare_environment_truth(rec, rc, env_on, earth.has_value(), plant.num_rw());
 }
 
 void Run::Impl::add_events()
