@@ -251,25 +251,28 @@ TEST(Environment, AccumulatedMomentumIsTheIntegralOfTheTorqueInN)
 }
 
 // Illumination: a circular equatorial orbit of 7,000 km with the Sun (near
-// the March equinox, declination 0.3 deg) in the orbit plane.  The
-// spacecraft is behind the Earth, illumination below 1/2 (the Sun's centre
-// hidden), while it is within asin(R/r) of the anti-Sun direction: the
-// Sun's centre sets where the line of sight grazes the Earth (the cylinder
-// of radius R, to the parallax r/AU = 5e-5 rad, 0.04 s).  The anti-Sun
-// direction itself moves prograde at the Sun's rate in right ascension,
-// 2 pi/365.2422 d x cos(obliquity) at the equinox, so the shadow lasts
-// 2 asin(R/r)/(n - that rate) (the rate adds 0.36 s to 2,126 s); the
-// 0.3 deg out of plane shortens it by a relative 1e-5.  Rows 0.1 s apart:
-// each crossing within 0.1 s, so 0.3 s in all.  The penumbra lasts the Sun's
-// apparent diameter (0.533 deg) over the orbit rate: 8.4 s at each crossing.
+// the March equinox, declination 0.3 deg) in the orbit plane, from 100 deg
+// of right ascension through the whole shadow.  The spacecraft is behind
+// the Earth, illumination below 1/2 (the Sun's centre hidden), while it is
+// within asin(R/r) of the anti-Sun direction: the Sun's centre sets where
+// the line of sight grazes the Earth (the cylinder of radius R, to the
+// parallax r/AU = 5e-5 rad, 0.04 s).  The anti-Sun direction itself moves
+// prograde at the Sun's rate in right ascension, 2 pi/365.2422 d x
+// cos(obliquity) at the equinox, so the shadow lasts 2 asin(R/r)/(n - that
+// rate) (the rate adds 0.36 s to 2,126 s); the 0.3 deg out of plane shortens
+// it by a relative 1e-5.  Rows 0.1 s apart: each crossing within 0.1 s, so
+// 0.3 s in all.  The penumbra lasts the Sun's apparent diameter (0.533 deg)
+// over the orbit rate: 8.6 s at each crossing.
 TEST(Environment, IlluminationFollowsTheEarthsShadow)
 {
   const double mu = 3.986004415e14, r = 7.0e6, R = 6378136.3;  // R: sim::kRadiusEarth, the shadowing sphere
-  const double n = std::sqrt(mu / (r * r * r)), period = 2.0 * kPi / n;
-  const std::vector<harness::Override> ov{{"duration", "5830"},
+  const double n = std::sqrt(mu / (r * r * r)), period = 2.0 * kPi / n, v = std::sqrt(mu / r);
+  const double u0 = 100.0 * kPi / 180.0;  // [rad] right ascension at t = 0
+  auto vec = [](double x, double y) { return "[" + std::to_string(x) + ", " + std::to_string(y) + ", 0]"; };
+  const std::vector<harness::Override> ov{{"duration", "2600"},
                                           {"rates.record_divisor", "1"},
-                                          {"spacecraft.initial.r_CN_N", "[7.0e6, 0, 0]"},
-                                          {"spacecraft.initial.v_CN_N", "[0, " + std::to_string(std::sqrt(mu / r)) + ", 0]"},
+                                          {"spacecraft.initial.r_CN_N", vec(r * std::cos(u0), r * std::sin(u0))},
+                                          {"spacecraft.initial.v_CN_N", vec(-v * std::sin(u0), v * std::cos(u0))},
                                           {"spacecraft.com", "[0, 0, 0]"}};
   harness::Run run(harness::load_scenario(kLeo, ov));
   ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
@@ -279,24 +282,24 @@ TEST(Environment, IlluminationFollowsTheEarthsShadow)
   for (size_t k = 0; k < t.size(); ++k) {
     EXPECT_TRUE(f[k] >= 0.0 && f[k] <= 1.0);
     EXPECT_EQ(ecl[k], f[k] < 1.0 ? 1.0 : 0.0);
-    if (t[k] > period) break;  // one orbit
     if (f[k] < 0.5) t_dark += 0.1;
     if (f[k] > 0.0 && f[k] < 1.0) t_pen += 0.1;
     if (f[k] < 0.5 && t_in < 0.0) t_in = t[k];
     if (f[k] >= 0.5 && t_in >= 0.0 && t_out < 0.0) t_out = t[k];
   }
+  EXPECT_EQ(f.front(), 1.0);  // sunlit at both ends: the whole shadow is inside the run
+  EXPECT_EQ(f.back(), 1.0);
   const double sun_ra_rate = 2.0 * kPi / (365.2422 * 86400.0) * std::cos(23.4393 * kPi / 180.0);  // [rad/s]
   const double expected = 2.0 * std::asin(R / r) / (n - sun_ra_rate);
   std::printf("shadow: %.1f s (illumination < 1/2) against %.2f s, entry %.1f s, exit %.1f s; penumbra %.1f s\n",
               t_dark, expected, t_in, t_out, t_pen);
   EXPECT_NEAR(t_dark, expected, 0.3);
-  // centred on the anti-Sun point: the spacecraft starts at right ascension
-  // 0, the Sun (2027-03-21 12:00, the morning after the equinox; ~1 deg/day)
-  // is between 0 and 1 deg ahead: the middle of the shadow half an orbit
-  // later plus at most 1/360 of the period.
-  const double mid = 0.5 * (t_in + t_out);
-  EXPECT_GT(mid, period / 2.0);
-  EXPECT_LT(mid, period / 2.0 + period / 360.0);
+  // centred on the anti-Sun point, 80 deg of orbit after the start plus the
+  // Sun's right ascension (2027-03-21 12:00, the morning after the equinox;
+  // ~1 deg/day): between 0 and 1 deg.
+  const double mid = 0.5 * (t_in + t_out), t_anti = 80.0 / 360.0 * period;
+  EXPECT_GT(mid, t_anti);
+  EXPECT_LT(mid, t_anti + period / 360.0);
   const double pen = 2.0 * (0.533 * kPi / 180.0) / n;
   EXPECT_NEAR(t_pen, pen, 0.5);
 }
