@@ -3,7 +3,8 @@
 // section; a section that fails shows its error and the others still render.
 import 'uplot/dist/uPlot.min.css';
 import './report.css';
-import { normalize, el, fmt, finiteMinMax, isNumArray, indexedKeys } from './data.js';
+import { normalize, el, fmt, finiteMinMax, isNumArray, indexedKeys, alignSeries } from './data.js';
+import { eclipseIntervals } from './environment.js';
 import { buildTimePlots, resizePlots, setEventTimes } from './plots.js';
 import { buildSpectrum } from './spectrumview.js';
 import { buildReplay } from './replay3d.js';
@@ -45,6 +46,11 @@ function summary(root, D, absent) {
     let tot = 0;
     for (const { key } of tk) for (const v of series[key]) if (typeof v === 'number' && v > 0) tot += v;
     add('thrusters', `${tk.length}, total on-time ${fmt(tot)} s`);
+  }
+  if (isNumArray(series.illumination)) {
+    const iv = eclipseIntervals(t, alignSeries(series.illumination, t.length));
+    const tot = iv.reduce((acc, x) => acc + (x.t1 - x.t0), 0);
+    add('Earth\'s shadow', `${iv.length} interval${iv.length === 1 ? '' : 's'}, ${fmt(tot)} s (illumination < 1)`);
   }
   if (absent.length) add('not in this run', absent.join(', '));
   root.appendChild(el('table', { class: 'summary' }, el('tbody', null, ...rows)));
@@ -91,6 +97,7 @@ function main() {
     }
     const res = buildTimePlots(root, D, document.getElementById('plots-other'));
     absent = res.absent;
+    status.eclipses = res.eclipses;
     if (res.others) document.getElementById('others-title').hidden = false;
     status.plots = root.querySelectorAll('.uplot').length;
   });

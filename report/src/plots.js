@@ -2,6 +2,7 @@
 // cursors and x-zoom synchronised across cards.
 import uPlot from 'uplot';
 import { alignSeries, indexedKeys, isNumArray, el, finiteMinMax } from './data.js';
+import { ENV_SOURCES, eclipseIntervals, magnitude, sumMagnitude } from './environment.js';
 
 export const PALETTE = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#17becf',
   '#7f7f7f', '#bcbd22', '#393b79', '#ad494a', '#637939', '#e6550d', '#6b6ecf', '#843c39'];
@@ -72,6 +73,23 @@ function drawEvents(u) {
     ctx.moveTo(x, bbox.top);
     ctx.lineTo(x, bbox.top + bbox.height);
     ctx.stroke();
+  }
+  ctx.restore();
+}
+
+// Eclipse intervals of an Earth-orbit run (illumination < 1): shaded bands
+// under the curves of every time plot.
+let shadeIntervals = [];
+function drawShade(u) {
+  if (!shadeIntervals.length || !u.scales.x) return;
+  const { ctx, bbox } = u;
+  ctx.save();
+  ctx.fillStyle = 'rgba(70, 70, 110, 0.13)';
+  for (const iv of shadeIntervals) {
+    if (iv.t1 < u.scales.x.min || iv.t0 > u.scales.x.max) continue;
+    const x0 = Math.max(bbox.left, u.valToPos(iv.t0, 'x', true));
+    const x1 = Math.min(bbox.left + bbox.width, u.valToPos(iv.t1, 'x', true));
+    if (x1 > x0) ctx.fillRect(x0, bbox.top, x1 - x0, bbox.height);
   }
   ctx.restore();
 }
@@ -163,7 +181,7 @@ export function addTimePlot(grid, t, spec) {
           value: (self, v) => (v === null || v === undefined ? '\u2013' : fmtTick(v)),
         })),
       ],
-      hooks: { setScale: [(self, key) => { if (key === 'x') syncX(self); }], draw: [drawEvents, drawMarker] },
+      hooks: { setScale: [(self, key) => { if (key === 'x') syncX(self); }], drawClear: [drawShade], draw: [drawEvents, drawMarker] },
     };
     u = new uPlot(opts, [tx, ...yd], holder);
     clickToTime(u);
@@ -248,6 +266,8 @@ export function buildTimePlots(grid, D, otherGrid = grid) {
     });
   }
 
+  const env = buildEnvironmentPlots(grid, D, take, unitOf);
+
   if (isNumArray(series.propellant_kg)) {
     addTimePlot(grid, t, { id: 'propellant', title: 'Propellant', unit: unitOf('propellant_kg', 'kg'), names: ['propellant'], ys: [take('propellant_kg')] });
   } else absent.push('propellant');
@@ -264,5 +284,56 @@ export function buildTimePlots(grid, D, otherGrid = grid) {
     const names = ks.length > 1 ? ks.map((k) => k.slice(stem.length + 1)) : ks;
     addTimePlot(otherGrid, t, { id: 'x-' + stem.replace(/[^A-Za-z0-9_-]/g, '_'), title: stem, unit: unitOf(ks[0], ''), names, ys: ks.map(take) });
   }
-  return { absent, others: rest.size };
+  return { absent, others: rest.size, eclipses: env.eclipses };
+}
+
+// Earth-orbit runs, each card only when its columns exist: illumination
+// (and the eclipse bands on every plot), the disturbance torque of each
+// source, the momentum each source has given against the wheels', the field
+// in B and the magnetorquer dipoles.  The torque and momentum cards show
+// magnitudes; their components stay among the other recorded series.
+function buildEnvironmentPlots(grid, D, take, unitOf) {
+  const { series, t } = D;
+  const n = t.length;
+  let eclipses = 0;
+  if (isNumArray(series.illumination)) {
+    const iv = eclipseIntervals(t, alignSeries(series.illumination, n));
+    shadeIntervals = iv;
+    eclipses = iv.length;
+    if (isNumArray(series.eclipse)) take('eclipse');
+    addTimePlot(grid, t, {
+      id: 'illumination', title: 'Illumination: visible fraction of the Sun\'s disk', unit: unitOf('illumination', '-'),
+      names: ['illumination'], ys: [take('illumination')],
+      note: `Shaded on every plot: the Earth's shadow (illumination < 1), ${iv.length} interval${iv.length === 1 ? '' : 's'}.`,
+    });
+  }
+  const present = ENV_SOURCES.filter(([s]) => isNumArray(series[`torque_${s}_x`]));
+  if (present.length) {
+    addTimePlot(grid, t, {
+      id: 'disturbance', title: 'Disturbance torques about the mass centre, by source |L_C|', unit: unitOf(`torque_${present[0][0]}_x`, 'N m'),
+      names: present.map(([, label]) => label), ys: present.map(([s]) => magnitude(series, `torque_${s}`, n)), log: true,
+    });
+  }
+  const hs = ENV_SOURCES.filter(([s]) => isNumArray(series[`H_${s}_N_x`]));
+  if (hs.length) {
+    const names = hs.map(([, label]) => label);
+    const ys = hs.map(([s]) => magnitude(series, `H_${s}_N`, n));
+    if (hs.length > 1) { names.push('sum of sources'); ys.push(sumMagnitude(series, hs.map(([s]) => `H_${s}_N`), n)); }
+    if (isNumArray(series.H_wheels_N_x)) { names.push('wheels (change)'); ys.push(sumMagnitude(series, ['H_wheels_N'], n, true)); }
+    addTimePlot(grid, t, {
+      id: 'envmomentum', title: 'Angular momentum given by each source, against the wheels\' |H| (N)', unit: unitOf(`H_${hs[0][0]}_N_x`, 'N m s'),
+      names, ys, note: 'Each source: |\u222b [NB] L_C dt| since t = 0. The wheels take up the sum unless something dumps it.',
+    });
+  }
+  const fk = ['x', 'y', 'z'].map((a) => `field_B_${a}`).filter((k) => isNumArray(series[k]));
+  if (fk.length) {
+    addTimePlot(grid, t, { id: 'field', title: 'Geomagnetic field in B', unit: unitOf(fk[0], 'T'), names: fk.map((k) => k.slice(-1)),
+      ys: fk.map(take), colors: fk.map((k) => AXIS_COLORS['xyz'.indexOf(k.slice(-1))]) });
+  }
+  const mk = indexedKeys(series, 'mtq_dipole_');
+  if (mk.length) {
+    addTimePlot(grid, t, { id: 'mtqdipole', title: 'Magnetorquer dipoles', unit: unitOf(mk[0].key, 'A m^2'), stepped: true,
+      names: mk.map(({ index }) => `rod ${index}`), ys: mk.map(({ key }) => take(key)) });
+  }
+  return { eclipses };
 }

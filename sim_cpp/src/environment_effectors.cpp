@@ -60,12 +60,20 @@ void SampledEnvironmentEffector::prepare_now(int64_t t_ns)
   in_step_ = false;  // a derivative between steps: the load of its own state
 }
 
-void SampledEnvironmentEffector::begin_substep(double tau, double /*h*/)
+void SampledEnvironmentEffector::begin_substep(double tau, double h)
 {
-  // the plant's state is the (sub-)step's start here
+  h_s_ = h;
+  H_sub_N_.setZero();
+  stage_ = 0;
   if (period_ns_ == 0) return;
-  step_load_ = load(seconds_from_ns(t0_ns_) + tau, plant_.state());
+  // the plant's state is the (sub-)step's start here
+  const StateVector& x = plant_.state();
+  step_load_ = load(seconds_from_ns(t0_ns_) + tau, x);
   in_step_ = true;
+  // its torque about C, taken with the mass centre of the sub-step's start
+  step_L_C_B_ = step_load_.L_B;
+  if (!step_load_.F_B.isZero(0.0))
+    step_L_C_B_ -= plant_.model().mass_centre(x, plant_.hub_with_propellant(x)).c_B.cross(step_load_.F_B);
 }
 
 void SampledEnvironmentEffector::accumulate(const EffectorStage& stage, EffectorSums& sums) const
@@ -73,11 +81,32 @@ void SampledEnvironmentEffector::accumulate(const EffectorStage& stage, Effector
   if (period_ns_ > 0 && in_step_) {
     sums.F_B += step_load_.F_B;
     sums.L_B += step_load_.L_B;
+    if (stage_ >= 0 && stage_ < 4) add_stage_momentum(stage.x, step_L_C_B_);
     return;
   }
   const BodyLoad l = load(seconds_from_ns(t0_ns_) + stage.t, stage.x);
   sums.F_B += l.F_B;
   sums.L_B += l.L_B;
+  if (stage_ < 0 || stage_ >= 4) return;
+  Vector3d L_C = l.L_B;
+  if (!l.F_B.isZero(0.0))
+    L_C -= plant_.model().mass_centre(stage.x, plant_.hub_with_propellant(stage.x)).c_B.cross(l.F_B);
+  add_stage_momentum(stage.x, L_C);
+}
+
+void SampledEnvironmentEffector::add_stage_momentum(const StateVector& x, const Vector3d& L_C_B) const
+{
+  // RK4 weights b = 1/6, 1/3, 1/3, 1/6 (sim/rk4.h): 1, 2, 2, 1 here, h/6 at the end.
+  const double w = (stage_ == 0 || stage_ == 3) ? 1.0 : 2.0;
+  ++stage_;
+  if (L_C_B.isZero(0.0)) return;
+  H_sub_N_ += w * (dcm_BN(x).transpose() * L_C_B);
+}
+
+void SampledEnvironmentEffector::end_substep()
+{
+  if (stage_ == 4) H_N_ += (h_s_ / 6.0) * H_sub_N_;
+  stage_ = -1;
 }
 
 // ------------------------------------------------------- gravity gradient
@@ -255,12 +284,17 @@ Vector3d MagneticEffector::field_N(double t_s, const Vector3d& r_N) const
 
 void MagneticEffector::sample(double t_s, const StateVector& x) { B_held_N_ = field_N(t_s, position_N(x)); }
 
+Vector3d MagneticEffector::field_B(double t_s, const StateVector& x) const
+{
+  const Vector3d B_N = period_ns() > 0 ? B_held_N_ : field_N(t_s, position_N(x));
+  return dcm_BN(x) * B_N;
+}
+
 BodyLoad MagneticEffector::load(double t_s, const StateVector& x) const
 {
   BodyLoad l;
   if (m_total_B_.isZero(0.0)) return l;
-  const Vector3d B_N = period_ns() > 0 ? B_held_N_ : field_N(t_s, position_N(x));
-  l.L_B = magnetic_torque(m_total_B_, dcm_BN(x) * B_N);  // a couple: about C = about B
+  l.L_B = magnetic_torque(m_total_B_, field_B(t_s, x));  // a couple: about C = about B
   return l;
 }
 

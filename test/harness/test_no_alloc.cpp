@@ -109,6 +109,21 @@ TEST(NoAlloc, S2ThrusterRunDoesNotAllocate)
   EXPECT_EQ(run.recorder().overflow(), 0u);
 }
 
+// S3: every Earth-orbit disturbance effector (held environments resampled
+// inside the counted steps), their accumulated momenta, illumination, the
+// field and the wheels' momentum recorded: no allocation either.
+TEST(NoAlloc, S3EarthOrbitRunDoesNotAllocate)
+{
+  const harness::Scenario sc = harness::load_scenario(KESTREL_SOURCE_DIR "/scenarios/s3_leo_smallsat.yaml",
+                                                      {{"duration", "30"}, {"outputs.hdf5", "false"}});
+  harness::Run run(sc);
+  const unsigned long n = count_during([&run] { run.step_ticks(run.total_ticks()); });
+  EXPECT_TRUE(run.done());
+  EXPECT_EQ(run.failure(), "");
+  EXPECT_EQ(n, 0u);
+  EXPECT_EQ(run.recorder().overflow(), 0u);
+}
+
 // Scenario events applied during the loop (docs/events.md): a wheel fails
 // at 5 s and is flagged unavailable 0.1 s later, both inside the counted
 // steps; the log entries are built at setup and moved in.

@@ -18,6 +18,9 @@ const CASES = [
     replay: 'ok', dataflow: 'ok', spectrum: true, shot: true, events: 2 },
   { file: 's2.html', plots: ['pointing', 'rates', 'ontime', 'force', 'propellant'], absent: ['wheels', 'wheeltorque'],
     replay: 'ok', dataflow: 'ok', spectrum: true, shot: true },
+  // an Earth-orbit run: the environment cards, two eclipses shaded
+  { file: 's3.html', plots: ['pointing', 'rates', 'illumination', 'disturbance', 'envmomentum', 'field', 'mtqdipole', 'wheels',
+    'x-torque_gravity_gradient', 'x-H_wheels_N'], absent: ['ontime', 'force', 'propellant'], replay: 'ok', dataflow: 'absent', eclipses: 2 },
   { file: 'hostile.html', plots: ['pointing', 'rates', 'wheels', 'wheeltorque', 'x-extra_thing'], replay: 'ok',
     dataflow: 'unreadable', events: 1, title: 'hostile </script><script>window.__pwned=1</script><!-- "quotes"' },
   { file: 'long.html', plots: ['pointing', 'rates', 'wheels'], replay: 'ok', dataflow: 'absent', spectrum: true },
@@ -46,6 +49,7 @@ runCases('browser test', htmlDir, CASES, async (c, { page }, fail) => {
       incomplete: (document.getElementById('incomplete') || {}).textContent || '',
       eventRows: document.querySelectorAll('#events-table tr').length,
       eventsShown: !document.getElementById('sec-events').hidden,
+      eclipses: r.eclipses || 0,
     };
   });
   console.log(`  cards [${st.cards.join(', ')}], spectrum ${st.spectrum}, replay ${st.replay}, dataflow ${st.dataflow} ` +
@@ -68,6 +72,10 @@ runCases('browser test', htmlDir, CASES, async (c, { page }, fail) => {
   const wantEv = c.events || 0;
   if (st.eventRows !== (wantEv ? wantEv + 1 : 0)) fail(`${st.eventRows} rows in the events table, expected ${wantEv} events`);
   if (st.eventsShown !== wantEv > 0) fail(`events section ${st.eventsShown ? 'shown' : 'hidden'}`);
+  // eclipse bands: only where the data has illumination (S1/S2: none)
+  if (st.eclipses !== (c.eclipses || 0)) fail(`${st.eclipses} eclipse intervals, expected ${c.eclipses || 0}`);
+  for (const p of ['illumination', 'disturbance', 'envmomentum', 'field', 'mtqdipole'])
+    if (!c.plots.includes(p) && st.cards.includes(p)) fail(`${p} plot drawn though absent from the data`);
   if (c.title && !st.title.includes(c.title)) fail(`scenario text not shown verbatim: ${st.title.slice(0, 120)}`);
   if (c.shot) {
     // a click on a time plot moves the replay to that time

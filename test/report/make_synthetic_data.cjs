@@ -8,6 +8,10 @@
 //   minimal.json  meta and t only
 //   empty.json    {}
 //   long.json     200 001 samples of a few series (decimation, big arrays)
+//   s3.json       an Earth-orbit run: circular 500 km orbit with the Sun in its
+//                 plane (eclipses), gravity-gradient and magnetic torques on a
+//                 body held fixed in N, their accumulated momentum taken up by
+//                 the wheels, the field in B and three magnetorquer dipoles
 //   hostile.json  </script>, <!-- and quotes in strings, NaN-like nulls, ragged
 //                 series, a malformed DOT
 // Usage: node make_synthetic_data.cjs OUTDIR
@@ -288,6 +292,80 @@ function reduced() {
     decimation: { rows: buckets * rowsPerBucket, bucket_rows: rowsPerBucket, points: 2 * buckets } };
 }
 
+// An Earth-orbit run (the columns of docs/environment.md, "Recorded").
+function s3() {
+  const mu = 3.986004415e14;
+  const R = 6378136.3;
+  const r = R + 500e3;
+  const nOrb = Math.sqrt(mu / r ** 3);
+  const dt = 10;
+  const T = 2 * 2 * Math.PI / nOrb; // two orbits
+  const n = Math.floor(T / dt) + 1;
+  const I = [0.43, 0.28, 0.31];
+  const inc = (97.4 * Math.PI) / 180;
+  const dip = [0.03, -0.024, 0.032];
+  const Js = 1.59e-5;
+  const G = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
+  const S = { t: [], pointing_error_deg: [], omega_BN_B_x: [], omega_BN_B_y: [], omega_BN_B_z: [], illumination: [], eclipse: [] };
+  const vec = (stem) => ['x', 'y', 'z'].forEach((a) => { S[`${stem}_${a}`] = []; });
+  ['torque_gravity_gradient', 'torque_magnetic', 'H_gravity_gradient_N', 'H_magnetic_N', 'H_wheels_N', 'field_B'].forEach(vec);
+  for (let i = 0; i < 3; i++) { S[`wheel_speed_rpm_${i}`] = []; S[`mtq_dipole_${i}`] = []; }
+  const Hg = [0, 0, 0];
+  const Hm = [0, 0, 0];
+  let prev = null;
+  const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+  for (let k = 0; k < n; k++) {
+    const t = k * dt;
+    const u = nOrb * t; // argument of latitude from the Sun side
+    const rh = [Math.cos(u), Math.sin(u) * Math.cos(inc), Math.sin(u) * Math.sin(inc)];
+    // Sun along +x: the Sun's centre hidden within asin(R/r) of -x; an 8 s penumbra ramp
+    const off = Math.acos(Math.max(-1, Math.min(1, -rh[0]))) - Math.asin(R / r); // [rad] outside the shadow edge
+    const ill = Math.max(0, Math.min(1, 0.5 + off / (2 * 8 * nOrb)));
+    const Ir = rh.map((v, j) => I[j] * v);
+    const Lg = cross(rh, Ir).map((v) => 3 * nOrb * nOrb * v);
+    // an aligned dipole field, 2 B0 at the poles (B0 = 3e-5 T (R/r)^3)
+    const B0 = 3e-5 * (R / r) ** 3;
+    const zN = [0, 0, -1];
+    const dot = rh[0] * zN[0] + rh[1] * zN[1] + rh[2] * zN[2];
+    const B = rh.map((v, j) => B0 * (3 * dot * v - zN[j]));
+    const Lm = cross(dip, B);
+    if (prev) for (let j = 0; j < 3; j++) { Hg[j] += 0.5 * dt * (Lg[j] + prev[0][j]); Hm[j] += 0.5 * dt * (Lm[j] + prev[1][j]); }
+    prev = [Lg, Lm];
+    S.t.push(t);
+    S.pointing_error_deg.push(r6(0.02 + 0.005 * gauss()));
+    ['x', 'y', 'z'].forEach((a, j) => {
+      S[`omega_BN_B_${a}`].push(r6(1e-5 * gauss()));
+      S[`torque_gravity_gradient_${a}`].push(r6(Lg[j]));
+      S[`torque_magnetic_${a}`].push(r6(Lm[j]));
+      S[`H_gravity_gradient_N_${a}`].push(r6(Hg[j]));
+      S[`H_magnetic_N_${a}`].push(r6(Hm[j]));
+      S[`H_wheels_N_${a}`].push(r6(Hg[j] + Hm[j]));
+      S[`field_B_${a}`].push(r6(B[j]));
+    });
+    for (let i = 0; i < 3; i++) {
+      S[`wheel_speed_rpm_${i}`].push(r6(((Hg[i] + Hm[i]) / Js) * 60 / (2 * Math.PI)));
+      S[`mtq_dipole_${i}`].push(Math.sin(u * 3 + i) > 0.3 ? 0.2 : 0);
+    }
+    S.illumination.push(r6(ill));
+    S.eclipse.push(ill < 1 ? 1 : 0);
+  }
+  const units = { t: 's', pointing_error_deg: 'deg', illumination: '-', eclipse: '-' };
+  for (const a of ['x', 'y', 'z']) {
+    units[`omega_BN_B_${a}`] = 'rad/s';
+    units[`torque_gravity_gradient_${a}`] = 'N*m'; units[`torque_magnetic_${a}`] = 'N*m';
+    units[`H_gravity_gradient_N_${a}`] = 'N*m*s'; units[`H_magnetic_N_${a}`] = 'N*m*s'; units[`H_wheels_N_${a}`] = 'N*m*s';
+    units[`field_B_${a}`] = 'T';
+  }
+  for (let i = 0; i < 3; i++) { units[`wheel_speed_rpm_${i}`] = 'rpm'; units[`mtq_dipole_${i}`] = 'A*m^2'; }
+  return {
+    meta: { scenario: 'S3-like LEO small satellite (synthetic)', description: 'Synthetic test data: 500 km orbit, Sun in the orbit plane, inertial hold.',
+      seed: 3, version: '0.1.0', dt: 0.1, duration: T, record_period: dt, fsw_period: 0.1, fsw_mode: 'inertial', num_wheels: 3, num_thrusters: 0 },
+    series: S, units,
+    geometry: { wheel_axes_B: G, wheel_positions_B: G.map((g) => g.map((v) => 0.05 * v)), thrusters: [] },
+  };
+}
+
+fs.writeFileSync(path.join(out, 's3.json'), JSON.stringify(s3()));
 fs.writeFileSync(path.join(out, 'reduced.json'), JSON.stringify(reduced()));
 fs.writeFileSync(path.join(out, 's1.json'), JSON.stringify(s1()));
 fs.writeFileSync(path.join(out, 'long.json'), JSON.stringify(long()));

@@ -126,10 +126,7 @@ EnvEffectors add_environment(const Scenario& sc, sim::Plant& p, MagneticParts& m
 {
   EnvEffectors out{};
   const EnvironmentSpec& e = sc.environment;
-  sim::EarthContextParams cp;
-  std::string why;
-  if (!e.epoch.empty()) cp.epoch = parse_utc_epoch(e.epoch, &why).value_or(sim::UtcEpoch{});
-  const sim::EarthContext ctx(cp);
+  const sim::EarthContext ctx = earth_context(sc).value_or(sim::EarthContext(sim::EarthContextParams{}));
   if (e.gravity_gradient.enabled) {
     sim::GravityGradientParams gp;
     gp.period_ns = period_ns(e.gravity_gradient);
@@ -156,6 +153,15 @@ EnvEffectors add_environment(const Scenario& sc, sim::Plant& p, MagneticParts& m
 }
 
 }  // namespace
+
+std::optional<sim::EarthContext> earth_context(const Scenario& sc)
+{
+  if (sc.environment.epoch.empty()) return std::nullopt;
+  sim::EarthContextParams cp;
+  std::string why;
+  cp.epoch = parse_utc_epoch(sc.environment.epoch, &why).value_or(sim::UtcEpoch{});
+  return sim::EarthContext(cp);
+}
 
 std::unique_ptr<sim::Plant> build_plant(const Scenario& sc, EnvEffectors* env, MagneticParts* mag)
 {

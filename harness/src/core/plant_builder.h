@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include <Eigen/Dense>
 
@@ -35,6 +36,10 @@ struct MagneticParts {
 // the configuration.  `env` (optional) receives the environment effectors,
 // `mag` (optional) the magnetic parts.
 std::unique_ptr<sim::Plant> build_plant(const Scenario& sc, EnvEffectors* env = nullptr, MagneticParts* mag = nullptr);
+
+// The Earth context of environment.epoch (the UTC of t = 0; the shadowing
+// sphere of the Earth); nullopt when the scenario has no epoch.
+std::optional<sim::EarthContext> earth_context(const Scenario& sc);
 
 // Main-engine burn: the engine opens at the first thruster command instant
 // at or after burn.start and closes at start + duration.

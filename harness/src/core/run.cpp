@@ -61,6 +61,7 @@ struct Run::Impl {
   Scenario sc;
   EnvEffectors env{};  // filled by build_plant (before plant_owner)
   MagneticParts mag{};  // likewise
+  std::optional<sim::EarthContext> earth;  // environment.epoch's (illumination)
   std::unique_ptr<sim::Plant> plant_owner;
   sim::Plant& plant;
   FswSetup fsw_setup;
@@ -204,7 +205,8 @@ void Run::Impl::add_tasks(const Messages& m)
 {
   DataFlow& f = flow;
   const uint64_t tk = sc.tick_ns();
-  truth.emplace(TruthTask{&plant, tk, f.writer("plant", *m.truth), env});
+  earth = earth_context(sc);
+  truth.emplace(TruthTask{&plant, tk, f.writer("plant", *m.truth), env, earth ? &*earth : nullptr});
   const BurnSchedule burn_sched = burn_schedule(sc, plant);
   if (m.burn) {
     f.add_component("burn_monitor", "harness");
@@ -277,6 +279,7 @@ void Run::Impl::add_recorder(const Messages& m)
     declare_magnetorquers(rec, f.reader("recorder", *m.mtq_state).channel(), n);
   }
   if (m.mag) declare_magnetometer(rec, f.reader("recorder", *m.mag).channel());
+  declare_environment_truth(rec, rc, env_on, earth.has_value(), plant.num_rw());
 }
 
 void Run::Impl::add_events()

@@ -8,6 +8,7 @@
 
 #include "sim/attitude.h"
 #include "sim/environment.h"
+#include "sim/environment_effectors.h"
 
 namespace harness {
 
@@ -56,7 +57,27 @@ void TruthTask::operator()(uint64_t k) const
       const Eigen::Vector3d L_C = l.L_B - mp.c_B.cross(l.F_B);
       for (int i = 0; i < 3; ++i) t.L_env_C_B[s][i] = L_C(i);
     }
+  environment_truth(t, t_s);
   out.write(t, k * tick_ns);
+}
+
+void TruthTask::environment_truth(TruthMsg& t, double t_s) const
+{
+  const sim::Plant& p = *plant;
+  const Eigen::Vector3d r_B = ev(t.r_BN_N);
+  if (earth) t.illumination = sim::illumination_factor(r_B, earth->sun_position_N(t_s), earth->params().shadow_radius);
+  const auto* mag = static_cast<const sim::MagneticEffector*>(env[static_cast<size_t>(EnvSource::Magnetic)]);
+  if (mag) put3(t.field_B, mag->field_B(t_s, p.state()));  // index Magnetic holds a MagneticEffector
+  bool any = false;
+  for (int s = 0; s < kNumEnvSources; ++s)
+    if (const sim::SampledEnvironmentEffector* e = env[static_cast<size_t>(s)]) {
+      any = true;
+      put3(t.H_env_N[s], e->momentum_N());
+    }
+  if (!any) return;
+  Eigen::Vector3d h_B = Eigen::Vector3d::Zero();
+  for (int i = 0; i < p.num_rw(); ++i) h_B += p.wheel_params(i).J_s * p.Omega(i) * p.model().wheel_derived(i).gs_hat_B;
+  put3(t.H_wheels_N, sim::dcm_BN_from_sigma(ev(t.sigma_BN)).transpose() * h_B);
 }
 
 void BurnMonitor::snap(Snap& s, double t, const TruthMsg& tr) const

@@ -41,7 +41,10 @@ struct TruthTask {
   uint64_t tick_ns;
   Writer<TruthMsg> out;
   EnvEffectors env{};  // the run's environment effectors (null: off)
+  const sim::EarthContext* earth = nullptr;  // the epoch's context (null: no epoch)
   void operator()(uint64_t k) const;
+  // Illumination, field, accumulated momenta and wheel momentum (Earth orbit).
+  void environment_truth(TruthMsg& t, double t_s) const;
 };
 
 // Burn monitor (thruster runs, every tick): dv += (v_C(k+1) - v_C(k)) -

@@ -215,4 +215,29 @@ void declare_magnetometer(Recorder& rec, const Channel<MagnetometerMsg>& ch)
                               });
 }
 
+void declare_environment_truth(Recorder& rec, const RecordedChannels& ch, const std::array<bool, kNumEnvSources>& on,
+                               bool has_epoch, int n_rw)
+{
+  if (has_epoch)
+    rec.record<TruthMsg>(*ch.truth, {scalar("illumination", "-"), scalar("eclipse", "-")},
+                         [](const TruthMsg& x, double* o) {
+                           o[0] = x.illumination;
+                           o[1] = x.illumination < 1.0 ? 1.0 : 0.0;
+                         });
+  if (on[static_cast<size_t>(EnvSource::Magnetic)])
+    rec.record<TruthMsg>(*ch.truth, {vec3("field_B", "T", "B")},
+                         [](const TruthMsg& x, double* o) { copy3(o, x.field_B); });
+  bool any = false;
+  for (int s = 0; s < kNumEnvSources; ++s) {
+    if (!on[static_cast<size_t>(s)]) continue;
+    any = true;
+    const std::string name = std::string("H_") + env_source_name(static_cast<EnvSource>(s)) + "_N";
+    rec.record<TruthMsg>(*ch.truth, {vec3(name, "N*m*s", "N, about the mass centre")},
+                         [s](const TruthMsg& x, double* o) { copy3(o, x.H_env_N[s]); });
+  }
+  if (any && n_rw > 0)
+    rec.record<TruthMsg>(*ch.truth, {vec3("H_wheels_N", "N*m*s", "N, wheels' spin momentum relative to B")},
+                         [](const TruthMsg& x, double* o) { copy3(o, x.H_wheels_N); });
+}
+
 }  // namespace harness

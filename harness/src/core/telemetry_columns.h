@@ -42,6 +42,15 @@ void declare_magnetorquers(Recorder& rec, const Channel<MtqStateMsg>& ch, int n_
 // [T] in its sensor axes (NaN during a dropout), mag_valid [-].
 void declare_magnetometer(Recorder& rec, const Channel<MagnetometerMsg>& ch);
 
+// Earth-orbit truth (docs/environment.md, "Recorded"): with an epoch,
+// illumination [-] and eclipse [-] (1 while any of the Sun's disk is
+// hidden); with the magnetic model on, field_B_x/_y/_z [T]; for each source
+// that is on, H_<source>_N_x/_y/_z [N*m*s], the angular momentum it has given
+// the spacecraft (N); and, with any source on and wheels, H_wheels_N_x/_y/_z
+// [N*m*s].  None for a scenario without epoch and sources.
+void declare_environment_truth(Recorder& rec, const RecordedChannels& ch, const std::array<bool, kNumEnvSources>& on,
+                               bool has_epoch, int n_rw);
+
 }  // namespace harness
 
 #endif  // HARNESS_TELEMETRY_COLUMNS_H

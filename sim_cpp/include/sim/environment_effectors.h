@@ -33,6 +33,17 @@
 // (c = r_CB_B).  A pure couple (gravity gradient about C, m x B) has F = 0
 // and so the same moment about every point: L_B = L_C.
 //
+// Accumulated angular momentum.  Each effector integrates the angular
+// momentum it has given the spacecraft, H_N = int [NB] L_C dt (N components,
+// about the mass centre), with the plant's own RK4 weights: over a sub-step
+// of length h, h/6 (L1 + 2 L2 + 2 L3 + L4) of the four stage torques it
+// added (with period_ns > 0 the held load's torque about C, C taken at the
+// sub-step's start, rotated by each stage's [NB]).  Summed over every
+// external source this is the change of the total angular momentum about
+// the mass centre to the integrator's accuracy (and to the motion of C
+// within a sub-step for held loads with a force: unbalanced rotors, drawn
+// propellant).
+//
 // Each effector keeps a reference to its plant (the plant must outlive it;
 // it is owned by that plant after Plant::add_effector) and a copy of the
 // EarthContext.  None allocates after construction.
@@ -72,10 +83,15 @@ class SampledEnvironmentEffector : public ForceTorqueEffector {
   // environment when period_ns > 0 (what accumulate adds at a stage).
   virtual BodyLoad load(double t_s, const StateVector& x) const = 0;
 
+  // [N*m*s] angular momentum given to the spacecraft since the effector was
+  // added: int [NB] L_C dt over the plant's RK4 sub-steps (see above).
+  const Eigen::Vector3d& momentum_N() const { return H_N_; }
+
   void accumulate(const EffectorStage& stage, EffectorSums& sums) const final;
   void at_instant(int64_t t_ns) final;
   void begin_segment(int64_t t0_ns) final { t0_ns_ = t0_ns; }
   void begin_substep(double tau, double h) final;
+  void end_substep() final;
   void prepare_now(int64_t t_ns) final;
 
  protected:
@@ -90,11 +106,21 @@ class SampledEnvironmentEffector : public ForceTorqueEffector {
 
  private:
   void take_sample(int64_t t_ns);
+  // Adds the stage's RK4-weighted torque about C (B components) in N to the sub-step sum.
+  void add_stage_momentum(const StateVector& x, const Eigen::Vector3d& L_C_B) const;
 
   int64_t period_ns_ = 0;
+  // Momentum bookkeeping (no effect on the dynamics).  stage_ counts the
+  // stages of the current sub-step (-1 outside one: a derivative evaluated
+  // outside Plant::step adds nothing).
+  Eigen::Vector3d H_N_ = Eigen::Vector3d::Zero();               // [N*m*s]
+  double h_s_ = 0.0;                                             // [s] current sub-step
+  mutable Eigen::Vector3d H_sub_N_ = Eigen::Vector3d::Zero();  // [N*m] sum of w_k L_k
+  mutable int stage_ = -1;
   int64_t t0_ns_ = 0;  // [ns] current segment start (or now)
   int64_t sample_ns_ = std::numeric_limits<int64_t>::min();  // [ns] last sample (min: none)
   BodyLoad step_load_;    // period_ns > 0: the load held through the current (sub-)step
+  Eigen::Vector3d step_L_C_B_ = Eigen::Vector3d::Zero();  // [N*m] its torque about C at the sub-step start
   bool in_step_ = false;  // inside a step (else a derivative evaluates its own stage)
 };
 
@@ -204,6 +230,9 @@ class MagneticEffector final : public SampledEnvironmentEffector {
   MagneticEffector(const Plant& plant, const EarthContext& ctx, const MagneticParams& p);
   const char* kind() const override { return "magnetic"; }
   BodyLoad load(double t_s, const StateVector& x) const override;
+  // [T] the field in B that load(t_s, x) acts with: the held field in N
+  // (period_ns > 0) or the field at the state's position, rotated to B.
+  Eigen::Vector3d field_B(double t_s, const StateVector& x) const;
 
   int num_rods() const { return num_rods_; }
   // Dipole commands [A*m^2] (num_rods), each times its scale factor, then

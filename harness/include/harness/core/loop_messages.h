@@ -38,6 +38,11 @@ struct TruthMsg {
   // environment source (EnvSource order; zero where a source is off):
   // L_C = L_B - c x F_B from the effector's load at this state.
   double L_env_C_B[kMaxEnvSources][3];
+  // Earth-orbit truth (TruthTask::environment_truth; zero where not recorded):
+  double illumination;                // [-] visible fraction of the Sun's disk (epoch set), 0 umbra .. 1 sunlit
+  double field_B[3];                  // [T] geomagnetic field the magnetic torque acts with, B
+  double H_env_N[kMaxEnvSources][3];  // [N*m*s] angular momentum given by each source, int [NB] L_C dt, N
+  double H_wheels_N[3];               // [N*m*s] wheels' spin momentum sum J_s Omega g_s, N
 };
 
 // Sampled outputs of the gyro, star tracker and wheel tachometers, held
