@@ -41,6 +41,7 @@ void SampledEnvironmentEffector::take_sample(int64_t t_ns)
 {
   sample(seconds_from_ns(t_ns), plant_.state());
   sample_ns_ = t_ns;
+  load_stale_ = true;  // the load of the new sample, at the step start that follows
 }
 
 void SampledEnvironmentEffector::at_instant(int64_t t_ns)
@@ -64,24 +65,30 @@ void SampledEnvironmentEffector::begin_substep(double tau, double h)
 {
   h_s_ = h;
   H_sub_N_.setZero();
+  M_sub_.setZero();
   stage_ = 0;
   if (period_ns_ == 0) return;
+  in_step_ = true;
+  if (!load_stale_ && holds_load_between_samples()) return;
   // the plant's state is the (sub-)step's start here
   const StateVector& x = plant_.state();
-  step_load_ = load(seconds_from_ns(t0_ns_) + tau, x);
-  in_step_ = true;
-  // its torque about C, taken with the mass centre of the sub-step's start
-  step_L_C_B_ = step_load_.L_B;
-  if (!step_load_.F_B.isZero(0.0))
-    step_L_C_B_ -= plant_.model().mass_centre(x, plant_.hub_with_propellant(x)).c_B.cross(step_load_.F_B);
+  held_load_ = load(seconds_from_ns(t0_ns_) + tau, x);
+  held_L_C_B_ = held_load_.L_B;
+  if (!held_load_.F_B.isZero(0.0))
+    held_L_C_B_ -= plant_.model().mass_centre(x, plant_.hub_with_propellant(x)).c_B.cross(held_load_.F_B);
+  load_stale_ = false;
 }
 
 void SampledEnvironmentEffector::accumulate(const EffectorStage& stage, EffectorSums& sums) const
 {
   if (period_ns_ > 0 && in_step_) {
-    sums.F_B += step_load_.F_B;
-    sums.L_B += step_load_.L_B;
-    if (stage_ >= 0 && stage_ < 4) add_stage_momentum(stage.x, step_L_C_B_);
+    sums.F_B += held_load_.F_B;
+    sums.L_B += held_load_.L_B;
+    if (stage_ < 0 || stage_ >= 4) return;
+    // RK4 weights b = 1/6, 1/3, 1/3, 1/6 (sim/rk4.h): 1, 2, 2, 1 here, h/6 at the end.
+    const double w = (stage_ == 0 || stage_ == 3) ? 1.0 : 2.0;
+    ++stage_;
+    if (!held_L_C_B_.isZero(0.0)) M_sub_ += w * stage.dcm_NB();
     return;
   }
   const BodyLoad l = load(seconds_from_ns(t0_ns_) + stage.t, stage.x);
@@ -91,21 +98,20 @@ void SampledEnvironmentEffector::accumulate(const EffectorStage& stage, Effector
   Vector3d L_C = l.L_B;
   if (!l.F_B.isZero(0.0))
     L_C -= plant_.model().mass_centre(stage.x, plant_.hub_with_propellant(stage.x)).c_B.cross(l.F_B);
-  add_stage_momentum(stage.x, L_C);
+  add_stage_momentum(stage, L_C);
 }
 
-void SampledEnvironmentEffector::add_stage_momentum(const StateVector& x, const Vector3d& L_C_B) const
+void SampledEnvironmentEffector::add_stage_momentum(const EffectorStage& stage, const Vector3d& L_C_B) const
 {
-  // RK4 weights b = 1/6, 1/3, 1/3, 1/6 (sim/rk4.h): 1, 2, 2, 1 here, h/6 at the end.
   const double w = (stage_ == 0 || stage_ == 3) ? 1.0 : 2.0;
   ++stage_;
   if (L_C_B.isZero(0.0)) return;
-  H_sub_N_ += w * (dcm_BN(x).transpose() * L_C_B);
+  H_sub_N_ += w * (stage.dcm_NB() * L_C_B);
 }
 
 void SampledEnvironmentEffector::end_substep()
 {
-  if (stage_ == 4) H_N_ += (h_s_ / 6.0) * H_sub_N_;
+  if (stage_ == 4) H_N_ += (h_s_ / 6.0) * (period_ns_ > 0 ? Vector3d(M_sub_ * held_L_C_B_) : H_sub_N_);
   stage_ = -1;
 }
 
@@ -189,6 +195,7 @@ void DragEffector::set_density_scale(double scale)
   // Checked here (a validate() call would form the field name on every call).
   if (!(scale >= 0.0) || !std::isfinite(scale)) detail::fail("drag.atmosphere.scale", scale, "must be finite and >= 0");
   atm_.scale = scale;
+  refresh_load();
 }
 
 void DragEffector::sample(double /*t_s*/, const StateVector& x)

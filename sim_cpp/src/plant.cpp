@@ -267,3 +267,16 @@ StepStatus Plant::step(int64_t dt_ns)
 }
 
 }  // namespace sim
+
+namespace sim {
+
+const Eigen::Matrix3d& EffectorStage::dcm_NB() const
+{
+  if (!dcm_ready) {
+    dcm_NB_cache = dcm_BN_from_sigma(x.segment<3>(StateLayout::sigma_BN)).transpose();
+    dcm_ready = true;
+  }
+  return dcm_NB_cache;
+}
+
+}  // namespace sim

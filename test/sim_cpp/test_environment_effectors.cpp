@@ -400,14 +400,14 @@ TEST(EnvironmentEffectors, HeldEnvironmentIsSampledAtThePeriod)
   EXPECT_LT((held.F_B - now.F_B).norm(), 1e-3 * now.F_B.norm());  // 0.3 s of altitude change
 }
 
-// With period_ns > 0 the load is evaluated once per step, at its start, and
-// held in B through the step's RK4 stages.  The same run made by hand: a
-// plant without the effectors whose held external force and torque are set
-// before every step to the effectors' load at the step's start state
-// (sim::Plant::set_external): every step bit-identical.  The held
-// environment of the effectors comes from the first plant; both plants
-// pass through the same states, so the loads are the same numbers.
-TEST(EnvironmentEffectors, HeldLoadIsConstantInBThroughAStep)
+// With period_ns > 0 gravity gradient, SRP and drag evaluate their load at
+// each sample (the first step start at or after k T) and hold it in B until
+// the next sample.  The same run made by hand: a plant without the
+// effectors whose held external force and torque are set, at the steps
+// where the effectors sampled, to their load at that step's start state
+// (sim::Plant::set_external): every step bit-identical.  Both plants pass
+// through the same states, so the loads are the same numbers.
+TEST(EnvironmentEffectors, HeldLoadIsConstantInBBetweenSamples)
 {
   sim::PlantParams pp;
   pp.sc.hub = simtest::reference_hub();
@@ -428,23 +428,32 @@ TEST(EnvironmentEffectors, HeldLoadIsConstantInBThroughAStep)
   eff.push_back(&with.add_effector(std::make_unique<sim::SolarPressureEffector>(with, context(), sp)));
   eff.push_back(&with.add_effector(std::make_unique<sim::DragEffector>(with, context(), dp)));
   Vector3d L_first = Vector3d::Zero(), L_last = Vector3d::Zero();
+  int64_t last_sample = -1;
+  int resamples = 0;
   for (int k = 0; k < 40; ++k) {
     // the step start; `with` samples its environment there (every 1 s)
     const sim::StateVector x0 = with.state();
     const double t0 = 1e-9 * static_cast<double>(with.t_ns());
     ASSERT_EQ(with.step(simtest::ns(0.25)), sim::StepStatus::Ok);
-    Vector3d F = Vector3d::Zero(), L = Vector3d::Zero();
-    for (const auto* e : eff) {
-      const sim::BodyLoad l = e->load(t0, x0);
-      F += l.F_B;
-      L += l.L_B;
+    if (eff[0]->last_sample_ns() != last_sample) {  // sampled at this step's start
+      last_sample = eff[0]->last_sample_ns();
+      ASSERT_EQ(last_sample, with.t_ns() - simtest::ns(0.25));
+      ++resamples;
+      Vector3d F = Vector3d::Zero(), L = Vector3d::Zero();
+      for (const auto* e : eff) {
+        ASSERT_EQ(e->last_sample_ns(), last_sample);
+        const sim::BodyLoad l = e->load(t0, x0);
+        F += l.F_B;
+        L += l.L_B;
+      }
+      by_hand.set_external(F, L);
+      (k == 0 ? L_first : L_last) = L;
     }
-    by_hand.set_external(F, L);
     ASSERT_EQ(by_hand.step(simtest::ns(0.25)), sim::StepStatus::Ok);
     ASSERT_EQ(with.state(), by_hand.state()) << k;
-    (k == 0 ? L_first : L_last) = L;
   }
-  // the load moved from step to step: a hold through a step, not through the run
+  EXPECT_EQ(resamples, 10);  // at 0, 1, ..., 9 s
+  // the load moved from sample to sample: a hold between samples, not through the run
   EXPECT_GT((L_last - L_first).norm(), 0.1 * L_first.norm());
 }
 

@@ -41,6 +41,12 @@ struct EffectorStage {
   double t;                    // [s] time since the current segment start (the RK4 time)
   const StateVector& x;        // stage state
   const StateLayout& layout;   // named indices into x (m_p(k) for tanks)
+  // [NB] of the stage's attitude, formed at the first call and shared by
+  // every effector of this stage (stage-local cache, no allocation).
+  const Eigen::Matrix3d& dcm_NB() const;
+
+  mutable bool dcm_ready = false;                                  // cache state
+  mutable Eigen::Matrix3d dcm_NB_cache = Eigen::Matrix3d::Zero();  // cache
 };
 
 // Running sums an effector adds to (initialised with the held external

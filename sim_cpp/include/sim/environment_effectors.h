@@ -19,10 +19,13 @@
 //     start at or after each k T and held (in N) until the next sample (the
 //     sample instants do not cut the plant's steps: with a plant step
 //     dt > T it is sampled once per step);
-//   * the body part is evaluated once per plant (sub-)step, at its start,
-//     from the held environment and the state there, and the load (F_B,
-//     L_B) is held in B through that step's RK4 stages (a derivative
-//     evaluated between steps takes the load of its own state);
+//   * the body part is evaluated at the sample too, from the held
+//     environment and the state there, and the load (F_B, L_B) is held in
+//     B until the next sample (gravity gradient, SRP, drag); the magnetic
+//     effector, whose rods are commanded between samples, evaluates it at
+//     every plant (sub-)step start and holds it through that step's RK4
+//     stages; a derivative evaluated between steps takes the load of its
+//     own state;
 //   * the gravity-gradient effector also holds the inertia about the mass
 //     centre (B components) from its sample.
 // A setter (density scale, rod commands, faults) acts from the next step.
@@ -37,8 +40,8 @@
 // momentum it has given the spacecraft, H_N = int [NB] L_C dt (N components,
 // about the mass centre), with the plant's own RK4 weights: over a sub-step
 // of length h, h/6 (L1 + 2 L2 + 2 L3 + L4) of the four stage torques it
-// added (with period_ns > 0 the held load's torque about C, C taken at the
-// sub-step's start, rotated by each stage's [NB]).  Summed over every
+// added (with period_ns > 0 the held load's torque about C, C taken when
+// the load was evaluated, rotated by each stage's [NB]).  Summed over every
 // external source this is the change of the total angular momentum about
 // the mass centre to the integrator's accuracy (and to the motion of C
 // within a sub-step for held loads with a force: unbalanced rotors, drawn
@@ -100,6 +103,12 @@ class SampledEnvironmentEffector : public ForceTorqueEffector {
                              const char* name);
   // Evaluate and store the environment at plant time t_s and state x.
   virtual void sample(double t_s, const StateVector& x) = 0;
+  // With period_ns > 0: true (default) holds the load in B from sample to
+  // sample; false re-evaluates it at every step start (inputs that change
+  // between samples: the rods' commands).
+  virtual bool holds_load_between_samples() const { return true; }
+  // A setter changed the load: evaluate it again at the next step start.
+  void refresh_load() { load_stale_ = true; }
 
   const Plant& plant_;
   EarthContext ctx_;
@@ -107,7 +116,7 @@ class SampledEnvironmentEffector : public ForceTorqueEffector {
  private:
   void take_sample(int64_t t_ns);
   // Adds the stage's RK4-weighted torque about C (B components) in N to the sub-step sum.
-  void add_stage_momentum(const StateVector& x, const Eigen::Vector3d& L_C_B) const;
+  void add_stage_momentum(const EffectorStage& stage, const Eigen::Vector3d& L_C_B) const;
 
   int64_t period_ns_ = 0;
   // Momentum bookkeeping (no effect on the dynamics).  stage_ counts the
@@ -115,13 +124,15 @@ class SampledEnvironmentEffector : public ForceTorqueEffector {
   // outside Plant::step adds nothing).
   Eigen::Vector3d H_N_ = Eigen::Vector3d::Zero();               // [N*m*s]
   double h_s_ = 0.0;                                             // [s] current sub-step
-  mutable Eigen::Vector3d H_sub_N_ = Eigen::Vector3d::Zero();  // [N*m] sum of w_k L_k
+  mutable Eigen::Vector3d H_sub_N_ = Eigen::Vector3d::Zero();  // [N*m] sum of w_k L_k (exact)
+  mutable Eigen::Matrix3d M_sub_ = Eigen::Matrix3d::Zero();    // [-] sum of w_k [NB]_k (held)
   mutable int stage_ = -1;
   int64_t t0_ns_ = 0;  // [ns] current segment start (or now)
   int64_t sample_ns_ = std::numeric_limits<int64_t>::min();  // [ns] last sample (min: none)
-  BodyLoad step_load_;    // period_ns > 0: the load held through the current (sub-)step
-  Eigen::Vector3d step_L_C_B_ = Eigen::Vector3d::Zero();  // [N*m] its torque about C at the sub-step start
-  bool in_step_ = false;  // inside a step (else a derivative evaluates its own stage)
+  BodyLoad held_load_;  // period_ns > 0: the load acting (held in B)
+  Eigen::Vector3d held_L_C_B_ = Eigen::Vector3d::Zero();  // [N*m] its torque about C when evaluated
+  bool load_stale_ = true;  // evaluate held_load_ at the next step start
+  bool in_step_ = false;    // inside a step (else a derivative evaluates its own stage)
 };
 
 // ------------------------------------------------------- gravity gradient
@@ -251,6 +262,7 @@ class MagneticEffector final : public SampledEnvironmentEffector {
 
  private:
   void sample(double t_s, const StateVector& x) override;
+  bool holds_load_between_samples() const override { return false; }  // rods change between samples
   void refresh_dipole();
 
   Igrf14 igrf_;
