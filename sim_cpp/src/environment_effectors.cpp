@@ -69,7 +69,7 @@ void SampledEnvironmentEffector::begin_substep(double tau, double h)
   stage_ = 0;
   if (period_ns_ == 0) return;
   in_step_ = true;
-  if (!load_stale_ && holds_load_between_samples()) return;
+  if (!load_stale_) return;  // held in B since the sample
   // the plant's state is the (sub-)step's start here
   const StateVector& x = plant_.state();
   held_load_ = load(seconds_from_ns(t0_ns_) + tau, x);
@@ -250,6 +250,7 @@ void MagneticEffector::refresh_dipole()
     dipole_[ui] = rods_[ui].dipole();
     m += rods_[ui].dipole_B();
   }
+  if (m != m_total_B_) refresh_load();  // a new dipole acts from the next step start
   m_total_B_ = m;
 }
 

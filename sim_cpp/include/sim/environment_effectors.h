@@ -21,11 +21,10 @@
 //     dt > T it is sampled once per step);
 //   * the body part is evaluated at the sample too, from the held
 //     environment and the state there, and the load (F_B, L_B) is held in
-//     B until the next sample (gravity gradient, SRP, drag); the magnetic
-//     effector, whose rods are commanded between samples, evaluates it at
-//     every plant (sub-)step start and holds it through that step's RK4
-//     stages; a derivative evaluated between steps takes the load of its
-//     own state;
+//     B until the next sample, or until a setter changes it (density
+//     scale, a rod's dipole): then it is evaluated again at the next plant
+//     (sub-)step start; a derivative evaluated between steps takes the load
+//     of its own state;
 //   * the gravity-gradient effector also holds the inertia about the mass
 //     centre (B components) from its sample.
 // A setter (density scale, rod commands, faults) acts from the next step.
@@ -103,10 +102,6 @@ class SampledEnvironmentEffector : public ForceTorqueEffector {
                              const char* name);
   // Evaluate and store the environment at plant time t_s and state x.
   virtual void sample(double t_s, const StateVector& x) = 0;
-  // With period_ns > 0: true (default) holds the load in B from sample to
-  // sample; false re-evaluates it at every step start (inputs that change
-  // between samples: the rods' commands).
-  virtual bool holds_load_between_samples() const { return true; }
   // A setter changed the load: evaluate it again at the next step start.
   void refresh_load() { load_stale_ = true; }
 
@@ -262,7 +257,6 @@ class MagneticEffector final : public SampledEnvironmentEffector {
 
  private:
   void sample(double t_s, const StateVector& x) override;
-  bool holds_load_between_samples() const override { return false; }  // rods change between samples
   void refresh_dipole();
 
   Igrf14 igrf_;
