@@ -117,6 +117,9 @@ void EventTask::apply(const Act& a, uint64_t t_ns)
     case EventDevice::Thruster: apply_thruster(a); break;
     case EventDevice::Fsw: apply_fsw(a); break;
     case EventDevice::Magnetorquer: apply_magnetorquer(a, t_ns); break;
+    case EventDevice::Atmosphere:
+      if (drag_) drag_->set_density_scale(a.action == EventAction::AtmDensityScale ? a.value : density_scale_);
+      break;
     case EventDevice::Magnetometer:
     case EventDevice::Gyro:
     case EventDevice::StarTracker:
@@ -247,6 +250,12 @@ void EventTask::apply_sensor(const Act& a, uint64_t t_ns)
     if (scale || restore) sensors_.set_css_noise_scale(i, k);
     if (x == EventAction::SensorBias || restore) sensors_.set_css_bias(i, restore ? 0.0 : a.value);
   }
+}
+
+void EventTask::attach_atmosphere(sim::DragEffector* drag, double scale)
+{
+  drag_ = drag;
+  density_scale_ = scale;
 }
 
 void EventTask::attach_magnetorquers(sim::MagneticEffector* mag, Writer<MtqCmdMsg> cmd)

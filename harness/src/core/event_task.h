@@ -44,6 +44,9 @@ class EventTask {
   // The run's rods and their command message (runs with magnetorquers):
   // the magnetorquer actions act on them.
   void attach_magnetorquers(sim::MagneticEffector* mag, Writer<MtqCmdMsg> cmd);
+  // The run's drag model (runs with environment.drag): the atmosphere
+  // actions act on it; `scale` is the scenario's density scale (restore).
+  void attach_atmosphere(sim::DragEffector* drag, double scale);
 
  private:
   struct Act {
@@ -78,6 +81,8 @@ class EventTask {
   FswAcsCmdMsg cmd_;  // the mode and actuation commanded so far
   uint64_t tick_ns_;
   sim::MagneticEffector* mag_ = nullptr;
+  sim::DragEffector* drag_ = nullptr;
+  double density_scale_ = 1.0;  // the scenario's
   Writer<MtqCmdMsg> mtq_cmd_;
   std::vector<Ev> ev_;
   std::vector<AppliedEvent> log_;

@@ -72,6 +72,12 @@ const std::vector<EventActionDef> kMagnetometerActions = {
     {"bias_z", EventAction::SensorBiasZ, EventValue::Finite, "T", "as bias_x, its z reading"},
     {"restore", EventAction::Restore, EventValue::None, "-", "the reading follows the sensor again, noise scale 1, no bias"},
 };
+const std::vector<EventActionDef> kAtmosphereActions = {
+    {"density_scale", EventAction::AtmDensityScale, EventValue::NonNegative, "-",
+     "the drag model's air density times value instead of environment.drag.density_scale, from the next step "
+     "(a geomagnetic storm)"},
+    {"restore", EventAction::Restore, EventValue::None, "-", "back to environment.drag.density_scale"},
+};
 const std::vector<EventActionDef> kFswActions = {
     {"mode_inertial", EventAction::FswModeInertial, EventValue::None, "-",
      "command inertial pointing (guid_inertial -> att_track; needs an attitude: star tracker or truth)"},
@@ -101,6 +107,7 @@ const char* to_string(EventDevice d)
     case EventDevice::Fsw: return "flight software";
     case EventDevice::Magnetorquer: return "magnetorquer";
     case EventDevice::Magnetometer: return "magnetometer";
+    case EventDevice::Atmosphere: return "atmosphere";
   }
   return "?";
 }
@@ -113,6 +120,7 @@ const std::vector<EventActionDef>& event_actions(EventDevice d)
     case EventDevice::Fsw: return kFswActions;
     case EventDevice::Magnetorquer: return kMagnetorquerActions;
     case EventDevice::Magnetometer: return kMagnetometerActions;
+    case EventDevice::Atmosphere: return kAtmosphereActions;
     default: return kSensorActions;
   }
 }
@@ -143,6 +151,11 @@ std::string resolve_event_device(const Scenario& sc, const std::string& name, Ev
     }
   if (name == "fsw") {
     out = {EventDevice::Fsw, 0};
+    return "";
+  }
+  if (name == "atmosphere") {
+    if (!sc.environment.drag.enabled) return "the drag model is off (environment.drag.enabled: false)";
+    out = {EventDevice::Atmosphere, 0};
     return "";
   }
   if (name == "magnetometer") {
@@ -176,7 +189,7 @@ std::string resolve_event_device(const Scenario& sc, const std::string& name, Ev
   for (const WheelSpec& w : sc.wheels) known += w.name + ", ";
   for (const ThrusterSpec& t : sc.thrusters) known += t.name + ", ";
   for (const MagnetorquerSpec& m : sc.magnetorquers) known += m.name + ", ";
-  known += "gyro, star_tracker, css<i>, magnetometer, fsw";
+  known += "gyro, star_tracker, css<i>, magnetometer, atmosphere, fsw";
   return "no device named '" + escape_bytes(name) + "' (devices: " + known + ")";
 }
 

@@ -12,7 +12,7 @@
 
 namespace harness {
 
-enum class EventDevice { Wheel, Thruster, Gyro, StarTracker, Css, Fsw, Magnetorquer, Magnetometer };
+enum class EventDevice { Wheel, Thruster, Gyro, StarTracker, Css, Fsw, Magnetorquer, Magnetometer, Atmosphere };
 
 enum class EventAction {
   // wheels (the plant's motor, limits, friction; the tachometer; the FSW's availability flag)
@@ -22,6 +22,8 @@ enum class EventAction {
   ThrStuckClosed, ThrStuckOpen, ThrThrustFactor,
   // magnetorquer rods (the plant's sim::MagneticEffector; the `mtq_cmd` message)
   MtqFailOff, MtqStuck, MtqScale, MtqDipole,
+  // the atmosphere of the drag model (sim::DragEffector)
+  AtmDensityScale,
   // sensors (gyro, star tracker, a coarse sun sensor, the magnetometer)
   SensorDropout, SensorFrozen, SensorNoiseScale, SensorBiasX, SensorBiasY, SensorBiasZ, SensorBias,
   // the flight software (a ground/executive command, FswAcsCmdMsg)

@@ -110,7 +110,7 @@ sim::MagneticParams magnetic_params(const Scenario& sc)
 
 // The magnetic effector and, for PWM commands, the driver that switches its
 // rods (cycle: magnetorquer_drive.pwm_period, 0: the FSW period).
-void add_magnetic(const Scenario& sc, sim::Plant& p, const sim::EarthContext& ctx, MagneticParts& out)
+void add_magnetic(const Scenario& sc, sim::Plant& p, const sim::EarthContext& ctx, SettableParts& out)
 {
   out.effector = &p.add_effector(std::make_unique<sim::MagneticEffector>(p, ctx, magnetic_params(sc)));
   if (sc.magnetorquers.empty() || sc.magnetorquer_drive.mode != MtqDriveMode::Pwm) return;
@@ -122,7 +122,7 @@ void add_magnetic(const Scenario& sc, sim::Plant& p, const sim::EarthContext& ct
 
 // The environment effectors the scenario enables, in EnvSource order, with
 // one Earth context (the epoch of t = 0; gravity gradient alone needs no date).
-EnvEffectors add_environment(const Scenario& sc, sim::Plant& p, MagneticParts& mag)
+EnvEffectors add_environment(const Scenario& sc, sim::Plant& p, SettableParts& mag)
 {
   EnvEffectors out{};
   const EnvironmentSpec& e = sc.environment;
@@ -143,7 +143,8 @@ EnvEffectors add_environment(const Scenario& sc, sim::Plant& p, MagneticParts& m
     dp.facets = facet_set(sc);
     dp.atmosphere.scale = e.drag_density_scale;
     dp.period_ns = period_ns(e.drag);
-    out[2] = &p.add_effector(std::make_unique<sim::DragEffector>(p, ctx, dp));
+    mag.drag = &p.add_effector(std::make_unique<sim::DragEffector>(p, ctx, dp));
+    out[2] = mag.drag;
   }
   if (e.magnetic.enabled) {
     add_magnetic(sc, p, ctx, mag);
@@ -163,7 +164,7 @@ std::optional<sim::EarthContext> earth_context(const Scenario& sc)
   return sim::EarthContext(cp);
 }
 
-std::unique_ptr<sim::Plant> build_plant(const Scenario& sc, EnvEffectors* env, MagneticParts* mag)
+std::unique_ptr<sim::Plant> build_plant(const Scenario& sc, EnvEffectors* env, SettableParts* mag)
 {
   std::unique_ptr<sim::Plant> p;  // the plant checks its own capacities (built_by_plant reports them)
   const VehicleGeometry g = vehicle_geometry(sc);
@@ -176,7 +177,7 @@ std::unique_ptr<sim::Plant> build_plant(const Scenario& sc, EnvEffectors* env, M
     built_by_plant(sc, "thrusters", [&] { p = std::make_unique<sim::Plant>(sim::PlantParams{params, prop}, ic); });
   }
   EnvEffectors added{};
-  MagneticParts parts{};
+  SettableParts parts{};
   built_by_plant(sc, "environment", [&] { added = add_environment(sc, *p, parts); });
   if (env) *env = added;
   if (mag) *mag = parts;

@@ -22,12 +22,15 @@ namespace harness {
 // EnvSource; null where the scenario leaves that model off.
 using EnvEffectors = std::array<const sim::SampledEnvironmentEffector*, kNumEnvSources>;
 
-// The magnetic parts of a run (owned by its plant): the effector of the
-// residual dipole and the rods (null when environment.magnetic is off) and,
-// in PWM mode with rods, the driver that switches them (else null).
-struct MagneticParts {
+// The parts of a run's plant that commands and events act on (owned by its
+// plant): the effector of the residual dipole and the rods (null when
+// environment.magnetic is off), in PWM mode with rods the driver that
+// switches them (else null), and the drag effector (null when
+// environment.drag is off; the atmosphere events).
+struct SettableParts {
   sim::MagneticEffector* effector = nullptr;
   MtqPwmDriver* pwm = nullptr;
+  sim::DragEffector* drag = nullptr;
 };
 
 // Builds the plant (sim::Plant: hub, wheels and, with thrusters, the
@@ -35,7 +38,7 @@ struct MagneticParts {
 // enables); throws ScenarioError (at the key's line) when the plant rejects
 // the configuration.  `env` (optional) receives the environment effectors,
 // `mag` (optional) the magnetic parts.
-std::unique_ptr<sim::Plant> build_plant(const Scenario& sc, EnvEffectors* env = nullptr, MagneticParts* mag = nullptr);
+std::unique_ptr<sim::Plant> build_plant(const Scenario& sc, EnvEffectors* env = nullptr, SettableParts* mag = nullptr);
 
 // The Earth context of environment.epoch (the UTC of t = 0; the shadowing
 // sphere of the Earth); nullopt when the scenario has no epoch.

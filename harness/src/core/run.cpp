@@ -60,7 +60,7 @@ constexpr Slot kTickProtocol[] = {
 struct Run::Impl {
   Scenario sc;
   EnvEffectors env{};  // filled by build_plant (before plant_owner)
-  MagneticParts mag{};  // likewise
+  SettableParts mag{};  // likewise
   std::optional<sim::EarthContext> earth;  // environment.epoch's (illumination)
   std::unique_ptr<sim::Plant> plant_owner;
   sim::Plant& plant;
@@ -295,6 +295,7 @@ void Run::Impl::add_events()
   cmd0.P = fsw_setup.cfg.mrp_fb.P;
   events.emplace(sc, plant, *sensors, rec, *fsw, cmd0);
   if (mtq_cmd_ch) events->attach_magnetorquers(mag.effector, flow.writer("events", *mtq_cmd_ch));
+  if (mag.drag) events->attach_atmosphere(mag.drag, sc.environment.drag_density_scale);
 }
 
 // The tick protocol's table: each task the run has, in its rate groups.

@@ -569,6 +569,9 @@ void LiveServer::started(Run& run, double realtime_scale, const std::atomic<int>
   if (sc.sensors.gyro.enabled) add_device("gyro");
   if (sc.sensors.star_tracker.enabled) add_device("star_tracker");
   for (size_t i = 0; i < sc.sensors.css.normals_B.size(); ++i) add_device("css" + std::to_string(i));
+  for (const MagnetorquerSpec& r : sc.magnetorquers) add_device(r.name);
+  if (sc.sensors.magnetometer.enabled) add_device("magnetometer");
+  if (sc.environment.drag.enabled) add_device("atmosphere");
   if (run.fsw_accepts_commands()) add_device("fsw");  // mode and actuation commands
   json wheels = json::array();
   for (const WheelSpec& w : sc.wheels) wheels.push_back({{"name", w.name}, {"Omega_max", w.params.Omega_max}});

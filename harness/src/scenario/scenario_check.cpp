@@ -15,7 +15,7 @@ namespace harness {
 void check_run_configuration(const Scenario& sc)
 {
   // The same builders Run uses, in the same order (run.cpp: Impl, wire).
-  MagneticParts mag{};
+  SettableParts mag{};
   const std::unique_ptr<sim::Plant> plant = build_plant(sc, nullptr, &mag);
   const FswSetup fsw = make_fsw_setup(sc, plant->mass_props());
   try {
