@@ -14,6 +14,7 @@
 
 #include "harness/core/run.h"
 #include "harness/scenario/scenario.h"
+#include "rule_cases.h"
 
 namespace {
 
@@ -150,12 +151,7 @@ TEST(Environment, ManifestFormReloadsIdentically)
 // Cross-field rules, each named at its key.
 TEST(Environment, RulesNameTheKey)
 {
-  struct Case {
-    std::vector<harness::Override> set;
-    const char* key;
-    const char* words;
-  };
-  const std::vector<Case> cases{
+  const std::vector<testutil::RuleCase> cases{
       {{{"environment.epoch", "2027-13-01T00:00:00Z"}}, "environment.epoch", "month"},
       {{{"environment.epoch", "2027-03-21 12:00"}}, "environment.epoch", "YYYY-MM-DDThh:mm:ssZ"},
       {{{"environment.epoch", "2031-01-02T00:00:00Z"}, {"environment.magnetic.enabled", "true"}},
@@ -171,18 +167,7 @@ TEST(Environment, RulesNameTheKey)
       {{{"environment.mu", "0"}}, "environment.epoch", "Earth orbit"},
       {{{"environment.sun_position_N", "[1.0e11, 0.0, 0.0]"}}, "environment.sun_position_N", "from the date"},
   };
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.key);
-    try {
-      harness::load_scenario(kLeo, c.set);
-      ADD_FAILURE() << "accepted";
-    } catch (const harness::ScenarioError& e) {
-      bool found = false;
-      for (const auto& is : e.issues())
-        found = found || (is.key == c.key && is.message.find(c.words) != std::string::npos);
-      EXPECT_TRUE(found) << e.what();
-    }
-  }
+  testutil::expect_rules_named(kLeo, cases);
 }
 
 // A dated run takes its Sun from the almanac of the epoch and the Earth's
