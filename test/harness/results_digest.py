@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Bit-for-bit digests of what `kestrel run` and `kestrel mc` write.
 
-For every shipped reference scenario (S1, S2 and each event scenario) and
+For every shipped reference scenario (S1, S2, S3, S1 in LEO and each event scenario) and
 the shipped Monte Carlo campaign, this runs the `kestrel` program as a user
 does, then digests its results folder:
 
@@ -38,6 +38,8 @@ RUNS = [
     "s1_gyro_dropout",
     "s2_mars_orbit_insertion",
     "s2_thruster_stuck",
+    "s3_leo_smallsat",
+    "s1_leo_environment",
 ]
 CAMPAIGN = ("s1_monte_carlo", ["--runs", "6", "-j", "1", "--seed", "7"])  # one thread: rows in run order
 
