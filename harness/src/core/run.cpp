@@ -61,7 +61,7 @@ struct Run::Impl {
   Scenario sc;
   EnvEffectors env{};  // filled by build_plant (before plant_owner)
   SettableParts mag{};  // likewise
-  std::optional<sim::EarthContext> earth;  // environment.epoch's (illumination)
+  std::optional<SunSource> sun;  // the run's Sun (TruthTask: illumination)
   std::unique_ptr<sim::Plant> plant_owner;
   sim::Plant& plant;
   FswSetup fsw_setup;
@@ -205,8 +205,8 @@ void Run::Impl::add_tasks(const Messages& m)
 {
   DataFlow& f = flow;
   const uint64_t tk = sc.tick_ns();
-  earth = earth_context(sc);
-  truth.emplace(TruthTask{&plant, tk, f.writer("plant", *m.truth), env, earth ? &*earth : nullptr});
+  sun.emplace(sc);
+  truth.emplace(TruthTask{&plant, tk, f.writer("plant", *m.truth), env, &*sun});
   const BurnSchedule burn_sched = burn_schedule(sc, plant);
   if (m.burn) {
     f.add_component("burn_monitor", "harness");
@@ -235,7 +235,7 @@ void Run::Impl::add_tasks(const Messages& m)
   f.add_component("metrics", "harness");
   add_magnetic_tasks(m);
   metrics.emplace(&plant, tk, sc.fsw.mode == FswMode::Inertial, sc.fsw.sigma_R0N, sc.fsw.sun_axis_B,
-                  sc.environment, sc.environment.mu, f.reader("metrics", *m.truth),
+                  sc, sc.environment.mu, f.reader("metrics", *m.truth),
                   m.burn ? f.reader("metrics", *m.burn) : Reader<BurnStateMsg>(), m.burn != nullptr,
                   f.writer("metrics", *m.metrics));
 }
@@ -279,7 +279,7 @@ void Run::Impl::add_recorder(const Messages& m)
     declare_magnetorquers(rec, f.reader("recorder", *m.mtq_state).channel(), n);
   }
   if (m.mag) declare_magnetometer(rec, f.reader("recorder", *m.mag).channel());
-  declare_environment_truth(rec, rc, env_on, earth.has_value(), plant.num_rw());
+  declare_environment_truth(rec, rc, env_on, sun->dated(), plant.num_rw());
 }
 
 void Run::Impl::add_events()

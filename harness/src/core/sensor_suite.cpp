@@ -16,7 +16,7 @@ SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Pla
     : plant_(plant),
       n_rw_(static_cast<int>(sc.wheels.size())),
       num_css_(fsw.cfg.css.num_css),
-      sun_(sc.environment),
+      sun_(sc),
       ideal_css_(fsw.ideal_css),
       ideal_normals_(fsw.ideal_normals),
       div_gyro_(sc.sensors.gyro.divisor),

@@ -17,6 +17,7 @@
 
 #include <Eigen/Dense>
 
+#include "core/plant_builder.h"
 #include "harness/core/scenario_types.h"
 #include "sim/earth_context.h"
 #include "sim/environment.h"
@@ -25,16 +26,8 @@ namespace harness {
 
 class SunSource {
  public:
-  explicit SunSource(const EnvironmentSpec& e) : fixed_N_(e.sun_position_N)
-  {
-    if (e.epoch.empty()) return;
-    std::string why;
-    const std::optional<sim::UtcEpoch> ep = parse_utc_epoch(e.epoch, &why);
-    if (!ep) return;  // rejected when the scenario was read
-    sim::EarthContextParams p;
-    p.epoch = *ep;
-    earth_.emplace(p);
-  }
+  // The context of the plant's environment effectors (earth_context).
+  explicit SunSource(const Scenario& sc) : fixed_N_(sc.environment.sun_position_N), earth_(earth_context(sc)) {}
   bool dated() const { return earth_.has_value(); }
   // [m] the Sun's position in N at plant time t_ns
   Eigen::Vector3d position_N(int64_t t_ns) const

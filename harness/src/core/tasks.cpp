@@ -57,15 +57,15 @@ void TruthTask::operator()(uint64_t k) const
       const Eigen::Vector3d L_C = l.L_B - mp.c_B.cross(l.F_B);
       for (int i = 0; i < 3; ++i) t.L_env_C_B[s][i] = L_C(i);
     }
-  environment_truth(t, t_s);
+  environment_truth(t, k * tick_ns, t_s);
   out.write(t, k * tick_ns);
 }
 
-void TruthTask::environment_truth(TruthMsg& t, double t_s) const
+void TruthTask::environment_truth(TruthMsg& t, uint64_t t_ns, double t_s) const
 {
   const sim::Plant& p = *plant;
   const Eigen::Vector3d r_B = ev(t.r_BN_N);
-  if (earth) t.illumination = sim::illumination_factor(r_B, earth->sun_position_N(t_s), earth->params().shadow_radius);
+  if (sun && sun->dated()) t.illumination = sun->illumination(r_B, sun->position_N(static_cast<int64_t>(t_ns)));
   const auto* mag = static_cast<const sim::MagneticEffector*>(env[static_cast<size_t>(EnvSource::Magnetic)]);
   if (mag) put3(t.field_B, mag->field_B(t_s, p.state()));  // index Magnetic holds a MagneticEffector
   bool any = false;

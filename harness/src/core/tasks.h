@@ -41,10 +41,10 @@ struct TruthTask {
   uint64_t tick_ns;
   Writer<TruthMsg> out;
   EnvEffectors env{};  // the run's environment effectors (null: off)
-  const sim::EarthContext* earth = nullptr;  // the epoch's context (null: no epoch)
+  const SunSource* sun = nullptr;  // the run's Sun (illumination when dated)
   void operator()(uint64_t k) const;
   // Illumination, field, accumulated momenta and wheel momentum (Earth orbit).
-  void environment_truth(TruthMsg& t, double t_s) const;
+  void environment_truth(TruthMsg& t, uint64_t t_ns, double t_s) const;
 };
 
 // Burn monitor (thruster runs, every tick): dv += (v_C(k+1) - v_C(k)) -
@@ -173,10 +173,10 @@ struct MtqStateTask {
 // Figures of merit (record ticks) -> `metrics`.
 struct MetricsTask {
   MetricsTask(const sim::Plant* p, uint64_t tk, bool inertial_, const Eigen::Vector3d& sigma_R0N_,
-              const Eigen::Vector3d& sun_axis_B_, const EnvironmentSpec& env, double mu_, Reader<TruthMsg> t,
+              const Eigen::Vector3d& sun_axis_B_, const Scenario& sc, double mu_, Reader<TruthMsg> t,
               Reader<BurnStateMsg> b, bool has_b, Writer<MetricsMsg> w)
       : plant(p), tick_ns(tk), inertial(inertial_), sigma_R0N(sigma_R0N_), sun_axis_B(sun_axis_B_),
-        sun(env), mu(mu_), truth(t), burn(b), has_burn(has_b), out(w)
+        sun(sc), mu(mu_), truth(t), burn(b), has_burn(has_b), out(w)
   {
   }
   const sim::Plant* plant;
