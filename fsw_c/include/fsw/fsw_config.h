@@ -79,6 +79,9 @@ typedef double fsw_real;
 #ifndef FSW_MAX_CSS
 #define FSW_MAX_CSS 32 /* [-] coarse sun sensors per estimator, allowed 3..64 (5 reals + 1 byte each) */
 #endif
+#ifndef FSW_MAX_MTQ
+#define FSW_MAX_MTQ 8 /* [-] magnetorquer rods, allowed 1..64 */
+#endif
 #ifndef FSW_LINK_NODE_MAX_REPLIES
 #define FSW_LINK_NODE_MAX_REPLIES 3 /* [-] packets one link-node receive may answer with (fsw_link_node.h) */
 #endif
@@ -88,6 +91,9 @@ typedef double fsw_real;
 #endif
 #if FSW_MAX_THR < 1 || FSW_MAX_THR > 64
 #error "FSW_MAX_THR must be in 1..64"
+#endif
+#if FSW_MAX_MTQ < 1 || FSW_MAX_MTQ > 64
+#error "FSW_MAX_MTQ must be in 1..64"
 #endif
 #if FSW_MAX_CSS < 3 || FSW_MAX_CSS > 64
 #error "FSW_MAX_CSS must be in 3..64"
