@@ -26,6 +26,11 @@ const char *fsw_acs_stage_name(int stage)
     case FSW_ACS_STAGE_RW_VOLT: return "rw_volt";
     case FSW_ACS_STAGE_THR_MAP: return "thr_map";
     case FSW_ACS_STAGE_THR_PULSE: return "thr_pulse";
+    case FSW_ACS_STAGE_BDOT: return "bdot";
+    case FSW_ACS_STAGE_MTQ_DESAT: return "mtq_desat";
+    case FSW_ACS_STAGE_MTQ_MAP: return "mtq_map";
+    case FSW_ACS_STAGE_THR_MOM: return "thr_momentum";
+    case FSW_ACS_STAGE_RW_BIAS: return "rw_bias";
     default: return "unknown";
   }
 }

@@ -184,7 +184,8 @@ TEST(FswAcsHealth, StageNamesComeFromTheLibrary)
 {
   const char* const want[FSW_ACS_NUM_STAGES] = {"css",     "guidance", "track",   "control",
                                                 "lpf",     "rw_map",   "rw_null", "rw_sat",
-                                                "rw_volt", "thr_map",  "thr_pulse"};
+                                                "rw_volt", "thr_map",  "thr_pulse",
+                                                "bdot",    "mtq_desat", "mtq_map", "thr_momentum", "rw_bias"};
   for (int i = 0; i < FSW_ACS_NUM_STAGES; i++) EXPECT_EQ(std::string(want[i]), fsw_acs_stage_name(i)) << i;
   EXPECT_EQ(std::string("unknown"), fsw_acs_stage_name(-1));
   EXPECT_EQ(std::string("unknown"), fsw_acs_stage_name(FSW_ACS_NUM_STAGES));

@@ -23,8 +23,18 @@ extern "C" {
 /* Pointing modes. */
 typedef enum {
   FSW_ACS_MODE_SUN_SAFE = 0, /* point s_cmd at the Sun from the CSS heading (or search spin) */
-  FSW_ACS_MODE_INERTIAL = 1  /* hold the configured inertial attitude (needs sigma_BN)     */
+  FSW_ACS_MODE_INERTIAL = 1, /* hold the configured inertial attitude (needs sigma_BN)     */
+  FSW_ACS_MODE_DETUMBLE = 2, /* B-dot with the magnetorquers; no attitude control; leaves
+                                for the configured pointing mode once detumbled         */
+  FSW_ACS_MODE_NADIR = 3     /* follow the orbit frame (needs sigma_BN and r_N, v_N)       */
 } FswAcsMode;
+
+/* Momentum management: who unloads the wheels in the pointing modes. */
+typedef enum {
+  FSW_ACS_MOM_NONE = 0,         /* nobody                                              */
+  FSW_ACS_MOM_THRUSTERS = 1,    /* thr_momentum: hysteresis dumps through thr_map      */
+  FSW_ACS_MOM_MAGNETORQUERS = 2 /* mtq_desat -> mtq_map: continuous cross-product law */
+} FswAcsMomentumPolicy;
 
 /* Actuation chains. */
 typedef enum {
@@ -44,6 +54,13 @@ typedef struct {
   fsw_real r_CoM_B[3];            /* [m]     centre of mass, B (thruster mapping)            */
   uint8_t thr_avail[FSW_MAX_THR]; /* [-]     (num_thr) 0 available, 1 unavailable: a thruster
                                              flagged failed is mapped as absent and kept off */
+  fsw_real B_B[3];                /* [T]     magnetometer field in B (the executive rotates the
+                                             sensor's reading into B), read when mag_valid = 1 */
+  uint8_t mag_valid;              /* [-]     1 if B_B is a fresh valid sample                 */
+  fsw_real r_N[3];                /* [m]     position relative to the central body, N (GNSS or
+                                             orbit propagator), read when orbit_valid = 1    */
+  fsw_real v_N[3];                /* [m/s]   velocity, N                                      */
+  uint8_t orbit_valid;            /* [-]     1 if r_N, v_N are valid (required by NADIR)      */
 } FswAcsSensorMsg;
 
 /* A ground/executive command.  Mode and actuation are always requested;
@@ -60,6 +77,9 @@ typedef struct {
   uint8_t set_gains;     /* [-]     0/1: mrp_fb's K and P become the two below        */
   fsw_real K;            /* [N*m]   attitude gain, finite, > 0 (set_gains = 1)        */
   fsw_real P;            /* [N*m*s] rate gain, finite, > 0 (set_gains = 1)            */
+  uint8_t set_policy;    /* [-]     0/1: the momentum policy becomes `policy`          */
+  int policy;            /* [-]     FswAcsMomentumPolicy (set_policy = 1); the actuators
+                                    it needs must be configured                      */
 } FswAcsCmdMsg;
 
 typedef struct {
@@ -70,6 +90,9 @@ typedef struct {
   fsw_real t_on[FSW_MAX_THR];  /* [s]   (num_thr) thruster on-times from this cycle's start  */
   uint8_t wheels_active;       /* [-]   1 if u_s/V are to be applied                         */
   uint8_t thrusters_active;    /* [-]   1 if t_on is to be applied                           */
+  fsw_real m_cmd[FSW_MAX_MTQ]; /* [A*m^2] (num_mtq) rod dipole commands, the mean over the
+                                  period (<= duty_max m_max: PWM on-time |m|/m_max T)     */
+  uint8_t mtq_active;          /* [-]   1 if m_cmd is to be applied (0: rods off)             */
 } FswAcsActuatorMsg;
 
 /* Stages of the cycle, for per-stage status telemetry.  Their names come
@@ -86,6 +109,11 @@ typedef enum {
   FSW_ACS_STAGE_RW_VOLT,
   FSW_ACS_STAGE_THR_MAP,
   FSW_ACS_STAGE_THR_PULSE,
+  FSW_ACS_STAGE_BDOT,
+  FSW_ACS_STAGE_MTQ_DESAT,
+  FSW_ACS_STAGE_MTQ_MAP,
+  FSW_ACS_STAGE_THR_MOM,
+  FSW_ACS_STAGE_RW_BIAS,
   FSW_ACS_NUM_STAGES
 } FswAcsStage;
 
@@ -111,6 +139,15 @@ typedef struct {
                                                        without the filter                        */
   uint64_t rw_latched;                      /* [-]     bit i: ... by its stale or torque test
                                                        (held until the application is reset)     */
+  int policy;                               /* [-]     FswAcsMomentumPolicy in force             */
+  uint8_t detumbled;                        /* [-]     bdot's detumble-complete flag (DETUMBLE)  */
+  uint8_t dump_phase;                       /* [-]     FswThrMomPhase of thr_momentum            */
+  fsw_real h_w_B[3];                        /* [N*m*s] wheel momentum, B (available wheels)   */
+  fsw_real rate_est;                        /* [rad/s] bdot's rate estimate (DETUMBLE)        */
+  fsw_real tau_mtq_B[3];                    /* [N*m]   magnetic torque the rods' commands make
+                                                       with this cycle's field               */
+  uint32_t dumps;                           /* [-]     completed thruster dumps               */
+  fsw_real prop_used;                       /* [kg]    propellant of the dumps since init     */
   FswHealth health;                         /* [-]     counters of the application              */
 } FswAcsHealthMsg;
 
