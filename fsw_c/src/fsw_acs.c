@@ -420,6 +420,8 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg)
   if (cfg->has_mtq) {
     fsw_mtq_map_reset(&st->mtq_map);
     fsw_bdot_reset(&st->bdot);
+    fsw_v3_zero(st->B_hold);
+    st->B_hold_ok = 0u;
   }
   if (cfg->has_orbit) fsw_guid_orbit_reset(&st->orbit);
   if (cfg->use_thr_mom) fsw_thr_momentum_reset(&st->thr_mom);
@@ -651,11 +653,15 @@ static FswStatus run_detumble(FswAcsState *st, const FswAcsConfig *cfg, const Fs
   h->detumbled = w->bdot_out.detumbled;
   h->rate_est = w->bdot_out.rate_est;
 
+  if (sens->mag_valid) {
+    fsw_v3_copy(st->B_hold, sens->B_B);
+    st->B_hold_ok = 1u;
+  }
   fsw_v3_zero(w->mtq_in.tau_B);
   fsw_v3_copy(w->mtq_in.m_req_B, w->bdot_out.m_B);
   w->mtq_in.use_dipole = 1u;
-  fsw_v3_copy(w->mtq_in.B_B, sens->B_B);
-  w->mtq_in.B_valid = sens->mag_valid;
+  fsw_v3_copy(w->mtq_in.B_B, st->B_hold); /* the field of the dipole's torque */
+  w->mtq_in.B_valid = st->B_hold_ok;
   s = fsw_mtq_map_update(&st->mtq_map, &cfg->mtq_map, &w->mtq_in, &w->mtq_out);
   h->stage_status[FSW_ACS_STAGE_MTQ_MAP] = s;
   acc = combine(acc, s);
@@ -787,7 +793,11 @@ static void save_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   w->saved.mode_changes = st->mode_changes;
   w->saved.policy = st->policy;
   w->saved.cmd_mode = st->cmd_mode;
-  if (cfg->has_mtq) w->saved.bdot = st->bdot;
+  if (cfg->has_mtq) {
+    w->saved.bdot = st->bdot;
+    fsw_v3_copy(w->saved.B_hold, st->B_hold);
+    w->saved.B_hold_ok = st->B_hold_ok;
+  }
   if (cfg->has_orbit) w->saved.orbit = st->orbit;
   if (cfg->use_thr_mom) w->saved.thr_mom = st->thr_mom;
   if (cfg->use_bias) w->saved.rw_bias = st->rw_bias;
@@ -830,6 +840,8 @@ static void restore_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
     hh = st->bdot.health;
     st->bdot = w->saved.bdot;
     st->bdot.health = hh;
+    fsw_v3_copy(st->B_hold, w->saved.B_hold);
+    st->B_hold_ok = w->saved.B_hold_ok;
   }
   if (cfg->has_orbit) {
     hh = st->orbit.health;

@@ -208,6 +208,8 @@ typedef struct {
     FswGuidInertialState inertial;
     int policy, cmd_mode;
     FswBdotState bdot;
+    fsw_real B_hold[3];
+    uint8_t B_hold_ok;
     FswThrMomentumState thr_mom;
     FswRwBiasState rw_bias;
     FswGuidOrbitState orbit;
@@ -245,6 +247,9 @@ typedef struct {
   int cmd_mode;         /* [-]  the mode last commanded (init: initial_mode): a
                                 command acts when its mode differs from it     */
   FswBdotState bdot;
+  fsw_real B_hold[3];   /* [T]  last valid field sample (DETUMBLE: the rods map
+                                bdot's held dipole over a missed sample)       */
+  uint8_t B_hold_ok;    /* [-]  B_hold holds a sample                          */
   FswMtqMapState mtq_map;
   FswMtqDesatState mtq_desat;
   FswThrMomentumState thr_mom;
