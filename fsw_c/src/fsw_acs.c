@@ -800,7 +800,8 @@ static void save_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   }
   if (cfg->has_orbit) w->saved.orbit = st->orbit;
   if (cfg->use_thr_mom) w->saved.thr_mom = st->thr_mom;
-  if (cfg->use_bias) w->saved.rw_bias = st->rw_bias;
+  if (cfg->use_bias)
+    for (i = 0; i < FSW_MAX_RW; i++) w->saved.bias_in_band[i] = st->rw_bias.in_band[i];
   fsw_vn_copy(w->saved.t_on_last, w->t_on_last, FSW_MAX_THR);
   w->saved.mrp_fb = st->mrp_fb;
   if (cfg->use_lpf) w->saved.lpf = st->lpf;
@@ -854,9 +855,8 @@ static void restore_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
     st->thr_mom.health = hh;
   }
   if (cfg->use_bias) {
-    hh = st->rw_bias.health;
-    st->rw_bias = w->saved.rw_bias;
-    st->rw_bias.health = hh;
+    int i;
+    for (i = 0; i < FSW_MAX_RW; i++) st->rw_bias.in_band[i] = w->saved.bias_in_band[i];
   }
   hh = st->mrp_fb.health;
   st->mrp_fb = w->saved.mrp_fb;

@@ -211,7 +211,8 @@ typedef struct {
     fsw_real B_hold[3];
     uint8_t B_hold_ok;
     FswThrMomentumState thr_mom;
-    FswRwBiasState rw_bias;
+    uint8_t bias_in_band[FSW_MAX_RW]; /* rw_bias hysteresis (its projector and
+                                         basis are derived from the mask) */
     FswGuidOrbitState orbit;
     fsw_real t_on_last[FSW_MAX_THR];
   } saved;

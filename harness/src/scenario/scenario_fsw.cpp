@@ -155,7 +155,7 @@ Section thr_pulse_section()
 }
 
 // fsw.magnetorquers: the rods commanded by the FSW.
-Section magnetorquers_section()
+Section fsw_magnetorquers_section()
 {
   return Section{"magnetorquers",
                  {
@@ -289,7 +289,7 @@ const Section& fsw_section()
                   {choice<ThrMapMode>("mode", {{"min_norm", ThrMapMode::MinNorm}, {"nnls", ThrMapMode::Nnls}},
                                       KESTREL_FSW(thr_map))},
                   {}},
-          magnetorquers_section(),
+          fsw_magnetorquers_section(),
           bdot_section(),
           nadir_section(),
           momentum_section(),
