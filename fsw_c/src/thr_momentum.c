@@ -163,8 +163,10 @@ static void dump_start(FswThrMomentumState *st, const FswThrMomentumConfig *cfg,
   const fsw_real dH = hn - cfg->h_lower; /* [N*m*s] |Delta_H| */
   fsw_v3_scale(st->u_B, -FSW_R(1.0) / hn, h);
   if (dH <= cap) {
-    /* Delta_H = -h (1 - h_lower/|h|), the formula itself */
-    fsw_v3_scale(st->dH_B, -(FSW_R(1.0) - cfg->h_lower / hn), h);
+    /* Delta_H = -h (1 - h_lower/|h|), written -h (|h| - h_lower)/|h|: the
+     * difference of the norms is exact when they are close, where
+     * 1 - h_lower/|h| would cancel */
+    fsw_v3_scale(st->dH_B, -(dH / hn), h);
     st->I_rem = dH;
   } else {
     fsw_v3_scale(st->dH_B, cap, st->u_B);

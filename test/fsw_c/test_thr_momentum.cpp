@@ -481,6 +481,26 @@ TEST(ThrMomentumDump, PulseEndsWithAReducedCycleAndZeroCoast)
   }
 }
 
+// One dump removes at most 2e6 full cycles: L_dump = 1e-6 N*m, dt = 1/8 s
+// -> cap 0.25 N*m*s (h_upper = 0.1 <= 1e6 cycles = 0.125).  |h| = 1 with
+// h_lower = 0.05 would need 0.95: the dump takes 0.25 along -h/|h|.
+TEST(ThrMomentumDump, OneDumpIsCappedAtTwoMillionCycles)
+{
+  auto f = rwt::make0<Fixture>();
+  f->cfg->L_dump = FSW_R(1e-6);
+  f->cfg->h_upper = FSW_R(0.1);
+  f->cfg->h_lower = FSW_R(0.05);
+  ASSERT_EQ(f->init(), FSW_OK);
+  double h[3];
+  scaled_dir(h, 1.0);
+  f->set_h(h);
+  ASSERT_EQ(f->update(), FSW_OK);
+  EXPECT_EQ(f->out->phase, FSW_THR_MOM_PULSE);
+  for (int k = 0; k < 3; k++) EXPECT_NEAR(f->out->dH_B[k], -0.25 * kDir[k], kt::tol(1e-14, 1e-7)) << k;
+  f->cfg->h_upper = FSW_R(0.2);  // beyond 1e6 cycles: refused
+  EXPECT_EQ(fsw_thr_momentum_check(f->cfg.get()), FSW_E_CONFIG);
+}
+
 // ---- propellant --------------------------------------------------------------
 
 // F_max = (1, 2) N, Isp = 200 s, t_on_prev = (0.05, 0.1) s every call:

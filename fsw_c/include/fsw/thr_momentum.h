@@ -9,8 +9,9 @@
  *  2. Hysteresis: in IDLE, when |h_w| > h_upper, a dump starts with the
  *     external momentum change that brings the wheels down to h_lower,
  *         Delta_H_B = -h_w_B (1 - h_lower / |h_w|),  |Delta_H| = |h_w| - h_lower,
- *     frozen for the whole dump.  No new dump starts until |h_w| > h_upper
- *     again.
+ *     frozen for the whole dump (one dump removes at most
+ *     2 FSW_THR_MOM_CYCLES_MAX L_dump dt_cycle, see there).  No new dump
+ *     starts until |h_w| > h_upper again.
  *  3. Dump sequence IDLE -> PULSE -> COAST -> PULSE ... -> COAST -> IDLE.
  *     The remaining impulse I_rem starts at |Delta_H|.  A pulse is given the
  *     impulse I_p = min(I_rem, L_dump t_pulse_max) (>= L_dump t_min_pulse,
@@ -120,17 +121,21 @@ typedef struct {
   fsw_real J_s[FSW_MAX_RW];         /* [kg*m^2]  (num_rw) spin inertias,
                                        (0, FSW_RW_J_S_MAX] (rw_common.h)              */
   fsw_real h_upper;                 /* [N*m*s]   dump start threshold on |h_w|,
-                                       (h_lower, FSW_THR_MOM_H_MAX]                   */
+                                       (h_lower, FSW_THR_MOM_H_MAX] and
+                                       <= FSW_THR_MOM_CYCLES_MAX L_dump dt_cycle      */
   fsw_real h_lower;                 /* [N*m*s]   |h_w| a dump aims at, >= 0; the band
                                        h_upper - h_lower >= L_dump t_min_pulse       */
-  fsw_real L_dump;                  /* [N*m]     pulse torque, (0, FSW_THR_MOM_L_MAX]  */
+  fsw_real L_dump;                  /* [N*m]     pulse torque,
+                                       [FSW_THR_MOM_L_MIN, FSW_THR_MOM_L_MAX]         */
   fsw_real t_pulse_max;             /* [s]       longest pulse at L_dump,
-                                       [t_min_pulse, FSW_THR_MOM_T_MAX]               */
-  fsw_real t_min_pulse;             /* [s]       shortest pulse at L_dump, > 0        */
+                                       [t_min_pulse, FSW_THR_MOM_T_MAX] and
+                                       <= FSW_THR_MOM_CYCLES_MAX dt_cycle             */
+  fsw_real t_min_pulse;             /* [s]       shortest pulse at L_dump,
+                                       [FSW_THR_MOM_T_MIN, t_pulse_max]               */
   fsw_real t_coast;                 /* [s]       settling after a pulse,
                                        [0, FSW_THR_MOM_T_MAX]                         */
   fsw_real dt_cycle;                /* [s]       nominal control period,
-                                       (0, FSW_THR_MOM_DT_MAX]                        */
+                                       [FSW_THR_MOM_T_MIN, FSW_THR_MOM_DT_MAX]        */
   int num_thr;                      /* [-]       1..FSW_MAX_THR                         */
   fsw_real F_max[FSW_MAX_THR];      /* [N]       (num_thr) full thrust,
                                        (0, FSW_THR_MOM_F_MAX]                         */
