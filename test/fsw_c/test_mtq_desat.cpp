@@ -177,7 +177,7 @@ TEST(MtqDesatNominal, ClosedFormHandNumbers)
     t[k] = f->out->tau_req_B[k];
   }
   cross(mxB, md, B);
-  for (int k = 0; k < 3; k++) EXPECT_NEAR(mxB[k], t[k], kt::tol(1e-15, 1e-8) * norm(t)) << k;
+  for (int k = 0; k < 3; k++) EXPECT_NEAR(mxB[k], t[k], kt::tol(1e-15, 1e-6) * norm(t)) << k;
   EXPECT_LE(std::fabs(dot(t, B)), kt::tol(1e-15, 1e-7) * norm(t) * norm(B));
 }
 

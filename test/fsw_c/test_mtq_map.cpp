@@ -261,7 +261,7 @@ TEST(MtqMapNominal, DeliversThePerpendicularPartAndReportsTheParallel)
     for (int k = 0; k < 3; k++) {
       e[k] = mxB[k] - perp[k];
       ep[k] = double(f->out->tau_par_B[k]) - par[k];
-      EXPECT_NEAR(tach[k], mxB[k], 1e-12 * norm(tau_in));  // tau_ach is m_ach x B
+      EXPECT_NEAR(tach[k], mxB[k], kt::tol(1e-15, 1e-6) * norm(m) * norm(B));  // tau_ach is m_ach x B
     }
     worst = std::fmax(worst, norm(e) / norm(tau_in));
     worst_par = std::fmax(worst_par, norm(ep) / norm(tau_in));
@@ -437,7 +437,8 @@ TEST(MtqMapSaturation, DirectionKeptAndEveryRodWithinItsLimit)
     ref_minnorm(4, gd, md, c);
     double smax = 1.0;
     for (int i = 0; i < 4; i++) {
-      const double lim = double(f->cfg->duty_max) * double(f->cfg->m_max[i]);
+      // the limit as the module forms it, in the real type
+      const double lim = double(static_cast<fsw_real>(f->cfg->duty_max * f->cfg->m_max[i]));
       EXPECT_LE(std::fabs(double(f->out->m_cmd[i])), lim) << trial << " rod " << i;
       EXPECT_LE(double(f->out->duty[i]), double(f->cfg->duty_max)) << trial;
       if (std::fabs(c[i]) > lim) smax = std::fmin(smax, lim / std::fabs(c[i]));
