@@ -37,7 +37,7 @@ FswStatus fsw_mtq_map_check(const FswMtqMapConfig *cfg)
     if (FSW_FABS(fsw_v3_norm(cfg->gt_hat_B[i]) - FSW_R(1.0)) > FSW_MTQ_UNIT_TOL) return FSW_E_CONFIG;
     if (!(mm >= FSW_MTQ_M_MAX_MIN && mm <= FSW_MTQ_M_MAX_MAX)) return FSW_E_CONFIG;
   }
-  if (!(cfg->duty_max > FSW_R(0.0) && cfg->duty_max <= FSW_R(1.0))) return FSW_E_CONFIG;
+  if (!(cfg->duty_max >= FSW_MTQ_DUTY_MIN && cfg->duty_max <= FSW_R(1.0))) return FSW_E_CONFIG;
   return FSW_OK;
 }
 

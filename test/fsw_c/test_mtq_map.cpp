@@ -172,6 +172,10 @@ TEST(MtqMapConfig, RejectsBadConfigurationsTableDriven)
       {"m_max above range", [](FswMtqMapConfig* c) { c->m_max[0] = FSW_R(2e4); }, FSW_E_CONFIG},
       {"duty_max zero", [](FswMtqMapConfig* c) { c->duty_max = 0; }, FSW_E_CONFIG},
       {"duty_max negative", [](FswMtqMapConfig* c) { c->duty_max = FSW_R(-0.5); }, FSW_E_CONFIG},
+      // fuzz finding (2026-12-05): a subnormal duty_max made every limit 0
+      {"duty_max subnormal", [](FswMtqMapConfig* c) { c->duty_max = std::numeric_limits<fsw_real>::denorm_min(); },
+       FSW_E_CONFIG},
+      {"duty_max below 1e-3", [](FswMtqMapConfig* c) { c->duty_max = FSW_R(0.9e-3); }, FSW_E_CONFIG},
       {"duty_max above 1", [](FswMtqMapConfig* c) { c->duty_max = FSW_R(1.01); }, FSW_E_CONFIG},
       {"duty_max NaN", [](FswMtqMapConfig* c) { c->duty_max = kNaN; }, FSW_E_CONFIG},
   };
@@ -191,6 +195,8 @@ TEST(MtqMapConfig, RejectsBadConfigurationsTableDriven)
   auto f = ortho(1e4, 1.0);
   EXPECT_EQ(fsw_mtq_map_check(f->cfg.get()), FSW_OK);
   f->cfg->m_max[0] = FSW_R(1e-6);
+  EXPECT_EQ(fsw_mtq_map_check(f->cfg.get()), FSW_OK);
+  f->cfg->duty_max = FSW_R(1e-3);
   EXPECT_EQ(fsw_mtq_map_check(f->cfg.get()), FSW_OK);
   f->cfg->num_mtq = FSW_MAX_MTQ;
   for (int i = 3; i < FSW_MAX_MTQ; i++) {
