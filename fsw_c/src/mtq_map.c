@@ -37,7 +37,7 @@ FswStatus fsw_mtq_map_check(const FswMtqMapConfig *cfg)
     if (FSW_FABS(fsw_v3_norm(cfg->gt_hat_B[i]) - FSW_R(1.0)) > FSW_MTQ_UNIT_TOL) return FSW_E_CONFIG;
     if (!(mm >= FSW_MTQ_M_MAX_MIN && mm <= FSW_MTQ_M_MAX_MAX)) return FSW_E_CONFIG;
   }
-  if (!(cfg->duty_max > FSW_R(0.0) && cfg->duty_max <= FSW_R(1.0))) return FSW_E_CONFIG;
+  if (!(cfg->duty_max >= FSW_MTQ_DUTY_MIN && cfg->duty_max <= FSW_R(1.0))) return FSW_E_CONFIG;
   return FSW_OK;
 }
 
@@ -262,7 +262,12 @@ FswStatus fsw_mtq_map_update(FswMtqMapState *st, const FswMtqMapConfig *cfg,
 
   s = mtq_saturate(c, cfg);
   if (s < FSW_R(1.0) && status == FSW_OK) status = FSW_W_SAT;
-  for (i = 0; i < n; i++) out->duty[i] = FSW_FABS(c[i]) / cfg->m_max[i];
+  for (i = 0; i < n; i++) {
+    /* |c_i| <= fl(duty_max m_max_i), but the quotient can round one ulp
+     * above duty_max */
+    const fsw_real d = FSW_FABS(c[i]) / cfg->m_max[i];
+    out->duty[i] = d < cfg->duty_max ? d : cfg->duty_max;
+  }
   fsw_vn_copy(out->m_cmd, c, n);
   mtq_dipole(out->m_ach_B, cfg, in->avail, c);
   fsw_v3_cross(out->tau_ach_B, out->m_ach_B, in->B_B);

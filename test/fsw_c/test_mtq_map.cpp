@@ -11,32 +11,20 @@
 
 #include "fsw/mtq_map.h"
 #include "kestrel_test_support.h"
+#include "mtq_test_util.h"
 #include "null_args.h"
+#include "rw_test_util.h"
 
 namespace {
 
 const fsw_real kNaN = std::numeric_limits<fsw_real>::quiet_NaN();
 const fsw_real kInf = std::numeric_limits<fsw_real>::infinity();
 
-template <class T>
-std::unique_ptr<T> make0()
-{
-  return std::unique_ptr<T>(new T());
-}
-
-void cross(double o[3], const double a[3], const double b[3])
-{
-  o[0] = a[1] * b[2] - a[2] * b[1];
-  o[1] = a[2] * b[0] - a[0] * b[2];
-  o[2] = a[0] * b[1] - a[1] * b[0];
-}
-double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const double a[3]) { return std::sqrt(dot(a, a)); }
-template <class R>
-void to_d(double o[3], const R* a)
-{
-  for (int k = 0; k < 3; k++) o[k] = static_cast<double>(a[k]);
-}
+using mtqt::cross;
+using mtqt::dot;
+using mtqt::norm;
+using mtqt::to_d;
+using rwt::make0;
 
 // Solve the k x k system A x = b (k <= 3) by Gaussian elimination with
 // partial pivoting.
@@ -148,6 +136,26 @@ void skewed4(double g[4][3])
   }
 }
 
+std::unique_ptr<Fixture> skewed(double m_max, double duty)
+{
+  double g[4][3];
+  skewed4(g);
+  auto f = make0<Fixture>();
+  f->setup(g, 4, m_max, duty);
+  EXPECT_EQ(f->init(), FSW_OK);
+  return f;
+}
+
+// The minimum-norm dipole for tau in the field of the input: (B x tau)/|B|^2.
+void ref_dipole(double mB[3], const FswMtqMapIn& in)
+{
+  double B[3], t[3];
+  to_d(B, in.B_B);
+  to_d(t, in.tau_B);
+  cross(mB, B, t);
+  for (int k = 0; k < 3; k++) mB[k] /= dot(B, B);
+}
+
 }  // namespace
 
 TEST(MtqMapConfig, RejectsBadConfigurationsTableDriven)
@@ -172,6 +180,10 @@ TEST(MtqMapConfig, RejectsBadConfigurationsTableDriven)
       {"m_max above range", [](FswMtqMapConfig* c) { c->m_max[0] = FSW_R(2e4); }, FSW_E_CONFIG},
       {"duty_max zero", [](FswMtqMapConfig* c) { c->duty_max = 0; }, FSW_E_CONFIG},
       {"duty_max negative", [](FswMtqMapConfig* c) { c->duty_max = FSW_R(-0.5); }, FSW_E_CONFIG},
+      // fuzz finding (2026-12-05): a subnormal duty_max made every limit 0
+      {"duty_max subnormal", [](FswMtqMapConfig* c) { c->duty_max = std::numeric_limits<fsw_real>::denorm_min(); },
+       FSW_E_CONFIG},
+      {"duty_max below 1e-3", [](FswMtqMapConfig* c) { c->duty_max = FSW_R(0.9e-3); }, FSW_E_CONFIG},
       {"duty_max above 1", [](FswMtqMapConfig* c) { c->duty_max = FSW_R(1.01); }, FSW_E_CONFIG},
       {"duty_max NaN", [](FswMtqMapConfig* c) { c->duty_max = kNaN; }, FSW_E_CONFIG},
   };
@@ -191,6 +203,8 @@ TEST(MtqMapConfig, RejectsBadConfigurationsTableDriven)
   auto f = ortho(1e4, 1.0);
   EXPECT_EQ(fsw_mtq_map_check(f->cfg.get()), FSW_OK);
   f->cfg->m_max[0] = FSW_R(1e-6);
+  EXPECT_EQ(fsw_mtq_map_check(f->cfg.get()), FSW_OK);
+  f->cfg->duty_max = FSW_R(1e-3);
   EXPECT_EQ(fsw_mtq_map_check(f->cfg.get()), FSW_OK);
   f->cfg->num_mtq = FSW_MAX_MTQ;
   for (int i = 3; i < FSW_MAX_MTQ; i++) {
@@ -261,7 +275,7 @@ TEST(MtqMapNominal, DeliversThePerpendicularPartAndReportsTheParallel)
     for (int k = 0; k < 3; k++) {
       e[k] = mxB[k] - perp[k];
       ep[k] = double(f->out->tau_par_B[k]) - par[k];
-      EXPECT_NEAR(tach[k], mxB[k], 1e-12 * norm(tau_in));  // tau_ach is m_ach x B
+      EXPECT_NEAR(tach[k], mxB[k], kt::tol(1e-15, 1e-6) * norm(m) * norm(B));  // tau_ach is m_ach x B
     }
     worst = std::fmax(worst, norm(e) / norm(tau_in));
     worst_par = std::fmax(worst_par, norm(ep) / norm(tau_in));
@@ -290,14 +304,10 @@ TEST(MtqMapNominal, ParallelRequestGivesNoTorque)
 }
 
 // Skewed 4-rod set: the minimum-norm commands equal G^T (G G^T)^-1 m_B from
-// the normal equations solved here, and have no component in null(G).
+// the normal equations solved here.
 TEST(MtqMapNominal, SkewedFourRodsMatchAnIndependentPseudoInverse)
 {
-  double g[4][3];
-  skewed4(g);
-  auto f = make0<Fixture>();
-  f->setup(g, 4, 1e4, 1.0);
-  ASSERT_EQ(f->init(), FSW_OK);
+  auto f = skewed(1e4, 1.0);
   kt::Rng rng(3802);
   double worst = 0.0;
   for (int trial = 0; trial < 200; trial++) {
@@ -327,11 +337,8 @@ TEST(MtqMapNominal, SkewedFourRodsMatchAnIndependentPseudoInverse)
   const double tau[3] = {2e-6, -1e-6, 0.5e-6};
   f->set_tau(tau);
   ASSERT_EQ(f->update(), FSW_OK);
-  double B[3], t[3], mB[3], c[4], gd[4][3];
-  to_d(B, f->in->B_B);
-  to_d(t, f->in->tau_B);
-  cross(mB, B, t);
-  for (double& x : mB) x /= dot(B, B);
+  double mB[3], c[4], gd[4][3];
+  ref_dipole(mB, *f->in);
   for (int i = 0; i < 4; i++) to_d(gd[i], f->cfg->gt_hat_B[i]);
   ref_minnorm(4, gd, mB, c);
   for (int i = 0; i < 4; i++) EXPECT_NEAR(f->out->m_cmd[i], c[i], kt::tol(1e-13, 1e-5) * norm(mB)) << i;
@@ -353,12 +360,9 @@ TEST(MtqMapRankDeficient, TwoRodsGiveTheLeastSquaresDipole)
   f->set_tau(tau);
   ASSERT_EQ(f->update(), FSW_OK);
   EXPECT_EQ(f->out->rank, 2);
-  double gd[2][3], B[3], t[3], mB[3], c[2];
+  double gd[2][3], mB[3], c[2];
   for (int i = 0; i < 2; i++) to_d(gd[i], f->cfg->gt_hat_B[i]);
-  to_d(B, f->in->B_B);
-  to_d(t, f->in->tau_B);
-  cross(mB, B, t);
-  for (double& x : mB) x /= dot(B, B);
+  ref_dipole(mB, *f->in);
   ref_lsq(2, gd, mB, c);
   for (int i = 0; i < 2; i++) EXPECT_NEAR(f->out->m_cmd[i], c[i], kt::tol(1e-14, 1e-6) * norm(mB)) << i;
   for (int k = 0; k < 3; k++) EXPECT_NEAR(f->out->tau_ach_B[k], tau[k], kt::tol(1e-18, 1e-11)) << k;
@@ -368,9 +372,7 @@ TEST(MtqMapRankDeficient, TwoRodsGiveTheLeastSquaresDipole)
   ASSERT_EQ(f->update(), FSW_W_SINGULAR);
   EXPECT_EQ(f->out->rank, 2);
   EXPECT_EQ(f->out->scale, 1.0);
-  to_d(B, f->in->B_B);
-  cross(mB, B, t);
-  for (double& x : mB) x /= dot(B, B);
+  ref_dipole(mB, *f->in);
   ref_lsq(2, gd, mB, c);
   for (int i = 0; i < 2; i++) EXPECT_NEAR(f->out->m_cmd[i], c[i], kt::tol(1e-14, 1e-6) * norm(mB)) << i;
   EXPECT_NEAR(f->out->m_ach_B[0], mB[0], kt::tol(1e-14, 1e-6) * norm(mB));
@@ -437,7 +439,8 @@ TEST(MtqMapSaturation, DirectionKeptAndEveryRodWithinItsLimit)
     ref_minnorm(4, gd, md, c);
     double smax = 1.0;
     for (int i = 0; i < 4; i++) {
-      const double lim = double(f->cfg->duty_max) * double(f->cfg->m_max[i]);
+      // the limit as the module forms it, in the real type
+      const double lim = double(static_cast<fsw_real>(f->cfg->duty_max * f->cfg->m_max[i]));
       EXPECT_LE(std::fabs(double(f->out->m_cmd[i])), lim) << trial << " rod " << i;
       EXPECT_LE(double(f->out->duty[i]), double(f->cfg->duty_max)) << trial;
       if (std::fabs(c[i]) > lim) smax = std::fmin(smax, lim / std::fabs(c[i]));
@@ -463,11 +466,7 @@ TEST(MtqMapSaturation, DirectionKeptAndEveryRodWithinItsLimit)
 // set; the orthogonal set without rod 1 is rank 2.
 TEST(MtqMapAvailability, UnavailableRodsAreZero)
 {
-  double g[4][3];
-  skewed4(g);
-  auto f = make0<Fixture>();
-  f->setup(g, 4, 1e4, 1.0);
-  ASSERT_EQ(f->init(), FSW_OK);
+  auto f = skewed(1e4, 1.0);
   f->in->use_dipole = 1;
   f->in->m_req_B[0] = FSW_R(0.3);
   f->in->m_req_B[1] = FSW_R(-0.1);

@@ -53,6 +53,8 @@ extern "C" {
  * ratio of accepted values overflows either real type). */
 #define FSW_MTQ_M_MAX_MIN FSW_R(1e-6)  /* [A*m^2] smallest rod dipole limit */
 #define FSW_MTQ_M_MAX_MAX FSW_R(1e4)   /* [A*m^2] largest rod dipole limit  */
+#define FSW_MTQ_DUTY_MIN FSW_R(1e-3)   /* [-]     smallest duty_max (a subnormal one made
+                                          every limit 0: fuzz finding, 2026-12-05)        */
 #define FSW_MTQ_B_MIN FSW_R(1e-9)      /* [T]     smaller |B|: no usable field (W_SINGULAR) */
 #define FSW_MTQ_B_MAX FSW_R(1.0)       /* [T]     larger |B|: a faulty reading (bad input)   */
 #define FSW_MTQ_TAU_REQ_MAX FSW_R(1e6) /* [N*m]   largest |tau_B| component accepted         */
@@ -70,7 +72,8 @@ typedef struct {
   fsw_real m_max[FSW_MAX_MTQ];       /* [A*m^2]  (num_mtq) rod dipole at full drive,
                                         FSW_MTQ_M_MAX_MIN..FSW_MTQ_M_MAX_MAX           */
   fsw_real duty_max;                 /* [-]      fraction of the period the rods may
-                                        be on, (0, 1]; |m_cmd_i| <= duty_max m_max_i   */
+                                        be on, FSW_MTQ_DUTY_MIN..1;
+                                        |m_cmd_i| <= duty_max m_max_i                  */
 } FswMtqMapConfig;
 
 typedef struct {

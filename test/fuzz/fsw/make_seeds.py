@@ -25,6 +25,7 @@ VARIANTS = {
     "thr_pulse_schmitt": 2, "thr_pulse_round": 2, "css_sun": 1,
     "guid_sunsafe": 1, "guid_inertial": 1, "att_track": 1, "mrp_fb": 2, "acs": 4,
     "thr_momentum": 1,
+    "mtq_map": 2, "mtq_desat": 1,
 }
 
 
