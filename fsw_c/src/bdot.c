@@ -21,8 +21,7 @@ FswStatus fsw_bdot_check(const FswBdotConfig *cfg)
   if (!bdot_in_range(cfg->tau_f, FSW_R(0.0), FSW_BDOT_TAU_MAX)) return FSW_E_CONFIG;
   if (cfg->max_missed < 0 || cfg->max_missed > FSW_BDOT_MISSED_MAX) return FSW_E_CONFIG;
   for (i = 0; i < 3; i++)
-    if (!bdot_in_range(cfg->m_max_B[i], FSW_R(0.0), FSW_BDOT_M_MAX) || !(cfg->m_max_B[i] > FSW_R(0.0)))
-      return FSW_E_CONFIG;
+    if (!bdot_in_range(cfg->m_max_B[i], FSW_BDOT_M_MIN, FSW_BDOT_M_MAX)) return FSW_E_CONFIG;
   if (!bdot_in_range(cfg->omega_done, FSW_R(0.0), FSW_BDOT_OMEGA_MAX) || !(cfg->omega_done > FSW_R(0.0)))
     return FSW_E_CONFIG;
   if (!bdot_in_range(cfg->omega_reenter, FSW_R(0.0), FSW_BDOT_OMEGA_MAX) ||
@@ -88,26 +87,33 @@ static int bdot_v3_within(const fsw_real v[3], fsw_real lim)
 }
 
 /* m = -g Bdot, scaled by one factor so that |m_i| <= m_max_i; returns the
- * factor in (0, 1]. */
+ * factor in (0, 1].  The scaled dipole is formed from the binding axis j
+ * (the smallest m_max_i / |m_i|): m_i = (m_i / |m_j|) m_max_j, whose ratios
+ * are at most m_max_i / m_max_j, so the direction is kept to rounding even
+ * when the factor itself is tiny. */
 static fsw_real bdot_dipole(fsw_real m[3], const FswBdotConfig *cfg, const fsw_real Bdot[3], fsw_real B2)
 {
   const fsw_real g = cfg->normalize ? cfg->k_bdot / B2 : cfg->k_bdot;
-  fsw_real scale = FSW_R(1.0);
-  int i;
+  fsw_real scale = FSW_R(1.0), a;
+  int i, j = -1;
   for (i = 0; i < 3; i++) {
     m[i] = -g * Bdot[i];
     if (FSW_FABS(m[i]) > cfg->m_max_B[i]) {
       const fsw_real s = cfg->m_max_B[i] / FSW_FABS(m[i]);
-      if (s < scale) scale = s;
+      if (j < 0 || s < scale) {
+        scale = s;
+        j = i;
+      }
     }
   }
-  if (scale < FSW_R(1.0))
-    for (i = 0; i < 3; i++) {
-      m[i] *= scale;
-      /* the product may round one ulp above the limit: clip that ulp */
-      if (m[i] > cfg->m_max_B[i]) m[i] = cfg->m_max_B[i];
-      if (m[i] < -cfg->m_max_B[i]) m[i] = -cfg->m_max_B[i];
-    }
+  if (j < 0) return FSW_R(1.0);
+  a = FSW_FABS(m[j]);
+  for (i = 0; i < 3; i++) {
+    m[i] = (m[i] / a) * cfg->m_max_B[j];
+    /* the product may round one ulp above the limit: clip that ulp */
+    if (m[i] > cfg->m_max_B[i]) m[i] = cfg->m_max_B[i];
+    if (m[i] < -cfg->m_max_B[i]) m[i] = -cfg->m_max_B[i];
+  }
   return scale;
 }
 

@@ -120,6 +120,7 @@ TEST(BdotConfig, RejectsEachBadField)
       {"max_missed -1", [](FswBdotConfig& c) { c.max_missed = -1; }},
       {"max_missed > max", [](FswBdotConfig& c) { c.max_missed = FSW_BDOT_MISSED_MAX + 1; }},
       {"m_max_B[0] 0", [](FswBdotConfig& c) { c.m_max_B[0] = R(0.0); }},
+      {"m_max_B[2] below min", [](FswBdotConfig& c) { c.m_max_B[2] = FSW_BDOT_M_MIN * R(0.5); }},
       {"m_max_B[1] < 0", [](FswBdotConfig& c) { c.m_max_B[1] = R(-1.0); }},
       {"m_max_B[2] > max", [](FswBdotConfig& c) { c.m_max_B[2] = FSW_BDOT_M_MAX * R(2.0); }},
       {"m_max_B[1] NaN", [](FswBdotConfig& c) { c.m_max_B[1] = g_val; }},
@@ -424,6 +425,33 @@ TEST(BdotSaturation, CommonFactorKeepsTheDirection)
   EXPECT_LT(std::sqrt(cx[0] * cx[0] + cx[1] * cx[1] + cx[2] * cx[2]), kt::tol(1e-12, 1e-5) * nm * nb);
   EXPECT_LT(m[0] * bd[0] + m[1] * bd[1] + m[2] * bd[2], 0.0);
   EXPECT_EQ(1u, f.st.health.saturated);
+}
+
+// The extremes of the accepted ranges: k = FSW_BDOT_K_MAX normalised by a
+// 1 nT field, omega at its limit, 1 uA m^2 rods.  The common factor is
+// ~1e-36 (subnormal in float) yet the direction is kept to rounding: the
+// dipole is formed from the binding axis (m_i = m_i / |m_j| m_max_j).
+// Fuzz finding h1: a subnormal rod limit (2e-322) was accepted and the
+// factor underflowed to 0 under W_SAT; limits below FSW_BDOT_M_MIN are now
+// rejected.
+TEST(BdotSaturation, ExtremeRangesKeepTheDirection)
+{
+  FswBdotConfig c = base_cfg(FSW_BDOT_GYRO, 1);
+  c.k_bdot = FSW_BDOT_K_MAX;
+  for (R& m : c.m_max_B) m = FSW_BDOT_M_MIN;
+  c.m_max_B[1] = R(2e-6);
+  Fx f(c);
+  const double B[3] = {1e-9 * 0.6, 0.0, 1e-9 * 0.8}, w[3] = {90.0, -30.0, 10.0};
+  ASSERT_EQ(FSW_W_SAT, f.step(0, B, w));
+  // m is parallel to w x B = (-30*0.8e-9, 10*0.6e-9 - 90*0.8e-9, 30*0.6e-9)
+  const double d[3] = {-24.0, -66.0, 18.0};  // x 1e-9; axis 1 binds: |m_1| = 2e-6
+  EXPECT_GT(f.out.scale, 0.0);
+  EXPECT_NEAR(2e-6, std::fabs(f.out.m_B[1]), kt::tol(1e-21, 1e-12));
+  for (int k = 0; k < 3; k++)
+    EXPECT_NEAR(2e-6 * d[k] / 66.0, f.out.m_B[k], kt::tol(1e-20, 1e-12)) << k;
+  FswBdotConfig bad = c;
+  bad.m_max_B[1] = R(2.0256691479491108e-38);
+  EXPECT_EQ(FSW_E_CONFIG, fsw_bdot_check(&bad));
 }
 
 // ---- detumble flag --------------------------------------------------------------

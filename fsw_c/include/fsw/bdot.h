@@ -53,6 +53,7 @@ extern "C" {
 #define FSW_BDOT_K_MAX FSW_R(1e12)        /* [A*m^2*s/T or N*m*s] largest k_bdot */
 #define FSW_BDOT_TAU_MAX FSW_R(1e6)       /* [s]      largest tau_f                */
 #define FSW_BDOT_MISSED_MAX 100000        /* [-]      largest max_missed           */
+#define FSW_BDOT_M_MIN FSW_R(1e-6)        /* [A*m^2]  smallest m_max_B[i]          */
 #define FSW_BDOT_M_MAX FSW_R(1e4)         /* [A*m^2]  largest m_max_B[i]           */
 #define FSW_BDOT_OMEGA_MAX FSW_R(100.0)   /* [rad/s]  largest |omega_i| input and
                                              largest omega_reenter             */
@@ -72,8 +73,8 @@ typedef struct {
                            .. FSW_BDOT_TAU_MAX; read by DERIV only             */
   int max_missed;       /* [-]    cycles a dipole is held over missed samples,
                            0..FSW_BDOT_MISSED_MAX                              */
-  fsw_real m_max_B[3];  /* [A*m^2] per-B-axis dipole limit, > 0,
-                           <= FSW_BDOT_M_MAX                                   */
+  fsw_real m_max_B[3];  /* [A*m^2] per-B-axis dipole limit,
+                           FSW_BDOT_M_MIN..FSW_BDOT_M_MAX                      */
   fsw_real omega_done;  /* [rad/s] detumbled threshold, > 0                    */
   fsw_real omega_reenter; /* [rad/s] re-entry threshold, > omega_done,
                            <= FSW_BDOT_OMEGA_MAX                               */

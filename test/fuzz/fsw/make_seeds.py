@@ -26,6 +26,7 @@ VARIANTS = {
     "guid_sunsafe": 1, "guid_inertial": 1, "att_track": 1, "mrp_fb": 2, "acs": 4,
     "thr_momentum": 1,
     "mtq_map": 2, "mtq_desat": 1,
+    "bdot": 2,
 }
 
 
