@@ -24,6 +24,7 @@ VARIANTS = {
     "rw_null": 2, "rw_null_regen": 2, "thr_map": 4, "thr_pulse_rem": 2,
     "thr_pulse_schmitt": 2, "thr_pulse_round": 2, "css_sun": 1,
     "guid_sunsafe": 1, "guid_inertial": 1, "att_track": 1, "mrp_fb": 2, "acs": 4,
+    "rw_bias": 1, "guid_orbit": 2,
 }
 
 
