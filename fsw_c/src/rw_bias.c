@@ -16,7 +16,7 @@ typedef struct {
   fsw_real lo[FSW_MAX_RW];       /* [rad/s] keep-out interval of the step       */
   fsw_real hi[FSW_MAX_RW];       /*         delta_i = Omega_des_i - Omega_i     */
   fsw_real b[FSW_MAX_RW];        /* [rad/s] band edge each wheel must clear     */
-  fsw_real s[FSW_MAX_RW];        /* [-]     side of each wheel, +-1             */
+  signed char s[FSW_MAX_RW];     /* [-]     side of each wheel, +-1             */
 } BiasWork;
 
 /* Omega_i if it is a speed rw_null accepts, else 0 (the safe value). */
@@ -126,7 +126,7 @@ static int count_in_band(const BiasWork *w, const fsw_real *delta)
 {
   int i, c = 0;
   for (i = 0; i < w->n; i++)
-    if (w->avail[i] == FSW_AVAILABLE && w->s[i] * (w->Om[i] + delta[i]) < (FSW_R(1.0) - FSW_RW_BIAS_TOL) * w->b[i]) c++;
+    if (w->avail[i] == FSW_AVAILABLE && (fsw_real)w->s[i] * (w->Om[i] + delta[i]) < (FSW_R(1.0) - FSW_RW_BIAS_TOL) * w->b[i]) c++;
   return c;
 }
 
@@ -288,7 +288,7 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
     band[i] = 0;
     w.lo[i] = w.hi[i] = FSW_R(0.0);
     w.b[i] = cfg->Omega_keepout;
-    w.s[i] = FSW_R(1.0);
+    w.s[i] = 1;
     if (in->avail[i] != FSW_AVAILABLE) continue;
     if (a < cfg->Omega_keepout)
       band[i] = 1;
@@ -297,8 +297,8 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
     else
       band[i] = st->in_band[i];
     if (band[i]) w.b[i] = cfg->Omega_keepout + cfg->Omega_hyst;
-    w.s[i] = (om > FSW_R(0.0) || (om == FSW_R(0.0) && cfg->Omega_bias[i] > FSW_R(0.0))) ? FSW_R(1.0) : FSW_R(-1.0);
-    if (w.s[i] > FSW_R(0.0)) {
+    w.s[i] = (signed char)((om > FSW_R(0.0) || (om == FSW_R(0.0) && cfg->Omega_bias[i] > FSW_R(0.0))) ? 1 : -1);
+    if (w.s[i] > 0) {
       w.lo[i] = w.b[i] - om;
       w.hi[i] = FSW_RW_OMEGA_MAX - om;
     } else {
@@ -322,15 +322,14 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
     solve_k1(lambda, st, &w, lam_u[0]);
     step_of(delta, st, &w, lambda);
   } else if (st->nullity > 1) {
-    fsw_real d2[FSW_MAX_RW];
     int c1, c2;
     solve_hildreth(lambda, st, &w, lam_u);
     step_of(delta, st, &w, lambda);
     c1 = count_in_band(&w, delta);
     if (c1 > 0) { /* not kept out: the unconstrained choice may leave fewer in the band */
-      step_of(d2, st, &w, lam_u);
-      c2 = count_in_band(&w, d2);
-      if (c2 < c1) fsw_vn_copy(delta, d2, FSW_MAX_RW);
+      step_of(lambda, st, &w, lam_u); /* lambda is free now: holds that step */
+      c2 = count_in_band(&w, lambda);
+      if (c2 < c1) fsw_vn_copy(delta, lambda, FSW_MAX_RW);
     }
   } else {
     fsw_vn_zero(delta, FSW_MAX_RW);
@@ -347,7 +346,7 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
     if (v < -FSW_RW_OMEGA_MAX) v = -FSW_RW_OMEGA_MAX;
     out->Omega_des[i] = v;
     out->in_band[i] = band[i];
-    if (w.s[i] * v < (FSW_R(1.0) - FSW_RW_BIAS_TOL) * w.b[i]) {
+    if ((fsw_real)w.s[i] * v < (FSW_R(1.0) - FSW_RW_BIAS_TOL) * w.b[i]) {
       out->unavoidable[i] = 1;
       any = 1;
     }

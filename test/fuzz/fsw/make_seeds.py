@@ -27,6 +27,7 @@ VARIANTS = {
     "thr_momentum": 1,
     "mtq_map": 2, "mtq_desat": 1,
     "bdot": 2,
+    "rw_bias": 1, "guid_orbit": 2,
 }
 
 
