@@ -264,6 +264,9 @@ TEST(FswLinkStatus, RoundTripsAndChecksItsFields)
   FswLinkError e = FSW_LINK_E_CRC;
   ASSERT_EQ(fsw_link_decode_status(&p, &d, &e), FSW_OK);
   EXPECT_EQ(e, FSW_LINK_OK);
+  EXPECT_EQ(b[14 + 39], 2u);        // the ICD version (2), whatever m.icd_version says (0 here)
+  EXPECT_EQ(d.icd_version, 2u);
+  d.icd_version = m.icd_version;
   EXPECT_EQ(std::memcmp(&m, &d, sizeof m), 0);
 
   auto reject = [&](size_t at, uint8_t v, FswLinkError want) {
@@ -281,10 +284,11 @@ TEST(FswLinkStatus, RoundTripsAndChecksItsFields)
     EXPECT_EQ(std::memcmp(&out, &before, sizeof out), 0);
   };
   reject(14 + 38, 2, FSW_LINK_E_COUNT);      // link_safe flag 2
-  reject(14 + 39, 1, FSW_LINK_E_COUNT);      // reserved byte
+  reject(14 + 39, 1, FSW_LINK_E_HEADER);     // ICD version 1 (byte 39 was reserved, 0, in version 1)
+  reject(14 + 39, 0, FSW_LINK_E_HEADER);
   reject(14 + 36, 0x40, FSW_LINK_E_COUNT);   // last_seq 16384 + ...
   reject(1, 0x82, FSW_LINK_E_APID);          // APID 0x182 (health)
-  // wrong length: a health packet's APID changed to 0x183 has 172 bytes
+  // wrong length: a health packet's APID changed to 0x183 has 254 bytes
   FswAcsHealthMsg h{};
   ASSERT_EQ(fsw_link_encode_health(&h, 1, 1, b.data(), b.size(), &len, nullptr), FSW_OK);
   b[1] = 0x83;
@@ -374,9 +378,10 @@ TEST(FswLinkNode, RepliesEqualTheApplicationRunDirectly)
     FswAcsActuatorMsg act, ract;
     FswAcsHealthMsg h, rh;
     fsw_acs_cycle(&st, &node.cfg, &s, nullptr, &act, &h);
-    uint8_t nrw = 0, nthr = 9;
+    uint8_t nrw = 0, nthr = 9, nmtq = 9;
     const FswLinkPacket pa = node.reply(0), ph = node.reply(1), pl = node.reply(2);
-    ASSERT_EQ(fsw_link_decode_actuator(&pa, &ract, &nrw, &nthr, nullptr), FSW_OK);
+    ASSERT_EQ(fsw_link_decode_actuator(&pa, &ract, &nrw, &nthr, &nmtq, nullptr), FSW_OK);
+    EXPECT_EQ(nmtq, 0u);  // the configuration has no rods yet
     ASSERT_EQ(fsw_link_decode_health(&ph, &rh, nullptr), FSW_OK);
     EXPECT_EQ(pa.t_ns, s.t_ns);
     EXPECT_EQ(ph.t_ns, s.t_ns);
@@ -435,7 +440,7 @@ TEST(FswLinkNode, StaleDamagedAndForeignPacketsAreCountedAndAnsweredByTheStatus)
   FswAcsActuatorMsg a{};
   Bytes ab(FSW_LINK_MAX_PACKET);
   size_t len = 0;
-  ASSERT_EQ(fsw_link_encode_actuator(&a, 0, 0, 1, 0, ab.data(), ab.size(), &len, nullptr), FSW_OK);
+  ASSERT_EQ(fsw_link_encode_actuator(&a, 0, 0, 0, 1, 0, ab.data(), ab.size(), &len, nullptr), FSW_OK);
   ab.resize(len);
   EXPECT_EQ(node.feed(ab), 1);
   Bytes wrong = sensor_packet(sensors(6), 101);
@@ -487,9 +492,9 @@ TEST(FswLinkNode, WatchdogEntersLinkSafeAndDataRecovers)
   EXPECT_EQ(node.n.link.link_safe, 0u);
   ASSERT_EQ(fsw_link_node_watchdog(&node.n, 7), 2);  // the third missed period
   FswAcsActuatorMsg a;
-  uint8_t nrw = 0, nthr = 0;
+  uint8_t nrw = 0, nthr = 0, nmtq = 0;
   FswLinkPacket pa = node.reply(0), pl = node.reply(1);
-  ASSERT_EQ(fsw_link_decode_actuator(&pa, &a, &nrw, &nthr, nullptr), FSW_OK);
+  ASSERT_EQ(fsw_link_decode_actuator(&pa, &a, &nrw, &nthr, &nmtq, nullptr), FSW_OK);
   EXPECT_EQ(pa.t_ns, 7u);
   EXPECT_EQ(a.wheels_active, 0u);
   EXPECT_EQ(a.thrusters_active, 0u);
