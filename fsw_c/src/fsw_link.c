@@ -711,7 +711,22 @@ static const CfgField kCfgFields[] = {
     CF_I(thr_map.thr_force_sign), CF_R(thr_map.ang_err_thresh, 1), CF_R(thr_map.epsilon, 1),
     CF_I(thr_map.use_2nd_loop), CF_I(thr_map.mode), CF_I(pulser),
     CF_PULSE_COMMON(pulse_rem),
-    CF_PULSE_COMMON(pulse_schmitt), CF_R(pulse_schmitt.level_on, 1), CF_R(pulse_schmitt.level_off, 1)};
+    CF_PULSE_COMMON(pulse_schmitt), CF_R(pulse_schmitt.level_on, 1), CF_R(pulse_schmitt.level_off, 1),
+    /* magnetorquers, DETUMBLE, NADIR (configuration image version 2) */
+    CF_I(has_mtq), CF_I(mtq_map.num_mtq), CF_R(mtq_map.gt_hat_B, 3 * FSW_MAX_MTQ), CF_R(mtq_map.m_max, FSW_MAX_MTQ),
+    CF_R(mtq_map.duty_max, 1), CF_I(bdot.variant), CF_R(bdot.k_bdot, 1), CF_I(bdot.normalize), CF_R(bdot.tau_f, 1),
+    CF_I(bdot.max_missed), CF_R(bdot.m_max_B, 3), CF_R(bdot.omega_done, 1), CF_R(bdot.omega_reenter, 1),
+    CF_R(bdot.t_persist, 1), CF_I(detumble_exit_mode), CF_I(has_orbit), CF_I(orbit.variant),
+    CF_R(orbit.sigma_BdR, 3), CF_R(orbit.mu, 1),
+    /* momentum management */
+    CF_I(initial_policy), CF_I(use_thr_mom), CF_I(thr_mom.num_rw), CF_R(thr_mom.gs_hat_B, 3 * FSW_MAX_RW),
+    CF_R(thr_mom.J_s, FSW_MAX_RW), CF_R(thr_mom.h_upper, 1), CF_R(thr_mom.h_lower, 1), CF_R(thr_mom.L_dump, 1),
+    CF_R(thr_mom.t_pulse_max, 1), CF_R(thr_mom.t_min_pulse, 1), CF_R(thr_mom.t_coast, 1), CF_R(thr_mom.dt_cycle, 1),
+    CF_I(thr_mom.num_thr), CF_R(thr_mom.F_max, FSW_MAX_THR), CF_R(thr_mom.Isp, 1), CF_I(use_mtq_desat),
+    CF_I(mtq_desat.num_rw), CF_R(mtq_desat.gs_hat_B, 3 * FSW_MAX_RW), CF_R(mtq_desat.J_s, FSW_MAX_RW),
+    CF_R(mtq_desat.k_desat, 1), CF_R(mtq_desat.h_target_B, 3), CF_R(mtq_desat.tau_max, 1),
+    CF_R(mtq_desat.h_deadband, 1), CF_I(use_bias), CF_I(rw_bias.num_rw), CF_R(rw_bias.gs_hat_B, 3 * FSW_MAX_RW),
+    CF_R(rw_bias.Omega_bias, FSW_MAX_RW), CF_R(rw_bias.Omega_keepout, 1), CF_R(rw_bias.Omega_hyst, 1)};
 
 #define CFG_NUM_FIELDS (sizeof kCfgFields / sizeof kCfgFields[0])
 #define CFG_MAGIC 0x4B434647u /* "KCFG" */
@@ -747,7 +762,7 @@ static void put_cfg_header(Writer *w)
   put_u8(w, (uint32_t)FSW_MAX_RW);
   put_u8(w, (uint32_t)FSW_MAX_CSS);
   put_u8(w, (uint32_t)FSW_MAX_THR);
-  put_u8(w, 0u);
+  put_u8(w, (uint32_t)FSW_MAX_MTQ);
   put_u16(w, 0u);
   put_u32(w, (uint32_t)cfg_body_size());
 }

@@ -160,13 +160,14 @@ FswStatus fsw_link_decode_status(const FswLinkPacket *p, FswLinkStatusMsg *m, Fs
 
 /* A serialised FswAcsConfig (docs/icd.md, "Configuration image"): a 20-byte
  * header (magic "KCFG", format version, field count, a layout code over the
- * field table, the capacities FSW_MAX_RW, FSW_MAX_CSS, FSW_MAX_THR, the body
+ * field table, the capacities FSW_MAX_RW, FSW_MAX_CSS, FSW_MAX_THR,
+ * FSW_MAX_MTQ, the body
  * length), the body (every field of one table, in order, arrays at full
  * capacity: int as i32, fsw_real as f64, big-endian) and a CRC-16 over all
  * bytes before it.  Encoder and decoder walk the same table, so they cannot
  * drift.  An image is accepted only by a build with the same table and
  * capacities.  The decoder does not judge values: fsw_acs_check() does. */
-#define FSW_LINK_CONFIG_VERSION 1u
+#define FSW_LINK_CONFIG_VERSION 2u
 #define FSW_LINK_CONFIG_HEADER 20u
 
 /* Size of an image in bytes (this build's table and capacities). */
