@@ -20,7 +20,7 @@ FswStatus fsw_link_node_init(FswLinkNode *n, const FswAcsConfig *cfg, uint32_t m
   n->max_missed = max_missed;
   n->num_rw = (uint8_t)(cfg->has_wheels != 0 ? cfg->rw_map.num_rw : 0);
   n->num_thr = (uint8_t)(cfg->has_thrusters != 0 ? cfg->thr_map.num_thr : 0);
-  n->num_mtq = 0u; /* the configuration carries no magnetorquer rods yet */
+  n->num_mtq = (uint8_t)(cfg->has_mtq != 0 ? cfg->mtq_map.num_mtq : 0);
   return FSW_OK;
 }
 
