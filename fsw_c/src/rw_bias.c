@@ -7,16 +7,17 @@
 #include "fsw/fsw_vec.h"
 
 /* Per-update working set: the facts about each wheel that every solver
- * needs, computed once from the input and the new hysteresis state. */
+ * needs, computed once from the input and the new hysteresis state.  The
+ * arrays live in the state's scratch (FswRwBiasScratch), off the stack. */
 typedef struct {
   int n;                         /* [-]     num_rw                              */
   const fsw_real *Om;            /* [rad/s] measured speeds                     */
   fsw_real keepout;              /* [rad/s] Omega_keepout (scale of the stop rule) */
   const uint8_t *avail;          /* [-]     mask                                */
-  fsw_real lo[FSW_MAX_RW];       /* [rad/s] keep-out interval of the step       */
-  fsw_real hi[FSW_MAX_RW];       /*         delta_i = Omega_des_i - Omega_i     */
-  fsw_real b[FSW_MAX_RW];        /* [rad/s] band edge each wheel must clear     */
-  signed char s[FSW_MAX_RW];     /* [-]     side of each wheel, +-1             */
+  fsw_real *lo;                  /* [rad/s] (n) keep-out interval of the step   */
+  fsw_real *hi;                  /*         delta_i = Omega_des_i - Omega_i     */
+  fsw_real *b;                   /* [rad/s] (n) band edge each wheel must clear */
+  signed char *s;                /* [-]     (n) side of each wheel, +-1         */
 } BiasWork;
 
 /* Omega_i if it is a speed rw_null accepts, else 0 (the safe value). */
@@ -265,7 +266,7 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
                              FswRwBiasOut *out)
 {
   BiasWork w;
-  fsw_real lam_u[FSW_MAX_RW], lambda[FSW_MAX_RW], delta[FSW_MAX_RW];
+  fsw_real *lam_u, *lambda, *delta;
   uint8_t band[FSW_MAX_RW];
   int n, i, j, any = 0;
 
@@ -279,6 +280,13 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
 
   /* hysteresis state and the constraints of this call */
+  lam_u = st->scratch.lam_u;
+  lambda = st->scratch.lambda;
+  delta = st->scratch.delta;
+  w.lo = st->scratch.lo;
+  w.hi = st->scratch.hi;
+  w.b = st->scratch.b;
+  w.s = st->scratch.s;
   w.n = n;
   w.Om = in->Omega;
   w.avail = in->avail;

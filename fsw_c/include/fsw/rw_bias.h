@@ -64,6 +64,15 @@ typedef struct {
                                        FSW_RW_OMEGA_MAX / 2                       */
 } FswRwBiasConfig;
 
+/* Scratch of one update, kept off the stack (1.7 KiB at FSW_MAX_RW = 36):
+ * private by convention, it carries nothing from one call to the next. */
+typedef struct {
+  fsw_real lo[FSW_MAX_RW], hi[FSW_MAX_RW]; /* keep-out interval of each step   */
+  fsw_real b[FSW_MAX_RW];                  /* band edge each wheel must clear  */
+  signed char s[FSW_MAX_RW];               /* side of each wheel, +-1          */
+  fsw_real lam_u[FSW_MAX_RW], lambda[FSW_MAX_RW], delta[FSW_MAX_RW]; /* solver */
+} FswRwBiasScratch;
+
 typedef struct {
   int ready;                    /* [-] 1 after a successful init                  */
   FswRwNullProj proj;           /* [-] [Gs], projector and its mask (~11 KiB)     */
@@ -72,6 +81,7 @@ typedef struct {
                                    from proj whenever the mask changes           */
   int nullity;                  /* [-] k = rows of basis in use                   */
   uint8_t in_band[FSW_MAX_RW];  /* [-] hysteresis state of each wheel (1 in band) */
+  FswRwBiasScratch scratch;     /* [-] work area of update (no state)             */
   FswHealth health;             /* [-] call counters                              */
 } FswRwBiasState;
 
