@@ -130,8 +130,11 @@ static void decode_issue38(FuzzIn &in, FswAcsConfig &c, int variant)
   fuzz_trace_int("num_mtq", g.num_mtq);
   fuzz_trace_int("initial_mode", c.initial_mode);
   fuzz_trace_int("detumble_exit_mode", c.detumble_exit_mode);
-  fuzz_trace_int("has_orbit use_null use_bias", c.has_orbit * 100 + c.use_null * 10 + c.use_bias);
-  fuzz_trace_int("use_thr_mom use_mtq_desat", c.use_thr_mom * 10 + c.use_mtq_desat);
+  fuzz_trace_int("has_orbit", c.has_orbit);
+  fuzz_trace_int("use_null", c.use_null);
+  fuzz_trace_int("use_bias", c.use_bias);
+  fuzz_trace_int("use_thr_mom", c.use_thr_mom);
+  fuzz_trace_int("use_mtq_desat", c.use_mtq_desat);
   fuzz_trace_int("initial_policy", c.initial_policy);
   fuzz_trace("bdot k_bdot", &c.bdot.k_bdot, 1);
   fuzz_trace("thr_mom h_upper h_lower L_dump", &c.thr_mom.h_upper, 3);
@@ -278,7 +281,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
       fuzz_trace("B_B", sens.B_B, 3);
       fuzz_trace("r_N", sens.r_N, 3);
       fuzz_trace("v_N", sens.v_N, 3);
-      fuzz_trace_int("mag_valid orbit_valid", sens.mag_valid * 1000 + sens.orbit_valid);
+      fuzz_trace_int("mag_valid", sens.mag_valid);
+      fuzz_trace_int("orbit_valid", sens.orbit_valid);
     }
     cmdp = nullptr;
     if (in.u8() >= 200) {
@@ -296,7 +300,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         cmd.mode = in.flag(in.u8() % 4);
         cmd.set_policy = static_cast<uint8_t>(in.flag(1));
         cmd.policy = in.flag(in.u8() % 3);
-        fuzz_trace_int("cmd.set_policy policy", cmd.set_policy * 10 + cmd.policy);
+        fuzz_trace_int("cmd.set_policy", cmd.set_policy);
+        fuzz_trace_int("cmd.policy", cmd.policy);
       }
       cmdp = &cmd;
     }
