@@ -264,9 +264,32 @@ TEST(FswAcsMomentumConfig, SetGeometryWritesTheRodAndWheelCopies)
 
 /* ---- DETUMBLE ---- */
 
+// The rods for a body dipole m, by hand: c_i = a_i . m (the rods are
+// orthonormal, G^+ = G^T), one common factor to duty_max m_max, the torque
+// (sum c_i a_i) x B.  Returns whether the factor was < 1.
+bool rods_expect(const double m[3], const double B[3], double c[3], double tau[3])
+{
+  double s = 1.0;
+  for (int i = 0; i < 3; i++) {
+    double a[3];
+    acsfix::rod_axis(i, a);
+    c[i] = dot(a, m);
+    const double lim = acsfix::kRodDuty * acsfix::kRodMmax;
+    if (std::fabs(c[i]) > lim) s = std::fmin(s, lim / std::fabs(c[i]));
+  }
+  double mach[3] = {0, 0, 0};
+  for (int i = 0; i < 3; i++) {
+    double a[3];
+    acsfix::rod_axis(i, a);
+    c[i] *= s;
+    for (int q = 0; q < 3; q++) mach[q] += c[i] * a[q];
+  }
+  cross(mach, B, tau);
+  return s < 1.0;
+}
+
 // The rod commands of the gyro law, by hand: m = k (omega x B), bdot's
-// per-B-axis limit (common factor), then the rods: c_i = a_i . m (the rods
-// are orthonormal, G^+ = G^T), common factor to duty_max m_max.
+// per-B-axis limit (common factor), then the rods (rods_expect).
 void detumble_expect(double k, const double w[3], const double B[3], double c[3], double tau[3])
 {
   double m[3];
@@ -277,22 +300,7 @@ void detumble_expect(double k, const double w[3], const double B[3], double c[3]
     if (std::fabs(m[i]) > 1000.0) s1 = std::fmin(s1, 1000.0 / std::fabs(m[i]));
   }
   for (int i = 0; i < 3; i++) m[i] *= s1;
-  double s2 = 1.0;
-  for (int i = 0; i < 3; i++) {
-    double a[3];
-    acsfix::rod_axis(i, a);
-    c[i] = dot(a, m);
-    const double lim = acsfix::kRodDuty * acsfix::kRodMmax;
-    if (std::fabs(c[i]) > lim) s2 = std::fmin(s2, lim / std::fabs(c[i]));
-  }
-  double mach[3] = {0, 0, 0};
-  for (int i = 0; i < 3; i++) {
-    double a[3];
-    acsfix::rod_axis(i, a);
-    c[i] *= s2;
-    for (int q = 0; q < 3; q++) mach[q] += c[i] * a[q];
-  }
-  cross(mach, B, tau);
+  (void)rods_expect(m, B, c, tau);
 }
 
 TEST(FswAcsDetumble, RodCommandsAreTheGyroLawClosedForm)
@@ -431,6 +439,16 @@ void nadir_sensors(FswAcsSensorMsg& m, uint64_t t_ns, const double Om[4])
   set_speeds(m, Om);
 }
 
+// Init in NADIR and one accepted cycle at rest in the orbit frame.
+void nadir_first_cycle(const double Om[4])
+{
+  acsfix::full_config(g_cfg);
+  g_cfg.initial_mode = FSW_ACS_MODE_NADIR;
+  init_ok(g_cfg, g_st);
+  nadir_sensors(g_sens, 0, Om);
+  ASSERT_EQ(FSW_OK, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+}
+
 TEST(FswAcsNadir, AtRestInTheOrbitFrameTheTorqueIsTheFeedforwardOnly)
 {
   // the MRP above is [RN]: check it against the fixture's independent DCM
@@ -444,12 +462,8 @@ TEST(FswAcsNadir, AtRestInTheOrbitFrameTheTorqueIsTheFeedforwardOnly)
     for (int i = 0; i < 3; i++)
       for (int j = 0; j < 3; j++) ASSERT_NEAR(RN[i][j], C[i][j], 1e-15);
   }
-  acsfix::full_config(g_cfg);
-  g_cfg.initial_mode = FSW_ACS_MODE_NADIR;
-  init_ok(g_cfg, g_st);
   const double Om[4] = {30.0, -20.0, 10.0, 5.0};
-  nadir_sensors(g_sens, 0, Om);
-  ASSERT_EQ(FSW_OK, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  ASSERT_NO_FATAL_FAILURE(nadir_first_cycle(Om));
   // sigma_BR = 0, omega_BR = 0, circular (omega_dot_RN = 0), K_i off:
   //   Lr = -(-omega_RN x H + [I](omega x omega_RN)) = omega_RN x H,
   //   H = [I] omega + sum J_s (g . omega + Omega_i) g,   omega = omega_RN
@@ -482,12 +496,8 @@ TEST(FswAcsNadir, AtRestInTheOrbitFrameTheTorqueIsTheFeedforwardOnly)
 
 TEST(FswAcsNadir, BadOrbitInputGivesTheSafeOutputAndNoStateChange)
 {
-  acsfix::full_config(g_cfg);
-  g_cfg.initial_mode = FSW_ACS_MODE_NADIR;
-  init_ok(g_cfg, g_st);
   const double Om[4] = {30.0, -20.0, 10.0, 5.0};
-  nadir_sensors(g_sens, 0, Om);
-  ASSERT_EQ(FSW_OK, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  ASSERT_NO_FATAL_FAILURE(nadir_first_cycle(Om));
   g_st2 = g_st;
   struct Spoil {
     const char* why;
@@ -520,8 +530,8 @@ TEST(FswAcsNadir, BadOrbitInputGivesTheSafeOutputAndNoStateChange)
 /* ---- MAGNETORQUERS policy ---- */
 
 // What mtq_desat -> mtq_map give, by hand: h_err = h_w, tau_req = -k h_perp
-// (|tau_req| <= tau_max = 1 here), m = (B x tau_req)/|B|^2, rods c = a_i . m,
-// common factor to duty_max m_max, tau_ach = (sum c_i a_i) x B.
+// (|tau_req| <= tau_max = 1 here), m = (B x tau_req)/|B|^2, then the rods
+// (rods_expect).
 void desat_expect(double k, const double Om[4], const double B[3], double c[3], double tau[3], bool& saturated)
 {
   double h[3], b[3], tr[3], m[3];
@@ -532,23 +542,7 @@ void desat_expect(double k, const double Om[4], const double B[3], double c[3], 
   for (int q = 0; q < 3; q++) tr[q] = -k * (h[q] - hb * b[q]);
   cross(B, tr, m);
   for (int q = 0; q < 3; q++) m[q] /= Bn * Bn;
-  double s = 1.0;
-  for (int i = 0; i < 3; i++) {
-    double a[3];
-    acsfix::rod_axis(i, a);
-    c[i] = dot(a, m);
-    const double lim = acsfix::kRodDuty * acsfix::kRodMmax;
-    if (std::fabs(c[i]) > lim) s = std::fmin(s, lim / std::fabs(c[i]));
-  }
-  saturated = s < 1.0;
-  double mach[3] = {0, 0, 0};
-  for (int i = 0; i < 3; i++) {
-    double a[3];
-    acsfix::rod_axis(i, a);
-    c[i] *= s;
-    for (int q = 0; q < 3; q++) mach[q] += c[i] * a[q];
-  }
-  cross(mach, B, tau);
+  saturated = rods_expect(m, B, c, tau);
 }
 
 TEST(FswAcsMtqPolicy, TheWheelsAreAskedForLrMinusTheRodTorque)
