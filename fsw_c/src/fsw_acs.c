@@ -181,9 +181,14 @@ static FswStatus check_momentum(const FswAcsConfig *cfg, const char **bad_field)
   if (!is_bool(cfg->use_thr_mom)) return fail(bad_field, "use_thr_mom", FSW_E_CONFIG);
   if (cfg->use_thr_mom) {
     if (!cfg->has_wheels || !cfg->has_thrusters) return fail(bad_field, "use_thr_mom", FSW_E_CONFIG);
+    /* dumps fire on-pulsing thrusters from off: an off-pulsing set's pulser
+     * keeps every thruster on between pulses (zero force = full thrust) */
+    if (cfg->thr_map.thr_force_sign < 0) return fail(bad_field, "use_thr_mom", FSW_E_CONFIG);
     if ((s = fsw_thr_momentum_check(&cfg->thr_mom)) != FSW_OK) return fail(bad_field, "thr_mom", s);
     if (cfg->thr_mom.num_rw != n || !same_n3(cfg->thr_mom.gs_hat_B, cfg->rw_map.gs_hat_B, n))
       return fail(bad_field, "thr_mom.gs_hat_B", FSW_E_CONFIG);
+    if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->thr_mom.J_s, cfg->mrp_fb.J_s, n))
+      return fail(bad_field, "thr_mom.J_s", FSW_E_CONFIG);
     if (cfg->thr_mom.num_thr != cfg->thr_map.num_thr) return fail(bad_field, "thr_mom.num_thr", FSW_E_CONFIG);
   }
   if (!is_bool(cfg->use_mtq_desat)) return fail(bad_field, "use_mtq_desat", FSW_E_CONFIG);
@@ -192,6 +197,8 @@ static FswStatus check_momentum(const FswAcsConfig *cfg, const char **bad_field)
     if ((s = fsw_mtq_desat_check(&cfg->mtq_desat)) != FSW_OK) return fail(bad_field, "mtq_desat", s);
     if (cfg->mtq_desat.num_rw != n || !same_n3(cfg->mtq_desat.gs_hat_B, cfg->rw_map.gs_hat_B, n))
       return fail(bad_field, "mtq_desat.gs_hat_B", FSW_E_CONFIG);
+    if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->mtq_desat.J_s, cfg->mrp_fb.J_s, n))
+      return fail(bad_field, "mtq_desat.J_s", FSW_E_CONFIG);
   }
   if (!is_bool(cfg->use_bias)) return fail(bad_field, "use_bias", FSW_E_CONFIG);
   if (cfg->use_bias) {
@@ -596,6 +603,40 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   return acc;
 }
 
+/* The pulser: forces F into this cycle's on-times act->t_on. */
+static FswStatus run_pulser(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
+                            const fsw_real *F, FswAcsActuatorMsg *act, FswAcsHealthMsg *h)
+{
+  FswAcsWork *w = &st->work;
+  const int n = cfg->thr_map.num_thr;
+  FswStatus s;
+  int i;
+  if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
+    w->rem_in.t_ns = sens->t_ns;
+    fsw_vn_copy(w->rem_in.F, F, n);
+    s = fsw_thr_pulse_rem_update(&st->pulse_rem, &cfg->pulse_rem, &w->rem_in, &w->rem_out);
+    fsw_vn_copy(act->t_on, w->rem_out.t_on, n);
+  } else {
+    w->sch_in.t_ns = sens->t_ns;
+    fsw_vn_copy(w->sch_in.F, F, n);
+    s = fsw_thr_pulse_schmitt_update(&st->pulse_schmitt, &cfg->pulse_schmitt, &w->sch_in,
+                                     &w->sch_out);
+    fsw_vn_copy(act->t_on, w->sch_out.t_on, n);
+  }
+  h->stage_status[FSW_ACS_STAGE_THR_PULSE] = s;
+  /* a flagged thruster stays off whatever its pulser remembers */
+  for (i = 0; i < n; i++)
+    if (sens->thr_avail[i] != FSW_AVAILABLE) act->t_on[i] = FSW_R(0.0);
+  return s;
+}
+
+/* 1 if the pulser has timed a period (it has run since its last reset). */
+static int pulser_has_period(const FswAcsState *st, const FswAcsConfig *cfg)
+{
+  return (cfg->pulser == FSW_ACS_PULSE_REMAINDER) ? st->pulse_rem.common.clock.has_prev
+                                                  : st->pulse_schmitt.common.clock.has_prev;
+}
+
 static FswStatus run_thrusters(FswAcsState *st, const FswAcsConfig *cfg,
                                const FswAcsSensorMsg *sens, const fsw_real Lr_B[3],
                                FswAcsActuatorMsg *act, FswAcsHealthMsg *h)
@@ -611,26 +652,7 @@ static FswStatus run_thrusters(FswAcsState *st, const FswAcsConfig *cfg,
   h->stage_status[FSW_ACS_STAGE_THR_MAP] = s;
   acc = combine(acc, s);
   fsw_vn_copy(act->F, w->thr_out.F, n);
-
-  if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
-    w->rem_in.t_ns = sens->t_ns;
-    fsw_vn_copy(w->rem_in.F, w->thr_out.F, n);
-    s = fsw_thr_pulse_rem_update(&st->pulse_rem, &cfg->pulse_rem, &w->rem_in, &w->rem_out);
-    fsw_vn_copy(act->t_on, w->rem_out.t_on, n);
-  } else {
-    w->sch_in.t_ns = sens->t_ns;
-    fsw_vn_copy(w->sch_in.F, w->thr_out.F, n);
-    s = fsw_thr_pulse_schmitt_update(&st->pulse_schmitt, &cfg->pulse_schmitt, &w->sch_in,
-                                     &w->sch_out);
-    fsw_vn_copy(act->t_on, w->sch_out.t_on, n);
-  }
-  h->stage_status[FSW_ACS_STAGE_THR_PULSE] = s;
-  acc = combine(acc, s);
-  { /* a flagged thruster stays off whatever its pulser remembers */
-    int i;
-    for (i = 0; i < n; i++)
-      if (sens->thr_avail[i] != FSW_AVAILABLE) act->t_on[i] = FSW_R(0.0);
-  }
+  acc = combine(acc, run_pulser(st, cfg, sens, w->thr_out.F, act, h));
   act->thrusters_active = 1u;
   return acc;
 }
@@ -693,11 +715,20 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
     fsw_vn_copy(w->null_in.Omega_des, w->bias_out.Omega_des, n);
   }
   if (st->policy == FSW_ACS_MOM_THRUSTERS) {
+    /* The pulser turns a force into an on-time over the period since its
+     * own last call, so it runs in every cycle of this policy (zero force
+     * between pulses) and that period is the control period.  Its first
+     * call after a reset (init, a transition, a policy change) has no
+     * period and commands nothing: in that cycle thr_momentum runs with
+     * enable = 0 (no dump starts; one in progress is aborted and the next
+     * cycle starts afresh from the measured momentum), so that no dump
+     * counts an impulse the thrusters did not give. */
+    const int timed = pulser_has_period(st, cfg);
     w->mom_in.t_ns = sens->t_ns;
     fsw_vn_copy(w->mom_in.Omega, w->Omega, n);
     u8_copy(w->mom_in.avail, w->rw_avail, n);
     fsw_vn_copy(w->mom_in.t_on_prev, w->t_on_last, FSW_MAX_THR);
-    w->mom_in.enable = 1u;
+    w->mom_in.enable = timed ? 1u : 0u;
     w->mom_in.force_dump = 0u;
     s = fsw_thr_momentum_update(&st->thr_mom, &cfg->thr_mom, &w->mom_in, &w->mom_out);
     h->stage_status[FSW_ACS_STAGE_THR_MOM] = s;
@@ -708,6 +739,12 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
     if (w->mom_out.phase == FSW_THR_MOM_PULSE && fsw_v3_norm2(w->mom_out.L_thr_B) > FSW_R(0.0)) {
       acc = combine(acc, run_thrusters(st, cfg, sens, w->mom_out.L_thr_B, act, h));
       fsw_v3_sub(Lw_B, Lw_B, w->mom_out.L_thr_B);
+    } else {
+      int i;
+      fsw_vn_zero(w->thr_out.F, FSW_MAX_THR);
+      acc = combine(acc, run_pulser(st, cfg, sens, w->thr_out.F, act, h));
+      for (i = 0; i < cfg->thr_map.num_thr; i++)
+        if (act->t_on[i] > FSW_R(0.0)) act->thrusters_active = 1u; /* a carried remainder */
     }
   } else if (st->policy == FSW_ACS_MOM_MAGNETORQUERS) {
     act->mtq_active = 1u; /* rods off unless a field sample lets them act */
@@ -764,7 +801,7 @@ static int set_command_ok(const FswAcsConfig *cfg, const FswAcsCmdMsg *cmd)
 
 /* Apply a checked command's set fields (after save_dynamic: an error cycle
  * puts the previous reference and gains back). */
-static void apply_set_command(FswAcsState *st, const FswAcsCmdMsg *cmd)
+static void apply_set_command(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsCmdMsg *cmd)
 {
   if (cmd->set_ref) {
     const FswHealth hh = st->inertial.health;
@@ -776,7 +813,17 @@ static void apply_set_command(FswAcsState *st, const FswAcsCmdMsg *cmd)
     st->mrp_cfg.K = cmd->K;
     st->mrp_cfg.P = cmd->P;
   }
-  if (cmd->set_policy) st->policy = cmd->policy;
+  if (cmd->set_policy && cmd->policy != st->policy) {
+    st->policy = cmd->policy;
+    /* the pulser's clock is stale when the dumps start to use it (in the
+     * thruster actuation it runs every cycle: its clock is current) */
+    if (cmd->policy == FSW_ACS_MOM_THRUSTERS && st->actuation == FSW_ACS_ACT_WHEELS) {
+      if (cfg->pulser == FSW_ACS_PULSE_REMAINDER)
+        fsw_thr_pulse_rem_reset(&st->pulse_rem);
+      else
+        fsw_thr_pulse_schmitt_reset(&st->pulse_schmitt);
+    }
+  }
 }
 
 /* Snapshot of the dynamic state before the stages run (see FswAcsWork). */
@@ -1016,7 +1063,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
    *    the cycle puts the snapshot back (validate, compute, commit only on
    *    success). */
   save_dynamic(st, cfg);
-  if (cmd != NULL) apply_set_command(st, cmd);
+  if (cmd != NULL) apply_set_command(st, cfg, cmd);
   if (cmd != NULL) st->cmd_mode = cmd->mode;
   if (req_mode != st->mode || req_act != st->actuation) {
     reset_dynamic(st, cfg);

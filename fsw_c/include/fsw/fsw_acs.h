@@ -124,7 +124,9 @@ typedef struct {
   /* momentum management of the wheels in the pointing modes */
   int initial_policy;              /* [-] FswAcsMomentumPolicy after init           */
   int use_thr_mom;                 /* [-] 0/1: THRUSTERS policy available (needs
-                                      wheels and thrusters)                         */
+                                      wheels and on-pulsing thrusters; the pulser
+                                      then runs every cycle of the policy and its
+                                      first cycle after a reset starts no dump)     */
   FswThrMomentumConfig thr_mom;
   int use_mtq_desat;               /* [-] 0/1: MAGNETORQUERS policy available (needs
                                       wheels and has_mtq)                           */
