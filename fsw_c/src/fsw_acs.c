@@ -635,6 +635,33 @@ static FswStatus run_thrusters(FswAcsState *st, const FswAcsConfig *cfg,
   return acc;
 }
 
+/* A control cycle without a thruster request while thrusters dump momentum
+ * (IDLE, COAST): the pulser is stepped with zero force and its on-times are
+ * dropped (the actuator message is not touched).  The pulsers take their
+ * period from their previous call, so without this the first cycle of a
+ * pulse after a coast (or a dump after days of IDLE) would be given the
+ * whole gap's on-time; it also spends the pulser's first-call output
+ * outside a dump. */
+static FswStatus tick_pulser(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
+                             FswAcsHealthMsg *h)
+{
+  FswAcsWork *w = &st->work;
+  const int n = cfg->thr_map.num_thr;
+  FswStatus s;
+  if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
+    w->rem_in.t_ns = sens->t_ns;
+    fsw_vn_zero(w->rem_in.F, n);
+    s = fsw_thr_pulse_rem_update(&st->pulse_rem, &cfg->pulse_rem, &w->rem_in, &w->rem_out);
+  } else {
+    w->sch_in.t_ns = sens->t_ns;
+    fsw_vn_zero(w->sch_in.F, n);
+    s = fsw_thr_pulse_schmitt_update(&st->pulse_schmitt, &cfg->pulse_schmitt, &w->sch_in,
+                                     &w->sch_out);
+  }
+  h->stage_status[FSW_ACS_STAGE_THR_PULSE] = s;
+  return s;
+}
+
 /* DETUMBLE: B-dot's dipole through the rod map; no attitude control, the
  * wheels hold zero torque. */
 static FswStatus run_detumble(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
@@ -708,6 +735,8 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
     if (w->mom_out.phase == FSW_THR_MOM_PULSE && fsw_v3_norm2(w->mom_out.L_thr_B) > FSW_R(0.0)) {
       acc = combine(acc, run_thrusters(st, cfg, sens, w->mom_out.L_thr_B, act, h));
       fsw_v3_sub(Lw_B, Lw_B, w->mom_out.L_thr_B);
+    } else {
+      acc = combine(acc, tick_pulser(st, cfg, sens, h));
     }
   } else if (st->policy == FSW_ACS_MOM_MAGNETORQUERS) {
     act->mtq_active = 1u; /* rods off unless a field sample lets them act */
