@@ -215,7 +215,9 @@ TEST(S1Year, DumpsEveryIntervalWithPredictedPropellantAndPointing)
     const double h_after = Eigen::Vector3d(hx[d.end], hy[d.end], hz[d.end]).norm();
     const double slack = sc.fsw.mom_L_dump * sc.fsw.mom_t_min_pulse + L_at(t[d.start]).norm() * (t[d.end] - t[d.start]);
     std::printf("  |h_w| %.4f -> %.4f N m s (h_lower %.1f, slack %.4f)\n", h_before, h_after, sc.fsw.mom_h_lower, slack);
-    EXPECT_GT(h_before, sc.fsw.mom_h_upper - 5.0 * L_at(t[d.start]).norm() * 5.0);  // within a sample of h_upper
+    // 5 s before the start: within a sample's growth and the tachometer noise
+    // (0.1 rpm on each 0.0796 kg m^2 wheel: 8e-4 N m s; 1e-2 is > 5 sigma of |h|)
+    EXPECT_NEAR(h_before, sc.fsw.mom_h_upper, 5.0 * L_at(t[d.start]).norm() + 1e-2);
     EXPECT_NEAR(h_after, sc.fsw.mom_h_lower, slack);
   }
 }
