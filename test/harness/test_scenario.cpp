@@ -371,6 +371,26 @@ TEST(Scenario, S2ManifestReloadsIdentically)
   EXPECT_TRUE(a.rcs_tank.has_value());
 }
 
+// Every shipped scenario's canonical form (a run's manifest) loads back to
+// the same form: keys whose 0 means "not given" (fsw.bdot.k, the momentum
+// policies' gains, rw_bias.keepout, ...) are left out rather than written as
+// a 0 their bounds refuse.
+TEST(Scenario, EveryShippedScenariosManifestReloadsIdentically)
+{
+  size_t n = 0;
+  for (const auto& e : std::filesystem::directory_iterator(std::string(KESTREL_SOURCE_DIR) + "/scenarios")) {
+    if (e.path().extension() != ".yaml") continue;
+    ++n;
+    const std::string ja = harness::scenario_to_json_text(harness::load_scenario(e.path().string()));
+    try {
+      EXPECT_EQ(harness::scenario_to_json_text(harness::load_scenario_text(ja, "m.json")), ja) << e.path();
+    } catch (const harness::ScenarioError& err) {
+      ADD_FAILURE() << e.path() << ": " << err.what();
+    }
+  }
+  EXPECT_GE(n, 11u);
+}
+
 TEST(Scenario, EveryKeyIsDocumented)
 {
   std::ifstream in(std::string(KESTREL_SOURCE_DIR) + "/docs/harness.md");

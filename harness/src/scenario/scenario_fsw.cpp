@@ -98,15 +98,7 @@ Section rw_null_section()
   return Section{"rw_null",
                  {
                      boolean("enabled", KESTREL_FSW(rw_null)),
-                     [] {
-                       KeyDef k = real("k_null", KESTREL_FSW(k_null)).bounds(positive("N*m*s")).unit("N*m*s");
-                       // 0 (not given) is not written: the manifest then reloads to 0 too
-                       WriteFn plain = k.write;
-                       k.write = [plain](const KeyDef& d, nlohmann::json& j, const Scenario& sc, size_t i) {
-                         if (sc.fsw.k_null > 0.0) plain(d, j, sc, i);
-                       };
-                       return k;
-                     }(),
+                     real("k_null", KESTREL_FSW(k_null)).bounds(positive("N*m*s")).unit("N*m*s").zero_unset(),
                      boolean("scale_to_fit", KESTREL_FSW(rw_null_scale_to_fit)),
                      wheel_speeds("Omega_des", [](auto& sc) -> auto& { return sc.fsw.Omega_des; }),
                  },
@@ -176,7 +168,7 @@ Section bdot_section()
                  {
                      choice<BdotLaw>("law", {{"derivative", BdotLaw::Derivative}, {"gyro", BdotLaw::Gyro}},
                                      KESTREL_FSW(bdot_law)),
-                     real("k", KESTREL_FSW(bdot_k)).bounds(positive("-")).unit("A*m^2*s/T"),
+                     real("k", KESTREL_FSW(bdot_k)).bounds(positive("-")).unit("A*m^2*s/T").zero_unset(),
                      boolean("normalize", KESTREL_FSW(bdot_normalize)),
                      real("filter_tau", KESTREL_FSW(bdot_tau_f)).bounds(non_negative("s")).unit("s"),
                      integer("max_missed", 0, 1000000, KESTREL_FSW(bdot_max_missed)),
@@ -184,7 +176,8 @@ Section bdot_section()
                      real("omega_done", KESTREL_FSW(bdot_omega_done))
                          .alt("_deg", sim::kRadPerDeg)
                          .bounds(positive("rad/s"))
-                         .unit("rad/s"),
+                         .unit("rad/s")
+                         .zero_unset(),
                      real("omega_reenter", KESTREL_FSW(bdot_omega_reenter))
                          .alt("_deg", sim::kRadPerDeg)
                          .bounds(non_negative("rad/s"))
@@ -210,15 +203,15 @@ Section momentum_section()
                                              {"thrusters", MomentumPolicy::Thrusters},
                                              {"magnetorquers", MomentumPolicy::Magnetorquers}},
                                             KESTREL_FSW(policy)),
-                     real("h_upper", KESTREL_FSW(mom_h_upper)).bounds(positive("N*m*s")).unit("N*m*s"),
+                     real("h_upper", KESTREL_FSW(mom_h_upper)).bounds(positive("N*m*s")).unit("N*m*s").zero_unset(),
                      real("h_lower", KESTREL_FSW(mom_h_lower)).bounds(non_negative("N*m*s")).unit("N*m*s"),
-                     real("L_dump", KESTREL_FSW(mom_L_dump)).bounds(positive("N*m")).unit("N*m"),
+                     real("L_dump", KESTREL_FSW(mom_L_dump)).bounds(positive("N*m")).unit("N*m").zero_unset(),
                      real("t_pulse_max", KESTREL_FSW(mom_t_pulse_max)).bounds(positive("s")).unit("s"),
                      real("t_min_pulse", KESTREL_FSW(mom_t_min_pulse)).bounds(positive("s")).unit("s"),
                      real("t_coast", KESTREL_FSW(mom_t_coast)).bounds(non_negative("s")).unit("s"),
                      real("Isp", KESTREL_FSW(mom_Isp)).bounds(positive("s")).unit("s"),
-                     real("k_desat", KESTREL_FSW(mom_k_desat)).bounds(positive("1/s")).unit("1/s"),
-                     real("tau_max", KESTREL_FSW(mom_tau_max)).bounds(positive("N*m")).unit("N*m"),
+                     real("k_desat", KESTREL_FSW(mom_k_desat)).bounds(positive("1/s")).unit("1/s").zero_unset(),
+                     real("tau_max", KESTREL_FSW(mom_tau_max)).bounds(positive("N*m")).unit("N*m").zero_unset(),
                      real("h_deadband", KESTREL_FSW(mom_h_deadband)).bounds(non_negative("N*m*s")).unit("N*m*s"),
                  },
                  {}};
@@ -246,7 +239,8 @@ Section rw_bias_section()
                      real("keepout", KESTREL_FSW(bias_keepout))
                          .alt("_rpm", sim::kRadPerSecPerRpm)
                          .bounds(positive("rad/s"))
-                         .unit("rad/s"),
+                         .unit("rad/s")
+                         .zero_unset(),
                      real("hysteresis", KESTREL_FSW(bias_hyst))
                          .alt("_rpm", sim::kRadPerSecPerRpm)
                          .bounds(non_negative("rad/s"))
