@@ -314,7 +314,7 @@ TEST(SetParameter, RefusesBadValuesNamingTheKeyAndLeavesTheScenarioAlone)
   EXPECT_EQ(set_error(sc, "rates.fsw_divisor", 2.5), "rates.fsw_divisor: expected an integer, got 2.5");
   EXPECT_EQ(set_error(sc, "rates.fsw_divisor", 0), "rates.fsw_divisor: must be in [1, 1000000], got 0");
   EXPECT_EQ(set_error(sc, "seed", -1), "seed: expected a non-negative integer, got -1");
-  EXPECT_EQ(set_error(sc, "fsw.mode", "sunny"), "fsw.mode: expected one of {inertial, sun_safe}, got 'sunny'");
+  EXPECT_EQ(set_error(sc, "fsw.mode", "sunny"), "fsw.mode: expected one of {inertial, sun_safe, detumble, nadir}, got 'sunny'");
   EXPECT_EQ(set_error(sc, "name", "a b"), "name: must be non-empty and use only letters, digits, '_' and '-'");
   EXPECT_EQ(set_error(sc, "wheels.0.axis", Eigen::Vector3d(1, 1, 0)).rfind("wheels[0].axis: must be a unit vector", 0), 0u);
   EXPECT_EQ(set_error(sc, "spacecraft.inertia", Eigen::Vector3d(1, 1, 3)).rfind("spacecraft.inertia: inertia violates", 0), 0u);
