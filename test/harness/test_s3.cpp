@@ -160,7 +160,7 @@ TEST(S3DetumbleHold, DetumblesThenHoldsNadirWithBoundedWheelMomentum)
   double B2 = 0.0;
   for (size_t k = 0; k < exit; ++k) B2 += vec("field_B", k).squaredNorm();
   const double B_rms = std::sqrt(B2 / static_cast<double>(exit));
-  const double m_sat = 0.16, k_bdot = 1.22e-3, J_max = 0.4311, w_done = 0.08 * kPi / 180.0;
+  const double m_sat = 0.16, k_bdot = 2.5e-3, J_max = 0.4311, w_done = 0.08 * kPi / 180.0;
   const double t_sat = (I * w0).norm() / (m_sat * B_rms * kPi / 4.0);
   const double w_lin = m_sat * B_rms / k_bdot;
   const double t_est = t_sat + std::log(w_lin / w_done) * 3.0 * J_max / (2.0 * k_bdot) + 120.0;
