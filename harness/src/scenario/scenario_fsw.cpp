@@ -149,7 +149,7 @@ Section thr_pulse_section()
 // fsw.magnetorquers: the rods commanded by the FSW.
 Section fsw_magnetorquers_section()
 {
-  return Section{"magnetorquers",
+  Section s{"magnetorquers",
                  {
                      boolean("enabled", KESTREL_FSW(mtq)),
                      real("duty_max", KESTREL_FSW(mtq_duty_max))
@@ -159,12 +159,14 @@ Section fsw_magnetorquers_section()
                          .unit("-"),
                  },
                  {}};
+  s.present = [](const Scenario& sc) { return !sc.magnetorquers.empty(); };  // with rods only
+  return s;
 }
 
 // fsw.bdot: DETUMBLE's law and its exit.
 Section bdot_section()
 {
-  return Section{"bdot",
+  Section s{"bdot",
                  {
                      choice<BdotLaw>("law", {{"derivative", BdotLaw::Derivative}, {"gyro", BdotLaw::Gyro}},
                                      KESTREL_FSW(bdot_law)),
@@ -191,6 +193,8 @@ Section bdot_section()
                                      KESTREL_FSW(detumble_exit)),
                  },
                  {}};
+  s.present = [](const Scenario& sc) { return !sc.magnetorquers.empty(); };  // with rods only
+  return s;
 }
 
 // fsw.momentum: who unloads the wheels, and how.
