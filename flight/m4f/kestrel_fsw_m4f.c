@@ -60,7 +60,7 @@ void fsw_assert_failed(const char *file, int line);
 void fsw_assert_failed(const char *file, int line) { fprintf(stderr, "kestrel-fsw-m4f: FSW assertion failed at %s:%d\n", file, line); }
 
 static Vector g_vectors[NUM_VECTORS] __attribute__((aligned(256)));
-#define RX_RING 1024u /* power of two; > one sensor packet with its marker (708 + 4 at most) */
+#define RX_RING 1024u /* power of two; > one sensor packet with its marker (786 + 4 at most, ICD 2) */
 static volatile uint8_t g_rx_ring[RX_RING];
 static volatile uint32_t g_rx_head; /* written by the ISR only */
 static volatile uint32_t g_rx_tail; /* written by the main loop only */

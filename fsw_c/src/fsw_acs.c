@@ -63,13 +63,14 @@ static void copy_n3(fsw_real (*dst)[3], const fsw_real (*src)[3], int n, int cap
 
 FswStatus fsw_acs_config_set_geometry(FswAcsConfig *cfg, const FswAcsGeometry *geo)
 {
-  int nw, nt;
+  int nw, nt, nm;
   FSW_ASSERT(cfg != NULL && geo != NULL);
   if (cfg == NULL || geo == NULL) return FSW_E_NULL_ARG;
   nw = geo->num_rw;
   nt = geo->num_thr;
-  if (nw < 0 || nt < 0) return FSW_E_CONFIG;
-  if (nw > FSW_MAX_RW || nt > FSW_MAX_THR) return FSW_E_CAPACITY;
+  nm = geo->num_mtq;
+  if (nw < 0 || nt < 0 || nm < 0) return FSW_E_CONFIG;
+  if (nw > FSW_MAX_RW || nt > FSW_MAX_THR || nm > FSW_MAX_MTQ) return FSW_E_CAPACITY;
 
   /* wheels */
   cfg->has_wheels = (nw > 0) ? 1 : 0;
@@ -89,6 +90,14 @@ FswStatus fsw_acs_config_set_geometry(FswAcsConfig *cfg, const FswAcsGeometry *g
   cfg->speed_filter.num_rw = nw;
   copy_n(cfg->speed_filter.u_max, geo->u_max, nw, FSW_MAX_RW);
   copy_n(cfg->speed_filter.J_s, geo->J_s, nw, FSW_MAX_RW);
+  cfg->thr_mom.num_rw = nw;
+  copy_n3(cfg->thr_mom.gs_hat_B, geo->gs_hat_B, nw, FSW_MAX_RW);
+  copy_n(cfg->thr_mom.J_s, geo->J_s, nw, FSW_MAX_RW);
+  cfg->mtq_desat.num_rw = nw;
+  copy_n3(cfg->mtq_desat.gs_hat_B, geo->gs_hat_B, nw, FSW_MAX_RW);
+  copy_n(cfg->mtq_desat.J_s, geo->J_s, nw, FSW_MAX_RW);
+  cfg->rw_bias.num_rw = nw;
+  copy_n3(cfg->rw_bias.gs_hat_B, geo->gs_hat_B, nw, FSW_MAX_RW);
 
   /* thrusters */
   cfg->has_thrusters = (nt > 0) ? 1 : 0;
@@ -100,7 +109,38 @@ FswStatus fsw_acs_config_set_geometry(FswAcsConfig *cfg, const FswAcsGeometry *g
   copy_n(cfg->pulse_rem.common.F_max, geo->F_max, nt, FSW_MAX_THR);
   cfg->pulse_schmitt.common.num_thr = nt;
   copy_n(cfg->pulse_schmitt.common.F_max, geo->F_max, nt, FSW_MAX_THR);
+  cfg->thr_mom.num_thr = nt;
+  copy_n(cfg->thr_mom.F_max, geo->F_max, nt, FSW_MAX_THR);
+
+  /* magnetorquer rods */
+  cfg->has_mtq = (nm > 0) ? 1 : 0;
+  cfg->mtq_map.num_mtq = nm;
+  copy_n3(cfg->mtq_map.gt_hat_B, geo->mtq_axis_B, nm, FSW_MAX_MTQ);
+  copy_n(cfg->mtq_map.m_max, geo->mtq_m_max, nm, FSW_MAX_MTQ);
   return FSW_OK;
+}
+
+/* 1 if `mode` is a mode this configuration can fly. */
+static int mode_configured(const FswAcsConfig *cfg, int mode)
+{
+  switch (mode) {
+    case FSW_ACS_MODE_SUN_SAFE:
+    case FSW_ACS_MODE_INERTIAL: return 1;
+    case FSW_ACS_MODE_DETUMBLE: return cfg->has_mtq == 1;
+    case FSW_ACS_MODE_NADIR: return cfg->has_orbit == 1;
+    default: return 0;
+  }
+}
+
+/* 1 if `policy` is a momentum policy this configuration can fly. */
+static int policy_configured(const FswAcsConfig *cfg, int policy)
+{
+  switch (policy) {
+    case FSW_ACS_MOM_NONE: return 1;
+    case FSW_ACS_MOM_THRUSTERS: return cfg->use_thr_mom == 1;
+    case FSW_ACS_MOM_MAGNETORQUERS: return cfg->use_mtq_desat == 1;
+    default: return 0;
+  }
 }
 
 /* Safety net for configs filled by hand: the copies of physical geometry
@@ -125,6 +165,52 @@ static int same_n3(const fsw_real (*a)[3], const fsw_real (*b)[3], int n)
   return 1;
 }
 
+/* The magnetorquers, the orbit guidance and the momentum management. */
+static FswStatus check_momentum(const FswAcsConfig *cfg, const char **bad_field)
+{
+  FswStatus s;
+  const int n = cfg->rw_map.num_rw;
+  if (cfg->has_mtq) {
+    if ((s = fsw_mtq_map_check(&cfg->mtq_map)) != FSW_OK) return fail(bad_field, "mtq_map", s);
+    if ((s = fsw_bdot_check(&cfg->bdot)) != FSW_OK) return fail(bad_field, "bdot", s);
+    if (cfg->detumble_exit_mode != -1 &&
+        (cfg->detumble_exit_mode == FSW_ACS_MODE_DETUMBLE || !mode_configured(cfg, cfg->detumble_exit_mode)))
+      return fail(bad_field, "detumble_exit_mode", FSW_E_CONFIG);
+  }
+  if (cfg->has_orbit && (s = fsw_guid_orbit_check(&cfg->orbit)) != FSW_OK) return fail(bad_field, "orbit", s);
+  if (!is_bool(cfg->use_thr_mom)) return fail(bad_field, "use_thr_mom", FSW_E_CONFIG);
+  if (cfg->use_thr_mom) {
+    if (!cfg->has_wheels || !cfg->has_thrusters) return fail(bad_field, "use_thr_mom", FSW_E_CONFIG);
+    /* dumps fire on-pulsing thrusters from off: an off-pulsing set's pulser
+     * keeps every thruster on between pulses (zero force = full thrust) */
+    if (cfg->thr_map.thr_force_sign < 0) return fail(bad_field, "use_thr_mom", FSW_E_CONFIG);
+    if ((s = fsw_thr_momentum_check(&cfg->thr_mom)) != FSW_OK) return fail(bad_field, "thr_mom", s);
+    if (cfg->thr_mom.num_rw != n || !same_n3(cfg->thr_mom.gs_hat_B, cfg->rw_map.gs_hat_B, n))
+      return fail(bad_field, "thr_mom.gs_hat_B", FSW_E_CONFIG);
+    if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->thr_mom.J_s, cfg->mrp_fb.J_s, n))
+      return fail(bad_field, "thr_mom.J_s", FSW_E_CONFIG);
+    if (cfg->thr_mom.num_thr != cfg->thr_map.num_thr) return fail(bad_field, "thr_mom.num_thr", FSW_E_CONFIG);
+  }
+  if (!is_bool(cfg->use_mtq_desat)) return fail(bad_field, "use_mtq_desat", FSW_E_CONFIG);
+  if (cfg->use_mtq_desat) {
+    if (!cfg->has_wheels || !cfg->has_mtq) return fail(bad_field, "use_mtq_desat", FSW_E_CONFIG);
+    if ((s = fsw_mtq_desat_check(&cfg->mtq_desat)) != FSW_OK) return fail(bad_field, "mtq_desat", s);
+    if (cfg->mtq_desat.num_rw != n || !same_n3(cfg->mtq_desat.gs_hat_B, cfg->rw_map.gs_hat_B, n))
+      return fail(bad_field, "mtq_desat.gs_hat_B", FSW_E_CONFIG);
+    if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->mtq_desat.J_s, cfg->mrp_fb.J_s, n))
+      return fail(bad_field, "mtq_desat.J_s", FSW_E_CONFIG);
+  }
+  if (!is_bool(cfg->use_bias)) return fail(bad_field, "use_bias", FSW_E_CONFIG);
+  if (cfg->use_bias) {
+    if (!cfg->has_wheels || cfg->use_null != 1) return fail(bad_field, "use_bias", FSW_E_CONFIG);
+    if ((s = fsw_rw_bias_check(&cfg->rw_bias)) != FSW_OK) return fail(bad_field, "rw_bias", s);
+    if (cfg->rw_bias.num_rw != n || !same_n3(cfg->rw_bias.gs_hat_B, cfg->rw_map.gs_hat_B, n))
+      return fail(bad_field, "rw_bias.gs_hat_B", FSW_E_CONFIG);
+  }
+  if (!policy_configured(cfg, cfg->initial_policy)) return fail(bad_field, "initial_policy", FSW_E_CONFIG);
+  return FSW_OK;
+}
+
 FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
 {
   FswStatus s;
@@ -133,8 +219,9 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
   if (bad_field != NULL) *bad_field = NULL;
   if (cfg == NULL) return fail(bad_field, "cfg", FSW_E_NULL_ARG);
 
-  if (cfg->initial_mode != FSW_ACS_MODE_SUN_SAFE && cfg->initial_mode != FSW_ACS_MODE_INERTIAL)
-    return fail(bad_field, "initial_mode", FSW_E_CONFIG);
+  if (!is_bool(cfg->has_mtq)) return fail(bad_field, "has_mtq", FSW_E_CONFIG);
+  if (!is_bool(cfg->has_orbit)) return fail(bad_field, "has_orbit", FSW_E_CONFIG);
+  if (!mode_configured(cfg, cfg->initial_mode)) return fail(bad_field, "initial_mode", FSW_E_CONFIG);
   if (!is_bool(cfg->has_wheels)) return fail(bad_field, "has_wheels", FSW_E_CONFIG);
   if (!is_bool(cfg->has_thrusters)) return fail(bad_field, "has_thrusters", FSW_E_CONFIG);
   if (!cfg->has_wheels && !cfg->has_thrusters) return fail(bad_field, "has_wheels", FSW_E_CONFIG);
@@ -191,6 +278,8 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
     return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG); /* wheels in H but no wheel chain */
   }
 
+  if ((s = check_momentum(cfg, bad_field)) != FSW_OK) return s;
+
   if (cfg->has_thrusters) {
     const int n = cfg->thr_map.num_thr;
     /* off-pulsing mapping (sign -1) needs off-pulsing pulsing (b = 1) and
@@ -239,6 +328,7 @@ static void clear_state(FswAcsState *st)
 /* Reset the stages whose memory must not survive a mode transition. */
 static void reset_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
 {
+  if (cfg->has_mtq) fsw_bdot_reset(&st->bdot); /* a fresh derivative and persistence timer */
   fsw_mrp_fb_reset(&st->mrp_fb);
   if (cfg->use_lpf) fsw_trq_lpf_reset(&st->lpf);
   if (cfg->has_wheels && cfg->use_volt) fsw_rw_volt_reset(&st->rw_volt);
@@ -298,6 +388,14 @@ FswStatus fsw_acs_init(FswAcsState *st, const FswAcsConfig *cfg, const char **ba
       ACS_INIT(fsw_thr_pulse_schmitt_init(&st->pulse_schmitt, &cfg->pulse_schmitt), "pulse_schmitt");
     }
   }
+  if (cfg->has_mtq) {
+    ACS_INIT(fsw_mtq_map_init(&st->mtq_map, &cfg->mtq_map), "mtq_map");
+    ACS_INIT(fsw_bdot_init(&st->bdot, &cfg->bdot), "bdot");
+  }
+  if (cfg->has_orbit) ACS_INIT(fsw_guid_orbit_init(&st->orbit, &cfg->orbit), "orbit");
+  if (cfg->use_thr_mom) ACS_INIT(fsw_thr_momentum_init(&st->thr_mom, &cfg->thr_mom), "thr_mom");
+  if (cfg->use_mtq_desat) ACS_INIT(fsw_mtq_desat_init(&st->mtq_desat, &cfg->mtq_desat), "mtq_desat");
+  if (cfg->use_bias) ACS_INIT(fsw_rw_bias_init(&st->rw_bias, &cfg->rw_bias), "rw_bias");
 #undef ACS_INIT
   fsw_health_clear(&st->health);
   st->ready = 1;
@@ -326,8 +424,21 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg)
     fsw_rw_sat_reset(&st->rw_sat);
     if (cfg->use_speed_filter) fsw_rw_speed_filter_reset(&st->speed_filter);
   }
+  if (cfg->has_mtq) {
+    fsw_mtq_map_reset(&st->mtq_map);
+    fsw_bdot_reset(&st->bdot);
+    fsw_v3_zero(st->B_hold);
+    st->B_hold_ok = 0u;
+  }
+  if (cfg->has_orbit) fsw_guid_orbit_reset(&st->orbit);
+  if (cfg->use_thr_mom) fsw_thr_momentum_reset(&st->thr_mom);
+  if (cfg->use_mtq_desat) fsw_mtq_desat_reset(&st->mtq_desat);
+  if (cfg->use_bias) fsw_rw_bias_reset(&st->rw_bias);
+  fsw_vn_zero(st->work.t_on_last, FSW_MAX_THR);
   st->work.u_last_valid = 0u;
   reset_dynamic(st, cfg);
+  st->policy = cfg->initial_policy;
+  st->cmd_mode = cfg->initial_mode;
   st->mode = cfg->initial_mode;
   st->actuation = cfg->initial_actuation;
   fsw_clock_reset(&st->clock);
@@ -344,6 +455,8 @@ static void safe_output(FswAcsActuatorMsg *act)
   fsw_vn_zero(act->t_on, FSW_MAX_THR);
   act->wheels_active = 0u;
   act->thrusters_active = 0u;
+  fsw_vn_zero(act->m_cmd, FSW_MAX_MTQ);
+  act->mtq_active = 0u;
 }
 
 static void u8_copy(uint8_t *out, const uint8_t *in, int n)
@@ -385,6 +498,7 @@ static FswStatus finish(FswAcsState *st, FswAcsHealthMsg *h, FswStatus s)
   h->safe_output = (uint8_t)(fsw_status_is_error(s) ? 1 : 0);
   h->mode = st->mode;
   h->actuation = st->actuation;
+  h->policy = st->policy;
   h->cycles = st->cycles;
   h->mode_changes = st->mode_changes;
   h->health = st->health;
@@ -419,12 +533,20 @@ static FswStatus run_guidance(FswAcsState *st, const FswAcsConfig *cfg,
     h->sun_valid = (uint8_t)(w->css_out.sun_valid ? 1 : 0);
     h->num_lit = (uint8_t)w->css_out.num_lit;
   } else {
-    s = fsw_guid_inertial_update(&st->inertial, &st->inertial_cfg, &w->inertial_out);
+    if (st->mode == FSW_ACS_MODE_NADIR) {
+      fsw_v3_copy(w->orbit_in.r_N, sens->r_N);
+      fsw_v3_copy(w->orbit_in.v_N, sens->v_N);
+      w->orbit_in.valid = sens->orbit_valid;
+      s = fsw_guid_orbit_update(&st->orbit, &cfg->orbit, &w->orbit_in, &w->orbit_out);
+      w->track_in.ref = w->orbit_out;
+    } else {
+      s = fsw_guid_inertial_update(&st->inertial, &st->inertial_cfg, &w->inertial_out);
+      w->track_in.ref = w->inertial_out;
+    }
     h->stage_status[FSW_ACS_STAGE_GUIDANCE] = s;
     acc = combine(acc, s);
     fsw_v3_copy(w->track_in.sigma_BN, sens->sigma_BN);
     fsw_v3_copy(w->track_in.omega_BN_B, sens->omega_BN_B);
-    w->track_in.ref = w->inertial_out;
     s = fsw_att_track_update(&st->track, &cfg->track, &w->track_in, &w->track_out);
     h->stage_status[FSW_ACS_STAGE_TRACK] = s;
     acc = combine(acc, s);
@@ -481,6 +603,40 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   return acc;
 }
 
+/* The pulser: forces F into this cycle's on-times act->t_on. */
+static FswStatus run_pulser(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
+                            const fsw_real *F, FswAcsActuatorMsg *act, FswAcsHealthMsg *h)
+{
+  FswAcsWork *w = &st->work;
+  const int n = cfg->thr_map.num_thr;
+  FswStatus s;
+  int i;
+  if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
+    w->rem_in.t_ns = sens->t_ns;
+    fsw_vn_copy(w->rem_in.F, F, n);
+    s = fsw_thr_pulse_rem_update(&st->pulse_rem, &cfg->pulse_rem, &w->rem_in, &w->rem_out);
+    fsw_vn_copy(act->t_on, w->rem_out.t_on, n);
+  } else {
+    w->sch_in.t_ns = sens->t_ns;
+    fsw_vn_copy(w->sch_in.F, F, n);
+    s = fsw_thr_pulse_schmitt_update(&st->pulse_schmitt, &cfg->pulse_schmitt, &w->sch_in,
+                                     &w->sch_out);
+    fsw_vn_copy(act->t_on, w->sch_out.t_on, n);
+  }
+  h->stage_status[FSW_ACS_STAGE_THR_PULSE] = s;
+  /* a flagged thruster stays off whatever its pulser remembers */
+  for (i = 0; i < n; i++)
+    if (sens->thr_avail[i] != FSW_AVAILABLE) act->t_on[i] = FSW_R(0.0);
+  return s;
+}
+
+/* 1 if the pulser has timed a period (it has run since its last reset). */
+static int pulser_has_period(const FswAcsState *st, const FswAcsConfig *cfg)
+{
+  return (cfg->pulser == FSW_ACS_PULSE_REMAINDER) ? st->pulse_rem.common.clock.has_prev
+                                                  : st->pulse_schmitt.common.clock.has_prev;
+}
+
 static FswStatus run_thrusters(FswAcsState *st, const FswAcsConfig *cfg,
                                const FswAcsSensorMsg *sens, const fsw_real Lr_B[3],
                                FswAcsActuatorMsg *act, FswAcsHealthMsg *h)
@@ -496,35 +652,146 @@ static FswStatus run_thrusters(FswAcsState *st, const FswAcsConfig *cfg,
   h->stage_status[FSW_ACS_STAGE_THR_MAP] = s;
   acc = combine(acc, s);
   fsw_vn_copy(act->F, w->thr_out.F, n);
-
-  if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
-    w->rem_in.t_ns = sens->t_ns;
-    fsw_vn_copy(w->rem_in.F, w->thr_out.F, n);
-    s = fsw_thr_pulse_rem_update(&st->pulse_rem, &cfg->pulse_rem, &w->rem_in, &w->rem_out);
-    fsw_vn_copy(act->t_on, w->rem_out.t_on, n);
-  } else {
-    w->sch_in.t_ns = sens->t_ns;
-    fsw_vn_copy(w->sch_in.F, w->thr_out.F, n);
-    s = fsw_thr_pulse_schmitt_update(&st->pulse_schmitt, &cfg->pulse_schmitt, &w->sch_in,
-                                     &w->sch_out);
-    fsw_vn_copy(act->t_on, w->sch_out.t_on, n);
-  }
-  h->stage_status[FSW_ACS_STAGE_THR_PULSE] = s;
-  acc = combine(acc, s);
-  { /* a flagged thruster stays off whatever its pulser remembers */
-    int i;
-    for (i = 0; i < n; i++)
-      if (sens->thr_avail[i] != FSW_AVAILABLE) act->t_on[i] = FSW_R(0.0);
-  }
+  acc = combine(acc, run_pulser(st, cfg, sens, w->thr_out.F, act, h));
   act->thrusters_active = 1u;
   return acc;
 }
 
-/* The set fields of a command: flags 0/1, a finite reference, gains finite
- * and > 0 (what fsw_guid_inertial_check and fsw_mrp_fb_check ask of them). */
-static int set_command_ok(const FswAcsCmdMsg *cmd)
+/* DETUMBLE: B-dot's dipole through the rod map; no attitude control, the
+ * wheels hold zero torque. */
+static FswStatus run_detumble(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
+                              FswAcsActuatorMsg *act, FswAcsHealthMsg *h)
 {
-  if (cmd->set_ref > 1u || cmd->set_gains > 1u) return 0;
+  FswAcsWork *w = &st->work;
+  FswStatus acc = FSW_OK, s;
+  w->bdot_in.t_ns = sens->t_ns;
+  fsw_v3_copy(w->bdot_in.B_B, sens->B_B);
+  w->bdot_in.B_valid = sens->mag_valid;
+  fsw_v3_copy(w->bdot_in.omega_BN_B, sens->omega_BN_B);
+  w->bdot_in.omega_valid = 1u;
+  s = fsw_bdot_update(&st->bdot, &cfg->bdot, &w->bdot_in, &w->bdot_out);
+  h->stage_status[FSW_ACS_STAGE_BDOT] = s;
+  acc = combine(acc, s);
+  h->detumbled = w->bdot_out.detumbled;
+  h->rate_est = w->bdot_out.rate_est;
+
+  if (sens->mag_valid) {
+    fsw_v3_copy(st->B_hold, sens->B_B);
+    st->B_hold_ok = 1u;
+  }
+  fsw_v3_zero(w->mtq_in.tau_B);
+  fsw_v3_copy(w->mtq_in.m_req_B, w->bdot_out.m_B);
+  w->mtq_in.use_dipole = 1u;
+  fsw_v3_copy(w->mtq_in.B_B, st->B_hold); /* the field of the dipole's torque */
+  w->mtq_in.B_valid = st->B_hold_ok;
+  s = fsw_mtq_map_update(&st->mtq_map, &cfg->mtq_map, &w->mtq_in, &w->mtq_out);
+  h->stage_status[FSW_ACS_STAGE_MTQ_MAP] = s;
+  acc = combine(acc, s);
+  fsw_vn_copy(act->m_cmd, w->mtq_out.m_cmd, cfg->mtq_map.num_mtq);
+  fsw_v3_copy(h->tau_mtq_B, w->mtq_out.tau_ach_B);
+  act->mtq_active = 1u;
+  if (cfg->has_wheels) act->wheels_active = 1u; /* u_s = 0: the wheels keep their momentum */
+  return acc;
+}
+
+/* Momentum management ahead of the wheel chain: the desired wheel speeds
+ * (rw_bias), then the policy's external torque (thruster dump pulses or the
+ * rods' torque), which the wheels absorb: Lw = Lr - L_ext holds the
+ * attitude while the external torque unloads them. */
+static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
+                              const fsw_real Lr_B[3], fsw_real Lw_B[3], FswAcsActuatorMsg *act,
+                              FswAcsHealthMsg *h)
+{
+  FswAcsWork *w = &st->work;
+  const int n = cfg->rw_map.num_rw;
+  FswStatus acc = FSW_OK, s;
+  fsw_v3_copy(Lw_B, Lr_B);
+  if (cfg->use_bias) {
+    fsw_vn_copy(w->bias_in.Omega, w->Omega, n);
+    u8_copy(w->bias_in.avail, w->rw_avail, n);
+    s = fsw_rw_bias_update(&st->rw_bias, &cfg->rw_bias, &w->bias_in, &w->bias_out);
+    h->stage_status[FSW_ACS_STAGE_RW_BIAS] = s;
+    acc = combine(acc, s);
+    fsw_vn_copy(w->null_in.Omega_des, w->bias_out.Omega_des, n);
+  }
+  if (st->policy == FSW_ACS_MOM_THRUSTERS) {
+    /* The pulser turns a force into an on-time over the period since its
+     * own last call, so it runs in every cycle of this policy (zero force
+     * between pulses) and that period is the control period.  Its first
+     * call after a reset (init, a transition, a policy change) has no
+     * period and commands nothing: in that cycle thr_momentum runs with
+     * enable = 0 (no dump starts; one in progress is aborted and the next
+     * cycle starts afresh from the measured momentum), so that no dump
+     * counts an impulse the thrusters did not give. */
+    const int timed = pulser_has_period(st, cfg);
+    w->mom_in.t_ns = sens->t_ns;
+    fsw_vn_copy(w->mom_in.Omega, w->Omega, n);
+    u8_copy(w->mom_in.avail, w->rw_avail, n);
+    fsw_vn_copy(w->mom_in.t_on_prev, w->t_on_last, FSW_MAX_THR);
+    w->mom_in.enable = timed ? 1u : 0u;
+    w->mom_in.force_dump = 0u;
+    s = fsw_thr_momentum_update(&st->thr_mom, &cfg->thr_mom, &w->mom_in, &w->mom_out);
+    h->stage_status[FSW_ACS_STAGE_THR_MOM] = s;
+    acc = combine(acc, s);
+    h->dump_phase = (uint8_t)w->mom_out.phase;
+    h->dumps = w->mom_out.dumps;
+    h->prop_used = w->mom_out.prop_total;
+    if (w->mom_out.phase == FSW_THR_MOM_PULSE && fsw_v3_norm2(w->mom_out.L_thr_B) > FSW_R(0.0)) {
+      acc = combine(acc, run_thrusters(st, cfg, sens, w->mom_out.L_thr_B, act, h));
+      fsw_v3_sub(Lw_B, Lw_B, w->mom_out.L_thr_B);
+    } else {
+      int i;
+      fsw_vn_zero(w->thr_out.F, FSW_MAX_THR);
+      acc = combine(acc, run_pulser(st, cfg, sens, w->thr_out.F, act, h));
+      for (i = 0; i < cfg->thr_map.num_thr; i++)
+        if (act->t_on[i] > FSW_R(0.0)) act->thrusters_active = 1u; /* a carried remainder */
+    }
+  } else if (st->policy == FSW_ACS_MOM_MAGNETORQUERS) {
+    act->mtq_active = 1u; /* rods off unless a field sample lets them act */
+    if (sens->mag_valid) {
+      fsw_vn_copy(w->desat_in.Omega, w->Omega, n);
+      u8_copy(w->desat_in.avail, w->rw_avail, n);
+      fsw_v3_copy(w->desat_in.B_B, sens->B_B);
+      w->desat_in.B_valid = 1u;
+      s = fsw_mtq_desat_update(&st->mtq_desat, &cfg->mtq_desat, &w->desat_in, &w->desat_out);
+      h->stage_status[FSW_ACS_STAGE_MTQ_DESAT] = s;
+      acc = combine(acc, s);
+      fsw_v3_copy(w->mtq_in.tau_B, w->desat_out.tau_req_B);
+      fsw_v3_zero(w->mtq_in.m_req_B);
+      w->mtq_in.use_dipole = 0u;
+      fsw_v3_copy(w->mtq_in.B_B, sens->B_B);
+      w->mtq_in.B_valid = 1u;
+      s = fsw_mtq_map_update(&st->mtq_map, &cfg->mtq_map, &w->mtq_in, &w->mtq_out);
+      h->stage_status[FSW_ACS_STAGE_MTQ_MAP] = s;
+      acc = combine(acc, s);
+      fsw_vn_copy(act->m_cmd, w->mtq_out.m_cmd, cfg->mtq_map.num_mtq);
+      fsw_v3_copy(h->tau_mtq_B, w->mtq_out.tau_ach_B);
+      fsw_v3_sub(Lw_B, Lw_B, w->mtq_out.tau_ach_B);
+    }
+  }
+  return acc;
+}
+
+/* Wheel momentum in B of mrp_fb's wheel set (the available wheels). */
+static void wheel_momentum(const FswAcsState *st, const FswAcsConfig *cfg, fsw_real h_B[3])
+{
+  int i;
+  fsw_v3_zero(h_B);
+  for (i = 0; i < cfg->mrp_fb.num_rw; i++) {
+    if (st->work.rw_avail[i] != FSW_AVAILABLE) continue;
+    h_B[0] += cfg->mrp_fb.J_s[i] * st->work.Omega[i] * cfg->mrp_fb.gs_hat_B[i][0];
+    h_B[1] += cfg->mrp_fb.J_s[i] * st->work.Omega[i] * cfg->mrp_fb.gs_hat_B[i][1];
+    h_B[2] += cfg->mrp_fb.J_s[i] * st->work.Omega[i] * cfg->mrp_fb.gs_hat_B[i][2];
+  }
+}
+
+/* The set fields of a command: flags 0/1, a finite reference, gains finite
+ * and > 0 (what fsw_guid_inertial_check and fsw_mrp_fb_check ask of them),
+ * a policy this configuration can fly. */
+static int set_command_ok(const FswAcsConfig *cfg, const FswAcsCmdMsg *cmd)
+{
+  if (cmd->set_ref > 1u || cmd->set_gains > 1u || cmd->set_policy > 1u) return 0;
+  if (cmd->set_policy && !policy_configured(cfg, cmd->policy)) return 0;
   if (cmd->set_ref && (!fsw_v3_is_finite(cmd->sigma_R0N) || !isfinite(fsw_v3_norm2(cmd->sigma_R0N)))) return 0;
   if (cmd->set_gains &&
       (!isfinite(cmd->K) || !(cmd->K > FSW_R(0.0)) || !isfinite(cmd->P) || !(cmd->P > FSW_R(0.0))))
@@ -534,7 +801,7 @@ static int set_command_ok(const FswAcsCmdMsg *cmd)
 
 /* Apply a checked command's set fields (after save_dynamic: an error cycle
  * puts the previous reference and gains back). */
-static void apply_set_command(FswAcsState *st, const FswAcsCmdMsg *cmd)
+static void apply_set_command(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsCmdMsg *cmd)
 {
   if (cmd->set_ref) {
     const FswHealth hh = st->inertial.health;
@@ -545,6 +812,17 @@ static void apply_set_command(FswAcsState *st, const FswAcsCmdMsg *cmd)
   if (cmd->set_gains) {
     st->mrp_cfg.K = cmd->K;
     st->mrp_cfg.P = cmd->P;
+  }
+  if (cmd->set_policy && cmd->policy != st->policy) {
+    st->policy = cmd->policy;
+    /* the pulser's clock is stale when the dumps start to use it (in the
+     * thruster actuation it runs every cycle: its clock is current) */
+    if (cmd->policy == FSW_ACS_MOM_THRUSTERS && st->actuation == FSW_ACS_ACT_WHEELS) {
+      if (cfg->pulser == FSW_ACS_PULSE_REMAINDER)
+        fsw_thr_pulse_rem_reset(&st->pulse_rem);
+      else
+        fsw_thr_pulse_schmitt_reset(&st->pulse_schmitt);
+    }
   }
 }
 
@@ -560,6 +838,18 @@ static void save_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   w->saved.P = st->mrp_cfg.P;
   w->saved.actuation = st->actuation;
   w->saved.mode_changes = st->mode_changes;
+  w->saved.policy = st->policy;
+  w->saved.cmd_mode = st->cmd_mode;
+  if (cfg->has_mtq) {
+    w->saved.bdot = st->bdot;
+    fsw_v3_copy(w->saved.B_hold, st->B_hold);
+    w->saved.B_hold_ok = st->B_hold_ok;
+  }
+  if (cfg->has_orbit) w->saved.orbit = st->orbit;
+  if (cfg->use_thr_mom) w->saved.thr_mom = st->thr_mom;
+  if (cfg->use_bias)
+    for (i = 0; i < FSW_MAX_RW; i++) w->saved.bias_in_band[i] = st->rw_bias.in_band[i];
+  fsw_vn_copy(w->saved.t_on_last, w->t_on_last, FSW_MAX_THR);
   w->saved.mrp_fb = st->mrp_fb;
   if (cfg->use_lpf) w->saved.lpf = st->lpf;
   if (cfg->has_wheels && cfg->use_volt) w->saved.rw_volt = st->rw_volt;
@@ -591,6 +881,30 @@ static void restore_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   st->mrp_cfg.K = w->saved.K;
   st->mrp_cfg.P = w->saved.P;
   st->mode_changes = w->saved.mode_changes;
+  st->policy = w->saved.policy;
+  st->cmd_mode = w->saved.cmd_mode;
+  fsw_vn_copy(w->t_on_last, w->saved.t_on_last, FSW_MAX_THR);
+  if (cfg->has_mtq) {
+    hh = st->bdot.health;
+    st->bdot = w->saved.bdot;
+    st->bdot.health = hh;
+    fsw_v3_copy(st->B_hold, w->saved.B_hold);
+    st->B_hold_ok = w->saved.B_hold_ok;
+  }
+  if (cfg->has_orbit) {
+    hh = st->orbit.health;
+    st->orbit = w->saved.orbit;
+    st->orbit.health = hh;
+  }
+  if (cfg->use_thr_mom) {
+    hh = st->thr_mom.health;
+    st->thr_mom = w->saved.thr_mom;
+    st->thr_mom.health = hh;
+  }
+  if (cfg->use_bias) {
+    int i;
+    for (i = 0; i < FSW_MAX_RW; i++) st->rw_bias.in_band[i] = w->saved.bias_in_band[i];
+  }
   hh = st->mrp_fb.health;
   st->mrp_fb = w->saved.mrp_fb;
   st->mrp_fb.health = hh;
@@ -625,14 +939,58 @@ static void restore_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   }
 }
 
+/* The pointing modes: guidance, control law, actuation. */
+static FswStatus run_pointing(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
+                              FswAcsActuatorMsg *act, FswAcsHealthMsg *h, FswAttGuid *guid_out)
+{
+  FswAcsWork *w = &st->work;
+  FswStatus acc = FSW_OK, s;
+  const fsw_real *Lr;
+
+  /* 3. Guidance and attitude error. */
+  acc = combine(acc, run_guidance(st, cfg, sens, h, guid_out));
+
+  /* 4. Control law. */
+  w->fb_in.t_ns = sens->t_ns;
+  w->fb_in.guid = *guid_out;
+  if (cfg->mrp_fb.num_rw > 0) {
+    fsw_vn_copy(w->fb_in.Omega, w->Omega, cfg->mrp_fb.num_rw);
+    u8_copy(w->fb_in.rw_avail, w->rw_avail, cfg->mrp_fb.num_rw);
+  }
+  s = fsw_mrp_fb_update(&st->mrp_fb, &st->mrp_cfg, &w->fb_in, &w->fb_out);
+  h->stage_status[FSW_ACS_STAGE_CONTROL] = s;
+  acc = combine(acc, s);
+  Lr = w->fb_out.torque_B;
+
+  if (cfg->use_lpf) {
+    fsw_v3_copy(w->lpf_in.Lr_B, Lr);
+    w->lpf_in.t_ns = sens->t_ns;
+    s = fsw_trq_lpf_update(&st->lpf, &cfg->lpf, &w->lpf_in, &w->lpf_out);
+    h->stage_status[FSW_ACS_STAGE_LPF] = s;
+    acc = combine(acc, s);
+    Lr = w->lpf_out.LrF_B;
+  }
+  fsw_v3_copy(act->Lr_B, Lr);
+
+  /* 5. Actuation chain (with wheels: momentum management first). */
+  if (st->actuation == FSW_ACS_ACT_WHEELS) {
+    fsw_real Lw[3];
+    acc = combine(acc, run_momentum(st, cfg, sens, Lr, Lw, act, h));
+    acc = combine(acc, run_wheels(st, cfg, sens, Lw, act, h));
+  } else {
+    acc = combine(acc, run_thrusters(st, cfg, sens, Lr, act, h));
+  }
+
+  return acc;
+}
+
 FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
                         const FswAcsCmdMsg *cmd, FswAcsActuatorMsg *act, FswAcsHealthMsg *h)
 {
   FswAcsWork *w;
   FswStatus acc = FSW_OK, s;
   FswAttGuid guid;
-  const fsw_real *Lr;
-  int req_mode, req_act, i;
+  int req_mode, req_act, req_policy, i;
   uint8_t u_known;
 
   FSW_ASSERT(st != NULL && cfg != NULL && sens != NULL && act != NULL && h != NULL);
@@ -655,21 +1013,29 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
 
   /* 1. Everything that can be wrong with the inputs is checked before any
    *    stage runs, so a bad cycle advances no state at all. */
-  req_mode = (cmd != NULL) ? cmd->mode : st->mode;
+  /* A mode command acts when its mode differs from the last one commanded
+   * (the FSW may have left that mode on its own: DETUMBLE's exit). */
+  req_mode = (cmd != NULL && cmd->mode != st->cmd_mode) ? cmd->mode : st->mode;
   req_act = (cmd != NULL) ? cmd->actuation : st->actuation;
-  if (req_mode != FSW_ACS_MODE_SUN_SAFE && req_mode != FSW_ACS_MODE_INERTIAL)
-    return finish(st, h, FSW_E_BAD_INPUT);
+  req_policy = (cmd != NULL && cmd->set_policy == 1u) ? cmd->policy : st->policy;
+  if (!mode_configured(cfg, req_mode)) return finish(st, h, FSW_E_BAD_INPUT);
   if (!((req_act == FSW_ACS_ACT_WHEELS && cfg->has_wheels) ||
         (req_act == FSW_ACS_ACT_THRUSTERS && cfg->has_thrusters)))
     return finish(st, h, FSW_E_BAD_INPUT);
-  if (cmd != NULL && !set_command_ok(cmd)) return finish(st, h, FSW_E_BAD_INPUT);
+  if (cmd != NULL && !set_command_ok(cfg, cmd)) return finish(st, h, FSW_E_BAD_INPUT);
   {
     fsw_real dt; /* [s] unused: the stages derive their own */
     s = fsw_clock_dt(&st->clock, sens->t_ns, &dt);
     if (s != FSW_OK) return finish(st, h, s);
   }
   if (!fsw_v3_is_finite(sens->omega_BN_B)) return finish(st, h, FSW_E_BAD_INPUT);
-  if (req_mode == FSW_ACS_MODE_INERTIAL && (sens->att_valid != 1u || !fsw_v3_is_finite(sens->sigma_BN)))
+  if ((req_mode == FSW_ACS_MODE_INERTIAL || req_mode == FSW_ACS_MODE_NADIR) &&
+      (sens->att_valid != 1u || !fsw_v3_is_finite(sens->sigma_BN)))
+    return finish(st, h, FSW_E_BAD_INPUT);
+  if (sens->mag_valid > 1u || sens->orbit_valid > 1u) return finish(st, h, FSW_E_BAD_INPUT);
+  if (cfg->has_mtq && sens->mag_valid && !fsw_v3_is_finite(sens->B_B)) return finish(st, h, FSW_E_BAD_INPUT);
+  if (req_mode == FSW_ACS_MODE_NADIR &&
+      (sens->orbit_valid != 1u || !fsw_v3_is_finite(sens->r_N) || !fsw_v3_is_finite(sens->v_N)))
     return finish(st, h, FSW_E_BAD_INPUT);
   if (req_mode == FSW_ACS_MODE_SUN_SAFE) {
     for (i = 0; i < cfg->css.num_css; i++)
@@ -685,7 +1051,8 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     if (!cfg->use_speed_filter && !avail_finite(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw))
       return finish(st, h, FSW_E_BAD_INPUT);
   }
-  if (req_act == FSW_ACS_ACT_THRUSTERS && !fsw_v3_is_finite(sens->r_CoM_B))
+  if ((req_act == FSW_ACS_ACT_THRUSTERS || req_policy == FSW_ACS_MOM_THRUSTERS) &&
+      !fsw_v3_is_finite(sens->r_CoM_B))
     return finish(st, h, FSW_E_BAD_INPUT);
   if (cfg->has_thrusters)
     for (i = 0; i < cfg->thr_map.num_thr; i++)
@@ -696,7 +1063,8 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
    *    the cycle puts the snapshot back (validate, compute, commit only on
    *    success). */
   save_dynamic(st, cfg);
-  if (cmd != NULL) apply_set_command(st, cmd);
+  if (cmd != NULL) apply_set_command(st, cfg, cmd);
+  if (cmd != NULL) st->cmd_mode = cmd->mode;
   if (req_mode != st->mode || req_act != st->actuation) {
     reset_dynamic(st, cfg);
     st->mode = req_mode;
@@ -725,36 +1093,14 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     }
   }
 
-  /* 3. Guidance and attitude error. */
-  acc = combine(acc, run_guidance(st, cfg, sens, h, &guid));
-
-  /* 4. Control law. */
-  w->fb_in.t_ns = sens->t_ns;
-  w->fb_in.guid = guid;
-  if (cfg->mrp_fb.num_rw > 0) {
-    fsw_vn_copy(w->fb_in.Omega, w->Omega, cfg->mrp_fb.num_rw);
-    u8_copy(w->fb_in.rw_avail, w->rw_avail, cfg->mrp_fb.num_rw);
-  }
-  s = fsw_mrp_fb_update(&st->mrp_fb, &st->mrp_cfg, &w->fb_in, &w->fb_out);
-  h->stage_status[FSW_ACS_STAGE_CONTROL] = s;
-  acc = combine(acc, s);
-  Lr = w->fb_out.torque_B;
-
-  if (cfg->use_lpf) {
-    fsw_v3_copy(w->lpf_in.Lr_B, Lr);
-    w->lpf_in.t_ns = sens->t_ns;
-    s = fsw_trq_lpf_update(&st->lpf, &cfg->lpf, &w->lpf_in, &w->lpf_out);
-    h->stage_status[FSW_ACS_STAGE_LPF] = s;
-    acc = combine(acc, s);
-    Lr = w->lpf_out.LrF_B;
-  }
-  fsw_v3_copy(act->Lr_B, Lr);
-
-  /* 5. Actuation chain. */
-  if (st->actuation == FSW_ACS_ACT_WHEELS) {
-    acc = combine(acc, run_wheels(st, cfg, sens, Lr, act, h));
+  if (cfg->has_wheels) wheel_momentum(st, cfg, h->h_w_B);
+  if (st->mode == FSW_ACS_MODE_DETUMBLE) {
+    /* 3-5 in DETUMBLE: B-dot alone. */
+    fsw_v3_zero(guid.sigma_BR);
+    fsw_v3_zero(guid.omega_BR_B);
+    acc = combine(acc, run_detumble(st, cfg, sens, act, h));
   } else {
-    acc = combine(acc, run_thrusters(st, cfg, sens, Lr, act, h));
+    acc = combine(acc, run_pointing(st, cfg, sens, act, h, &guid));
   }
 
   /* 6. Telemetry and timing. */
@@ -771,6 +1117,17 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   if (act->wheels_active) {
     fsw_vn_copy(w->u_last, act->u_s, FSW_MAX_RW);
     w->u_last_valid = 1u;
+  }
+  if (act->thrusters_active) {
+    fsw_vn_copy(w->t_on_last, act->t_on, FSW_MAX_THR);
+  } else {
+    fsw_vn_zero(w->t_on_last, FSW_MAX_THR);
+  }
+  /* DETUMBLE's exit: the next cycle flies the configured pointing mode */
+  if (st->mode == FSW_ACS_MODE_DETUMBLE && h->detumbled && cfg->detumble_exit_mode >= 0) {
+    reset_dynamic(st, cfg);
+    st->mode = cfg->detumble_exit_mode;
+    if (st->mode_changes < UINT32_MAX) st->mode_changes++;
   }
   return finish(st, h, acc);
 }

@@ -205,6 +205,11 @@ FswStatus fsw_link_encode_sensor(const FswAcsSensorMsg *m, uint8_t num_rw, uint8
       if (m->thr_avail[i] != 0u) bits |= (uint64_t)1u << i;
     put_u64(&w, bits);
   }
+  put_reals(&w, m->B_B, 3u);
+  put_reals(&w, m->r_N, 3u);
+  put_reals(&w, m->v_N, 3u);
+  put_u8(&w, m->mag_valid != 0u ? 1u : 0u);
+  put_u8(&w, m->orbit_valid != 0u ? 1u : 0u);
   return finish_packet(&w, len, err);
 }
 
@@ -214,7 +219,7 @@ FswStatus fsw_link_encode_cmd(const FswAcsCmdMsg *m, uint64_t t_ns, uint16_t seq
   Writer w;
   if (m == NULL || buf == NULL || len == NULL) return FSW_E_NULL_ARG;
   if (m->mode < 0 || m->mode > 255 || m->actuation < 0 || m->actuation > 255 || m->set_ref > 1u ||
-      m->set_gains > 1u)
+      m->set_gains > 1u || m->set_policy > 1u || m->policy < 0 || m->policy > 255)
     return link_fail(err, FSW_LINK_E_COUNT);
   if (!begin_packet(&w, buf, cap, FSW_LINK_CMD_PAYLOAD)) return link_fail(err, FSW_LINK_E_SPACE);
   put_headers(&w, FSW_LINK_APID_CMD, 1u, seq, t_ns, FSW_LINK_CMD_PAYLOAD);
@@ -225,27 +230,34 @@ FswStatus fsw_link_encode_cmd(const FswAcsCmdMsg *m, uint64_t t_ns, uint16_t seq
   put_reals(&w, m->sigma_R0N, 3u);
   put_real(&w, m->K);
   put_real(&w, m->P);
+  put_u8(&w, m->set_policy);
+  put_u8(&w, (uint32_t)m->policy);
   return finish_packet(&w, len, err);
 }
 
-FswStatus fsw_link_encode_actuator(const FswAcsActuatorMsg *m, uint8_t num_rw, uint8_t num_thr, uint64_t t_ns,
-                                   uint16_t seq, uint8_t *buf, size_t cap, size_t *len, FswLinkError *err)
+FswStatus fsw_link_encode_actuator(const FswAcsActuatorMsg *m, uint8_t num_rw, uint8_t num_thr, uint8_t num_mtq,
+                                   uint64_t t_ns, uint16_t seq, uint8_t *buf, size_t cap, size_t *len,
+                                   FswLinkError *err)
 {
   Writer w;
-  const size_t payload = FSW_LINK_ACTUATOR_PAYLOAD(num_rw, num_thr);
+  const size_t payload = FSW_LINK_ACTUATOR_PAYLOAD(num_rw, num_thr, num_mtq);
   if (m == NULL || buf == NULL || len == NULL) return FSW_E_NULL_ARG;
-  if (num_rw > FSW_MAX_RW || num_thr > FSW_MAX_THR) return link_fail(err, FSW_LINK_E_COUNT);
+  if (num_rw > FSW_MAX_RW || num_thr > FSW_MAX_THR || num_mtq > FSW_MAX_MTQ) return link_fail(err, FSW_LINK_E_COUNT);
   if (!begin_packet(&w, buf, cap, payload)) return link_fail(err, FSW_LINK_E_SPACE);
   put_headers(&w, FSW_LINK_APID_ACTUATOR, 0u, seq, t_ns, payload);
   put_u8(&w, num_rw);
   put_u8(&w, num_thr);
+  put_u8(&w, num_mtq);
   put_u8(&w, m->wheels_active != 0u ? 1u : 0u);
   put_u8(&w, m->thrusters_active != 0u ? 1u : 0u);
+  put_u8(&w, m->mtq_active != 0u ? 1u : 0u);
+  put_u16(&w, 0u);
   put_reals(&w, m->Lr_B, 3u);
   put_reals(&w, m->u_s, num_rw);
   put_reals(&w, m->V, num_rw);
   put_reals(&w, m->F, num_thr);
   put_reals(&w, m->t_on, num_thr);
+  put_reals(&w, m->m_cmd, num_mtq);
   return finish_packet(&w, len, err);
 }
 
@@ -263,7 +275,8 @@ FswStatus fsw_link_encode_health(const FswAcsHealthMsg *m, uint64_t t_ns, uint16
   Writer w;
   size_t i;
   if (m == NULL || buf == NULL || len == NULL) return FSW_E_NULL_ARG;
-  if (m->mode < 0 || m->mode > 255 || m->actuation < 0 || m->actuation > 255) return link_fail(err, FSW_LINK_E_COUNT);
+  if (m->mode < 0 || m->mode > 255 || m->actuation < 0 || m->actuation > 255 || m->policy < 0 || m->policy > 255)
+    return link_fail(err, FSW_LINK_E_COUNT);
   if (!begin_packet(&w, buf, cap, FSW_LINK_HEALTH_PAYLOAD)) return link_fail(err, FSW_LINK_E_SPACE);
   put_headers(&w, FSW_LINK_APID_HEALTH, 0u, seq, t_ns, FSW_LINK_HEALTH_PAYLOAD);
   put_u16(&w, status_bits(m->status));
@@ -291,6 +304,15 @@ FswStatus fsw_link_encode_health(const FswAcsHealthMsg *m, uint64_t t_ns, uint16
   put_u16(&w, status_bits(m->health.last));
   put_u64(&w, m->rw_failed);
   put_u64(&w, m->rw_latched);
+  put_u8(&w, (uint32_t)m->policy);
+  put_u8(&w, m->detumbled != 0u ? 1u : 0u);
+  put_u8(&w, m->dump_phase);
+  put_u8(&w, 0u);
+  put_u32(&w, m->dumps);
+  put_reals(&w, m->h_w_B, 3u);
+  put_real(&w, m->rate_est);
+  put_reals(&w, m->tau_mtq_B, 3u);
+  put_real(&w, m->prop_used);
   return finish_packet(&w, len, err);
 }
 
@@ -369,6 +391,11 @@ FswStatus fsw_link_decode_sensor(const FswLinkPacket *p, FswAcsSensorMsg *m, uin
       else if (b != 0u) ok = 0; /* a thruster beyond the capacity */
     }
   }
+  get_reals(&r, out.B_B, 3u);
+  get_reals(&r, out.r_N, 3u);
+  get_reals(&r, out.v_N, 3u);
+  ok = get_flags(&r, &out.mag_valid, 1u) && ok;
+  ok = get_flags(&r, &out.orbit_valid, 1u) && ok;
   if (!ok) return link_fail(err, FSW_LINK_E_COUNT);
   memcpy(m, &out, sizeof out);
   *num_rw = (uint8_t)nrw;
@@ -379,7 +406,8 @@ FswStatus fsw_link_decode_sensor(const FswLinkPacket *p, FswAcsSensorMsg *m, uin
 FswStatus fsw_link_decode_cmd(const FswLinkPacket *p, FswAcsCmdMsg *m, FswLinkError *err)
 {
   Reader r;
-  uint32_t mode, act, set_ref, set_gains;
+  uint32_t mode, act, set_ref, set_gains, set_policy;
+  fsw_real sigma[3], K, P;
   if (p == NULL || m == NULL || p->payload == NULL) return FSW_E_NULL_ARG;
   if (expect(p, FSW_LINK_APID_CMD, 1u, &r, err) != FSW_OK) return FSW_E_BAD_INPUT;
   if (p->payload_len != FSW_LINK_CMD_PAYLOAD) return link_fail(err, FSW_LINK_E_LENGTH);
@@ -387,44 +415,58 @@ FswStatus fsw_link_decode_cmd(const FswLinkPacket *p, FswAcsCmdMsg *m, FswLinkEr
   act = get_u8(&r);
   set_ref = get_u8(&r);
   set_gains = get_u8(&r);
-  if (set_ref > 1u || set_gains > 1u) return link_fail(err, FSW_LINK_E_COUNT);
+  get_reals(&r, sigma, 3u);
+  K = get_real(&r);
+  P = get_real(&r);
+  set_policy = get_u8(&r);
+  if (set_ref > 1u || set_gains > 1u || set_policy > 1u) return link_fail(err, FSW_LINK_E_COUNT);
   m->mode = (int)mode;
   m->actuation = (int)act;
   m->set_ref = (uint8_t)set_ref;
   m->set_gains = (uint8_t)set_gains;
-  get_reals(&r, m->sigma_R0N, 3u);
-  m->K = get_real(&r);
-  m->P = get_real(&r);
+  memcpy(m->sigma_R0N, sigma, sizeof sigma);
+  m->K = K;
+  m->P = P;
+  m->set_policy = (uint8_t)set_policy;
+  m->policy = (int)get_u8(&r);
   return link_ok(err);
 }
 
 FswStatus fsw_link_decode_actuator(const FswLinkPacket *p, FswAcsActuatorMsg *m, uint8_t *num_rw, uint8_t *num_thr,
-                                   FswLinkError *err)
+                                   uint8_t *num_mtq, FswLinkError *err)
 {
   Reader r;
   FswAcsActuatorMsg out;
-  uint32_t nrw, nthr, wa, ta;
-  if (p == NULL || m == NULL || num_rw == NULL || num_thr == NULL || p->payload == NULL) return FSW_E_NULL_ARG;
+  uint32_t nrw, nthr, nmtq, wa, ta, ma;
+  if (p == NULL || m == NULL || num_rw == NULL || num_thr == NULL || num_mtq == NULL || p->payload == NULL)
+    return FSW_E_NULL_ARG;
   if (expect(p, FSW_LINK_APID_ACTUATOR, 0u, &r, err) != FSW_OK) return FSW_E_BAD_INPUT;
-  if (p->payload_len < FSW_LINK_ACTUATOR_PAYLOAD(0u, 0u)) return link_fail(err, FSW_LINK_E_LENGTH);
+  if (p->payload_len < FSW_LINK_ACTUATOR_PAYLOAD(0u, 0u, 0u)) return link_fail(err, FSW_LINK_E_LENGTH);
+  /* the counts first (bytes 0..2): a version-1 packet has its flag
+     wheels_active (0/1) at byte 2, so it fails on its length */
   nrw = get_u8(&r);
   nthr = get_u8(&r);
-  if (nrw > FSW_MAX_RW || nthr > FSW_MAX_THR) return link_fail(err, FSW_LINK_E_COUNT);
-  if (p->payload_len != FSW_LINK_ACTUATOR_PAYLOAD(nrw, nthr)) return link_fail(err, FSW_LINK_E_LENGTH);
+  nmtq = get_u8(&r);
   wa = get_u8(&r);
   ta = get_u8(&r);
-  if (wa > 1u || ta > 1u) return link_fail(err, FSW_LINK_E_COUNT);
+  ma = get_u8(&r);
+  if (nrw > FSW_MAX_RW || nthr > FSW_MAX_THR || nmtq > FSW_MAX_MTQ) return link_fail(err, FSW_LINK_E_COUNT);
+  if (p->payload_len != FSW_LINK_ACTUATOR_PAYLOAD(nrw, nthr, nmtq)) return link_fail(err, FSW_LINK_E_LENGTH);
+  if (wa > 1u || ta > 1u || ma > 1u || get_u16(&r) != 0u) return link_fail(err, FSW_LINK_E_COUNT);
   memset(&out, 0, sizeof out);
   out.wheels_active = (uint8_t)wa;
   out.thrusters_active = (uint8_t)ta;
+  out.mtq_active = (uint8_t)ma;
   get_reals(&r, out.Lr_B, 3u);
   get_reals(&r, out.u_s, nrw);
   get_reals(&r, out.V, nrw);
   get_reals(&r, out.F, nthr);
   get_reals(&r, out.t_on, nthr);
+  get_reals(&r, out.m_cmd, nmtq);
   memcpy(m, &out, sizeof out);
   *num_rw = (uint8_t)nrw;
   *num_thr = (uint8_t)nthr;
+  *num_mtq = (uint8_t)nmtq;
   return link_ok(err);
 }
 
@@ -432,7 +474,7 @@ FswStatus fsw_link_decode_health(const FswLinkPacket *p, FswAcsHealthMsg *m, Fsw
 {
   Reader r;
   FswAcsHealthMsg out;
-  uint32_t safe, sun_valid;
+  uint32_t safe, sun_valid, detumbled;
   size_t i;
   if (p == NULL || m == NULL || p->payload == NULL) return FSW_E_NULL_ARG;
   if (expect(p, FSW_LINK_APID_HEALTH, 0u, &r, err) != FSW_OK) return FSW_E_BAD_INPUT;
@@ -466,6 +508,16 @@ FswStatus fsw_link_decode_health(const FswLinkPacket *p, FswAcsHealthMsg *m, Fsw
   out.health.last = status_of(get_u16(&r));
   out.rw_failed = get_u64(&r);
   out.rw_latched = get_u64(&r);
+  out.policy = (int)get_u8(&r);
+  detumbled = get_u8(&r);
+  out.dump_phase = (uint8_t)get_u8(&r);
+  if (detumbled > 1u || get_u8(&r) != 0u) return link_fail(err, FSW_LINK_E_COUNT);
+  out.detumbled = (uint8_t)detumbled;
+  out.dumps = get_u32(&r);
+  get_reals(&r, out.h_w_B, 3u);
+  out.rate_est = get_real(&r);
+  get_reals(&r, out.tau_mtq_B, 3u);
+  out.prop_used = get_real(&r);
   memcpy(m, &out, sizeof out);
   return link_ok(err);
 }
@@ -582,7 +634,7 @@ FswStatus fsw_link_encode_status(const FswLinkStatusMsg *m, uint64_t t_ns, uint1
   put_u32(&w, m->cycles);
   put_u16(&w, m->last_seq);
   put_u8(&w, m->link_safe != 0u ? 1u : 0u);
-  put_u8(&w, 0u);
+  put_u8(&w, FSW_LINK_ICD_VERSION);
   return finish_packet(&w, len, err);
 }
 
@@ -605,9 +657,10 @@ FswStatus fsw_link_decode_status(const FswLinkPacket *p, FswLinkStatusMsg *m, Fs
   out.cycles = get_u32(&r);
   out.last_seq = (uint16_t)get_u16(&r);
   safe = get_u8(&r);
-  if (safe > 1u || get_u8(&r) != 0u || out.last_seq >= FSW_LINK_SEQ_MODULO) return link_fail(err, FSW_LINK_E_COUNT);
+  out.icd_version = (uint8_t)get_u8(&r);
+  if (out.icd_version != FSW_LINK_ICD_VERSION) return link_fail(err, FSW_LINK_E_HEADER);
+  if (safe > 1u || out.last_seq >= FSW_LINK_SEQ_MODULO) return link_fail(err, FSW_LINK_E_COUNT);
   out.link_safe = (uint8_t)safe;
-  out.reserved = 0u;
   memcpy(m, &out, sizeof out);
   return link_ok(err);
 }
@@ -658,7 +711,22 @@ static const CfgField kCfgFields[] = {
     CF_I(thr_map.thr_force_sign), CF_R(thr_map.ang_err_thresh, 1), CF_R(thr_map.epsilon, 1),
     CF_I(thr_map.use_2nd_loop), CF_I(thr_map.mode), CF_I(pulser),
     CF_PULSE_COMMON(pulse_rem),
-    CF_PULSE_COMMON(pulse_schmitt), CF_R(pulse_schmitt.level_on, 1), CF_R(pulse_schmitt.level_off, 1)};
+    CF_PULSE_COMMON(pulse_schmitt), CF_R(pulse_schmitt.level_on, 1), CF_R(pulse_schmitt.level_off, 1),
+    /* magnetorquers, DETUMBLE, NADIR (configuration image version 2) */
+    CF_I(has_mtq), CF_I(mtq_map.num_mtq), CF_R(mtq_map.gt_hat_B, 3 * FSW_MAX_MTQ), CF_R(mtq_map.m_max, FSW_MAX_MTQ),
+    CF_R(mtq_map.duty_max, 1), CF_I(bdot.variant), CF_R(bdot.k_bdot, 1), CF_I(bdot.normalize), CF_R(bdot.tau_f, 1),
+    CF_I(bdot.max_missed), CF_R(bdot.m_max_B, 3), CF_R(bdot.omega_done, 1), CF_R(bdot.omega_reenter, 1),
+    CF_R(bdot.t_persist, 1), CF_I(detumble_exit_mode), CF_I(has_orbit), CF_I(orbit.variant),
+    CF_R(orbit.sigma_BdR, 3), CF_R(orbit.mu, 1),
+    /* momentum management */
+    CF_I(initial_policy), CF_I(use_thr_mom), CF_I(thr_mom.num_rw), CF_R(thr_mom.gs_hat_B, 3 * FSW_MAX_RW),
+    CF_R(thr_mom.J_s, FSW_MAX_RW), CF_R(thr_mom.h_upper, 1), CF_R(thr_mom.h_lower, 1), CF_R(thr_mom.L_dump, 1),
+    CF_R(thr_mom.t_pulse_max, 1), CF_R(thr_mom.t_min_pulse, 1), CF_R(thr_mom.t_coast, 1), CF_R(thr_mom.dt_cycle, 1),
+    CF_I(thr_mom.num_thr), CF_R(thr_mom.F_max, FSW_MAX_THR), CF_R(thr_mom.Isp, 1), CF_I(use_mtq_desat),
+    CF_I(mtq_desat.num_rw), CF_R(mtq_desat.gs_hat_B, 3 * FSW_MAX_RW), CF_R(mtq_desat.J_s, FSW_MAX_RW),
+    CF_R(mtq_desat.k_desat, 1), CF_R(mtq_desat.h_target_B, 3), CF_R(mtq_desat.tau_max, 1),
+    CF_R(mtq_desat.h_deadband, 1), CF_I(use_bias), CF_I(rw_bias.num_rw), CF_R(rw_bias.gs_hat_B, 3 * FSW_MAX_RW),
+    CF_R(rw_bias.Omega_bias, FSW_MAX_RW), CF_R(rw_bias.Omega_keepout, 1), CF_R(rw_bias.Omega_hyst, 1)};
 
 #define CFG_NUM_FIELDS (sizeof kCfgFields / sizeof kCfgFields[0])
 #define CFG_MAGIC 0x4B434647u /* "KCFG" */
@@ -694,7 +762,7 @@ static void put_cfg_header(Writer *w)
   put_u8(w, (uint32_t)FSW_MAX_RW);
   put_u8(w, (uint32_t)FSW_MAX_CSS);
   put_u8(w, (uint32_t)FSW_MAX_THR);
-  put_u8(w, 0u);
+  put_u8(w, (uint32_t)FSW_MAX_MTQ);
   put_u16(w, 0u);
   put_u32(w, (uint32_t)cfg_body_size());
 }

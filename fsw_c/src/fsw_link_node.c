@@ -20,6 +20,7 @@ FswStatus fsw_link_node_init(FswLinkNode *n, const FswAcsConfig *cfg, uint32_t m
   n->max_missed = max_missed;
   n->num_rw = (uint8_t)(cfg->has_wheels != 0 ? cfg->rw_map.num_rw : 0);
   n->num_thr = (uint8_t)(cfg->has_thrusters != 0 ? cfg->thr_map.num_thr : 0);
+  n->num_mtq = (uint8_t)(cfg->has_mtq != 0 ? cfg->mtq_map.num_mtq : 0);
   return FSW_OK;
 }
 
@@ -34,7 +35,7 @@ static uint16_t next_seq(FswLinkNode *n, int i)
  * counts come from a config fsw_acs_init accepted. */
 static void put_actuator(FswLinkNode *n, int slot, uint64_t t_ns)
 {
-  (void)fsw_link_encode_actuator(&n->act, n->num_rw, n->num_thr, t_ns, next_seq(n, 0), n->out[slot],
+  (void)fsw_link_encode_actuator(&n->act, n->num_rw, n->num_thr, n->num_mtq, t_ns, next_seq(n, 0), n->out[slot],
                                  FSW_LINK_MAX_PACKET, &n->out_len[slot], NULL);
 }
 

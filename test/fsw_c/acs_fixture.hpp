@@ -153,6 +153,89 @@ inline void thruster_config(FswAcsConfig& c, int pulser = FSW_ACS_PULSE_REMAINDE
   c.pulse_schmitt.common.init_off_pulse_on_time = R(2.0);
 }
 
+// ---- momentum management, magnetorquers, orbit (issue 38) --------------
+// Three orthogonal rods, rotated 30 deg about z from the body axes (so the
+// rod map is not the identity): rod 0 (c, s, 0), rod 1 (-s, c, 0), rod 2 z.
+constexpr double kRodAz = 30.0 * kPi / 180.0;
+constexpr double kRodMmax = 100.0;  // [A m^2] rod dipole at full drive
+constexpr double kRodDuty = 0.8;    // [-]     duty_max
+inline void rod_axis(int i, double a[3])
+{
+  const double c = std::cos(kRodAz), s = std::sin(kRodAz);
+  a[0] = i == 0 ? c : (i == 1 ? -s : 0.0);
+  a[1] = i == 0 ? s : (i == 1 ? c : 0.0);
+  a[2] = i == 2 ? 1.0 : 0.0;
+}
+constexpr double kMu = 3.986004418e14;  // [m^3/s^2] Earth
+
+// The 4-wheel pyramid, the 8 RCS thrusters and the 3 rods in one geometry.
+inline void full_geometry(FswAcsGeometry& g)
+{
+  FswAcsGeometry t;
+  wheel_geometry(g);
+  thruster_geometry(t);
+  g.num_thr = t.num_thr;
+  std::memcpy(g.r_thr_B, t.r_thr_B, sizeof g.r_thr_B);
+  std::memcpy(g.gt_hat_B, t.gt_hat_B, sizeof g.gt_hat_B);
+  std::memcpy(g.F_max, t.F_max, sizeof g.F_max);
+  g.num_mtq = 3;
+  for (int i = 0; i < 3; i++) {
+    double a[3];
+    rod_axis(i, a);
+    for (int k = 0; k < 3; k++) g.mtq_axis_B[i][k] = R(a[k]);
+    g.mtq_m_max[i] = R(kRodMmax);
+  }
+}
+
+// Wheels (actuation), thrusters, rods and orbit guidance all configured,
+// every new module tuned but OFF (use_* = 0, policy NONE, SUN_SAFE): tests
+// switch on what they exercise.
+inline void full_config(FswAcsConfig& c)
+{
+  wheel_config(c);
+  {
+    FswAcsGeometry g;
+    full_geometry(g);
+    (void)fsw_acs_config_set_geometry(&c, &g);
+  }
+  for (int k = 0; k < 3; k++) c.thr_map.control_axes_B[k][k] = R(1.0);
+  c.thr_map.thr_force_sign = 1;
+  c.thr_map.mode = FSW_THR_MAP_NNLS;
+  c.pulser = FSW_ACS_PULSE_REMAINDER;
+  c.pulse_rem.common.t_min = R(0.02);
+  c.pulse_schmitt.common.t_min = R(0.02);
+  c.pulse_schmitt.level_on = R(0.75);
+  c.pulse_schmitt.level_off = R(0.25);
+  c.mtq_map.duty_max = R(kRodDuty);
+  c.bdot.variant = FSW_BDOT_GYRO;
+  c.bdot.k_bdot = R(1e6);
+  c.bdot.normalize = 0;
+  c.bdot.max_missed = 3;
+  for (int k = 0; k < 3; k++) c.bdot.m_max_B[k] = R(1000.0);
+  c.bdot.omega_done = R(0.01);
+  c.bdot.omega_reenter = R(0.02);
+  c.bdot.t_persist = R(1.0);
+  c.detumble_exit_mode = FSW_ACS_MODE_SUN_SAFE;
+  c.has_orbit = 1;
+  c.orbit.variant = FSW_GUID_ORBIT_NADIR;
+  c.orbit.mu = R(kMu);
+  c.thr_mom.h_upper = R(4.0);
+  c.thr_mom.h_lower = R(1.0);
+  c.thr_mom.L_dump = R(0.2);
+  c.thr_mom.t_pulse_max = R(5.0);
+  c.thr_mom.t_min_pulse = R(0.5);
+  c.thr_mom.t_coast = R(1.0);
+  c.thr_mom.dt_cycle = R(kPeriod);
+  c.thr_mom.Isp = R(200.0);
+  c.mtq_desat.k_desat = R(1e-4);
+  c.mtq_desat.tau_max = R(1.0);
+  c.mtq_desat.h_deadband = R(0.0);
+  for (int i = 0; i < 4; i++) c.rw_bias.Omega_bias[i] = R(i % 2 == 0 ? 50.0 : -50.0);
+  c.rw_bias.Omega_keepout = R(5.0);
+  c.rw_bias.Omega_hyst = R(1.0);
+  c.initial_policy = FSW_ACS_MOM_NONE;
+}
+
 // ---- the canned sequences of the host/target equivalence test ----------
 // scenario 0: wheels with null motion, filter and voltages; sun-safe from a
 //             tumble, then inertial from cycle 40 on

@@ -1442,3 +1442,83 @@ TEST(FswAcsSpeedFilter, AcceptedWithoutWheelsInTheControlLaw)
   const char* field = nullptr;
   EXPECT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field)) << (field ? field : "");
 }
+
+/* ---- momentum dumps by thrusters ---- */
+
+// Wheels hold the attitude, the thrusters dump (policy THRUSTERS).  The
+// pulsers take their period from their previous call; the application steps
+// them in the cycles without a request, so the first cycle of the second
+// pulse (after a coast) gets one period's on-time like every full cycle of
+// the first, not the coast's.  Found by scenarios/s1_year_dumps.yaml: 3.41 s
+// commanded at a 0.5 s period after a 60 s coast.  Ten quiet cycles at
+// |h_w| = 1.1, then h_w = 1.45 N m s along +x_B (speeds a sign(g_x) on the
+// pyramid: 4 J_s a cos 40 cos 45 = 1.45), h_lower 1 -> |dH| = 0.45 along -x;
+// L_dump 0.05 N m, t_pulse_max 4 s (0.2 N m s, 8 cycles a pulse): pulses of
+// 8, 8 and 2 cycles with 10 s coasts.  A -x torque comes from thrusters 2
+// and 6 of the fixture (0-based 1 and 5: +-y thrust at z = +-1.7907 m, a
+// pure couple), so a full cycle gives each L_dump T / (2 * 1.7907 * 1 N).
+TEST(FswAcsMomentum, EveryPulseCycleGetsOnePeriodsOnTimeAfterACoast)
+{
+  acsfix::wheel_config(g_cfg);
+  FswAcsGeometry g;
+  acsfix::wheel_geometry(g);
+  g.num_thr = 8;
+  for (int i = 0; i < 8; i++) {
+    for (int k = 0; k < 3; k++) {
+      g.r_thr_B[i][k] = acsfix::R(acsfix::kThrR[i][k]);
+      g.gt_hat_B[i][k] = acsfix::R(acsfix::kThrG[i][k]);
+    }
+    g.F_max[i] = acsfix::R(acsfix::kFmax);
+  }
+  ASSERT_EQ(FSW_OK, fsw_acs_config_set_geometry(&g_cfg, &g));
+  for (int k = 0; k < 3; k++) g_cfg.thr_map.control_axes_B[k][k] = acsfix::R(1.0);
+  g_cfg.thr_map.thr_force_sign = 1;
+  g_cfg.thr_map.mode = FSW_THR_MAP_NNLS;
+  g_cfg.pulser = FSW_ACS_PULSE_REMAINDER;
+  g_cfg.pulse_rem.common.t_min = acsfix::R(0.002);
+  g_cfg.pulse_rem.common.init_off_pulse_on_time = acsfix::R(0.3);  // would show if spent in a dump
+  g_cfg.initial_mode = FSW_ACS_MODE_INERTIAL;
+  std::memset(g_cfg.inertial.sigma_R0N, 0, sizeof g_cfg.inertial.sigma_R0N);
+  g_cfg.initial_policy = FSW_ACS_MOM_THRUSTERS;
+  g_cfg.use_thr_mom = 1;
+  g_cfg.thr_mom.h_upper = acsfix::R(1.2);
+  g_cfg.thr_mom.h_lower = acsfix::R(1.0);
+  g_cfg.thr_mom.L_dump = acsfix::R(0.05);
+  g_cfg.thr_mom.t_pulse_max = acsfix::R(4.0);
+  g_cfg.thr_mom.t_min_pulse = acsfix::R(0.5);
+  g_cfg.thr_mom.t_coast = acsfix::R(10.0);
+  g_cfg.thr_mom.dt_cycle = acsfix::R(acsfix::kPeriod);
+  g_cfg.thr_mom.Isp = acsfix::R(220.0);
+  const char* bad = nullptr;
+  ASSERT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &bad)) << (bad ? bad : "");
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+
+  const double per_a = 4.0 * acsfix::kJs * std::cos(40.0 * acsfix::kPi / 180.0) * std::cos(acsfix::kPi / 4.0);
+  const double t_full = 0.05 * acsfix::kPeriod / (2.0 * 1.79070 * acsfix::kFmax);
+  sensors_at_rest(g_sens, 0);
+  int pulse = 0, prev_phase = FSW_THR_MOM_IDLE, full_cycles = 0;
+  for (int c = 0; c < 200 && g_h.dumps == 0; c++) {
+    const double a = (c < 10 ? 1.1 : 1.45) / per_a;
+    for (int w = 0; w < 4; w++) {
+      double ax[3];
+      acsfix::pyramid_axis(w, ax);
+      g_sens.Omega[w] = acsfix::R(ax[0] > 0 ? a : -a);
+    }
+    g_sens.t_ns = (c + 1) * kPeriodNs;
+    ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h))) << c;
+    if (g_h.dump_phase == FSW_THR_MOM_PULSE && prev_phase != FSW_THR_MOM_PULSE) pulse++;
+    for (int j = 0; j < 8; j++) {
+      const bool couple = (j == 1 || j == 5);
+      if (g_h.dump_phase == FSW_THR_MOM_PULSE && pulse < 3 && couple) {
+        EXPECT_NEAR(g_act.t_on[j], t_full, kt::tol(1e-9, 1e-5)) << "cycle " << c << " pulse " << pulse;
+      } else if (g_h.dump_phase != FSW_THR_MOM_PULSE || !couple) {
+        EXPECT_EQ(0.0, g_act.t_on[j]) << "cycle " << c << " thruster " << j;  // nothing else fires
+      }
+    }
+    if (g_h.dump_phase == FSW_THR_MOM_PULSE && pulse < 3) full_cycles++;
+    prev_phase = g_h.dump_phase;
+  }
+  EXPECT_EQ(1u, g_h.dumps);
+  EXPECT_EQ(3, pulse);
+  EXPECT_EQ(16, full_cycles);
+}

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -63,15 +64,24 @@ FswAcsSensorMsg sensor_msg(uint8_t nrw, uint8_t ncss)
   }
   m.thr_avail[0] = 1;  // bits 0 and FSW_MAX_THR - 1: both ends of the mask travel
   m.thr_avail[FSW_MAX_THR - 1] = 1;
+  for (int i = 0; i < 3; ++i) {
+    m.B_B[i] = R(2.5e-5) * R(i - 1) + R(1e-6);  // [T]
+    m.r_N[i] = R(6.9e6) - R(1.5e6) * R(i);     // [m]
+    m.v_N[i] = R(-7.5e3) + R(2e3) * R(i);      // [m/s]
+  }
+  m.mag_valid = 1;
+  m.orbit_valid = 1;
   return m;
 }
 
-FswAcsActuatorMsg actuator_msg(uint8_t nrw, uint8_t nthr)
+FswAcsActuatorMsg actuator_msg(uint8_t nrw, uint8_t nthr, uint8_t nmtq = 0)
 {
   FswAcsActuatorMsg m;
   std::memset(&m, 0, sizeof m);
   m.wheels_active = 1;
   m.thrusters_active = 0;
+  m.mtq_active = nmtq > 0 ? 1 : 0;
+  for (uint8_t i = 0; i < nmtq; ++i) m.m_cmd[i] = R(-0.75) + R(0.25) * R(i);  // [A m^2]
   for (int i = 0; i < 3; ++i) m.Lr_B[i] = R(-0.01) * R(i + 1);
   for (uint8_t i = 0; i < nrw; ++i) {
     m.u_s[i] = R(0.001) * R(i);
@@ -114,6 +124,16 @@ FswAcsHealthMsg health_msg()
   m.health.other_error = 6;
   m.health.calls = 70000;
   m.health.last = FSW_E_TIME;
+  m.policy = FSW_ACS_MOM_MAGNETORQUERS;
+  m.detumbled = 1;
+  m.dump_phase = 2;
+  for (int i = 0; i < 3; ++i) {
+    m.h_w_B[i] = R(0.125) * R(i + 1) - R(0.3);  // [N m s]
+    m.tau_mtq_B[i] = R(-3e-6) * R(i + 1);       // [N m]
+  }
+  m.rate_est = R(0.0375);
+  m.dumps = 3000000000u;
+  m.prop_used = R(0.0625);
   return m;
 }
 
@@ -163,13 +183,15 @@ TEST(FswLink, CommandPacketBytesAreTheIcdsBytes)
   cmd.sigma_R0N[1] = R(-2.5);  // sent although set_ref = 0 (the receiver ignores it)
   cmd.K = R(0.5);
   cmd.P = R(30.0);
+  cmd.set_policy = 1;
+  cmd.policy = FSW_ACS_MOM_THRUSTERS;
   uint8_t buf[96];
   size_t len = 0;
   ASSERT_EQ(fsw_link_encode_cmd(&cmd, 0x0102030405060708ull, 16389 /* wraps to 5 */, buf, sizeof buf, &len, nullptr),
             FSW_OK);
   Bytes want = {0x19, 0x02,  // version 0, type 1 (TC), sec. header 1, APID 0x102
                 0xC0, 0x05,  // unsegmented, sequence count 5
-                0x00, 0x35,  // data length 8 + 44 + 2 - 1 = 53
+                0x00, 0x37,  // data length 8 + 46 + 2 - 1 = 55
                 0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x07, 0x08,  // t_ns
                 0x01, 0x00, 0x00, 0x01,                          // mode, actuation, set_ref, set_gains
                 0, 0, 0, 0, 0, 0, 0, 0,                          // sigma_R0N[0] = 0
@@ -177,6 +199,7 @@ TEST(FswLink, CommandPacketBytesAreTheIcdsBytes)
                 0, 0, 0, 0, 0, 0, 0, 0,                          // sigma_R0N[2] = 0
                 0x3F, 0xE0, 0, 0, 0, 0, 0, 0,                    // K = 0.5
                 0x40, 0x3E, 0, 0, 0, 0, 0, 0,                    // P = 30
+                0x01, 0x01,                                      // set_policy, policy (thrusters)
                 0x00, 0x00};                                     // CRC
   fix_crc(want);
   ASSERT_EQ(len, want.size());
@@ -196,6 +219,8 @@ TEST(FswLink, CommandPacketBytesAreTheIcdsBytes)
   EXPECT_EQ(back.sigma_R0N[1], R(-2.5));
   EXPECT_EQ(back.K, R(0.5));
   EXPECT_EQ(back.P, R(30.0));
+  EXPECT_EQ(back.set_policy, 1);
+  EXPECT_EQ(back.policy, FSW_ACS_MOM_THRUSTERS);
   // a flag other than 0/1 is refused both ways, and the message is not written
   Bytes b(buf, buf + len);
   b[FSW_LINK_HEADER_SIZE + 2] = 2;  // set_ref
@@ -212,6 +237,23 @@ TEST(FswLink, CommandPacketBytesAreTheIcdsBytes)
   cmd.set_gains = 0;
   cmd.set_ref = 2;
   EXPECT_EQ(fsw_link_encode_cmd(&cmd, 0, 0, buf, sizeof buf, &len, &e), FSW_E_BAD_INPUT);
+  cmd.set_ref = 0;
+  cmd.set_policy = 2;
+  EXPECT_EQ(fsw_link_encode_cmd(&cmd, 0, 0, buf, sizeof buf, &len, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_COUNT);
+  Bytes good(want);
+  good[FSW_LINK_HEADER_SIZE + 44] = 2;  // set_policy not 0/1 on the wire
+  fix_crc(good);
+  ASSERT_EQ(fsw_link_parse(good.data(), good.size(), &p, nullptr), FSW_OK);
+  EXPECT_EQ(fsw_link_decode_cmd(&p, &untouched, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_COUNT);
+  EXPECT_EQ(untouched.mode, -7);
+  for (const int bad_policy : {-1, 256}) {
+    cmd.set_policy = 1;
+    cmd.policy = bad_policy;
+    EXPECT_EQ(fsw_link_encode_cmd(&cmd, 0, 0, buf, sizeof buf, &len, &e), FSW_E_BAD_INPUT) << bad_policy;
+    EXPECT_EQ(e, FSW_LINK_E_COUNT);
+  }
 }
 
 // Reals are IEEE-754 binary64, big-endian, on every host.
@@ -222,7 +264,7 @@ TEST(FswLink, RealsAreBigEndianBinary64)
   m.sigma_BN[1] = R(-2.5);   // C004 0000 0000 0000
   m.sigma_BN[2] = R(0.1);    // 3FB9 9999 9999 999A in double; the float 0.1 widened in float builds
   const Bytes b = encode_sensor(m, 0, 0);
-  ASSERT_EQ(b.size(), FSW_LINK_HEADER_SIZE + 84u + 2u);
+  ASSERT_EQ(b.size(), FSW_LINK_HEADER_SIZE + 158u + 2u);
   const size_t s = FSW_LINK_HEADER_SIZE + 4;  // sigma_BN[0]
   EXPECT_EQ(Bytes(b.begin() + s, b.begin() + s + 8), (Bytes{0x3F, 0xF0, 0, 0, 0, 0, 0, 0}));
   EXPECT_EQ(Bytes(b.begin() + s + 8, b.begin() + s + 16), (Bytes{0xC0, 0x04, 0, 0, 0, 0, 0, 0}));
@@ -251,22 +293,28 @@ TEST(FswLink, EveryPacketRoundTripsAtZeroAndFullCapacity)
     EXPECT_EQ(ncss, n.second);
     EXPECT_EQ(std::memcmp(&back, &m, sizeof m), 0) << "sensor " << int(n.first) << "/" << int(n.second);
   }
-  for (const auto& n : std::vector<std::pair<uint8_t, uint8_t>>{{0, 0}, {4, 9}, {FSW_MAX_RW, FSW_MAX_THR}}) {
-    const FswAcsActuatorMsg m = actuator_msg(n.first, n.second);
+  struct Counts {
+    uint8_t rw, thr, mtq;
+  };
+  for (const Counts n : {Counts{0, 0, 0}, Counts{4, 9, 3}, Counts{0, 0, FSW_MAX_MTQ},
+                         Counts{FSW_MAX_RW, FSW_MAX_THR, FSW_MAX_MTQ}}) {
+    const FswAcsActuatorMsg m = actuator_msg(n.rw, n.thr, n.mtq);
     Bytes b(FSW_LINK_MAX_PACKET);
     size_t len = 0;
-    ASSERT_EQ(fsw_link_encode_actuator(&m, n.first, n.second, 42, 9, b.data(), b.size(), &len, nullptr), FSW_OK);
+    ASSERT_EQ(fsw_link_encode_actuator(&m, n.rw, n.thr, n.mtq, 42, 9, b.data(), b.size(), &len, nullptr), FSW_OK);
+    EXPECT_EQ(len, FSW_LINK_HEADER_SIZE + FSW_LINK_ACTUATOR_PAYLOAD(n.rw, n.thr, n.mtq) + 2u);
     FswLinkPacket p;
     ASSERT_EQ(fsw_link_parse(b.data(), len, &p, nullptr), FSW_OK);
     EXPECT_EQ(p.type, 0);
     EXPECT_EQ(p.t_ns, 42u);
     FswAcsActuatorMsg back;
     std::memset(&back, 0x5A, sizeof back);
-    uint8_t nrw = 0, nthr = 0;
-    ASSERT_EQ(fsw_link_decode_actuator(&p, &back, &nrw, &nthr, nullptr), FSW_OK);
+    uint8_t nrw = 0, nthr = 0, nmtq = 99;
+    ASSERT_EQ(fsw_link_decode_actuator(&p, &back, &nrw, &nthr, &nmtq, nullptr), FSW_OK);
     EXPECT_EQ(std::memcmp(&back, &m, sizeof m), 0);
-    EXPECT_EQ(nrw, n.first);
-    EXPECT_EQ(nthr, n.second);
+    EXPECT_EQ(nrw, n.rw);
+    EXPECT_EQ(nthr, n.thr);
+    EXPECT_EQ(nmtq, n.mtq);
   }
   const FswAcsHealthMsg h = health_msg();
   Bytes b(FSW_LINK_MAX_PACKET);
@@ -284,23 +332,43 @@ TEST(FswLink, EveryPacketRoundTripsAtZeroAndFullCapacity)
 // CRC-16 detects every single-bit error; every truncation is short.
 TEST(FswLink, EverySingleBitErrorAndTruncationIsRejected)
 {
-  const Bytes good = encode_sensor(sensor_msg(4, 6), 4, 6);
-  FswLinkPacket p;
-  std::memset(&p, 0x33, sizeof p);
-  const FswLinkPacket untouched = p;
-  for (size_t bit = 0; bit < good.size() * 8; ++bit) {
-    Bytes b = good;
-    b[bit / 8] ^= static_cast<uint8_t>(1u << (bit % 8));
-    FswLinkError e = FSW_LINK_OK;
-    ASSERT_EQ(fsw_link_parse(b.data(), b.size(), &p, &e), FSW_E_BAD_INPUT) << "bit " << bit;
-    EXPECT_NE(e, FSW_LINK_OK);
+  // the full sensor and actuator packets (the largest of this build) and the health packet
+  std::vector<Bytes> packets = {encode_sensor(sensor_msg(4, 6), 4, 6),
+                                encode_sensor(sensor_msg(FSW_MAX_RW, FSW_MAX_CSS), FSW_MAX_RW, FSW_MAX_CSS)};
+  for (int k = 0; k < 2; ++k) {
+    Bytes b(FSW_LINK_MAX_PACKET);
+    size_t len = 0;
+    if (k == 0) {
+      const FswAcsActuatorMsg a = actuator_msg(FSW_MAX_RW, FSW_MAX_THR, FSW_MAX_MTQ);
+      ASSERT_EQ(fsw_link_encode_actuator(&a, FSW_MAX_RW, FSW_MAX_THR, FSW_MAX_MTQ, 1, 2, b.data(), b.size(), &len,
+                                         nullptr),
+                FSW_OK);
+    } else {
+      const FswAcsHealthMsg h = health_msg();
+      ASSERT_EQ(fsw_link_encode_health(&h, 1, 2, b.data(), b.size(), &len, nullptr), FSW_OK);
+    }
+    b.resize(len);
+    packets.push_back(b);
   }
-  for (size_t n = 0; n < good.size(); ++n) {
-    FswLinkError e = FSW_LINK_OK;
-    ASSERT_EQ(fsw_link_parse(good.data(), n, &p, &e), FSW_E_BAD_INPUT) << n;
-    EXPECT_EQ(e, FSW_LINK_E_SHORT) << n;
+  EXPECT_EQ(std::max({packets[1].size(), packets[2].size(), packets[3].size()}), FSW_LINK_MAX_PACKET);
+  for (const Bytes& good : packets) {
+    FswLinkPacket p;
+    std::memset(&p, 0x33, sizeof p);
+    const FswLinkPacket untouched = p;
+    for (size_t bit = 0; bit < good.size() * 8; ++bit) {
+      Bytes b = good;
+      b[bit / 8] ^= static_cast<uint8_t>(1u << (bit % 8));
+      FswLinkError e = FSW_LINK_OK;
+      ASSERT_EQ(fsw_link_parse(b.data(), b.size(), &p, &e), FSW_E_BAD_INPUT) << "bit " << bit;
+      EXPECT_NE(e, FSW_LINK_OK);
+    }
+    for (size_t n = 0; n < good.size(); ++n) {
+      FswLinkError e = FSW_LINK_OK;
+      ASSERT_EQ(fsw_link_parse(good.data(), n, &p, &e), FSW_E_BAD_INPUT) << n;
+      EXPECT_EQ(e, FSW_LINK_E_SHORT) << n;
+    }
+    EXPECT_EQ(std::memcmp(&p, &untouched, sizeof p), 0);  // never written on failure
   }
-  EXPECT_EQ(std::memcmp(&p, &untouched, sizeof p), 0);  // never written on failure
 }
 
 TEST(FswLink, DecodersCheckApidLengthCountsAndFlags)
@@ -334,7 +402,8 @@ TEST(FswLink, DecodersCheckApidLengthCountsAndFlags)
   b[pay + 3] = 1;  // reserved byte
   EXPECT_EQ(decode(b), FSW_LINK_E_COUNT);
   b = good;
-  b[b.size() - 3 - 8] = 7;  // the last css_avail flag (before the u64 thruster mask)
+  b[b.size() - 2 - 74 - 8 - 1] = 7;  // the last css_avail flag (before the u64 thruster mask, 72 bytes
+                                     // of B_B, r_N, v_N and the two flags)
   EXPECT_EQ(decode(b), FSW_LINK_E_COUNT);
   b = good;
   b[1] = 0x81;  // APID 0x181: an actuator packet's
@@ -473,7 +542,7 @@ TEST(FswLink, EveryArgumentAndRangeCheckRejectsAlone)
   size_t len = 0;
   FswLinkError e = FSW_LINK_OK;
   const FswAcsSensorMsg s = sensor_msg(2, 2);
-  const FswAcsActuatorMsg a = actuator_msg(2, 2);
+  const FswAcsActuatorMsg a = actuator_msg(2, 2, 1);
   const FswAcsHealthMsg h = health_msg();
   const FswAcsCmdMsg c = {1, 1};
   // CRC of a null buffer: the running value unchanged
@@ -495,26 +564,41 @@ TEST(FswLink, EveryArgumentAndRangeCheckRejectsAlone)
     EXPECT_EQ(fsw_link_encode_health(&hb, 0, 0, b.data(), b.size(), &len, &e), FSW_E_BAD_INPUT);
     EXPECT_EQ(e, FSW_LINK_E_COUNT);
   }
+  for (const int bad_policy : {-1, 256}) {  // the momentum policy travels as a u8
+    FswAcsCmdMsg cb = c;
+    cb.policy = bad_policy;
+    EXPECT_EQ(fsw_link_encode_cmd(&cb, 0, 0, b.data(), b.size(), &len, &e), FSW_E_BAD_INPUT);
+    EXPECT_EQ(e, FSW_LINK_E_COUNT);
+    FswAcsHealthMsg hb = h;
+    hb.policy = bad_policy;
+    EXPECT_EQ(fsw_link_encode_health(&hb, 0, 0, b.data(), b.size(), &len, &e), FSW_E_BAD_INPUT);
+    EXPECT_EQ(e, FSW_LINK_E_COUNT);
+  }
   EXPECT_EQ(fsw_link_encode_cmd(&c, 0, 0, b.data(), 14 + 4 + 1, &len, &e), FSW_E_BAD_INPUT);
   EXPECT_EQ(e, FSW_LINK_E_SPACE);
-  EXPECT_EQ(fsw_link_encode_actuator(nullptr, 2, 2, 0, 0, b.data(), b.size(), &len, &e), FSW_E_NULL_ARG);
-  EXPECT_EQ(fsw_link_encode_actuator(&a, 2, 2, 0, 0, nullptr, b.size(), &len, &e), FSW_E_NULL_ARG);
-  EXPECT_EQ(fsw_link_encode_actuator(&a, 2, 2, 0, 0, b.data(), b.size(), nullptr, &e), FSW_E_NULL_ARG);
-  EXPECT_EQ(fsw_link_encode_actuator(&a, FSW_MAX_RW + 1, 2, 0, 0, b.data(), b.size(), &len, &e), FSW_E_BAD_INPUT);
-  EXPECT_EQ(fsw_link_encode_actuator(&a, 2, FSW_MAX_THR + 1, 0, 0, b.data(), b.size(), &len, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(fsw_link_encode_actuator(nullptr, 2, 2, 1, 0, 0, b.data(), b.size(), &len, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_encode_actuator(&a, 2, 2, 1, 0, 0, nullptr, b.size(), &len, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_encode_actuator(&a, 2, 2, 1, 0, 0, b.data(), b.size(), nullptr, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_encode_actuator(&a, FSW_MAX_RW + 1, 2, 1, 0, 0, b.data(), b.size(), &len, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(fsw_link_encode_actuator(&a, 2, FSW_MAX_THR + 1, 1, 0, 0, b.data(), b.size(), &len, &e), FSW_E_BAD_INPUT);
   EXPECT_EQ(e, FSW_LINK_E_COUNT);
-  EXPECT_EQ(fsw_link_encode_actuator(&a, 2, 2, 0, 0, b.data(), 20, &len, &e), FSW_E_BAD_INPUT);
+  e = FSW_LINK_OK;
+  EXPECT_EQ(fsw_link_encode_actuator(&a, 2, 2, FSW_MAX_MTQ + 1, 0, 0, b.data(), b.size(), &len, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_COUNT);
+  EXPECT_EQ(fsw_link_encode_actuator(&a, 2, 2, 1, 0, 0, b.data(), 20, &len, &e), FSW_E_BAD_INPUT);
   EXPECT_EQ(e, FSW_LINK_E_SPACE);
   EXPECT_EQ(fsw_link_encode_health(nullptr, 0, 0, b.data(), b.size(), &len, &e), FSW_E_NULL_ARG);
   EXPECT_EQ(fsw_link_encode_health(&h, 0, 0, nullptr, b.size(), &len, &e), FSW_E_NULL_ARG);
   EXPECT_EQ(fsw_link_encode_health(&h, 0, 0, b.data(), b.size(), nullptr, &e), FSW_E_NULL_ARG);
   EXPECT_EQ(fsw_link_encode_health(&h, 0, 0, b.data(), 100, &len, &e), FSW_E_BAD_INPUT);
   EXPECT_EQ(e, FSW_LINK_E_SPACE);
-  // thrusters_active travels as a flag
+  // thrusters_active and mtq_active travel as flags (ICD: actuator offsets 4 and 5)
   FswAcsActuatorMsg at = a;
   at.thrusters_active = 7;
-  ASSERT_EQ(fsw_link_encode_actuator(&at, 2, 2, 0, 0, b.data(), b.size(), &len, &e), FSW_OK);
-  EXPECT_EQ(b[FSW_LINK_HEADER_SIZE + 3], 1u);
+  at.mtq_active = 200;
+  ASSERT_EQ(fsw_link_encode_actuator(&at, 2, 2, 1, 0, 0, b.data(), b.size(), &len, &e), FSW_OK);
+  EXPECT_EQ(b[FSW_LINK_HEADER_SIZE + 4], 1u);
+  EXPECT_EQ(b[FSW_LINK_HEADER_SIZE + 5], 1u);
 
   // parser: null packet pointer; a data length too small for the headers
   FswLinkPacket p;
@@ -533,7 +617,7 @@ TEST(FswLink, EveryArgumentAndRangeCheckRejectsAlone)
   FswAcsCmdMsg mc;
   FswAcsActuatorMsg ma;
   FswAcsHealthMsg mh;
-  uint8_t n1 = 0, n2 = 0;
+  uint8_t n1 = 0, n2 = 0, n3 = 0;
   EXPECT_EQ(fsw_link_decode_sensor(nullptr, &ms, &n1, &n2, &e), FSW_E_NULL_ARG);
   EXPECT_EQ(fsw_link_decode_sensor(&p, nullptr, &n1, &n2, &e), FSW_E_NULL_ARG);
   EXPECT_EQ(fsw_link_decode_sensor(&p, &ms, nullptr, &n2, &e), FSW_E_NULL_ARG);
@@ -544,11 +628,12 @@ TEST(FswLink, EveryArgumentAndRangeCheckRejectsAlone)
   EXPECT_EQ(fsw_link_decode_cmd(nullptr, &mc, &e), FSW_E_NULL_ARG);
   EXPECT_EQ(fsw_link_decode_cmd(&p, nullptr, &e), FSW_E_NULL_ARG);
   EXPECT_EQ(fsw_link_decode_cmd(&np, &mc, &e), FSW_E_NULL_ARG);
-  EXPECT_EQ(fsw_link_decode_actuator(nullptr, &ma, &n1, &n2, &e), FSW_E_NULL_ARG);
-  EXPECT_EQ(fsw_link_decode_actuator(&p, nullptr, &n1, &n2, &e), FSW_E_NULL_ARG);
-  EXPECT_EQ(fsw_link_decode_actuator(&p, &ma, nullptr, &n2, &e), FSW_E_NULL_ARG);
-  EXPECT_EQ(fsw_link_decode_actuator(&p, &ma, &n1, nullptr, &e), FSW_E_NULL_ARG);
-  EXPECT_EQ(fsw_link_decode_actuator(&np, &ma, &n1, &n2, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_actuator(nullptr, &ma, &n1, &n2, &n3, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_actuator(&p, nullptr, &n1, &n2, &n3, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_actuator(&p, &ma, nullptr, &n2, &n3, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_actuator(&p, &ma, &n1, nullptr, &n3, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_actuator(&p, &ma, &n1, &n2, nullptr, &e), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_decode_actuator(&np, &ma, &n1, &n2, &n3, &e), FSW_E_NULL_ARG);
   EXPECT_EQ(fsw_link_decode_health(nullptr, &mh, &e), FSW_E_NULL_ARG);
   EXPECT_EQ(fsw_link_decode_health(&p, nullptr, &e), FSW_E_NULL_ARG);
   EXPECT_EQ(fsw_link_decode_health(&np, &mh, &e), FSW_E_NULL_ARG);
@@ -580,27 +665,36 @@ TEST(FswLink, EveryArgumentAndRangeCheckRejectsAlone)
   q = with(FSW_LINK_APID_CMD, 1, short3);
   EXPECT_EQ(fsw_link_decode_cmd(&q, &mc, &e), FSW_E_BAD_INPUT);
   EXPECT_EQ(e, FSW_LINK_E_LENGTH);
-  Bytes cmd_flag(FSW_LINK_CMD_PAYLOAD, 0);
-  cmd_flag[3] = 2;  // set_gains not 0/1
-  q = with(FSW_LINK_APID_CMD, 1, cmd_flag);
-  EXPECT_EQ(fsw_link_decode_cmd(&q, &mc, &e), FSW_E_BAD_INPUT);
-  EXPECT_EQ(e, FSW_LINK_E_COUNT);
-  q = with(FSW_LINK_APID_ACTUATOR, 1, Bytes(FSW_LINK_ACTUATOR_PAYLOAD(0, 0), 0));
-  EXPECT_EQ(fsw_link_decode_actuator(&q, &ma, &n1, &n2, &e), FSW_E_BAD_INPUT);
+  for (const size_t at : {size_t{3}, size_t{44}}) {  // set_gains, set_policy not 0/1
+    Bytes cmd_flag(FSW_LINK_CMD_PAYLOAD, 0);
+    cmd_flag[at] = 2;
+    q = with(FSW_LINK_APID_CMD, 1, cmd_flag);
+    EXPECT_EQ(fsw_link_decode_cmd(&q, &mc, &e), FSW_E_BAD_INPUT) << at;
+    EXPECT_EQ(e, FSW_LINK_E_COUNT) << at;
+  }
+  q = with(FSW_LINK_APID_ACTUATOR, 1, Bytes(FSW_LINK_ACTUATOR_PAYLOAD(0, 0, 0), 0));
+  EXPECT_EQ(fsw_link_decode_actuator(&q, &ma, &n1, &n2, &n3, &e), FSW_E_BAD_INPUT);
   EXPECT_EQ(e, FSW_LINK_E_APID);
   q = with(FSW_LINK_APID_ACTUATOR, 0, short3);
-  EXPECT_EQ(fsw_link_decode_actuator(&q, &ma, &n1, &n2, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(fsw_link_decode_actuator(&q, &ma, &n1, &n2, &n3, &e), FSW_E_BAD_INPUT);
   EXPECT_EQ(e, FSW_LINK_E_LENGTH);
-  for (int which = 0; which < 5; ++which) {
-    Bytes pa(FSW_LINK_ACTUATOR_PAYLOAD(0, 0), 0);
+  for (int which = 0; which < 10; ++which) {  // ICD offsets: counts 0..2, flags 3..5, reserved 6..7
+    Bytes pa(FSW_LINK_ACTUATOR_PAYLOAD(0, 0, 0), 0);
     if (which == 0) pa[0] = FSW_MAX_RW + 1;
     if (which == 1) pa[1] = FSW_MAX_THR + 1;
-    if (which == 2) pa[0] = 1;  // one wheel declared, none in the payload
-    if (which == 3) pa[2] = 2;  // wheels_active
-    if (which == 4) pa[3] = 2;  // thrusters_active
+    if (which == 2) pa[2] = FSW_MAX_MTQ + 1;
+    if (which == 3) pa[0] = 1;  // one wheel declared, none in the payload
+    if (which == 4) pa[2] = 1;  // one rod declared, none in the payload
+    if (which == 5) pa[3] = 2;  // wheels_active
+    if (which == 6) pa[4] = 2;  // thrusters_active
+    if (which == 7) pa[5] = 2;  // mtq_active
+    if (which == 8) pa[6] = 1;  // reserved
+    if (which == 9) pa[7] = 0x80;
     q = with(FSW_LINK_APID_ACTUATOR, 0, pa);
-    EXPECT_EQ(fsw_link_decode_actuator(&q, &ma, &n1, &n2, &e), FSW_E_BAD_INPUT) << which;
-    EXPECT_EQ(e, which == 2 ? FSW_LINK_E_LENGTH : FSW_LINK_E_COUNT) << which;
+    n1 = n2 = n3 = 77;
+    EXPECT_EQ(fsw_link_decode_actuator(&q, &ma, &n1, &n2, &n3, &e), FSW_E_BAD_INPUT) << which;
+    EXPECT_EQ(e, which == 3 || which == 4 ? FSW_LINK_E_LENGTH : FSW_LINK_E_COUNT) << which;
+    EXPECT_EQ(n3, 77) << which;
   }
   q = with(FSW_LINK_APID_HEALTH, 1, Bytes(FSW_LINK_HEALTH_PAYLOAD, 0));
   EXPECT_EQ(fsw_link_decode_health(&q, &mh, &e), FSW_E_BAD_INPUT);
@@ -608,12 +702,14 @@ TEST(FswLink, EveryArgumentAndRangeCheckRejectsAlone)
   q = with(FSW_LINK_APID_HEALTH, 0, short3);
   EXPECT_EQ(fsw_link_decode_health(&q, &mh, &e), FSW_E_BAD_INPUT);
   EXPECT_EQ(e, FSW_LINK_E_LENGTH);
-  for (int which = 0; which < 3; ++which) {
+  for (int which = 0; which < 5; ++which) {
     Bytes ph(FSW_LINK_HEALTH_PAYLOAD, 0);
     ph[7] = FSW_ACS_NUM_STAGES;
     if (which == 0) ph[4] = 2;  // safe_output
     if (which == 1) ph[5] = 2;  // sun_valid
     if (which == 2) ph[7] = FSW_ACS_NUM_STAGES + 1;
+    if (which == 3) ph[183] = 2;  // detumbled (ICD offset 183)
+    if (which == 4) ph[185] = 1;  // reserved (ICD offset 185)
     q = with(FSW_LINK_APID_HEALTH, 0, ph);
     EXPECT_EQ(fsw_link_decode_health(&q, &mh, &e), FSW_E_BAD_INPUT) << which;
     EXPECT_EQ(e, FSW_LINK_E_COUNT) << which;
@@ -658,7 +754,7 @@ TEST(FswLink, Issue21AttValidTravelsAsAFlag)
     FswAcsSensorMsg m = sensor_msg(2, 3);
     m.att_valid = c.first;
     const Bytes b = encode_sensor(m, 2, 3);
-    ASSERT_EQ(b.size(), FSW_LINK_HEADER_SIZE + 84u + 9u * 2u + 9u * 3u + 2u);
+    ASSERT_EQ(b.size(), FSW_LINK_HEADER_SIZE + 158u + 9u * 2u + 9u * 3u + 2u);
     EXPECT_EQ(b[att], c.second) << int(c.first);
     FswLinkPacket p;
     ASSERT_EQ(fsw_link_parse(b.data(), b.size(), &p, nullptr), FSW_OK);
@@ -849,7 +945,7 @@ TEST(FswLink, Issue21LinkSafeTravelsAsAFlag)
     ASSERT_EQ(fsw_link_encode_status(&m, 789u, 3u, b.data(), b.size(), &len, nullptr), FSW_OK);
     ASSERT_EQ(len, FSW_LINK_HEADER_SIZE + 40u + FSW_LINK_CRC_SIZE);  // ICD: 40-byte payload
     EXPECT_EQ(b[safe_at], c.second) << int(c.first);
-    EXPECT_EQ(b[safe_at + 1u], 0u) << "reserved byte, offset 39";
+    EXPECT_EQ(b[safe_at + 1u], 2u) << "ICD version, offset 39";
     FswLinkPacket p;
     ASSERT_EQ(fsw_link_parse(b.data(), len, &p, nullptr), FSW_OK);
     FswLinkStatusMsg back;
@@ -898,4 +994,223 @@ TEST(FswLink, ThrusterAvailabilityTravelsAsABitMask)
   FswLinkError e = FSW_LINK_OK;
   EXPECT_EQ(fsw_link_encode_sensor(&m, nrw, ncss, 1, buf.data(), buf.size(), &len, &e), FSW_E_BAD_INPUT);
   EXPECT_EQ(e, FSW_LINK_E_COUNT);
+}
+
+namespace {
+
+// The big-endian binary64 at b[at], read without the library.
+double f64_at(const Bytes& b, size_t at)
+{
+  uint64_t bits = 0;
+  for (size_t k = 0; k < 8; ++k) bits = (bits << 8) | b[at + k];
+  double d;
+  std::memcpy(&d, &bits, sizeof d);
+  return d;
+}
+
+uint64_t u_at(const Bytes& b, size_t at, size_t n)
+{
+  uint64_t v = 0;
+  for (size_t k = 0; k < n; ++k) v = (v << 8) | b[at + k];
+  return v;
+}
+
+Bytes encode_actuator(const FswAcsActuatorMsg& m, uint8_t nrw, uint8_t nthr, uint8_t nmtq)
+{
+  Bytes b(FSW_LINK_MAX_PACKET);
+  size_t len = 0;
+  EXPECT_EQ(fsw_link_encode_actuator(&m, nrw, nthr, nmtq, 5, 6, b.data(), b.size(), &len, nullptr), FSW_OK);
+  b.resize(len);
+  return b;
+}
+
+Bytes encode_health(const FswAcsHealthMsg& m)
+{
+  Bytes b(FSW_LINK_MAX_PACKET);
+  size_t len = 0;
+  EXPECT_EQ(fsw_link_encode_health(&m, 5, 6, b.data(), b.size(), &len, nullptr), FSW_OK);
+  b.resize(len);
+  return b;
+}
+
+}  // namespace
+
+// ICD version 2: every payload size is the sum of its table's rows
+// (docs/icd.md), added up here row by row, for several counts: the
+// macros, the encoders and the largest packet agree with the tables.
+TEST(FswLink, Icd2PayloadSizesAreTheSumsOfTheTables)
+{
+  EXPECT_EQ(FSW_LINK_ICD_VERSION, 2u);
+  for (const auto& n : std::vector<std::pair<size_t, size_t>>{{0, 0}, {3, 5}, {FSW_MAX_RW, FSW_MAX_CSS}}) {
+    // n_rw, n_css, att_valid, reserved; sigma_BN, omega_BN_B, r_CoM_B; Omega; rw_avail; css; css_avail;
+    // thr_avail; B_B, r_N, v_N; mag_valid, orbit_valid
+    const size_t p = 4 * 1 + 3 * 3 * 8 + 8 * n.first + n.first + 8 * n.second + n.second + 8 + 3 * 3 * 8 + 2;
+    EXPECT_EQ(FSW_LINK_SENSOR_PAYLOAD(n.first, n.second), p);
+    EXPECT_EQ(encode_sensor(sensor_msg(uint8_t(n.first), uint8_t(n.second)), uint8_t(n.first), uint8_t(n.second)).size(),
+              14u + p + 2u);
+  }
+  // mode, actuation, set_ref, set_gains; sigma_R0N; K; P; set_policy, policy
+  EXPECT_EQ(FSW_LINK_CMD_PAYLOAD, 4u + 24u + 8u + 8u + 2u);
+  size_t largest_actuator = 0;
+  for (const auto& c : std::vector<std::array<size_t, 3>>{{0, 0, 0}, {2, 3, 4}, {FSW_MAX_RW, FSW_MAX_THR, FSW_MAX_MTQ}}) {
+    // n_rw, n_thr, n_mtq, three flags, reserved u16; Lr_B; u_s, V; F, t_on; m_cmd
+    const size_t p = 6 + 2 + 24 + 16 * c[0] + 16 * c[1] + 8 * c[2];
+    EXPECT_EQ(FSW_LINK_ACTUATOR_PAYLOAD(c[0], c[1], c[2]), p);
+    const auto m = actuator_msg(uint8_t(c[0]), uint8_t(c[1]), uint8_t(c[2]));
+    EXPECT_EQ(encode_actuator(m, uint8_t(c[0]), uint8_t(c[1]), uint8_t(c[2])).size(), 14u + p + 2u);
+    largest_actuator = p;
+  }
+  // status..number of stages (8 bytes), cycles, mode_changes; 16 stages; sigma_BR, omega_BR_B, two angles,
+  // sun_hat_B; 7 counters, last; rw_failed, rw_latched; policy, detumbled, dump_phase, reserved, dumps;
+  // h_w_B, rate_est, tau_mtq_B, prop_used
+  const size_t health = 8 + 4 + 4 + 16 * 2 + (3 + 3 + 2 + 3) * 8 + 7 * 4 + 2 + 2 * 8 + 4 + 4 + (3 + 1 + 3 + 1) * 8;
+  EXPECT_EQ(health, 254u);
+  EXPECT_EQ(FSW_ACS_NUM_STAGES, 16);
+  EXPECT_EQ(FSW_LINK_HEALTH_PAYLOAD, health);
+  EXPECT_EQ(encode_health(health_msg()).size(), 14u + health + 2u);
+  const size_t largest_sensor = FSW_LINK_SENSOR_PAYLOAD(FSW_MAX_RW, FSW_MAX_CSS);
+  EXPECT_EQ(FSW_LINK_MAX_PACKET, 16u + std::max({largest_sensor, largest_actuator, health}));
+  if (FSW_MAX_RW == 36 && FSW_MAX_CSS == 32 && FSW_MAX_THR == 36 && FSW_MAX_MTQ == 8) {  // the defaults
+    EXPECT_EQ(largest_sensor, 770u);
+    EXPECT_EQ(largest_actuator, 1248u);
+    EXPECT_EQ(FSW_LINK_MAX_PACKET, 1264u);
+  }
+}
+
+// The fields of ICD version 2 at their table offsets, read back without the
+// library; their flags travel as 0/1 and a flag other than 0/1 on the wire
+// is refused (FSW_LINK_E_COUNT) without writing the message.
+TEST(FswLink, Icd2NewFieldsSitAtTheirTableOffsets)
+{
+  const uint8_t nrw = 2, ncss = 3;
+  FswAcsSensorMsg s = sensor_msg(nrw, ncss);
+  s.mag_valid = 9;  // non-zero: sent as 1
+  s.orbit_valid = 0;
+  Bytes b = encode_sensor(s, nrw, ncss);
+  const size_t t = 14 + 76 + 9 * nrw + 9 * ncss;  // thr_avail
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(f64_at(b, t + 8 + 8 * i), double(s.B_B[i])) << i;
+    EXPECT_EQ(f64_at(b, t + 32 + 8 * i), double(s.r_N[i])) << i;
+    EXPECT_EQ(f64_at(b, t + 56 + 8 * i), double(s.v_N[i])) << i;
+  }
+  EXPECT_EQ(b[t + 80], 1u);  // mag_valid
+  EXPECT_EQ(b[t + 81], 0u);  // orbit_valid
+  EXPECT_EQ(t + 82 + 2, b.size());
+  for (const size_t at : {t + 80, t + 81}) {
+    for (const uint8_t v : {uint8_t{2}, uint8_t{0xFF}}) {
+      Bytes bad = b;
+      bad[at] = v;
+      fix_crc(bad);
+      FswLinkPacket p;
+      ASSERT_EQ(fsw_link_parse(bad.data(), bad.size(), &p, nullptr), FSW_OK);
+      FswAcsSensorMsg m;
+      std::memset(&m, 0x77, sizeof m);
+      uint8_t n1 = 99, n2 = 99;
+      FswLinkError e = FSW_LINK_OK;
+      EXPECT_EQ(fsw_link_decode_sensor(&p, &m, &n1, &n2, &e), FSW_E_BAD_INPUT) << at;
+      EXPECT_EQ(e, FSW_LINK_E_COUNT) << at;
+      EXPECT_EQ(m.mag_valid, 0x77u);
+      EXPECT_EQ(n1, 99u);
+    }
+  }
+
+  const uint8_t nthr = 3, nmtq = 4;
+  FswAcsActuatorMsg a = actuator_msg(nrw, nthr, nmtq);
+  b = encode_actuator(a, nrw, nthr, nmtq);
+  EXPECT_EQ(Bytes(b.begin() + 14, b.begin() + 22), (Bytes{nrw, nthr, nmtq, 1, 0, 1, 0, 0}));
+  EXPECT_EQ(f64_at(b, 14 + 8), double(a.Lr_B[0]));
+  EXPECT_EQ(f64_at(b, 14 + 32 + 8 * nrw), double(a.V[0]));
+  EXPECT_EQ(f64_at(b, 14 + 32 + 16 * nrw + 8 * nthr + 8), double(a.t_on[1]));
+  for (size_t i = 0; i < nmtq; ++i)
+    EXPECT_EQ(f64_at(b, 14 + 32 + 16 * nrw + 16 * nthr + 8 * i), -0.75 + 0.25 * double(i)) << i;
+  EXPECT_EQ(14 + 32 + 16 * nrw + 16 * nthr + 8 * nmtq + 2, b.size());
+
+  const FswAcsHealthMsg h = health_msg();
+  b = encode_health(h);
+  const size_t p0 = 14;
+  EXPECT_EQ(b[p0 + 7], 16u);                                      // number of stages
+  EXPECT_EQ(u_at(b, p0 + 16 + 2 * 15, 2), uint64_t(uint16_t(h.stage_status[15])));  // rw_bias, the last
+  EXPECT_EQ(u_at(b, p0 + 174, 8), 0x4u);                          // rw_latched
+  EXPECT_EQ(b[p0 + 182], 2u);                                     // policy: magnetorquers
+  EXPECT_EQ(b[p0 + 183], 1u);                                     // detumbled
+  EXPECT_EQ(b[p0 + 184], 2u);                                     // dump_phase
+  EXPECT_EQ(b[p0 + 185], 0u);                                     // reserved
+  EXPECT_EQ(u_at(b, p0 + 186, 4), 3000000000u);                  // dumps
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(f64_at(b, p0 + 190 + 8 * i), double(h.h_w_B[i])) << i;
+    EXPECT_EQ(f64_at(b, p0 + 222 + 8 * i), double(h.tau_mtq_B[i])) << i;
+  }
+  EXPECT_EQ(f64_at(b, p0 + 214), double(h.rate_est));                                          // rate_est
+  EXPECT_EQ(f64_at(b, p0 + 246), 0.0625);                                                      // prop_used
+  FswAcsHealthMsg hd = h;
+  hd.detumbled = 5;  // non-zero: sent as 1
+  EXPECT_EQ(encode_health(hd)[p0 + 183], 1u);
+}
+
+// A peer of ICD version 1 (packets before the version-2 fields; layouts of
+// that version written here by hand) is refused: its sensor, command,
+// actuator and health packets fail on their length (FSW_LINK_E_LENGTH, for
+// any counts: 84 + 9k never equals 158 + 9j, 28 + 16k never equals
+// 32 + 16j + 8m), its link status on the version byte (FSW_LINK_E_HEADER).
+TEST(FswLink, Icd1PeerIsRejected)
+{
+  auto packet = [](uint16_t apid, uint8_t type, const Bytes& payload) {
+    Bytes b(14 + payload.size() + 2, 0);
+    b[0] = static_cast<uint8_t>((type << 4) | 0x08 | (apid >> 8));  // version 0, type, sec. header, APID
+    b[1] = static_cast<uint8_t>(apid & 0xFF);
+    b[2] = 0xC0;  // unsegmented, count 1
+    b[3] = 0x01;
+    b[4] = static_cast<uint8_t>((8 + payload.size() + 1) >> 8);  // data length 8 + P + 2 - 1
+    b[5] = static_cast<uint8_t>((8 + payload.size() + 1) & 0xFF);
+    b[13] = 9;  // t_ns
+    for (size_t i = 0; i < payload.size(); ++i) b[14 + i] = payload[i];
+    fix_crc(b);
+    return b;
+  };
+  auto why = [](const Bytes& b, int kind) {
+    FswLinkPacket p;
+    FswLinkError e = FSW_LINK_OK;
+    EXPECT_EQ(fsw_link_parse(b.data(), b.size(), &p, &e), FSW_OK);
+    FswAcsSensorMsg s;
+    FswAcsCmdMsg c;
+    FswAcsActuatorMsg a;
+    FswAcsHealthMsg h;
+    FswLinkStatusMsg st;
+    uint8_t n1, n2, n3;
+    FswStatus r = FSW_OK;
+    if (kind == 0) r = fsw_link_decode_sensor(&p, &s, &n1, &n2, &e);
+    if (kind == 1) r = fsw_link_decode_cmd(&p, &c, &e);
+    if (kind == 2) r = fsw_link_decode_actuator(&p, &a, &n1, &n2, &n3, &e);
+    if (kind == 3) r = fsw_link_decode_health(&p, &h, &e);
+    if (kind == 4) r = fsw_link_decode_status(&p, &st, &e);
+    EXPECT_EQ(r, FSW_E_BAD_INPUT);
+    return e;
+  };
+  for (uint8_t nrw = 0; nrw <= 4; ++nrw) {
+    for (uint8_t n2 = 0; n2 <= 4; ++n2) {
+      // v1 sensor: n_rw, n_css, att_valid, reserved, 9 f64, Omega, rw_avail, css, css_avail, u64 thr_avail
+      Bytes s = {nrw, n2, 1, 0};
+      s.resize(84 + 9 * nrw + 9 * n2, 0);
+      EXPECT_EQ(why(packet(0x101, 1, s), 0), FSW_LINK_E_LENGTH) << int(nrw) << "/" << int(n2);
+      // v1 actuator: n_rw, n_thr, wheels_active, thrusters_active, Lr_B (-0.01: first byte 0xBF), u_s, V, F, t_on
+      Bytes a = {nrw, n2, 1, 1, 0xBF, 0x84, 0x7A, 0xE1, 0x47, 0xAE, 0x14, 0x7B};
+      a.resize(28 + 16 * nrw + 16 * n2, 0);
+      EXPECT_EQ(why(packet(0x181, 0, a), 2), FSW_LINK_E_LENGTH) << int(nrw) << "/" << int(n2);
+    }
+  }
+  EXPECT_EQ(why(packet(0x102, 1, Bytes(44, 0)), 1), FSW_LINK_E_LENGTH);  // v1 command: 44 bytes
+  Bytes h(172, 0);                                                       // v1 health: 11 stages
+  h[7] = 11;
+  EXPECT_EQ(why(packet(0x182, 0, h), 3), FSW_LINK_E_LENGTH);
+  Bytes st(40, 0);  // v1 link status: byte 39 reserved (0)
+  EXPECT_EQ(why(packet(0x183, 0, st), 4), FSW_LINK_E_HEADER);
+  st[39] = 2;  // this version's: accepted
+  const Bytes ok = packet(0x183, 0, st);
+  FswLinkPacket p;
+  ASSERT_EQ(fsw_link_parse(ok.data(), ok.size(), &p, nullptr), FSW_OK);
+  FswLinkStatusMsg m;
+  ASSERT_EQ(fsw_link_decode_status(&p, &m, nullptr), FSW_OK);
+  EXPECT_EQ(m.icd_version, 2u);
+  st[39] = 3;  // a later version
+  EXPECT_EQ(why(packet(0x183, 0, st), 4), FSW_LINK_E_HEADER);
 }

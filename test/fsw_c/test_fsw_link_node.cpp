@@ -28,7 +28,7 @@ using Bytes = std::vector<uint8_t>;
 using acsfix::R;
 
 // Counted by hand from the struct definitions in fsw_acs.h and the module
-// headers (C = FSW_MAX_CSS, W = FSW_MAX_RW, T = FSW_MAX_THR):
+// headers (C = FSW_MAX_CSS, W = FSW_MAX_RW, T = FSW_MAX_THR, M = FSW_MAX_MTQ):
 //   int fields: initial_mode, initial_actuation, css.num_css,
 //     mrp_fb.{control_law_type, num_rw}, use_lpf, has_wheels,
 //     rw_map.{num_rw, num_axes, mode}, use_null, rw_null.{num_rw,
@@ -36,12 +36,19 @@ using acsfix::R;
 //     gate_rate}, has_thrusters, thr_map.{num_thr, thr_force_sign,
 //     use_2nd_loop, mode}, pulser, 2 x pulser common {num_thr,
 //     base_thrust_state}                                              = 28
+//   version 2: has_mtq, mtq_map.num_mtq, bdot.{variant, normalize,
+//     max_missed}, detumble_exit_mode, has_orbit, orbit.variant,
+//     initial_policy, use_thr_mom, thr_mom.{num_rw, num_thr},
+//     use_mtq_desat, mtq_desat.num_rw, use_bias, rw_bias.num_rw       + 16
 //   reals: css 4C+1, sunsafe 9, inertial 3, track 3, mrp_fb 16+4W, lpf 2,
 //     rw_map 10+3W, rw_null 1+4W, Omega_des W, rw_sat W, rw_volt 3+3W,
 //     thr_map 11+7T, pulse_rem T+2, pulse_schmitt T+4
 //                                              = 65 + 4C + 16W + 9T
-constexpr size_t kInts = 28;
-constexpr size_t kReals = 65 + 4 * FSW_MAX_CSS + 16 * FSW_MAX_RW + 9 * FSW_MAX_THR;
+//   version 2: mtq_map 4M+1, bdot 8, orbit 4, thr_mom 8+4W+T,
+//     mtq_desat 6+4W, rw_bias 2+4W             + 29 + 4M + 12W + T
+constexpr size_t kInts = 28 + 16;
+constexpr size_t kReals = 65 + 4 * FSW_MAX_CSS + 16 * FSW_MAX_RW + 9 * FSW_MAX_THR + 29 + 4 * FSW_MAX_MTQ +
+                          12 * FSW_MAX_RW + FSW_MAX_THR;
 
 Bytes image_of(const FswAcsConfig& c)
 {
@@ -79,7 +86,7 @@ TEST(FswLinkConfig, HeaderAndSizeAreTheIcds)
   EXPECT_EQ(b[10], FSW_MAX_RW);
   EXPECT_EQ(b[11], FSW_MAX_CSS);
   EXPECT_EQ(b[12], FSW_MAX_THR);
-  EXPECT_EQ(b[13], 0u);
+  EXPECT_EQ(b[13], FSW_MAX_MTQ);
   EXPECT_EQ(b[14], 0u);
   EXPECT_EQ(b[15], 0u);
   const uint32_t body = (uint32_t(b[16]) << 24) | (uint32_t(b[17]) << 16) | (uint32_t(b[18]) << 8) | b[19];
@@ -97,7 +104,7 @@ TEST(FswLinkConfig, EveryFieldByteIsCarried)
 {
   // Every byte 0x41: ints 0x41414141, reals finite (2.3e6 in double, 12.1 in
   // float).  Decoded, exactly the bytes of no field (padding) differ, and
-  // there are sizeof - 28 ints - kReals reals of them: a field missing from
+  // there are sizeof - kInts ints - kReals reals of them: a field missing from
   // the table would add its bytes to the difference.
   auto a_p = std::make_unique<FswAcsConfig>();
   FswAcsConfig& a = *a_p;
@@ -207,9 +214,13 @@ TEST(FswLinkConfig, DamagedImagesAreRejectedAndWriteNothing)
   other[10] = static_cast<uint8_t>(other[10] + 1);
   put_crc(other);
   rejects(other, FSW_LINK_E_HEADER);
-  // another format version
+  Bytes rods = good;  // another rod capacity
+  rods[13] = static_cast<uint8_t>(rods[13] + 1);
+  put_crc(rods);
+  rejects(rods, FSW_LINK_E_HEADER);
+  // another format version (the one before)
   Bytes version = good;
-  version[5] = 2;
+  version[5] = static_cast<uint8_t>(FSW_LINK_CONFIG_VERSION - 1u);
   put_crc(version);
   rejects(version, FSW_LINK_E_HEADER);
 }
@@ -264,6 +275,9 @@ TEST(FswLinkStatus, RoundTripsAndChecksItsFields)
   FswLinkError e = FSW_LINK_E_CRC;
   ASSERT_EQ(fsw_link_decode_status(&p, &d, &e), FSW_OK);
   EXPECT_EQ(e, FSW_LINK_OK);
+  EXPECT_EQ(b[14 + 39], 2u);        // the ICD version (2), whatever m.icd_version says (0 here)
+  EXPECT_EQ(d.icd_version, 2u);
+  d.icd_version = m.icd_version;
   EXPECT_EQ(std::memcmp(&m, &d, sizeof m), 0);
 
   auto reject = [&](size_t at, uint8_t v, FswLinkError want) {
@@ -281,10 +295,11 @@ TEST(FswLinkStatus, RoundTripsAndChecksItsFields)
     EXPECT_EQ(std::memcmp(&out, &before, sizeof out), 0);
   };
   reject(14 + 38, 2, FSW_LINK_E_COUNT);      // link_safe flag 2
-  reject(14 + 39, 1, FSW_LINK_E_COUNT);      // reserved byte
+  reject(14 + 39, 1, FSW_LINK_E_HEADER);     // ICD version 1 (byte 39 was reserved, 0, in version 1)
+  reject(14 + 39, 0, FSW_LINK_E_HEADER);
   reject(14 + 36, 0x40, FSW_LINK_E_COUNT);   // last_seq 16384 + ...
   reject(1, 0x82, FSW_LINK_E_APID);          // APID 0x182 (health)
-  // wrong length: a health packet's APID changed to 0x183 has 172 bytes
+  // wrong length: a health packet's APID changed to 0x183 has 254 bytes
   FswAcsHealthMsg h{};
   ASSERT_EQ(fsw_link_encode_health(&h, 1, 1, b.data(), b.size(), &len, nullptr), FSW_OK);
   b[1] = 0x83;
@@ -374,9 +389,10 @@ TEST(FswLinkNode, RepliesEqualTheApplicationRunDirectly)
     FswAcsActuatorMsg act, ract;
     FswAcsHealthMsg h, rh;
     fsw_acs_cycle(&st, &node.cfg, &s, nullptr, &act, &h);
-    uint8_t nrw = 0, nthr = 9;
+    uint8_t nrw = 0, nthr = 9, nmtq = 9;
     const FswLinkPacket pa = node.reply(0), ph = node.reply(1), pl = node.reply(2);
-    ASSERT_EQ(fsw_link_decode_actuator(&pa, &ract, &nrw, &nthr, nullptr), FSW_OK);
+    ASSERT_EQ(fsw_link_decode_actuator(&pa, &ract, &nrw, &nthr, &nmtq, nullptr), FSW_OK);
+    EXPECT_EQ(nmtq, 0u);  // the configuration has no rods yet
     ASSERT_EQ(fsw_link_decode_health(&ph, &rh, nullptr), FSW_OK);
     EXPECT_EQ(pa.t_ns, s.t_ns);
     EXPECT_EQ(ph.t_ns, s.t_ns);
@@ -435,7 +451,7 @@ TEST(FswLinkNode, StaleDamagedAndForeignPacketsAreCountedAndAnsweredByTheStatus)
   FswAcsActuatorMsg a{};
   Bytes ab(FSW_LINK_MAX_PACKET);
   size_t len = 0;
-  ASSERT_EQ(fsw_link_encode_actuator(&a, 0, 0, 1, 0, ab.data(), ab.size(), &len, nullptr), FSW_OK);
+  ASSERT_EQ(fsw_link_encode_actuator(&a, 0, 0, 0, 1, 0, ab.data(), ab.size(), &len, nullptr), FSW_OK);
   ab.resize(len);
   EXPECT_EQ(node.feed(ab), 1);
   Bytes wrong = sensor_packet(sensors(6), 101);
@@ -487,9 +503,9 @@ TEST(FswLinkNode, WatchdogEntersLinkSafeAndDataRecovers)
   EXPECT_EQ(node.n.link.link_safe, 0u);
   ASSERT_EQ(fsw_link_node_watchdog(&node.n, 7), 2);  // the third missed period
   FswAcsActuatorMsg a;
-  uint8_t nrw = 0, nthr = 0;
+  uint8_t nrw = 0, nthr = 0, nmtq = 0;
   FswLinkPacket pa = node.reply(0), pl = node.reply(1);
-  ASSERT_EQ(fsw_link_decode_actuator(&pa, &a, &nrw, &nthr, nullptr), FSW_OK);
+  ASSERT_EQ(fsw_link_decode_actuator(&pa, &a, &nrw, &nthr, &nmtq, nullptr), FSW_OK);
   EXPECT_EQ(pa.t_ns, 7u);
   EXPECT_EQ(a.wheels_active, 0u);
   EXPECT_EQ(a.thrusters_active, 0u);

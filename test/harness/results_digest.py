@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Bit-for-bit digests of what `kestrel run` and `kestrel mc` write.
 
-For every shipped reference scenario (S1, S2, S3, S1 in LEO and each event scenario) and
-the shipped Monte Carlo campaign, this runs the `kestrel` program as a user
+For every shipped reference scenario (S1, S2, S3, S1 in LEO, S3 detumble and
+hold and each event scenario) and the shipped S1 Monte Carlo campaign, this runs the `kestrel` program as a user
 does, then digests its results folder:
 
   * every HDF5 dataset's raw bytes, shape and type, and every attribute
@@ -40,6 +40,7 @@ RUNS = [
     "s2_thruster_stuck",
     "s3_leo_smallsat",
     "s1_leo_environment",
+    "s3_detumble_hold",
 ]
 CAMPAIGN = ("s1_monte_carlo", ["--runs", "6", "-j", "1", "--seed", "7"])  # one thread: rows in run order
 

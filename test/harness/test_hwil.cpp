@@ -36,6 +36,7 @@ using hwil::TempDir;
 const std::string kSrc = KESTREL_SOURCE_DIR;
 const std::string kS1 = kSrc + "/scenarios/s1_sun_pointing.yaml";
 const std::string kS2 = kSrc + "/scenarios/s2_mars_orbit_insertion.yaml";
+const std::string kS3Detumble = kSrc + "/scenarios/s3_detumble_hold.yaml";
 // Generous: a loaded 2-core machine can stall a process for seconds.
 constexpr double kStartTimeout = 60.0;  // [s] child ready
 constexpr double kReplyTimeout = 30.0;  // [s] lockstep reply
@@ -166,6 +167,14 @@ TEST(Hwil, FswCommandsOverTheLinkEqualInProcess)
 TEST(Hwil, LockstepS1OverUdpEqualsInProcess) { lockstep_equals_in_process(kS1, "udp"); }
 TEST(Hwil, LockstepS2OverUdpEqualsInProcess) { lockstep_equals_in_process(kS2, "udp"); }
 TEST(Hwil, LockstepS1OverPtyEqualsInProcess) { lockstep_equals_in_process(kS1, "serial"); }
+// ICD version 2's fields over the link: S3 detumbling on its rods (the
+// magnetometer in, the rod dipoles out) and holding nadir with magnetorquer
+// desaturation (the orbit in), 120 s each over UDP, bit for bit.
+TEST(Hwil, LockstepS3DetumbleAndNadirOverUdpEqualInProcess)
+{
+  for (const char* mode : {"detumble", "nadir"})
+    lockstep_equals_in_process(harness::load_scenario(kS3Detumble, {{"duration", "120"}, {"fsw.mode", mode}}), "udp");
+}
 TEST(Hwil, LockstepS2OverPtyEqualsInProcess) { lockstep_equals_in_process(kS2, "serial"); }
 
 // S1 with 10 % of the sensor packets lost and 10 % corrupted (1-3 flipped

@@ -547,3 +547,115 @@ TEST(McCampaign, RetentionKeepsTheFirstFailingRunsWhateverTheThreads)
     fs::remove_all(dir);
   }
 }
+
+// The S3 Monte Carlo reference campaign (scenarios/s3_monte_carlo.yaml),
+// shortened: 5 runs of 45,000 s (7.9 orbits: the detumble, whose bound is
+// 30,000 s, and 1.6 orbits of the hold window that starts at 36,000 s), on 2
+// threads, twice (the second time in another order): the records are bit for
+// bit the same.  Each criterion is evaluated (a number, and the pass flag
+// follows the file's thresholds), and run 0's criteria are recomputed here
+// from its full recorded rows (the run reproduced from its manifest): the
+// time in DETUMBLE counted row by row against the mean-of-fsw_mode reading,
+// the first exit, the hold's peak |H_wheels_N| and pointing error.  The
+// campaign's summary and report are written.
+TEST(S3MonteCarlo, ShortCampaignEvaluatesItsCriteriaRepeatablyAndWritesItsReport)
+{
+#ifdef KESTREL_TEST_SANITIZE
+  GTEST_SKIP() << "10 runs of 45,000 s at 0.1 s: release and clang presets only";
+#endif
+  const std::string file = std::string(KESTREL_SOURCE_DIR) + "/scenarios/s3_monte_carlo.yaml";
+  const Scenario sc = load_scenario(file, {{"duration", "45000"}, {"outputs.report_data", "false"}});
+  ASSERT_TRUE(sc.monte_carlo);
+  EXPECT_EQ(sc.monte_carlo->runs, 50u);  // as shipped; shortened here by runs and duration
+  const McPlan plan = make_mc_plan(sc, sc.monte_carlo->seed, 5);
+  struct Want {
+    const char* name;
+    bool below;
+    double threshold;
+  };
+  // the file's criteria (their derivation is in its header)
+  const Want want[] = {{"detumble_time", false, 2.25}, {"stays_nadir", false, 2.5}, {"hold_momentum", true, 0.011},
+                       {"hold_pointing", true, 3.0},   {"no_fsw_error", true, 0.5}};
+  std::vector<size_t> crit;
+  for (const Want& w : want) {
+    size_t m = 0;
+    while (m < plan.metrics.size() && plan.metrics[m].col.name != w.name) ++m;
+    ASSERT_LT(m, plan.metrics.size()) << w.name;
+    EXPECT_GE(plan.metrics[m].criterion, 0) << w.name;
+    EXPECT_EQ(plan.metrics[m].below, w.below) << w.name;
+    EXPECT_EQ(plan.metrics[m].threshold, w.threshold) << w.name;
+    crit.push_back(m);
+  }
+  const fs::path d1 = fs::temp_directory_path() / "kestrel_mc_test_s3_a";
+  const fs::path d2 = fs::temp_directory_path() / "kestrel_mc_test_s3_b";
+  const std::vector<McRecord> a = campaign(plan, d1, 2, {0, 1, 2, 3, 4});
+  const std::vector<McRecord> b = campaign(plan, d2, 2, {4, 2, 0, 3, 1});
+  ASSERT_EQ(a.size(), 5u);
+  ASSERT_EQ(b.size(), 5u);
+  for (size_t i = 0; i < 5; ++i) expect_same(a[i], b[i]);
+
+  for (const McRecord& r : a) {
+    EXPECT_FALSE(r.invalid) << r.reason;
+    EXPECT_TRUE(r.complete) << r.reason;
+    bool pass = r.complete && !r.invalid;
+    for (size_t c = 0; c < crit.size(); ++c) {
+      const double v = r.metrics[crit[c]];
+      ASSERT_TRUE(std::isfinite(v)) << "run " << r.index << ": " << want[c].name;
+      pass = pass && (want[c].below ? v < want[c].threshold : v > want[c].threshold);
+    }
+    EXPECT_EQ(r.pass, pass) << "run " << r.index << ": " << r.reason;
+    std::printf("S3 MC run %llu: %.0f s in DETUMBLE, hold peak |H_w| %.3g N*m*s, pointing %.2f deg: %s\n",
+                static_cast<unsigned long long>(r.index), (3.0 - r.metrics[crit[0]]) * 40000.0, r.metrics[crit[2]],
+                r.metrics[crit[3]], r.pass ? "pass" : r.reason.c_str());
+  }
+
+  // run 0 again from its manifest, its criteria from the full rows
+  harness::Run run(load_scenario((d1 / "runs" / "000000" / "manifest.json").string()));
+  ASSERT_TRUE(run.step_ticks(run.total_ticks())) << run.failure();
+  const MemorySink& m = run.memory();
+  const std::vector<double> t = m.column("t"), mode = m.column("fsw_mode"), pe = m.column("pointing_error_deg");
+  const std::vector<double> hx = m.column("H_wheels_N_x"), hy = m.column("H_wheels_N_y"), hz = m.column("H_wheels_N_z");
+  size_t rows = 0, in_detumble = 0, exit = t.size();
+  double mode_min = 10.0, h_max = 0.0, pe_max = 0.0;
+  for (size_t k = 0; k < t.size(); ++k) {
+    if (exit == t.size() && mode[k] != 2.0) exit = k;
+    if (t[k] <= 39990.0) {
+      ++rows;
+      in_detumble += mode[k] == 2.0 ? 1 : 0;
+    }
+    if (t[k] >= 30000.0) mode_min = std::min(mode_min, mode[k]);
+    if (t[k] >= 36000.0) {
+      h_max = std::max(h_max, std::sqrt(hx[k] * hx[k] + hy[k] * hy[k] + hz[k] * hz[k]));
+      pe_max = std::max(pe_max, pe[k]);
+    }
+  }
+  ASSERT_EQ(rows, 4000u);  // t = 0, 10, ..., 39,990 s
+  ASSERT_LT(exit, t.size()) << "run 0 never left DETUMBLE";
+  const double mean = (2.0 * static_cast<double>(in_detumble) + 3.0 * static_cast<double>(rows - in_detumble)) / 4000.0;
+  EXPECT_NEAR(a[0].metrics[crit[0]], mean, 1e-12);
+  // the file's reading of it: (3 - mean) x 40,000 s is the first exit time (no re-entry)
+  EXPECT_NEAR((3.0 - a[0].metrics[crit[0]]) * 40000.0, t[exit], 1e-6);
+  EXPECT_EQ(a[0].metrics[crit[1]], mode_min);
+  EXPECT_NEAR(a[0].metrics[crit[2]], h_max, 1e-15);
+  EXPECT_EQ(a[0].metrics[crit[3]], pe_max);
+
+  // the summary and the report
+  McSummaryInfo info;
+  info.source = file;
+  write_mc_outputs(plan, a, info, d1);
+  for (const char* f : {"summary.csv", "summary.h5", "mc_report_data.json", "mc_runs.json"})
+    EXPECT_TRUE(fs::exists(d1 / f)) << f;
+  std::ifstream csv(d1 / "summary.csv");
+  std::string header;
+  std::getline(csv, header);
+  for (const Want& w : want) EXPECT_NE(header.find(w.name), std::string::npos) << header;
+#ifdef KESTREL_TEST_HAVE_REPORT
+  ASSERT_TRUE(fs::exists(d1 / "mc_report.html"));
+  EXPECT_GT(fs::file_size(d1 / "mc_report.html"), 20000u);
+  std::ifstream page(d1 / "mc_report.html");
+  const std::string html((std::istreambuf_iterator<char>(page)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("s3_monte_carlo"), std::string::npos);
+#endif
+  fs::remove_all(d1);
+  fs::remove_all(d2);
+}

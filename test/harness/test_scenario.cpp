@@ -314,7 +314,7 @@ TEST(SetParameter, RefusesBadValuesNamingTheKeyAndLeavesTheScenarioAlone)
   EXPECT_EQ(set_error(sc, "rates.fsw_divisor", 2.5), "rates.fsw_divisor: expected an integer, got 2.5");
   EXPECT_EQ(set_error(sc, "rates.fsw_divisor", 0), "rates.fsw_divisor: must be in [1, 1000000], got 0");
   EXPECT_EQ(set_error(sc, "seed", -1), "seed: expected a non-negative integer, got -1");
-  EXPECT_EQ(set_error(sc, "fsw.mode", "sunny"), "fsw.mode: expected one of {inertial, sun_safe}, got 'sunny'");
+  EXPECT_EQ(set_error(sc, "fsw.mode", "sunny"), "fsw.mode: expected one of {inertial, sun_safe, detumble, nadir}, got 'sunny'");
   EXPECT_EQ(set_error(sc, "name", "a b"), "name: must be non-empty and use only letters, digits, '_' and '-'");
   EXPECT_EQ(set_error(sc, "wheels.0.axis", Eigen::Vector3d(1, 1, 0)).rfind("wheels[0].axis: must be a unit vector", 0), 0u);
   EXPECT_EQ(set_error(sc, "spacecraft.inertia", Eigen::Vector3d(1, 1, 3)).rfind("spacecraft.inertia: inertia violates", 0), 0u);
@@ -369,6 +369,26 @@ TEST(Scenario, S2ManifestReloadsIdentically)
   EXPECT_EQ(harness::scenario_to_json_text(harness::load_scenario_text(ja, "m.json")), ja);
   EXPECT_TRUE(a.burn.has_value());
   EXPECT_TRUE(a.rcs_tank.has_value());
+}
+
+// Every shipped scenario's canonical form (a run's manifest) loads back to
+// the same form: keys whose 0 means "not given" (fsw.bdot.k, the momentum
+// policies' gains, rw_bias.keepout, ...) are left out rather than written as
+// a 0 their bounds refuse.
+TEST(Scenario, EveryShippedScenariosManifestReloadsIdentically)
+{
+  size_t n = 0;
+  for (const auto& e : std::filesystem::directory_iterator(std::string(KESTREL_SOURCE_DIR) + "/scenarios")) {
+    if (e.path().extension() != ".yaml") continue;
+    ++n;
+    const std::string ja = harness::scenario_to_json_text(harness::load_scenario(e.path().string()));
+    try {
+      EXPECT_EQ(harness::scenario_to_json_text(harness::load_scenario_text(ja, "m.json")), ja) << e.path();
+    } catch (const harness::ScenarioError& err) {
+      ADD_FAILURE() << e.path() << ": " << err.what();
+    }
+  }
+  EXPECT_GE(n, 11u);
 }
 
 TEST(Scenario, EveryKeyIsDocumented)

@@ -24,20 +24,26 @@
 #include <stdint.h>
 
 #include "fsw/att_track.h"
+#include "fsw/bdot.h"
 #include "fsw/css_sun.h"
 #include "fsw/fsw_clock.h"
 #include "fsw/fsw_acs_msgs.h"
 #include "fsw/fsw_config.h"
 #include "fsw/fsw_status.h"
 #include "fsw/guid_inertial.h"
+#include "fsw/guid_orbit.h"
 #include "fsw/guid_sunsafe.h"
 #include "fsw/mrp_fb.h"
+#include "fsw/mtq_desat.h"
+#include "fsw/mtq_map.h"
+#include "fsw/rw_bias.h"
 #include "fsw/rw_map.h"
 #include "fsw/rw_null.h"
 #include "fsw/rw_sat.h"
 #include "fsw/rw_speed_filter.h"
 #include "fsw/rw_volt.h"
 #include "fsw/thr_map.h"
+#include "fsw/thr_momentum.h"
 #include "fsw/thr_pulse_rem.h"
 #include "fsw/thr_pulse_schmitt.h"
 #include "fsw/trq_lpf.h"
@@ -67,6 +73,10 @@ typedef struct {
   fsw_real r_thr_B[FSW_MAX_THR][3];    /* [m]      (num_thr) locations, B          */
   fsw_real gt_hat_B[FSW_MAX_THR][3];   /* [-]      (num_thr) unit force axes, B    */
   fsw_real F_max[FSW_MAX_THR];         /* [N]      (num_thr) max thrust, > 0       */
+  /* magnetorquer rods */
+  int num_mtq;                         /* [-]      0..FSW_MAX_MTQ (0: none)        */
+  fsw_real mtq_axis_B[FSW_MAX_MTQ][3]; /* [-]      (num_mtq) rod axes, unit, B     */
+  fsw_real mtq_m_max[FSW_MAX_MTQ];     /* [A*m^2]  (num_mtq) rod dipole limits, > 0 */
 } FswAcsGeometry;
 
 /* All configuration of the application in one struct. */
@@ -101,6 +111,29 @@ typedef struct {
   int pulser;                      /* [-] FswAcsPulser                              */
   FswThrPulseRemConfig pulse_rem;
   FswThrPulseSchmittConfig pulse_schmitt;
+  /* magnetorquers (used when has_mtq = 1): DETUMBLE and the MAGNETORQUERS policy */
+  int has_mtq;                     /* [-] 0/1                                       */
+  FswMtqMapConfig mtq_map;         /* rods, duty_max (sensing/actuation time-sharing) */
+  FswBdotConfig bdot;              /* DETUMBLE's control law                        */
+  int detumble_exit_mode;          /* [-] FswAcsMode entered once bdot reports the
+                                      body detumbled (SUN_SAFE, INERTIAL or NADIR);
+                                      -1: stay in DETUMBLE                          */
+  /* orbit-referenced guidance (used when has_orbit = 1): NADIR */
+  int has_orbit;                   /* [-] 0/1                                       */
+  FswGuidOrbitConfig orbit;
+  /* momentum management of the wheels in the pointing modes */
+  int initial_policy;              /* [-] FswAcsMomentumPolicy after init           */
+  int use_thr_mom;                 /* [-] 0/1: THRUSTERS policy available (needs
+                                      wheels and on-pulsing thrusters; the pulser
+                                      then runs every cycle of the policy and its
+                                      first cycle after a reset starts no dump)     */
+  FswThrMomentumConfig thr_mom;
+  int use_mtq_desat;               /* [-] 0/1: MAGNETORQUERS policy available (needs
+                                      wheels and has_mtq)                           */
+  FswMtqDesatConfig mtq_desat;
+  int use_bias;                    /* [-] 0/1: rw_bias chooses rw_null's desired
+                                      speeds (needs use_null); else Omega_des       */
+  FswRwBiasConfig rw_bias;
 } FswAcsConfig;
 
 /* Inputs and outputs of the stages, kept in the state so that the cycle
@@ -143,6 +176,21 @@ typedef struct {
   FswThrPulseRemOut rem_out;
   FswThrPulseSchmittIn sch_in;
   FswThrPulseSchmittOut sch_out;
+  FswBdotIn bdot_in;
+  FswBdotOut bdot_out;
+  FswMtqMapIn mtq_in;
+  FswMtqMapOut mtq_out;
+  FswMtqDesatIn desat_in;
+  FswMtqDesatOut desat_out;
+  FswThrMomentumIn mom_in;
+  FswThrMomentumOut mom_out;
+  FswRwBiasIn bias_in;
+  FswRwBiasOut bias_out;
+  FswGuidOrbitIn orbit_in;
+  FswGuidOrbitOut orbit_out;
+  /* The thruster on-times the last good cycle commanded (thr_momentum's
+   * propellant count); zero after an error or a cycle without thrusters. */
+  fsw_real t_on_last[FSW_MAX_THR];
   /* The dynamic state as it was before the stages ran; a cycle that ends
    * in an error puts it back (health counters excepted), so an error cycle
    * advances no state (docs/fsw-conventions.md, "The contract"). */
@@ -160,6 +208,15 @@ typedef struct {
     FswRwSpeedFilterState speed_filter;
     fsw_real sigma_R0N[3], K, P;     /* commanded reference and gains */
     FswGuidInertialState inertial;
+    int policy, cmd_mode;
+    FswBdotState bdot;
+    fsw_real B_hold[3];
+    uint8_t B_hold_ok;
+    FswThrMomentumState thr_mom;
+    uint8_t bias_in_band[FSW_MAX_RW]; /* rw_bias hysteresis (its projector and
+                                         basis are derived from the mask) */
+    FswGuidOrbitState orbit;
+    fsw_real t_on_last[FSW_MAX_THR];
   } saved;
 } FswAcsWork;
 
@@ -189,6 +246,18 @@ typedef struct {
   FswThrMapState thr_map;
   FswThrPulseRemState pulse_rem;
   FswThrPulseSchmittState pulse_schmitt;
+  int policy;           /* [-]  FswAcsMomentumPolicy in force                  */
+  int cmd_mode;         /* [-]  the mode last commanded (init: initial_mode): a
+                                command acts when its mode differs from it     */
+  FswBdotState bdot;
+  fsw_real B_hold[3];   /* [T]  last valid field sample (DETUMBLE: the rods map
+                                bdot's held dipole over a missed sample)       */
+  uint8_t B_hold_ok;    /* [-]  B_hold holds a sample                          */
+  FswMtqMapState mtq_map;
+  FswMtqDesatState mtq_desat;
+  FswThrMomentumState thr_mom;
+  FswRwBiasState rw_bias;
+  FswGuidOrbitState orbit;
   FswAcsWork work;
   FswHealth health;
 } FswAcsState;

@@ -69,7 +69,9 @@ typedef struct {
  * such command or a reset (fsw_acs_reset: back to the configuration).
  * Sending the same command every cycle is harmless (a link node does). */
 typedef struct {
-  int mode;              /* [-]     requested FswAcsMode                              */
+  int mode;              /* [-]     requested FswAcsMode; acts only when it differs
+                                    from the mode last commanded (edge-triggered: a
+                                    repeated command does not undo DETUMBLE's exit)   */
   int actuation;         /* [-]     requested FswAcsActuation                         */
   uint8_t set_ref;       /* [-]     0/1: the inertial reference becomes sigma_R0N     */
   fsw_real sigma_R0N[3]; /* [-]     new reference R0 relative to N (MRP, finite,

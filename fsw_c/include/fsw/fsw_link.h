@@ -51,25 +51,40 @@ extern "C" {
 #define FSW_LINK_ASM_SIZE 4u
 #define FSW_LINK_SEQ_MODULO 16384u
 
+/* ICD version: the layout of every packet of docs/icd.md.  Version 2
+ * (2026-12-05) carries the magnetometer and orbit inputs, the momentum
+ * policy command, the rod dipole outputs and the momentum telemetry; version
+ * 1 had none of them.  It travels in the link status packet (payload byte
+ * 39, reserved 0 in version 1) and a receiver rejects a status of another
+ * version (FSW_LINK_E_HEADER); every other packet of version 1 differs in
+ * payload size from its version-2 counterpart for any counts, so a version-1
+ * peer's packets are rejected as FSW_LINK_E_LENGTH. */
+#define FSW_LINK_ICD_VERSION 2u
+
 /* Payload sizes [bytes] (docs/icd.md). */
-#define FSW_LINK_SENSOR_PAYLOAD(num_rw, num_css) (84u + 9u * (size_t)(num_rw) + 9u * (size_t)(num_css))
-#define FSW_LINK_CMD_PAYLOAD 44u
-#define FSW_LINK_ACTUATOR_PAYLOAD(num_rw, num_thr) (28u + 16u * (size_t)(num_rw) + 16u * (size_t)(num_thr))
-#define FSW_LINK_HEALTH_PAYLOAD (16u + 2u * (size_t)FSW_ACS_NUM_STAGES + 88u + 30u + 16u)
+#define FSW_LINK_SENSOR_PAYLOAD(num_rw, num_css) (158u + 9u * (size_t)(num_rw) + 9u * (size_t)(num_css))
+#define FSW_LINK_CMD_PAYLOAD 46u
+#define FSW_LINK_ACTUATOR_PAYLOAD(num_rw, num_thr, num_mtq)                                                  \
+  (32u + 16u * (size_t)(num_rw) + 16u * (size_t)(num_thr) + 8u * (size_t)(num_mtq))
+#define FSW_LINK_HEALTH_PAYLOAD (16u + 2u * (size_t)FSW_ACS_NUM_STAGES + 88u + 30u + 16u + 8u + 64u)
 #define FSW_LINK_STATUS_PAYLOAD 40u
 
-/* The largest packet any capacity allows (buffer size for a receiver). */
-#define FSW_LINK_MAX_PACKET                                                                                  \
-  (FSW_LINK_HEADER_SIZE + FSW_LINK_CRC_SIZE +                                                                \
-   (FSW_LINK_SENSOR_PAYLOAD(FSW_MAX_RW, FSW_MAX_CSS) > FSW_LINK_ACTUATOR_PAYLOAD(FSW_MAX_RW, FSW_MAX_THR)     \
-        ? FSW_LINK_SENSOR_PAYLOAD(FSW_MAX_RW, FSW_MAX_CSS)                                                   \
-        : FSW_LINK_ACTUATOR_PAYLOAD(FSW_MAX_RW, FSW_MAX_THR)))
+/* The largest packet any capacity allows (buffer size for a receiver): the
+ * full sensor or actuator packet, or the health packet (larger than both
+ * with small capacities); command and link status are smaller than health. */
+#define FSW_LINK_MAX_(a, b) ((a) > (b) ? (a) : (b))
+#define FSW_LINK_MAX_PAYLOAD                                                                                 \
+  FSW_LINK_MAX_(FSW_LINK_MAX_(FSW_LINK_SENSOR_PAYLOAD(FSW_MAX_RW, FSW_MAX_CSS),                               \
+                              FSW_LINK_ACTUATOR_PAYLOAD(FSW_MAX_RW, FSW_MAX_THR, FSW_MAX_MTQ)),               \
+                FSW_LINK_HEALTH_PAYLOAD)
+#define FSW_LINK_MAX_PACKET (FSW_LINK_HEADER_SIZE + FSW_LINK_CRC_SIZE + FSW_LINK_MAX_PAYLOAD)
 
 /* Why a packet was rejected (the status is FSW_E_BAD_INPUT for all). */
 typedef enum {
   FSW_LINK_OK = 0,
   FSW_LINK_E_SHORT = 1,   /* fewer bytes than a header and CRC, or than the length field says */
-  FSW_LINK_E_HEADER = 2,  /* version, secondary-header flag or sequence flags not as above     */
+  FSW_LINK_E_HEADER = 2,  /* version, secondary-header flag or sequence flags not as above; a
+                             link status of another FSW_LINK_ICD_VERSION                      */
   FSW_LINK_E_CRC = 3,     /* CRC mismatch                                                      */
   FSW_LINK_E_APID = 4,    /* not the APID (or packet type) the decoder expects                 */
   FSW_LINK_E_LENGTH = 5,  /* payload length does not match the counts it declares              */
@@ -103,7 +118,7 @@ typedef struct {
   uint32_t cycles;       /* [-] fsw_acs cycles run                                      */
   uint16_t last_seq;     /* [-] sequence count of the last accepted sensor packet       */
   uint8_t link_safe;     /* [-] 1 while the link-safe output is in force                */
-  uint8_t reserved;      /* [-] 0                                                       */
+  uint8_t icd_version;   /* [-] FSW_LINK_ICD_VERSION (the encoder writes its own)        */
 } FswLinkStatusMsg;
 
 /* CRC-16/CCITT-FALSE of n bytes, continuing from `crc` (0xFFFF to start). */
@@ -116,8 +131,9 @@ FswStatus fsw_link_encode_sensor(const FswAcsSensorMsg *m, uint8_t num_rw, uint8
                                  uint8_t *buf, size_t cap, size_t *len, FswLinkError *err);
 FswStatus fsw_link_encode_cmd(const FswAcsCmdMsg *m, uint64_t t_ns, uint16_t seq, uint8_t *buf, size_t cap,
                               size_t *len, FswLinkError *err);
-FswStatus fsw_link_encode_actuator(const FswAcsActuatorMsg *m, uint8_t num_rw, uint8_t num_thr, uint64_t t_ns,
-                                   uint16_t seq, uint8_t *buf, size_t cap, size_t *len, FswLinkError *err);
+FswStatus fsw_link_encode_actuator(const FswAcsActuatorMsg *m, uint8_t num_rw, uint8_t num_thr, uint8_t num_mtq,
+                                   uint64_t t_ns, uint16_t seq, uint8_t *buf, size_t cap, size_t *len,
+                                   FswLinkError *err);
 FswStatus fsw_link_encode_health(const FswAcsHealthMsg *m, uint64_t t_ns, uint16_t seq, uint8_t *buf, size_t cap,
                                  size_t *len, FswLinkError *err);
 
@@ -136,7 +152,7 @@ FswStatus fsw_link_decode_sensor(const FswLinkPacket *p, FswAcsSensorMsg *m, uin
                                  FswLinkError *err);
 FswStatus fsw_link_decode_cmd(const FswLinkPacket *p, FswAcsCmdMsg *m, FswLinkError *err);
 FswStatus fsw_link_decode_actuator(const FswLinkPacket *p, FswAcsActuatorMsg *m, uint8_t *num_rw, uint8_t *num_thr,
-                                   FswLinkError *err);
+                                   uint8_t *num_mtq, FswLinkError *err);
 FswStatus fsw_link_decode_health(const FswLinkPacket *p, FswAcsHealthMsg *m, FswLinkError *err);
 FswStatus fsw_link_decode_status(const FswLinkPacket *p, FswLinkStatusMsg *m, FswLinkError *err);
 
@@ -144,13 +160,14 @@ FswStatus fsw_link_decode_status(const FswLinkPacket *p, FswLinkStatusMsg *m, Fs
 
 /* A serialised FswAcsConfig (docs/icd.md, "Configuration image"): a 20-byte
  * header (magic "KCFG", format version, field count, a layout code over the
- * field table, the capacities FSW_MAX_RW, FSW_MAX_CSS, FSW_MAX_THR, the body
+ * field table, the capacities FSW_MAX_RW, FSW_MAX_CSS, FSW_MAX_THR,
+ * FSW_MAX_MTQ, the body
  * length), the body (every field of one table, in order, arrays at full
  * capacity: int as i32, fsw_real as f64, big-endian) and a CRC-16 over all
  * bytes before it.  Encoder and decoder walk the same table, so they cannot
  * drift.  An image is accepted only by a build with the same table and
  * capacities.  The decoder does not judge values: fsw_acs_check() does. */
-#define FSW_LINK_CONFIG_VERSION 1u
+#define FSW_LINK_CONFIG_VERSION 2u
 #define FSW_LINK_CONFIG_HEADER 20u
 
 /* Size of an image in bytes (this build's table and capacities). */

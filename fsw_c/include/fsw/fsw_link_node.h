@@ -47,6 +47,7 @@ typedef struct {
   uint8_t have_cmd;
   FswAcsCmdMsg cmd;
   uint8_t num_rw, num_thr;   /* counts of the actuator packets (from the config) */
+  uint8_t num_mtq;           /* rods in the actuator packets: 0 (FswAcsConfig has no rods yet) */
   uint16_t tx_seq[3];        /* per APID: actuator, health, link status */
   FswAcsSensorMsg sens;
   FswAcsActuatorMsg act;

@@ -275,6 +275,7 @@ void EventTask::apply_magnetorquer(const Act& a, uint64_t t_ns)
     case EventAction::MtqStuck: mag_->set_rod_health(i, sim::MagnetorquerHealth::Stuck); break;
     case EventAction::MtqScale: mag_->set_rod_scale(i, a.value); break;
     case EventAction::MtqDipole: {
+      if (!mtq_cmd_.valid()) break;  // the FSW commands the rods (rejected at load: scenario_events.cpp)
       MtqCmdMsg c = mtq_cmd_.channel().value();
       c.m_cmd[i] = a.value;
       mtq_cmd_.write(c, t_ns);

@@ -3,6 +3,7 @@
 #include "core/fsw_config.h"
 #include "core/convert.h"
 
+#include <cmath>
 #include <cstring>
 
 #include "core/build_error.h"
@@ -31,6 +32,13 @@ constexpr FieldKey kFieldKeys[] = {
     {"thr_map", "thrusters"},         {"has_thrusters", "thrusters"},
     {"pulse", "fsw.thr_pulse"},       {"pulser", "fsw.thr_pulse"},
     {"initial_mode", "fsw.mode"},     {"initial_actuation", "fsw.actuation"},
+    {"has_mtq", "fsw.magnetorquers"}, {"mtq_map", "fsw.magnetorquers"},
+    {"bdot", "fsw.bdot"},             {"detumble_exit_mode", "fsw.bdot.exit_mode"},
+    {"has_orbit", "fsw.nadir"},       {"orbit", "fsw.nadir"},
+    {"initial_policy", "fsw.momentum.policy"}, {"use_thr_mom", "fsw.momentum"},
+    {"thr_mom", "fsw.momentum"},      {"use_mtq_desat", "fsw.momentum"},
+    {"mtq_desat", "fsw.momentum"},    {"use_bias", "fsw.rw_bias"},
+    {"rw_bias", "fsw.rw_bias"},
 };
 
 }  // namespace
@@ -166,6 +174,70 @@ void set_thruster_chain(const Scenario& sc, FswAcsConfig& a)
   a.pulse_schmitt.common.init_off_pulse_on_time = R(0.0);
 }
 
+int acs_mode(FswMode m)
+{
+  switch (m) {
+    case FswMode::SunSafe: return FSW_ACS_MODE_SUN_SAFE;
+    case FswMode::Detumble: return FSW_ACS_MODE_DETUMBLE;
+    case FswMode::Nadir: return FSW_ACS_MODE_NADIR;
+    default: return FSW_ACS_MODE_INERTIAL;
+  }
+}
+
+// The rods (DETUMBLE's B-dot) and the orbit guidance (NADIR).
+void set_magnetic_and_orbit(const Scenario& sc, FswAcsConfig& a)
+{
+  const FswSpec& f = sc.fsw;
+  a.mtq_map.duty_max = R(f.mtq_duty_max);
+  a.bdot.variant = f.bdot_law == BdotLaw::Gyro ? FSW_BDOT_GYRO : FSW_BDOT_DERIV;
+  a.bdot.k_bdot = R(f.bdot_k);
+  a.bdot.normalize = f.bdot_normalize ? 1 : 0;
+  a.bdot.tau_f = R(f.bdot_tau_f);
+  a.bdot.max_missed = f.bdot_max_missed;
+  for (int k = 0; k < 3; ++k) {
+    // absent: the largest dipole the rods can make along each body axis
+    double m = f.bdot_m_max(k);
+    if (!(m > 0.0))
+      for (const MagnetorquerSpec& r : sc.magnetorquers) m += r.m_max * std::fabs(r.axis_B(k)) * f.mtq_duty_max;
+    a.bdot.m_max_B[k] = R(m);
+  }
+  a.bdot.omega_done = R(f.bdot_omega_done);
+  a.bdot.omega_reenter = R(f.bdot_omega_reenter > 0.0 ? f.bdot_omega_reenter : 2.0 * f.bdot_omega_done);
+  a.bdot.t_persist = R(f.bdot_t_persist);
+  a.detumble_exit_mode = f.detumble_exit == FswMode::Detumble ? -1 : acs_mode(f.detumble_exit);
+  a.has_orbit = sc.environment.mu > 0.0 ? 1 : 0;
+  a.orbit.variant = f.orbit_frame == OrbitFrame::Velocity ? FSW_GUID_ORBIT_VELOCITY : FSW_GUID_ORBIT_NADIR;
+  put3(a.orbit.sigma_BdR, f.sigma_BdR);
+  a.orbit.mu = R(sc.environment.mu);
+}
+
+// Momentum management (fsw.momentum) and the wheels' bias speeds (fsw.rw_bias).
+void set_momentum(const Scenario& sc, fsw_real fsw_period, FswAcsConfig& a)
+{
+  const FswSpec& f = sc.fsw;
+  a.initial_policy = f.policy == MomentumPolicy::Thrusters       ? FSW_ACS_MOM_THRUSTERS
+                     : f.policy == MomentumPolicy::Magnetorquers ? FSW_ACS_MOM_MAGNETORQUERS
+                                                                 : FSW_ACS_MOM_NONE;
+  a.use_thr_mom = f.policy == MomentumPolicy::Thrusters ? 1 : 0;
+  a.thr_mom.h_upper = R(f.mom_h_upper);
+  a.thr_mom.h_lower = R(f.mom_h_lower);
+  a.thr_mom.L_dump = R(f.mom_L_dump);
+  a.thr_mom.t_pulse_max = R(f.mom_t_pulse_max);
+  a.thr_mom.t_min_pulse = R(f.mom_t_min_pulse);
+  a.thr_mom.t_coast = R(f.mom_t_coast);
+  a.thr_mom.dt_cycle = fsw_period;
+  a.thr_mom.Isp = R(f.mom_Isp);
+  a.use_mtq_desat = f.policy == MomentumPolicy::Magnetorquers ? 1 : 0;
+  a.mtq_desat.k_desat = R(f.mom_k_desat);
+  a.mtq_desat.tau_max = R(f.mom_tau_max);
+  a.mtq_desat.h_deadband = R(f.mom_h_deadband);
+  a.use_bias = f.rw_bias ? 1 : 0;
+  for (size_t i = 0; i < f.Omega_bias.size() && i < static_cast<size_t>(FSW_MAX_RW); ++i)
+    a.rw_bias.Omega_bias[i] = R(f.Omega_bias[i]);
+  a.rw_bias.Omega_keepout = R(f.bias_keepout);
+  a.rw_bias.Omega_hyst = R(f.bias_hyst);
+}
+
 // fsw_acs_check; a rejection names the scenario key of the bad field.
 void check_config(const Scenario& sc, const FswAcsConfig& a)
 {
@@ -184,7 +256,7 @@ FswSetup make_fsw_setup(const Scenario& sc, const sim::MassProps& mp)
   FswSetup out;
   FswAcsConfig& a = out.cfg;
   std::memset(&a, 0, sizeof a);
-  a.initial_mode = sc.fsw.mode == FswMode::Inertial ? FSW_ACS_MODE_INERTIAL : FSW_ACS_MODE_SUN_SAFE;
+  a.initial_mode = acs_mode(sc.fsw.mode);
   a.initial_actuation = sc.fsw.actuation == Actuation::Wheels ? FSW_ACS_ACT_WHEELS : FSW_ACS_ACT_THRUSTERS;
   set_css(sc, out);
   set_guidance(sc, a);
@@ -192,6 +264,9 @@ FswSetup make_fsw_setup(const Scenario& sc, const sim::MassProps& mp)
   set_geometry(sc, out);
   if (a.has_wheels) set_wheel_chain(sc, a);
   if (a.has_thrusters) set_thruster_chain(sc, a);
+  const fsw_real fsw_period = R(sc.rates.dt * sc.rates.fsw_divisor);
+  set_magnetic_and_orbit(sc, a);
+  set_momentum(sc, fsw_period, a);
   check_config(sc, a);
   return out;
 }

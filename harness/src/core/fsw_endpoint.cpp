@@ -24,12 +24,25 @@ void InProcessFsw::cycle(const FswAcsSensorMsg& in, FswAcsActuatorMsg& out, FswA
   have_cmd_ = false;
 }
 
+namespace {
+const char* mode_name(int mode)
+{
+  switch (mode) {
+    case FSW_ACS_MODE_SUN_SAFE: return "sun_safe";
+    case FSW_ACS_MODE_INERTIAL: return "inertial";
+    case FSW_ACS_MODE_DETUMBLE: return "detumble";
+    case FSW_ACS_MODE_NADIR: return "nadir";
+    default: return "unknown";
+  }
+}
+}  // namespace
+
 std::vector<std::string> fsw_health_summary(const FswAcsHealthMsg& h)
 {
   std::vector<std::string> out;
   std::ostringstream os;
   os << "fsw_acs last cycle: status=" << fsw_status_name(h.status) << " safe_output=" << int(h.safe_output)
-     << " mode=" << (h.mode == FSW_ACS_MODE_INERTIAL ? "inertial" : "sun_safe")
+     << " mode=" << mode_name(h.mode)
      << " actuation=" << (h.actuation == FSW_ACS_ACT_THRUSTERS ? "thrusters" : "wheels") << " cycles=" << h.cycles
      << " mode_changes=" << h.mode_changes;
   out.push_back(os.str());
@@ -51,13 +64,21 @@ std::vector<std::string> InProcessFsw::module_health_lines() const
     out.push_back(os.str());
   };
   line("fsw_acs", st_.health);
-  if (cfg_.initial_mode == FSW_ACS_MODE_INERTIAL) {
-    line("guid_inertial", st_.inertial.health);
-    line("att_track", st_.track.health);
-  } else {
+  if (cfg_.initial_mode == FSW_ACS_MODE_SUN_SAFE) {
     line("css_sun", st_.css.health);
     line("guid_sunsafe", st_.sunsafe.health);
+  } else {
+    line("guid_inertial", st_.inertial.health);
+    line("att_track", st_.track.health);
   }
+  if (cfg_.has_mtq) {
+    line("bdot", st_.bdot.health);
+    line("mtq_map", st_.mtq_map.health);
+  }
+  if (cfg_.has_orbit && st_.orbit.health.calls > 0) line("guid_orbit", st_.orbit.health);
+  if (cfg_.use_mtq_desat) line("mtq_desat", st_.mtq_desat.health);
+  if (cfg_.use_thr_mom) line("thr_momentum", st_.thr_mom.health);
+  if (cfg_.use_bias) line("rw_bias", st_.rw_bias.health);
   line("mrp_fb", st_.mrp_fb.health);
   if (cfg_.has_wheels) {
     line("rw_map", st_.rw_map.health);

@@ -225,19 +225,30 @@ void Run::Impl::add_tasks(const Messages& m)
   fsw_input.emplace(FswInputTask{sensors.get(), tk, f.reader("sensors", *m.truth),
                                  m.samples ? f.reader("sensors", *m.samples) : Reader<SensorSampleMsg>(),
                                  m.css ? f.reader("sensors", *m.css) : Reader<CssMsg>(),
+                                 m.mag && sensors->fsw_reads_magnetometer() ? f.reader("sensors", *m.mag)
+                                                                            : Reader<MagnetometerMsg>(),
                                  f.writer("sensors", *m.sens)});
   fsw_task.emplace(FswTask{fsw.get(), tk, f.reader("fsw_acs", *m.sens), f.writer("fsw_acs", *m.act),
                            f.writer("fsw_acs", *m.health),
                            m.sun ? f.writer("fsw_acs", *m.sun) : Writer<SunHeadingMsg>(), m.sun != nullptr});
+  const bool fsw_rods = sc.fsw.mtq && m.mtq_cmd;  // the FSW commands the rods: it writes `mtq_cmd`
   actuators.emplace(ActuatorTask{tk, plant.num_rw(), plant.num_thr(), fsw_setup.n_acs, fsw_setup.acs_to_plant,
-                                 burn_sched, f.reader("actuators", *m.act), f.writer("actuators", *m.cmd)});
+                                 burn_sched, f.reader("actuators", *m.act), f.writer("actuators", *m.cmd),
+                                 fsw_rods ? fsw_setup.cfg.mtq_map.num_mtq : 0,
+                                 fsw_rods ? f.writer("actuators", *m.mtq_cmd) : Writer<MtqCmdMsg>()});
   plant_input.emplace(PlantInputTask{&plant, f.reader("plant", *m.cmd)});
   f.add_component("metrics", "harness");
   add_magnetic_tasks(m);
-  metrics.emplace(&plant, tk, sc.fsw.mode == FswMode::Inertial, sc.fsw.sigma_R0N, sc.fsw.sun_axis_B,
+  const bool inertial = sc.fsw.mode == FswMode::Inertial ||
+                        (sc.fsw.mode == FswMode::Detumble && sc.fsw.detumble_exit != FswMode::SunSafe);
+  metrics.emplace(&plant, tk, inertial, sc.fsw.sigma_R0N, sc.fsw.sun_axis_B,
                   sc, sc.environment.mu, f.reader("metrics", *m.truth),
                   m.burn ? f.reader("metrics", *m.burn) : Reader<BurnStateMsg>(), m.burn != nullptr,
                   f.writer("metrics", *m.metrics));
+  metrics->orbit_ref = sc.fsw.mode == FswMode::Nadir ||
+                       (sc.fsw.mode == FswMode::Detumble && sc.fsw.detumble_exit == FswMode::Nadir);
+  metrics->frame = sc.fsw.orbit_frame;
+  metrics->sigma_BdR = sc.fsw.sigma_BdR;
 }
 
 // The magnetometer and the magnetorquers (environment.magnetic, docs/environment.md).
@@ -279,6 +290,9 @@ void Run::Impl::add_recorder(const Messages& m)
     declare_magnetorquers(rec, f.reader("recorder", *m.mtq_state).channel(), n);
   }
   if (m.mag) declare_magnetometer(rec, f.reader("recorder", *m.mag).channel());
+  const FswSpec& fs = sc.fsw;
+  if (fs.mtq || fs.policy != MomentumPolicy::None || fs.rw_bias || fs.mode == FswMode::Nadir)
+    declare_fsw_momentum(rec, rc);
   declare_environment_truth(rec, rc, env_on, sun->dated(), plant.num_rw());
 }
 
@@ -294,7 +308,11 @@ void Run::Impl::add_events()
   cmd0.K = fsw_setup.cfg.mrp_fb.K;
   cmd0.P = fsw_setup.cfg.mrp_fb.P;
   events.emplace(sc, plant, *sensors, rec, *fsw, cmd0);
-  if (mtq_cmd_ch) events->attach_magnetorquers(mag.effector, flow.writer("events", *mtq_cmd_ch));
+  // rod faults act on the rods; dipole commands are the events' only when
+  // the flight software does not command the rods
+  if (mtq_cmd_ch)
+    events->attach_magnetorquers(mag.effector,
+                                 sc.fsw.mtq ? Writer<MtqCmdMsg>() : flow.writer("events", *mtq_cmd_ch));
   if (mag.drag) events->attach_atmosphere(mag.drag, sc.environment.drag_density_scale);
 }
 

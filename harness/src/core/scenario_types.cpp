@@ -72,7 +72,15 @@ uint64_t Scenario::num_ticks() const
   return static_cast<uint64_t>(std::llround(duration / rates.dt));
 }
 
-const char* to_string(FswMode m) { return m == FswMode::Inertial ? "inertial" : "sun_safe"; }
+const char* to_string(FswMode m)
+{
+  switch (m) {
+    case FswMode::Inertial: return "inertial";
+    case FswMode::SunSafe: return "sun_safe";
+    case FswMode::Detumble: return "detumble";
+    default: return "nadir";
+  }
+}
 const char* to_string(RwMapMode m) { return m == RwMapMode::MinNorm ? "min_norm" : "power"; }
 const char* to_string(ThrPulseMode m) { return m == ThrPulseMode::Remainder ? "remainder" : "schmitt"; }
 const char* to_string(ThrTransient m) { return m == ThrTransient::Instant ? "instant" : "first_order"; }

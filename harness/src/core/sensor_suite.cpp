@@ -23,7 +23,11 @@ SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Pla
       div_st_(sc.sensors.star_tracker.divisor),
       div_tach_(sc.sensors.tachometer.divisor),
       field_(field),
-      tick_ns_(sc.tick_ns())
+      tick_ns_(sc.tick_ns()),
+      fsw_mag_(sc.fsw.mtq && sc.sensors.magnetometer.enabled),
+      mag_dcm_SB_(sc.sensors.magnetometer.dcm_SB),
+      fsw_period_ns_(sc.tick_ns() * sc.rates.fsw_divisor),
+      orbit_(sc.environment.mu > 0.0)
 {
   const int64_t tk = static_cast<int64_t>(sc.tick_ns());
   if (!ideal_css_) {
@@ -189,7 +193,7 @@ void SensorSuite::read_css(CssMsg& out)
 }
 
 void SensorSuite::fsw_input(uint64_t t_ns, const TruthMsg& t, const SensorSampleMsg& sm, const CssMsg& css,
-                            FswAcsSensorMsg& msg) const
+                            const MagnetometerMsg* mag, FswAcsSensorMsg& msg) const
 {
   std::memset(&msg, 0, sizeof msg);
   msg.t_ns = t_ns;
@@ -219,6 +223,16 @@ void SensorSuite::fsw_input(uint64_t t_ns, const TruthMsg& t, const SensorSample
     for (int i = 0; i < n_rw_; ++i) msg.Omega[i] = static_cast<fsw_real>(t.Omega[i]);
   }
   copy3(msg.r_CoM_B, t.r_CoM_B);
+  if (orbit_) {
+    copy3(msg.r_N, t.r_BN_N);
+    copy3(msg.v_N, t.v_BN_N);
+    msg.orbit_valid = 1;
+  }
+  if (fsw_mag_ && mag && mag->valid && mag->t_ns >= 0 &&
+      static_cast<uint64_t>(mag->t_ns) + fsw_period_ns_ > t_ns) {
+    put3(msg.B_B, mag_dcm_SB_.transpose() * ev(mag->B_S));
+    msg.mag_valid = 1;
+  }
   if (any_fault_) apply_faults(t_ns, msg);
 }
 

@@ -47,8 +47,14 @@ class SensorSuite {
   // The FSW input: the held samples (gyro -> omega_BN_B, star tracker ->
   // sigma_BN + att_valid, tachometers -> Omega), CSS readings (or the ideal
   // cube-face readings), truth for a disabled sensor and for r_CoM_B.
+  // With rods commanded by the FSW (fsw.magnetorquers), `mag` is the
+  // magnetometer's message: its reading rotated into B is handed on as
+  // B_B, valid when sampled within the last FSW period (a fresh sample).
+  // With an orbit (environment.mu > 0) r_N, v_N are the truth (a GNSS
+  // receiver's navigation solution taken as exact).
   void fsw_input(uint64_t t_ns, const TruthMsg& truth, const SensorSampleMsg& samples, const CssMsg& css,
-                 FswAcsSensorMsg& msg) const;
+                 const MagnetometerMsg* mag, FswAcsSensorMsg& msg) const;
+  bool fsw_reads_magnetometer() const { return fsw_mag_; }
 
   // ---- faults set by scenario events (event_task.cpp, docs/events.md) -------
   // They change what fsw_input() hands the FSW, never the models' own
@@ -130,6 +136,10 @@ class SensorSuite {
   SensorFault mag_fault_;
   MagnetometerMsg mag_frozen_{}, mag_last_{};  // held by a Frozen fault; the last handed on
   Eigen::Vector3d mag_bias_ = Eigen::Vector3d::Zero();  // [T] S
+  bool fsw_mag_ = false;                                // the FSW reads the magnetometer
+  Eigen::Matrix3d mag_dcm_SB_ = Eigen::Matrix3d::Identity();
+  uint64_t fsw_period_ns_ = 0;
+  bool orbit_ = false;                                  // r_N, v_N handed on
   void build_magnetometer(const Scenario& sc);
 };
 

@@ -139,7 +139,7 @@ void FswInputTask::operator()(uint64_t k) const
   static const CssMsg kNoCss{};
   FswAcsSensorMsg msg;
   sensors->fsw_input(k * tick_ns, truth.read(), samples.valid() ? samples.read() : kNoSamples,
-                     css.valid() ? css.read() : kNoCss, msg);
+                     css.valid() ? css.read() : kNoCss, mag.valid() ? &mag.read() : nullptr, msg);
   out.write(msg, msg.t_ns);
 }
 
@@ -171,6 +171,12 @@ void ActuatorTask::operator()(uint64_t k) const
     for (int i = 0; i < n_acs; ++i) c.T_on[acs_to_plant[static_cast<size_t>(i)]] = static_cast<double>(a.t_on[i]);
   if (burn.engine >= 0) c.T_on[burn.engine] = burn.on_time(static_cast<int64_t>(k * tick_ns));
   out.write(c, k * tick_ns);
+  if (n_mtq > 0) {  // the rods: the FSW's dipoles, or off
+    MtqCmdMsg m{};
+    if (a.mtq_active)
+      for (int i = 0; i < n_mtq; ++i) m.m_cmd[i] = static_cast<double>(a.m_cmd[i]);
+    mtq.write(m, k * tick_ns);
+  }
 }
 
 void PlantInputTask::operator()(uint64_t) const
@@ -212,12 +218,38 @@ void MtqStateTask::operator()(uint64_t k) const
   out.write(s, k * tick_ns);
 }
 
+Eigen::Matrix3d orbit_frame_RN(OrbitFrame frame, const Eigen::Vector3d& r_N, const Eigen::Vector3d& v_N)
+{
+  const Eigen::Vector3d h_hat = r_N.cross(v_N).normalized();
+  Eigen::Vector3d x, y, z;
+  if (frame == OrbitFrame::Velocity) {
+    x = v_N.normalized();
+    y = -h_hat;
+    z = x.cross(y);
+  } else {
+    z = -r_N.normalized();
+    y = -h_hat;
+    x = y.cross(z);
+  }
+  Eigen::Matrix3d RN;
+  RN.row(0) = x.transpose();
+  RN.row(1) = y.transpose();
+  RN.row(2) = z.transpose();
+  return RN;
+}
+
 void MetricsTask::operator()(uint64_t k)
 {
   const TruthMsg& t = truth.read();
   MetricsMsg m{};
   const Eigen::Vector3d sigma = ev(t.sigma_BN);
-  if (inertial) {
+  if (orbit_ref) {
+    const Eigen::Matrix3d BdN =
+        sim::dcm_BN_from_sigma(sigma_BdR) * orbit_frame_RN(frame, ev(t.r_BN_N), ev(t.v_BN_N));
+    const Eigen::Matrix3d E = sim::dcm_BN_from_sigma(sigma) * BdN.transpose();  // [B Bd]
+    const Eigen::Vector3d s(E(1, 2) - E(2, 1), E(2, 0) - E(0, 2), E(0, 1) - E(1, 0));
+    m.pointing_error = std::atan2(0.5 * s.norm(), 0.5 * (E.trace() - 1.0));
+  } else if (inertial) {
     m.pointing_error = principal_angle(sigma, sigma_R0N);  // guid_inertial: constant reference
   } else {
     const Eigen::Vector3d r_sun_N = sun.position_N(static_cast<int64_t>(k * tick_ns));

@@ -104,6 +104,7 @@ struct FswInputTask {
   Reader<TruthMsg> truth;
   Reader<SensorSampleMsg> samples;  // unset without sampled models
   Reader<CssMsg> css;               // unset without CSS models
+  Reader<MagnetometerMsg> mag;      // unset unless the FSW reads the magnetometer
   Writer<FswAcsSensorMsg> out;
   void operator()(uint64_t k) const;
 };
@@ -131,6 +132,8 @@ struct ActuatorTask {
   BurnSchedule burn;
   Reader<FswAcsActuatorMsg> in;
   Writer<PlantCmdMsg> out;
+  int n_mtq = 0;           // rods commanded by the FSW (fsw.magnetorquers), else 0
+  Writer<MtqCmdMsg> mtq;   // `mtq_cmd`, set when n_mtq > 0
   void operator()(uint64_t k) const;
 };
 
@@ -190,8 +193,17 @@ struct MetricsTask {
   bool has_burn = false;
   Writer<MetricsMsg> out;
   double max_err_burn = 0.0;  // [rad] largest pointing error between burn start and end
+  // NADIR (or DETUMBLE leaving for NADIR): the error from the orbit frame of
+  // the truth position and velocity, formed here independently of the FSW
+  bool orbit_ref = false;
+  OrbitFrame frame = OrbitFrame::Nadir;
+  Eigen::Vector3d sigma_BdR = Eigen::Vector3d::Zero();
   void operator()(uint64_t k);
 };
+
+// [RN] of the orbit frame from position and velocity (N): NADIR: z to nadir,
+// y along the negative orbit normal; VELOCITY: x along the velocity.
+Eigen::Matrix3d orbit_frame_RN(OrbitFrame frame, const Eigen::Vector3d& r_N, const Eigen::Vector3d& v_N);
 
 // Principal angle [rad] of B relative to R from two MRPs.
 double principal_angle(const Eigen::Vector3d& sigma_BN, const Eigen::Vector3d& sigma_RN);

@@ -206,6 +206,27 @@ void declare_magnetorquers(Recorder& rec, const Channel<MtqStateMsg>& ch, int n_
                           });
 }
 
+void declare_fsw_momentum(Recorder& rec, const RecordedChannels& ch)
+{
+  rec.record<FswAcsHealthMsg>(*ch.fsw_health,
+                              {scalar("mode", "-", "fsw_mode"), scalar("policy", "-", "fsw_policy"),
+                               scalar("detumbled", "-", "fsw_detumbled"), scalar("rate_est", "rad/s", "fsw_rate_est"),
+                               vec3("h_w_B", "N*m*s", "B", "fsw_h_w_B"), vec3("tau_mtq_B", "N*m", "B", "fsw_tau_mtq_B"),
+                               scalar("dump_phase", "-", "fsw_dump_phase"), scalar("dumps", "-", "fsw_dumps"),
+                               scalar("prop_used", "kg", "fsw_prop_used")},
+                              [](const FswAcsHealthMsg& h, double* o) {
+                                o[0] = h.mode;
+                                o[1] = h.policy;
+                                o[2] = h.detumbled;
+                                o[3] = static_cast<double>(h.rate_est);
+                                copy3(o + 4, h.h_w_B);
+                                copy3(o + 7, h.tau_mtq_B);
+                                o[10] = h.dump_phase;
+                                o[11] = h.dumps;
+                                o[12] = static_cast<double>(h.prop_used);
+                              });
+}
+
 void declare_magnetometer(Recorder& rec, const Channel<MagnetometerMsg>& ch)
 {
   rec.record<MagnetometerMsg>(ch, {vec3("B_S", "T", "S (magnetometer axes)", "mag_B_S"), scalar("valid", "-", "mag_valid")},

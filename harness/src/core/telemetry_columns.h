@@ -42,6 +42,13 @@ void declare_magnetorquers(Recorder& rec, const Channel<MtqStateMsg>& ch, int n_
 // [T] in its sensor axes (NaN during a dropout), mag_valid [-].
 void declare_magnetometer(Recorder& rec, const Channel<MagnetometerMsg>& ch);
 
+// The FSW's modes and momentum management (runs whose FSW detumbles, points
+// at nadir, manages momentum or biases the wheels): fsw_mode, fsw_policy,
+// fsw_detumbled, fsw_rate_est [rad/s], fsw_h_w_B_x/y/z [N*m*s] (the wheel
+// momentum the FSW sees), fsw_tau_mtq_B_x/y/z [N*m], fsw_dump_phase,
+// fsw_dumps, fsw_prop_used [kg].
+void declare_fsw_momentum(Recorder& rec, const RecordedChannels& ch);
+
 // Earth-orbit truth (docs/environment.md, "Recorded"): with an epoch,
 // illumination [-] and eclipse [-] (1 while any of the Sun's disk is
 // hidden); with the magnetic model on, field_B_x/_y/_z [T]; for each source

@@ -60,6 +60,13 @@ FswAcsGeometry fsw_geometry(const Scenario& sc, const VehicleGeometry& g)
     put3(geo.gt_hat_B[i], t.t_hat_B);  // nominal axis: the misalignment is truth only
     geo.F_max[i] = static_cast<fsw_real>(t.F_max);
   }
+  // the rods, when the flight software commands them (fsw.magnetorquers)
+  geo.num_mtq = sc.fsw.mtq ? static_cast<int>(sc.magnetorquers.size()) : 0;
+  for (int i = 0; i < geo.num_mtq && i < FSW_MAX_MTQ; ++i) {
+    const MagnetorquerSpec& m = sc.magnetorquers[static_cast<size_t>(i)];
+    put3(geo.mtq_axis_B[i], m.axis_B);
+    geo.mtq_m_max[i] = static_cast<fsw_real>(m.m_max);
+  }
   return geo;
 }
 

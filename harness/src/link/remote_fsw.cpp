@@ -175,8 +175,8 @@ bool RemoteFsw::await_reply(uint64_t t_ns, FswAcsActuatorMsg& out, FswAcsHealthM
       continue;
     }
     if (p.apid == FSW_LINK_APID_ACTUATOR) {
-      uint8_t nrw = 0, nthr = 0;
-      if (fsw_link_decode_actuator(&p, &out, &nrw, &nthr, nullptr) != FSW_OK) {
+      uint8_t nrw = 0, nthr = 0, nmtq = 0;
+      if (fsw_link_decode_actuator(&p, &out, &nrw, &nthr, &nmtq, nullptr) != FSW_OK) {
         ++c_.rejected;
         continue;
       }

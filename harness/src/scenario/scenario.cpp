@@ -234,6 +234,12 @@ void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
     if (env_model(sc.environment, src).enabled && sc.spacecraft.facets.empty())
       ctx.error(root["environment"][env_source_name(src)], std::string("environment.") + env_source_name(src),
                 "needs spacecraft.facets (the surfaces it acts on)");
+  if (sc.fsw.mtq)  // the flight software writes the rods' commands
+    for (size_t e = 0; e < sc.events.size(); ++e)
+      for (size_t a = 0; a < sc.events[e].actions.size(); ++a)
+        if (sc.events[e].actions[a].action == "dipole")
+          ctx.error(root["events"][e], "events[" + std::to_string(e) + "].actions[" + std::to_string(a) + "]",
+                    "'dipole' commands a rod, but the flight software commands them (fsw.magnetorquers.enabled)");
   if (!sc.thrusters.empty() && !sc.tank)
     ctx.error(root["thrusters"], "tank", "thrusters need a propellant tank (key 'tank')");
   if (sc.rcs_tank && sc.thrusters.empty())

@@ -12,12 +12,14 @@ namespace {
 
 #define KESTREL_FSW(member) [](auto& sc, size_t) -> auto& { return sc.fsw.member; }
 
-// rw_null.Omega_des (or Omega_des_rpm): one desired speed per wheel.
-KeyDef omega_des()
+// A list of one speed per wheel (rw_null.Omega_des, rw_bias.Omega_bias; or
+// with the suffix _rpm).
+template <class F>
+KeyDef wheel_speeds(const char* name, F field)
 {
   KeyDef d = custom(
-      "Omega_des",
-      [](const KeyDef& k, MapReader& rn, Scenario& sc, size_t) {
+      name,
+      [field](const KeyDef& k, MapReader& rn, Scenario& sc, size_t) {
         const std::optional<bool> suffixed = rn.spelling(k.name, k.suffix);
         if (!suffixed) return;
         const std::string key = *suffixed ? k.name + k.suffix : k.name;
@@ -38,12 +40,13 @@ KeyDef omega_des()
                              "expected a finite number, got " + kind_name(l[i]));
               break;
             }
-            sc.fsw.Omega_des.push_back(x * factor);
+            field(sc).push_back(x * factor);
           }
         }
       },
-      [](const KeyDef& k, nlohmann::json& j, const Scenario& sc, size_t) {
-        if (!sc.fsw.Omega_des.empty()) j[k.name] = sc.fsw.Omega_des;
+      [field](const KeyDef& k, nlohmann::json& j, const Scenario& sc, size_t) {
+        const std::vector<double>& v = field(sc);
+        if (!v.empty()) j[k.name] = v;
       });
   d.alt("_rpm", sim::kRadPerSecPerRpm).unit("rad/s");
   return d;
@@ -95,17 +98,9 @@ Section rw_null_section()
   return Section{"rw_null",
                  {
                      boolean("enabled", KESTREL_FSW(rw_null)),
-                     [] {
-                       KeyDef k = real("k_null", KESTREL_FSW(k_null)).bounds(positive("N*m*s")).unit("N*m*s");
-                       // 0 (not given) is not written: the manifest then reloads to 0 too
-                       WriteFn plain = k.write;
-                       k.write = [plain](const KeyDef& d, nlohmann::json& j, const Scenario& sc, size_t i) {
-                         if (sc.fsw.k_null > 0.0) plain(d, j, sc, i);
-                       };
-                       return k;
-                     }(),
+                     real("k_null", KESTREL_FSW(k_null)).bounds(positive("N*m*s")).unit("N*m*s").zero_unset(),
                      boolean("scale_to_fit", KESTREL_FSW(rw_null_scale_to_fit)),
-                     omega_des(),
+                     wheel_speeds("Omega_des", [](auto& sc) -> auto& { return sc.fsw.Omega_des; }),
                  },
                  {}};
 }
@@ -151,6 +146,113 @@ Section thr_pulse_section()
                  {}};
 }
 
+// fsw.magnetorquers: the rods commanded by the FSW.
+Section fsw_magnetorquers_section()
+{
+  Section s{"magnetorquers",
+                 {
+                     boolean("enabled", KESTREL_FSW(mtq)),
+                     real("duty_max", KESTREL_FSW(mtq_duty_max))
+                         .bounds([](double x, bool) {
+                           return x > 0.0 && x <= 1.0 ? std::string() : std::string("must be in (0, 1]");
+                         })
+                         .unit("-"),
+                 },
+                 {}};
+  s.present = [](const Scenario& sc) { return !sc.magnetorquers.empty(); };  // with rods only
+  return s;
+}
+
+// fsw.bdot: DETUMBLE's law and its exit.
+Section bdot_section()
+{
+  Section s{"bdot",
+                 {
+                     choice<BdotLaw>("law", {{"derivative", BdotLaw::Derivative}, {"gyro", BdotLaw::Gyro}},
+                                     KESTREL_FSW(bdot_law)),
+                     real("k", KESTREL_FSW(bdot_k)).bounds(positive("-")).unit("A*m^2*s/T").zero_unset(),
+                     boolean("normalize", KESTREL_FSW(bdot_normalize)),
+                     real("filter_tau", KESTREL_FSW(bdot_tau_f)).bounds(non_negative("s")).unit("s"),
+                     integer("max_missed", 0, 1000000, KESTREL_FSW(bdot_max_missed)),
+                     vec3("m_max", KESTREL_FSW(bdot_m_max)).unit("A*m^2"),
+                     real("omega_done", KESTREL_FSW(bdot_omega_done))
+                         .alt("_deg", sim::kRadPerDeg)
+                         .bounds(positive("rad/s"))
+                         .unit("rad/s")
+                         .zero_unset(),
+                     real("omega_reenter", KESTREL_FSW(bdot_omega_reenter))
+                         .alt("_deg", sim::kRadPerDeg)
+                         .bounds(non_negative("rad/s"))
+                         .unit("rad/s"),
+                     real("t_persist", KESTREL_FSW(bdot_t_persist)).bounds(non_negative("s")).unit("s"),
+                     choice<FswMode>("exit_mode",
+                                     {{"none", FswMode::Detumble},
+                                      {"inertial", FswMode::Inertial},
+                                      {"sun_safe", FswMode::SunSafe},
+                                      {"nadir", FswMode::Nadir}},
+                                     KESTREL_FSW(detumble_exit)),
+                 },
+                 {}};
+  s.present = [](const Scenario& sc) { return !sc.magnetorquers.empty(); };  // with rods only
+  return s;
+}
+
+// fsw.momentum: who unloads the wheels, and how.
+Section momentum_section()
+{
+  return Section{"momentum",
+                 {
+                     choice<MomentumPolicy>("policy",
+                                            {{"none", MomentumPolicy::None},
+                                             {"thrusters", MomentumPolicy::Thrusters},
+                                             {"magnetorquers", MomentumPolicy::Magnetorquers}},
+                                            KESTREL_FSW(policy)),
+                     real("h_upper", KESTREL_FSW(mom_h_upper)).bounds(positive("N*m*s")).unit("N*m*s").zero_unset(),
+                     real("h_lower", KESTREL_FSW(mom_h_lower)).bounds(non_negative("N*m*s")).unit("N*m*s"),
+                     real("L_dump", KESTREL_FSW(mom_L_dump)).bounds(positive("N*m")).unit("N*m").zero_unset(),
+                     real("t_pulse_max", KESTREL_FSW(mom_t_pulse_max)).bounds(positive("s")).unit("s"),
+                     real("t_min_pulse", KESTREL_FSW(mom_t_min_pulse)).bounds(positive("s")).unit("s"),
+                     real("t_coast", KESTREL_FSW(mom_t_coast)).bounds(non_negative("s")).unit("s"),
+                     real("Isp", KESTREL_FSW(mom_Isp)).bounds(positive("s")).unit("s"),
+                     real("k_desat", KESTREL_FSW(mom_k_desat)).bounds(positive("1/s")).unit("1/s").zero_unset(),
+                     real("tau_max", KESTREL_FSW(mom_tau_max)).bounds(positive("N*m")).unit("N*m").zero_unset(),
+                     real("h_deadband", KESTREL_FSW(mom_h_deadband)).bounds(non_negative("N*m*s")).unit("N*m*s"),
+                 },
+                 {}};
+}
+
+// fsw.nadir: the orbit frame NADIR follows.
+Section nadir_section()
+{
+  return Section{"nadir",
+                 {
+                     choice<OrbitFrame>("frame", {{"nadir", OrbitFrame::Nadir}, {"velocity", OrbitFrame::Velocity}},
+                                        KESTREL_FSW(orbit_frame)),
+                     vec3("sigma_BdR", KESTREL_FSW(sigma_BdR)).unit("-"),
+                 },
+                 {}};
+}
+
+// fsw.rw_bias: wheel-speed bias with zero-crossing avoidance.
+Section rw_bias_section()
+{
+  return Section{"rw_bias",
+                 {
+                     boolean("enabled", KESTREL_FSW(rw_bias)),
+                     wheel_speeds("Omega_bias", [](auto& sc) -> auto& { return sc.fsw.Omega_bias; }),
+                     real("keepout", KESTREL_FSW(bias_keepout))
+                         .alt("_rpm", sim::kRadPerSecPerRpm)
+                         .bounds(positive("rad/s"))
+                         .unit("rad/s")
+                         .zero_unset(),
+                     real("hysteresis", KESTREL_FSW(bias_hyst))
+                         .alt("_rpm", sim::kRadPerSecPerRpm)
+                         .bounds(non_negative("rad/s"))
+                         .unit("rad/s"),
+                 },
+                 {}};
+}
+
 }  // namespace
 
 const Section& fsw_section()
@@ -158,7 +260,12 @@ const Section& fsw_section()
   static const Section s{
       "fsw",
       {
-          choice<FswMode>("mode", {{"inertial", FswMode::Inertial}, {"sun_safe", FswMode::SunSafe}}, KESTREL_FSW(mode)),
+          choice<FswMode>("mode",
+                          {{"inertial", FswMode::Inertial},
+                           {"sun_safe", FswMode::SunSafe},
+                           {"detumble", FswMode::Detumble},
+                           {"nadir", FswMode::Nadir}},
+                          KESTREL_FSW(mode)),
           choice<Actuation>("actuation", {{"wheels", Actuation::Wheels}, {"thrusters", Actuation::Thrusters}},
                             KESTREL_FSW(actuation)),
       },
@@ -180,10 +287,64 @@ const Section& fsw_section()
                   {choice<ThrMapMode>("mode", {{"min_norm", ThrMapMode::MinNorm}, {"nnls", ThrMapMode::Nnls}},
                                       KESTREL_FSW(thr_map))},
                   {}},
+          fsw_magnetorquers_section(),
+          bdot_section(),
+          nadir_section(),
+          momentum_section(),
+          rw_bias_section(),
       }};
   return s;
 }
 #undef KESTREL_FSW
+
+namespace {
+
+// The rods, DETUMBLE, NADIR, the momentum policy and rw_bias against the
+// hardware and the environment they need.
+void check_momentum_keys(MapReader& r, const Scenario& sc)
+{
+  const FswSpec& f = sc.fsw;
+  const bool rods_needed = f.mode == FswMode::Detumble || f.policy == MomentumPolicy::Magnetorquers;
+  MapReader mq = r.sub("magnetorquers");
+  if (f.mtq && sc.magnetorquers.empty()) mq.error_at("enabled", "needs magnetorquers (top-level key 'magnetorquers')");
+  if (f.mtq && !sc.sensors.magnetometer.enabled)
+    mq.error_at("enabled", "needs sensors.magnetometer.enabled: true (the field the rods act against)");
+  if (rods_needed && !f.mtq)
+    r.error_at(f.mode == FswMode::Detumble ? "mode" : "momentum",
+               "needs the rods commanded by the FSW (fsw.magnetorquers.enabled: true)");
+  MapReader b = r.sub("bdot");
+  if (f.mtq && !(f.bdot_k > 0.0)) b.missing("k", "B-dot gain, needed with fsw.magnetorquers");
+  if (f.mtq && !(f.bdot_omega_done > 0.0)) b.missing("omega_done", "detumble-complete rate, needed with fsw.magnetorquers");
+  if (f.bdot_omega_reenter > 0.0 && f.bdot_omega_reenter <= f.bdot_omega_done)
+    b.error_at("omega_reenter", "must be above omega_done");
+  const bool nadir = f.mode == FswMode::Nadir || (f.mode == FswMode::Detumble && f.detumble_exit == FswMode::Nadir);
+  if (nadir && !(sc.environment.mu > 0.0))
+    r.error_at("mode", "nadir pointing needs an orbit (environment.mu > 0)");
+  MapReader m = r.sub("momentum");
+  if (f.policy == MomentumPolicy::Thrusters) {
+    bool acs = false;
+    for (const ThrusterSpec& t : sc.thrusters) acs = acs || t.acs;
+    if (sc.wheels.empty() || !acs) m.error_at("policy", "'thrusters' needs wheels and ACS thrusters");
+    if (!(f.mom_h_upper > 0.0)) m.missing("h_upper", "dump threshold [N*m*s]");
+    if (!(f.mom_L_dump > 0.0)) m.missing("L_dump", "dump torque [N*m]");
+    if (f.mom_h_lower >= f.mom_h_upper) m.error_at("h_lower", "must be below h_upper");
+    if (f.mom_t_min_pulse > f.mom_t_pulse_max) m.error_at("t_min_pulse", "must not exceed t_pulse_max");
+  }
+  if (f.policy == MomentumPolicy::Magnetorquers) {
+    if (sc.wheels.empty()) m.error_at("policy", "'magnetorquers' needs wheels");
+    if (!(f.mom_k_desat > 0.0)) m.missing("k_desat", "desaturation gain [1/s]");
+    if (!(f.mom_tau_max > 0.0)) m.missing("tau_max", "magnetic torque limit [N*m]");
+  }
+  MapReader rb = r.sub("rw_bias");
+  if (f.rw_bias) {
+    if (!f.rw_null) rb.error_at("enabled", "rw_bias sets rw_null's desired speeds: needs fsw.rw_null.enabled: true");
+    if (f.Omega_bias.size() != sc.wheels.size())
+      rb.missing("Omega_bias", "one bias speed per wheel, needed when enabled");
+    if (!(f.bias_keepout > 0.0)) rb.missing("keepout", "the keep-out band around zero speed [rad/s]");
+  }
+}
+
+}  // namespace
 
 void read_fsw(MapReader r, Scenario& sc)
 {
@@ -228,6 +389,7 @@ void read_fsw(MapReader r, Scenario& sc)
       r.error_at("actuation", "'thrusters' needs ACS thrusters (thrusters with acs: true)");
   }
   if (!r.has("mrp_fb")) r.missing("mrp_fb", "control gains K and P");
+  check_momentum_keys(r, sc);
   r.finish();
 }
 

@@ -85,6 +85,19 @@ std::vector<std::string> Section::known_names() const
   return out;
 }
 
+KeyDef& KeyDef::zero_unset()
+{
+  WriteFn plain = write;
+  write = [plain](const KeyDef& d, nlohmann::json& j, const Scenario& sc, size_t i) {
+    nlohmann::json one = nlohmann::json::object();
+    plain(d, one, sc, i);
+    const auto it = one.find(d.name);
+    if (it == one.end() || (it->is_number() && it->get<double>() == 0.0)) return;
+    j[d.name] = *it;
+  };
+  return *this;
+}
+
 void read_keys(MapReader& r, const Section& s, Scenario& sc, size_t i)
 {
   for (const KeyDef& k : s.keys)

@@ -93,6 +93,9 @@ struct KeyDef {
   KeyDef& vcheck(std::function<std::string(const Eigen::Vector3d&)> c) { check_vec = std::move(c); return *this; }
   KeyDef& scheck(std::function<std::string(const std::string&)> c) { check_str = std::move(c); return *this; }
   KeyDef& unit(std::string u) { doc = std::move(u); return *this; }
+  // A Real whose 0 means "not given" (a bound > 0 applies when it is): 0 is
+  // not written, so the manifest reloads to 0 rather than being refused.
+  KeyDef& zero_unset();
 };
 
 struct Section {

@@ -15,6 +15,15 @@
 // tolerances), thruster availability flags and the reference / gain set
 // commands.  Checks: a flagged thruster gets no on-time; the filter's bits
 // stay within the wheels and latched implies failed.
+// Issue 38 (bit 3 of the first byte; bits 0-1 then pick the wheel mapping
+// and the pulser): the full configuration of acs_fixture.hpp (wheels,
+// thrusters, three rods, orbit guidance) with the new modules decoded (rods,
+// bdot, DETUMBLE's exit mode, orbit guidance, thruster dumps, rod
+// desaturation, wheel bias, the momentum policy, every mode as the initial
+// one); the magnetometer, orbit and set_policy fields of the messages.
+// Checks: no rod command unless mtq_active (and never without rods), rod
+// commands within duty_max m_max and 0 beyond num_mtq, finite telemetry of
+// the new paths, mode and policy in force always configured ones.
 #include "acs_fixture.hpp"
 #include "fsw/fsw_acs.h"
 #include "fuzz_input.h"
@@ -39,21 +48,114 @@ static void mask(FswAcsState &s)
   fuzz_mask_health(s.thr_map);
   fuzz_mask_common_health(s.pulse_rem);
   fuzz_mask_common_health(s.pulse_schmitt);
+  fuzz_mask_health(s.bdot);
+  fuzz_mask_health(s.mtq_map);
+  fuzz_mask_health(s.mtq_desat);
+  fuzz_mask_health(s.thr_mom);
+  fuzz_mask_health(s.orbit);
+  fuzz_mask_health(s.rw_bias);
+  // rw_bias's projector and null basis are a cache of the availability mask
+  // it was last called with (each call recomputes them when its mask
+  // differs), not memory of the past: an error cycle may leave them for its
+  // own mask, and the next call gives what it would have given.
+  std::memset(&s.rw_bias.proj, 0, sizeof s.rw_bias.proj);
+  std::memset(&s.rw_bias.basis, 0, sizeof s.rw_bias.basis);
+  s.rw_bias.nullity = 0;
 }
 
 static bool act_safe(const FswAcsActuatorMsg &a, int)
 {
   return fuzz_nonzero_from(a.Lr_B, 0, 3) < 0 && fuzz_nonzero_from(a.u_s, 0, FSW_MAX_RW) < 0 &&
          fuzz_nonzero_from(a.V, 0, FSW_MAX_RW) < 0 && fuzz_nonzero_from(a.F, 0, FSW_MAX_THR) < 0 &&
-         fuzz_nonzero_from(a.t_on, 0, FSW_MAX_THR) < 0 && a.wheels_active == 0 && a.thrusters_active == 0;
+         fuzz_nonzero_from(a.t_on, 0, FSW_MAX_THR) < 0 && fuzz_nonzero_from(a.m_cmd, 0, FSW_MAX_MTQ) < 0 &&
+         a.wheels_active == 0 && a.thrusters_active == 0 && a.mtq_active == 0;
+}
+
+// Issue 38: the full configuration with the new modules decoded.
+static void decode_issue38(FuzzIn &in, FswAcsConfig &c, int variant)
+{
+  acsfix::full_config(c);
+  c.rw_map.mode = variant & 1;
+  c.pulser = (variant & 2) ? FSW_ACS_PULSE_SCHMITT : FSW_ACS_PULSE_REMAINDER;
+  FswAcsGeometry g;
+  acsfix::full_geometry(g);
+  g.num_mtq = in.count(3, FSW_MAX_MTQ);
+  for (int i = 0; i < fuzz_clamp_count(g.num_mtq, FSW_MAX_MTQ); i++) {
+    double a[3] = {1, 0, 0};
+    if (i < 3) acsfix::rod_axis(i, a);
+    in.unit3(g.mtq_axis_B[i], a, i > 0 ? g.mtq_axis_B[i - 1] : nullptr);
+    g.mtq_m_max[i] = static_cast<fsw_real>(in.real(acsfix::kRodMmax));
+  }
+  (void)fsw_acs_config_set_geometry(&c, &g);
+  c.initial_mode = in.flag(variant);  // every mode as the initial one
+  c.detumble_exit_mode = in.flag(FSW_ACS_MODE_SUN_SAFE);
+  c.has_orbit = in.flag(1);
+  c.use_null = in.flag(1);
+  c.use_bias = in.flag(1);
+  c.use_thr_mom = in.flag(1);
+  c.use_mtq_desat = in.flag(1);
+  c.initial_policy = in.flag(variant == 3 ? FSW_ACS_MOM_MAGNETORQUERS : FSW_ACS_MOM_THRUSTERS);
+  c.use_lpf = in.flag(0);
+  c.use_volt = in.flag(0);
+  c.mtq_map.duty_max = static_cast<fsw_real>(in.real(c.mtq_map.duty_max));
+  c.bdot.variant = in.flag(FSW_BDOT_GYRO);
+  c.bdot.k_bdot = static_cast<fsw_real>(in.real(c.bdot.k_bdot));
+  c.bdot.normalize = in.flag(0);
+  c.bdot.tau_f = static_cast<fsw_real>(in.real(1.0));
+  c.bdot.max_missed = static_cast<int>(in.u32(3));
+  c.bdot.omega_done = static_cast<fsw_real>(in.real(c.bdot.omega_done));
+  c.bdot.omega_reenter = static_cast<fsw_real>(in.real(c.bdot.omega_reenter));
+  c.bdot.t_persist = static_cast<fsw_real>(in.real(c.bdot.t_persist));
+  // the fuzzed wheel speeds (20, -16, 12, -8 rad/s) make |h_w| ~ 1 N m s
+  c.thr_mom.h_upper = static_cast<fsw_real>(in.real(0.8));
+  c.thr_mom.h_lower = static_cast<fsw_real>(in.real(0.2));
+  c.thr_mom.L_dump = static_cast<fsw_real>(in.real(c.thr_mom.L_dump));
+  c.thr_mom.t_pulse_max = static_cast<fsw_real>(in.real(c.thr_mom.t_pulse_max));
+  c.thr_mom.t_min_pulse = static_cast<fsw_real>(in.real(c.thr_mom.t_min_pulse));
+  c.thr_mom.t_coast = static_cast<fsw_real>(in.real(c.thr_mom.t_coast));
+  c.thr_mom.Isp = static_cast<fsw_real>(in.real(c.thr_mom.Isp));
+  c.mtq_desat.k_desat = static_cast<fsw_real>(in.real(c.mtq_desat.k_desat));
+  c.mtq_desat.tau_max = static_cast<fsw_real>(in.real(c.mtq_desat.tau_max));
+  c.mtq_desat.h_deadband = static_cast<fsw_real>(in.real(c.mtq_desat.h_deadband));
+  c.mtq_desat.h_target_B[0] = static_cast<fsw_real>(in.real(0.0));
+  c.rw_bias.Omega_bias[0] = static_cast<fsw_real>(in.real(c.rw_bias.Omega_bias[0]));
+  c.rw_bias.Omega_keepout = static_cast<fsw_real>(in.real(c.rw_bias.Omega_keepout));
+  c.rw_bias.Omega_hyst = static_cast<fsw_real>(in.real(c.rw_bias.Omega_hyst));
+  c.orbit.variant = in.flag(FSW_GUID_ORBIT_NADIR);
+  {
+    const double z[3] = {0, 0, 0};
+    in.reals(c.orbit.sigma_BdR, 3, z);
+  }
+  c.orbit.mu = static_cast<fsw_real>(in.real(acsfix::kMu));
+  fuzz_trace_int("num_mtq", g.num_mtq);
+  fuzz_trace_int("initial_mode", c.initial_mode);
+  fuzz_trace_int("detumble_exit_mode", c.detumble_exit_mode);
+  fuzz_trace_int("has_orbit", c.has_orbit);
+  fuzz_trace_int("use_null", c.use_null);
+  fuzz_trace_int("use_bias", c.use_bias);
+  fuzz_trace_int("use_thr_mom", c.use_thr_mom);
+  fuzz_trace_int("use_mtq_desat", c.use_mtq_desat);
+  fuzz_trace_int("initial_policy", c.initial_policy);
+  fuzz_trace("bdot k_bdot", &c.bdot.k_bdot, 1);
+  fuzz_trace("thr_mom h_upper h_lower L_dump", &c.thr_mom.h_upper, 3);
 }
 
 // Decode the configuration: a reference config, then single fields.
-static void decode_config(FuzzIn &in, FswAcsConfig &c, bool &issue14)
+static void decode_config(FuzzIn &in, FswAcsConfig &c, bool &issue14, bool &issue38)
 {
   const int v8 = in.u8();
   const int variant = v8 % 4;
   issue14 = (v8 & 4) != 0;
+  issue38 = (v8 & 8) != 0;
+  if (issue38) {
+    decode_issue38(in, c, variant);
+    if (issue14) {
+      c.use_speed_filter = in.flag(1);
+      c.speed_filter.k_reject = in.u32(3);
+      c.speed_filter.n_recover = in.u32(3);
+    }
+    return;
+  }
   if (variant <= 1) {
     acsfix::golden_config(0, c);  // wheels: null motion, filter, voltages
     c.rw_map.mode = variant;      // 1: power-optimal mapping
@@ -131,8 +233,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
   FuzzIn in(data, size);
   static FswAcsConfig cfg;
-  bool issue14 = false;
-  decode_config(in, cfg, issue14);
+  bool issue14 = false, issue38 = false;
+  decode_config(in, cfg, issue14, issue38);
   static FswAcsState st;
   FswAcsSensorMsg sens{};
   FswAcsCmdMsg cmd{};
@@ -169,6 +271,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     in.avail_mask(sens.rw_avail, cfg.mrp_fb.num_rw);
     in.reals(sens.r_CoM_B, 3, z);
     if (issue14) in.avail_mask(sens.thr_avail, cfg.has_thrusters ? cfg.thr_map.num_thr : 0);
+    if (issue38) {
+      const double B0[3] = {2e-5, 1e-5, -3e-5}, r0[3] = {7e6, 0, 0}, v0[3] = {0, 7546.05, 0};
+      in.reals(sens.B_B, 3, B0);
+      sens.mag_valid = static_cast<uint8_t>(in.flag(1));
+      in.reals(sens.r_N, 3, r0);
+      in.reals(sens.v_N, 3, v0);
+      sens.orbit_valid = static_cast<uint8_t>(in.flag(1));
+      fuzz_trace("B_B", sens.B_B, 3);
+      fuzz_trace("r_N", sens.r_N, 3);
+      fuzz_trace("v_N", sens.v_N, 3);
+      fuzz_trace_int("mag_valid", sens.mag_valid);
+      fuzz_trace_int("orbit_valid", sens.orbit_valid);
+    }
     cmdp = nullptr;
     if (in.u8() >= 200) {
       cmd.mode = in.flag(cfg.initial_mode == 0 ? 1 : 0);
@@ -180,6 +295,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         cmd.set_gains = static_cast<uint8_t>(in.flag(0));
         cmd.K = static_cast<fsw_real>(in.real(cfg.mrp_fb.K));
         cmd.P = static_cast<fsw_real>(in.real(cfg.mrp_fb.P));
+      }
+      if (issue38) {
+        cmd.mode = in.flag(in.u8() % 4);
+        cmd.set_policy = static_cast<uint8_t>(in.flag(1));
+        cmd.policy = in.flag(in.u8() % 3);
+        fuzz_trace_int("cmd.set_policy", cmd.set_policy);
+        fuzz_trace_int("cmd.policy", cmd.policy);
       }
       cmdp = &cmd;
     }
@@ -199,6 +321,28 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
       FUZZ_REQUIRE(hlth.cycles == cycles, "fsw_acs_cycle: error but cycles %u -> %u", cycles, hlth.cycles);
       continue;
     }
+    // issue 38: the rods, the new telemetry, mode and policy
+    FUZZ_REQUIRE(fuzz_finite(act.m_cmd, FSW_MAX_MTQ), "fsw_acs_cycle: non-finite rod command");
+    FUZZ_REQUIRE(act.mtq_active || fuzz_nonzero_from(act.m_cmd, 0, FSW_MAX_MTQ) < 0,
+                 "fsw_acs_cycle: a rod command without mtq_active");
+    FUZZ_REQUIRE(cfg.has_mtq || act.mtq_active == 0, "fsw_acs_cycle: mtq_active without rods");
+    if (cfg.has_mtq) {
+      FUZZ_REQUIRE(fuzz_nonzero_from(act.m_cmd, cfg.mtq_map.num_mtq, FSW_MAX_MTQ) < 0,
+                   "fsw_acs_cycle: a rod command beyond num_mtq");
+      for (int i = 0; i < cfg.mtq_map.num_mtq; i++)
+        FUZZ_REQUIRE(std::fabs(act.m_cmd[i]) <= cfg.mtq_map.duty_max * cfg.mtq_map.m_max[i] * (1 + 1e-6),
+                     "fsw_acs_cycle: |m_cmd[%d]| = %.17g above duty_max m_max", i, act.m_cmd[i]);
+    }
+    FUZZ_REQUIRE(fuzz_finite(hlth.tau_mtq_B, 3) && fuzz_finite(hlth.h_w_B, 3) && std::isfinite(hlth.rate_est) &&
+                     std::isfinite(hlth.prop_used) && hlth.prop_used >= 0,
+                 "fsw_acs_cycle: non-finite telemetry of the momentum paths");
+    FUZZ_REQUIRE(hlth.mode >= FSW_ACS_MODE_SUN_SAFE && hlth.mode <= FSW_ACS_MODE_NADIR &&
+                     (hlth.mode != FSW_ACS_MODE_DETUMBLE || cfg.has_mtq) &&
+                     (hlth.mode != FSW_ACS_MODE_NADIR || cfg.has_orbit),
+                 "fsw_acs_cycle: mode %d not configured", hlth.mode);
+    FUZZ_REQUIRE(hlth.policy == FSW_ACS_MOM_NONE || (hlth.policy == FSW_ACS_MOM_THRUSTERS && cfg.use_thr_mom) ||
+                     (hlth.policy == FSW_ACS_MOM_MAGNETORQUERS && cfg.use_mtq_desat),
+                 "fsw_acs_cycle: policy %d not configured", hlth.policy);
     FUZZ_REQUIRE(hlth.cycles == cycles + 1, "fsw_acs_cycle: accepted cycle not counted");
     FUZZ_REQUIRE(fuzz_finite(act.Lr_B, 3) && fuzz_finite(act.u_s, FSW_MAX_RW) && fuzz_finite(act.V, FSW_MAX_RW) &&
                      fuzz_finite(act.F, FSW_MAX_THR) && fuzz_finite(act.t_on, FSW_MAX_THR),

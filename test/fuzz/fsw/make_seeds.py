@@ -24,7 +24,16 @@ VARIANTS = {
     "rw_null": 2, "rw_null_regen": 2, "thr_map": 4, "thr_pulse_rem": 2,
     "thr_pulse_schmitt": 2, "thr_pulse_round": 2, "css_sun": 1,
     "guid_sunsafe": 1, "guid_inertial": 1, "att_track": 1, "mrp_fb": 2, "acs": 4,
+    "thr_momentum": 1,
+    "mtq_map": 2, "mtq_desat": 1,
+    "bdot": 2,
+    "rw_bias": 1, "guid_orbit": 2,
 }
+# Variants added to a harness later: harness -> (first, end), written after
+# all of the above so that the earlier seeds keep their bytes.  acs 4..15:
+# bit 2 of the first byte (issue 14 paths) and bit 3 (issue 38: rods, orbit,
+# momentum policies).
+LATE_VARIANTS = {"acs": (4, 16)}
 
 
 def seed_bytes(rng, variant, has_variant, n, p_mild, p_special):
@@ -52,9 +61,21 @@ def main():
             for j in range(3):
                 files["v%d-mild-%d" % (v, j)] = seed_bytes(rng, v, nv > 1, rng.randrange(48, 400), 0.12, 0.0)
             files["v%d-special-0" % v] = seed_bytes(rng, v, nv > 1, rng.randrange(48, 400), 0.08, 0.02)
-        for f, b in files.items():
-            with open(os.path.join(d, f), "wb") as fh:
-                fh.write(b)
+        write(d, files)
+    for name, (v0, v1) in LATE_VARIANTS.items():
+        files = {}
+        for v in range(v0, v1):
+            files["v%d" % v] = bytes([v])
+            for j in range(3):
+                files["v%d-mild-%d" % (v, j)] = seed_bytes(rng, v, True, rng.randrange(48, 400), 0.12, 0.0)
+            files["v%d-special-0" % v] = seed_bytes(rng, v, True, rng.randrange(48, 400), 0.08, 0.02)
+        write(os.path.join(HERE, "corpus", name), files)
+
+
+def write(d, files):
+    for f, b in files.items():
+        with open(os.path.join(d, f), "wb") as fh:
+            fh.write(b)
 
 
 if __name__ == "__main__":

@@ -74,9 +74,10 @@ void check_packet(const uint8_t* data, size_t size)
   {
     FswAcsActuatorMsg m;
     std::memset(&m, 0xA5, sizeof m);
-    uint8_t nrw = 0, nthr = 0;
-    if (fsw_link_decode_actuator(&p, &m, &nrw, &nthr, &e) == FSW_OK) {
-      if (fsw_link_encode_actuator(&m, nrw, nthr, p.t_ns, p.seq, out.data(), out.size(), &len, nullptr) != FSW_OK)
+    uint8_t nrw = 0, nthr = 0, nmtq = 0;
+    if (fsw_link_decode_actuator(&p, &m, &nrw, &nthr, &nmtq, &e) == FSW_OK) {
+      if (fsw_link_encode_actuator(&m, nrw, nthr, nmtq, p.t_ns, p.seq, out.data(), out.size(), &len, nullptr) !=
+          FSW_OK)
         violation("a decoded actuator message does not encode");
       if (exact) same_bytes(data, p.packet_len, out, len, "actuator packet does not re-encode to its bytes");
     } else if (!untouched(m)) {

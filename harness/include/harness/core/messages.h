@@ -55,6 +55,7 @@ class Writer {
  public:
   Writer() = default;
   explicit Writer(Channel<T>* c) : c_(c) {}
+  bool valid() const { return c_ != nullptr; }
   void write(const T& v, uint64_t t_ns) const { c_->write(v, t_ns); }
   const Channel<T>& channel() const { return *c_; }
 

@@ -46,7 +46,10 @@ class ScenarioError : public std::runtime_error {
   std::vector<ScenarioIssue> issues_;
 };
 
-enum class FswMode { Inertial, SunSafe };
+enum class FswMode { Inertial, SunSafe, Detumble, Nadir };
+enum class BdotLaw { Derivative, Gyro };
+enum class OrbitFrame { Nadir, Velocity };
+enum class MomentumPolicy { None, Thrusters, Magnetorquers };
 enum class RwMapMode { MinNorm, Power };
 enum class ThrPulseMode { Remainder, Schmitt };
 enum class ThrTransient { Instant, FirstOrder };
@@ -256,6 +259,41 @@ struct FswSpec {
   double thr_t_min = 0.02;                                    // [s] FSW pulser minimum on-time
   double thr_level_on = 0.75;                                 // [-] Schmitt levels
   double thr_level_off = 0.25;                                // [-]
+  // magnetorquers commanded by the FSW (docs/fsw/fsw_acs.md): DETUMBLE and
+  // the magnetorquer momentum policy
+  bool mtq = false;
+  double mtq_duty_max = 1.0;     // [-] fraction of each FSW period the rods may be on
+  // DETUMBLE: bdot (docs/fsw/bdot.md)
+  BdotLaw bdot_law = BdotLaw::Gyro;
+  double bdot_k = 0.0;           // [A*m^2*s/T] (normalize: [N*m*s])
+  bool bdot_normalize = false;
+  double bdot_tau_f = 0.0;       // [s] derivative filter time constant
+  int bdot_max_missed = 3;       // [-]
+  Eigen::Vector3d bdot_m_max = Eigen::Vector3d::Zero();  // [A*m^2] per body axis; 0: the rods' limits
+  double bdot_omega_done = 0.0;  // [rad/s] detumble-complete rate
+  double bdot_omega_reenter = 0.0;  // [rad/s] 0: 2 omega_done
+  double bdot_t_persist = 60.0;  // [s]
+  FswMode detumble_exit = FswMode::Detumble;  // the mode after detumbling; Detumble ("none"): stay
+  // NADIR: guid_orbit (docs/fsw/guid_orbit.md)
+  OrbitFrame orbit_frame = OrbitFrame::Nadir;
+  Eigen::Vector3d sigma_BdR = Eigen::Vector3d::Zero();  // [-] body relative to the orbit frame
+  // momentum management (docs/fsw/thr_momentum.md, mtq_desat.md)
+  MomentumPolicy policy = MomentumPolicy::None;
+  double mom_h_upper = 0.0;      // [N*m*s] thrusters: dump above
+  double mom_h_lower = 0.0;      // [N*m*s] thrusters: down to
+  double mom_L_dump = 0.0;       // [N*m]  thrusters: torque of a dump pulse
+  double mom_t_pulse_max = 10.0; // [s]
+  double mom_t_min_pulse = 0.1;  // [s]
+  double mom_t_coast = 10.0;     // [s]
+  double mom_Isp = 220.0;        // [s]
+  double mom_k_desat = 0.0;      // [1/s] magnetorquers: gain
+  double mom_tau_max = 0.0;      // [N*m] magnetorquers: torque limit
+  double mom_h_deadband = 0.0;   // [N*m*s]
+  // rw_bias (docs/fsw/rw_bias.md): rw_null's desired speeds
+  bool rw_bias = false;
+  std::vector<double> Omega_bias;  // [rad/s] (num_rw)
+  double bias_keepout = 0.0;       // [rad/s]
+  double bias_hyst = 0.0;          // [rad/s]
 };
 
 // One action of an event (docs/events.md).  `device` names what it acts on:
