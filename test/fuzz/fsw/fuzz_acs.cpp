@@ -61,6 +61,8 @@ static void mask(FswAcsState &s)
   std::memset(&s.rw_bias.proj, 0, sizeof s.rw_bias.proj);
   std::memset(&s.rw_bias.basis, 0, sizeof s.rw_bias.basis);
   s.rw_bias.nullity = 0;
+  // its scratch is the update's work area (FswRwBiasScratch), no state
+  std::memset(&s.rw_bias.scratch, 0, sizeof s.rw_bias.scratch);
 }
 
 static bool act_safe(const FswAcsActuatorMsg &a, int)
