@@ -772,19 +772,6 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
   return acc;
 }
 
-/* Wheel momentum in B of mrp_fb's wheel set (the available wheels). */
-static void wheel_momentum(const FswAcsState *st, const FswAcsConfig *cfg, fsw_real h_B[3])
-{
-  int i;
-  fsw_v3_zero(h_B);
-  for (i = 0; i < cfg->mrp_fb.num_rw; i++) {
-    if (st->work.rw_avail[i] != FSW_AVAILABLE) continue;
-    h_B[0] += cfg->mrp_fb.J_s[i] * st->work.Omega[i] * cfg->mrp_fb.gs_hat_B[i][0];
-    h_B[1] += cfg->mrp_fb.J_s[i] * st->work.Omega[i] * cfg->mrp_fb.gs_hat_B[i][1];
-    h_B[2] += cfg->mrp_fb.J_s[i] * st->work.Omega[i] * cfg->mrp_fb.gs_hat_B[i][2];
-  }
-}
-
 /* The set fields of a command: flags 0/1, a finite reference, gains finite
  * and > 0 (what fsw_guid_inertial_check and fsw_mrp_fb_check ask of them),
  * a policy this configuration can fly. */
@@ -1093,7 +1080,8 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     }
   }
 
-  if (cfg->has_wheels) wheel_momentum(st, cfg, h->h_w_B);
+  if (cfg->has_wheels) /* telemetry: mrp_fb's wheel set, available wheels */
+    fsw_rw_momentum(h->h_w_B, cfg->mrp_fb.gs_hat_B, cfg->mrp_fb.J_s, w->Omega, w->rw_avail, cfg->mrp_fb.num_rw);
   if (st->mode == FSW_ACS_MODE_DETUMBLE) {
     /* 3-5 in DETUMBLE: B-dot alone. */
     fsw_v3_zero(guid.sigma_BR);

@@ -61,7 +61,7 @@ FswStatus fsw_mtq_desat_update(FswMtqDesatState *st, const FswMtqDesatConfig *cf
   fsw_real b_hat[3], Bn; /* [-], [T] field direction and size */
   fsw_real t, s;
   FswStatus fs;
-  int i, n;
+  int n;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (out != NULL) desat_safe_output(out);
@@ -74,8 +74,7 @@ FswStatus fsw_mtq_desat_update(FswMtqDesatState *st, const FswMtqDesatConfig *cf
   if (fs < 0) return fsw_health_record(&st->health, fs);
 
   /* h_w = sum J_s Omega gs_hat over the available wheels (<= 36 x 1e8) */
-  for (i = 0; i < n; i++)
-    if (in->avail[i] == FSW_AVAILABLE) fsw_v3_axpy(out->h_w_B, out->h_w_B, cfg->J_s[i] * in->Omega[i], cfg->gs_hat_B[i]);
+  fsw_rw_momentum(out->h_w_B, cfg->gs_hat_B, cfg->J_s, in->Omega, in->avail, n);
   fsw_v3_sub(out->h_err_B, out->h_w_B, cfg->h_target_B);
   out->h_err_norm = fsw_v3_norm(out->h_err_B);
   if (fs != FSW_OK) return fsw_health_record(&st->health, fs); /* no field: no request */

@@ -61,6 +61,15 @@ int fsw_rw_avail_valid(const uint8_t avail[FSW_MAX_RW], int n)
 
 void fsw_rw_zero(fsw_real u[FSW_MAX_RW]) { fsw_vn_zero(u, FSW_MAX_RW); }
 
+void fsw_rw_momentum(fsw_real h_B[3], const fsw_real gs_hat_B[FSW_MAX_RW][3], const fsw_real *J_s,
+                     const fsw_real *Omega, const uint8_t avail[FSW_MAX_RW], int n)
+{
+  int i;
+  fsw_v3_zero(h_B);
+  for (i = 0; i < n; i++)
+    if (avail[i] == FSW_AVAILABLE) fsw_v3_axpy(h_B, h_B, J_s[i] * Omega[i], gs_hat_B[i]);
+}
+
 static void proj_compute(FswRwNullProj *p)
 {
   int i;

@@ -186,7 +186,7 @@ FswStatus fsw_thr_momentum_update(FswThrMomentumState *st, const FswThrMomentumC
   fsw_real h[3], hn;    /* [N*m*s] wheel momentum and its norm */
   fsw_real dm;          /* [kg] propellant reported by this call */
   fsw_real I_min;       /* [N*m*s] minimum pulse impulse */
-  int i, k, out_phase;
+  int i, out_phase;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (out != NULL) zero_out(out); /* safe output */
@@ -207,11 +207,7 @@ FswStatus fsw_thr_momentum_update(FswThrMomentumState *st, const FswThrMomentumC
       FSW_FABS(dt - cfg->dt_cycle) > FSW_THR_MOM_RATE_TOL * cfg->dt_cycle)
     s = FSW_W_RATE;
 
-  fsw_v3_zero(h);
-  for (i = 0; i < cfg->num_rw; i++) {
-    if (in->avail[i] != FSW_AVAILABLE) continue; /* not read: may be NaN */
-    for (k = 0; k < 3; k++) h[k] += cfg->J_s[i] * in->Omega[i] * cfg->gs_hat_B[i][k];
-  }
+  fsw_rw_momentum(h, cfg->gs_hat_B, cfg->J_s, in->Omega, in->avail, cfg->num_rw);
   hn = fsw_v3_norm(h);
 
   /* propellant of the previous cycle's on-times, attributed to that cycle */

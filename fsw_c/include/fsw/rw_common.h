@@ -66,6 +66,12 @@ int fsw_rw_avail_finite(const fsw_real *x, const uint8_t avail[FSW_MAX_RW], int 
  * wheel i < n (entries of unavailable wheels are not read). */
 int fsw_rw_avail_speed_ok(const fsw_real *x, const uint8_t avail[FSW_MAX_RW], int n);
 
+/* h_B = sum over the AVAILABLE wheels i < n of J_s[i] Omega[i] gs_hat_B[i]:
+ * the wheels' momentum relative to the body, B [N*m*s] (entries of
+ * unavailable wheels are not read).  avail must be valid. */
+void fsw_rw_momentum(fsw_real h_B[3], const fsw_real gs_hat_B[FSW_MAX_RW][3], const fsw_real *J_s,
+                     const fsw_real *Omega, const uint8_t avail[FSW_MAX_RW], int n);
+
 /* Zero all FSW_MAX_RW entries (the safe torque/voltage output). */
 void fsw_rw_zero(fsw_real u[FSW_MAX_RW]);
 

@@ -239,8 +239,7 @@ std::string check_event_action(const Scenario& sc, const EventActionSpec& a, std
       return "'mode_sun_safe' needs a Sun position (environment.sun_position_N)";
     if (x == EventAction::FswActuationWheels && sc.wheels.size() < 3)
       return "'actuation_wheels' needs at least 3 wheels";
-    bool acs = false;
-    for (const ThrusterSpec& t : sc.thrusters) acs = acs || t.acs;
+    const bool acs = sc.has_acs_thrusters();
     if (x == EventAction::FswActuationThrusters && !acs)
       return "'actuation_thrusters' needs ACS thrusters (thrusters with acs: true)";
   }

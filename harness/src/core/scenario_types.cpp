@@ -72,6 +72,13 @@ uint64_t Scenario::num_ticks() const
   return static_cast<uint64_t>(std::llround(duration / rates.dt));
 }
 
+bool Scenario::has_acs_thrusters() const
+{
+  for (const ThrusterSpec& t : thrusters)
+    if (t.acs) return true;
+  return false;
+}
+
 const char* to_string(FswMode m)
 {
   switch (m) {

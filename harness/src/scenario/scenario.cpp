@@ -254,8 +254,7 @@ void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
       ctx.error(rates["thruster_divisor"], "rates.thruster_divisor",
                 "must equal rates.fsw_divisor (" + std::to_string(sc.rates.fsw_divisor) +
                     ") with thrusters: the FSW's on-times cover one control period");
-    bool acs = false;
-    for (const ThrusterSpec& t : sc.thrusters) acs = acs || t.acs;
+    const bool acs = sc.has_acs_thrusters();
     if (acs && sc.fsw.thr_t_min * 1.0 >= sc.rates.dt * sc.rates.fsw_divisor)
       ctx.error(root["fsw"], "fsw.thr_pulse.t_min", "must be shorter than the FSW period");
   }

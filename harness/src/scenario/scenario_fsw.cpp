@@ -322,8 +322,7 @@ void check_momentum_keys(MapReader& r, const Scenario& sc)
     r.error_at("mode", "nadir pointing needs an orbit (environment.mu > 0)");
   MapReader m = r.sub("momentum");
   if (f.policy == MomentumPolicy::Thrusters) {
-    bool acs = false;
-    for (const ThrusterSpec& t : sc.thrusters) acs = acs || t.acs;
+    const bool acs = sc.has_acs_thrusters();
     if (sc.wheels.empty() || !acs) m.error_at("policy", "'thrusters' needs wheels and ACS thrusters");
     if (!(f.mom_h_upper > 0.0)) m.missing("h_upper", "dump threshold [N*m*s]");
     if (!(f.mom_L_dump > 0.0)) m.missing("L_dump", "dump torque [N*m]");
@@ -382,8 +381,7 @@ void read_fsw(MapReader r, Scenario& sc)
   const YAML::Node& given = r.node();
   const YAML::Node a = given["actuation"];
   if (a.IsDefined() && a.IsScalar() && (a.Scalar() == "wheels" || a.Scalar() == "thrusters")) {
-    bool acs = false;
-    for (const ThrusterSpec& t : sc.thrusters) acs = acs || t.acs;
+    const bool acs = sc.has_acs_thrusters();
     if (f.actuation == Actuation::Wheels && sc.wheels.empty()) r.error_at("actuation", "'wheels' needs wheels");
     if (f.actuation == Actuation::Thrusters && !acs)
       r.error_at("actuation", "'thrusters' needs ACS thrusters (thrusters with acs: true)");

@@ -407,6 +407,7 @@ struct Scenario {
   std::map<std::string, std::pair<int, int>> key_lines;
   uint64_t tick_ns() const;    // dt in ns
   uint64_t num_ticks() const;  // duration / dt
+  bool has_acs_thrusters() const;  // any thruster with acs: true (the FSW's)
 };
 
 const char* to_string(FswMode m);
