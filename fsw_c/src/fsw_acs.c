@@ -470,20 +470,21 @@ static void safe_output(FswAcsActuatorMsg *act)
  * (which stage failed); finish() then fills the status, the mode, the
  * counters and the filter verdicts, all as restored.  No estimate of the
  * rejected cycle (Sun heading, errors, momentum) is published. */
-static void zero_health(FswAcsHealthMsg *h)
+/* Bytes [from, to) of the message set to 0. */
+static void zero_bytes(FswAcsHealthMsg *h, size_t from, size_t to)
 {
   unsigned char *p = (unsigned char *)h;
   size_t k;
-  for (k = 0; k < sizeof(*h); k++) p[k] = 0u;
+  for (k = from; k < to; k++) p[k] = 0u;
 }
+
+static void zero_health(FswAcsHealthMsg *h) { zero_bytes(h, 0u, sizeof(*h)); }
 
 static void safe_health(FswAcsHealthMsg *h)
 {
-  FswStatus stage[FSW_ACS_NUM_STAGES];
-  int i;
-  for (i = 0; i < FSW_ACS_NUM_STAGES; i++) stage[i] = h->stage_status[i];
-  zero_health(h);
-  for (i = 0; i < FSW_ACS_NUM_STAGES; i++) h->stage_status[i] = stage[i];
+  const size_t a = offsetof(FswAcsHealthMsg, stage_status);
+  zero_bytes(h, 0u, a);
+  zero_bytes(h, a + sizeof(h->stage_status), sizeof(*h));
 }
 
 static void u8_copy(uint8_t *out, const uint8_t *in, int n)
