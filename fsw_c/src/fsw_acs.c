@@ -273,6 +273,13 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
       if (cfg->speed_filter.num_rw != n) return fail(bad_field, "speed_filter.num_rw", FSW_E_CONFIG);
       if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->speed_filter.J_s, cfg->mrp_fb.J_s, n))
         return fail(bad_field, "speed_filter.J_s", FSW_E_CONFIG);
+      /* the filter bounds a wheel's speed change by its u_max / J_s and
+       * refuses a torque above 2 u_max: its limit must cover every torque
+       * rw_sat can command (issue 39: 2.8e-4 against 0.2 N m made every
+       * other cycle fail) */
+      for (i = 0; i < n; i++)
+        if (!(cfg->speed_filter.u_max[i] >= cfg->rw_sat.u_max[i]))
+          return fail(bad_field, "speed_filter.u_max", FSW_E_CONFIG);
     }
   } else if (cfg->mrp_fb.num_rw != 0) {
     return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG); /* wheels in H but no wheel chain */
@@ -457,6 +464,27 @@ static void safe_output(FswAcsActuatorMsg *act)
   act->thrusters_active = 0u;
   fsw_vn_zero(act->m_cmd, FSW_MAX_MTQ);
   act->mtq_active = 0u;
+}
+
+/* The health message of a rejected cycle: all 0 but the stage statuses
+ * (which stage failed); finish() then fills the status, the mode, the
+ * counters and the filter verdicts, all as restored.  No estimate of the
+ * rejected cycle (Sun heading, errors, momentum) is published. */
+/* Bytes [from, to) of the message set to 0. */
+static void zero_bytes(FswAcsHealthMsg *h, size_t from, size_t to)
+{
+  unsigned char *p = (unsigned char *)h;
+  size_t k;
+  for (k = from; k < to; k++) p[k] = 0u;
+}
+
+static void zero_health(FswAcsHealthMsg *h) { zero_bytes(h, 0u, sizeof(*h)); }
+
+static void safe_health(FswAcsHealthMsg *h)
+{
+  const size_t a = offsetof(FswAcsHealthMsg, stage_status);
+  zero_bytes(h, 0u, a);
+  zero_bytes(h, a + sizeof(h->stage_status), sizeof(*h));
 }
 
 static void u8_copy(uint8_t *out, const uint8_t *in, int n)
@@ -982,11 +1010,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
 
   FSW_ASSERT(st != NULL && cfg != NULL && sens != NULL && act != NULL && h != NULL);
   if (act != NULL) safe_output(act);
-  if (h != NULL) {
-    unsigned char *p = (unsigned char *)h;
-    size_t k;
-    for (k = 0; k < sizeof(*h); k++) p[k] = 0u;
-  }
+  if (h != NULL) zero_health(h);
   if (st == NULL || cfg == NULL || sens == NULL || act == NULL || h == NULL) {
     if (st != NULL) (void)fsw_health_record(&st->health, FSW_E_NULL_ARG);
     return FSW_E_NULL_ARG;
@@ -1098,6 +1122,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   if (fsw_status_is_error(acc)) {
     safe_output(act);
     restore_dynamic(st, cfg); /* no state advance on an error cycle */
+    safe_health(h);
     return finish(st, h, acc);
   }
   fsw_clock_commit(&st->clock, sens->t_ns);

@@ -2,6 +2,7 @@
 #include "fsw/rw_speed_filter.h"
 
 #include <stddef.h>
+#include <string.h>
 
 #include "fsw/fsw_vec.h"
 #include "fsw/rw_common.h"
@@ -96,12 +97,14 @@ static int torques_valid(const FswRwSpeedFilterConfig *cfg, const FswRwSpeedFilt
   return 1;
 }
 
-/* Stale test: a finite sample equal to the previous finite one extends the
- * run; returns 1 when the run reaches n_stale. */
+/* Stale test: a finite sample equal to the previous finite one bit for bit
+ * extends the run; returns 1 when the run reaches n_stale.  Bit for bit,
+ * not ==: a zero reading that flips its sign (-0.0 then +0.0) moved, and a
+ * frozen tachometer repeats its bits (issue 39). */
 static int stale(FswRwSpeedFilterState *st, const FswRwSpeedFilterConfig *cfg, int i, fsw_real x)
 {
   if (!isfinite(x)) return 0; /* the outlier gate handles it; the run is kept */
-  if (st->has_raw[i] && x == st->last_raw[i]) {
+  if (st->has_raw[i] && memcmp(&x, &st->last_raw[i], sizeof x) == 0) {
     if (st->stale_run[i] < cfg->n_stale) st->stale_run[i]++; /* counted up to the limit only */
   } else {
     st->stale_run[i] = 0u;

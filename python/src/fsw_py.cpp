@@ -113,6 +113,18 @@ py::object get_field(T& s, const Field<T>& f)
   return std::move(a);
 }
 
+// bytes of a field's storage (every row of a capacity-sized array)
+template <class T>
+size_t field_bytes(const Field<T>& f)
+{
+  const size_t elem = f.kind == Kind::Real ? sizeof(fsw_real)
+                      : f.kind == Kind::Int ? sizeof(int)
+                      : f.kind == Kind::U64 ? sizeof(uint64_t)
+                                            : 1;
+  const size_t rows = static_cast<size_t>(f.rows == 0 ? 1 : f.rows);
+  return rows * static_cast<size_t>(f.cols == 0 ? 1 : f.cols) * elem;
+}
+
 template <class T>
 void set_field(T& s, const Field<T>& f, const py::handle& h)
 {
@@ -147,7 +159,7 @@ void set_field(T& s, const Field<T>& f, const py::handle& h)
   const size_t n = static_cast<size_t>(a.shape(0)) * width;
   const size_t total = static_cast<size_t>(f.rows) * width;
   // checked first, written after: a bad element leaves the field unchanged
-  std::vector<unsigned char> backup(total * (f.kind == Kind::Real ? sizeof(fsw_real) : f.kind == Kind::Int ? sizeof(int) : f.kind == Kind::U64 ? sizeof(uint64_t) : 1));
+  std::vector<unsigned char> backup(field_bytes(f));
   std::memcpy(backup.data(), p, backup.size());
   try {
     const double* d = a.data();
@@ -170,7 +182,23 @@ template <class Cfg, class St, class In, class Out>
 struct Algorithm {
   Cfg cfg{};
   St st{};
+  // The configuration the last successful init() checked: the C update
+  // trusts its config (counts index fixed arrays), so update() refuses to
+  // run on a configuration changed since (issue 39: num_rw = 100000 after
+  // init() wrote far past the arrays).
+  Cfg init_cfg{};
+  bool inited = false;
 };
+
+// The config fields whose value differs from the one init() checked ("" when none).
+template <class Cfg>
+std::string changed_fields(Cfg& now, Cfg& then, const std::vector<Field<Cfg>>& fs)
+{
+  std::string names;
+  for (const Field<Cfg>& f : fs)
+    if (std::memcmp(f.at(now), f.at(then), field_bytes(f)) != 0) names += (names.empty() ? "" : ", ") + std::string(f.name);
+  return names;
+}
 
 template <class Cfg, class St, class In, class Out>
 void bind_algorithm(py::module_& m, const char* name, const char* doc, FswStatus (*check)(const Cfg*),
@@ -208,11 +236,25 @@ void bind_algorithm(py::module_& m, const char* name, const char* doc, FswStatus
   }
   cls.def("check", [check](A& a) { return static_cast<int>(check(&a.cfg)); },
           "fsw_*_check on the configuration: the FswStatus (kestrel.fsw.OK = 0)")
-      .def("init", [init](A& a) { return static_cast<int>(init(&a.st, &a.cfg)); }, "check, then a fresh state")
+      .def(
+          "init",
+          [init](A& a) {
+            const FswStatus s = init(&a.st, &a.cfg);
+            a.inited = s == FSW_OK;
+            if (a.inited) a.init_cfg = a.cfg;
+            return static_cast<int>(s);
+          },
+          "check, then a fresh state (the configuration update() runs with; change it, then init() again)")
       .def("reset", [reset](A& a) { reset(&a.st); })
       .def(
           "update",
-          [update, inf, outf](A& a, const py::kwargs& kw) {
+          [name, update, cf, inf, outf](A& a, const py::kwargs& kw) {
+            if (a.inited) {
+              const std::string changed = changed_fields(a.cfg, a.init_cfg, *cf);
+              if (!changed.empty())
+                throw py::value_error(std::string(name) + ".update: the configuration changed after init() (" +
+                                      changed + "): call init() again (it checks the new one)");
+            }
             In in{};
             for (auto kv : kw) {
               const std::string k = py::str(kv.first);
@@ -233,7 +275,8 @@ void bind_algorithm(py::module_& m, const char* name, const char* doc, FswStatus
             return py::make_tuple(static_cast<int>(s), to_dict(out, *outf));
           },
           "One update with the inputs given by keyword (absent inputs are zero); returns (status, outputs dict "
-          "of NumPy arrays).")
+          "of NumPy arrays).  Before a successful init() the status is E_NOT_INIT; after a configuration change "
+          "ValueError naming the changed fields until init() again.")
       .def_property_readonly("config", [cf](A& a) { return to_dict(a.cfg, *cf); }, "every config field, as a dict")
       .def_property_readonly("state", [stf](A& a) { return to_dict(a.st, *stf); }, "the state's fields, as a dict")
       .def_property_readonly_static("inputs", [inf](const py::object&) {

@@ -10,6 +10,7 @@
 
 #include "common.h"
 #include "harness/drive/run_scenario.h"
+#include "scenario/scenario_limits.h"  // kMaxScenarioEvents
 
 namespace kpy {
 
@@ -413,6 +414,10 @@ void bind_run(py::module_& m)
             // a scenario event at this tick boundary, exactly as if the
             // scenario had listed it (Run::add_event: checked like one, logged
             // in the results' events and replayed by the run's scenario)
+            // the scenario's cap counts the scenario's own events and these
+            if (r.run->scenario().events.size() >= harness::kMaxScenarioEvents)
+              throw py::value_error("apply_event: at most " + std::to_string(harness::kMaxScenarioEvents) +
+                                    " events in a run (the scenario's and apply_event's), as in a scenario");
             const uint64_t k = r.run->tick();
             harness::EventSpec e;
             e.name = "py" + std::to_string(r.applied.size() + 1);
@@ -456,7 +461,9 @@ void bind_run(py::module_& m)
           "results",
           [](PyRun& r) {
             std::lock_guard<std::mutex> g(r.mu);
-            return results_of(*r.run, r.sc);
+            // the run's scenario: the events apply_event() added are in its
+            // manifest, which replays them
+            return results_of(*r.run, r.run->scenario());
           },
           "The rows recorded so far as Results (the run goes on).");
 }

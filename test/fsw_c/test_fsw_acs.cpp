@@ -3,6 +3,7 @@
 // closed loops against the small independent plant of acs_fixture.hpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -99,6 +100,20 @@ const BadCfg kBadConfigs[] = {
     {"speed filter J_s copy differs",
      [](FswAcsConfig& c) { c.use_speed_filter = 1; c.speed_filter.k_reject = c.speed_filter.n_recover = 3; c.speed_filter.J_s[1] *= 2; },
      "speed_filter.J_s", FSW_E_CONFIG},
+    // issue 39: the filter refuses an applied torque above 2 of its u_max,
+    // so a limit below rw_sat's (0.2 N m here) made every other cycle fail
+    {"speed filter torque limit below the saturation limit (all wheels)",
+     [](FswAcsConfig& c) {
+       c.use_speed_filter = 1; c.speed_filter.k_reject = c.speed_filter.n_recover = 3; c.speed_filter.n_window = 2;
+       for (int i = 0; i < 4; i++) c.speed_filter.u_max[i] = acsfix::R(2.8e-4);
+     },
+     "speed_filter.u_max", FSW_E_CONFIG},
+    {"speed filter torque limit below the saturation limit (last wheel, by 1 %)",
+     [](FswAcsConfig& c) {
+       c.use_speed_filter = 1; c.speed_filter.k_reject = c.speed_filter.n_recover = 3;
+       c.speed_filter.u_max[3] = acsfix::R(0.198);
+     },
+     "speed_filter.u_max", FSW_E_CONFIG},
     {"H wheels without a wheel chain",
      [](FswAcsConfig& c) { c.has_wheels = 0; c.has_thrusters = 1; c.initial_actuation = FSW_ACS_ACT_THRUSTERS; },
      "mrp_fb.num_rw", FSW_E_CONFIG},
@@ -1521,4 +1536,90 @@ TEST(FswAcsMomentum, EveryPulseCycleGetsOnePeriodsOnTimeAfterACoast)
   EXPECT_EQ(1u, g_h.dumps);
   EXPECT_EQ(3, pulse);
   EXPECT_EQ(16, full_cycles);
+}
+
+// ---- issue 39 finding 10: limits that work together, the rejected cycle's health
+
+// The saturation limit may sit below the filter's motor limit (a derated
+// wheel): accepted, and with large commands (attitude error 0.3, torques
+// clipped at rw_sat's 0.1 N m) and the torque test on, every cycle is good:
+// the applied torque (<= 0.1) is within the filter's 2 u_max = 0.4.  The
+// live wheels follow their torque so the torque test has nothing to find.
+TEST(FswAcsSpeedFilter, Issue39SaturationBelowTheFilterLimitRunsEveryCycle)
+{
+  acsfix::wheel_config(g_cfg);
+  g_cfg.initial_mode = FSW_ACS_MODE_INERTIAL;
+  speed_filter_on(g_cfg, 3, 2);
+  for (int i = 0; i < 4; i++) g_cfg.rw_sat.u_max[i] = acsfix::R(0.1);
+  const char* field = "x";
+  ASSERT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field));
+  EXPECT_EQ(nullptr, field);
+  // equal limits are accepted too (what fsw_acs_config_set_geometry writes)
+  for (int i = 0; i < 4; i++) g_cfg.rw_sat.u_max[i] = g_cfg.speed_filter.u_max[i];
+  ASSERT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field));
+  for (int i = 0; i < 4; i++) g_cfg.rw_sat.u_max[i] = acsfix::R(0.1);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  double Omega[4] = {0.0, 5.0, 10.0, 15.0};
+  const double dt = 1e-9 * static_cast<double>(kPeriodNs);
+  int saturated = 0;
+  for (int k = 0; k < 12; k++) {
+    sensors_at_rest(g_sens, k * kPeriodNs);
+    g_sens.sigma_BN[0] = acsfix::R(0.3);
+    g_sens.sigma_BN[1] = acsfix::R(-0.2);
+    for (int i = 0; i < 4; i++) g_sens.Omega[i] = acsfix::R(Omega[i]);
+    const FswStatus s = fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h);
+    ASSERT_FALSE(fsw_status_is_error(s)) << k << " " << fsw_status_name(s);
+    EXPECT_EQ(0u, g_h.rw_failed) << k;
+    double umax = 0;
+    for (int i = 0; i < 4; i++) umax = std::max(umax, std::fabs(double(g_act.u_s[i])));
+    EXPECT_LE(umax, 0.1 * (1 + 1e-6)) << k;
+    if (umax > 0.1 * (1 - 1e-6)) saturated++;
+    for (int i = 0; i < 4; i++) Omega[i] += g_act.u_s[i] / g_cfg.speed_filter.J_s[i] * dt;
+  }
+  EXPECT_EQ(12, saturated);  // the commands were at the limit throughout
+}
+
+// A rejected cycle's health message is the safe one (docs/fsw/fsw_acs.md:
+// no Sun heading "on a rejected cycle (the whole message is the safe
+// one)"), also when the cycle fails after the CSS stage ran: in SUN_SAFE
+// with the Sun on (1,1,1)/sqrt3, a huge finite rate overflows the control
+// law.  Before issue 39 the message still carried the heading, the lit
+// count, the sun-safe error and the errors of the rejected cycle.  The
+// stage statuses stay (they say which stage failed); the mode, counters and
+// filter verdicts are those in force.
+TEST(FswAcsHealth, Issue39ARejectedCycleAfterTheStagesRanCarriesTheSafeHealthMessage)
+{
+  acsfix::wheel_config(g_cfg);
+  ASSERT_EQ(FSW_ACS_MODE_SUN_SAFE, g_cfg.initial_mode);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 1000);
+  for (int i = 0; i < 4; i++) g_sens.Omega[i] = acsfix::R(10.0 * (i + 1));
+  ASSERT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  ASSERT_EQ(1, g_h.sun_valid);  // a good cycle publishes the heading
+  sensors_at_rest(g_sens, 2000);
+  for (int i = 0; i < 4; i++) g_sens.Omega[i] = acsfix::R(10.0 * (i + 1));
+  g_sens.omega_BN_B[2] = static_cast<fsw_real>(0.5 * static_cast<double>(std::numeric_limits<fsw_real>::max()));
+  ASSERT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_EQ(FSW_OK, g_h.stage_status[FSW_ACS_STAGE_CSS]);  // the CSS stage ran ...
+  int failed_stages = 0;
+  for (int i = 0; i < FSW_ACS_NUM_STAGES; i++) failed_stages += fsw_status_is_error(g_h.stage_status[i]) ? 1 : 0;
+  EXPECT_GE(failed_stages, 1);  // ... and a stage is blamed
+  EXPECT_EQ(FSW_E_BAD_INPUT, g_h.status);
+  EXPECT_EQ(1, g_h.safe_output);
+  EXPECT_EQ(0, g_h.sun_valid);
+  EXPECT_EQ(0, g_h.num_lit);
+  EXPECT_EQ(0, g_h.sun_angle_err);
+  EXPECT_EQ(0, g_h.att_err_angle);
+  EXPECT_EQ(0, g_h.rate_est);
+  for (int k = 0; k < 3; k++) {
+    EXPECT_EQ(0, g_h.sun_hat_B[k]) << k;
+    EXPECT_EQ(0, g_h.sigma_BR[k]) << k;
+    EXPECT_EQ(0, g_h.omega_BR_B[k]) << k;
+    EXPECT_EQ(0, g_h.h_w_B[k]) << k;
+    EXPECT_EQ(0, g_h.tau_mtq_B[k]) << k;
+  }
+  EXPECT_EQ(FSW_ACS_MODE_SUN_SAFE, g_h.mode);
+  EXPECT_EQ(1u, g_h.cycles);
+  EXPECT_EQ(1u, g_h.health.bad_input);
+  EXPECT_TRUE(all_zero(g_act));
 }

@@ -376,6 +376,31 @@ TEST(RwSpeedFilterStale, ThreeRepeatsLatchAFrozenTachometerUntilReset)
   EXPECT_EQ(f.out->Omega[0], FSW_R(102.0));
 }
 
+// Issue 39: the stale test compares bit for bit, as documented.  A zero
+// reading that flips its sign every call (+0.0, -0.0, +0.0, ...) is equal
+// under == but never repeats its bits: not stale, however long it lasts.
+// The same zero with one sign repeated three times is (n_stale = 3).
+TEST(RwSpeedFilterStale, Issue39ASignFlippingZeroIsNotARepeat)
+{
+  Fixture f(2);
+  f.cfg->n_stale = 3;
+  ASSERT_EQ(f.init(), FSW_OK);
+  int k = 0;
+  for (; k < 10; k++) {
+    f.in->Omega_meas[1] = static_cast<fsw_real>(50.0 + 0.1 * k);  // wheel 1 live
+    ASSERT_EQ(f.step(uint64_t(k) * kDt, (k % 2) ? -0.0 : 0.0), FSW_OK);
+    EXPECT_EQ(f.out->latched, 0u) << k;
+    EXPECT_EQ(f.out->avail[0], FSW_AVAILABLE) << k;
+  }
+  EXPECT_EQ(f.st->stale_run[0], 0u);
+  for (int rep = 0; rep < 3; rep++, k++) {  // -0.0 four times in a row: three repeats
+    f.in->Omega_meas[1] = static_cast<fsw_real>(50.0 + 0.1 * k);
+    ASSERT_EQ(f.step(uint64_t(k) * kDt, -0.0), FSW_OK);
+  }
+  EXPECT_EQ(f.out->latched, 1u);
+  EXPECT_EQ(f.out->failed, 1u);
+}
+
 namespace {
 // Torque test by hand: J_s = 0.02 kg*m^2, u = 0.1 N*m applied, calls every
 // 0.1 s: the speed rises 0.1/0.02*0.1 = 0.5 rad/s per call.  n_window = 5

@@ -663,5 +663,101 @@ class MonteCarloTest(unittest.TestCase):
             kestrel.monte_carlo(S1_MC, runs="2")
 
 
+class Issue39MemorySafetyTest(unittest.TestCase):
+    """Issue 39 finding 8: the bindings cannot corrupt memory or run away."""
+
+    def rw_sat(self):
+        m = fsw.RwSat(num_rw=4, mode=0)
+        m.u_max = [0.2, 0.2, 0.2, 0.2]
+        return m
+
+    def test_config_change_after_init_is_refused_until_init(self):
+        m = self.rw_sat()
+        self.assertEqual(m.init(), fsw.OK)
+        # scale mode by hand: s = max |u_i| / u_max_i = 0.3 / 0.2 = 1.5, u / s
+        s, out = m.update(u_s=[0.3, -0.1, 0.05, 0.0])
+        self.assertEqual(s, fsw.W_SAT)
+        np.testing.assert_allclose(out["u_s"][:4], [0.2, -0.1 / 1.5, 0.05 / 1.5, 0.0], rtol=1e-6)
+        m.num_rw = 4  # the same value: no change
+        self.assertEqual(m.update(u_s=[0.1, 0, 0, 0])[0], fsw.OK)
+        # the finding: 100 000 segfaulted, 37 read and wrote past the arrays
+        for n in (100000, 37, fsw.MAX_RW + 1, 3):
+            m.num_rw = n
+            with self.assertRaises(ValueError) as e:
+                m.update(u_s=[0.1, 0, 0, 0])
+            self.assertIn("num_rw", str(e.exception))
+            self.assertIn("init()", str(e.exception))
+        m.num_rw = 100000
+        self.assertEqual(m.check(), fsw.E_CAPACITY)
+        self.assertEqual(m.init(), fsw.E_CAPACITY)
+        s, out = m.update(u_s=[0.1, 0, 0, 0])  # a refused init: not initialised, safe output
+        self.assertEqual(s, fsw.E_NOT_INIT)
+        np.testing.assert_array_equal(out["u_s"], 0.0)
+        # back to a good configuration: init() again and it runs
+        m.num_rw = 4
+        self.assertEqual(m.init(), fsw.OK)
+        self.assertEqual(m.update(u_s=[0.1, 0, 0, 0])[0], fsw.OK)
+        # any field, not only counts: a limit changed after init is named
+        m.u_max = [0.2, 0.2, 0.2, -1.0]
+        with self.assertRaises(ValueError) as e:
+            m.update(u_s=[0.1, 0, 0, 0])
+        self.assertIn("u_max", str(e.exception))
+        self.assertEqual(m.init(), fsw.E_CONFIG)
+
+    def test_rw_map_num_axes_and_mrp_fb_num_rw(self):
+        r = fsw.RwMap(num_rw=3, num_axes=3, mode=0)
+        r.gs_hat_B = np.eye(3)
+        r.ctrl_axes_B = np.eye(3)
+        self.assertEqual(r.init(), fsw.OK)
+        s, out = r.update(Lr_B=[0.1, -0.2, 0.3])
+        self.assertEqual(s, fsw.OK)
+        np.testing.assert_allclose(out["u_s"][:3], [-0.1, 0.2, -0.3], rtol=1e-6)  # u = -Gs^+ Lr, Gs = I
+        r.num_axes = 37  # the finding: a segfault
+        with self.assertRaises(ValueError) as e:
+            r.update(Lr_B=[0.1, -0.2, 0.3])
+        self.assertIn("num_axes", str(e.exception))
+        self.assertNotEqual(r.init(), fsw.OK)
+        self.assertEqual(r.update(Lr_B=[0.1, -0.2, 0.3])[0], fsw.E_NOT_INIT)
+        m = fsw.MrpFb(K=0.5, P=2.0, K_i=-1.0, integral_limit=1.0, I_B=np.eye(3))
+        self.assertEqual(m.init(), fsw.OK)
+        m.num_rw = 1000
+        with self.assertRaises(ValueError) as e:
+            m.update(t_ns=0)
+        self.assertIn("num_rw", str(e.exception))
+
+    def test_monte_carlo_runs_capped_like_the_cli(self):
+        for n in (10 ** 9, 10 ** 7 + 1):
+            with self.assertRaises(ValueError) as e:
+                kestrel.monte_carlo(S1_MC, runs=n)  # before: 8.4 GB, then MemoryError
+            self.assertIn("10000000", str(e.exception))
+        # the CLI's limit is the same
+        with tempfile.TemporaryDirectory() as tmp:
+            r = cli("mc", S1_MC, "--runs", str(10 ** 7 + 1), "-o", os.path.join(tmp, "o"))
+            self.assertNotEqual(r.returncode, 0)
+            self.assertIn("10000000", r.stderr + r.stdout)
+            self.assertFalse(os.path.exists(os.path.join(tmp, "o")))
+
+    def test_apply_event_cap_and_manifest(self):
+        import json
+        sc = kestrel.Scenario.load(S1, SHORT)
+        r = kestrel.Run(sc)
+        r.step(10)
+        own = len(json.loads(r.results().manifest)["scenario"].get("events", []))
+        r.apply_event("gyro", "noise_scale", 2)
+        r.step(1)  # applied before this tick
+        j = json.loads(r.results().manifest)
+        # the event is in the manifest's scenario (which replays it) and in its result
+        names = [e["name"] for e in j["scenario"]["events"]]
+        self.assertIn("py1", names)
+        self.assertEqual([e["name"] for e in j["result"]["events_applied"]][-1:], ["py1"])
+        for _ in range(64 - own - 1):
+            r.apply_event("gyro", "noise_scale", 1)
+        with self.assertRaises(ValueError) as e:  # the 65th: the scenario's cap of 64
+            r.apply_event("gyro", "noise_scale", 1)
+        self.assertIn("64", str(e.exception))
+        self.assertEqual(len(r.applied), 64 - own)
+        self.assertEqual(len(json.loads(r.results().manifest)["scenario"]["events"]), 64)
+
+
 if __name__ == "__main__":
     unittest.main()

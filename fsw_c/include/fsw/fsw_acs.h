@@ -139,7 +139,11 @@ typedef struct {
 /* Inputs and outputs of the stages, kept in the state so that the cycle
  * function's own stack stays small (see the stack table in docs).  Private
  * by convention: its layout may change; an integrator reads FswAcsHealthMsg
- * (and the module health counters) instead. */
+ * (and the module health counters) instead.  Scratch except three members
+ * that persist into the next cycle (docs/fsw-conventions.md, "Errors"):
+ * u_last and u_last_valid (a record of the wheel torque sent: an error
+ * cycle clears u_last_valid) and t_on_last (saved and put back on an error
+ * cycle like the state). */
 typedef struct {
   FswRwSpeedFilterIn filt_in;
   FswRwSpeedFilterOut filt_out;
@@ -285,7 +289,10 @@ const char *fsw_acs_stage_name(int stage);
 /* Validates the whole configuration.  On failure, *bad_field (if not NULL)
  * receives the name of the first bad field, e.g. "initial_mode" or
  * "rw_map" (a module config that its own _check rejected; the status is
- * that module's).  On success *bad_field = NULL. */
+ * that module's) or a cross-module field such as "speed_filter.u_max" (with
+ * use_speed_filter, each wheel's filter limit must be >= its rw_sat.u_max:
+ * the filter refuses an applied torque above 2 of its u_max).  On success
+ * *bad_field = NULL. */
 FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field);
 
 /* check + init of every module used; on failure the state is not ready. */
@@ -303,7 +310,10 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg);
  * FSW_E_TIME: t_ns not after the previous cycle; FSW_E_NOT_INIT).  An error
  * cycle advances no state at all: mode, clock, cycle count, commanded
  * reference and gains and every stage's memory are as before the call (only health counters and the
- * scratch `work` change), so a good retry at the same t_ns is accepted. */
+ * scratch `work` change), so a good retry at the same t_ns is accepted.
+ * An error cycle's `hlth` is the safe health message: all 0 except status,
+ * safe_output = 1, mode, actuation, policy, counters, rw_failed/rw_latched
+ * and health as restored, and stage_status[] (which stage failed). */
 FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
                         const FswAcsCmdMsg *cmd, FswAcsActuatorMsg *act, FswAcsHealthMsg *hlth);
 

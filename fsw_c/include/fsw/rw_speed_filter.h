@@ -21,7 +21,8 @@
  *   stale   n_stale > 0: a wheel whose finite sample equals its previous
  *           finite sample bit for bit n_stale times in a row is failed and
  *           latched (a frozen tachometer: a live one with noise never
- *           repeats; use only with a fresh, noisy sample every call).
+ *           repeats; use only with a fresh, noisy sample every call).  Bit
+ *           for bit: -0.0 after +0.0 (or the reverse) is not a repeat.
  *   torque  n_window > 0: over a window of n_window calls the accepted speed
  *           change is compared with the change the applied motor torque
  *           explains, sum(u_applied_i dt) / J_s,i; a residual above

@@ -24,6 +24,13 @@
 // Checks: no rod command unless mtq_active (and never without rods), rod
 // commands within duty_max m_max and 0 beyond num_mtq, finite telemetry of
 // the new paths, mode and policy in force always configured ones.
+// Issue 39 (bit 4 of the first byte; four bytes right after it): the speed
+// filter's own u_max scaled wheel by wheel against the geometry's (rw_sat
+// keeps it), so limits that cannot work together are reached (fsw_acs_check
+// must refuse a filter limit below the saturation limit).  Checks: the speed
+// filter never refuses what the cycle hands it (its bad_input counter stays:
+// an error there had no stage to blame); an error cycle's health message is
+// the safe one (no Sun heading, no estimates).
 #include "acs_fixture.hpp"
 #include "fsw/fsw_acs.h"
 #include "fuzz_input.h"
@@ -143,12 +150,23 @@ static void decode_issue38(FuzzIn &in, FswAcsConfig &c, int variant)
 }
 
 // Decode the configuration: a reference config, then single fields.
+// Issue 39: the speed filter's limit against the saturation limit.
+static void scale_filter_limits(FswAcsConfig &c, const double f[4])
+{
+  for (int i = 0; i < 4 && i < c.speed_filter.num_rw && i < FSW_MAX_RW; i++)
+    c.speed_filter.u_max[i] = static_cast<fsw_real>(c.speed_filter.u_max[i] * f[i]);
+  fuzz_trace("speed_filter.u_max", c.speed_filter.u_max, c.speed_filter.num_rw < 4 ? c.speed_filter.num_rw : 4);
+}
+
 static void decode_config(FuzzIn &in, FswAcsConfig &c, bool &issue14, bool &issue38)
 {
   const int v8 = in.u8();
   const int variant = v8 % 4;
   issue14 = (v8 & 4) != 0;
   issue38 = (v8 & 8) != 0;
+  double sf_scale[4] = {1, 1, 1, 1};
+  if (v8 & 16)
+    for (double &f : sf_scale) f = in.real(1.0);
   if (issue38) {
     decode_issue38(in, c, variant);
     if (issue14) {
@@ -156,6 +174,7 @@ static void decode_config(FuzzIn &in, FswAcsConfig &c, bool &issue14, bool &issu
       c.speed_filter.k_reject = in.u32(3);
       c.speed_filter.n_recover = in.u32(3);
     }
+    scale_filter_limits(c, sf_scale);
     return;
   }
   if (variant <= 1) {
@@ -209,6 +228,7 @@ static void decode_config(FuzzIn &in, FswAcsConfig &c, bool &issue14, bool &issu
     }
     fuzz_trace_int("use_speed_filter", c.use_speed_filter);
   }
+  scale_filter_limits(c, sf_scale);
   fuzz_trace_int("variant", variant);
   for (int i = 0; i < g.num_rw; i++) fuzz_trace("gs_hat_B[i]", g.gs_hat_B[i], 3);
   fuzz_trace("J_s", g.J_s, g.num_rw);
@@ -251,6 +271,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_REQUIRE(hlth.status == s, "fsw_acs_cycle returned %d but hlth.status = %d", s, hlth.status);
     FUZZ_REQUIRE((s < 0) == (hlth.safe_output != 0), "fsw_acs_cycle: status %d with safe_output %d", s,
                  hlth.safe_output);
+    if (s < 0)  // issue 39: the safe health message
+      FUZZ_REQUIRE(hlth.sun_valid == 0 && hlth.num_lit == 0 && fuzz_nonzero_from(hlth.sun_hat_B, 0, 3) < 0 &&
+                       fuzz_nonzero_from(hlth.sigma_BR, 0, 3) < 0 && fuzz_nonzero_from(hlth.omega_BR_B, 0, 3) < 0 &&
+                       fuzz_nonzero_from(hlth.h_w_B, 0, 3) < 0 && fuzz_nonzero_from(hlth.tau_mtq_B, 0, 3) < 0 &&
+                       hlth.att_err_angle == 0 && hlth.sun_angle_err == 0 && hlth.rate_est == 0 &&
+                       hlth.prop_used == 0 && hlth.dumps == 0 && hlth.detumbled == 0,
+                   "fsw_acs_cycle: error %d but the health message carries the cycle's estimates", s);
     return s;
   };
   if (!fuzz_init("fsw_acs", st, cfg, check_checked, init_checked, [](const FswAcsState &s) { return s.ready; }, step))
@@ -316,9 +343,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fuzz_trace_int("att_valid", sens.att_valid);
     if (cmdp != nullptr) fuzz_trace_int("cmd.mode", cmd.mode), fuzz_trace_int("cmd.actuation", cmd.actuation);
     const uint32_t cycles = st.cycles;
+    const uint32_t sf_bad = st.speed_filter.health.bad_input;
     const int first = !st.clock.has_prev;
     const double dt = first ? 0.0 : static_cast<double>(sens.t_ns - st.clock.t_prev_ns) * 1e-9;
     const int s = step();
+    // issue 39: the cycle validated the filter's inputs; a refusal there is
+    // an error with no stage to blame (a filter limit below rw_sat's)
+    FUZZ_REQUIRE(st.speed_filter.health.bad_input == sf_bad,
+                 "fsw_acs_cycle: the speed filter refused its input (status %d): u_max %.17g against rw_sat's %.17g", s,
+                 static_cast<double>(cfg.speed_filter.u_max[0]), static_cast<double>(cfg.rw_sat.u_max[0]));
     if (s < 0) {
       FUZZ_REQUIRE(hlth.cycles == cycles, "fsw_acs_cycle: error but cycles %u -> %u", cycles, hlth.cycles);
       continue;

@@ -3,8 +3,35 @@
 // masks and time stamps.  OK: finite speeds, avail = In.avail OR failed, bits
 // only of configured wheels, nothing beyond num_rw; errors: the held good
 // speeds with every wheel unavailable and no state change.
+// Issue 39: the stale test against a model of its own, kept here: with the
+// torque test off, a wheel is newly latched exactly when its finite samples
+// repeated bit for bit (memcmp, so -0.0 after +0.0 is no repeat) n_stale
+// times in a row.  The decoder's special values include +0.0 and -0.0; the
+// seeds signed-zero-* alternate them on wheel 0 (and repeat one sign).
+#include <cstring>
+
 #include "fsw/rw_speed_filter.h"
 #include "fuzz_input.h"
+
+namespace {
+// Bit-for-bit run of repeated finite samples per wheel, as documented.
+struct StaleModel {
+  fsw_real last[FSW_MAX_RW];
+  bool has[FSW_MAX_RW];
+  uint32_t run[FSW_MAX_RW];
+  void clear()
+  {
+    for (int i = 0; i < FSW_MAX_RW; i++) has[i] = false, run[i] = 0, last[i] = 0;
+  }
+  void sample(int i, fsw_real x)
+  {
+    if (!std::isfinite(x)) return;
+    run[i] = (has[i] && std::memcmp(&x, &last[i], sizeof x) == 0) ? run[i] + 1 : 0;
+    last[i] = x;
+    has[i] = true;
+  }
+};
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -40,10 +67,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                  [](const FswRwSpeedFilterState &s) { return s.ready; }, step))
     return 0;
   uint64_t t = 0, latched_before = 0;
+  static StaleModel model;
+  model.clear();
   for (int k = 0, steps = in.steps(12, 48); k < steps; k++) {
     if (in.op()) {
       fsw_rw_speed_filter_reset(&st);
       latched_before = 0;
+      model.clear();
     }
     fuzz_speeds(in, x.Omega_meas, n, 100.0 + 0.1 * k);
     in.avail_mask(x.avail, n);
@@ -71,6 +101,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                  "rw_speed_filter: bits beyond num_rw");
     FUZZ_REQUIRE((out.latched & ~out.failed) == 0, "rw_speed_filter: a latched wheel that is not failed");
     FUZZ_REQUIRE((latched_before & ~out.latched) == 0, "rw_speed_filter: a latched wheel came back without reset");
+    for (int i = 0; i < n && i < 64; i++) {
+      if ((latched_before >> i) & 1u) continue;  // latched: no test runs
+      model.sample(i, x.Omega_meas[i]);
+      if (cfg.n_window != 0u) continue;  // the torque test may latch it too
+      const bool want = cfg.n_stale > 0u && model.run[i] >= cfg.n_stale;
+      FUZZ_REQUIRE(want == (((out.latched >> i) & 1u) != 0),
+                   "rw_speed_filter: wheel %d latched %d after %u bit-identical repeats (n_stale %u, sample %.17g)", i,
+                   static_cast<int>((out.latched >> i) & 1u), model.run[i], cfg.n_stale,
+                   static_cast<double>(x.Omega_meas[i]));
+    }
     latched_before = out.latched;
   }
   return 0;

@@ -70,6 +70,43 @@ def main():
                 files["v%d-mild-%d" % (v, j)] = seed_bytes(rng, v, True, rng.randrange(48, 400), 0.12, 0.0)
             files["v%d-special-0" % v] = seed_bytes(rng, v, True, rng.randrange(48, 400), 0.08, 0.02)
         write(os.path.join(HERE, "corpus", name), files)
+    for name, files in crafted().items():
+        write(os.path.join(HERE, "corpus", name), files)
+
+
+def crafted():
+    """Hand-made seeds of issue 39 (no random bytes: the others keep theirs).
+
+    rw_speed_filter signed-zero-*: four wheels, n_stale = 3 (byte 195), torque
+    test off, 12 calls; wheel 0 reads +0.0 (special byte 196) and -0.0 (197):
+    alternating (no repeat to the bit: never stale) or one sign (latched at the
+    third repeat).
+    acs cross-limit-*: first byte with bit 4 (fuzz_acs.cpp, issue 39) and the
+    issue 14 bit (speed filter on): four factors on the filter's u_max follow
+    (byte 128 + 17: x 1e-6; 136: x 0.999999; 137: x 1.000001), the case
+    fsw_acs_check must refuse by name.
+    """
+    def speed_filter(zeros):
+        cfg = bytes([0] + [0] * 12 + [0, 0, 200, 195, 0] + [0] * 4 + [11])
+        step = lambda z: bytes([0, z, 0, 0, 0] + [0] * 4 + [0] * 4 + [0, 0])
+        return cfg + b"".join(step(z) for z in zeros)
+    return {
+        "rw_speed_filter": {
+            "signed-zero-alternating": speed_filter([196, 197] * 6),
+            "signed-zero-repeated": speed_filter([197] * 12),
+        },
+        "acs": {
+            # x 1e-6 on every wheel (the finding's 2.8e-4 against 0.2 N m)
+            "cross-limit-0": bytes([20, 145, 145, 145, 145]),
+            # x 0.999999 on the last wheel: just below, refused
+            "cross-limit-1": bytes([20, 0, 0, 0, 136]),
+            # x 1.000001 on the first: just above, accepted; the Schmitt/power
+            # variant 21 and the full configuration 28 likewise
+            "cross-limit-2": bytes([20, 137, 0, 0, 0]),
+            "cross-limit-3": bytes([21, 145, 0, 0, 0]),
+            "cross-limit-4": bytes([28 | 4, 145, 145, 145, 145]),
+        },
+    }
 
 
 def write(d, files):
