@@ -39,6 +39,7 @@ static void reset(FswTransport *t)
   t->is_socket = 0;
   t->connected = 0;
   t->peer_len = 0u;
+  t->foreign = 0u;
   t->have = 0u;
   t->used = 0u;
   t->desc[0] = '\0';
@@ -93,6 +94,52 @@ int fsw_transport_open_udp(FswTransport *t, const char *spec, char *err, size_t 
     return -1;
   }
   snprintf(t->desc, sizeof t->desc, "udp %s:%s", hbuf, pbuf);
+  return 0;
+}
+
+int fsw_transport_pin_peer(FswTransport *t, const char *spec, char *err, size_t err_len)
+{
+  char host[128];
+  const char *port;
+  struct addrinfo hints, *res = NULL;
+  int rc;
+  if (t->fd < 0 || t->stream || t->connected) {
+    snprintf(err, err_len, "a peer is pinned on a bound UDP socket only");
+    return -1;
+  }
+  if (split_spec(spec, host, sizeof host, &port) != 0) {
+    snprintf(err, err_len, "bad peer address '%s' (expected HOST:PORT)", spec);
+    return -1;
+  }
+  memset(&hints, 0, sizeof hints);
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_DGRAM;
+  hints.ai_flags = AI_NUMERICSERV;
+  rc = getaddrinfo(host, port, &hints, &res);
+  if (rc != 0) {
+    snprintf(err, err_len, "cannot resolve peer '%s': %s", spec, gai_strerror(rc));
+    return -1;
+  }
+  if (res->ai_addrlen > sizeof t->peer) {
+    freeaddrinfo(res);
+    snprintf(err, err_len, "peer address '%s' too long", spec);
+    return -1;
+  }
+  memcpy(t->peer, res->ai_addr, res->ai_addrlen);
+  t->peer_len = (unsigned int)res->ai_addrlen;
+  freeaddrinfo(res);
+  return 0;
+}
+
+int fsw_transport_peer_text(const FswTransport *t, char *buf, size_t len)
+{
+  char h[64], p[16];
+  if (t->peer_len == 0u || getnameinfo((const struct sockaddr *)t->peer, (socklen_t)t->peer_len, h, sizeof h, p,
+                                       sizeof p, NI_NUMERICHOST | NI_NUMERICSERV) != 0) {
+    snprintf(buf, len, "none");
+    return -1;
+  }
+  snprintf(buf, len, "%s:%s", h, p);
   return 0;
 }
 
@@ -228,6 +275,32 @@ static int wait_readable(int fd, long long deadline)
   return rc > 0 ? 1 : rc;
 }
 
+/* Same family, address and port (IPv4 or IPv6). */
+static int same_address(const unsigned char *pinned, unsigned int plen, const struct sockaddr_storage *from,
+                        socklen_t flen)
+{
+  struct sockaddr_storage a;
+  if ((socklen_t)plen != flen) return 0;
+  memcpy(&a, pinned, plen);
+  if (a.ss_family != from->ss_family) return 0;
+  if (a.ss_family == AF_INET) {
+    const struct sockaddr_in *x = (const struct sockaddr_in *)&a, *y = (const struct sockaddr_in *)from;
+    return x->sin_port == y->sin_port && x->sin_addr.s_addr == y->sin_addr.s_addr;
+  }
+  if (a.ss_family == AF_INET6) {
+    const struct sockaddr_in6 *x = (const struct sockaddr_in6 *)&a, *y = (const struct sockaddr_in6 *)from;
+    return x->sin6_port == y->sin6_port && memcmp(&x->sin6_addr, &y->sin6_addr, sizeof x->sin6_addr) == 0;
+  }
+  return memcmp(&a, from, flen) == 0;
+}
+
+/* A whole packet with a good CRC addressed to the FSW (telecommand type). */
+static int is_telecommand(const uint8_t *buf, size_t n)
+{
+  FswLinkPacket p;
+  return fsw_link_parse(buf, n, &p, NULL) == FSW_OK && p.type == 1u;
+}
+
 static int recv_datagram(FswTransport *t, const uint8_t **pkt, size_t *len, long long deadline)
 {
   for (;;) {
@@ -239,8 +312,14 @@ static int recv_datagram(FswTransport *t, const uint8_t **pkt, size_t *len, long
     n = recvfrom(t->fd, t->rx, sizeof t->rx, 0, (struct sockaddr *)&from, &flen);
     if (n >= 0) {
       if (!t->connected) {
-        memcpy(t->peer, &from, flen);
-        t->peer_len = (unsigned int)flen;
+        if (t->peer_len != 0u && !same_address(t->peer, t->peer_len, &from, flen)) {
+          t->foreign++; /* not the pinned peer: counted, dropped, never answered */
+          continue;
+        }
+        if (t->peer_len == 0u && is_telecommand(t->rx, (size_t)n)) { /* the first valid packet pins its sender */
+          memcpy(t->peer, &from, flen);
+          t->peer_len = (unsigned int)flen;
+        }
       }
       *pkt = t->rx;
       *len = (size_t)n;

@@ -6,9 +6,15 @@
  * in the caller's FswTransport.
  *
  *   UDP, bound      "HOST:PORT" (PORT 0: any free port, shown in desc);
- *                   answers the last sender (the FSW end)
+ *                   the FSW end.  Pinned to one peer: the one given by
+ *                   fsw_transport_pin_peer, else the sender of the first
+ *                   whole telecommand packet with a good CRC.  Datagrams
+ *                   from any other address or port are counted (foreign)
+ *                   and dropped, never delivered nor answered; nothing is
+ *                   sent before the peer is known.
  *   UDP, connected  "HOST:PORT"; sends to it, receives from it (the harness
- *                   end; a refused datagram is a lost packet)
+ *                   end; a refused datagram is a lost packet; the kernel
+ *                   delivers nothing from any other address or port)
  *   serial          "DEVICE:BAUD": a terminal set raw, 8N1, no flow control
  *   unix socket     a stream socket connected to PATH (an emulator's UART)
  *   stream          a byte stream already open (a pty, a connected socket)
@@ -44,8 +50,9 @@ typedef struct {
   int stream;                       /* 1: byte stream with sync markers */
   int is_socket;                    /* stream is a socket: no SIGPIPE on send */
   int connected;                    /* UDP connected to one peer */
-  unsigned char peer[128];          /* bound UDP: last sender (struct sockaddr_storage) */
-  unsigned int peer_len;
+  unsigned char peer[128];          /* bound UDP: the pinned peer (struct sockaddr_storage) */
+  unsigned int peer_len;            /* 0: no peer pinned yet */
+  unsigned long foreign;            /* bound UDP: datagrams dropped, not from the peer */
   FswLinkDeframer deframer;         /* stream: packets re-framed from the bytes */
   size_t have, used;                /* stream: bytes read into rx, bytes pushed */
   uint8_t rx[FSW_TRANSPORT_RX_SIZE];
@@ -56,6 +63,11 @@ typedef struct {
 /* 0 or -1 (message in err).  Bound: the FSW end; connected: the harness end. */
 int fsw_transport_open_udp(FswTransport *t, const char *spec, char *err, size_t err_len);
 int fsw_transport_connect_udp(FswTransport *t, const char *spec, char *err, size_t err_len);
+/* Bound UDP: pins the peer to spec ("HOST:PORT", numeric port) before
+ * anything is received.  0 or -1 (message in err). */
+int fsw_transport_pin_peer(FswTransport *t, const char *spec, char *err, size_t err_len);
+/* The pinned peer as "HOST:PORT" ("none": not pinned yet, -1). */
+int fsw_transport_peer_text(const FswTransport *t, char *buf, size_t len);
 /* "DEVICE:BAUD", BAUD one of 9600 ... 921600. */
 int fsw_transport_open_serial(FswTransport *t, const char *spec, char *err, size_t err_len);
 /* Connects a stream socket to the unix socket at path, described as desc.
