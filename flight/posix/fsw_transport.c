@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/un.h>
 #include <termios.h>
 #include <time.h>
@@ -40,6 +41,7 @@ static void reset(FswTransport *t)
   t->connected = 0;
   t->peer_len = 0u;
   t->foreign = 0u;
+  t->sec = NULL;
   t->have = 0u;
   t->used = 0u;
   t->desc[0] = '\0';
@@ -306,6 +308,7 @@ static int recv_datagram(FswTransport *t, const uint8_t **pkt, size_t *len, long
   for (;;) {
     struct sockaddr_storage from;
     socklen_t flen = sizeof from;
+    size_t inner = 0u;
     ssize_t n;
     const int w = wait_readable(t->fd, deadline);
     if (w <= 0) return w == 0 ? FSW_TRANSPORT_TIMEOUT : FSW_TRANSPORT_ERROR;
@@ -316,10 +319,16 @@ static int recv_datagram(FswTransport *t, const uint8_t **pkt, size_t *len, long
           t->foreign++; /* not the pinned peer: counted, dropped, never answered */
           continue;
         }
+        if (t->sec != NULL && fsw_link_sec_verify(t->sec, t->rx, (size_t)n, &inner, NULL) != FSW_OK)
+          return FSW_TRANSPORT_REFUSED; /* unauthenticated: dropped, pins nothing */
+        if (t->sec != NULL) n = (ssize_t)inner;
         if (t->peer_len == 0u && is_telecommand(t->rx, (size_t)n)) { /* the first valid packet pins its sender */
           memcpy(t->peer, &from, flen);
           t->peer_len = (unsigned int)flen;
         }
+      } else if (t->sec != NULL) {
+        if (fsw_link_sec_verify(t->sec, t->rx, (size_t)n, &inner, NULL) != FSW_OK) return FSW_TRANSPORT_REFUSED;
+        n = (ssize_t)inner;
       }
       *pkt = t->rx;
       *len = (size_t)n;
@@ -383,12 +392,97 @@ int fsw_transport_send(FswTransport *t, const uint8_t *pkt, size_t n)
     }
     return write_all(t, t->tx, len);
   }
+  if (t->sec != NULL) {
+    if (fsw_link_sec_protect(t->sec, pkt, n, t->tx, sizeof t->tx, &len, NULL) != FSW_OK) {
+      errno = EMSGSIZE;
+      return -1;
+    }
+    pkt = t->tx;
+    n = len;
+  }
   if (t->connected) {
     (void)send(t->fd, pkt, n, 0); /* a refused datagram (no process on the port yet) is a lost packet */
     return 0;
   }
   if (t->peer_len == 0u) return 0; /* nobody to answer yet */
   return sendto(t->fd, pkt, n, 0, (const struct sockaddr *)t->peer, (socklen_t)t->peer_len) == (ssize_t)n ? 0 : -1;
+}
+
+int fsw_transport_set_key(FswTransport *t, FswLinkSec *sec, char *err, size_t err_len)
+{
+  if (t->fd < 0 || t->stream) {
+    snprintf(err, err_len, "packet authentication needs a UDP link (not a serial line or stream)");
+    return -1;
+  }
+  t->sec = sec;
+  return 0;
+}
+
+static int hex_digit(int c)
+{
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+int fsw_transport_load_key(const char *path, uint8_t *key, size_t cap, size_t *len, char *err, size_t err_len)
+{
+  struct stat st;
+  char text[2 * FSW_LINK_SEC_KEY_MAX + 64];
+  size_t n, i, digits = 0u;
+  int fd;
+  *len = 0u;
+  fd = open(path, O_RDONLY | O_NOFOLLOW);
+  if (fd < 0) {
+    snprintf(err, err_len, "cannot open the key file %s: %s", path, strerror(errno));
+    return -1;
+  }
+  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    snprintf(err, err_len, "the key file %s is not a regular file", path);
+    close(fd);
+    return -1;
+  }
+  if ((st.st_mode & 077) != 0) {
+    snprintf(err, err_len, "the key file %s is open to group or others (mode %04o): chmod 600 it", path,
+             (unsigned)(st.st_mode & 07777));
+    close(fd);
+    return -1;
+  }
+  n = 0u;
+  for (;;) {
+    const ssize_t r = read(fd, text + n, sizeof text - n);
+    if (r <= 0) break;
+    n += (size_t)r;
+    if (n == sizeof text) break;
+  }
+  close(fd);
+  for (i = 0u; i < n; ++i) {
+    const int h = hex_digit((unsigned char)text[i]);
+    if (h < 0) {
+      if (text[i] == ' ' || text[i] == '\n' || text[i] == '\r' || text[i] == '\t') continue;
+      digits = 0u;
+      break;
+    }
+    if (digits / 2u >= cap) {
+      digits = 0u;
+      break;
+    }
+    if (digits % 2u == 0u)
+      key[digits / 2u] = (uint8_t)(h << 4);
+    else
+      key[digits / 2u] = (uint8_t)(key[digits / 2u] | h);
+    ++digits;
+  }
+  memset(text, 0, sizeof text);
+  if (digits % 2u != 0u || digits / 2u < FSW_LINK_SEC_KEY_MIN || digits / 2u > FSW_LINK_SEC_KEY_MAX || n == sizeof text) {
+    snprintf(err, err_len, "the key file %s must hold %u to %u hexadecimal digits (a %u- to %u-byte key) and nothing else",
+             path, 2u * FSW_LINK_SEC_KEY_MIN, 2u * FSW_LINK_SEC_KEY_MAX, FSW_LINK_SEC_KEY_MIN, FSW_LINK_SEC_KEY_MAX);
+    memset(key, 0, cap);
+    return -1;
+  }
+  *len = digits / 2u;
+  return 0;
 }
 
 void fsw_transport_close(FswTransport *t)

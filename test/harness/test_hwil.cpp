@@ -694,3 +694,168 @@ TEST(Hwil, LockstepRetransmitsALostSensorPacketAndTheFswAnswersADuplicateAgain)
               (unsigned long long)c.cycles, (unsigned long long)c.retransmits, (unsigned long long)c.stale, wall,
               tail.c_str());
 }
+
+namespace {
+
+const std::string kKeyHex = "5f3c9a0e77d1b2846ac3e9f0112d5b7c8e4a6f1d2c3b4a5968778695a4b3c2d1";  // 32 bytes
+
+std::string write_key(const fs::path& file, const std::string& text, fs::perms mode = fs::perms::owner_read |
+                                                                                       fs::perms::owner_write)
+{
+  std::ofstream(file) << text << "\n";
+  fs::permissions(file, mode);
+  return file.string();
+}
+
+struct Keyed {
+  std::unique_ptr<Child> fsw;
+  std::string spec;
+};
+
+Keyed start_keyed_fsw(const std::string& img, const std::string& key_file)
+{
+  Keyed k;
+  std::vector<std::string> argv{KESTREL_FSW_EXE, "--udp", "127.0.0.1:0", "--config", img};
+  if (!key_file.empty()) {
+    argv.push_back("--key");
+    argv.push_back(key_file);
+  }
+  k.fsw = std::make_unique<Child>(argv, true);
+  const std::string ready = k.fsw->line(kStartTimeout);
+  EXPECT_EQ(ready.rfind("kestrel-fsw: ready udp ", 0), 0u) << ready;
+  k.spec = "udp:" + ready.substr(std::min(ready.size(), std::string("kestrel-fsw: ready udp ").size()));
+  return k;
+}
+
+}  // namespace
+
+// Packet authentication (issue 39, finding 4): both ends with the same key
+// (kestrel-fsw --key, the harness's key_file / --link-key).  A stranger's
+// well-formed but unauthenticated sensor packet, sent before the harness's
+// first one, is refused and pins nothing (without a key it would have
+// pinned the stranger and locked the harness out); S1 over 60 s then runs
+// bit for bit equal to the in-process run, every packet carrying its 20-byte
+// trailer.  The key never appears in kestrel-fsw's output.
+TEST(Hwil, WithASharedKeyTheRunIsBitIdenticalAndUnauthenticatedPacketsAreRefused)
+{
+  const harness::Scenario sc = harness::load_scenario(kS1, {{"duration", "60"}});
+  harness::Run local(sc);
+  ASSERT_TRUE(local.step_ticks(local.total_ticks())) << local.failure();
+  TempDir tmp;
+  const std::string img = write_image(sc, tmp.p / "fsw.img");
+  const std::string key = write_key(tmp.p / "link.key", kKeyHex);
+  Keyed k = start_keyed_fsw(img, key);
+  ASSERT_FALSE(k.spec.empty());
+  Udp stranger;
+  stranger.send_to(port_of(k.spec), sensor_bytes(harness::fsw_acs_config_of(sc), 0, 0));
+  std::vector<uint8_t> heard;
+  EXPECT_FALSE(stranger.recv(heard, 0.3));
+  harness::LinkOptions lo;
+  lo.key_file = key;
+  lo.timeout_s = kReplyTimeout;
+  harness::RunConfig cfg;
+  auto r = std::make_unique<harness::RemoteFsw>(harness::open_link_transport(k.spec, key),
+                                                harness::fsw_acs_config_of(sc), lo);
+  harness::RemoteFsw* link = r.get();
+  cfg.fsw = std::move(r);
+  harness::Run linked(sc, std::move(cfg));
+  ASSERT_TRUE(linked.step_ticks(linked.total_ticks())) << linked.failure();
+  expect_identical(local.memory(), linked.memory());
+  const harness::LinkCounters& c = link->counters();
+  EXPECT_EQ(c.replies, c.cycles);
+  EXPECT_EQ(c.rejected, 0u);
+  EXPECT_EQ(c.fsw.cycles, c.cycles);
+  EXPECT_EQ(c.fsw.rx_packets, c.sent + c.retransmits);  // the stranger's packet never reached the node
+  const std::string tail = k.fsw->rest(30.0);
+  EXPECT_EQ(count_before(tail, "failed authentication,"), 1) << tail;
+  EXPECT_NE(tail.find("a datagram failed authentication (wrong key, or none)"), std::string::npos) << tail;
+  EXPECT_EQ(tail.find(kKeyHex.substr(0, 8)), std::string::npos);
+  std::printf("S1 60 s with a shared key: %llu cycles bit-identical; kestrel-fsw says: %s",
+              (unsigned long long)c.cycles, tail.c_str());
+}
+
+// A wrong key is refused with a message at the end that detects it: the
+// FSW end with another key drops every harness packet and says so on
+// stderr (the run fails: no reply, "same configuration and key?"); an FSW
+// end without a key answers unauthenticated replies, which the harness
+// refuses and names in its failure.
+TEST(Hwil, AWrongKeyIsRefusedWithAMessage)
+{
+  const harness::Scenario sc = harness::load_scenario(kS1, {{"duration", "1"}});
+  TempDir tmp;
+  const std::string img = write_image(sc, tmp.p / "fsw.img");
+  const std::string key = write_key(tmp.p / "link.key", kKeyHex);
+  std::string other_hex = kKeyHex;
+  other_hex[0] = '6';
+  const std::string other = write_key(tmp.p / "other.key", other_hex);
+  harness::LinkOptions lo;
+  lo.key_file = key;
+  lo.timeout_s = 1.0;
+  for (const std::string& fsw_key : {other, std::string()}) {
+    Keyed k = start_keyed_fsw(img, fsw_key);
+    ASSERT_FALSE(k.spec.empty());
+    harness::RunConfig cfg;
+    cfg.fsw = std::make_unique<harness::RemoteFsw>(harness::open_link_transport(k.spec, key),
+                                                   harness::fsw_acs_config_of(sc), lo);
+    harness::Run run(sc, std::move(cfg));
+    EXPECT_FALSE(run.step_ticks(run.total_ticks()));
+    const std::string tail = k.fsw->rest(30.0);
+    if (!fsw_key.empty()) {
+      EXPECT_NE(run.failure().find("same configuration and key?"), std::string::npos) << run.failure();
+      EXPECT_NE(tail.find("kestrel-fsw: a datagram failed authentication (wrong key, or none) and was dropped"),
+                std::string::npos)
+          << tail;
+      EXPECT_GE(count_before(tail, "failed authentication,"), 1) << tail;
+      EXPECT_EQ(count_before(tail, "cycles,"), 0) << tail;
+    } else {
+      EXPECT_NE(run.failure().find("datagrams from the FSW end failed authentication"), std::string::npos)
+          << run.failure();
+    }
+    std::printf("harness key, FSW %s: the run fails with: %s\n", fsw_key.empty() ? "without a key" : "with another key",
+                run.failure().c_str());
+  }
+}
+
+// Key files: one open to group or others, a symbolic link, and one that is
+// not 32 ... 128 hex digits are refused by both ends with the file named,
+// and the key's text never appears in a message.
+TEST(Hwil, KeyFilesAreCheckedByBothEnds)
+{
+  const harness::Scenario sc = harness::load_scenario(kS1, {{"duration", "1"}});
+  TempDir tmp;
+  const std::string img = write_image(sc, tmp.p / "fsw.img");
+  const std::string open_key = write_key(tmp.p / "open.key", kKeyHex, fs::perms::owner_read | fs::perms::owner_write |
+                                                                           fs::perms::group_read | fs::perms::others_read);
+  const std::string short_key = write_key(tmp.p / "short.key", kKeyHex.substr(0, 30));
+  const std::string junk_key = write_key(tmp.p / "junk.key", kKeyHex + "zz");
+  fs::create_symlink(write_key(tmp.p / "good.key", kKeyHex), tmp.p / "link.key");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {open_key, "is open to group or others (mode 0644): chmod 600 it"},
+      {short_key, "must hold 32 to 128 hexadecimal digits"},
+      {junk_key, "must hold 32 to 128 hexadecimal digits"},
+      {(tmp.p / "link.key").string(), "cannot open the key file"}};
+  for (const auto& [file, why] : cases) {
+    const std::string cmd = std::string(KESTREL_FSW_EXE) + " --udp 127.0.0.1:0 --config " + img + " --key " + file + " 2>&1";
+    FILE* p = ::popen(cmd.c_str(), "r");
+    ASSERT_NE(p, nullptr);
+    char buf[1024] = {0};
+    const size_t n = std::fread(buf, 1, sizeof buf - 1, p);
+    EXPECT_NE(::pclose(p), 0);
+    const std::string out(buf, n);
+    EXPECT_NE(out.find("kestrel-fsw: --key: "), std::string::npos) << out;
+    EXPECT_NE(out.find(file), std::string::npos) << out;
+    EXPECT_NE(out.find(why), std::string::npos) << out;
+    EXPECT_EQ(out.find(kKeyHex.substr(0, 8)), std::string::npos) << out;
+    try {
+      harness::open_link_transport("udp:127.0.0.1:9", file);
+      ADD_FAILURE() << "the harness accepted " << file;
+    } catch (const harness::FswEndpointError& e) {
+      EXPECT_NE(std::string(e.what()).find("FSW link: --link-key: "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find(kKeyHex.substr(0, 8)), std::string::npos) << e.what();
+    }
+  }
+  // a key on a serial line: refused (UDP only)
+  EXPECT_THROW(harness::open_link_transport("serial:/dev/null:115200", (tmp.p / "good.key").string()),
+               harness::FswEndpointError);
+}

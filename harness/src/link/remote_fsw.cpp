@@ -1,6 +1,7 @@
 #include "harness/link/remote_fsw.h"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -52,6 +53,25 @@ class CTransport : public LinkTransport {
 
   std::string describe() const override { return t_->desc; }
   bool datagram() const override { return !t_->stream; }
+  // packet authentication with the shared key in key_file (UDP only)
+  void set_key(const std::string& key_file)
+  {
+    std::array<uint8_t, FSW_LINK_SEC_KEY_MAX> key{};
+    size_t n = 0;
+    char err[320] = "";
+    sec_ = std::make_unique<FswLinkSec>();
+    int rc = fsw_transport_load_key(key_file.c_str(), key.data(), key.size(), &n, err, sizeof err);
+    if (rc == 0 && fsw_link_sec_init(sec_.get(), key.data(), n) != FSW_OK) rc = -1;
+    key.fill(0);
+    if (rc == 0) rc = fsw_transport_set_key(t_.get(), sec_.get(), err, sizeof err);
+    if (rc != 0) throw FswEndpointError(std::string("FSW link: --link-key: ") + err);
+  }
+  std::string diagnose() const override
+  {
+    if (!sec_ || sec_->rx_auth_failed + sec_->rx_replayed == 0) return "";
+    return std::to_string(sec_->rx_auth_failed) + " datagrams from the FSW end failed authentication and " +
+           std::to_string(sec_->rx_replayed) + " were replays: is kestrel-fsw using the same key (--key)?";
+  }
   void send(const uint8_t* p, size_t n) override
   {
     if (fsw_transport_send(t_.get(), p, n) != 0 && errno != EMSGSIZE)  // a packet too long to frame: not sent
@@ -71,6 +91,7 @@ class CTransport : public LinkTransport {
         return true;
       }
       if (rc == FSW_TRANSPORT_TIMEOUT) return false;
+      if (rc == FSW_TRANSPORT_REFUSED) continue;  // unauthenticated: dropped (counted in sec_)
       if (rc == FSW_TRANSPORT_ERROR && errno == EINTR) continue;
       if (t_->stream)
         throw FswEndpointError("FSW link: the " + std::string(t_->is_socket ? "socket" : "serial line") + " closed");
@@ -80,6 +101,7 @@ class CTransport : public LinkTransport {
 
  private:
   std::unique_ptr<FswTransport> t_;  // 67 kB of buffers: not on the stack
+  std::unique_ptr<FswLinkSec> sec_;  // with a key
 };
 
 uint8_t clamp_count(int n, int cap) { return static_cast<uint8_t>(std::clamp(n, 0, cap)); }
@@ -99,9 +121,15 @@ std::unique_ptr<LinkTransport> connect_unix_transport(const std::string& path, c
   return t;
 }
 
-std::unique_ptr<LinkTransport> open_link_transport(const std::string& spec)
+std::unique_ptr<LinkTransport> open_link_transport(const std::string& spec, const std::string& key_file)
 {
-  if (spec.rfind("udp:", 0) == 0) return std::make_unique<CTransport>(CTransport::Kind::kUdp, spec.substr(4));
+  if (spec.rfind("udp:", 0) == 0) {
+    auto t = std::make_unique<CTransport>(CTransport::Kind::kUdp, spec.substr(4));
+    if (!key_file.empty()) t->set_key(key_file);
+    return t;
+  }
+  if (!key_file.empty())
+    throw FswEndpointError("FSW link: --link-key: packet authentication needs a UDP link (udp:HOST:PORT)");
   if (spec.rfind("serial:", 0) == 0) return std::make_unique<CTransport>(CTransport::Kind::kSerial, spec.substr(7));
   throw FswEndpointError("FSW link: unknown transport '" + spec + "' (expected udp:HOST:PORT or serial:DEVICE:BAUD)");
 }
@@ -291,7 +319,8 @@ void RemoteFsw::cycle(const FswAcsSensorMsg& in, FswAcsActuatorMsg& out, FswAcsH
        << " s (" << t_->describe();
     const std::string why = t_->diagnose();
     if (why.empty())
-      os << "; is kestrel-fsw running with the same configuration?)";
+      os << "; is kestrel-fsw running with the same configuration" << (opt_.key_file.empty() ? "" : " and key")
+         << "?)";
     else
       os << "; " << why << ")";
     throw FswEndpointError(os.str());

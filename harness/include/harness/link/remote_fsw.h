@@ -59,6 +59,9 @@ struct LinkOptions {
   // instead of the target's QEMU ("" : defaults).  The start-up of the
   // emulated FSW is bounded by timeout_s.
   std::string pil_bin;
+  // Packet authentication (--link-key FILE, docs/hwil.md): the shared key's
+  // file, given to both ends ("" : none).
+  std::string key_file;
   std::string pil_emulator;
   bool any_fault() const { return loss > 0 || corrupt > 0 || duplicate > 0 || reorder > 0 || delay > 0; }
   // The options a run uses, from these as given (the `kestrel run` flags,
@@ -110,8 +113,10 @@ std::unique_ptr<LinkTransport> make_stream_transport(int fd, const std::string& 
 std::unique_ptr<LinkTransport> connect_unix_transport(const std::string& path, const std::string& desc);
 
 // "udp:HOST:PORT" or "serial:DEVICE:BAUD"; throws FswEndpointError with the
-// reason (bad address, cannot open).
-std::unique_ptr<LinkTransport> open_link_transport(const std::string& spec);
+// reason (bad address, cannot open).  key_file: packet authentication with
+// the shared key in it (fsw_link_sec.h; UDP only; the file must be mode
+// 0600 or stricter, and its key is never printed); "" : none.
+std::unique_ptr<LinkTransport> open_link_transport(const std::string& spec, const std::string& key_file = "");
 
 // What the harness end counted.
 struct LinkCounters {
