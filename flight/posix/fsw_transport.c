@@ -33,6 +33,31 @@ static int split_spec(const char *spec, char *a, size_t a_len, const char **b)
   return 0;
 }
 
+/* getaddrinfo of a UDP "HOST:PORT" (numeric port); what names it in err. */
+static int resolve_udp(const char *spec, int flags, const char *what, struct addrinfo **res, char *err, size_t err_len)
+{
+  char host[128];
+  const char *port;
+  struct addrinfo hints;
+  int rc;
+  *res = NULL;
+  if (split_spec(spec, host, sizeof host, &port) != 0) {
+    snprintf(err, err_len, "bad %s '%s' (expected HOST:PORT)", what, spec);
+    return -1;
+  }
+  memset(&hints, 0, sizeof hints);
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_DGRAM;
+  hints.ai_flags = flags | AI_NUMERICSERV;
+  rc = getaddrinfo(host, port, &hints, res);
+  if (rc != 0) {
+    snprintf(err, err_len, "cannot resolve '%s': %s", spec, gai_strerror(rc));
+    *res = NULL;
+    return -1;
+  }
+  return 0;
+}
+
 static void reset(FswTransport *t)
 {
   t->fd = -1;
@@ -51,24 +76,10 @@ static void reset(FswTransport *t)
 /* A UDP socket bound (connect == 0) or connected to spec's address. */
 static int open_udp(FswTransport *t, const char *spec, int connect_to, char *err, size_t err_len)
 {
-  char host[128];
-  const char *port;
-  struct addrinfo hints, *res = NULL;
+  struct addrinfo *res = NULL;
   int rc;
   reset(t);
-  if (split_spec(spec, host, sizeof host, &port) != 0) {
-    snprintf(err, err_len, "bad UDP address '%s' (expected HOST:PORT)", spec);
-    return -1;
-  }
-  memset(&hints, 0, sizeof hints);
-  hints.ai_family = AF_UNSPEC;
-  hints.ai_socktype = SOCK_DGRAM;
-  hints.ai_flags = connect_to ? AI_NUMERICSERV : (AI_PASSIVE | AI_NUMERICSERV);
-  rc = getaddrinfo(host, port, &hints, &res);
-  if (rc != 0) {
-    snprintf(err, err_len, "cannot resolve '%s': %s", spec, gai_strerror(rc));
-    return -1;
-  }
+  if (resolve_udp(spec, connect_to ? 0 : AI_PASSIVE, "UDP address", &res, err, err_len) != 0) return -1;
   t->fd = socket(res->ai_family, SOCK_DGRAM, 0);
   rc = t->fd < 0 ? -1 : connect_to ? connect(t->fd, res->ai_addr, res->ai_addrlen) : bind(t->fd, res->ai_addr, res->ai_addrlen);
   if (rc != 0) {
@@ -101,27 +112,12 @@ int fsw_transport_open_udp(FswTransport *t, const char *spec, char *err, size_t 
 
 int fsw_transport_pin_peer(FswTransport *t, const char *spec, char *err, size_t err_len)
 {
-  char host[128];
-  const char *port;
-  struct addrinfo hints, *res = NULL;
-  int rc;
+  struct addrinfo *res = NULL;
   if (t->fd < 0 || t->stream || t->connected) {
     snprintf(err, err_len, "a peer is pinned on a bound UDP socket only");
     return -1;
   }
-  if (split_spec(spec, host, sizeof host, &port) != 0) {
-    snprintf(err, err_len, "bad peer address '%s' (expected HOST:PORT)", spec);
-    return -1;
-  }
-  memset(&hints, 0, sizeof hints);
-  hints.ai_family = AF_UNSPEC;
-  hints.ai_socktype = SOCK_DGRAM;
-  hints.ai_flags = AI_NUMERICSERV;
-  rc = getaddrinfo(host, port, &hints, &res);
-  if (rc != 0) {
-    snprintf(err, err_len, "cannot resolve peer '%s': %s", spec, gai_strerror(rc));
-    return -1;
-  }
+  if (resolve_udp(spec, 0, "peer address", &res, err, err_len) != 0) return -1;
   if (res->ai_addrlen > sizeof t->peer) {
     freeaddrinfo(res);
     snprintf(err, err_len, "peer address '%s' too long", spec);

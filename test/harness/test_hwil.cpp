@@ -461,6 +461,53 @@ long count_before(const std::string& text, const std::string& what)
   return std::atol(text.substr(from + 1, at - from - 1).c_str());
 }
 
+// kestrel-fsw on a free loopback port, stderr with stdout (for its closing
+// line), with the key file key_file ("" : none); spec "udp:127.0.0.1:N".
+struct Keyed {
+  std::unique_ptr<Child> fsw;
+  std::string spec;
+};
+
+Keyed start_keyed_fsw(const std::string& img, const std::string& key_file)
+{
+  Keyed k;
+  std::vector<std::string> argv{KESTREL_FSW_EXE, "--udp", "127.0.0.1:0", "--config", img};
+  if (!key_file.empty()) {
+    argv.push_back("--key");
+    argv.push_back(key_file);
+  }
+  k.fsw = std::make_unique<Child>(argv, true);
+  const std::string ready = k.fsw->line(kStartTimeout);
+  EXPECT_EQ(ready.rfind("kestrel-fsw: ready udp ", 0), 0u) << ready;
+  k.spec = "udp:" + ready.substr(std::min(ready.size(), std::string("kestrel-fsw: ready udp ").size()));
+  return k;
+}
+
+
+// S1 over 60 s: its in-process run and its configuration image (the link
+// tests below), and runs of it with the FSW behind a UDP address.
+struct S1Minute {
+  harness::Scenario sc = harness::load_scenario(kS1, {{"duration", "60"}});
+  std::unique_ptr<harness::Run> local = std::make_unique<harness::Run>(sc);
+  TempDir tmp;
+  std::string img = write_image(sc, tmp.p / "fsw.img");
+  bool ran = local->step_ticks(local->total_ticks());
+  // key_file "" : no key; *link: the run's endpoint
+  std::unique_ptr<harness::Run> linked(const std::string& spec, harness::RemoteFsw** link,
+                                       const std::string& key_file = "") const
+  {
+    harness::LinkOptions lo;
+    lo.key_file = key_file;
+    lo.timeout_s = kReplyTimeout;
+    auto r = std::make_unique<harness::RemoteFsw>(harness::open_link_transport(spec, key_file),
+                                                  harness::fsw_acs_config_of(sc), lo);
+    *link = r.get();
+    harness::RunConfig cfg;
+    cfg.fsw = std::move(r);
+    return std::make_unique<harness::Run>(sc, std::move(cfg));
+  }
+};
+
 }  // namespace
 
 // Peer pinning (issue 39, finding 4).  Another local process that knows the
@@ -473,24 +520,16 @@ long count_before(const std::string& text, const std::string& what)
 // counters), and the run ends bit for bit equal to the in-process run.
 TEST(Hwil, ForgedPacketsFromAnotherSocketNeitherEndNorSteerTheRun)
 {
-  const harness::Scenario sc = harness::load_scenario(kS1, {{"duration", "60"}});
-  harness::Run local(sc);
-  ASSERT_TRUE(local.step_ticks(local.total_ticks())) << local.failure();
-  TempDir tmp;
-  const std::string img = write_image(sc, tmp.p / "fsw.img");
-  auto fsw = std::make_unique<Child>(std::vector<std::string>{KESTREL_FSW_EXE, "--udp", "127.0.0.1:0", "--config", img},
-                                     true);
-  const std::string ready = fsw->line(kStartTimeout);
-  ASSERT_EQ(ready.rfind("kestrel-fsw: ready udp ", 0), 0u) << ready;
-  const std::string spec = "udp:" + ready.substr(std::string("kestrel-fsw: ready udp ").size());
-  harness::RunConfig cfg;
-  auto r = remote(spec, sc);
-  harness::RemoteFsw* link = r.get();
-  cfg.fsw = std::move(r);
-  harness::Run linked(sc, std::move(cfg));
-  ASSERT_TRUE(linked.step_ticks(100)) << linked.failure();
+  const S1Minute s;
+  ASSERT_TRUE(s.ran) << s.local->failure();
+  Keyed k = start_keyed_fsw(s.img, "");
+  ASSERT_FALSE(k.spec.empty());
+  const std::string& spec = k.spec;
+  harness::RemoteFsw* link = nullptr;
+  const auto linked = s.linked(spec, &link);
+  ASSERT_TRUE(linked->step_ticks(100)) << linked->failure();
 
-  const FswAcsConfig acs = harness::fsw_acs_config_of(sc);
+  const FswAcsConfig acs = harness::fsw_acs_config_of(s.sc);
   Udp forger;
   forger.send_to(port_of(spec), sensor_bytes(acs, 1000000000000000ull, 5000));
   FswAcsCmdMsg cmd{};
@@ -507,13 +546,13 @@ TEST(Hwil, ForgedPacketsFromAnotherSocketNeitherEndNorSteerTheRun)
   std::vector<uint8_t> heard;
   EXPECT_FALSE(forger.recv(heard, 0.3)) << "the forger got " << heard.size() << " bytes";
 
-  ASSERT_TRUE(linked.step_ticks(linked.total_ticks() - 100)) << linked.failure();
-  expect_identical(local.memory(), linked.memory());
+  ASSERT_TRUE(linked->step_ticks(linked->total_ticks() - 100)) << linked->failure();
+  expect_identical(s.local->memory(), linked->memory());
   const harness::LinkCounters& c = link->counters();
   EXPECT_EQ(c.replies, c.cycles);
   EXPECT_EQ(c.fsw.cycles, c.cycles);
   EXPECT_EQ(c.fsw.rx_rejected + c.fsw.rx_stale + c.fsw.rx_crc, 0u);  // the forged ones never reached the node
-  const std::string tail = fsw->rest(30.0);
+  const std::string tail = k.fsw->rest(30.0);
   EXPECT_EQ(count_before(tail, "foreign datagrams dropped"), 3) << tail;
   std::printf("forged sensor, command and empty datagram mid-run: kestrel-fsw says: %s", tail.c_str());
 }
@@ -656,25 +695,17 @@ class LossyRelay {
 // in-process run; before, the run failed at the first drop.
 TEST(Hwil, LockstepRetransmitsALostSensorPacketAndTheFswAnswersADuplicateAgain)
 {
-  const harness::Scenario sc = harness::load_scenario(kS1, {{"duration", "60"}});
-  harness::Run local(sc);
-  ASSERT_TRUE(local.step_ticks(local.total_ticks())) << local.failure();
-  TempDir tmp;
-  const std::string img = write_image(sc, tmp.p / "fsw.img");
-  auto fsw = std::make_unique<Child>(std::vector<std::string>{KESTREL_FSW_EXE, "--udp", "127.0.0.1:0", "--config", img},
-                                     true);
-  const std::string ready = fsw->line(kStartTimeout);
-  ASSERT_EQ(ready.rfind("kestrel-fsw: ready udp ", 0), 0u) << ready;
-  LossyRelay relay(port_of(ready), 50, 301);
-  harness::RunConfig cfg;
-  auto r = remote(relay.spec(), sc);
-  harness::RemoteFsw* link = r.get();
-  cfg.fsw = std::move(r);
-  harness::Run linked(sc, std::move(cfg));
+  const S1Minute s;
+  ASSERT_TRUE(s.ran) << s.local->failure();
+  Keyed k = start_keyed_fsw(s.img, "");
+  ASSERT_FALSE(k.spec.empty());
+  LossyRelay relay(port_of(k.spec), 50, 301);
+  harness::RemoteFsw* link = nullptr;
+  const auto linked = s.linked(relay.spec(), &link);
   const auto t0 = std::chrono::steady_clock::now();
-  ASSERT_TRUE(linked.step_ticks(linked.total_ticks())) << linked.failure();
+  ASSERT_TRUE(linked->step_ticks(linked->total_ticks())) << linked->failure();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  expect_identical(local.memory(), linked.memory());
+  expect_identical(s.local->memory(), linked->memory());
   EXPECT_EQ(relay.dropped(), 2u);
   const harness::LinkCounters& c = link->counters();
   EXPECT_EQ(c.replies, c.cycles);
@@ -687,7 +718,7 @@ TEST(Hwil, LockstepRetransmitsALostSensorPacketAndTheFswAnswersADuplicateAgain)
   EXPECT_EQ(c.fsw.cycles, c.cycles);
   EXPECT_EQ(c.fsw.missed, 0u);
   EXPECT_GE(c.stale, 1u);  // the health packet without its actuator packet
-  const std::string tail = fsw->rest(30.0);
+  const std::string tail = k.fsw->rest(30.0);
   EXPECT_EQ(count_before(tail, "retransmissions answered again"), static_cast<long>(c.retransmits - 1)) << tail;
   std::printf("S1 60 s over a relay dropping 1 sensor packet and 1 actuator packet: %llu cycles, %llu "
               "retransmissions, %llu stale replies, wall %.2f s; kestrel-fsw says: %s",
@@ -707,26 +738,6 @@ std::string write_key(const fs::path& file, const std::string& text, fs::perms m
   return file.string();
 }
 
-struct Keyed {
-  std::unique_ptr<Child> fsw;
-  std::string spec;
-};
-
-Keyed start_keyed_fsw(const std::string& img, const std::string& key_file)
-{
-  Keyed k;
-  std::vector<std::string> argv{KESTREL_FSW_EXE, "--udp", "127.0.0.1:0", "--config", img};
-  if (!key_file.empty()) {
-    argv.push_back("--key");
-    argv.push_back(key_file);
-  }
-  k.fsw = std::make_unique<Child>(argv, true);
-  const std::string ready = k.fsw->line(kStartTimeout);
-  EXPECT_EQ(ready.rfind("kestrel-fsw: ready udp ", 0), 0u) << ready;
-  k.spec = "udp:" + ready.substr(std::min(ready.size(), std::string("kestrel-fsw: ready udp ").size()));
-  return k;
-}
-
 }  // namespace
 
 // Packet authentication (issue 39, finding 4): both ends with the same key
@@ -738,29 +749,19 @@ Keyed start_keyed_fsw(const std::string& img, const std::string& key_file)
 // trailer.  The key never appears in kestrel-fsw's output.
 TEST(Hwil, WithASharedKeyTheRunIsBitIdenticalAndUnauthenticatedPacketsAreRefused)
 {
-  const harness::Scenario sc = harness::load_scenario(kS1, {{"duration", "60"}});
-  harness::Run local(sc);
-  ASSERT_TRUE(local.step_ticks(local.total_ticks())) << local.failure();
-  TempDir tmp;
-  const std::string img = write_image(sc, tmp.p / "fsw.img");
-  const std::string key = write_key(tmp.p / "link.key", kKeyHex);
-  Keyed k = start_keyed_fsw(img, key);
+  const S1Minute s;
+  ASSERT_TRUE(s.ran) << s.local->failure();
+  const std::string key = write_key(s.tmp.p / "link.key", kKeyHex);
+  Keyed k = start_keyed_fsw(s.img, key);
   ASSERT_FALSE(k.spec.empty());
   Udp stranger;
-  stranger.send_to(port_of(k.spec), sensor_bytes(harness::fsw_acs_config_of(sc), 0, 0));
+  stranger.send_to(port_of(k.spec), sensor_bytes(harness::fsw_acs_config_of(s.sc), 0, 0));
   std::vector<uint8_t> heard;
   EXPECT_FALSE(stranger.recv(heard, 0.3));
-  harness::LinkOptions lo;
-  lo.key_file = key;
-  lo.timeout_s = kReplyTimeout;
-  harness::RunConfig cfg;
-  auto r = std::make_unique<harness::RemoteFsw>(harness::open_link_transport(k.spec, key),
-                                                harness::fsw_acs_config_of(sc), lo);
-  harness::RemoteFsw* link = r.get();
-  cfg.fsw = std::move(r);
-  harness::Run linked(sc, std::move(cfg));
-  ASSERT_TRUE(linked.step_ticks(linked.total_ticks())) << linked.failure();
-  expect_identical(local.memory(), linked.memory());
+  harness::RemoteFsw* link = nullptr;
+  const auto linked = s.linked(k.spec, &link, key);
+  ASSERT_TRUE(linked->step_ticks(linked->total_ticks())) << linked->failure();
+  expect_identical(s.local->memory(), linked->memory());
   const harness::LinkCounters& c = link->counters();
   EXPECT_EQ(c.replies, c.cycles);
   EXPECT_EQ(c.rejected, 0u);
