@@ -272,7 +272,8 @@ TEST(Hwil, S1InRealTimeAtScale10OverUdpKeepsItsBound)
   EXPECT_EQ(r.link.cycles, 6001u);
   EXPECT_EQ(r.link.replies + r.link.missing, r.link.cycles);
   // summary.txt ends with the link figures, in the order and format of
-  // 79e1e00's summary.txt, after the seven pacing figures
+  // 79e1e00's summary.txt (and link_retransmits, 2026-12-05), after the
+  // seven pacing figures
   {
     std::ifstream in(tmp.p / "rt10" / "summary.txt");
     std::vector<std::string> lines;
@@ -288,7 +289,9 @@ TEST(Hwil, S1InRealTimeAtScale10OverUdpKeepsItsBound)
         "link_fsw_rx_crc = " + std::to_string(l.fsw.rx_crc) + "     # FSW end: packets rejected on CRC",
         "link_fsw_rx_stale = " + std::to_string(l.fsw.rx_stale) +
             "     # FSW end: duplicate, old or out-of-order sensor packets",
-        "link_fsw_missed = " + std::to_string(l.fsw.missed) + "     # FSW end: control cycles without a sensor packet"};
+        "link_fsw_missed = " + std::to_string(l.fsw.missed) + "     # FSW end: control cycles without a sensor packet",
+        "link_retransmits = " + std::to_string(l.retransmits) +
+            "     # lockstep over UDP: sensor packets sent again without a reply"};
     ASSERT_GE(lines.size(), want.size() + 7);
     EXPECT_EQ(std::vector<std::string>(lines.end() - static_cast<long>(want.size()), lines.end()), want);
     EXPECT_EQ(lines[lines.size() - want.size() - 7].rfind("rt_scale = 10     # ", 0), 0u);
