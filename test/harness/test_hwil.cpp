@@ -639,10 +639,12 @@ TEST(Hwil, KestrelFswAnswersItsConfiguredPeerOnlyAndEmptyDatagramsDoNotHoldOffLi
 namespace {
 
 // A UDP relay between the harness and kestrel-fsw that drops the datagrams
-// whose 1-based numbers (per direction) it is given.
+// whose 1-based numbers (per direction) it is given, and with
+// drop_first_command the first command packet (APID 0x102) the harness sends.
 class LossyRelay {
  public:
-  LossyRelay(int fsw_port, uint64_t drop_up, uint64_t drop_down) : fsw_port_(fsw_port), up_(drop_up), down_(drop_down)
+  LossyRelay(int fsw_port, uint64_t drop_up, uint64_t drop_down, bool drop_first_command = false)
+      : fsw_port_(fsw_port), up_(drop_up), down_(drop_down), drop_cmd_(drop_first_command)
   {
     th_ = std::thread([this] { loop(); });
   }
@@ -667,8 +669,13 @@ class LossyRelay {
       if (p[0].revents & POLLIN) {
         hl = sizeof harness;
         const ssize_t n = ::recvfrom(front_.fd, b.data(), b.size(), 0, reinterpret_cast<sockaddr*>(&harness), &hl);
-        if (n >= 0 && ++n_up != up_) back_.send_to(fsw_port_, std::vector<uint8_t>(b.begin(), b.begin() + n));
-        else if (n >= 0) ++dropped_;
+        const bool cmd = n >= 2 && (((b[0] & 7u) << 8) | b[1]) == FSW_LINK_APID_CMD;
+        if (n >= 0 && ++n_up != up_ && !(cmd && drop_cmd_)) {
+          back_.send_to(fsw_port_, std::vector<uint8_t>(b.begin(), b.begin() + n));
+        } else if (n >= 0) {
+          ++dropped_;
+          if (cmd) drop_cmd_ = false;
+        }
       }
       if (p[1].revents & POLLIN) {
         const ssize_t n = ::recv(back_.fd, b.data(), b.size(), 0);
@@ -680,6 +687,7 @@ class LossyRelay {
   }
   int fsw_port_;
   uint64_t up_, down_;
+  bool drop_cmd_;
   Udp front_, back_;
   std::atomic<bool> stop_{false};
   std::atomic<uint64_t> dropped_{0};
@@ -862,4 +870,44 @@ TEST(Hwil, KeyFilesAreCheckedByBothEnds)
   // a key on a serial line: refused (UDP only)
   EXPECT_THROW(harness::open_link_transport("serial:/dev/null:115200", (tmp.p / "good.key").string()),
                harness::FswEndpointError);
+}
+
+// A lost command packet in lockstep: before, the cycle ran without it and
+// the run went on, silently other than the in-process run.  The scenario of
+// FswCommandsOverTheLinkEqualInProcess (inertial hold at 100 s, a new rate
+// gain at 150 s) through a relay that drops the first command packet: the
+// harness waits for the command's acknowledgement (a link status counting
+// it), sends it again after 0.25 s, and the run equals the in-process run
+// bit for bit.
+TEST(Hwil, ALostCommandPacketIsSentAgainBeforeItsCycle)
+{
+  std::ifstream in(kS1);
+  std::stringstream text;
+  text << in.rdbuf()
+       << "\nevents:\n"
+          "  - {t: 100, actions: [{device: fsw, action: mode_inertial}, {device: fsw, action: reference_z, value: 0.1},\n"
+          "                       {device: fsw, action: gain_K, value: 5.0}]}\n"
+          "  - {t: 150, actions: [{device: fsw, action: gain_P, value: 40.0}]}\n";
+  const harness::Scenario sc =
+      harness::load_scenario_text(text.str(), "s1_commands.yaml", {{"duration", "200"}});
+  harness::Run local(sc);
+  ASSERT_TRUE(local.step_ticks(local.total_ticks())) << local.failure();
+  TempDir tmp;
+  Keyed k = start_keyed_fsw(write_image(sc, tmp.p / "fsw.img"), "");
+  ASSERT_FALSE(k.spec.empty());
+  LossyRelay relay(port_of(k.spec), 0, 0, true);
+  harness::RunConfig cfg;
+  auto r = remote(relay.spec(), sc);
+  harness::RemoteFsw* link = r.get();
+  cfg.fsw = std::move(r);
+  harness::Run linked(sc, std::move(cfg));
+  ASSERT_TRUE(linked.step_ticks(linked.total_ticks())) << linked.failure();
+  EXPECT_EQ(relay.dropped(), 1u);
+  expect_identical(local.memory(), linked.memory());
+  const harness::LinkCounters& c = link->counters();
+  EXPECT_GE(c.retransmits, 1u);
+  EXPECT_EQ(c.replies, c.cycles);
+  EXPECT_EQ(c.fsw.cycles, c.cycles);
+  std::printf("S1 with commands, the first command packet dropped: %llu cycles, %llu retransmissions, bit-identical\n",
+              (unsigned long long)c.cycles, (unsigned long long)c.retransmits);
 }

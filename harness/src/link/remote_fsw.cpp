@@ -219,6 +219,50 @@ RemoteFsw::Got RemoteFsw::take(uint64_t t_ns, Reply& r)
   return Got::kNothing;
 }
 
+bool RemoteFsw::retransmitting() const
+{
+  return missing_ == LinkOptions::Missing::kFail && t_->datagram() && opt_.retransmits > 0;
+}
+
+// Lockstep over UDP: a command packet lost on the way would let the cycle
+// run without it, silently; so the harness waits for the link status that
+// answers it (a count of received packets above `before`, the count of the
+// last status) and sends it again after retransmit_s, as for the sensor
+// packet.  A command applied twice is harmless (fsw_acs_msgs.h).
+void RemoteFsw::await_command_ack(const std::vector<uint8_t>& cmd, uint32_t before, uint64_t t_ns)
+{
+  const auto end = Clock::now() + std::chrono::duration<double>(opt_.timeout_s);
+  int retx_left = opt_.retransmits;
+  auto next_retx = Clock::now() + std::chrono::duration<double>(opt_.retransmit_s);
+  for (;;) {
+    const auto until = retx_left > 0 ? std::min(end, next_retx) : end;
+    const double left = std::chrono::duration<double>(until - Clock::now()).count();
+    if (left <= 0 || !t_->recv(rx_, left)) {
+      if (retx_left == 0 || Clock::now() >= end)
+        throw FswEndpointError("FSW link: the command packet before the sensor packet of t = " +
+                               std::to_string(t_ns * 1e-9) + " s was not acknowledged within " +
+                               std::to_string(opt_.timeout_s) + " s (" + t_->describe() + ")");
+      t_->send(cmd.data(), cmd.size());
+      ++c_.retransmits;
+      --retx_left;
+      next_retx = Clock::now() + std::chrono::duration<double>(opt_.retransmit_s);
+      continue;
+    }
+    FswLinkPacket p;
+    FswLinkStatusMsg st;
+    if (fsw_link_parse(rx_.data(), rx_.size(), &p, nullptr) != FSW_OK) {
+      ++c_.rejected;
+    } else if (p.apid != FSW_LINK_APID_LINK) {
+      ++c_.stale;  // a reply of an earlier cycle (an answered retransmission)
+    } else if (fsw_link_decode_status(&p, &st, nullptr) != FSW_OK) {
+      ++c_.rejected;
+    } else {
+      c_.fsw = st;
+      if (st.rx_packets > before) return;
+    }
+  }
+}
+
 // Lockstep over a datagram link retransmits the sensor packet (the same
 // bytes) after retransmit_s without the whole reply, at most retransmits
 // times a cycle; the FSW end answers a packet it has already run with its
@@ -229,7 +273,7 @@ bool RemoteFsw::await_reply(uint64_t t_ns, FswAcsActuatorMsg& out, FswAcsHealthM
   double limit = lockstep_fail ? opt_.timeout_s : opt_.reply_timeout_s;
   if (opt_.time_left) limit = std::min(limit, opt_.time_left());
   const auto end = Clock::now() + std::chrono::duration<double>(limit);
-  const bool retransmit = lockstep_fail && t_->datagram() && opt_.retransmits > 0 && !last_pkt_.empty();
+  const bool retransmit = retransmitting() && !last_pkt_.empty();
   int retx_left = retransmit ? opt_.retransmits : 0;
   auto next_retx = Clock::now() + std::chrono::duration<double>(opt_.retransmit_s);
   Reply r;
@@ -268,8 +312,11 @@ void RemoteFsw::cycle(const FswAcsSensorMsg& in, FswAcsActuatorMsg& out, FswAcsH
     if (fsw_link_encode_cmd(&cmd_, in.t_ns, cmd_seq_, pkt.data(), pkt.size(), &len, nullptr) != FSW_OK)
       throw FswEndpointError("FSW link: cannot encode the command");
     cmd_seq_ = static_cast<uint16_t>((cmd_seq_ + 1u) % FSW_LINK_SEQ_MODULO);
-    put(std::vector<uint8_t>(pkt.begin(), pkt.begin() + static_cast<std::ptrdiff_t>(len)));
+    const uint32_t before = c_.fsw.rx_packets;
+    const std::vector<uint8_t> cmd(pkt.begin(), pkt.begin() + static_cast<std::ptrdiff_t>(len));
+    put(cmd);
     have_cmd_ = false;
+    if (retransmitting()) await_command_ack(cmd, before, in.t_ns);
   }
   if (fsw_link_encode_sensor(&in, num_rw_, num_css_, seq_, pkt.data(), pkt.size(), &len, nullptr) != FSW_OK)
     throw FswEndpointError("FSW link: cannot encode the sensor message");

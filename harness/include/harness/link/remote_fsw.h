@@ -7,8 +7,10 @@
 // Lockstep (the default): the harness waits for cycle k's reply (actuator,
 // health and the link status that ends the cycle, so the FSW end's counters
 // it keeps are final); over UDP it sends the sensor packet again after
-// LinkOptions::retransmit_s without a whole reply (bounded, counted); no
-// reply within LinkOptions::timeout_s is a FswEndpointError.  With --realtime, or
+// LinkOptions::retransmit_s without a whole reply (bounded, counted), and
+// waits for the link status that acknowledges a command packet (sent again
+// likewise) before the sensor packet goes out; no reply within
+// LinkOptions::timeout_s is a FswEndpointError.  With --realtime, or
 // with injected faults, or with on_missing set, a cycle whose reply does not
 // come holds the last command (hold) or applies the safe output (zero), and
 // is counted.  A cycle is given up as soon as the FSW's link status shows it
@@ -164,6 +166,8 @@ class RemoteFsw : public FswEndpoint {
   };
   enum class Got { kNothing, kDone, kProcessed };
   Got take(uint64_t t_ns, Reply& r);
+  bool retransmitting() const;
+  void await_command_ack(const std::vector<uint8_t>& cmd, uint32_t before, uint64_t t_ns);
 
   std::unique_ptr<LinkTransport> t_;
   LinkOptions opt_;
