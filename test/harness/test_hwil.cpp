@@ -151,6 +151,21 @@ void lockstep_equals_in_process(const std::string& scenario, const std::string& 
   lockstep_equals_in_process(harness::load_scenario(scenario, {}), transport);
 }
 
+// S1 over 200 s switched to inertial pointing at a new reference with new
+// gains at 100 s, and the rate gain changed again at 150 s (FSW commands
+// from scenario events).
+harness::Scenario s1_with_commands()
+{
+  std::ifstream in(kS1);
+  std::stringstream text;
+  text << in.rdbuf()
+       << "\nevents:\n"
+          "  - {t: 100, actions: [{device: fsw, action: mode_inertial}, {device: fsw, action: reference_z, value: 0.1},\n"
+          "                       {device: fsw, action: gain_K, value: 5.0}]}\n"
+          "  - {t: 150, actions: [{device: fsw, action: gain_P, value: 40.0}]}\n";
+  return harness::load_scenario_text(text.str(), "s1_commands.yaml", {{"duration", "200"}});
+}
+
 }  // namespace
 
 // FSW commands from scenario events over the link (APID 0x102, the harness
@@ -161,15 +176,7 @@ void lockstep_equals_in_process(const std::string& scenario, const std::string& 
 // in-process FSW gets it with that cycle).
 TEST(Hwil, FswCommandsOverTheLinkEqualInProcess)
 {
-  std::ifstream in(kS1);
-  std::stringstream text;
-  text << in.rdbuf()
-       << "\nevents:\n"
-          "  - {t: 100, actions: [{device: fsw, action: mode_inertial}, {device: fsw, action: reference_z, value: 0.1},\n"
-          "                       {device: fsw, action: gain_K, value: 5.0}]}\n"
-          "  - {t: 150, actions: [{device: fsw, action: gain_P, value: 40.0}]}\n";
-  const harness::Scenario sc =
-      harness::load_scenario_text(text.str(), "s1_commands.yaml", {{"duration", "200"}});
+  const harness::Scenario sc = s1_with_commands();
   lockstep_equals_in_process(sc, "udp");
 }
 
@@ -881,15 +888,7 @@ TEST(Hwil, KeyFilesAreCheckedByBothEnds)
 // bit for bit.
 TEST(Hwil, ALostCommandPacketIsSentAgainBeforeItsCycle)
 {
-  std::ifstream in(kS1);
-  std::stringstream text;
-  text << in.rdbuf()
-       << "\nevents:\n"
-          "  - {t: 100, actions: [{device: fsw, action: mode_inertial}, {device: fsw, action: reference_z, value: 0.1},\n"
-          "                       {device: fsw, action: gain_K, value: 5.0}]}\n"
-          "  - {t: 150, actions: [{device: fsw, action: gain_P, value: 40.0}]}\n";
-  const harness::Scenario sc =
-      harness::load_scenario_text(text.str(), "s1_commands.yaml", {{"duration", "200"}});
+  const harness::Scenario sc = s1_with_commands();
   harness::Run local(sc);
   ASSERT_TRUE(local.step_ticks(local.total_ticks())) << local.failure();
   TempDir tmp;
