@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/un.h>
 #include <termios.h>
 #include <time.h>
@@ -32,6 +33,31 @@ static int split_spec(const char *spec, char *a, size_t a_len, const char **b)
   return 0;
 }
 
+/* getaddrinfo of a UDP "HOST:PORT" (numeric port); what names it in err. */
+static int resolve_udp(const char *spec, int flags, const char *what, struct addrinfo **res, char *err, size_t err_len)
+{
+  char host[128];
+  const char *port;
+  struct addrinfo hints;
+  int rc;
+  *res = NULL;
+  if (split_spec(spec, host, sizeof host, &port) != 0) {
+    snprintf(err, err_len, "bad %s '%s' (expected HOST:PORT)", what, spec);
+    return -1;
+  }
+  memset(&hints, 0, sizeof hints);
+  hints.ai_family = AF_UNSPEC;
+  hints.ai_socktype = SOCK_DGRAM;
+  hints.ai_flags = flags | AI_NUMERICSERV;
+  rc = getaddrinfo(host, port, &hints, res);
+  if (rc != 0) {
+    snprintf(err, err_len, "cannot resolve '%s': %s", spec, gai_strerror(rc));
+    *res = NULL;
+    return -1;
+  }
+  return 0;
+}
+
 static void reset(FswTransport *t)
 {
   t->fd = -1;
@@ -39,6 +65,8 @@ static void reset(FswTransport *t)
   t->is_socket = 0;
   t->connected = 0;
   t->peer_len = 0u;
+  t->foreign = 0u;
+  t->sec = NULL;
   t->have = 0u;
   t->used = 0u;
   t->desc[0] = '\0';
@@ -48,24 +76,10 @@ static void reset(FswTransport *t)
 /* A UDP socket bound (connect == 0) or connected to spec's address. */
 static int open_udp(FswTransport *t, const char *spec, int connect_to, char *err, size_t err_len)
 {
-  char host[128];
-  const char *port;
-  struct addrinfo hints, *res = NULL;
+  struct addrinfo *res = NULL;
   int rc;
   reset(t);
-  if (split_spec(spec, host, sizeof host, &port) != 0) {
-    snprintf(err, err_len, "bad UDP address '%s' (expected HOST:PORT)", spec);
-    return -1;
-  }
-  memset(&hints, 0, sizeof hints);
-  hints.ai_family = AF_UNSPEC;
-  hints.ai_socktype = SOCK_DGRAM;
-  hints.ai_flags = connect_to ? AI_NUMERICSERV : (AI_PASSIVE | AI_NUMERICSERV);
-  rc = getaddrinfo(host, port, &hints, &res);
-  if (rc != 0) {
-    snprintf(err, err_len, "cannot resolve '%s': %s", spec, gai_strerror(rc));
-    return -1;
-  }
+  if (resolve_udp(spec, connect_to ? 0 : AI_PASSIVE, "UDP address", &res, err, err_len) != 0) return -1;
   t->fd = socket(res->ai_family, SOCK_DGRAM, 0);
   rc = t->fd < 0 ? -1 : connect_to ? connect(t->fd, res->ai_addr, res->ai_addrlen) : bind(t->fd, res->ai_addr, res->ai_addrlen);
   if (rc != 0) {
@@ -93,6 +107,37 @@ int fsw_transport_open_udp(FswTransport *t, const char *spec, char *err, size_t 
     return -1;
   }
   snprintf(t->desc, sizeof t->desc, "udp %s:%s", hbuf, pbuf);
+  return 0;
+}
+
+int fsw_transport_pin_peer(FswTransport *t, const char *spec, char *err, size_t err_len)
+{
+  struct addrinfo *res = NULL;
+  if (t->fd < 0 || t->stream || t->connected) {
+    snprintf(err, err_len, "a peer is pinned on a bound UDP socket only");
+    return -1;
+  }
+  if (resolve_udp(spec, 0, "peer address", &res, err, err_len) != 0) return -1;
+  if (res->ai_addrlen > sizeof t->peer) {
+    freeaddrinfo(res);
+    snprintf(err, err_len, "peer address '%s' too long", spec);
+    return -1;
+  }
+  memcpy(t->peer, res->ai_addr, res->ai_addrlen);
+  t->peer_len = (unsigned int)res->ai_addrlen;
+  freeaddrinfo(res);
+  return 0;
+}
+
+int fsw_transport_peer_text(const FswTransport *t, char *buf, size_t len)
+{
+  char h[64], p[16];
+  if (t->peer_len == 0u || getnameinfo((const struct sockaddr *)t->peer, (socklen_t)t->peer_len, h, sizeof h, p,
+                                       sizeof p, NI_NUMERICHOST | NI_NUMERICSERV) != 0) {
+    snprintf(buf, len, "none");
+    return -1;
+  }
+  snprintf(buf, len, "%s:%s", h, p);
   return 0;
 }
 
@@ -228,19 +273,58 @@ static int wait_readable(int fd, long long deadline)
   return rc > 0 ? 1 : rc;
 }
 
+/* Same family, address and port (IPv4 or IPv6). */
+static int same_address(const unsigned char *pinned, unsigned int plen, const struct sockaddr_storage *from,
+                        socklen_t flen)
+{
+  struct sockaddr_storage a;
+  if ((socklen_t)plen != flen) return 0;
+  memcpy(&a, pinned, plen);
+  if (a.ss_family != from->ss_family) return 0;
+  if (a.ss_family == AF_INET) {
+    const struct sockaddr_in *x = (const struct sockaddr_in *)&a, *y = (const struct sockaddr_in *)from;
+    return x->sin_port == y->sin_port && x->sin_addr.s_addr == y->sin_addr.s_addr;
+  }
+  if (a.ss_family == AF_INET6) {
+    const struct sockaddr_in6 *x = (const struct sockaddr_in6 *)&a, *y = (const struct sockaddr_in6 *)from;
+    return x->sin6_port == y->sin6_port && memcmp(&x->sin6_addr, &y->sin6_addr, sizeof x->sin6_addr) == 0;
+  }
+  return memcmp(&a, from, flen) == 0;
+}
+
+/* A whole packet with a good CRC addressed to the FSW (telecommand type). */
+static int is_telecommand(const uint8_t *buf, size_t n)
+{
+  FswLinkPacket p;
+  return fsw_link_parse(buf, n, &p, NULL) == FSW_OK && p.type == 1u;
+}
+
 static int recv_datagram(FswTransport *t, const uint8_t **pkt, size_t *len, long long deadline)
 {
   for (;;) {
     struct sockaddr_storage from;
     socklen_t flen = sizeof from;
+    size_t inner = 0u;
     ssize_t n;
     const int w = wait_readable(t->fd, deadline);
     if (w <= 0) return w == 0 ? FSW_TRANSPORT_TIMEOUT : FSW_TRANSPORT_ERROR;
     n = recvfrom(t->fd, t->rx, sizeof t->rx, 0, (struct sockaddr *)&from, &flen);
     if (n >= 0) {
       if (!t->connected) {
-        memcpy(t->peer, &from, flen);
-        t->peer_len = (unsigned int)flen;
+        if (t->peer_len != 0u && !same_address(t->peer, t->peer_len, &from, flen)) {
+          t->foreign++; /* not the pinned peer: counted, dropped, never answered */
+          continue;
+        }
+        if (t->sec != NULL && fsw_link_sec_verify(t->sec, t->rx, (size_t)n, &inner, NULL) != FSW_OK)
+          return FSW_TRANSPORT_REFUSED; /* unauthenticated: dropped, pins nothing */
+        if (t->sec != NULL) n = (ssize_t)inner;
+        if (t->peer_len == 0u && is_telecommand(t->rx, (size_t)n)) { /* the first valid packet pins its sender */
+          memcpy(t->peer, &from, flen);
+          t->peer_len = (unsigned int)flen;
+        }
+      } else if (t->sec != NULL) {
+        if (fsw_link_sec_verify(t->sec, t->rx, (size_t)n, &inner, NULL) != FSW_OK) return FSW_TRANSPORT_REFUSED;
+        n = (ssize_t)inner;
       }
       *pkt = t->rx;
       *len = (size_t)n;
@@ -304,12 +388,97 @@ int fsw_transport_send(FswTransport *t, const uint8_t *pkt, size_t n)
     }
     return write_all(t, t->tx, len);
   }
+  if (t->sec != NULL) {
+    if (fsw_link_sec_protect(t->sec, pkt, n, t->tx, sizeof t->tx, &len, NULL) != FSW_OK) {
+      errno = EMSGSIZE;
+      return -1;
+    }
+    pkt = t->tx;
+    n = len;
+  }
   if (t->connected) {
     (void)send(t->fd, pkt, n, 0); /* a refused datagram (no process on the port yet) is a lost packet */
     return 0;
   }
   if (t->peer_len == 0u) return 0; /* nobody to answer yet */
   return sendto(t->fd, pkt, n, 0, (const struct sockaddr *)t->peer, (socklen_t)t->peer_len) == (ssize_t)n ? 0 : -1;
+}
+
+int fsw_transport_set_key(FswTransport *t, FswLinkSec *sec, char *err, size_t err_len)
+{
+  if (t->fd < 0 || t->stream) {
+    snprintf(err, err_len, "packet authentication needs a UDP link (not a serial line or stream)");
+    return -1;
+  }
+  t->sec = sec;
+  return 0;
+}
+
+static int hex_digit(int c)
+{
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+int fsw_transport_load_key(const char *path, uint8_t *key, size_t cap, size_t *len, char *err, size_t err_len)
+{
+  struct stat st;
+  char text[2 * FSW_LINK_SEC_KEY_MAX + 64];
+  size_t n, i, digits = 0u;
+  int fd;
+  *len = 0u;
+  fd = open(path, O_RDONLY | O_NOFOLLOW);
+  if (fd < 0) {
+    snprintf(err, err_len, "cannot open the key file %s: %s", path, strerror(errno));
+    return -1;
+  }
+  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    snprintf(err, err_len, "the key file %s is not a regular file", path);
+    close(fd);
+    return -1;
+  }
+  if ((st.st_mode & 077) != 0) {
+    snprintf(err, err_len, "the key file %s is open to group or others (mode %04o): chmod 600 it", path,
+             (unsigned)(st.st_mode & 07777));
+    close(fd);
+    return -1;
+  }
+  n = 0u;
+  for (;;) {
+    const ssize_t r = read(fd, text + n, sizeof text - n);
+    if (r <= 0) break;
+    n += (size_t)r;
+    if (n == sizeof text) break;
+  }
+  close(fd);
+  for (i = 0u; i < n; ++i) {
+    const int h = hex_digit((unsigned char)text[i]);
+    if (h < 0) {
+      if (text[i] == ' ' || text[i] == '\n' || text[i] == '\r' || text[i] == '\t') continue;
+      digits = 0u;
+      break;
+    }
+    if (digits / 2u >= cap) {
+      digits = 0u;
+      break;
+    }
+    if (digits % 2u == 0u)
+      key[digits / 2u] = (uint8_t)(h << 4);
+    else
+      key[digits / 2u] = (uint8_t)(key[digits / 2u] | h);
+    ++digits;
+  }
+  memset(text, 0, sizeof text);
+  if (digits % 2u != 0u || digits / 2u < FSW_LINK_SEC_KEY_MIN || digits / 2u > FSW_LINK_SEC_KEY_MAX || n == sizeof text) {
+    snprintf(err, err_len, "the key file %s must hold %u to %u hexadecimal digits (a %u- to %u-byte key) and nothing else",
+             path, 2u * FSW_LINK_SEC_KEY_MIN, 2u * FSW_LINK_SEC_KEY_MAX, FSW_LINK_SEC_KEY_MIN, FSW_LINK_SEC_KEY_MAX);
+    memset(key, 0, cap);
+    return -1;
+  }
+  *len = digits / 2u;
+  return 0;
 }
 
 void fsw_transport_close(FswTransport *t)

@@ -3,8 +3,17 @@
  * configuration and the buffers are static storage of this file; the link
  * logic is fsw_c/ (fsw_link, fsw_link_node), the transports fsw_transport.c (shared with the harness).
  *
- *   kestrel-fsw (--udp HOST:PORT | --serial DEVICE:BAUD) [--config IMAGE]
- *               [--max-missed N] [--watchdog-ms MS] [--quiet]
+ *   kestrel-fsw (--udp HOST:PORT [--peer HOST:PORT] [--key FILE] | --serial DEVICE:BAUD)
+ *               [--config IMAGE] [--max-missed N] [--watchdog-ms MS] [--quiet]
+ *
+ * --key FILE: every packet carries the security trailer of fsw_link_sec.h
+ * (HMAC-SHA-256 under the shared key in FILE, hexadecimal, mode 0600 or
+ * stricter); a datagram that does not verify is dropped, counted, and
+ * pins no peer.  The key is never printed.
+ *
+ * Over UDP the program answers one peer only: the one --peer names, else
+ * the sender of the first whole packet with a good CRC; every datagram
+ * from elsewhere is counted ("foreign") and dropped unanswered.
  *
  * IMAGE is a configuration image (`kestrel fsw-config SCENARIO -o IMAGE`);
  * a build with KESTREL_FSW_BUILTIN_CONFIG has one compiled in and needs no
@@ -18,6 +27,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "fsw/fsw_link.h"
 #include "fsw/fsw_link_node.h"
@@ -36,6 +46,7 @@ static FswLinkNode g_node;
 static FswAcsConfig g_cfg;
 static uint8_t g_image[65536];
 static FswTransport g_transport;
+static FswLinkSec g_sec;
 static volatile sig_atomic_t g_stop = 0;
 
 static void on_signal(int sig)
@@ -47,8 +58,8 @@ static void on_signal(int sig)
 static int usage(void)
 {
   fprintf(stderr,
-          "usage: kestrel-fsw (--udp HOST:PORT | --serial DEVICE:BAUD) [--config IMAGE]\n"
-          "                   [--max-missed N] [--watchdog-ms MS] [--quiet]\n");
+          "usage: kestrel-fsw (--udp HOST:PORT [--peer HOST:PORT] [--key FILE] | --serial DEVICE:BAUD)\n"
+          "                   [--config IMAGE] [--max-missed N] [--watchdog-ms MS] [--quiet]\n");
   return 2;
 }
 
@@ -100,6 +111,24 @@ static int load_config(const char *path)
   return 0;
 }
 
+/* The shared key from path into g_sec, and on the transport; the key
+ * bytes are wiped from the stack. */
+static int load_key(FswTransport *t, const char *path)
+{
+  uint8_t key[FSW_LINK_SEC_KEY_MAX];
+  size_t n = 0;
+  char err[320];
+  int rc = fsw_transport_load_key(path, key, sizeof key, &n, err, sizeof err);
+  if (rc == 0 && fsw_link_sec_init(&g_sec, key, n) != FSW_OK) {
+    snprintf(err, sizeof err, "the key in %s was refused", path);
+    rc = -1;
+  }
+  memset(key, 0, sizeof key);
+  if (rc == 0) rc = fsw_transport_set_key(t, &g_sec, err, sizeof err);
+  if (rc != 0) fprintf(stderr, "kestrel-fsw: --key: %s\n", err);
+  return rc;
+}
+
 static int send_replies(FswTransport *t, int count)
 {
   int i;
@@ -108,14 +137,30 @@ static int send_replies(FswTransport *t, int count)
   return 0;
 }
 
-/* Receives and answers until a signal or a broken link. */
+static long long now_ms(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (long long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
+}
+
+/* Receives and answers until a signal or a broken link.  The watchdog
+ * counts control periods without a cycle: its deadline moves on only when
+ * a sensor packet runs a cycle (or when it fires), so that nothing else --
+ * empty, damaged, stale or foreign datagrams -- holds off link-safe entry. */
 static void serve(FswTransport *t, long watchdog_ms)
 {
   uint32_t deframer_rejected = 0;
+  long long deadline = watchdog_ms > 0 ? now_ms() + watchdog_ms : -1;
   while (!g_stop) {
     const uint8_t *pkt = NULL;
     size_t plen = 0;
-    const int rc = fsw_transport_recv(t, &pkt, &plen, watchdog_ms > 0 ? (int)watchdog_ms : -1);
+    long long left = deadline < 0 ? -1 : deadline - now_ms();
+    uint32_t cycles_before;
+    int rc;
+    if (deadline >= 0 && left < 0) left = 0;
+    if (left > 60000) left = 60000;
+    rc = fsw_transport_recv(t, &pkt, &plen, (int)left);
     /* on a byte stream the deframer rejects damaged candidates (header,
      * length or CRC) before the node sees them: counted as CRC rejections */
     g_node.link.rx_crc += t->deframer.rejected - deframer_rejected;
@@ -126,25 +171,38 @@ static void serve(FswTransport *t, long watchdog_ms)
       fprintf(stderr, "kestrel-fsw: receive failed: %s\n", strerror(errno));
       break;
     }
+    if (rc == FSW_TRANSPORT_REFUSED) {
+      if (g_sec.rx_auth_failed + g_sec.rx_replayed == 1u)
+        fprintf(stderr, "kestrel-fsw: a datagram failed authentication (%s) and was dropped; is the other end "
+                        "using the same key? Further ones are counted\n",
+                g_sec.rx_replayed != 0u ? "a replayed security sequence number" : "wrong key, or none");
+      continue;
+    }
     if (rc == FSW_TRANSPORT_CLOSED) {
       fprintf(stderr, "kestrel-fsw: receive failed: the serial line closed\n");
       break;
     }
-    if (rc == FSW_TRANSPORT_TIMEOUT) { /* a watchdog period without a packet */
-      /* the safe output carries the last accepted sample time */
+    if (rc == FSW_TRANSPORT_TIMEOUT) {
+      if (deadline < 0 || now_ms() < deadline) continue;
+      /* a watchdog period without a cycle; the safe output carries the
+       * last accepted sample time */
+      deadline += watchdog_ms;
+      if (deadline < now_ms()) deadline = now_ms() + watchdog_ms;
       if (send_replies(t, fsw_link_node_watchdog(&g_node, g_node.last_t_ns)) != 0) break;
       continue;
     }
+    cycles_before = g_node.link.cycles;
     if (send_replies(t, fsw_link_node_receive(&g_node, &g_cfg, pkt, plen)) != 0) break;
+    if (deadline >= 0 && g_node.link.cycles != cycles_before) deadline = now_ms() + watchdog_ms;
   }
 }
 
 int main(int argc, char **argv)
 {
-  const char *udp = NULL, *serial = NULL, *config = NULL, *bad = NULL;
+  const char *udp = NULL, *serial = NULL, *config = NULL, *bad = NULL, *peer = NULL, *key_file = NULL;
   long max_missed = 3, watchdog_ms = 0;
   int quiet = 0, i;
-  char err[256];
+  char err[256], peer_text[96];
   FswTransport *const t = &g_transport;
   FswStatus s;
   struct sigaction sa;
@@ -160,6 +218,10 @@ int main(int argc, char **argv)
     ++i;
     if (strcmp(a, "--udp") == 0) {
       udp = v;
+    } else if (strcmp(a, "--key") == 0) {
+      key_file = v;
+    } else if (strcmp(a, "--peer") == 0) {
+      peer = v;
     } else if (strcmp(a, "--serial") == 0) {
       serial = v;
     } else if (strcmp(a, "--config") == 0) {
@@ -180,7 +242,8 @@ int main(int argc, char **argv)
       return usage();
     }
   }
-  if ((udp == NULL) == (serial == NULL)) return usage();
+  if ((udp == NULL) == (serial == NULL) || (peer != NULL && udp == NULL) || (key_file != NULL && udp == NULL))
+    return usage();
   if (load_config(config) != 0) return 1;
   s = fsw_link_node_init(&g_node, &g_cfg, (uint32_t)max_missed, &bad);
   if (s != FSW_OK) {
@@ -193,6 +256,15 @@ int main(int argc, char **argv)
     fprintf(stderr, "kestrel-fsw: %s\n", err);
     return 1;
   }
+  if (key_file != NULL && load_key(t, key_file) != 0) {
+    fsw_transport_close(t);
+    return 1;
+  }
+  if (peer != NULL && fsw_transport_pin_peer(t, peer, err, sizeof err) != 0) {
+    fprintf(stderr, "kestrel-fsw: --peer: %s\n", err);
+    fsw_transport_close(t);
+    return 1;
+  }
   memset(&sa, 0, sizeof sa);
   sa.sa_handler = on_signal;
   sigaction(SIGINT, &sa, NULL);
@@ -200,14 +272,18 @@ int main(int argc, char **argv)
   printf("kestrel-fsw: ready %s\n", t->desc);
   fflush(stdout);
   serve(t, watchdog_ms);
+  (void)fsw_transport_peer_text(t, peer_text, sizeof peer_text);
   if (!quiet)
     fprintf(stderr,
             "kestrel-fsw: %lu packets, %lu cycles, rejected: %lu CRC, %lu other, %lu stale; %lu missed, "
-            "%lu link-safe entries, %lu recoveries\n",
+            "%lu link-safe entries, %lu recoveries; %lu retransmissions answered again; %lu foreign datagrams "
+            "dropped (peer %s); %lu failed authentication, %lu replayed\n",
             (unsigned long)g_node.link.rx_packets, (unsigned long)g_node.link.cycles,
             (unsigned long)g_node.link.rx_crc, (unsigned long)g_node.link.rx_rejected,
             (unsigned long)g_node.link.rx_stale, (unsigned long)g_node.link.missed,
-            (unsigned long)g_node.link.safe_entries, (unsigned long)g_node.link.recoveries);
+            (unsigned long)g_node.link.safe_entries, (unsigned long)g_node.link.recoveries,
+            (unsigned long)g_node.resent, t->foreign, peer_text, (unsigned long)g_sec.rx_auth_failed,
+            (unsigned long)g_sec.rx_replayed);
   fsw_transport_close(t);
   return 0;
 }

@@ -53,12 +53,29 @@ static int status_only(FswLinkNode *n)
   return 1;
 }
 
+/* The CRC a parsed packet ends with (it follows the payload). */
+static uint16_t packet_crc(const FswLinkPacket *p)
+{
+  const uint8_t *c = p->payload + p->payload_len;
+  return (uint16_t)(((uint32_t)c[0] << 8) | c[1]);
+}
+
 static int on_sensor(FswLinkNode *n, const FswAcsConfig *cfg, const FswLinkPacket *p)
 {
   uint8_t nrw, ncss;
   if (fsw_link_decode_sensor(p, &n->sens, &nrw, &ncss, NULL) != FSW_OK) {
     n->link.rx_rejected++;
     return status_only(n);
+  }
+  if (n->have_last != 0u && n->have_replies != 0u && p->seq == n->link.last_seq && p->t_ns == n->last_t_ns &&
+      packet_crc(p) == n->last_crc) {
+    /* the same packet again (a retransmission: the sender lost a reply, or
+     * the packet came twice): the last cycle's replies once more, no cycle */
+    n->link.rx_stale++;
+    n->resent++;
+    memcpy(n->out, n->last_out, sizeof n->out);
+    memcpy(n->out_len, n->last_out_len, sizeof n->out_len);
+    return 3;
   }
   if (n->have_last != 0u) {
     const uint32_t ahead = ((uint32_t)p->seq + FSW_LINK_SEQ_MODULO - n->link.last_seq) % FSW_LINK_SEQ_MODULO;
@@ -82,6 +99,10 @@ static int on_sensor(FswLinkNode *n, const FswAcsConfig *cfg, const FswLinkPacke
   (void)fsw_link_encode_health(&n->hlth, p->t_ns, next_seq(n, 1), n->out[1], FSW_LINK_MAX_PACKET, &n->out_len[1],
                                NULL);
   put_status(n, 2, p->t_ns);
+  n->last_crc = packet_crc(p);
+  n->have_replies = 1u;
+  memcpy(n->last_out, n->out, sizeof n->out);
+  memcpy(n->last_out_len, n->out_len, sizeof n->out_len);
   return 3;
 }
 
@@ -112,6 +133,7 @@ int fsw_link_node_watchdog(FswLinkNode *n, uint64_t t_ns)
   n->link.missed++;
   n->consec_missed++;
   if (n->consec_missed < n->max_missed) return 0;
+  n->have_replies = 0u; /* a retransmitted sensor packet is stale from now on */
   if (n->link.link_safe == 0u) {
     n->link.link_safe = 1u;
     n->link.safe_entries++;

@@ -425,7 +425,7 @@ TEST(FswLinkNode, StaleDamagedAndForeignPacketsAreCountedAndAnsweredByTheStatus)
   auto nodep = std::make_unique<Node>();
   Node& node = *nodep;
   ASSERT_EQ(node.feed(sensor_packet(sensors(5), 100)), 3);
-  EXPECT_EQ(node.feed(sensor_packet(sensors(5), 100)), 1);  // duplicate
+  EXPECT_EQ(node.feed(sensor_packet(sensors(5), 100)), 3);  // duplicate: the replies again (below)
   EXPECT_EQ(node.feed(sensor_packet(sensors(6), 99)), 1);   // older sequence count
   EXPECT_EQ(node.feed(sensor_packet(sensors(4), 101)), 1);  // newer count, older time
   EXPECT_EQ(node.feed(sensor_packet(sensors(5), 101)), 1);  // newer count, same time
@@ -555,4 +555,38 @@ TEST(FswLinkNode, InitChecksItsArguments)
   EXPECT_EQ(fsw_link_node_receive(&n, nullptr, b, 4), 0);
   EXPECT_EQ(fsw_link_node_receive(&n, &cfg, nullptr, 4), 0);
   EXPECT_EQ(fsw_link_node_watchdog(nullptr, 0), 0);
+}
+
+// A retransmitted sensor packet (the same bytes again: the sender lost the
+// reply) is answered by the last cycle's three replies, byte for byte, and
+// runs no second cycle; it is counted stale and resent.  The same sequence
+// count and time with another payload (another CRC) is not a retransmission:
+// stale, the link status alone.  After link-safe entry the old replies are
+// no longer offered.
+TEST(FswLinkNode, ARetransmittedSensorPacketIsAnsweredAgainWithoutASecondCycle)
+{
+  auto nodep = std::make_unique<Node>();
+  Node& node = *nodep;
+  const Bytes first = sensor_packet(sensors(5), 100);
+  ASSERT_EQ(node.feed(first), 3);
+  std::vector<Bytes> replies;
+  for (int i = 0; i < 3; ++i) replies.emplace_back(node.n.out[i], node.n.out[i] + node.n.out_len[i]);
+  ASSERT_EQ(node.feed(first), 3);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_EQ(Bytes(node.n.out[i], node.n.out[i] + node.n.out_len[i]), replies[size_t(i)]) << "reply " << i;
+  EXPECT_EQ(node.n.acs.cycles, 1u);
+  EXPECT_EQ(node.n.link.cycles, 1u);
+  EXPECT_EQ(node.n.link.rx_stale, 1u);
+  EXPECT_EQ(node.n.resent, 1u);
+  FswAcsSensorMsg other = sensors(5);
+  other.omega_BN_B[0] = R(0.03);  // same count and time, other bytes
+  EXPECT_EQ(node.feed(sensor_packet(other, 100)), 1);
+  EXPECT_EQ(node.n.link.rx_stale, 2u);
+  EXPECT_EQ(node.n.resent, 1u);
+  // three missed periods: link-safe; the old packet is now plain stale
+  for (int i = 0; i < 3; ++i) (void)fsw_link_node_watchdog(&node.n, 7);
+  ASSERT_EQ(node.n.link.link_safe, 1u);
+  EXPECT_EQ(node.feed(first), 1);
+  EXPECT_EQ(node.n.resent, 1u);
+  EXPECT_EQ(node.n.acs.cycles, 1u);
 }

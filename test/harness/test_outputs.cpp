@@ -228,6 +228,9 @@ TEST(Outputs, RunCommandPassesItsLinkOptionsUnchanged)
   c.link.seed = 1234567;
   c.link.pil_bin = "/opt/fsw.elf";
   c.link.pil_emulator = "qemu-arm -cpu cortex-a7";
+  c.link.retransmit_s = 0.125;
+  c.link.retransmits = 3;
+  c.link.key_file = "/etc/kestrel/link.key";
   const harness::Scenario sc = harness::load_scenario(kS1);
   const harness::RunOptions o = harness::run_options_of(c, sc, {});
   EXPECT_EQ(o.fsw_link, c.fsw);
@@ -247,6 +250,9 @@ TEST(Outputs, RunCommandPassesItsLinkOptionsUnchanged)
   EXPECT_EQ(l.seed, c.link.seed);
   EXPECT_EQ(l.pil_bin, c.link.pil_bin);
   EXPECT_EQ(l.pil_emulator, c.link.pil_emulator);
+  EXPECT_EQ(l.retransmit_s, c.link.retransmit_s);
+  EXPECT_EQ(l.retransmits, c.link.retransmits);
+  EXPECT_EQ(l.key_file, c.link.key_file);
 }
 
 // The defaulting rules of a run's link options (LinkOptions::for_run).

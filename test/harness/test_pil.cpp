@@ -74,10 +74,11 @@ struct Linked {
 };
 
 // Runs sc with its FSW on the emulated target.
-bool run_pil(const std::string& name, const harness::Scenario& sc, Linked& out)
+bool run_pil(const std::string& name, const harness::Scenario& sc, Linked& out, const std::string& key_file = "")
 {
   harness::LinkOptions lo;
   lo.timeout_s = kTimeout;
+  lo.key_file = key_file;
   const FswAcsConfig cfg = harness::fsw_acs_config_of(sc);
   auto r = std::make_unique<harness::RemoteFsw>(harness::open_pil_transport("pil:" + name, cfg, lo), cfg, lo);
   harness::RemoteFsw* link = r.get();
@@ -231,8 +232,13 @@ void pil_against_in_process(const std::string& name, double seconds, double eps,
   }
   EXPECT_EQ(l.link.replies, l.link.cycles);
   EXPECT_EQ(l.link.cycles, static_cast<uint64_t>(std::llround(seconds * 10.0)) + 1u);
-  EXPECT_EQ(l.link.missing + l.link.rejected + l.link.stale, 0u);
-  EXPECT_EQ(l.link.fsw.rx_crc + l.link.fsw.rx_rejected + l.link.fsw.rx_stale + l.link.fsw.missed, 0u);
+  EXPECT_EQ(l.link.missing + l.link.rejected, 0u);
+  // a reply slower than the 0.25 s retransmission time (an emulator on a
+  // loaded machine): the packet again, answered again, counted stale
+  EXPECT_LE(l.link.stale, 2 * l.link.retransmits);
+  EXPECT_LE(l.link.fsw.rx_stale, l.link.retransmits);
+  EXPECT_EQ(l.link.fsw.rx_crc + l.link.fsw.rx_rejected + l.link.fsw.missed, 0u);
+  EXPECT_EQ(l.link.fsw.cycles, l.link.cycles);
 }
 
 // Running (a zombie that its new parent has not reaped yet counts as gone).
@@ -335,6 +341,44 @@ TEST(Pil, S3DetumbleAndNadirOnAarch64LinuxEqualInProcess)
     EXPECT_GT(peak, 0.0) << mode << ": the emulated FSW commanded no rod";
   }
 }
+// Packet authentication through the emulated aarch64 kestrel-fsw: the
+// harness gives it the key file (--key) and keys its own end; S1 over 60 s
+// equals the in-process run as the unkeyed PIL run does (bit for bit with
+// FMA on the host, see above).  The bare-metal targets (a UART stream)
+// refuse a key with a message.
+TEST(Pil, S1OnAarch64LinuxWithASharedKeyEqualsInProcess)
+{
+  const harness::PilTarget* t = target("aarch64-linux");
+  ASSERT_NE(t, nullptr);
+  if (t->default_bin.empty()) GTEST_SKIP() << "aarch64-linux not built (cross compiler or emulator missing)";
+  const harness::Scenario sc = s1(60.0);
+  harness::Run local(sc);
+  ASSERT_TRUE(local.step_ticks(local.total_ticks())) << local.failure();
+  TempDir tmp;
+  const fs::path key = tmp.p / "link.key";
+  std::ofstream(key) << "00112233445566778899aabbccddeeff00112233445566778899aabbccddeeff\n";
+  fs::permissions(key, fs::perms::owner_read | fs::perms::owner_write);
+  Linked l;
+  ASSERT_TRUE(run_pil("aarch64-linux", sc, l, key.string()));
+  size_t n = 0;
+  const auto d = column_differences(local.memory(), l.mem, n);
+  print_differences("aarch64-linux S1 with a key", d, n);
+  if (host_fma()) {
+    EXPECT_EQ(n, 0u);
+  }
+  EXPECT_EQ(l.link.replies, l.link.cycles);
+  EXPECT_EQ(l.link.rejected, 0u);
+  EXPECT_EQ(l.link.fsw.cycles, l.link.cycles);
+  harness::LinkOptions lo;
+  lo.key_file = key.string();
+  try {
+    harness::open_pil_transport("pil:cortex-m4f", harness::fsw_acs_config_of(sc), lo);
+    ADD_FAILURE() << "a key on the bare-metal target was accepted";
+  } catch (const harness::FswEndpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("UART link has no packet authentication"), std::string::npos) << e.what();
+  }
+}
+
 // The Cortex-M4F over the emulated UART does 20-45 cycles/s: 10 s of S1.
 // The double build is not bit for bit: its maths functions come from
 // picolibc (fdlibm-derived, within 1 ulp but not always glibc's last bit),

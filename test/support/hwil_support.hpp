@@ -28,13 +28,15 @@ namespace hwil {
 // after 10 s) and reaped by the destructor.
 class Child {
  public:
-  explicit Child(const std::vector<std::string>& argv)
+  // merge_stderr: stderr goes to the same pipe (read with rest())
+  explicit Child(const std::vector<std::string>& argv, bool merge_stderr = false)
   {
     int out[2];
     if (::pipe(out) != 0) throw std::runtime_error("pipe");
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
     posix_spawn_file_actions_adddup2(&fa, out[1], 1);
+    if (merge_stderr) posix_spawn_file_actions_adddup2(&fa, out[1], 2);
     posix_spawn_file_actions_addclose(&fa, out[0]);
     std::vector<char*> args;
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
@@ -64,6 +66,30 @@ class Child {
       }
     }
     if (fd_ >= 0) ::close(fd_);
+  }
+  // Stops the child (SIGTERM) and returns all it wrote from now on until it
+  // exits (bounded by timeout_s; SIGKILL after it).
+  std::string rest(double timeout_s)
+  {
+    std::string s;
+    if (pid_ <= 0) return s;
+    ::kill(pid_, SIGTERM);
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    while (std::chrono::steady_clock::now() < end) {
+      pollfd p{fd_, POLLIN, 0};
+      if (::poll(&p, 1, 100) <= 0) continue;
+      char buf[512];
+      const ssize_t n = ::read(fd_, buf, sizeof buf);
+      if (n <= 0) break;
+      s.append(buf, static_cast<size_t>(n));
+    }
+    int st = 0;
+    if (::waitpid(pid_, &st, WNOHANG) == 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, &st, 0);
+    }
+    pid_ = -1;
+    return s;
   }
   // The first stdout line (without the newline); "" on timeout or exit.
   std::string line(double timeout_s)

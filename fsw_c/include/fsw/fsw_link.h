@@ -89,7 +89,9 @@ typedef enum {
   FSW_LINK_E_APID = 4,    /* not the APID (or packet type) the decoder expects                 */
   FSW_LINK_E_LENGTH = 5,  /* payload length does not match the counts it declares              */
   FSW_LINK_E_COUNT = 6,   /* a count beyond an FSW_MAX_* capacity, or a flag not 0/1           */
-  FSW_LINK_E_SPACE = 7    /* encoder: the output buffer is too small                           */
+  FSW_LINK_E_SPACE = 7,   /* encoder: the output buffer is too small                           */
+  FSW_LINK_E_AUTH = 8,    /* fsw_link_sec: no security trailer, or its MAC does not verify     */
+  FSW_LINK_E_REPLAY = 9   /* fsw_link_sec: security sequence number already seen or too old    */
 } FswLinkError;
 
 /* A parsed packet: header fields and where its payload is (inside the

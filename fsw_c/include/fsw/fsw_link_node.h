@@ -13,7 +13,11 @@
  *
  * A sensor packet is stale (counted, no cycle, link status only) when its sequence
  * count is not ahead of the last accepted one (modulo 16384: 1..8191 ahead)
- * or its t_ns is not later.  A sequence gap of g counts g - 1 missed cycles.
+ * or its t_ns is not later.  The last accepted packet itself again (same
+ * sequence count, t_ns and CRC: a retransmission after a lost reply) is
+ * counted stale too, runs no cycle, and is answered by the last cycle's
+ * three replies once more, byte for byte (counted in `resent`); once the
+ * node has gone link-safe it is plain stale.  A sequence gap of g counts g - 1 missed cycles.
  * The transport calls fsw_link_node_watchdog() once per control period in
  * which no sensor packet arrived: after max_missed consecutive missed
  * periods the node is link-safe and every watchdog call emits the safe
@@ -54,6 +58,12 @@ typedef struct {
   FswAcsHealthMsg hlth;
   uint8_t out[FSW_LINK_NODE_MAX_REPLIES][FSW_LINK_MAX_PACKET]; /* replies of the last call */
   size_t out_len[FSW_LINK_NODE_MAX_REPLIES];
+  /* the last cycle's replies, answered again to a retransmitted sensor packet */
+  uint8_t last_out[FSW_LINK_NODE_MAX_REPLIES][FSW_LINK_MAX_PACKET];
+  size_t last_out_len[FSW_LINK_NODE_MAX_REPLIES];
+  uint16_t last_crc;         /* CRC of the last accepted sensor packet */
+  uint8_t have_replies;      /* last_out holds a cycle's replies (cleared on link-safe entry) */
+  uint32_t resent;           /* [-] retransmitted sensor packets answered from last_out */
 } FswLinkNode;
 
 /* fsw_acs_init with cfg (kept by the caller, unchanged while the node runs)
@@ -63,7 +73,7 @@ FswStatus fsw_link_node_init(FswLinkNode *n, const FswAcsConfig *cfg, uint32_t m
 
 /* One received packet (a datagram, or a deframed packet) buf[0..len).
  * Returns the number of reply packets now in n->out / n->out_len: 3 after a
- * cycle, 1 (the link status, stamped with the last accepted t_ns) for any
+ * cycle or a retransmission, 1 (the link status, stamped with the last accepted t_ns) for any
  * other packet; 0 for NULL arguments. */
 int fsw_link_node_receive(FswLinkNode *n, const FswAcsConfig *cfg, const uint8_t *buf, size_t len);
 

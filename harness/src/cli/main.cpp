@@ -37,6 +37,15 @@ void add_link_flags(CLI::App* run, harness::RunCommand& rc)
       ->check(CLI::PositiveNumber);
   run->add_option("--reply-timeout", l.reply_timeout_s, "hold/zero: give a cycle up after [s] (default 0.5)")
       ->check(CLI::PositiveNumber);
+  run->add_option("--link-key", l.key_file,
+                  "UDP and PIL Linux targets: authenticate every packet with the shared key in FILE (hex, mode 0600; "
+                  "kestrel-fsw --key FILE at the other end)");
+  run->add_option("--link-retransmit", l.retransmit_s,
+                  "lockstep over UDP: send the sensor packet again after [s] without a reply (default 0.25)")
+      ->check(CLI::Range(0.001, 60.0));
+  run->add_option("--link-retransmits", l.retransmits,
+                  "lockstep over UDP: at most this many retransmissions a cycle (default 8, 0: none)")
+      ->check(CLI::Range(0, 1000));
   const auto percent = [run](const char* name, double& p, const char* help) {
     run->add_option_function<double>(name, [&p](double v) { p = v / 100.0; }, help)->check(CLI::Range(0.0, 100.0));
   };

@@ -93,6 +93,7 @@ void add_link_items(std::vector<SummaryItem>& v, const LinkCounters& l)
   add_item(v, "link_fsw_rx_crc", n(l.fsw.rx_crc), "", "FSW end: packets rejected on CRC");
   add_item(v, "link_fsw_rx_stale", n(l.fsw.rx_stale), "", "FSW end: duplicate, old or out-of-order sensor packets");
   add_item(v, "link_fsw_missed", n(l.fsw.missed), "", "FSW end: control cycles without a sensor packet");
+  add_item(v, "link_retransmits", n(l.retransmits), "", "lockstep over UDP: sensor packets sent again without a reply");
 }
 
 }  // namespace

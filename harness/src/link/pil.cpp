@@ -237,6 +237,7 @@ class PilTransport : public LinkTransport {
     child_.reset();
   }
   void set_link(std::unique_ptr<LinkTransport> l) { link_ = std::move(l); }
+  bool datagram() const override { return link_ && link_->datagram(); }  // Linux targets: UDP, retransmitted
   std::string describe() const override
   {
     return what_ + " (pid " + std::to_string(child_->pid()) + "), " + (link_ ? link_->describe() : "not connected");
@@ -363,6 +364,9 @@ std::unique_ptr<LinkTransport> open_pil_transport(const std::string& spec, const
   if (argv.empty()) throw FswEndpointError("PIL: empty --pil-emulator");
   const std::string what = fs::path(bin).filename().string() + " on " + argv[0] + " (" + name + ")";
 
+  if (tgt->bare_metal && !opt.key_file.empty())
+    throw FswEndpointError("PIL: --link-key: the " + name +
+                           " target's UART link has no packet authentication (the Linux targets, over UDP, have)");
   auto dir = std::make_unique<TempFolder>();
   const fs::path img = dir->path() / "fsw.img", sock = dir->path() / "uart0.sock", err = dir->path() / "fsw.log";
   write_image(cfg, img);
@@ -381,6 +385,10 @@ std::unique_ptr<LinkTransport> open_pil_transport(const std::string& spec, const
     for (const std::string& a : {bin, std::string("--udp"), std::string("127.0.0.1:0"), std::string("--config"),
                                  img.string()})
       argv.push_back(a);
+    if (!opt.key_file.empty()) {  // the emulated kestrel-fsw reads the same key file
+      argv.push_back("--key");
+      argv.push_back(opt.key_file);
+    }
   }
   auto child = std::make_unique<ChildProcess>(argv, err);
   auto t = std::make_unique<PilTransport>(what, std::move(dir), std::move(child));
@@ -404,7 +412,7 @@ std::unique_ptr<LinkTransport> open_pil_transport(const std::string& spec, const
                            std::to_string(opt.timeout_s) + " s; it was stopped. Command: " + join(argv) +
                            ". Its output: " + t->child().output_tail());
   }
-  t->set_link(open_link_transport("udp:" + line.substr(pre.size())));
+  t->set_link(open_link_transport("udp:" + line.substr(pre.size()), opt.key_file));
   return t;
 }
 
@@ -412,7 +420,7 @@ std::unique_ptr<LinkTransport> open_fsw_transport(const std::string& spec, const
                                                   const LinkOptions& opt)
 {
   if (spec.rfind("pil:", 0) == 0) return open_pil_transport(spec, cfg, opt);
-  return open_link_transport(spec);
+  return open_link_transport(spec, opt.key_file);
 }
 
 }  // namespace harness

@@ -1,6 +1,7 @@
 #include "harness/link/remote_fsw.h"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -51,6 +52,26 @@ class CTransport : public LinkTransport {
   CTransport& operator=(const CTransport&) = delete;
 
   std::string describe() const override { return t_->desc; }
+  bool datagram() const override { return !t_->stream; }
+  // packet authentication with the shared key in key_file (UDP only)
+  void set_key(const std::string& key_file)
+  {
+    std::array<uint8_t, FSW_LINK_SEC_KEY_MAX> key{};
+    size_t n = 0;
+    char err[320] = "";
+    sec_ = std::make_unique<FswLinkSec>();
+    int rc = fsw_transport_load_key(key_file.c_str(), key.data(), key.size(), &n, err, sizeof err);
+    if (rc == 0 && fsw_link_sec_init(sec_.get(), key.data(), n) != FSW_OK) rc = -1;
+    key.fill(0);
+    if (rc == 0) rc = fsw_transport_set_key(t_.get(), sec_.get(), err, sizeof err);
+    if (rc != 0) throw FswEndpointError(std::string("FSW link: --link-key: ") + err);
+  }
+  std::string diagnose() const override
+  {
+    if (!sec_ || sec_->rx_auth_failed + sec_->rx_replayed == 0) return "";
+    return std::to_string(sec_->rx_auth_failed) + " datagrams from the FSW end failed authentication and " +
+           std::to_string(sec_->rx_replayed) + " were replays: is kestrel-fsw using the same key (--key)?";
+  }
   void send(const uint8_t* p, size_t n) override
   {
     if (fsw_transport_send(t_.get(), p, n) != 0 && errno != EMSGSIZE)  // a packet too long to frame: not sent
@@ -70,6 +91,7 @@ class CTransport : public LinkTransport {
         return true;
       }
       if (rc == FSW_TRANSPORT_TIMEOUT) return false;
+      if (rc == FSW_TRANSPORT_REFUSED) continue;  // unauthenticated: dropped (counted in sec_)
       if (rc == FSW_TRANSPORT_ERROR && errno == EINTR) continue;
       if (t_->stream)
         throw FswEndpointError("FSW link: the " + std::string(t_->is_socket ? "socket" : "serial line") + " closed");
@@ -79,6 +101,7 @@ class CTransport : public LinkTransport {
 
  private:
   std::unique_ptr<FswTransport> t_;  // 67 kB of buffers: not on the stack
+  std::unique_ptr<FswLinkSec> sec_;  // with a key
 };
 
 uint8_t clamp_count(int n, int cap) { return static_cast<uint8_t>(std::clamp(n, 0, cap)); }
@@ -98,9 +121,15 @@ std::unique_ptr<LinkTransport> connect_unix_transport(const std::string& path, c
   return t;
 }
 
-std::unique_ptr<LinkTransport> open_link_transport(const std::string& spec)
+std::unique_ptr<LinkTransport> open_link_transport(const std::string& spec, const std::string& key_file)
 {
-  if (spec.rfind("udp:", 0) == 0) return std::make_unique<CTransport>(CTransport::Kind::kUdp, spec.substr(4));
+  if (spec.rfind("udp:", 0) == 0) {
+    auto t = std::make_unique<CTransport>(CTransport::Kind::kUdp, spec.substr(4));
+    if (!key_file.empty()) t->set_key(key_file);
+    return t;
+  }
+  if (!key_file.empty())
+    throw FswEndpointError("FSW link: --link-key: packet authentication needs a UDP link (udp:HOST:PORT)");
   if (spec.rfind("serial:", 0) == 0) return std::make_unique<CTransport>(CTransport::Kind::kSerial, spec.substr(7));
   throw FswEndpointError("FSW link: unknown transport '" + spec + "' (expected udp:HOST:PORT or serial:DEVICE:BAUD)");
 }
@@ -140,57 +169,139 @@ void RemoteFsw::flush_due()
   }
 }
 
+// One received packet of the cycle stamped t_ns: the actuator, the health
+// and the link status that ends it, in this order.  kDone: the status of
+// this cycle came (its counters are the FSW end's final ones for the cycle);
+// kProcessed: a status says the FSW end has processed everything sent and
+// not answered this cycle (hold/zero only).
+RemoteFsw::Got RemoteFsw::take(uint64_t t_ns, Reply& r)
+{
+  FswLinkPacket p;
+  if (fsw_link_parse(rx_.data(), rx_.size(), &p, nullptr) != FSW_OK) {
+    ++c_.rejected;
+    return Got::kNothing;
+  }
+  if (p.apid == FSW_LINK_APID_LINK) {
+    FswLinkStatusMsg st;
+    if (fsw_link_decode_status(&p, &st, nullptr) != FSW_OK) {
+      ++c_.rejected;
+      return Got::kNothing;
+    }
+    c_.fsw = st;
+    if (r.have_health && p.t_ns == t_ns) return Got::kDone;
+    // the FSW has processed all we sent and did not answer this cycle
+    const bool lockstep_fail = missing_ == LinkOptions::Missing::kFail;
+    if (!r.have_act && c_.fsw.rx_packets >= c_.sent && !lockstep_fail) return Got::kProcessed;
+    return Got::kNothing;
+  }
+  if (p.t_ns != t_ns) {
+    ++c_.stale;
+    return Got::kNothing;
+  }
+  uint8_t nrw = 0, nthr = 0, nmtq = 0;
+  if (p.apid == FSW_LINK_APID_ACTUATOR && !r.have_act) {
+    if (fsw_link_decode_actuator(&p, &r.act, &nrw, &nthr, &nmtq, nullptr) != FSW_OK) {
+      ++c_.rejected;
+      return Got::kNothing;
+    }
+    r.have_act = true;
+  } else if (p.apid == FSW_LINK_APID_HEALTH && r.have_act && !r.have_health) {
+    if (fsw_link_decode_health(&p, &r.health, nullptr) != FSW_OK) {
+      ++c_.rejected;
+      return Got::kNothing;
+    }
+    r.have_health = true;
+  } else if (p.apid == FSW_LINK_APID_ACTUATOR || p.apid == FSW_LINK_APID_HEALTH) {
+    ++c_.stale;  // this cycle's reply again (an answered retransmission)
+  } else {
+    ++c_.rejected;
+  }
+  return Got::kNothing;
+}
+
+bool RemoteFsw::retransmitting() const
+{
+  return missing_ == LinkOptions::Missing::kFail && t_->datagram() && opt_.retransmits > 0;
+}
+
+// Lockstep over UDP: a command packet lost on the way would let the cycle
+// run without it, silently; so the harness waits for the link status that
+// answers it (a count of received packets above `before`, the count of the
+// last status) and sends it again after retransmit_s, as for the sensor
+// packet.  A command applied twice is harmless (fsw_acs_msgs.h).
+void RemoteFsw::await_command_ack(const std::vector<uint8_t>& cmd, uint32_t before, uint64_t t_ns)
+{
+  const auto end = Clock::now() + std::chrono::duration<double>(opt_.timeout_s);
+  int retx_left = opt_.retransmits;
+  auto next_retx = Clock::now() + std::chrono::duration<double>(opt_.retransmit_s);
+  for (;;) {
+    const auto until = retx_left > 0 ? std::min(end, next_retx) : end;
+    const double left = std::chrono::duration<double>(until - Clock::now()).count();
+    if (left <= 0 || !t_->recv(rx_, left)) {
+      if (retx_left == 0 || Clock::now() >= end)
+        throw FswEndpointError("FSW link: the command packet before the sensor packet of t = " +
+                               std::to_string(t_ns * 1e-9) + " s was not acknowledged within " +
+                               std::to_string(opt_.timeout_s) + " s (" + t_->describe() + ")");
+      t_->send(cmd.data(), cmd.size());
+      ++c_.retransmits;
+      --retx_left;
+      next_retx = Clock::now() + std::chrono::duration<double>(opt_.retransmit_s);
+      continue;
+    }
+    FswLinkPacket p;
+    FswLinkStatusMsg st;
+    if (fsw_link_parse(rx_.data(), rx_.size(), &p, nullptr) != FSW_OK) {
+      ++c_.rejected;
+    } else if (p.apid != FSW_LINK_APID_LINK) {
+      ++c_.stale;  // a reply of an earlier cycle (an answered retransmission)
+    } else if (fsw_link_decode_status(&p, &st, nullptr) != FSW_OK) {
+      ++c_.rejected;
+    } else {
+      c_.fsw = st;
+      if (st.rx_packets > before) return;
+    }
+  }
+}
+
+// Lockstep over a datagram link retransmits the sensor packet (the same
+// bytes) after retransmit_s without the whole reply, at most retransmits
+// times a cycle; the FSW end answers a packet it has already run with its
+// replies again and runs no second cycle (fsw_link_node.h).
 bool RemoteFsw::await_reply(uint64_t t_ns, FswAcsActuatorMsg& out, FswAcsHealthMsg& health)
 {
   const bool lockstep_fail = missing_ == LinkOptions::Missing::kFail;
   double limit = lockstep_fail ? opt_.timeout_s : opt_.reply_timeout_s;
   if (opt_.time_left) limit = std::min(limit, opt_.time_left());
   const auto end = Clock::now() + std::chrono::duration<double>(limit);
-  bool have_act = false;
+  const bool retransmit = retransmitting() && !last_pkt_.empty();
+  int retx_left = retransmit ? opt_.retransmits : 0;
+  auto next_retx = Clock::now() + std::chrono::duration<double>(opt_.retransmit_s);
+  Reply r;
   // nothing sent this cycle, and the FSW's last status covers all that was:
   // no reply can come
   if (!lockstep_fail && c_.fsw.rx_packets >= c_.sent) return false;
   for (;;) {
-    const double left = std::chrono::duration<double>(end - Clock::now()).count();
+    const auto until = retx_left > 0 ? std::min(end, next_retx) : end;
+    const double left = std::chrono::duration<double>(until - Clock::now()).count();
     if (left <= 0 || !t_->recv(rx_, left)) {
-      ++c_.timeouts;
-      return false;
-    }
-    FswLinkPacket p;
-    if (fsw_link_parse(rx_.data(), rx_.size(), &p, nullptr) != FSW_OK) {
-      ++c_.rejected;
-      continue;
-    }
-    if (p.apid == FSW_LINK_APID_LINK) {
-      if (fsw_link_decode_status(&p, &c_.fsw, nullptr) != FSW_OK) {
-        ++c_.rejected;
+      if (retx_left > 0 && Clock::now() < end) {  // the retransmission's turn
+        t_->send(last_pkt_.data(), last_pkt_.size());
+        ++c_.retransmits;
+        --retx_left;
+        next_retx = Clock::now() + std::chrono::duration<double>(opt_.retransmit_s);
         continue;
       }
-      // the FSW has processed all we sent and did not answer this cycle
-      if (!have_act && c_.fsw.rx_packets >= c_.sent && !lockstep_fail) return false;
-      continue;
+      if (!r.have_health) ++c_.timeouts;
+      break;  // a whole reply without its status still counts (the status is late)
     }
-    if (p.t_ns != t_ns) {
-      ++c_.stale;
-      continue;
-    }
-    if (p.apid == FSW_LINK_APID_ACTUATOR) {
-      uint8_t nrw = 0, nthr = 0, nmtq = 0;
-      if (fsw_link_decode_actuator(&p, &out, &nrw, &nthr, &nmtq, nullptr) != FSW_OK) {
-        ++c_.rejected;
-        continue;
-      }
-      have_act = true;
-    } else if (p.apid == FSW_LINK_APID_HEALTH && have_act) {
-      if (fsw_link_decode_health(&p, &health, nullptr) != FSW_OK) {
-        ++c_.rejected;
-        continue;
-      }
-      return true;
-    } else {
-      ++c_.rejected;
-    }
+    const Got g = take(t_ns, r);
+    if (g == Got::kDone) break;
+    if (g == Got::kProcessed) return false;
   }
+  if (!r.have_health) return false;
+  out = r.act;
+  health = r.health;
+  return true;
 }
 
 void RemoteFsw::cycle(const FswAcsSensorMsg& in, FswAcsActuatorMsg& out, FswAcsHealthMsg& health)
@@ -201,12 +312,16 @@ void RemoteFsw::cycle(const FswAcsSensorMsg& in, FswAcsActuatorMsg& out, FswAcsH
     if (fsw_link_encode_cmd(&cmd_, in.t_ns, cmd_seq_, pkt.data(), pkt.size(), &len, nullptr) != FSW_OK)
       throw FswEndpointError("FSW link: cannot encode the command");
     cmd_seq_ = static_cast<uint16_t>((cmd_seq_ + 1u) % FSW_LINK_SEQ_MODULO);
-    put(std::vector<uint8_t>(pkt.begin(), pkt.begin() + static_cast<std::ptrdiff_t>(len)));
+    const uint32_t before = c_.fsw.rx_packets;
+    const std::vector<uint8_t> cmd(pkt.begin(), pkt.begin() + static_cast<std::ptrdiff_t>(len));
+    put(cmd);
     have_cmd_ = false;
+    if (retransmitting()) await_command_ack(cmd, before, in.t_ns);
   }
   if (fsw_link_encode_sensor(&in, num_rw_, num_css_, seq_, pkt.data(), pkt.size(), &len, nullptr) != FSW_OK)
     throw FswEndpointError("FSW link: cannot encode the sensor message");
   pkt.resize(len);
+  last_pkt_ = pkt;  // as encoded: what a retransmission sends again
   seq_ = static_cast<uint16_t>((seq_ + 1u) % FSW_LINK_SEQ_MODULO);
   ++c_.cycles;
   // faults, each decided by its own draw so that one probability does not
@@ -251,7 +366,8 @@ void RemoteFsw::cycle(const FswAcsSensorMsg& in, FswAcsActuatorMsg& out, FswAcsH
        << " s (" << t_->describe();
     const std::string why = t_->diagnose();
     if (why.empty())
-      os << "; is kestrel-fsw running with the same configuration?)";
+      os << "; is kestrel-fsw running with the same configuration" << (opt_.key_file.empty() ? "" : " and key")
+         << "?)";
     else
       os << "; " << why << ")";
     throw FswEndpointError(os.str());
@@ -272,9 +388,10 @@ std::vector<std::string> RemoteFsw::module_health_lines() const
   h << "link (harness end, " << t_->describe() << "): cycles=" << c_.cycles << " sent=" << c_.sent
     << " lost=" << c_.lost << " corrupted=" << c_.corrupted << " duplicated=" << c_.duplicated
     << " reordered=" << c_.reordered << " delayed=" << c_.delayed << " replies=" << c_.replies
-    << " missing=" << c_.missing << " timeouts=" << c_.timeouts << " rejected=" << c_.rejected << " stale=" << c_.stale << " on_missing="
+    << " missing=" << c_.missing << " timeouts=" << c_.timeouts << " retransmits=" << c_.retransmits
+    << " rejected=" << c_.rejected << " stale=" << c_.stale << " on_missing="
     << (missing_ == LinkOptions::Missing::kFail ? "fail" : missing_ == LinkOptions::Missing::kHold ? "hold" : "zero");
-  f << "link (FSW end, last status): rx_packets=" << c_.fsw.rx_packets << " rx_crc=" << c_.fsw.rx_crc
+  f << "link (FSW end, status of the last cycle): rx_packets=" << c_.fsw.rx_packets << " rx_crc=" << c_.fsw.rx_crc
     << " rx_rejected=" << c_.fsw.rx_rejected << " rx_stale=" << c_.fsw.rx_stale << " missed=" << c_.fsw.missed
     << " safe_entries=" << c_.fsw.safe_entries << " safe_cycles=" << c_.fsw.safe_cycles
     << " recoveries=" << c_.fsw.recoveries << " cycles=" << c_.fsw.cycles;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fsw/fsw_link.h"
+#include "fsw/fsw_link_sec.h"
 
 namespace {
 
@@ -128,9 +129,40 @@ void check_config(const uint8_t* data, size_t size)
 
 }  // namespace
 
+// fsw_link_sec_verify on arbitrary bytes: refused (auth or replay) without
+// moving the window, or accepted with the packet length n - 20; a packet
+// protected under the key verifies once and is a replay the second time.
+static void check_sec(const uint8_t* data, size_t size)
+{
+  static const uint8_t key[32] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16,
+                                  17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 32};
+  FswLinkSec s;
+  if (fsw_link_sec_init(&s, key, sizeof key) != FSW_OK) violation("fsw_link_sec_init refused a 32-byte key");
+  size_t plen = 0;
+  FswLinkError e = FSW_LINK_OK;
+  const FswStatus st = fsw_link_sec_verify(&s, data, size, &plen, &e);
+  if (st == FSW_OK && plen + FSW_LINK_SEC_TRAILER_SIZE != size) violation("verify: wrong packet length");
+  if (st != FSW_OK && (st != FSW_E_BAD_INPUT || (e != FSW_LINK_E_AUTH && e != FSW_LINK_E_REPLAY) || s.rx_high != 0))
+    violation("verify: a refusal not as documented");
+  if (size > 2048) return;
+  std::vector<uint8_t> w(size + FSW_LINK_SEC_TRAILER_SIZE);
+  size_t len = 0;
+  FswLinkSec tx;
+  (void)fsw_link_sec_init(&tx, key, sizeof key);
+  (void)fsw_link_sec_init(&s, key, sizeof key);
+  if (fsw_link_sec_protect(&tx, data, size, w.data(), w.size(), &len, nullptr) != FSW_OK || len != w.size())
+    violation("protect failed with room");
+  if (size + FSW_LINK_SEC_TRAILER_SIZE < FSW_LINK_SEC_TRAILER_SIZE + FSW_LINK_HEADER_SIZE + FSW_LINK_CRC_SIZE) return;
+  if (fsw_link_sec_verify(&s, w.data(), w.size(), &plen, &e) != FSW_OK || plen != size)
+    violation("a protected packet did not verify");
+  if (fsw_link_sec_verify(&s, w.data(), w.size(), &plen, &e) != FSW_E_BAD_INPUT || e != FSW_LINK_E_REPLAY)
+    violation("a replayed packet was not refused as a replay");
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
   check_packet(data, size);
+  check_sec(data, size);
   check_config(data, size);
   // the same bytes as a stream, in two pieces: every packet the deframer
   // delivers parses, and it never consumes more than it was given

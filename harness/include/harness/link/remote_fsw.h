@@ -4,8 +4,13 @@
 // the actuator (0x181) and health (0x182) packets stamped with its t_ns; the
 // link status packet (0x183) that follows carries the FSW end's counters.
 //
-// Lockstep (the default): the harness waits for cycle k's reply; no reply
-// within LinkOptions::timeout_s is a FswEndpointError.  With --realtime, or
+// Lockstep (the default): the harness waits for cycle k's reply (actuator,
+// health and the link status that ends the cycle, so the FSW end's counters
+// it keeps are final); over UDP it sends the sensor packet again after
+// LinkOptions::retransmit_s without a whole reply (bounded, counted), and
+// waits for the link status that acknowledges a command packet (sent again
+// likewise) before the sensor packet goes out; no reply within
+// LinkOptions::timeout_s is a FswEndpointError.  With --realtime, or
 // with injected faults, or with on_missing set, a cycle whose reply does not
 // come holds the last command (hold) or applies the safe output (zero), and
 // is counted.  A cycle is given up as soon as the FSW's link status shows it
@@ -39,6 +44,11 @@ struct LinkOptions {
   bool on_missing_set = false;          // given explicitly (else: fail, or hold with faults/real time)
   double timeout_s = 10.0;              // lockstep: no reply within this fails the run
   double reply_timeout_s = 0.5;         // hold/zero: give a cycle up after this [s wall]
+  // Lockstep over UDP: the sensor packet goes out again when its whole
+  // reply has not come within retransmit_s, at most `retransmits` times a
+  // cycle (a datagram the kernel dropped under load is not fatal); 0: never.
+  double retransmit_s = 0.25;
+  int retransmits = 8;
   // faults, probabilities per sensor packet in [0, 1]
   double loss = 0.0, corrupt = 0.0, duplicate = 0.0, reorder = 0.0, delay = 0.0;
   int delay_cycles = 2;                 // how late a delayed packet goes out
@@ -51,6 +61,9 @@ struct LinkOptions {
   // instead of the target's QEMU ("" : defaults).  The start-up of the
   // emulated FSW is bounded by timeout_s.
   std::string pil_bin;
+  // Packet authentication (--link-key FILE, docs/hwil.md): the shared key's
+  // file, given to both ends ("" : none).
+  std::string key_file;
   std::string pil_emulator;
   bool any_fault() const { return loss > 0 || corrupt > 0 || duplicate > 0 || reorder > 0 || delay > 0; }
   // The options a run uses, from these as given (the `kestrel run` flags,
@@ -80,6 +93,8 @@ class LinkTransport {
   virtual std::string describe() const = 0;
   virtual void send(const uint8_t* p, size_t n) = 0;
   virtual bool recv(std::vector<uint8_t>& pkt, double timeout_s) = 0;
+  // Datagrams (UDP: a packet can be lost whole) rather than a byte stream.
+  virtual bool datagram() const { return false; }
   // Which side failed when a reply does not come ("" : unknown, the far
   // end is not ours to inspect).
   virtual std::string diagnose() const { return ""; }
@@ -100,8 +115,10 @@ std::unique_ptr<LinkTransport> make_stream_transport(int fd, const std::string& 
 std::unique_ptr<LinkTransport> connect_unix_transport(const std::string& path, const std::string& desc);
 
 // "udp:HOST:PORT" or "serial:DEVICE:BAUD"; throws FswEndpointError with the
-// reason (bad address, cannot open).
-std::unique_ptr<LinkTransport> open_link_transport(const std::string& spec);
+// reason (bad address, cannot open).  key_file: packet authentication with
+// the shared key in it (fsw_link_sec.h; UDP only; the file must be mode
+// 0600 or stricter, and its key is never printed); "" : none.
+std::unique_ptr<LinkTransport> open_link_transport(const std::string& spec, const std::string& key_file = "");
 
 // What the harness end counted.
 struct LinkCounters {
@@ -113,6 +130,7 @@ struct LinkCounters {
   uint64_t replies = 0;         // cycles answered in time
   uint64_t missing = 0;         // cycles without a reply (hold/zero applied)
   uint64_t timeouts = 0;        // ... of which given up after the reply timeout
+  uint64_t retransmits = 0;     // sensor packets sent again (lockstep over UDP, no reply yet)
   uint64_t rejected = 0;        // received packets that failed to parse or decode
   uint64_t stale = 0;           // replies of another cycle (late, duplicated)
   FswLinkStatusMsg fsw{};       // the last link status of the FSW end
@@ -141,6 +159,15 @@ class RemoteFsw : public FswEndpoint {
   void put(std::vector<uint8_t> pkt);
   void flush_due();
   bool await_reply(uint64_t t_ns, FswAcsActuatorMsg& out, FswAcsHealthMsg& health);
+  struct Reply {
+    FswAcsActuatorMsg act{};
+    FswAcsHealthMsg health{};
+    bool have_act = false, have_health = false;
+  };
+  enum class Got { kNothing, kDone, kProcessed };
+  Got take(uint64_t t_ns, Reply& r);
+  bool retransmitting() const;
+  void await_command_ack(const std::vector<uint8_t>& cmd, uint32_t before, uint64_t t_ns);
 
   std::unique_ptr<LinkTransport> t_;
   LinkOptions opt_;
@@ -157,6 +184,7 @@ class RemoteFsw : public FswEndpoint {
   FswAcsActuatorMsg last_act_{};
   FswAcsHealthMsg last_health_{};
   std::vector<uint8_t> rx_;
+  std::vector<uint8_t> last_pkt_;  // the last sensor packet, as encoded
   FswAcsCmdMsg cmd_{};
   bool have_cmd_ = false;
   uint16_t cmd_seq_ = 0;
