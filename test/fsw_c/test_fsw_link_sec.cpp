@@ -216,3 +216,74 @@ TEST(FswLinkSec, KeyLengthsOutsideTheRangeAreRefused)
   EXPECT_EQ(fsw_link_sec_protect(&s, p.data(), p.size(), w.data(), w.size(), &len, &e), FSW_E_BAD_INPUT);
   EXPECT_EQ(e, FSW_LINK_E_COUNT);
 }
+
+// HMAC-SHA-256 with an empty key and an empty message: the value published
+// with the HMAC examples of the algorithm (the key is all zero padding).
+TEST(FswHmacSha256, EmptyKeyAndMessage)
+{
+  EXPECT_EQ(hmac(Bytes(), Bytes()), "b613679a0814d9ec772f95d778c35fc5ff1697c493715653c6c712144292c5ad");
+}
+
+// Missing pointers are refused with FSW_E_NULL_ARG (no write through them);
+// the hashing functions ignore a missing context or data and leave the
+// digest of what came before unchanged; the error out-pointer is optional.
+TEST(FswLinkSec, MissingPointersAndAnOmittedErrorCode)
+{
+  fsw_sha256_init(nullptr);
+  fsw_sha256_update(nullptr, nullptr, 3);
+  FswSha256 c;
+  fsw_sha256_init(&c);
+  fsw_sha256_update(&c, reinterpret_cast<const uint8_t*>("abc"), 3);
+  fsw_sha256_update(&c, nullptr, 5);  // refused: nothing added
+  uint8_t out[32];
+  fsw_sha256_final(&c, out);
+  EXPECT_EQ(hex(out, 32), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");  // FIPS "abc"
+
+  FswLinkSec s;
+  ASSERT_EQ(fsw_link_sec_init(&s, kKey.data(), kKey.size()), FSW_OK);
+  const Bytes p = packet(3);
+  Bytes w(p.size() + 20);
+  size_t len = 0, plen = 0;
+  EXPECT_EQ(fsw_link_sec_protect(nullptr, p.data(), p.size(), w.data(), w.size(), &len, nullptr), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_sec_protect(&s, nullptr, p.size(), w.data(), w.size(), &len, nullptr), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_sec_protect(&s, p.data(), p.size(), nullptr, w.size(), &len, nullptr), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_sec_protect(&s, p.data(), p.size(), w.data(), w.size(), nullptr, nullptr), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_sec_protect(&s, p.data(), p.size(), w.data(), 19, &len, nullptr), FSW_E_BAD_INPUT);  // no room
+  EXPECT_EQ(s.tx_seq, 1u);
+  ASSERT_EQ(fsw_link_sec_protect(&s, p.data(), p.size(), w.data(), w.size(), &len, nullptr), FSW_OK);
+  FswLinkSec rx;
+  ASSERT_EQ(fsw_link_sec_init(&rx, kKey.data(), kKey.size()), FSW_OK);
+  EXPECT_EQ(fsw_link_sec_verify(nullptr, w.data(), w.size(), &plen, nullptr), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_sec_verify(&rx, nullptr, w.size(), &plen, nullptr), FSW_E_NULL_ARG);
+  EXPECT_EQ(fsw_link_sec_verify(&rx, w.data(), w.size(), nullptr, nullptr), FSW_E_NULL_ARG);
+  EXPECT_EQ(rx.rx_auth_failed + rx.rx_ok + rx.rx_replayed, 0u);
+  EXPECT_EQ(fsw_link_sec_verify(&rx, w.data(), w.size(), &plen, nullptr), FSW_OK);
+  EXPECT_EQ(plen, p.size());
+  EXPECT_EQ(fsw_link_sec_verify(&rx, w.data(), w.size(), &plen, nullptr), FSW_E_BAD_INPUT);  // a replay
+  EXPECT_EQ(rx.rx_replayed, 1u);
+}
+
+// Number 0 is never sent (a sender starts at 1): a packet carrying it, even
+// with a good MAC, is a replay.
+TEST(FswLinkSec, NumberZeroWithAGoodMacIsRefused)
+{
+  Bytes w = packet(5);
+  const size_t n = w.size();
+  w.insert(w.end(), {0, 0, 0, 0});
+  uint8_t mac[32];
+  fsw_hmac_sha256(kKey.data(), kKey.size(), w.data(), w.size(), nullptr, 0, mac);
+  w.insert(w.end(), mac, mac + 16);
+  FswLinkSec rx;
+  ASSERT_EQ(fsw_link_sec_init(&rx, kKey.data(), kKey.size()), FSW_OK);
+  size_t plen = 0;
+  FswLinkError e = FSW_LINK_OK;
+  EXPECT_EQ(fsw_link_sec_verify(&rx, w.data(), w.size(), &plen, &e), FSW_E_BAD_INPUT);
+  EXPECT_EQ(e, FSW_LINK_E_REPLAY);
+  EXPECT_EQ(rx.rx_replayed, 1u);
+  EXPECT_EQ(rx.rx_high, 0u);
+  // the same packet numbered 1 (its MAC recomputed) is accepted
+  w[n + 3] = 1;
+  fsw_hmac_sha256(kKey.data(), kKey.size(), w.data(), n + 4, nullptr, 0, mac);
+  std::copy(mac, mac + 16, w.begin() + long(n + 4));
+  EXPECT_EQ(fsw_link_sec_verify(&rx, w.data(), w.size(), &plen, &e), FSW_OK);
+}
