@@ -271,6 +271,12 @@ TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
   EXPECT_EQ(r->status, 400);
   EXPECT_EQ(s.post_ok({{"op", "explode"}})->status, 400);
   EXPECT_EQ(s.post_ok({{"op", "rate"}, {"value", -1}})->status, 400);
+  // a rate outside [1e-6, 1e6] (the pacer's range: 1e-300 used to overflow its deadlines)
+  for (double bad : {1e-300, 9.9e-7, 1.01e6}) {
+    r = s.post_ok({{"op", "rate"}, {"value", bad}});
+    EXPECT_EQ(r->status, 400) << bad;
+    EXPECT_NE(error_of(r).find("rate: value: a real-time scale is in [1e-6, 1e6]"), std::string::npos) << error_of(r);
+  }
   EXPECT_EQ(s.post_ok({{"op", "step"}, {"ticks", 0}})->status, 400);
   EXPECT_EQ(s.cli.Post("/api/command", s.auth(s.srv.token()), "not json", "application/json")->status, 400);
 
@@ -306,7 +312,7 @@ TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
   EXPECT_EQ(man["result"]["events_applied"][0]["actions"], "rw2 fail_off");
   const harness::LiveCounters n = s.srv.counters();
   EXPECT_EQ(n.commands_applied, 4u);  // step, the event, rate, resume
-  EXPECT_EQ(n.commands_refused, 9u + 1u);  // 9 bad commands, 1 after the end
+  EXPECT_EQ(n.commands_refused, 12u + 1u);  // 12 bad commands, 1 after the end
   EXPECT_EQ(n.requests_unauthorised, 6u);     // apart: refused before their body was read
   EXPECT_EQ(n.requests_refused, 0u);
   const json f = s.frames();

@@ -8,6 +8,7 @@
 
 #include "cli/run_program.h"
 #include "harness/cli/commands.h"
+#include "harness/core/pacer.h"
 #include "harness/core/run.h"
 
 namespace {
@@ -70,8 +71,21 @@ CLI::App* add_run(CLI::App& app, harness::RunCommand& rc)
   run->add_flag("--csv", rc.csv, "also write telemetry.csv");
   run->add_flag("--force", rc.force, "replace an existing results folder whole");
   run->add_flag("--realtime", rc.realtime, "pace the ticks to the wall clock (absolute deadlines)");
-  run->add_option("--rt-scale", rc.rt_scale, "with --realtime: multiple of real time (default 1)")
-      ->check(CLI::PositiveNumber);
+  run->add_option("--rt-scale", rc.rt_scale, "with --realtime: multiple of real time in [1e-6, 1e6] (default 1)")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            double x = 0.0;
+            try {
+              size_t used = 0;
+              x = std::stod(v, &used);
+              if (used != v.size()) return std::string("not a number");
+            } catch (const std::exception&) {
+              return std::string("not a number");
+            }
+            const std::string why = harness::Pacer::check_scale(x);
+            return why;  // CLI11 puts "--rt-scale: " before it
+          },
+          "SCALE"));
   add_link_flags(run, rc);
   add_live_flags(run, rc.live);
   return run;

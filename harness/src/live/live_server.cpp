@@ -22,6 +22,7 @@
 
 #include "core/events.h"
 #include "scenario/scenario_limits.h"
+#include "harness/core/pacer.h"
 #include "harness/core/run.h"
 
 #ifdef KESTREL_HAVE_REPORT
@@ -339,8 +340,9 @@ std::string LiveServer::Impl::read_command(const json& j, Command& c, std::strin
   }
   if (c.op == "rate") {
     const json v = j.value("value", json());
-    if (!v.is_number() || !(v.get<double>() > 0.0) || !(v.get<double>() <= 1e6))
-      return "rate: value must be a multiple of real time in (0, 1e6]";
+    if (!v.is_number()) return "rate: value must be a number (a multiple of real time)";
+    const std::string why = Pacer::check_scale(v.get<double>());
+    if (!why.empty()) return "rate: value: " + why;
     c.value = v.get<double>();
     std::ostringstream o;
     o << "rate " << c.value << "x";
