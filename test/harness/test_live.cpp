@@ -258,6 +258,10 @@ TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
   EXPECT_EQ(r->status, 400);
   EXPECT_NE(error_of(r).find("device: no device named 'rw9' (devices: rw1, rw2, rw3, rw4"), std::string::npos)
       << error_of(r);
+  // a name with a right-to-left override (U+202E) is quoted escaped
+  r = s.post_ok({{"op", "event"}, {"device", "rw\xe2\x80\xae" "9"}, {"action", "fail_off"}});
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(error_of(r).find("no device named 'rw\\u202E9'"), std::string::npos) << error_of(r);
   r = s.post_ok({{"op", "event"}, {"device", "rw2"}, {"action", "stuck_open"}});
   EXPECT_EQ(r->status, 400);
   EXPECT_NE(error_of(r).find("action: a wheel takes one of {fail_off"), std::string::npos) << error_of(r);
@@ -312,7 +316,7 @@ TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
   EXPECT_EQ(man["result"]["events_applied"][0]["actions"], "rw2 fail_off");
   const harness::LiveCounters n = s.srv.counters();
   EXPECT_EQ(n.commands_applied, 4u);  // step, the event, rate, resume
-  EXPECT_EQ(n.commands_refused, 12u + 1u);  // 12 bad commands, 1 after the end
+  EXPECT_EQ(n.commands_refused, 13u + 1u);  // 13 bad commands, 1 after the end
   EXPECT_EQ(n.requests_unauthorised, 6u);     // apart: refused before their body was read
   EXPECT_EQ(n.requests_refused, 0u);
   const json f = s.frames();

@@ -406,3 +406,35 @@ TEST(ResultsDir, SignalsEndASlowlyPacedRunPromptly)
     EXPECT_EQ(slurp(out / "summary.txt").rfind(std::string("# INCOMPLETE: stopped (") + k.name + ")", 0), 0u);
   }
 }
+
+// A run killed outright (SIGKILL: nothing can clean up) leaves its working
+// folder beside the results.  The next run of the same results says so,
+// naming the folder and the pid, and prints the command that removes it
+// (it removes nothing itself: the folder may hold the only copy of
+// something); the command works, and then nothing is said.
+TEST(ResultsDir, RerunNamesAKilledRunsLeftoverFolder)
+{
+  const fs::path dir = fresh_dir("leftover");
+  const fs::path out = dir / "s1";
+  const Child a = start_run(out, kLong, dir / "a_err.txt");
+  ASSERT_TRUE(wait_for_working_folder(dir));
+  kill(a.pid, SIGKILL);
+  EXPECT_EQ(wait_exit(a), 1000 + SIGKILL);
+  const fs::path left = dir / (".s1.kestrel-work-" + std::to_string(a.pid));
+  ASSERT_TRUE(fs::is_directory(left));
+  std::string err;
+  ASSERT_EQ(run_kestrel(out, kShort, &err), 0) << err;
+  EXPECT_NE(err.find(left.string() + " was left by an earlier run of s1 that was killed (pid " +
+                     std::to_string(a.pid) + ", its unfinished results); nothing uses it: remove it with  rm -rf -- '" +
+                     left.string() + "'"),
+            std::string::npos)
+      << err;
+  EXPECT_TRUE(fs::is_directory(left));  // not removed by kestrel
+  const size_t at = err.find("rm -rf -- ");
+  ASSERT_NE(at, std::string::npos);
+  const std::string cmd = err.substr(at, err.find('\n', at) - at);
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  EXPECT_FALSE(fs::exists(left));
+  ASSERT_EQ(run_kestrel(out, with(kShort, {"--force"}), &err), 0) << err;
+  EXPECT_EQ(err.find("was left by"), std::string::npos) << err;
+}

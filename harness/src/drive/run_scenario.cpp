@@ -299,6 +299,8 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
 {
   RunResult res;
   RunOutputs outputs(opt.out_dir, opt.force);  // lock, refuse or replace: before anything is simulated
+  if (opt.notice)
+    for (const std::string& n : outputs.notes()) opt.notice(n);
   RunPacing pacing;
   RunConfig cfg;
   cfg.keep_in_memory = false;  // streamed: memory does not grow with the duration

@@ -41,6 +41,8 @@ class RunOutputs {
   RunOutputs& operator=(const RunOutputs&) = delete;
 
   bool files() const { return dir_.has_value(); }
+  // What killed runs left beside the results folder (ResultsDir::notes()).
+  std::vector<std::string> notes() const { return dir_ ? dir_->notes() : std::vector<std::string>(); }
   // Checks the free space for the run's output, writes the input record
   // first (manifest.json: a run killed outright leaves it in the working
   // folder), then adds the HDF5, CSV and report sinks the scenario asks for,
