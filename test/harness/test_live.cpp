@@ -203,6 +203,16 @@ struct Served {
     return cli.Post("/api/command", auth(tok), j.dump(), "application/json");
   }
   httplib::Result post_ok(const json& j) { return post(j, srv.token()); }
+  // The fast S1 into `out` under this server's control, on its own thread.
+  std::thread start_run(const fs::path& out, harness::RunResult& res)
+  {
+    harness::RunOptions opt;
+    opt.out_dir = out.string();
+    opt.control = &srv;
+    return std::thread([opt, &res] { res = harness::run_scenario(harness::load_scenario(kS1, fast()), opt); });
+  }
+  // the run has started: /api/info answers (waits up to 20 s)
+  bool started();
   json frames()
   {
     auto r = cli.Get("/api/frames", auth(srv.token()));
@@ -221,6 +231,14 @@ bool wait_for(F cond)
   return false;
 }
 
+bool Served::started()
+{
+  return wait_for([this] {
+    auto r = cli.Get("/api/info", auth(srv.token()));
+    return r && r->status == 200;
+  });
+}
+
 std::string error_of(const httplib::Result& r) { return r ? json::parse(r->body).value("error", "") : ""; }
 
 }  // namespace
@@ -235,13 +253,9 @@ TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
   EXPECT_EQ(s.srv.token().size(), 32u);  // 128 bits, hex
   EXPECT_NE(s.srv.url().find("http://127.0.0.1:" + std::to_string(s.srv.port()) + "/?token=" + s.srv.token()),
             std::string::npos);
-  const harness::Scenario sc = harness::load_scenario(kS1, fast());
-  harness::RunOptions opt;
-  opt.out_dir = (dir / "run").string();
-  opt.control = &s.srv;
   harness::RunResult res;
-  std::thread sim([&] { res = harness::run_scenario(sc, opt); });
-  ASSERT_TRUE(wait_for([&] { auto r = s.cli.Get("/api/info", s.auth(s.srv.token())); return r && r->status == 200; }));
+  std::thread sim = s.start_run(dir / "run", res);
+  ASSERT_TRUE(s.started());
 
   // the token: missing or wrong -> 403, for the page and the API
   EXPECT_EQ(s.cli.Get("/")->status, 403);
@@ -558,13 +572,9 @@ TEST(LiveServer, CommandLogIsBoundedAndPages)
   harness::LiveOptions lo;
   lo.start_paused = true;
   Served s(lo);
-  const harness::Scenario sc = harness::load_scenario(kS1, fast());
-  harness::RunOptions opt;
-  opt.out_dir = (dir / "run").string();
-  opt.control = &s.srv;
   harness::RunResult res;
-  std::thread sim([&] { res = harness::run_scenario(sc, opt); });
-  ASSERT_TRUE(wait_for([&] { auto r = s.cli.Get("/api/info", s.auth(s.srv.token())); return r && r->status == 200; }));
+  std::thread sim = s.start_run(dir / "run", res);
+  ASSERT_TRUE(s.started());
   // 1100 pauses: each applied at once by the paused run (a 429 when the
   // queue is full is retried)
   for (int i = 0; i < 1100;) {
