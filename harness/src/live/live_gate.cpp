@@ -48,7 +48,12 @@ struct InlineQueue : httplib::TaskQueue {
   void shutdown() override {}
 };
 
-bool header_complete(const Conn& c) { return c.buf.find("\r\n\r\n", c.pos) != std::string::npos; }
+// the blank line that ends a header: CRLF, or bare LF (which cpp-httplib
+// then answers 400 at once, rather than the gate holding it until 408)
+bool header_complete(const Conn& c)
+{
+  return c.buf.find("\r\n\r\n", c.pos) != std::string::npos || c.buf.find("\n\n", c.pos) != std::string::npos;
+}
 
 void send_status_and_close(int fd, int status, const char* what)
 {
@@ -86,7 +91,10 @@ class GateStream : public httplib::Stream {
   }
   bool failed = false;
 
-  bool is_readable() const override { return c_.pos < c_.buf.size() || wait_for(c_.fd, POLLIN, lim_.io_timeout, stopping_) > 0; }
+  bool is_readable() const override
+  {
+    return c_.pos < c_.buf.size() || wait_for(c_.fd, POLLIN, lim_.io_timeout, stopping_) > 0;
+  }
   bool is_writable() const override { return wait_for(c_.fd, POLLOUT, lim_.io_timeout, stopping_) > 0; }
   ssize_t read(char* ptr, size_t size) override
   {
@@ -343,7 +351,7 @@ void GatedServer::Impl::work_loop()
     GateStream strm(*c, lim, stopping);
     bool closed = false;
     const bool last = c->served + 1 >= lim.keep_alive_max;
-    c->close_after = false;
+    c->close_after = true;  // unless the request is admitted (keep_connection_open)
     t_current = c;
     const bool ok = owner->process_request(strm, last, closed, [](httplib::Request&) {});
     t_current = nullptr;
@@ -454,6 +462,11 @@ bool GatedServer::process_and_close_socket(socket_t sock)
 void GatedServer::close_after_answer()
 {
   if (t_current) t_current->close_after = true;
+}
+
+void GatedServer::keep_connection_open()
+{
+  if (t_current) t_current->close_after = false;
 }
 
 GateCounters GatedServer::gate_counters() const

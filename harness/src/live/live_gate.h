@@ -68,6 +68,12 @@ class GatedServer : public httplib::Server {
   // From a handler: the connection of the request being answered closes
   // after the answer (its unread body is never read).
   static void close_after_answer();
+  // From the pre-routing handler, for a request it admits: its connection
+  // may stay open for the next request.  Without it (a request cpp-httplib
+  // could not parse and answered 400 itself, or one refused) the connection
+  // closes after the answer, and nothing left of that request is read as
+  // the next one.
+  static void keep_connection_open();
 
  protected:
   bool process_and_close_socket(socket_t sock) override;

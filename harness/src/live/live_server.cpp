@@ -234,6 +234,7 @@ bool LiveServer::Impl::admit(const httplib::Request& req, httplib::Response& res
       return false;
     }
   }
+  GatedServer::keep_connection_open();
   return true;
 }
 
