@@ -1,10 +1,21 @@
-# cmake -DEXE=... -DARGS="a;b" -DWANT=<code> [-DEXPECT=<stdout fragment>] -P expect_exit.cmake
+# cmake -DEXE=... -DARGS="a;b" -DWANT=<code> [-DEXPECT=<stdout fragment>] [-DEXPECT_ERR=<stderr fragment>]
+#       [-DWANT_NOT=1: any exit but WANT] -P expect_exit.cmake
 if(ARGS STREQUAL "no_args")
   set(ARGS "")
 endif()
 execute_process(COMMAND ${EXE} ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc STREQUAL "${WANT}")
+if(WANT_NOT)
+  if(rc STREQUAL "${WANT}")
+    message(FATAL_ERROR "kestrel ${ARGS}: exit ${rc}, want any other\nstdout: ${out}\nstderr: ${err}")
+  endif()
+elseif(NOT rc STREQUAL "${WANT}")
   message(FATAL_ERROR "kestrel ${ARGS}: exit ${rc}, want ${WANT}\nstdout: ${out}\nstderr: ${err}")
+endif()
+if(DEFINED EXPECT_ERR)
+  string(FIND "${err}" "${EXPECT_ERR}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "kestrel ${ARGS}: stderr lacks '${EXPECT_ERR}':\n${err}")
+  endif()
 endif()
 if(DEFINED EXPECT AND NOT out MATCHES "${EXPECT}")
   message(FATAL_ERROR "kestrel ${ARGS}: stdout lacks '${EXPECT}':\n${out}")

@@ -3,6 +3,10 @@
 // refuses bad commands (the scenario event validation) and requests without
 // the access token, and applies nothing then.
 #include <gtest/gtest.h>
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -199,6 +203,16 @@ struct Served {
     return cli.Post("/api/command", auth(tok), j.dump(), "application/json");
   }
   httplib::Result post_ok(const json& j) { return post(j, srv.token()); }
+  // The fast S1 into `out` under this server's control, on its own thread.
+  std::thread start_run(const fs::path& out, harness::RunResult& res)
+  {
+    harness::RunOptions opt;
+    opt.out_dir = out.string();
+    opt.control = &srv;
+    return std::thread([opt, &res] { res = harness::run_scenario(harness::load_scenario(kS1, fast()), opt); });
+  }
+  // the run has started: /api/info answers (waits up to 20 s)
+  bool started();
   json frames()
   {
     auto r = cli.Get("/api/frames", auth(srv.token()));
@@ -217,6 +231,14 @@ bool wait_for(F cond)
   return false;
 }
 
+bool Served::started()
+{
+  return wait_for([this] {
+    auto r = cli.Get("/api/info", auth(srv.token()));
+    return r && r->status == 200;
+  });
+}
+
 std::string error_of(const httplib::Result& r) { return r ? json::parse(r->body).value("error", "") : ""; }
 
 }  // namespace
@@ -231,13 +253,9 @@ TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
   EXPECT_EQ(s.srv.token().size(), 32u);  // 128 bits, hex
   EXPECT_NE(s.srv.url().find("http://127.0.0.1:" + std::to_string(s.srv.port()) + "/?token=" + s.srv.token()),
             std::string::npos);
-  const harness::Scenario sc = harness::load_scenario(kS1, fast());
-  harness::RunOptions opt;
-  opt.out_dir = (dir / "run").string();
-  opt.control = &s.srv;
   harness::RunResult res;
-  std::thread sim([&] { res = harness::run_scenario(sc, opt); });
-  ASSERT_TRUE(wait_for([&] { auto r = s.cli.Get("/api/info", s.auth(s.srv.token())); return r && r->status == 200; }));
+  std::thread sim = s.start_run(dir / "run", res);
+  ASSERT_TRUE(s.started());
 
   // the token: missing or wrong -> 403, for the page and the API
   EXPECT_EQ(s.cli.Get("/")->status, 403);
@@ -254,6 +272,10 @@ TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
   EXPECT_EQ(r->status, 400);
   EXPECT_NE(error_of(r).find("device: no device named 'rw9' (devices: rw1, rw2, rw3, rw4"), std::string::npos)
       << error_of(r);
+  // a name with a right-to-left override (U+202E) is quoted escaped
+  r = s.post_ok({{"op", "event"}, {"device", "rw\xe2\x80\xae" "9"}, {"action", "fail_off"}});
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(error_of(r).find("no device named 'rw\\u202E9'"), std::string::npos) << error_of(r);
   r = s.post_ok({{"op", "event"}, {"device", "rw2"}, {"action", "stuck_open"}});
   EXPECT_EQ(r->status, 400);
   EXPECT_NE(error_of(r).find("action: a wheel takes one of {fail_off"), std::string::npos) << error_of(r);
@@ -267,6 +289,12 @@ TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
   EXPECT_EQ(r->status, 400);
   EXPECT_EQ(s.post_ok({{"op", "explode"}})->status, 400);
   EXPECT_EQ(s.post_ok({{"op", "rate"}, {"value", -1}})->status, 400);
+  // a rate outside [1e-6, 1e6] (the pacer's range: 1e-300 used to overflow its deadlines)
+  for (double bad : {1e-300, 9.9e-7, 1.01e6}) {
+    r = s.post_ok({{"op", "rate"}, {"value", bad}});
+    EXPECT_EQ(r->status, 400) << bad;
+    EXPECT_NE(error_of(r).find("rate: value: a real-time scale is in [1e-6, 1e6]"), std::string::npos) << error_of(r);
+  }
   EXPECT_EQ(s.post_ok({{"op", "step"}, {"ticks", 0}})->status, 400);
   EXPECT_EQ(s.cli.Post("/api/command", s.auth(s.srv.token()), "not json", "application/json")->status, 400);
 
@@ -302,9 +330,297 @@ TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
   EXPECT_EQ(man["result"]["events_applied"][0]["actions"], "rw2 fail_off");
   const harness::LiveCounters n = s.srv.counters();
   EXPECT_EQ(n.commands_applied, 4u);  // step, the event, rate, resume
-  EXPECT_EQ(n.commands_refused, 6u + 9u + 1u);  // 6 token refusals, 9 bad commands, 1 after the end
+  EXPECT_EQ(n.commands_refused, 13u + 1u);  // 13 bad commands, 1 after the end
+  EXPECT_EQ(n.requests_unauthorised, 6u);     // apart: refused before their body was read
+  EXPECT_EQ(n.requests_refused, 0u);
   const json f = s.frames();
   EXPECT_EQ(f["state"], "ended");
   EXPECT_EQ(f["report"], "/report");
+  fs::remove_all(dir);
+}
+
+// ---- before authentication: the body, the connections ------------------------
+
+namespace {
+
+double since_s(std::chrono::steady_clock::time_point t0)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+int connect_to(int port)
+{
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<uint16_t>(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (fd < 0 || ::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0) {
+    if (fd >= 0) ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+bool send_all(int fd, const std::string& s)
+{
+  size_t done = 0;
+  while (done < s.size()) {
+    const ssize_t n = ::send(fd, s.data() + done, s.size() - done, MSG_NOSIGNAL);
+    if (n <= 0) return false;
+    done += static_cast<size_t>(n);
+  }
+  return true;
+}
+
+// What the server sends until it closes the connection (or `limit_s`).
+std::string read_until_closed(int fd, double limit_s, bool* closed = nullptr)
+{
+  std::string got;
+  const auto t0 = std::chrono::steady_clock::now();
+  char b[4096];
+  if (closed) *closed = false;
+  while (since_s(t0) < limit_s) {
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 20) <= 0) continue;
+    const ssize_t n = ::recv(fd, b, sizeof(b), 0);
+    if (n <= 0) {
+      if (closed) *closed = true;
+      break;
+    }
+    got.append(b, static_cast<size_t>(n));
+  }
+  return got;
+}
+
+int status_of(const std::string& answer)
+{
+  return answer.size() >= 12 && answer.compare(0, 9, "HTTP/1.1 ") == 0 ? std::stoi(answer.substr(9, 3)) : -1;
+}
+
+long rss_kb()
+{
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("VmRSS:", 0) == 0) return std::stol(line.substr(6));
+  return -1;
+}
+
+}  // namespace
+
+// A body is never read before the token and its size and encoding are
+// checked from the header: a request claiming 200 MB is answered at once
+// (403 without the token, 413 with it) and its connection closed, so the
+// 200 MB cannot be sent (the server reads none of it: memory stays flat);
+// a compressed or chunked body is refused; `Expect: 100-continue` without
+// the token gets 403, never "100 Continue".  Counted apart from commands.
+TEST(LiveServer, RefusesBeforeReadingTheBody)
+{
+  harness::LiveOptions lo;
+  harness::LiveServer srv(lo);
+  const std::string tok = srv.token();
+  const long rss0 = rss_kb();
+  const std::string big = "POST /api/command HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\n"
+                          "Content-Length: 209715200\r\n";
+  const std::string chunk(1 << 20, 'x');
+  for (const std::string& who : {std::string(""), "X-Kestrel-Token: " + tok + "\r\n"}) {
+    const int fd = connect_to(srv.port());
+    ASSERT_GE(fd, 0);
+    const auto t0 = std::chrono::steady_clock::now();
+    ASSERT_TRUE(send_all(fd, big + who + "\r\n"));
+    bool closed = false;
+    const std::string ans = read_until_closed(fd, 5.0, &closed);
+    const double dt = since_s(t0);
+    EXPECT_EQ(status_of(ans), who.empty() ? 403 : 413) << ans;
+    EXPECT_TRUE(closed) << "the connection stays open after refusing a 200 MB body";
+    EXPECT_LT(dt, 2.0);
+    std::printf("200 MB body %s: %d in %.1f ms, connection closed\n", who.empty() ? "without the token" : "with it",
+                status_of(ans), dt * 1e3);
+    // the body can no longer be sent: the server closed before reading it
+    size_t sent = 0;
+    while (sent < (200u << 20) && send_all(fd, chunk)) sent += chunk.size();
+    EXPECT_LT(sent, 200u << 20);
+    std::printf("  then %zu MB of the body were accepted by the sockets before the send failed\n", sent >> 20);
+    ::close(fd);
+  }
+  const long rss1 = rss_kb();
+  std::printf("resident memory: %ld kB before, %ld kB after\n", rss0, rss1);
+  EXPECT_LT(rss1 - rss0, 32 * 1024);  // not the 200 MB (nor the 1.1 GB once measured)
+
+  auto one = [&](const std::string& req) {
+    const int fd = connect_to(srv.port());
+    EXPECT_GE(fd, 0);
+    EXPECT_TRUE(send_all(fd, req));
+    bool closed = false;
+    const std::string ans = read_until_closed(fd, 5.0, &closed);
+    EXPECT_TRUE(closed) << req;
+    ::close(fd);
+    return ans;
+  };
+  const std::string post = "POST /api/command HTTP/1.1\r\nHost: x\r\nX-Kestrel-Token: " + tok + "\r\n";
+  // gzip (a 509 kB gzip body once expanded to 512 MB): refused, whatever it holds
+  std::string a = one(post + "Content-Encoding: gzip\r\nContent-Length: 20\r\n\r\n" + std::string(20, '\0'));
+  EXPECT_EQ(status_of(a), 415) << a;
+  EXPECT_NE(a.find("compressed request bodies are refused (Content-Encoding: gzip)"), std::string::npos) << a;
+  a = one(post + "Content-Encoding: deflate\r\nContent-Length: 2\r\n\r\n{}");
+  EXPECT_EQ(status_of(a), 415) << a;
+  a = one(post + "Transfer-Encoding: chunked\r\n\r\n2\r\n{}\r\n0\r\n\r\n");
+  EXPECT_EQ(status_of(a), 411) << a;
+  a = one(post + "Content-Length: 99999999999999999999999\r\n\r\n");
+  EXPECT_EQ(status_of(a), 413) << a;
+  a = one("POST /api/command HTTP/1.1\r\nHost: x\r\nExpect: 100-continue\r\nContent-Length: 209715200\r\n\r\n");
+  EXPECT_EQ(status_of(a), 403) << a;
+  EXPECT_EQ(a.find("100 Continue"), std::string::npos) << a;
+  // a header ended by bare line feeds is answered at once (cpp-httplib
+  // reads CRLF lines only: 400), not held until the 2 s header time (408)
+  const auto tb = std::chrono::steady_clock::now();
+  a = one("GET /?token=" + tok + " HTTP/1.1\nHost: x\nConnection: close\n\n");
+  EXPECT_EQ(status_of(a), 400) << a;
+  EXPECT_LT(since_s(tb), 1.0);
+  // a body within the cap, with the token, is read (the run has not started: 409)
+  httplib::Client cli("127.0.0.1", srv.port());
+  auto r = cli.Post("/api/command", {{"X-Kestrel-Token", tok}}, std::string("{\"op\":\"pause\"}"), "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 409);
+  const harness::LiveCounters n = srv.counters();
+  EXPECT_EQ(n.requests_unauthorised, 2u);
+  EXPECT_EQ(n.requests_refused, 4u + 1u);  // 413 twice, 415 twice, 411 (gzip, deflate, chunked, two sizes)
+  EXPECT_EQ(n.commands_refused, 1u);       // the 409 only
+}
+
+// No number of idle or slow clients holds the page: 200 idle connections
+// (the server keeps at most 64 and closes the longest-waiting one for a new
+// one) and 30 that send their header a byte every 100 ms (each is read by
+// the poller, never by a worker, and closed 2 s after its first byte) while
+// the page and the API answer; a header over 16 kB is refused (431).
+TEST(LiveServer, IdleAndSlowConnectionsDoNotHoldThePage)
+{
+  harness::LiveOptions lo;
+  harness::LiveServer srv(lo);
+  const std::string page = "/?token=" + srv.token();
+  std::vector<int> idle;
+  const auto tc = std::chrono::steady_clock::now();
+  for (int i = 0; i < 200; ++i) {
+    const int fd = connect_to(srv.port());
+    ASSERT_GE(fd, 0) << i;
+    idle.push_back(fd);
+  }
+  std::printf("200 idle connections opened in %.1f ms\n", since_s(tc) * 1e3);
+  httplib::Client cli("127.0.0.1", srv.port());
+  cli.set_connection_timeout(5);
+  cli.set_read_timeout(5);
+  auto t0 = std::chrono::steady_clock::now();
+  auto r = cli.Get(page.c_str());
+  const double t_idle = since_s(t0);
+  ASSERT_TRUE(r) << "no answer with 200 idle connections open";
+  EXPECT_EQ(r->status, 200);
+  EXPECT_LT(t_idle, 2.0);
+  std::printf("page answered in %.1f ms with 200 idle connections open\n", t_idle * 1e3);
+
+  // slowloris: 30 connections, a header byte each every 100 ms
+  std::atomic<bool> done{false};
+  std::vector<int> slow;
+  for (int i = 0; i < 30; ++i) slow.push_back(connect_to(srv.port()));
+  std::thread drip([&] {
+    const std::string hdr = "GET / HTTP/1.1\r\nHost: x\r\nX-Padding: " + std::string(1000, 'a');
+    for (size_t k = 0; k < hdr.size() && !done.load(); ++k) {
+      for (int fd : slow) (void)!::send(fd, &hdr[k], 1, MSG_NOSIGNAL | MSG_DONTWAIT);
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  double worst = 0.0;
+  for (int i = 0; i < 10; ++i) {
+    httplib::Client c2("127.0.0.1", srv.port());
+    c2.set_read_timeout(5);
+    t0 = std::chrono::steady_clock::now();
+    auto r2 = c2.Get("/api/frames", {{"X-Kestrel-Token", srv.token()}});
+    worst = std::max(worst, since_s(t0));
+    ASSERT_TRUE(r2) << "no answer during the slow headers";
+    EXPECT_EQ(r2->status, 200);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_LT(worst, 2.0);
+  std::printf("during 30 slow headers: 10 requests, the slowest answered in %.1f ms\n", worst * 1e3);
+  // the slow ones are closed 2 s after their first byte (408)
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  done.store(true);
+  drip.join();
+  int got408 = 0;
+  for (int fd : slow) {
+    const std::string a = read_until_closed(fd, 1.0);
+    got408 += status_of(a) == 408;
+    ::close(fd);
+  }
+  EXPECT_EQ(got408, 30);
+  std::printf("slow connections answered 408 and closed (%.1f s into the test)\n", since_s(tc));
+
+  // a header that never ends within 16 kB
+  const int fd = connect_to(srv.port());
+  ASSERT_GE(fd, 0);
+  send_all(fd, "GET / HTTP/1.1\r\nX-Big: " + std::string(20000, 'b'));
+  EXPECT_EQ(status_of(read_until_closed(fd, 3.0)), 431);
+  ::close(fd);
+  for (int f : idle) ::close(f);
+  const harness::LiveCounters n = srv.counters();
+  EXPECT_GE(n.connections, 200u + 1 + 30 + 10 + 1);
+  EXPECT_GE(n.connections_closed, 200u - 64u + 30u + 1u);  // evicted, slow, too large
+  EXPECT_EQ(n.requests_unauthorised, 0u);
+}
+
+// The command log keeps the last 1000 commands; /api/frames carries the
+// last 64 (every queued one: at most 64 wait) and /api/commands pages back
+// through the rest, 64 at most per answer.
+TEST(LiveServer, CommandLogIsBoundedAndPages)
+{
+  const fs::path dir = temp_dir("log");
+  harness::LiveOptions lo;
+  lo.start_paused = true;
+  Served s(lo);
+  harness::RunResult res;
+  std::thread sim = s.start_run(dir / "run", res);
+  ASSERT_TRUE(s.started());
+  // 1100 pauses: each applied at once by the paused run (a 429 when the
+  // queue is full is retried)
+  for (int i = 0; i < 1100;) {
+    auto r = s.post_ok({{"op", "pause"}});
+    ASSERT_TRUE(r);
+    if (r->status == 429) continue;
+    ASSERT_EQ(r->status, 202);
+    ++i;
+  }
+  const json f = s.frames();
+  EXPECT_EQ(f["commands_total"], 1100u);
+  ASSERT_EQ(f["commands"].size(), 64u);
+  EXPECT_EQ(f["commands"].front()["id"], 1037u);
+  EXPECT_EQ(f["commands"].back()["id"], 1100u);
+  auto page = [&](const std::string& q) {
+    auto r = s.cli.Get(("/api/commands" + q).c_str(), s.auth(s.srv.token()));
+    return r && r->status == 200 ? json::parse(r->body) : json();
+  };
+  json p = page("?before=1037");
+  ASSERT_EQ(p["commands"].size(), 64u);
+  EXPECT_EQ(p["commands"].front()["id"], 973u);
+  EXPECT_EQ(p["commands"].back()["id"], 1036u);
+  EXPECT_EQ(p["more"], true);
+  EXPECT_EQ(p["first_kept"], 101u);  // 1100 - 1000 + 1: the first 100 are forgotten
+  p = page("?before=150&limit=10");
+  ASSERT_EQ(p["commands"].size(), 10u);
+  EXPECT_EQ(p["commands"].front()["id"], 140u);
+  p = page("?before=120");
+  ASSERT_EQ(p["commands"].size(), 19u);  // 101..119
+  EXPECT_EQ(p["more"], false);
+  EXPECT_TRUE(page("?before=50")["commands"].empty());
+  EXPECT_EQ(page("")["commands"].back()["id"], 1100u);
+  for (const char* bad : {"?limit=0", "?limit=65", "?before=x", "?before=-1"}) {
+    auto r = s.cli.Get((std::string("/api/commands") + bad).c_str(), s.auth(s.srv.token()));
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 400) << bad;
+  }
+  EXPECT_EQ(s.post_ok({{"op", "resume"}})->status, 202);
+  sim.join();
+  ASSERT_TRUE(res.ok) << res.failure;
+  EXPECT_EQ(s.srv.counters().commands_applied, 1101u);
   fs::remove_all(dir);
 }

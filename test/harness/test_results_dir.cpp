@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -366,4 +367,74 @@ TEST(ResultsDir, StopRequestEndsAtATickBoundary)
   const harness::Hdf5Table t = harness::read_hdf5((dir / "s1" / "results.h5").string());
   EXPECT_EQ(t.rows, 50u);
   EXPECT_FALSE(t.complete);
+}
+
+// A signal ends a paced run within the pacer's slice (50 ms) whatever the
+// pacing: at --rt-scale 0.001 a tick of S1 (dt 0.01 s) is due every 10 s of
+// wall time and at 1e-6 every 10,000 s; SIGINT took 8.7 s there and SIGTERM
+// was ignored for 36 minutes at 1e-9.  The results of the tick done are
+// kept, marked interrupted.  (The bound is 2 s so that a loaded machine
+// does not fail it; the figure is printed.)
+TEST(ResultsDir, SignalsEndASlowlyPacedRunPromptly)
+{
+  struct Case {
+    int sig;
+    const char* name;
+    const char* scale;
+    int code;
+  };
+  for (const Case& k : {Case{SIGINT, "SIGINT", "0.001", 130}, Case{SIGTERM, "SIGTERM", "1e-6", 143}}) {
+    const fs::path dir = fresh_dir(std::string("paced_") + k.name);
+    const fs::path out = dir / "s1";
+    const Child a = start_run(out, {"--set", "duration=60", "--realtime", "--rt-scale", k.scale}, dir / "err.txt");
+    ASSERT_TRUE(wait_for_working_folder(dir));
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));  // in the wait for tick 1
+    const auto t0 = std::chrono::steady_clock::now();
+    kill(a.pid, k.sig);
+    const int rc = wait_exit(a, 60.0);
+    const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(rc, k.code) << slurp(dir / "err.txt");
+    EXPECT_LT(dt, 2.0) << k.name;
+    std::printf("%s at --rt-scale %s: kestrel ended %.0f ms after the signal\n", k.name, k.scale, dt * 1e3);
+    std::fflush(stdout);  // before the next fork
+    const json m = json::parse(slurp(out / "manifest.json"));
+    EXPECT_EQ(m["result"]["complete"], false);
+    EXPECT_EQ(m["result"]["stopped_by"], k.name);
+    const harness::Hdf5Table t = harness::read_hdf5((out / "results.h5").string());
+    EXPECT_FALSE(t.complete);
+    EXPECT_GE(t.rows, 1u);  // tick 0, due at once
+    EXPECT_EQ(slurp(out / "summary.txt").rfind(std::string("# INCOMPLETE: stopped (") + k.name + ")", 0), 0u);
+  }
+}
+
+// A run killed outright (SIGKILL: nothing can clean up) leaves its working
+// folder beside the results.  The next run of the same results says so,
+// naming the folder and the pid, and prints the command that removes it
+// (it removes nothing itself: the folder may hold the only copy of
+// something); the command works, and then nothing is said.
+TEST(ResultsDir, RerunNamesAKilledRunsLeftoverFolder)
+{
+  const fs::path dir = fresh_dir("leftover");
+  const fs::path out = dir / "s1";
+  const Child a = start_run(out, kLong, dir / "a_err.txt");
+  ASSERT_TRUE(wait_for_working_folder(dir));
+  kill(a.pid, SIGKILL);
+  EXPECT_EQ(wait_exit(a), 1000 + SIGKILL);
+  const fs::path left = dir / (".s1.kestrel-work-" + std::to_string(a.pid));
+  ASSERT_TRUE(fs::is_directory(left));
+  std::string err;
+  ASSERT_EQ(run_kestrel(out, kShort, &err), 0) << err;
+  EXPECT_NE(err.find(left.string() + " was left by an earlier run of s1 that was killed (pid " +
+                     std::to_string(a.pid) + ", its unfinished results); nothing uses it: remove it with  rm -rf -- '" +
+                     left.string() + "'"),
+            std::string::npos)
+      << err;
+  EXPECT_TRUE(fs::is_directory(left));  // not removed by kestrel
+  const size_t at = err.find("rm -rf -- ");
+  ASSERT_NE(at, std::string::npos);
+  const std::string cmd = err.substr(at, err.find('\n', at) - at);
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  EXPECT_FALSE(fs::exists(left));
+  ASSERT_EQ(run_kestrel(out, with(kShort, {"--force"}), &err), 0) << err;
+  EXPECT_EQ(err.find("was left by"), std::string::npos) << err;
 }

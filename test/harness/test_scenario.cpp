@@ -532,3 +532,54 @@ TEST(ScenarioBounds, OverrideValuesAreBoundedLikeAFile)
     EXPECT_EQ(is[0].message.rfind("value: ", 0), 0u) << is[0].str();
   }
 }
+
+// docs/harness.md states the most wheels a scenario may list; the reader
+// agrees: that many load, one more is refused naming the limit (the page
+// said 16 while the reader took 36).  The wheels are S1's pyramid repeated.
+TEST(Scenario, DocumentedWheelLimitIsTheReadersLimit)
+{
+  std::ifstream in(std::string(KESTREL_SOURCE_DIR) + "/docs/harness.md");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string doc = ss.str();
+  const std::string row = "| `wheels` | list | at most min(`FSW_MAX_RW`, `sim::kMaxWheels`) = ";
+  const size_t at = doc.find(row);
+  ASSERT_NE(at, std::string::npos);
+  const size_t n = std::stoul(doc.substr(at + row.size()));
+  std::ifstream s1(kS1);
+  std::stringstream s1ss;
+  s1ss << s1.rdbuf();
+  const std::string text = s1ss.str();
+  const size_t w0 = text.find("\n  - {name: rw1");
+  const size_t w1 = text.find("\n\nsensors:");
+  ASSERT_NE(w0, std::string::npos);
+  ASSERT_NE(w1, std::string::npos);
+  const char* axes[4] = {"[ 0.541675220,  0.541675220, 0.642787610]", "[-0.541675220,  0.541675220, 0.642787610]",
+                         "[-0.541675220, -0.541675220, 0.642787610]", "[ 0.541675220, -0.541675220, 0.642787610]"};
+  auto with_wheels = [&](size_t count) {
+    std::string w;
+    for (size_t i = 0; i < count; ++i)
+      w += "\n  - {name: rw" + std::to_string(i + 1) + ", axis: " + axes[i % 4] + ", position: [0.8, 0.8, 1.79]}";
+    const std::filesystem::path p =
+        std::filesystem::temp_directory_path() / ("kestrel_wheels_" + std::to_string(count) + ".yaml");
+    std::string rest = text.substr(w1);
+    const size_t d0 = rest.find("Omega_des_rpm: [");  // one speed per wheel
+    if (d0 != std::string::npos) {
+      std::string speeds;
+      for (size_t i = 0; i < count; ++i) speeds += (i ? ", " : "") + std::string("1000");
+      rest = rest.substr(0, d0) + "Omega_des_rpm: [" + speeds + rest.substr(rest.find(']', d0));
+    }
+    std::ofstream(p) << text.substr(0, w0) << w << rest;
+    return p.string();
+  };
+  const harness::Scenario ok = harness::load_scenario(with_wheels(n));
+  EXPECT_EQ(ok.wheels.size(), n);
+  try {
+    harness::load_scenario(with_wheels(n + 1));
+    ADD_FAILURE() << n + 1 << " wheels taken";
+  } catch (const harness::ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("at most " + std::to_string(n) + " wheels, got " + std::to_string(n + 1)),
+              std::string::npos)
+        << e.what();
+  }
+}

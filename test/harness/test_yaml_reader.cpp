@@ -206,6 +206,29 @@ TEST(YamlBounds, MessagesEscapeControlBytesAndInvalidUtf8)
   EXPECT_EQ(harness::escape_bytes(std::string("a\0b\x1b[1m\n\xff\xc3\xa9", 11)), "a\\x00b\\x1B[1m\\x0A\\xFFé");
 }
 
+// Valid UTF-8 that would hide or reorder what a message quotes is shown as
+// \uXXXX (code points written out by hand from their UTF-8 bytes): the
+// right-to-left override U+202E (E2 80 AE), which would print "exe.txt"
+// reversed, the zero-width space U+200B (E2 80 8B), which would make 'rw2'
+// and 'rw<ZWSP>2' look alike, the isolates U+2066..U+2069, the byte-order
+// mark U+FEFF, the C1 control NEL U+0085 (C2 85), the line separator
+// U+2028; ordinary letters of any script, and a 4-byte emoji, stay as they are.
+TEST(YamlBounds, MessagesEscapeBidirectionalAndInvisibleCharacters)
+{
+  EXPECT_EQ(harness::escape_bytes("rw\xe2\x80\x8b" "2"), "rw\\u200B2");
+  EXPECT_EQ(harness::escape_bytes("a\xe2\x80\xaetxt.exe"), "a\\u202Etxt.exe");
+  EXPECT_EQ(harness::escape_bytes("\xe2\x81\xa6x\xe2\x81\xa9"), "\\u2066x\\u2069");
+  EXPECT_EQ(harness::escape_bytes("\xef\xbb\xbfkey"), "\\uFEFFkey");
+  EXPECT_EQ(harness::escape_bytes("a\xc2\x85" "b"), "a\\u0085b");
+  EXPECT_EQ(harness::escape_bytes("a\xe2\x80\xa8" "b"), "a\\u2028b");
+  EXPECT_EQ(harness::escape_bytes("\xe2\x80\x8e\xe2\x80\x8f"), "\\u200E\\u200F");
+  const std::string plain = "r\xc3\xa9" "f \xe4\xb8\xad \xd7\xa9 \xf0\x9f\x9a\x80";  // é, 中, ש (Hebrew), 🚀
+  EXPECT_EQ(harness::escape_bytes(plain), plain);
+  // and through a scenario problem, as printed
+  const harness::ScenarioIssue is{"s.yaml", 3, 5, "wheels[0].name", "no device named 'rw\xe2\x80\xae" "9'", ""};
+  EXPECT_EQ(is.str(), "s.yaml:3:5: wheels[0].name: no device named 'rw\\u202E9'");
+}
+
 TEST(YamlReader, AnEmptyValueIsReportedAtItsKey)
 {
   Doc d("a:\n  x:\n  y: 2\n  v:\n  w: [1, 2, 3]\n");

@@ -8,6 +8,8 @@
 
 #include "cli/run_program.h"
 #include "harness/cli/commands.h"
+#include "harness/core/pacer.h"
+#include "harness/core/scenario_types.h"
 #include "harness/core/run.h"
 
 namespace {
@@ -79,8 +81,21 @@ CLI::App* add_run(CLI::App& app, harness::RunCommand& rc)
   run->add_flag("--csv", rc.csv, "also write telemetry.csv");
   run->add_flag("--force", rc.force, "replace an existing results folder whole");
   run->add_flag("--realtime", rc.realtime, "pace the ticks to the wall clock (absolute deadlines)");
-  run->add_option("--rt-scale", rc.rt_scale, "with --realtime: multiple of real time (default 1)")
-      ->check(CLI::PositiveNumber);
+  run->add_option("--rt-scale", rc.rt_scale, "with --realtime: multiple of real time in [1e-6, 1e6] (default 1)")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            double x = 0.0;
+            try {
+              size_t used = 0;
+              x = std::stod(v, &used);
+              if (used != v.size()) return std::string("not a number");
+            } catch (const std::exception&) {
+              return std::string("not a number");
+            }
+            const std::string why = harness::Pacer::check_scale(x);
+            return why;  // CLI11 puts "--rt-scale: " before it
+          },
+          "SCALE"));
   add_link_flags(run, rc);
   add_live_flags(run, rc.live);
   return run;
@@ -114,7 +129,24 @@ CLI::App* add_mc(CLI::App& app, harness::McCommand& mc, std::string& shard)
   auto* mcc = app.add_subcommand("mc", "run a Monte Carlo campaign of a scenario's monte_carlo section (docs/monte-carlo.md)");
   mcc->add_option("scenario", mc.scenario, "scenario file with a monte_carlo section, or its manifest");
   mcc->add_option("--runs", mc.runs, "number of runs (default monte_carlo.runs)")->check(CLI::Range(1ULL, 10000000ULL));
-  mcc->add_option("--seed", mc.seed, "master seed (default monte_carlo.seed)");
+  mcc->add_option("--seed", mc.seed, "master seed, an integer in [0, 2^64 - 1] (default monte_carlo.seed)")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            // as the YAML key: digits only (CLI11 would take -1 as 2^64 - 1
+            // and saturate 2^64), at most 2^64 - 1
+            bool ok = !v.empty() && v.size() <= 20 && v.find_first_not_of("0123456789") == std::string::npos;
+            if (ok) {
+              try {
+                (void)std::stoull(v);
+              } catch (const std::exception&) {
+                ok = false;
+              }
+            }
+            return ok ? std::string()
+                      : "expected an integer in [0, 2^64 - 1] (as monte_carlo.seed), got '" +
+                            harness::escape_bytes(v) + "'";
+          },
+          "SEED"));
   mcc->add_option("-j,--jobs", mc.jobs, "threads (default 1)")->check(CLI::Range(1u, 1024u));
   mcc->add_option("-o,--output", mc.out_dir, "campaign folder (default runs/<name>_mc)");
   mcc->add_option("--set", mc.sets, "override a key of the nominal scenario: key.path=value (repeatable)");

@@ -26,8 +26,10 @@ inline void end_live_view(LiveServer& live, const RunCommand& c, int code, std::
   const LiveCounters n = live.counters();
   out << "live view: " << n.published << " frames published, " << n.dropped_busy + n.dropped_unread << " dropped ("
       << n.dropped_busy << " while a page read, " << n.dropped_unread << " unread); " << n.commands_applied
-      << " commands applied, " << n.commands_refused << " refused; paused " << n.paused_s << " s of wall time"
-      << std::endl;
+      << " commands applied, " << n.commands_refused << " refused; " << n.requests_unauthorised
+      << " requests without the token and " << n.requests_refused << " too large or compressed refused unread; "
+      << n.connections << " connections (" << n.connections_closed << " closed idle, slow or at the limit); paused "
+      << n.paused_s << " s of wall time" << std::endl;
   if (c.live.linger > 0 && c.stop->load() == 0 && (code == kExitOk || code == kExitRunFailed)) {
     out << "live view: the page stays at " << live.url() << " for " << c.live.linger << " s (Ctrl-C ends it)"
         << std::endl;

@@ -5,6 +5,7 @@
 #include <sys/mman.h>
 #include <time.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -31,6 +32,8 @@ void sleep_until(int64_t t_ns)
   }
 }
 
+constexpr double kMaxDeadlineNs = 1e18;  // 31 years from t0: "never", and far from int64's end
+
 int bin_of(int64_t late_ns)
 {
   const double s = static_cast<double>(late_ns) * 1e-9;
@@ -47,10 +50,17 @@ double pacer_bin_edge(int b)
   return Pacer::kFirstEdge * std::pow(10.0, static_cast<double>(b) / Pacer::kBinsPerDecade);
 }
 
+std::string Pacer::check_scale(double scale)
+{
+  if (scale >= kMinScale && scale <= kMaxScale) return "";
+  return "a real-time scale is in [1e-6, 1e6] (times real time)";
+}
+
 Pacer::Pacer(uint64_t tick_ns, double scale) : tick_ns_(tick_ns), scale_(scale)
 {
-  if (tick_ns == 0 || !(scale > 0.0) || !std::isfinite(scale))
-    throw std::invalid_argument("pacing needs a tick > 0 and a real-time scale > 0");
+  if (tick_ns == 0) throw std::invalid_argument("pacing needs a tick > 0");
+  const std::string why = check_scale(scale);
+  if (!why.empty()) throw std::invalid_argument("pacing: " + why);
 }
 
 std::string Pacer::request_realtime()
@@ -72,29 +82,38 @@ std::string Pacer::request_realtime()
 
 void Pacer::restart(double scale)
 {
-  if (!(scale > 0.0) || !std::isfinite(scale)) throw std::invalid_argument("pacing needs a real-time scale > 0");
+  const std::string why = check_scale(scale);
+  if (!why.empty()) throw std::invalid_argument("pacing: " + why);
   scale_ = scale;
   t0_ns_ = -1;  // wait_for fixes it again
 }
 
 int64_t Pacer::deadline_ns(uint64_t k) const
 {
-  return t0_ns_ + static_cast<int64_t>(std::llround(static_cast<double>(k) * static_cast<double>(tick_ns_) / scale_));
+  // t0 is a monotonic time (years at most) and the offset is held at 1e18:
+  // the sum stays far inside int64
+  const double off = std::min(static_cast<double>(k) * static_cast<double>(tick_ns_) / scale_, kMaxDeadlineNs);
+  return t0_ns_ + static_cast<int64_t>(std::llround(off));
 }
 
-void Pacer::wait_for(uint64_t k)
+bool Pacer::wait_for(uint64_t k)
 {
   if (t0_ns_ < 0) {  // the first paced tick is due now
     t0_ns_ = 0;
     t0_ns_ = now_ns() - deadline_ns(k);
   }
   const int64_t d = deadline_ns(k);
-  if (now_ns() < d) sleep_until(d);
+  const int64_t slice = static_cast<int64_t>(kSlice * 1e9);
+  for (int64_t now = now_ns(); now < d; now = now_ns()) {
+    if (stop_ && stop_->load() != 0) return false;
+    sleep_until(stop_ && d - now > slice ? now + slice : d);
+  }
   const int64_t late = now_ns() - d;
   last_late_ns_ = late > 0 ? late : 0;
   if (last_late_ns_ > max_late_ns_) max_late_ns_ = last_late_ns_;
   hist_[static_cast<size_t>(bin_of(last_late_ns_))]++;
   ++ticks_;
+  return true;
 }
 
 double Pacer::seconds_to(uint64_t k) const

@@ -1,6 +1,7 @@
 // scenario_types.cpp: the parts of the Scenario types that a run needs
 // without the YAML schema (harness_core): problems, tick arithmetic, names.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <stdexcept>
 
@@ -23,6 +24,28 @@ size_t utf8_len(const std::string& s, size_t i)
   return n;
 }
 
+// The code point of the valid n-byte sequence at s[i].
+uint32_t code_point(const std::string& s, size_t i, size_t n)
+{
+  const auto b = [&s, i](size_t k) { return static_cast<uint32_t>(static_cast<unsigned char>(s[i + k])); };
+  if (n == 1) return b(0);
+  uint32_t cp = b(0) & (0x7fu >> n);
+  for (size_t k = 1; k < n; ++k) cp = (cp << 6) | (b(k) & 0x3fu);
+  return cp;
+}
+
+// Shown escaped although valid: C1 controls, the format characters that
+// reorder or hide text (bidirectional marks, embeddings, overrides and
+// isolates, zero-width spaces and joiners, the byte-order mark) and the
+// line and paragraph separators.  A message quoting user text then reads
+// as it is stored: nothing in it reverses, hides or breaks the line.
+bool is_hidden(uint32_t cp)
+{
+  return (cp >= 0x80 && cp <= 0x9f) || cp == 0xad || cp == 0x061c || cp == 0x180e || (cp >= 0x200b && cp <= 0x200f) ||
+         (cp >= 0x2028 && cp <= 0x202e) || (cp >= 0x2060 && cp <= 0x2069) || cp == 0xfeff ||
+         (cp >= 0xfff9 && cp <= 0xfffb);
+}
+
 }  // namespace
 
 std::string escape_bytes(const std::string& s)
@@ -36,6 +59,11 @@ std::string escape_bytes(const std::string& s)
       std::snprintf(buf, sizeof buf, "\\x%02X", c);
       out += buf;
       ++i;
+    } else if (n > 1 && is_hidden(code_point(s, i, n))) {
+      char buf[12];
+      std::snprintf(buf, sizeof buf, "\\u%04X", static_cast<unsigned>(code_point(s, i, n)));
+      out += buf;
+      i += n;
     } else {
       out.append(s, i, n);
       i += n;

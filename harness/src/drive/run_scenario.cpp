@@ -173,10 +173,12 @@ void RunOutputs::write(const Run& run, RunResult& res, const std::vector<Overrid
 
 // ---- pacing and the loop ------------------------------------------------
 
-void RunPacing::pace_at(const Scenario& sc, double scale, const std::function<void(const std::string&)>& notice)
+void RunPacing::pace_at(const Scenario& sc, double scale, const std::function<void(const std::string&)>& notice,
+                       const std::atomic<int>* stop)
 {
   if (!pacer_) {
     pacer_.emplace(sc.tick_ns(), scale);
+    pacer_->set_stop(stop);
     const std::string w = pacer_->request_realtime();
     if (!w.empty() && notice) notice(w);
   } else {
@@ -193,7 +195,7 @@ double RunPacing::time_left() const
 bool RunPacing::step(Run& run, const std::function<void(const std::string&)>& notice)
 {
   const uint64_t k = run.tick();
-  pacer_->wait_for(k);
+  if (!pacer_->wait_for(k)) return true;  // stopped: the loop sees the flag
   tick_ = k;
   if (!run.step_ticks(1)) return false;
   pacer_->done(k);
@@ -213,7 +215,7 @@ void drive(Run& run, const RunOptions& opt, RunPacing& pacing, RunResult& res)
   const uint64_t total = run.total_ticks();
   const uint64_t chunk = std::clamp<uint64_t>(total / 200, 1, 1000);
   const auto stop_asked = [&opt] { return opt.stop && opt.stop->load() != 0; };
-  if (opt.realtime_scale > 0.0) pacing.pace_at(sc, opt.realtime_scale, opt.notice);
+  if (opt.realtime_scale > 0.0) pacing.pace_at(sc, opt.realtime_scale, opt.notice, opt.stop);
   if (opt.control) opt.control->started(run, opt.realtime_scale, opt.stop);
   const auto t0 = std::chrono::steady_clock::now();
   while (!run.done()) {
@@ -225,7 +227,7 @@ void drive(Run& run, const RunOptions& opt, RunPacing& pacing, RunResult& res)
     if (opt.control) {  // commands enter here, at a tick boundary; a pause waits here
       double pace = 0.0;
       limit = std::min(chunk, opt.control->boundary(run, pace));
-      if (pace > 0.0) pacing.pace_at(sc, pace, opt.notice);
+      if (pace > 0.0) pacing.pace_at(sc, pace, opt.notice, opt.stop);
       if (stop_asked()) continue;
     }
     if (pacing.on()) {  // one tick at a time, each at its deadline
@@ -298,6 +300,8 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
 {
   RunResult res;
   RunOutputs outputs(opt.out_dir, opt.force);  // lock, refuse or replace: before anything is simulated
+  if (opt.notice)
+    for (const std::string& n : outputs.notes()) opt.notice(n);
   RunPacing pacing;
   RunConfig cfg;
   cfg.keep_in_memory = false;  // streamed: memory does not grow with the duration

@@ -1,6 +1,8 @@
 // live_server.cpp: the live view's server and run control (live_server.h).
 #include "live/live_server.h"
 
+#include "live/live_gate.h"
+
 // after Eigen (through live_server.h): <resolv.h> defines the macro _res,
 // a parameter name in Eigen's templates
 #include <httplib.h>
@@ -20,6 +22,7 @@
 
 #include "core/events.h"
 #include "scenario/scenario_limits.h"
+#include "harness/core/pacer.h"
 #include "harness/core/run.h"
 
 #ifdef KESTREL_HAVE_REPORT
@@ -82,7 +85,7 @@ struct LiveServer::Impl {
   LiveOptions opt;
   std::string token;
   int port = 0;
-  httplib::Server srv;
+  GatedServer srv;
   std::thread thread;
   const std::chrono::steady_clock::time_point t_start = std::chrono::steady_clock::now();
 
@@ -131,10 +134,12 @@ struct LiveServer::Impl {
   std::condition_variable cmd_cv;
   std::deque<Command> queue;
   std::atomic<bool> has_cmd{false};
-  std::vector<LogEntry> log;  // every command, by id - 1 (under cmd_mu)
+  std::deque<LogEntry> log;  // the last kLogKept commands, ids log_base.. (under cmd_mu)
+  uint64_t log_base = 1;
   uint64_t next_id = 1;
   size_t live_events = 0;  // event commands accepted (under cmd_mu)
   std::atomic<uint64_t> applied{0}, refused{0};
+  std::atomic<uint64_t> unauthorised{0}, requests_refused{0};  // refused before the body was read
   std::atomic<double> paused_s{0.0};
 
   // ---- run state (sim thread; mirrored for the server) -----------------------
@@ -148,7 +153,21 @@ struct LiveServer::Impl {
   std::string end_text;
 
   void serve();
-  bool authorised(const httplib::Request& req, httplib::Response& res);
+  // Before the body is read (from the request line and headers): the token,
+  // then the body's size and encoding.  false after refusing (the
+  // connection closes after the answer: the body is never read).
+  bool admit(const httplib::Request& req, httplib::Response& res);
+  void refuse_request(httplib::Response& res, int status, const std::string& msg)
+  {
+    res.status = status;
+    res.set_content(json{{"ok", false}, {"error", msg}}.dump(), "application/json");
+    GatedServer::close_after_answer();
+  }
+  json log_json(const LogEntry& e) const
+  {
+    return {{"id", e.id}, {"command", e.text}, {"status", e.status}, {"detail", e.detail}, {"tick", e.tick}, {"t", e.t}};
+  }
+  std::string commands_text(const httplib::Request& req);
   void refuse(httplib::Response& res, int status, const std::string& msg)
   {
     ++refused;
@@ -170,7 +189,8 @@ struct LiveServer::Impl {
   void set_log(uint64_t id, const std::string& status, const std::string& detail, uint64_t tick, double t)
   {
     std::lock_guard<std::mutex> lk(cmd_mu);
-    LogEntry& e = log[static_cast<size_t>(id - 1)];
+    if (id < log_base) return;  // forgotten (kLogKept newer ones since)
+    LogEntry& e = log[static_cast<size_t>(id - log_base)];
     e.status = status;
     e.detail = detail;
     e.tick = tick;
@@ -178,33 +198,63 @@ struct LiveServer::Impl {
   }
 };
 
-bool LiveServer::Impl::authorised(const httplib::Request& req, httplib::Response& res)
+bool LiveServer::Impl::admit(const httplib::Request& req, httplib::Response& res)
 {
   std::string given = req.get_header_value("X-Kestrel-Token");
   if (given.empty() && req.has_param("token")) given = req.get_param_value("token");
-  if (same_token(given, token)) return true;
-  refuse(res, 403, given.empty() ? "no access token: open the URL kestrel printed (it carries ?token=...)"
-                                 : "wrong access token: open the URL kestrel printed");
-  return false;
+  if (!same_token(given, token)) {
+    ++unauthorised;
+    refuse_request(res, 403, given.empty() ? "no access token: open the URL kestrel printed (it carries ?token=...)"
+                                           : "wrong access token: open the URL kestrel printed");
+    if (req.path == "/")
+      res.set_content(
+          "Kestrel live view: this page needs the access token. Open the URL `kestrel run --live` printed.\n",
+          "text/plain");
+    return false;
+  }
+  const std::string enc = req.get_header_value("Content-Encoding");
+  if (!enc.empty() && enc != "identity") {
+    ++requests_refused;
+    refuse_request(res, 415, "compressed request bodies are refused (Content-Encoding: " + escape_bytes(enc) + ")");
+    return false;
+  }
+  if (req.has_header("Transfer-Encoding")) {
+    ++requests_refused;
+    refuse_request(res, 411, "a request body needs a Content-Length (chunked bodies are refused)");
+    return false;
+  }
+  if (req.has_header("Content-Length")) {
+    const std::string v = req.get_header_value("Content-Length");
+    const size_t cap = srv.limits().body_max;
+    bool digits = !v.empty() && v.size() <= 19;
+    for (char ch : v) digits = digits && ch >= '0' && ch <= '9';
+    if (!digits || std::stoull(v) > cap) {
+      ++requests_refused;
+      refuse_request(res, 413, "a request body is at most " + std::to_string(cap) + " bytes");
+      return false;
+    }
+  }
+  GatedServer::keep_connection_open();
+  return true;
 }
 
 void LiveServer::Impl::serve()
 {
-  srv.Get("/", [this](const httplib::Request& req, httplib::Response& res) {
-    if (!authorised(req, res)) {
-      res.set_content(
-          "Kestrel live view: this page needs the access token. Open the URL `kestrel run --live` printed.\n",
-          "text/plain");
-      return;
-    }
+  // every request passes admit() before its body is read (with
+  // `Expect: 100-continue`, before the client sends it)
+  srv.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    return admit(req, res) ? httplib::Server::HandlerResponse::Unhandled : httplib::Server::HandlerResponse::Handled;
+  });
+  srv.set_expect_100_continue_handler(
+      [this](const httplib::Request& req, httplib::Response& res) { return admit(req, res) ? 100 : res.status; });
+  srv.Get("/", [](const httplib::Request&, httplib::Response& res) {
 #ifdef KESTREL_HAVE_REPORT
     res.set_content(report::live_page(), "text/html; charset=utf-8");
 #else
     res.set_content(kNoPage, "text/html; charset=utf-8");
 #endif
   });
-  srv.Get("/api/info", [this](const httplib::Request& req, httplib::Response& res) {
-    if (!authorised(req, res)) return;
+  srv.Get("/api/info", [this](const httplib::Request&, httplib::Response& res) {
     std::lock_guard<std::mutex> lk(info_mu);
     if (!info_ready) {
       res.status = 503;
@@ -214,7 +264,6 @@ void LiveServer::Impl::serve()
     res.set_content(info_text, "application/json");
   });
   srv.Get("/api/frames", [this](const httplib::Request& req, httplib::Response& res) {
-    if (!authorised(req, res)) return;
     uint64_t since = 0;
     if (req.has_param("since")) {
       try {
@@ -226,12 +275,16 @@ void LiveServer::Impl::serve()
     }
     res.set_content(frames_text(since), "application/json");
   });
-  srv.Post("/api/command", [this](const httplib::Request& req, httplib::Response& res) {
-    if (!authorised(req, res)) return;
-    post_command(req, res);
+  srv.Get("/api/commands", [this](const httplib::Request& req, httplib::Response& res) {
+    const std::string text = commands_text(req);
+    if (text.empty()) {
+      refuse(res, 400, "before: expected a command id; limit: expected a count in [1, " + std::to_string(kLogPage) + "]");
+      return;
+    }
+    res.set_content(text, "application/json");
   });
-  srv.Get("/report", [this](const httplib::Request& req, httplib::Response& res) {
-    if (!authorised(req, res)) return;
+  srv.Post("/api/command", [this](const httplib::Request& req, httplib::Response& res) { post_command(req, res); });
+  srv.Get("/report", [this](const httplib::Request&, httplib::Response& res) {
     std::string path;
     {
       std::lock_guard<std::mutex> lk(info_mu);
@@ -288,8 +341,9 @@ std::string LiveServer::Impl::read_command(const json& j, Command& c, std::strin
   }
   if (c.op == "rate") {
     const json v = j.value("value", json());
-    if (!v.is_number() || !(v.get<double>() > 0.0) || !(v.get<double>() <= 1e6))
-      return "rate: value must be a multiple of real time in (0, 1e6]";
+    if (!v.is_number()) return "rate: value must be a number (a multiple of real time)";
+    const std::string why = Pacer::check_scale(v.get<double>());
+    if (!why.empty()) return "rate: value: " + why;
     c.value = v.get<double>();
     std::ostringstream o;
     o << "rate " << c.value << "x";
@@ -324,6 +378,10 @@ bool LiveServer::Impl::enqueue(Command& c, const std::string& text, httplib::Res
   }
   c.id = next_id++;
   log.push_back({c.id, text, "queued", "", 0, 0.0});
+  while (log.size() > kLogKept) {
+    log.pop_front();
+    ++log_base;
+  }
   queue.push_back(c);
   has_cmd.store(true);
   return true;
@@ -366,6 +424,34 @@ void LiveServer::Impl::post_command(const httplib::Request& req, httplib::Respon
   res.set_content(json{{"ok", true}, {"id", c.id}, {"command", text}}.dump(), "application/json");
 }
 
+std::string LiveServer::Impl::commands_text(const httplib::Request& req)
+{
+  auto number = [&req](const char* key, uint64_t dflt, uint64_t& out) {
+    if (!req.has_param(key)) {
+      out = dflt;
+      return true;
+    }
+    const std::string v = req.get_param_value(key);
+    if (v.empty() || v.size() > 19 || v.find_first_not_of("0123456789") != std::string::npos) return false;
+    out = std::stoull(v);
+    return true;
+  };
+  uint64_t before = 0, limit = 0;
+  if (!number("before", UINT64_MAX, before) || !number("limit", kLogPage, limit) || limit < 1 || limit > kLogPage)
+    return "";
+  json cmds = json::array();
+  std::lock_guard<std::mutex> lk(cmd_mu);
+  size_t end = log.size();  // entries with id < before
+  if (before < log_base + log.size()) end = before > log_base ? static_cast<size_t>(before - log_base) : 0;
+  const size_t begin = end > limit ? end - static_cast<size_t>(limit) : 0;
+  for (size_t i = begin; i < end; ++i) cmds.push_back(log_json(log[i]));
+  return json{{"commands", std::move(cmds)},
+              {"more", begin > 0},
+              {"first_kept", log_base},
+              {"total", next_id - 1}}
+      .dump();
+}
+
 std::string LiveServer::Impl::frames_text(uint64_t since)
 {
   page_seen.store(true);
@@ -390,12 +476,13 @@ std::string LiveServer::Impl::frames_text(uint64_t since)
   uint64_t prev = max_read.load();
   while (last > prev && !max_read.compare_exchange_weak(prev, last)) {
   }
-  json cmds = json::array();
+  json cmds = json::array();  // the last kLogPage (older ones: /api/commands)
+  uint64_t total = 0;
   {
     std::lock_guard<std::mutex> lk(cmd_mu);
-    for (const LogEntry& e : log)
-      cmds.push_back({{"id", e.id}, {"command", e.text}, {"status", e.status}, {"detail", e.detail}, {"tick", e.tick},
-                      {"t", e.t}});
+    total = next_id - 1;
+    for (size_t i = log.size() > kLogPage ? log.size() - kLogPage : 0; i < log.size(); ++i)
+      cmds.push_back(log_json(log[i]));
   }
   static const char* kStates[] = {"starting", "running", "paused", "ended"};
   json j = {{"state", kStates[state.load()]},
@@ -406,7 +493,8 @@ std::string LiveServer::Impl::frames_text(uint64_t since)
             {"wall", seconds_since(t_start)},
             {"rate", rate_shown.load()},
             {"frames", std::move(frames)},
-            {"commands", std::move(cmds)}};
+            {"commands", std::move(cmds)},
+            {"commands_total", total}};
   if (state.load() == 3) {
     std::lock_guard<std::mutex> lk(info_mu);
     j["end"] = end_text;
@@ -502,15 +590,11 @@ LiveServer::LiveServer(LiveOptions opt) : impl_(std::make_unique<Impl>())
   m.token = m.opt.token.empty() ? random_token() : m.opt.token;
   m.ring.resize(kRingFrames);
   m.serve();
-  if (m.opt.port == 0) {
-    m.port = m.srv.bind_to_any_port(m.opt.host);
-    if (m.port <= 0) throw std::runtime_error("live view: cannot bind " + m.opt.host + " to a free port");
-  } else {
-    if (!m.srv.bind_to_port(m.opt.host, m.opt.port))
-      throw std::runtime_error("live view: cannot bind " + m.opt.host + ":" + std::to_string(m.opt.port) +
-                               " (in use, or not an address of this host)");
-    m.port = m.opt.port;
-  }
+  m.port = m.srv.bind_gated(m.opt.host, m.opt.port);
+  if (m.port <= 0 && m.opt.port == 0) throw std::runtime_error("live view: cannot bind " + m.opt.host + " to a free port");
+  if (m.port <= 0)
+    throw std::runtime_error("live view: cannot bind " + m.opt.host + ":" + std::to_string(m.opt.port) +
+                             " (in use, or not an address of this host)");
   m.thread = std::thread([&m] { m.srv.listen_after_bind(); });
 }
 
@@ -518,6 +602,7 @@ LiveServer::~LiveServer()
 {
   impl_->srv.stop();
   if (impl_->thread.joinable()) impl_->thread.join();
+  impl_->srv.stop_gate();  // its workers call into Impl: stopped before Impl's members go
 }
 
 int LiveServer::port() const { return impl_->port; }
@@ -645,9 +730,10 @@ void LiveServer::ended(const Run& run, const RunResult& res)
   // commands still queued will never apply
   std::lock_guard<std::mutex> lc(m.cmd_mu);
   for (const Impl::Command& c : m.queue) {
-    m.log[static_cast<size_t>(c.id - 1)].status = "refused";
-    m.log[static_cast<size_t>(c.id - 1)].detail = "the run ended first";
     ++m.refused;
+    if (c.id < m.log_base) continue;
+    m.log[static_cast<size_t>(c.id - m.log_base)].status = "refused";
+    m.log[static_cast<size_t>(c.id - m.log_base)].detail = "the run ended first";
   }
   m.queue.clear();
 }
@@ -668,6 +754,11 @@ LiveCounters LiveServer::counters() const
   c.dropped_unread = m.dropped_unread.load();
   c.commands_applied = m.applied.load();
   c.commands_refused = m.refused.load();
+  c.requests_unauthorised = m.unauthorised.load();
+  c.requests_refused = m.requests_refused.load();
+  const GateCounters g = m.srv.gate_counters();
+  c.connections = g.connections;
+  c.connections_closed = g.idle_closed + g.slow_closed + g.large_closed + g.evicted + g.busy_refused;
   c.paused_s = m.paused_s.load();
   return c;
 }

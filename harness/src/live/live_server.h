@@ -43,7 +43,11 @@ struct LiveCounters {
   uint64_t dropped_busy = 0;      // not published: a page request held the ring
   uint64_t dropped_unread = 0;    // overwritten before a page read them (a page connected)
   uint64_t commands_applied = 0;  // entered the run
-  uint64_t commands_refused = 0;  // refused with a message (bad token, device, action, value, state)
+  uint64_t commands_refused = 0;  // refused with a message (device, action, value, state, queue full)
+  uint64_t requests_unauthorised = 0;  // refused before their body was read: no or a wrong token (403)
+  uint64_t requests_refused = 0;       // refused before their body was read: too large, compressed, chunked
+  uint64_t connections = 0;            // accepted
+  uint64_t connections_closed = 0;     // by the server: idle, header too slow or too large, evicted at the limit
   double paused_s = 0.0;          // [s] wall time the run waited, paused
 };
 
@@ -51,6 +55,8 @@ class LiveServer : public RunControl {
  public:
   static constexpr size_t kRingFrames = 256;
   static constexpr size_t kMaxQueued = 64;
+  static constexpr size_t kLogKept = 1000;  // commands the log keeps (older ones are forgotten)
+  static constexpr size_t kLogPage = 64;    // commands per answer (/api/frames: the last ones)
   static constexpr double kPublishPeriod = 0.02;  // [s] wall time: at most 50 frames/s
 
   // Binds and starts serving (the page answers "starting" until the run

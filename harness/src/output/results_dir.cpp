@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "harness/core/scenario_types.h"
 #include "harness/output/outputs.h"
 
 namespace harness {
@@ -144,12 +145,38 @@ ResultsDir::ResultsDir(const std::string& target, bool force)
   // 2. what is there already
   check_existing(t, target, force);
 
-  // 3. the working folder (the writability check, before simulating)
+  // 3. what killed runs left: with the lock held no other run writes these
+  // results, so a working or set-aside folder of another pid is a leftover
+  find_leftovers(t);
+
+  // 4. the working folder (the writability check, before simulating)
   work_ = beside(t, ".kestrel-work-" + std::to_string(::getpid()));
   fs::remove_all(work_, ec);  // a stale one of a crashed run with our pid
   if (!fs::create_directory(work_, ec) || ec) {
     throw OutputError(target + ": cannot create the working folder " + work_.string() +
                       (ec ? ": " + ec.message() : ""));
+  }
+}
+
+void ResultsDir::find_leftovers(const fs::path& t)
+{
+  const std::string mine = std::to_string(::getpid());
+  std::error_code ec;
+  for (const char* kind : {".kestrel-work-", ".kestrel-old-"}) {
+    const std::string prefix = beside(t, kind).filename().string();
+    for (fs::directory_iterator it(t.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
+      const std::string n = it->path().filename().string();
+      if (n.size() <= prefix.size() || n.compare(0, prefix.size(), prefix) != 0) continue;
+      const std::string pid = n.substr(prefix.size());
+      if (pid == mine || pid.find_first_not_of("0123456789") != std::string::npos) continue;
+      std::string q = "'";  // the path quoted for a POSIX shell
+      for (char ch : it->path().string()) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+      q += "'";
+      notes_.push_back(escape_bytes(
+          it->path().string() + " was left by an earlier run of " + t.filename().string() + " that was killed (pid " +
+          pid + ", " + (std::string(kind) == ".kestrel-work-" ? "its unfinished results" : "the results it replaced") +
+          "); nothing uses it: remove it with  rm -rf -- " + q));
+    }
   }
 }
 

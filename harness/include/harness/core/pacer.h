@@ -11,10 +11,17 @@
 // maximum.  An overrun is a tick whose work ends after the next tick's
 // deadline.  With permission the process runs SCHED_FIFO with its memory
 // locked (mlockall); without, a plain warning says so and it runs anyway.
+//
+// The scale is in [kMinScale, kMaxScale] (1e-6 to 1e6 times real time;
+// outside it the constructor and restart() throw): a deadline past 10^18 ns
+// (31 years) is held there, never overflowing.  With a stop flag
+// (set_stop) the wait sleeps in slices of at most kSlice and returns as
+// soon as the flag is set (a signal acts within kSlice whatever the scale).
 #ifndef HARNESS_PACER_H
 #define HARNESS_PACER_H
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -38,9 +45,17 @@ class Pacer {
   Pacer(uint64_t tick_ns, double scale);
   // Asks for SCHED_FIFO and locked memory; returns "" or a warning.
   std::string request_realtime();
+  static constexpr double kMinScale = 1e-6;
+  static constexpr double kMaxScale = 1e6;
+  static constexpr double kSlice = 0.05;  // [s] longest sleep without looking at the stop flag
+  // "" when scale is a pacing scale, else why not (names the range).
+  static std::string check_scale(double scale);
   // Sleeps until tick k's deadline (the first call fixes t0) and measures
-  // the lateness.
-  void wait_for(uint64_t k);
+  // the lateness.  false (nothing measured) when the stop flag was set
+  // before the deadline.
+  bool wait_for(uint64_t k);
+  // A flag (a signal's number, 0: none) that ends a wait early.
+  void set_stop(const std::atomic<int>* stop) { stop_ = stop; }
   // Marks the end of tick k's work (overrun accounting).
   void done(uint64_t k);
   // Wall time [s] left until tick k's deadline (negative: past it; +inf
@@ -67,6 +82,7 @@ class Pacer {
   uint64_t ticks_ = 0, overruns_ = 0, reported_overruns_ = 0;
   int64_t max_late_ns_ = 0, last_late_ns_ = 0;
   bool rt_ = false;
+  const std::atomic<int>* stop_ = nullptr;
   std::array<uint64_t, kBins> hist_{};
 };
 

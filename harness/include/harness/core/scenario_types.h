@@ -33,8 +33,13 @@ struct ScenarioIssue {
   std::string str() const;  // "file:line:col: key: message"
 };
 
-// `s` with NUL, every other control byte and invalid UTF-8 shown as \xNN:
-// what a message quotes from a file is printable on one line.
+// `s` with NUL, every other control byte and invalid UTF-8 shown as \xNN,
+// and the valid characters that would hide or reorder text (C1 controls,
+// bidirectional marks, embeddings, overrides and isolates, zero-width
+// characters, the byte-order mark, line and paragraph separators) as
+// \uXXXX: what a message quotes from a file or a command line is printable
+// on one line and reads as it is stored.  Every message that quotes user
+// text goes through it.
 std::string escape_bytes(const std::string& s);
 
 class ScenarioError : public std::runtime_error {

@@ -41,6 +41,8 @@ class RunOutputs {
   RunOutputs& operator=(const RunOutputs&) = delete;
 
   bool files() const { return dir_.has_value(); }
+  // What killed runs left beside the results folder (ResultsDir::notes()).
+  std::vector<std::string> notes() const { return dir_ ? dir_->notes() : std::vector<std::string>(); }
   // Checks the free space for the run's output, writes the input record
   // first (manifest.json: a run killed outright leaves it in the working
   // folder), then adds the HDF5, CSV and report sinks the scenario asks for,
@@ -72,13 +74,16 @@ class RunPacing {
   bool on() const { return pacer_.has_value(); }
   // Starts pacing at `scale` times real time (asking for real-time priority,
   // its warning to `notice`), or restarts the deadlines at that scale.
-  void pace_at(const Scenario& sc, double scale, const std::function<void(const std::string&)>& notice);
+  // A stop flag ends a wait for a deadline within Pacer::kSlice.
+  void pace_at(const Scenario& sc, double scale, const std::function<void(const std::string&)>& notice,
+               const std::atomic<int>* stop = nullptr);
   // [s] wall time left until the deadline of the tick after the one being
   // computed (+inf when not paced).
   double time_left() const;
   // One tick at its deadline: waits, steps, marks it done and notices
   // overruns (one notice per ~10 s of wall time at most).  False when the
-  // run failed.
+  // run failed.  A stop flag set during the wait: nothing stepped, true
+  // (the loop sees the flag).
   bool step(Run& run, const std::function<void(const std::string&)>& notice);
   PacingStats stats() const { return pacer_->stats(); }
 

@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace harness {
 
@@ -49,6 +50,11 @@ class ResultsDir {
   void require_free_space(uint64_t bytes) const;
   // Moves the working folder into place (see above).  Throws OutputError.
   void commit();
+  // What a killed run of the same results left beside them (a working
+  // folder, or the previous results it had set aside): one line each,
+  // naming the folder and the command that removes it.  Never removed
+  // here: it may hold the only copy of something.
+  const std::vector<std::string>& notes() const { return notes_; }
 
   // The file names a results folder may hold (what --force may replace).
   static bool is_result_file_name(const std::string& name);
@@ -67,7 +73,9 @@ class ResultsDir {
     ~Fd() { reset(); }
     void reset();
   };
+  void find_leftovers(const std::filesystem::path& t);
   std::filesystem::path target_, work_, lock_path_;
+  std::vector<std::string> notes_;
   Fd lock_;
   bool committed_ = false;
 };
