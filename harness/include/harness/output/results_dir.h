@@ -49,6 +49,9 @@ class ResultsDir {
   void require_free_space(uint64_t bytes) const;
   // Moves the working folder into place (see above).  Throws OutputError.
   void commit();
+  // Leaves the working folder in place when this ends without commit() (a
+  // campaign's finished runs, which `kestrel mc --resume` continues from).
+  void keep_work();
 
   // The file names a results folder may hold (what --force may replace).
   static bool is_result_file_name(const std::string& name);
