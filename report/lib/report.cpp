@@ -113,7 +113,7 @@ void write_mc_html_file(const std::string& mc_report_data_path, const std::strin
   const Page p = mc_page();
   f.write(p.prefix, static_cast<std::streamsize>(p.prefix_size));
   // escaping is a character at a time: a piece at a time gives the same page
-  std::string piece(1 << 20, '\0');
+  std::string piece(1 << 18, '\0');
   while (in) {
     in.read(&piece[0], static_cast<std::streamsize>(piece.size()));
     const std::string data = escape_json_for_script(piece.substr(0, static_cast<std::size_t>(in.gcount())));

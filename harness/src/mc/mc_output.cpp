@@ -141,7 +141,7 @@ class SummaryH5 {
     dataset(f_, "/series/t", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, plan.series_t, plan.series_t.size(), 0, path_);
     for (size_t c = 0; c < C_; ++c)
       dataset(f_, "/series/" + plan.series_columns[c], H5T_NATIVE_FLOAT, H5T_IEEE_F32LE, none, n, S_, path_);
-    block_ = std::max<size_t>(1, (size_t(1) << 20) / ((S_ * C_ + 1) * sizeof(float)));
+    block_ = std::max<size_t>(1, (size_t(1) << 18) / ((S_ * C_ + 1) * sizeof(float)));
     series_.resize(C_);
   }
 
@@ -285,7 +285,7 @@ json table_row(const McRecord& r)
 class SeriesScratch {
  public:
   SeriesScratch(const fs::path& path, size_t runs, size_t values)
-      : path_(path), n_(runs), K_(values), block_(std::max<size_t>(1, (size_t(1) << 20) / ((values + 1) * sizeof(float))))
+      : path_(path), n_(runs), K_(values), block_(std::max<size_t>(1, (size_t(1) << 18) / ((values + 1) * sizeof(float))))
   {
     fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
     if (fd_ < 0) throw OutputError(path.string() + ": cannot open the scratch file: " + std::strerror(errno));
@@ -358,10 +358,8 @@ json percentiles_json(const McPlan& plan, const SeriesScratch& scratch)
   return pct;
 }
 
-// The thinned series: times, channels, percentiles and the first
-// kReportRuns valid runs in table order.
-json series_json(const McPlan& plan, const McRecordSource& src, const std::vector<size_t>& order,
-                 const SeriesScratch& scratch)
+// The thinned series but its runs: times, channels, percentiles.
+json series_json(const McPlan& plan, const SeriesScratch& scratch)
 {
   json series;
   json t = json::array();
@@ -372,31 +370,30 @@ json series_json(const McPlan& plan, const McRecordSource& src, const std::vecto
     ch.push_back({{"name", plan.channels[c].first}, {"unit", plan.channel_units[c]}, {"columns", plan.channels[c].second}});
   series["channels"] = ch;
   series["percentiles"] = percentiles_json(plan, scratch);
-  const size_t S = plan.series_rows.size(), C = plan.series_columns.size();
-  json runs = json::array();
-  for (size_t i : order) {
-    if (src.state(i).invalid) continue;
-    if (runs.size() >= kReportRuns) break;
-    const McRecord r = src.record(i);
-    json cols = json::object();
-    for (size_t c = 0; c < C; ++c) {
-      json v = json::array();
-      for (size_t s = 0; s < S; ++s) v.push_back(finite_or_null(r.series[s * C + c]));
-      cols[plan.series_columns[c]] = v;
-    }
-    runs.push_back({{"index", r.index}, {"pass", r.pass}, {"columns", cols}});
-  }
-  series["runs"] = runs;
   return series;
 }
 
-// mc_report_data.json but its table, split where the table goes: the text
-// before it and after it.
-std::pair<std::string, std::string> report_json_around_table(const McPlan& plan, const McRecordSource& src,
-                                                            const std::vector<size_t>& order,
-                                                            const SeriesScratch& scratch, const McSummaryInfo& info)
+// The series of one run as the report overlays it.
+json series_run_json(const McPlan& plan, const McRecord& r)
 {
-  static const std::string kMark = "\x01kestrel table\x01";
+  const size_t S = plan.series_rows.size(), C = plan.series_columns.size();
+  json cols = json::object();
+  for (size_t c = 0; c < C; ++c) {
+    json v = json::array();
+    for (size_t s = 0; s < S; ++s) v.push_back(finite_or_null(r.series[s * C + c]));
+    cols[plan.series_columns[c]] = v;
+  }
+  return {{"index", r.index}, {"pass", r.pass}, {"columns", cols}};
+}
+
+// mc_report_data.json in three pieces around its two long arrays: before
+// series.runs (the first kReportRuns valid runs in table order), between
+// it and the table (every run), after the table.  The arrays are written
+// a run at a time between them.
+std::vector<std::string> report_json_pieces(const McPlan& plan, const McRecordSource& src,
+                                            const SeriesScratch& scratch, const McSummaryInfo& info)
+{
+  static const std::string kRuns = "\x01kestrel runs\x01", kTable = "\x01kestrel table\x01";
   json j;
   j["kind"] = "kestrel_mc_report";
   j["schema"] = 1;
@@ -415,12 +412,20 @@ std::pair<std::string, std::string> report_json_around_table(const McPlan& plan,
   j["invalid"] = invalid;
   j["wall_seconds"] = info.wall_seconds;
   add_columns(plan, j);
-  j["table"] = kMark;
-  j["series"] = series_json(plan, src, order, scratch);
+  j["table"] = kTable;
+  j["series"] = series_json(plan, scratch);
+  j["series"]["runs"] = kRuns;
   const std::string text = j.dump();
-  const std::string mark = "\"table\":" + json(kMark).dump();
-  const size_t at = text.find(mark) + 8;  // after "table":
-  return {text.substr(0, at), text.substr(at + mark.size() - 8)};
+  std::vector<std::string> out;
+  size_t from = 0;
+  for (const std::string& m : {"\"runs\":" + json(kRuns).dump(), "\"table\":" + json(kTable).dump()}) {
+    const size_t at = text.find(m, from);
+    const size_t key = m.find(':') + 1;  // the key stays, its value goes
+    out.push_back(text.substr(from, at + key - from));
+    from = at + m.size();
+  }
+  out.push_back(text.substr(from));
+  return out;
 }
 
 json vec_json(const std::vector<double>& v)
@@ -513,21 +518,36 @@ void write_runs_json(const McRecordSource& src, SeriesScratch& scratch, const fs
   scratch.flush();
 }
 
-// Table order: summary.csv, summary.h5 and the report data's table.
+// The report data's series.runs: the first kReportRuns valid runs in table order.
+void write_series_runs(const McPlan& plan, const McRecordSource& src, const std::vector<size_t>& order, TextOut& data)
+{
+  data.put("[");
+  size_t n = 0;
+  for (size_t i : order) {
+    if (src.state(i).invalid) continue;
+    if (n >= kReportRuns) break;
+    data.put((n++ ? "," : "") + series_run_json(plan, src.record(i)).dump());
+  }
+  data.put("]");
+}
+
+// Table order: summary.csv, summary.h5 and mc_report_data.json.
 void write_tables(const McPlan& plan, const McRecordSource& src, const std::vector<size_t>& order,
-                  const std::pair<std::string, std::string>& around, const McSummaryInfo& info, const fs::path& dir)
+                  const std::vector<std::string>& pieces, const McSummaryInfo& info, const fs::path& dir)
 {
   TextOut csv(dir / "summary.csv"), data(dir / "mc_report_data.json");
   SummaryH5 h5(plan, order.size(), dir / "summary.h5");
   csv.put(csv_header(plan));
-  data.put(around.first + "[");
+  data.put(pieces[0]);
+  write_series_runs(plan, src, order, data);
+  data.put(pieces[1] + "[");
   for (size_t j = 0; j < order.size(); ++j) {
     const McRecord r = src.record(order[j]);
     csv.put(csv_row(r));
     data.put((j ? "," : "") + table_row(r).dump());
     h5.add(r);
   }
-  data.put("]" + around.second);
+  data.put("]" + pieces[2]);
   csv.close();
   data.close();
   h5.finish(info);
@@ -541,7 +561,7 @@ void write_mc_outputs(const McPlan& plan, const McRecordSource& records, const M
   SeriesScratch scratch(dir / ".mc_series.scratch", records.size(),
                         plan.series_rows.size() * plan.series_columns.size());
   write_runs_json(records, scratch, dir / "mc_runs.json");
-  write_tables(plan, records, order, report_json_around_table(plan, records, order, scratch, info), info, dir);
+  write_tables(plan, records, order, report_json_pieces(plan, records, scratch, info), info, dir);
 #ifdef KESTREL_HAVE_REPORT
   try {
     report::write_mc_html_file((dir / "mc_report_data.json").string(), (dir / "mc_report.html").string());
