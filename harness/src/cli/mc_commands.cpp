@@ -307,25 +307,32 @@ std::function<void(const McProgress&)> progress_bar(std::ostream& err, const McC
 }
 
 // Every rank's run states (and error, and stop) on rank 0, sorted by index:
-// the records themselves are in the shared working folder's journal.
-std::vector<McRunState> gather_states(const McComm& comm, const std::vector<McRunState>& states, bool& stopped,
+// the records themselves are in the shared working folder's journal.  A
+// state travels as a line "index flags" (no document per run: rank 0's
+// memory stays flat in the number of runs).
+std::vector<McRunState> gather_states(const McComm& comm, std::vector<McRunState> states, bool& stopped,
                                       std::string& run_error)
 {
-  json mine = json::array();
-  for (const McRunState& r : states) mine.push_back({r.index, r.pass, r.invalid, r.full});
-  const std::vector<std::string> parts =
-      comm.gather(json({{"error", run_error}, {"stopped", stopped}, {"states", mine}}).dump());
+  if (!comm.active()) return states;  // one process: its states, sorted by index already
+  std::string mine = json({{"error", run_error}, {"stopped", stopped}}).dump() + "\n";
+  for (const McRunState& r : states)
+    mine += std::to_string(r.index) + " " + std::to_string((r.pass ? 1 : 0) | (r.invalid ? 2 : 0) | (r.full ? 4 : 0)) + "\n";
+  states.clear();
+  const std::vector<std::string> parts = comm.gather(mine);
   std::vector<McRunState> all;
   for (const std::string& p : parts) {
-    const json j = json::parse(p);
+    std::istringstream in(p);
+    std::string head;
+    std::getline(in, head);
+    const json j = json::parse(head);
     if (!j.at("error").get<std::string>().empty() && run_error.empty()) run_error = j.at("error").get<std::string>();
     stopped = stopped || j.at("stopped").get<bool>();
-    for (const json& x : j.at("states")) {
-      McRunState r;
-      r.index = x.at(0).get<uint64_t>();
-      r.pass = x.at(1).get<bool>();
-      r.invalid = x.at(2).get<bool>();
-      r.full = x.at(3).get<bool>();
+    McRunState r;
+    unsigned flags = 0;
+    while (in >> r.index >> flags) {
+      r.pass = flags & 1;
+      r.invalid = flags & 2;
+      r.full = flags & 4;
       all.push_back(r);
     }
   }
@@ -543,7 +550,7 @@ int cmd_mc(const McCommand& c0, std::ostream& out, std::ostream& err)
     run_error = e.what();
   }
   if (c.progress && root) err << "\n";
-  const std::vector<McRunState> all = gather_states(comm, states, stopped, run_error);
+  const std::vector<McRunState> all = gather_states(comm, std::move(states), stopped, run_error);
   if (!root) return run_error.empty() ? kExitOk : kExitRunFailed;
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!run_error.empty()) {
