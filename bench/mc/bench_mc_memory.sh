@@ -1,15 +1,15 @@
 #!/usr/bin/env bash
 # Monte Carlo peak memory against the number of runs (docs/monte-carlo.md,
 # "Memory"): the short campaign test/harness/data/mc_short.yaml (S1, 20 s
-# simulated per run, some runs failing so that retention reruns them with
-# full results) at each run count, -j2, its peak resident set size measured
+# simulated per run, about 30 % of the runs failing, so that retention
+# reruns 20 with full results) at each run count, -j2, its peak resident set size measured
 # by /usr/bin/time (the process's ru_maxrss) and the ratio to the smallest
 # count's.  The memory must be flat in the number of runs: a campaign
 # streams each finished run's record to disk (records/) and writes its
 # summary from there a record at a time.
 #   bench/mc/bench_mc_memory.sh [KESTREL] [RUNS...]
 #   (defaults: build/host-release/harness/kestrel 100 2000 20000; 20,000 runs
-#   take about 12 minutes on 2 cores)
+#   take about 11 minutes on 2 cores; figures in docs/monte-carlo.md, "Memory")
 set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
 K="${1:-$here/build/host-release/harness/kestrel}"
