@@ -520,7 +520,11 @@ int cmd_mc(const McCommand& c0, std::ostream& out, std::ostream& err)
   if (const std::optional<int> code = select_runs(c0, plan, indices, rerr)) return *code;
   if (c0.slurm_tasks > 0) return root ? write_slurm(c0, plan, ov, out, err) : kExitOk;
   McCommand c = c0;
-  if (!c.resume.empty() && !c.out_dir.empty() && fs::absolute(c.out_dir) != fs::absolute(c.resume)) {
+  auto same_folder = [](const std::string& a, const std::string& b) {
+    auto norm = [](const std::string& p) { return (fs::absolute(p) / "").lexically_normal(); };
+    return norm(a) == norm(b);
+  };
+  if (!c.resume.empty() && !c.out_dir.empty() && !same_folder(c.out_dir, c.resume)) {
     rerr << "kestrel: --resume " << c.resume << " continues that folder; -o names another one\n";
     return kExitUsage;
   }
