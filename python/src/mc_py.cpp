@@ -9,6 +9,7 @@
 
 #include "common.h"
 #include "harness/mc/monte_carlo.h"
+#include "harness/mc/mc_journal.h"
 #include "harness/output/results_dir.h"
 
 namespace kpy {
@@ -233,6 +234,7 @@ void bind_mc(py::module_& m)
             info.complete = !res->stopped && res->records.size() == n;
             info.wall_seconds = res->wall_seconds;
             harness::write_mc_outputs(res->plan, res->records, info, res->dir);
+            if (info.complete) harness::remove_mc_journal(res->dir);  // the summary holds every record
             rdir->commit();
             res->dir = rdir->target();
           }

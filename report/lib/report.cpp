@@ -101,6 +101,34 @@ void write_mc_html(const std::string& mc_report_data_json, const std::string& ou
   write_file(mc_page(), mc_report_data_json, out_html_path);
 }
 
+void write_mc_html_file(const std::string& mc_report_data_path, const std::string& out_html_path) {
+  std::ifstream in(mc_report_data_path, std::ios::binary);
+  if (!in) {
+    throw std::runtime_error("report: cannot read '" + mc_report_data_path + "': " + std::strerror(errno));
+  }
+  std::ofstream f(out_html_path, std::ios::binary | std::ios::trunc);
+  if (!f) {
+    throw std::runtime_error("report: cannot open '" + out_html_path + "' for writing: " + std::strerror(errno));
+  }
+  const Page p = mc_page();
+  f.write(p.prefix, static_cast<std::streamsize>(p.prefix_size));
+  // escaping is a character at a time: a piece at a time gives the same page
+  std::string piece(1 << 18, '\0');
+  while (in) {
+    in.read(&piece[0], static_cast<std::streamsize>(piece.size()));
+    const std::string data = escape_json_for_script(piece.substr(0, static_cast<std::size_t>(in.gcount())));
+    f.write(data.data(), static_cast<std::streamsize>(data.size()));
+  }
+  if (in.bad()) {
+    throw std::runtime_error("report: error reading '" + mc_report_data_path + "'");
+  }
+  f.write(p.suffix, static_cast<std::streamsize>(p.suffix_size));
+  f.flush();
+  if (!f) {
+    throw std::runtime_error("report: error writing '" + out_html_path + "'");
+  }
+}
+
 bool has_bundle() { return detail::kHasBundle; }
 
 const std::string& live_page()

@@ -16,7 +16,10 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "harness/mc/monte_carlo.h"
+#include "harness/mc/mc_journal.h"
 #include "harness/core/run.h"
 #include "harness/scenario/scenario.h"
 #include "scenario/mc_draw.h"
@@ -488,6 +491,146 @@ TEST(McCampaign, SameRecordsWithAnyThreadsOrderOrSubset)
   expect_same(a[5], c[1]);
   fs::remove_all(d1);
   fs::remove_all(d2);
+}
+
+namespace {
+
+std::string file_text(const fs::path& p)
+{
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream o;
+  o << in.rdbuf();
+  return o.str();
+}
+
+// The p-th percentile of the values, linear between order statistics
+// (p/100 (n - 1) counted from the smallest): the test's own.
+double percentile_of(std::vector<double> v, double p)
+{
+  std::sort(v.begin(), v.end());
+  const double x = p / 100.0 * static_cast<double>(v.size() - 1);
+  const double lo = std::floor(x);
+  const size_t i = static_cast<size_t>(lo), j = std::min(i + 1, v.size() - 1);
+  return v[i] + (x - lo) * (v[j] - v[i]);
+}
+
+}  // namespace
+
+// Every finished run's record is on disk as the campaign returns, and the
+// summary written from that journal a record at a time is the summary of
+// the records in memory, byte for byte; the envelope percentiles (through
+// the transposed scratch file) are those of the runs' series.
+TEST(McJournal, TheSummaryStreamedFromTheJournalIsTheSummaryOfTheRecords)
+{
+  const McPlan plan = make_mc_plan(load(kCampaign), 11, 8);
+  const fs::path d = fs::temp_directory_path() / "kestrel_mc_test_journal";
+  const fs::path da = d / "from_journal", db = d / "from_memory";
+  fs::remove_all(d);
+  McRunOptions o;
+  o.jobs = 2;
+  o.indices = {0, 1, 2, 3, 4, 5, 6, 7};
+  bool stopped = false;
+  const std::vector<McRunState> states = run_mc_journal(plan, d, o, stopped);
+  ASSERT_EQ(states.size(), 8u);
+  EXPECT_EQ(mc_journal_indices(d), o.indices);
+  std::vector<McRecord> recs;
+  for (const McRunState& s : states) recs.push_back(read_mc_record(mc_record_path(d, s.index)));
+  const std::vector<McRecord> again = campaign(plan, d / "again", 1, o.indices);
+  for (size_t i = 0; i < 8; ++i) {
+    expect_same(recs[i], again[i]);
+    EXPECT_EQ(states[i].pass, recs[i].pass);
+  }
+  fs::create_directories(da);
+  fs::create_directories(db);
+  McSummaryInfo info;
+  write_mc_outputs(plan, McJournalRecords(d, states), info, da);
+  write_mc_outputs(plan, recs, info, db);
+  for (const char* f : {"summary.csv", "mc_runs.json", "mc_report_data.json"})
+    EXPECT_EQ(file_text(da / f), file_text(db / f)) << f;
+  EXPECT_FALSE(fs::exists(da / ".mc_series.scratch"));
+  const nlohmann::json j = nlohmann::json::parse(file_text(da / "mc_report_data.json"));
+  const size_t S = plan.series_rows.size(), C = plan.series_columns.size();
+  ASSERT_GT(S * C, 0u);
+  for (size_t c = 0; c < C; ++c)
+    for (size_t s = 0; s < S; ++s) {
+      std::vector<double> v;
+      for (const McRecord& r : recs)
+        if (!r.invalid && std::isfinite(r.series[s * C + c])) v.push_back(r.series[s * C + c]);
+      const nlohmann::json& lv = j["series"]["percentiles"]["columns"][plan.series_columns[c]];
+      const double levels[] = {0.0, 5.0, 50.0, 95.0, 100.0};
+      for (size_t l = 0; l < 5; ++l) EXPECT_DOUBLE_EQ(lv[l][s].get<double>(), percentile_of(v, levels[l]));
+    }
+  EXPECT_EQ(j["table"].size(), 8u);
+  fs::remove_all(d);
+}
+
+// --resume: the runs with a record are not run again; without it every
+// run is (a record left by an earlier campaign is not taken).
+TEST(McJournal, AResumedCampaignRunsOnlyTheRunsWithoutARecord)
+{
+  const McPlan plan = make_mc_plan(load(kCampaign), 11, 6);
+  const fs::path d = fs::temp_directory_path() / "kestrel_mc_test_resume";
+  const std::vector<McRecord> whole = campaign(plan, d, 1, {0, 1, 2, 3, 4, 5});
+  fs::remove(mc_record_path(d, 2));  // runs 2 and 4 were not finished when the campaign was killed
+  fs::remove(mc_record_path(d, 4));
+  std::ofstream(d / "records" / ".000004.json.tmp") << "{\"kestrel_mc_runs\":1,\"rec";  // a write cut short
+  McRunOptions o;
+  o.indices = {0, 1, 2, 3, 4, 5};
+  o.resume = true;
+  std::vector<uint64_t> ran;
+  o.progress = [&](const McProgress& p) { ran.push_back(p.done); };
+  bool stopped = false;
+  const std::vector<McRecord> resumed = run_mc_runs(plan, d, o, stopped);
+  EXPECT_EQ(ran, (std::vector<uint64_t>{5, 6}));  // two runs, counted after the 4 done
+  ASSERT_EQ(resumed.size(), 6u);
+  for (size_t i = 0; i < 6; ++i) expect_same(whole[i], resumed[i]);
+  o.resume = false;
+  ran.clear();
+  run_mc_runs(plan, d, o, stopped);
+  EXPECT_EQ(ran.size(), 6u);
+  fs::remove_all(d);
+}
+
+// A record is written whole or not at all; the journal lists only whole
+// records; a damaged one is refused naming its file.
+TEST(McJournal, RecordsAreWrittenWholeAndReadBackOrRefused)
+{
+  const fs::path d = fs::temp_directory_path() / "kestrel_mc_test_records";
+  fs::remove_all(d);
+  McRecord r;
+  r.index = 42;
+  r.seed = 7;
+  r.reason = "x";
+  r.drawn = {1.5, NAN};
+  r.metrics = {2.25};
+  r.series = {0.5f, NAN};
+  write_mc_record(d, r);
+  write_mc_record(d, r);  // replaced
+  const McRecord b = read_mc_record(mc_record_path(d, 42));
+  EXPECT_EQ(b.index, 42u);
+  EXPECT_EQ(b.seed, 7u);
+  EXPECT_EQ(b.reason, "x");
+  EXPECT_EQ(b.drawn[0], 1.5);
+  EXPECT_TRUE(std::isnan(b.drawn[1]));
+  EXPECT_EQ(b.series[0], 0.5f);
+  for (const char* junk : {".000043.json.tmp", "notes.json", "12x.json", "000044.json~"})
+    std::ofstream(d / "records" / junk) << "{}";
+  fs::create_directories(d / "records" / "000045.json");
+  std::ofstream(d / "records" / "000046.json") << "{\"kestrel_mc_runs\":1,\"records\":[";
+  EXPECT_EQ(mc_journal_indices(d), (std::vector<uint64_t>{42, 46}));
+  size_t n = 0;
+  for (const fs::directory_entry& e : fs::directory_iterator(d / "records"))
+    n += e.path().filename().string().find(".tmp") != std::string::npos ? 1 : 0;
+  EXPECT_EQ(n, 1u);  // only the one made by hand: write_mc_record leaves none
+  try {
+    read_mc_record(mc_record_path(d, 46));
+    ADD_FAILURE() << "a damaged record was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("000046.json"), std::string::npos) << e.what();
+  }
+  remove_mc_journal(d);
+  EXPECT_FALSE(fs::exists(d / "records"));
+  fs::remove_all(d);
 }
 
 TEST(McCampaign, ARunIsReproducedFromItsManifest)

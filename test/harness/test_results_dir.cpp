@@ -437,4 +437,41 @@ TEST(ResultsDir, RerunNamesAKilledRunsLeftoverFolder)
   EXPECT_FALSE(fs::exists(left));
   ASSERT_EQ(run_kestrel(out, with(kShort, {"--force"}), &err), 0) << err;
   EXPECT_EQ(err.find("was left by"), std::string::npos) << err;
+// A campaign folder may hold records/ (an interrupted campaign's journal):
+// --force replaces it whole; outside a campaign folder it is foreign.  A
+// working folder told to stay (keep_work: a campaign's finished runs for
+// --resume) outlives its ResultsDir; otherwise it is removed.
+TEST(ResultsDir, CampaignJournalIsACampaignPartAndAKeptWorkingFolderStays)
+{
+  const fs::path dir = fresh_dir("journal");
+  const fs::path camp = dir / "camp", run = dir / "run";
+  fs::create_directories(camp / "records");
+  { std::ofstream(camp / "mc_manifest.json") << "{}"; }
+  { std::ofstream(camp / "records" / "000000.json") << "{}"; }
+  {
+    harness::ResultsDir r(camp.string(), true);
+    r.commit();
+  }
+  EXPECT_FALSE(fs::exists(camp / "records"));
+  fs::create_directories(run / "records");
+  { std::ofstream(run / "manifest.json") << "{}"; }
+  try {
+    harness::ResultsDir r(run.string(), true);
+    ADD_FAILURE() << "a run folder holding records/ was replaced";
+  } catch (const harness::ResultsDirRefused& e) {
+    EXPECT_NE(std::string(e.what()).find("records"), std::string::npos) << e.what();
+  }
+  fs::path kept, dropped;
+  {
+    harness::ResultsDir r((dir / "a").string(), false);
+    kept = r.work();
+    r.keep_work();
+  }
+  {
+    harness::ResultsDir r((dir / "b").string(), false);
+    dropped = r.work();
+  }
+  EXPECT_TRUE(fs::is_directory(kept));
+  EXPECT_FALSE(fs::exists(dropped));
+  fs::remove_all(dir);
 }

@@ -143,3 +143,30 @@ TEST(ReportMcEmbed, UnwritablePathThrowsNamingIt) {
   expect_throws_naming("/nonexistent-dir-kestrel/mc_report.html",
                        [](const std::string& p) { report::write_mc_html("{}", p); });
 }
+
+// write_mc_html_file reads the data a piece (256 kB) at a time: the page is
+// the one of the whole text, a '<' on either side of a piece boundary
+// included, and a missing data file or an unwritable page is named.
+TEST(ReportMcEmbed, PageFromTheDataFileIsThePageOfItsText) {
+  std::string json = "{\"table\":[";
+  for (int i = 0; i < 120000; ++i) json += (i ? ",\"<" : "\"<") + std::to_string(i) + "\"";
+  json += "]}";
+  const std::size_t piece = std::size_t(1) << 18;
+  ASSERT_GT(json.size(), 3 * piece);
+  for (std::size_t at : {piece - 1, piece, 2 * piece - 1, 2 * piece}) json[at] = '<';
+  const std::string data = "kestrel_mc_report_file_test.json", html = "kestrel_mc_report_file_test.html";
+  std::ofstream(data, std::ios::binary) << json;
+  report::write_mc_html_file(data, html);
+  std::ifstream in(html, std::ios::binary);
+  std::ostringstream got;
+  got << in.rdbuf();
+  EXPECT_TRUE(got.str() == report::render_mc_html(json)) << "the pages differ";
+  EXPECT_TRUE(page_checks::unescape_lt(embedded_data(got.str())) == json) << "the data read back differs";
+  EXPECT_EQ(embedded_data(got.str()).find("<"), std::string::npos);
+  expect_throws_naming("/nonexistent-dir-kestrel/mc_report.html",
+                       [&](const std::string& p) { report::write_mc_html_file(data, p); });
+  expect_throws_naming("/nonexistent-dir-kestrel/data.json",
+                       [&](const std::string& p) { report::write_mc_html_file(p, html); });
+  std::remove(data.c_str());
+  std::remove(html.c_str());
+}

@@ -155,6 +155,8 @@ CLI::App* add_mc(CLI::App& app, harness::McCommand& mc, std::string& shard)
   mcc->add_option("--slurm", mc.slurm_tasks, "write Slurm array scripts for this many shards to <output>.slurm/")
       ->check(CLI::Range(1u, 100000u));
   mcc->add_flag("--force", mc.force, "replace an existing campaign folder whole");
+  mcc->add_option("--resume", mc.resume,
+                  "continue the interrupted (killed or stopped) campaign in this folder: only its missing runs");
   return mcc;
 }
 

@@ -18,6 +18,7 @@
 #include "cli/command_util.h"
 #include "harness/cli/commands.h"
 #include "harness/mc/monte_carlo.h"
+#include "harness/mc/mc_journal.h"
 #include "harness/drive/run_scenario.h"
 #include "harness/output/results_dir.h"
 #include "harness/core/run.h"
@@ -124,11 +125,12 @@ std::string self_exe()
   return ec ? std::string("kestrel") : p.string();
 }
 
-int print_outcome(const std::vector<McRecord>& recs, const std::string& dir, double wall, std::ostream& out)
+template <class R>
+int print_outcome(const std::vector<R>& recs, const std::string& dir, double wall, std::ostream& out)
 {
   size_t failed = 0, invalid = 0;
   std::vector<uint64_t> bad;
-  for (const McRecord& r : recs) {
+  for (const R& r : recs) {
     if (r.pass) continue;
     ++failed;
     invalid += r.invalid ? 1 : 0;
@@ -263,14 +265,17 @@ std::vector<uint64_t> my_runs(const McCommand& c, const McComm& comm, const std:
 // working folder (a shared file system, as on any cluster).  Returns the
 // working folder on every rank, "" (after a message) when it is refused.
 std::string open_campaign_dir(const McComm& comm, const std::string& out_dir, bool force,
-                              std::optional<ResultsDir>& rdir, int& code, std::ostream& rerr)
+                              std::optional<ResultsDir>& rdir, int& code, std::ostream& rerr,
+                              const std::function<std::string(ResultsDir&)>& prepare)
 {
   std::string work, problem;
   code = kExitOk;
   if (comm.rank() == 0) {
     try {
       rdir.emplace(out_dir, force);
-      work = rdir->work().string();
+      problem = prepare(*rdir);
+      if (problem.empty()) work = rdir->work().string();
+      else code = kExitRefused;
     } catch (const ResultsDirRefused& e) {
       problem = e.what();
       code = kExitRefused;
@@ -301,37 +306,141 @@ std::function<void(const McProgress&)> progress_bar(std::ostream& err, const McC
   };
 }
 
-// Every rank's records (and error, and stop) on rank 0, sorted by index.
-std::vector<McRecord> gather_records(const McComm& comm, const std::vector<McRecord>& recs, bool& stopped,
-                                     std::string& run_error)
+// Every rank's run states (and error, and stop) on rank 0, sorted by index:
+// the records themselves are in the shared working folder's journal.  A
+// state travels as a line "index flags" (no document per run: rank 0's
+// memory stays flat in the number of runs).
+std::vector<McRunState> gather_states(const McComm& comm, std::vector<McRunState> states, bool& stopped,
+                                      std::string& run_error)
 {
-  json mine_j = {{"error", run_error}, {"stopped", stopped}, {"records", json::parse(mc_records_json(recs))}};
-  const std::vector<std::string> parts = comm.gather(mine_j.dump());
-  std::vector<McRecord> all;
+  if (!comm.active()) return states;  // one process: its states, sorted by index already
+  std::string mine = json({{"error", run_error}, {"stopped", stopped}}).dump() + "\n";
+  for (const McRunState& r : states)
+    mine += std::to_string(r.index) + " " + std::to_string((r.pass ? 1 : 0) | (r.invalid ? 2 : 0) | (r.full ? 4 : 0)) + "\n";
+  states.clear();
+  const std::vector<std::string> parts = comm.gather(mine);
+  std::vector<McRunState> all;
   for (const std::string& p : parts) {
-    const json j = json::parse(p);
+    std::istringstream in(p);
+    std::string head;
+    std::getline(in, head);
+    const json j = json::parse(head);
     if (!j.at("error").get<std::string>().empty() && run_error.empty()) run_error = j.at("error").get<std::string>();
     stopped = stopped || j.at("stopped").get<bool>();
-    const std::vector<McRecord> r = mc_records_from_json(j.at("records").dump());
-    all.insert(all.end(), r.begin(), r.end());
+    McRunState r;
+    unsigned flags = 0;
+    while (in >> r.index >> flags) {
+      r.pass = flags & 1;
+      r.invalid = flags & 2;
+      r.full = flags & 4;
+      all.push_back(r);
+    }
   }
-  std::sort(all.begin(), all.end(), [](const McRecord& a, const McRecord& b) { return a.index < b.index; });
+  std::sort(all.begin(), all.end(), [](const McRunState& a, const McRunState& b) { return a.index < b.index; });
   return all;
 }
 
+json partition_json(const McCommand& c)
+{
+  return c.shard_count > 1 ? json({{"shard", c.shard_index}, {"shards", c.shard_count}}) : json(nullptr);
+}
+
+std::vector<uint64_t> only_list(const McCommand& c, const std::vector<uint64_t>& indices)
+{
+  return c.only.empty() ? std::vector<uint64_t>{} : indices;
+}
+
+std::string run_folder_name(uint64_t k)
+{
+  char b[32];
+  std::snprintf(b, sizeof b, "%06llu", static_cast<unsigned long long>(k));
+  return b;
+}
+
+// --resume: the folders of earlier attempts at `target`: the target itself
+// (a stopped campaign) and the working folders of killed ones.
+std::vector<fs::path> resume_sources(const fs::path& target, const fs::path& work)
+{
+  std::vector<fs::path> out;
+  std::error_code ec;
+  if (fs::is_regular_file(target / "mc_manifest.json", ec)) out.push_back(target);
+  const std::string pre = "." + target.filename().string() + ".kestrel-work-";
+  for (const fs::directory_entry& e : fs::directory_iterator(target.parent_path(), ec))
+    if (e.path() != work && e.path().filename().string().rfind(pre, 0) == 0 && e.is_directory(ec))
+      out.push_back(e.path());
+  return out;
+}
+
+// "" when the campaign manifest `m` of an earlier attempt is this
+// campaign's (`want`), else what differs.
+std::string resume_mismatch(const json& m, const json& want)
+{
+  for (const char* k : {"scenario", "master_seed", "runs", "partition", "only"}) {
+    if (!m.contains(k)) return std::string("it has no '") + k + "'";
+    if (m.at(k) != want.at(k)) {
+      if (std::string(k) == "scenario") return "its scenario differs (another scenario file or --set)";
+      return std::string("its ") + k + " is " + m.at(k).dump() + ", this command's is " + want.at(k).dump();
+    }
+  }
+  return "";
+}
+
+// Moves the finished runs (record and run folder) of `src` into `work`.
+void adopt_runs(const fs::path& src, const fs::path& work)
+{
+  fs::create_directories(work / "records");
+  fs::create_directories(work / "runs");
+  for (uint64_t k : mc_journal_indices(src)) {
+    std::error_code ec;
+    const fs::path run = work / "runs" / run_folder_name(k);
+    if (!fs::exists(run, ec)) fs::rename(src / "runs" / run_folder_name(k), run, ec);  // absent: rerun below
+    if (!fs::exists(mc_record_path(work, k), ec)) fs::rename(mc_record_path(src, k), mc_record_path(work, k), ec);
+    if (ec) throw OutputError("moving run " + std::to_string(k) + " out of " + src.string() + ": " + ec.message());
+  }
+}
+
+// --resume into the new working folder: every earlier attempt checked
+// against this campaign, then its finished runs moved in (a record whose run
+// folder is missing is dropped: that run runs again).  Returns a refusal.
+std::string adopt_earlier(const McCommand& c, const json& want, ResultsDir& rdir, std::vector<fs::path>& stale)
+{
+  const std::vector<fs::path> src = resume_sources(rdir.target(), rdir.work());
+  std::vector<fs::path> usable;
+  for (const fs::path& d : src) {
+    json m;
+    try {
+      m = json::parse(read_file(d / "mc_manifest.json"));
+    } catch (const std::exception&) {
+      continue;  // a working folder killed before its manifest: no finished run in it
+    }
+    const std::string why = resume_mismatch(m, want);
+    if (!why.empty()) return d.string() + " is not this campaign: " + why + "; not resuming";
+    if (d == rdir.target() && m.value("complete", false) && !fs::exists(d / "records"))
+      return c.resume + " is a complete campaign: nothing to resume";
+    usable.push_back(d);
+  }
+  if (usable.empty()) return c.resume + ": no interrupted campaign there to resume";
+  for (const fs::path& d : usable) adopt_runs(d, rdir.work());
+  for (uint64_t k : mc_journal_indices(rdir.work()))
+    if (!fs::exists(rdir.work() / "runs" / run_folder_name(k))) fs::remove(mc_record_path(rdir.work(), k));
+  for (const fs::path& d : src)
+    if (d != rdir.target()) stale.push_back(d);
+  return "";
+}
+
 // The campaign's files into its working folder, then the folder committed.
+// (The journal, records/, stays in an incomplete campaign, for --resume.)
 int write_campaign(const McCommand& c, const McPlan& plan, const std::vector<Override>& ov,
-                   const std::vector<uint64_t>& indices, const std::vector<McRecord>& all, McSummaryInfo& info,
+                   const std::vector<uint64_t>& indices, const std::vector<McRunState>& all, McSummaryInfo& info,
                    const std::string& work, ResultsDir& rdir, std::ostream& err)
 {
-  const json partition =
-      c.shard_count > 1 ? json({{"shard", c.shard_index}, {"shards", c.shard_count}}) : json(nullptr);
   if (c.shard_count > 1) info.partition = "shard " + std::to_string(c.shard_index) + "/" + std::to_string(c.shard_count);
   try {
+    write_mc_outputs(plan, McJournalRecords(work, all), info, work);
     write_text((fs::path(work) / "mc_manifest.json").string(),
-               mc_manifest_text(plan, c.scenario, ov, partition, c.only.empty() ? std::vector<uint64_t>{} : indices,
-                                info.complete, all.size()));
-    write_mc_outputs(plan, all, info, work);
+               mc_manifest_text(plan, c.scenario, ov, partition_json(c), only_list(c, indices), info.complete,
+                                all.size()));
+    if (info.complete) remove_mc_journal(work);
     rdir.commit();
   } catch (const std::exception& e) {
     err << "kestrel: output error: " << e.what() << "\n";
@@ -342,7 +451,7 @@ int write_campaign(const McCommand& c, const McPlan& plan, const std::vector<Ove
 
 // What rank 0 does once the runs are in: the files, then the outcome.
 int finish_campaign(const McCommand& c, const McPlan& plan, const std::vector<Override>& ov,
-                    const std::vector<uint64_t>& indices, const std::vector<McRecord>& all, bool stopped, double wall,
+                    const std::vector<uint64_t>& indices, const std::vector<McRunState>& all, bool stopped, double wall,
                     const std::string& work, std::optional<ResultsDir>& rdir, std::ostream& out, std::ostream& err)
 {
   McSummaryInfo info;
@@ -354,18 +463,49 @@ int finish_campaign(const McCommand& c, const McPlan& plan, const std::vector<Ov
   info.complete = !stopped && all.size() == planned;
   info.wall_seconds = wall;
   if (write_campaign(c, plan, ov, indices, all, info, work, *rdir, err) != kExitOk) {
-    err << "kestrel: nothing was written to " << c.out_dir << " (its previous contents, if any, are unchanged)\n";
+    rdir->keep_work();
+    err << "kestrel: nothing was written to " << c.out_dir << " (its previous contents, if any, are unchanged); the "
+        << all.size() << " finished runs are kept in " << work << ": --resume " << c.out_dir << " continues\n";
     return kExitOutput;
   }
   if (stopped) {
     err << "kestrel: interrupted after " << all.size() << " of " << planned << " runs; the finished runs are in "
-        << c.out_dir << ", marked incomplete\n";
+        << c.out_dir << ", marked incomplete: the same command with --resume " << c.out_dir
+        << " runs the others\n";
     return kExitInterruptedBase + (c.stop ? c.stop->load() : 0);
   }
   return print_outcome(all, c.out_dir, wall, out);
 }
 
 }  // namespace
+
+// --resume: how many of the campaign's runs (this shard's) are done.
+void say_resuming(const McCommand& c, const std::string& work, const std::vector<uint64_t>& indices, std::ostream& err)
+{
+  const std::vector<uint64_t> have = mc_journal_indices(work);
+  uint64_t planned = 0, done = 0;
+  for (uint64_t k : indices) {
+    if (k % c.shard_count != c.shard_index) continue;
+    ++planned;
+    done += std::binary_search(have.begin(), have.end(), k) ? 1 : 0;
+  }
+  err << "kestrel: resuming: " << done << " of " << planned << " runs done, " << planned - done << " to run\n";
+}
+
+// The campaign's working folder made ready on rank 0: its manifest first
+// (marked incomplete: a killed campaign's folder says what it is), then,
+// with --resume, the finished runs of the earlier attempts moved in.
+std::function<std::string(ResultsDir&)> prepare_work(const McCommand& c, const McPlan& plan,
+                                                    const std::vector<Override>& ov,
+                                                    const std::vector<uint64_t>& indices,
+                                                    std::vector<fs::path>& stale)
+{
+  return [&c, &plan, &ov, &indices, &stale](ResultsDir& rdir) {
+    const std::string m = mc_manifest_text(plan, c.scenario, ov, partition_json(c), only_list(c, indices), false, 0);
+    write_file_durably(rdir.work() / "mc_manifest.json", m);
+    return c.resume.empty() ? std::string() : adopt_earlier(c, json::parse(m), rdir, stale);
+  };
+}
 
 int cmd_mc(const McCommand& c0, std::ostream& out, std::ostream& err)
 {
@@ -380,36 +520,56 @@ int cmd_mc(const McCommand& c0, std::ostream& out, std::ostream& err)
   if (const std::optional<int> code = select_runs(c0, plan, indices, rerr)) return *code;
   if (c0.slurm_tasks > 0) return root ? write_slurm(c0, plan, ov, out, err) : kExitOk;
   McCommand c = c0;
+  auto same_folder = [](const std::string& a, const std::string& b) {
+    auto norm = [](const std::string& p) { return (fs::absolute(p) / "").lexically_normal(); };
+    return norm(a) == norm(b);
+  };
+  if (!c.resume.empty() && !c.out_dir.empty() && !same_folder(c.out_dir, c.resume)) {
+    rerr << "kestrel: --resume " << c.resume << " continues that folder; -o names another one\n";
+    return kExitUsage;
+  }
+  if (!c.resume.empty()) c.out_dir = c.resume;
   if (c.out_dir.empty()) c.out_dir = (fs::path("runs") / (plan.nominal.name + "_mc")).string();
   std::optional<ResultsDir> rdir;
+  std::vector<fs::path> stale;  // --resume: earlier working folders, removed once the campaign is written
   int code = kExitOk;
-  const std::string work = open_campaign_dir(comm, c.out_dir, c.force, rdir, code, rerr);
+  const std::string work = open_campaign_dir(comm, c.out_dir, c.force || !c.resume.empty(), rdir, code, rerr,
+                                             prepare_work(c, plan, ov, indices, stale));
   if (work.empty()) return code;
   McRunOptions ro;
   ro.jobs = std::max(1u, c.jobs);
   ro.indices = my_runs(c, comm, indices);
   ro.stop = c.stop;
+  ro.resume = !c.resume.empty();
+  if (ro.resume && root) say_resuming(c, work, indices, rerr);
   std::mutex pmu;
   if (c.progress && root) ro.progress = progress_bar(err, comm, pmu);
   const auto t0 = std::chrono::steady_clock::now();
-  std::vector<McRecord> recs;
+  std::vector<McRunState> states;
   bool stopped = false;
   std::string run_error;
   try {
-    recs = run_mc_runs(plan, work, ro, stopped);
+    states = run_mc_journal(plan, work, ro, stopped);
   } catch (const std::exception& e) {
     run_error = e.what();
   }
   if (c.progress && root) err << "\n";
-  const std::vector<McRecord> all = gather_records(comm, recs, stopped, run_error);
+  const std::vector<McRunState> all = gather_states(comm, std::move(states), stopped, run_error);
   if (!root) return run_error.empty() ? kExitOk : kExitRunFailed;
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!run_error.empty()) {
+    rdir->keep_work();
     err << "kestrel: campaign failed: " << run_error << "\n";
-    err << "kestrel: nothing was written to " << c.out_dir << "\n";
+    err << "kestrel: nothing was written to " << c.out_dir << "; the finished runs are kept in " << work
+        << ": --resume " << c.out_dir << " continues once the cause is fixed\n";
     return kExitOutput;
   }
-  return finish_campaign(c, plan, ov, indices, all, stopped, wall, work, rdir, out, err);
+  const int rc = finish_campaign(c, plan, ov, indices, all, stopped, wall, work, rdir, out, err);
+  if (rc != kExitOutput) {
+    std::error_code ec;
+    for (const fs::path& d : stale) fs::remove_all(d, ec);
+  }
+  return rc;
 }
 
 int cmd_mc_program(McCommand c, const std::string& shard, std::ostream& out, std::ostream& err)

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "harness/mc/monte_carlo.h"
+#include "harness/mc/mc_journal.h"
 #include "harness/drive/run_scenario.h"
 #include "harness/drive/run_steps.h"
 #include "harness/core/run.h"
@@ -413,15 +414,22 @@ bool same_metrics(const McRecord& a, const McRecord& b)
 namespace {
 
 // The runs of one process: worker threads over a list of slots (positions
-// in McRunOptions::indices), the records and the retention of full results.
+// in McRunOptions::indices), each finished run's record written to the
+// journal (dir/records) as it finishes, and the retention of full results.
+// Only each slot's state is held in memory.
 class McRunner {
  public:
   McRunner(const McPlan& plan, const fs::path& dir, const McRunOptions& opt)
-      : plan_(plan), ret_(plan.nominal.monte_carlo->retention), runs_(dir / "runs"), opt_(opt),
-        out_(opt.indices.size()), done_(opt.indices.size(), 0), t0_(std::chrono::steady_clock::now())
+      : plan_(plan), ret_(plan.nominal.monte_carlo->retention), dir_(dir), runs_(dir / "runs"), opt_(opt),
+        state_(opt.indices.size()), done_(opt.indices.size(), 0), t0_(std::chrono::steady_clock::now())
   {
     fs::create_directories(runs_);
+    fs::create_directories(dir_ / "records");
     prog_.total = opt.indices.size();
+    if (opt.resume)
+      load_journal();
+    else
+      clear_journal();
   }
 
   // The slots, on opt.jobs threads (the first pass, or the reruns of
@@ -454,19 +462,33 @@ class McRunner {
     if (!error_.empty()) throw std::runtime_error(error_);
   }
 
-  // Retention, exact and independent of the threads: the first max_failing
-  // failing runs by index keep full results (returns those that have none
-  // yet, to rerun), the others keep their manifest only.
+  // The slots still to run (none done: a fresh campaign; --resume: those
+  // without a record).
+  std::vector<size_t> pending() const
+  {
+    std::vector<size_t> todo;
+    for (size_t slot = 0; slot < done_.size(); ++slot)
+      if (!done_[slot]) todo.push_back(slot);
+    return todo;
+  }
+
+  // Retention, exact and independent of the threads (and of a campaign's
+  // interruptions): the first max_failing failing runs by index keep full
+  // results (returns those that have none yet, to rerun), the others keep
+  // their manifest only.
   std::vector<size_t> retain(const std::vector<size_t>& order)
   {
     std::vector<size_t> rerun;
     uint32_t n_fail = 0;
     for (size_t slot : order) {
-      McRecord& r = out_[slot];
+      McRunState& r = state_[slot];
       if (!done_[slot] || r.pass || r.invalid || opt_.indices[slot] < ret_.keep_first) continue;
       if (n_fail++ < ret_.max_failing) {
         if (!r.full) rerun.push_back(slot);
       } else if (r.full) {  // beyond the first max_failing: the manifest only
+        McRecord rec = read_mc_record(mc_record_path(dir_, r.index));
+        rec.full = false;
+        write_mc_record(dir_, rec);
         drop_all_but_manifest(runs_ / run_dir_name(opt_.indices[slot]));
         r.full = false;
       }
@@ -476,12 +498,12 @@ class McRunner {
 
   bool stop_asked() const { return opt_.stop && opt_.stop->load() != 0; }
 
-  // The finished runs' records, in `order`.
-  std::vector<McRecord> take(const std::vector<size_t>& order)
+  // The finished runs' states, in `order`.
+  std::vector<McRunState> take(const std::vector<size_t>& order) const
   {
-    std::vector<McRecord> res;
+    std::vector<McRunState> res;
     for (size_t slot : order)
-      if (done_[slot]) res.push_back(std::move(out_[slot]));
+      if (done_[slot]) res.push_back(state_[slot]);
     return res;
   }
 
@@ -492,28 +514,61 @@ class McRunner {
     return !error_.empty();
   }
 
+  // Not resuming: this process's runs have no record (another process, an
+  // MPI rank, may be writing its own into the same folder).
+  void clear_journal()
+  {
+    std::vector<uint64_t> mine = opt_.indices;
+    std::sort(mine.begin(), mine.end());
+    for (uint64_t k : mc_journal_indices(dir_))
+      if (std::binary_search(mine.begin(), mine.end(), k)) fs::remove(mc_record_path(dir_, k));
+  }
+
+  // --resume: the runs of this process that have a record already.
+  void load_journal()
+  {
+    const std::vector<uint64_t> have = mc_journal_indices(dir_);
+    for (size_t slot = 0; slot < opt_.indices.size(); ++slot) {
+      const uint64_t k = opt_.indices[slot];
+      if (!std::binary_search(have.begin(), have.end(), k)) continue;
+      const McRecord r = read_mc_record(mc_record_path(dir_, k));
+      if (r.index != k) throw std::runtime_error(mc_record_path(dir_, k).string() + ": holds run " + std::to_string(r.index));
+      state_[slot] = mc_run_state(r);
+      done_[slot] = 1;
+      ++prog_.done;
+      if (!r.pass) ++prog_.failed;
+      if (!r.pass && !r.invalid && r.full && k >= ret_.keep_first) failing_full_.fetch_add(1);
+    }
+  }
+
+  // A finished run's record to the journal, then its state.
+  void record(size_t slot, const McRecord& r, bool first_pass)
+  {
+    write_mc_record(dir_, r);
+    std::lock_guard<std::mutex> g(mu_);
+    state_[slot] = mc_run_state(r);
+    if (!first_pass) return;
+    done_[slot] = 1;
+    ++prog_.done;
+    if (!r.pass) ++prog_.failed;
+    prog_.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+    if (opt_.progress) opt_.progress(prog_);
+  }
+
   // First pass of one run; false when it was interrupted (not part of the
   // campaign: no folder).  A failing run gets its full results at once, by
   // the same worker (the selection is made exact by index after the pass).
   bool run_slot(size_t slot)
   {
     const uint64_t k = opt_.indices[slot];
-    McRecord r = run_mc_one(plan_, k, runs_ / run_dir_name(k), k < ret_.keep_first, opt_.stop);
+    const McRecord r = run_mc_one(plan_, k, runs_ / run_dir_name(k), k < ret_.keep_first, opt_.stop);
     if (r.interrupted) {
       std::error_code ec;
       fs::remove_all(runs_ / run_dir_name(k), ec);
       return false;
     }
     const bool keep = ret_.keep_failing && !r.pass && !r.invalid && !r.full && failing_full_.load() < ret_.max_failing;
-    {
-      std::lock_guard<std::mutex> g(mu_);
-      out_[slot] = std::move(r);
-      done_[slot] = 1;
-      ++prog_.done;
-      if (!out_[slot].pass) ++prog_.failed;
-      prog_.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
-      if (opt_.progress) opt_.progress(prog_);
-    }
+    record(slot, r, true);
     if (keep) {
       failing_full_.fetch_add(1);
       rerun_full(slot);
@@ -527,10 +582,12 @@ class McRunner {
   {
     const uint64_t k = opt_.indices[slot];
     McRecord r = run_mc_one(plan_, k, runs_ / run_dir_name(k), true, opt_.stop);
-    std::lock_guard<std::mutex> g(mu_);
-    McRecord& first = out_[slot];
+    McRecord first = read_mc_record(mc_record_path(dir_, k));
     if (r.interrupted) {  // the first pass's record stays; the folder holds a partial rerun, marked incomplete
-      first.full = false;
+      if (first.full) {
+        first.full = false;
+        record(slot, first, false);
+      }
       return;
     }
     if (!same_metrics(first, r) || first.pass != r.pass) {
@@ -538,7 +595,7 @@ class McRunner {
       r.reason = "NOT REPRODUCED: the full-results rerun gave other metrics than the first pass (" + first.reason + ")";
     }
     r.wall_seconds += first.wall_seconds;
-    first = std::move(r);
+    record(slot, r, false);
   }
 
   static void drop_all_but_manifest(const fs::path& d)
@@ -552,9 +609,9 @@ class McRunner {
 
   const McPlan& plan_;
   const RetentionSpec& ret_;
-  const fs::path runs_;
+  const fs::path dir_, runs_;
   const McRunOptions& opt_;
-  std::vector<McRecord> out_;
+  std::vector<McRunState> state_;
   std::vector<char> done_;
   std::mutex mu_;
   McProgress prog_;
@@ -565,16 +622,15 @@ class McRunner {
 
 }  // namespace
 
-std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const McRunOptions& opt, bool& stopped)
+std::vector<McRunState> run_mc_journal(const McPlan& plan, const fs::path& dir, const McRunOptions& opt, bool& stopped)
 {
   McRunner runner(plan, dir, opt);
-  std::vector<size_t> all(opt.indices.size());
-  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
   // the longest-known first would balance better; index order keeps the
   // progress readable and the result does not depend on it
-  runner.work(false, all);
+  runner.work(false, runner.pending());
   stopped = runner.stop_asked();
-  std::vector<size_t> order = all;
+  std::vector<size_t> order(opt.indices.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return opt.indices[a] < opt.indices[b]; });
   if (!stopped && plan.nominal.monte_carlo->retention.keep_failing) {
     runner.work(true, runner.retain(order));
@@ -583,17 +639,34 @@ std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const
   return runner.take(order);
 }
 
-std::vector<size_t> mc_table_order(const std::vector<McRecord>& records)
+std::vector<McRecord> run_mc_runs(const McPlan& plan, const fs::path& dir, const McRunOptions& opt, bool& stopped)
+{
+  const std::vector<McRunState> states = run_mc_journal(plan, dir, opt, stopped);
+  std::vector<McRecord> out;
+  out.reserve(states.size());
+  for (const McRunState& s : states) out.push_back(read_mc_record(mc_record_path(dir, s.index)));
+  return out;
+}
+
+std::vector<size_t> mc_table_order(const McRecordSource& records)
 {
   std::vector<size_t> o(records.size());
   for (size_t i = 0; i < o.size(); ++i) o[i] = i;
+  auto rank = [&](size_t i) {
+    const McRunState& s = records.state(i);
+    return s.invalid ? 0 : s.pass ? 2 : 1;
+  };
   std::stable_sort(o.begin(), o.end(), [&](size_t a, size_t b) {
-    const int ra = records[a].invalid ? 0 : records[a].pass ? 2 : 1;
-    const int rb = records[b].invalid ? 0 : records[b].pass ? 2 : 1;
+    const int ra = rank(a), rb = rank(b);
     if (ra != rb) return ra < rb;
-    return records[a].index < records[b].index;
+    return records.state(a).index < records.state(b).index;
   });
   return o;
+}
+
+std::vector<size_t> mc_table_order(const std::vector<McRecord>& records)
+{
+  return mc_table_order(McMemoryRecords(records));
 }
 
 }  // namespace harness

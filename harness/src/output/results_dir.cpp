@@ -75,13 +75,14 @@ void check_existing(const fs::path& t, const std::string& target, bool force)
     std::string foreign;
     bool empty = true;
     // a Monte Carlo campaign's folder (docs/monte-carlo.md) also holds its
-    // runs/ folder (run folders of result files) and shards/
+    // runs/ folder (run folders of result files), shards/ and records/ (the
+    // finished runs of an interrupted campaign, for --resume)
     const bool campaign = fs::is_regular_file(t / "mc_manifest.json", ec);
     for (const fs::directory_entry& e : fs::directory_iterator(t, ec)) {
       empty = false;
       const std::string n = e.path().filename().string();
       const bool campaign_part =
-          campaign && (ResultsDir::is_campaign_file_name(n) || ((n == "runs" || n == "shards") && e.is_directory()));
+          campaign && (ResultsDir::is_campaign_file_name(n) || ((n == "runs" || n == "shards" || n == "records") && e.is_directory()));
       if (!campaign_part && (!ResultsDir::is_result_file_name(n) || !e.is_regular_file())) {
         foreign = n;
         break;
@@ -192,6 +193,11 @@ ResultsDir::~ResultsDir()
     std::error_code ec;
     fs::remove_all(work_, ec);
   }
+}
+
+void ResultsDir::keep_work()
+{
+  committed_ = true;
 }
 
 void ResultsDir::require_free_space(uint64_t bytes) const

@@ -56,6 +56,10 @@ std::string render_mc_html(const std::string& mc_report_data_json);
 void write_mc_html(const std::string& mc_report_data_json, std::ostream& out);
 // Throws std::runtime_error naming the path if it cannot be written.
 void write_mc_html(const std::string& mc_report_data_json, const std::string& out_html_path);
+// The same page from the data file at mc_report_data_path, read a piece at
+// a time (memory bounded whatever the campaign's size); the same bytes as
+// write_mc_html() of the file's text.
+void write_mc_html_file(const std::string& mc_report_data_path, const std::string& out_html_path);
 
 // Size in bytes of the Monte Carlo page without the data.
 std::size_t mc_page_size();

@@ -100,6 +100,7 @@ struct McCommand {
   uint32_t shard_index = 0, shard_count = 1;  // --shard i/N
   unsigned slurm_tasks = 0;          // > 0: write Slurm batch scripts for this many shards instead
   bool force = false;
+  std::string resume;                // --resume DIR: continue the interrupted campaign in DIR
   bool progress = false;
   const std::atomic<int>* stop = nullptr;
 };

@@ -90,6 +90,36 @@ struct McRecord {
 McRecord run_mc_one(const McPlan& plan, uint64_t k, const std::filesystem::path& dir, bool full,
                     const std::atomic<int>* stop = nullptr);
 
+// What the summary order and the outcome need of a finished run.
+struct McRunState {
+  uint64_t index = 0;
+  bool pass = false, invalid = false, full = false;
+};
+
+// A campaign's finished runs, sorted by index, read one at a time: the
+// summary files are written from such a source without holding every
+// record (a journal on disk, mc_journal.h, or records in memory).
+class McRecordSource {
+ public:
+  virtual ~McRecordSource() = default;
+  virtual size_t size() const = 0;
+  virtual const McRunState& state(size_t i) const = 0;
+  virtual McRecord record(size_t i) const = 0;
+};
+
+// Records held in memory (sorted by index) as a source.
+class McMemoryRecords : public McRecordSource {
+ public:
+  explicit McMemoryRecords(const std::vector<McRecord>& records);
+  size_t size() const override { return recs_.size(); }
+  const McRunState& state(size_t i) const override { return states_[i]; }
+  McRecord record(size_t i) const override { return recs_[i]; }
+
+ private:
+  const std::vector<McRecord>& recs_;
+  std::vector<McRunState> states_;
+};
+
 struct McProgress {
   uint64_t done = 0, total = 0, failed = 0;
   double elapsed_s = 0.0;
@@ -100,12 +130,21 @@ struct McRunOptions {
   std::vector<uint64_t> indices;   // the runs to do (any order)
   const std::atomic<int>* stop = nullptr;
   std::function<void(const McProgress&)> progress;  // called from worker threads, serialised
+  // false: dir/records is cleared first; true: the runs of `indices` that
+  // have a record in dir/records already are not run again (--resume)
+  bool resume = false;
 };
 
-// Runs the given indices on `jobs` threads into dir/runs/; returns the
-// records sorted by index.  After the first pass, failing runs beyond
-// keep_first are rerun with full results (retention), and the rerun must
-// give the same metrics (else the record says so).
+// Runs the given indices on `jobs` threads into dir/runs/, each finished
+// run's record kept durably in dir/records/ as it finishes (mc_journal.h);
+// returns the finished runs' states sorted by index (the records stay on
+// disk: memory does not grow with the number of runs).  After the first
+// pass, failing runs beyond keep_first are rerun with full results
+// (retention), and the rerun must give the same metrics (else the record
+// says so).
+std::vector<McRunState> run_mc_journal(const McPlan& plan, const std::filesystem::path& dir, const McRunOptions& opt,
+                                       bool& stopped);
+// The same, the records read back into memory (sorted by index).
 std::vector<McRecord> run_mc_runs(const McPlan& plan, const std::filesystem::path& dir, const McRunOptions& opt,
                                   bool& stopped);
 
@@ -119,16 +158,23 @@ struct McSummaryInfo {
   double wall_seconds = 0.0;
   std::string partition;         // e.g. "shard 1/4", "" for a whole campaign
 };
+// The files are written streaming, one record in memory at a time (the
+// series percentiles through a scratch file in `dir`, removed after).
+void write_mc_outputs(const McPlan& plan, const McRecordSource& records, const McSummaryInfo& info,
+                      const std::filesystem::path& dir);
 void write_mc_outputs(const McPlan& plan, const std::vector<McRecord>& records, const McSummaryInfo& info,
                       const std::filesystem::path& dir);
 
 // mc_runs.json <-> records (merge).
 std::string mc_records_json(const std::vector<McRecord>& records);
+// One record as mc_runs.json holds it (JSON text of one element of "records").
+std::string mc_record_json(const McRecord& r);
 std::vector<McRecord> mc_records_from_json(const std::string& text);
 
 // Records ordered for the summary table: failing (invalid, failed) first,
 // then by index.
 std::vector<size_t> mc_table_order(const std::vector<McRecord>& records);
+std::vector<size_t> mc_table_order(const McRecordSource& records);
 
 }  // namespace harness
 

@@ -55,6 +55,9 @@ class ResultsDir {
   // naming the folder and the command that removes it.  Never removed
   // here: it may hold the only copy of something.
   const std::vector<std::string>& notes() const { return notes_; }
+  // Leaves the working folder in place when this ends without commit() (a
+  // campaign's finished runs, which `kestrel mc --resume` continues from).
+  void keep_work();
 
   // The file names a results folder may hold (what --force may replace).
   static bool is_result_file_name(const std::string& name);
