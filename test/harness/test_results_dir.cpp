@@ -437,6 +437,8 @@ TEST(ResultsDir, RerunNamesAKilledRunsLeftoverFolder)
   EXPECT_FALSE(fs::exists(left));
   ASSERT_EQ(run_kestrel(out, with(kShort, {"--force"}), &err), 0) << err;
   EXPECT_EQ(err.find("was left by"), std::string::npos) << err;
+}
+
 // A campaign folder may hold records/ (an interrupted campaign's journal):
 // --force replaces it whole; outside a campaign folder it is foreign.  A
 // working folder told to stay (keep_work: a campaign's finished runs for
