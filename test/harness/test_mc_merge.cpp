@@ -214,6 +214,16 @@ TEST_F(McMerge, NegativeMasterSeedRefused)
   expect_refused(merge(), manifest(0), "master_seed");
 }
 
+TEST_F(McMerge, OverrideNotKeyValueRefused)
+{
+  for (int i : {0, 1}) {
+    json m = load(manifest(i));
+    m["overrides"] = json::array({"duration"});
+    save(manifest(i), m);
+  }
+  expect_refused(merge(), manifest(0), "overrides[0]");
+}
+
 TEST_F(McMerge, TrillionRunsRefused)
 {
   for (int i : {0, 1}) {

@@ -315,6 +315,13 @@ McShards read_mc_shards(const std::vector<std::string>& shards)
     same_campaign(ms.back(), ms.front(), file, first_file);
   }
   set.first = ms.front();
+  for (size_t i = 0; i < set.first.overrides.size(); ++i) {
+    try {
+      parse_override(set.first.overrides[i]);
+    } catch (const std::invalid_argument& e) {
+      refuse(first_file, "overrides[" + std::to_string(i) + "]", std::string("not key=value: ") + e.what());
+    }
+  }
   set.plan = plan_of(set.first, first_file);
   const McRecordShape shape = mc_record_shape(set.plan);
   std::vector<char> seen(set.plan.runs, 0);
