@@ -150,7 +150,15 @@ CLI::App* add_mc(CLI::App& app, harness::McCommand& mc, std::string& shard)
   mcc->add_option("-j,--jobs", mc.jobs, "threads (default 1)")->check(CLI::Range(1u, 1024u));
   mcc->add_option("-o,--output", mc.out_dir, "campaign folder (default runs/<name>_mc)");
   mcc->add_option("--set", mc.sets, "override a key of the nominal scenario: key.path=value (repeatable)");
-  mcc->add_option("--only", mc.only, "rerun just these runs: 17,42,100-120");
+  // an empty list selects no run: refused rather than taken for "every run"
+  mcc->add_option("--only", mc.only, "rerun just these runs: 17,42,100-120")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            return v.empty() ? std::string("an empty list selects no run: give run indices (17,42,100-120), or leave "
+                                           "--only out to run every run")
+                             : std::string();
+          },
+          "RUNS"));
   mcc->add_option("--shard", shard, "run slice i of N (i/N, 0 <= i < N) for batch arrays; join with mc merge");
   mcc->add_option("--slurm", mc.slurm_tasks, "write Slurm array scripts for this many shards to <output>.slurm/")
       ->check(CLI::Range(1u, 100000u));

@@ -24,6 +24,7 @@
 #include "harness/core/run.h"
 #include "scenario/json_util.h"
 #include "mc/mc_comm.h"
+#include "mc/mc_validate.h"
 
 namespace harness {
 
@@ -32,21 +33,12 @@ using json = nlohmann::json;
 
 namespace {
 
-std::string read_file(const fs::path& p)
-{
-  std::ifstream in(p, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + p.string());
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::string mc_manifest_text(const McPlan& plan, const std::string& source, const std::vector<Override>& ov,
                              const json& partition, const std::vector<uint64_t>& only, bool complete,
-                             uint64_t runs_done, const json& merged_from = nullptr)
+                             const json& record_hashes, const json& merged_from = nullptr)
 {
   json j;
-  j["kestrel_mc_manifest"] = 1;
+  j["kestrel_mc_manifest"] = kMcManifestFormat;
   j["kestrel_version"] = version();
   j["source"] = source;
   json o = json::array();
@@ -57,9 +49,12 @@ std::string mc_manifest_text(const McPlan& plan, const std::string& source, cons
   j["partition"] = partition;
   j["only"] = only;
   j["complete"] = complete;
-  j["runs_done"] = runs_done;
+  j["runs_done"] = record_hashes.size();
   if (!merged_from.is_null()) j["merged_from"] = merged_from;
   j["scenario"] = scenario_to_json(plan.nominal);
+  // what `mc merge` checks a shard against (mc_validate.h)
+  j["scenario_fnv1a64"] = mc_scenario_hash(j["scenario"]);
+  j["record_fnv1a64"] = record_hashes;  // [index, mc_record_hash] per finished run
   return j.dump(2) + "\n";
 }
 
@@ -409,7 +404,7 @@ std::string adopt_earlier(const McCommand& c, const json& want, ResultsDir& rdir
   for (const fs::path& d : src) {
     json m;
     try {
-      m = json::parse(read_file(d / "mc_manifest.json"));
+      m = json::parse(read_shard_file(d / "mc_manifest.json", uint64_t(1) << 30));  // no link followed
     } catch (const std::exception&) {
       continue;  // a working folder killed before its manifest: no finished run in it
     }
@@ -436,10 +431,15 @@ int write_campaign(const McCommand& c, const McPlan& plan, const std::vector<Ove
 {
   if (c.shard_count > 1) info.partition = "shard " + std::to_string(c.shard_index) + "/" + std::to_string(c.shard_count);
   try {
-    write_mc_outputs(plan, McJournalRecords(work, all), info, work);
+    const McJournalRecords records(work, all);
+    write_mc_outputs(plan, records, info, work);
+    json hashes = json::array();
+    for (size_t i = 0; i < records.size(); ++i) {
+      const McRecord r = records.record(i);
+      hashes.push_back(json::array({r.index, mc_record_hash(r)}));
+    }
     write_text((fs::path(work) / "mc_manifest.json").string(),
-               mc_manifest_text(plan, c.scenario, ov, partition_json(c), only_list(c, indices), info.complete,
-                                all.size()));
+               mc_manifest_text(plan, c.scenario, ov, partition_json(c), only_list(c, indices), info.complete, hashes));
     if (info.complete) remove_mc_journal(work);
     rdir.commit();
   } catch (const std::exception& e) {
@@ -501,7 +501,7 @@ std::function<std::string(ResultsDir&)> prepare_work(const McCommand& c, const M
                                                     std::vector<fs::path>& stale)
 {
   return [&c, &plan, &ov, &indices, &stale](ResultsDir& rdir) {
-    const std::string m = mc_manifest_text(plan, c.scenario, ov, partition_json(c), only_list(c, indices), false, 0);
+    const std::string m = mc_manifest_text(plan, c.scenario, ov, partition_json(c), only_list(c, indices), false, json::array());
     write_file_durably(rdir.work() / "mc_manifest.json", m);
     return c.resume.empty() ? std::string() : adopt_earlier(c, json::parse(m), rdir, stale);
   };
@@ -595,98 +595,25 @@ int cmd_mc_program(McCommand c, const std::string& shard, std::ostream& out, std
 
 namespace {
 
-// The shards of one campaign, read and checked: the first one's manifest,
-// every record, the runs expected and the folders merged.
-struct ShardSet {
-  json first;
-  std::vector<McRecord> all;
-  std::set<uint64_t> seen, expected;
-  bool any_only = false;
-  json merged = json::array();
-};
-
-// One shard folder into the set; false (after a message) when it does not fit.
-bool read_shard(const std::string& s, const std::string& first_name, ShardSet& set, std::ostream& err)
-{
-  json m;
-  try {
-    m = json::parse(read_file(fs::path(s) / "mc_manifest.json"));
-  } catch (const std::exception& e) {
-    err << "kestrel: mc merge: " << s << " is not a campaign folder (mc_manifest.json: " << e.what() << ")\n";
-    return false;
-  }
-  if (set.first.is_null()) {
-    set.first = m;
-  } else if (m.at("scenario") != set.first.at("scenario") || m.at("master_seed") != set.first.at("master_seed") ||
-             m.at("runs") != set.first.at("runs")) {
-    err << "kestrel: mc merge: " << s << " is a shard of another campaign (scenario, master seed or runs differ from "
-        << first_name << ")\n";
-    return false;
-  }
-  if (!m.at("complete").get<bool>()) {
-    err << "kestrel: mc merge: " << s << " is incomplete (interrupted): rerun that shard first\n";
-    return false;
-  }
-  if (!m.at("only").empty()) {
-    set.any_only = true;
-    for (const json& k : m.at("only")) set.expected.insert(k.get<uint64_t>());
-  }
-  std::vector<McRecord> r;
-  try {
-    r = mc_records_from_json(read_file(fs::path(s) / "mc_runs.json"));
-  } catch (const std::exception& e) {
-    err << "kestrel: mc merge: " << s << "/mc_runs.json: " << e.what() << "\n";
-    return false;
-  }
-  for (const McRecord& x : r)
-    if (!set.seen.insert(x.index).second) {
-      err << "kestrel: mc merge: run " << x.index << " is in more than one shard (" << s << ")\n";
-      return false;
-    }
-  set.all.insert(set.all.end(), r.begin(), r.end());
-  set.merged.push_back(fs::absolute(s).string());
-  return true;
-}
-
-// Every run of the campaign (or of its --only list) is in some shard.
-bool check_complete(ShardSet& set, std::ostream& err)
-{
-  const uint64_t runs = set.first.at("runs").get<uint64_t>();
-  if (!set.any_only)
-    for (uint64_t k = 0; k < runs; ++k) set.expected.insert(k);
-  std::vector<uint64_t> missing;
-  for (uint64_t k : set.expected)
-    if (!set.seen.count(k)) missing.push_back(k);
-  if (missing.empty()) return true;
-  err << "kestrel: mc merge: " << missing.size() << " runs are in no shard (first: " << missing.front()
-      << "); give every shard of the campaign\n";
-  return false;
-}
-
-// The merged campaign folder: the shards' runs/ copied, the manifest and outputs.
-void write_merged(const std::string& out_dir, const std::vector<std::string>& shards, bool force, const McPlan& plan,
-                  const ShardSet& set)
+// The merged campaign folder: the shards' runs/ copied (no link followed),
+// the manifest and outputs.  Nothing is in place until the commit.
+void write_merged(const std::string& out_dir, const std::vector<std::string>& shards, bool force, const McShards& set)
 {
   ResultsDir rdir(out_dir, force);
   const fs::path runs_dir = rdir.work() / "runs";
   fs::create_directories(runs_dir);
-  for (const std::string& s : shards) {
-    std::error_code ec;
-    if (!fs::is_directory(fs::path(s) / "runs", ec)) continue;
-    fs::copy(fs::path(s) / "runs", runs_dir, fs::copy_options::recursive, ec);  // the shards stay as they were
-    if (ec) throw OutputError("copying the runs of " + s + ": " + ec.message());
-  }
+  for (size_t j = 0; j < shards.size(); ++j) copy_mc_runs(shards[j], set.runs[j], runs_dir);  // the shards stay as they were
   McSummaryInfo info;
-  info.source = set.first.at("source").get<std::string>();
+  info.source = set.first.source;
   info.complete = true;
-  for (const McRecord& r : set.all) info.wall_seconds += r.wall_seconds;
+  for (const McRecord& r : set.records) info.wall_seconds += r.wall_seconds;
   std::vector<Override> ov;
-  for (const json& o : set.first.at("overrides")) ov.push_back(parse_override(o.get<std::string>()));
-  const std::vector<uint64_t> only =
-      set.any_only ? std::vector<uint64_t>(set.expected.begin(), set.expected.end()) : std::vector<uint64_t>{};
+  for (const std::string& o : set.first.overrides) ov.push_back(parse_override(o));
+  json merged = json::array();
+  for (const std::string& s : shards) merged.push_back(fs::absolute(s).string());
   write_text((rdir.work() / "mc_manifest.json").string(),
-             mc_manifest_text(plan, info.source, ov, nullptr, only, true, set.all.size(), set.merged));
-  write_mc_outputs(plan, set.all, info, rdir.work());
+             mc_manifest_text(set.plan, info.source, ov, nullptr, set.only, true, mc_record_hashes(set.records), merged));
+  write_mc_outputs(set.plan, set.records, info, rdir.work());
   rdir.commit();
 }
 
@@ -699,23 +626,21 @@ int cmd_mc_merge(const std::string& out_dir, const std::vector<std::string>& sha
     err << "kestrel: mc merge: no shard folders given\n";
     return kExitUsage;
   }
-  ShardSet set;
-  for (const std::string& s : shards)
-    if (!read_shard(s, shards.front(), set, err)) return kExitUsage;
-  if (!check_complete(set, err)) return kExitUsage;
-  McPlan plan;
+  McShards set;
   try {
-    const Scenario sc =
-        load_scenario_text(json({{"kestrel_manifest", 1}, {"scenario", set.first.at("scenario")}}).dump(),
-                           (fs::path(shards.front()) / "mc_manifest.json").string());
-    plan = make_mc_plan(sc, set.first.at("master_seed").get<uint64_t>(), set.first.at("runs").get<uint64_t>());
+    set = read_mc_shards(shards);  // every field checked against the campaign (docs/monte-carlo.md)
+  } catch (const McShardError& e) {
+    err << "kestrel: mc merge: " << e.what() << "\n";
+    return kExitUsage;
   } catch (const ScenarioError& e) {
     print_issues(e, err);
     return kExitInvalidScenario;
   }
-  std::sort(set.all.begin(), set.all.end(), [](const McRecord& a, const McRecord& b) { return a.index < b.index; });
   try {
-    write_merged(out_dir, shards, force, plan, set);
+    write_merged(out_dir, shards, force, set);
+  } catch (const McShardError& e) {  // a shard changed between the check and the copy
+    err << "kestrel: mc merge: " << e.what() << "\n";
+    return kExitUsage;
   } catch (const ResultsDirRefused& e) {
     err << "kestrel: " << e.what() << "\n";
     return kExitRefused;
@@ -725,8 +650,8 @@ int cmd_mc_merge(const std::string& out_dir, const std::vector<std::string>& sha
   }
   out << "merged " << shards.size() << " shards: ";
   double cpu = 0.0;
-  for (const McRecord& r : set.all) cpu += r.wall_seconds;
-  return print_outcome(set.all, out_dir, cpu, out);
+  for (const McRecord& r : set.records) cpu += r.wall_seconds;
+  return print_outcome(set.records, out_dir, cpu, out);
 }
 
 }  // namespace harness

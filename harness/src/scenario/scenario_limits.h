@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 
 #include "fsw/css_sun.h"     // FSW_MAX_CSS
 #include "fsw/fsw_config.h"  // FSW_MAX_RW, FSW_MAX_THR
@@ -21,6 +22,7 @@ constexpr size_t kMaxScenarioThrusters = static_cast<size_t>(std::min(FSW_MAX_TH
 constexpr size_t kMaxScenarioCss = static_cast<size_t>(std::min(FSW_MAX_CSS, sim::kMaxCss));              // [-]
 constexpr size_t kMaxScenarioEvents = 64;  // [-] events in a scenario (a fault campaign is a few)
 constexpr size_t kMaxEventActions = 16;    // [-] actions of one event
+constexpr uint64_t kMaxMcRuns = 10000000;  // [-] runs of one Monte Carlo campaign (also --runs)
 
 }  // namespace harness
 

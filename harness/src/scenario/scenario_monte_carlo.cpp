@@ -9,6 +9,7 @@
 
 #include "scenario/mc_draw.h"
 #include "scenario/overrides.h"
+#include "scenario/scenario_limits.h"
 #include "scenario/scenario_schema.h"
 
 namespace harness {
@@ -19,7 +20,7 @@ constexpr double kDeg = M_PI / 180.0;
 constexpr size_t kMaxDispersions = 200;   // [-] entries of monte_carlo.dispersions
 constexpr size_t kMaxCriteria = 50;       // [-] entries of monte_carlo.criteria
 constexpr size_t kMaxChoices = 100;       // [-] values of one choice
-constexpr uint64_t kMaxRuns = 10000000;   // [-] runs of one campaign
+constexpr uint64_t kMaxRuns = kMaxMcRuns;  // [-] runs of one campaign (scenario_limits.h)
 constexpr double kMaxAngleDeg = 180.0;    // [deg] a dispersion angle beyond is not a dispersion
 // truncated_normal: the bounds must keep at least this probability of the
 // untruncated normal, so rejection sampling needs ~1/p draws at most
