@@ -72,6 +72,40 @@ grep -q "runs" "$W/refused.log" || fail "the refusal does not name the runs"
 "$K" mc "$S" "${ARGS[@]}" --set duration=21 --resume "$W/stopped" > "$W/refused.log" 2>&1 && fail "--resume of another scenario ran"
 grep -q "scenario" "$W/refused.log" || fail "the refusal does not name the scenario"
 [ "$(ls "$W/stopped/records" | grep -c '^[0-9]*\.json$')" -eq "$had" ] || fail "a refused resume changed the folder"
+# a journal record is read as merge reads a shard: a damaged one (its
+# metrics emptied), another run's under its name, or a link is refused,
+# naming the file, and nothing moves
+rec=$(ls "$W/stopped/records" | grep '^[0-9]*\.json$' | head -1)
+other=$(ls "$W/stopped/records" | grep '^[0-9]*\.json$' | sed -n 2p)
+cp "$W/stopped/records/$rec" "$W/record.bak"
+"$PY" - "$W/stopped/records/$rec" <<'PYEOF'
+import json, sys
+p = sys.argv[1]
+j = json.load(open(p))
+def empty_metrics(x):
+    if isinstance(x, dict):
+        if "metrics" in x:
+            x["metrics"] = []
+            return True
+        return any(empty_metrics(v) for v in x.values())
+    if isinstance(x, list):
+        return any(empty_metrics(v) for v in x)
+    return False
+assert empty_metrics(j), "no metrics in the record"
+json.dump(j, open(p, "w"))
+PYEOF
+for damage in metrics other link; do
+  case $damage in
+    other) cp "$W/stopped/records/$other" "$W/stopped/records/$rec" ;;
+    link) rm "$W/stopped/records/$rec"; ln -s "$W/record.bak" "$W/stopped/records/$rec" ;;
+  esac
+  "$K" mc "$S" "${ARGS[@]}" --resume "$W/stopped" > "$W/refused.log" 2>&1 && fail "--resume with a $damage-damaged record ran"
+  grep -q "records/$rec" "$W/refused.log" || { cat "$W/refused.log"; fail "the $damage refusal does not name the record"; }
+  grep -q "not resuming" "$W/refused.log" || { cat "$W/refused.log"; fail "the $damage refusal does not say it did not resume"; }
+done
+rm "$W/stopped/records/$rec"
+cp "$W/record.bak" "$W/stopped/records/$rec"
+[ "$(ls "$W/stopped/records" | grep -c '^[0-9]*\.json$')" -eq "$had" ] || fail "a refused resume changed the folder"
 "$K" mc "$S" "${ARGS[@]}" -j 2 --resume "$W/stopped" > "$W/stopped-resume.log" 2>&1
 rc=$?
 grep -q "resuming: $had of $N runs done, $((N - had)) to run" "$W/stopped-resume.log" ||

@@ -394,10 +394,32 @@ void adopt_runs(const fs::path& src, const fs::path& work)
   }
 }
 
+// Every record of the earlier attempts read as `mc merge` reads a shard's
+// (mc_validate.h: no link followed, every field typed and sized to the
+// campaign) and holding the run its name says, before anything moves.
+// Returns a refusal naming the file and the field, or "".
+std::string check_journals(const std::vector<fs::path>& dirs, const McRecordShape& shape)
+{
+  constexpr uint64_t kMaxRecordBytes = uint64_t(1) << 26;  // [B] one record (its thinned series)
+  for (const fs::path& d : dirs)
+    for (uint64_t k : mc_journal_indices(d)) {
+      const fs::path f = mc_record_path(d, k);
+      try {
+        const std::vector<McRecord> r = read_mc_records(read_shard_file(f, kMaxRecordBytes), f.string(), shape);
+        if (r.size() != 1 || r.front().index != k)
+          return f.string() + ": holds " + std::to_string(r.size()) + " records, not run " + std::to_string(k) + " alone";
+      } catch (const std::exception& e) {
+        return e.what();
+      }
+    }
+  return "";
+}
+
 // --resume into the new working folder: every earlier attempt checked
 // against this campaign, then its finished runs moved in (a record whose run
 // folder is missing is dropped: that run runs again).  Returns a refusal.
-std::string adopt_earlier(const McCommand& c, const json& want, ResultsDir& rdir, std::vector<fs::path>& stale)
+std::string adopt_earlier(const McCommand& c, const json& want, const McRecordShape& shape, ResultsDir& rdir,
+                          std::vector<fs::path>& stale)
 {
   const std::vector<fs::path> src = resume_sources(rdir.target(), rdir.work());
   std::vector<fs::path> usable;
@@ -415,6 +437,8 @@ std::string adopt_earlier(const McCommand& c, const json& want, ResultsDir& rdir
     usable.push_back(d);
   }
   if (usable.empty()) return c.resume + ": no interrupted campaign there to resume";
+  const std::string bad = check_journals(usable, shape);
+  if (!bad.empty()) return bad + "; not resuming";
   for (const fs::path& d : usable) adopt_runs(d, rdir.work());
   for (uint64_t k : mc_journal_indices(rdir.work()))
     if (!fs::exists(rdir.work() / "runs" / run_folder_name(k))) fs::remove(mc_record_path(rdir.work(), k));
@@ -503,7 +527,7 @@ std::function<std::string(ResultsDir&)> prepare_work(const McCommand& c, const M
   return [&c, &plan, &ov, &indices, &stale](ResultsDir& rdir) {
     const std::string m = mc_manifest_text(plan, c.scenario, ov, partition_json(c), only_list(c, indices), false, json::array());
     write_file_durably(rdir.work() / "mc_manifest.json", m);
-    return c.resume.empty() ? std::string() : adopt_earlier(c, json::parse(m), rdir, stale);
+    return c.resume.empty() ? std::string() : adopt_earlier(c, json::parse(m), mc_record_shape(plan), rdir, stale);
   };
 }
 
