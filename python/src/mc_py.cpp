@@ -11,6 +11,7 @@
 #include "harness/mc/monte_carlo.h"
 #include "harness/mc/mc_journal.h"
 #include "harness/output/results_dir.h"
+#include "scenario/scenario_limits.h"  // kMaxMcRuns
 
 namespace kpy {
 
@@ -198,10 +199,9 @@ void bind_mc(py::module_& m)
         const uint64_t n = runs.is_none() ? sc.monte_carlo->runs : count(runs, "runs");
         const uint64_t s = seed.is_none() ? sc.monte_carlo->seed : count(seed, "seed");
         // the limit of the scenario key monte_carlo.runs and of kestrel mc --runs
-        // (issue 39: runs=10**9 went on to 8.4 GB before MemoryError)
-        constexpr uint64_t kMaxRuns = 10000000;
-        if (n == 0 || n > kMaxRuns)
-          throw py::value_error("monte_carlo: runs must be in [1, " + std::to_string(kMaxRuns) + "], got " +
+        // (runs=10**9 once went on to 8.4 GB before MemoryError)
+        if (n == 0 || n > harness::kMaxMcRuns)
+          throw py::value_error("monte_carlo: runs must be in [1, " + std::to_string(harness::kMaxMcRuns) + "], got " +
                                 std::to_string(n));
         if (jobs == 0 || jobs > 1024) throw py::value_error("monte_carlo: jobs in 1..1024 (as kestrel mc -j)");
         auto res = std::make_shared<McResults>();

@@ -11,6 +11,7 @@
 #include "harness/core/pacer.h"
 #include "harness/core/scenario_types.h"
 #include "harness/core/run.h"
+#include "scenario/scenario_limits.h"  // kMaxMcRuns
 
 namespace {
 
@@ -128,7 +129,7 @@ CLI::App* add_mc(CLI::App& app, harness::McCommand& mc, std::string& shard)
 {
   auto* mcc = app.add_subcommand("mc", "run a Monte Carlo campaign of a scenario's monte_carlo section (docs/monte-carlo.md)");
   mcc->add_option("scenario", mc.scenario, "scenario file with a monte_carlo section, or its manifest");
-  mcc->add_option("--runs", mc.runs, "number of runs (default monte_carlo.runs)")->check(CLI::Range(1ULL, 10000000ULL));
+  mcc->add_option("--runs", mc.runs, "number of runs (default monte_carlo.runs)")->check(CLI::Range(uint64_t(1), harness::kMaxMcRuns));
   mcc->add_option("--seed", mc.seed, "master seed, an integer in [0, 2^64 - 1] (default monte_carlo.seed)")
       ->check(CLI::Validator(
           [](std::string& v) {
