@@ -3,8 +3,9 @@
 // mc_runs.json is checked against the campaign before anything is written,
 // links inside a shard are never followed, and a refusal names the shard's
 // file and the field.  The shards here are two real shards of a 6-run
-// campaign of the shipped S1 campaign (every run failing its `settled`
-// criterion: the gain is cut tenfold), tampered with one field at a time.
+// campaign of the S1 campaign shortened to 20 s runs (data/mc_short.yaml;
+// the gain cut tenfold, so runs fail their `settled` criterion), tampered
+// with one field at a time.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -56,8 +57,11 @@ const fs::path& pristine()
     const fs::path d = scratch_root() / "pristine";
     for (uint32_t i = 0; i < 2; ++i) {
       harness::McCommand c;
-      c.scenario = std::string(KESTREL_SOURCE_DIR) + "/scenarios/s1_monte_carlo.yaml";
-      c.sets = {"fsw.mrp_fb.K=0.01"};  // every run fails `settled` (as mc_cli_test.sh's failing campaign)
+      // the shipped S1 campaign shortened to 20 s runs (test/harness/data/
+      // mc_short.yaml), so that it is short in every preset, the sanitizers'
+      // included; the gain cut tenfold fails `settled` in every run
+      c.scenario = std::string(KESTREL_SOURCE_DIR) + "/test/harness/data/mc_short.yaml";
+      c.sets = {"fsw.mrp_fb.K=0.01"};
       c.runs = kRuns;
       c.seed = 7;
       c.shard_index = i;
