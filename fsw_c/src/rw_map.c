@@ -5,7 +5,7 @@
  * in 5.3: columns scaled by sqrt(y), K1, then scaled back.
  * K1 works on the normal equations, whose rounding grows with cond(A)^2; one
  * step of iterative refinement (r = b - A x, x += K1(A, r)) brings the torque
- * residual back to ~eps * |A| |x| (fsw-algorithms.md 5.3 asks for 1e-12
+ * residual back to ~eps * |A| |x| (docs/fsw/rw_map.md asks for 1e-12
  * relative, which badly conditioned 3-wheel sets miss without it).  The
  * correction lies in the row space of A, so x stays the minimum-norm
  * solution. */

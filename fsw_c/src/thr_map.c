@@ -1,4 +1,4 @@
-/* thr_map: thruster force mapping, fsw-algorithms.md 8 (Basilisk
+/* thr_map: thruster force mapping, docs/fsw/thr_map.md (Basilisk
  * thrForceMapping) with the opt-in exact bounded mode of 8.6. */
 #include "fsw/thr_map.h"
 
@@ -9,7 +9,7 @@
 
 /* Saturation angle below which the torque angle error is treated as 0: the
  * angle of two parallel vectors computed in floating point is ~1e-8 rad in
- * double (fsw-algorithms.md 8.5, defect b: 1e-6 rad).  In single precision
+ * double (docs/fsw/thr_map.md, defect b: 1e-6 rad).  In single precision
  * acos(1 - k eps) is already sqrt(2 k eps) ~ 5e-4 rad for k = 1, so the
  * float build uses 2e-3 rad.  [rad] */
 #if FSW_USE_FLOAT

@@ -1,4 +1,4 @@
-/* thr_pulse_schmitt: Schmitt-trigger thruster pulsing, fsw-algorithms.md 10. */
+/* thr_pulse_schmitt: Schmitt-trigger thruster pulsing, docs/fsw/thr_pulse_schmitt.md. */
 #include "fsw/thr_pulse_schmitt.h"
 
 #include <stddef.h>

@@ -1,5 +1,5 @@
 // Kernels K1 (scale-invariant minimum-norm solve) and K2 (rank-robust
-// null-space projector) of fsw-algorithms.md 0.4.  Closed-form cases, an
+// null-space projector) of docs/fsw/core.md, "Kernels".  Closed-form cases, an
 // independent normal-equation solver written here, and properties over
 // seeded random geometries with 3..FSW_MAX_EFF columns.
 #include <gtest/gtest.h>

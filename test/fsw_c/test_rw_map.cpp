@@ -1,4 +1,4 @@
-// rw_map: minimum-norm (fsw-algorithms.md 4) and L2 power-optimal (5) wheel
+// rw_map: minimum-norm and L2 power-optimal (docs/fsw/rw_map.md) wheel
 // torque mapping.
 #include <gtest/gtest.h>
 

@@ -53,8 +53,8 @@ extern "C" {
 #endif
 
 typedef enum {
-  FSW_ACS_PULSE_REMAINDER = 0, /* thr_pulse_rem (spec 9)     */
-  FSW_ACS_PULSE_SCHMITT = 1    /* thr_pulse_schmitt (spec 10) */
+  FSW_ACS_PULSE_REMAINDER = 0, /* thr_pulse_rem (docs/fsw/thr_pulse_rem.md)     */
+  FSW_ACS_PULSE_SCHMITT = 1    /* thr_pulse_schmitt (docs/fsw/thr_pulse_schmitt.md) */
 } FswAcsPulser;
 
 /* The actuator geometry of the spacecraft, given once.  The modules keep

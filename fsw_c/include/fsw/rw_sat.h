@@ -1,4 +1,4 @@
-/* rw_sat: reaction-wheel torque saturation (fsw-algorithms.md 7.2).
+/* rw_sat: reaction-wheel torque saturation (docs/fsw/rw_sat.md).
  *   FSW_RW_SAT_SCALE (default): s = max_i |u_i|/u_max_i over the available
  *       wheels; if s > 1 every torque is divided by s (the torque direction
  *       is kept, as in 8.5).

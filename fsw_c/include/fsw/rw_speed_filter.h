@@ -1,5 +1,5 @@
 /* rw_speed_filter: wheel-speed (tachometer) outlier rejection.  Library
- * design; fsw-algorithms.md does not cover it (issue 4, docs/fsw/rw_speed_filter.md).
+ * design (docs/fsw/rw_speed_filter.md).
  * Per wheel i, with the last accepted ("good") sample Omega_good at t_good:
  *   bound_i = (u_max_i / J_s,i) (t - t_good) + noise_i
  * A wheel's speed relative to the body changes at most u_max/J_s (the motor

@@ -1,5 +1,5 @@
 /* thr_pulse_common: the parts every thruster pulser shares
- * (fsw-algorithms.md 9-11).
+ * (docs/fsw/thr_pulse_rem.md, thr_pulse_schmitt.md, thr_pulse_round.md).
  *  - FswThrPulseCommon: the configuration of the pulse-width pulsers
  *    thr_pulse_rem (9) and thr_pulse_schmitt (10), embedded in their configs
  *    as `common`.  thr_pulse_round (11) has no base thrust state and no

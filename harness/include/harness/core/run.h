@@ -1,6 +1,6 @@
 // run: one closed-loop run of a scenario.
 //
-// Tick protocol (plant-dynamics §7.2), tick k at t_k = k * dt: every task due
+// Tick protocol (docs/dynamics.md §7.2), tick k at t_k = k * dt: every task due
 // at k runs in the order of the table kTickProtocol (run.cpp):
 //   events         (every tick, scenarios with events) the events whose
 //                  trigger holds are applied (docs/events.md, event_task.h)
