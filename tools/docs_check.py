@@ -8,6 +8,9 @@
                                        every tracked .md file under docs/ names
                                        an existing file, and its #anchor (if any)
                                        names a heading of that file
+  docs_check.py index --root DIR       README.md names every top-level folder of
+                                       the tracked files (as `name/`) and links
+                                       every tracked .md page under docs/
   docs_check.py self-test              shows each check failing on planted faults
 
 Files are the ones `git ls-files` lists when DIR is a git checkout, otherwise
@@ -151,6 +154,22 @@ def check_links(root, files):
     return findings
 
 
+def check_index(root, files):
+    text = read_text(os.path.join(root, "README.md")) or ""
+    linked = set()
+    for _, line, _ in prose_lines(text):
+        for target in LINK.findall(line):
+            linked.add(os.path.normpath(target.partition("#")[0]))
+    findings = []
+    for folder in sorted({f.split("/")[0] for f in files if "/" in f}):
+        if "`%s/`" % folder not in text:
+            findings.append("README.md: the top-level folder %s/ is not in the folder table" % folder)
+    for page in sorted(f for f in files if f.startswith("docs/") and f.endswith(".md")):
+        if page not in linked:
+            findings.append("README.md: the page %s is not in the page index" % page)
+    return findings
+
+
 def self_test():
     ok = True
     with tempfile.TemporaryDirectory() as d:
@@ -171,10 +190,13 @@ def self_test():
         listed = sorted(files)
         c = check_citations(d, listed, "")
         links = check_links(d, listed)
+        idx = check_index(d, listed + ["tools/x.py"])
+        expect_i = ["README.md: the top-level folder docs/", "README.md: the top-level folder tools/",
+                    "README.md: the page docs/sub/b.md"]
         expect_c = ["src.c:1:"]
         expect_l = ["README.md:1: link 'docs/missing.md'", "README.md:2: link 'docs/a.md#nowhere'",
                     "docs/a.md:3: link '../../x.md' leaves"]
-        for label, got, want in (("citations", c, expect_c), ("links", links, expect_l)):
+        for label, got, want in (("citations", c, expect_c), ("links", links, expect_l), ("index", idx, expect_i)):
             if len(got) != len(want) or not all(any(g.startswith(w) for g in got) for w in want):
                 print("self-test %s: expected %s, got %s" % (label, want, got))
                 ok = False
@@ -188,15 +210,17 @@ def self_test():
 def main(argv):
     if len(argv) >= 1 and argv[0] == "self-test":
         return self_test()
-    if len(argv) != 3 or argv[0] not in ("citations", "links") or argv[1] != "--root":
+    if len(argv) != 3 or argv[0] not in ("citations", "links", "index") or argv[1] != "--root":
         print(__doc__)
         return 2
     root = os.path.abspath(argv[2])
     files = tracked_files(root)
     if argv[0] == "citations":
         findings = check_citations(root, files, os.path.abspath(__file__))
-    else:
+    elif argv[0] == "links":
         findings = check_links(root, files)
+    else:
+        findings = check_index(root, files)
     for f in findings:
         print(f)
     print("%s: %d finding(s) in %d files" % (argv[0], len(findings), len(files)))
