@@ -228,7 +228,7 @@ typedef struct {
   int ready;            /* [-]  1 after a successful init                      */
   int mode;             /* [-]  FswAcsMode in force                            */
   int actuation;        /* [-]  FswAcsActuation in force                       */
-  FswClock clock;       /* [-]  previous accepted cycle (0.3)                  */
+  FswClock clock;       /* [-]  previous accepted cycle (fsw_clock.h)         */
   uint32_t cycles;      /* [-]  accepted (non-error) cycles since init         */
   uint32_t mode_changes;/* [-]  transitions since init                         */
   FswCssSunState css;

@@ -23,8 +23,8 @@ extern "C" {
 #endif
 
 typedef enum {
-  FSW_RW_MAP_MIN_NORM = 0, /* section 4 (default of a zeroed config) */
-  FSW_RW_MAP_POWER = 1     /* section 5 */
+  FSW_RW_MAP_MIN_NORM = 0, /* minimum norm (default of a zeroed config) */
+  FSW_RW_MAP_POWER = 1     /* L2 power-optimal */
 } FswRwMapMode;
 
 /* Default eps_P of docs/fsw/rw_map.md [rad^2/s^2]. */

@@ -86,7 +86,7 @@ typedef struct {
   fsw_real win_Omega0[FSW_MAX_RW]; /* [rad/s] accepted sample that opened it  */
   fsw_real win_exp[FSW_MAX_RW];    /* [rad/s] speed change the torque explains */
   uint32_t win_count[FSW_MAX_RW];  /* [-]     intervals in the window         */
-  FswClock clock;                  /* [-]     previous accepted call (0.3)    */
+  FswClock clock;                  /* [-]     previous accepted call (fsw_clock.h) */
   FswHealth health;
 } FswRwSpeedFilterState;
 

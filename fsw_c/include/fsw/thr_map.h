@@ -40,8 +40,8 @@ extern "C" {
 
 /* Mapping algorithm (FswThrMapConfig.mode). */
 typedef enum {
-  FSW_THR_MAP_MIN_NORM = 0, /* Basilisk thrForceMapping (8.3-8.5), default */
-  FSW_THR_MAP_NNLS = 1      /* exact bounded solve (8.6), opt-in             */
+  FSW_THR_MAP_MIN_NORM = 0, /* Basilisk thrForceMapping, default             */
+  FSW_THR_MAP_NNLS = 1      /* exact bounded solve, opt-in                   */
 } FswThrMapMode;
 
 typedef struct {

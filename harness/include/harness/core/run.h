@@ -124,7 +124,7 @@ class Run {
   const DataFlow& dataflow() const;
   const Scheduler& scheduler() const;
   // The plant, for changes between steps (sim::Plant's device setters: wheel
-  // limits, friction and health, thruster health) and its §13 outputs.
+  // limits, friction and health, thruster health) and its accessors (docs/dynamics.md §13).
   sim::Plant& plant();
   const sim::Plant& plant() const;
 
