@@ -1,5 +1,5 @@
 // Cost of the thruster model per plant step with 8 ACS thrusters (scenario
-// S2 layout, spec plant-dynamics §11), dt = 0.01 s, T_upd = 0.1 s.
+// S2 layout, docs/dynamics.md §11), dt = 0.01 s, T_upd = 0.1 s.
 //   BM_ThrusterEffects8     the pure §5.4 evaluation of 8 thrusters (one
 //                           derivative call's worth; RK4 makes 4 per sub-step)
 //   BM_VehicleStep/...      one Plant::step (RK4, event splitting, tank):

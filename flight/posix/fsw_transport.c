@@ -73,7 +73,7 @@ static void reset(FswTransport *t)
   fsw_link_deframer_init(&t->deframer);
 }
 
-/* A UDP socket bound (connect == 0) or connected to spec's address. */
+/* A UDP socket bound (connect == 0) or connected to the address in spec. */
 static int open_udp(FswTransport *t, const char *spec, int connect_to, char *err, size_t err_len)
 {
   struct addrinfo *res = NULL;

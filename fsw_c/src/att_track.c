@@ -1,4 +1,4 @@
-/* att_track: attitude tracking error (fsw-algorithms.md 1.3). */
+/* att_track: attitude tracking error (docs/fsw/att_track.md). */
 #include "fsw/att_track.h"
 
 #include <stddef.h>

@@ -290,7 +290,7 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
   if (cfg->has_thrusters) {
     const int n = cfg->thr_map.num_thr;
     /* off-pulsing mapping (sign -1) needs off-pulsing pulsing (b = 1) and
-     * vice versa; a mismatch silently inverts the control (spec 9). */
+     * vice versa; a mismatch silently inverts the control (docs/fsw/thr_pulse_rem.md). */
     const int b_want = (cfg->thr_map.thr_force_sign < 0) ? 1 : 0;
     const fsw_real *F_max;
     int num_thr, b;

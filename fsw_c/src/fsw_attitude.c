@@ -1,4 +1,4 @@
-/* fsw_attitude: MRP / DCM / quaternion maths (fsw-algorithms.md 0.4 K3). */
+/* fsw_attitude: MRP / DCM / quaternion maths (docs/fsw/core.md, "Kernels" K3). */
 #include "fsw/fsw_attitude.h"
 
 #include "fsw/fsw_vec.h"

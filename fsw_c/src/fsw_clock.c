@@ -1,4 +1,4 @@
-/* fsw_clock: the shared timing step of fsw-algorithms.md 0.3. */
+/* fsw_clock: the shared timing step of docs/fsw-conventions.md, "Timing". */
 #include "fsw/fsw_clock.h"
 
 #include <stddef.h>
@@ -10,7 +10,7 @@ FswStatus fsw_clock_dt(const FswClock *clk, uint64_t t_ns, fsw_real *dt)
   if (clk == NULL || dt == NULL) return FSW_E_NULL_ARG;
   if (!clk->has_prev) return FSW_OK;
   if (t_ns <= clk->t_prev_ns) return FSW_E_TIME;
-  /* fsw-algorithms.md 0.3: dt = (real)(t_ns - t_prev_ns) * 1e-9 */
+  /* docs/fsw-conventions.md, "Timing": dt = (real)(t_ns - t_prev_ns) * 1e-9 */
   *dt = (fsw_real)(t_ns - clk->t_prev_ns) * FSW_R(1e-9);
   return FSW_OK;
 }

@@ -1,6 +1,6 @@
 /* fsw_linalg: kernels K1 (minimum-norm solve) and K2 (null-space projector)
- * of fsw-algorithms.md 0.4, and K4 (bounded minimum-norm solve, the exact
- * mode of thr_map, fsw-algorithms.md 8.6). */
+ * of docs/fsw/core.md, "Kernels", and K4 (bounded minimum-norm solve, the exact
+ * mode of thr_map, docs/fsw/thr_map.md, "NNLS mode"). */
 #include "fsw/fsw_linalg.h"
 
 #include <float.h>

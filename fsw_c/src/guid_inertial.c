@@ -1,4 +1,4 @@
-/* guid_inertial: inertial three-axis pointing (fsw-algorithms.md 1.1). */
+/* guid_inertial: inertial three-axis pointing (docs/fsw/guid_inertial.md). */
 #include "fsw/guid_inertial.h"
 
 #include <stddef.h>

@@ -1,4 +1,4 @@
-/* guid_sunsafe: sun-safe pointing guidance (fsw-algorithms.md 1.2). */
+/* guid_sunsafe: sun-safe pointing guidance (docs/fsw/guid_sunsafe.md). */
 #include "fsw/guid_sunsafe.h"
 
 #include <stddef.h>
@@ -7,7 +7,7 @@
 #include "fsw/fsw_attitude.h"
 #include "fsw/fsw_vec.h"
 
-/* Library guard of spec 1.2: in the "normal" branch a cross product
+/* Library guard (docs/fsw/guid_sunsafe.md): in the "normal" branch a cross product
  * |s_B x s_cmd| <= tol * |s_B| is treated as antiparallel (use e180).
  * 1e-12 in double as specified; single-precision round-off of a cross
  * product of unit vectors is ~1e-7, so 1e-6 there. */

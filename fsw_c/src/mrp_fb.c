@@ -1,4 +1,4 @@
-/* mrp_fb: MRP feedback control law (fsw-algorithms.md 2). */
+/* mrp_fb: MRP feedback control law (docs/fsw/mrp_fb.md). */
 #include "fsw/mrp_fb.h"
 
 #include <stddef.h>

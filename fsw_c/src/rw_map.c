@@ -1,11 +1,11 @@
-/* rw_map: minimum-norm (section 4) and L2 power-optimal (section 5) wheel
+/* rw_map: minimum-norm and L2 power-optimal (docs/fsw/rw_map.md) wheel
  * torque mapping.  Both are one weighted minimum-norm problem
  *   min sum_k u_k^2 / y_k   s.t.  A u = b,  A = [C][Gs_a],  b = -[C] Lr,
  * with y_k = 1 (min-norm) or y_k = 1/(Omega_k^2 + eps_P) (power), solved as
  * in 5.3: columns scaled by sqrt(y), K1, then scaled back.
  * K1 works on the normal equations, whose rounding grows with cond(A)^2; one
  * step of iterative refinement (r = b - A x, x += K1(A, r)) brings the torque
- * residual back to ~eps * |A| |x| (fsw-algorithms.md 5.3 asks for 1e-12
+ * residual back to ~eps * |A| |x| (docs/fsw/rw_map.md asks for 1e-12
  * relative, which badly conditioned 3-wheel sets miss without it).  The
  * correction lies in the row space of A, so x stays the minimum-norm
  * solution. */
@@ -79,7 +79,7 @@ static FswStatus form_map(FswRwMapWork *w, const FswRwMapConfig *cfg, const FswR
   for (i = 0; i < n; i++) {
     if (in->avail[i] != FSW_AVAILABLE) continue;
     w->idx[na] = i;
-    /* y = 1/W, W = Omega^2 + eps_P (5.2); Omega^2 overflowing gives y = 0 */
+    /* y = 1/W, W = Omega^2 + eps_P; Omega^2 overflowing gives y = 0 */
     w->sy[na] = (cfg->mode == FSW_RW_MAP_POWER)
                     ? FSW_SQRT(FSW_R(1.0) / (in->Omega[i] * in->Omega[i] + cfg->eps_P))
                     : FSW_R(1.0);

@@ -1,4 +1,4 @@
-/* rw_null: wheel-speed null motion (fsw-algorithms.md 6.1). */
+/* rw_null: wheel-speed null motion (docs/fsw/rw_null.md). */
 #include "fsw/rw_null.h"
 
 #include <stddef.h>

@@ -1,4 +1,4 @@
-/* rw_null_regen: regenerative power-optimal null motion (fsw-algorithms.md 6.2). */
+/* rw_null_regen: regenerative power-optimal null motion (docs/fsw/rw_null_regen.md). */
 #include "fsw/rw_null_regen.h"
 
 #include <stddef.h>

@@ -1,4 +1,4 @@
-/* rw_sat: wheel torque saturation, scale or clip (fsw-algorithms.md 7.2). */
+/* rw_sat: wheel torque saturation, scale or clip (docs/fsw/rw_sat.md). */
 #include "fsw/rw_sat.h"
 
 #include <stddef.h>

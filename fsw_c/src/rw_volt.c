@@ -1,4 +1,4 @@
-/* rw_volt: torque -> voltage with speed loop and outlier gate (fsw-algorithms.md 7.1). */
+/* rw_volt: torque -> voltage with speed loop and outlier gate (docs/fsw/rw_volt.md). */
 #include "fsw/rw_volt.h"
 
 #include <stddef.h>
@@ -104,7 +104,7 @@ FswStatus fsw_rw_volt_update(FswRwVoltState *st, const FswRwVoltConfig *cfg,
         else
           out->V[i] -= dV;
       }
-      /* spec 7.1: Omega_prev = Omega for every wheel (available or not) */
+      /* docs/fsw/rw_volt.md: Omega_prev = Omega for every wheel (available or not) */
       prev_ok[i] = (uint8_t)(isfinite(in->Omega[i]) ? 1 : 0);
       Omega_prev[i] = prev_ok[i] ? in->Omega[i] : FSW_R(0.0);
     }

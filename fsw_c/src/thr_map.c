@@ -1,4 +1,4 @@
-/* thr_map: thruster force mapping, fsw-algorithms.md 8 (Basilisk
+/* thr_map: thruster force mapping, docs/fsw/thr_map.md (Basilisk
  * thrForceMapping) with the opt-in exact bounded mode of 8.6. */
 #include "fsw/thr_map.h"
 
@@ -9,7 +9,7 @@
 
 /* Saturation angle below which the torque angle error is treated as 0: the
  * angle of two parallel vectors computed in floating point is ~1e-8 rad in
- * double (fsw-algorithms.md 8.5, defect b: 1e-6 rad).  In single precision
+ * double (docs/fsw/thr_map.md, defect b: 1e-6 rad).  In single precision
  * acos(1 - k eps) is already sqrt(2 k eps) ~ 5e-4 rad for k = 1, so the
  * float build uses 2e-3 rad.  [rad] */
 #if FSW_USE_FLOAT
@@ -121,7 +121,7 @@ FswStatus fsw_thr_map_init(FswThrMapState *st, const FswThrMapConfig *cfg)
   return FSW_OK;
 }
 
-/* F <- F - min(0, min_i F_i) (8.3): shift so the most negative becomes 0. */
+/* F <- F - min(0, min_i F_i): shift so the most negative becomes 0. */
 static void shift_min(fsw_real *F, int n)
 {
   fsw_real fmin = FSW_R(0.0);
@@ -131,7 +131,7 @@ static void shift_min(fsw_real *F, int n)
   for (i = 0; i < n; i++) F[i] = F[i] - fmin;
 }
 
-/* ---- Minimum-norm mode (8.3-8.5) ---------------------------------------- */
+/* ---- Minimum-norm mode (docs/fsw/thr_map.md) ----------------------------- */
 
 /* Torque angle error of 8.5 (library variant: compares with [C]^T Lbar). */
 static fsw_real torque_angle_error(const FswThrMapState *st, const FswThrMapConfig *cfg,
@@ -221,7 +221,7 @@ static FswStatus map_min_norm(FswThrMapState *st, const FswThrMapConfig *cfg,
   return scaled ? FSW_W_SAT : FSW_OK;
 }
 
-/* ---- Exact bounded mode (8.6) -------------------------------------------- */
+/* ---- Exact bounded mode (docs/fsw/thr_map.md, NNLS mode) ----------------- */
 
 static FswStatus map_nnls(FswThrMapState *st, const FswThrMapConfig *cfg,
                           const fsw_real Lbar[3], const uint8_t *avail, fsw_real F[FSW_MAX_EFF])

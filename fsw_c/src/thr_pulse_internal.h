@@ -1,7 +1,7 @@
 /* thr_pulse_internal: internal pieces shared by the thruster pulsing modules
  * (thr_pulse_rem, thr_pulse_schmitt, thr_pulse_round): config checks, the
  * shared start and end of an update (readiness, input check, the timing
- * model of fsw-algorithms.md 0.3 through fsw_clock, health), the first-call
+ * model of docs/fsw-conventions.md, "Timing" through fsw_clock, health), the first-call
  * output and the force -> on-time conversion of 9 steps 1-2.  Not a public
  * header; the public parts are in fsw/thr_pulse_common.h. */
 #ifndef FSW_THR_PULSE_INTERNAL_H
@@ -37,7 +37,7 @@ void fsw_thr_pulse_init_common(FswThrPulseCommonState *cs);
 
 /* The shared start of every pulser update, after its NULL checks: readiness,
  * finite forces (n entries) and, when use_time, the timing model of
- * fsw-algorithms.md 0.3 (*dt = 0 on the first call after reset, which the
+ * docs/fsw-conventions.md, "Timing" (*dt = 0 on the first call after reset, which the
  * caller recognises by !cs->clock.has_prev).  Returns FSW_OK to go on; any
  * other status has already been counted in cs->health and is for the caller
  * to return with the safe output it wrote.  Changes no module state. */

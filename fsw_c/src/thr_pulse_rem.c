@@ -1,4 +1,4 @@
-/* thr_pulse_rem: remainder-tracking thruster pulsing, fsw-algorithms.md 9. */
+/* thr_pulse_rem: remainder-tracking thruster pulsing, docs/fsw/thr_pulse_rem.md. */
 #include "fsw/thr_pulse_rem.h"
 
 #include <stddef.h>

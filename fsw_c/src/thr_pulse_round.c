@@ -1,4 +1,4 @@
-/* thr_pulse_round: rounding thruster pulser, fsw-algorithms.md 11. */
+/* thr_pulse_round: rounding thruster pulser, docs/fsw/thr_pulse_round.md. */
 #include "fsw/thr_pulse_round.h"
 
 #include <stddef.h>

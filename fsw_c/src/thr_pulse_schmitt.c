@@ -1,4 +1,4 @@
-/* thr_pulse_schmitt: Schmitt-trigger thruster pulsing, fsw-algorithms.md 10. */
+/* thr_pulse_schmitt: Schmitt-trigger thruster pulsing, docs/fsw/thr_pulse_schmitt.md. */
 #include "fsw/thr_pulse_schmitt.h"
 
 #include <stddef.h>
@@ -73,7 +73,7 @@ FswStatus fsw_thr_pulse_schmitt_update(FswThrPulseSchmittState *st,
         /* the minimum pulse, but never longer than the call period (a
          * period shorter than t_min cannot hold a t_min pulse) */
         const fsw_real t_pulse = (c->t_min < dt) ? c->t_min : dt;
-        /* both comparisons inclusive (10) */
+        /* both comparisons inclusive */
         if (level >= cfg->level_on) {
           st->last_on[i] = 1u;
           out->t_on[i] = t_pulse;

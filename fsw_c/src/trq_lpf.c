@@ -1,4 +1,4 @@
-/* trq_lpf: first-order Tustin low-pass of the control torque (fsw-algorithms.md 3). */
+/* trq_lpf: first-order Tustin low-pass of the control torque (docs/fsw/trq_lpf.md). */
 #include "fsw/trq_lpf.h"
 
 #include <stddef.h>

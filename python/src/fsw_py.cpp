@@ -311,7 +311,7 @@ void bind_fsw(py::module_& m)
   using MO = FswMrpFbOut;
   using MS = FswMrpFbState;
   bind_algorithm<MC, MS, MI, MO>(
-      m, "MrpFb", "MRP feedback control law (fsw_c/include/fsw/mrp_fb.h, fsw-algorithms.md 2)", fsw_mrp_fb_check,
+      m, "MrpFb", "MRP feedback control law (fsw_c/include/fsw/mrp_fb.h, docs/fsw/mrp_fb.md)", fsw_mrp_fb_check,
       fsw_mrp_fb_init, fsw_mrp_fb_reset, fsw_mrp_fb_update,
       {KPY_SCALAR(MC, Kind::Real, K, "[N*m] attitude gain"), KPY_SCALAR(MC, Kind::Real, P, "[N*m*s] rate gain"),
        KPY_SCALAR(MC, Kind::Real, K_i, "[1/(kg*m^2)] integral gain; <= 0 disables"),
@@ -337,7 +337,7 @@ void bind_fsw(py::module_& m)
   using RO = FswRwMapOut;
   using RS = FswRwMapState;
   bind_algorithm<RC, RS, RI, RO>(
-      m, "RwMap", "Reaction-wheel torque mapping (fsw_c/include/fsw/rw_map.h, fsw-algorithms.md 4, 5)",
+      m, "RwMap", "Reaction-wheel torque mapping (fsw_c/include/fsw/rw_map.h, docs/fsw/rw_map.md)",
       fsw_rw_map_check, fsw_rw_map_init, fsw_rw_map_reset, fsw_rw_map_update,
       {KPY_SCALAR(RC, Kind::Int, num_rw, "1..MAX_RW"), KPY_MAT(RC, gs_hat_B, FSW_MAX_RW, 3, true, "(num_rw, 3) spin axes"),
        KPY_SCALAR(RC, Kind::Int, num_axes, "controlled axes 0..3"),
@@ -368,7 +368,7 @@ void bind_fsw(py::module_& m)
   using LO = FswTrqLpfOut;
   using LS = FswTrqLpfState;
   bind_algorithm<LC, LS, LI, LO>(
-      m, "TrqLpf", "Control-torque low-pass filter, first-order Tustin (fsw_c/include/fsw/trq_lpf.h, fsw-algorithms.md 3)",
+      m, "TrqLpf", "Control-torque low-pass filter, first-order Tustin (fsw_c/include/fsw/trq_lpf.h, docs/fsw/trq_lpf.md)",
       fsw_trq_lpf_check, fsw_trq_lpf_init, fsw_trq_lpf_reset, fsw_trq_lpf_update,
       {KPY_SCALAR(LC, Kind::Real, h, "[s] assumed call period"), KPY_SCALAR(LC, Kind::Real, omega_c, "[rad/s] cut-off")},
       {KPY_VEC(LI, Kind::Real, Lr_B, 3, false, "[N*m] control torque"), KPY_SCALAR(LI, Kind::U64, t_ns, "[ns]")},
@@ -381,7 +381,7 @@ void bind_fsw(py::module_& m)
   using TO = FswAttTrackOut;
   using TS = FswAttTrackState;
   bind_algorithm<TC, TS, TI, TO>(
-      m, "AttTrack", "Attitude tracking error (fsw_c/include/fsw/att_track.h, fsw-algorithms.md 1.3)",
+      m, "AttTrack", "Attitude tracking error (fsw_c/include/fsw/att_track.h, docs/fsw/att_track.md)",
       fsw_att_track_check, fsw_att_track_init, fsw_att_track_reset, fsw_att_track_update,
       {KPY_VEC(TC, Kind::Real, sigma_R0R, 3, false, "[-] nominal reference rel. the corrected one")},
       {KPY_VEC(TI, Kind::Real, sigma_BN, 3, false, "[-]"), KPY_VEC(TI, Kind::Real, omega_BN_B, 3, false, "[rad/s]"),

@@ -1,4 +1,4 @@
-// environment: see sim/environment.h.  Spec plant-dynamics §0, §6, §9.3, §11.
+// environment: see sim/environment.h.  docs/dynamics.md §0, §6, §9.3, §11.
 #include "sim/environment.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// plant: see sim/plant.h.  Spec plant-dynamics §1, §4.3, §4.6, §5, §7.
+// plant: see sim/plant.h.  docs/dynamics.md §1, §4.3, §4.6, §5, §7.
 #include "sim/plant.h"
 
 #include <algorithm>

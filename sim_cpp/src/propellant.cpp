@@ -1,4 +1,4 @@
-// propellant: see sim/propellant.h.  Spec plant-dynamics §2, §5.6.
+// propellant: see sim/propellant.h.  docs/dynamics.md §2, §5.6.
 #include "sim/propellant.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// reaction_wheel: see sim/reaction_wheel.h.  Spec plant-dynamics §4.
+// reaction_wheel: see sim/reaction_wheel.h.  docs/dynamics.md §4.
 #include "sim/reaction_wheel.h"
 
 #include <cmath>

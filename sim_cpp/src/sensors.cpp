@@ -1,4 +1,4 @@
-// sensors: see sim/sensors.h.  Spec plant-dynamics §9.
+// sensors: see sim/sensors.h.  docs/dynamics.md §9.
 #include "sim/sensors.h"
 
 #include <algorithm>

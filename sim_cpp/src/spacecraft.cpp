@@ -1,4 +1,4 @@
-// spacecraft: see sim/spacecraft.h.  Spec plant-dynamics §1-§4, §8.
+// spacecraft: see sim/spacecraft.h.  docs/dynamics.md §1-§4, §8.
 #include "sim/spacecraft.h"
 
 #include <cmath>
@@ -191,7 +191,7 @@ SpacecraftModel::SpacecraftModel(SpacecraftParams params, int num_tanks) : p_(st
   const size_t n = p_.wheels.size();
   if (n > static_cast<size_t>(kMaxWheels))
     fail("wheels.size()", static_cast<double>(n), "must be <= sim::kMaxWheels");
-  Matrix3d I_less_spin = I_sym;  // hub must contain the Balanced/Simple wheels' J_s (§2, trap 2)
+  Matrix3d I_less_spin = I_sym;  // hub must contain the Balanced/Simple wheels' J_s (docs/dynamics.md §2)
   for (size_t i = 0; i < n; ++i) {
     const ReactionWheelParams& w = p_.wheels[i];
     validate(w, "wheels[" + std::to_string(i) + "]");

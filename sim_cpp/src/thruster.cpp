@@ -1,4 +1,4 @@
-// thruster: see sim/thruster.h.  Spec plant-dynamics §5.1-§5.4.
+// thruster: see sim/thruster.h.  docs/dynamics.md §5.1-§5.4.
 #include "sim/thruster.h"
 
 #include <algorithm>

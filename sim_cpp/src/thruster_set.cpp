@@ -1,4 +1,4 @@
-// thruster_set: see sim/thruster_set.h.  Spec plant-dynamics §5.2-§5.4, §7.3.
+// thruster_set: see sim/thruster_set.h.  docs/dynamics.md §5.2-§5.4, §7.3.
 #include "sim/thruster_set.h"
 
 #include <algorithm>

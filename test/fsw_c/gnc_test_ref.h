@@ -1,6 +1,6 @@
 // Test helpers shared by the guidance / control / sun-sensor tests: an
 // independent reference for attitude maths written in plain C++ double
-// (principal-rotation formulas, not the spec's element-wise MRP2C), small
+// (principal-rotation formulas, not the element-wise MRP2C of fsw_attitude.h), small
 // 3-vector / 3x3 helpers and conversions between double and fsw_real.
 // No Eigen, no <random> (the tests also run on bare metal with picolibc).
 #ifndef KESTREL_GNC_TEST_REF_H

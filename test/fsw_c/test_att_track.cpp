@@ -1,4 +1,4 @@
-// att_track: attitude tracking error (fsw-algorithms.md 1.3).
+// att_track: attitude tracking error (docs/fsw/att_track.md).
 // Hand cases use rotations about one axis, where MRPs compose as angles:
 // sigma = tan(theta/4) e, so B at theta_B and R at theta_R about e give
 // sigma_BR = tan((theta_B - theta_R)/4) e.  The general case is checked

@@ -962,7 +962,7 @@ TEST(FswAcsIssue21, RequestsCountersAndResetOfANotReadyState)
 }
 
 // Issue 21: a control law without wheel momentum (mrp_fb.num_rw = 0) in
-// front of a wheel chain is legal (H_s omitted, spec 2), and then the
+// front of a wheel chain is legal (H_s omitted, docs/fsw/mrp_fb.md), and then the
 // spin-axis and spin-inertia copies have nothing to agree with.
 TEST(FswAcsIssue21, ControlLawWithoutWheelMomentumIsAccepted)
 {

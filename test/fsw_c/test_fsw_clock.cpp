@@ -1,4 +1,4 @@
-// fsw_clock: the shared timing step of fsw-algorithms.md 0.3.  Hand values,
+// fsw_clock: the shared timing step of docs/fsw-conventions.md, "Timing".  Hand values,
 // the first call at any time stamp (no sentinel), rejection of equal and
 // earlier stamps without any change, dt from the integer difference (no
 // accumulated round-off), reset, and NULL arguments.

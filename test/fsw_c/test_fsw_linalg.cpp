@@ -1,5 +1,5 @@
 // Kernels K1 (scale-invariant minimum-norm solve) and K2 (rank-robust
-// null-space projector) of fsw-algorithms.md 0.4.  Closed-form cases, an
+// null-space projector) of docs/fsw/core.md, "Kernels".  Closed-form cases, an
 // independent normal-equation solver written here, and properties over
 // seeded random geometries with 3..FSW_MAX_EFF columns.
 #include <gtest/gtest.h>
@@ -1029,7 +1029,7 @@ TEST(FswNullProjector, Issue21RowDropIsRelativeToTheRowNorm)
 // InteriorSolutionIsTheNormalEquationSolution with b scaled by k = 1e-7:
 // A x = b exactly (a stop test that is not relative to |b| would end phase 1
 // at x = 0), and in double x = k (2/3, 2/3, 4/3), the minimum-norm solution.
-// FINDING (single precision, not fixed here, docs/coverage.md): phase 2's
+// FINDING (single precision, not fixed here, docs/design/coverage.md): phase 2's
 // stationarity test is absolute, K4_TOL x the box size (1.2e-4 x 10 here), so
 // for |b| below ~1e-3 of the box it stops at the phase-1 point x = k (0, 0, 2):
 // the torque is exact but |x| is 2 k instead of 1.63 k.

@@ -28,7 +28,7 @@ TEST(FswStatus, ErrorsNegativeWarningsPositive)
     EXPECT_FALSE(fsw_status_is_error(s));
   }
   EXPECT_FALSE(fsw_status_is_error(FSW_OK));
-  EXPECT_EQ(FSW_E_INPUT, FSW_E_BAD_INPUT);  // the spec's spelling
+  EXPECT_EQ(FSW_E_INPUT, FSW_E_BAD_INPUT);  // the alternative spelling
 }
 
 TEST(FswStatus, NamesAreDistinctAndUnknownIsReported)
@@ -123,7 +123,7 @@ TEST(FswConfig, CapacitiesAndRealType)
   EXPECT_EQ(sizeof(double), sizeof(fsw_real));
   EXPECT_STREQ("double", FSW_VERSION_REAL);
 #endif
-  // A zero-initialised availability mask means "all available" (spec 0.1).
+  // A zero-initialised availability mask means "all available" (docs/fsw-conventions.md, "Frames, units and signs").
   EXPECT_EQ(0, FSW_AVAILABLE);
   EXPECT_EQ(1, FSW_UNAVAILABLE);
 }

@@ -1,4 +1,4 @@
-// guid_inertial: inertial three-axis pointing (fsw-algorithms.md 1.1).
+// guid_inertial: inertial three-axis pointing (docs/fsw/guid_inertial.md).
 // Expected values are the configuration itself (the reference is constant)
 // or its shadow set computed by hand; the rotation is compared with an
 // independent principal-rotation DCM (gnc_test_ref.h).

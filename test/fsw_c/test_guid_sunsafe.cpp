@@ -1,4 +1,4 @@
-// guid_sunsafe: sun-safe pointing (fsw-algorithms.md 1.2).
+// guid_sunsafe: sun-safe pointing (docs/fsw/guid_sunsafe.md).
 // Hand cases: s_cmd = +x and the Sun on +y is a -90 deg rotation of B
 // relative to R about z (R's first axis must coincide with the Sun, i.e.
 // R = B turned +90 deg about z), so sigma_BR = tan(-90deg/4) z.

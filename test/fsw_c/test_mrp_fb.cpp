@@ -1,6 +1,6 @@
-// mrp_fb: MRP feedback control law (fsw-algorithms.md 2).
+// mrp_fb: MRP feedback control law (docs/fsw/mrp_fb.md).
 // Expected values: a hand calculation for the pure P/K case, and otherwise an
-// independent plain-C++ (double) evaluation of the spec equations written
+// independent plain-C++ (double) evaluation of the equations of docs/fsw/mrp_fb.md written
 // out component by component in this file (ref_lr below), never the
 // module's own output.
 #include <gtest/gtest.h>
@@ -18,7 +18,7 @@ namespace {
 
 const double kTol = kt::tol(1e-13, 2e-5);
 
-// Independent evaluation of spec 2, steps 1-6, in double.
+// Independent evaluation of docs/fsw/mrp_fb.md, steps 1-6, in double.
 struct RefIn {
   double sigma[3], wBR[3], wRN[3], dwRN[3];
   double I[3][3];
@@ -516,7 +516,7 @@ TEST_F(MrpFb, ResetClearsIntegralAndTimingAndIsRepeatable)
   }
 }
 
-// fsw-algorithms.md 0.2 says reset zeroes the output; the output belongs to
+// docs/fsw-conventions.md, "Reset and the output" says reset zeroes the output; the output belongs to
 // the caller, so the project's reading (docs/fsw-conventions.md) is: the
 // first update after reset writes its documented safe output on bad input,
 // never what the caller's buffer held before the reset.

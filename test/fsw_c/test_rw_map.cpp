@@ -1,4 +1,4 @@
-// rw_map: minimum-norm (fsw-algorithms.md 4) and L2 power-optimal (5) wheel
+// rw_map: minimum-norm and L2 power-optimal (docs/fsw/rw_map.md) wheel
 // torque mapping.
 #include <gtest/gtest.h>
 
@@ -582,7 +582,7 @@ TEST(RwMapIssue13, WheelNormalToTheOnlyAxisIsSingular)
 // = [0.8] (1 x 1), b = -Lr_z, so u = -Lr_z / 0.8 in both modes (a square
 // system has one solution; the power weighting only scales the column and is
 // undone).  Lr = (5, 7, 0.04): u = -0.05.  Three axes from one wheel:
-// fewer available wheels than axes -> W_SINGULAR with u = 0 (section 4).
+// fewer available wheels than axes -> W_SINGULAR with u = 0 (docs/fsw/rw_map.md).
 TEST(RwMapIssue21, SingleWheelIsAcceptedAndSolvedExactly)
 {
   const double g[1][3] = {{0.6, 0.0, 0.8}};

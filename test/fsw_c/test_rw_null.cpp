@@ -1,4 +1,4 @@
-// rw_null: wheel-speed null motion (fsw-algorithms.md 6.1).
+// rw_null: wheel-speed null motion (docs/fsw/rw_null.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -159,7 +159,7 @@ TEST(RwNullNominal, ThreeIndependentWheelsPassInputThrough)
 
 // Four wheels in the x-y plane (rank 2): the projector keeps the null torque
 // out of the plane's torque.  Basilisk's singular 3x3 inverse returns zero,
-// its [tau] becomes I and d is applied directly (spec 12.3).
+// its [tau] becomes I and d is applied directly (docs/fsw/rw_null.md).
 // g = (1,0,0), (0,1,0), (-1,0,0), (0,-1,0): null = span{(1,0,1,0), (0,1,0,1)}/sqrt2,
 // d = (-1, 0, 0, 0) -> [tau] d = (-1/2, 0, -1/2, 0).
 TEST(RwNullNominal, CoplanarSetHandNumbers)

@@ -1,4 +1,4 @@
-// rw_null_regen: regenerative power-optimal null motion (fsw-algorithms.md 6.2).
+// rw_null_regen: regenerative power-optimal null motion (docs/fsw/rw_null_regen.md).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// rw_sat: wheel torque saturation (fsw-algorithms.md 7.2).
+// rw_sat: wheel torque saturation (docs/fsw/rw_sat.md).
 #include <gtest/gtest.h>
 
 #include <cmath>

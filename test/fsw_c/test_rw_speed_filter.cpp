@@ -202,7 +202,7 @@ TEST(RwSpeedFilterBadInput, BadMaskAndTimeAdvanceNothing)
   kestrel_assert_reset();
 }
 
-// fsw-algorithms.md 0.2 "reset zeroes the output", read for a caller-owned
+// docs/fsw-conventions.md, "Reset and the output" "reset zeroes the output", read for a caller-owned
 // output (docs/fsw-conventions.md): this module's safe output holds the last
 // good speeds, but reset forgets them, so a bad input right after reset
 // gives 0 speeds (all unavailable), not the values from before the reset.

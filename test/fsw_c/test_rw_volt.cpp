@@ -1,4 +1,4 @@
-// rw_volt: motor torque -> voltage with speed loop (fsw-algorithms.md 7.1).
+// rw_volt: motor torque -> voltage with speed loop (docs/fsw/rw_volt.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -146,7 +146,7 @@ TEST(RwVoltNominal, OutlierGateSkipsCorrection)
   EXPECT_EQ(f.st->Omega_prev[0], FSW_R(110.0));
 }
 
-// Spec 7.1 stores Omega_prev for EVERY wheel.  Wheel 1 is unavailable for
+// docs/fsw/rw_volt.md: Omega_prev is stored for EVERY wheel.  Wheel 1 is unavailable for
 // one call while its speed moves 100 -> 101 rad/s; back in service at
 // 102 rad/s, its rate is (102 - 101)/0.1 = 10 rad/s^2 (from the sample taken
 // while unavailable, not the 100 of before): u = 0.1 - 0.5 (0.01*10 - 0.1) = 0.1.

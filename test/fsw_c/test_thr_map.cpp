@@ -1,4 +1,4 @@
-// thr_map: thruster force mapping (fsw-algorithms.md 8 and 8.6).
+// thr_map: thruster force mapping (docs/fsw/thr_map.md, both modes).
 // Hand-computed cases, a config rejection table, bad input, repeatability,
 // an independent double-precision re-implementation of the min-norm mode
 // (explicit inverses instead of the library's Cholesky) and properties of
@@ -216,7 +216,7 @@ TEST(ThrMap, SecondPassShiftAddsTorqueWhenNotPureCouples)
   // Fbar = (1, -0.25, 0.25, 0.125, -0.125), shifted by +0.25:
   // (1.25, 0.5, 0.375, 0.125) on {0,3,4,5} and 0 on thrusters 1, 2.
   // Thruster 0 has no partner in S, so the shift adds 0.25 N*m about x:
-  // the Basilisk weakness of fsw-algorithms.md 12 trap 4, kept for parity.
+  // the Basilisk weakness of docs/fsw/thr_map.md "Differences from Basilisk", kept for parity.
   FswThrMapConfig c = six_axis_cfg();
   c.use_2nd_loop = 1;
   MapRun r = map_once(c, 1, -0.5, 0.25);
@@ -425,7 +425,7 @@ bool ref_minnorm(const double A[3][64], const double* b, int m, int n, double* x
   return true;
 }
 
-// fsw-algorithms.md 8.2-8.5 written out directly in double.
+// docs/fsw/thr_map.md (min-norm mode) written out directly in double.
 void ref_map(const FswThrMapConfig& c, const double Lr_in[3], const double com[3], double* F)
 {
   const int n = c.num_thr, sF = c.thr_force_sign;
@@ -588,7 +588,7 @@ TEST(ThrMapNnls, CoMOffsetDefaultModeErrsExactModeDelivers)
 {
   // With a CoM offset the six thrusters are no longer pure couples
   // (sum d_i = -c x (2,2,2) != 0): the default min-shift adds torque
-  // (fsw-algorithms.md 12 trap 4); the exact mode delivers the request.
+  // (docs/fsw/thr_map.md, "Differences from Basilisk"); the exact mode delivers the request.
   const double com[3] = {0.1, -0.05, 0.08};
   const double L[3] = {0.3, -0.2, 0.1};
   FswThrMapConfig c = six_axis_cfg();

@@ -1,4 +1,4 @@
-// thr_pulse_rem: remainder-tracking thruster pulsing (fsw-algorithms.md 9).
+// thr_pulse_rem: remainder-tracking thruster pulsing (docs/fsw/thr_pulse_rem.md).
 // Hand-computed sequences, boundary equalities, first-call and timing
 // rules, config rejection, bad input, repeatability and the impulse
 // tracking property over many cycles.
@@ -18,7 +18,7 @@ using R = fsw_real;
 const double kTol = kt::tol(1e-12, 1e-6);
 const uint64_t kSec = 1000000000ull;
 
-// The period as fsw-algorithms.md 0.3 defines it: (real)(ns) * 1e-9.
+// The period as docs/fsw-conventions.md, "Timing" defines it: (real)(ns) * 1e-9.
 R dt_of(uint64_t ns) { return static_cast<R>(ns) * static_cast<R>(1e-9); }
 
 FswThrPulseRemConfig cfg2()
@@ -288,7 +288,7 @@ TEST(ThrPulseRem, ImpulseTracksRequestWithinOneMinimumBit)
 
 }  // namespace
 
-// fsw-algorithms.md 0.2 "reset zeroes the output", read for a caller-owned
+// docs/fsw-conventions.md, "Reset and the output" "reset zeroes the output", read for a caller-owned
 // output (docs/fsw-conventions.md): after reset, a bad input gives the
 // documented safe output (every thruster off), neither the on-times the
 // caller's buffer still holds nor the first-call output of the module.

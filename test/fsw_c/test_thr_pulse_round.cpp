@@ -1,4 +1,4 @@
-// thr_pulse_round: rounding thruster pulser (fsw-algorithms.md 11) and the
+// thr_pulse_round: rounding thruster pulser (docs/fsw/thr_pulse_round.md) and the
 // carryResidual extension.  Round-half-to-even cases on an exactly
 // representable resolution, t_min, clipping, config rejection, bad input,
 // repeatability and the sigma-delta tracking property.

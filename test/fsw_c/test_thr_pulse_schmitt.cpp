@@ -1,4 +1,4 @@
-// thr_pulse_schmitt: Schmitt-trigger thruster pulsing (fsw-algorithms.md 10).
+// thr_pulse_schmitt: Schmitt-trigger thruster pulsing (docs/fsw/thr_pulse_schmitt.md).
 // Hand-computed sequence through the hysteresis band, inclusive level
 // boundaries, first call and timing, config rejection, bad input,
 // repeatability and the no-chatter property.
@@ -131,7 +131,7 @@ TEST(ThrPulseSchmitt, HandSequenceThroughTheBand)
 
 TEST(ThrPulseSchmitt, LevelBoundariesAreInclusive)
 {
-  // Levels computed with the spec's own expression l = ((F/F_max) dt)/t_min
+  // Levels computed with the page's own expression l = ((F/F_max) dt)/t_min
   // so the comparisons see exact equality.
   FswThrPulseSchmittConfig c = cfg1();
   c.common.t_min = static_cast<R>(0.5);

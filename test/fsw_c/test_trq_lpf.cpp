@@ -1,4 +1,4 @@
-// trq_lpf: control-torque low-pass filter (fsw-algorithms.md 3).
+// trq_lpf: control-torque low-pass filter (docs/fsw/trq_lpf.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -112,7 +112,7 @@ TEST(TrqLpfTiming, RateWarningAndTimeErrors)
   EXPECT_EQ(f.st.LrF_prev[0], before.LrF_prev[0]);
   EXPECT_EQ(f.st.clock.t_prev_ns, before.clock.t_prev_ns);
   EXPECT_EQ(f.st.health.bad_time, 2u);
-  // the 1 % threshold of spec 3: a period 0.9 % long is fine, 1.5 % long warns
+  // the 1 % threshold of docs/fsw/trq_lpf.md: a period 0.9 % long is fine, 1.5 % long warns
   uint64_t t = 6 * kH + kH / 200;
   t += kH + kH * 9 / 1000;
   EXPECT_EQ(f.step(t, 1, 1, 1), FSW_OK);

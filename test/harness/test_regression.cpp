@@ -125,7 +125,8 @@ TEST(Regression, S2InstantThrustAsBefore)
 }
 
 // S2 as shipped (first-order thrust transients): the closed-form transient
-// (plant-dynamics §6, issue 11 item 2) moves the thrust factor by ~1e-8 per
+// (docs/thrusters-propellant-sensors.md, "Thrust factor: FirstOrder in closed
+// form") moves the thrust factor by ~1e-8 per
 // pulse, and the remainder pulsing turns that into a shifted pulse now and
 // then (on-times differ by one 20 ms minimum pulse).  Every column the ACS
 // pulses drive changes; the translational result of the burn stays within

@@ -384,7 +384,7 @@ class RunTest(unittest.TestCase):
 
 
 class FswTest(unittest.TestCase):
-    # fsw-algorithms.md 2 (mrp_fb):
+    # docs/fsw/mrp_fb.md (mrp_fb):
     #   int_sigma += K dt sigma_BR (clamped), z = int_sigma + I omega_BR (K_i > 0)
     #   H = I omega + sum J_s (gs . omega + Omega) gs, omega = omega_BR + omega_RN
     #   v = omega_RN + K_i z (law 0) or omega (law 1)
@@ -483,7 +483,7 @@ class FswTest(unittest.TestCase):
         np.testing.assert_array_equal(m.I_B, self.I)  # unchanged by the refused assignments
 
     def test_rw_map_min_norm_against_pseudo_inverse(self):
-        # pyramid of scenarios/s1_sun_pointing.yaml; min-norm u = -Gs^T (Gs Gs^T)^-1 Lr (fsw-algorithms.md 4)
+        # pyramid of scenarios/s1_sun_pointing.yaml; min-norm u = -Gs^T (Gs Gs^T)^-1 Lr (docs/fsw/rw_map.md)
         e, c = math.radians(40), [math.radians(a) for a in (45, 135, 225, 315)]
         Gs = np.array([[math.cos(e) * math.cos(a), math.cos(e) * math.sin(a), math.sin(e)] for a in c])
         m = fsw.RwMap(num_rw=4, gs_hat_B=Gs, num_axes=3, ctrl_axes_B=np.eye(3), mode=0)
@@ -503,7 +503,7 @@ class FswTest(unittest.TestCase):
 
 class FswFilterTrackTest(unittest.TestCase):
     def test_trq_lpf_tustin_closed_form(self):
-        # fsw-algorithms.md 3: hw = 2 tan(omega_c h / 2), a0 = 2 + hw, a1 = 2 - hw,
+        # docs/fsw/trq_lpf.md: hw = 2 tan(omega_c h / 2), a0 = 2 + hw, a1 = 2 - hw,
         # LrF = (hw Lr + hw Lr_prev + a1 LrF_prev) / a0; first call: Lr_prev = Lr, LrF_prev = 0
         h, wc = 0.1, 2.0
         m = fsw.TrqLpf(h=h, omega_c=wc)

@@ -1,8 +1,8 @@
 // The plant's derivative (SpacecraftModel::derivatives, arranged for speed:
 // per-configuration constant inertia parts, the rotor terms as vectors, the
 // symmetric block system of docs/dynamics.md "Derivative, as computed")
-// against an independent, spec-literal implementation written here from
-// plant-dynamics §2-§4.9 through the model's public API only: every wheel's
+// against an independent, term-by-term implementation written here from
+// docs/dynamics.md §2-§4.9 through the model's public API only: every wheel's
 // [I_w] and its B-frame derivative formed as matrices, the mass properties
 // summed term by term, the wheel equation substituted into the general
 // A, B, C, D blocks and the system solved by pivoted LU.
@@ -36,7 +36,7 @@ using sim::WheelModel;
 Matrix3d outer(const Vector3d& a, const Vector3d& b) { return a * b.transpose(); }
 Matrix3d tilde(const Vector3d& a) { return sim::skew(a); }
 
-// Plant-dynamics §2-§4.9 as written: returns x_dot.
+// docs/dynamics.md §2-§4.9 term by term: returns x_dot.
 StateVector reference_derivatives(const sim::SpacecraftModel& model, const StateVector& x,
                                   const sim::WheelInputs& in, const sim::ExternalLoads& loads,
                                   const sim::HubParams& hub)

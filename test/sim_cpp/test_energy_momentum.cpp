@@ -1,4 +1,4 @@
-// Energy and momentum (spec plant-dynamics §8): conservation per wheel model,
+// Energy and momentum (docs/dynamics.md §8): conservation per wheel model,
 // work done by the motors, friction dissipation, and the simple-jitter model's
 // non-conservation accounted for exactly by its pseudo-external loads.
 #include <algorithm>
@@ -148,7 +148,7 @@ INSTANTIATE_TEST_SUITE_P(
     // 20 s balanced, 2 s (>= 20 revolutions of the 400 rpm wheel) fully coupled
     ::testing::Values(ConservationCase{WheelModel::Balanced, 1e-3, 20000, 1e-12},
                       ConservationCase{WheelModel::FullyCoupled, 1e-4, 20000, 1e-12},
-                      // spec §8: 1e-8 for fully coupled at the coarse step
+                      // docs/dynamics.md §8: 1e-8 for fully coupled at the coarse step
                       ConservationCase{WheelModel::FullyCoupled, 1e-3, 2000, 1e-8}),
     [](const auto& info) {
       return std::string(sim::to_string(info.param.model)) +

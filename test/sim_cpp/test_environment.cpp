@@ -1,4 +1,4 @@
-// Environment (spec plant-dynamics §0, §6, §9.3, §11): point-mass gravity
+// Environment (docs/dynamics.md §0, §6, §9.3, §11): point-mass gravity
 // with a configurable mu (Mars for S2) inside the dynamics, the Earth's J2
 // (by hand, against the potential, nodal regression), two-body
 // conservation and Kepler solutions, the S2 approach hyperbola, Sun

@@ -1,4 +1,4 @@
-// Rigid hub at point B (spec plant-dynamics §1-§3, §7): closed-form torque-free
+// Rigid hub at point B (docs/dynamics.md §1-§3, §7): closed-form torque-free
 // and constant-torque motion, circular orbit, hand-derived accelerations of
 // the B-point formulation, C->B initial conditions and config rejection.
 #include <cmath>

@@ -1,4 +1,4 @@
-// MRP kinematics (spec plant-dynamics §7.4) against an independent route
+// MRP kinematics (docs/dynamics.md §7.4) against an independent route
 // through Euler parameters, hand cases and finite differences.
 #include <cmath>
 

@@ -1,4 +1,4 @@
-// No heap allocation inside the step (style guide §5, issue 6): a counting
+// No heap allocation inside the step (docs/dynamics.md §13): a counting
 // global operator new proves that step(), derivatives(), latch_wheel_commands(),
 // mass_props(), energy_momentum() and the accessors allocate nothing once the
 // run exists.  (Thrusters and tanks: test_thruster.cpp ThrusterNoHeap.)

@@ -1,4 +1,4 @@
-// Propellant tanks and quasi-static depletion (spec plant-dynamics §2, §5.6):
+// Propellant tanks and quasi-static depletion (docs/dynamics.md §2, §5.6):
 // mass properties by hand, tank config rejection, mass bookkeeping against
 // the mass-flow formula, the rocket equation through depletion (THR-8), an
 // empty tank stopping its thrusters, and conservation with full tanks.

@@ -1,4 +1,4 @@
-// Reaction wheels (spec plant-dynamics §4): frame convention, command
+// Reaction wheels (docs/dynamics.md §4): frame convention, command
 // pipeline, friction and mode logic, closed-form spin-up and spin-down,
 // zero-imbalance equivalences, the fully-coupled back-effect against an
 // independent planar Newton-Euler model, mixed models, config rejection.
@@ -173,7 +173,7 @@ TEST(WheelFriction, CoulombViscousHandValues)
 TEST(WheelFriction, StribeckPeakAndSymmetry)
 {
   const sim::WheelFrictionParams f = friction_params();
-  // At Omega = beta the hump term is exactly tau_st - tau_c (spec §4.4).
+  // At Omega = beta the hump term is exactly tau_st - tau_c (docs/dynamics.md §4.4).
   const double want = -((0.004 - 0.002) + 0.002 * std::tanh(10.0 * 0.5 / 0.5) + 1e-5 * 0.5);
   EXPECT_NEAR(sim::friction_torque(f, 0.5, true), want, 1e-17);
   // the hump term is the maximum over Omega: breakaway close to tau_st

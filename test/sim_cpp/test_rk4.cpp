@@ -1,4 +1,4 @@
-// rk4_step (spec plant-dynamics §7.1): exactness on cubics, fourth-order
+// rk4_step (docs/dynamics.md §7.1): exactness on cubics, fourth-order
 // convergence (error ratio ~16 when dt halves) on a scalar ODE with a known
 // solution, on a torque-free rigid body against its closed form, and on the
 // full plant with fully-coupled wheels against a fine-step reference.

@@ -1,5 +1,5 @@
-// Deterministic named random streams (spec plant-dynamics §9, §13; style
-// guide §6): hash and mixer against published reference values, stream
+// Deterministic named random streams (docs/dynamics.md §9,
+// §13): hash and mixer against published reference values, stream
 // determinism and separation, thread-count independence, and the uniform
 // and normal samplers against confidence bounds from the sample count.
 #include <algorithm>

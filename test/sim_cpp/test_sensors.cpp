@@ -1,4 +1,4 @@
-// Sensors (spec plant-dynamics §9): config rejection, the single noise-off
+// Sensors (docs/dynamics.md §9): config rejection, the single noise-off
 // switch giving exact truth (plus quantisation when configured), gyro
 // white noise, angle and rate random walks growing as sqrt(t), bias/scale/
 // quantisation/saturation, star-tracker cross/boresight noise and rate, CSS

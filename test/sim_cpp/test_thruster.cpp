@@ -1,4 +1,4 @@
-// On/off thrusters (spec plant-dynamics §5.1-§5.4, §7.3): config rejection,
+// On/off thrusters (docs/dynamics.md §5.1-§5.4, §7.3): config rejection,
 // latch rule (saturation, minimum on-time, timer resolution, latch timing),
 // ramp tables, force/torque/mass flow by hand, and delivered impulses against
 // closed-form integrals of the Instant, FirstOrder and Table transients, with
@@ -35,7 +35,7 @@ namespace {
 std::atomic<long> g_news{0};
 }
 
-// Counting allocator: proves Plant::step with thrusters allocates nothing (style guide §5).
+// Counting allocator: proves Plant::step with thrusters allocates nothing (docs/dynamics.md §13).
 // GCC pairs the inlined malloc in operator new with the free in operator
 // delete and warns about a mismatch that is intended here.
 #if defined(__GNUC__) && !defined(__clang__)

@@ -1,4 +1,4 @@
-/* att_track: attitude tracking error (fsw-algorithms.md 1.3, Basilisk
+/* att_track: attitude tracking error (docs/fsw/att_track.md, Basilisk
  * attTrackingError).
  * From the navigation attitude/rate of B and a reference R (FswAttRef) it
  * forms the guidance message FswAttGuid consumed by the control law mrp_fb:

@@ -1,5 +1,5 @@
 /* css_sun: Sun heading from coarse sun sensors (CSS) by weighted least squares.
- * Not in fsw-algorithms.md; designed here (docs/fsw/css_sun.md).
+ * Designed in this library (docs/fsw/css_sun.md).
  *
  * Sensor model: sensor i with unit normal n_i (B) and scale k_i > 0 reads
  *   reading_i = k_i * max(0, n_i . s_hat) + noise,

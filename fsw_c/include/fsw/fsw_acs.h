@@ -53,8 +53,8 @@ extern "C" {
 #endif
 
 typedef enum {
-  FSW_ACS_PULSE_REMAINDER = 0, /* thr_pulse_rem (spec 9)     */
-  FSW_ACS_PULSE_SCHMITT = 1    /* thr_pulse_schmitt (spec 10) */
+  FSW_ACS_PULSE_REMAINDER = 0, /* thr_pulse_rem (docs/fsw/thr_pulse_rem.md)     */
+  FSW_ACS_PULSE_SCHMITT = 1    /* thr_pulse_schmitt (docs/fsw/thr_pulse_schmitt.md) */
 } FswAcsPulser;
 
 /* The actuator geometry of the spacecraft, given once.  The modules keep
@@ -228,7 +228,7 @@ typedef struct {
   int ready;            /* [-]  1 after a successful init                      */
   int mode;             /* [-]  FswAcsMode in force                            */
   int actuation;        /* [-]  FswAcsActuation in force                       */
-  FswClock clock;       /* [-]  previous accepted cycle (0.3)                  */
+  FswClock clock;       /* [-]  previous accepted cycle (fsw_clock.h)         */
   uint32_t cycles;      /* [-]  accepted (non-error) cycles since init         */
   uint32_t mode_changes;/* [-]  transitions since init                         */
   FswCssSunState css;

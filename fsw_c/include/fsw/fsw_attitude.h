@@ -1,4 +1,4 @@
-/* fsw_attitude: MRP, DCM and quaternion maths (fsw-algorithms.md 0.4 K3).
+/* fsw_attitude: MRP, DCM and quaternion maths (docs/fsw/core.md, "Kernels" K3).
  * Conventions (Schaub & Junkins):
  *   sigma = e_hat * tan(Phi/4), Phi the principal rotation angle;
  *   dcm_BN maps N components to B components: v_B = dcm_BN v_N;
@@ -22,7 +22,7 @@ void fsw_mrp_switch(fsw_real out[3], const fsw_real s[3]);
 /* Principal rotation angle Phi = 4 atan(|s|) [rad], in [0, 2 pi). */
 fsw_real fsw_mrp_angle(const fsw_real s[3]);
 
-/* [C] = MRP2C(s), element-wise as written in the spec. */
+/* [C] = MRP2C(s), element-wise (docs/fsw/core.md, "Attitude"). */
 void fsw_mrp_to_dcm(fsw_real C[3][3], const fsw_real s[3]);
 /* MRP of a proper orthonormal [C], |out| <= 1 (through the quaternion). */
 void fsw_dcm_to_mrp(fsw_real out[3], const fsw_real C[3][3]);

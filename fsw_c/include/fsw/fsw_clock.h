@@ -1,4 +1,4 @@
-/* fsw_clock: the timing step of fsw-algorithms.md 0.3, shared by every
+/* fsw_clock: the timing step of docs/fsw-conventions.md, "Timing", shared by every
  * stateful module.  A module receives the sample time t_ns in its In struct
  * (it never reads a clock and is never handed dt) and derives dt here:
  *   - the first call after reset is legal at any t_ns, including 0 (an

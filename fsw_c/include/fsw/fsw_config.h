@@ -32,7 +32,7 @@ typedef float fsw_real;
 #define FSW_FREXP frexpf
 #define FSW_LDEXP ldexpf
 #define FSW_REAL_EPS FSW_R(1.1920929e-07)
-/* Pivot tolerance of the minimum-norm solve (fsw-algorithms.md 0.4 K1),
+/* Pivot tolerance of the minimum-norm solve (docs/fsw/core.md, "Kernels" K1),
  * relative to the largest diagonal of A A^T.  1e-12 in double; in single
  * precision the Schur complement of an exactly singular M carries round-off
  * of order 1e-7, so the threshold is raised to 1e-5. */
@@ -106,7 +106,7 @@ typedef double fsw_real;
 #define FSW_MAX_EFF FSW_MAX_THR
 #endif
 
-/* Availability flags (fsw-algorithms.md 0.1): zero-initialised = available. */
+/* Availability flags (docs/fsw-conventions.md, "Frames, units and signs"): zero-initialised = available. */
 #define FSW_AVAILABLE 0
 #define FSW_UNAVAILABLE 1
 

@@ -1,10 +1,10 @@
-/* fsw_linalg: the shared numerical kernels of fsw-algorithms.md 0.4.
+/* fsw_linalg: the shared numerical kernels of docs/fsw/core.md, "Kernels".
  * K1 fsw_minnorm_solve: x = A^T (A A^T)^-1 b with a scale-invariant rank test.
  * K2 fsw_null_projector: [tau] = I - Q^T Q, a true projector onto null([G])
  *    for any rank of [G].
  * K4 fsw_bounded_minnorm_solve: the least-squares solution of A x = b
  *    within box bounds with the smallest norm (deterministic active set),
- *    the exact mode of thr_map (fsw-algorithms.md 8.6).  (K3 is the MRP
+ *    the exact mode of thr_map (docs/fsw/thr_map.md, "NNLS mode").  (K3 is the MRP
  *    addition of fsw_attitude.h.)
  * Matrices with up to FSW_MAX_EFF columns are stored row-major in arrays of
  * FSW_MAX_EFF columns; only the leading m x n block is read. */

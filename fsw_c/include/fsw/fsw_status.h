@@ -28,7 +28,7 @@ typedef enum {
   FSW_E_NOT_INIT = -8     /* update called on a state that init did not accept */
 } FswStatus;
 
-/* Spelling used by fsw-algorithms.md. */
+/* Alternative spelling of FSW_E_BAD_INPUT. */
 #define FSW_E_INPUT FSW_E_BAD_INPUT
 
 /* Health counters, one set per module state.  Counters saturate at

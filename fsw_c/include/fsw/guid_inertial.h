@@ -1,5 +1,5 @@
-/* guid_inertial: inertial three-axis pointing guidance (fsw-algorithms.md
- * 1.1, Basilisk inertial3D).
+/* guid_inertial: inertial three-axis pointing guidance
+ * (docs/fsw/guid_inertial.md, Basilisk inertial3D).
  * Produces a constant attitude reference R0 fixed in N: sigma_RN = sigma_R0N,
  * omega_RN_N = 0, omega_dot_RN_N = 0.  Stateless, no inputs.
  * Frames: N inertial, R reference.  Units: SI, rad.
@@ -15,7 +15,7 @@ extern "C" {
 #endif
 
 /* Attitude reference message: the output of every reference generator and
- * the reference input of att_track (fsw-algorithms.md 1.3). */
+ * the reference input of att_track (docs/fsw/att_track.md). */
 typedef struct {
   fsw_real sigma_RN[3];       /* [-]       MRP of R relative to N, |sigma| <= 1 */
   fsw_real omega_RN_N[3];     /* [rad/s]   angular velocity of R rel. N, N comp. */
@@ -42,7 +42,7 @@ FswStatus fsw_guid_inertial_check(const FswGuidInertialConfig *cfg);
 FswStatus fsw_guid_inertial_init(FswGuidInertialState *st, const FswGuidInertialConfig *cfg);
 /* No dynamic state: kept for the uniform module shape. */
 void fsw_guid_inertial_reset(FswGuidInertialState *st);
-/* Writes the reference.  There are no runtime inputs (spec 1.1), so the
+/* Writes the reference.  There are no runtime inputs (docs/fsw/guid_inertial.md), so the
  * module has no In struct.  Returns FSW_OK, FSW_E_NOT_INIT (safe output) or
  * FSW_E_NULL_ARG. */
 FswStatus fsw_guid_inertial_update(FswGuidInertialState *st, const FswGuidInertialConfig *cfg,

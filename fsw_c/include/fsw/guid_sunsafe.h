@@ -1,4 +1,4 @@
-/* guid_sunsafe: sun-safe pointing guidance (fsw-algorithms.md 1.2, Basilisk
+/* guid_sunsafe: sun-safe pointing guidance (docs/fsw/guid_sunsafe.md, Basilisk
  * sunSafePoint).
  * Outputs attitude and rate errors that turn body axis s_cmd toward the Sun
  * heading s_B, or a search spin omega_search_B when no Sun heading is valid

@@ -1,4 +1,4 @@
-/* mrp_fb: MRP feedback attitude control law (fsw-algorithms.md 2, Basilisk
+/* mrp_fb: MRP feedback attitude control law (docs/fsw/mrp_fb.md, Basilisk
  * mrpFeedback; Schaub & Junkins ch. 8).
  *   omega = omega_BR + omega_RN
  *   int_sigma += K dt sigma_BR, each component clamped to +-integral_limit
@@ -7,9 +7,9 @@
  *   v = omega_RN + K_i z  (law 0)   or   v = omega  (law 1)
  *   Lr = -(K sigma_BR + P omega_BR + P K_i z - v x H
  *          + [I](omega x omega_RN - omega_dot_RN) + L_B)
- * Lr is the external torque the actuators must put onto the body (spec 0.1);
+ * Lr is the external torque the actuators must put onto the body (docs/fsw-conventions.md, "Frames, units and signs");
  * it is not saturated here.  Frames: B body.  Units: SI.
- * Stateful (integral and timing, spec 0.3).
+ * Stateful (integral and timing, docs/fsw-conventions.md "Timing").
  * Safe output (bad input, bad time, init failed): torque_B = int_torque_B = 0,
  * no state advanced. */
 #ifndef FSW_MRP_FB_H
@@ -49,7 +49,7 @@ typedef struct {
 
 typedef struct {
   int ready;              /* [-]     1 after a successful init                   */
-  FswClock clock;         /* [-]     previous accepted call (spec 0.3)           */
+  FswClock clock;         /* [-]     previous accepted call (docs/fsw-conventions.md, "Timing")           */
   fsw_real int_sigma[3];  /* [N*m*s] integral of K sigma_BR dt, clamped          */
   FswHealth health;       /* [-]     call counters                               */
 } FswMrpFbState;

@@ -1,7 +1,7 @@
 /* rw_common: pieces shared by the reaction-wheel modules (rw_map, rw_null,
  * rw_null_regen, rw_sat, rw_volt, rw_speed_filter): wheel-geometry and
  * availability-mask checks, the cached null-space projector of [Gs] over the
- * available wheels (fsw-algorithms.md 6.1, K2) and the scale-to-fit rule for a
+ * available wheels (docs/fsw/rw_null.md, K2) and the scale-to-fit rule for a
  * torque increment that must not push a wheel past its limit (6.1, 6.2).
  * Frames: B.  Units: SI.  No module keeps any of this outside its own state. */
 #ifndef FSW_RW_COMMON_H
@@ -17,7 +17,7 @@ extern "C" {
 #endif
 
 /* Tolerances of configured axes: |g| = 1 within FSW_RW_UNIT_TOL, control
- * axes orthogonal within FSW_RW_ORTHO_TOL (fsw-algorithms.md 4: 1e-9 and
+ * axes orthogonal within FSW_RW_ORTHO_TOL (docs/fsw/rw_map.md: 1e-9 and
  * 1e-6; single precision cannot hold 1e-9, so the float build uses 1e-6 and
  * 1e-5). */
 #if FSW_USE_FLOAT
@@ -113,7 +113,7 @@ void fsw_rw_proj_apply(fsw_real *out, const FswRwNullProj *p, const fsw_real *d)
 int fsw_rw_null_change_ok(const FswRwNullProj *p, const fsw_real *u, const fsw_real *u0, int n);
 
 /* out = u_c + kappa * du with the largest kappa in [0, 1] such that
- * |out_i| <= u_max_i for every i < n (fsw-algorithms.md 6.1 scaleNullToFit):
+ * |out_i| <= u_max_i for every i < n (docs/fsw/rw_null.md scaleNullToFit):
  * kappa = min(1, min over du_i != 0 of the admissible step); kappa = 0 when
  * u_c already violates a limit.  The result is clamped to the limits to
  * remove the last rounding (a change of a few ulp).  `u_max` NULL means no

@@ -1,4 +1,4 @@
-/* rw_map: reaction-wheel torque mapping (fsw-algorithms.md 4 and 5).
+/* rw_map: reaction-wheel torque mapping (docs/fsw/rw_map.md).
  * Turns the control torque Lr (the torque the wheels must put on the body)
  * into wheel motor torques u_s with [C][Gs_a] u_s,a = -[C] Lr over the
  * available wheels a, choosing among all solutions either
@@ -23,11 +23,11 @@ extern "C" {
 #endif
 
 typedef enum {
-  FSW_RW_MAP_MIN_NORM = 0, /* section 4 (default of a zeroed config) */
-  FSW_RW_MAP_POWER = 1     /* section 5 */
+  FSW_RW_MAP_MIN_NORM = 0, /* minimum norm (default of a zeroed config) */
+  FSW_RW_MAP_POWER = 1     /* L2 power-optimal */
 } FswRwMapMode;
 
-/* Default eps_P of fsw-algorithms.md 5.2 [rad^2/s^2]. */
+/* Default eps_P of docs/fsw/rw_map.md [rad^2/s^2]. */
 #define FSW_RW_MAP_EPS_P_DEFAULT FSW_R(1.0)
 /* Accepted range of eps_P [rad^2/s^2]: 1/eps_P and Omega^2 + eps_P stay far
  * inside the range of either real type (a denormal eps_P made 1/W infinite

@@ -1,4 +1,4 @@
-/* rw_null: reaction-wheel null motion (fsw-algorithms.md 6.1, Basilisk
+/* rw_null: reaction-wheel null motion (docs/fsw/rw_null.md, Basilisk
  * rwNullSpace).  Adds wheel torques in the null space of [Gs_a] (available
  * wheels) so the body torque is unchanged while wheel speeds move toward
  * Omega_des:  u = u_c + kappa [tau] d,  d = -K_Omega (Omega - Omega_des).

@@ -1,5 +1,5 @@
-/* rw_null_regen: regenerative power-optimal null motion (fsw-algorithms.md
- * 6.2, after Blenden & Schaub 2012).  Moves the mapped torques u0 along the
+/* rw_null_regen: regenerative power-optimal null motion
+ * (docs/fsw/rw_null_regen.md, after Blenden & Schaub 2012).  Moves the mapped torques u0 along the
  * null space of [Gs_a] to lower the total mechanical power P = Omega^T u
  * (negative P returns energy to the bus) without changing the body torque:
  *   FSW_RW_REGEN_GRADIENT  u = u0 - kappa k_P [tau] Omega   (any wheel count;

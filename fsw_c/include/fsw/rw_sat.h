@@ -1,10 +1,10 @@
-/* rw_sat: reaction-wheel torque saturation (fsw-algorithms.md 7.2).
+/* rw_sat: reaction-wheel torque saturation (docs/fsw/rw_sat.md).
  *   FSW_RW_SAT_SCALE (default): s = max_i |u_i|/u_max_i over the available
  *       wheels; if s > 1 every torque is divided by s (the torque direction
- *       is kept, as in 8.5).
+ *       is kept, as in thr_map's saturation scaling).
  *   FSW_RW_SAT_CLIP: u_i = clamp(u_i, -u_max_i, u_max_i) (what Basilisk's
  *       plant does; changes the torque direction).
- * Unavailable wheels get exactly 0 (7.3).  Stateless apart from health.
+ * Unavailable wheels get exactly 0.  Stateless apart from health.
  * Units: SI.  Safe output (bad input, not initialised): u = 0. */
 #ifndef FSW_RW_SAT_H
 #define FSW_RW_SAT_H

@@ -1,5 +1,5 @@
 /* rw_speed_filter: wheel-speed (tachometer) outlier rejection.  Library
- * design; fsw-algorithms.md does not cover it (issue 4, docs/fsw/rw_speed_filter.md).
+ * design (docs/fsw/rw_speed_filter.md).
  * Per wheel i, with the last accepted ("good") sample Omega_good at t_good:
  *   bound_i = (u_max_i / J_s,i) (t - t_good) + noise_i
  * A wheel's speed relative to the body changes at most u_max/J_s (the motor
@@ -86,7 +86,7 @@ typedef struct {
   fsw_real win_Omega0[FSW_MAX_RW]; /* [rad/s] accepted sample that opened it  */
   fsw_real win_exp[FSW_MAX_RW];    /* [rad/s] speed change the torque explains */
   uint32_t win_count[FSW_MAX_RW];  /* [-]     intervals in the window         */
-  FswClock clock;                  /* [-]     previous accepted call (0.3)    */
+  FswClock clock;                  /* [-]     previous accepted call (fsw_clock.h) */
   FswHealth health;
 } FswRwSpeedFilterState;
 

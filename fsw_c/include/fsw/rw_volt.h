@@ -1,5 +1,5 @@
 /* rw_volt: wheel motor torque -> voltage with the optional speed loop
- * (fsw-algorithms.md 7.1, Basilisk rwMotorVoltage).
+ * (docs/fsw/rw_volt.md, Basilisk rwMotorVoltage).
  * Speed loop (only when has_Omega = 1; phase p = 0 after reset):
  *   p = 0 -> p = 1 (no speeds stored); p = 1 -> Omega_prev = Omega, p = 2;
  *   p = 2 -> for available i: Omega_dot = (Omega - Omega_prev)/dt,
@@ -46,7 +46,7 @@ typedef struct {
   fsw_real Omega_prev[FSW_MAX_RW]; /* [rad/s] speeds of the previous call */
   uint8_t prev_ok[FSW_MAX_RW];     /* [-] 1 if that speed was a number     */
   int phase;                       /* [-] speed-loop warm-up 0, 1, 2 */
-  FswClock clock;                  /* [-] previous accepted call (spec 0.3) */
+  FswClock clock;                  /* [-] previous accepted call (docs/fsw-conventions.md, "Timing") */
   FswHealth health;
 } FswRwVoltState;
 

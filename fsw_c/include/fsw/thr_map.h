@@ -1,14 +1,14 @@
-/* thr_map: thruster force mapping (fsw-algorithms.md 8, Basilisk
+/* thr_map: thruster force mapping (docs/fsw/thr_map.md, Basilisk
  * thrForceMapping).  Maps the requested control torque Lr onto per-thruster
  * forces for 1-3 control axes.  Frames: B.  Units: SI.
  *
  * Two modes:
  *  - FSW_THR_MAP_MIN_NORM (default, Basilisk parity): minimum-norm solve, the
  *    min-shift of on-pulsing thrusters, the optional second pass and the
- *    saturation scaling (8.3-8.5).  Assumes the thrusters form pure couples;
+ *    saturation scaling (docs/fsw/thr_map.md).  Assumes the thrusters form pure couples;
  *    with a CoM offset or a failed thruster the delivered torque is wrong
- *    (fsw-algorithms.md 12, trap 4).
- *  - FSW_THR_MAP_NNLS (opt-in, 8.6): minimum ||F|| subject to [C][D]F = Lbar
+ *    (docs/fsw/thr_map.md, "Differences from Basilisk").
+ *  - FSW_THR_MAP_NNLS (opt-in, docs/fsw/thr_map.md "NNLS mode"): minimum ||F|| subject to [C][D]F = Lbar
  *    (least squares when no admissible F exists) and the thruster limits,
  *    by a deterministic bounded-variable active-set method.  Delivers the
  *    requested torque whenever the thrusters can.
@@ -40,8 +40,8 @@ extern "C" {
 
 /* Mapping algorithm (FswThrMapConfig.mode). */
 typedef enum {
-  FSW_THR_MAP_MIN_NORM = 0, /* Basilisk thrForceMapping (8.3-8.5), default */
-  FSW_THR_MAP_NNLS = 1      /* exact bounded solve (8.6), opt-in             */
+  FSW_THR_MAP_MIN_NORM = 0, /* Basilisk thrForceMapping, default             */
+  FSW_THR_MAP_NNLS = 1      /* exact bounded solve, opt-in                   */
 } FswThrMapMode;
 
 typedef struct {

@@ -1,8 +1,8 @@
 /* thr_pulse_common: the parts every thruster pulser shares
- * (fsw-algorithms.md 9-11).
+ * (docs/fsw/thr_pulse_rem.md, thr_pulse_schmitt.md, thr_pulse_round.md).
  *  - FswThrPulseCommon: the configuration of the pulse-width pulsers
- *    thr_pulse_rem (9) and thr_pulse_schmitt (10), embedded in their configs
- *    as `common`.  thr_pulse_round (11) has no base thrust state and no
+ *    thr_pulse_rem and thr_pulse_schmitt, embedded in their configs
+ *    as `common`.  thr_pulse_round has no base thrust state and no
  *    first-call on-time and accepts t_min = 0, so it keeps its own fields.
  *  - FswThrPulseCommonState: readiness, the timing step of 0.3 and the health
  *    counters, embedded in the state of all three pulsers as `common`.
@@ -30,7 +30,7 @@ typedef struct {
 
 typedef struct {
   int ready;                       /* [-] 1 once init accepted the config       */
-  FswClock clock;                  /* [-] previous accepted call (0.3)          */
+  FswClock clock;                  /* [-] previous accepted call (fsw_clock.h)  */
   FswHealth health;                /* counters read by the harness              */
 } FswThrPulseCommonState;
 

@@ -1,5 +1,5 @@
-/* thr_pulse_rem: thruster pulsing with remainder tracking (fsw-algorithms.md
- * 9, Basilisk thrFiringRemainder).  Turns per-thruster force commands into
+/* thr_pulse_rem: thruster pulsing with remainder tracking
+ * (docs/fsw/thr_pulse_rem.md, Basilisk thrFiringRemainder).  Turns per-thruster force commands into
  * on-times for one control period; requests shorter than the minimum
  * on-time are carried over (in units of t_min) and delivered later.
  * Units: SI.

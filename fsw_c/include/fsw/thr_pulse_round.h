@@ -1,4 +1,4 @@
-/* thr_pulse_round: thruster pulsing by rounding (fsw-algorithms.md 11,
+/* thr_pulse_round: thruster pulsing by rounding (docs/fsw/thr_pulse_round.md,
  * Basilisk thrFiringRound, a Python module).  On-time = control period T
  * times the force fraction, rounded to the on-time resolution q with
  * round-half-to-even, zeroed below t_min and clipped to [0, T].  Units: SI.
@@ -6,7 +6,7 @@
  * Stateless by default: the time stamp is not used and any call order is
  * accepted.  With carry_residual = 1 (library extension) the rounding error
  * r_i is carried to the next call (first-order sigma-delta), and the timing
- * model of fsw-algorithms.md 0.3 applies (t_ns must increase).
+ * model of docs/fsw-conventions.md, "Timing" applies (t_ns must increase).
  * Safe output: every thruster off (t_on = 0), no state advanced.  Entries
  * at and beyond num_thr are always exactly 0.
  * Basilisk's scalar F_max: write the same value into every F_max entry;

@@ -1,12 +1,12 @@
 /* thr_pulse_schmitt: thruster pulsing with a Schmitt trigger
- * (fsw-algorithms.md 10, Basilisk thrFiringSchmitt).  On-times shorter than
+ * (docs/fsw/thr_pulse_schmitt.md, Basilisk thrFiringSchmitt).  On-times shorter than
  * the minimum on-time t_min are decided by hysteresis on the duty level
  * l = t / t_min: l >= level_on fires t_min, l <= level_off stays off, in
  * between the thruster keeps its previous decision.  Units: SI.
  *
- * First call after reset: t_on = b * init_off_pulse_on_time (as in 9).
- * Saturated thrusters (t >= period) get 1.1 * period (spec 10: "stay on
- * through the period").  The minimum pulse is min(t_min, period): when the
+ * First call after reset: t_on = b * init_off_pulse_on_time (as in thr_pulse_rem).
+ * Saturated thrusters (t >= period) get 1.1 * period (they stay on
+ * through the period, docs/fsw/thr_pulse_schmitt.md).  The minimum pulse is min(t_min, period): when the
  * call period is shorter than t_min a minimum pulse lasts the period.
  * Safe output: every thruster off (t_on = 0), no state advanced.  Entries
  * at and beyond num_thr are always exactly 0. */

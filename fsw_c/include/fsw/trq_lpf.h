@@ -1,4 +1,4 @@
-/* trq_lpf: control-torque low-pass filter (fsw-algorithms.md 3, Basilisk
+/* trq_lpf: control-torque low-pass filter (docs/fsw/trq_lpf.md, Basilisk
  * lowPassFilterTorqueCommand).  First-order Tustin filter with frequency
  * pre-warping, per axis:
  *   hw = 2 tan(omega_c h / 2); a0 = 2 + hw; a1 = 2 - hw; b0 = b1 = hw
@@ -34,7 +34,7 @@ typedef struct {
   fsw_real a0, a1, b0; /* [-] Tustin coefficients (b1 = b0), from init */
   fsw_real Lr_prev[3];  /* [N*m] previous input  */
   fsw_real LrF_prev[3]; /* [N*m] previous output */
-  FswClock clock;       /* [-] previous accepted call (spec 0.3) */
+  FswClock clock;       /* [-] previous accepted call (docs/fsw-conventions.md, "Timing") */
   FswHealth health;
 } FswTrqLpfState;
 

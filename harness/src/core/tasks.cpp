@@ -34,7 +34,7 @@ void TruthTask::operator()(uint64_t k) const
     t.omega_BN_B[i] = x(sim::StateLayout::omega_BN_B + i);
     t.r_CoM_B[i] = mp.c_B(i);
   }
-  // mass centre: r_C = r_B + [NB] c, v_C = v_B + [NB](omega x c) (c' neglected, §5.6)
+  // mass centre: r_C = r_B + [NB] c, v_C = v_B + [NB](omega x c) (c' neglected, docs/dynamics.md §5.6)
   const Eigen::Matrix3d NB = sim::dcm_BN_from_sigma(ev(t.sigma_BN)).transpose();
   const Eigen::Vector3d rC = ev(t.r_BN_N) + NB * mp.c_B;
   const Eigen::Vector3d vC = ev(t.v_BN_N) + NB * ev(t.omega_BN_B).cross(mp.c_B);

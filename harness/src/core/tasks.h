@@ -137,8 +137,8 @@ struct ActuatorTask {
   void operator()(uint64_t k) const;
 };
 
-// The plant takes `plant_cmd` (FSW ticks): wheel torques latched (§4.3),
-// thruster requests latched at its next command instant (§5.2).
+// The plant takes `plant_cmd` (FSW ticks): wheel torques latched (docs/dynamics.md §4.3),
+// thruster requests latched at its next command instant (docs/dynamics.md §5.2).
 struct PlantInputTask {
   sim::Plant* plant;
   Reader<PlantCmdMsg> in;

@@ -1,4 +1,4 @@
-// attitude: MRP kinematics and small 3-vector helpers (spec plant-dynamics §0, §7.4).
+// attitude: MRP kinematics and small 3-vector helpers (docs/dynamics.md §0, §7.4).
 // Named conversions only; Eigen's rotation helpers are not used because their
 // direction convention differs from dcm_BN (v_B = dcm_BN * v_N).
 #ifndef SIM_ATTITUDE_H

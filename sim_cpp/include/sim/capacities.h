@@ -1,6 +1,6 @@
 // capacities: every fixed capacity of the plant, in one place.
 //
-// The plant never allocates inside a step (style guide §5): per-device arrays
+// The plant never allocates inside a step (docs/dynamics.md §13): per-device arrays
 // and the state vector have compile-time maximum sizes taken from here.  The
 // capacities are chosen >= the flight software's, so that any configuration
 // the FSW accepts can be simulated:

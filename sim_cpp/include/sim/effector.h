@@ -1,5 +1,5 @@
 // effector: the interface of a force/torque effector of sim::Plant
-// (spec plant-dynamics §3 F_ext,B / L_ext,B, §5.4, §7.3).  Frames: B.  Units: SI.
+// (docs/dynamics.md §3 F_ext,B / L_ext,B, §5.4, §7.3).  Frames: B.  Units: SI.
 //
 // A force/torque effector adds a force and a torque about point B to the hub
 // equations and may draw propellant from tanks; it has no integrated state of

@@ -1,6 +1,6 @@
 // environment: point-mass gravity, Sun position, Sun direction and
 // illumination, and two-body conic helpers for scenario set-up
-// (spec plant-dynamics §0, §6, §9.3, §11).  Frames: N inertial (centred on
+// (docs/dynamics.md §0, §6, §9.3, §11).  Frames: N inertial (centred on
 // the central body), B body.  Units: SI.
 //
 // Gravity in the dynamics is applied by SpacecraftModel at the mass centre

@@ -1,4 +1,4 @@
-// plant: THE run class of the plant (spec plant-dynamics §1-§8, §10, §13).
+// plant: THE run class of the plant (docs/dynamics.md §1-§8, §10, §13).
 // A rigid hub with reaction wheels, propellant tanks and a fixed-capacity
 // list of force/torque effectors (the on/off thrusters first), integrated as
 // one RK4 state on one integer nanosecond clock.  A plant with zero

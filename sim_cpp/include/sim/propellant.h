@@ -1,4 +1,4 @@
-// propellant: tanks and quasi-static depletion (spec plant-dynamics §2, §5.6).
+// propellant: tanks and quasi-static depletion (docs/dynamics.md §2, §5.6).
 // Frames: B.  Units: SI.
 //
 // A tank is a rigid body fixed in B: a point mass, or a uniform sphere of

@@ -1,6 +1,6 @@
 // reaction_wheel: wheel parameters, frame construction, command pipeline,
 // friction and the back-substitution contributions of one wheel
-// (spec plant-dynamics §4).  Frames: B (body), Wi (wheel i).  Units: SI.
+// (docs/dynamics.md §4).  Frames: B (body), Wi (wheel i).  Units: SI.
 //
 // Models (§4.7):
 //   Balanced      mass and full inertia INSIDE the hub values; motor reaction and

@@ -1,4 +1,4 @@
-// rk4: classic fixed-step fourth-order Runge-Kutta (spec plant-dynamics §7.1).
+// rk4: classic fixed-step fourth-order Runge-Kutta (docs/dynamics.md §7.1).
 // Butcher c = 0, 1/2, 1/2, 1; b = 1/6, 1/3, 1/3, 1/6.  Works for any State that
 // supports x + a*k (double, fixed-size Eigen vectors, sim::StateVector); each
 // stage is materialised as a State so no Eigen expression outlives its operands.

@@ -1,5 +1,5 @@
-// rng: deterministic random streams for the plant's sensors (spec
-// plant-dynamics §9, §13; style guide §6 Monte Carlo).
+// rng: deterministic random streams for the plant's sensors (docs/dynamics.md
+// §9, §13; one stream per name, so Monte Carlo runs are repeatable).
 //
 // A stream is named: its seed is derived from the run seed and the
 // component's name, so a component draws the same numbers whatever other

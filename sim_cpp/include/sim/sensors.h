@@ -1,5 +1,5 @@
 // sensors: gyro, star tracker, coarse sun sensors and wheel tachometers
-// (spec plant-dynamics §9, §10, §13), and a magnetometer (docs/environment.md).
+// (docs/dynamics.md §9, §10, §13), and a magnetometer (docs/environment.md).
 // Frames: N, B, P (gyro platform), C (star-tracker case, boresight = case z),
 // S (magnetometer axes).  Units: SI; time tags are
 // integer nanoseconds of the plant clock.

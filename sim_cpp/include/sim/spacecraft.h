@@ -1,5 +1,5 @@
 // spacecraft: the pure physics of a rigid hub with reaction wheels, written
-// at body point B (spec plant-dynamics §1-§4, §8, §13).  Frames: N inertial,
+// at body point B (docs/dynamics.md §1-§4, §8, §13).  Frames: N inertial,
 // B body (origin at point B, NOT the mass centre C), Wi wheel i.  Units: SI.
 //
 // SpacecraftModel holds validated parameters and derived wheel data and
@@ -74,7 +74,7 @@ inline Eigen::Matrix3d parallel_axis(double m, const Eigen::Vector3d& r)
 }
 
 struct SpacecraftParams {
-  HubParams hub;  // Balanced/SimpleJitter wheels INSIDE, FullyCoupled wheels OUTSIDE (trap 2)
+  HubParams hub;  // Balanced/SimpleJitter wheels INSIDE, FullyCoupled wheels OUTSIDE (docs/dynamics.md §2)
   std::vector<ReactionWheelParams> wheels;  // (num_rw <= kMaxWheels)
   double mu = 0.0;  // [m^3/s^2] point-mass gravity parameter, >= 0 (0: gravity off)
   // Oblateness: the J2 term of the central body's gravity (sim::j2_acceleration,

@@ -1,4 +1,4 @@
-// thruster: on/off ACS thrusters (spec plant-dynamics §5.1-§5.4, §7.3).
+// thruster: on/off ACS thrusters (docs/dynamics.md §5.1-§5.4, §7.3).
 // Frames: B (body), Tj (thruster j: only its location r_TjB_B and axis
 // t_hat_B are used).  Units: SI; the plant clock is integer nanoseconds.
 //

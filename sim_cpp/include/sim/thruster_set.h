@@ -1,5 +1,5 @@
 // thruster_set: the run part of the on/off ACS thrusters, one force/torque
-// effector of sim::Plant (spec plant-dynamics §5.2-§5.4, §7.3).  Frames: B.
+// effector of sim::Plant (docs/dynamics.md §5.2-§5.4, §7.3).  Frames: B.
 // Units: SI; times are the plant's integer nanosecond clock.
 //
 // Holds the command mailbox, the latch rule at k*T_upd (§5.2), the valve

@@ -1,4 +1,4 @@
-// units: named conversions for configuration loaders (spec plant-dynamics §0, trap 17).
+// units: named conversions for configuration loaders (docs/dynamics.md §0).
 // The plant itself works in SI only.
 #ifndef SIM_UNITS_H
 #define SIM_UNITS_H

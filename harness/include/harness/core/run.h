@@ -1,6 +1,6 @@
 // run: one closed-loop run of a scenario.
 //
-// Tick protocol (plant-dynamics §7.2), tick k at t_k = k * dt: every task due
+// Tick protocol (docs/dynamics.md §7.2), tick k at t_k = k * dt: every task due
 // at k runs in the order of the table kTickProtocol (run.cpp):
 //   events         (every tick, scenarios with events) the events whose
 //                  trigger holds are applied (docs/events.md, event_task.h)
@@ -124,7 +124,7 @@ class Run {
   const DataFlow& dataflow() const;
   const Scheduler& scheduler() const;
   // The plant, for changes between steps (sim::Plant's device setters: wheel
-  // limits, friction and health, thruster health) and its §13 outputs.
+  // limits, friction and health, thruster health) and its accessors (docs/dynamics.md §13).
   sim::Plant& plant();
   const sim::Plant& plant() const;
 
