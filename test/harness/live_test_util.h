@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -56,12 +57,16 @@ struct Served {
   }
   httplib::Result post_ok(const json& j) { return post(j, srv.token()); }
   // The fast S1 into `out` under this server's control, on its own thread.
-  std::thread start_run(const fs::path& out, harness::RunResult& res)
+  // (unpaced); *done set when it returned
+  std::thread start_run(const fs::path& out, harness::RunResult& res, std::atomic<bool>* done = nullptr)
   {
     harness::RunOptions opt;
     opt.out_dir = out.string();
     opt.control = &srv;
-    return std::thread([opt, &res] { res = harness::run_scenario(harness::load_scenario(kS1, fast()), opt); });
+    return std::thread([opt, &res, done] {
+      res = harness::run_scenario(harness::load_scenario(kS1, fast()), opt);
+      if (done) *done = true;
+    });
   }
   // the run has started: /api/info answers (waits up to 20 s)
   bool started();

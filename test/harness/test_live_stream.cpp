@@ -63,13 +63,7 @@ TEST(LiveStream, UnpacedRunWaitsForThePageThenPushesEveryFrameOnce)
   Served s(lo);
   harness::RunResult res;
   std::atomic<bool> done{false};
-  harness::RunOptions opt;  // unpaced
-  opt.out_dir = (dir / "run").string();
-  opt.control = &s.srv;
-  std::thread sim([&] {
-    res = harness::run_scenario(harness::load_scenario(kS1, fast()), opt);
-    done = true;
-  });
+  std::thread sim = s.start_run(dir / "run", res, &done);  // unpaced
   ASSERT_TRUE(s.started());  // /api/info is not a page
   // without the token: 403, and the run still waits (240 ticks unpaced take
   // milliseconds: after 0.4 s it would long be over)
@@ -98,16 +92,16 @@ TEST(LiveStream, UnpacedRunWaitsForThePageThenPushesEveryFrameOnce)
   const uint64_t n = frames.size();
   ASSERT_GE(n, 2u);
   // the first frame: the boundary after tick 0, t = 0, published when the
-  // wait began; the next one only after the wait (>= 0.4 s of wall time later)
+  // wait began; the next one only after the wait (about 0.4 s of wall time later)
   EXPECT_EQ(frames[0]["tick"], 1u);
   EXPECT_EQ(frames[0]["row"][0], 0.0);
-  EXPECT_GE(frames[1]["wall"].get<double>() - frames[0]["wall"].get<double>(), 0.4);
+  EXPECT_GE(frames[1]["wall"].get<double>() - frames[0]["wall"].get<double>(), 0.3);
   EXPECT_EQ(m.back()["state"], "ended");
   EXPECT_EQ(frames.back()["tick"], 241u);
   EXPECT_EQ(frames.back()["row"][0], 60.0);
   EXPECT_EQ(n, s.srv.counters().published);  // none missed
   const double waited = s.srv.counters().waited_s;
-  EXPECT_GE(waited, 0.4);
+  EXPECT_GE(waited, 0.3);  // from after tick 0: a little less than the 0.4 s sleep on a loaded machine
   EXPECT_LT(waited, 20.0);
   std::printf("waited %.2f s for the page; %zu messages, %llu frames pushed\n", waited, m.size(),
               static_cast<unsigned long long>(n));
