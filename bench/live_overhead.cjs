@@ -75,10 +75,10 @@ async function main() {
   let frames = [];
   for (let i = 0; i < N; i++) {
     res.plain.push(await run([]));
-    res.live.push(await run(['--live', '--live-linger', '0']));
+    res.live.push(await run(['--live', '--live-wait', '0', '--live-linger', '0']));
     // a client that polls like the page (every 100 ms) but draws nothing: the server's own cost
     let polling = true;
-    res.poll.push(await run(['--live', '--live-linger', '0'], async (url) => {
+    res.poll.push(await run(['--live', '--live-wait', '0', '--live-linger', '0'], async (url) => {
       const u = new URL(url);
       const tok = u.searchParams.get('token');
       let since = 0;

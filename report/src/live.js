@@ -1,8 +1,10 @@
 // Kestrel live view: entry point of the live page's bundle (docs/live.md).
 // Served by `kestrel run SCENARIO --live`; talks to the same server only:
 //   GET  /api/info            the scenario, recorded columns, devices and their actions, geometry
-//   GET  /api/frames?since=N  the frames published after N (the last recorded row each), run state,
-//                             the command log, drop counters
+//   GET  /api/stream          server-sent events: each message the frames published since the last
+//                             one (the last recorded row each), run state, gains in force, the command
+//                             log, drop counters
+//   GET  /api/frames?since=N  the same, asked for: the fallback when the stream is refused
 //   POST /api/command         {op: pause|resume|step|rate|event, ...}
 // every request with the access token of the page's URL (X-Kestrel-Token).
 // Offline like the report: uPlot and three.js are bundled, nothing is fetched
@@ -16,11 +18,12 @@ import { PALETTE, AXIS_COLORS, fmtTick } from './plots.js';
 import { buildReplay } from './replay3d.js';
 
 const token = new URLSearchParams(window.location.search).get('token') || '';
-const status = { ready: false, errors: [], frames: 0, missed: 0, t: NaN, state: 'starting', info: null, replay: '' };
+const status = { ready: false, errors: [], frames: 0, missed: 0, t: NaN, state: 'starting', info: null, replay: '',
+  transport: 'none', messages: 0, gains: null, seq: 0, dupes: 0 };
 window.kestrelLive = status;
 
 const KEEP = 3000; // points kept per plot
-const POLL_MS = 100;
+const POLL_MS = 100; // the fallback (no stream)
 
 function api(path, body) {
   const opt = { headers: { 'X-Kestrel-Token': token }, cache: 'no-store' };
@@ -94,7 +97,6 @@ function pushPlots(t, row) {
 // ---- the page -------------------------------------------------------------------
 let info = null;
 let col = {};
-let devicesBuilt = false;
 let last = 0;
 const recent = []; // {t, wall, paused} for the real-time factor
 let replay = null;
@@ -148,8 +150,12 @@ function buildDevices() {
         b.addEventListener('click', () => command({ op: 'event', device: d.name, action: a.action }));
         cell.appendChild(b);
       } else {
-        const box = el('input', { type: 'number', step: 'any', value: a.value === 'finite' ? '0' : '1', title: `${a.what} [${a.unit}]`,
+        // a gain's box starts at the gain in force (and follows it: showGains)
+        const gain = d.kind === 'flight software' && /^gain_[KP]$/.test(a.action) ? a.action.slice(5) : '';
+        const init = gain && info.gains ? String(info.gains[gain]) : a.value === 'finite' ? '0' : '1';
+        const box = el('input', { type: 'number', step: 'any', value: init, title: `${a.what} [${a.unit}]`,
           'data-device': d.name, 'data-value-for': a.action, class: 'value' });
+        if (gain) box.dataset.gain = gain;
         const b = el('button', { text: `${a.action} [${a.unit}]`, title: a.what, 'data-device': d.name, 'data-action': a.action });
         b.addEventListener('click', () => command({ op: 'event', device: d.name, action: a.action, value: Number(box.value) }));
         cell.appendChild(el('span', { class: 'valued' }, b, box));
@@ -158,7 +164,18 @@ function buildDevices() {
     table.appendChild(el('tr', null, el('th', { text: `${d.name} (${d.kind})` }), cell));
   }
   root.appendChild(table);
-  devicesBuilt = true;
+}
+
+// the gain boxes show the gains in force (the server's, after each applied
+// gain command); a box being edited is left alone
+function showGains(g) {
+  if (!g) return;
+  const changed = !status.gains || status.gains.K !== g.K || status.gains.P !== g.P;
+  status.gains = g;
+  if (!changed) return;
+  for (const box of document.querySelectorAll('input[data-gain]')) {
+    if (document.activeElement !== box) box.value = String(g[box.dataset.gain]);
+  }
 }
 
 function setText(id, text, cls) {
@@ -228,9 +245,12 @@ function rtf() {
 
 function onFrames(j) {
   status.state = j.state;
-  setText('state', j.state, 'state ' + j.state);
+  setText('state', j.state === 'waiting' ? 'waiting for a page' : j.state, 'state ' + j.state);
+  showGains(j.gains);
   status.missed += j.missed;
   for (const f of j.frames) {
+    if (f.seq <= status.seq) { status.dupes++; continue; } // never drawn twice (a reconnection's overlap)
+    status.seq = f.seq;
     const row = f.row;
     const t = row[0];
     status.frames++;
@@ -271,7 +291,7 @@ function onFrames(j) {
   setText('rtf', Number.isFinite(r) ? `${fmt(r, 4)}\u00d7 real time` : j.state === 'paused' ? 'paused' : '\u2013');
   const paced = j.rate > 0 ? `paced at ${fmt(j.rate)}\u00d7` : 'as fast as it can';
   setText('pacing', paced);
-  setText('frames', `${status.frames} frames; missed ${status.missed} (page slow), dropped ${j.dropped_busy + j.dropped_unread} on the server`);
+  setText('frames', `${status.frames} frames ${status.transport === 'push' ? 'pushed' : 'polled'}; missed ${status.missed} (page slow), dropped ${j.dropped_busy + j.dropped_unread} on the server`);
   showCommands(j.commands);
   if (j.state === 'ended') {
     const end = document.getElementById('end');
@@ -289,18 +309,48 @@ function onFrames(j) {
   status.ready = true;
 }
 
+// The telemetry is pushed (GET /api/stream, server-sent events); the page
+// polls /api/frames only when the stream is refused or never opens.
+async function loadInfo() {
+  for (;;) {
+    try {
+      const i = await api('/api/info');
+      if (i.ok) { info = i.body; status.info = info; buildPage(); buildDevices(); return; }
+      if (i.status === 403) { message(`the server refused: ${i.body && i.body.error}`, true); return; }
+    } catch (e) {
+      message(`the server does not answer: ${e.message}`, true);
+    }
+    await new Promise((r) => setTimeout(r, POLL_MS));
+  }
+}
+
+function listen() {
+  if (typeof EventSource === 'undefined') { status.transport = 'poll'; poll(); return; }
+  const es = new EventSource(`/api/stream?token=${encodeURIComponent(token)}`);
+  status.transport = 'push';
+  es.onmessage = (ev) => {
+    status.messages++;
+    const j = JSON.parse(ev.data);
+    if (j.last < last) return; // an older message after a reconnection
+    onFrames(j);
+    if (j.state === 'ended') es.close();
+  };
+  es.onerror = () => {
+    if (status.state === 'ended') { es.close(); return; }
+    if (status.messages === 0) { // refused (at most two streams) or never opened: poll instead
+      es.close();
+      status.transport = 'poll';
+      poll();
+    }
+    // otherwise the browser reconnects by itself, resuming after the last frame (Last-Event-ID)
+  };
+}
+
 async function poll() {
   try {
     const r = await api(`/api/frames?since=${last}`);
     if (r.ok) {
-      if (!info) {
-        const i = await api('/api/info');
-        if (i.ok) { info = i.body; status.info = info; buildPage(); }
-      }
-      if (info) {
-        if (!devicesBuilt) buildDevices();
-        onFrames(r.body);
-      }
+      if (info) onFrames(r.body);
     } else {
       message(`the server refused: ${r.body && r.body.error}`, true);
     }
@@ -308,7 +358,7 @@ async function poll() {
     if (status.state === 'ended') { setText('state', 'ended (server closed)', 'state ended'); return; }
     message(`the server does not answer: ${e.message}`, true);
   }
-  setTimeout(poll, POLL_MS);
+  if (status.state !== 'ended') setTimeout(poll, POLL_MS);
 }
 
 function wireControls() {
@@ -320,4 +370,4 @@ function wireControls() {
 
 wireControls();
 window.addEventListener('error', (e) => status.errors.push(String(e.message)));
-poll();
+loadInfo().then(() => { if (info) listen(); });

@@ -21,36 +21,11 @@
 #include "harness/drive/run_scenario.h"
 #include "harness/core/run.h"
 #include "harness/scenario/scenario.h"
-#include "live/live_server.h"
+#include "live_test_util.h"
 
-// after Eigen (through the harness headers): <resolv.h> defines the macro
-// _res, a parameter name in Eigen's templates
-#include <httplib.h>
-
-namespace fs = std::filesystem;
-using json = nlohmann::json;
+using namespace live_test;
 
 namespace {
-
-const std::string kS1 = std::string(KESTREL_SOURCE_DIR) + "/scenarios/s1_sun_pointing.yaml";
-
-// The closed-loop tests' fast S1 (test_closed_loop.cpp): 4 Hz plant and FSW,
-// balanced wheels, 60 s.
-std::vector<harness::Override> fast()
-{
-  return {{"rates.dt", "0.25"},
-          {"rates.fsw_divisor", "1"},
-          {"rates.record_divisor", "1"},
-          {"wheel_defaults.model", "balanced"},
-          {"duration", "60"}};
-}
-
-fs::path temp_dir(const std::string& what)
-{
-  const fs::path d = fs::temp_directory_path() / ("kestrel_live_" + what + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  return d;
-}
 
 std::string text_of(const fs::path& p)
 {
@@ -190,58 +165,6 @@ TEST(LiveControl, AddEventRefusesWhatTheScenarioCannotTake)
   e.actions[0] = {"rw2", "fail_off"};
   EXPECT_THROW(plain.add_event(e), std::logic_error);
 }
-
-namespace {
-
-struct Served {
-  harness::LiveServer srv;
-  httplib::Client cli;
-  explicit Served(harness::LiveOptions o) : srv(std::move(o)), cli("127.0.0.1", srv.port()) {}
-  httplib::Headers auth(const std::string& tok) const { return {{"X-Kestrel-Token", tok}}; }
-  httplib::Result post(const json& j, const std::string& tok)
-  {
-    return cli.Post("/api/command", auth(tok), j.dump(), "application/json");
-  }
-  httplib::Result post_ok(const json& j) { return post(j, srv.token()); }
-  // The fast S1 into `out` under this server's control, on its own thread.
-  std::thread start_run(const fs::path& out, harness::RunResult& res)
-  {
-    harness::RunOptions opt;
-    opt.out_dir = out.string();
-    opt.control = &srv;
-    return std::thread([opt, &res] { res = harness::run_scenario(harness::load_scenario(kS1, fast()), opt); });
-  }
-  // the run has started: /api/info answers (waits up to 20 s)
-  bool started();
-  json frames()
-  {
-    auto r = cli.Get("/api/frames", auth(srv.token()));
-    return r && r->status == 200 ? json::parse(r->body) : json();
-  }
-};
-
-// waits up to 20 s for `cond` (the run is short; the bound only ends a hung test)
-template <class F>
-bool wait_for(F cond)
-{
-  for (int i = 0; i < 2000; ++i) {
-    if (cond()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  return false;
-}
-
-bool Served::started()
-{
-  return wait_for([this] {
-    auto r = cli.Get("/api/info", auth(srv.token()));
-    return r && r->status == 200;
-  });
-}
-
-std::string error_of(const httplib::Result& r) { return r ? json::parse(r->body).value("error", "") : ""; }
-
-}  // namespace
 
 TEST(LiveServer, TokenBadCommandsRefusedNothingApplied)
 {

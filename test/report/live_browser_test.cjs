@@ -2,7 +2,10 @@
 // The live view in headless Debian Chromium (the report's browser-test
 // set-up: playwright-core, /usr/bin/chromium, a new temporary profile):
 // starts `kestrel run S1 --live --live-paused` paced at 10x real time, opens
-// the printed URL, resumes the run, sees the page update, clicks "fail_off" of rw2 (wheel 2), waits for
+// the printed URL, resumes the run, sees the page update from pushed frames
+// (server-sent events: no /api/frames request), checks the gain boxes show
+// the scenario's gains and follow a gain_K command, the device panel below
+// the telemetry under the scenario's device names, clicks "fail_off" of rw2 (wheel 2), waits for
 // the run to end and the report link, and checks in the recorded
 // telemetry.csv that wheel 2's torque (wheel_torque_1) is 0 from the row of
 // the tick the command entered at, and not in the row before, and that
@@ -78,6 +81,12 @@ async function main() {
     const page = await ctx.newPage();
     const errors = [];
     const external = [];
+    const asked = { frames: 0, stream: 0 };
+    page.on('request', (r) => {
+      const u = r.url();
+      if (u.includes('/api/frames')) asked.frames++;
+      if (u.includes('/api/stream')) asked.stream++;
+    });
     page.on('console', (m) => { if (m.type() === 'error') errors.push(`console.error: ${m.text()}`); });
     page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
     await page.route('**/*', (route) => {
@@ -106,6 +115,31 @@ async function main() {
       if (!st.plots.includes(p)) fail(`no ${p}`);
     if (st.replay !== 'ok') fail(`3D view ${st.replay}`);
     if (st.t >= 60) fail('the run ended before the click: nothing to test');
+    // pushed, not polled: at least 20 distinct frames, none twice, no /api/frames request
+    await page.waitForFunction(() => window.kestrelLive.frames >= 20, null, { timeout: 15000 });
+    const push = await page.evaluate(() => ({ tr: window.kestrelLive.transport, n: window.kestrelLive.frames,
+      m: window.kestrelLive.messages, d: window.kestrelLive.dupes }));
+    console.log(`  push: ${push.n} frames in ${push.m} messages (${push.tr}), ${asked.stream} stream request(s), ` +
+      `${asked.frames} /api/frames requests`);
+    if (push.tr !== 'push' || asked.frames !== 0 || asked.stream < 1 || push.d !== 0) fail(`not pushed: ${JSON.stringify(push)}, ${JSON.stringify(asked)}`);
+    // the gain boxes now, compared with the scenario's gains (the manifest's) after the run
+    const boxes = () => page.evaluate(() => ({ K: Number(document.querySelector('input[data-gain="K"]').value),
+      P: Number(document.querySelector('input[data-gain="P"]').value) }));
+    const g0 = await boxes();
+    // a gain command (sent as a script would: not through the box) changes the box to the gain in force
+    const K1 = g0.K * 0.5;
+    const sent = await page.evaluate(async (k) => (await fetch('/api/command', { method: 'POST',
+      headers: { 'X-Kestrel-Token': new URLSearchParams(location.search).get('token'), 'Content-Type': 'application/json' },
+      body: JSON.stringify({ op: 'event', device: 'fsw', action: 'gain_K', value: k }) })).status, K1);
+    if (sent !== 202) fail(`gain_K command: HTTP ${sent}`);
+    await page.waitForFunction((k) => Number(document.querySelector('input[data-gain="K"]').value) === k, K1, { timeout: 15000 });
+    const g1 = await boxes();
+    console.log(`  gains: boxes K ${g0.K}, P ${g0.P}; after gain_K ${K1}: K ${g1.K}, P ${g1.P}`);
+    if (g1.P !== g0.P) fail(`P box ${g1.P} after a gain_K command (was ${g0.P})`);
+    const names = await page.evaluate(() => [...document.querySelectorAll('#devices button')].map((b) => b.dataset.device));
+    const below = await page.evaluate(() => document.getElementById('sec-devices').getBoundingClientRect().top >=
+      document.getElementById('sec-series').getBoundingClientRect().bottom);
+    if (!below) fail('the device panel is not below the telemetry');
     // click "fail wheel 2"
     await page.click('#devices button[data-device="rw2"][data-action="fail_off"]');
     await page.waitForFunction(() => [...document.querySelectorAll('#commands tr')].some((r) => r.textContent.includes('rw2 fail_off') && r.textContent.includes('applied')),
@@ -145,8 +179,17 @@ async function main() {
         `to ${csv.rows[csv.rows.length - 1][ct]} s (${csv.rows.length - at} rows)`);
     }
     const man = JSON.parse(fs.readFileSync(path.join(outDir, 'run', 'manifest.json'), 'utf8'));
+    // the gain boxes showed the scenario's gains; the page names the devices as the scenario does
+    const K0 = man.scenario.fsw.mrp_fb.K, P0 = man.scenario.fsw.mrp_fb.P;
+    if (g0.K !== K0 || g0.P !== P0) fail(`gain boxes K ${g0.K}, P ${g0.P}; the scenario's K ${K0}, P ${P0}`);
+    else console.log(`  gain boxes at the start = the scenario's fsw.mrp_fb K ${K0}, P ${P0}`);
+    const wheels = (man.scenario.wheels || []).map((w) => w.name);
+    if (!wheels.length) fail('no wheel names in the manifest');
+    for (const w of wheels) if (!names.includes(w)) fail(`no device row named ${w}`);
     const ev = man.scenario.events || [];
-    if (ev.length !== 1 || ev[0].t !== tk || ev[0].actions[0].device !== 'rw2') fail(`manifest events ${JSON.stringify(ev)}`);
+    const rw = ev.filter((e) => e.actions[0].device === 'rw2');
+    const gk = ev.filter((e) => e.actions[0].device === 'fsw' && e.actions[0].action === 'gain_K');
+    if (ev.length !== 2 || rw.length !== 1 || rw[0].t !== tk || gk.length !== 1) fail(`manifest events ${JSON.stringify(ev)}`);
     // the manifest replays the page-driven run bit for bit (telemetry.csv holds every value as %.17g)
     const replayDir = path.join(outDir, 'replay');
     const code = await new Promise((resolve) => {

@@ -71,6 +71,10 @@ void add_live_flags(CLI::App* run, harness::LiveRequest& live)
   run->add_option("--live-linger", live.linger, "with --live: seconds the page stays served after the run (default 10)")
       ->check(CLI::Range(0.0, 86400.0));
   run->add_flag("--live-paused", live.paused, "with --live: start paused (resume from the page)");
+  run->add_option("--live-wait", live.wait,
+                  "with --live: after t = 0 wait this long at most for a page to connect (default 60 s for an "
+                  "unpaced run, 0 with --realtime; 0: do not wait)")
+      ->check(CLI::Range(0.0, 86400.0));
 }
 
 CLI::App* add_run(CLI::App& app, harness::RunCommand& rc)

@@ -29,7 +29,7 @@ inline void end_live_view(LiveServer& live, const RunCommand& c, int code, std::
       << " commands applied, " << n.commands_refused << " refused; " << n.requests_unauthorised
       << " requests without the token and " << n.requests_refused << " too large or compressed refused unread; "
       << n.connections << " connections (" << n.connections_closed << " closed idle, slow or at the limit); paused "
-      << n.paused_s << " s of wall time" << std::endl;
+      << n.paused_s << " s of wall time; waited " << n.waited_s << " s for a page" << std::endl;
   if (c.live.linger > 0 && c.stop->load() == 0 && (code == kExitOk || code == kExitRunFailed)) {
     out << "live view: the page stays at " << live.url() << " for " << c.live.linger << " s (Ctrl-C ends it)"
         << std::endl;
@@ -44,6 +44,8 @@ inline int cmd_run_live(RunCommand c, std::ostream& out, std::ostream& err)
   lo.host = c.live.host;
   lo.port = c.live.port;
   lo.start_paused = c.live.paused;
+  lo.wait_unpaced = c.live.wait >= 0.0 ? c.live.wait : LiveServer::kDefaultPageWait;
+  lo.wait_paced = c.live.wait >= 0.0 ? c.live.wait : 0.0;
   std::unique_ptr<LiveServer> live;
   try {
     live = std::make_unique<LiveServer>(lo);
@@ -52,6 +54,10 @@ inline int cmd_run_live(RunCommand c, std::ostream& out, std::ostream& err)
     return kExitUsage;
   }
   out << "live view: " << live->url() << std::endl;
+  const double wait = c.realtime ? lo.wait_paced : lo.wait_unpaced;
+  if (wait > 0.0 && !lo.start_paused)
+    out << "live view: the run waits at t = 0 for a page to connect, at most " << wait << " s (--live-wait)"
+        << std::endl;
   c.control = live.get();
   const int code = cmd_run(c, out, err);
   end_live_view(*live, c, code, out);

@@ -41,6 +41,9 @@ class EventTask {
   // Allocates (the live view's commands, not the scenario's own events).
   void add();
   const std::vector<AppliedEvent>& log() const { return log_; }
+  // The FSW command as commanded so far (from the configuration's mode,
+  // actuation, reference and gains; each FSW action changes its field).
+  const FswAcsCmdMsg& command() const { return cmd_; }
   // The run's rods and their command message (runs with magnetorquers):
   // the magnetorquer actions act on them.
   void attach_magnetorquers(sim::MagneticEffector* mag, Writer<MtqCmdMsg> cmd);

@@ -467,6 +467,13 @@ void Run::add_event(const EventSpec& e)
 
 bool Run::fsw_accepts_commands() const { return impl_->fsw->accepts_commands(); }
 
+std::array<double, 2> Run::fsw_gains() const
+{
+  const Impl& m = *impl_;
+  if (m.events) return {static_cast<double>(m.events->command().K), static_cast<double>(m.events->command().P)};
+  return {static_cast<double>(m.fsw_setup.cfg.mrp_fb.K), static_cast<double>(m.fsw_setup.cfg.mrp_fb.P)};
+}
+
 const std::vector<AppliedEvent>& Run::events_applied() const
 {
   static const std::vector<AppliedEvent> kNone;

@@ -10,6 +10,10 @@
 //              (`dropped_busy`); a frame overwritten before any page read it
 //              is counted too (`dropped_unread`, once a page has connected).
 //              At most one frame per kPublishPeriod of wall time.
+//   push       GET /api/stream (server-sent events, live_stream.cpp) sends
+//              what was published since its last message; the sim thread
+//              only bumps a counter, a slow client loses frames, never
+//              delays the run.
 //   commands   the server validates a command when it arrives (the token;
 //              an event action with check_event_action(), the scenario
 //              event validation) and refuses it with a message, or queues
@@ -36,6 +40,12 @@ struct LiveOptions {
   int port = 0;                    // 0: any free port
   std::string token;               // "" : 128 random bits, hex
   bool start_paused = false;       // the run waits after tick 0 (t = 0 recorded) for resume or step
+  // [s] otherwise the run waits after tick 0 until a page connects (its
+  // stream or a /api/frames request) or a command comes, at most this long
+  // (0: no wait); kestrel run: --live-wait, by default kDefaultPageWait for
+  // an unpaced run (it would be over before a page opened) and 0 paced
+  double wait_unpaced = 0.0;
+  double wait_paced = 0.0;
 };
 
 struct LiveCounters {
@@ -49,6 +59,7 @@ struct LiveCounters {
   uint64_t connections = 0;            // accepted
   uint64_t connections_closed = 0;     // by the server: idle, header too slow or too large, evicted at the limit
   double paused_s = 0.0;          // [s] wall time the run waited, paused
+  double waited_s = 0.0;          // [s] wall time the run waited at t = 0 for a page
 };
 
 class LiveServer : public RunControl {
@@ -58,6 +69,9 @@ class LiveServer : public RunControl {
   static constexpr size_t kLogKept = 1000;  // commands the log keeps (older ones are forgotten)
   static constexpr size_t kLogPage = 64;    // commands per answer (/api/frames: the last ones)
   static constexpr double kPublishPeriod = 0.02;  // [s] wall time: at most 50 frames/s
+  static constexpr double kPushPeriod = 0.05;     // [s] a stream's messages: at most 20/s (frames batched)
+  static constexpr size_t kMaxStreams = 2;        // pushed streams at once (each holds one of the gate's workers)
+  static constexpr double kDefaultPageWait = 60.0;  // [s] kestrel run --live, unpaced: wait for a page
 
   // Binds and starts serving (the page answers "starting" until the run
   // starts).  Throws std::runtime_error when the address cannot be bound.

@@ -50,6 +50,7 @@ struct LiveRequest {
   int port = 0;                     // TCP port (0: a free one, printed)
   std::string host = "127.0.0.1";   // address to bind
   double linger = 10.0;             // [s] the page stays served after the run
+  double wait = -1.0;               // [s] wait after tick 0 for a page; < 0: 60 s unpaced, 0 paced (docs/live.md)
 };
 
 struct RunCommand {

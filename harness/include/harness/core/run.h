@@ -137,6 +137,9 @@ class Run {
   void add_event(const EventSpec& e);
   // Whether the FSW endpoint takes commands (scenario events on device fsw).
   bool fsw_accepts_commands() const;
+  // The mrp_fb gains in force {K [N*m], P [N*m*s]}: the configuration's,
+  // then the last gain_K / gain_P an event (or a live command) applied.
+  std::array<double, 2> fsw_gains() const;
 
   // The events applied so far, in order.
   const std::vector<AppliedEvent>& events_applied() const;
