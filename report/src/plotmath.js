@@ -50,13 +50,13 @@ export function tickLabels(ticks) {
 // its magnitude) is plotted as the difference from a round offset, so the
 // axis reads "+2e-9" and the title the offset: a conserved quantity shows
 // the size of its variation instead of a line across the whole plot.
-// Returns the offset, or 0 when the series reads well as it is.
+// Returns the offset, or 0 when the series reads well as it is (or is constant).
 export function plotOffset(min, max) {
   if (!Number.isFinite(min) || !Number.isFinite(max)) return 0;
   const mid = 0.5 * (min + max);
   const span = max - min;
-  if (mid === 0 || !(span < 1e-3 * Math.abs(mid))) return 0;
-  if (span === 0) return mid;
+  // a constant series reads as it is (a flat line at its value)
+  if (mid === 0 || span === 0 || !(span < 1e-3 * Math.abs(mid))) return 0;
   const k = Math.floor(Math.log10(span)) + 1; // the offset keeps the digits above the span
   const p = Math.pow(10, k);
   const off = Math.round(mid / p) * p;
