@@ -45,3 +45,25 @@ export function attitudeSamples(att) {
   }
   return out;
 }
+
+// Scalar-first Euler parameters of an MRP set sigma (the same rotation).
+export function mrpToQuat(s) {
+  const s2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
+  const d = 1 + s2;
+  return [(1 - s2) / d, (2 * s[0]) / d, (2 * s[1]) / d, (2 * s[2]) / d];
+}
+
+// The renderer rotation of the reference frame R, drawn in N, from the
+// body's (rendererQuat(q_BN), the rotation dcm_NB) and the tracking error
+// sigma_BR: dcm_NR = dcm_NB dcm_BR, and rendererQuat(q_BR) is dcm_BR^T, so
+// dcm_BR is its conjugate.  Returns [x, y, z, w]; null if an input is bad.
+export function referenceQuat(qBody, sigmaBR) {
+  if (!Array.isArray(qBody) || !Array.isArray(sigmaBR) || sigmaBR.length < 3 || !sigmaBR.every(Number.isFinite)) return null;
+  const r = rendererQuat(mrpToQuat(sigmaBR));
+  if (!r) return null;
+  const [bx, by, bz, bw] = [-r[0], -r[1], -r[2], r[3]]; // conjugate: dcm_BR
+  const [ax, ay, az, aw] = qBody;
+  // Hamilton product qBody * conj (applies dcm_BR first, then dcm_NB)
+  return [aw * bx + ax * bw + ay * bz - az * by, aw * by - ax * bz + ay * bw + az * bx,
+    aw * bz + ax * by - ay * bx + az * bw, aw * bw - ax * bx - ay * by - az * bz];
+}

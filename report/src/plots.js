@@ -3,6 +3,7 @@
 import uPlot from 'uplot';
 import { alignSeries, indexedKeys, isNumArray, el, finiteMinMax } from './data.js';
 import { ENV_SOURCES, eclipseIntervals, magnitude, sumMagnitude } from './environment.js';
+import { tickLabels, plotOffset, constantValue, enumOf, enumLabel, displayUnit, deviceName } from './plotmath.js';
 
 export const PALETTE = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#17becf',
   '#7f7f7f', '#bcbd22', '#393b79', '#ad494a', '#637939', '#e6550d', '#6b6ecf', '#843c39'];
@@ -140,26 +141,69 @@ export function widthOf(container) {
   return Math.max(280, Math.floor(container.getBoundingClientRect().width) - 24);
 }
 
-// spec: { id, title, unit, names: [], ys: [[...]], colors?, log?, stepped?, note? }
+// Labels of a value axis: distinct however small the step (plotmath.js);
+// an enumerated series (spec.enumKey) is labelled with its names at whole
+// values; a log axis keeps one mantissa digit per decade.
+function axisValues(spec, log) {
+  if (spec.enumKey) {
+    const names = enumOf(spec.enumKey) || {};
+    return (self, ticks) => ticks.map((v) => (Number.isInteger(v) ? (names[v] !== undefined ? names[v] : String(v)) : ''));
+  }
+  if (log) return (self, ticks) => ticks.map((v) => fmtTick(v));
+  return (self, ticks) => tickLabels(ticks);
+}
+
+// spec: { id, title, unit, names: [], ys: [[...]], colors?, log?, stepped?, note?, enumKey? }
+// The unit is shown as displayUnit() spells it (values scaled to it); a
+// series that varies little against its value is drawn from an offset,
+// named in the title (the legend shows the full values).
 export function addTimePlot(grid, t, spec) {
+  const du = displayUnit(spec.unit);
+  const scaled = du.scale === 1 ? spec.ys : spec.ys.map((y) => y.map((v) => (v === null ? null : v * du.scale)));
+  // each series' own offset (plotOffset): one shared by every series goes
+  // into the title, different ones into the legend names
+  const offs = scaled.map((y) => {
+    const mm = spec.log || spec.enumKey ? null : finiteMinMax(y);
+    return mm ? plotOffset(mm[0], mm[1]) : 0;
+  });
+  const shared = offs.length && offs.every((o) => o !== 0 && o === offs[0]) ? offs[0] : 0;
+  const shifted = scaled.map((y, k) => (offs[k] ? y.map((v) => (v === null ? null : v - offs[k])) : y));
+  const minus = (o) => (o < 0 ? ` + ${String(-o)}` : ` \u2212 ${String(o)}`);
+  const names = spec.names.map((nm, k) => (offs[k] && !shared ? nm + minus(offs[k]) : nm));
   const card = el('div', { class: 'card', id: 'plot-' + spec.id });
-  card.appendChild(el('h3', { text: spec.title + (spec.unit ? ` [${spec.unit}]` : '') }));
+  const offText = shared ? minus(shared) : '';
+  card.appendChild(el('h3', { text: spec.title + offText + (du.unit ? ` [${du.unit}]` : '') }));
   const holder = el('div', { class: 'plot' });
   card.appendChild(holder);
+  if (offs.some((o) => o !== 0)) {
+    const u = du.unit ? ' ' + du.unit : '';
+    const parts = offs.map((o, k) => {
+      if (!o) return '';
+      const mm = finiteMinMax(scaled[k]);
+      return `${spec.names[k]} from ${String(o)}${u} (varies by ${fmtTick(mm[1] - mm[0])}${u}, ${fmtTick((mm[1] - mm[0]) / Math.abs(o))} of its value)`;
+    }).filter(Boolean);
+    card.appendChild(el('p', { class: 'note offset-note', text: `Nearly constant, so drawn as the difference from an offset: ${parts.join('; ')}.` }));
+  }
   if (spec.note) card.appendChild(el('p', { class: 'note', text: spec.note }));
   grid.appendChild(card);
 
   let log = !!spec.log;
   let u = null;
+  const enumNames = spec.enumKey ? enumOf(spec.enumKey) : null;
+  const legend = (v, k) => {
+    if (v === null || v === undefined) return '\u2013';
+    if (enumNames) return enumLabel(spec.enumKey, v) || fmtTick(v);
+    return offs[k] ? String(Number((v + offs[k]).toPrecision(12))) : fmtTick(v);
+  };
   const build = () => {
     if (u) { plots.splice(plots.indexOf(u), 1); u.destroy(); }
-    let ys = spec.ys;
+    let ys = shifted;
     if (log) {
       // log axis: non-positive values become gaps
       ys = ys.map((y) => y.map((v) => (v !== null && v > 0 ? v : null)));
     }
     const [tx, yd] = decimate(t, ys);
-    const stepped = spec.stepped ? uPlot.paths.stepped({ align: 1 }) : undefined;
+    const stepped = spec.stepped || spec.enumKey ? uPlot.paths.stepped({ align: 1 }) : undefined;
     const opts = {
       width: widthOf(card),
       height: 220,
@@ -167,18 +211,18 @@ export function addTimePlot(grid, t, spec) {
       scales: { x: { time: false }, y: log ? { distr: 3 } : { auto: true } },
       legend: { live: true },
       axes: [
-        { label: 't [s]', size: 40 },
-        { label: spec.unit || '', size: 64, values: (self, ticks) => ticks.map((v) => fmtTick(v)) },
+        { label: 't [s]', size: 40, values: (self, ticks) => tickLabels(ticks) },
+        { label: du.unit || '', size: spec.enumKey ? 110 : 64, values: axisValues(spec, log) },
       ],
       series: [
         { label: 't [s]', value: (self, v) => (v === null || v === undefined ? '\u2013' : v.toFixed(2)) },
-        ...spec.names.map((name, k) => ({
+        ...names.map((name, k) => ({
           label: name,
           stroke: (spec.colors || PALETTE)[k % (spec.colors || PALETTE).length],
           width: 1.25,
           spanGaps: false,
           paths: stepped,
-          value: (self, v) => (v === null || v === undefined ? '\u2013' : fmtTick(v)),
+          value: (self, v) => legend(v, k),
         })),
       ],
       hooks: { setScale: [(self, key) => { if (key === 'x') syncX(self); }], drawClear: [drawShade], draw: [drawEvents, drawMarker] },
@@ -207,6 +251,17 @@ export function fmtTick(v) {
   if (a >= 1e5 || a < 1e-3) return v.toExponential(1);
   return Number(v.toPrecision(4)).toString();
 }
+
+// The texts of every value-axis tick label drawn on the page's time plots
+// (for the browser tests: none may repeat within an axis).
+export function axisTickTexts() {
+  return plots.map((u) => ({
+    id: (u.root.closest('.card') || {}).id || '',
+    axes: u.axes.map((a) => (a._values || []).filter((v) => v !== null && v !== undefined && v !== '').map(String)),
+  }));
+}
+
+if (typeof window !== 'undefined') window.kestrelAxisTicks = axisTickTexts;
 
 export function resizePlots() {
   for (const u of plots) {
@@ -254,37 +309,51 @@ export function buildTimePlots(grid, D, otherGrid = grid) {
     ['thruster_on_time_', 'ontime', 'Thruster on-times', 's', 'thr ', true],
     ['thruster_force_', 'force', 'Thruster forces', 'N', 'thr ', true],
   ];
-  const thrNames = (D.geometry && Array.isArray(D.geometry.thrusters) ? D.geometry.thrusters : [])
-    .map((th) => (th && typeof th.name === 'string' && th.name ? th.name : null));
+  const geom = D.geometry || {};
+  const devName = (key, fallback) => deviceName(key, geom) || fallback;
   for (const [prefix, id, title, unit, nm, stepped] of groups) {
     const ks = indexedKeys(series, prefix);
     if (!ks.length) { absent.push(title.toLowerCase()); continue; }
-    const label = (index) => (nm === 'thr ' && thrNames[index] ? `${index} ${thrNames[index]}` : nm + index);
     addTimePlot(grid, t, {
       id, title, unit: unitOf(ks[0].key, unit), stepped,
-      names: ks.map(({ index }) => label(index)), ys: ks.map(({ key }) => take(key)),
+      names: ks.map(({ index, key }) => devName(key, nm + index)), ys: ks.map(({ key }) => take(key)),
     });
   }
 
-  const env = buildEnvironmentPlots(grid, D, take, unitOf);
+  const env = buildEnvironmentPlots(grid, D, take, unitOf, devName);
 
   if (isNumArray(series.propellant_kg)) {
     addTimePlot(grid, t, { id: 'propellant', title: 'Propellant', unit: unitOf('propellant_kg', 'kg'), names: ['propellant'], ys: [take('propellant_kg')] });
   } else absent.push('propellant');
 
-  // anything else the harness recorded, grouped by name stem
+  // anything else the harness recorded, grouped by name stem (the FSW's
+  // stage statuses in one group); a series constant over the whole run is
+  // a row of the constants table instead of a flat plot (a vector is
+  // plotted whole when one of its components varies)
   const rest = new Map();
+  const constants = env.constants;
   for (const k of Object.keys(series).sort()) {
     if (used.has(k) || !isNumArray(series[k]) || typeof series[k][0] === 'object') continue;
-    const stem = k.replace(/_(\d+|[xyz])$/, '');
+    const stem = k.startsWith('fsw_stage_') ? 'fsw_stage' : k.replace(/_(\d+|[xyz])$/, '');
     if (!rest.has(stem)) rest.set(stem, []);
     rest.get(stem).push(k);
   }
-  for (const [stem, ks] of rest) {
-    const names = ks.length > 1 ? ks.map((k) => k.slice(stem.length + 1)) : ks;
-    addTimePlot(otherGrid, t, { id: 'x-' + stem.replace(/[^A-Za-z0-9_-]/g, '_'), title: stem, unit: unitOf(ks[0], ''), names, ys: ks.map(take) });
+  let others = 0;
+  for (const [stem, all] of rest) {
+    const vector = all.every((k) => /_[xyz]$/.test(k));
+    const ys = new Map(all.map((k) => [k, take(k)]));
+    const cv = new Map(all.map((k) => [k, constantValue(ys.get(k))]));
+    const ks = vector && all.some((k) => !cv.get(k)) ? all : all.filter((k) => !cv.get(k));
+    for (const k of all) if (!ks.includes(k) && cv.get(k)) constants.push({ key: k, label: constantLabel(k, geom), unit: unitOf(k, ''), ...cv.get(k) });
+    if (!ks.length) continue;
+    const names = all.length > 1 ? ks.map((k) => devName(k, stem === 'fsw_stage' ? k.slice('fsw_stage_'.length) : k.slice(stem.length + 1))) : ks;
+    const enumKey = ks.every((k) => enumOf(k)) ? ks[0] : undefined;
+    const title = stem === 'fsw_stage' ? 'FSW stage statuses (fsw_stage_*)' : stem;
+    addTimePlot(otherGrid, t, { id: 'x-' + stem.replace(/[^A-Za-z0-9_-]/g, '_'), title, unit: unitOf(ks[0], ''), names, ys: ks.map((k) => ys.get(k)), enumKey });
+    others++;
   }
-  return { absent, others: rest.size, eclipses: env.eclipses };
+  if (constants.length) grid.after(constantsTable(constants));
+  return { absent, others, eclipses: env.eclipses, constants: constants.length };
 }
 
 // Earth-orbit runs, each card only when its columns exist: illumination
@@ -292,7 +361,7 @@ export function buildTimePlots(grid, D, otherGrid = grid) {
 // source, the momentum each source has given against the wheels', the field
 // in B and the magnetorquer dipoles.  The torque and momentum cards show
 // magnitudes; their components stay among the other recorded series.
-function buildEnvironmentPlots(grid, D, take, unitOf) {
+function buildEnvironmentPlots(grid, D, take, unitOf, devName) {
   const { series, t } = D;
   const n = t.length;
   let eclipses = 0;
@@ -330,10 +399,44 @@ function buildEnvironmentPlots(grid, D, take, unitOf) {
     addTimePlot(grid, t, { id: 'field', title: 'Geomagnetic field in B', unit: unitOf(fk[0], 'T'), names: fk.map((k) => k.slice(-1)),
       ys: fk.map(take), colors: fk.map((k) => AXIS_COLORS['xyz'.indexOf(k.slice(-1))]) });
   }
+  // the rods' dipoles: a table row each when none of them moves
+  const constants = [];
   const mk = indexedKeys(series, 'mtq_dipole_');
-  if (mk.length) {
+  const mys = mk.map(({ key }) => take(key));
+  const mcv = mys.map(constantValue);
+  if (mk.length && mcv.every(Boolean)) {
+    mk.forEach(({ key }, i) => constants.push({ key, label: constantLabel(key, D.geometry), unit: unitOf(key, 'A m^2'), ...mcv[i] }));
+  } else if (mk.length) {
     addTimePlot(grid, t, { id: 'mtqdipole', title: 'Magnetorquer dipoles', unit: unitOf(mk[0].key, 'A m^2'), stepped: true,
-      names: mk.map(({ index }) => `rod ${index}`), ys: mk.map(({ key }) => take(key)) });
+      names: mk.map(({ index, key }) => devName(key, `rod ${index}`)), ys: mys });
   }
-  return { eclipses };
+  return { eclipses, constants };
+}
+
+// "wheel_speed_rpm_1 (rw2)": the recorded name, with the device's own.
+function constantLabel(key, geometry) {
+  const d = deviceName(key, geometry);
+  return d ? `${key} (${d})` : key;
+}
+
+// One compact table of every series that holds one value over the whole
+// run: status codes and flags with their names, the stages and actuators
+// this scenario does not use.
+function constantsTable(rows) {
+  const block = el('div', { class: 'card wide', id: 'constants' });
+  block.appendChild(el('h3', { text: `Constant over the whole run (${rows.length} series)` }));
+  block.appendChild(el('p', { class: 'note', text: 'Each of these series holds one value from the first sample to the last, so it is listed ' +
+    'here instead of drawn as a flat line. Status codes are FswStatus values (FSW_OK 0, warnings positive, errors negative); flags are 0 no, 1 yes.' }));
+  const tr = (...cells) => el('tr', null, ...cells);
+  const body = rows.map((r) => {
+    const du = displayUnit(r.unit);
+    const v = r.value * du.scale;
+    const name = enumLabel(r.key, r.value);
+    return tr(el('td', { text: r.label }), el('td', { class: 'num', text: name || String(Number(v.toPrecision(12))) }),
+      el('td', { text: du.unit }), el('td', { class: 'note', text: r.spread > 0 ? `within ${fmtTick(r.spread * du.scale)} (rounding)` : '' }));
+  });
+  block.appendChild(el('table', { id: 'constants-table', class: 'constants' },
+    el('thead', null, tr(el('th', { text: 'series' }), el('th', { text: 'value' }), el('th', { text: 'unit' }), el('th', { text: '' }))),
+    el('tbody', null, ...body)));
+  return block;
 }

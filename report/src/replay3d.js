@@ -5,11 +5,11 @@ import {
   WebGLRenderer, Scene, PerspectiveCamera, AmbientLight, DirectionalLight, Group, Mesh, MeshStandardMaterial,
   MeshBasicMaterial, BoxGeometry, CylinderGeometry, ConeGeometry, ArrowHelper, Vector3, Quaternion, Color,
   BufferGeometry, LineBasicMaterial, Line, Float32BufferAttribute, CanvasTexture, SpriteMaterial, Sprite,
-  EdgesGeometry, LineSegments, GridHelper,
+  EdgesGeometry, LineSegments, GridHelper, SphereGeometry, LineDashedMaterial,
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { indexedKeys, alignSeries, isNumArray, sampleIndex, el, fmt } from './data.js';
-import { attitudeSamples, rendererQuat } from './attitude.js';
+import { attitudeSamples, rendererQuat, referenceQuat } from './attitude.js';
 import { PALETTE, AXIS_COLORS, setMarkerTime } from './plots.js';
 
 function label(text, color, size) {
@@ -69,10 +69,12 @@ export function buildReplay(root, D, status, opts = {}) {
     wheelAxes.push(v.normalize());
     wheelPos.push(vec3(wpos[i]));
   });
+  const wheelNames = wheelAxes.map((_, i) => (Array.isArray(geom.wheel_names) && typeof geom.wheel_names[i] === 'string' && geom.wheel_names[i]
+    ? geom.wheel_names[i] : 'w' + i));
   const thrusters = (Array.isArray(geom.thrusters) ? geom.thrusters : [])
-    .map((th) => (th && typeof th === 'object' ? { r: vec3(th.r_B), d: vec3(th.dir_B) } : {}))
+    .map((th, i) => (th && typeof th === 'object' ? { r: vec3(th.r_B), d: vec3(th.dir_B), name: typeof th.name === 'string' && th.name ? th.name : 't' + i } : {}))
     .filter((th) => th.r && th.d && th.d.length() > 0)
-    .map((th) => ({ r: th.r, d: th.d.normalize() }));
+    .map((th) => ({ r: th.r, d: th.d.normalize(), name: th.name }));
 
   const card = el('div', { class: 'card wide' });
   root.appendChild(card);
@@ -166,10 +168,11 @@ export function buildReplay(root, D, status, opts = {}) {
     spin.add(mark);
     body.add(holder);
     body.add(new ArrowHelper(a, new Vector3(0, 0, 0), 1.35 * S, new Color(color).getHex(), 0.1 * S, 0.05 * S));
-    const l = label('w' + i, color, 0.22 * S);
+    holder.name = 'wheel:' + wheelNames[i];
+    const l = label(wheelNames[i], color, 0.22 * S);
     l.position.copy(a.clone().multiplyScalar(1.45 * S));
     body.add(l);
-    return { spin, disc, color: new Color(color), angle: 0 };
+    return { spin, disc, color: new Color(color), angle: 0, name: wheelNames[i] };
   });
 
   // thrusters: nozzle at r_B, plume along -dir_B scaled with the firing level
@@ -198,10 +201,14 @@ export function buildReplay(root, D, status, opts = {}) {
     const plume = new Mesh(plumeGeom, new MeshBasicMaterial({ color: 0xffa23a, transparent: true, opacity: 0.75, side: 2, depthWrite: false }));
     plume.position.y = 0.2 * S;
     plume.visible = false;
+    plume.name = 'plume:' + th.name;
+    g.name = 'thruster:' + th.name;
     g.add(plume);
     body.add(g);
     return { plume, level: level[i] };
   });
+
+  const extras = sceneExtras(scene, body, D, S);
 
   // --- renderer, camera, controls ----------------------------------------------
   let renderer;
@@ -225,6 +232,7 @@ export function buildReplay(root, D, status, opts = {}) {
   controls.target.set(0, 0, 0);
   controls.update();
 
+  status.sceneObjects = extras.names(); // for the browser tests
   if (opts.live) return liveScene(card, view, renderer, scene, camera, controls, body, spinners, plumes, maxRpm, S, status, width, H);
 
   // --- timeline ----------------------------------------------------------------
@@ -241,13 +249,27 @@ export function buildReplay(root, D, status, opts = {}) {
     return o;
   }));
   const readout = el('div', { class: 'readout' });
-  card.appendChild(el('div', { class: 'controls' }, play, slider, el('label', null, ' speed ', speed)));
+  const track = el('span', { class: 'timeline-track' }, slider);
+  const burn = extras.burn;
+  if (burn && span > 0) {
+    // the main-engine burn on the timeline
+    const a = Math.max(0, Math.min(1, (burn.t0 - t0) / span));
+    const b = Math.max(0, Math.min(1, (burn.t1 - t0) / span));
+    if (b > a) track.appendChild(el('span', { class: 'burn-band', title: `burn ${burn.thruster} ${fmt(burn.t0)} to ${fmt(burn.t1)} s`,
+      style: `left:${(100 * a).toFixed(2)}%;width:${(100 * (b - a)).toFixed(2)}%` }));
+  }
+  card.appendChild(el('div', { class: 'controls' }, play, track, el('label', null, ' speed ', speed)));
   card.appendChild(view);
   card.appendChild(readout);
   card.appendChild(el('p', { class: 'note', text:
-    'Inertial frame N (faint axes n1 n2 n3); body axes b1 (red), b2 (green), b3 (blue); wheel spin axes w0.. with discs that turn with the sign ' +
-    'of the wheel speed and brighten with its magnitude; thruster plumes (orange) along -dir_B, length proportional to the force ' +
-    '(or on-time). Drag to orbit, wheel to zoom. The replay time is the dashed orange line on the time plots; click a plot to jump there.' }));
+    'Inertial frame N (faint axes n1 n2 n3); body axes b1 (red), b2 (green), b3 (blue); the attitude reference R the flight software tracks ' +
+    '(dashed r1 r2 r3, from the recorded sigma_BR: on the body axes when the error is zero); the Sun vector (yellow); wheel spin axes, named ' +
+    'as in the scenario, with discs that turn with the sign of the wheel speed and brighten with its magnitude; thruster plumes (orange) along ' +
+    '-dir_B while a thruster fires, length proportional to the force (or on-time); fields of view: the coarse sun sensors (pale yellow, ' +
+    'their half angle) and the star tracker along its boresight (blue, drawn with a 10 deg half angle: the model has no field-of-view limit; ' +
+    'red: its Sun exclusion cone when set). ' + (extras.orbit ? 'Inset: the central body, the trajectory (grey), the burn arc (orange) and the ' +
+    'spacecraft (white), seen along the orbit normal. ' : '') + (burn ? 'The burn window is the orange band on the timeline. ' : '') +
+    'Drag to orbit, wheel to zoom. The replay time is the dashed orange line on the time plots; click a plot to jump there.' }));
 
   const pe = isNumArray(series.pointing_error_deg) ? alignSeries(series.pointing_error_deg, t.length) : null;
   const qa = new Quaternion();
@@ -276,7 +298,7 @@ export function buildReplay(root, D, status, opts = {}) {
       w.speed = v === null ? 0 : v;
       const mag = Math.min(1, Math.abs(w.speed) / maxRpm);
       w.disc.material.color.copy(w.color).multiplyScalar(0.45 + 0.75 * mag);
-      if (v !== null) parts.push(`w${i} ${fmt(v)} rpm`);
+      if (v !== null) parts.push(`${w.name} ${fmt(v)} rpm`);
     });
     let firing = 0;
     plumes.forEach((p) => {
@@ -285,6 +307,8 @@ export function buildReplay(root, D, status, opts = {}) {
       if (lv > 0) { firing++; p.plume.scale.set(1, Math.max(0.15, lv) * 1.2 * S, 1); }
     });
     if (plumes.length) parts.push(`${firing}/${plumes.length} thrusters firing`);
+    if (burn) parts.push(tNow >= burn.t0 && tNow <= burn.t1 ? `burn (${burn.thruster}) on` : `burn (${burn.thruster}) ${fmt(burn.t0)} to ${fmt(burn.t1)} s`);
+    extras.update(tNow, k);
     readout.textContent = parts.join('   \u00b7   ');
     if (span > 0) slider.value = String(Math.round(((tNow - t0) / span) * 10000));
     setMarkerTime(tNow);
@@ -310,7 +334,7 @@ export function buildReplay(root, D, status, opts = {}) {
       }
     }
     controls.update();
-    renderer.render(scene, camera);
+    renderAll(renderer, scene, camera);
     requestAnimationFrame(frame);
   };
   window.addEventListener('resize', () => {
@@ -319,7 +343,7 @@ export function buildReplay(root, D, status, opts = {}) {
     camera.updateProjectionMatrix();
   });
   setTime(t0);
-  renderer.render(scene, camera);
+  renderAll(renderer, scene, camera);
   requestAnimationFrame(frame);
   status.replay = 'ok';
   status.replayFrames = att.t.length;
@@ -345,7 +369,7 @@ function liveScene(card, view, renderer, scene, camera, controls, body, spinners
       w.speed = v === null || v === undefined ? 0 : v;
       const mag = Math.min(1, Math.abs(w.speed) / maxRpm);
       w.disc.material.color.copy(w.color).multiplyScalar(0.45 + 0.75 * mag);
-      parts.push(`w${i} ${fmt(v)} rpm`);
+      parts.push(`${w.name} ${fmt(v)} rpm`);
     });
     let firing = 0;
     plumes.forEach((p, i) => {
@@ -371,15 +395,221 @@ function liveScene(card, view, renderer, scene, camera, controls, body, spinners
       w.spin.rotation.y = w.angle;
     }
     controls.update();
-    renderer.render(scene, camera);
+    renderAll(renderer, scene, camera);
   };
   window.addEventListener('resize', () => {
     renderer.setSize(width(), H);
     camera.aspect = width() / H;
     camera.updateProjectionMatrix();
   });
-  renderer.render(scene, camera);
+  renderAll(renderer, scene, camera);
   requestAnimationFrame(frame);
   status.replay = 'ok';
   return { show };
+}
+
+// Draws the scene and, when there is one, the orbit inset (scene.userData.inset).
+function renderAll(renderer, scene, camera) {
+  renderer.render(scene, camera);
+  if (scene.userData.inset) scene.userData.inset(renderer);
+}
+
+function unitVec(a) {
+  const v = vec3(a);
+  return v && v.length() > 0 ? v.normalize() : null;
+}
+
+// A cone of half angle `half` [rad] and slant length L along `axis` (B),
+// apex at the origin: a sensor's field of view.
+function fovCone(axis, half, L, color, opacity, name) {
+  const h = L * Math.cos(half);
+  const r = L * Math.sin(half);
+  const g = new ConeGeometry(r, h, 32, 1, true);
+  g.translate(0, -h / 2, 0);
+  g.rotateX(Math.PI); // apex at the origin, opening along +y
+  const m = new Mesh(g, new MeshBasicMaterial({ color, transparent: true, opacity, side: 2, depthWrite: false }));
+  m.quaternion.setFromUnitVectors(new Vector3(0, 1, 0), axis);
+  m.name = name;
+  return m;
+}
+
+// What a reference visualization shows around the spacecraft, from the run
+// data: the Sun vector (geometry.sun, the Sun's position in N over the run,
+// less the spacecraft's r_BN_N when recorded), the attitude reference frame
+// R (from the recorded tracking error sigma_BR), the fields of view of the
+// star tracker and of the coarse sun sensors (geometry.sensors), and for an
+// orbit (geometry.central_body with r_BN_N recorded) an inset with the
+// central body, the trajectory, the burn arc and the spacecraft's position.
+// Returns { update(tNow, k), names(), burn }.
+function sceneExtras(scene, body, D, S) {
+  const geom = D.geometry || {};
+  const series = D.series || {};
+  const t = D.t || [];
+  const n = t.length;
+  const col = (k) => (isNumArray(series[k]) ? alignSeries(series[k], n) : null);
+  const rN = ['x', 'y', 'z'].map((a) => col(`r_BN_N_${a}`));
+  const hasR = rN.every(Boolean);
+  const sBR = ['x', 'y', 'z'].map((a) => col(`sigma_BR_${a}`));
+  const hasRef = sBR.every(Boolean);
+  const updates = [];
+  const insetScenes = [];
+
+  // --- Sun vector, in N ---------------------------------------------------------
+  const sun = geom.sun && Array.isArray(geom.sun.t) && Array.isArray(geom.sun.r_N) ? geom.sun : null;
+  const sunT = [];
+  const sunR = [];
+  if (sun) for (let i = 0; i < Math.min(sun.t.length, sun.r_N.length); i++) {
+    const v = vec3(sun.r_N[i]);
+    if (v && typeof sun.t[i] === 'number' && (!sunT.length || sun.t[i] > sunT[sunT.length - 1])) { sunT.push(sun.t[i]); sunR.push(v); }
+  }
+  const sunAt = (tNow, k) => {
+    if (!sunR.length) return null;
+    const i = sampleIndex(sunT, tNow);
+    const p = sunR[i].clone();
+    if (i + 1 < sunR.length && tNow > sunT[i]) p.lerp(sunR[i + 1], Math.min(1, (tNow - sunT[i]) / (sunT[i + 1] - sunT[i])));
+    if (hasR && k >= 0 && rN.every((c) => c[k] !== null)) p.sub(new Vector3(rN[0][k], rN[1][k], rN[2][k]));
+    return p.length() > 0 ? p.normalize() : null;
+  };
+  if (sunR.length) {
+    const d0 = sunAt(t.length ? t[0] : 0, t.length ? 0 : -1) || new Vector3(1, 0, 0);
+    const arrow = new ArrowHelper(d0, new Vector3(0, 0, 0), 2.6 * S, 0xffd23f, 0.25 * S, 0.14 * S);
+    arrow.name = 'sun-vector';
+    scene.add(arrow);
+    const l = label('Sun', '#ffd23f', 0.32 * S);
+    l.name = 'sun-label';
+    l.position.copy(d0.clone().multiplyScalar(2.85 * S));
+    scene.add(l);
+    updates.push((tNow, k) => {
+      const d = sunAt(tNow, k);
+      if (!d) return;
+      arrow.setDirection(d);
+      l.position.copy(d.clone().multiplyScalar(2.85 * S));
+    });
+  }
+
+  // --- the attitude reference frame R, in N --------------------------------
+  if (hasRef) {
+    const ref = new Group();
+    ref.name = 'reference-frame';
+    ['r1', 'r2', 'r3'].forEach((nm, i) => {
+      const d = new Vector3(i === 0 ? 1 : 0, i === 1 ? 1 : 0, i === 2 ? 1 : 0);
+      const g = new BufferGeometry();
+      g.setAttribute('position', new Float32BufferAttribute([0, 0, 0, ...d.clone().multiplyScalar(2.7 * S).toArray()], 3));
+      const ln = new Line(g, new LineDashedMaterial({ color: AXIS_COLORS[i], dashSize: 0.12 * S, gapSize: 0.08 * S }));
+      ln.computeLineDistances();
+      ref.add(ln);
+      const l = label(nm, AXIS_COLORS[i], 0.26 * S);
+      l.position.copy(d.clone().multiplyScalar(2.85 * S));
+      ref.add(l);
+    });
+    scene.add(ref);
+    updates.push((tNow, k) => {
+      if (k < 0) return;
+      const s = [sBR[0][k], sBR[1][k], sBR[2][k]];
+      const q = referenceQuat(body.quaternion.toArray(), s);
+      ref.visible = !!q;
+      if (q) ref.quaternion.fromArray(q);
+    });
+  }
+
+  // --- fields of view, in B ---------------------------------------------------
+  const sens = geom.sensors && typeof geom.sensors === 'object' ? geom.sensors : {};
+  if (sens.css && Array.isArray(sens.css.normals_B)) {
+    const fov = (Number(sens.css.fov_deg) > 0 ? Math.min(90, Number(sens.css.fov_deg)) : 90) * Math.PI / 180;
+    sens.css.normals_B.forEach((nv, i) => {
+      const a = unitVec(nv);
+      if (a) body.add(fovCone(a, Math.min(fov, 89.5 * Math.PI / 180), 0.9 * S, 0xffe680, 0.07, `fov:css:${i}`));
+    });
+  }
+  if (sens.star_tracker) {
+    const a = unitVec(sens.star_tracker.boresight_B) || new Vector3(0, 0, 1);
+    // the model has no field-of-view limit: the cone marks the boresight with a typical 10 deg half angle
+    body.add(fovCone(a, (10 * Math.PI) / 180, 3.4 * S, 0x5fd3ff, 0.22, 'fov:star_tracker'));
+    const ex = Number(sens.star_tracker.sun_exclusion_deg);
+    if (ex > 0) body.add(fovCone(a, Math.min(ex, 89.5) * Math.PI / 180, 1.6 * S, 0xff5040, 0.06, 'fov:star_tracker_sun_exclusion'));
+  }
+
+  // --- burn window -------------------------------------------------------------
+  const b = geom.burn && typeof geom.burn === 'object' ? geom.burn : null;
+  const burn = b && Number.isFinite(b.start) && Number.isFinite(b.duration) && b.duration > 0
+    ? { thruster: typeof b.thruster === 'string' ? b.thruster : '', t0: b.start, t1: b.start + b.duration } : null;
+
+  // --- the orbit inset: central body, trajectory, burn arc, position -----------
+  const cb = geom.central_body && typeof geom.central_body === 'object' ? geom.central_body : null;
+  let inset = null;
+  if (cb && hasR) {
+    const pts = [];
+    let E = Number(cb.radius) > 0 ? Number(cb.radius) : 0;
+    for (let k = 0; k < n; k++) {
+      if (rN.some((c) => c[k] === null)) continue;
+      const p = new Vector3(rN[0][k], rN[1][k], rN[2][k]);
+      E = Math.max(E, p.length());
+      pts.push([k, p]);
+    }
+    if (pts.length >= 2 && E > 0) {
+      const os = new Scene();
+      os.background = new Color('#0a1220');
+      os.add(new AmbientLight(0xffffff, 0.5));
+      const light = new DirectionalLight(0xffffff, 1.4);
+      os.add(light);
+      const R = Number(cb.radius) > 0 ? Number(cb.radius) / E : 0.02;
+      const planet = new Mesh(new SphereGeometry(R, 48, 24), new MeshStandardMaterial({ color: cb.name === 'Mars' ? 0xc1623f : 0x3a6fb0, roughness: 0.9 }));
+      planet.name = 'central-body';
+      os.add(planet);
+      const tl = label(String(cb.name || 'central body'), '#9fb4d0', 0.12);
+      tl.position.set(0, 0, R + 0.1);
+      os.add(tl);
+      const line = (sel, color, name) => {
+        const xs = pts.filter(([k]) => sel(t[k])).flatMap(([, p]) => [p.x / E, p.y / E, p.z / E]);
+        if (xs.length < 6) return;
+        const g = new BufferGeometry();
+        g.setAttribute('position', new Float32BufferAttribute(xs, 3));
+        const l = new Line(g, new LineBasicMaterial({ color }));
+        l.name = name;
+        os.add(l);
+      };
+      line(() => true, 0x8fa3bf, 'trajectory');
+      if (burn) line((x) => x >= burn.t0 && x <= burn.t1, 0xff8c1a, 'burn-arc');
+      const sc = new Mesh(new SphereGeometry(0.035, 16, 8), new MeshBasicMaterial({ color: 0xffffff }));
+      sc.name = 'spacecraft-position';
+      os.add(sc);
+      const sunLine = new ArrowHelper(new Vector3(1, 0, 0), new Vector3(0, 0, 0), 1.35, 0xffd23f, 0.08, 0.05);
+      sunLine.name = 'inset-sun';
+      os.add(sunLine);
+      // look along the orbit normal (r x v of the first samples)
+      const p0 = pts[0][1];
+      const p1 = pts[Math.min(pts.length - 1, Math.max(1, Math.floor(pts.length / 8)))][1];
+      const h = p0.clone().cross(p1);
+      const nrm = h.length() > 0 ? h.normalize() : new Vector3(0, 0, 1);
+      const cam = new PerspectiveCamera(40, 1, 0.01, 100);
+      cam.up.copy(Math.abs(nrm.z) < 0.9 ? new Vector3(0, 0, 1) : new Vector3(0, 1, 0));
+      cam.position.copy(nrm.clone().multiplyScalar(3.3));
+      cam.lookAt(0, 0, 0);
+      light.position.copy(cam.position);
+      updates.push((tNow, k) => {
+        if (k >= 0 && rN.every((c) => c[k] !== null)) sc.position.set(rN[0][k] / E, rN[1][k] / E, rN[2][k] / E);
+        const d = sunAt(tNow, -1);
+        if (d) { sunLine.setDirection(d); light.position.copy(d.clone().multiplyScalar(5)); }
+      });
+      insetScenes.push(os);
+      inset = (renderer) => {
+        const size = renderer.getSize(new Vector3());
+        const w = Math.round(Math.min(0.34 * size.x, 0.55 * size.y));
+        renderer.setScissorTest(true);
+        renderer.setViewport(size.x - w - 8, 8, w, w);
+        renderer.setScissor(size.x - w - 8, 8, w, w);
+        renderer.render(os, cam);
+        renderer.setScissorTest(false);
+        renderer.setViewport(0, 0, size.x, size.y);
+      };
+      scene.userData.inset = inset;
+    }
+  }
+
+  const names = () => {
+    const out = [];
+    for (const s of [scene, ...insetScenes]) s.traverse((o) => { if (o.name) out.push(o.name); });
+    return out;
+  };
+  return { update: (tNow, k) => updates.forEach((f) => f(tNow, k)), names, burn, orbit: !!inset };
 }

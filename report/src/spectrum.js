@@ -135,3 +135,34 @@ export function rms(y) {
   for (const v of y) s += (v - m) * (v - m);
   return Math.sqrt(s / y.length);
 }
+
+// Wheel lines against the recording rate.  A wheel spinning at f Hz
+// (|rpm| / 60: static and dynamic imbalance act once a revolution) puts a
+// line at f and its harmonics k f; sampled at fs, a line above the Nyquist
+// frequency fs / 2 shows folded back to |k f - fs round(k f / fs)|.
+// lines: [{ name, f }]; returns { nyquist, aliased: [{ name, k, f, folded }],
+// fMax } for the harmonics 1 .. harmonics.
+export function wheelAliasing(lines, fs, harmonics = 1) {
+  const nyquist = fs / 2;
+  const aliased = [];
+  let fMax = 0;
+  for (const { name, f } of lines) {
+    if (!(f > 0)) continue;
+    fMax = Math.max(fMax, f);
+    for (let k = 1; k <= harmonics; k++) {
+      const fk = k * f;
+      if (fk > nyquist) aliased.push({ name, k, f: fk, folded: Math.abs(fk - fs * Math.round(fk / fs)) });
+    }
+  }
+  return { nyquist, aliased, fMax };
+}
+
+// The largest recording divisor (ticks of dt per recorded sample, the
+// scenario key rates.record_divisor) whose rate puts fMax below the Nyquist
+// frequency with a margin: 1 / (divisor dt) >= 2.5 fMax.  0 when even every
+// tick (divisor 1) is too slow: rates.dt itself must shrink.
+export function recordDivisorFor(fMax, dt) {
+  if (!(fMax > 0) || !(dt > 0)) return 0;
+  const d = Math.floor(1 / (2.5 * fMax * dt) + 1e-9);
+  return d >= 1 ? d : 0;
+}

@@ -1,7 +1,8 @@
 // Jitter spectrum card: Welch ASD of the body rates over a chosen window.
 import uPlot from 'uplot';
 import { alignSeries, isNumArray, indexedKeys, el, fmt } from './data.js';
-import { uniformWindow, welch, rms } from './spectrum.js';
+import { uniformWindow, welch, rms, wheelAliasing, recordDivisorFor } from './spectrum.js';
+import { deviceName } from './plotmath.js';
 import { AXIS_COLORS, rateDisplay, fmtTick } from './plots.js';
 
 // Jitter is a property of the hold: the window starts after the last sample
@@ -51,6 +52,8 @@ export function buildSpectrum(root, D) {
   card.appendChild(holder);
   const info = el('p', { class: 'note' });
   card.appendChild(info);
+  const warn = el('p', { class: 'warning', id: 'spectrum-alias-warning', hidden: '' });
+  card.insertBefore(warn, holder);
   root.appendChild(card);
   let u = null;
   const compute = () => {
@@ -70,10 +73,11 @@ export function buildSpectrum(root, D) {
       for (let i = 0; i < tw.length; i++) {
         if (w[i] !== null && tw[i] >= (Number.isFinite(a) ? a : -Infinity) && tw[i] <= (Number.isFinite(b) ? b : Infinity)) { sum += Math.abs(w[i]); cnt++; }
       }
-      if (cnt) wheelLines.push({ name: 'w' + index, f: sum / cnt / 60 });
+      if (cnt) wheelLines.push({ name: deviceName(key, D.geometry) || 'w' + index, f: sum / cnt / 60 });
     }
     // above the Nyquist frequency a wheel's line shows folded (aliased) back
     const fsWin = ok0(res) ? 1 / ok0(res).w.dt : NaN;
+    aliasWarning(warn, wheelLines, fsWin, D.meta);
     for (const wl of wheelLines) {
       if (Number.isFinite(fsWin) && wl.f > fsWin / 2) {
         wl.f = Math.abs(wl.f - fsWin * Math.round(wl.f / fsWin));
@@ -129,4 +133,24 @@ export function buildSpectrum(root, D) {
   };
   go.addEventListener('click', compute);
   compute();
+}
+
+// The warning above the spectrum when the recording rate cannot show the
+// wheel lines: which wheels fold, where to, and the scenario key that fixes
+// it (rates.record_divisor, or rates.dt when even every tick is too slow).
+function aliasWarning(warn, wheelLines, fs, meta) {
+  const r = Number.isFinite(fs) ? wheelAliasing(wheelLines, fs) : { aliased: [] };
+  warn.hidden = !r.aliased.length;
+  if (!r.aliased.length) { warn.textContent = ''; return; }
+  const dt = typeof meta.dt === 'number' && meta.dt > 0 ? meta.dt : NaN;
+  const div = recordDivisorFor(r.fMax, dt);
+  const list = r.aliased.map((a) => `${a.name} at ${fmt(a.f)} Hz (${fmt(a.f * 60)} rpm) shows at ${fmt(a.folded)} Hz`).join('; ');
+  const need = `at least ${fmt(2 * r.fMax)} samples/s, better ${fmt(2.5 * r.fMax)}`;
+  let fix;
+  if (div > 0) fix = `set rates.record_divisor: ${div} in the scenario (or --set rates.record_divisor=${div}): one record every ${fmt(div * dt)} s, ${fmt(1 / (div * dt))} samples/s`;
+  else if (Number.isFinite(dt)) fix = `every tick (rates.dt = ${fmt(dt)} s, record_divisor 1) is still too slow: make rates.dt at most ${fmt(1 / (2.5 * r.fMax))} s with rates.record_divisor: 1`;
+  else fix = 'record the body rates faster (rates.record_divisor, rates.dt)';
+  warn.textContent = `Aliased wheel lines: the body rates are recorded at ${fmt(fs)} samples/s (Nyquist frequency ${fmt(fs / 2)} Hz), ` +
+    `too slow for the wheel speeds: ${list}. The marked lines are where they fold to, not where the jitter is. ` +
+    `To resolve wheel jitter up to ${fmt(r.fMax)} Hz, record ${need}: ${fix}.`;
 }

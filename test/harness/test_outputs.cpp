@@ -2,6 +2,7 @@
 // CSV, report_data.json schema, and reproducibility from the manifest.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -143,6 +144,19 @@ TEST(Outputs, ReportDataSchema)
   ASSERT_EQ(j["geometry"]["wheel_axes_B"].size(), 4u);
   EXPECT_NEAR(j["geometry"]["wheel_axes_B"][0][2].get<double>(), std::sin(40.0 * M_PI / 180.0), 1e-6);
   EXPECT_TRUE(j["geometry"]["thrusters"].is_array());
+  // what the 3D view draws, as s1_sun_pointing.yaml gives it: the wheels'
+  // names, 8 sun sensors of 80 deg half angle, the star tracker on +z_B, the
+  // Sun fixed at 1 AU along x (no epoch: one sample), no central body (mu 0)
+  const auto& g = j["geometry"];
+  EXPECT_EQ(g["wheel_names"], nlohmann::json::array({"rw1", "rw2", "rw3", "rw4"}));
+  ASSERT_EQ(g["sensors"]["css"]["normals_B"].size(), 8u);
+  EXPECT_NEAR(g["sensors"]["css"]["fov_deg"].get<double>(), 80.0, 1e-12);
+  EXPECT_NEAR(g["sensors"]["css"]["normals_B"][4][1].get<double>(), -0.965926, 1e-6);
+  EXPECT_EQ(g["sensors"]["star_tracker"]["boresight_B"], nlohmann::json::array({0.0, 0.0, 1.0}));
+  ASSERT_EQ(g["sun"]["t"].size(), 1u);
+  EXPECT_EQ(g["sun"]["r_N"][0], nlohmann::json::array({1.495978707e11, 0.0, 0.0}));
+  EXPECT_FALSE(g.contains("central_body"));
+  EXPECT_FALSE(g.contains("burn"));
   const std::string dot = j["dataflow_dot"];
   EXPECT_EQ(dot.rfind("digraph", 0), 0u);
   // the FSW is one component, the application fsw_acs, between its messages
@@ -156,6 +170,39 @@ TEST(Outputs, ReportDataSchema)
   EXPECT_NE(html.find("<html"), std::string::npos);
   EXPECT_NE(html.find("s1_sun_pointing"), std::string::npos);
 #endif
+}
+
+// S2 (2 s of it): Mars as the central body (equatorial radius 3396.19 km),
+// the main-engine burn of the scenario, the thrusters' names; S3 (dated):
+// the Sun sampled 65 times over the run, about 1 AU away (0.983 to 1.017 AU
+// over a year).
+TEST(Outputs, ReportDataSceneGeometry)
+{
+  const std::string src = std::string(KESTREL_SOURCE_DIR) + "/scenarios/";
+  const fs::path dir = fresh_dir("report_scene");
+  harness::RunOptions opt;
+  opt.out_dir = dir.string();
+  ASSERT_TRUE(harness::run_scenario(harness::load_scenario(src + "s2_mars_orbit_insertion.yaml", {{"duration", "2"}}), opt).ok);
+  auto g = nlohmann::json::parse(slurp(dir / "report_data.json"))["geometry"];
+  EXPECT_EQ(g["central_body"]["name"], "Mars");
+  EXPECT_NEAR(g["central_body"]["radius"].get<double>(), 3396.19e3, 1e-6);
+  EXPECT_EQ(g["burn"], nlohmann::json({{"thruster", "main"}, {"start", 360.0}, {"duration", 480.0}}));
+  EXPECT_EQ(g["thrusters"][0]["name"], "main");
+  EXPECT_EQ(g["thrusters"][8]["name"], "acs8");
+  EXPECT_EQ(g["sun"]["r_N"][0], nlohmann::json::array({0.0, 2.279e11, 0.0}));
+  EXPECT_FALSE(g["sensors"].contains("css"));
+  fs::remove_all(dir);
+  ASSERT_TRUE(harness::run_scenario(harness::load_scenario(src + "s3_leo_smallsat.yaml", {{"duration", "60"}}), opt).ok);
+  g = nlohmann::json::parse(slurp(dir / "report_data.json"))["geometry"];
+  EXPECT_EQ(g["central_body"]["name"], "Earth");
+  ASSERT_EQ(g["sun"]["t"].size(), 65u);
+  EXPECT_EQ(g["sun"]["t"][64], 60.0);
+  for (const auto& r : g["sun"]["r_N"]) {
+    const double au = std::hypot(r[0].get<double>(), r[1].get<double>(), r[2].get<double>()) / 1.495978707e11;
+    EXPECT_GT(au, 0.98);
+    EXPECT_LT(au, 1.02);
+  }
+  EXPECT_EQ(g["magnetorquer_names"], nlohmann::json::array({"mtq_x", "mtq_y", "mtq_z"}));
 }
 
 TEST(Outputs, RunFromManifestReproducesResults)

@@ -14,16 +14,26 @@ const { htmlDir, outDir } = parseArgs('browser_test.cjs');
 
 // expectations per generated report
 const CASES = [
-  { file: 's1.html', plots: ['pointing', 'rates', 'wheels', 'wheeltorque', 'x-sigma_BN', 'x-wheel_cmd', 'x-E_rot'], absent: ['ontime', 'force', 'propellant'],
-    replay: 'ok', dataflow: 'ok', spectrum: true, shot: true, events: 2 },
-  { file: 's2.html', plots: ['pointing', 'rates', 'ontime', 'force', 'propellant'], absent: ['wheels', 'wheeltorque'],
-    replay: 'ok', dataflow: 'ok', spectrum: true, shot: true },
+  // s1: the constant statuses and flags in one table with their names, the
+  // varying stage statuses in one card, the conserved H_C_N drawn from an
+  // offset; the Sun vector, the reference frame and the sensors' fields of view
+  { file: 's1.html', plots: ['pointing', 'rates', 'wheels', 'wheeltorque', 'x-sigma_BN', 'x-wheel_cmd', 'x-E_rot', 'x-fsw_stage', 'x-fsw_status'],
+    absent: ['ontime', 'force', 'propellant', 'x-fsw_safe_output', 'x-sun_valid', 'x-fsw_rw_failed', 'x-fsw_mode', 'x-fsw_stage_css'],
+    constants: ['fsw_stage_css', 'FSW_OK (0)', 'fsw_mode', 'sun-safe (0)', 'sun_valid', 'yes (1)', 'fsw_rw_failed_3 (rw4)'], offset: ['x-H_C_N'],
+    legend: { wheels: ['rw1', 'rw4'] }, scene: ['sun-vector', 'reference-frame', 'fov:css:0', 'fov:star_tracker', 'fov:star_tracker_sun_exclusion', 'wheel:rw1'],
+    replay: 'ok', dataflow: 'ok', spectrum: true, shot: true, events: 2, alias: true },
+  // s2: the orbit inset (Mars, the trajectory, the burn arc) and the burn on the timeline
+  { file: 's2.html', plots: ['pointing', 'rates', 'ontime', 'force', 'propellant', 'x-r_BN_N'], alias: false, absent: ['wheels', 'wheeltorque'],
+    legend: { force: ['acs_0', 'acs_7'] }, scene: ['sun-vector', 'central-body', 'trajectory', 'burn-arc', 'spacecraft-position', 'plume:acs_0',
+      'fov:star_tracker'], burnBand: true, replay: 'ok', dataflow: 'ok', spectrum: true, shot: true },
+  // wheels at 50 to 75 Hz recorded at 10 Hz: the spectrum says so and which key to set
+  { file: 'alias.html', plots: ['pointing', 'rates', 'wheels', 'x-sigma_BN'], replay: 'ok', spectrum: true, alias: true },
   // an Earth-orbit run: the environment cards, two eclipses shaded
   { file: 's3.html', plots: ['pointing', 'rates', 'illumination', 'disturbance', 'envmomentum', 'field', 'mtqdipole', 'wheels',
     'x-torque_gravity_gradient', 'x-H_wheels_N'], absent: ['ontime', 'force', 'propellant'], replay: 'ok', dataflow: 'absent', eclipses: 2 },
   { file: 'hostile.html', plots: ['pointing', 'rates', 'wheels', 'wheeltorque', 'x-extra_thing'], replay: 'ok',
     dataflow: 'unreadable', events: 1, title: 'hostile </script><script>window.__pwned=1</script><!-- "quotes"' },
-  { file: 'long.html', plots: ['pointing', 'rates', 'wheels'], replay: 'ok', dataflow: 'absent', spectrum: true },
+  { file: 'long.html', plots: ['pointing', 'rates', 'wheels'], replay: 'ok', dataflow: 'absent', spectrum: true, alias: false },
   { file: 'reduced.html', plots: ['pointing', 'rates', 'wheels'], replay: 'ok', dataflow: 'absent', spectrum: true, fullRate: true },
   { file: 'minimal.html', plots: [], replay: 'ok', dataflow: 'absent' },
   { file: 'empty.html', plots: [], replay: 'ok', dataflow: 'absent' },
@@ -50,6 +60,15 @@ runCases('browser test', htmlDir, CASES, async (c, { page }, fail) => {
       eventRows: document.querySelectorAll('#events-table tr').length,
       eventsShown: !document.getElementById('sec-events').hidden,
       eclipses: r.eclipses || 0,
+      axes: window.kestrelAxisTicks ? window.kestrelAxisTicks() : [],
+      titles: [...document.querySelectorAll('#plots h3, #plots-other h3')].map((e) => e.textContent),
+      constants: [...document.querySelectorAll('#constants-table tbody tr')].map((tr) => tr.textContent),
+      offsets: [...document.querySelectorAll('.offset-note')].map((e) => e.closest('.card').id.replace(/^plot-/, '')),
+      legends: Object.fromEntries([...document.querySelectorAll('#plots .card')].map((c) => [c.id.replace(/^plot-/, ''),
+        [...c.querySelectorAll('.u-legend .u-label')].map((e) => e.textContent)])),
+      scene: r.sceneObjects || [],
+      burnBand: !!document.querySelector('#replay .burn-band'),
+      alias: (() => { const w = document.getElementById('spectrum-alias-warning'); return w && !w.hidden ? w.textContent : ''; })(),
     };
   });
   console.log(`  cards [${st.cards.join(', ')}], spectrum ${st.spectrum}, replay ${st.replay}, dataflow ${st.dataflow} ` +
@@ -76,6 +95,24 @@ runCases('browser test', htmlDir, CASES, async (c, { page }, fail) => {
   if (st.eclipses !== (c.eclipses || 0)) fail(`${st.eclipses} eclipse intervals, expected ${c.eclipses || 0}`);
   for (const p of ['illumination', 'disturbance', 'envmomentum', 'field', 'mtqdipole'])
     if (!c.plots.includes(p) && st.cards.includes(p)) fail(`${p} plot drawn though absent from the data`);
+  // honest axes: no value repeats on an axis, one unit per quantity
+  for (const p of st.axes) p.axes.forEach((a, i) => {
+    if (new Set(a).size !== a.length) fail(`${p.id} axis ${i}: repeated tick labels [${a.join(', ')}]`);
+  });
+  for (const h of st.titles) if (/\[[^\]]*(rad\/s|\*|kg m\^2\/s)[^\]]*\]/.test(h)) fail(`a second unit spelling on the page: '${h}'`);
+  const rows = st.constants.join(' | ');
+  for (const x of c.constants || []) if (!rows.includes(x)) fail(`constants table lacks '${x}': ${rows.slice(0, 300)}`);
+  if (!c.constants && st.constants.length && c.file !== 'alias.html' && c.file !== 'hostile.html') fail(`unexpected constants table: ${rows.slice(0, 200)}`);
+  for (const x of c.offset || []) if (!st.offsets.includes(x)) fail(`${x} not drawn from an offset (offsets: ${st.offsets.join(', ')})`);
+  for (const [card, names] of Object.entries(c.legend || {}))
+    for (const nm of names) if (!(st.legends[card] || []).includes(nm)) fail(`${card} legend lacks ${nm}: ${(st.legends[card] || []).join(', ')}`);
+  for (const o of c.scene || []) if (!st.scene.includes(o)) fail(`3D scene lacks ${o}`);
+  if (!!c.burnBand !== st.burnBand) fail(`burn band ${st.burnBand ? 'shown' : 'missing'}`);
+  // the wheel lines alias where the wheels outrun half the recording rate (s1: rw2 at 20 Hz recorded at 10 Hz)
+  if (c.alias === true && !/rates\.(record_divisor|dt)/.test(st.alias)) fail(`no aliasing warning naming the key to set: '${st.alias}'`);
+  if (c.alias === false && st.alias) fail(`aliasing warning where nothing aliases: '${st.alias.slice(0, 200)}'`);
+  if (c.alias) console.log(`  ${st.alias.slice(0, 160)}...`);
+  console.log(`  ${st.axes.length} plots' axes, ${st.constants.length} constant series, scene: ${st.scene.filter((x) => !/^(wheel|thruster|plume|fov:css):/.test(x)).join(' ')}`);
   if (c.title && !st.title.includes(c.title)) fail(`scenario text not shown verbatim: ${st.title.slice(0, 120)}`);
   if (c.shot) {
     // a click on a time plot moves the replay to that time

@@ -14,6 +14,7 @@
 //                 the wheels, the field in B and three magnetorquer dipoles
 //   hostile.json  </script>, <!-- and quotes in strings, NaN-like nulls, ragged
 //                 series, a malformed DOT
+//   alias.json    the end of s1 with wheels at 3000 to 4500 rpm recorded at 10 Hz
 // Usage: node make_synthetic_data.cjs OUTDIR
 'use strict';
 const fs = require('fs');
@@ -117,11 +118,30 @@ function s1() {
     S.E_rot.push(r6(0.5 * (I[0] * S.omega_BN_B_x[k] ** 2 + I[1] * S.omega_BN_B_y[k] ** 2 + I[2] * S.omega_BN_B_z[k] ** 2)));
   }
   Object.assign(units, { sigma_BN_x: '-', sigma_BN_y: '-', sigma_BN_z: '-', E_rot: 'J', wheel_cmd_0: 'N*m', wheel_cmd_1: 'N*m', wheel_cmd_2: 'N*m', wheel_cmd_3: 'N*m' });
+  // the reference is the identity attitude, so sigma_BR = sigma_BN; FSW
+  // statuses and flags as the harness records them: most constant (a table
+  // row each), the cycle status and the wheel-saturation stage FSW_W_SAT
+  // (2) while the torque limit acts in the first 30 s; a conserved
+  // momentum whose components vary by 1e-7 N m s about (1234.5678, -56.78, 0.9)
+  ['x', 'y', 'z'].forEach((a) => { S[`sigma_BR_${a}`] = S[`sigma_BN_${a}`].slice(); units[`sigma_BR_${a}`] = '-'; });
+  const flat = (v) => S.t.map(() => v);
+  S.fsw_status = S.t.map((t) => (t < 30 ? 2 : 0));
+  S.fsw_stage_rw_sat = S.fsw_status.slice();
+  for (const k of ['fsw_safe_output', 'fsw_stage_css', 'fsw_stage_thr_map', 'fsw_stage_bdot', 'fsw_mode']) S[k] = flat(0);
+  S.sun_valid = flat(1);
+  for (let i = 0; i < 4; i++) S[`fsw_rw_failed_${i}`] = flat(0);
+  ['x', 'y', 'z'].forEach((a, j) => {
+    S[`H_C_N_${a}`] = S.t.map((t) => [1234.5678, -56.78, 0.9][j] + 1e-7 * Math.sin(0.01 * t + j));
+    units[`H_C_N_${a}`] = 'kg*m^2/s';
+  });
+  const sensors = { css: { fov_deg: 80, normals_B: [[0, 0.7071, 0.7071], [0.7071, 0, 0.7071], [0, -0.7071, 0.7071], [-0.7071, 0, 0.7071], [0, 0, -1]] },
+    star_tracker: { boresight_B: [0, 0, 1], sun_exclusion_deg: 30 } };
   return {
     meta: { scenario: 'S1 deep-space sun pointing (synthetic)', description: 'Synthetic test data: tumble, rate damping, slew to the Sun, hold; 4 pyramid wheels.',
       seed: 42, version: '0.1.0', dt, duration: T, record_period: dt, fsw_period: 0.1, fsw_mode: 'sun_safe', num_wheels: 4, num_thrusters: 0 },
     series: S, units, attitude: att,
-    geometry: { wheel_axes_B: G.map((g) => g.map(r6)), wheel_positions_B: G.map((g) => g.map((v) => r6(0.3 * v))), thrusters: [] },
+    geometry: { wheel_axes_B: G.map((g) => g.map(r6)), wheel_positions_B: G.map((g) => g.map((v) => r6(0.3 * v))), thrusters: [],
+      wheel_names: ['rw1', 'rw2', 'rw3', 'rw4'], sensors, sun: { t: [0], r_N: [[1.495978707e11, 0, 0]] } },
     dataflow_dot: dot,
     events: [{ name: 'rw2_fails', tick: 60000, t: 600, actions: 'rw2 fail_off' },
       { name: 'rw2_flagged', tick: 60010, t: 600.1, actions: 'rw2 command_unavailable' }],
@@ -188,6 +208,11 @@ function s2() {
   }
   const units = { t: 's', pointing_error_deg: 'deg', omega_BN_B_x: 'rad/s', omega_BN_B_y: 'rad/s', omega_BN_B_z: 'rad/s', propellant_kg: 'kg' };
   for (let i = 0; i < 8; i++) { units[`thruster_on_time_${i}`] = 's'; units[`thruster_force_${i}`] = 'N'; }
+  ['x', 'y', 'z'].forEach((a) => { S[`r_BN_N_${a}`] = []; units[`r_BN_N_${a}`] = 'm'; });
+  for (const t of S.t) {
+    const u = (4500 / 3.8e6) * (t - 140); // periapsis at t = 140 s
+    S.r_BN_N_x.push(r6(3.8e6 * Math.cos(u))); S.r_BN_N_y.push(r6(3.8e6 * Math.sin(u))); S.r_BN_N_z.push(0);
+  }
   const dot = `digraph G {
   node [shape=box];
   nav -> att_track [label="NavAttMsg"];
@@ -205,7 +230,11 @@ function s2() {
 }`;
   return {
     meta: { scenario: 'S2 Mars orbit insertion (synthetic)', seed: 7, version: '0.1.0', dt, duration: T, pulsing: 'remainder' },
-    series: S, units, attitude: att, geometry: { wheel_axes_B: [], thrusters: thr }, dataflow_dot: dot,
+    series: S, units, attitude: att, dataflow_dot: dot,
+    // a periapsis pass at Mars: 3800 km circle at the periapsis speed, a burn from 30 s to 250 s
+    geometry: { wheel_axes_B: [], thrusters: thr, central_body: { name: 'Mars', mu: 4.2828314e13, radius: 3396190 },
+      burn: { thruster: 'main', start: 30, duration: 220 }, sun: { t: [0], r_N: [[0, 2.279e11, 0]] },
+      sensors: { star_tracker: { boresight_B: [0, 0, 1], sun_exclusion_deg: 0 } } },
   };
 }
 
@@ -377,4 +406,17 @@ fs.writeFileSync(path.join(out, 'interrupted.json'), JSON.stringify({
   meta: { scenario: 'interrupted', dt: 0.5, duration: 10, complete: false, t_reached: 1.5, stopped_by: 'SIGINT' },
   series: { t: [0, 0.5, 1, 1.5], pointing_error_deg: [10, 8, 6, 5] } }));
 fs.writeFileSync(path.join(out, 'hostile.json'), JSON.stringify(hostile()));
+// wheels at 3000 to 4500 rpm (50 to 75 Hz) recorded at 10 samples/s: the
+// spectrum must warn that the wheel lines alias (the last 200 s of S1)
+{
+  const d = s1();
+  const from = d.series.t.findIndex((x) => x >= 1000);
+  for (const k of Object.keys(d.series)) d.series[k] = d.series[k].slice(from);
+  for (let i = 0; i < 4; i++) d.series[`wheel_speed_rpm_${i}`] = d.series.t.map(() => 3000 + 500 * i);
+  d.attitude.t = d.attitude.t.filter((x) => x >= 1000);
+  d.attitude.q_BN = d.attitude.q_BN.slice(-d.attitude.t.length);
+  delete d.events;
+  d.meta.scenario = 'aliased wheel lines (synthetic)';
+  fs.writeFileSync(path.join(out, 'alias.json'), JSON.stringify(d));
+}
 console.log(`synthetic report data written to ${out}`);

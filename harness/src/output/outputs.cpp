@@ -7,7 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/sun_source.h"
 #include "scenario/json_util.h"
+#include "sim/environment.h"
 
 namespace harness {
 
@@ -81,6 +83,50 @@ std::string manifest_text(const Scenario& sc, const std::vector<Override>& overr
   return j.dump(2) + "\n";
 }
 
+namespace {
+
+json vec_json(const Eigen::Vector3d& v) { return json::array({v(0), v(1), v(2)}); }
+
+// What the 3D view draws besides the devices: the sensors' fields of view,
+// the central body, the Sun's position over the run (a dated run's Sun
+// moves: 65 samples from t = 0 to the end) and the main-engine burn.
+void add_scene_json(const Scenario& sc, json& g)
+{
+  json sensors = json::object();
+  if (!sc.sensors.css.normals_B.empty()) {
+    json n = json::array();
+    for (const Eigen::Vector3d& v : sc.sensors.css.normals_B) n.push_back(vec_json(v));
+    sensors["css"] = {{"normals_B", n}, {"fov_deg", sc.sensors.css.fov * 180.0 / 3.14159265358979323846}};
+  }
+  if (sc.sensors.star_tracker.enabled)  // the case z axis is +z_B (sim::StarTracker)
+    sensors["star_tracker"] = {{"boresight_B", {0.0, 0.0, 1.0}},
+                               {"sun_exclusion_deg", sc.sensors.star_tracker.sun_exclusion * 180.0 / 3.14159265358979323846}};
+  g["sensors"] = sensors;
+  const double mu = sc.environment.mu;
+  if (mu > 0.0) {
+    const sim::CentralBody earth = sim::earth();
+    const sim::CentralBody mars = sim::mars();
+    const bool is_earth = std::abs(mu - earth.mu) <= 1e-6 * earth.mu;
+    const bool is_mars = std::abs(mu - mars.mu) <= 1e-6 * mars.mu;
+    g["central_body"] = {{"name", is_earth ? "Earth" : is_mars ? "Mars" : "central body"},
+                         {"mu", mu},
+                         {"radius", is_earth ? earth.radius : is_mars ? mars.radius : 0.0}};
+  }
+  const SunSource sun(sc);
+  json st = json::array();
+  json sr = json::array();
+  const int n = sun.dated() ? 65 : 1;
+  for (int i = 0; i < n; ++i) {
+    const double t = n > 1 ? sc.duration * i / (n - 1) : 0.0;
+    st.push_back(t);
+    sr.push_back(vec_json(sun.position_N(static_cast<int64_t>(std::llround(t * 1e9)))));
+  }
+  g["sun"] = {{"t", st}, {"r_N", sr}};
+  if (sc.burn) g["burn"] = {{"thruster", sc.burn->thruster}, {"start", sc.burn->start}, {"duration", sc.burn->duration}};
+}
+
+}  // namespace
+
 std::string geometry_json_text(const Run& run)
 {
   const Scenario& sc = run.scenario();
@@ -92,8 +138,17 @@ std::string geometry_json_text(const Run& run)
                    {"r_B", {t.r_TjB_B(0), t.r_TjB_B(1), t.r_TjB_B(2)}},
                    {"dir_B", {t.t_hat_B(0), t.t_hat_B(1), t.t_hat_B(2)}}});
   json wpos = json::array();
-  for (const WheelSpec& w : sc.wheels) wpos.push_back({w.params.r_WB_B(0), w.params.r_WB_B(1), w.params.r_WB_B(2)});
-  return json{{"wheel_axes_B", axes}, {"wheel_positions_B", wpos}, {"thrusters", thr}}.dump();
+  json wnames = json::array();
+  for (const WheelSpec& w : sc.wheels) {
+    wpos.push_back({w.params.r_WB_B(0), w.params.r_WB_B(1), w.params.r_WB_B(2)});
+    wnames.push_back(w.name);
+  }
+  json mnames = json::array();
+  for (const MagnetorquerSpec& m : sc.magnetorquers) mnames.push_back(m.name);
+  json g{{"wheel_axes_B", axes}, {"wheel_positions_B", wpos}, {"wheel_names", wnames}, {"thrusters", thr},
+         {"magnetorquer_names", mnames}};
+  add_scene_json(sc, g);
+  return g.dump();
 }
 
 std::string report_data_text(const Run& run, const ReportSink& report, const RunStatus* status,

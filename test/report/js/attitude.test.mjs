@@ -28,3 +28,20 @@ test('attitudeSamples drops bad samples', () => {
   assert.deepEqual(s.q[1], [0, 0, 0, 1]);
   assert.deepEqual(attitudeSamples(undefined), { t: [], q: [] });
 });
+
+test('reference frame R drawn in N from the body attitude and sigma_BR', async () => {
+  const { referenceQuat, rotate, rendererQuat, mrpToQuat } = await import('../../../report/src/attitude.js');
+  const near = (a, b) => a.every((v, i) => Math.abs(v - b[i]) < 1e-12);
+  // no tracking error: R is B
+  const qb = rendererQuat([0.8, 0.2, -0.4, 0.4]);
+  assert.ok(near(referenceQuat(qb, [0, 0, 0]), qb));
+  // B = N, and B turned +90 deg about b3 from R: dcm_BR = [[0,1,0],[-1,0,0],[0,0,1]], whose
+  // first column (r1 in B, = in N) is (0, -1, 0); r2 is (1, 0, 0)
+  const s = [0, 0, Math.tan(Math.PI / 8)];
+  const qr = referenceQuat([0, 0, 0, 1], s);
+  assert.ok(near(rotate(qr, [1, 0, 0]), [0, -1, 0]));
+  assert.ok(near(rotate(qr, [0, 1, 0]), [1, 0, 0]));
+  // MRP -> Euler parameters: 90 deg about z is (cos 45, 0, 0, sin 45)
+  assert.ok(near(mrpToQuat(s), [Math.SQRT1_2, 0, 0, Math.SQRT1_2]));
+  assert.equal(referenceQuat(qb, [0, NaN, 0]), null);
+});

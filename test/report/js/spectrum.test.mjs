@@ -61,3 +61,24 @@ test('uniformWindow keeps uniform data, resamples irregular data, drops gaps', (
   assert.equal(welch(new Float64Array(100), 0), null);
   assert.ok(segmentLength(100000) === 8192 && segmentLength(64) === 16);
 });
+
+test('wheel lines above the Nyquist frequency of the recording fold back, and the divisor that resolves them', async () => {
+  const { wheelAliasing, recordDivisorFor } = await import('../../../report/src/spectrum.js');
+  // 3000 rpm = 50 Hz recorded at 10 Hz: Nyquist 5 Hz, 50 Hz folds to 0 Hz;
+  // 1000 rpm = 16.67 Hz folds to |16.67 - 20| = 3.33 Hz; 120 rpm = 2 Hz is resolved
+  const r = wheelAliasing([{ name: 'rw1', f: 50 }, { name: 'rw2', f: 1000 / 60 }, { name: 'rw3', f: 2 }], 10);
+  assert.equal(r.nyquist, 5);
+  assert.deepEqual(r.aliased.map((a) => a.name), ['rw1', 'rw2']);
+  assert.ok(Math.abs(r.aliased[0].folded) < 1e-9);
+  assert.ok(Math.abs(r.aliased[1].folded - 10 / 3) < 1e-9);
+  assert.equal(r.fMax, 50);
+  // the second harmonic of rw3 (4 Hz) is still below 5 Hz; of a 3 Hz wheel (6 Hz) not
+  assert.equal(wheelAliasing([{ name: 'w', f: 2 }], 10, 2).aliased.length, 0);
+  assert.deepEqual(wheelAliasing([{ name: 'w', f: 3 }], 10, 2).aliased.map((a) => [a.k, a.f, a.folded]), [[2, 6, 4]]);
+  // dt = 0.01 s: 50 Hz needs 125 samples/s or more: divisor floor(100 / 125) = 0 -> dt must shrink;
+  // 16.67 Hz needs 41.7 samples/s: divisor 2 (50 samples/s)
+  assert.equal(recordDivisorFor(50, 0.01), 0);
+  assert.equal(recordDivisorFor(1000 / 60, 0.01), 2);
+  assert.equal(recordDivisorFor(2, 0.01), 20);
+  assert.equal(recordDivisorFor(0, 0.01), 0);
+});
