@@ -4,7 +4,9 @@
 # (kestrel-fsw.pc) for Make-based flight builds.  Component "fsw": the flight
 # library, the optional default assertion hook kestrel::fsw_assert_default
 # (kestrel-fsw-assert-default.pc), the headers and the toolchain files: all
-# a flight build needs.
+# a flight build needs (docs/install.md).  Component "tools" (host builds
+# with the harness): the programs kestrel and kestrel-fsw, the reference
+# scenarios under share/kestrel/.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -43,3 +45,14 @@ configure_file("${PROJECT_SOURCE_DIR}/cmake/kestrel-fsw-assert-default.pc.in"
   "${PROJECT_BINARY_DIR}/kestrel-fsw-assert-default.pc" @ONLY)
 install(FILES "${PROJECT_BINARY_DIR}/kestrel-fsw-assert-default.pc" DESTINATION "${_pc_dir}" COMPONENT fsw)
 
+# The tools: `kestrel` finds the scenarios at ../share/kestrel/scenarios from
+# its own folder (harness/CMakeLists.txt, scenario_dir()).
+foreach(_prog kestrel kestrel_fsw)
+  if(TARGET ${_prog})
+    install(TARGETS ${_prog} RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}" COMPONENT tools)
+  endif()
+endforeach()
+if(TARGET kestrel)
+  install(DIRECTORY "${PROJECT_SOURCE_DIR}/scenarios/" DESTINATION "${CMAKE_INSTALL_DATADIR}/kestrel/scenarios"
+    COMPONENT tools FILES_MATCHING PATTERN "*.yaml")
+endif()
