@@ -6,7 +6,7 @@
 # (kestrel-fsw-assert-default.pc), the headers and the toolchain files: all
 # a flight build needs (docs/install.md).  Component "tools" (host builds
 # with the harness): the programs kestrel and kestrel-fsw, the reference
-# scenarios under share/kestrel/.
+# scenarios and their JSON Schema under share/kestrel/.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -55,4 +55,6 @@ endforeach()
 if(TARGET kestrel)
   install(DIRECTORY "${PROJECT_SOURCE_DIR}/scenarios/" DESTINATION "${CMAKE_INSTALL_DATADIR}/kestrel/scenarios"
     COMPONENT tools FILES_MATCHING PATTERN "*.yaml")
+  install(FILES "${PROJECT_SOURCE_DIR}/scenarios/kestrel-scenario.schema.json"
+    DESTINATION "${CMAKE_INSTALL_DATADIR}/kestrel" COMPONENT tools)
 endif()

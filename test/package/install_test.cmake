@@ -5,7 +5,7 @@
 #     PREFIX/share/kestrel/scenarios (the line it ends with names the folder);
 #  3. the installed `kestrel run NAME` runs a shipped scenario by its name for
 #     DURATION simulated seconds and writes its summary;
-#  4. the installed kestrel-fsw is there;
+#  4. the installed kestrel-fsw and the schema are there;
 #  5. a C program with no assertion hook of its own links the installed flight
 #     library plus the default hook with find_package (kestrel::fsw_assert_default)
 #     and with pkg-config (kestrel-fsw-assert-default), and runs.
@@ -74,7 +74,7 @@ if(NOT t EQUAL DURATION OR NOT src MATCHES "share/kestrel/scenarios/s1_sun_point
 endif()
 
 # 4. the other installed files
-foreach(f "bin/kestrel-fsw")
+foreach(f "bin/kestrel-fsw" "share/kestrel/kestrel-scenario.schema.json")
   if(NOT EXISTS "${prefix}/${f}")
     message(FATAL_ERROR "${f} was not installed")
   endif()

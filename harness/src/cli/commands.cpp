@@ -75,6 +75,23 @@ std::string resolve_scenario(const std::string& arg)
   return arg;
 }
 
+int cmd_schema(const std::string& out_file, std::ostream& out, std::ostream& err)
+{
+  const std::string text = scenario_json_schema_text();
+  if (out_file.empty()) {
+    out << text;
+    return kExitOk;
+  }
+  std::ofstream f(out_file, std::ios::binary | std::ios::trunc);
+  f << text;
+  f.close();
+  if (!f) {
+    err << "kestrel: cannot write " << out_file << "\n";
+    return kExitOutput;
+  }
+  return kExitOk;
+}
+
 int cmd_validate(const std::string& scenario, const std::vector<std::string>& sets, std::ostream& out,
                  std::ostream& err)
 {

@@ -202,6 +202,9 @@ int main(int argc, char** argv)
   MergeArgs ma;
   auto* merge = add_merge(mcc, ma);
   auto* list = app.add_subcommand("list", "list the shipped scenarios (run one by its name: kestrel run NAME)");
+  auto* schema = app.add_subcommand("schema", "print the scenario file's JSON Schema, for editors (docs/scenario-schema.md)");
+  std::string schema_out;
+  schema->add_option("-o,--output", schema_out, "write it to this file instead");
   auto* bench = app.add_subcommand("bench", "print real-time factors of the reference scenarios");
   std::vector<std::string> bench_cases;
   bench->add_option("--case", bench_cases, "only these cases: s1-0.01, s1-0.1, s1-substeps, s2; extra (only when named): s1-leo-env, s1-leo-off (repeatable)");
@@ -219,6 +222,7 @@ int main(int argc, char** argv)
   if (*val) return harness::cmd_validate(va.path, va.sets, std::cout, std::cerr);
   if (*fcfg) return harness::cmd_fsw_config(fa.path, fa.sets, fa.out_file, std::cout, std::cerr);
   if (*list) return harness::cmd_list(harness::scenario_dir(), std::cout, std::cerr);
+  if (*schema) return harness::cmd_schema(schema_out, std::cout, std::cerr);
   if (*bench) return harness::cmd_bench(harness::scenario_dir(), bench_cases, std::cout, std::cerr);
   return harness::kExitUsage;
 }

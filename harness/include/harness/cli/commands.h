@@ -127,6 +127,8 @@ std::string scenario_dir();
 // the shipped scenario of that name in scenario_dir() (with or without
 // .yaml): `kestrel run s1_sun_pointing`.
 std::string resolve_scenario(const std::string& arg);
+// `kestrel schema`: the scenario file's JSON Schema, to `out` or out_file.
+int cmd_schema(const std::string& out_file, std::ostream& out, std::ostream& err);
 
 }  // namespace harness
 
