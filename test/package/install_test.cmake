@@ -9,20 +9,13 @@
 #  5. a C program with no assertion hook of its own links the installed flight
 #     library plus the default hook with find_package (kestrel::fsw_assert_default)
 #     and with pkg-config (kestrel-fsw-assert-default), and runs.
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
-                  WORKING_DIRECTORY "${elsewhere}")
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "command failed (${rc}): ${ARGN}\n${out}\n${err}")
-  endif()
-  message("${out}")
-  set(LAST_OUTPUT "${out}" PARENT_SCOPE)
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/run_command.cmake")
 
 file(REMOVE_RECURSE "${WORK_DIR}")
 set(prefix "${WORK_DIR}/prefix")
 set(elsewhere "${WORK_DIR}/elsewhere")
 file(MAKE_DIRECTORY "${elsewhere}")
+set(RUN_DIR "${elsewhere}")  # every command starts there: not the source or build tree
 foreach(component fsw tools)
   run(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${prefix}" --component ${component})
 endforeach()
