@@ -1,14 +1,18 @@
 # Install and export kestrel::fsw so that
 #   find_package(kestrel CONFIG REQUIRED)  target_link_libraries(app kestrel::fsw)
 # works on the host and in cross builds, plus a relocatable pkg-config file
-# (kestrel-fsw.pc) for Make-based flight builds.  Only the flight library,
-# its headers and the toolchain files are installed (component "fsw").
+# (kestrel-fsw.pc) for Make-based flight builds.  Component "fsw": the flight
+# library, the optional default assertion hook kestrel::fsw_assert_default
+# (kestrel-fsw-assert-default.pc), the headers and the toolchain files: all
+# a flight build needs (docs/install.md).  Component "tools" (host builds
+# with the harness): the programs kestrel and kestrel-fsw, the reference
+# scenarios and their JSON Schema under share/kestrel/.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 set(KESTREL_CMAKE_DIR "${CMAKE_INSTALL_LIBDIR}/cmake/kestrel")
 
-install(TARGETS fsw EXPORT kestrelTargets COMPONENT fsw
+install(TARGETS fsw fsw_assert_default EXPORT kestrelTargets COMPONENT fsw
   ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}"
   INCLUDES DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}")
 install(FILES ${FSW_PUBLIC_HEADERS} DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/fsw" COMPONENT fsw)
@@ -37,3 +41,20 @@ foreach(_d IN LISTS FSW_PUBLIC_DEFS)
 endforeach()
 configure_file("${PROJECT_SOURCE_DIR}/cmake/kestrel-fsw.pc.in" "${PROJECT_BINARY_DIR}/kestrel-fsw.pc" @ONLY)
 install(FILES "${PROJECT_BINARY_DIR}/kestrel-fsw.pc" DESTINATION "${_pc_dir}" COMPONENT fsw)
+configure_file("${PROJECT_SOURCE_DIR}/cmake/kestrel-fsw-assert-default.pc.in"
+  "${PROJECT_BINARY_DIR}/kestrel-fsw-assert-default.pc" @ONLY)
+install(FILES "${PROJECT_BINARY_DIR}/kestrel-fsw-assert-default.pc" DESTINATION "${_pc_dir}" COMPONENT fsw)
+
+# The tools: `kestrel` finds the scenarios at ../share/kestrel/scenarios from
+# its own folder (harness/CMakeLists.txt, scenario_dir()).
+foreach(_prog kestrel kestrel_fsw)
+  if(TARGET ${_prog})
+    install(TARGETS ${_prog} RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}" COMPONENT tools)
+  endif()
+endforeach()
+if(TARGET kestrel)
+  install(DIRECTORY "${PROJECT_SOURCE_DIR}/scenarios/" DESTINATION "${CMAKE_INSTALL_DATADIR}/kestrel/scenarios"
+    COMPONENT tools FILES_MATCHING PATTERN "*.yaml")
+  install(FILES "${PROJECT_SOURCE_DIR}/scenarios/kestrel-scenario.schema.json"
+    DESTINATION "${CMAKE_INSTALL_DATADIR}/kestrel" COMPONENT tools)
+endif()

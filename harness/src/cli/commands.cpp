@@ -22,6 +22,10 @@
 #ifndef KESTREL_SCENARIO_DIR
 #define KESTREL_SCENARIO_DIR "scenarios"
 #endif
+// The installed scenarios, relative to the installed kestrel program's folder.
+#ifndef KESTREL_INSTALLED_SCENARIO_DIR
+#define KESTREL_INSTALLED_SCENARIO_DIR "../share/kestrel/scenarios"
+#endif
 
 namespace harness {
 
@@ -51,8 +55,41 @@ void print_issues(const ScenarioError& e, std::ostream& err)
 std::string scenario_dir()
 {
   if (const char* d = std::getenv("KESTREL_SCENARIO_DIR")) return d;
-  if (fs::is_directory(KESTREL_SCENARIO_DIR)) return KESTREL_SCENARIO_DIR;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);  // Linux; elsewhere the next two
+  if (!ec) {
+    const fs::path installed = exe.parent_path() / KESTREL_INSTALLED_SCENARIO_DIR;
+    if (fs::is_directory(installed, ec)) return installed.lexically_normal().string();
+  }
+  if (fs::is_directory(KESTREL_SCENARIO_DIR, ec)) return KESTREL_SCENARIO_DIR;
   return "scenarios";
+}
+
+std::string resolve_scenario(const std::string& arg)
+{
+  std::error_code ec;
+  if (arg.empty() || fs::exists(arg, ec) || arg.find('/') != std::string::npos) return arg;
+  const fs::path dir = scenario_dir();
+  for (const std::string& name : {arg, arg + ".yaml", arg + ".yml"})
+    if (fs::is_regular_file(dir / name, ec)) return (dir / name).string();
+  return arg;
+}
+
+int cmd_schema(const std::string& out_file, std::ostream& out, std::ostream& err)
+{
+  const std::string text = scenario_json_schema_text();
+  if (out_file.empty()) {
+    out << text;
+    return kExitOk;
+  }
+  std::ofstream f(out_file, std::ios::binary | std::ios::trunc);
+  f << text;
+  f.close();
+  if (!f) {
+    err << "kestrel: cannot write " << out_file << "\n";
+    return kExitOutput;
+  }
+  return kExitOk;
 }
 
 int cmd_validate(const std::string& scenario, const std::vector<std::string>& sets, std::ostream& out,
@@ -284,6 +321,7 @@ int cmd_list(const std::string& dir, std::ostream& out, std::ostream& err)
           << " problems; run kestrel validate)\n";
     }
   }
+  out << "(" << files.size() << " scenarios in " << dir << "; run one by its name: kestrel run NAME)\n";
   return kExitOk;
 }
 

@@ -205,7 +205,10 @@ int main(int argc, char** argv)
   auto* mcc = add_mc(app, mc, shard);
   MergeArgs ma;
   auto* merge = add_merge(mcc, ma);
-  auto* list = app.add_subcommand("list", "list the shipped scenarios");
+  auto* list = app.add_subcommand("list", "list the shipped scenarios (run one by its name: kestrel run NAME)");
+  auto* schema = app.add_subcommand("schema", "print the scenario file's JSON Schema, for editors (docs/scenario-schema.md)");
+  std::string schema_out;
+  schema->add_option("-o,--output", schema_out, "write it to this file instead");
   auto* bench = app.add_subcommand("bench", "print real-time factors of the reference scenarios");
   std::vector<std::string> bench_cases;
   bench->add_option("--case", bench_cases, "only these cases: s1-0.01, s1-0.1, s1-substeps, s2; extra (only when named): s1-leo-env, s1-leo-off (repeatable)");
@@ -215,12 +218,15 @@ int main(int argc, char** argv)
     const int rc_cli = app.exit(e);
     return rc_cli == 0 ? harness::kExitOk : harness::kExitUsage;
   }
+  // a shipped scenario by its name (kestrel list)
+  for (std::string* a : {&rc.scenario, &mc.scenario, &va.path, &fa.path}) *a = harness::resolve_scenario(*a);
   if (*run) return harness::cmd_run_program(rc, std::cout, std::cerr);
   if (*merge) return harness::cmd_mc_merge(ma.out, ma.in, ma.force, std::cout, std::cerr);
   if (*mcc) return harness::cmd_mc_program(mc, shard, std::cout, std::cerr);
   if (*val) return harness::cmd_validate(va.path, va.sets, std::cout, std::cerr);
   if (*fcfg) return harness::cmd_fsw_config(fa.path, fa.sets, fa.out_file, std::cout, std::cerr);
   if (*list) return harness::cmd_list(harness::scenario_dir(), std::cout, std::cerr);
+  if (*schema) return harness::cmd_schema(schema_out, std::cout, std::cerr);
   if (*bench) return harness::cmd_bench(harness::scenario_dir(), bench_cases, std::cout, std::cerr);
   return harness::kExitUsage;
 }

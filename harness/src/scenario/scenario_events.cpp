@@ -105,7 +105,13 @@ const Section& events_section()
                   optional_string("when", KESTREL_EV(when)).unit("a recorded column"),
                   real("below", KESTREL_EV(below)).unit("the column's unit"),
                   real("above", KESTREL_EV(above)).unit("the column's unit"),
-                  custom("actions", read_actions, write_actions),
+                  custom("actions", read_actions, write_actions)
+                      .json_shape(json_list_of(json_object_of({{"device", {{"type", "string"}}},
+                                                               {"action", {{"type", "string"}}},
+                                                               {"value", {{"type", "number"}}}},
+                                                              {"device", "action"}),
+                                               1, kMaxEventActions))
+                      .unit("a list of {device, action, value} (docs/events.md)"),
               },
               {}};
     e.list = true;

@@ -48,7 +48,7 @@ KeyDef wheel_speeds(const char* name, F field)
         const std::vector<double>& v = field(sc);
         if (!v.empty()) j[k.name] = v;
       });
-  d.alt("_rpm", sim::kRadPerSecPerRpm).unit("rad/s");
+  d.alt("_rpm", sim::kRadPerSecPerRpm).unit("rad/s").json_shape(json_list_of({{"type", "number"}}));
   return d;
 }
 

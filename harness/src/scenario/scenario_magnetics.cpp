@@ -96,7 +96,9 @@ KeyDef dcm_key()
       },
       [](const KeyDef& k, nlohmann::json& j, const Scenario& sc, size_t) {
         j[k.name] = rows_json(sc.sensors.magnetometer.dcm_SB);
-      });
+      })
+      .json_shape(json_list_of(json_vec3(), 3, 3))
+      .unit("3 rows: the sensor axes in B, orthonormal, right-handed");
 }
 
 // sensors.magnetometer.interference: 3 rows of one number per magnetorquer
@@ -119,7 +121,9 @@ KeyDef interference_key()
       [](const KeyDef& k, nlohmann::json& j, const Scenario& sc, size_t) {
         if (sc.sensors.magnetometer.interference.cols() > 0)
           j[k.name] = rows_json(sc.sensors.magnetometer.interference);
-      });
+      })
+      .json_shape(json_list_of(json_list_of({{"type", "number"}}), 3, 3))
+      .unit("T/(A*m^2), 3 rows of one number per magnetorquer");
 }
 
 }  // namespace

@@ -394,7 +394,52 @@ const char* dist_needs(DistKind d)
 }  // namespace
 
 namespace schema {
-KeyDef monte_carlo_key() { return custom("monte_carlo", read_mc, write_mc); }
+namespace {
+// The JSON Schema shape of the section: its keys, each distribution's own
+// parameters, the criteria's statistics (docs/monte-carlo.md).
+nlohmann::json mc_shape()
+{
+  using nlohmann::json;
+  json dprops = {{"key", {{"type", "string"}}}, {"dist", {{"enum", kDistNames}}}};
+  for (const std::string& k : kDistKeyOrder) dprops[k] = json::object();
+  json dispersion = json_object_of(dprops, {"key", "dist"});
+  for (size_t d = 0; d < kDistNames.size(); ++d) {  // a parameter of another distribution is refused
+    std::vector<std::string> allowed = {"key", "dist"};
+    allowed.insert(allowed.end(), kDistKeys[d].begin(), kDistKeys[d].end());
+    dispersion["allOf"].push_back({{"if", {{"properties", {{"dist", {{"const", kDistNames[d]}}}}}}},
+                                   {"then", {{"propertyNames", {{"enum", allowed}}}}}});
+  }
+  json criterion = json_object_of({{"name", {{"type", "string"}}},
+                                   {"column", {{"type", "string"}}},
+                                   {"stat", {{"enum", kStats}}},
+                                   {"after", {{"type", "number"}, {"minimum", 0}}},
+                                   {"until", {{"type", "number"}}},
+                                   {"below", {{"type", "number"}}},
+                                   {"above", {{"type", "number"}}}},
+                                  {"column"});
+  json one_threshold = json::array();
+  one_threshold.push_back({{"required", json::array({"below"})}});
+  one_threshold.push_back({{"required", json::array({"above"})}});
+  criterion["oneOf"] = one_threshold;
+  const auto count = [](long long lo) { return json{{"type", "integer"}, {"minimum", lo}, {"maximum", 1000000}}; };
+  json retention = json_object_of({{"keep_first", count(0)},
+                                   {"keep_failing", {{"type", "boolean"}}},
+                                   {"max_failing", count(0)},
+                                   {"thin_samples", {{"type", "integer"}, {"minimum", 2}, {"maximum", 100000}}}});
+  return json_object_of({{"runs", {{"type", "integer"}, {"minimum", 1}, {"maximum", kMaxRuns}}},
+                         {"seed", {{"type", "integer"}, {"minimum", 0}, {"maximum", std::numeric_limits<uint64_t>::max()}}},
+                         {"dispersions", json_list_of(dispersion, 0, kMaxDispersions)},
+                         {"criteria", json_list_of(criterion, 0, kMaxCriteria)},
+                         {"retention", retention}});
+}
+}  // namespace
+
+KeyDef monte_carlo_key()
+{
+  return custom("monte_carlo", read_mc, write_mc)
+      .json_shape(mc_shape())
+      .unit("a campaign: runs, seed, dispersions, criteria, retention (docs/monte-carlo.md)");
+}
 }  // namespace schema
 
 std::vector<std::string> expand_dispersion_key(const Scenario& sc, const std::string& key, std::string& why)

@@ -81,6 +81,7 @@ struct KeyDef {
   long long lo = 0, hi = 0;            // Integer bounds
   std::vector<std::string> options;    // Choice words
   std::string doc;                     // unit or a short description (for scenario_key_list)
+  nlohmann::json shape;                // Custom: its JSON Schema (null: any value; scenario_json_schema.cpp)
   ReadFn read;    // null: read by the section's own code (input-only keys such as hyperbola.*)
   WriteFn write;  // null: never written
   SetFn set;      // null: not settable with set_parameter
@@ -93,6 +94,7 @@ struct KeyDef {
   KeyDef& vcheck(std::function<std::string(const Eigen::Vector3d&)> c) { check_vec = std::move(c); return *this; }
   KeyDef& scheck(std::function<std::string(const std::string&)> c) { check_str = std::move(c); return *this; }
   KeyDef& unit(std::string u) { doc = std::move(u); return *this; }
+  KeyDef& json_shape(nlohmann::json s) { shape = std::move(s); return *this; }
   // A Real whose 0 means "not given" (a bound > 0 applies when it is): 0 is
   // not written, so the manifest reloads to 0 rather than being refused.
   KeyDef& zero_unset();
@@ -146,6 +148,13 @@ void check_magnetometer(MapReader& m, const Scenario& sc);  // after its keys; t
 void read_fsw(MapReader r, Scenario& sc);
 void read_outputs(MapReader r, Scenario& sc);
 void read_events(MapReader& top, Scenario& sc);  // after every other section
+
+// JSON Schema shapes for the custom keys' json_shape() (scenario_json_schema.cpp).
+nlohmann::json json_vec3();  // 3 numbers
+// A list of `item`s: between min_items and max_items (0: no bound).
+nlohmann::json json_list_of(nlohmann::json item, size_t min_items = 0, size_t max_items = 0);
+// An object of exactly these properties (no other key), `required` among them.
+nlohmann::json json_object_of(nlohmann::json properties, std::vector<std::string> required = {});
 
 // Reads every key of `s` (not its children) in table order.
 void read_keys(MapReader& r, const Section& s, Scenario& sc, size_t i = 0);

@@ -47,7 +47,9 @@ KeyDef css_normals()
         nlohmann::json a = nlohmann::json::array();
         for (const Eigen::Vector3d& n : sc.sensors.css.normals_B) a.push_back(nlohmann::json::array({n(0), n(1), n(2)}));
         j[k.name] = a;
-      });
+      })
+      .json_shape(json_list_of(json_vec3(), 0, kMaxScenarioCss))
+      .unit("unit vectors in B, one per sensor");
 }
 
 }  // namespace

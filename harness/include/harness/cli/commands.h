@@ -120,8 +120,16 @@ int cmd_list(const std::string& dir, std::ostream& out, std::ostream& err);
 int cmd_bench(const std::string& dir, const std::vector<std::string>& only, std::ostream& out, std::ostream& err);
 
 // Directory of the shipped scenarios: $KESTREL_SCENARIO_DIR, else the
-// source tree's scenarios/ (compiled in), else ./scenarios.
+// installed ones (share/kestrel/scenarios beside the installed program's
+// bin/), else the source tree's scenarios/ (compiled in: a build tree), else
+// ./scenarios.
 std::string scenario_dir();
+// A scenario argument as given when it names a file (or holds a '/'), else
+// the shipped scenario of that name in scenario_dir() (with or without
+// .yaml): `kestrel run s1_sun_pointing`.
+std::string resolve_scenario(const std::string& arg);
+// `kestrel schema`: the scenario file's JSON Schema, to `out` or out_file.
+int cmd_schema(const std::string& out_file, std::ostream& out, std::ostream& err);
 
 }  // namespace harness
 

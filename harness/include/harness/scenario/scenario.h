@@ -47,6 +47,11 @@ Scenario load_scenario_text(const std::string& text, const std::string& file_nam
 // filled in).  load_scenario_text() of this text gives the same Scenario.
 std::string scenario_to_json_text(const Scenario& sc, int indent = 2);
 
+// A JSON Schema (draft-07) of the scenario file, from the same key table, for
+// editors (`kestrel schema`, docs/scenario-schema.md): keys, types, required
+// keys.  Value ranges and cross-key rules are `kestrel validate`'s.
+std::string scenario_json_schema_text(int indent = 2);
+
 // Parses "a.b=c" into an Override; throws std::invalid_argument.
 Override parse_override(const std::string& s);
 
