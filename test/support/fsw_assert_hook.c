@@ -1,28 +1,29 @@
-/* The integrator's FSW assert hook, as the tests define it: count the
- * failure and remember where it happened, then return so the library's own
- * NULL check returns FSW_E_NULL_ARG (which the tests verify).  A test that
- * does not expect an assertion checks kestrel_assert_count() == 0. */
+/* The tests' FSW assert probes, on the library's default hook
+ * (fsw/fsw_assert_default.h, kestrel::fsw_assert_default): it counts the
+ * failure, remembers where it happened and returns, so the library's own
+ * NULL check returns FSW_E_NULL_ARG (which the tests verify).  Every FSW test
+ * on every preset thus runs the hook a flight build gets by default.  A test
+ * that does not expect an assertion checks kestrel_assert_count() == 0. */
 #include "kestrel_test_support.h"
+
+#include "fsw/fsw_assert_default.h"
 
 #include <stddef.h>
 
-static unsigned long g_count;
-static const char *g_file;
-static int g_line;
+unsigned long kestrel_assert_count(void) { return fsw_assert_default_count(); }
 
-void fsw_assert_failed(const char *file, int line)
+const char *kestrel_assert_last_file(void)
 {
-  g_count++;
-  g_file = file;
-  g_line = line;
+  const char *file = NULL;
+  fsw_assert_default_last(&file, NULL);
+  return file;
 }
 
-unsigned long kestrel_assert_count(void) { return g_count; }
-const char *kestrel_assert_last_file(void) { return g_file; }
-int kestrel_assert_last_line(void) { return g_line; }
-void kestrel_assert_reset(void)
+int kestrel_assert_last_line(void)
 {
-  g_count = 0;
-  g_file = NULL;
-  g_line = 0;
+  int line = 0;
+  fsw_assert_default_last(NULL, &line);
+  return line;
 }
+
+void kestrel_assert_reset(void) { fsw_assert_default_reset(); }
