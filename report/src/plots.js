@@ -4,6 +4,7 @@ import uPlot from 'uplot';
 import { alignSeries, indexedKeys, isNumArray, el, finiteMinMax } from './data.js';
 import { ENV_SOURCES, eclipseIntervals, magnitude, sumMagnitude } from './environment.js';
 import { tickLabels, plotOffset, constantValue, enumOf, enumLabel, displayUnit, deviceName } from './plotmath.js';
+import { pointingTitle } from './pointing.js';
 
 export const PALETTE = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#17becf',
   '#7f7f7f', '#bcbd22', '#393b79', '#ad494a', '#637939', '#e6550d', '#6b6ecf', '#843c39'];
@@ -292,7 +293,7 @@ export function buildTimePlots(grid, D, otherGrid = grid) {
     const y = take('pointing_error_deg');
     const mm = finiteMinMax(y);
     addTimePlot(grid, t, {
-      id: 'pointing', title: 'Pointing error (principal angle)', unit: unitOf('pointing_error_deg', 'deg'),
+      id: 'pointing', title: pointingTitle(D), unit: unitOf('pointing_error_deg', 'deg'),
       names: ['error'], ys: [y], log: !!(mm && mm[1] > 0 && mm[1] / Math.max(mm[0], 1e-12) > 100),
     });
   } else absent.push('pointing error');

@@ -383,6 +383,38 @@ class RunTest(unittest.TestCase):
             kestrel.run("not a scenario")
 
 
+class SlewCommandTest(unittest.TestCase):
+    """The headline metric follows a reference commanded from Python (issue
+    40): test/harness/data/slew_137.yaml without its events, and the same
+    slew given with Run.apply_event at t = 1 s (tick 100): the pointing
+    error jumps to the 137 deg of the new reference at once and ends below
+    0.05 deg, in the results and the summary; the run equals, bit for bit,
+    the file's own run (its slew as a scenario event at t = 1 s; its two
+    marker events change nothing)."""
+
+    SLEW = os.path.join(SRC, "test", "harness", "data", "slew_137.yaml")
+
+    def test_slew_commanded_from_python(self):
+        r = kestrel.Run(kestrel.Scenario.load(self.SLEW, {"events": "[]"}))
+        r.step(100)
+        self.assertAlmostEqual(r.t, 1.0, delta=1e-12)
+        # sun-safe before the command: the Sun axis from 3 deg towards the Sun
+        self.assertTrue(2.0 < r.state()["pointing_error_deg"] < 3.0, r.state()["pointing_error_deg"])
+        r.apply_event("fsw", "mode_inertial")
+        for axis, value in zip("xyz", (0.1, -0.05, 0.2)):
+            r.apply_event("fsw", "reference_" + axis, value)
+        r.step(1)
+        self.assertAlmostEqual(r.state()["pointing_error_deg"], 137.0, delta=0.1)
+        r.step(10**9)
+        res = r.results()
+        pe = res["pointing_error_deg"][:, 0]
+        self.assertLess(pe[-1], 0.05)
+        self.assertEqual(res.summary["final_pointing_error_deg"], pe[-1])
+        file_run = kestrel.run(kestrel.Scenario.load(self.SLEW))
+        np.testing.assert_array_equal(pe, file_run["pointing_error_deg"][:, 0])
+        np.testing.assert_array_equal(res["truth/sigma_BN"], file_run["truth/sigma_BN"])
+
+
 class FswTest(unittest.TestCase):
     # docs/fsw/mrp_fb.md (mrp_fb):
     #   int_sigma += K dt sigma_BR (clamped), z = int_sigma + I omega_BR (K_i > 0)

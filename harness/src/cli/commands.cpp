@@ -232,7 +232,8 @@ void print_run(const RunCommand& c, const Scenario& sc, const RunOptions& opt, c
 {
   out << sc.name << ": " << sc.duration << " s simulated in " << std::setprecision(3) << r.wall_seconds
       << " s (real-time factor " << std::setprecision(4) << (r.wall_seconds > 0 ? sc.duration / r.wall_seconds : 0.0)
-      << "x); final pointing error " << std::setprecision(4) << r.final_pointing_error_deg << " deg\n";
+      << "x); final pointing error " << std::setprecision(4) << r.final_pointing_error_deg << " deg ("
+      << describe(r.final_pointing_reference) << ")\n";
   if (r.max_jitter_step > kJitterStepLimit)
     err << "kestrel: warning: a jittering wheel reached |Omega| h = " << std::setprecision(3) << r.max_jitter_step
         << " rad per plant step (> " << kJitterStepLimit

@@ -19,8 +19,9 @@ uint64_t ceil_to_tick(double t_s, uint64_t tick_ns)
 }  // namespace
 
 EventTask::EventTask(const Scenario& sc, sim::Plant& plant, SensorSuite& sensors, const Recorder& rec,
-                     FswEndpoint& fsw, const FswAcsCmdMsg& initial)
-    : sc_(sc), plant_(plant), sensors_(sensors), rec_(rec), fsw_(fsw), cmd_(initial), tick_ns_(sc.tick_ns())
+                     FswEndpoint& fsw, const FswAcsCmdMsg& initial, Writer<FswAcsCmdMsg> cmd)
+    : sc_(sc), plant_(plant), sensors_(sensors), rec_(rec), fsw_(fsw), cmd_(initial), cmd_out_(cmd),
+      tick_ns_(sc.tick_ns())
 {
   for (size_t i = 0; i < sc.events.size(); ++i) ev_.push_back(make(i));
   log_.reserve(ev_.size());
@@ -61,7 +62,7 @@ EventTask::Ev EventTask::make(size_t i) const
     if (!why.empty()) throw config_error(sc_, key + ".actions[" + std::to_string(j) + "]." + k, why);
     Act act;
     resolve_event_device(sc_, a.device, act.target);
-    if (act.target.device == EventDevice::Fsw && !fsw_.accepts_commands())
+    if (act.target.device == EventDevice::Fsw && (!fsw_.accepts_commands() || !cmd_out_.valid()))
       throw config_error(sc_, key + ".actions[" + std::to_string(j) + "].device",
                          "this run's FSW (" + fsw_.describe() + ") takes no commands yet");
     act.action = find_event_action(act.target.device, a.action)->action;
@@ -115,7 +116,7 @@ void EventTask::apply(const Act& a, uint64_t t_ns)
   switch (a.target.device) {
     case EventDevice::Wheel: apply_wheel(a); break;
     case EventDevice::Thruster: apply_thruster(a); break;
-    case EventDevice::Fsw: apply_fsw(a); break;
+    case EventDevice::Fsw: apply_fsw(a, t_ns); break;
     case EventDevice::Magnetorquer: apply_magnetorquer(a, t_ns); break;
     case EventDevice::Atmosphere:
       if (drag_) drag_->set_density_scale(a.action == EventAction::AtmDensityScale ? a.value : density_scale_);
@@ -186,7 +187,7 @@ void EventTask::apply_thruster(const Act& a)
 }
 
 // Mode, actuation, reference and gains: a command to the FSW.
-void EventTask::apply_fsw(const Act& a)
+void EventTask::apply_fsw(const Act& a, uint64_t t_ns)
 {
   switch (a.action) {
     case EventAction::FswModeInertial: cmd_.mode = FSW_ACS_MODE_INERTIAL; break;
@@ -210,7 +211,7 @@ void EventTask::apply_fsw(const Act& a)
       break;
     default: break;
   }
-  fsw_.command(cmd_);  // in force from the FSW's next cycle (this tick's, when it runs now)
+  cmd_out_.write(cmd_, t_ns);  // the FSW's from its next cycle (this tick's, when it runs now)
 }
 
 // Gyro, star tracker and coarse sun sensor faults, noise scale and bias.

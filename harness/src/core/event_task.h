@@ -32,9 +32,12 @@ class EventTask {
  public:
   // Throws ScenarioError (at the event's key) for what only the run can
   // check: a device or a watched column the run does not have.
-  // `fsw` takes the FSW commands (mode, actuation) starting from `initial`.
+  // The FSW commands (mode, actuation, reference, gains) start from
+  // `initial` and are written to `cmd` (`fsw_cmd`: the FSW task hands each
+  // to `fsw` for its next cycle, the metrics measure against it); unset
+  // when the run takes no FSW commands (an fsw event is refused then).
   EventTask(const Scenario& sc, sim::Plant& plant, SensorSuite& sensors, const Recorder& rec, FswEndpoint& fsw,
-            const FswAcsCmdMsg& initial);
+            const FswAcsCmdMsg& initial, Writer<FswAcsCmdMsg> cmd);
   void operator()(uint64_t k);
   // Takes the scenario's last event (just appended to sc.events, e.g. a
   // command from the live view) into the run; throws like the constructor.
@@ -71,7 +74,7 @@ class EventTask {
   void apply(const Act& a, uint64_t t_ns);
   void apply_wheel(const Act& a);
   void apply_thruster(const Act& a);
-  void apply_fsw(const Act& a);
+  void apply_fsw(const Act& a, uint64_t t_ns);
   void apply_sensor(const Act& a, uint64_t t_ns);
   void apply_magnetorquer(const Act& a, uint64_t t_ns);
   Ev make(size_t i) const;  // event i of the scenario, checked
@@ -81,7 +84,8 @@ class EventTask {
   SensorSuite& sensors_;
   const Recorder& rec_;
   FswEndpoint& fsw_;
-  FswAcsCmdMsg cmd_;  // the mode and actuation commanded so far
+  FswAcsCmdMsg cmd_;  // the mode, actuation, reference and gains commanded so far
+  Writer<FswAcsCmdMsg> cmd_out_;
   uint64_t tick_ns_;
   sim::MagneticEffector* mag_ = nullptr;
   sim::DragEffector* drag_ = nullptr;

@@ -35,6 +35,26 @@ namespace {
 
 constexpr double kRadToDeg = 180.0 / sim::kPi;
 
+// Whether a scenario event commands the flight software (device fsw).
+bool commands_fsw(const Scenario& sc)
+{
+  for (const EventSpec& e : sc.events)
+    for (const EventActionSpec& a : e.actions)
+      if (a.device == "fsw") return true;
+  return false;
+}
+
+// What the configuration's mode points by (DETUMBLE: the mode it leaves for).
+PointingReference configured_reference(const FswSpec& f)
+{
+  const FswMode m = f.mode == FswMode::Detumble ? f.detumble_exit : f.mode;
+  switch (m) {
+    case FswMode::SunSafe: return PointingReference::SunAxis;
+    case FswMode::Nadir: return PointingReference::OrbitFrame;
+    default: return PointingReference::Inertial;  // inertial; DETUMBLE staying ("none")
+  }
+}
+
 // TruthReaders: due when a reader of `truth` is (the FSW input, metrics and
 // recorder; every tick when the burn monitor runs), not at every tick.
 enum class Group { EveryTick, Fsw, Record, TruthReaders };
@@ -113,8 +133,10 @@ struct Run::Impl {
     Channel<MtqCmdMsg>* mtq_cmd = nullptr;
     Channel<MtqStateMsg>* mtq_state = nullptr;
     Channel<MagnetometerMsg>* mag = nullptr;
+    Channel<FswAcsCmdMsg>* fsw_cmd = nullptr;  // runs that take FSW commands
   };
   Channel<MtqCmdMsg>* mtq_cmd_ch = nullptr;  // events write it (until the FSW commands the rods)
+  Channel<FswAcsCmdMsg>* fsw_cmd_ch = nullptr;  // events write it (runs that take FSW commands)
 
   explicit Impl(const Scenario& s)
       : sc(s), plant_owner(build_plant(s, &env, &mag)), plant(*plant_owner), sched(s.tick_ns())
@@ -122,7 +144,8 @@ struct Run::Impl {
   }
   void wire(RunConfig& cfg);
   void build_fsw(RunConfig& cfg);
-  Messages add_messages();
+  Messages add_messages(bool fsw_commands);
+  FswAcsCmdMsg initial_command() const;
   void add_tasks(const Messages& m);
   void add_magnetic_tasks(const Messages& m);
   void add_recorder(const Messages& m);
@@ -140,7 +163,11 @@ void Run::Impl::wire(RunConfig& cfg)
   for (size_t i = 0; i < sc.wheels.size(); ++i)
     if (wheel_jitters(sc.wheels[i].params)) jitter_wheels.push_back(static_cast<int>(i));
   build_fsw(cfg);
-  const Messages m = add_messages();
+  // FSW commands come from the events: the scenario's, or the live view's
+  // and Python's (accept_events); the message exists only then, so a run
+  // without them has the data flow it always had
+  const bool fsw_commands = fsw->accepts_commands() && (cfg.accept_events || commands_fsw(sc));
+  const Messages m = add_messages(fsw_commands);
   add_tasks(m);
   add_recorder(m);
   const RateGroup fsw_group{"fsw", sc.rates.fsw_divisor, sc.rates.fsw_offset};
@@ -172,7 +199,20 @@ void Run::Impl::build_fsw(RunConfig& cfg)
   sensors = std::make_unique<SensorSuite>(sc, fsw_setup, plant, mag.effector);
 }
 
-Run::Impl::Messages Run::Impl::add_messages()
+// The command in force before any event: the configuration's mode,
+// actuation, reference and gains (a set command changes one field of them).
+FswAcsCmdMsg Run::Impl::initial_command() const
+{
+  FswAcsCmdMsg c{};
+  c.mode = fsw_setup.cfg.initial_mode;
+  c.actuation = fsw_setup.cfg.initial_actuation;
+  for (int a = 0; a < 3; ++a) c.sigma_R0N[a] = fsw_setup.cfg.inertial.sigma_R0N[a];
+  c.K = fsw_setup.cfg.mrp_fb.K;
+  c.P = fsw_setup.cfg.mrp_fb.P;
+  return c;
+}
+
+Run::Impl::Messages Run::Impl::add_messages(bool fsw_commands)
 {
   DataFlow& f = flow;
   f.add_component("plant", "sim::Plant");
@@ -195,8 +235,13 @@ Run::Impl::Messages Run::Impl::add_messages()
     m.mtq_state = &f.add_message<MtqStateMsg>("mtq_state");
   }
   if (sensors->has_magnetometer()) m.mag = &f.add_message<MagnetometerMsg>("magnetometer");
+  if (fsw_commands) {
+    m.fsw_cmd = &f.add_message<FswAcsCmdMsg>("fsw_cmd");
+    m.fsw_cmd->write(initial_command(), 0);  // in force from the start (not handed to the FSW)
+  }
   truth_ch = m.truth;
   mtq_cmd_ch = m.mtq_cmd;
+  fsw_cmd_ch = m.fsw_cmd;
   health_ch = m.health;
   return m;
 }
@@ -230,7 +275,9 @@ void Run::Impl::add_tasks(const Messages& m)
                                  f.writer("sensors", *m.sens)});
   fsw_task.emplace(FswTask{fsw.get(), tk, f.reader("fsw_acs", *m.sens), f.writer("fsw_acs", *m.act),
                            f.writer("fsw_acs", *m.health),
-                           m.sun ? f.writer("fsw_acs", *m.sun) : Writer<SunHeadingMsg>(), m.sun != nullptr});
+                           m.sun ? f.writer("fsw_acs", *m.sun) : Writer<SunHeadingMsg>(), m.sun != nullptr,
+                           m.fsw_cmd ? f.reader("fsw_acs", *m.fsw_cmd) : Reader<FswAcsCmdMsg>(),
+                           m.fsw_cmd ? m.fsw_cmd->write_count() : 0});
   const bool fsw_rods = sc.fsw.mtq && m.mtq_cmd;  // the FSW commands the rods: it writes `mtq_cmd`
   actuators.emplace(ActuatorTask{tk, plant.num_rw(), plant.num_thr(), fsw_setup.n_acs, fsw_setup.acs_to_plant,
                                  burn_sched, f.reader("actuators", *m.act), f.writer("actuators", *m.cmd),
@@ -239,14 +286,14 @@ void Run::Impl::add_tasks(const Messages& m)
   plant_input.emplace(PlantInputTask{&plant, f.reader("plant", *m.cmd)});
   f.add_component("metrics", "harness");
   add_magnetic_tasks(m);
-  const bool inertial = sc.fsw.mode == FswMode::Inertial ||
-                        (sc.fsw.mode == FswMode::Detumble && sc.fsw.detumble_exit != FswMode::SunSafe);
-  metrics.emplace(&plant, tk, inertial, sc.fsw.sigma_R0N, sc.fsw.sun_axis_B,
-                  sc, sc.environment.mu, f.reader("metrics", *m.truth),
+  metrics.emplace(&plant, tk, configured_reference(sc.fsw), sc.fsw.sigma_R0N, sc.fsw.sun_axis_B, sc,
+                  sc.environment.mu, f.reader("metrics", *m.truth),
                   m.burn ? f.reader("metrics", *m.burn) : Reader<BurnStateMsg>(), m.burn != nullptr,
                   f.writer("metrics", *m.metrics));
-  metrics->orbit_ref = sc.fsw.mode == FswMode::Nadir ||
-                       (sc.fsw.mode == FswMode::Detumble && sc.fsw.detumble_exit == FswMode::Nadir);
+  if (m.fsw_cmd) {
+    metrics->cmd = f.reader("metrics", *m.fsw_cmd);
+    metrics->cmd_seen = m.fsw_cmd->write_count();
+  }
   metrics->frame = sc.fsw.orbit_frame;
   metrics->sigma_BdR = sc.fsw.sigma_BdR;
 }
@@ -299,15 +346,9 @@ void Run::Impl::add_recorder(const Messages& m)
 void Run::Impl::add_events()
 {
   flow.add_component("events", "harness: scenario events (docs/events.md) -> plant devices, sensor faults, FSW input");
-  // the commands start from the configuration: mode, actuation, and the
-  // reference and gains a set command changes one field of
-  FswAcsCmdMsg cmd0{};
-  cmd0.mode = fsw_setup.cfg.initial_mode;
-  cmd0.actuation = fsw_setup.cfg.initial_actuation;
-  for (int a = 0; a < 3; ++a) cmd0.sigma_R0N[a] = fsw_setup.cfg.inertial.sigma_R0N[a];
-  cmd0.K = fsw_setup.cfg.mrp_fb.K;
-  cmd0.P = fsw_setup.cfg.mrp_fb.P;
-  events.emplace(sc, plant, *sensors, rec, *fsw, cmd0);
+  // the commands start from the configuration's and go to `fsw_cmd`
+  events.emplace(sc, plant, *sensors, rec, *fsw, initial_command(),
+                 fsw_cmd_ch ? flow.writer("events", *fsw_cmd_ch) : Writer<FswAcsCmdMsg>());
   // rod faults act on the rods; dipole commands are the events' only when
   // the flight software does not command the rods
   if (mtq_cmd_ch)
@@ -492,6 +533,19 @@ double Run::final_pointing_error_deg() const
   return row ? row[impl_->rec.column_index("pointing_error_deg")] : std::numeric_limits<double>::quiet_NaN();
 }
 
+PointingReference Run::final_pointing_reference() const { return impl_->metrics->ref; }
+bool Run::pointing_reference_commanded() const { return impl_->metrics->ref_commanded; }
+
+const char* describe(PointingReference r)
+{
+  switch (r) {
+    case PointingReference::Inertial: return "principal angle from the inertial reference";
+    case PointingReference::SunAxis: return "Sun-axis angle";
+    case PointingReference::OrbitFrame: return "principal angle from the orbit-frame reference";
+  }
+  return "?";
+}
+
 std::vector<std::array<double, 3>> Run::wheel_axes_B() const
 {
   std::vector<std::array<double, 3>> out;
@@ -527,8 +581,11 @@ std::vector<SummaryItem> Run::summary() const
 {
   const Impl& m = *impl_;
   std::vector<SummaryItem> out;
-  if (m.rec.rows() > 0)
-    out.push_back({"final_pointing_error_deg", final_pointing_error_deg(), "deg", "pointing error at the end of the run"});
+  if (m.rec.rows() > 0)  // after a commanded change, it says which reference it is measured from
+    out.push_back({"final_pointing_error_deg", final_pointing_error_deg(), "deg",
+                   m.metrics->ref_commanded ? std::string(describe(m.metrics->ref)) +
+                                                  " at the end of the run (a command changed the reference during the run)"
+                                            : std::string("pointing error at the end of the run")});
   if (!m.jitter_wheels.empty())
     out.push_back({"max_jitter_step_rad", max_jitter_step(), "rad",
                    "largest |Omega| h of a jittering wheel (under-resolved above " +

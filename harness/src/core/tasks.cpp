@@ -143,9 +143,13 @@ void FswInputTask::operator()(uint64_t k) const
   out.write(msg, msg.t_ns);
 }
 
-void FswTask::operator()(uint64_t k) const
+void FswTask::operator()(uint64_t k)
 {
   const uint64_t t_ns = k * tick_ns;
+  if (cmd.valid() && cmd.write_count() != cmd_seen) {  // a new command: in force from this cycle
+    cmd_seen = cmd.write_count();
+    fsw->command(cmd.read());
+  }
   FswAcsActuatorMsg a = act.channel().value();
   FswAcsHealthMsg h = health.channel().value();
   fsw->cycle(in.read(), a, h);
@@ -238,24 +242,57 @@ Eigen::Matrix3d orbit_frame_RN(OrbitFrame frame, const Eigen::Vector3d& r_N, con
   return RN;
 }
 
+PointingReference reference_of_mode(int fsw_mode, PointingReference detumble)
+{
+  switch (fsw_mode) {
+    case FSW_ACS_MODE_SUN_SAFE: return PointingReference::SunAxis;
+    case FSW_ACS_MODE_NADIR: return PointingReference::OrbitFrame;
+    case FSW_ACS_MODE_DETUMBLE: return detumble;
+    default: return PointingReference::Inertial;
+  }
+}
+
+void MetricsTask::follow_command()
+{
+  if (!cmd.valid() || cmd.write_count() == cmd_seen) return;
+  cmd_seen = cmd.write_count();
+  const FswAcsCmdMsg& c = cmd.read();
+  Eigen::Vector3d s = sigma_ref;
+  if (c.set_ref) {
+    s = Eigen::Vector3d(static_cast<double>(c.sigma_R0N[0]), static_cast<double>(c.sigma_R0N[1]),
+                        static_cast<double>(c.sigma_R0N[2]));
+    if (!std::isfinite(s.squaredNorm())) return;  // the FSW refuses the whole command
+  }
+  sigma_ref = s;
+  ref = reference_of_mode(c.mode, ref0);  // DETUMBLE until another mode is commanded
+  ref_commanded = ref_commanded || ref != ref0 || (ref == PointingReference::Inertial && sigma_ref != sigma_R0N);
+}
+
+double MetricsTask::pointing_error(uint64_t k, const TruthMsg& t) const
+{
+  const Eigen::Vector3d sigma = ev(t.sigma_BN);
+  switch (ref) {
+    case PointingReference::OrbitFrame: {
+      const Eigen::Matrix3d BdN =
+          sim::dcm_BN_from_sigma(sigma_BdR) * orbit_frame_RN(frame, ev(t.r_BN_N), ev(t.v_BN_N));
+      const Eigen::Matrix3d E = sim::dcm_BN_from_sigma(sigma) * BdN.transpose();  // [B Bd]
+      const Eigen::Vector3d s(E(1, 2) - E(2, 1), E(2, 0) - E(0, 2), E(0, 1) - E(1, 0));
+      return std::atan2(0.5 * s.norm(), 0.5 * (E.trace() - 1.0));
+    }
+    case PointingReference::Inertial: return principal_angle(sigma, sigma_ref);
+    case PointingReference::SunAxis: break;
+  }
+  const Eigen::Vector3d r_sun_N = sun.position_N(static_cast<int64_t>(k * tick_ns));
+  const Eigen::Vector3d d_B = sim::dcm_BN_from_sigma(sigma) * (r_sun_N - ev(t.r_BN_N)).normalized();
+  return std::atan2(sun_axis_B.cross(d_B).norm(), sun_axis_B.dot(d_B));
+}
+
 void MetricsTask::operator()(uint64_t k)
 {
   const TruthMsg& t = truth.read();
   MetricsMsg m{};
-  const Eigen::Vector3d sigma = ev(t.sigma_BN);
-  if (orbit_ref) {
-    const Eigen::Matrix3d BdN =
-        sim::dcm_BN_from_sigma(sigma_BdR) * orbit_frame_RN(frame, ev(t.r_BN_N), ev(t.v_BN_N));
-    const Eigen::Matrix3d E = sim::dcm_BN_from_sigma(sigma) * BdN.transpose();  // [B Bd]
-    const Eigen::Vector3d s(E(1, 2) - E(2, 1), E(2, 0) - E(0, 2), E(0, 1) - E(1, 0));
-    m.pointing_error = std::atan2(0.5 * s.norm(), 0.5 * (E.trace() - 1.0));
-  } else if (inertial) {
-    m.pointing_error = principal_angle(sigma, sigma_R0N);  // guid_inertial: constant reference
-  } else {
-    const Eigen::Vector3d r_sun_N = sun.position_N(static_cast<int64_t>(k * tick_ns));
-    const Eigen::Vector3d d_B = sim::dcm_BN_from_sigma(sigma) * (r_sun_N - ev(t.r_BN_N)).normalized();
-    m.pointing_error = std::atan2(sun_axis_B.cross(d_B).norm(), sun_axis_B.dot(d_B));
-  }
+  follow_command();
+  m.pointing_error = pointing_error(k, t);
   const sim::EnergyMomentum em = plant->energy_momentum();
   for (int i = 0; i < 3; ++i) m.H_C_N[i] = em.H_C_N(i);
   m.E_rot = em.E_rot;

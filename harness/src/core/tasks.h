@@ -15,6 +15,7 @@
 #include "harness/core/loop_messages.h"
 #include "harness/core/messages.h"
 #include "harness/core/recorder.h"
+#include "harness/core/run.h"
 #include "core/plant_builder.h"
 #include "sim/plant.h"
 #include "core/sensor_suite.h"
@@ -110,7 +111,9 @@ struct FswInputTask {
 };
 
 // The FSW (FSW ticks): `fsw_sensors` -> endpoint -> `fsw_actuators`,
-// `fsw_health` (and `sun_heading` in sun-safe runs).
+// `fsw_health` (and `sun_heading` in sun-safe runs).  A command written to
+// `fsw_cmd` since the last cycle (runs that take FSW commands) is handed to
+// the endpoint first, for this cycle (FswEndpoint::command).
 struct FswTask {
   FswEndpoint* fsw;
   uint64_t tick_ns;
@@ -119,7 +122,9 @@ struct FswTask {
   Writer<FswAcsHealthMsg> health;
   Writer<SunHeadingMsg> sun;  // unset outside sun-safe runs
   bool has_sun = false;
-  void operator()(uint64_t k) const;
+  Reader<FswAcsCmdMsg> cmd;   // unset in runs that take no FSW commands
+  uint64_t cmd_seen = 0;      // write count of `fsw_cmd` handed on so far
+  void operator()(uint64_t k);
 };
 
 // FSW actuator message -> plant commands (FSW ticks): wheel torques
@@ -173,33 +178,50 @@ struct MtqStateTask {
   void operator()(uint64_t k) const;
 };
 
-// Figures of merit (record ticks) -> `metrics`.
+// Figures of merit (record ticks) -> `metrics`.  The pointing error is the
+// truth attitude against the reference in force (PointingReference, run.h):
+// the configuration's, then the mode and reference of each FSW command in
+// `fsw_cmd` (the message the FSW is handed), from the tick it is written, so
+// it checks the FSW independently of the FSW's own error output.
 struct MetricsTask {
-  MetricsTask(const sim::Plant* p, uint64_t tk, bool inertial_, const Eigen::Vector3d& sigma_R0N_,
+  MetricsTask(const sim::Plant* p, uint64_t tk, PointingReference ref_, const Eigen::Vector3d& sigma_R0N_,
               const Eigen::Vector3d& sun_axis_B_, const Scenario& sc, double mu_, Reader<TruthMsg> t,
               Reader<BurnStateMsg> b, bool has_b, Writer<MetricsMsg> w)
-      : plant(p), tick_ns(tk), inertial(inertial_), sigma_R0N(sigma_R0N_), sun_axis_B(sun_axis_B_),
-        sun(sc), mu(mu_), truth(t), burn(b), has_burn(has_b), out(w)
+      : plant(p), tick_ns(tk), ref0(ref_), ref(ref_), sigma_R0N(sigma_R0N_), sigma_ref(sigma_R0N_),
+        sun_axis_B(sun_axis_B_), sun(sc), mu(mu_), truth(t), burn(b), has_burn(has_b), out(w)
   {
   }
   const sim::Plant* plant;
   uint64_t tick_ns;
-  bool inertial;
-  Eigen::Vector3d sigma_R0N, sun_axis_B;
+  PointingReference ref0;            // the configuration's (fsw.mode; DETUMBLE: its exit's)
+  PointingReference ref;             // in force
+  Eigen::Vector3d sigma_R0N;         // the configuration's inertial reference
+  Eigen::Vector3d sigma_ref;         // the inertial reference in force
+  bool ref_commanded = false;        // a command changed the reference in force
+  Eigen::Vector3d sun_axis_B;
   SunSource sun;  // the Sun of the pointing error
   double mu;
   Reader<TruthMsg> truth;
   Reader<BurnStateMsg> burn;  // unset without thrusters
   bool has_burn = false;
   Writer<MetricsMsg> out;
+  Reader<FswAcsCmdMsg> cmd;   // unset in runs that take no FSW commands
+  uint64_t cmd_seen = 0;      // write count of `fsw_cmd` taken so far
   double max_err_burn = 0.0;  // [rad] largest pointing error between burn start and end
-  // NADIR (or DETUMBLE leaving for NADIR): the error from the orbit frame of
-  // the truth position and velocity, formed here independently of the FSW
-  bool orbit_ref = false;
+  // the orbit frame (NADIR): formed here from the truth position and
+  // velocity, independently of the FSW
   OrbitFrame frame = OrbitFrame::Nadir;
   Eigen::Vector3d sigma_BdR = Eigen::Vector3d::Zero();
   void operator()(uint64_t k);
+  // Takes a new command of `fsw_cmd`: its mode's reference, its inertial
+  // reference when it sets one (a set command the FSW refuses, |sigma|^2
+  // not finite, changes nothing, as in the FSW).
+  void follow_command();
+  double pointing_error(uint64_t k, const TruthMsg& t) const;  // [rad]
 };
+
+// The reference an FSW mode (FswAcsMode) points by; DETUMBLE: `detumble`.
+PointingReference reference_of_mode(int fsw_mode, PointingReference detumble);
 
 // [RN] of the orbit frame from position and velocity (N): NADIR: z to nadir,
 // y along the negative orbit normal; VELOCITY: x along the velocity.

@@ -262,6 +262,7 @@ void finish_run(Run& run, const RemoteFsw* remote, RunResult& res)
     res.link = remote->counters();
   }
   res.final_pointing_error_deg = run.final_pointing_error_deg();
+  res.final_pointing_reference = run.final_pointing_reference();
   res.max_jitter_step = run.max_jitter_step();
   RunStatus& st = res.status;
   st.complete = res.ok && run.done();

@@ -3,7 +3,10 @@
 // Tick protocol (docs/dynamics.md §7.2), tick k at t_k = k * dt: every task due
 // at k runs in the order of the table kTickProtocol (run.cpp):
 //   events         (every tick, scenarios with events) the events whose
-//                  trigger holds are applied (docs/events.md, event_task.h)
+//                  trigger holds are applied (docs/events.md, event_task.h);
+//                  an FSW command is written to `fsw_cmd` (runs that take
+//                  FSW commands), which fsw_acs hands to the endpoint and
+//                  metrics measures the pointing against
 //   truth          (FSW and record ticks; every tick with thrusters) plant state -> `truth`
 //   mtq_state      (record group, magnetorquers) the rods' dipoles and power -> `mtq_state`
 //   burn_monitor   (every tick, thruster runs) `truth` -> `burn_state`
@@ -11,12 +14,12 @@
 //   magnetometer   (every tick, sensors.magnetometer) field model, rods -> `magnetometer`
 //   css            (FSW group, configured CSS) `truth` -> `css_readings`
 //   sensors        (FSW group)   `truth`, `sensor_samples`, `css_readings` -> `fsw_sensors`
-//   fsw_acs        (FSW group)   FswEndpoint::cycle: `fsw_sensors` -> `fsw_actuators`, `fsw_health`
+//   fsw_acs        (FSW group)   FswEndpoint::cycle: `fsw_sensors` (+ a new `fsw_cmd`) -> `fsw_actuators`, `fsw_health`
 //                                (+ `sun_heading` in sun-safe runs)
 //   actuators      (FSW group)   `fsw_actuators` (+ burn schedule) -> `plant_cmd`
 //   plant_input    (FSW group)   `plant_cmd` latched by the plant (zero-order hold)
 //   magnetorquers  (FSW group, magnetorquers) `mtq_cmd` -> the rods (dipole or PWM drive)
-//   metrics        (record group) `truth`, `burn_state` -> `metrics`
+//   metrics        (record group) `truth`, `burn_state`, `fsw_cmd` -> `metrics`
 //   recorder       (record group) one row -> the sinks
 // then the plant integrates [t_k, t_k + dt] with the held commands.  The last
 // tick k = num_ticks only runs the tasks (so t = duration is recorded).
@@ -56,6 +59,20 @@ bool wheel_jitters(const sim::ReactionWheelParams& p);
 std::vector<std::string> jitter_step_warnings(const Scenario& sc);
 // The sub-steps per tick that keep |Omega| dt / n within the limit.
 uint32_t substeps_for(double Omega_abs, double dt);
+
+// What pointing_error_deg measures (docs/harness.md, "Recorded columns"): the
+// truth attitude against the reference the flight software is commanded to
+// track, from the scenario's fsw.mode and then from each FSW command (mode,
+// reference) of an event, the live view or Python:
+//   Inertial    principal angle of B from the inertial reference sigma_R0N
+//               (fsw.inertial.sigma_R0N, then the last commanded one)
+//   SunAxis     Sun-axis angle: fsw.sun_safe.sun_axis_B from the true Sun
+//               direction (sun-safe mode)
+//   OrbitFrame  principal angle of B from the orbit frame's Bd (nadir mode)
+// DETUMBLE measures against the reference of the mode it leaves for.
+enum class PointingReference { Inertial, SunAxis, OrbitFrame };
+// "principal angle from the inertial reference", "Sun-axis angle", ...
+const char* describe(PointingReference r);
 
 // A scenario event as applied during a run (docs/events.md): logged in the
 // manifest's result, the HDF5 file and the report.
@@ -146,6 +163,10 @@ class Run {
 
   // Pointing error of the last recorded row [deg] (NaN before the first).
   double final_pointing_error_deg() const;
+  // What it measured there (the reference in force at the last recorded
+  // row), and whether an FSW command changed the reference during the run.
+  PointingReference final_pointing_reference() const;
+  bool pointing_reference_commanded() const;
   // Geometry for the report.
   std::vector<std::array<double, 3>> wheel_axes_B() const;
   // FSW health: the last health message, then per-module counters when the

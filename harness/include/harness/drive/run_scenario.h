@@ -70,6 +70,8 @@ struct RunResult {
   double sim_seconds = 0.0;
   double wall_seconds = 0.0;
   double final_pointing_error_deg = 0.0;
+  // what it measures: the reference in force at the end (Run::final_pointing_reference)
+  PointingReference final_pointing_reference = PointingReference::Inertial;
   double max_jitter_step = 0.0;    // [rad] Run::max_jitter_step()
   int stopped_by_signal = 0;       // the signal that stopped the run (0: none)
   bool paced = false;              // realtime_scale > 0: pacing holds the figures
