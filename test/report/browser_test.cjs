@@ -17,7 +17,8 @@ const CASES = [
   { file: 's1.html', plots: ['pointing', 'rates', 'wheels', 'wheeltorque', 'x-sigma_BN', 'x-wheel_cmd', 'x-E_rot'], absent: ['ontime', 'force', 'propellant'],
     replay: 'ok', dataflow: 'ok', spectrum: true, shot: true, events: 2 },
   { file: 's2.html', plots: ['pointing', 'rates', 'ontime', 'force', 'propellant'], absent: ['wheels', 'wheeltorque'],
-    replay: 'ok', dataflow: 'ok', spectrum: true, shot: true },
+    replay: 'ok', dataflow: 'ok', spectrum: true, shot: true,
+    story: { warnings: 1, pass: 1, fail: 1, rows: 3, row: 'on_time_main_s480 s' } },
   // an Earth-orbit run: the environment cards, two eclipses shaded
   { file: 's3.html', plots: ['pointing', 'rates', 'illumination', 'disturbance', 'envmomentum', 'field', 'mtqdipole', 'wheels',
     'x-torque_gravity_gradient', 'x-H_wheels_N'], absent: ['ontime', 'force', 'propellant'], replay: 'ok', dataflow: 'absent', eclipses: 2 },
@@ -50,6 +51,10 @@ runCases('browser test', htmlDir, CASES, async (c, { page }, fail) => {
       eventRows: document.querySelectorAll('#events-table tr').length,
       eventsShown: !document.getElementById('sec-events').hidden,
       eclipses: r.eclipses || 0,
+      warnings: document.querySelectorAll('#run-warnings li').length,
+      reqPass: document.querySelectorAll('#requirements-table tr.pass').length,
+      reqFail: document.querySelectorAll('#requirements-table tr.fail').length,
+      summaryRows: [...document.querySelectorAll('#run-summary tr')].map((tr) => [...tr.children].slice(0, 2).map((x) => x.textContent).join('')),
     };
   });
   console.log(`  cards [${st.cards.join(', ')}], spectrum ${st.spectrum}, replay ${st.replay}, dataflow ${st.dataflow} ` +
@@ -76,6 +81,12 @@ runCases('browser test', htmlDir, CASES, async (c, { page }, fail) => {
   if (st.eclipses !== (c.eclipses || 0)) fail(`${st.eclipses} eclipse intervals, expected ${c.eclipses || 0}`);
   for (const p of ['illumination', 'disturbance', 'envmomentum', 'field', 'mtqdipole'])
     if (!c.plots.includes(p) && st.cards.includes(p)) fail(`${p} plot drawn though absent from the data`);
+  // the run's own summary (summary.txt's items, requirement lines in their own table), warnings, PASS/FAIL
+  const sy = c.story || { warnings: 0, pass: 0, fail: 0, rows: 0 };
+  if (st.warnings !== sy.warnings) fail(`${st.warnings} warnings shown, expected ${sy.warnings}`);
+  if (st.reqPass !== sy.pass || st.reqFail !== sy.fail) fail(`requirements ${st.reqPass} PASS ${st.reqFail} FAIL, expected ${sy.pass}/${sy.fail}`);
+  if (st.summaryRows.length !== sy.rows) fail(`${st.summaryRows.length} run-summary rows, expected ${sy.rows}`);
+  if (sy.row && !st.summaryRows.includes(sy.row)) fail(`run summary lacks '${sy.row}': ${st.summaryRows.join(' | ')}`);
   if (c.title && !st.title.includes(c.title)) fail(`scenario text not shown verbatim: ${st.title.slice(0, 120)}`);
   if (c.shot) {
     // a click on a time plot moves the replay to that time
