@@ -44,7 +44,17 @@ export function normalize(raw) {
   const events = Array.isArray(d.events)
     ? d.events.filter((e) => e && typeof e === 'object' && typeof e.t === 'number' && Number.isFinite(e.t))
     : [];
-  return { meta, series, units, t, attitude, geometry, dot, spectrum, decimation, events };
+  // the run's own summary (summary.txt's items, in its order), its warnings
+  // and its requirement lines
+  const summary = d.summary && typeof d.summary === 'object' ? d.summary : {};
+  const summaryOrder = Array.isArray(d.summary_order)
+    ? d.summary_order.filter((k) => typeof k === 'string')
+    : Object.keys(summary);
+  const warnings = Array.isArray(d.warnings) ? d.warnings.filter((w) => typeof w === 'string') : [];
+  const requirements = Array.isArray(d.requirements)
+    ? d.requirements.filter((r) => r && typeof r === 'object' && typeof r.name === 'string')
+    : [];
+  return { meta, series, units, t, attitude, geometry, dot, spectrum, decimation, events, summary, summaryOrder, warnings, requirements };
 }
 
 export function finiteMinMax(a) {

@@ -16,24 +16,51 @@ window.kestrelReport = status;
 
 const section = (id, fn) => sectionOf(status, id, fn);
 
-function summary(root, D, absent) {
-  const { meta, series, t } = D;
+// The run's own summary, as summary.txt says it (one source: the run writes
+// both files from the same items), its warnings and its requirement lines.
+function runStory(root, D) {
+  if (D.warnings.length) {
+    root.appendChild(el('div', { class: 'warnings', id: 'run-warnings' },
+      el('b', { text: `The run printed ${D.warnings.length} warning${D.warnings.length === 1 ? '' : 's'}:` }),
+      el('ul', null, ...D.warnings.map((w) => el('li', { text: w })))));
+  }
+  if (D.requirements.length) {
+    const nfail = D.requirements.filter((r) => !r.pass).length;
+    root.appendChild(el('h3', { text: `Requirements: ${nfail ? `${nfail} of ${D.requirements.length} FAIL` : `all ${D.requirements.length} PASS`}` }));
+    const unit = (r) => (r.unit && r.unit !== '-' ? ` ${r.unit}` : '');
+    root.appendChild(el('table', { class: 'summary', id: 'requirements-table' },
+      el('tr', null, ...['requirement', 'measured', 'required', 'result'].map((h) => el('th', { text: h }))),
+      ...D.requirements.map((r) => el('tr', { class: r.pass ? 'pass' : 'fail' },
+        el('td', null, el('b', { text: String(r.name ?? '') }), ` (${r.what ?? ''})`),
+        el('td', { text: fmt(r.value) + unit(r) }),
+        el('td', { text: `${r.below ? '<' : '>'} ${fmt(r.threshold)}${unit(r)}` }),
+        el('td', { class: 'verdict', text: r.pass ? 'PASS' : 'FAIL' })))));
+    root.appendChild(el('p', { class: 'note', text: 'The scenario\'s monte_carlo.criteria evaluated on this run\'s recorded rows, every row (docs/monte-carlo.md).' }));
+  }
+  const reqKeys = new Set(D.requirements.map((r) => `requirement_${r.name}`));
+  const keys = D.summaryOrder.filter((k) => D.summary[k] && !reqKeys.has(k));
+  if (!keys.length) return;
+  root.appendChild(el('h3', { text: 'Run summary (summary.txt)' }));
+  root.appendChild(el('table', { class: 'summary', id: 'run-summary' }, el('tbody', null,
+    ...keys.map((k) => {
+      const it = D.summary[k];
+      const v = typeof it.value === 'number' ? fmt(it.value, 7) : '\u2013';
+      return el('tr', null, el('th', { text: k }), el('td', { class: 'num', text: v + (it.unit && it.unit !== '-' ? ` ${it.unit}` : '') }),
+        el('td', { class: 'what', text: String(it.what ?? '') }));
+    }))));
+}
+
+// Figures of the recorded series that the summary does not carry: the
+// decimated series keep each bucket's extremes, so maxima stay exact.
+function seriesFigures(root, D, absent) {
+  const { series, t } = D;
   const rows = [];
   const add = (k, v) => rows.push(el('tr', null, el('th', { text: k }), el('td', { text: v })));
   if (t.length) add('samples', `${t.length} (t = ${fmt(t[0])} \u2026 ${fmt(t[t.length - 1])} s)`);
   if (isNumArray(series.pointing_error_deg)) {
     const y = series.pointing_error_deg;
-    const last = y[y.length - 1];
-    add('final pointing error', `${fmt(last)} deg`);
-    const tail = y.slice(Math.floor(y.length * 0.9));
-    const mm = finiteMinMax(tail);
-    if (mm) add('max pointing error, last 10 % of the run', `${fmt(mm[1])} deg`);
     const mmAll = finiteMinMax(y);
     if (mmAll) add('max pointing error', `${fmt(mmAll[1])} deg`);
-  }
-  if (isNumArray(series.propellant_kg)) {
-    const p = series.propellant_kg.filter((v) => typeof v === 'number');
-    if (p.length) add('propellant used', `${fmt(p[0] - p[p.length - 1])} kg (${fmt(p[0])} \u2192 ${fmt(p[p.length - 1])} kg)`);
   }
   const wk = indexedKeys(series, 'wheel_speed_rpm_');
   if (wk.length) {
@@ -41,19 +68,20 @@ function summary(root, D, absent) {
     for (const { key } of wk) { const mm = finiteMinMax(series[key]); if (mm) mx = Math.max(mx, Math.abs(mm[0]), Math.abs(mm[1])); }
     add('wheels', `${wk.length}, peak |speed| ${fmt(mx)} rpm`);
   }
-  const tk = indexedKeys(series, 'thruster_on_time_');
-  if (tk.length) {
-    let tot = 0;
-    for (const { key } of tk) for (const v of series[key]) if (typeof v === 'number' && v > 0) tot += v;
-    add('thrusters', `${tk.length}, total on-time ${fmt(tot)} s`);
-  }
   if (isNumArray(series.illumination)) {
     const iv = eclipseIntervals(t, alignSeries(series.illumination, t.length));
     const tot = iv.reduce((acc, x) => acc + (x.t1 - x.t0), 0);
     add('Earth\'s shadow', `${iv.length} interval${iv.length === 1 ? '' : 's'}, ${fmt(tot)} s (illumination < 1)`);
   }
   if (absent.length) add('not in this run', absent.join(', '));
-  root.appendChild(el('table', { class: 'summary' }, el('tbody', null, ...rows)));
+  if (!rows.length) return;
+  root.appendChild(el('h3', { text: 'From the recorded series' }));
+  root.appendChild(el('table', { class: 'summary', id: 'series-figures' }, el('tbody', null, ...rows)));
+}
+
+function summary(root, D, absent) {
+  runStory(root, D);
+  seriesFigures(root, D, absent);
 }
 
 function main() {

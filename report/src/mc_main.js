@@ -51,11 +51,52 @@ function criteria(root, D) {
   root.appendChild(el('p', { class: 'note', id: 'mc-counts', text: `In the table: ${D.table.length} runs, ${n.fail} failing, ${n.invalid} invalid draws, ${n.pass} passing.` }));
 }
 
+// Per criterion: the runs that failed it and the dispersions ranked by how
+// strongly they separate failing from passing runs (rank statistics).
+function drivers(root, D) {
+  if (!D.drivers.length) {
+    root.appendChild(el('p', { class: 'absent', text: 'No criteria: nothing to explain.' }));
+    return;
+  }
+  root.appendChild(el('p', { class: 'note', text: 'For each criterion, each drawn value x: AUC = P(x of a failing run > x of a passing run) '
+    + '(Mann-Whitney, ties count 1/2); \u03b4 = 2 AUC \u2212 1 ranks the dispersions (+1: failures drew larger values, \u22121: smaller, 0: no separation); '
+    + 'p: chance of a separation this strong if x did not matter; \u03c1: Spearman correlation of x with the criterion\'s metric '
+    + '(it ranks when nothing or everything failed). docs/monte-carlo.md, "What drives the failures".' }));
+  for (const c of D.drivers) {
+    const card = el('div', { class: 'card drivers', id: 'mc-drivers-' + c.criterion.replace(/\W+/g, '_') });
+    const top = c.ranked[0];
+    let verdict;
+    if (!c.failed) verdict = `${c.criterion}: no run failed it (${c.runs} runs).`;
+    else {
+      verdict = `${c.criterion}: ${c.failed} of ${c.runs} runs failed`;
+      if (c.rankedBy === 'delta' && top && top.delta !== null) {
+        verdict += `; driven most by ${top.drawn} (\u03b4 = ${fmt(top.delta, 3)}: failing runs drew ${top.delta > 0 ? 'larger' : 'smaller'} values`
+          + `${top.p !== null ? `, p = ${fmt(top.p, 2)}` : ''})`;
+      }
+      verdict += '.';
+    }
+    card.appendChild(el('h3', { class: 'verdict', text: verdict }));
+    if (c.failing.length) {
+      const more = c.failed > c.failing.length ? ` \u2026 (${c.failed - c.failing.length} more)` : '';
+      card.appendChild(el('p', { class: 'failing-runs', text: `Failing runs: ${c.failing.map((i) => '#' + i).join(', ')}${more}` }));
+    }
+    const rows = c.ranked.map((r, k) => el('tr', { class: k === 0 && c.failed ? 'top' : '' },
+      el('td', { class: 'num', text: String(k + 1) }), el('td', { text: r.drawn + (r.unit ? ` [${r.unit}]` : '') }),
+      el('td', { class: 'num', text: fmt(r.delta, 3) }), el('td', { class: 'num', text: fmt(r.auc, 3) }),
+      el('td', { class: 'num', text: fmt(r.p, 2) }), el('td', { class: 'num', text: fmt(r.rho, 3) })));
+    card.appendChild(el('table', { class: 'summary drivers-table' },
+      el('thead', null, el('tr', null, ...['rank', 'drawn value', '\u03b4', 'AUC', 'p', '\u03c1 (metric)'].map((h) => el('th', { text: h })))),
+      el('tbody', null, ...rows)));
+    root.appendChild(card);
+  }
+}
+
 function main() {
   const raw = embeddedData(status, 'criteria', 'campaign data');
   const D = normalizeMc(raw);
   section('meta', () => header(D));
   section('criteria', (root) => criteria(root, D));
+  section('mc-drivers', (root) => drivers(root, D));
   section('mc-series', (root) => {
     const S = D.series;
     if (!S.t.length || !S.channels.length) {

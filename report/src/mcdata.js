@@ -51,7 +51,15 @@ export function normalizeMc(raw) {
     if (num(d[k]) !== null) meta[k] = d[k];
     else if (typeof d[k] === 'string' && /^\d+$/.test(d[k])) meta[k] = d[k]; // a 64-bit seed as text
   }
-  return { kind: str(d.kind), schema: num(d.schema), meta, criteria, drawn, metrics, table,
+  // what drives each criterion's failures (docs/monte-carlo.md)
+  const drivers = arr(d.drivers).filter((c) => c && typeof c === 'object' && typeof c.criterion === 'string').map((c) => ({
+    criterion: c.criterion, runs: num(c.runs), failed: num(c.failed), rankedBy: str(c.ranked_by),
+    failing: arr(c.failing).filter((i) => Number.isInteger(i)),
+    ranked: arr(c.ranked).filter((r) => r && typeof r === 'object' && typeof r.drawn === 'string').map((r) => ({
+      drawn: r.drawn, unit: str(r.unit), n: num(r.n), auc: num(r.auc), delta: num(r.delta), p: num(r.p), rho: num(r.rho),
+    })),
+  }));
+  return { kind: str(d.kind), schema: num(d.schema), meta, criteria, drawn, metrics, table, drivers,
     series: { t, channels, levels, pcols, runs } };
 }
 

@@ -84,6 +84,18 @@ void ThrusterSet::command(const ThrusterArray& T_req)
   pending_ = true;
 }
 
+namespace {
+
+// [s] Open time of schedule s over [t_latch, t_ns]: the valve is open on
+// [t_latch, t_latch + T_on).
+double open_time_until(const ValveSchedule& s, int64_t t_ns)
+{
+  const double since = seconds_from_ns(t_ns - s.t_latch_ns);
+  return since <= 0.0 ? 0.0 : std::min(since, s.T_on);
+}
+
+}  // namespace
+
 double ThrusterSet::s_since_latch(int j, int64_t t_ns) const
 {
   return seconds_from_ns(t_ns - sched_[static_cast<size_t>(j)].t_latch_ns);
@@ -133,6 +145,7 @@ void ThrusterSet::set_health(int j, ThrusterHealth h)
   const double kappa_now = kappa(j);
   ValveSchedule& s = sched_[uj];
   const ThrusterHealth old = health_[uj];
+  open_done_[uj] += open_time_until(s, t0_ns_);  // the running schedule is replaced now
   health_[uj] = h;
   switch (h) {
     case ThrusterHealth::FailedOff:  // closed now, no tail
@@ -207,6 +220,13 @@ void ThrusterSet::accumulate(const EffectorStage& stage, EffectorSums& sums) con
 
 // ------------------------------------------------------------ step protocol
 
+
+double ThrusterSet::valve_open_time(int j) const
+{
+  const auto uj = static_cast<size_t>(j);
+  return open_done_[uj] + open_time_until(sched_[uj], t0_ns_);
+}
+
 void ThrusterSet::latch(int64_t t_L_ns)
 {
   for (int j = 0; j < num_thr(); ++j) {
@@ -219,9 +239,13 @@ void ThrusterSet::latch(int64_t t_L_ns)
             ? kappa_fo_[uj]
             : scheduled_kappa(p, sched_[uj], s, sim::valve_open(sched_[uj], s));
     const bool firing = valve_firing(sched_[uj], s);
+    const ValveSchedule before = sched_[uj];
     if (latch_thruster(p, cmd_, T_req_[uj], t_L_ns, kappa_now, firing, sched_[uj]) ==
-        LatchResult::IgnoredMinOnTime)
+        LatchResult::IgnoredMinOnTime) {
       ++counters_.ignored_min_on;
+    } else {
+      open_done_[uj] += open_time_until(before, t_L_ns);  // replaced at t_L
+    }
   }
   pending_ = false;
   ++counters_.latches;

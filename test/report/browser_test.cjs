@@ -25,7 +25,8 @@ const CASES = [
   // s2: the orbit inset (Mars, the trajectory, the burn arc) and the burn on the timeline
   { file: 's2.html', plots: ['pointing', 'rates', 'ontime', 'force', 'propellant', 'x-r_BN_N'], alias: false, absent: ['wheels', 'wheeltorque'],
     legend: { force: ['acs_0', 'acs_7'] }, scene: ['sun-vector', 'central-body', 'trajectory', 'burn-arc', 'spacecraft-position', 'plume:acs_0',
-      'fov:star_tracker'], burnBand: true, replay: 'ok', dataflow: 'ok', spectrum: true, shot: true },
+      'fov:star_tracker'], burnBand: true, replay: 'ok', dataflow: 'ok', spectrum: true, shot: true,
+    story: { warnings: 1, pass: 1, fail: 1, rows: 3, row: 'on_time_main_s480 s' } },
   // wheels at 50 to 75 Hz recorded at 10 Hz: the spectrum says so and which key to set
   { file: 'alias.html', plots: ['pointing', 'rates', 'wheels', 'x-sigma_BN'], replay: 'ok', spectrum: true, alias: true },
   // an Earth-orbit run: the environment cards, two eclipses shaded
@@ -69,6 +70,10 @@ runCases('browser test', htmlDir, CASES, async (c, { page }, fail) => {
       scene: r.sceneObjects || [],
       burnBand: !!document.querySelector('#replay .burn-band'),
       alias: (() => { const w = document.getElementById('spectrum-alias-warning'); return w && !w.hidden ? w.textContent : ''; })(),
+      warnings: document.querySelectorAll('#run-warnings li').length,
+      reqPass: document.querySelectorAll('#requirements-table tr.pass').length,
+      reqFail: document.querySelectorAll('#requirements-table tr.fail').length,
+      summaryRows: [...document.querySelectorAll('#run-summary tr')].map((tr) => [...tr.children].slice(0, 2).map((x) => x.textContent).join('')),
     };
   });
   console.log(`  cards [${st.cards.join(', ')}], spectrum ${st.spectrum}, replay ${st.replay}, dataflow ${st.dataflow} ` +
@@ -113,6 +118,12 @@ runCases('browser test', htmlDir, CASES, async (c, { page }, fail) => {
   if (c.alias === false && st.alias) fail(`aliasing warning where nothing aliases: '${st.alias.slice(0, 200)}'`);
   if (c.alias) console.log(`  ${st.alias.slice(0, 160)}...`);
   console.log(`  ${st.axes.length} plots' axes, ${st.constants.length} constant series, scene: ${st.scene.filter((x) => !/^(wheel|thruster|plume|fov:css):/.test(x)).join(' ')}`);
+  // the run's own summary (summary.txt's items, requirement lines in their own table), warnings, PASS/FAIL
+  const sy = c.story || { warnings: 0, pass: 0, fail: 0, rows: 0 };
+  if (st.warnings !== sy.warnings) fail(`${st.warnings} warnings shown, expected ${sy.warnings}`);
+  if (st.reqPass !== sy.pass || st.reqFail !== sy.fail) fail(`requirements ${st.reqPass} PASS ${st.reqFail} FAIL, expected ${sy.pass}/${sy.fail}`);
+  if (st.summaryRows.length !== sy.rows) fail(`${st.summaryRows.length} run-summary rows, expected ${sy.rows}`);
+  if (sy.row && !st.summaryRows.includes(sy.row)) fail(`run summary lacks '${sy.row}': ${st.summaryRows.join(' | ')}`);
   if (c.title && !st.title.includes(c.title)) fail(`scenario text not shown verbatim: ${st.title.slice(0, 120)}`);
   if (c.shot) {
     // a click on a time plot moves the replay to that time

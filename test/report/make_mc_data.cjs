@@ -132,6 +132,14 @@ function campaign({ runs, nT, dtT, keep, failing, invalid, levels, scenario, thr
     runs, failed, invalid: invalid.length, wall_seconds: r6(runs * 0.8),
     criteria, drawn, metrics, table,
     series: { t, channels, percentiles: { levels, columns: pcols }, runs: retained },
+    // what drives the failures, as kestrel mc writes it (figures made up: the page only shows them)
+    drivers: [
+      { criterion: 'settled', runs: runs - invalid.length, failed: failing.length, failing, ranked_by: 'delta',
+        ranked: [{ drawn: 'events[0].t', unit: 's', n: runs - invalid.length, auc: 0.95, delta: 0.9, p: 1e-4, rho: 0.7 },
+          { drawn: 'initial.omega_BN_B[0]', unit: 'rad/s', n: runs - invalid.length, auc: 0.55, delta: 0.1, p: 0.6, rho: 0.05 },
+          { drawn: 'spacecraft.inertia.angle_deg', unit: 'deg', n: runs - invalid.length, auc: 0.48, delta: -0.04, p: 0.8, rho: null }] },
+      { criterion: 'wheels', runs: runs - invalid.length, failed: 0, failing: [], ranked_by: 'rho', ranked: [] },
+    ],
   };
 }
 

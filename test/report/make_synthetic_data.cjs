@@ -235,6 +235,19 @@ function s2() {
     geometry: { wheel_axes_B: [], thrusters: thr, central_body: { name: 'Mars', mu: 4.2828314e13, radius: 3396190 },
       burn: { thruster: 'main', start: 30, duration: 220 }, sun: { t: [0], r_N: [[0, 2.279e11, 0]] },
       sensors: { star_tracker: { boresight_B: [0, 0, 1], sun_exclusion_deg: 0 } } },
+    // the run's own story as kestrel writes it (summary.txt's items in order)
+    summary: {
+      complete: { value: 1, unit: '', what: '1: the run reached its duration' },
+      on_time_main_s: { value: 480, unit: 's', what: 'valve-open time, whole run (every latched pulse, exact)' },
+      dv_nongrav_mps: { value: 1089.5, unit: 'm/s', what: 'the delivered (sensed) delta-v' },
+      requirement_settled: { value: 0.2, unit: 'deg', what: 'PASS: max of pointing_error_deg below 0.5' },
+    },
+    summary_order: ['complete', 'on_time_main_s', 'dv_nongrav_mps', 'requirement_settled'],
+    warnings: ['wheels[0] (rw1): its imbalance jitter is under-resolved (synthetic)'],
+    requirements: [
+      { name: 'settled', what: 'max of pointing_error_deg', unit: 'deg', below: true, threshold: 0.5, value: 0.2, pass: true },
+      { name: 'fuel', what: 'drop of propellant_kg', unit: 'kg', below: true, threshold: 100, value: 120, pass: false },
+    ],
   };
 }
 

@@ -52,6 +52,8 @@ runCases('Monte Carlo browser test', htmlDir, CASES, async (c, { page, ms }, fai
     criteriaText: (document.getElementById('mc-criteria') || {}).textContent || '',
     reasonCells: [...document.querySelectorAll('#mc-runs td.reason')].map((e) => e.textContent),
     hasHtmlFromData: !!document.querySelector('#criteria img, #mc-runs b, #mc-runs img'),
+    driverCards: [...document.querySelectorAll('#mc-drivers .card h3')].map((e) => e.textContent),
+    driverFailing: (document.querySelector('#mc-drivers .failing-runs') || {}).textContent || '',
   }));
   console.log(`  loaded in ${ms} ms: cards [${st.cards.join(', ')}], ${st.canvases} canvases, ${st.runLines} run lines, ` +
     `${st.hist} histograms (${st.thresholds} thresholds), ${st.rows.length} rows, ${st.links.length} links; ` +
@@ -80,6 +82,11 @@ runCases('Monte Carlo browser test', htmlDir, CASES, async (c, { page, ms }, fai
     if (!st.meta.includes(`failed ${E.failedHeader}`)) fail(`header lacks 'failed ${E.failedHeader}': ${st.meta}`);
     if (st.runLines !== 3 * E.retained) fail(`${st.runLines} run lines, expected ${E.retained} retained runs x 3 cards`);
     if (st.criteria !== 2) fail(`${st.criteria} criteria rows, expected 2`);
+    // what drives the failures: one card per criterion, the failing runs listed, the top driver named
+    if (st.driverCards.length !== 2) fail(`${st.driverCards.length} driver cards, expected 2`);
+    else if (!st.driverCards[0].includes('driven most by events[0].t') || !st.driverCards[1].includes('no run failed it'))
+      fail(`driver verdicts: ${st.driverCards.join(' | ')}`);
+    if (st.driverFailing !== 'Failing runs: #7, #19, #33, #41, #52') fail(`failing runs shown: '${st.driverFailing}'`);
 
     // sort by the first drawn value (column 5: run, seed, result, reason, drawn 0), then reverse
     const rowsNow = () => page.evaluate(() => [...document.querySelectorAll('#mc-runs tbody tr')].map((r) => Number(r.dataset.run)));

@@ -790,6 +790,39 @@ TEST(ThrusterLatch, ContinuousFiringAcrossPeriodsAndTruncation)
   EXPECT_EQ(v.counters().ignored_min_on, 1u);
 }
 
+// The valve-open time the plant keeps (ThrusterSet::valve_open_time) by
+// hand: a pulse a later latch cuts short counts to the cut, a stuck-open
+// valve for as long as it is stuck, a valve failed off mid-pulse to the
+// failure; with Instant thrust it equals the delivered impulse / F_max.
+TEST(ThrusterLatch, ValveOpenTimeCountsCutStuckAndFailedPulses)
+{
+  const auto t = axial(sim::ThrusterTransient::Instant);
+  sim::PropulsionParams p = one_thruster(t);  // T_upd = 100 ms
+  p.command.T_sat = std::numeric_limits<double>::infinity();
+  sim::Plant v({test_hub(), p}, sim::InitialConditions{});
+  auto steps = [&](int n) {
+    for (int k = 0; k < n; ++k) ASSERT_EQ(v.step(10 * kMs), sim::StepStatus::Ok);
+  };
+  v.command_thrusters(req(0.25));  // latched at 0, open 0.25 s unless cut
+  steps(5);                        // t = 50 ms
+  EXPECT_NEAR(v.thrusters().valve_open_time(0), 0.05, 1e-15);
+  v.command_thrusters(req(0.03));  // latched at 100 ms: the first pulse ends there
+  steps(45);                       // t = 500 ms
+  EXPECT_NEAR(v.thrusters().valve_open_time(0), 0.13, 1e-12);
+  v.set_thruster_health(0, sim::ThrusterHealth::StuckOn);
+  steps(20);                       // t = 700 ms
+  v.set_thruster_health(0, sim::ThrusterHealth::Nominal);
+  EXPECT_NEAR(v.thrusters().valve_open_time(0), 0.33, 1e-12);
+  steps(5);                        // t = 750 ms
+  v.command_thrusters(req(0.08));  // latched at 800 ms
+  steps(8);                        // t = 830 ms
+  v.set_thruster_health(0, sim::ThrusterHealth::FailedOff);
+  v.command_thrusters(req(0.08));  // ignored by a failed valve
+  steps(30);
+  EXPECT_NEAR(v.thrusters().valve_open_time(0), 0.36, 1e-12);
+  EXPECT_NEAR(impulse_time(v, t.F_max), 0.36, 1e-12);
+}
+
 TEST(ThrusterLatch, ValveTimerResolutionFloorsOnTime)
 {
   const auto t = axial(sim::ThrusterTransient::Instant);

@@ -234,10 +234,7 @@ void print_run(const RunCommand& c, const Scenario& sc, const RunOptions& opt, c
       << " s (real-time factor " << std::setprecision(4) << (r.wall_seconds > 0 ? sc.duration / r.wall_seconds : 0.0)
       << "x); final pointing error " << std::setprecision(4) << r.final_pointing_error_deg << " deg ("
       << describe(r.final_pointing_reference) << ")\n";
-  if (r.max_jitter_step > kJitterStepLimit)
-    err << "kestrel: warning: a jittering wheel reached |Omega| h = " << std::setprecision(3) << r.max_jitter_step
-        << " rad per plant step (> " << kJitterStepLimit
-        << "): its imbalance jitter is under-resolved; raise rates.plant_substeps (docs/performance.md)\n";
+  if (r.max_jitter_step > kJitterStepLimit) err << "kestrel: warning: " << jitter_reached_warning(r.max_jitter_step) << "\n";
   if (r.paced)
     out << "paced at " << r.pacing.scale << "x real time: tick lateness p50 " << r.pacing.lateness_p50_s * 1e6
         << " us, p99 " << r.pacing.lateness_p99_s * 1e6 << " us, max " << r.pacing.lateness_max_s * 1e6 << " us, "

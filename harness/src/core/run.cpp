@@ -448,6 +448,15 @@ std::vector<std::string> jitter_step_warnings(const Scenario& sc)
   return out;
 }
 
+std::string jitter_reached_warning(double max_step)
+{
+  std::ostringstream w;
+  w.precision(3);
+  w << "a jittering wheel reached |Omega| h = " << max_step << " rad per plant step (> " << kJitterStepLimit
+    << "): its imbalance jitter is under-resolved; raise rates.plant_substeps (docs/performance.md)";
+  return w.str();
+}
+
 bool Run::step_ticks(uint64_t n)
 {
   Impl& m = *impl_;
@@ -594,6 +603,14 @@ std::vector<SummaryItem> Run::summary() const
   double used = 0.0;
   for (int k = 0; k < m.plant.num_tanks(); ++k) used += m.plant.tanks()[static_cast<size_t>(k)].m_p0 - m.plant.m_prop(k);
   out.push_back({"propellant_used_kg", used, "kg", "all tanks, whole run"});
+  double on_total = 0.0;
+  for (int j = 0; j < m.plant.num_thr(); ++j) {
+    const double on = m.plant.thrusters().valve_open_time(j);
+    on_total += on;
+    out.push_back({"on_time_" + m.sc.thrusters[static_cast<size_t>(j)].name + "_s", on, "s",
+                   "valve-open time, whole run (every latched pulse, exact)"});
+  }
+  out.push_back({"on_time_total_s", on_total, "s", "valve-open time of all thrusters, whole run"});
   const double mu = m.sc.environment.mu;
   const BurnMonitor& bm = *m.burn;
   if (bm.burn.engine >= 0 && bm.start.set) {

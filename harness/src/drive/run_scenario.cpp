@@ -65,6 +65,14 @@ std::unique_ptr<FswEndpoint> make_remote_fsw(const Scenario& sc, const RunOption
   return r;
 }
 
+// A threshold as written in a scenario (shortest text that reads back).
+std::string fmt_number(double v)
+{
+  std::ostringstream s;
+  s << std::setprecision(10) << v;
+  return s.str();
+}
+
 void add_item(std::vector<SummaryItem>& v, const char* key, double value, const char* unit, const char* what)
 {
   v.push_back({key, value, unit, what});
@@ -134,13 +142,18 @@ void RunOutputs::open(Run& run, const std::vector<Override>& overrides, const st
       report_.emplace();
       run.add_sink(*report_);
     }
+    if (sc.monte_carlo && !sc.monte_carlo->criteria.empty()) {
+      requirements_.emplace(criterion_metrics(sc, run.recorder().layout()));
+      run.add_sink(*requirements_);
+    }
   }
   for (RecordSink* s : extra) run.add_sink(*s);
 }
 
 void RunOutputs::write_report(const Run& run, const RunResult& res)
 {
-  const std::string data = report_data_text(run, *report_, &res.status, res.paced ? &res.pacing : nullptr);
+  const RunStory story{summary_items(run, res), res.warnings, res.requirements};
+  const std::string data = report_data_text(run, *report_, &res.status, res.paced ? &res.pacing : nullptr, &story);
   write_file("report_data.json", data);
 #ifdef KESTREL_HAVE_REPORT
   try {
@@ -156,6 +169,7 @@ void RunOutputs::write(const Run& run, RunResult& res, const std::vector<Overrid
 {
   if (!files()) return;
   const Scenario& sc = run.scenario();
+  if (requirements_) res.requirements = requirement_results(*requirements_);
   if (h5_) written_.push_back("results.h5");
   if (csv_) written_.push_back("telemetry.csv");
   if (report_) write_report(run, res);
@@ -163,7 +177,7 @@ void RunOutputs::write(const Run& run, RunResult& res, const std::vector<Overrid
   std::ostringstream health;
   for (const std::string& l : run.fsw_health_lines()) health << l << "\n";
   write_file("fsw_health.txt", health.str());
-  write_file("summary.txt", summary_text(res.status, sc.duration, summary_items(run, res)));
+  write_file("summary.txt", summary_text(res.status, sc.duration, summary_items(run, res), res.warnings));
   // the manifest again, now saying how the run ended
   // (run.scenario(): with the events the live view added, so it replays them)
   write_text((work_ / "manifest.json").string(), manifest_text(sc, overrides, &res.status));
@@ -264,6 +278,7 @@ void finish_run(Run& run, const RemoteFsw* remote, RunResult& res)
   res.final_pointing_error_deg = run.final_pointing_error_deg();
   res.final_pointing_reference = run.final_pointing_reference();
   res.max_jitter_step = run.max_jitter_step();
+  if (res.max_jitter_step > kJitterStepLimit) res.warnings.push_back(jitter_reached_warning(res.max_jitter_step));
   RunStatus& st = res.status;
   st.complete = res.ok && run.done();
   st.ticks = run.tick();
@@ -278,18 +293,24 @@ std::vector<SummaryItem> summary_items(const Run& run, const RunResult& res)
   add_item(v, "complete", res.status.complete ? 1 : 0, "", "1: the run reached its duration");
   add_item(v, "t_reached", res.status.t_reached, "s", "time of the last recorded row");
   for (const SummaryItem& it : run.summary()) v.push_back(it);
+  for (const RequirementResult& r : res.requirements)
+    v.push_back({"requirement_" + r.name, r.value, r.unit == "-" ? "" : r.unit,
+                 std::string(r.pass ? "PASS: " : "FAIL: ") + r.what + (r.below ? " below " : " above ") +
+                     fmt_number(r.threshold)});
   if (res.paced) add_pacing_items(v, res.pacing);
   if (res.linked) add_link_items(v, res.link);
   return v;
 }
 
-std::string summary_text(const RunStatus& st, double duration, const std::vector<SummaryItem>& items)
+std::string summary_text(const RunStatus& st, double duration, const std::vector<SummaryItem>& items,
+                         const std::vector<std::string>& warnings)
 {
   std::ostringstream summ;
   summ << std::setprecision(10);
   if (!st.complete)
     summ << "# INCOMPLETE: stopped" << (st.stopped_by.empty() ? "" : " (" + st.stopped_by + ")") << " at t = "
          << st.t_reached << " s of " << duration << " s\n";
+  for (const std::string& w : warnings) summ << "# warning: " << w << "\n";
   for (const SummaryItem& it : items)
     summ << it.key << " = " << it.value << " " << it.unit << "    # " << it.what << "\n";
   return summ.str();
@@ -303,6 +324,12 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   RunOutputs outputs(opt.out_dir, opt.force);  // lock, refuse or replace: before anything is simulated
   if (opt.notice)
     for (const std::string& n : outputs.notes()) opt.notice(n);
+  res.warnings = jitter_step_warnings(sc);
+  RunOptions o = opt;  // the notices while running are the run's warnings too
+  o.notice = [&res, &opt](const std::string& msg) {
+    res.warnings.push_back(msg);
+    if (opt.notice) opt.notice(msg);
+  };
   RunPacing pacing;
   RunConfig cfg;
   cfg.keep_in_memory = false;  // streamed: memory does not grow with the duration
@@ -312,7 +339,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   cfg.accept_events = opt.control != nullptr;  // the live view's commands are events
   Run run(sc, std::move(cfg));
   outputs.open(run, opt.overrides, opt.extra_sinks);
-  drive(run, opt, pacing, res);
+  drive(run, o, pacing, res);
   finish_run(run, remote, res);
   outputs.write(run, res, opt.overrides);
   if (opt.control) opt.control->ended(run, res);

@@ -19,57 +19,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The columns a metric reads, and whether it takes their norm per row.
-struct Selection {
-  std::vector<size_t> cols;
-  bool norm = false;
-};
-
-// column: exact name; a quantity's name (its columns, norm per row); a
-// prefix ending in '*'.  Empty when nothing matches.
-Selection select_columns(const RecordLayout& l, const std::string& column)
-{
-  Selection s;
-  if (column.empty()) return s;
-  if (column.back() == '*') {
-    const std::string pre = column.substr(0, column.size() - 1);
-    for (size_t i = 0; i < l.columns.size(); ++i)
-      if (l.columns[i].name.compare(0, pre.size(), pre) == 0) s.cols.push_back(i);
-    return s;
-  }
-  for (size_t i = 0; i < l.columns.size(); ++i)
-    if (l.columns[i].name == column) {
-      s.cols.push_back(i);
-      return s;
-    }
-  for (const QuantityInfo& q : l.quantities)
-    if (q.name == column && q.num_cols > 1) {
-      for (size_t c = 0; c < q.num_cols; ++c) s.cols.push_back(q.first_col + c);
-      s.norm = true;
-      return s;
-    }
-  return s;
-}
-
-std::string unit_of(const RecordLayout& l, const Selection& s)
-{
-  return s.cols.empty() ? "" : l.columns[s.cols.front()].unit;
-}
-
 // The recorded rows of a run reduced to the plan's metrics and thinned
 // series, streaming (memory bounded for any duration).
 class McSink : public RecordSink {
  public:
-  explicit McSink(const McPlan& plan) : plan_(plan) {}
+  explicit McSink(const McPlan& plan) : plan_(plan), metrics_(plan.metrics) {}
 
-  void begin(const RecordLayout& layout, uint64_t) override
+  void begin(const RecordLayout& layout, uint64_t expected_rows) override
   {
-    sel_.clear();
-    for (const McMetric& m : plan_.metrics) sel_.push_back(select_columns(layout, m.column));
-    acc_.assign(plan_.metrics.size(), Acc{});
+    metrics_.begin(layout, expected_rows);
     series_cols_.clear();
     for (const std::string& c : plan_.series_columns) {
-      const Selection s = select_columns(layout, c);
+      const MetricSelection s = select_columns(layout, c);
       series_cols_.push_back(s.cols.empty() ? SIZE_MAX : s.cols.front());
     }
     series_.assign(plan_.series_rows.size() * plan_.series_columns.size(), std::nanf(""));
@@ -80,23 +41,9 @@ class McSink : public RecordSink {
 
   void write(const double* rows, size_t n) override
   {
+    metrics_.write(rows, n);
     for (size_t r = 0; r < n; ++r, ++row_) {
       const double* x = rows + r * ncols_;
-      const double t = x[0];
-      for (size_t m = 0; m < plan_.metrics.size(); ++m) {
-        const McMetric& mt = plan_.metrics[m];
-        if (t < mt.after || (mt.until >= 0.0 && t > mt.until)) continue;
-        const Selection& s = sel_[m];
-        if (s.norm) {
-          double q = 0.0;
-          for (size_t c : s.cols) q += x[c] * x[c];
-          acc_[m].add(std::sqrt(q));
-          acc_[m].end_row(1);
-        } else {
-          for (size_t c : s.cols) acc_[m].add(x[c]);
-          acc_[m].end_row(s.cols.size());
-        }
-      }
       if (next_sample_ < plan_.series_rows.size() && row_ == plan_.series_rows[next_sample_]) {
         for (size_t c = 0; c < series_cols_.size(); ++c)
           if (series_cols_[c] != SIZE_MAX)
@@ -108,58 +55,12 @@ class McSink : public RecordSink {
 
   void end(bool) override {}
 
-  std::vector<double> metrics() const
-  {
-    std::vector<double> out;
-    for (size_t m = 0; m < plan_.metrics.size(); ++m) out.push_back(acc_[m].value(plan_.metrics[m].stat));
-    return out;
-  }
+  std::vector<double> metrics() const { return metrics_.values(); }
   std::vector<float> series() const { return series_; }
 
  private:
-  struct Acc {
-    uint64_t n = 0, errors = 0;
-    bool nan = false;
-    double mx = -INFINITY, mn = INFINITY, mxabs = 0.0, sum = 0.0, sum2 = 0.0;
-    double first = NAN, last = NAN;       // first / last value (several columns: their maximum)
-    double row_max = -INFINITY;
-    void add(double v)
-    {
-      if (std::isnan(v)) nan = true;
-      ++n;
-      mx = std::max(mx, v);
-      mn = std::min(mn, v);
-      mxabs = std::max(mxabs, std::fabs(v));
-      sum += v;
-      sum2 += v * v;
-      if (v < 0.0) ++errors;
-      row_max = std::max(row_max, v);
-    }
-    // a row of k separate columns ends: its largest value is the row's "final"
-    void end_row(size_t k)
-    {
-      if (k == 0) return;
-      if (std::isnan(first)) first = row_max;
-      last = row_max;
-      row_max = -INFINITY;
-    }
-    double value(const std::string& stat) const
-    {
-      if (n == 0 || nan) return NAN;
-      if (stat == "max") return mx;
-      if (stat == "min") return mn;
-      if (stat == "max_abs") return mxabs;
-      if (stat == "mean") return sum / static_cast<double>(n);
-      if (stat == "rms") return std::sqrt(sum2 / static_cast<double>(n));
-      if (stat == "error_count") return static_cast<double>(errors);
-      if (stat == "final") return last;
-      if (stat == "drop") return first - last;
-      return NAN;
-    }
-  };
   const McPlan& plan_;
-  std::vector<Selection> sel_;
-  std::vector<Acc> acc_;
+  MetricSink metrics_;
   std::vector<size_t> series_cols_;
   std::vector<float> series_;
   size_t ncols_ = 0;
@@ -185,7 +86,7 @@ void require_monte_carlo(const Scenario& nominal)
 void add_default_metrics(McPlan& p, const RecordLayout& l)
 {
   auto add = [&](const std::string& name, const std::string& column, const std::string& stat, const std::string& what) {
-    const Selection s = select_columns(l, column);
+    const MetricSelection s = select_columns(l, column);
     if (s.cols.empty()) return;
     McMetric m;
     m.col = {name, stat == "error_count" ? "-" : unit_of(l, s), what};
@@ -200,41 +101,12 @@ void add_default_metrics(McPlan& p, const RecordLayout& l)
   add("fsw_errors", "fsw_status", "error_count", "recorded rows with an FSW error status");
 }
 
-// Criterion i as a metric (throws ScenarioError when its column is not recorded).
-McMetric criterion_metric(const Scenario& nominal, const RecordLayout& l, size_t i)
-{
-  const CriterionSpec& c = nominal.monte_carlo->criteria[i];
-  const Selection s = select_columns(l, c.column);
-  if (s.cols.empty()) {
-    ScenarioIssue is;
-    is.file = nominal.source_file;
-    is.line = c.line;
-    is.column = c.column_no;
-    is.key = "monte_carlo.criteria[" + std::to_string(i) + "].column";
-    is.message = "'" + c.column + "' is not recorded by this scenario (a column, a vector quantity or a prefix*; "
-                 "see the columns of results.h5 / telemetry.csv)";
-    throw ScenarioError({is});
-  }
-  McMetric m;
-  std::string range = c.after > 0.0 ? " for t >= " + fmt(c.after) + " s" : "";
-  if (c.until) range += (range.empty() ? " for t <= " : " and t <= ") + fmt(*c.until) + " s";
-  m.col = {c.name, c.stat == "error_count" ? "-" : unit_of(l, s), c.stat + " of " + c.column + range};
-  m.column = c.column;
-  m.stat = c.stat;
-  m.after = c.after;
-  m.until = c.until ? *c.until : -1.0;
-  m.criterion = static_cast<int>(i);
-  m.below = c.below.has_value();
-  m.threshold = c.below ? *c.below : *c.above;
-  return m;
-}
-
 // The thinned channels (what the campaign report overlays) and the recorded
 // rows they sample.
 void add_series(McPlan& p, const RecordLayout& l, uint64_t rows)
 {
   auto channel = [&](const std::string& name, const std::string& column) {
-    const Selection s = select_columns(l, column);
+    const MetricSelection s = select_columns(l, column);
     if (s.cols.empty()) return;
     std::vector<std::string> cols;
     for (size_t c : s.cols) cols.push_back(l.columns[c].name);
@@ -276,7 +148,7 @@ McPlan make_mc_plan(const Scenario& nominal, uint64_t master_seed, uint64_t runs
   const Run run(probe, std::move(rc));
   const RecordLayout& l = run.recorder().layout();
   add_default_metrics(p, l);
-  for (size_t i = 0; i < nominal.monte_carlo->criteria.size(); ++i) p.metrics.push_back(criterion_metric(nominal, l, i));
+  for (McMetric& m : criterion_metrics(nominal, l)) p.metrics.push_back(std::move(m));
   add_series(p, l, run.recorder().capacity());
   return p;
 }
@@ -353,14 +225,9 @@ void run_draw(const McPlan& plan, const Scenario& sc, const fs::path& dir, bool 
 std::string failed_criterion(const McPlan& plan, const std::vector<double>& metrics)
 {
   for (size_t m = 0; m < plan.metrics.size(); ++m) {
-    const McMetric& mt = plan.metrics[m];
-    if (mt.criterion < 0) continue;
-    const double v = metrics[m];
-    const bool ok = mt.below ? v < mt.threshold : v > mt.threshold;
-    if (!ok)
-      return mt.col.name + ": " + mt.col.what + " = " + (std::isnan(v) ? std::string("not available") : fmt(v)) +
-             (mt.below ? ", not below " : ", not above ") + fmt(mt.threshold) +
-             (mt.col.unit.empty() || mt.col.unit == "-" ? "" : " " + mt.col.unit);
+    if (plan.metrics[m].criterion < 0) continue;
+    const std::string f = criterion_failure(plan.metrics[m], metrics[m]);
+    if (!f.empty()) return f;
   }
   return "";
 }

@@ -14,6 +14,7 @@
 
 #include "output/h5_util.h"
 #include "harness/mc/monte_carlo.h"
+#include "harness/mc/mc_sensitivity.h"
 #include "harness/drive/run_scenario.h"
 #include "harness/core/run.h"
 
@@ -386,6 +387,31 @@ json series_run_json(const McPlan& plan, const McRecord& r)
   return {{"index", r.index}, {"pass", r.pass}, {"columns", cols}};
 }
 
+// What drives each criterion's failures (mc_sensitivity.h): per criterion,
+// the failing runs and the drawn values ranked.
+json drivers_json(const McPlan& plan, const McRecordSource& src)
+{
+  json out = json::array();
+  for (const McCriterionDrivers& c : mc_sensitivity(plan, src)) {
+    json ranked = json::array();
+    for (const McDriver& d : c.ranked)
+      ranked.push_back({{"drawn", plan.drawn[d.drawn].name},
+                        {"unit", plan.drawn[d.drawn].unit},
+                        {"n", d.n},
+                        {"auc", finite_or_null(d.auc)},
+                        {"delta", finite_or_null(d.delta)},
+                        {"p", finite_or_null(d.p)},
+                        {"rho", finite_or_null(d.rho)}});
+    out.push_back({{"criterion", plan.metrics[c.metric].col.name},
+                   {"runs", c.runs},
+                   {"failed", c.failed},
+                   {"failing", c.failing},
+                   {"ranked_by", c.failed > 0 && c.failed < c.runs ? "delta" : "rho"},
+                   {"ranked", ranked}});
+  }
+  return out;
+}
+
 // mc_report_data.json in three pieces around its two long arrays: before
 // series.runs (the first kReportRuns valid runs in table order), between
 // it and the table (every run), after the table.  The arrays are written
@@ -412,6 +438,9 @@ std::vector<std::string> report_json_pieces(const McPlan& plan, const McRecordSo
   j["invalid"] = invalid;
   j["wall_seconds"] = info.wall_seconds;
   add_columns(plan, j);
+  j["drivers"] = drivers_json(plan, src);
+  j["drivers_method"] = {{"runs_used_max", kSensitivityMaxRuns},
+                         {"doc", "docs/monte-carlo.md, What drives the failures"}};
   j["table"] = kTable;
   j["series"] = series_json(plan, scratch);
   j["series"]["runs"] = kRuns;

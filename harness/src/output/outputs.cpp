@@ -152,7 +152,7 @@ std::string geometry_json_text(const Run& run)
 }
 
 std::string report_data_text(const Run& run, const ReportSink& report, const RunStatus* status,
-                             const PacingStats* pacing)
+                             const PacingStats* pacing, const RunStory* story)
 {
   const Scenario& sc = run.scenario();
   json j;
@@ -190,10 +190,23 @@ std::string report_data_text(const Run& run, const ReportSink& report, const Run
       ev.push_back({{"name", e.name}, {"tick", e.tick}, {"t", e.t}, {"actions", e.what}});
     j["events"] = ev;
   }
+  const auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
   json summ = json::object();
-  for (const SummaryItem& it : run.summary())
-    summ[it.key] = {{"value", std::isfinite(it.value) ? json(it.value) : json(nullptr)}, {"unit", it.unit}, {"what", it.what}};
+  for (const SummaryItem& it : story ? story->summary : run.summary())
+    summ[it.key] = {{"value", num(it.value)}, {"unit", it.unit}, {"what", it.what}};
   j["summary"] = summ;
+  if (story) {
+    // the order of summary.txt (a JSON object's keys are not ordered)
+    json order = json::array();
+    for (const SummaryItem& it : story->summary) order.push_back(it.key);
+    j["summary_order"] = order;
+    j["warnings"] = story->warnings;
+    json req = json::array();
+    for (const RequirementResult& r : story->requirements)
+      req.push_back({{"name", r.name}, {"what", r.what}, {"unit", r.unit}, {"below", r.below},
+                     {"threshold", num(r.threshold)}, {"value", num(r.value)}, {"pass", r.pass}});
+    j["requirements"] = req;
+  }
   // the (large) series are written by the sink directly, not through a JSON tree
   std::string text = j.dump();
   text.pop_back();  // the closing brace

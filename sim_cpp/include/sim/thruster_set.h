@@ -59,6 +59,11 @@ class ThrusterSet final : public ForceTorqueEffector {
   const ValveSchedule& schedule(int j) const { return sched_[static_cast<size_t>(j)]; }
   ThrusterHealth health(int j) const { return health_[static_cast<size_t>(j)]; }
   const ThrusterCounters& counters() const { return counters_; }
+  // [s] Time thruster j's valve has been open since the start, up to now
+  // (the last prepare_now): every latched pulse's open time, a pulse that a
+  // later latch or a health change cut short counted up to the cut, the
+  // running one up to now.  Exact: from the valve schedules, not sampled.
+  double valve_open_time(int j) const;
   // F, L about B, mdot of thruster j now; zero when its tank in x is empty or it failed off.
   ThrusterEffect effect(int j, const StateVector& x, const StateLayout& L) const;
 
@@ -137,6 +142,7 @@ class ThrusterSet final : public ForceTorqueEffector {
   mutable std::array<ActiveThruster, kMaxThrusters> active_{};
   mutable int num_active_ = 0;
   ThrusterCounters counters_;
+  ThrusterArray open_done_{};  // [s] valve-open time of the replaced schedules (valve_open_time)
 };
 
 }  // namespace sim

@@ -57,6 +57,8 @@ bool wheel_jitters(const sim::ReactionWheelParams& p);
 // Before a run: the jittering wheels whose initial speed breaks the limit,
 // each as "wheels[i] (name): ..." with the sub-steps that would meet it.
 std::vector<std::string> jitter_step_warnings(const Scenario& sc);
+// After a run: its largest |Omega| h (Run::max_jitter_step) broke the limit.
+std::string jitter_reached_warning(double max_step);
 // The sub-steps per tick that keep |Omega| dt / n within the limit.
 uint32_t substeps_for(double Omega_abs, double dt);
 

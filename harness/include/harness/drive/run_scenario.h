@@ -80,6 +80,14 @@ struct RunResult {
   std::vector<std::string> files;  // written, in order (paths in the results folder)
   bool linked = false;             // the FSW ran behind the link (RunOptions::fsw_link)
   LinkCounters link;               // ... and what the link counted
+  // Every warning of the run, in order: the scenario's before it started
+  // (jitter_step_warnings), the notices while it ran (RunOptions::notice)
+  // and its figures' after it ended (jitter_reached_warning).  Written into
+  // summary.txt and report_data.json.
+  std::vector<std::string> warnings;
+  // The scenario's requirement lines (monte_carlo.criteria) evaluated on
+  // this run (runs with a results folder; metrics.h).
+  std::vector<RequirementResult> requirements;
 };
 
 // Runs a scenario to the end, streaming its results into opt.out_dir (memory

@@ -64,6 +64,7 @@ class RunOutputs {
   std::optional<Hdf5Sink> h5_;
   std::optional<CsvSink> csv_;
   std::optional<ReportSink> report_;
+  std::optional<MetricSink> requirements_;  // the scenario's criteria, when it has some
 };
 
 // Wall-clock pacing of a run (pacer.h).  Made before the run: the FSW link
@@ -105,12 +106,15 @@ void drive(Run& run, const RunOptions& opt, RunPacing& pacing, RunResult& res);
 void finish_run(Run& run, const RemoteFsw* remote, RunResult& res);
 
 // What summary.txt lists, in order: complete, t_reached, Run::summary(),
-// the pacing figures (rt_*, paced runs) and the link figures (link_*, the
-// FSW behind the link).
+// the requirement lines (requirement_<name>: the measured value, PASS or
+// FAIL in the description), the pacing figures (rt_*, paced runs) and the
+// link figures (link_*, the FSW behind the link).
 std::vector<SummaryItem> summary_items(const Run& run, const RunResult& res);
-// summary.txt: "# INCOMPLETE..." when the run did not end, then one line per
-// item: "key = value unit    # description" (10 significant digits).
-std::string summary_text(const RunStatus& st, double duration, const std::vector<SummaryItem>& items);
+// summary.txt: "# INCOMPLETE..." when the run did not end, "# warning: ..."
+// per warning, then one line per item: "key = value unit    # description"
+// (10 significant digits).
+std::string summary_text(const RunStatus& st, double duration, const std::vector<SummaryItem>& items,
+                         const std::vector<std::string>& warnings = {});
 
 }  // namespace harness
 

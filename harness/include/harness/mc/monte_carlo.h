@@ -23,23 +23,11 @@
 #include <string>
 #include <vector>
 
+#include "harness/output/metrics.h"  // McMetric
 #include "harness/scenario/mc_column.h"
 #include "harness/scenario/scenario.h"
 
 namespace harness {
-
-// A figure computed from each run's recorded rows: `stat` of `column` over
-// after <= t <= until (CriterionSpec); a criterion adds a threshold.
-struct McMetric {
-  McColumn col;             // name, unit, description
-  std::string column;       // column, quantity (norm per row) or prefix*
-  std::string stat;         // max, min, max_abs, final, mean, rms, error_count, drop
-  double after = 0.0;
-  double until = -1.0;      // < 0: to the end
-  int criterion = -1;       // index into the criteria, -1: a plain metric
-  bool below = true;        // criterion: pass when value < threshold (else >)
-  double threshold = 0.0;
-};
 
 struct McBinding;  // the dispersions bound to the nominal scenario (private)
 

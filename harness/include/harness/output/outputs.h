@@ -26,6 +26,7 @@
 
 #include "harness/core/recorder.h"
 #include "harness/core/run.h"
+#include "harness/output/metrics.h"
 #include "harness/scenario/scenario.h"
 
 namespace harness {
@@ -126,11 +127,20 @@ struct RunStatus {
 // status, also a "result" object saying how the run ended.
 std::string manifest_text(const Scenario& sc, const std::vector<Override>& overrides,
                           const RunStatus* status = nullptr);
+// What a run says of itself, written alike into summary.txt and
+// report_data.json (one source): the summary items, every warning the run
+// printed, and the scenario's requirement lines evaluated on the run.
+struct RunStory {
+  std::vector<SummaryItem> summary;
+  std::vector<std::string> warnings;
+  std::vector<RequirementResult> requirements;
+};
 // report_data.json from a finished run and its report sink (with a status,
 // meta also has t_reached and stopped_by; with pacing figures, the rt_*
-// figures of summary.txt).
+// figures of summary.txt).  With a story: its summary, "warnings" and
+// "requirements"; without: Run::summary() alone.
 std::string report_data_text(const Run& run, const ReportSink& report, const RunStatus* status = nullptr,
-                             const PacingStats* pacing = nullptr);
+                             const PacingStats* pacing = nullptr, const RunStory* story = nullptr);
 // The report's "geometry" object (wheel axes and positions, thrusters), as
 // JSON text: report_data.json and the live view.
 std::string geometry_json_text(const Run& run);
