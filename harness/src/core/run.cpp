@@ -586,6 +586,51 @@ double Run::max_jitter_step() const
   return impl_->max_jitter_Omega * static_cast<double>(impl_->substep_ns) * 1e-9;
 }
 
+// The burn's figures of the summary: start and end, the delivered delta-v
+// against the rocket equation, the orbit at burn start (mu > 0).
+static void burn_summary(const BurnMonitor& bm, const Scenario& sc, double mu, int num_tanks, double max_err_burn,
+                         std::vector<SummaryItem>& out)
+{
+  if (bm.burn.engine >= 0 && bm.start.set) {
+    const BurnMonitor::Snap& a = bm.start;
+    const bool ended = bm.end.set;
+    const BurnMonitor::Snap& b = ended ? bm.end : a;
+    const ThrusterSpec& eng = sc.thrusters[static_cast<size_t>(bm.burn.engine)];
+    out.push_back({"burn_start_s", a.t, "s", "engine open (first command instant at or after burn.start)"});
+    out.push_back({"burn_end_s", ended ? b.t : std::numeric_limits<double>::quiet_NaN(), "s",
+                   "engine closed and its thrust below 1e-3 F_max"});
+    out.push_back({"burn_complete", ended ? 1.0 : 0.0, "-", "1 if the burn ended before the end of the run"});
+    out.push_back({"max_pointing_error_burn_deg", max_err_burn * kRadToDeg, "deg",
+                   "largest recorded pointing error between burn start and end"});
+    if (ended) {
+      const double m0 = a.m, m1 = b.m;
+      // propellant of the engine's tank (tank 0); with rcs_tank the ACS
+      // thrusters draw from tank 1, so tank 0 is the engine's alone
+      const double dm_main = a.m_p[0] - b.m_p[0];
+      const double dm_rcs = num_tanks > 1 ? a.m_p[1] - b.m_p[1] : 0.0;
+      const double dv = (b.dv_ng - a.dv_ng).norm();
+      const double ve = sim::kG0 * eng.Isp;
+      const double dm_rocket = m0 * (1.0 - std::exp(-dv / ve));
+      out.push_back({"mass_before_burn_kg", m0, "kg", "total mass at burn start"});
+      out.push_back({"mass_after_burn_kg", m1, "kg", "total mass at burn end"});
+      out.push_back({"propellant_engine_kg", dm_main, "kg", "tank 0 propellant used during the burn"});
+      out.push_back({"propellant_rcs_burn_kg", dm_rcs, "kg", "rcs_tank propellant used during the burn"});
+      out.push_back({"dv_nongrav_mps", dv, "m/s",
+                     "|v_C(end) - v_C(start) - integral of gravity|: the delivered (sensed) delta-v"});
+      out.push_back({"dv_rocket_mps", ve * std::log(m0 / (m0 - dm_main)), "m/s",
+                     "g0 Isp ln(m0 / (m0 - engine propellant)): rocket equation"});
+      out.push_back({"propellant_rocket_kg", dm_rocket, "kg", "m0 (1 - exp(-dv_nongrav / (g0 Isp)))"});
+      out.push_back({"propellant_vs_rocket_rel", dm_main / dm_rocket - 1.0, "-",
+                     "engine propellant / rocket-equation propellant - 1"});
+    }
+    if (mu > 0.0) {
+      const sim::OrbitElements o0 = sim::elements_from_rv(mu, a.r, a.v);
+      out.push_back({"orbit_before_e", o0.e, "-", "osculating eccentricity at burn start"});
+      out.push_back({"orbit_before_r_p_km", o0.r_p * 1e-3, "km", "periapsis radius at burn start"});
+    }
+  }
+}
+
 std::vector<SummaryItem> Run::summary() const
 {
   const Impl& m = *impl_;
@@ -612,45 +657,7 @@ std::vector<SummaryItem> Run::summary() const
   }
   out.push_back({"on_time_total_s", on_total, "s", "valve-open time of all thrusters, whole run"});
   const double mu = m.sc.environment.mu;
-  const BurnMonitor& bm = *m.burn;
-  if (bm.burn.engine >= 0 && bm.start.set) {
-    const BurnMonitor::Snap& a = bm.start;
-    const bool ended = bm.end.set;
-    const BurnMonitor::Snap& b = ended ? bm.end : a;
-    const ThrusterSpec& eng = m.sc.thrusters[static_cast<size_t>(bm.burn.engine)];
-    out.push_back({"burn_start_s", a.t, "s", "engine open (first command instant at or after burn.start)"});
-    out.push_back({"burn_end_s", ended ? b.t : std::numeric_limits<double>::quiet_NaN(), "s",
-                   "engine closed and its thrust below 1e-3 F_max"});
-    out.push_back({"burn_complete", ended ? 1.0 : 0.0, "-", "1 if the burn ended before the end of the run"});
-    out.push_back({"max_pointing_error_burn_deg", m.metrics->max_err_burn * kRadToDeg, "deg",
-                   "largest recorded pointing error between burn start and end"});
-    if (ended) {
-      const double m0 = a.m, m1 = b.m;
-      // propellant of the engine's tank (tank 0); with rcs_tank the ACS
-      // thrusters draw from tank 1, so tank 0 is the engine's alone
-      const double dm_main = a.m_p[0] - b.m_p[0];
-      const double dm_rcs = m.plant.num_tanks() > 1 ? a.m_p[1] - b.m_p[1] : 0.0;
-      const double dv = (b.dv_ng - a.dv_ng).norm();
-      const double ve = sim::kG0 * eng.Isp;
-      const double dm_rocket = m0 * (1.0 - std::exp(-dv / ve));
-      out.push_back({"mass_before_burn_kg", m0, "kg", "total mass at burn start"});
-      out.push_back({"mass_after_burn_kg", m1, "kg", "total mass at burn end"});
-      out.push_back({"propellant_engine_kg", dm_main, "kg", "tank 0 propellant used during the burn"});
-      out.push_back({"propellant_rcs_burn_kg", dm_rcs, "kg", "rcs_tank propellant used during the burn"});
-      out.push_back({"dv_nongrav_mps", dv, "m/s",
-                     "|v_C(end) - v_C(start) - integral of gravity|: the delivered (sensed) delta-v"});
-      out.push_back({"dv_rocket_mps", ve * std::log(m0 / (m0 - dm_main)), "m/s",
-                     "g0 Isp ln(m0 / (m0 - engine propellant)): rocket equation"});
-      out.push_back({"propellant_rocket_kg", dm_rocket, "kg", "m0 (1 - exp(-dv_nongrav / (g0 Isp)))"});
-      out.push_back({"propellant_vs_rocket_rel", dm_main / dm_rocket - 1.0, "-",
-                     "engine propellant / rocket-equation propellant - 1"});
-    }
-    if (mu > 0.0) {
-      const sim::OrbitElements o0 = sim::elements_from_rv(mu, a.r, a.v);
-      out.push_back({"orbit_before_e", o0.e, "-", "osculating eccentricity at burn start"});
-      out.push_back({"orbit_before_r_p_km", o0.r_p * 1e-3, "km", "periapsis radius at burn start"});
-    }
-  }
+  burn_summary(*m.burn, m.sc, mu, m.plant.num_tanks(), m.metrics->max_err_burn, out);
   if (mu > 0.0) {
     const TruthMsg& t = m.truth_ch->value();  // the last tick run
     const Eigen::Vector3d r(t.r_CN_N[0], t.r_CN_N[1], t.r_CN_N[2]), v(t.v_CN_N[0], t.v_CN_N[1], t.v_CN_N[2]);
