@@ -12,6 +12,9 @@ Usage:
   icd_gen.py [--root DIR]                 write the files
   icd_gen.py --check [--root DIR]         exit 1 naming every stale file
   icd_gen.py --check-docs [--root DIR]    docs/icd.md's tables against the table
+  icd_gen.py --check-app [--root DIR]     the cFS application's message ids, command
+                                           codes and lengths against the table (exit
+                                           77 when apps/cfs/kestrel_acs is not there)
   icd_gen.py --counts n_rw=4,n_css=6,n_thr=8,n_mtq=0 --cosmos-out DIR
                                            COSMOS files for another configuration
 Python 3 standard library and PyYAML only.
@@ -50,7 +53,7 @@ def check_fields(where, fields, allow_counts=True):
         if f["type"] not in TYPES:
             raise TableError("%s (%s): unknown type '%s'" % (w, f["name"], f["type"]))
         known = {"name", "type", "count", "unit", "flag", "value", "max", "enum", "bits", "bits_cap", "elements",
-                 "desc"}
+                 "max_value", "desc"}
         extra = set(f) - known
         if extra:
             raise TableError("%s (%s): unknown key(s) %s" % (w, f["name"], ", ".join(sorted(extra))))
@@ -264,6 +267,8 @@ class Xtce:
             desc = f.get("desc", "")
             if "value" in f:
                 desc = (desc + "; " if desc else "") + "always %s" % f["value"]
+            if "max_value" in f:
+                desc = (desc + "; " if desc else "") + "at most %s" % f["max_value"]
             if f.get("flag"):
                 desc = (desc + "; " if desc else "") + "flag 0/1"
             if "bits" in f:
@@ -720,6 +725,53 @@ def eval_lin(e, cnt):
     return e["const"] + sum(c * cnt[n] for n, c in e["per"].items())
 
 
+# ---- the cFS application's constants -------------------------------------------
+
+APP_DIR = os.path.join("apps", "cfs", "kestrel_acs")
+
+
+def app_defines(root):
+    """#define NAME <integer> of the application's headers."""
+    out = {}
+    for sub, _, files in os.walk(os.path.join(root, APP_DIR, "fsw")):
+        for f in files:
+            if f.endswith(".h"):
+                with open(os.path.join(sub, f), encoding="utf-8") as fh:
+                    pat = r"^#define\s+(KESTREL_ACS_\w+)\s+\(?(0[xX][0-9A-Fa-f]+|\d+)[uU]?\)?\s*(?:/\*.*)?$"
+                    for m in re.finditer(pat, fh.read(), re.M):
+                        out[m.group(1)] = int(m.group(2), 0)
+    return out
+
+
+def check_app(d, defs):
+    """Every problem of the application's message ids, command codes and
+    payload lengths (KESTREL_ACS_<NAME>_MID/_CC/_LEN, KESTREL_ACS_HK_LEN)."""
+    cfs = d["cfs"]
+    problems = []
+
+    def expect(name, value):
+        if name not in defs:
+            problems.append("%s is not defined" % name)
+        elif defs[name] != value:
+            problems.append("%s is %d (0x%X), the table says %d (0x%X)" % (name, defs[name], defs[name], value, value))
+    for m in cfs["commands"] + cfs["telemetry"]:
+        expect(m["name"], m["mid"])
+    for m in cfs["commands"]:
+        # a bare request (one code, no payload: SEND_HK) needs no constants;
+        # checked when the application defines them all the same
+        bare = len(m["codes"]) == 1 and m["codes"][0].get("fields") == []
+        for cc in m["codes"]:
+            names = [("KESTREL_ACS_%s_CC" % cc["name"], cc["cc"])]
+            if "fields" in cc:
+                names.append(("KESTREL_ACS_%s_LEN" % cc["name"], cc["payload_size"]))
+            for name, value in names:
+                if not bare or name in defs:
+                    expect(name, value)
+    hk = next(m for m in cfs["telemetry"] if "fields" in m)
+    expect("KESTREL_ACS_HK_LEN", hk["payload_size"])
+    return problems
+
+
 # ---- main ------------------------------------------------------------------
 
 def render(root):
@@ -735,6 +787,7 @@ def main(argv=None):
     ap.add_argument("--root", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
     ap.add_argument("--check", action="store_true", help="fail when a generated file is stale")
     ap.add_argument("--check-docs", action="store_true", help="docs/icd.md's tables against the table")
+    ap.add_argument("--check-app", action="store_true", help="the cFS application's ids against the table")
     ap.add_argument("--counts", help="n_rw=..,n_css=..,n_thr=..,n_mtq=.. for the COSMOS files")
     ap.add_argument("--cosmos-out", help="folder for the COSMOS files of --counts")
     a = ap.parse_args(argv)
@@ -758,6 +811,14 @@ def main(argv=None):
             with open(os.path.join(a.cosmos_out or ".", name), "w", encoding="utf-8") as fh:
                 fh.write(text)
         return 0
+    if a.check_app:
+        if not os.path.isdir(os.path.join(a.root, APP_DIR)):
+            print("icd_gen: %s is not in this tree: nothing to check" % APP_DIR)
+            return 77
+        problems = check_app(d, app_defines(a.root))
+        for p in problems:
+            print("%s: %s" % (APP_DIR, p), file=sys.stderr)
+        return 1 if problems else 0
     if a.check_docs:
         with open(os.path.join(a.root, "docs", "icd.md"), encoding="utf-8") as fh:
             problems = check_docs(d, fh.read())

@@ -76,6 +76,8 @@ class Dictionary:
                     raise DecodeError("flag %s = %d" % (f["name"], x))
                 if "value" in f and x != f["value"]:
                     raise DecodeError("%s = %d, not %d" % (f["name"], x, f["value"]))
+                if "max_value" in f and x > f["max_value"]:
+                    raise DecodeError("%s = %d, above %d" % (f["name"], x, f["max_value"]))
             if "max" in f and v[0] > caps[f["max"]]:
                 raise DecodeError("count %s = %d beyond %s = %d" % (f["name"], v[0], f["max"], caps[f["max"]]))
             if "bits_cap" in f and v[0] >> caps[f["bits_cap"]]:

@@ -130,6 +130,9 @@ class Dict(unittest.TestCase):
         b = bytearray(h)
         b[14 + 7] = 15  # stage count
         self.refused(reseal(b), "num_stages")
+        b = bytearray(self.sample("link_status"))
+        b[14 + 36:14 + 38] = (16384).to_bytes(2, "big")  # last_seq beyond the sequence counter
+        self.refused(reseal(b), "last_seq")
 
     def test_thr_avail_bits_beyond_the_capacity_are_refused(self):
         s = bytearray(self.sample("sensor"))
@@ -231,6 +234,28 @@ class Dict(unittest.TestCase):
                 g.load_table(p)
             self.assertIn(msg, str(cm.exception))
             self.assertIn("packet sensor.fields[7] (Omega)", str(cm.exception))
+
+    def test_cfs_app_constants_check(self):
+        g = gen()
+        good = {"KESTREL_ACS_CMD_MID": 0x18F0, "KESTREL_ACS_LINK_MID": 0x18F1, "KESTREL_ACS_SEND_HK_MID": 0x18F2,
+                "KESTREL_ACS_HK_TLM_MID": 0x08F0, "KESTREL_ACS_ACTUATOR_TLM_MID": 0x08F1,
+                "KESTREL_ACS_HEALTH_TLM_MID": 0x08F2, "KESTREL_ACS_LINK_CC": 0, "KESTREL_ACS_HK_LEN": 24}
+        for cc, (name, length) in enumerate([("NOOP", 0), ("RESET_COUNTERS", 0), ("SET_MODE", 4), ("SET_ACTUATION", 4),
+                                             ("SET_REFERENCE", 24), ("SET_GAINS", 16), ("SET_MOMENTUM_POLICY", 4)]):
+            good["KESTREL_ACS_%s_CC" % name] = cc
+            good["KESTREL_ACS_%s_LEN" % name] = length
+        app = os.path.join(ARGS.tmp, "app", g.APP_DIR, "fsw", "inc")
+        os.makedirs(app, exist_ok=True)
+        with open(os.path.join(app, "ids.h"), "w") as fh:
+            fh.write("".join("#define %s 0x%Xu /* x */\n" % kv for kv in good.items()))
+        self.assertEqual(g.check_app(self.d.d, g.app_defines(os.path.join(ARGS.tmp, "app"))), [])
+        for name, value in (("KESTREL_ACS_SET_GAINS_LEN", 17), ("KESTREL_ACS_HEALTH_TLM_MID", 0x08F3),
+                            ("KESTREL_ACS_SET_MODE_CC", 3)):
+            bad = dict(good, **{name: value})
+            self.assertEqual(g.check_app(self.d.d, bad), ["%s is %d (0x%X), the table says %d (0x%X)"
+                                                          % (name, value, value, good[name], good[name])])
+        del good["KESTREL_ACS_NOOP_CC"]
+        self.assertEqual(g.check_app(self.d.d, good), ["KESTREL_ACS_NOOP_CC is not defined"])
 
     def test_xtce_references_resolve(self):
         ns = {"x": "http://www.omg.org/spec/XTCE/20180204"}
