@@ -114,8 +114,13 @@ def layout(fields, base=0):
     """Fields with their offset rules (linear in the counts) and the size."""
     off = {"const": base, "per": {}}
     out = []
+    seen = {}
     for f in fields:
         g = dict(f)
+        g["id"] = f["name"]  # unique: reserved and spare fields are numbered
+        if f["name"] in ("reserved", "spare"):
+            seen[f["name"]] = seen.get(f["name"], 0) + 1
+            g["id"] = "%s%d" % (f["name"], seen[f["name"]])
         size, _ = TYPES[f["type"]]
         c = f.get("count", 1)
         g["count"] = c
@@ -139,29 +144,18 @@ def dictionary(t):
         h = dict(cfs[key])
         h["fields"], _ = layout(h["fields"])
         cfs[key] = h
-    cmds = []
-    for c in cfs["commands"]:
-        c = dict(c)
-        codes = []
-        for cc in c["codes"]:
-            cc = dict(cc)
-            if "fields" in cc:
-                check_fields("cfs command %s" % cc["name"], cc["fields"], allow_counts=False)
-                cc["fields"], size = layout(cc["fields"], cfs["command_header"]["size"])
-                cc["payload_size"] = size["const"]
-            codes.append(cc)
-        c["codes"] = codes
-        cmds.append(c)
-    cfs["commands"] = cmds
-    tlm = []
-    for m in cfs["telemetry"]:
-        m = dict(m)
-        if "fields" in m:
-            check_fields("cfs telemetry %s" % m["name"], m["fields"], allow_counts=False)
-            m["fields"], size = layout(m["fields"], cfs["telemetry_header"]["size"])
-            m["payload_size"] = size["const"]
-        tlm.append(m)
-    cfs["telemetry"] = tlm
+
+    def resolved(item, what, header):
+        """A cFS message or command code with its payload's offsets (after header)."""
+        item = dict(item)
+        if "fields" in item:
+            check_fields("cfs %s %s" % (what, item["name"]), item["fields"], allow_counts=False)
+            item["fields"], size = layout(item["fields"], cfs[header]["size"])
+            item["payload_size"] = size["const"]
+        return item
+    cfs["commands"] = [dict(c, codes=[resolved(cc, "command", "command_header") for cc in c["codes"]])
+                       for c in cfs["commands"]]
+    cfs["telemetry"] = [resolved(m, "telemetry", "telemetry_header") for m in cfs["telemetry"]]
     return {
         "format": "kestrel-packet-dictionary", "format_version": 1, "name": t["name"],
         "icd_version": t["icd_version"], "byte_order": t["byte_order"],
@@ -253,12 +247,8 @@ class Xtce:
     def fields(self, prefix, fields):
         """Parameters of a field list; returns the entry list XML."""
         entries = []
-        seen = {}
         for f in fields:
-            n = f["name"]
-            if n in ("reserved", "spare"):
-                seen[n] = seen.get(n, 0) + 1
-                n = "%s%d" % (n, seen[n])
+            n = f["id"]
             pname = "%s_%s" % (prefix, n)
             if f["count"] == 1:
                 t = self.base_type(f)
@@ -356,12 +346,8 @@ class Xtce:
 
         def arglist(fields, fixed):
             args, entries = [], []
-            seen = {}
             for f in fields:
-                n = f["name"]
-                if n in ("reserved", "spare"):
-                    seen[n] = seen.get(n, 0) + 1
-                    n = "%s%d" % (n, seen[n])
+                n = f["id"]
                 tname = atype(f)
                 for i in range(f["count"]):
                     an = n if f["count"] == 1 else "%s_%d" % (n, i)
@@ -452,12 +438,8 @@ COSMOS_TYPE = {"u8": "UINT", "u16": "UINT", "u32": "UINT", "u64": "UINT", "i16":
 
 def cosmos_items(fields, counts, prefix=""):
     out = []
-    seen = {}
     for f in fields:
-        n = f["name"]
-        if n in ("reserved", "spare"):
-            seen[n] = seen.get(n, 0) + 1
-            n = "%s%d" % (n, seen[n])
+        n = f["id"]
         n = (prefix + n).upper()
         c = f["count"] if isinstance(f["count"], int) else counts[f["count"]]
         bits = 8 * f["size"]
@@ -551,25 +533,21 @@ def cosmos(d, counts):
     cmd.append("")
     for c in cfs["commands"]:
         for cc in c["codes"]:
-            if "fields" not in cc:  # a whole link packet: variable length, a block
-                cmd.append('COMMAND %s %s BIG_ENDIAN "MID 0x%04X CC %d: one whole link packet (%s)"'
-                           % (cfs["app"], cc["name"], c["mid"], cc["cc"], ", ".join(cc["embeds"])))
-                cmd += ['  APPEND_ID_PARAMETER CCSDS_STREAMID 16 UINT 0x%04X 0x%04X 0x%04X "cFS message id"'
-                        % ((c["mid"],) * 3),
-                        '  APPEND_PARAMETER CCSDS_SEQUENCE 16 UINT MIN MAX 0xC000 "sequence flags and count"',
-                        '  APPEND_PARAMETER CCSDS_LENGTH 16 UINT MIN MAX 0 "total bytes - 7 = packet bytes + 1"',
-                        '  APPEND_ID_PARAMETER CCSDS_FC 8 UINT %d %d %d "command code"' % ((cc["cc"],) * 3),
-                        '  APPEND_PARAMETER CCSDS_CHECKSUM 8 UINT MIN MAX 0 "XOR of every byte = 0xFF"',
-                        '  APPEND_PARAMETER PACKET 0 BLOCK "" "the link packet, CRC included"', ""]
-                continue
-            total = cfs["command_header"]["size"] + cc["payload_size"]
-            cmd.append('COMMAND %s %s BIG_ENDIAN "MID 0x%04X CC %d"' % (cfs["app"], cc["name"], c["mid"], cc["cc"]))
+            block = "fields" not in cc  # a whole link packet: variable length, a block
+            n = 0 if block else cfs["command_header"]["size"] + cc["payload_size"] - 7
+            length = "MIN MAX 0" if block else "%d %d %d" % (n, n, n)
+            what = ": one whole link packet (%s)" % ", ".join(cc["embeds"]) if block else ""
+            cmd.append('COMMAND %s %s BIG_ENDIAN "MID 0x%04X CC %d%s"'
+                       % (cfs["app"], cc["name"], c["mid"], cc["cc"], what))
             cmd += ['  APPEND_ID_PARAMETER CCSDS_STREAMID 16 UINT 0x%04X 0x%04X 0x%04X "cFS message id"'
                     % ((c["mid"],) * 3),
                     '  APPEND_PARAMETER CCSDS_SEQUENCE 16 UINT MIN MAX 0xC000 "sequence flags and count"',
-                    '  APPEND_PARAMETER CCSDS_LENGTH 16 UINT %d %d %d "total bytes - 7"' % ((total - 7,) * 3),
+                    '  APPEND_PARAMETER CCSDS_LENGTH 16 UINT %s "total bytes - 7"' % length,
                     '  APPEND_ID_PARAMETER CCSDS_FC 8 UINT %d %d %d "command code"' % ((cc["cc"],) * 3),
                     '  APPEND_PARAMETER CCSDS_CHECKSUM 8 UINT MIN MAX 0 "XOR of every byte = 0xFF"']
+            if block:
+                cmd += ['  APPEND_PARAMETER PACKET 0 BLOCK "" "the link packet, CRC included"', ""]
+                continue
             cmd += cmd_params(cc["fields"])
             cmd.append("")
     return "\n".join(cmd), "\n".join(tlm)
@@ -577,12 +555,8 @@ def cosmos(d, counts):
 
 def cmd_params(fields):
     out = []
-    seen = {}
     for f in fields:
-        n = f["name"]
-        if n in ("reserved", "spare"):
-            seen[n] = seen.get(n, 0) + 1
-            n = "%s%d" % (n, seen[n])
+        n = f["id"]
         bits = 8 * f["size"]
         t = COSMOS_TYPE[f["type"]]
         desc = f.get("desc", f["name"]).replace('"', "'")

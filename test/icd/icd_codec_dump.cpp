@@ -74,6 +74,15 @@ class Json {
   std::string body_;
 };
 
+// The expected values of a packet start with its header's.
+Json header(uint16_t seq, uint64_t t_ns)
+{
+  Json j;
+  j.num("seq_count", seq % 16384u);
+  j.num("t_ns", t_ns);
+  return j;
+}
+
 void emit(const char* name, const uint8_t* buf, size_t len, const Json& j)
 {
   std::string hex;
@@ -109,9 +118,7 @@ bool sensor(uint8_t nrw, uint8_t ncss, uint16_t seq)
   uint8_t buf[FSW_LINK_MAX_PACKET];
   size_t len = 0;
   if (fsw_link_encode_sensor(&m, nrw, ncss, seq, buf, sizeof buf, &len, nullptr) != FSW_OK) return false;
-  Json j;
-  j.num("seq_count", seq % 16384u);
-  j.num("t_ns", m.t_ns);
+  Json j = header(seq, m.t_ns);
   j.num("n_rw", nrw);
   j.num("n_css", ncss);
   j.num("att_valid", m.att_valid);
@@ -150,9 +157,7 @@ bool command(uint16_t seq)
   uint8_t buf[FSW_LINK_MAX_PACKET];
   size_t len = 0;
   if (fsw_link_encode_cmd(&m, t_ns, seq, buf, sizeof buf, &len, nullptr) != FSW_OK) return false;
-  Json j;
-  j.num("seq_count", seq % 16384u);
-  j.num("t_ns", t_ns);
+  Json j = header(seq, t_ns);
   j.num("mode", static_cast<uint64_t>(m.mode));
   j.num("actuation", static_cast<uint64_t>(m.actuation));
   j.num("set_ref", m.set_ref);
@@ -182,9 +187,7 @@ bool actuator(uint8_t nrw, uint8_t nthr, uint8_t nmtq, uint16_t seq)
   size_t len = 0;
   if (fsw_link_encode_actuator(&m, nrw, nthr, nmtq, t_ns, seq, buf, sizeof buf, &len, nullptr) != FSW_OK)
     return false;
-  Json j;
-  j.num("seq_count", seq % 16384u);
-  j.num("t_ns", t_ns);
+  Json j = header(seq, t_ns);
   j.num("n_rw", nrw);
   j.num("n_thr", nthr);
   j.num("n_mtq", nmtq);
@@ -244,9 +247,7 @@ bool health(uint16_t seq)
   uint8_t buf[FSW_LINK_MAX_PACKET];
   size_t len = 0;
   if (fsw_link_encode_health(&m, t_ns, seq, buf, sizeof buf, &len, nullptr) != FSW_OK) return false;
-  Json j;
-  j.num("seq_count", seq % 16384u);
-  j.num("t_ns", t_ns);
+  Json j = header(seq, t_ns);
   j.inum("status", m.status);
   j.num("mode", static_cast<uint64_t>(m.mode));
   j.num("actuation", static_cast<uint64_t>(m.actuation));
@@ -298,9 +299,7 @@ bool link_status(uint16_t seq)
   uint8_t buf[FSW_LINK_MAX_PACKET];
   size_t len = 0;
   if (fsw_link_encode_status(&m, t_ns, seq, buf, sizeof buf, &len, nullptr) != FSW_OK) return false;
-  Json j;
-  j.num("seq_count", seq % 16384u);
-  j.num("t_ns", t_ns);
+  Json j = header(seq, t_ns);
   j.num("rx_packets", m.rx_packets);
   j.num("rx_crc", m.rx_crc);
   j.num("rx_rejected", m.rx_rejected);

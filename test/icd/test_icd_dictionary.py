@@ -66,6 +66,18 @@ def reseal(pkt):
     return bytes(pkt)
 
 
+def cfs_command(cc, payload, mid=0x18F0):
+    """A cFS command message, written here: primary header, function code,
+    checksum making the XOR of every byte 0xFF."""
+    body = bytearray(mid.to_bytes(2, "big") + (0xC000).to_bytes(2, "big") + (8 + len(payload) - 7).to_bytes(2, "big")
+                     + bytes([cc, 0]) + payload)
+    x = 0
+    for b in body:
+        x ^= b
+    body[7] = x ^ 0xFF
+    return bytes(body)
+
+
 class Dict(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -171,28 +183,16 @@ class Dict(unittest.TestCase):
                           f["cycle_errors"], f["link_rejected"], f["last_status"], f["table_rejects"]),
                          (3, 1, 2, 1, 100, 2, 5, 0xFFFFFFFB, 1))
         # a ground command: SET_GAINS (CC 5), K = 2.5, P = 30, checksum XOR-to-0xFF
-        body = (0x18F0).to_bytes(2, "big") + (0xC000).to_bytes(2, "big") + (8 + 16 - 7).to_bytes(2, "big")
-        body += bytes([5, 0]) + struct.pack(">dd", 2.5, 30.0)
-        x = 0
-        for b in body:
-            x ^= b
-        cmd = bytearray(body)
-        cmd[7] = x ^ 0xFF
+        cmd = bytearray(cfs_command(5, struct.pack(">dd", 2.5, 30.0)))
         c = self.d.decode_cfs(bytes(cmd))
         self.assertEqual((c["name"], c["fields"]["K"], c["fields"]["P"]), ("SET_GAINS", 2.5, 30.0))
         cmd[7] ^= 1
         with self.assertRaises(DecodeError):
             self.d.decode_cfs(bytes(cmd))
         # SET_MODE with a 5-byte payload: refused on its length
-        body = (0x18F0).to_bytes(2, "big") + (0xC000).to_bytes(2, "big") + (8 + 5 - 7).to_bytes(2, "big")
-        body += bytes([2, 0, 1, 0, 0, 0, 0])
-        x = 0
-        for b in body:
-            x ^= b
-        cmd = bytearray(body)
-        cmd[7] = x ^ 0xFF
         with self.assertRaises(DecodeError):
-            self.d.decode_cfs(bytes(cmd))
+            self.d.decode_cfs(cfs_command(2, bytes([1, 0, 0, 0, 0])))
+        self.assertEqual(self.d.decode_cfs(cfs_command(2, bytes([1, 0, 0, 0])))["fields"]["mode"], 1)
 
     def test_generated_files_are_up_to_date(self):
         self.assertEqual(gen().main(["--root", root(), "--check"]), 0)
