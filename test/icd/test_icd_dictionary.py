@@ -235,6 +235,19 @@ class Dict(unittest.TestCase):
             self.assertIn(msg, str(cm.exception))
             self.assertIn("packet sensor.fields[7] (Omega)", str(cm.exception))
 
+    def test_cosmos_for_another_configuration(self):
+        g = gen()
+        out = os.path.join(ARGS.tmp, "cosmos")
+        self.assertEqual(g.main(["--root", root(), "--counts", "n_thr=8,n_mtq=2", "--cosmos-out", out]), 0)
+        with open(os.path.join(out, "tlm.txt")) as fh:
+            tlm = fh.read()
+        act = tlm[tlm.index("TELEMETRY KESTREL ACTUATOR"):tlm.index("TELEMETRY KESTREL HEALTH")]
+        # 8 thrusters: F and t_on 8 x 64 bits; 2 rods: m_cmd 2 x 64; S1's 4 wheels kept
+        for item in ("U_S 64 FLOAT 256", "F 64 FLOAT 512", "T_ON 64 FLOAT 512", "M_CMD 64 FLOAT 128"):
+            self.assertIn("APPEND_ARRAY_ITEM " + item, act)
+        self.assertEqual(g.main(["--root", root(), "--counts", "n_foo=3", "--cosmos-out", out]), 2)
+        self.assertEqual(g.main(["--root", root(), "--counts", "n_rw=x", "--cosmos-out", out]), 2)
+
     def test_cfs_app_constants_check(self):
         g = gen()
         good = {"KESTREL_ACS_CMD_MID": 0x18F0, "KESTREL_ACS_LINK_MID": 0x18F1, "KESTREL_ACS_SEND_HK_MID": 0x18F2,
