@@ -4,9 +4,11 @@
 real HWIL run with an independent decoder that reads only the dictionary").
 
 kestrel-fsw serves S1 (with FSW commands from scenario events at 20 s, so all
-five APIDs travel) on loopback UDP; `kestrel run --fsw udp:` flies it in
-lockstep through a relay written here (harness -> relay -> kestrel-fsw and
-back), which records every datagram.  Each datagram is decoded by
+five APIDs travel), then S3 detumbling on its rods (ICD version 2's
+magnetometer, rod dipoles and momentum telemetry), on loopback UDP;
+`kestrel run --fsw udp:` flies each in lockstep through a relay written
+here (harness -> relay -> kestrel-fsw and back), which records every
+datagram.  Each datagram is decoded by
 dict_decoder.py, which reads only icd/generated/kestrel_dictionary.json, and:
 
 - every CRC verifies and every packet decodes (nothing is injected);
@@ -17,17 +19,20 @@ dict_decoder.py, which reads only icd/generated/kestrel_dictionary.json, and:
   which round-trips binary64) at the same time, bit for bit: the FSW's
   inputs (meas_sigma_BN, meas_omega_BN_B, meas_att_valid), its commands
   (Lr_B, wheel_cmd = u_s), its health (sigma_BR, omega_BR_B, fsw_status,
-  fsw_safe_output, per-stage status, sun_B, sun_valid, css_num_lit), the
-  commands of the events (mode, reference, gains) and the FSW end's final
-  link counters;
-- cycles in the last link status = sensor packets = rows - 1 x (control rate).
+  fsw_safe_output, per-stage status, sun_B, sun_valid, css_num_lit; in S3
+  mode, policy, detumbled, rate_est, h_w_B, tau_mtq_B, the dump figures, the
+  failed and latched wheel bits, mag_valid), the commands of the events
+  (mode, reference, gains) and the FSW end's final link counters;
+- cycles in the last link status = sensor packets = recorded rows (S3
+  recorded at its control rate for this);
+- with rods, some rod dipole command and some valid magnetometer field are
+  not zero (the version-2 fields carry the run's data).
 
-Exit 77 (skipped) when a program is missing.  Bounded: the run is 40 s of
+Exit 77 (skipped) when a program is missing.  Bounded: 40 s and 30 s of
 simulated time (about 2 s of wall time), every wait has a timeout.
 """
 import argparse
 import csv
-import math
 import os
 import select
 import signal
@@ -44,7 +49,8 @@ sys.path.insert(0, HERE)
 from dict_decoder import Dictionary  # noqa: E402
 
 SKIP = 77
-DURATION = 40.0
+DURATION = 40.0     # [s] S1
+S3_DURATION = 30.0  # [s] S3 detumbling
 
 
 class Relay(threading.Thread):
@@ -86,6 +92,52 @@ def fail(msg):
     return 1
 
 
+class Failed(Exception):
+    pass
+
+
+def fly(a, tmp, name, text, duration, sets):
+    """One HWIL run of the scenario text through the relay: (datagrams, csv rows, wall time)."""
+    scen = os.path.join(tmp, name + ".yaml")
+    with open(scen, "w", encoding="utf-8") as fh:
+        fh.write(text)
+    img = os.path.join(tmp, name + ".img")
+    sets = [w for kv in ["duration=%g" % duration] + sets for w in ("--set", kv)]
+    subprocess.run([a.kestrel, "fsw-config", scen, "-o", img] + sets, check=True, timeout=60,
+                   stdout=subprocess.DEVNULL)
+    fsw = subprocess.Popen([a.fsw, "--udp", "127.0.0.1:0", "--config", img, "--quiet"], stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True)
+    relay = None
+    try:
+        r, _, _ = select.select([fsw.stdout], [], [], 30)
+        ready = fsw.stdout.readline() if r else ""
+        pre = "kestrel-fsw: ready udp "
+        if not ready.startswith(pre):
+            raise Failed("kestrel-fsw did not start: %r" % ready)
+        host, port = ready[len(pre):].strip().rsplit(":", 1)
+        relay = Relay((host, int(port)))
+        relay.start()
+        out = os.path.join(tmp, name)
+        t0 = time.monotonic()
+        run = subprocess.run([a.kestrel, "run", scen, "--fsw", "udp:127.0.0.1:%d" % relay.port(), "-o", out,
+                              "--csv", "--link-timeout", "30"] + sets, capture_output=True, text=True, timeout=120)
+        wall = time.monotonic() - t0
+        if run.returncode != 0:
+            raise Failed("kestrel run failed (%d): %s" % (run.returncode, run.stderr[-2000:]))
+    finally:
+        if relay is not None:
+            relay.stop = True
+            relay.join(5)
+        fsw.send_signal(signal.SIGTERM)
+        try:
+            fsw.wait(10)
+        except subprocess.TimeoutExpired:
+            fsw.kill()
+            fsw.wait()
+    with open(os.path.join(out, "telemetry.csv"), newline="", encoding="utf-8") as fh:
+        return relay.log, list(csv.reader(fh)), wall
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--root", required=True)
@@ -97,58 +149,40 @@ def main():
             print("SKIP: %s not built" % exe)
             return SKIP
     d = Dictionary(os.path.join(a.root, "icd", "generated", "kestrel_dictionary.json"))
+
+    def scenario(name):
+        with open(os.path.join(a.root, "scenarios", name), encoding="utf-8") as fh:
+            return fh.read()
+    # S1 with commands over the link at 20 s (inertial pointing at a new
+    # reference with new gains): all five APIDs.  S3 detumbling on its rods:
+    # the magnetometer in, rod dipoles out, the momentum telemetry.
+    s1 = scenario("s1_sun_pointing.yaml") + (
+        "\nevents:\n  - {t: 20, actions: [{device: fsw, action: mode_inertial}, "
+        "{device: fsw, action: reference_z, value: 0.1}, {device: fsw, action: gain_K, value: 5.0}]}\n")
+    # (name, scenario, duration, APIDs that must travel, columns that must be compared, --set)
+    runs = [("s1_commands", s1, DURATION, ("sensor", "command", "actuator", "health", "link_status"),
+             ("sun_B_x", "css_num_lit", "wheel_cmd_3"), []),
+            ("s3_detumble", scenario("s3_detumble_hold.yaml"), S3_DURATION, ("sensor", "actuator", "health",
+                                                                              "link_status"),
+             ("fsw_rate_est", "fsw_tau_mtq_B_z", "fsw_h_w_B_x", "mag_valid", "fsw_detumbled"),
+             ["rates.record_divisor=1"])]
+    status = 0
     with tempfile.TemporaryDirectory() as tmp:
-        with open(os.path.join(a.root, "scenarios", "s1_sun_pointing.yaml"), encoding="utf-8") as fh:
-            text = fh.read()
-        # commands over the link at 20 s: inertial pointing at a new reference with new gains
-        text += ("\nevents:\n  - {t: 20, actions: [{device: fsw, action: mode_inertial}, "
-                 "{device: fsw, action: reference_z, value: 0.1}, {device: fsw, action: gain_K, value: 5.0}]}\n")
-        scen = os.path.join(tmp, "s1_commands.yaml")
-        with open(scen, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        img = os.path.join(tmp, "s1.img")
-        subprocess.run([a.kestrel, "fsw-config", scen, "-o", img, "--set", "duration=%g" % DURATION], check=True,
-                       timeout=60, stdout=subprocess.DEVNULL)
-        fsw = subprocess.Popen([a.fsw, "--udp", "127.0.0.1:0", "--config", img, "--quiet"], stdout=subprocess.PIPE,
-                               stderr=subprocess.PIPE, text=True)
-        relay = None
-        try:
-            r, _, _ = select.select([fsw.stdout], [], [], 30)
-            ready = fsw.stdout.readline() if r else ""
-            pre = "kestrel-fsw: ready udp "
-            if not ready.startswith(pre):
-                return fail("kestrel-fsw did not start: %r" % ready)
-            host, port = ready[len(pre):].strip().rsplit(":", 1)
-            relay = Relay((host, int(port)))
-            relay.start()
-            out = os.path.join(tmp, "run")
-            t0 = time.monotonic()
-            run = subprocess.run([a.kestrel, "run", scen, "--fsw", "udp:127.0.0.1:%d" % relay.port(), "-o", out,
-                                  "--csv", "--set", "duration=%g" % DURATION, "--link-timeout", "30"],
-                                 capture_output=True, text=True, timeout=120)
-            wall = time.monotonic() - t0
-            if run.returncode != 0:
-                return fail("kestrel run failed (%d): %s" % (run.returncode, run.stderr[-2000:]))
-        finally:
-            if relay is not None:
-                relay.stop = True
-                relay.join(5)
-            fsw.send_signal(signal.SIGTERM)
+        for name, text, duration, apids, columns, sets in runs:
             try:
-                fsw.wait(10)
-            except subprocess.TimeoutExpired:
-                fsw.kill()
-                fsw.wait()
-        with open(os.path.join(out, "telemetry.csv"), newline="", encoding="utf-8") as fh:
-            rows = list(csv.reader(fh))
-        return check(d, relay.log, rows, wall)
+                log, rows, wall = fly(a, tmp, name, text, duration, sets)
+            except Failed as e:
+                return fail("%s: %s" % (name, e))
+            print("== %s" % name)
+            status |= check(d, log, rows, wall, apids, columns, name == "s1_commands")
+    return status
 
 
 def column_index(header):
     return {h.split(" [")[0]: i for i, h in enumerate(header)}
 
 
-def check(d, log, rows, wall):
+def check(d, log, rows, wall, apids, columns, commanded):
     problems = []
     decoded = []
     for direction, data in log:
@@ -163,7 +197,7 @@ def check(d, log, rows, wall):
         count[p["packet"]] = count.get(p["packet"], 0) + 1
     print("captured %d datagrams in %.1f s: %s" % (len(log), wall,
                                                   ", ".join("%s %d" % kv for kv in sorted(count.items()))))
-    for name in ("sensor", "command", "actuator", "health", "link_status"):
+    for name in apids:
         if not count.get(name):
             problems.append("no %s packet captured" % name)
 
@@ -214,6 +248,8 @@ def check(d, log, rows, wall):
     stage_names = next(f for f in stages if f["name"] == "stage_status")["elements"]
     compared = 0
     values = 0
+    n_rw = sensors[0]["fields"]["n_rw"]
+    seen = set()
     for s in sensors:
         r = by_t.get(s["t_ns"])
         if r is None:
@@ -230,6 +266,15 @@ def check(d, log, rows, wall):
                   ("fsw_safe_output", hl["safe_output"]), ("sun_valid", hl["sun_valid"]),
                   ("css_num_lit", hl["num_lit"])]
         pairs += [("wheel_cmd_%d" % i, u) for i, u in enumerate(act["u_s"])]
+        # recorded only when the FSW detumbles, points at nadir or manages momentum (S3)
+        pairs += [("fsw_mode", hl["mode"]), ("fsw_policy", hl["policy"]), ("fsw_detumbled", hl["detumbled"]),
+                  ("fsw_rate_est", hl["rate_est"]), ("fsw_dump_phase", hl["dump_phase"]), ("fsw_dumps", hl["dumps"]),
+                  ("fsw_prop_used", hl["prop_used"]), ("mag_valid", sf["mag_valid"])]
+        pairs += [("fsw_%s_B_%s" % (q, ax), hl["%s_B" % q][i]) for q in ("h_w", "tau_mtq") for i, ax in enumerate("xyz")]
+        pairs += [("fsw_rw_%s_%d" % (q, i), (hl["rw_" + q] >> i) & 1) for q in ("failed", "latched") for i in range(n_rw)]
+        optional = ("fsw_mode", "fsw_policy", "fsw_detumbled", "fsw_rate_est", "fsw_dump", "fsw_prop", "fsw_h_w",
+                    "fsw_tau", "fsw_rw_", "mag_", "sun_", "css_")
+        pairs = [(n, v) for n, v in pairs if n in col or not n.startswith(optional)]
         pairs += [("fsw_stage_" + n, v) for n, v in zip(stage_names, hl["stage_status"])]
         for name, v in pairs:
             if name not in col:
@@ -240,17 +285,29 @@ def check(d, log, rows, wall):
                 if len(problems) < 20:
                     problems.append("t = %s s %s: recorded %r, packet %r" % (r[col["t"]], name, rec, v))
             values += 1
+            seen.add(name)
         compared += 1
-    n_rw = sensors[0]["fields"]["n_rw"]
-    if compared < len(data) - 1 or compared < 30:
+    if compared != len(data) or compared < 30:
         problems.append("only %d of %d rows matched a sensor packet" % (compared, len(data)))
+    for name in columns:
+        if name not in seen:
+            problems.append("column %s never compared" % name)
     # the event's commands, as the packet carries them
     cmds = [p["fields"] for _, p, _ in decoded if p["packet"] == "command"]
-    c = cmds[0]
-    if (c["mode"], c["set_ref"], c["set_gains"], c["K"]) != (1, 1, 1, 5.0) or bits(c["sigma_R0N"][2]) != bits(0.1):
-        problems.append("command packet: %s" % c)
-    print("%d sensor packets (%d retransmissions), %d command packets, n_rw %d; %d rows compared, %d values "
-          "compared bit for bit" % (len(sensors), retrans, len(cmds), n_rw, compared, values))
+    if commanded:
+        c = cmds[0] if cmds else {}
+        if (c.get("mode"), c.get("set_ref"), c.get("set_gains"), c.get("K")) != (1, 1, 1, 5.0) \
+                or bits(c["sigma_R0N"][2]) != bits(0.1):
+            problems.append("command packet: %s" % c)
+    mtq = {p["fields"]["n_mtq"] for _, p, _ in decoded if p["packet"] == "actuator"}
+    if max(mtq) > 0:  # ICD version 2's fields carry the run's data: rod dipoles out, the field in
+        if not any(x != 0.0 for _, p, _ in decoded if p["packet"] == "actuator" for x in p["fields"]["m_cmd"]):
+            problems.append("rods configured, every m_cmd 0")
+        if not any(s["fields"]["mag_valid"] and any(s["fields"]["B_B"]) for s in sensors):
+            problems.append("rods configured, no valid magnetometer field")
+    print("%d sensor packets (%d retransmissions), %d command packets, n_rw %d, n_mtq %s; %d rows compared, %d "
+          "values (%d columns) compared bit for bit" % (len(sensors), retrans, len(cmds), n_rw, sorted(mtq), compared,
+                                                values, len(seen)))
     if problems:
         return fail("\n  ".join(problems[:20]))
     return 0
