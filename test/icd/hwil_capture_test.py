@@ -8,12 +8,14 @@ five APIDs travel), then S3 detumbling on its rods (ICD version 2's
 magnetometer, rod dipoles and momentum telemetry), on loopback UDP;
 `kestrel run --fsw udp:` flies each in lockstep through a relay written
 here (harness -> relay -> kestrel-fsw and back), which records every
-datagram.  Each datagram is decoded by
+datagram and, in S1, loses the replies to the 101st sensor packet (the
+harness sends it again after 0.25 s).  Each datagram is decoded by
 dict_decoder.py, which reads only icd/generated/kestrel_dictionary.json, and:
 
 - every CRC verifies and every packet decodes (nothing is injected);
 - sequence counts advance by one per APID and sender (a retransmission
-  repeats its bytes exactly), t_ns strictly increases per cycle, and every
+  repeats its bytes exactly, and so do the FSW end's replies to it: counted
+  in its rx_stale, no cycle run), t_ns strictly increases per cycle, and every
   sensor packet is answered by 0x181, 0x182, 0x183 with its t_ns;
 - the decoded values equal the run's recorded results (telemetry.csv, %.17g,
   which round-trips binary64) at the same time, bit for bit: the FSW's
@@ -54,9 +56,11 @@ S3_DURATION = 30.0  # [s] S3 detumbling
 
 
 class Relay(threading.Thread):
-    """harness -> relay (port A) -> upstream socket -> kestrel-fsw, and back."""
+    """harness -> relay (port A) -> upstream socket -> kestrel-fsw, and back.
+    With lose_after = n, the 3 datagrams that answer the n-th upstream one are
+    lost (not forwarded, not logged): the harness retransmits."""
 
-    def __init__(self, fsw_addr):
+    def __init__(self, fsw_addr, lose_after=None):
         super().__init__(daemon=True)
         self.down = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
         self.down.bind(("127.0.0.1", 0))
@@ -65,6 +69,7 @@ class Relay(threading.Thread):
         self.harness = None
         self.log = []  # (direction, bytes): "up" to the FSW, "down" from it
         self.stop = False
+        self.lose_after, self.n_up, self.to_lose, self.lost = lose_after, 0, 0, 0
 
     def port(self):
         return self.down.getsockname()[1]
@@ -77,7 +82,13 @@ class Relay(threading.Thread):
                 if s is self.down:
                     self.harness = addr
                     self.log.append(("up", data))
+                    self.n_up += 1
+                    if self.n_up == self.lose_after:
+                        self.to_lose = 3
                     self.up.send(data)
+                elif self.to_lose > 0:
+                    self.to_lose -= 1
+                    self.lost += 1
                 elif self.harness is not None:
                     self.log.append(("down", data))
                     self.down.sendto(data, self.harness)
@@ -96,7 +107,7 @@ class Failed(Exception):
     pass
 
 
-def fly(a, tmp, name, text, duration, sets):
+def fly(a, tmp, name, text, duration, sets, lose_after):
     """One HWIL run of the scenario text through the relay: (datagrams, csv rows, wall time)."""
     scen = os.path.join(tmp, name + ".yaml")
     with open(scen, "w", encoding="utf-8") as fh:
@@ -115,7 +126,7 @@ def fly(a, tmp, name, text, duration, sets):
         if not ready.startswith(pre):
             raise Failed("kestrel-fsw did not start: %r" % ready)
         host, port = ready[len(pre):].strip().rsplit(":", 1)
-        relay = Relay((host, int(port)))
+        relay = Relay((host, int(port)), lose_after)
         relay.start()
         out = os.path.join(tmp, name)
         t0 = time.monotonic()
@@ -135,7 +146,7 @@ def fly(a, tmp, name, text, duration, sets):
             fsw.kill()
             fsw.wait()
     with open(os.path.join(out, "telemetry.csv"), newline="", encoding="utf-8") as fh:
-        return relay.log, list(csv.reader(fh)), wall
+        return relay.log, list(csv.reader(fh)), wall, relay.lost
 
 
 def main():
@@ -159,22 +170,23 @@ def main():
     s1 = scenario("s1_sun_pointing.yaml") + (
         "\nevents:\n  - {t: 20, actions: [{device: fsw, action: mode_inertial}, "
         "{device: fsw, action: reference_z, value: 0.1}, {device: fsw, action: gain_K, value: 5.0}]}\n")
-    # (name, scenario, duration, APIDs that must travel, columns that must be compared, --set)
+    # (name, scenario, duration, APIDs that must travel, columns that must be compared, --set,
+    #  the upstream datagram whose replies are lost: S1's 101st sensor packet)
     runs = [("s1_commands", s1, DURATION, ("sensor", "command", "actuator", "health", "link_status"),
-             ("sun_B_x", "css_num_lit", "wheel_cmd_3"), []),
+             ("sun_B_x", "css_num_lit", "wheel_cmd_3"), [], 101),
             ("s3_detumble", scenario("s3_detumble_hold.yaml"), S3_DURATION, ("sensor", "actuator", "health",
                                                                               "link_status"),
              ("fsw_rate_est", "fsw_tau_mtq_B_z", "fsw_h_w_B_x", "mag_valid", "fsw_detumbled"),
-             ["rates.record_divisor=1"])]
+             ["rates.record_divisor=1"], None)]
     status = 0
     with tempfile.TemporaryDirectory() as tmp:
-        for name, text, duration, apids, columns, sets in runs:
+        for name, text, duration, apids, columns, sets, lose_after in runs:
             try:
-                log, rows, wall = fly(a, tmp, name, text, duration, sets)
+                log, rows, wall, lost = fly(a, tmp, name, text, duration, sets, lose_after)
             except Failed as e:
                 return fail("%s: %s" % (name, e))
             print("== %s" % name)
-            status |= check(d, log, rows, wall, apids, columns, name == "s1_commands")
+            status |= check(d, log, rows, wall, apids, columns, name == "s1_commands", lost)
     return status
 
 
@@ -182,7 +194,7 @@ def column_index(header):
     return {h.split(" [")[0]: i for i, h in enumerate(header)}
 
 
-def check(d, log, rows, wall, apids, columns, commanded):
+def check(d, log, rows, wall, apids, columns, commanded, lost):
     problems = []
     decoded = []
     for direction, data in log:
@@ -235,6 +247,10 @@ def check(d, log, rows, wall, apids, columns, commanded):
     final = [p for direction, p, _ in decoded if p["packet"] == "link_status"][-1]["fields"]
     if final["cycles"] != len(sensors):
         problems.append("the FSW end ran %d cycles for %d sensor packets" % (final["cycles"], len(sensors)))
+    # replies lost: the harness sent the sensor packet again, byte for byte, and
+    # the FSW end answered it with the same replies, counted as stale, no cycle
+    if lost and (retrans < 1 or final["rx_stale"] != retrans):
+        problems.append("%d replies lost: %d retransmissions, rx_stale %d" % (lost, retrans, final["rx_stale"]))
     if final["rx_crc"] + final["rx_rejected"] + final["missed"] != 0 or final["icd_version"] != 2:
         problems.append("final link status: %s" % final)
 
