@@ -14,8 +14,8 @@ dict_decoder.py, which reads only icd/generated/kestrel_dictionary.json, and:
 
 - every CRC verifies and every packet decodes (nothing is injected);
 - sequence counts advance by one per APID and sender (a retransmission
-  repeats its bytes exactly, and so do the FSW end's replies to it: counted
-  in its rx_stale, no cycle run), t_ns strictly increases per cycle, and every
+  repeats its bytes exactly; the FSW end answers it with that cycle's
+  replies, counted in its rx_stale, no second cycle), t_ns strictly increases per cycle, and every
   sensor packet is answered by 0x181, 0x182, 0x183 with its t_ns;
 - the decoded values equal the run's recorded results (telemetry.csv, %.17g,
   which round-trips binary64) at the same time, bit for bit: the FSW's
