@@ -58,3 +58,12 @@ if(TARGET kestrel)
   install(FILES "${PROJECT_SOURCE_DIR}/scenarios/kestrel-scenario.schema.json"
     DESTINATION "${CMAKE_INSTALL_DATADIR}/kestrel" COMPONENT tools)
 endif()
+# The packet dictionary (docs/icd.md, "Packet dictionary"): the table and the
+# files generated from it (committed, kept current by icd_generated_up_to_date),
+# for a ground system beside the programs that speak the link.
+if(TARGET kestrel OR TARGET kestrel_fsw)
+  install(DIRECTORY "${PROJECT_SOURCE_DIR}/icd/generated/" DESTINATION "${CMAKE_INSTALL_DATADIR}/kestrel/icd"
+    COMPONENT tools)
+  install(FILES "${PROJECT_SOURCE_DIR}/icd/packets.yaml" DESTINATION "${CMAKE_INSTALL_DATADIR}/kestrel/icd"
+    COMPONENT tools)
+endif()

@@ -67,7 +67,9 @@ if(NOT t EQUAL DURATION OR NOT src MATCHES "share/kestrel/scenarios/s1_sun_point
 endif()
 
 # 4. the other installed files
-foreach(f "bin/kestrel-fsw" "share/kestrel/kestrel-scenario.schema.json")
+foreach(f "bin/kestrel-fsw" "share/kestrel/kestrel-scenario.schema.json" "share/kestrel/icd/packets.yaml"
+        "share/kestrel/icd/kestrel_dictionary.json" "share/kestrel/icd/kestrel.xtce.xml"
+        "share/kestrel/icd/cosmos/cmd.txt" "share/kestrel/icd/cosmos/tlm.txt")
   if(NOT EXISTS "${prefix}/${f}")
     message(FATAL_ERROR "${f} was not installed")
   endif()
