@@ -12,7 +12,10 @@
 #                         BUILD_DIR/cfs           the unpacked tree (tarball input only)
 #                         BUILD_DIR/kestrel_defs  mission definitions: a copy of
 #                                                 cFE's sample_defs with kestrel_acs in
-#                                                 cpu1's app list and startup script
+#                                                 cpu1's app list and startup script, and
+#                                                 ci_lab/to_lab polling every 2 ms instead
+#                                                 of 500 ms (lockstep: one command and one
+#                                                 reply per control cycle)
 #                         BUILD_DIR/build         the cmake build
 #                         BUILD_DIR/build/exe/cpu1  the installed core-cpu1, cf/ and tables
 #
@@ -69,8 +72,9 @@ fi
 
 # 2. mission definitions: cFE's sample_defs, with the application added
 DEFS=$OUT/kestrel_defs
-if [ ! -f "$DEFS/.kestrel_defs_done" ]; then
-  rm -rf "$DEFS"
+DEFS_VERSION=3   # bump when the edits below change: the build is then configured afresh
+if [ ! -f "$DEFS/.kestrel_defs_done" ] || [ "$(cat "$DEFS/.kestrel_defs_done")" != "$DEFS_VERSION" ]; then
+  rm -rf "$DEFS" "$OUT/build"
   cp -r "$CFS/cfe/cmake/sample_defs" "$DEFS"
   # config files are found by the MISSIONCONFIG prefix
   mv "$DEFS/sample_perfids.h" "$DEFS/kestrel_perfids.h"
@@ -84,7 +88,19 @@ if [ ! -f "$DEFS/.kestrel_defs_done" ]; then
        /^!/ && !done { print "CFE_APP, kestrel_acs, KESTREL_ACS_AppMain, KESTREL_ACS,  90,   32768, 0x0, 0;"; done = 1 }
        { print }' "$DEFS/cpu1_cfe_es_startup.scr" > "$DEFS/cpu1_cfe_es_startup.scr.new"
   mv "$DEFS/cpu1_cfe_es_startup.scr.new" "$DEFS/cpu1_cfe_es_startup.scr"
-  touch "$DEFS/.kestrel_defs_done"
+  # ci_lab reads its UDP socket after each 500 ms software-bus wait and to_lab
+  # forwards telemetry every 500 ms: 2 cycles a second at best in lockstep.
+  # Overrides in the defs dir (a platform config file found by its own name)
+  # make both poll every 2 ms.
+  sed 's/^#define CI_LAB_SB_RECEIVE_TIMEOUT .*/#define CI_LAB_SB_RECEIVE_TIMEOUT 2 \/* [ms] KESTREL: was 500 *\//' \
+    "$CFS/apps/ci_lab/config/default_ci_lab_internal_cfg.h" > "$DEFS/ci_lab_internal_cfg.h"
+  sed 's/^#define TO_LAB_TASK_MSEC .*/#define TO_LAB_TASK_MSEC 2 \/* [ms] KESTREL: was 500 *\//' \
+    "$CFS/apps/to_lab/config/default_to_lab_internal_cfg.h" > "$DEFS/to_lab_internal_cfg.h"
+  grep -q 'KESTREL: was 500' "$DEFS/ci_lab_internal_cfg.h" && grep -q 'KESTREL: was 500' "$DEFS/to_lab_internal_cfg.h" || {
+    echo "cfs_build.sh: could not set the ci_lab/to_lab polling periods" >&2
+    exit 1
+  }
+  echo "$DEFS_VERSION" > "$DEFS/.kestrel_defs_done"
 fi
 
 # 3. configure once (MISSION_DEFS and CFS_APP_PATH are cached by cFE's build)
