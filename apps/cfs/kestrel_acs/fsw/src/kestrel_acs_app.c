@@ -248,7 +248,7 @@ static CFE_Status_t KESTREL_ACS_Init(void)
   kestrel_acs_core_init(&KESTREL_ACS_Data.Core);
   st = CFE_EVS_Register(NULL, 0, CFE_EVS_EventFilter_BINARY);
   if (st != CFE_SUCCESS) {
-    CFE_ES_WriteToSysLog("KESTREL_ACS: CFE_EVS_Register failed, RC = 0x%08lX\n", (unsigned long)st);
+    CFE_ES_WriteToSysLog("KESTREL_ACS: CFE_EVS_Register failed, RC = 0x%08lX\n", (unsigned long)(uint32)st);
     return st;
   }
   CFE_ES_GetAppID(&KESTREL_ACS_Data.AppId);
@@ -268,7 +268,7 @@ static CFE_Status_t KESTREL_ACS_Init(void)
     st = CFE_SB_Subscribe(CFE_SB_ValueToMsgId(KESTREL_ACS_SEND_HK_MID), KESTREL_ACS_Data.CommandPipe);
   if (st != CFE_SUCCESS) {
     CFE_EVS_SendEvent(KESTREL_ACS_EID_INIT_ERR, CFE_EVS_EventType_ERROR,
-                      "KESTREL_ACS: Software Bus pipe setup failed, RC = 0x%08lX", (unsigned long)st);
+                      "KESTREL_ACS: Software Bus pipe setup failed, RC = 0x%08lX", (unsigned long)(uint32)st);
     return st;
   }
 
@@ -276,7 +276,7 @@ static CFE_Status_t KESTREL_ACS_Init(void)
                         CFE_TBL_OPT_DEFAULT, KESTREL_ACS_ValidateConfig);
   if (st != CFE_SUCCESS) {
     CFE_EVS_SendEvent(KESTREL_ACS_EID_TBL_ERR, CFE_EVS_EventType_ERROR,
-                      "KESTREL_ACS: config table registration failed, RC = 0x%08lX", (unsigned long)st);
+                      "KESTREL_ACS: config table registration failed, RC = 0x%08lX", (unsigned long)(uint32)st);
     return st;
   }
   CFE_EVS_SendEvent(KESTREL_ACS_EID_STARTUP, CFE_EVS_EventType_INFORMATION,
@@ -289,7 +289,7 @@ static CFE_Status_t KESTREL_ACS_Init(void)
   if (st != CFE_SUCCESS)
     CFE_EVS_SendEvent(KESTREL_ACS_EID_TBL_ERR, CFE_EVS_EventType_ERROR,
                       "KESTREL_ACS: config table load from %s failed, RC = 0x%08lX", KESTREL_ACS_TABLE_FILE,
-                      (unsigned long)st);
+                      (unsigned long)(uint32)st);
   KESTREL_ACS_ManageTable();
   return CFE_SUCCESS;
 }
@@ -308,7 +308,7 @@ void KESTREL_ACS_AppMain(void)
       KESTREL_ACS_ProcessMsg(buf);
     } else {
       CFE_EVS_SendEvent(KESTREL_ACS_EID_INIT_ERR, CFE_EVS_EventType_ERROR,
-                        "KESTREL_ACS: Software Bus receive failed, RC = 0x%08lX", (unsigned long)st);
+                        "KESTREL_ACS: Software Bus receive failed, RC = 0x%08lX", (unsigned long)(uint32)st);
       KESTREL_ACS_Data.RunStatus = CFE_ES_RunStatus_APP_ERROR;
     }
   }
