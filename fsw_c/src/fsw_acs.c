@@ -511,14 +511,16 @@ static FswStatus combine(FswStatus acc, FswStatus s)
   return s;
 }
 
-static FswStatus finish(FswAcsState *st, FswAcsHealthMsg *h, FswStatus s)
+static FswStatus finish(FswAcsState *st, const FswAcsConfig *cfg, FswAcsHealthMsg *h, FswStatus s)
 {
-  int i;
   /* the speed filter's verdicts as they stand (all 0 when it is not used:
-   * init clears the whole state) */
+   * init clears the whole state, so a ready state without the filter need
+   * not be read) */
+  const int nv = (st->ready && !cfg->use_speed_filter) ? 0 : FSW_MAX_RW;
+  int i;
   h->rw_failed = 0u;
   h->rw_latched = 0u;
-  for (i = 0; i < FSW_MAX_RW; i++) {
+  for (i = 0; i < nv; i++) {
     if (st->speed_filter.failed[i]) h->rw_failed |= (uint64_t)1u << i;
     if (st->speed_filter.latched[i]) h->rw_latched |= (uint64_t)1u << i;
   }
@@ -841,6 +843,12 @@ static void apply_set_command(FswAcsState *st, const FswAcsConfig *cfg, const Fs
   }
 }
 
+/* The thrusters configured (0 without thrusters).  Entries of t_on_last
+ * from this count on are 0 from init to the end (act->t_on is 0 beyond the
+ * configured thrusters), so the snapshot, its restore and the record of the
+ * last on-times copy the configured entries only. */
+static int thr_count(const FswAcsConfig *cfg) { return cfg->has_thrusters ? cfg->thr_map.num_thr : 0; }
+
 /* Snapshot of the dynamic state before the stages run (see FswAcsWork). */
 static void save_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
 {
@@ -864,7 +872,7 @@ static void save_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   if (cfg->use_thr_mom) w->saved.thr_mom = st->thr_mom;
   if (cfg->use_bias)
     for (i = 0; i < FSW_MAX_RW; i++) w->saved.bias_in_band[i] = st->rw_bias.in_band[i];
-  fsw_vn_copy(w->saved.t_on_last, w->t_on_last, FSW_MAX_THR);
+  fsw_vn_copy(w->saved.t_on_last, w->t_on_last, thr_count(cfg));
   w->saved.mrp_fb = st->mrp_fb;
   if (cfg->use_lpf) w->saved.lpf = st->lpf;
   if (cfg->has_wheels && cfg->use_volt) w->saved.rw_volt = st->rw_volt;
@@ -898,7 +906,7 @@ static void restore_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   st->mode_changes = w->saved.mode_changes;
   st->policy = w->saved.policy;
   st->cmd_mode = w->saved.cmd_mode;
-  fsw_vn_copy(w->t_on_last, w->saved.t_on_last, FSW_MAX_THR);
+  fsw_vn_copy(w->t_on_last, w->saved.t_on_last, thr_count(cfg));
   if (cfg->has_mtq) {
     hh = st->bdot.health;
     st->bdot = w->saved.bdot;
@@ -1015,7 +1023,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     if (st != NULL) (void)fsw_health_record(&st->health, FSW_E_NULL_ARG);
     return FSW_E_NULL_ARG;
   }
-  if (!st->ready) return finish(st, h, FSW_E_NOT_INIT);
+  if (!st->ready) return finish(st, cfg, h, FSW_E_NOT_INIT);
   w = &st->work;
   /* Whether last call's wheel torque held until now; from here on, until
    * this cycle succeeds with wheels active, the next call cannot know. */
@@ -1029,45 +1037,45 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   req_mode = (cmd != NULL && cmd->mode != st->cmd_mode) ? cmd->mode : st->mode;
   req_act = (cmd != NULL) ? cmd->actuation : st->actuation;
   req_policy = (cmd != NULL && cmd->set_policy == 1u) ? cmd->policy : st->policy;
-  if (!mode_configured(cfg, req_mode)) return finish(st, h, FSW_E_BAD_INPUT);
+  if (!mode_configured(cfg, req_mode)) return finish(st, cfg, h, FSW_E_BAD_INPUT);
   if (!((req_act == FSW_ACS_ACT_WHEELS && cfg->has_wheels) ||
         (req_act == FSW_ACS_ACT_THRUSTERS && cfg->has_thrusters)))
-    return finish(st, h, FSW_E_BAD_INPUT);
-  if (cmd != NULL && !set_command_ok(cfg, cmd)) return finish(st, h, FSW_E_BAD_INPUT);
+    return finish(st, cfg, h, FSW_E_BAD_INPUT);
+  if (cmd != NULL && !set_command_ok(cfg, cmd)) return finish(st, cfg, h, FSW_E_BAD_INPUT);
   {
     fsw_real dt; /* [s] unused: the stages derive their own */
     s = fsw_clock_dt(&st->clock, sens->t_ns, &dt);
-    if (s != FSW_OK) return finish(st, h, s);
+    if (s != FSW_OK) return finish(st, cfg, h, s);
   }
-  if (!fsw_v3_is_finite(sens->omega_BN_B)) return finish(st, h, FSW_E_BAD_INPUT);
+  if (!fsw_v3_is_finite(sens->omega_BN_B)) return finish(st, cfg, h, FSW_E_BAD_INPUT);
   if ((req_mode == FSW_ACS_MODE_INERTIAL || req_mode == FSW_ACS_MODE_NADIR) &&
       (sens->att_valid != 1u || !fsw_v3_is_finite(sens->sigma_BN)))
-    return finish(st, h, FSW_E_BAD_INPUT);
-  if (sens->mag_valid > 1u || sens->orbit_valid > 1u) return finish(st, h, FSW_E_BAD_INPUT);
-  if (cfg->has_mtq && sens->mag_valid && !fsw_v3_is_finite(sens->B_B)) return finish(st, h, FSW_E_BAD_INPUT);
+    return finish(st, cfg, h, FSW_E_BAD_INPUT);
+  if (sens->mag_valid > 1u || sens->orbit_valid > 1u) return finish(st, cfg, h, FSW_E_BAD_INPUT);
+  if (cfg->has_mtq && sens->mag_valid && !fsw_v3_is_finite(sens->B_B)) return finish(st, cfg, h, FSW_E_BAD_INPUT);
   if (req_mode == FSW_ACS_MODE_NADIR &&
       (sens->orbit_valid != 1u || !fsw_v3_is_finite(sens->r_N) || !fsw_v3_is_finite(sens->v_N)))
-    return finish(st, h, FSW_E_BAD_INPUT);
+    return finish(st, cfg, h, FSW_E_BAD_INPUT);
   if (req_mode == FSW_ACS_MODE_SUN_SAFE) {
     for (i = 0; i < cfg->css.num_css; i++)
-      if (sens->css_avail[i] > FSW_UNAVAILABLE) return finish(st, h, FSW_E_BAD_INPUT);
+      if (sens->css_avail[i] > FSW_UNAVAILABLE) return finish(st, cfg, h, FSW_E_BAD_INPUT);
     if (!avail_finite(sens->css, sens->css_avail, cfg->css.num_css))
-      return finish(st, h, FSW_E_BAD_INPUT);
+      return finish(st, cfg, h, FSW_E_BAD_INPUT);
   }
   if (cfg->has_wheels) {
     for (i = 0; i < cfg->rw_map.num_rw; i++)
-      if (sens->rw_avail[i] > FSW_UNAVAILABLE) return finish(st, h, FSW_E_BAD_INPUT);
+      if (sens->rw_avail[i] > FSW_UNAVAILABLE) return finish(st, cfg, h, FSW_E_BAD_INPUT);
     /* with the speed filter, a non-finite speed is one wheel's fault (it
      * fails that wheel), not bad input of the cycle */
     if (!cfg->use_speed_filter && !avail_finite(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw))
-      return finish(st, h, FSW_E_BAD_INPUT);
+      return finish(st, cfg, h, FSW_E_BAD_INPUT);
   }
   if ((req_act == FSW_ACS_ACT_THRUSTERS || req_policy == FSW_ACS_MOM_THRUSTERS) &&
       !fsw_v3_is_finite(sens->r_CoM_B))
-    return finish(st, h, FSW_E_BAD_INPUT);
+    return finish(st, cfg, h, FSW_E_BAD_INPUT);
   if (cfg->has_thrusters)
     for (i = 0; i < cfg->thr_map.num_thr; i++)
-      if (sens->thr_avail[i] > FSW_UNAVAILABLE) return finish(st, h, FSW_E_BAD_INPUT);
+      if (sens->thr_avail[i] > FSW_UNAVAILABLE) return finish(st, cfg, h, FSW_E_BAD_INPUT);
 
   /* 2. Mode transition: clear the memory that belongs to the old mode.
    *    From here on the stages advance their own state; an error status of
@@ -1123,18 +1131,18 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     safe_output(act);
     restore_dynamic(st, cfg); /* no state advance on an error cycle */
     safe_health(h);
-    return finish(st, h, acc);
+    return finish(st, cfg, h, acc);
   }
   fsw_clock_commit(&st->clock, sens->t_ns);
   if (st->cycles < UINT32_MAX) st->cycles++;
-  if (act->wheels_active) {
-    fsw_vn_copy(w->u_last, act->u_s, FSW_MAX_RW);
+  if (act->wheels_active) { /* the configured wheels (act->u_s is 0 beyond them) */
+    fsw_vn_copy(w->u_last, act->u_s, cfg->rw_map.num_rw);
     w->u_last_valid = 1u;
   }
   if (act->thrusters_active) {
-    fsw_vn_copy(w->t_on_last, act->t_on, FSW_MAX_THR);
+    fsw_vn_copy(w->t_on_last, act->t_on, thr_count(cfg));
   } else {
-    fsw_vn_zero(w->t_on_last, FSW_MAX_THR);
+    fsw_vn_zero(w->t_on_last, thr_count(cfg));
   }
   /* DETUMBLE's exit: the next cycle flies the configured pointing mode */
   if (st->mode == FSW_ACS_MODE_DETUMBLE && h->detumbled && cfg->detumble_exit_mode >= 0) {
@@ -1142,5 +1150,5 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     st->mode = cfg->detumble_exit_mode;
     if (st->mode_changes < UINT32_MAX) st->mode_changes++;
   }
-  return finish(st, h, acc);
+  return finish(st, cfg, h, acc);
 }

@@ -172,8 +172,17 @@ FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFa
       return isfinite(rnorm) ? FSW_E_SINGULAR : FSW_E_BAD_INPUT;
     }
   }
-  /* undo the scaling of b; a solution beyond the real's range is bad input */
-  for (j = 0; j < n; j++) x[j] = FSW_LDEXP(x[j], eb); /* exact, or overflow */
+  /* undo the scaling of b; a solution beyond the real's range is bad input.
+   * When 2^eb is a finite real (always but for max |b| >= 2^(MAX_EXP-1)),
+   * x * 2^eb is the exact product rounded once, as ldexp(x, eb) is: the
+   * same bits for every x, with one ldexp per call instead of one per
+   * entry. */
+  if (eb < K1_MAX_EXP) {
+    const fsw_real u = FSW_LDEXP(FSW_R(1.0), eb);
+    for (j = 0; j < n; j++) x[j] *= u;
+  } else {
+    for (j = 0; j < n; j++) x[j] = FSW_LDEXP(x[j], eb);
+  }
   if (!fsw_vn_is_finite(x, n)) {
     fsw_vn_zero(x, n);
     return FSW_E_BAD_INPUT;

@@ -87,7 +87,8 @@ RunConfig bench_config()
 }
 
 // The reference cases: S1 fully coupled at dt = 0.01 s and 0.1 s, S1 with
-// plant sub-steps, S2 as shipped; and the extra cases, run when named.
+// plant sub-steps, S2 as shipped; and the extra cases, run when named
+// (S1 with the FSW every step, S1 in LEO with the environment on and off).
 std::vector<Case> reference_cases(const std::string& dir)
 {
   const std::string s1 = (fs::path(dir) / "s1_sun_pointing.yaml").string();
@@ -112,6 +113,17 @@ std::vector<Case> reference_cases(const std::string& dir)
     cases.push_back(c);
   }
   cases.push_back({"s2", "S2 Mars orbit insertion, as shipped", s2, {}, false});
+  // Extra: S1's dt = 0.01 s case with the FSW every step (100 Hz, the
+  // plant's rate), where the FSW cycle is a large part of a tick.
+  {
+    Case c = cases[0];
+    c.id = "s1-fsw-every-step";
+    c.label = "S1 fully-coupled, FSW every 0.01 s step";
+    c.extra = true;
+    for (Override& o : c.ov)
+      if (o.path == "rates.fsw_divisor") o.value = "1";
+    cases.push_back(c);
+  }
   // Extra: S1's dt = 0.01 s case flown in LEO with every disturbance model
   // on, and the same orbit with every model off (the environment's cost).
   const std::string leo = (fs::path(dir) / "s1_leo_environment.yaml").string();
@@ -216,7 +228,7 @@ int cmd_bench(const std::string& dir, const std::vector<std::string>& only, std:
   std::vector<Case> cases = reference_cases(dir);
   if (!select_cases(only, cases, err)) return kExitUsage;
   const double pair_ns = timer_pair_ns();
-  out << "kestrel bench (" << version() << "): one core, FSW at 10 Hz, recording at 1 Hz (S2 as shipped), no files;\n"
+  out << "kestrel bench (" << version() << "): one core, FSW at 10 Hz (unless the case says otherwise), recording at 1 Hz (S2 as shipped), no files;\n"
       << "speed = simulated s per process-CPU s over " << kRepeats
       << " runs (min / median / max); split = one timed run, us per tick\n";
   for (const Case& c : cases) {

@@ -211,7 +211,7 @@ int main(int argc, char** argv)
   schema->add_option("-o,--output", schema_out, "write it to this file instead");
   auto* bench = app.add_subcommand("bench", "print real-time factors of the reference scenarios");
   std::vector<std::string> bench_cases;
-  bench->add_option("--case", bench_cases, "only these cases: s1-0.01, s1-0.1, s1-substeps, s2; extra (only when named): s1-leo-env, s1-leo-off (repeatable)");
+  bench->add_option("--case", bench_cases, "only these cases: s1-0.01, s1-0.1, s1-substeps, s2; extra (only when named): s1-fsw-every-step, s1-leo-env, s1-leo-off (repeatable)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
