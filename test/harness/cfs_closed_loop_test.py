@@ -118,7 +118,7 @@ def shm_created_by(pid):
         next(f)
         for line in f:
             v = line.split()
-            if int(v[6]) == pid:  # key shmid perms size cpid lpid ...
+            if int(v[4]) == pid:  # key shmid perms size cpid lpid ...
                 ids.append(v[1])
     return ids
 
@@ -151,10 +151,7 @@ class Cpu1:
 
     @staticmethod
     def remove_ram_disk():
-        try:
-            os.remove("/dev/shm/osal:RAM")
-        except FileNotFoundError:
-            pass
+        shutil.rmtree("/dev/shm/osal:RAM", ignore_errors=True)  # OSAL's RAM disk: a directory
 
     def text(self):
         with open(self.logfile, "rb") as f:
