@@ -3,8 +3,8 @@
 
 Builds a native cFS (cFE, OSAL, PSP, ci_lab, to_lab, sch_lab) with the
 KESTREL_ACS application added out of tree (apps/cfs/kestrel_acs/tools/
-cfs_build.sh), then for S1 and S2, each bounded to a few seconds of
-simulated time:
+cfs_build.sh), then for S1 (all 600 s) and S2 (to 420 s: 60 s into the
+burn), bounded by --s1-seconds and --s2-seconds:
 
   * writes the scenario's configuration table (kestrel fsw-config, then
     kestrel_acs_tbl.py) into a fresh copy of the installed cpu1 directory,
@@ -30,7 +30,7 @@ directory), else the one cfs-*.tar.* in ../shared/cfs next to the
 repository; neither: skipped (exit 77) with the reason.  Prints the build
 time, each run's wall time and the mean cycle time through cFS.
 
-  cfs_closed_loop_test.py --kestrel BIN --repo DIR --work DIR [--seconds S]
+  cfs_closed_loop_test.py --kestrel BIN --repo DIR --work DIR [--s1-seconds S] [--s2-seconds S]
 """
 import argparse
 import ctypes
@@ -56,7 +56,7 @@ NOBODY = 65534
 START_TIMEOUT = 60.0  # [s] core-cpu1 to OPERATIONAL (a loaded 2-core machine)
 STOP_TIMEOUT = 15.0   # [s] SIGINT to exit
 LINK_TIMEOUT = "20"   # [s] harness: link start-up and each reply
-SCENARIOS = ["s1_sun_pointing", "s2_mars_orbit_insertion"]
+SCENARIOS = ["s1_sun_pointing", "s2_mars_orbit_insertion"]  # flown for --s1-seconds, --s2-seconds
 BAD_FIELD = "initial_mode"  # the first field of the image's body (offset 20, i32 big-endian)
 running = []  # core-cpu1 processes still up: stopped on any exit
 
@@ -270,12 +270,12 @@ def write_table(a, tools, scenario, out_dir, sets=(), patch=None):
     return tbl
 
 
-def fly(a, exe_dir, tools, name):
+def fly(a, exe_dir, tools, name, seconds):
     scenario = os.path.join(a.repo, "scenarios", name + ".yaml")
     d = os.path.join(a.work, name)
     shutil.rmtree(d, ignore_errors=True)
     os.makedirs(d)
-    dur = f"duration={a.seconds}"
+    dur = f"duration={seconds}"
     tbl = write_table(a, tools, scenario, d, [dur])
     t0 = time.monotonic()
     sh([a.kestrel, "run", scenario, "--set", dur, "--csv", "-o", os.path.join(d, "local")], "in-process run")
@@ -293,8 +293,9 @@ def fly(a, exe_dir, tools, name):
     if rc != 0:
         log(f"note: core-cpu1 exited {rc} after SIGINT")
     cycles = compare(os.path.join(d, "local"), os.path.join(d, "cfs"), name)
-    log(f"{name}: {a.seconds} s simulated: in process {t_local:.2f} s, through cFS {t_cfs:.2f} s wall: "
-        f"{1e3 * (t_cfs - t_local) / cycles:.1f} ms a cycle through ci_lab, KESTREL_ACS and to_lab")
+    log(f"{name}: {seconds} s simulated: in process {t_local:.2f} s, through cFS {t_cfs:.2f} s wall: "
+        f"{1e3 * (t_cfs - t_local) / cycles:.2f} ms a cycle through ci_lab, KESTREL_ACS and to_lab "
+        f"(link start included)")
     return t_cfs
 
 
@@ -329,7 +330,8 @@ def main():
     ap.add_argument("--kestrel", required=True)
     ap.add_argument("--repo", required=True)
     ap.add_argument("--work", required=True)
-    ap.add_argument("--seconds", default="3", help="simulated time of each run [s]")
+    ap.add_argument("--s1-seconds", default="600", help="S1's simulated time [s] (default: all of it)")
+    ap.add_argument("--s2-seconds", default="420", help="S2's simulated time [s] (default: to 60 s into the burn)")
     a = ap.parse_args()
     a.kestrel, a.repo, a.work = (os.path.abspath(x) for x in (a.kestrel, a.repo, a.work))
     try:
@@ -350,8 +352,8 @@ def main():
     exe_dir = r.stdout.strip().splitlines()[-1]
     log(f"cFS with KESTREL_ACS built from {src} in {time.monotonic() - t0:.0f} s: {exe_dir}")
     try:
-        for name in SCENARIOS:
-            fly(a, exe_dir, tools, name)
+        for name, seconds in zip(SCENARIOS, (a.s1_seconds, a.s2_seconds)):
+            fly(a, exe_dir, tools, name, seconds)
         bad_table(a, exe_dir, tools)
     finally:
         stop_all()
