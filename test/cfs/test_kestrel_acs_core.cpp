@@ -588,6 +588,36 @@ TEST(KestrelAcsLink, SensorPacketRunsTheCycleFswAcsRunsDirectly)
   EXPECT_EQ(pk.seq, 19u);
 }
 
+TEST(KestrelAcsLink, RetransmissionAnsweredAgainWithoutACycle)
+{
+  auto cfg = s1_config();
+  auto core = make_core();
+  ASSERT_EQ(kestrel_acs_core_configure(core.get(), &KESTREL_ACS_Config), FSW_OK);
+  Reference ref(*cfg);
+  Bytes ra, rh;
+  for (int k = 0; k < 4; ++k) {
+    FswAcsSensorMsg m = sample(*cfg, k);
+    Bytes p = sensor_packet(*cfg, m, static_cast<uint16_t>(k));
+    ASSERT_EQ(kestrel_acs_core_link(core.get(), 0, p.data(), p.size()), 2);
+    ref.cycle(*cfg, m, nullptr, &ra, &rh);
+    if (k == 1) {
+      // the same packet again (a reply was lost): the same replies, no cycle
+      ASSERT_EQ(kestrel_acs_core_link(core.get(), 0, p.data(), p.size()), 2);
+      EXPECT_EQ(core->resent, 1u);
+    }
+    EXPECT_EQ(core_act(*core), ra) << "cycle " << k;
+    EXPECT_EQ(core_hlth(*core), rh) << "cycle " << k;
+  }
+  EXPECT_EQ(core->cycles, 4u);
+  // the same time and sequence count with other contents is not a retransmission
+  FswAcsSensorMsg m = sample(*cfg, 3);
+  m.omega_BN_B[0] = static_cast<fsw_real>(0.002);
+  Bytes p = sensor_packet(*cfg, m, 3);
+  ASSERT_EQ(kestrel_acs_core_link(core.get(), 0, p.data(), p.size()), 2);
+  EXPECT_EQ(core->cycles, 5u);
+  EXPECT_EQ(core->last_status, FSW_E_TIME);
+}
+
 TEST(KestrelAcsLink, IcdCommandPacketAppliedFromTheNextCycle)
 {
   auto cfg = s1_config();

@@ -19,7 +19,10 @@
 #                         BUILD_DIR/build         the cmake build
 #                         BUILD_DIR/build/exe/cpu1  the installed core-cpu1, cf/ and tables
 #
-# The last line of output is the installed cpu1 directory.  Environment:
+# The last line of standard output is the installed cpu1 directory (the build's
+# own output goes to standard error).  Exit status: 0 built, 2 bad arguments
+# (no such tarball or directory, not a cFS bundle), 1 the build failed.
+# Environment:
 # CFS_JOBS (default 2) parallel jobs; KESTREL_ACS_APPS the directory holding
 # kestrel_acs/ (default: this script's ../..).  The build runs under nice.
 set -eu
@@ -103,16 +106,30 @@ if [ ! -f "$DEFS/.kestrel_defs_done" ] || [ "$(cat "$DEFS/.kestrel_defs_done")" 
   echo "$DEFS_VERSION" > "$DEFS/.kestrel_defs_done"
 fi
 
-# 3. configure once (MISSION_DEFS and CFS_APP_PATH are cached by cFE's build)
+# 3. configure once (MISSION_DEFS and CFS_APP_PATH are cached by cFE's build:
+#    a build configured for another tree, definitions or application directory
+#    is started afresh)
 BLD=$OUT/build
+KEY="$CFS|$DEFS|$APPS"
+if [ -d "$BLD" ] && [ "$(cat "$BLD/.kestrel_config" 2>/dev/null)" != "$KEY" ]; then
+  rm -rf "$BLD"
+fi
 mkdir -p "$BLD"
 if [ ! -f "$BLD/CMakeCache.txt" ]; then
-  (cd "$BLD" && SIMULATION=native nice cmake -DCMAKE_BUILD_TYPE=debug -DCMAKE_INSTALL_PREFIX=/exe \
-     -DMISSIONCONFIG=kestrel -DMISSION_DEFS="$DEFS" -DCFS_APP_PATH="$APPS" "$CFS/cfe")
+  if ! (cd "$BLD" && SIMULATION=native nice cmake -DCMAKE_BUILD_TYPE=debug -DCMAKE_INSTALL_PREFIX=/exe \
+     -DMISSIONCONFIG=kestrel -DMISSION_DEFS="$DEFS" -DCFS_APP_PATH="$APPS" "$CFS/cfe") >&2; then
+    rm -f "$BLD/CMakeCache.txt"
+    echo "cfs_build.sh: cmake configuration failed in $BLD" >&2
+    exit 1
+  fi
+  echo "$KEY" > "$BLD/.kestrel_config"
 fi
 
 # 4. build and install
-(cd "$BLD" && nice make -j"$JOBS" mission-all && nice make DESTDIR="$BLD" mission-install) >&2
+if ! (cd "$BLD" && nice make -j"$JOBS" mission-all && nice make DESTDIR="$BLD" mission-install) >&2; then
+  echo "cfs_build.sh: build failed in $BLD" >&2
+  exit 1
+fi
 test -f "$BLD/exe/cpu1/core-cpu1" && test -f "$BLD/exe/cpu1/cf/kestrel_acs.so" || {
   echo "cfs_build.sh: build finished without exe/cpu1/core-cpu1 and cf/kestrel_acs.so" >&2
   exit 1

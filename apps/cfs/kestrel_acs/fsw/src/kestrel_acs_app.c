@@ -150,8 +150,9 @@ static void KESTREL_ACS_SendEvents(void)
 }
 
 /* cFE table validation: decode + fsw_acs_check, the bad field in the event.
- * It may run in the table services' task (a ground validate command):
- * the events name this application explicitly. */
+ * This cFE calls it from CFE_TBL_Load and, for a ground VALIDATE command,
+ * from this application's CFE_TBL_Manage; the events name the application
+ * explicitly so that a cFE validating from its own task reports them right. */
 static int32 KESTREL_ACS_ValidateConfig(void *TblPtr)
 {
   const char *field = NULL;

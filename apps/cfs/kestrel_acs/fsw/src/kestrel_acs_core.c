@@ -95,6 +95,7 @@ FswStatus kestrel_acs_core_configure(KestrelAcsCore *c, const KestrelAcsConfigTa
   c->num_thr = (uint8_t)(c->cfg.has_thrusters != 0 ? c->cfg.thr_map.num_thr : 0);
   c->num_mtq = (uint8_t)(c->cfg.has_mtq != 0 ? c->cfg.mtq_map.num_mtq : 0);
   c->have_cmd = 0u;
+  c->have_last = 0u;
   c->err_run = 0u;
   c->last_mode = c->acs.mode;
   add_event(c, KESTREL_ACS_EID_TBL_OK, KESTREL_ACS_EV_INFO, c->acs.mode, (int32_t)t->image_length, NULL);
@@ -284,8 +285,17 @@ int kestrel_acs_core_link(KestrelAcsCore *c, uint8_t cc, const uint8_t *payload,
   if (payload == NULL || fsw_link_parse(payload, len, &p, &why) != FSW_OK) return link_refused(c, why);
   if (p.packet_len != len) return link_refused(c, FSW_LINK_E_LENGTH);
   if (p.apid == FSW_LINK_APID_SENSOR) {
+    const uint16_t crc = (uint16_t)(((uint32_t)payload[len - 2u] << 8) | payload[len - 1u]);
     if (fsw_link_decode_sensor(&p, &c->sens, &nrw, &ncss, &why) != FSW_OK) return link_refused(c, why);
     c->link_bad_run = 0u;
+    if (c->have_last != 0u && p.seq == c->last_seq && p.t_ns == c->last_t_ns && crc == c->last_crc) {
+      if (c->resent < UINT32_MAX) c->resent++;
+      return 2;
+    }
+    c->have_last = 1u;
+    c->last_seq = p.seq;
+    c->last_t_ns = p.t_ns;
+    c->last_crc = crc;
     return run_cycle(c, &p);
   }
   if (fsw_link_decode_cmd(&p, &c->cmd, &why) != FSW_OK) return link_refused(c, why);

@@ -142,6 +142,13 @@ typedef struct {
   uint32_t err_run;             /* [-] consecutive error cycles                */
   uint8_t link_bad_run;         /* [-] a refused link packet was reported      */
   int last_mode;                /* [-] mode in force after the last cycle      */
+  /* the last sensor packet that ran a cycle (a retransmission of it is
+   * answered with the same replies, no cycle: kestrel-fsw's link node does so) */
+  uint8_t have_last;
+  uint16_t last_seq;
+  uint64_t last_t_ns;
+  uint16_t last_crc;
+  uint32_t resent;              /* [-] retransmissions answered again          */
   /* link replies of the last sensor packet */
   uint16_t tx_seq[2];           /* [-] next sequence count: actuator, health  */
   FswAcsSensorMsg sens;
@@ -187,7 +194,10 @@ int kestrel_acs_core_ground_cmd(KestrelAcsCore *c, uint8_t cc, const uint8_t *pa
 
 /* A link message (0x18F1): cc must be 0 and the payload one ICD packet.
  * Returns the number of reply packets now in act_pkt/hlth_pkt: 2 after a
- * sensor packet (a cycle ran: its status is last_status), 0 otherwise
+ * sensor packet (a cycle ran: its status is last_status; or the packet was
+ * the last one again, same sequence count, t_ns and CRC, a retransmission
+ * after a lost reply: the same replies once more, no cycle, counted in
+ * `resent`), 0 otherwise
  * (a command packet kept, or a refused packet counted in link_rejected, or
  * a wrong cc counted in command_error_count). */
 int kestrel_acs_core_link(KestrelAcsCore *c, uint8_t cc, const uint8_t *payload, size_t len);
