@@ -292,7 +292,7 @@ TEST(CfsLink, ApplicationWithoutTableIsRefused)
 
 TEST(CfsLink, BadAddressesAreRefused)
 {
-  for (const char* s : {"localhost:1234", "127.0.0.1", "127.0.0.1:0", "127.0.0.1:1234:70000", "127.0.0.1:12x"}) {
+  for (const char* s : {"localhost:1234", "127.0.0.1:", "127.0.0.1:0", "127.0.0.1:1234:70000", "127.0.0.1:12x"}) {
     const std::string e = start_error(s, 0.1);
     EXPECT_NE(e.find("bad cFS address 'cfs:" + std::string(s) + "'"), std::string::npos) << e;
   }

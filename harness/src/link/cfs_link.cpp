@@ -43,7 +43,7 @@ int parse_port(const std::string& s, const std::string& spec)
   const long v = s.empty() ? -1 : std::strtol(s.c_str(), &end, 10);
   if (v < 1 || v > 65535 || *end != '\0')
     throw FswEndpointError("FSW link: bad cFS address 'cfs:" + spec +
-                           "' (expected cfs:HOST:PORT[:TLMPORT], ports in 1..65535)");
+                           "' (expected cfs:HOST[:PORT[:TLMPORT]], ports in 1..65535)");
   return static_cast<int>(v);
 }
 
@@ -53,9 +53,10 @@ CfsSpec parse_cfs_spec(const std::string& spec)
   const size_t a = spec.find(':');
   c.host = spec.substr(0, a);
   in_addr ip{};
-  if (a == std::string::npos || inet_pton(AF_INET, c.host.c_str(), &ip) != 1)
+  if (inet_pton(AF_INET, c.host.c_str(), &ip) != 1)
     throw FswEndpointError("FSW link: bad cFS address 'cfs:" + spec +
-                           "' (expected cfs:HOST:PORT[:TLMPORT] with an IPv4 HOST, e.g. cfs:127.0.0.1:1234)");
+                           "' (expected cfs:HOST[:PORT[:TLMPORT]] with an IPv4 HOST, e.g. cfs:127.0.0.1:1234)");
+  if (a == std::string::npos) return c;  // the lab apps' ports
   const size_t b = spec.find(':', a + 1);
   c.port = parse_port(spec.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1), spec);
   if (b != std::string::npos) c.tlm_port = parse_port(spec.substr(b + 1), spec);

@@ -1,6 +1,7 @@
 // cfs_link: the FSW link's cFS profile (--fsw cfs:HOST:PORT[:TLMPORT],
 // docs/hwil.md "cFS"): the KESTREL_ACS application inside a NASA core Flight
 // System, reached through cFS's own lab command and telemetry path.
+// (--fsw cfs:HOST also works: PORT 1234, TLMPORT 1235.)
 //
 //   uplink    each ICD packet the harness sends (sensor 0x101, command
 //             0x102) goes out whole as the payload of a cFS command,
@@ -62,7 +63,8 @@ struct CfsAcsHk {
 // Decodes a whole 0x08F0 telemetry message; false when it is not one.
 bool cfs_decode_hk(const uint8_t* msg, size_t n, CfsAcsHk& hk);
 
-// "HOST:PORT[:TLMPORT]" (IPv4 HOST).  Throws FswEndpointError naming the
+// "HOST[:PORT[:TLMPORT]]" (IPv4 HOST; ports by default 1234 and 1235, the
+// lab apps').  Throws FswEndpointError naming the
 // reason: bad spec, TLMPORT busy, or no housekeeping from KESTREL_ACS
 // through to_lab within timeout_s, or an application without a valid
 // configuration table.
