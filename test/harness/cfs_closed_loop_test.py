@@ -17,7 +17,7 @@ burn), bounded by --s1-seconds and --s2-seconds:
     manifest.json, summary.txt, report_data.json and dataflow.dot, without
     the lines that only a linked run writes (the link_* figures, the FSW
     node's label); fsw_health.txt, which names the endpoint's own counters,
-    must show every cycle answered;
+    must show every cycle answered and KESTREL_ACS's housekeeping count them;
   * stops core-cpu1 (SIGINT) and removes its state (SysV shared memory it
     created, /dev/shm/osal:RAM, the reset key files).
 
@@ -247,7 +247,13 @@ def compare(local, linked, name):
     m = re.search(r"cycles=(\d+) sent=(\d+) .* replies=(\d+) missing=(\d+) .* rejected=(\d+) stale=(\d+)", health)
     if not m or m.group(1) != m.group(3) or m.group(4) != "0" or m.group(5) != "0":
         fail(f"{name}: not every cycle answered through cFS:\n{health}")
-    log(f"{name}: {len(a)} items bit-identical to the in-process run; {m.group(1)} cycles, all answered")
+    # the application's own count, from its housekeeping (asked for with every 64th packet)
+    hk = re.search(r"link \(FSW end\): .* config_loaded=1 cycles=(\d+) ", health)
+    n = int(m.group(1))
+    if not hk or not n - 64 < int(hk.group(1)) <= n:
+        fail(f"{name}: KESTREL_ACS's housekeeping does not count the cycles flown ({n}):\n{health}")
+    log(f"{name}: {len(a)} items bit-identical to the in-process run; {n} cycles, all answered "
+        f"(KESTREL_ACS counted {hk.group(1)} by its last housekeeping)")
     return int(m.group(1))
 
 

@@ -73,6 +73,7 @@ class FakeCfs {
   std::vector<uint32_t> added;       // ADD_PKT message ids
   std::atomic<int> bad_commands{0};  // header or checksum wrong
   std::atomic<int> cycles{0};
+  std::atomic<int> hk_requests{0};
 
  private:
   void tlm(uint16_t mid, const uint8_t* payload, size_t n)
@@ -134,6 +135,7 @@ class FakeCfs {
     if (mid == 0x1880 && cc == 2 && n == 8 + 8)
       added.push_back(static_cast<uint32_t>(m[8] | m[9] << 8 | m[10] << 16 | m[11] << 24));  // little-endian
     if (mid == 0x18F2 && n == 8) {
+      ++hk_requests;
       uint8_t hk[24] = {0, 0, 0, config_loaded_};
       hk[23] = config_loaded_ ? 0 : 1;  // table_rejects
       tlm(0x08F0, hk, sizeof hk);
@@ -233,8 +235,10 @@ TEST(CfsLink, LockstepS1EqualsInProcess)
   harness::LinkOptions lo;
   lo.timeout_s = 30.0;
   harness::RunConfig cfg;
-  auto r = std::make_unique<harness::RemoteFsw>(harness::open_cfs_transport(spec(cfs.port(), tlm), 30.0),
-                                                harness::fsw_acs_config_of(sc), lo);
+  auto t = harness::open_cfs_transport(spec(cfs.port(), tlm), 30.0);
+  const int start_requests = cfs.hk_requests;  // at link start: until one is answered
+  EXPECT_GE(start_requests, 1);
+  auto r = std::make_unique<harness::RemoteFsw>(std::move(t), harness::fsw_acs_config_of(sc), lo);
   harness::RemoteFsw* link = r.get();
   cfg.fsw = std::move(r);
   harness::Run linked(sc, std::move(cfg));
@@ -252,6 +256,10 @@ TEST(CfsLink, LockstepS1EqualsInProcess)
   EXPECT_EQ(link->counters().rejected + link->counters().stale + link->counters().missing, 0u);
   EXPECT_EQ(cfs.cycles, 201);
   EXPECT_EQ(cfs.bad_commands, 0);
+  // with packets 64, 128 and 192 (one more when a start-up request was still
+  // on its way as the first answer came: a stalled machine)
+  EXPECT_GE(cfs.hk_requests - start_requests, 3);
+  EXPECT_LE(cfs.hk_requests - start_requests, 4);
   EXPECT_EQ(cfs.dest_ip, "127.0.0.1");
   EXPECT_EQ(cfs.added, (std::vector<uint32_t>{0x08F0, 0x08F1, 0x08F2}));
   const std::vector<std::string> lines = link->module_health_lines();

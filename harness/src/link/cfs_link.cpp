@@ -98,7 +98,13 @@ class CfsTransport : public LinkTransport {
   }
   std::string describe() const override { return desc_; }
   bool sends_link_status() const override { return false; }
-  void send(const uint8_t* p, size_t n) override { command(kCfsAcsLinkMid, 0, p, n); }
+  // Every 64th packet also asks for the application's housekeeping (kept
+  // for fsw_health.txt; it changes nothing in the FSW).
+  void send(const uint8_t* p, size_t n) override
+  {
+    command(kCfsAcsLinkMid, 0, p, n);
+    if (++sent_ % 64u == 0) command(kCfsAcsSendHkMid, 0, nullptr, 0);
+  }
   bool recv(std::vector<uint8_t>& pkt, double timeout_s) override;
   std::string diagnose() const override;
   std::string far_end_status() const override;
@@ -123,7 +129,7 @@ class CfsTransport : public LinkTransport {
   uint16_t seq_ = 0;
   std::vector<uint8_t> rx_;
   CfsAcsHk hk_;
-  uint64_t datagrams_ = 0, hk_count_ = 0, other_ = 0;
+  uint64_t datagrams_ = 0, hk_count_ = 0, other_ = 0, sent_ = 0;
 };
 
 std::string hk_text(const CfsAcsHk& hk)
