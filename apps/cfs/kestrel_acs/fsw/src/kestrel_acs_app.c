@@ -40,7 +40,7 @@ typedef struct {
 } KESTREL_ACS_Data_t;
 
 /* The application's data: one instance, as every cFS application keeps it
- * (the FSW state is about 80 KB: not on the task stack). */
+ * (the core is about 97 KB: not on the task stack). */
 static KESTREL_ACS_Data_t KESTREL_ACS_Data;
 
 void KESTREL_ACS_AppMain(void);
