@@ -8,6 +8,7 @@ host_pkgs=(cmake ninja-build g++ gcc clang libgtest-dev googletest libbenchmark-
            libeigen3-dev binutils python3 pkgconf libyaml-cpp-dev libhdf5-dev libcli11-dev nlohmann-json3-dev
            nodejs chromium python3-h5py lcov  # report: npm bundle at build time, headless test
            socat  # HWIL: the serial link tested over a pseudo-terminal pair
+           make xz-utils  # cFS closed loop: cFS builds with make; its bundle is a .tar.xz (docs/hwil.md, "cFS")
            openmpi-bin libopenmpi-dev slurm-wlm munge  # Monte Carlo: mpirun; the Slurm array test's one-node cluster
            libcpp-httplib-dev  # live view: the local HTTP server of `kestrel run --live`
            python3-jsonschema python3-yaml  # the scenario JSON Schema's test (docs/scenario-schema.md), the packet dictionary (tools/icd_gen.py)

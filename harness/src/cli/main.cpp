@@ -21,7 +21,9 @@ void add_link_flags(CLI::App* run, harness::RunCommand& rc)
 {
   harness::LinkOptions& l = rc.link;
   run->add_option("--fsw", rc.fsw,
-                  "run the FSW behind the link: udp:HOST:PORT or serial:DEVICE:BAUD (docs/hwil.md), or on an "
+                  "run the FSW behind the link: udp:HOST:PORT or serial:DEVICE:BAUD (docs/hwil.md), the "
+                  "KESTREL_ACS cFS application through ci_lab and to_lab: cfs:HOST[:PORT[:TLMPORT]] (ci_lab's "
+                  "port, default 1234; to_lab's telemetry to TLMPORT here, default 1235; docs/hwil.md), or on an "
                   "emulated processor: pil:aarch64-linux, pil:armhf-linux, pil:cortex-m4f, pil:cortex-m4f-float "
                   "(docs/pil.md)");
   run->add_option("--pil-bin", l.pil_bin, "with --fsw pil:TARGET: the cross-built FSW program to run (default: this "

@@ -1,5 +1,7 @@
 #include "harness/link/pil.h"
 
+#include "harness/link/cfs_link.h"
+
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
@@ -420,6 +422,11 @@ std::unique_ptr<LinkTransport> open_fsw_transport(const std::string& spec, const
                                                   const LinkOptions& opt)
 {
   if (spec.rfind("pil:", 0) == 0) return open_pil_transport(spec, cfg, opt);
+  if (spec.rfind("cfs:", 0) == 0) {
+    if (!opt.key_file.empty())
+      throw FswEndpointError("FSW link: --link-key: packet authentication needs a UDP link (udp:HOST:PORT)");
+    return open_cfs_transport(spec.substr(4), opt.timeout_s);
+  }
   return open_link_transport(spec, opt.key_file);
 }
 

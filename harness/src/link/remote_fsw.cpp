@@ -23,13 +23,15 @@ std::string errno_text() { return std::strerror(errno); }
 // are all there; this class turns its results into packets and exceptions.
 class CTransport : public LinkTransport {
  public:
-  enum class Kind { kUdp, kSerial };
-  // a connected UDP socket ("HOST:PORT") or a serial line ("DEVICE:BAUD")
+  enum class Kind { kUdp, kUdpBound, kSerial };
+  // a connected UDP socket ("HOST:PORT"), a bound one (receives only), or a
+  // serial line ("DEVICE:BAUD")
   CTransport(Kind kind, const std::string& spec) : t_(std::make_unique<FswTransport>())
   {
     char err[256] = "";
-    const int rc = kind == Kind::kUdp ? fsw_transport_connect_udp(t_.get(), spec.c_str(), err, sizeof err)
-                                      : fsw_transport_open_serial(t_.get(), spec.c_str(), err, sizeof err);
+    const int rc = kind == Kind::kUdp        ? fsw_transport_connect_udp(t_.get(), spec.c_str(), err, sizeof err)
+                   : kind == Kind::kUdpBound ? fsw_transport_open_udp(t_.get(), spec.c_str(), err, sizeof err)
+                                             : fsw_transport_open_serial(t_.get(), spec.c_str(), err, sizeof err);
     if (rc != 0) throw FswEndpointError(std::string("FSW link: ") + err);
   }
   // a byte stream already open; owns fd
@@ -134,6 +136,11 @@ std::unique_ptr<LinkTransport> open_link_transport(const std::string& spec, cons
   throw FswEndpointError("FSW link: unknown transport '" + spec + "' (expected udp:HOST:PORT or serial:DEVICE:BAUD)");
 }
 
+std::unique_ptr<LinkTransport> bind_udp_transport(const std::string& spec)
+{
+  return std::make_unique<CTransport>(CTransport::Kind::kUdpBound, spec);
+}
+
 RemoteFsw::RemoteFsw(std::unique_ptr<LinkTransport> t, const FswAcsConfig& cfg, LinkOptions opt)
     : t_(std::move(t)), opt_(opt), rng_(opt.seed)
 {
@@ -211,6 +218,7 @@ RemoteFsw::Got RemoteFsw::take(uint64_t t_ns, Reply& r)
       return Got::kNothing;
     }
     r.have_health = true;
+    if (!t_->sends_link_status()) return Got::kDone;  // the health packet ends the cycle
   } else if (p.apid == FSW_LINK_APID_ACTUATOR || p.apid == FSW_LINK_APID_HEALTH) {
     ++c_.stale;  // this cycle's reply again (an answered retransmission)
   } else {
@@ -391,6 +399,7 @@ std::vector<std::string> RemoteFsw::module_health_lines() const
     << " missing=" << c_.missing << " timeouts=" << c_.timeouts << " retransmits=" << c_.retransmits
     << " rejected=" << c_.rejected << " stale=" << c_.stale << " on_missing="
     << (missing_ == LinkOptions::Missing::kFail ? "fail" : missing_ == LinkOptions::Missing::kHold ? "hold" : "zero");
+  if (!t_->sends_link_status()) return {h.str(), "link (FSW end): " + t_->far_end_status()};
   f << "link (FSW end, status of the last cycle): rx_packets=" << c_.fsw.rx_packets << " rx_crc=" << c_.fsw.rx_crc
     << " rx_rejected=" << c_.fsw.rx_rejected << " rx_stale=" << c_.fsw.rx_stale << " missed=" << c_.fsw.missed
     << " safe_entries=" << c_.fsw.safe_entries << " safe_cycles=" << c_.fsw.safe_cycles

@@ -39,7 +39,9 @@ const std::vector<PilTarget>& pil_targets();
 std::unique_ptr<LinkTransport> open_pil_transport(const std::string& spec, const FswAcsConfig& cfg,
                                                   const LinkOptions& opt);
 
-// "pil:..." through open_pil_transport, anything else open_link_transport.
+// "pil:..." through open_pil_transport, "cfs:..." through open_cfs_transport
+// (cfs_link.h; its start-up bounded by opt.timeout_s), anything else
+// open_link_transport.
 std::unique_ptr<LinkTransport> open_fsw_transport(const std::string& spec, const FswAcsConfig& cfg,
                                                   const LinkOptions& opt);
 

@@ -98,6 +98,12 @@ class LinkTransport {
   // Which side failed when a reply does not come ("" : unknown, the far
   // end is not ours to inspect).
   virtual std::string diagnose() const { return ""; }
+  // The far end ends each cycle's reply with a link status packet (0x183,
+  // kestrel-fsw); false: the health packet ends it (the cFS application).
+  virtual bool sends_link_status() const { return true; }
+  // Without link status packets: what the transport knows of the far end
+  // (a line of fsw_health.txt).
+  virtual std::string far_end_status() const { return ""; }
 };
 
 // The transports below are RAII wrappers over the C transport module that
@@ -119,6 +125,11 @@ std::unique_ptr<LinkTransport> connect_unix_transport(const std::string& path, c
 // the shared key in it (fsw_link_sec.h; UDP only; the file must be mode
 // 0600 or stricter, and its key is never printed); "" : none.
 std::unique_ptr<LinkTransport> open_link_transport(const std::string& spec, const std::string& key_file = "");
+
+// A UDP socket bound to "HOST:PORT" that receives every datagram sent there
+// (whatever its content) and sends nothing; throws FswEndpointError (the
+// port is taken, a bad address).
+std::unique_ptr<LinkTransport> bind_udp_transport(const std::string& spec);
 
 // What the harness end counted.
 struct LinkCounters {
