@@ -247,7 +247,7 @@ static int run_cycle(KestrelAcsCore *c, const FswLinkPacket *p)
   FswStatus s;
   s = fsw_acs_cycle(&c->acs, &c->cfg, &c->sens, c->have_cmd != 0u ? &c->cmd : NULL, &c->act, &c->hlth);
   if (c->cycles < UINT32_MAX) c->cycles++;
-  if (s != FSW_OK && c->cycle_errors < UINT32_MAX) c->cycle_errors++;
+  if (fsw_status_is_error(s) && c->cycle_errors < UINT32_MAX) c->cycle_errors++;
   c->last_status = s;
   if (fsw_status_is_error(s)) {
     if (c->err_run == 0u) {

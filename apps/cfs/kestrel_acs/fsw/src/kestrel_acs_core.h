@@ -134,7 +134,7 @@ typedef struct {
   uint8_t command_count;        /* [-] ground commands accepted (wraps)        */
   uint8_t command_error_count;  /* [-] ground/link commands refused (wraps)    */
   uint32_t cycles;              /* [-] fsw_acs_cycle calls                     */
-  uint32_t cycle_errors;        /* [-] cycles whose status was an error or warning (!= FSW_OK) */
+  uint32_t cycle_errors;        /* [-] cycles whose status was an error (< 0)      */
   uint32_t link_rejected;       /* [-] link packets refused by parse/decode    */
   uint32_t table_rejects;       /* [-] table validations refused               */
   FswStatus last_status;        /* [-] status of the last cycle                */
