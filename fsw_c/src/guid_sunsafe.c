@@ -6,6 +6,7 @@
 
 #include "fsw/fsw_attitude.h"
 #include "fsw/fsw_vec.h"
+#include "fsw_vec_inline.h"
 
 /* Library guard (docs/fsw/guid_sunsafe.md): in the "normal" branch a cross product
  * |s_B x s_cmd| <= tol * |s_B| is treated as antiparallel (use e180).
