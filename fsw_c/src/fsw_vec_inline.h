@@ -76,6 +76,27 @@ static inline int fsw_v3i_is_finite(const fsw_real a[3])
   return (isfinite(a[0]) != 0) & (isfinite(a[1]) != 0) & (isfinite(a[2]) != 0);
 }
 
+/* |b| for b = p a, where p = fsw_pow2_scale(m) and m = max |a_i| > 0 is
+ * finite: the bits of fsw_v3_norm(b) without searching b again.  max |b_i|
+ * is m p exactly (|a_k| = m gives |b_k| = m p, the same product; every
+ * other |b_i| is a rounded |a_i| p <= m p), and m p is in [1/2, 1) or, for
+ * a subnormal m, a positive normal number, so the scaled sum of squares is
+ * formed as fsw_vn_norm forms it, term by term in the same order. */
+static inline fsw_real fsw_v3i_norm_pow2_scaled(const fsw_real b[3], fsw_real m, fsw_real p)
+{
+  const fsw_real mb = m * p;
+  fsw_real s = FSW_R(0.0), t;
+  t = b[0] / mb;
+  s += t * t;
+  t = b[1] / mb;
+  s += t * t;
+  t = b[2] / mb;
+  s += t * t;
+  return mb * FSW_SQRT(s);
+}
+
+/* fsw_vec.c includes this header for fsw_v3i_norm_pow2_scaled only. */
+#ifndef FSW_VEC_INLINE_NO_ALIASES
 #define fsw_v3_set fsw_v3i_set
 #define fsw_v3_copy fsw_v3i_copy
 #define fsw_v3_zero fsw_v3i_zero
@@ -87,5 +108,6 @@ static inline int fsw_v3i_is_finite(const fsw_real a[3])
 #define fsw_v3_cross fsw_v3i_cross
 #define fsw_v3_norm2 fsw_v3i_norm2
 #define fsw_v3_is_finite fsw_v3i_is_finite
+#endif
 
 #endif /* FSW_VEC_INLINE_H */
