@@ -1,4 +1,4 @@
-/* fsw_vec_inline: the one-line 3-vector helpers of fsw/fsw_vec.h as static
+/* fsw_vec_inline: the one-line vector helpers of fsw/fsw_vec.h as static
  * inline functions, for the modules of the flight cycle.  Not a public
  * header.  Each body is the expression of the out-of-line function in
  * fsw_vec.c, evaluated in the same order (the library is compiled with
@@ -76,6 +76,21 @@ static inline int fsw_v3i_is_finite(const fsw_real a[3])
   return (isfinite(a[0]) != 0) & (isfinite(a[1]) != 0) & (isfinite(a[2]) != 0);
 }
 
+/* fsw_vn_copy and fsw_vn_zero of n entries.  The copy runs through the
+ * entries also when out == a (each entry is written with its own value, the
+ * same result as fsw_vn_copy's early return). */
+static inline void fsw_vni_copy(fsw_real *out, const fsw_real *a, int n)
+{
+  int i;
+  for (i = 0; i < n; i++) out[i] = a[i];
+}
+
+static inline void fsw_vni_zero(fsw_real *out, int n)
+{
+  int i;
+  for (i = 0; i < n; i++) out[i] = FSW_R(0.0);
+}
+
 /* |b| for b = p a, where p = fsw_pow2_scale(m) and m = max |a_i| > 0 is
  * finite: the bits of fsw_v3_norm(b) without searching b again.  max |b_i|
  * is m p exactly (|a_k| = m gives |b_k| = m p, the same product; every
@@ -108,6 +123,8 @@ static inline fsw_real fsw_v3i_norm_pow2_scaled(const fsw_real b[3], fsw_real m,
 #define fsw_v3_cross fsw_v3i_cross
 #define fsw_v3_norm2 fsw_v3i_norm2
 #define fsw_v3_is_finite fsw_v3i_is_finite
+#define fsw_vn_copy fsw_vni_copy
+#define fsw_vn_zero fsw_vni_zero
 #endif
 
 #endif /* FSW_VEC_INLINE_H */
