@@ -91,6 +91,26 @@ static inline void fsw_vni_zero(fsw_real *out, int n)
   for (i = 0; i < n; i++) out[i] = FSW_R(0.0);
 }
 
+static inline fsw_real fsw_vni_dot(const fsw_real *a, const fsw_real *b, int n)
+{
+  fsw_real s = FSW_R(0.0);
+  int i;
+  for (i = 0; i < n; i++) s += a[i] * b[i];
+  return s;
+}
+
+static inline void fsw_m33i_mult_v3(fsw_real out[3], const fsw_real a[3][3], const fsw_real v[3])
+{
+  fsw_v3i_set(out, fsw_v3i_dot(a[0], v), fsw_v3i_dot(a[1], v), fsw_v3i_dot(a[2], v));
+}
+
+static inline void fsw_m33i_tmult_v3(fsw_real out[3], const fsw_real a[3][3], const fsw_real v[3])
+{
+  fsw_v3i_set(out, a[0][0] * v[0] + a[1][0] * v[1] + a[2][0] * v[2],
+              a[0][1] * v[0] + a[1][1] * v[1] + a[2][1] * v[2],
+              a[0][2] * v[0] + a[1][2] * v[1] + a[2][2] * v[2]);
+}
+
 /* |b| for b = p a, where p = fsw_pow2_scale(m) and m = max |a_i| > 0 is
  * finite: the bits of fsw_v3_norm(b) without searching b again.  max |b_i|
  * is m p exactly (|a_k| = m gives |b_k| = m p, the same product; every
@@ -125,6 +145,9 @@ static inline fsw_real fsw_v3i_norm_pow2_scaled(const fsw_real b[3], fsw_real m,
 #define fsw_v3_is_finite fsw_v3i_is_finite
 #define fsw_vn_copy fsw_vni_copy
 #define fsw_vn_zero fsw_vni_zero
+#define fsw_vn_dot fsw_vni_dot
+#define fsw_m33_mult_v3 fsw_m33i_mult_v3
+#define fsw_m33_tmult_v3 fsw_m33i_tmult_v3
 #endif
 
 #endif /* FSW_VEC_INLINE_H */
