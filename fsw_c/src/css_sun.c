@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "fsw/fsw_vec.h"
+#include "fsw_vec_inline.h"
 
 static void write_safe(FswCssSunOut *out)
 {

@@ -5,6 +5,7 @@
 
 #include "fsw/fsw_attitude.h"
 #include "fsw/fsw_vec.h"
+#include "fsw_vec_inline.h"
 #include "fsw/rw_common.h"
 
 /* ---- stage names --------------------------------------------------------- */

@@ -2,6 +2,7 @@
 #include "fsw/fsw_attitude.h"
 
 #include "fsw/fsw_vec.h"
+#include "fsw_vec_inline.h"
 
 void fsw_mrp_shadow(fsw_real out[3], const fsw_real s[3])
 {

@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "fsw/fsw_vec.h"
+#include "fsw_vec_inline.h"
 
 #if FSW_USE_FLOAT
 #define K1_MAX_EXP FLT_MAX_EXP

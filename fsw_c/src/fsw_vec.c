@@ -3,6 +3,9 @@
 
 #include <float.h>
 
+#define FSW_VEC_INLINE_NO_ALIASES
+#include "fsw_vec_inline.h"
+
 void fsw_v3_set(fsw_real out[3], fsw_real x, fsw_real y, fsw_real z)
 {
   out[0] = x;
@@ -78,13 +81,16 @@ int fsw_v3_normalize(fsw_real out[3], const fsw_real a[3])
    * normal range, and a unit vector also for entries near the real's
    * maximum (|a| would overflow) or subnormal (|a| would lose digits). */
   const fsw_real m = fsw_vn_max_abs(a, 3);
-  fsw_real b[3], n;
-  if (!(m > FSW_R(0.0)) || !isfinite(m) || !fsw_v3_is_finite(a)) {
+  fsw_real b[3], p, n;
+  /* m is finite only if every entry is: fsw_vn_max_abs returns NaN for a
+   * NaN entry and infinity for an infinite one. */
+  if (!(m > FSW_R(0.0)) || !isfinite(m)) {
     fsw_v3_zero(out);
     return 0;
   }
-  fsw_v3_scale(b, fsw_pow2_scale(m), a);
-  n = fsw_v3_norm(b);
+  p = fsw_pow2_scale(m);
+  fsw_v3_scale(b, p, a);
+  n = fsw_v3i_norm_pow2_scaled(b, m, p);
   fsw_v3_set(out, b[0] / n, b[1] / n, b[2] / n);
   return 1;
 }

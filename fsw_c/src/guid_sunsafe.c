@@ -6,6 +6,7 @@
 
 #include "fsw/fsw_attitude.h"
 #include "fsw/fsw_vec.h"
+#include "fsw_vec_inline.h"
 
 /* Library guard (docs/fsw/guid_sunsafe.md): in the "normal" branch a cross product
  * |s_B x s_cmd| <= tol * |s_B| is treated as antiparallel (use e180).
@@ -100,8 +101,10 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
     /* Only the direction of sun_B is used below: scale it by a power of
      * two (exact, same digits) so that |s_B| is in [1/2, 2 sqrt 3) and no
      * product overflows or underflows for any finite sun_B. */
-    fsw_v3_scale(s_B, fsw_pow2_scale(fsw_vn_max_abs(in->sun_B, 3)), in->sun_B);
-    s_norm = fsw_v3_norm(s_B);
+    const fsw_real m = fsw_vn_max_abs(in->sun_B, 3); /* > 0 and finite here */
+    const fsw_real p = fsw_pow2_scale(m);
+    fsw_v3_scale(s_B, p, in->sun_B);
+    s_norm = fsw_v3i_norm_pow2_scaled(s_B, m, p); /* = fsw_v3_norm(s_B) */
     c = fsw_v3_dot(st->s_cmd_hat_B, s_B) / s_norm;
     if (c > FSW_R(1.0)) c = FSW_R(1.0);
     if (c < FSW_R(-1.0)) c = FSW_R(-1.0);

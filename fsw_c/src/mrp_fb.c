@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "fsw/fsw_vec.h"
+#include "fsw_vec_inline.h"
 
 /* Relative symmetry tolerance of the inertia: |I_jk - I_kj| <= tol * max|I|. */
 #if FSW_USE_FLOAT

@@ -7,6 +7,7 @@
 
 #include "fsw/fsw_linalg.h"
 #include "fsw/fsw_vec.h"
+#include "fsw_vec_inline.h"
 
 FswStatus fsw_rw_check_axes(const fsw_real gs_hat_B[FSW_MAX_RW][3], int num_rw, int min_rw)
 {

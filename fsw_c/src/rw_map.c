@@ -15,6 +15,7 @@
 
 #include "fsw/fsw_linalg.h"
 #include "fsw/fsw_vec.h"
+#include "fsw_vec_inline.h"
 #include "fsw/rw_common.h"
 
 FswStatus fsw_rw_map_check(const FswRwMapConfig *cfg)

@@ -4,6 +4,7 @@
 #include <stddef.h>
 
 #include "fsw/fsw_vec.h"
+#include "fsw_vec_inline.h"
 #include "fsw/rw_common.h"
 
 FswStatus fsw_rw_sat_check(const FswRwSatConfig *cfg)
