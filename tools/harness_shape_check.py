@@ -28,7 +28,7 @@ import subprocess
 import sys
 import tempfile
 
-OTHER_COMPONENTS = ("fsw/", "sim/", "report/", "transport/")
+OTHER_COMPONENTS = ("fsw/", "sim/", "report/", "transport/", "icd/")
 SOURCE_ENDINGS = (".h", ".hpp", ".cpp", ".cc", ".c")
 INCLUDE_RE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 

@@ -1,5 +1,7 @@
 #include "harness/link/cfs_link.h"
 
+#include "icd/generated/kestrel_icd.h" // the packet table's constants (icd/packets.yaml, tools/icd_gen.py)
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -16,6 +18,20 @@ namespace harness {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// cFS message ids (cFS v1 message id = the CCSDS stream id, the first two
+// bytes of a message) and header sizes: KESTREL_ACS's from the packet table,
+// to_lab's from its own build.
+constexpr uint16_t kCfsAcsLinkMid = KESTREL_ICD_CFS_LINK_MID;
+constexpr uint16_t kCfsAcsSendHkMid = KESTREL_ICD_CFS_SEND_HK_MID;
+constexpr uint16_t kCfsAcsHkMid = KESTREL_ICD_CFS_HK_TLM_MID;
+constexpr uint16_t kCfsAcsActuatorMid = KESTREL_ICD_CFS_ACTUATOR_TLM_MID;
+constexpr uint16_t kCfsAcsHealthMid = KESTREL_ICD_CFS_HEALTH_TLM_MID;
+constexpr size_t kCfsCmdHeader = KESTREL_ICD_CFS_CMD_HEADER_SIZE;
+constexpr size_t kCfsTlmHeader = KESTREL_ICD_CFS_TLM_HEADER_SIZE;
+constexpr uint16_t kCfsToLabCmdMid = 0x1880; // to_lab's commands
+constexpr uint8_t kCfsToLabAddPktCc = 2;
+constexpr uint8_t kCfsToLabOutputEnableCc = 6;
 
 uint16_t be16(const uint8_t* p) { return static_cast<uint16_t>(p[0] << 8 | p[1]); }
 uint32_t be32(const uint8_t* p)

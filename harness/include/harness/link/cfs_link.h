@@ -36,19 +36,6 @@
 
 namespace harness {
 
-// cFS message ids and codes the profile uses (cFS v1 message id = the
-// CCSDS stream id, the first two bytes of a message).
-constexpr uint16_t kCfsAcsLinkMid = 0x18F1;     // KESTREL_ACS_LINK_MID: one ICD packet
-constexpr uint16_t kCfsAcsSendHkMid = 0x18F2;   // KESTREL_ACS_SEND_HK_MID
-constexpr uint16_t kCfsAcsHkMid = 0x08F0;       // KESTREL_ACS_HK_TLM_MID
-constexpr uint16_t kCfsAcsActuatorMid = 0x08F1; // KESTREL_ACS_ACTUATOR_TLM_MID
-constexpr uint16_t kCfsAcsHealthMid = 0x08F2;   // KESTREL_ACS_HEALTH_TLM_MID
-constexpr uint16_t kCfsToLabCmdMid = 0x1880;    // to_lab's commands
-constexpr uint8_t kCfsToLabAddPktCc = 2;
-constexpr uint8_t kCfsToLabOutputEnableCc = 6;
-constexpr size_t kCfsCmdHeader = 8;  // CCSDS primary 6 + function code + checksum
-constexpr size_t kCfsTlmHeader = 16; // CCSDS primary 6 + time 6 + spare 4
-
 // A cFS command message: the 8-byte command header (stream id mid, sequence
 // flags "unsegmented" with sequence count seq, length, function code cc,
 // checksum: the XOR of every byte of the message is 0xFF, as cFE's
