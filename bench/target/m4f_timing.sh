@@ -8,8 +8,11 @@
 #       each under QEMU mps2-an386 with -icount shift=0 (1 ns of virtual time
 #       per instruction), prints each build's table (min / median / max per
 #       mode and item over the golden replay), the worst case per item across
-#       the builds, and the share of a 10 Hz period the worst cycle takes on a
-#       CLOCK_MHZ (default 168) part at CPI 1.0 and CPI_HIGH (default 1.5).
+#       the builds; for the double builds also m4f_fuzz_replay.cpp, every
+#       fsw_acs_cycle of the fuzz corpus test/fuzz/fsw/corpus/acs; and the
+#       share of a 10 Hz period the worst cycle (golden replay and fuzz
+#       corpus) takes on a CLOCK_MHZ (default 168) part at CPI 1.0 and
+#       CPI_HIGH (default 1.5).
 #   bench/target/m4f_timing.sh --check ELF
 #       the counter's self-check (ctest m4f_instruction_counter): the
 #       hand-counted routines' disassembly is what the check assumes, and
@@ -52,12 +55,17 @@ for b in "${builds[@]}"; do
     -DKESTREL_BUILD_SIM=OFF -DKESTREL_BUILD_HARNESS=OFF -DKESTREL_BUILD_BENCHMARKS=OFF -DKESTREL_INSTALL=OFF \
     -DKESTREL_BUILD_FSW_M4F=OFF -DKESTREL_BUILD_M4F_TIMING=ON "${launcher[@]}" >"$out/cmake.log" 2>&1 ||
     { cat "$out/cmake.log"; exit 1; }
-  cmake --build "$dir" --target m4f_cycles m4f_counter_check >"$out/build.log" 2>&1 || { cat "$out/build.log"; exit 1; }
+  targets=(m4f_cycles m4f_counter_check); [[ $real == double ]] && targets+=(m4f_fuzz_replay)
+  cmake --build "$dir" --target "${targets[@]}" >"$out/build.log" 2>&1 || { cat "$out/build.log"; exit 1; }
   # semihosting writes to QEMU's stderr
   "${qemu[@]}" "$dir/bench/target/m4f-counter-check.elf" >"$out/check-$real$opt.txt" 2>&1
   "${qemu[@]}" "$dir/bench/target/m4f-cycles.elf" >"$out/$real$opt.txt" 2>&1
   echo "== fsw_real $real, $opt (GCC $(arm-none-eabi-gcc -dumpversion), -mcpu=cortex-m4 -mfpu=fpv4-sp-d16 -mfloat-abi=hard)"
   cat "$out/check-$real$opt.txt" "$out/$real$opt.txt"
+  if [[ $real == double ]]; then
+    "${qemu[@]}" "$dir/bench/target/m4f-fuzz-replay.elf" >"$out/fuzz-$real$opt.txt" 2>&1
+    cat "$out/fuzz-$real$opt.txt"
+  fi
 done
 
 echo
@@ -73,8 +81,11 @@ awk -F'|' -v nb="${#builds[@]}" '
 echo
 echo "== share of a 10 Hz period (100 ms) for the worst fsw_acs_cycle, at $clock MHz"
 for b in "${builds[@]}"; do
+  f="$out/${b%%:*}${b#*:}.txt" z="$out/fuzz-${b%%:*}${b#*:}.txt"
+  [[ -f $z ]] || z=/dev/null
   awk -F'|' -v b="${b%%:*} ${b#*:}" -v mhz="$clock" -v hi="$cpi_hi" '
-    $3 ~ /fsw_acs_cycle/ && $7 + 0 > w { w = $7 + 0; m = $2 }
-    END { printf "%-11s worst %7d instructions (%s): CPI 1.0 %.3f ms = %.2f %% of the period; CPI %s %.3f ms = %.2f %%\n",
-          b, w, m, w / mhz / 1e3, w / mhz / 1e3, hi, w * hi / mhz / 1e3, w * hi / mhz / 1e3 }' "$out/${b%%:*}${b#*:}.txt"
+    FILENAME !~ /fuzz/ && $3 ~ /fsw_acs_cycle/ && $7 + 0 > w { w = $7 + 0; m = $2 }
+    FILENAME ~ /fuzz/ && $3 ~ /^ *[0-9]+ *$/ && $7 + 0 > w { w = $7 + 0; m = $2 " fuzz input " $8 }
+    END { gsub(/^ +| +$/, "", m); gsub(/  +/, " ", m); printf "%-11s worst %7d instructions (%s): CPI 1.0 %.3f ms = %.2f %% of the period; CPI %s %.3f ms = %.2f %%\n",
+          b, w, m, w / mhz / 1e3, w / mhz / 1e3, hi, w * hi / mhz / 1e3, w * hi / mhz / 1e3 }' "$f" "$z"
 done
