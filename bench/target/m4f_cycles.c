@@ -21,21 +21,14 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "data/fsw_acs_golden.h"
 #include "fsw/fsw_acs.h"
 #include "m4f_counter.h"
 
 void fsw_assert_failed(const char *file, int line);
 void fsw_assert_failed(const char *file, int line) { printf("m4f_cycles: FSW assertion failed at %s:%d\n", file, line); }
 
-typedef struct {
-  int scenario, cycle, mode;
-  uint64_t t_ns;
-  double sigma[3], omega[3], css[6], Omega[4];
-  int status;
-  double Lr[3], u[4], V[4], t_on[8];
-} GoldenCycle;
-
-static const GoldenCycle kGolden[] = {
+static const FswAcsGoldenCycle kGolden[] = {
 #include "data/fsw_acs_golden.inc"
 };
 #define NUM_GOLDEN (sizeof kGolden / sizeof kGolden[0])
@@ -248,7 +241,7 @@ int main(void)
     return 1;
   }
   for (k = 0; k < NUM_GOLDEN; ++k) {
-    const GoldenCycle *c = &kGolden[k];
+    const FswAcsGoldenCycle *c = &kGolden[k];
     int group;
     if (c->scenario != sc_prev) {
       const int ok = c->scenario == 0 ? wheel_config(&g_cfg)
