@@ -25,6 +25,7 @@ endif()
 option(KESTREL_BUILD_PIL "Build the cross-compiled FSW programs for processor-in-the-loop runs" ${_pil_default})
 
 set(KESTREL_PIL_TARGETS "")
+# Extra arguments: more targets of the same build (built with the program).
 function(kestrel_pil_target name toolchain real subdir program compiler emulator)
   find_program(_cc_${name} ${compiler})
   find_program(_emu_${name} ${emulator})
@@ -44,7 +45,7 @@ function(kestrel_pil_target name toolchain real subdir program compiler emulator
         -DKESTREL_FSW_MAX_THR=${KESTREL_FSW_MAX_THR}
         -DKESTREL_BUILD_TESTS=OFF -DKESTREL_BUILD_SIM=OFF -DKESTREL_BUILD_HARNESS=OFF
         -DKESTREL_BUILD_BENCHMARKS=OFF -DKESTREL_INSTALL=OFF
-      BUILD_COMMAND ${CMAKE_COMMAND} --build <BINARY_DIR> --target ${program}
+      BUILD_COMMAND ${CMAKE_COMMAND} --build <BINARY_DIR> --target ${program} ${ARGN}
       INSTALL_COMMAND ""
       BUILD_ALWAYS ON)
     set(_bin "${_dir}/${subdir}")
@@ -59,8 +60,14 @@ kestrel_pil_target(aarch64-linux aarch64-linux-gnu.cmake double flight/posix/kes
                    aarch64-linux-gnu-gcc qemu-aarch64)
 kestrel_pil_target(armhf-linux arm-linux-gnueabihf.cmake double flight/posix/kestrel-fsw kestrel_fsw
                    arm-linux-gnueabihf-gcc qemu-arm)
+# (with the instruction counter's self-check, bench/target/, run by the test
+# m4f_instruction_counter)
 kestrel_pil_target(cortex-m4f cortex-m4f.cmake double flight/m4f/kestrel-fsw-m4f.elf kestrel_fsw_m4f
-                   arm-none-eabi-gcc qemu-system-arm)
+                   arm-none-eabi-gcc qemu-system-arm m4f_counter_check)
+set(KESTREL_PIL_M4F_COUNTER_CHECK "")
+if(KESTREL_PIL_BIN_CORTEX_M4F)
+  set(KESTREL_PIL_M4F_COUNTER_CHECK "${PROJECT_BINARY_DIR}/pil/cortex-m4f/bench/target/m4f-counter-check.elf")
+endif()
 kestrel_pil_target(cortex-m4f-float cortex-m4f.cmake float flight/m4f/kestrel-fsw-m4f.elf kestrel_fsw_m4f
                    arm-none-eabi-gcc qemu-system-arm)
 

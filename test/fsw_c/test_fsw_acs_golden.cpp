@@ -13,17 +13,12 @@
 #include <cstring>
 
 #include "acs_fixture.hpp"
+#include "data/fsw_acs_golden.h"
 #include "kestrel_test_support.h"
 
 namespace {
 
-struct GoldenCycle {
-  int scenario, cycle, mode;
-  uint64_t t_ns;
-  double sigma[3], omega[3], css[6], Omega[4];
-  int status;
-  double Lr[3], u[4], V[4], t_on[8];
-};
+using GoldenCycle = FswAcsGoldenCycle;
 
 const GoldenCycle kGolden[] = {
 #include "data/fsw_acs_golden.inc"
