@@ -170,11 +170,12 @@ def run(root, out_path, cpp_dirs=None, cmake_files=None, req_path=None, quiet=Fa
         sys.stdout.write(text)
     elif out_path:
         write_atomic(out_path, text)
+    if quiet:
+        return 1 if problems else 0
     for p in problems:
         print("trace_matrix: " + p, file=sys.stderr)
-    if not quiet:
-        print("trace_matrix: %d requirements, %d tests, %d problems" % (
-            len(reqs), len(tests), len(problems)), file=sys.stderr)
+    print("trace_matrix: %d requirements, %d tests, %d problems" % (
+        len(reqs), len(tests), len(problems)), file=sys.stderr)
     return 1 if problems else 0
 
 
