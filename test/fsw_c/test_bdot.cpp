@@ -532,7 +532,7 @@ TEST(BdotDetumble, DerivRateEstimateIsTheNormalComponent)
 
 // ---- gain and decay-time helpers ---------------------------------------------------
 
-// Verifies: REQ-BDOT-003
+// Verifies: REQ-BDOT-011
 TEST(BdotGain, MatchesTheFormulaTypedByHand)
 {
   // n = 1.1e-3 rad/s, J_min = 0.04 kg m^2: polar (xi = 90 deg) 2*1.1e-3*2*0.04

@@ -1122,7 +1122,7 @@ TEST(FswAcsCycle, Issue21ThrusterForcesInTheMessageGiveTheRequestedTorque)
 
 // A thruster flag other than 0/1 is bad input of the cycle (safe output);
 // beyond num_thr it is not read.
-// Verifies: REQ-ACS-015
+// Verifies: REQ-ACS-005
 TEST(FswAcsCycle, ThrusterFlagsAreZeroOrOne)
 {
   acsfix::thruster_config(g_cfg);

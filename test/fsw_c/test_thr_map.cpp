@@ -885,7 +885,7 @@ TEST(ThrMapIssue13, OverflowingRequestIsBadInput)
 // Finding 6 (b, c): the configs that overflowed (location 1.5e308, F_max
 // 1e308) are now refused by check; a CoM beyond FSW_THR_MAP_R_MAX is bad
 // input; the bounded mode is OK only when it delivers the request.
-// Verifies: REQ-THRMAP-006, REQ-THRMAP-001
+// Verifies: REQ-THRMAP-001, REQ-THRMAP-006, REQ-THRMAP-008
 TEST(ThrMapIssue13, BoundedModeRangesAndDeliveredTorque)
 {
   const double big = static_cast<double>(std::numeric_limits<R>::max()) / 1.2;
