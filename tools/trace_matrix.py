@@ -5,7 +5,8 @@ Reads the numbered requirements of docs/requirements.md (lines starting
 `- **REQ-AREA-NNN**`) and the tags of the tests that verify them:
 
   * test/fsw_c/*.cpp: a comment line `// Verifies: REQ-A-001, REQ-B-002`
-    directly above every TEST / TEST_F / TEST_P;
+    directly above every TEST / TEST_F / TEST_P / TYPED_TEST (the macro and
+    both names on one line);
   * the CMake files of the proofs and the flight transports: a comment line
     `# Verifies: ...` directly above an `add_test(NAME name ...)`.
 
@@ -28,7 +29,9 @@ import tempfile
 
 REQ_LINE = re.compile(r"^- \*\*(REQ-[A-Z0-9]+-\d{3})\*\*(.*)$")
 REQ_ID = re.compile(r"REQ-[A-Z0-9]+-\d{3}")
-CPP_TEST = re.compile(r"^\s*TEST(?:_F|_P)?\(\s*(\w+)\s*,\s*(\w+)")
+CPP_TEST = re.compile(r"^\s*(?:TYPED_)?TEST(?:_F|_P)?\(\s*(\w+)\s*,\s*(\w+)")
+# a test macro whose names are not on its first line: the tool cannot read it
+CPP_TEST_START = re.compile(r"^\s*(?:TYPED_)?TEST(?:_F|_P)?\(\s*(\w+\s*,?\s*)?$")
 CPP_TAG = re.compile(r"^\s*//\s*Verifies:(.*)$")
 CMAKE_TEST = re.compile(r"^\s*add_test\(\s*NAME\s+([\w.-]+)")
 CMAKE_TAG = re.compile(r"^\s*#\s*Verifies:(.*)$")
@@ -63,6 +66,8 @@ def parse_tagged(path, test_re, tag_re, name_of):
     for i, line in enumerate(lines):
         m = test_re.match(line)
         if not m:
+            if test_re is CPP_TEST and CPP_TEST_START.match(line):
+                out.append(("(unreadable test macro)", [], "%s:%d" % (path, i + 1)))
             continue
         ids = []
         if i > 0:
@@ -203,6 +208,7 @@ def self_test():
         ("a requirement without a test", FIXTURE_REQS + "- **REQ-AA-004** four.\n", FIXTURE_GOOD, 1),
         ("an unknown requirement", FIXTURE_REQS, FIXTURE_GOOD.replace("REQ-AA-002,", "REQ-AA-009,"), 1),
         ("a number defined twice", FIXTURE_REQS + "- **REQ-AA-002** again.\n", FIXTURE_GOOD, 1),
+        ("a test macro split over lines", FIXTURE_REQS, FIXTURE_GOOD + "// Verifies: REQ-AA-001\nTEST(\n    A, Four) {}\n", 1),
     ]
     failed = 0
     for label, reqs, cpp, want in cases:
