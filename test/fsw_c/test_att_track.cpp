@@ -49,6 +49,7 @@ void expect_zero_guid(const FswAttGuid& g)
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, g.omega_dot_RN_B, 0.0);
 }
 
+// Verifies: REQ-ATTTRK-001
 TEST_F(AttTrack, SameAxisRotationsSubtractAngles)
 {
   // B at 60 deg, R at 20 deg about z: sigma_BR = tan(40 deg / 4) z = tan(10 deg) z.
@@ -58,6 +59,7 @@ TEST_F(AttTrack, SameAxisRotationsSubtractAngles)
   EXPECT_V3_NEAR(0.0, 0.0, std::tan(10 * kDeg), out_.sigma_BR, kTol);
 }
 
+// Verifies: REQ-ATTTRK-001
 TEST_F(AttTrack, RatesAreExpressedInBody)
 {
   // sigma_BN = tan(90deg/4) z: [BN] = M3(90 deg) = [[0,1,0],[-1,0,0],[0,0,1]].
@@ -76,6 +78,7 @@ TEST_F(AttTrack, RatesAreExpressedInBody)
   EXPECT_V3_NEAR(0.0, 0.0, std::tan(90 * kDeg / 4), out_.sigma_BR, kTol);
 }
 
+// Verifies: REQ-ATTTRK-001
 TEST_F(AttTrack, ReferenceOffsetShiftsTheReference)
 {
   // All about x: B at 50, R at 30, R0 relative to R at 15 deg.
@@ -91,6 +94,7 @@ TEST_F(AttTrack, ReferenceOffsetShiftsTheReference)
   EXPECT_V3_NEAR(0.0, 0.0, 0.04, out_.omega_BR_B, kTol);
 }
 
+// Verifies: REQ-ATTTRK-001
 TEST_F(AttTrack, ErrorNear360DegreesIsTheShortRotation)
 {
   // B at +179 deg, R at -179 deg about y: B rel. R is 358 deg = -2 deg about y.
@@ -100,6 +104,7 @@ TEST_F(AttTrack, ErrorNear360DegreesIsTheShortRotation)
   EXPECT_V3_NEAR(0.0, std::tan(-2 * kDeg / 4), 0.0, out_.sigma_BR, kt::tol(1e-13, 1e-5));
 }
 
+// Verifies: REQ-ATTTRK-001
 TEST_F(AttTrack, MatchesIndependentDcmCompositionOnRandomAttitudes)
 {
   // Property: DCM(sigma_BR) = DCM(sigma_BN) DCM(sigma_RN')^T with
@@ -159,6 +164,7 @@ TEST_F(AttTrack, MatchesIndependentDcmCompositionOnRandomAttitudes)
   }
 }
 
+// Verifies: REQ-ATTTRK-002
 TEST_F(AttTrack, RejectsNonFiniteConfig)
 {
   const double bad_values[] = {gref::nan(), gref::inf(), -gref::inf()};
@@ -176,6 +182,7 @@ TEST_F(AttTrack, RejectsNonFiniteConfig)
   }
 }
 
+// Verifies: REQ-ATTTRK-003
 TEST_F(AttTrack, NonFiniteInputGivesZeroErrors)
 {
   // Every component of every input field, NaN and Inf: status, zero
@@ -213,6 +220,7 @@ TEST_F(AttTrack, NonFiniteInputGivesZeroErrors)
   EXPECT_V3_NEAR(0.1, 0.0, 0.0, out_.sigma_BR, kTol);
 }
 
+// Verifies: REQ-GEN-007
 TEST_F(AttTrack, NullPointersAssert)
 {
   EXPECT_EQ(FSW_E_NULL_ARG, fsw_att_track_update(&st_, &cfg_, nullptr, &out_));
@@ -220,6 +228,7 @@ TEST_F(AttTrack, NullPointersAssert)
   expect_zero_guid(out_);
 }
 
+// Verifies: REQ-ATTTRK-004
 TEST_F(AttTrack, RepeatableAfterReset)
 {
   gref::set3(in_.sigma_BN, 0.3, -0.2, 0.1);
@@ -241,6 +250,7 @@ TEST_F(AttTrack, RepeatableAfterReset)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(AttTrackIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("att_track", fsw_att_track_check, fsw_att_track_init, fsw_att_track_reset, fsw_att_track_update);
@@ -253,6 +263,7 @@ TEST(AttTrackIssue21, EveryNullArgumentAssertsAndReturns)
 // give omega_BR = 2 max = inf.  Accelerations: (max, max, 0) in N seen from
 // B turned 45 deg about z (sigma = (0, 0, tan(pi/16))) has one component of
 // length sqrt(2) max = inf.  Each: bad input, zero guidance.
+// Verifies: REQ-ATTTRK-003
 TEST_F(AttTrack, Issue21FiniteInputsThatOverflow)
 {
   const fsw_real mx = std::numeric_limits<fsw_real>::max();

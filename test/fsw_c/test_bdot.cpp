@@ -97,6 +97,7 @@ void rotating_field(double t, double w, const double B0[3], double B[3])
 
 // ---- configuration ----------------------------------------------------------
 
+// Verifies: REQ-BDOT-001
 TEST(BdotConfig, RejectsEachBadField)
 {
   const R nan = std::numeric_limits<R>::quiet_NaN(), inf = std::numeric_limits<R>::infinity();
@@ -171,6 +172,7 @@ TEST(BdotConfig, RejectsEachBadField)
 //  t=1.0 B=(2,4,1)e-5          raw = (0,4,0)e-5;  Bdot = 0.8 (2,0,-4) + 0.2 (0,4,0)
 //                                                     = (1.6, 0.8, -3.2)e-5
 //  m = -k Bdot with k = 2e3 (normalize 0).
+// Verifies: REQ-BDOT-002
 TEST(BdotDeriv, FirstStepsByHand)
 {
   FswBdotConfig c = base_cfg(FSW_BDOT_DERIV);
@@ -209,6 +211,7 @@ TEST(BdotDeriv, FirstStepsByHand)
 // So the estimate is G pdot with G = H (1 - e^{i w h}) / (-i w h): a lag of
 // about tau_f + h/2 and a gain of about 1/sqrt(1 + (w tau_f)^2).  Bz is
 // constant: its derivative is exactly 0.
+// Verifies: REQ-BDOT-002
 TEST(BdotDeriv, RotatingFieldConvergesWithTheFiltersKnownLag)
 {
   const double w = 0.05, h = 0.2;
@@ -246,6 +249,7 @@ TEST(BdotDeriv, RotatingFieldConvergesWithTheFiltersKnownLag)
 // tau_f = 0 (raw difference): samples at t = 0, 1 s, then a missed sample at
 // 2 s, then t = 3 s.  The derivative at 3 s is (B3 - B1) / 2 s, the true
 // elapsed difference, and equals a run in which the 2 s sample never existed.
+// Verifies: REQ-BDOT-002, REQ-BDOT-005
 TEST(BdotMissed, DroppedSampleDifferencesOverTheTrueElapsedTime)
 {
   const double w = 0.02, B0[3] = {2e-5, 1e-5, -3e-5};
@@ -283,6 +287,7 @@ TEST(BdotMissed, DroppedSampleDifferencesOverTheTrueElapsedTime)
 // max_missed = 2: two missed cycles hold the dipole, the third switches the
 // rods off and drops the memory; the next valid sample only primes (m = 0)
 // and the one after it differences against it.
+// Verifies: REQ-BDOT-005
 TEST(BdotMissed, HoldsForMaxMissedThenRodsOffThenPrimesAgain)
 {
   FswBdotConfig c = base_cfg(FSW_BDOT_DERIV);
@@ -322,6 +327,7 @@ TEST(BdotMissed, HoldsForMaxMissedThenRodsOffThenPrimesAgain)
 
 // m = k (omega x B) (normalize 0) and m = k (omega x B) / |B|^2 (normalize 1),
 // typed out component by component; Bdot_B = B x omega.
+// Verifies: REQ-BDOT-003
 TEST(BdotGyro, EqualsTheClosedForm)
 {
   kt::Rng r(38);
@@ -349,6 +355,7 @@ TEST(BdotGyro, EqualsTheClosedForm)
 
 // Torque power omega . (m x B) = -g |omega x B|^2 <= 0 for every input, also
 // when the dipole is saturated (a positive common factor keeps the sign).
+// Verifies: REQ-BDOT-003
 TEST(BdotGyro, TorquePowerIsNeverPositive)
 {
   kt::Rng r(7);
@@ -375,6 +382,7 @@ TEST(BdotGyro, TorquePowerIsNeverPositive)
 }
 
 // A miss of either sensor is a missed sample for GYRO.
+// Verifies: REQ-BDOT-005
 TEST(BdotGyro, MissingGyroOrFieldHoldsTheDipole)
 {
   FswBdotConfig c = base_cfg(FSW_BDOT_GYRO);
@@ -400,6 +408,7 @@ TEST(BdotGyro, MissingGyroOrFieldHoldsTheDipole)
 
 // m_raw = -k Bdot = (3, -1, 0.5) A m^2 against limits (1, 2, 0.1):
 // factors 1/3, -, 0.2 -> scale 0.2, m = (0.6, -0.2, 0.1).
+// Verifies: REQ-BDOT-004
 TEST(BdotSaturation, CommonFactorKeepsTheDirection)
 {
   FswBdotConfig c = base_cfg(FSW_BDOT_DERIV);
@@ -434,6 +443,7 @@ TEST(BdotSaturation, CommonFactorKeepsTheDirection)
 // Fuzz finding h1: a subnormal rod limit (2e-322) was accepted and the
 // factor underflowed to 0 under W_SAT; limits below FSW_BDOT_M_MIN are now
 // rejected.
+// Verifies: REQ-BDOT-004
 TEST(BdotSaturation, ExtremeRangesKeepTheDirection)
 {
   FswBdotConfig c = base_cfg(FSW_BDOT_GYRO, 1);
@@ -458,6 +468,7 @@ TEST(BdotSaturation, ExtremeRangesKeepTheDirection)
 
 // GYRO, calls every 1 s, omega_done = 0.01, omega_reenter = 0.02,
 // t_persist = 3 s.  |omega| per call and the expected (t_below, detumbled):
+// Verifies: REQ-BDOT-006
 TEST(BdotDetumble, PersistenceAndHysteresisHandTimed)
 {
   Fx f(base_cfg(FSW_BDOT_GYRO));
@@ -498,6 +509,7 @@ TEST(BdotDetumble, PersistenceAndHysteresisHandTimed)
 // DERIV without the gyro: rate_est = |Bdot| / |B| is the rate component
 // normal to B (a lower bound of |omega|).  Body turning at w about z, B with
 // a component along z: |omega x B| / |B| = w |B_xy| / |B|.
+// Verifies: REQ-BDOT-006
 TEST(BdotDetumble, DerivRateEstimateIsTheNormalComponent)
 {
   const double w = 0.01, B0[3] = {3e-5, 0, 4e-5}, h = 0.1;
@@ -520,6 +532,7 @@ TEST(BdotDetumble, DerivRateEstimateIsTheNormalComponent)
 
 // ---- gain and decay-time helpers ---------------------------------------------------
 
+// Verifies: REQ-BDOT-011
 TEST(BdotGain, MatchesTheFormulaTypedByHand)
 {
   // n = 1.1e-3 rad/s, J_min = 0.04 kg m^2: polar (xi = 90 deg) 2*1.1e-3*2*0.04
@@ -657,6 +670,7 @@ LoopResult run_loop(int variant, double k, double tau_f, double t_end, Plant& p)
 // ln(100) * fsw_bdot_decay_time(k, J_max) (the averaged estimate; the
 // slowest in-plane mode decays at k/(2J) instead of 2k/(3J) at the optimal
 // gain, and the gyroscopic coupling mixes the axes).
+// Verifies: REQ-BDOT-010
 TEST(BdotClosedLoop, GyroDetumblesFromTenDegPerSecondWithinTheEstimate)
 {
   Plant p;
@@ -683,6 +697,7 @@ TEST(BdotClosedLoop, GyroDetumblesFromTenDegPerSecondWithinTheEstimate)
 // relative to the field, so the body ends turning with the field direction
 // (about 2 n on average in this orbit) instead of at 0: below 0.1 deg/s is not
 // its goal.  Checked: from 10 deg/s to below 4 n (0.25 deg/s) within two orbits.
+// Verifies: REQ-BDOT-010
 TEST(BdotClosedLoop, DerivDampsToTheFieldRotationRate)
 {
   Plant p;
@@ -696,6 +711,7 @@ TEST(BdotClosedLoop, DerivDampsToTheFieldRotationRate)
 
 // ---- bad input, time, reset ------------------------------------------------------
 
+// Verifies: REQ-BDOT-007
 TEST(BdotBadInput, SafeOutputAndNoStateChange)
 {
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -756,6 +772,7 @@ TEST(BdotBadInput, SafeOutputAndNoStateChange)
   }
 }
 
+// Verifies: REQ-BDOT-008
 TEST(BdotTime, NonIncreasingStampIsATimeErrorWithoutStateChange)
 {
   Fx f(base_cfg(FSW_BDOT_DERIV));
@@ -772,6 +789,7 @@ TEST(BdotTime, NonIncreasingStampIsATimeErrorWithoutStateChange)
   EXPECT_EQ(FSW_OK, f.step(0, B));
 }
 
+// Verifies: REQ-BDOT-007, REQ-BDOT-009
 TEST(BdotReset, ResetThenBadInputGivesTheSafeOutputNotStaleValues)
 {
   FswBdotConfig c = base_cfg(FSW_BDOT_GYRO);
@@ -790,6 +808,7 @@ TEST(BdotReset, ResetThenBadInputGivesTheSafeOutputNotStaleValues)
   for (int k = 0; k < 3; k++) EXPECT_EQ(0.0, f.out.m_B[k]);
 }
 
+// Verifies: REQ-BDOT-009
 TEST(BdotRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 {
   for (int variant = 0; variant <= 1; variant++) {
@@ -816,6 +835,7 @@ TEST(BdotRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
   }
 }
 
+// Verifies: REQ-GEN-007
 TEST(BdotNullArgs, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("bdot", fsw_bdot_check, fsw_bdot_init, fsw_bdot_reset, fsw_bdot_update);

@@ -117,6 +117,7 @@ class CssSun : public ::testing::Test {
   FswCssSunOut out_{};
 };
 
+// Verifies: REQ-CSS-001
 TEST_F(CssSun, ThreeOrthogonalLitSensorsGiveExactSun)
 {
   // s = (1,1,1)/sqrt(3): +x, +y, +z read 2/sqrt(3), y_i = 1/sqrt(3).
@@ -132,6 +133,7 @@ TEST_F(CssSun, ThreeOrthogonalLitSensorsGiveExactSun)
   EXPECT_NEAR(1.0, out_.sun_mag, kTol);
 }
 
+// Verifies: REQ-CSS-002
 TEST_F(CssSun, TwoLitSensorsInPlaneSunIsExact)
 {
   // s = (0.6, 0.8, 0): only +x (0.6) and +y (0.8) lit.  Two-sensor
@@ -147,6 +149,7 @@ TEST_F(CssSun, TwoLitSensorsInPlaneSunIsExact)
   EXPECT_EQ(1u, st_.health.singular);
 }
 
+// Verifies: REQ-CSS-002
 TEST_F(CssSun, TwoLitSensorsGiveInPlaneProjection)
 {
   // s = (0.6, 0.6, sqrt(0.28)) with +z failed: +x, +y lit at 0.6 each.
@@ -162,6 +165,7 @@ TEST_F(CssSun, TwoLitSensorsGiveInPlaneProjection)
   EXPECT_NEAR(0.6 * std::sqrt(2.0), out_.sun_mag, kTol);
 }
 
+// Verifies: REQ-CSS-002
 TEST_F(CssSun, OneLitSensorGivesItsNormal)
 {
   // s = (0.6, 0, 0.8) with +z failed: only +x lit (y = 0.6).
@@ -177,6 +181,7 @@ TEST_F(CssSun, OneLitSensorGivesItsNormal)
   EXPECT_NEAR(0.6, out_.sun_mag, kTol);
 }
 
+// Verifies: REQ-CSS-003
 TEST_F(CssSun, NoLitSensorNoHeading)
 {
   // eclipse: all readings 0 (and one just at the threshold: not lit, strict >)
@@ -189,6 +194,7 @@ TEST_F(CssSun, NoLitSensorNoHeading)
   EXPECT_EQ(0.0, out_.sun_mag);
 }
 
+// Verifies: REQ-CSS-002
 TEST_F(CssSun, CoplanarLitSensorsFallBackToTwo)
 {
   // normals x, y, (x+y)/sqrt(2) are coplanar: M has rank 2, WLS refused.
@@ -212,6 +218,7 @@ TEST_F(CssSun, CoplanarLitSensorsFallBackToTwo)
   EXPECT_V3_NEAR(0.6, 0.8, 0.0, out_.sun_hat_B, kt::tol(1e-14, 4e-6));
 }
 
+// Verifies: REQ-CSS-002
 TEST_F(CssSun, ParallelLitSensorsFallBackToOne)
 {
   // two sensors with the same normal (redundant pair) both lit: no 2-D
@@ -233,6 +240,7 @@ TEST_F(CssSun, ParallelLitSensorsFallBackToOne)
   EXPECT_NEAR(0.7, out_.sun_mag, kTol);
 }
 
+// Verifies: REQ-CSS-001
 TEST_F(CssSun, NoiselessReadingsGiveExactSunOnSeededDirections)
 {
   double n[14][3], sc[14];
@@ -262,6 +270,7 @@ TEST_F(CssSun, NoiselessReadingsGiveExactSunOnSeededDirections)
   EXPECT_GT(n_wls, kTrials * 95 / 100);
 }
 
+// Verifies: REQ-CSS-001
 TEST_F(CssSun, NoisyReadingsStayWithinAnalyticBound)
 {
   double n[14][3], sc[14];
@@ -328,6 +337,7 @@ TEST_F(CssSun, NoisyReadingsStayWithinAnalyticBound)
   EXPECT_GT(worst_ratio, 0.05);  // the bound is not vacuous
 }
 
+// Verifies: REQ-CSS-004
 TEST_F(CssSun, RejectsBadConfig)
 {
   struct Case {
@@ -367,6 +377,7 @@ TEST_F(CssSun, RejectsBadConfig)
   EXPECT_EQ(FSW_OK, fsw_css_sun_check(&ok));
 }
 
+// Verifies: REQ-CSS-005
 TEST_F(CssSun, BadInputGivesSafeOutput)
 {
   const double r3 = 1.0 / std::sqrt(3.0);
@@ -396,6 +407,7 @@ TEST_F(CssSun, BadInputGivesSafeOutput)
   EXPECT_EQ(1, out_.sun_valid);
 }
 
+// Verifies: REQ-GEN-007
 TEST_F(CssSun, NullPointersAssert)
 {
   EXPECT_EQ(FSW_E_NULL_ARG, fsw_css_sun_update(&st_, &cfg_, nullptr, &out_));
@@ -403,6 +415,7 @@ TEST_F(CssSun, NullPointersAssert)
   EXPECT_EQ(2ul, kestrel_assert_count());
 }
 
+// Verifies: REQ-CSS-007
 TEST_F(CssSun, RepeatableAfterReset)
 {
   double n[14][3], sc[14];
@@ -427,6 +440,7 @@ TEST_F(CssSun, RepeatableAfterReset)
 // threshold 0) gave |sun_hat| = 1.00013 in two-sensor mode: the norm of a
 // subnormal vector loses digits.  fsw_v3_normalize now pre-scales by a
 // power of two, so sun_hat is a unit vector for any finite estimate.
+// Verifies: REQ-CSS-006
 TEST_F(CssSun, Issue13SubnormalReadingsStillGiveAUnitHeading)
 {
   cfg_.lit_threshold = FSW_R(0.0);
@@ -449,6 +463,7 @@ TEST_F(CssSun, Issue13SubnormalReadingsStillGiveAUnitHeading)
 // without it the other sensors would give a heading from a corrupt input.
 // (The +max reading of BadInputGivesSafeOutput is also caught later, by the
 // overflow of the normal equations.)
+// Verifies: REQ-CSS-005
 TEST_F(CssSun, Issue21NegativeOverflowOfAReadingIsBadInput)
 {
   cube_faces(cfg_, 0.5);
@@ -467,6 +482,7 @@ TEST_F(CssSun, Issue21NegativeOverflowOfAReadingIsBadInput)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(CssSunNullIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("css_sun", fsw_css_sun_check, fsw_css_sun_init, fsw_css_sun_reset, fsw_css_sun_update);
@@ -478,6 +494,7 @@ TEST(CssSunNullIssue21, EveryNullArgumentAssertsAndReturns)
 // (header: FSW_CSS_SUN_ONE), never a TWO built with a sensor that is
 // unavailable now (its lit flag must be cleared on every call, not left from
 // call 1).
+// Verifies: REQ-CSS-005
 TEST_F(CssSun, Issue21UnavailableSensorIsNeverAPartner)
 {
   const double r3 = 1.0 / std::sqrt(3.0);
@@ -495,6 +512,7 @@ TEST_F(CssSun, Issue21UnavailableSensorIsNeverAPartner)
 // Issue 21: readings whose normal matrix M = sum y n n^T is finite but whose
 // right-hand side c = sum y^2 n overflows: y = 1e200 (1e20 in float) gives
 // M ~ 1e200 and y^2 = 1e400 = inf.  Bad input, safe output.
+// Verifies: REQ-CSS-005
 TEST_F(CssSun, Issue21OverflowOfTheRightHandSideIsBadInput)
 {
   const double r3 = 1.0 / std::sqrt(3.0);
@@ -509,6 +527,7 @@ TEST_F(CssSun, Issue21OverflowOfTheRightHandSideIsBadInput)
 // Issue 21: the normal matrix itself overflowing: two sensors with the same
 // normal (+x) each reading 0.9 max at scale 1 put 1.8 max = inf into M_xx
 // (the right-hand side overflows too).  Bad input.
+// Verifies: REQ-CSS-005
 TEST_F(CssSun, Issue21OverflowOfTheNormalMatrixIsBadInput)
 {
   FswCssSunConfig c = cfg_;

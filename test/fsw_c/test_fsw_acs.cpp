@@ -119,6 +119,7 @@ const BadCfg kBadConfigs[] = {
      "mrp_fb.num_rw", FSW_E_CONFIG},
 };
 
+// Verifies: REQ-ACS-001
 TEST(FswAcsConfig, RejectsTheFirstBadFieldByName)
 {
   for (const BadCfg& b : kBadConfigs) {
@@ -137,6 +138,7 @@ TEST(FswAcsConfig, RejectsTheFirstBadFieldByName)
   }
 }
 
+// Verifies: REQ-ACS-001, REQ-ACS-002
 TEST(FswAcsConfig, ThrusterChainConsistency)
 {
   struct Row {
@@ -195,6 +197,7 @@ TEST(FswAcsConfig, ThrusterChainConsistency)
 
 /* ---- what the health message publishes ---- */
 
+// Verifies: REQ-ACS-012
 TEST(FswAcsHealth, StageNamesComeFromTheLibrary)
 {
   const char* const want[FSW_ACS_NUM_STAGES] = {"css",     "guidance", "track",   "control",
@@ -206,6 +209,7 @@ TEST(FswAcsHealth, StageNamesComeFromTheLibrary)
   EXPECT_EQ(std::string("unknown"), fsw_acs_stage_name(FSW_ACS_NUM_STAGES));
 }
 
+// Verifies: REQ-ACS-012
 TEST(FswAcsHealth, PublishesTheSunHeadingTheCycleUsed)
 {
   // Sun along (1,1,1)/sqrt3 on the +x, +y, +z sensors: the heading is exact.
@@ -244,6 +248,7 @@ TEST(FswAcsHealth, PublishesTheSunHeadingTheCycleUsed)
 FswAcsGeometry g_geo;
 FswAcsConfig g_cfg2;
 
+// Verifies: REQ-ACS-003
 TEST(FswAcsGeometry, WritesEveryCopyAndNothingElse)
 {
   acsfix::wheel_geometry(g_geo);
@@ -305,6 +310,7 @@ TEST(FswAcsGeometry, WritesEveryCopyAndNothingElse)
   }
 }
 
+// Verifies: REQ-ACS-003
 TEST(FswAcsGeometry, BadCountsLeaveTheConfigUnchanged)
 {
   acsfix::wheel_config(g_cfg);
@@ -333,6 +339,7 @@ TEST(FswAcsGeometry, BadCountsLeaveTheConfigUnchanged)
   kestrel_assert_reset();
 }
 
+// Verifies: REQ-ACS-001, REQ-ACS-002
 TEST(FswAcsConfig, SafetyNetCatchesCopiesFilledByHand)
 {
   // Swapping two spin axes in one copy keeps every module's own check happy
@@ -368,6 +375,7 @@ TEST(FswAcsConfig, SafetyNetCatchesCopiesFilledByHand)
 
 /* ---- nominal cycles, numbers by hand ---- */
 
+// Verifies: REQ-ACS-004
 TEST(FswAcsCycle, SunSafeFromCssMatchesHandCalculation)
 {
   // Sun along (1,1,1)/sqrt3 in B, command +z: theta = acos(1/sqrt3),
@@ -407,6 +415,7 @@ TEST(FswAcsCycle, SunSafeFromCssMatchesHandCalculation)
   for (int k = 4; k < FSW_MAX_RW; k++) EXPECT_EQ(0, g_act.u_s[k]);
 }
 
+// Verifies: REQ-ACS-004
 TEST(FswAcsCycle, InertialAtRestGivesKSigmaRN)
 {
   // sigma_BN = 0: sigma_BR = subMRP(0, sigma_RN) = -sigma_RN, so Lr = K sigma_RN.
@@ -422,6 +431,7 @@ TEST(FswAcsCycle, InertialAtRestGivesKSigmaRN)
   }
 }
 
+// Verifies: REQ-ACS-004
 TEST(FswAcsCycle, SmallErrorsAreOpposedAndWheelsDeliverTheTorque)
 {
   acsfix::wheel_config(g_cfg);
@@ -452,6 +462,7 @@ TEST(FswAcsCycle, SmallErrorsAreOpposedAndWheelsDeliverTheTorque)
   }
 }
 
+// Verifies: REQ-ACS-015
 TEST(FswAcsCycle, ThrusterOnTimesAreBoundedAndZeroRequestFiresNothing)
 {
   acsfix::thruster_config(g_cfg);
@@ -485,6 +496,7 @@ TEST(FswAcsCycle, ThrusterOnTimesAreBoundedAndZeroRequestFiresNothing)
 
 /* ---- bad input, time, recovery ---- */
 
+// Verifies: REQ-ACS-005
 TEST(FswAcsCycle, BadInputGivesSafeOutputAdvancesNothingAndRecovers)
 {
   acsfix::wheel_config(g_cfg);
@@ -555,6 +567,7 @@ double wheel_torque_alignment(const FswAcsActuatorMsg& a)
   return bl / std::sqrt(bb * ll);
 }
 
+// Verifies: REQ-ACS-004, REQ-ACS-005
 TEST(FswAcsCycle, UnavailableWheelGetsZeroAndItsNaNSpeedIsIgnored)
 {
   // A failed tachometer on a wheel already out of service must not stop the
@@ -603,6 +616,7 @@ TEST(FswAcsCycle, UnavailableWheelGetsZeroAndItsNaNSpeedIsIgnored)
   }
 }
 
+// Verifies: REQ-ACS-005
 TEST(FswAcsCycle, BadModeRequestIsRejected)
 {
   acsfix::wheel_config(g_cfg);
@@ -619,6 +633,7 @@ TEST(FswAcsCycle, BadModeRequestIsRejected)
 
 /* ---- modes ---- */
 
+// Verifies: REQ-ACS-007
 TEST(FswAcsModes, TransitionResetsIntegratorAndPulseMemory)
 {
   acsfix::thruster_config(g_cfg);
@@ -654,6 +669,7 @@ TEST(FswAcsModes, TransitionResetsIntegratorAndPulseMemory)
   EXPECT_EQ(1u, g_h.mode_changes);
 }
 
+// Verifies: REQ-ACS-007
 TEST(FswAcsModes, ResetRepeatsBitForBit)
 {
   acsfix::wheel_config(g_cfg);
@@ -692,6 +708,7 @@ double run_closed_loop(FswAcsConfig& cfg, acsfix::Plant& p, int cycles, FswAcsSt
   return g_h.att_err_angle;
 }
 
+// Verifies: REQ-ACS-016
 TEST(FswAcsClosedLoop, InertialPointingWithWheelsConverges)
 {
   acsfix::wheel_config(g_cfg);
@@ -706,6 +723,7 @@ TEST(FswAcsClosedLoop, InertialPointingWithWheelsConverges)
   for (int i = 0; i < 3; i++) EXPECT_LT(std::fabs(p.omega[i]), 1e-5);
 }
 
+// Verifies: REQ-ACS-016
 TEST(FswAcsClosedLoop, SunSafeAcquiresTheSunFromATumble)
 {
   acsfix::wheel_config(g_cfg);
@@ -724,6 +742,7 @@ TEST(FswAcsClosedLoop, SunSafeAcquiresTheSunFromATumble)
   EXPECT_EQ(1, g_h.sun_valid);
 }
 
+// Verifies: REQ-ACS-016
 TEST(FswAcsClosedLoop, InertialPointingWithThrustersHoldsAndIsDeterministic)
 {
   for (int pulser = 0; pulser < 2; pulser++) {
@@ -780,6 +799,7 @@ void mask_health_and_scratch(FswAcsState& s, const FswAcsState& ref)
 // cycle count, the application's clock and the filter memory advanced, so a
 // good retry at t = 0.5 s got E_TIME.  Now the state is byte-identical
 // (health and scratch aside) and the retry equals a run without the glitch.
+// Verifies: REQ-ACS-006
 TEST(FswAcsCycle, Issue13ErrorCycleAdvancesNoStateAndRetryWorks)
 {
   const double big = 0.5 * static_cast<double>(std::numeric_limits<fsw_real>::max());
@@ -822,6 +842,7 @@ TEST(FswAcsCycle, Issue13ErrorCycleAdvancesNoStateAndRetryWorks)
 
 // Finding 1 (b): power-optimal mapping with a denormal eps_P made every
 // cycle bad input while the clocks advanced; check now refuses the config.
+// Verifies: REQ-ACS-001, REQ-RWMAP-001
 TEST(FswAcsConfig, Issue13DenormalEpsPIsRefused)
 {
   acsfix::wheel_config(g_cfg);
@@ -865,6 +886,7 @@ void expect_error_cycle_advances_no_state(int axis, const char* why)
 
 // Issue 21: with thrusters, for both pulsers (the snapshot of the mapper
 // diagnostics and of the pulser's memory is put back).
+// Verifies: REQ-ACS-006
 TEST(FswAcsCycle, Issue21ThrusterErrorCycleAdvancesNoState)
 {
   acsfix::thruster_config(g_cfg, FSW_ACS_PULSE_REMAINDER);
@@ -875,6 +897,7 @@ TEST(FswAcsCycle, Issue21ThrusterErrorCycleAdvancesNoState)
 
 // Issue 21: inputs the sun-safe and thruster paths read: a NaN reading of an
 // available CSS in SUN_SAFE, a NaN centre of mass with thrusters.
+// Verifies: REQ-ACS-005
 TEST(FswAcsCycle, Issue21SunSafeAndThrusterInputsAreChecked)
 {
   acsfix::wheel_config(g_cfg);
@@ -898,6 +921,7 @@ TEST(FswAcsCycle, Issue21SunSafeAndThrusterInputsAreChecked)
 // Issue 21: every pointer NULL in turn (cmd and bad_field may be NULL by
 // contract): assert once, FSW_E_NULL_ARG; the cycle still writes the safe
 // output and a zero health message wherever those pointers are valid.
+// Verifies: REQ-GEN-007
 TEST(FswAcsIssue21, EveryNullArgumentAssertsAndReturns)
 {
   acsfix::wheel_config(g_cfg);
@@ -926,6 +950,7 @@ TEST(FswAcsIssue21, EveryNullArgumentAssertsAndReturns)
 }
 
 // Issue 21: the remaining request and bookkeeping paths of the cycle.
+// Verifies: REQ-ACS-005
 TEST(FswAcsIssue21, RequestsCountersAndResetOfANotReadyState)
 {
   // wheels requested from a thruster-only configuration, an unknown
@@ -964,6 +989,7 @@ TEST(FswAcsIssue21, RequestsCountersAndResetOfANotReadyState)
 // Issue 21: a control law without wheel momentum (mrp_fb.num_rw = 0) in
 // front of a wheel chain is legal (H_s omitted, docs/fsw/mrp_fb.md), and then the
 // spin-axis and spin-inertia copies have nothing to agree with.
+// Verifies: REQ-ACS-002
 TEST(FswAcsIssue21, ControlLawWithoutWheelMomentumIsAccepted)
 {
   acsfix::wheel_config(g_cfg);
@@ -978,6 +1004,7 @@ TEST(FswAcsIssue21, ControlLawWithoutWheelMomentumIsAccepted)
 
 // Issue 21: the wheel error cycle without null motion and voltages (the
 // snapshot paths for a chain with neither).
+// Verifies: REQ-ACS-006
 TEST(FswAcsCycle, Issue21WheelErrorCycleWithoutNullOrVoltages)
 {
   acsfix::wheel_config(g_cfg);
@@ -991,6 +1018,7 @@ TEST(FswAcsCycle, Issue21WheelErrorCycleWithoutNullOrVoltages)
 // wheels only.  Rows past num_rw are unused capacity (every stage reads its
 // first num_rw rows), so copies that differ only there must be accepted; a
 // difference in the last used row must still be refused.
+// Verifies: REQ-ACS-001, REQ-ACS-002
 TEST(FswAcsIssue21, GeometryCopiesAreComparedOverTheUsedWheelsOnly)
 {
   acsfix::wheel_config(g_cfg);
@@ -1018,6 +1046,7 @@ TEST(FswAcsIssue21, GeometryCopiesAreComparedOverTheUsedWheelsOnly)
 // cycle that fails inside a stage (an angular rate of half the real's
 // maximum overflows the control law) must leave mode and counter as they
 // were, 1 and INERTIAL, and the next good cycle still counts no transition.
+// Verifies: REQ-ACS-006
 TEST(FswAcsCycle, Issue21ErrorCycleKeepsTheTransitionCount)
 {
   acsfix::wheel_config(g_cfg);
@@ -1051,6 +1080,7 @@ TEST(FswAcsCycle, Issue21ErrorCycleKeepsTheTransitionCount)
 // mapper's own property test (2e-3).
 // Issue 14: the same with one thruster flagged unavailable (thr_avail):
 // it gets no force and no on-time, and the seven left still deliver Lr.
+// Verifies: REQ-ACS-015
 TEST(FswAcsCycle, Issue21ThrusterForcesInTheMessageGiveTheRequestedTorque)
 {
   for (int flagged : {-1, 2, 5})
@@ -1092,6 +1122,7 @@ TEST(FswAcsCycle, Issue21ThrusterForcesInTheMessageGiveTheRequestedTorque)
 
 // A thruster flag other than 0/1 is bad input of the cycle (safe output);
 // beyond num_thr it is not read.
+// Verifies: REQ-ACS-005
 TEST(FswAcsCycle, ThrusterFlagsAreZeroOrOne)
 {
   acsfix::thruster_config(g_cfg);
@@ -1136,6 +1167,7 @@ void expect_stage_health_after_error_cycle(const char* why)
 }
 }  // namespace
 
+// Verifies: REQ-ACS-006
 TEST(FswAcsCycle, Issue21ErrorCycleKeepsEveryStagesHealthCounters)
 {
   acsfix::wheel_config(g_cfg);
@@ -1157,6 +1189,7 @@ TEST(FswAcsCycle, Issue21ErrorCycleKeepsEveryStagesHealthCounters)
 // (FSW_E_BAD_INPUT), the guidance stage before it (independent of the
 // sensors) is OK.  The message is zeroed at the start of every cycle, so a
 // TRACK entry of FSW_E_BAD_INPUT can only come from the stage.
+// Verifies: REQ-ACS-012
 TEST(FswAcsCycle, Seed31337InertialHealthCarriesTheTrackingStatus)
 {
   acsfix::wheel_config(g_cfg);
@@ -1194,6 +1227,7 @@ void speed_filter_on(FswAcsConfig& c, uint32_t k_reject, uint32_t n_window)
 // output); with it, it is that wheel's outlier: held, then after k_reject = 2
 // cycles the wheel is failed, shows in rw_failed, gets 0 torque, and the
 // three others deliver the requested torque.
+// Verifies: REQ-ACS-014
 TEST(FswAcsSpeedFilter, ANaNTachometerFailsItsWheelNotTheCycle)
 {
   acsfix::wheel_config(g_cfg);
@@ -1230,6 +1264,7 @@ TEST(FswAcsSpeedFilter, ANaNTachometerFailsItsWheelNotTheCycle)
 // before; the live wheels (speeds following their torque exactly) never.
 // An error cycle at k = 2 leaves the torque of that interval unknown: the
 // window restarts at the retry and the latch comes at k = 5.
+// Verifies: REQ-ACS-014, REQ-ACS-006
 TEST(FswAcsSpeedFilter, AFrozenTachometerUnderTorqueIsLatchedAndAnErrorCycleRestartsTheWindow)
 {
   for (int with_error = 0; with_error < 2; with_error++) {
@@ -1271,6 +1306,7 @@ TEST(FswAcsSpeedFilter, AFrozenTachometerUnderTorqueIsLatchedAndAnErrorCycleRest
 
 // The filter's state is put back on an error cycle like every stage's
 // (health and the work area aside), and reset clears a latched wheel.
+// Verifies: REQ-ACS-014, REQ-ACS-006
 TEST(FswAcsSpeedFilter, ErrorCycleRestoresTheFilterAndResetClearsALatch)
 {
   acsfix::wheel_config(g_cfg);
@@ -1307,6 +1343,7 @@ TEST(FswAcsSpeedFilter, ErrorCycleRestoresTheFilterAndResetClearsALatch)
 // An off-pulsing thruster set (thr_map sign -1) needs off-pulsing pulsing
 // (base_thrust_state 1): that pairing is accepted, the mismatch refused by
 // name, for both pulsers (docs/fsw/fsw_acs.md, "Checking the whole").
+// Verifies: REQ-ACS-001, REQ-ACS-002
 TEST(FswAcsConfig, OffPulsingThrustersNeedOffPulsingPulsing)
 {
   for (int pulser : {FSW_ACS_PULSE_REMAINDER, FSW_ACS_PULSE_SCHMITT}) {
@@ -1330,6 +1367,7 @@ TEST(FswAcsConfig, OffPulsingThrustersNeedOffPulsingPulsing)
 // still reach every stage (the filter ORs them with its verdicts): a wheel
 // flagged unavailable gets no torque, the three others deliver Lr, and the
 // flag is not a filter failure.
+// Verifies: REQ-ACS-014
 TEST(FswAcsSpeedFilter, FlaggedWheelsStayUnavailableThroughTheFilter)
 {
   acsfix::wheel_config(g_cfg);
@@ -1366,6 +1404,7 @@ FswAcsCmdMsg inertial_cmd()
 // (0.1, -0.2, 0.05) from the cycle that receives it, held on the cycles
 // after (no command); a set_gains command K = 2.88 (twice the fixture's
 // 1.44) doubles Lr; reset brings back the configured reference and gains.
+// Verifies: REQ-ACS-013
 TEST(FswAcsCommands, ReferenceAndGainsAreSetHeldAndResetBack)
 {
   acsfix::wheel_config(g_cfg);
@@ -1401,6 +1440,7 @@ TEST(FswAcsCommands, ReferenceAndGainsAreSetHeldAndResetBack)
 // nothing; so is a good one in a cycle that fails later (here the control
 // law overflows on a huge finite rate): the reference stays the configured
 // one on the next good cycle.
+// Verifies: REQ-ACS-013
 TEST(FswAcsCommands, BadOrFailedCommandsApplyNothing)
 {
   acsfix::wheel_config(g_cfg);
@@ -1448,6 +1488,7 @@ TEST(FswAcsCommands, BadOrFailedCommandsApplyNothing)
 
 // The speed filter with no wheels in the control law's H (mrp_fb.num_rw =
 // 0: its J_s copy is then not compared) is a valid configuration.
+// Verifies: REQ-ACS-002
 TEST(FswAcsSpeedFilter, AcceptedWithoutWheelsInTheControlLaw)
 {
   acsfix::wheel_config(g_cfg);
@@ -1472,6 +1513,7 @@ TEST(FswAcsSpeedFilter, AcceptedWithoutWheelsInTheControlLaw)
 // 8, 8 and 2 cycles with 10 s coasts.  A -x torque comes from thrusters 2
 // and 6 of the fixture (0-based 1 and 5: +-y thrust at z = +-1.7907 m, a
 // pure couple), so a full cycle gives each L_dump T / (2 * 1.7907 * 1 N).
+// Verifies: REQ-ACS-011, REQ-ACS-015
 TEST(FswAcsMomentum, EveryPulseCycleGetsOnePeriodsOnTimeAfterACoast)
 {
   acsfix::wheel_config(g_cfg);
@@ -1545,6 +1587,7 @@ TEST(FswAcsMomentum, EveryPulseCycleGetsOnePeriodsOnTimeAfterACoast)
 // clipped at rw_sat's 0.1 N m) and the torque test on, every cycle is good:
 // the applied torque (<= 0.1) is within the filter's 2 u_max = 0.4.  The
 // live wheels follow their torque so the torque test has nothing to find.
+// Verifies: REQ-ACS-002, REQ-ACS-014
 TEST(FswAcsSpeedFilter, Issue39SaturationBelowTheFilterLimitRunsEveryCycle)
 {
   acsfix::wheel_config(g_cfg);
@@ -1587,6 +1630,7 @@ TEST(FswAcsSpeedFilter, Issue39SaturationBelowTheFilterLimitRunsEveryCycle)
 // count, the sun-safe error and the errors of the rejected cycle.  The
 // stage statuses stay (they say which stage failed); the mode, counters and
 // filter verdicts are those in force.
+// Verifies: REQ-ACS-005, REQ-ACS-006, REQ-ACS-012
 TEST(FswAcsHealth, Issue39ARejectedCycleAfterTheStagesRanCarriesTheSafeHealthMessage)
 {
   acsfix::wheel_config(g_cfg);

@@ -35,6 +35,7 @@ void expect_close(double want, double got, const char* what, int sc, int c, int 
       << what << "[" << i << "] scenario " << sc << " cycle " << c;
 }
 
+// Verifies: REQ-GEN-009
 TEST(FswAcsGolden, HostAndTargetGiveTheSameNumbers)
 {
   if (kt::kFloat) GTEST_SKIP() << "the golden sequence is recorded in double precision";

@@ -179,6 +179,7 @@ const BadCfg kBadConfigs[] = {
     {"unknown policy", [](FswAcsConfig& c) { c.initial_policy = 3; }, "initial_policy", FSW_E_CONFIG},
 };
 
+// Verifies: REQ-ACS-001, REQ-ACS-002
 TEST(FswAcsMomentumConfig, EveryNewFlagAndCrossCheckIsRejectedByName)
 {
   for (const BadCfg& b : kBadConfigs) {
@@ -193,6 +194,7 @@ TEST(FswAcsMomentumConfig, EveryNewFlagAndCrossCheckIsRejectedByName)
   }
 }
 
+// Verifies: REQ-ACS-002
 TEST(FswAcsMomentumConfig, EverythingOnAndEveryModeIsAccepted)
 {
   const int modes[] = {FSW_ACS_MODE_SUN_SAFE, FSW_ACS_MODE_INERTIAL, FSW_ACS_MODE_DETUMBLE, FSW_ACS_MODE_NADIR};
@@ -216,6 +218,7 @@ TEST(FswAcsMomentumConfig, EverythingOnAndEveryModeIsAccepted)
   EXPECT_EQ(FSW_OK, fsw_acs_check(&g_cfg, nullptr));
 }
 
+// Verifies: REQ-ACS-003
 TEST(FswAcsMomentumConfig, SetGeometryWritesTheRodAndWheelCopies)
 {
   FswAcsGeometry g;
@@ -303,6 +306,7 @@ void detumble_expect(double k, const double w[3], const double B[3], double c[3]
   (void)rods_expect(m, B, c, tau);
 }
 
+// Verifies: REQ-ACS-009
 TEST(FswAcsDetumble, RodCommandsAreTheGyroLawClosedForm)
 {
   const double w[3] = {0.02, -0.01, 0.03}, B[3] = {2e-5, 1e-5, -3e-5};
@@ -334,6 +338,7 @@ TEST(FswAcsDetumble, RodCommandsAreTheGyroLawClosedForm)
   }
 }
 
+// Verifies: REQ-ACS-009
 TEST(FswAcsDetumble, AMissedSampleMapsTheHeldDipoleWithTheLastField)
 {
   const double w[3] = {0.02, -0.01, 0.03}, B[3] = {2e-5, 1e-5, -3e-5}, B2[3] = {-4e-5, 2e-5, 1e-5};
@@ -362,6 +367,7 @@ TEST(FswAcsDetumble, AMissedSampleMapsTheHeldDipoleWithTheLastField)
   EXPECT_EQ(FSW_ACS_MODE_DETUMBLE, g_h.mode);
 }
 
+// Verifies: REQ-ACS-008
 TEST(FswAcsDetumble, DetumbledExitsAndTheModeCommandIsEdgeTriggered)
 {
   const double w[3] = {0.001, 0.0, -0.002}, B[3] = {2e-5, 1e-5, -3e-5};
@@ -449,6 +455,7 @@ void nadir_first_cycle(const double Om[4])
   ASSERT_EQ(FSW_OK, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
 }
 
+// Verifies: REQ-ACS-010
 TEST(FswAcsNadir, AtRestInTheOrbitFrameTheTorqueIsTheFeedforwardOnly)
 {
   // the MRP above is [RN]: check it against the fixture's independent DCM
@@ -494,6 +501,7 @@ TEST(FswAcsNadir, AtRestInTheOrbitFrameTheTorqueIsTheFeedforwardOnly)
   EXPECT_EQ(FSW_ACS_MODE_NADIR, g_h.mode);
 }
 
+// Verifies: REQ-ACS-010
 TEST(FswAcsNadir, BadOrbitInputGivesTheSafeOutputAndNoStateChange)
 {
   const double Om[4] = {30.0, -20.0, 10.0, 5.0};
@@ -545,6 +553,7 @@ void desat_expect(double k, const double Om[4], const double B[3], double c[3], 
   saturated = rods_expect(m, B, c, tau);
 }
 
+// Verifies: REQ-ACS-011
 TEST(FswAcsMtqPolicy, TheWheelsAreAskedForLrMinusTheRodTorque)
 {
   const double Om[4] = {100.0, -50.0, 30.0, -20.0}, B[3] = {2e-5, 1e-5, -3e-5};
@@ -590,6 +599,7 @@ TEST(FswAcsMtqPolicy, TheWheelsAreAskedForLrMinusTheRodTorque)
   }
 }
 
+// Verifies: REQ-ACS-011
 TEST(FswAcsMtqPolicy, WithoutAFieldSampleTheRodsAreOffAndTheWheelsGetLr)
 {
   const double Om[4] = {100.0, -50.0, 30.0, -20.0}, B[3] = {2e-5, 1e-5, -3e-5};
@@ -638,6 +648,7 @@ void at_reference(FswAcsSensorMsg& m, const FswAcsConfig& c, uint64_t t, const d
   for (int q = 0; q < 3; q++) m.sigma_BN[q] = c.inertial.sigma_R0N[q];
 }
 
+// Verifies: REQ-ACS-011
 TEST(FswAcsThrPolicy, AWheelMomentumAboveTheThresholdStartsADump)
 {
   thr_config(g_cfg);
@@ -689,6 +700,7 @@ TEST(FswAcsThrPolicy, AWheelMomentumAboveTheThresholdStartsADump)
     EXPECT_NEAR(-(static_cast<double>(g_act.Lr_B[q]) - L[q]), su[q], kt::tol(1e-12, 1e-6)) << q;
 }
 
+// Verifies: REQ-ACS-011
 TEST(FswAcsThrPolicy, ADumpClosedAgainstThePlantEndsNearHLowerAndCountsItsPropellant)
 {
   thr_config(g_cfg);
@@ -741,6 +753,7 @@ TEST(FswAcsThrPolicy, ADumpClosedAgainstThePlantEndsNearHLowerAndCountsItsPropel
 
 /* ---- set_policy command ---- */
 
+// Verifies: REQ-ACS-011
 TEST(FswAcsPolicyCommand, SetPolicySwitchesAndBadValuesAreBadInput)
 {
   acsfix::full_config(g_cfg);
@@ -837,6 +850,7 @@ void err_run(FswAcsState& st, FswAcsActuatorMsg& act, FswAcsHealthMsg& h, int n,
   }
 }
 
+// Verifies: REQ-ACS-006
 TEST(FswAcsMomentumErrors, AnErrorCycleAdvancesNoNewStateAndTheRetryEqualsACleanRun)
 {
   err_config(g_cfg);
@@ -857,6 +871,7 @@ TEST(FswAcsMomentumErrors, AnErrorCycleAdvancesNoNewStateAndTheRetryEqualsAClean
     }
 }
 
+// Verifies: REQ-ACS-006
 TEST(FswAcsMomentumErrors, DetumbleErrorsRestoreBdotAndTheHeldField)
 {
   const double w[3] = {0.02, -0.01, 0.03}, B[3] = {2e-5, 1e-5, -3e-5};
@@ -889,6 +904,7 @@ TEST(FswAcsMomentumErrors, DetumbleErrorsRestoreBdotAndTheHeldField)
 
 /* ---- rw_bias -> rw_null ---- */
 
+// Verifies: REQ-ACS-011
 TEST(FswAcsBias, TheBiasSpeedsReachTheNullMotion)
 {
   // The pyramid's null space is n = (1, -1, 1, -1)/2 (the azimuths cancel

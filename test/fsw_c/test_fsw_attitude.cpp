@@ -49,6 +49,7 @@ void expect_dcm_near(const fsw_real A[3][3], const fsw_real B[3][3], double tol)
     for (int j = 0; j < 3; j++) EXPECT_NEAR(A[i][j], B[i][j], tol) << i << "," << j;
 }
 
+// Verifies: REQ-ATT-001
 TEST(FswMrp, DcmOfAxis3RotationIsM3)
 {
   // sigma = e3 tan(theta/4) gives the passive rotation [M3(theta)].
@@ -62,6 +63,7 @@ TEST(FswMrp, DcmOfAxis3RotationIsM3)
   EXPECT_NEAR(th, fsw_mrp_angle(s), kTol);
 }
 
+// Verifies: REQ-ATT-001
 TEST(FswMrp, DcmMatchesIndependentFormulaAndIsOrthonormal)
 {
   kt::Rng r(101);
@@ -80,6 +82,7 @@ TEST(FswMrp, DcmMatchesIndependentFormulaAndIsOrthonormal)
   }
 }
 
+// Verifies: REQ-ATT-002
 TEST(FswMrp, ShadowSetDescribesTheSameAttitude)
 {
   kt::Rng r(102);
@@ -104,6 +107,7 @@ TEST(FswMrp, ShadowSetDescribesTheSameAttitude)
   EXPECT_EQ(0, out[0] + out[1] + out[2]);
 }
 
+// Verifies: REQ-ATT-001
 TEST(FswMrp, RoundTripsThroughDcmAndQuaternion)
 {
   kt::Rng r(103);
@@ -129,6 +133,7 @@ TEST(FswMrp, RoundTripsThroughDcmAndQuaternion)
   }
 }
 
+// Verifies: REQ-ATT-001, REQ-ATT-004
 TEST(FswMrp, HalfTurnAndDegenerateQuaternions)
 {
   // 180 deg about x: trace = -1, Sheppard must take the b1 branch.
@@ -151,6 +156,7 @@ TEST(FswMrp, HalfTurnAndDegenerateQuaternions)
   EXPECT_NEAR(1.0, C3[0][0], kTol);
 }
 
+// Verifies: REQ-ATT-003
 TEST(FswMrp, AddComposesRotations)
 {
   // DCM(add(q1, q2)) = DCM(q2) DCM(q1): rotation q1 followed by q2.
@@ -169,6 +175,7 @@ TEST(FswMrp, AddComposesRotations)
   }
 }
 
+// Verifies: REQ-ATT-003
 TEST(FswMrp, SubGivesRelativeAttitude)
 {
   // DCM(sub(q1, q2)) = DCM(q1) DCM(q2)^T: e.g. [BR] = [BN][RN]^T.
@@ -187,6 +194,7 @@ TEST(FswMrp, SubGivesRelativeAttitude)
   }
 }
 
+// Verifies: REQ-ATT-003
 TEST(FswMrp, SubOfNearly360DegreeApartSetsUsesTheShadowBranch)
 {
   // q1 = -0.999 e1 (-179.885 deg) and q2 = +0.999 e1 (+179.885 deg) are only
@@ -208,6 +216,7 @@ TEST(FswMrp, SubOfNearly360DegreeApartSetsUsesTheShadowBranch)
   EXPECT_NEAR(std::fabs(want), fsw_mrp_angle(q), kt::tol(1e-9, 1e-4));
 }
 
+// Verifies: REQ-ATT-003
 TEST(FswMrp, AddOfIdentityIsIdentityMap)
 {
   kt::Rng r(106);
@@ -226,6 +235,7 @@ TEST(FswMrp, AddOfIdentityIsIdentityMap)
   }
 }
 
+// Verifies: REQ-ATT-005
 TEST(FswTilde, IsCrossProductMatrix)
 {
   kt::Rng r(107);
@@ -244,6 +254,7 @@ TEST(FswTilde, IsCrossProductMatrix)
   }
 }
 
+// Verifies: REQ-ATT-005
 TEST(FswMrp, KinematicsMatrixProperties)
 {
   // [B] w = (1 - s^2) w + 2 s x w + 2 s (s.w), and [B][B]^T = (1 + s^2)^2 I.
@@ -274,6 +285,7 @@ TEST(FswMrp, KinematicsMatrixProperties)
 // overflows (-1e308 on the diagonal: tr = -inf, b0^2 = -inf, the others
 // -inf + inf = NaN): the branch then gives the identity quaternion, finite,
 // instead of propagating NaN into the attitude.
+// Verifies: REQ-ATT-004
 TEST(FswMrp, Issue21DcmToQuatDegenerateInputGivesIdentity)
 {
   const fsw_real big = -std::numeric_limits<fsw_real>::max();
@@ -298,6 +310,7 @@ TEST(FswMrp, Issue21DcmToQuatDegenerateInputGivesIdentity)
 // Issue 21: a quaternion whose norm is not finite (an Inf entry) is not an
 // attitude: like the zero quaternion (HalfTurnAndDegenerateQuaternions) it
 // gives the identity DCM rather than NaN.
+// Verifies: REQ-ATT-004
 TEST(FswMrp, Issue21InfiniteQuaternionGivesIdentity)
 {
   const fsw_real q[4] = {0, std::numeric_limits<fsw_real>::infinity(), 0, 0};

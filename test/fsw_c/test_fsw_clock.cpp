@@ -25,6 +25,7 @@ FswClock fresh()
 
 }  // namespace
 
+// Verifies: REQ-CLOCK-004
 TEST(FswClock, ResetClearsBothFields)
 {
   const FswClock c = fresh();
@@ -32,6 +33,7 @@ TEST(FswClock, ResetClearsBothFields)
   EXPECT_EQ(0u, c.t_prev_ns);
 }
 
+// Verifies: REQ-CLOCK-001
 TEST(FswClock, FirstCallIsLegalAtAnyTimeIncludingZero)
 {
   const uint64_t stamps[] = {0u, 1u, 5 * kSec, UINT64_MAX};
@@ -44,6 +46,7 @@ TEST(FswClock, FirstCallIsLegalAtAnyTimeIncludingZero)
   }
 }
 
+// Verifies: REQ-CLOCK-003
 TEST(FswClock, HandValues)
 {
   FswClock c = fresh();
@@ -63,6 +66,7 @@ TEST(FswClock, HandValues)
   EXPECT_EQ(2 * kSec, c.t_prev_ns);
 }
 
+// Verifies: REQ-CLOCK-002
 TEST(FswClock, EqualOrEarlierStampIsRejectedAndChangesNothing)
 {
   FswClock c = fresh();
@@ -77,6 +81,7 @@ TEST(FswClock, EqualOrEarlierStampIsRejectedAndChangesNothing)
   }
 }
 
+// Verifies: REQ-CLOCK-003
 TEST(FswClock, DtFromTheIntegerDifferenceHasNoAccumulatedRoundOff)
 {
   // 10^5 steps of 0.1 s: the stamp grows exactly, so the last dt is the
@@ -93,6 +98,7 @@ TEST(FswClock, DtFromTheIntegerDifferenceHasNoAccumulatedRoundOff)
   }
 }
 
+// Verifies: REQ-CLOCK-004
 TEST(FswClock, ResetForgetsThePreviousCall)
 {
   FswClock c = fresh();
@@ -103,6 +109,7 @@ TEST(FswClock, ResetForgetsThePreviousCall)
   EXPECT_EQ(0, dt);
 }
 
+// Verifies: REQ-GEN-007
 TEST(FswClock, NullArguments)
 {
   kestrel_assert_reset();

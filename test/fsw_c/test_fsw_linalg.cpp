@@ -89,6 +89,7 @@ void ref_minnorm(double* x, const Mat3N& A, const double* b, int m, int n)
   }
 }
 
+// Verifies: REQ-LINALG-001
 TEST(FswMinNorm, ClosedFormCases)
 {
   Mat3N A;
@@ -136,6 +137,7 @@ TEST(FswMinNorm, ClosedFormCases)
 // b): x_0 = z_0 + z_1 cancels 38 (16) bits, an error of ~2^-15 (2^-8)
 // relative, that the one refinement step does not remove (the residual
 // test then refuses it: FSW_E_SINGULAR).
+// Verifies: REQ-LINALG-001
 TEST(FswMinNorm, Issue21ForwardSubstitutionUsesTheCouplingToRowZero)
 {
   const fsw_real d = static_cast<fsw_real>(kt::tol(std::ldexp(1.0, -19), std::ldexp(1.0, -8)));
@@ -160,6 +162,7 @@ TEST(FswMinNorm, Issue21ForwardSubstitutionUsesTheCouplingToRowZero)
   EXPECT_NEAR(0.0, double(x[2]), kTol);
 }
 
+// Verifies: REQ-LINALG-001
 TEST(FswMinNorm, MatchesIndependentSolverAndIsMinimumNorm)
 {
   kt::Rng r(201);
@@ -194,6 +197,7 @@ TEST(FswMinNorm, MatchesIndependentSolverAndIsMinimumNorm)
   }
 }
 
+// Verifies: REQ-LINALG-002
 TEST(FswMinNorm, RankDecisionIsScaleInvariant)
 {
   // A small spacecraft (lever arms in mm) and a large one (km) with the same
@@ -222,6 +226,7 @@ TEST(FswMinNorm, RankDecisionIsScaleInvariant)
   }
 }
 
+// Verifies: REQ-LINALG-002
 TEST(FswMinNorm, RankDeficientGivesZeroAndStatus)
 {
   Mat3N A;
@@ -257,6 +262,7 @@ TEST(FswMinNorm, RankDeficientGivesZeroAndStatus)
   EXPECT_EQ(FSW_OK, fsw_minnorm_solve(x, Bc.a, b, 2, 6));
 }
 
+// Verifies: REQ-LINALG-004
 TEST(FswMinNorm, NonFiniteAndCapacity)
 {
   kt::Rng r(204);
@@ -282,6 +288,7 @@ TEST(FswMinNorm, NonFiniteAndCapacity)
   kestrel_assert_reset();
 }
 
+// Verifies: REQ-LINALG-004
 TEST(FswMinNorm, HugeAndTinyEntriesDoNotOverflow)
 {
   // Power-of-two pre-scaling keeps A A^T finite near the real's range ends.
@@ -296,6 +303,7 @@ TEST(FswMinNorm, HugeAndTinyEntriesDoNotOverflow)
   EXPECT_NEAR(0.5, x[1], kTol);
 }
 
+// Verifies: REQ-LINALG-007
 TEST(FswMinNorm, Repeatable)
 {
   kt::Rng r(205);
@@ -306,6 +314,7 @@ TEST(FswMinNorm, Repeatable)
   EXPECT_EQ(0, std::memcmp(x1, x2, 9 * sizeof(fsw_real)));
 }
 
+// Verifies: REQ-LINALG-001, REQ-LINALG-007
 TEST(FswMinNormFactor, FactorThenSolveIsTheOneCallSolveBitForBit)
 {
   // fsw_minnorm_solve is factor + solve_factored; this checks the split
@@ -354,6 +363,7 @@ TEST(FswMinNormFactor, FactorThenSolveIsTheOneCallSolveBitForBit)
   EXPECT_EQ(0, seen[4]);
 }
 
+// Verifies: REQ-LINALG-001, REQ-GEN-007
 TEST(FswMinNormFactor, ClosedFormAndNullArguments)
 {
   // A = [2 0; 0 4] (m = n = 2): s = 2^-e with 2^(e-1) <= 4 < 2^e, so
@@ -418,6 +428,7 @@ void expect_projector(const fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF], const Mat3N&
     }
 }
 
+// Verifies: REQ-LINALG-005
 TEST(FswNullProjector, FullRankEqualsClosedForm)
 {
   // [tau] = I - G^T (G G^T)^-1 G; column j of G^T (G G^T)^-1 G is the
@@ -439,6 +450,7 @@ TEST(FswNullProjector, FullRankEqualsClosedForm)
   }
 }
 
+// Verifies: REQ-LINALG-005
 TEST(FswNullProjector, ThreeIndependentWheelsHaveNoNullSpace)
 {
   kt::Rng r(302);
@@ -450,6 +462,7 @@ TEST(FswNullProjector, ThreeIndependentWheelsHaveNoNullSpace)
     for (int j = 0; j < 3; j++) EXPECT_NEAR(0.0, g_tau[i][j], kTol * 10);
 }
 
+// Verifies: REQ-LINALG-005
 TEST(FswNullProjector, RankDeficientSetsStillGiveTrueProjector)
 {
   kt::Rng r(303);
@@ -482,6 +495,7 @@ TEST(FswNullProjector, RankDeficientSetsStillGiveTrueProjector)
     for (int j = 0; j < 4; j++) EXPECT_EQ(i == j ? 1 : 0, g_tau[i][j]);
 }
 
+// Verifies: REQ-LINALG-005
 TEST(FswNullProjector, AvailabilityMaskRemovesWheels)
 {
   kt::Rng r(304);
@@ -510,6 +524,7 @@ TEST(FswNullProjector, AvailabilityMaskRemovesWheels)
   expect_projector(g_tau, G, n, 3 + 2 /* masked rows count as removed */, kTol * 100);
 }
 
+// Verifies: REQ-LINALG-005
 TEST(FswNullProjector, ScaleInvariantAndNonFinite)
 {
   kt::Rng r(305);
@@ -594,6 +609,7 @@ void expect_x(const K4Run& r, const double (&want)[N], const char* why)
 
 }  // namespace
 
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, InteriorSolutionIsTheNormalEquationSolution)
 {
   // A = [1 0 1; 0 1 1], b = (2, 2): (A A^T)^-1 b = (2/3, 2/3), x = A^T y =
@@ -618,6 +634,7 @@ TEST(FswBoundedMinNorm, InteriorSolutionIsTheNormalEquationSolution)
   expect_x(neg, {-0.5, -0.5}, "negative box");
 }
 
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, ActiveBounds)
 {
   // x1 + x2 = 3 with x1 <= 1: the unconstrained (3/2, 3/2) is cut to (1, 2),
@@ -643,6 +660,7 @@ TEST(FswBoundedMinNorm, ActiveBounds)
   expect_x(z, {1.0, 0.0, 1.0}, "fixed column");
 }
 
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, RankDeficient)
 {
   // rows (1 1) and (2 2): rank 1.  Consistent b = (1, 2): x1 + x2 = 1 ->
@@ -666,6 +684,7 @@ TEST(FswBoundedMinNorm, RankDeficient)
   expect_x(zero, {0, 0, 0, 0}, "zero matrix");
 }
 
+// Verifies: REQ-LINALG-004
 TEST(FswBoundedMinNorm, BadInput)
 {
   const Mat3N A = mat(1, 2, {1, 1});
@@ -717,6 +736,7 @@ TEST(FswBoundedMinNorm, BadInput)
   kestrel_assert_reset();
 }
 
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, RandomBoxesAgreeWithK1WhenInteriorAndStayInTheBox)
 {
   kt::Rng r(404);
@@ -753,6 +773,7 @@ TEST(FswBoundedMinNorm, RandomBoxesAgreeWithK1WhenInteriorAndStayInTheBox)
 // in double); otherwise FSW_E_SINGULAR with x = 0.  Before the fix a pivot
 // of rounding noise just above the floor returned OK with a residual of
 // the order of |b|.
+// Verifies: REQ-LINALG-003
 TEST(FswMinNorm, Issue13OkAlwaysDeliversTheRequest)
 {
   kt::Rng r(1313);
@@ -793,6 +814,7 @@ TEST(FswMinNorm, Issue13OkAlwaysDeliversTheRequest)
 // A finite b whose solution is beyond the real's range: FSW_E_BAD_INPUT,
 // x = 0 (was inf under OK).  A huge b with a representable solution is
 // fine (b is pre-scaled by a power of two).
+// Verifies: REQ-LINALG-004
 TEST(FswMinNorm, Issue13OverflowingSolutionIsBadInput)
 {
   const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());
@@ -826,6 +848,7 @@ TEST(FswMinNorm, Issue13OverflowingSolutionIsBadInput)
 // = (0.8, 0.4).  Its residual |(0, 1 - 0.2 d)| = 1 - 0.2 d is within 0.8 d of
 // the exact optimum (x = (0, 2), residual 1 - d), below FSW_RESID_TOL: a2 is
 // numerically parallel to a1 at this rank tolerance.
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, Issue21EnteringColumnDroppedByTheRankTestIsUndone)
 {
   const double d = kt::tol(1e-9, 1e-3);
@@ -866,6 +889,7 @@ TEST(FswBoundedMinNorm, Issue21EnteringColumnDroppedByTheRankTestIsUndone)
 // into the box, so it is the bounded optimum; A is invertible, so phase 2
 // keeps it.  The mirror problem (b -> -b, box [-2, 0]) ends at (-2, -2)
 // through the lower bounds.
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, Issue21TwoVariablesReachTheirBoundsTogether)
 {
   const Mat3N A = mat(2, 2, {1.0, -0.5, 0.0, 0.5});
@@ -889,6 +913,7 @@ TEST(FswBoundedMinNorm, Issue21TwoVariablesReachTheirBoundsTogether)
 // gradient in w, 2 (w + u - 4/3) < 0, keeps w at its top.  The least norm of
 // x1^2 + x3^2 with x3 = 1.5 x1 is x1 = x3 = 0: x = (1, 0, 1, 0).  Mirrored
 // (-b, box [-1, 0]): x = (-1, 0, -1, 0), the tie at the upper bound 0.
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, Issue21VariableReachingItsBoundInTheSameStepIsSetOntoIt)
 {
   const Mat3N A = mat(2, 4, {0.0, -1.5, 0.0, 1.0, 0.5, -1.5, 0.5, 1.0});
@@ -923,6 +948,7 @@ TEST(FswBoundedMinNorm, Issue21VariableReachingItsBoundInTheSameStepIsSetOntoIt)
 // -70/27 + 1.5 l2 are all <= 0 (at the lower bound 0) for l2 in
 // [2/9, 140/81]: the KKT conditions of min |x|^2 / 2 hold.  Mirrored (-b,
 // box [-3, 0]): -x.
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, Issue21PhaseTwoStepIsClampedIntoTheBox)
 {
   const Mat3N A = mat(3, 5, {-0.5, 1.0, 1.5, 1.5, 1.0, -0.5, 0.0, -1.5, -1.5, 0.0, 0.0, -1.0, -1.0, 0.0, 1.5});
@@ -953,6 +979,7 @@ TEST(FswBoundedMinNorm, Issue21PhaseTwoStepIsClampedIntoTheBox)
 // -4/15) of that solve give a0.lam = 2/5 >= 0, so x0 rightly stays at its
 // upper bound: x = (0, -2/15, -2/5).  Mirrored (-b, box [0, 1]): -x, x0 at
 // its lower bound 0.
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, Issue21PhaseTwoBlockingVariableIsExactlyOnItsBound)
 {
   const Mat3N A = mat(2, 3, {0.5, 1.0, 0.5, -1.5, 0.5, 1.5});
@@ -968,6 +995,7 @@ TEST(FswBoundedMinNorm, Issue21PhaseTwoBlockingVariableIsExactlyOnItsBound)
 
 // Issue 21: every required pointer of K1, K2 and K4 NULL in turn (null_args.h);
 // K2's avail and rank and K4's iterations may be NULL by contract.
+// Verifies: REQ-GEN-007
 TEST(FswLinalgIssue21, EveryNullArgumentAssertsAndReturns)
 {
   static Mat3N A;
@@ -990,6 +1018,7 @@ TEST(FswLinalgIssue21, EveryNullArgumentAssertsAndReturns)
 // by 2^-e to [1/2, 1); for the smallest subnormal 2^-e is not finite, so the
 // scale is clamped to the largest finite power of two.  A = [1]: x = b
 // exactly either way (the scaling is by powers of two and undone).
+// Verifies: REQ-LINALG-004
 TEST(FswMinNorm, Issue21SubnormalRightHandSide)
 {
   static Mat3N A;
@@ -1007,6 +1036,7 @@ TEST(FswMinNorm, Issue21SubnormalRightHandSide)
 // rho = 2 FSW_NULL_TOL: kept (rank 2).  (Both rows are scaled by 1/2 before
 // the test, so a threshold that is not relative to |row| = 2 would move by
 // a factor of 4 and swap the two answers.)
+// Verifies: REQ-LINALG-005
 TEST(FswNullProjector, Issue21RowDropIsRelativeToTheRowNorm)
 {
   static Mat3N G;
@@ -1033,6 +1063,7 @@ TEST(FswNullProjector, Issue21RowDropIsRelativeToTheRowNorm)
 // stationarity test is absolute, K4_TOL x the box size (1.2e-4 x 10 here), so
 // for |b| below ~1e-3 of the box it stops at the phase-1 point x = k (0, 0, 2):
 // the torque is exact but |x| is 2 k instead of 1.63 k.
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, Issue21SmallRightHandSideIsScaledNotIgnored)
 {
   const double k = 1e-7;
@@ -1058,6 +1089,7 @@ TEST(FswBoundedMinNorm, Issue21SmallRightHandSideIsScaledNotIgnored)
 // Phase 2 then gives the minimum-norm point of the numerically rank-1
 // system x0 / 2 + x1 = (1 + d)/(1 + d^2): (0.4, 0.8) (1 + d)/(1 + d^2).
 // (In the other order a0's pivot would be the one dropped: x = (0, 1).)
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, Issue21FreeSetInIndexOrder)
 {
   const double d = kt::tol(1e-9, 1e-3);
@@ -1073,6 +1105,7 @@ TEST(FswBoundedMinNorm, Issue21FreeSetInIndexOrder)
 // the line (0, 1, 1) + t (1, 11, 4) (the null vector is row 1 x row 2);
 // x0 >= 0 needs t >= 0 and x1 <= 1 needs t <= 0, so (0, 1, 1) is the only
 // admissible solution, and K4 delivers A x = b whenever one exists.
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, Issue21OnlyAdmissibleSolutionIsFound)
 {
   Box B = box(3, 0, 2);
@@ -1093,6 +1126,7 @@ TEST(FswBoundedMinNorm, Issue21OnlyAdmissibleSolutionIsFound)
 // gradient, x2 is inside with a zero one, the KKT conditions of this convex
 // problem.  The minimiser is unique: A x = (2, -2) along the null line
 // needs x0 = -2t >= 0 and x1 = t >= 0, t = 0.
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, Issue21PhaseOneStopsAtTheFirstBound)
 {
   Box B = box(3, 0, 3);
@@ -1113,6 +1147,7 @@ TEST(FswBoundedMinNorm, Issue21PhaseOneStopsAtTheFirstBound)
 // d/du [2 (9/2 - 2u)^2 + 9 (1 - u)^2] = 34 u - 54 = 0 gives u = 27/17.  The
 // least-squares set is x0 = 2, x1 - x2 = 27/17; its minimum norm point is
 // x1 = -x2 = 27/34, inside the box.
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, Issue21RankTwoLeastSquaresWithMinimumNorm)
 {
   Box B = box(3, 0, 2);
@@ -1132,6 +1167,7 @@ TEST(FswBoundedMinNorm, Issue21RankTwoLeastSquaresWithMinimumNorm)
 // bit-identical at 2^-20 and 2^20 (|A| ~ 1e-6 .. 1e6: no underflow or
 // overflow in float either).  The problems are the three above (a unique
 // admissible solution, a least-squares case, a rank-2 A).
+// Verifies: REQ-LINALG-006, REQ-LINALG-002
 TEST(FswBoundedMinNorm, Issue21ScalingAAndBByAPowerOfTwoChangesNothing)
 {
   struct Problem {
@@ -1178,6 +1214,7 @@ TEST(FswBoundedMinNorm, Issue21ScalingAAndBByAPowerOfTwoChangesNothing)
 // past would leave the arrays) the sum x_1 + ... + x_n = n / 2 in [0, 1]^n
 // has the minimum-norm solution x_i = 1/2 (equal entries by symmetry,
 // 1/2 each to meet the sum).
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, Issue21WritesOnlyTheNEntriesOfX)
 {
   const K4Run r = k4(mat(1, 2, {1, 1}), {1}, 1, 2, box(2, 0, 10));
@@ -1215,6 +1252,7 @@ TEST(FswBoundedMinNorm, Issue21WritesOnlyTheNEntriesOfX)
 // x = (1, 1) is the least-norm solution of x0 + x1 = 2 (x0 = x1), inside the
 // box.  Treating z1 = hi1 as blocking would fix x1 at 1 and need a 4th pass
 // to find the same x.
+// Verifies: REQ-LINALG-006
 TEST(FswBoundedMinNorm, Seed31337PhaseTwoValueOnItsBoundDoesNotBlock)
 {
   const Mat3N A = mat(1, 2, {1.0, 1.0});

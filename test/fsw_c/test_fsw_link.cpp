@@ -157,6 +157,7 @@ void fix_crc(Bytes& b)
 
 }  // namespace
 
+// Verifies: REQ-LINK-001
 TEST(FswLink, CrcMatchesTheCheckValueAndATableImplementation)
 {
   const uint8_t check[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
@@ -174,6 +175,7 @@ TEST(FswLink, CrcMatchesTheCheckValueAndATableImplementation)
 }
 
 // A command packet assembled by hand from the ICD's byte table.
+// Verifies: REQ-LINK-002
 TEST(FswLink, CommandPacketBytesAreTheIcdsBytes)
 {
   FswAcsCmdMsg cmd{};
@@ -257,6 +259,7 @@ TEST(FswLink, CommandPacketBytesAreTheIcdsBytes)
 }
 
 // Reals are IEEE-754 binary64, big-endian, on every host.
+// Verifies: REQ-LINK-002
 TEST(FswLink, RealsAreBigEndianBinary64)
 {
   FswAcsSensorMsg m = sensor_msg(0, 0);
@@ -276,6 +279,7 @@ TEST(FswLink, RealsAreBigEndianBinary64)
   EXPECT_EQ(Bytes(b.begin() + 6, b.begin() + 14), (Bytes{0x01, 0x23, 0x45, 0x67, 0x89, 0xAB, 0xCD, 0xEF}));
 }
 
+// Verifies: REQ-LINK-003
 TEST(FswLink, EveryPacketRoundTripsAtZeroAndFullCapacity)
 {
   for (const auto& n : std::vector<std::pair<uint8_t, uint8_t>>{{0, 0}, {4, 8}, {FSW_MAX_RW, FSW_MAX_CSS}}) {
@@ -330,6 +334,7 @@ TEST(FswLink, EveryPacketRoundTripsAtZeroAndFullCapacity)
 }
 
 // CRC-16 detects every single-bit error; every truncation is short.
+// Verifies: REQ-LINK-004
 TEST(FswLink, EverySingleBitErrorAndTruncationIsRejected)
 {
   // the full sensor and actuator packets (the largest of this build) and the health packet
@@ -371,6 +376,7 @@ TEST(FswLink, EverySingleBitErrorAndTruncationIsRejected)
   }
 }
 
+// Verifies: REQ-LINK-004
 TEST(FswLink, DecodersCheckApidLengthCountsAndFlags)
 {
   const Bytes good = encode_sensor(sensor_msg(4, 6), 4, 6);
@@ -422,6 +428,7 @@ TEST(FswLink, DecodersCheckApidLengthCountsAndFlags)
   EXPECT_EQ(decode(good), FSW_LINK_OK);
 }
 
+// Verifies: REQ-LINK-005
 TEST(FswLink, EncodersNeverWritePastTheirBufferAndRejectBadCounts)
 {
   const FswAcsSensorMsg m = sensor_msg(4, 4);
@@ -446,6 +453,7 @@ TEST(FswLink, EncodersNeverWritePastTheirBufferAndRejectBadCounts)
 }
 
 // A byte stream with garbage, a corrupted packet and packets split anywhere.
+// Verifies: REQ-LINK-006
 TEST(FswLink, DeframerRecoversAfterGarbageAndCorruption)
 {
   std::vector<Bytes> pkts;
@@ -499,6 +507,7 @@ TEST(FswLink, DeframerRecoversAfterGarbageAndCorruption)
 // or the marker and more, whenever a push returns: a byte that cannot start
 // the marker is skipped (and counted) in the call that brought it, even when
 // it is the last byte of the input, and a byte that can is kept.
+// Verifies: REQ-LINK-006
 TEST(FswLink, Issue21DeframerKeepsOnlyAMarkerPrefixBetweenPushes)
 {
   const uint8_t marker[4] = {0x1A, 0xCF, 0xFC, 0x1D};
@@ -536,6 +545,7 @@ TEST(FswLink, Issue21DeframerKeepsOnlyAMarkerPrefixBetweenPushes)
 // Every argument and range check of the encoders, the parser, the decoders,
 // the framer and the deframer, one condition at a time (branch coverage of
 // fsw_link.c: each operand of each || decides once).
+// Verifies: REQ-LINK-004
 TEST(FswLink, EveryArgumentAndRangeCheckRejectsAlone)
 {
   Bytes b(FSW_LINK_MAX_PACKET);
@@ -747,6 +757,7 @@ TEST(FswLink, EveryArgumentAndRangeCheckRejectsAlone)
 // Issue 21 (branch coverage of fsw_link.c): att_valid travels as a flag
 // (docs/icd.md, sensor offset 2: 0 or 1): 0 stays 0, any non-zero value is
 // sent as 1, and the decoder gives back what was sent.
+// Verifies: REQ-LINK-002
 TEST(FswLink, Issue21AttValidTravelsAsAFlag)
 {
   const size_t att = FSW_LINK_HEADER_SIZE + 2;  // ICD: payload offset 2
@@ -773,6 +784,7 @@ TEST(FswLink, Issue21AttValidTravelsAsAFlag)
 // 0 or 1 in any of them is refused with FSW_LINK_E_COUNT (the CRC made
 // right, so the flag is the only fault) and the message is not written; a
 // flag changed from 0 to 1 is accepted and decoded.
+// Verifies: REQ-LINK-002
 TEST(FswLink, Issue21WheelAvailabilityFlagsAreZeroOrOne)
 {
   const uint8_t nrw = 4, ncss = 6;
@@ -819,6 +831,7 @@ TEST(FswLink, Issue21WheelAvailabilityFlagsAreZeroOrOne)
 // Issue 21 (branch coverage of fsw_link.c): init of a NULL deframer returns
 // without touching memory (the header's "void ... init" with the module's
 // NULL checks; a dereference would crash this test).
+// Verifies: REQ-GEN-007
 TEST(FswLink, Issue21DeframerInitOfNullDoesNothing)
 {
   fsw_link_deframer_init(nullptr);
@@ -871,6 +884,7 @@ Bytes framed(const Bytes& pkt)
 // the bytes it announces; a candidate of exactly that size is collected and
 // delivered.  After the refusal the hunt goes on and the next packet is
 // delivered.
+// Verifies: REQ-LINK-006
 TEST(FswLink, Issue21DeframerRefusesALengthBeyondTheLargestPacket)
 {
   // the longest packet the buffer holds: delivered whole, byte for byte
@@ -930,6 +944,7 @@ TEST(FswLink, Issue21DeframerRefusesALengthBeyondTheLargestPacket)
 // payload offset 38, u8): 0 goes out as 0 and any non-zero value as 1; the
 // decoder gives the same flag back.  Byte positions from the ICD table, not
 // from the encoder.
+// Verifies: REQ-LINK-002
 TEST(FswLink, Issue21LinkSafeTravelsAsAFlag)
 {
   const size_t safe_at = FSW_LINK_HEADER_SIZE + 38u;  // ICD: payload offset 38
@@ -963,6 +978,7 @@ TEST(FswLink, Issue21LinkSafeTravelsAsAFlag)
 // unavailable.  sensor_msg flags thrusters 0 and FSW_MAX_THR - 1.  A bit at
 // or above FSW_MAX_THR is refused (FSW_LINK_E_COUNT); an encoder refuses a
 // flag other than 0/1 (it could not travel as a bit).
+// Verifies: REQ-LINK-002
 TEST(FswLink, ThrusterAvailabilityTravelsAsABitMask)
 {
   const uint8_t nrw = 2, ncss = 3;
@@ -1038,6 +1054,7 @@ Bytes encode_health(const FswAcsHealthMsg& m)
 // ICD version 2: every payload size is the sum of its table's rows
 // (docs/icd.md), added up here row by row, for several counts: the
 // macros, the encoders and the largest packet agree with the tables.
+// Verifies: REQ-LINK-002
 TEST(FswLink, Icd2PayloadSizesAreTheSumsOfTheTables)
 {
   EXPECT_EQ(FSW_LINK_ICD_VERSION, 2u);
@@ -1080,6 +1097,7 @@ TEST(FswLink, Icd2PayloadSizesAreTheSumsOfTheTables)
 // The fields of ICD version 2 at their table offsets, read back without the
 // library; their flags travel as 0/1 and a flag other than 0/1 on the wire
 // is refused (FSW_LINK_E_COUNT) without writing the message.
+// Verifies: REQ-LINK-002
 TEST(FswLink, Icd2NewFieldsSitAtTheirTableOffsets)
 {
   const uint8_t nrw = 2, ncss = 3;
@@ -1152,6 +1170,7 @@ TEST(FswLink, Icd2NewFieldsSitAtTheirTableOffsets)
 // actuator and health packets fail on their length (FSW_LINK_E_LENGTH, for
 // any counts: 84 + 9k never equals 158 + 9j, 28 + 16k never equals
 // 32 + 16j + 8m), its link status on the version byte (FSW_LINK_E_HEADER).
+// Verifies: REQ-LINK-007
 TEST(FswLink, Icd1PeerIsRejected)
 {
   auto packet = [](uint16_t apid, uint8_t type, const Bytes& payload) {

@@ -70,6 +70,7 @@ void put_crc(Bytes& b)
 
 }  // namespace
 
+// Verifies: REQ-LINK-002, REQ-LINK-008
 TEST(FswLinkConfig, HeaderAndSizeAreTheIcds)
 {
   auto c_p = std::make_unique<FswAcsConfig>();
@@ -100,6 +101,7 @@ TEST(FswLinkConfig, HeaderAndSizeAreTheIcds)
   EXPECT_EQ(b[33], 0xF0);
 }
 
+// Verifies: REQ-LINK-008
 TEST(FswLinkConfig, EveryFieldByteIsCarried)
 {
   // Every byte 0x41: ints 0x41414141, reals finite (2.3e6 in double, 12.1 in
@@ -125,6 +127,7 @@ TEST(FswLinkConfig, EveryFieldByteIsCarried)
   EXPECT_EQ(differing, sizeof a - kInts * sizeof(int) - kReals * sizeof(fsw_real));
 }
 
+// Verifies: REQ-LINK-008
 TEST(FswLinkConfig, FixtureConfigsRoundTripAndPassTheCheck)
 {
   for (int which = 0; which < 3; ++which) {
@@ -163,6 +166,7 @@ TEST(FswLinkConfig, FixtureConfigsRoundTripAndPassTheCheck)
   EXPECT_EQ(d.thr_map.thr_force_sign, -1);
 }
 
+// Verifies: REQ-LINK-008
 TEST(FswLinkConfig, DamagedImagesAreRejectedAndWriteNothing)
 {
   auto c_p = std::make_unique<FswAcsConfig>();
@@ -225,6 +229,7 @@ TEST(FswLinkConfig, DamagedImagesAreRejectedAndWriteNothing)
   rejects(version, FSW_LINK_E_HEADER);
 }
 
+// Verifies: REQ-LINK-008
 TEST(FswLinkConfig, NullArgumentsAndShortBuffers)
 {
   auto c_p = std::make_unique<FswAcsConfig>();
@@ -248,6 +253,7 @@ TEST(FswLinkConfig, NullArgumentsAndShortBuffers)
 
 // ---- link status packet ---------------------------------------------------
 
+// Verifies: REQ-LINK-003, REQ-LINK-004
 TEST(FswLinkStatus, RoundTripsAndChecksItsFields)
 {
   FswLinkStatusMsg m{}, d{};
@@ -375,6 +381,7 @@ struct Node {  // always on the heap (make_unique): large for a target's test st
 
 }  // namespace
 
+// Verifies: REQ-NODE-001
 TEST(FswLinkNode, RepliesEqualTheApplicationRunDirectly)
 {
   // heap: the node and the state are large for a target's test stack
@@ -420,6 +427,7 @@ TEST(FswLinkNode, RepliesEqualTheApplicationRunDirectly)
   EXPECT_EQ(node.n.link.rx_stale + node.n.link.rx_crc + node.n.link.rx_rejected, 0u);
 }
 
+// Verifies: REQ-NODE-002
 TEST(FswLinkNode, StaleDamagedAndForeignPacketsAreCountedAndAnsweredByTheStatus)
 {
   auto nodep = std::make_unique<Node>();
@@ -471,6 +479,7 @@ TEST(FswLinkNode, StaleDamagedAndForeignPacketsAreCountedAndAnsweredByTheStatus)
   EXPECT_EQ(w.n.link.missed, 0u);
 }
 
+// Verifies: REQ-NODE-003
 TEST(FswLinkNode, CommandsApplyFromTheNextCycle)
 {
   auto nodep = std::make_unique<Node>();
@@ -493,6 +502,7 @@ TEST(FswLinkNode, CommandsApplyFromTheNextCycle)
   EXPECT_EQ(h.mode_changes, 1u);
 }
 
+// Verifies: REQ-NODE-004
 TEST(FswLinkNode, WatchdogEntersLinkSafeAndDataRecovers)
 {
   auto nodep = std::make_unique<Node>(3);
@@ -529,6 +539,7 @@ TEST(FswLinkNode, WatchdogEntersLinkSafeAndDataRecovers)
   EXPECT_EQ(fsw_link_node_watchdog(&node.n, 9), 0);
 }
 
+// Verifies: REQ-NODE-006
 TEST(FswLinkNode, InitChecksItsArguments)
 {
   auto cfg_p = std::make_unique<FswAcsConfig>();
@@ -563,6 +574,7 @@ TEST(FswLinkNode, InitChecksItsArguments)
 // count and time with another payload (another CRC) is not a retransmission:
 // stale, the link status alone.  After link-safe entry the old replies are
 // no longer offered.
+// Verifies: REQ-NODE-005
 TEST(FswLinkNode, ARetransmittedSensorPacketIsAnsweredAgainWithoutASecondCycle)
 {
   auto nodep = std::make_unique<Node>();

@@ -59,6 +59,7 @@ const Bytes kKey = str("0123456789abcdef0123456789abcdef");  // 32 bytes
 
 }  // namespace
 
+// Verifies: REQ-LSEC-001
 TEST(FswSha256, FipsExamples)
 {
   EXPECT_EQ(sha256(str("abc")), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
@@ -77,6 +78,7 @@ TEST(FswSha256, FipsExamples)
   }
 }
 
+// Verifies: REQ-LSEC-001
 TEST(FswHmacSha256, Rfc4231TestCases)
 {
   Bytes k4;
@@ -99,6 +101,7 @@ TEST(FswHmacSha256, Rfc4231TestCases)
   EXPECT_EQ(hex(out, 32), "5bdcc146bf60754e6a042426089575c75a003f089d2739839dec58b964ec3843");
 }
 
+// Verifies: REQ-LSEC-002
 TEST(FswLinkSec, RoundTripAndTheTrailerLayout)
 {
   FswLinkSec tx, rx;
@@ -128,6 +131,7 @@ TEST(FswLinkSec, RoundTripAndTheTrailerLayout)
   EXPECT_EQ(e, FSW_LINK_E_SPACE);
 }
 
+// Verifies: REQ-LSEC-003
 TEST(FswLinkSec, EveryBitFlipAWrongKeyAndAMissingTrailerAreRefused)
 {
   FswLinkSec tx, rx, other;
@@ -161,6 +165,7 @@ TEST(FswLinkSec, EveryBitFlipAWrongKeyAndAMissingTrailerAreRefused)
   EXPECT_EQ(other.rx_auth_failed, 3u);
 }
 
+// Verifies: REQ-LSEC-004
 TEST(FswLinkSec, ReplaysAndNumbersOlderThanTheWindowAreRefused)
 {
   FswLinkSec tx, rx;
@@ -195,6 +200,7 @@ TEST(FswLinkSec, ReplaysAndNumbersOlderThanTheWindowAreRefused)
   EXPECT_EQ(rx.rx_auth_failed, 0u);
 }
 
+// Verifies: REQ-LSEC-005
 TEST(FswLinkSec, KeyLengthsOutsideTheRangeAreRefused)
 {
   FswLinkSec s;
@@ -219,6 +225,7 @@ TEST(FswLinkSec, KeyLengthsOutsideTheRangeAreRefused)
 
 // HMAC-SHA-256 with an empty key and an empty message: the value published
 // with the HMAC examples of the algorithm (the key is all zero padding).
+// Verifies: REQ-LSEC-001
 TEST(FswHmacSha256, EmptyKeyAndMessage)
 {
   EXPECT_EQ(hmac(Bytes(), Bytes()), "b613679a0814d9ec772f95d778c35fc5ff1697c493715653c6c712144292c5ad");
@@ -227,6 +234,7 @@ TEST(FswHmacSha256, EmptyKeyAndMessage)
 // Missing pointers are refused with FSW_E_NULL_ARG (no write through them);
 // the hashing functions ignore a missing context or data and leave the
 // digest of what came before unchanged; the error out-pointer is optional.
+// Verifies: REQ-LSEC-006
 TEST(FswLinkSec, MissingPointersAndAnOmittedErrorCode)
 {
   fsw_sha256_init(nullptr);
@@ -265,6 +273,7 @@ TEST(FswLinkSec, MissingPointersAndAnOmittedErrorCode)
 
 // Number 0 is never sent (a sender starts at 1): a packet carrying it, even
 // with a good MAC, is a replay.
+// Verifies: REQ-LSEC-004
 TEST(FswLinkSec, NumberZeroWithAGoodMacIsRefused)
 {
   Bytes w = packet(5);

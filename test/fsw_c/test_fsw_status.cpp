@@ -13,6 +13,7 @@
 
 namespace {
 
+// Verifies: REQ-GEN-005
 TEST(FswStatus, ErrorsNegativeWarningsPositive)
 {
   EXPECT_EQ(0, FSW_OK);
@@ -31,6 +32,7 @@ TEST(FswStatus, ErrorsNegativeWarningsPositive)
   EXPECT_EQ(FSW_E_INPUT, FSW_E_BAD_INPUT);  // the alternative spelling
 }
 
+// Verifies: REQ-GEN-005
 TEST(FswStatus, NamesAreDistinctAndUnknownIsReported)
 {
   const FswStatus all[] = {FSW_OK,          FSW_W_SINGULAR, FSW_W_SAT,      FSW_W_RATE,
@@ -46,6 +48,7 @@ TEST(FswStatus, NamesAreDistinctAndUnknownIsReported)
   EXPECT_STREQ("FSW_UNKNOWN", fsw_status_name(static_cast<FswStatus>(42)));
 }
 
+// Verifies: REQ-GEN-006
 TEST(FswHealth, EachStatusBumpsItsCounter)
 {
   FswHealth h;
@@ -76,6 +79,7 @@ TEST(FswHealth, EachStatusBumpsItsCounter)
   EXPECT_EQ(FSW_E_UNSUPPORTED, h.last);
 }
 
+// Verifies: REQ-GEN-006
 TEST(FswHealth, CountersSaturateInsteadOfWrapping)
 {
   FswHealth h;
@@ -89,11 +93,13 @@ TEST(FswHealth, CountersSaturateInsteadOfWrapping)
   EXPECT_EQ(UINT32_MAX, h.calls);
 }
 
+// Verifies: REQ-GEN-006
 TEST(FswHealth, NullHealthIsIgnored)
 {
   EXPECT_EQ(FSW_W_SAT, fsw_health_record(nullptr, FSW_W_SAT));
 }
 
+// Verifies: REQ-GEN-007
 TEST(FswAssert, HookIsCalledOnProgrammerErrorAndFunctionReturnsNullArg)
 {
   kestrel_assert_reset();
@@ -111,6 +117,7 @@ TEST(FswAssert, HookIsCalledOnProgrammerErrorAndFunctionReturnsNullArg)
   EXPECT_EQ(0ul, kestrel_assert_count());
 }
 
+// Verifies: REQ-GEN-008
 TEST(FswConfig, CapacitiesAndRealType)
 {
   EXPECT_GE(FSW_MAX_RW, 3);
@@ -128,6 +135,7 @@ TEST(FswConfig, CapacitiesAndRealType)
   EXPECT_EQ(1, FSW_UNAVAILABLE);
 }
 
+// Verifies: REQ-GEN-008
 TEST(FswVersion, GeneratedHeaderIsConsistent)
 {
   EXPECT_EQ(FSW_VERSION_MAJOR * 10000 + FSW_VERSION_MINOR * 100 + FSW_VERSION_PATCH,

@@ -21,6 +21,7 @@ void rnd33(kt::Rng& r, fsw_real m[3][3])
   for (int i = 0; i < 3; i++) rnd3(r, m[i]);
 }
 
+// Verifies: REQ-VEC-001
 TEST(FswV3, ClosedFormValues)
 {
   fsw_real a[3] = {1, 2, 3}, b[3] = {4, -5, 6}, c[3];
@@ -43,6 +44,7 @@ TEST(FswV3, ClosedFormValues)
   EXPECT_EQ(0, c[0] + c[1] + c[2]);
 }
 
+// Verifies: REQ-VEC-001
 TEST(FswV3, CrossIsAliasSafeAndOrthogonal)
 {
   kt::Rng r(11);
@@ -60,6 +62,7 @@ TEST(FswV3, CrossIsAliasSafeAndOrthogonal)
   }
 }
 
+// Verifies: REQ-VEC-002
 TEST(FswV3, NormalizeHandlesZeroAndNonFinite)
 {
   fsw_real v[3] = {0, 0, 0}, out[3] = {9, 9, 9};
@@ -77,6 +80,7 @@ TEST(FswV3, NormalizeHandlesZeroAndNonFinite)
   EXPECT_TRUE(fsw_v3_is_finite(w));
 }
 
+// Verifies: REQ-VEC-003
 TEST(FswVn, NormIsOverflowAndUnderflowSafe)
 {
   const fsw_real big = std::numeric_limits<fsw_real>::max() / 4;
@@ -91,6 +95,7 @@ TEST(FswVn, NormIsOverflowAndUnderflowSafe)
   EXPECT_EQ(0, fsw_vn_norm(z, 0));
 }
 
+// Verifies: REQ-VEC-001
 TEST(FswVn, BasicOpsAndFiniteness)
 {
   fsw_real a[5] = {1, -2, 3, -4, 5}, b[5] = {5, 4, 3, 2, 1}, c[5];
@@ -113,6 +118,7 @@ TEST(FswVn, BasicOpsAndFiniteness)
   EXPECT_TRUE(std::isnan(fsw_vn_max_abs(a, 5)));  // NaN propagates
 }
 
+// Verifies: REQ-VEC-001
 TEST(FswM33, ClosedFormValues)
 {
   const fsw_real A[3][3] = {{2, 0, 1}, {1, 3, 2}, {1, 1, 1}};
@@ -142,6 +148,7 @@ TEST(FswM33, ClosedFormValues)
   EXPECT_EQ(16, out[0]); EXPECT_EQ(34, out[1]); EXPECT_EQ(13, out[2]);
 }
 
+// Verifies: REQ-VEC-004
 TEST(FswM33, InverseSingularityTestIsScaleInvariant)
 {
   // The same nearly singular shape, expressed in tiny and in huge units,
@@ -162,6 +169,7 @@ TEST(FswM33, InverseSingularityTestIsScaleInvariant)
   }
 }
 
+// Verifies: REQ-VEC-001
 TEST(FswM33, PropertiesOverRandomMatrices)
 {
   kt::Rng r(7);
@@ -210,6 +218,7 @@ TEST(FswM33, PropertiesOverRandomMatrices)
   }
 }
 
+// Verifies: REQ-VEC-001
 TEST(FswM33, IdentityZeroAndFiniteness)
 {
   fsw_real I[3][3], Z[3][3];
@@ -233,6 +242,7 @@ TEST(FswM33, IdentityZeroAndFiniteness)
 // infinite magnitude has no power-of-two scale (1 is returned); a vector
 // with an Inf has no direction (0, return 0) and its norm is Inf; a NaN
 // anywhere in a matrix makes it non-finite; copying onto itself is a no-op.
+// Verifies: REQ-VEC-001, REQ-VEC-002
 TEST(FswVecIssue21, NonFiniteAndAliasedArguments)
 {
   const fsw_real inf = std::numeric_limits<fsw_real>::infinity();
@@ -265,6 +275,7 @@ TEST(FswVecIssue21, NonFiniteAndAliasedArguments)
 // |det| = s and |a0| |a1| |a2| = s, so |det| / scale = 1 > rel_tol = 1e-6:
 // invertible, inverse diag(1/s, 1, 1), however small row 0 is.  A scale
 // that left row 0 out (|a1|^2 |a2| = 1) would call it singular (1e-9 < 1e-6).
+// Verifies: REQ-VEC-004
 TEST(FswM33Seed31337, SingularityScaleUsesEveryRowNorm)
 {
   const fsw_real s = FSW_R(1e-9);
@@ -287,6 +298,7 @@ TEST(FswM33Seed31337, SingularityScaleUsesEveryRowNorm)
 // (x * x) * (1/x) and x * x = 2^-1200 (float 2^-160) is below the smallest
 // subnormal, so it is 0; det = x * (x * (1/x)) = x is not 0 and passes
 // |det| > rel_tol * 0.  Only the 'scale > 0' guard refuses it.
+// Verifies: REQ-VEC-004
 TEST(FswM33Seed31337, UnderflowedScaleIsRefused)
 {
   const int e = kt::kFloat ? 80 : 600;

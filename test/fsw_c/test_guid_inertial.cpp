@@ -30,6 +30,7 @@ void fill_garbage(FswGuidInertialOut& o)
   for (int i = 0; i < 3; i++) o.sigma_RN[i] = o.omega_RN_N[i] = o.omega_dot_RN_N[i] = FSW_R(7.0);
 }
 
+// Verifies: REQ-GINER-001
 TEST_F(GuidInertial, OutputsConfiguredAttitudeWithZeroRates)
 {
   gref::set3(cfg_.sigma_R0N, 0.1, 0.2, -0.3);  // |s|^2 = 0.14 <= 1: used as is
@@ -44,6 +45,7 @@ TEST_F(GuidInertial, OutputsConfiguredAttitudeWithZeroRates)
   EXPECT_EQ(FSW_OK, st_.health.last);
 }
 
+// Verifies: REQ-GINER-001
 TEST_F(GuidInertial, LongMrpIsShadowSwitchedAtInit)
 {
   // s = (1, 1, 0.5): |s|^2 = 2.25 > 1, shadow = -s/2.25 = (-4/9, -4/9, -2/9).
@@ -58,6 +60,7 @@ TEST_F(GuidInertial, LongMrpIsShadowSwitchedAtInit)
   EXPECT_LT(gref::max_abs_diff(C_cfg, C_out), kt::tol(1e-14, 1e-6));
 }
 
+// Verifies: REQ-GINER-001
 TEST_F(GuidInertial, UnitMrpIsNotSwitched)
 {
   // |s| = 1 exactly (180 deg about z): the switch is strict (> 1), keep it.
@@ -67,6 +70,7 @@ TEST_F(GuidInertial, UnitMrpIsNotSwitched)
   EXPECT_V3_NEAR(0.0, 0.0, 1.0, out_.sigma_RN, 0.0);
 }
 
+// Verifies: REQ-GINER-002
 TEST_F(GuidInertial, RejectsNonFiniteConfig)
 {
   struct Case {
@@ -98,6 +102,7 @@ TEST_F(GuidInertial, RejectsNonFiniteConfig)
   }
 }
 
+// Verifies: REQ-GINER-002
 TEST_F(GuidInertial, NeverInitialisedStateGivesSafeOutput)
 {
   fill_garbage(out_);
@@ -105,6 +110,7 @@ TEST_F(GuidInertial, NeverInitialisedStateGivesSafeOutput)
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.sigma_RN, 0.0);
 }
 
+// Verifies: REQ-GEN-007
 TEST_F(GuidInertial, NullPointersAssertAndReturnNullArg)
 {
   ASSERT_EQ(FSW_OK, fsw_guid_inertial_init(&st_, &cfg_));
@@ -118,6 +124,7 @@ TEST_F(GuidInertial, NullPointersAssertAndReturnNullArg)
   EXPECT_EQ(2u, st_.health.bad_input);  // the two calls that had a state
 }
 
+// Verifies: REQ-GINER-003
 TEST_F(GuidInertial, RepeatableAfterReset)
 {
   gref::set3(cfg_.sigma_R0N, -0.2, 0.5, 0.7);
@@ -137,6 +144,7 @@ TEST_F(GuidInertial, RepeatableAfterReset)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h); the module has no In struct.
+// Verifies: REQ-GEN-007
 TEST(GuidInertialIssue21, EveryNullArgumentAssertsAndReturns)
 {
   FswGuidInertialConfig cfg{};

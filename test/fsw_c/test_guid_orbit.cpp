@@ -136,6 +136,7 @@ void expect_safe(const FswGuidOrbitOut& o)
 
 }  // namespace
 
+// Verifies: REQ-GORB-001
 TEST(GuidOrbitConfig, RejectsBadConfigurationsTableDriven)
 {
   struct Row {
@@ -178,6 +179,7 @@ TEST(GuidOrbitConfig, RejectsBadConfigurationsTableDriven)
 // sigma = b/(1 + b0) = (-1/3, -1/3, 1/3).  omega = n z, omega_dot = 0.
 // VELOCITY gives the same frame rows in another order: R1 = v_hat,
 // R2 = -z, R3 = R1 x R2 = (-c, -s, 0) = -r_hat: the same DCM on a circle.
+// Verifies: REQ-GORB-003
 TEST(GuidOrbitNominal, CircularEquatorialHandValues)
 {
   const double a = 7e6, n = std::sqrt(kMu / (a * a * a));
@@ -206,6 +208,7 @@ TEST(GuidOrbitNominal, CircularEquatorialHandValues)
 
 // Inclined eccentric orbit: omega and omega_dot against central differences
 // of the frames of an RK4 propagation (independent of the module).
+// Verifies: REQ-GORB-003
 TEST(GuidOrbitNominal, EccentricInclinedRatesMatchFiniteDifferencesOfThePropagatedFrame)
 {
   if (kt::kFloat) GTEST_SKIP() << "finite differences at 1e-7 need double";
@@ -268,6 +271,7 @@ TEST(GuidOrbitNominal, EccentricInclinedRatesMatchFiniteDifferencesOfThePropagat
 // Frame properties over random orbits: [RN] orthonormal and right-handed,
 // nadir axis R3 = -r_hat, velocity axis R1 = v_hat, R2 = -h_hat, and the
 // rates along h_hat with the closed forms' magnitudes.
+// Verifies: REQ-GORB-002
 TEST(GuidOrbitProperties, FrameOrthonormalRightHandedAndAxesAsDefined)
 {
   kt::Rng rng(77);
@@ -315,6 +319,7 @@ TEST(GuidOrbitProperties, FrameOrthonormalRightHandedAndAxesAsDefined)
 
 // The fixed offset: Bd = R rotated by sigma_BdR; [BdN] = [BdR][RN], rates
 // unchanged.  sigma_BdR = tan(90deg/4) z: Bd1 = R2, Bd2 = -R1, Bd3 = R3.
+// Verifies: REQ-GORB-002
 TEST(GuidOrbitNominal, OffsetIsApplied)
 {
   const double a = 7e6, n = std::sqrt(kMu / (a * a * a));
@@ -349,6 +354,7 @@ TEST(GuidOrbitNominal, OffsetIsApplied)
   for (int k = 0; k < 3; k++) EXPECT_NEAR(sh.out.sigma_RN[k], off.out.sigma_RN[k], kt::tol(1e-14, 1e-6));
 }
 
+// Verifies: REQ-GORB-004
 TEST(GuidOrbitBadInput, SafeOutputAndNothingChanges)
 {
   struct Row {
@@ -396,6 +402,7 @@ TEST(GuidOrbitBadInput, SafeOutputAndNothingChanges)
   expect_safe(g.out);
 }
 
+// Verifies: REQ-GORB-005
 TEST(GuidOrbitRepeatability, SameInputSameOutputAcrossReset)
 {
   Fixture f(FSW_GUID_ORBIT_VELOCITY);
@@ -413,6 +420,7 @@ TEST(GuidOrbitRepeatability, SameInputSameOutputAcrossReset)
   EXPECT_EQ(f.st.health.calls, 2u);
 }
 
+// Verifies: REQ-GEN-007
 TEST(GuidOrbitNullArgs, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("guid_orbit", fsw_guid_orbit_check, fsw_guid_orbit_init, fsw_guid_orbit_reset,

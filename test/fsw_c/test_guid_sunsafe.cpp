@@ -39,6 +39,7 @@ class GuidSunsafe : public ::testing::Test {
   FswGuidSunsafeOut out_{};
 };
 
+// Verifies: REQ-GSUN-001
 TEST_F(GuidSunsafe, QuarterTurnHandCase)
 {
   // Sun on +y with |s| = 2 (not unit): theta = 90 deg,
@@ -55,6 +56,7 @@ TEST_F(GuidSunsafe, QuarterTurnHandCase)
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.guid.omega_dot_RN_B, 0.0);
 }
 
+// Verifies: REQ-GSUN-001
 TEST_F(GuidSunsafe, SpinAboutSunAxis)
 {
   // omega_RN_B = (rate/|s|) s = (0.05/2) (0, 2, 0) = (0, 0.05, 0);
@@ -68,6 +70,7 @@ TEST_F(GuidSunsafe, SpinAboutSunAxis)
   EXPECT_V3_NEAR(0.01, -0.03, 0.03, out_.guid.omega_BR_B, kTol);
 }
 
+// Verifies: REQ-GSUN-002
 TEST_F(GuidSunsafe, InsideDeadBandNoAttitudeError)
 {
   // Sun 0.005 deg off +x in the x-y plane, dead band 0.01 deg: sigma_BR = 0,
@@ -82,6 +85,7 @@ TEST_F(GuidSunsafe, InsideDeadBandNoAttitudeError)
   EXPECT_EQ(1, out_.sun_valid);
 }
 
+// Verifies: REQ-GSUN-002
 TEST_F(GuidSunsafe, AntiparallelUsesE180)
 {
   // s_cmd = +x: |x cross x| = 0 < 0.1, so e180 = unit(x cross y) = +z.
@@ -93,6 +97,7 @@ TEST_F(GuidSunsafe, AntiparallelUsesE180)
   EXPECT_NEAR(gref::kPi, out_.sun_angle_err, kTol);
 }
 
+// Verifies: REQ-GSUN-002
 TEST_F(GuidSunsafe, NearlyAntiparallelWithinDeadBandUsesE180)
 {
   // Sun 0.005 deg from -x (pi - theta < small_angle): axis e180 = +z,
@@ -104,6 +109,7 @@ TEST_F(GuidSunsafe, NearlyAntiparallelWithinDeadBandUsesE180)
   EXPECT_V3_NEAR(0.0, 0.0, std::tan(theta / 4), out_.guid.sigma_BR, kt::tol(1e-9, 2e-4));
 }
 
+// Verifies: REQ-GSUN-002
 TEST_F(GuidSunsafe, ExactAntiparallelWithZeroDeadBandIsGuarded)
 {
   // small_angle = 0: the e180 branch (pi - theta < 0) is never taken, the
@@ -127,6 +133,7 @@ TEST_F(GuidSunsafe, ExactAntiparallelWithZeroDeadBandIsGuarded)
 // acos(1 - 4 eps) ~ sqrt(8 eps) of 0 (resp. pi); where the computed c is
 // beyond +-1 (counted with the library's own dot and norm, the same
 // operations in the same order), the clamp makes theta exactly 0 (resp. pi).
+// Verifies: REQ-GSUN-006
 TEST_F(GuidSunsafe, Issue21SunOnTheCommandedAxisRoundsToAValidAngle)
 {
   const double eps = static_cast<double>(std::numeric_limits<fsw_real>::epsilon());
@@ -164,6 +171,7 @@ TEST_F(GuidSunsafe, Issue21SunOnTheCommandedAxisRoundsToAValidAngle)
   EXPECT_GT(below, 0);
 }
 
+// Verifies: REQ-GSUN-003
 TEST_F(GuidSunsafe, NoValidSunSearchSpin)
 {
   // |s| = 0.05 <= min_unit_mag = 0.1: sigma_BR = 0, omega_RN = omega_search,
@@ -192,6 +200,7 @@ TEST_F(GuidSunsafe, NoValidSunSearchSpin)
   EXPECT_V3_NEAR(0.01, 0.0, 0.03 - 0.02, out_.guid.omega_BR_B, kTol);
 }
 
+// Verifies: REQ-GSUN-001
 TEST_F(GuidSunsafe, RandomGeometryPointsCommandedAxisAtSun)
 {
   kt::Rng rng(0x5eed0002u);
@@ -224,6 +233,7 @@ TEST_F(GuidSunsafe, RandomGeometryPointsCommandedAxisAtSun)
   }
 }
 
+// Verifies: REQ-GSUN-004
 TEST_F(GuidSunsafe, RejectsBadConfig)
 {
   struct Case {
@@ -266,6 +276,7 @@ TEST_F(GuidSunsafe, RejectsBadConfig)
   EXPECT_EQ(FSW_OK, fsw_guid_sunsafe_check(&ok));
 }
 
+// Verifies: REQ-GSUN-005
 TEST_F(GuidSunsafe, NonFiniteInputGivesZeroErrors)
 {
   const double bad_values[] = {gref::nan(), gref::inf(), -gref::inf()};
@@ -304,6 +315,7 @@ TEST_F(GuidSunsafe, NonFiniteInputGivesZeroErrors)
   EXPECT_EQ(0ul, kestrel_assert_count());
 }
 
+// Verifies: REQ-GEN-007
 TEST_F(GuidSunsafe, NullPointersAssert)
 {
   EXPECT_EQ(FSW_E_NULL_ARG, fsw_guid_sunsafe_update(&st_, &cfg_, nullptr, &out_));
@@ -311,6 +323,7 @@ TEST_F(GuidSunsafe, NullPointersAssert)
   EXPECT_EQ(2ul, kestrel_assert_count());
 }
 
+// Verifies: REQ-GSUN-007
 TEST_F(GuidSunsafe, RepeatableAfterReset)
 {
   cfg_.sun_axis_spin_rate = FSW_R(0.01);
@@ -335,6 +348,7 @@ TEST_F(GuidSunsafe, RepeatableAfterReset)
 // Finding 5: s_cmd = (0, 1, 1) with sun_B = (0, big, big) gave sigma_BR =
 // NaN under OK (|sun_B| overflowed).  sun_B is used by direction only now:
 // aligned, so sigma_BR = 0 and the angle 0, all finite.
+// Verifies: REQ-GSUN-006
 TEST_F(GuidSunsafe, Issue13HugeSunVectorIsUsedByDirection)
 {
   const double big = 0.85 * static_cast<double>(std::numeric_limits<fsw_real>::max());
@@ -361,6 +375,7 @@ TEST_F(GuidSunsafe, Issue13HugeSunVectorIsUsedByDirection)
 // Finding 5: check accepted s_cmd = (big, big, 0), whose norm overflows, and
 // init stored a zero axis (sigma_BR = 0 under OK with the Sun at 90 deg).
 // Now |s_cmd_B| is bounded by FSW_GUID_SUNSAFE_S_CMD_MAX.
+// Verifies: REQ-GSUN-004
 TEST_F(GuidSunsafe, Issue13CommandedAxisIsBounded)
 {
   const double big = 0.85 * static_cast<double>(std::numeric_limits<fsw_real>::max());
@@ -377,6 +392,7 @@ TEST_F(GuidSunsafe, Issue13CommandedAxisIsBounded)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(GuidSunsafeIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("guid_sunsafe", fsw_guid_sunsafe_check, fsw_guid_sunsafe_init, fsw_guid_sunsafe_reset, fsw_guid_sunsafe_update);

@@ -173,6 +173,7 @@ class MrpFb : public ::testing::Test {
   FswMrpFbOut out_{};
 };
 
+// Verifies: REQ-MRPFB-001
 TEST_F(MrpFb, PureProportionalDerivativeHandCase)
 {
   // omega_RN = 0, omega_dot_RN = 0, no wheels, K_i < 0 (z = 0): v = 0, so
@@ -196,6 +197,7 @@ TEST_F(MrpFb, PureProportionalDerivativeHandCase)
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, out_.int_torque_B, 0.0);
 }
 
+// Verifies: REQ-MRPFB-001
 TEST_F(MrpFb, FullLawMatchesIndependentEvaluation)
 {
   // All terms active: integral (K_i = 0.01), wheels, reference motion, L.
@@ -222,6 +224,7 @@ TEST_F(MrpFb, FullLawMatchesIndependentEvaluation)
   }
 }
 
+// Verifies: REQ-MRPFB-001
 TEST_F(MrpFb, UnavailableWheelIsExcludedFromMomentum)
 {
   RefIn r = scenario();
@@ -241,6 +244,7 @@ TEST_F(MrpFb, UnavailableWheelIsExcludedFromMomentum)
   expect_lr(ref_lr(rounded(r3), zero), out_, kTol);
 }
 
+// Verifies: REQ-MRPFB-002
 TEST_F(MrpFb, IntegralClampsPerComponentWithSign)
 {
   // K = 1, dt = 1 s, sigma = (0.5, -0.5, 0.1), limit 0.2:
@@ -271,6 +275,7 @@ TEST_F(MrpFb, IntegralClampsPerComponentWithSign)
   EXPECT_V3_NEAR(0.0, 0.0, 0.0, st_.int_sigma, 0.0);
 }
 
+// Verifies: REQ-MRPFB-002
 TEST_F(MrpFb, NonPositiveKiLeavesIntegralUntouched)
 {
   for (double ki : {0.0, -1.0}) {
@@ -286,6 +291,7 @@ TEST_F(MrpFb, NonPositiveKiLeavesIntegralUntouched)
   }
 }
 
+// Verifies: REQ-MRPFB-007
 TEST_F(MrpFb, SmallErrorsTorqueOpposesError)
 {
   // Pure P/K case (no reference motion, no integral): for random small
@@ -328,6 +334,7 @@ TEST_F(MrpFb, SmallErrorsTorqueOpposesError)
   }
 }
 
+// Verifies: REQ-MRPFB-005
 TEST_F(MrpFb, TimeMustIncrease)
 {
   RefIn r = scenario();
@@ -351,6 +358,7 @@ TEST_F(MrpFb, TimeMustIncrease)
   EXPECT_V3_NEAR(is[0], is[1], is[2], st_.int_sigma, kt::tol(1e-16, 1e-8));
 }
 
+// Verifies: REQ-MRPFB-004
 TEST_F(MrpFb, NonFiniteInputGivesZeroTorqueAndKeepsState)
 {
   RefIn r = scenario();
@@ -398,6 +406,7 @@ TEST_F(MrpFb, NonFiniteInputGivesZeroTorqueAndKeepsState)
   EXPECT_EQ(FSW_OK, step(2000000000ull));
 }
 
+// Verifies: REQ-MRPFB-003
 TEST_F(MrpFb, RejectsBadConfig)
 {
   struct Case {
@@ -491,6 +500,7 @@ TEST_F(MrpFb, RejectsBadConfig)
   EXPECT_EQ(FSW_OK, fsw_mrp_fb_check(&ok));
 }
 
+// Verifies: REQ-MRPFB-006
 TEST_F(MrpFb, ResetClearsIntegralAndTimingAndIsRepeatable)
 {
   RefIn r = scenario();
@@ -520,6 +530,7 @@ TEST_F(MrpFb, ResetClearsIntegralAndTimingAndIsRepeatable)
 // the caller, so the project's reading (docs/fsw-conventions.md) is: the
 // first update after reset writes its documented safe output on bad input,
 // never what the caller's buffer held before the reset.
+// Verifies: REQ-MRPFB-004, REQ-MRPFB-006
 TEST_F(MrpFb, ResetThenBadInputGivesTheSafeOutputNotStaleValues)
 {
   RefIn r = scenario();
@@ -549,6 +560,7 @@ TEST_F(MrpFb, ResetThenBadInputGivesTheSafeOutputNotStaleValues)
   }
 }
 
+// Verifies: REQ-GEN-007
 TEST_F(MrpFb, NullPointersAssert)
 {
   RefIn r = scenario();
@@ -563,6 +575,7 @@ TEST_F(MrpFb, NullPointersAssert)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(MrpFbNullIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("mrp_fb", fsw_mrp_fb_check, fsw_mrp_fb_init, fsw_mrp_fb_reset, fsw_mrp_fb_update);

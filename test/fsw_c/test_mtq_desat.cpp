@@ -94,6 +94,7 @@ void hand_input(Fixture& f)
 
 }  // namespace
 
+// Verifies: REQ-MTQDS-001
 TEST(MtqDesatConfig, RejectsBadConfigurationsTableDriven)
 {
   struct Row {
@@ -143,6 +144,7 @@ TEST(MtqDesatConfig, RejectsBadConfigurationsTableDriven)
 // h_err = (0.9, -0.5, 0.2), b = (0, 0.6, 0.8): h.b = -0.14,
 // h_perp = (0.9, -0.416, 0.312), tau = -0.01 h_perp = (-9e-3, 4.16e-3, -3.12e-3);
 // h x B = (-2.6e-5, -3.6e-5, 2.7e-5), /|B|^2 (2.5e-9) x 0.01 = (-104, -144, 108) A*m^2.
+// Verifies: REQ-MTQDS-002
 TEST(MtqDesatNominal, ClosedFormHandNumbers)
 {
   auto f = nominal();
@@ -175,6 +177,7 @@ TEST(MtqDesatNominal, ClosedFormHandNumbers)
 
 // The law against its closed form for random momenta, fields and wheel sets
 // (three to six wheels with random axes): m x B = -k h_err_perp to 1e-12.
+// Verifies: REQ-MTQDS-002
 TEST(MtqDesatNominal, CrossProductIdentityOnRandomCases)
 {
   kt::Rng rng(3811);
@@ -225,6 +228,7 @@ TEST(MtqDesatNominal, CrossProductIdentityOnRandomCases)
 }
 
 // tau_max limits the magnitude, the direction stays: |tau| = 0.0103957...
+// Verifies: REQ-MTQDS-003
 TEST(MtqDesatNominal, TorqueLimitKeepsTheDirection)
 {
   auto f = nominal(0.01, 0.005);
@@ -245,6 +249,7 @@ TEST(MtqDesatNominal, TorqueLimitKeepsTheDirection)
 }
 
 // Inside the deadband: no request, momentum still reported.
+// Verifies: REQ-MTQDS-003
 TEST(MtqDesatNominal, DeadbandGivesNoRequest)
 {
   auto f = nominal();
@@ -263,6 +268,7 @@ TEST(MtqDesatNominal, DeadbandGivesNoRequest)
 }
 
 // Unavailable wheels are not counted and their speeds not read.
+// Verifies: REQ-MTQDS-002
 TEST(MtqDesatNominal, UnavailableWheelNotCounted)
 {
   auto f = nominal();
@@ -276,6 +282,7 @@ TEST(MtqDesatNominal, UnavailableWheelNotCounted)
 }
 
 // No usable field: no request (W_SINGULAR); the momentum is still reported.
+// Verifies: REQ-MTQDS-004
 TEST(MtqDesatField, InvalidOrTinyFieldGivesNoRequest)
 {
   for (int c = 0; c < 3; c++) {
@@ -296,6 +303,7 @@ TEST(MtqDesatField, InvalidOrTinyFieldGivesNoRequest)
   }
 }
 
+// Verifies: REQ-MTQDS-005
 TEST(MtqDesatBadInput, SafeOutputAndNoStateChange)
 {
   struct Row {
@@ -337,6 +345,7 @@ TEST(MtqDesatBadInput, SafeOutputAndNoStateChange)
 // over ten orbits it decays at the orbit-averaged rates: <I - b b^T> =
 // diag(0.625, 0.625, 0.75), so |h_err| ends between exp(-k t) and
 // exp(-0.625 k t) of its start (with margin for the ripple).
+// Verifies: REQ-MTQDS-006
 TEST(MtqDesatClosedLoop, RotatingFieldUnloadsEveryAxis)
 {
   const double k = 1e-4, T = 5400.0, dt = 2.0, Bm = 3e-5, alpha = kPi / 3;
@@ -386,6 +395,7 @@ TEST(MtqDesatClosedLoop, RotatingFieldUnloadsEveryAxis)
 
 // A fixed field: the part of h_err along B is never touched; the
 // perpendicular part decays as (1 - k dt)^n (forward Euler of dh/dt = -k h_perp).
+// Verifies: REQ-MTQDS-006
 TEST(MtqDesatClosedLoop, FixedFieldLeavesTheParallelPartUntouched)
 {
   const double k = 1e-3, dt = 1.0, J = 0.01;
@@ -409,6 +419,7 @@ TEST(MtqDesatClosedLoop, FixedFieldLeavesTheParallelPartUntouched)
               par0, par, norm(perp0), std::sqrt(std::pow(norm(h), 2) - par * par), decay * norm(perp0));
 }
 
+// Verifies: REQ-MTQDS-007
 TEST(MtqDesatRepeatability, SameInputsGiveIdenticalOutputs)
 {
   auto f = nominal();
@@ -424,6 +435,7 @@ TEST(MtqDesatRepeatability, SameInputsGiveIdenticalOutputs)
   EXPECT_EQ(f->st->health.calls, 2u);
 }
 
+// Verifies: REQ-GEN-007
 TEST(MtqDesatIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("mtq_desat", fsw_mtq_desat_check, fsw_mtq_desat_init, fsw_mtq_desat_reset,

@@ -158,6 +158,7 @@ void ref_dipole(double mB[3], const FswMtqMapIn& in)
 
 }  // namespace
 
+// Verifies: REQ-MTQMAP-001
 TEST(MtqMapConfig, RejectsBadConfigurationsTableDriven)
 {
   struct Row {
@@ -219,6 +220,7 @@ TEST(MtqMapConfig, RejectsBadConfigurationsTableDriven)
 // m = (0, 0.016, -0.012) A*m^2, and m x B = (0.016*4e-5 + 0.012*3e-5, 0, 0)
 // = tau.  Rods = m; limit 0.8 * 0.2 = 0.16, so no saturation;
 // duty = (0, 0.08, 0.06).
+// Verifies: REQ-MTQMAP-002
 TEST(MtqMapNominal, OrthogonalRodsHandNumbers)
 {
   auto f = ortho();
@@ -245,6 +247,7 @@ TEST(MtqMapNominal, OrthogonalRodsHandNumbers)
 // A request with a part along B: the dipole delivers exactly the
 // perpendicular part (m x B = tau - (tau.B) B/|B|^2) and reports the
 // parallel part.  Random requests and fields, relative 1e-12 (double).
+// Verifies: REQ-MTQMAP-002
 TEST(MtqMapNominal, DeliversThePerpendicularPartAndReportsTheParallel)
 {
   auto f = ortho(1e4, 1.0);
@@ -289,6 +292,7 @@ TEST(MtqMapNominal, DeliversThePerpendicularPartAndReportsTheParallel)
 }
 
 // tau along B: no dipole, no torque, the whole request reported as parallel.
+// Verifies: REQ-MTQMAP-002
 TEST(MtqMapNominal, ParallelRequestGivesNoTorque)
 {
   auto f = ortho();
@@ -305,6 +309,7 @@ TEST(MtqMapNominal, ParallelRequestGivesNoTorque)
 
 // Skewed 4-rod set: the minimum-norm commands equal G^T (G G^T)^-1 m_B from
 // the normal equations solved here.
+// Verifies: REQ-MTQMAP-002
 TEST(MtqMapNominal, SkewedFourRodsMatchAnIndependentPseudoInverse)
 {
   auto f = skewed(1e4, 1.0);
@@ -347,6 +352,7 @@ TEST(MtqMapNominal, SkewedFourRodsMatchAnIndependentPseudoInverse)
 // Two rods span a plane (rank 2): G c is the projection of m_B on the plane,
 // c = (G^T G)^-1 G^T m_B (least squares, here also the minimum norm).  When
 // m_B lies in the plane it is delivered (OK); otherwise W_SINGULAR.
+// Verifies: REQ-MTQMAP-003
 TEST(MtqMapRankDeficient, TwoRodsGiveTheLeastSquaresDipole)
 {
   const double s2 = std::sqrt(0.5);
@@ -391,6 +397,7 @@ TEST(MtqMapRankDeficient, TwoRodsGiveTheLeastSquaresDipole)
 // Saturation: orthogonal rods, limit 0.5 * 0.2 = 0.1 A*m^2.  tau = (2.5e-5,
 // 0, 0) gives m = (0, 0.4, -0.3); scale = 0.1/0.4 = 0.25, m_cmd = (0, 0.1,
 // -0.075), duty = (0, 0.5, 0.375), torque 0.25 tau.
+// Verifies: REQ-MTQMAP-004
 TEST(MtqMapSaturation, CommonFactorHandNumbers)
 {
   auto f = ortho(0.2, 0.5);
@@ -412,6 +419,7 @@ TEST(MtqMapSaturation, CommonFactorHandNumbers)
 // Saturation keeps the direction and each rod within duty_max m_max, on
 // the skewed set with unequal limits (independent pseudo-inverse for the
 // unsaturated dipole).
+// Verifies: REQ-MTQMAP-004
 TEST(MtqMapSaturation, DirectionKeptAndEveryRodWithinItsLimit)
 {
   double g[4][3];
@@ -464,6 +472,7 @@ TEST(MtqMapSaturation, DirectionKeptAndEveryRodWithinItsLimit)
 
 // Unavailable rods get exactly 0: the skewed set without rod 4 is the 3-rod
 // set; the orthogonal set without rod 1 is rank 2.
+// Verifies: REQ-MTQMAP-005
 TEST(MtqMapAvailability, UnavailableRodsAreZero)
 {
   auto f = skewed(1e4, 1.0);
@@ -503,6 +512,7 @@ TEST(MtqMapAvailability, UnavailableRodsAreZero)
 }
 
 // Dipole mode: m_req_B mapped directly; tau_par = 0; tau_ach = m x B.
+// Verifies: REQ-MTQMAP-002
 TEST(MtqMapNominal, DipoleModeMapsTheRequestDirectly)
 {
   auto f = ortho();
@@ -523,6 +533,7 @@ TEST(MtqMapNominal, DipoleModeMapsTheRequestDirectly)
 
 // No usable field: B_valid = 0 (B not read) or |B| below 1e-9 T -> rods off,
 // W_SINGULAR.  1e-9 T itself is usable.
+// Verifies: REQ-MTQMAP-005
 TEST(MtqMapField, InvalidOrTinyFieldTurnsTheRodsOff)
 {
   auto f = ortho();
@@ -549,6 +560,7 @@ TEST(MtqMapField, InvalidOrTinyFieldTurnsTheRodsOff)
   EXPECT_EQ(f->st->health.singular, 3u);
 }
 
+// Verifies: REQ-MTQMAP-006
 TEST(MtqMapBadInput, SafeOutputAndNoStateChange)
 {
   struct Row {
@@ -604,6 +616,7 @@ TEST(MtqMapBadInput, SafeOutputAndNoStateChange)
 
 // Same input, same output bytes, also after reset; reset keeps ready and
 // the health counters.
+// Verifies: REQ-MTQMAP-007
 TEST(MtqMapRepeatability, SameInputsGiveIdenticalOutputs)
 {
   double g[4][3];
@@ -633,6 +646,7 @@ TEST(MtqMapRepeatability, SameInputsGiveIdenticalOutputs)
   EXPECT_EQ(first->rank, f->out->rank);
 }
 
+// Verifies: REQ-GEN-007
 TEST(MtqMapIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("mtq_map", fsw_mtq_map_check, fsw_mtq_map_init, fsw_mtq_map_reset, fsw_mtq_map_update);

@@ -116,6 +116,7 @@ void null_project(double* out, const FswRwBiasConfig& c, const uint8_t* avail, c
 
 }  // namespace
 
+// Verifies: REQ-RWBIAS-001
 TEST(RwBiasConfig, RejectsBadConfigurationsTableDriven)
 {
   struct Row {
@@ -168,6 +169,7 @@ TEST(RwBiasConfig, RejectsBadConfigurationsTableDriven)
 // bias - Omega = (-100, 0, -50, 200), lambda_u = n.(bias - Omega) = -175,
 // Omega_des = Omega - 175 n = (112.5, -12.5, 62.5, -212.5): every wheel out
 // of its band on its own side, so this is the answer; |lambda| = 175.
+// Verifies: REQ-RWBIAS-002
 TEST(RwBiasNominal, PyramidUnconstrainedOptimumHandNumbers)
 {
   auto f = pyramid();
@@ -192,6 +194,7 @@ TEST(RwBiasNominal, PyramidUnconstrainedOptimumHandNumbers)
 // n_3 = 1/2) requires 50 + lambda/2 >= 10, lambda >= -80 (the other wheels
 // allow lambda >= -180, -380, -580), so lambda = -80:
 // Omega_des = (160, -60, 10, -260), wheel 3 stops at the band edge.
+// Verifies: REQ-RWBIAS-003
 TEST(RwBiasNominal, CrossingStopsAtTheBandEdge)
 {
   auto f = pyramid();
@@ -206,6 +209,7 @@ TEST(RwBiasNominal, CrossingStopsAtTheBandEdge)
 // It is in the band, so it must reach -(keepout + hyst) = -15 on its own
 // side: -3 + lambda/2 <= -15, lambda <= -24 (others: lambda >= -180):
 // lambda = -24, Omega_des = (-15, -88, 88, -88).
+// Verifies: REQ-RWBIAS-003
 TEST(RwBiasNominal, WheelNearZeroIsPushedOutOnItsOwnSide)
 {
   auto f = pyramid();
@@ -228,6 +232,7 @@ TEST(RwBiasNominal, WheelNearZeroIsPushedOutOnItsOwnSide)
 //   Omega_1 = 8:  in band                        b = 15: Omega_des_1 = 15
 //   Omega_1 = 12: still in band (12 <= 15)       b = 15: Omega_des_1 = 15
 //   Omega_1 = 16: leaves the band                b = 10: Omega_des_1 = 10
+// Verifies: REQ-RWBIAS-003
 TEST(RwBiasNominal, HysteresisOfTheBand)
 {
   auto f = pyramid();
@@ -260,6 +265,7 @@ TEST(RwBiasNominal, HysteresisOfTheBand)
 // (100,100,100,100)); the fewest wheels in band is 2, at lambda = 20 or
 // -20, equally far from lambda_u: the first found (wheel 1's bound, 20):
 // Omega_des = (15, -5, 15, -5), wheels 2 and 4 flagged, FSW_W_SAT.
+// Verifies: REQ-RWBIAS-004
 TEST(RwBiasInfeasible, MomentumForcingACrossingIsFlagged)
 {
   auto f = pyramid();
@@ -280,6 +286,7 @@ TEST(RwBiasInfeasible, MomentumForcingACrossingIsFlagged)
 
 // k = 0 (wheel 4 unavailable: three independent wheels): no null motion,
 // Omega_des = Omega; a wheel in its band is flagged.
+// Verifies: REQ-RWBIAS-004
 TEST(RwBiasInfeasible, NoNullSpaceHoldsTheSpeeds)
 {
   auto f = pyramid();
@@ -300,6 +307,7 @@ TEST(RwBiasInfeasible, NoNullSpaceHoldsTheSpeeds)
 // wheel kept out never changes sign, and |Omega_des| <= FSW_RW_OMEGA_MAX.
 class RwBiasProperties : public ::testing::TestWithParam<int> {};
 
+// Verifies: REQ-RWBIAS-002, REQ-RWBIAS-003
 TEST_P(RwBiasProperties, MomentumUnchangedAndNoSignChangeWhenKeptOut)
 {
   const int n = GetParam();
@@ -347,6 +355,7 @@ INSTANTIATE_TEST_SUITE_P(Wheels, RwBiasProperties, ::testing::ValuesIn(rwt::kCou
 // unconstrained optimum (independent projector) when that is admissible;
 // (b) otherwise no admissible point Omega + P x (random x, independent
 // projector P) is closer to the bias.
+// Verifies: REQ-RWBIAS-002
 TEST(RwBiasSixWheels, NullityThreeOptimality)
 {
   if (kt::kFloat) GTEST_SKIP() << "optimality compared in double";
@@ -409,6 +418,7 @@ TEST(RwBiasSixWheels, NullityThreeOptimality)
 // pyramid's minimum-norm map u_c = -(3/4) Gs^T L (L along g_1, slowly
 // varying).  Without null motion wheel 1 crosses zero; with the stack no
 // wheel changes sign for as long as rw_bias reports the set feasible (OK).
+// Verifies: REQ-RWBIAS-007
 TEST(RwBiasClosedLoop, StackWithRwNullKeepsWheelsFromCrossingZero)
 {
   double g[4][3];
@@ -488,6 +498,7 @@ TEST(RwBiasClosedLoop, StackWithRwNullKeepsWheelsFromCrossingZero)
               "rw_null W_SINGULAR %d of %d\n", t_cross, t_ok, min_abs, singular, int(T / dt));
 }
 
+// Verifies: REQ-RWBIAS-005
 TEST(RwBiasBadInput, SafeOutputIsTheCurrentSpeedsAndNothingChanges)
 {
   struct Row {
@@ -532,6 +543,7 @@ TEST(RwBiasBadInput, SafeOutputIsTheCurrentSpeedsAndNothingChanges)
   EXPECT_EQ(f->out->Omega_des[2], 0.0);
 }
 
+// Verifies: REQ-RWBIAS-006
 TEST(RwBiasRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 {
   auto f = pyramid();
@@ -555,6 +567,7 @@ TEST(RwBiasRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
   }
 }
 
+// Verifies: REQ-GEN-007
 TEST(RwBiasNullArgs, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("rw_bias", fsw_rw_bias_check, fsw_rw_bias_init, fsw_rw_bias_reset, fsw_rw_bias_update);

@@ -77,6 +77,7 @@ double rel_residual(const FswRwMapConfig& cfg, const fsw_real* u, const fsw_real
 
 // ---- configuration -------------------------------------------------------
 
+// Verifies: REQ-RWMAP-001
 TEST(RwMapConfig, RejectsBadConfigurationsTableDriven)
 {
   struct Row {
@@ -139,6 +140,7 @@ TEST(RwMapConfig, RejectsBadConfigurationsTableDriven)
   }
 }
 
+// Verifies: REQ-RWMAP-001
 TEST(RwMapConfig, AcceptsZeroAxesAndEpsIgnoredInMinNorm)
 {
   Fixture f = pyramid();
@@ -151,6 +153,7 @@ TEST(RwMapConfig, AcceptsZeroAxesAndEpsIgnoredInMinNorm)
   expect_all_zero(*f.out);
 }
 
+// Verifies: REQ-GEN-007
 TEST(RwMapConfig, NullArgumentsAssertAndReturn)
 {
   Fixture f = pyramid();
@@ -172,6 +175,7 @@ TEST(RwMapConfig, NullArgumentsAssertAndReturn)
 //   u_2 = -(3/4)(-0.03 - 0.06 + 0.12)/sqrt(3) = -0.0225/sqrt(3)
 //   u_3 = -(3/4)(-0.03 + 0.06 + 0.12)/sqrt(3) = -0.1125/sqrt(3)
 //   u_4 = -(3/4)(0.03 + 0.06 + 0.12)/sqrt(3) = -0.1575/sqrt(3)
+// Verifies: REQ-RWMAP-002
 TEST(RwMapNominal, PyramidMinimumNormClosedForm)
 {
   Fixture f = pyramid();
@@ -188,6 +192,7 @@ TEST(RwMapNominal, PyramidMinimumNormClosedForm)
 // Two control axes (x, y): A = rows 1, 2 of [Gs], A A^T = (4/3) I_2, so
 // u_i = -(3/4)(g_ix Lr_x + g_iy Lr_y); the z torque is not controlled.
 // Lr = (0.4, 0.2, 9): u = -(3/4)/sqrt(3) * (0.6, -0.2, -0.6, 0.2).
+// Verifies: REQ-RWMAP-002
 TEST(RwMapNominal, PyramidTwoAxesLeavesZUncontrolled)
 {
   Fixture f = pyramid();
@@ -204,6 +209,7 @@ TEST(RwMapNominal, PyramidTwoAxesLeavesZUncontrolled)
 // solution is unique: u = -[Gs_a]^-1 Lr.  For Lr = (1, 0, 0) N*m:
 // g1 - g2 = (2/sqrt3, 0, 0) gives u1 = -sqrt(3)/2, u2 = +sqrt(3)/2 and u3 = 0
 // (check: -sqrt3/2 g1 + sqrt3/2 g2 = (-1, 0, 0) = -Lr).
+// Verifies: REQ-RWMAP-004
 TEST(RwMapNominal, UnavailableWheelGetsExactlyZero)
 {
   Fixture f = pyramid();
@@ -216,6 +222,7 @@ TEST(RwMapNominal, UnavailableWheelGetsExactlyZero)
   EXPECT_EQ(f.out->u_s[3], 0.0);
 }
 
+// Verifies: REQ-RWMAP-005
 TEST(RwMapNominal, FewerAvailableThanAxesGivesZerosAndWarning)
 {
   Fixture f = pyramid();
@@ -230,6 +237,7 @@ TEST(RwMapNominal, FewerAvailableThanAxesGivesZerosAndWarning)
 // Three coplanar wheels (all axes in the x-y plane) cannot make a z torque.
 // Basilisk's |det| > 1e-30 test lets nearly coplanar sets through with huge
 // torques; K1's relative pivot test refuses them.
+// Verifies: REQ-RWMAP-005
 TEST(RwMapNominal, CoplanarAvailableSetGivesZerosAndWarning)
 {
   const double c = std::cos(0.3), s = std::sin(0.3);
@@ -254,6 +262,7 @@ TEST(RwMapNominal, CoplanarAvailableSetGivesZerosAndWarning)
 // Power mode, pyramid, speeds (100, 100, 100, 0) rad/s, eps_P = 1.  Weights
 // W = (10001, 10001, 10001, 1).  Hand check via the independent solver and
 // the defining properties: wheel 4 (stopped) takes most of the torque.
+// Verifies: REQ-RWMAP-003
 TEST(RwMapNominal, PowerOptimalPyramidFavoursSlowWheel)
 {
   Fixture f = pyramid(FSW_RW_MAP_POWER);
@@ -272,6 +281,7 @@ TEST(RwMapNominal, PowerOptimalPyramidFavoursSlowWheel)
 
 // ---- bad input -----------------------------------------------------------
 
+// Verifies: REQ-RWMAP-006
 TEST(RwMapBadInput, NonFiniteOrBadMaskGivesZerosAndAdvancesNothing)
 {
   struct Row {
@@ -301,6 +311,7 @@ TEST(RwMapBadInput, NonFiniteOrBadMaskGivesZerosAndAdvancesNothing)
   EXPECT_EQ(f.update(), FSW_OK);
 }
 
+// Verifies: REQ-RWMAP-007
 TEST(RwMapRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 {
   Fixture f = pyramid(FSW_RW_MAP_POWER);
@@ -322,6 +333,7 @@ TEST(RwMapRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
   }
 }
 
+// Verifies: REQ-RWMAP-007
 TEST(RwMapRepeatability, MinNormKeptForTheMaskGivesWhatAFreshStateGives)
 {
   // MIN_NORM keeps [C][Gs_a] and its factor for the last mask (rw_map.h).
@@ -355,6 +367,7 @@ TEST(RwMapRepeatability, MinNormKeptForTheMaskGivesWhatAFreshStateGives)
 
 class RwMapProperties : public ::testing::TestWithParam<int> {};
 
+// Verifies: REQ-RWMAP-002
 TEST_P(RwMapProperties, MinNormMatchesIndependentSolverAndTorqueConstraint)
 {
   const int n = GetParam();
@@ -377,6 +390,7 @@ TEST_P(RwMapProperties, MinNormMatchesIndependentSolverAndTorqueConstraint)
   }
 }
 
+// Verifies: REQ-RWMAP-003
 TEST_P(RwMapProperties, PowerOptimalConstraintEqualSpeedsAndCost)
 {
   const int n = GetParam();
@@ -439,6 +453,7 @@ INSTANTIATE_TEST_SUITE_P(Wheels, RwMapProperties, ::testing::ValuesIn(rwt::kCoun
 // the third Cholesky pivot (6.8e-13) passed the 4.5e-13 floor and the map
 // returned OK with a delivered torque far from the request; now the K1
 // delivered-residual test rejects it: W_SINGULAR with u = 0 (both modes).
+// Verifies: REQ-RWMAP-005
 TEST(RwMapIssue13, NearlyCoplanarWheelsAreSingularNotOk)
 {
   const double g[3][3] = {{0.0335, -0.0112, -0.99938},
@@ -468,6 +483,7 @@ TEST(RwMapIssue13, NearlyCoplanarWheelsAreSingularNotOk)
 // Finding 2, seeded search: coplanar and duplicate-axis sets tilted out of
 // their plane by 1e-8..1e-4.  OK always means a delivered torque within
 // the residual tolerance; everything else is W_SINGULAR with u = 0.
+// Verifies: REQ-RWMAP-005
 TEST(RwMapIssue13, NearlyDeficientSetsNeverOkWithWrongTorque)
 {
   kt::Rng rng(2013);
@@ -506,6 +522,7 @@ TEST(RwMapIssue13, NearlyDeficientSetsNeverOkWithWrongTorque)
 // Finding 7 (rw_map): Lr near the real's maximum on each axis gave -inf
 // under OK in both modes; now bad input with u = 0.  A denormal eps_P
 // (which made every POWER update a bad input) is refused by check.
+// Verifies: REQ-RWMAP-006, REQ-RWMAP-001
 TEST(RwMapIssue13, OverflowIsBadInputAndEpsPIsBounded)
 {
   const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());
@@ -536,6 +553,7 @@ TEST(RwMapIssue13, OverflowIsBadInputAndEpsPIsBounded)
 // N*m delivering a torque off by 30 %.  Now W_SINGULAR with u = 0 in both
 // modes; and a wheel at 0.01 rad from 90 deg (c . g = sin 0.01, far above
 // rounding) is still solved exactly: u = -(c . Lr) / (c . g).
+// Verifies: REQ-RWMAP-005
 TEST(RwMapIssue13, WheelNormalToTheOnlyAxisIsSingular)
 {
   const double g[1][3] = {{-0.54167522041970195, -0.54167522041970184, 0.64278760968653925}};
@@ -583,6 +601,7 @@ TEST(RwMapIssue13, WheelNormalToTheOnlyAxisIsSingular)
 // system has one solution; the power weighting only scales the column and is
 // undone).  Lr = (5, 7, 0.04): u = -0.05.  Three axes from one wheel:
 // fewer available wheels than axes -> W_SINGULAR with u = 0 (docs/fsw/rw_map.md).
+// Verifies: REQ-RWMAP-002
 TEST(RwMapIssue21, SingleWheelIsAcceptedAndSolvedExactly)
 {
   const double g[1][3] = {{0.6, 0.0, 0.8}};
@@ -611,6 +630,7 @@ TEST(RwMapIssue21, SingleWheelIsAcceptedAndSolvedExactly)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(RwMapIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("rw_map", fsw_rw_map_check, fsw_rw_map_init, fsw_rw_map_reset, fsw_rw_map_update);
@@ -623,6 +643,7 @@ TEST(RwMapIssue21, EveryNullArgumentAssertsAndReturns)
 // u_1 = -(3/4) sqrt(3) 0.9 max = -1.17 max: it overflows only when x is
 // scaled back.  Bad input, u = 0 (the MIN_NORM row of
 // OverflowIsBadInputAndEpsPIsBounded fails inside K1 instead).
+// Verifies: REQ-RWMAP-006
 TEST(RwMapIssue21, PowerWeightingThatOverflowsOnTheWayBackIsBadInput)
 {
   const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());

@@ -68,6 +68,7 @@ double body_torque_change(const FswRwNullConfig& c, const fsw_real* u, const fsw
 
 }  // namespace
 
+// Verifies: REQ-RWNULL-001
 TEST(RwNullConfig, RejectsBadConfigurationsTableDriven)
 {
   struct Row {
@@ -116,6 +117,7 @@ TEST(RwNullConfig, RejectsBadConfigurationsTableDriven)
 // Pyramid: null([Gs]) is spanned by n = (1,-1,1,-1)/2, so [tau] = n n^T.
 // Omega = (100, 0, 0, 0) rad/s, Omega_des = 0, K = 0.01 N*m*s:
 // d = (-1, 0, 0, 0) N*m, [tau] d = n (n.d) = -n/2 = (-1/4, 1/4, -1/4, 1/4).
+// Verifies: REQ-RWNULL-002
 TEST(RwNullNominal, PyramidDespinOneWheelHandNumbers)
 {
   auto f = pyramid();
@@ -132,6 +134,7 @@ TEST(RwNullNominal, PyramidDespinOneWheelHandNumbers)
 }
 
 // Omega_des shifts the target: Omega = Omega_des gives no null torque.
+// Verifies: REQ-RWNULL-002
 TEST(RwNullNominal, DesiredSpeedsReachedGiveNoNullTorque)
 {
   auto f = pyramid();
@@ -143,6 +146,7 @@ TEST(RwNullNominal, DesiredSpeedsReachedGiveNoNullTorque)
 }
 
 // Three independent wheels: [tau] = 0, output = input (6.1 edge case).
+// Verifies: REQ-RWNULL-002
 TEST(RwNullNominal, ThreeIndependentWheelsPassInputThrough)
 {
   const double g[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -162,6 +166,7 @@ TEST(RwNullNominal, ThreeIndependentWheelsPassInputThrough)
 // its [tau] becomes I and d is applied directly (docs/fsw/rw_null.md).
 // g = (1,0,0), (0,1,0), (-1,0,0), (0,-1,0): null = span{(1,0,1,0), (0,1,0,1)}/sqrt2,
 // d = (-1, 0, 0, 0) -> [tau] d = (-1/2, 0, -1/2, 0).
+// Verifies: REQ-RWNULL-002
 TEST(RwNullNominal, CoplanarSetHandNumbers)
 {
   const double g[4][3] = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
@@ -178,6 +183,7 @@ TEST(RwNullNominal, CoplanarSetHandNumbers)
 // Availability: wheel 4 off -> three independent wheels -> no null torque,
 // wheel 4 exactly 0 even if the input carried a torque; back on -> null
 // torque again.  The projector follows the mask.
+// Verifies: REQ-RWNULL-004
 TEST(RwNullNominal, ProjectorRecomputedWhenAvailabilityChanges)
 {
   auto f = pyramid();
@@ -198,6 +204,7 @@ TEST(RwNullNominal, ProjectorRecomputedWhenAvailabilityChanges)
 // Scale to fit, u_max = 0.1: u_c = (0.05, 0, 0, 0), [tau] d = (-1/4, 1/4, -1/4, 1/4).
 // Wheel 1: (-0.1 - 0.05)/(-0.25) = 0.6; wheels 2..4: 0.1/0.25 = 0.4 -> kappa = 0.4,
 // u = (0.05 - 0.1, 0.1, -0.1, 0.1) = (-0.05, 0.1, -0.1, 0.1).
+// Verifies: REQ-RWNULL-003
 TEST(RwNullNominal, ScaleToFitHandNumbers)
 {
   auto f = pyramid(1);
@@ -221,6 +228,7 @@ TEST(RwNullNominal, ScaleToFitHandNumbers)
   EXPECT_EQ(f->out->kappa, 1.0);
 }
 
+// Verifies: REQ-RWNULL-005
 TEST(RwNullBadInput, NonFiniteOrBadMaskGivesZerosAndKeepsProjector)
 {
   struct Row {
@@ -263,6 +271,7 @@ TEST(RwNullBadInput, NonFiniteOrBadMaskGivesZerosAndKeepsProjector)
   kestrel_assert_reset();
 }
 
+// Verifies: REQ-RWNULL-006
 TEST(RwNullRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 {
   auto f = pyramid(1);
@@ -292,6 +301,7 @@ TEST(RwNullRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 // and |u_i| <= u_max_i whenever u_c is inside the limits.
 class RwNullProperties : public ::testing::TestWithParam<int> {};
 
+// Verifies: REQ-RWNULL-003
 TEST_P(RwNullProperties, BodyTorqueUnchangedAndLimitsRespected)
 {
   const int n = GetParam();
@@ -337,6 +347,7 @@ INSTANTIATE_TEST_SUITE_P(Wheels, RwNullProperties, ::testing::ValuesIn(rwt::kCou
 // Finding 7 (rw_null): k_null ~ max is refused by check; a finite speed
 // error that overflows (max - (-max)) gave NaN/inf under OK with kappa = 1:
 // now bad input with u = 0, kappa = 0 and the projector untouched.
+// Verifies: REQ-RWNULL-005, REQ-RWNULL-001
 TEST(RwNullIssue13, OverflowIsBadInputAndGainIsBounded)
 {
   const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());
@@ -363,6 +374,7 @@ TEST(RwNullIssue13, OverflowIsBadInputAndGainIsBounded)
 // which scale-to-fit then turned into up to 0.117 N*m of body torque.
 // Speeds beyond FSW_RW_OMEGA_MAX are bad input; at the bound the round-off
 // is ~eps * k_null * 2e4, far below any torque that matters.
+// Verifies: REQ-RWNULL-005
 TEST(RwNullFuzzFinding, HugeFiniteSpeedErrorIsBadInputNotBodyTorque)
 {
   auto f = pyramid();
@@ -410,6 +422,7 @@ TEST(RwNullFuzzFinding, HugeFiniteSpeedErrorIsBadInputNotBodyTorque)
 // ill-conditioned and its null step moved the body torque by a third of its
 // size.  A step that is not null to FSW_NULL_TOL is dropped (W_SINGULAR,
 // u = u_c, kappa = 0); a well-conditioned set keeps its step.
+// Verifies: REQ-RWNULL-002
 TEST(RwNullFuzzFinding, StepThatIsNotNullIsDropped)
 {
   auto f = pyramid();
@@ -461,6 +474,7 @@ TEST(RwNullFuzzFinding, StepThatIsNotNullIsDropped)
 // (+-1/4); the same mask again -> 0 (nothing recomputed); wheel 3 off -> 1,
 // three independent wheels: rank 3, nullity 0, tau exactly 0; all available
 // again (NULL = all available) -> 1 and tau = n n^T back.
+// Verifies: REQ-RWNULL-004
 TEST(RwNullIssue21, ProjectorRefreshReportsAChangedMask)
 {
   double gd[4][3];
@@ -497,6 +511,7 @@ TEST(RwNullIssue21, ProjectorRefreshReportsAChangedMask)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(RwNullIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("rw_null", fsw_rw_null_check, fsw_rw_null_init, fsw_rw_null_reset, fsw_rw_null_update);

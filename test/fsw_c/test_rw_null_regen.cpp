@@ -79,6 +79,7 @@ void null4(double nv[4], const double g[4][3])
 
 }  // namespace
 
+// Verifies: REQ-RWREGEN-001
 TEST(RwNullRegenConfig, RejectsBadConfigurationsTableDriven)
 {
   struct Row {
@@ -112,6 +113,7 @@ TEST(RwNullRegenConfig, RejectsBadConfigurationsTableDriven)
 // Gradient, pyramid (null vector n = (1,-1,1,-1)/2): Omega = (100,0,0,0),
 // k_P = 1e-4, u0 = 0: d = -k_P Omega = (-0.01,0,0,0), n.d = -0.005,
 // [tau] d = -0.005 n = (-0.0025, 0.0025, -0.0025, 0.0025); P = -0.25 W.
+// Verifies: REQ-RWREGEN-002
 TEST(RwNullRegenNominal, GradientPyramidHandNumbers)
 {
   auto f = pyramid(FSW_RW_REGEN_GRADIENT);
@@ -128,6 +130,7 @@ TEST(RwNullRegenNominal, GradientPyramidHandNumbers)
 // Bounds alpha in [(-0.1 - u0_i)/n_i, (0.1 - u0_i)/n_i] (swapped for n_i < 0):
 // wheel 3 (u0 = -0.0650, n = 1/2) binds: alpha = 2(-0.1 - u0_3) = -0.0701,
 // so u_3 = -u_max exactly and P drops by 5 |alpha| = 0.3505 W.
+// Verifies: REQ-RWREGEN-003
 TEST(RwNullRegenNominal, OptimumPyramidHandNumbers)
 {
   auto f = pyramid(FSW_RW_REGEN_OPTIMUM);
@@ -157,6 +160,7 @@ TEST(RwNullRegenNominal, OptimumPyramidHandNumbers)
 
 // u0 = (0.3, 0.3, 0, 0), u_max = 0.1: wheel 1 needs alpha <= -0.4, wheel 2
 // needs alpha >= 0.4: empty interval -> u = u0 and FSW_W_SAT.
+// Verifies: REQ-RWREGEN-003
 TEST(RwNullRegenNominal, OptimumEmptyIntervalReturnsU0)
 {
   auto f = pyramid(FSW_RW_REGEN_OPTIMUM);
@@ -166,6 +170,7 @@ TEST(RwNullRegenNominal, OptimumEmptyIntervalReturnsU0)
   for (int i = 0; i < 4; i++) EXPECT_EQ(f->out->u_s[i], f->in->u_s[i]);
 }
 
+// Verifies: REQ-RWREGEN-003
 TEST(RwNullRegenNominal, OptimumNullityZeroAndAboveOne)
 {
   double g[6][3];
@@ -185,6 +190,7 @@ TEST(RwNullRegenNominal, OptimumNullityZeroAndAboveOne)
   for (int i = 0; i < 6; i++) EXPECT_EQ(f->out->u_s[i], i < 3 ? f->in->u_s[i] : 0.0);
 }
 
+// Verifies: REQ-RWREGEN-005
 TEST(RwNullRegenBadInput, NonFiniteOrBadMaskGivesZeros)
 {
   for (int row = 0; row < 3; row++) {
@@ -201,6 +207,7 @@ TEST(RwNullRegenBadInput, NonFiniteOrBadMaskGivesZeros)
   }
 }
 
+// Verifies: REQ-GEN-007
 TEST(RwNullRegenBadInput, NullArgumentsAssertAndReturn)
 {
   auto f = pyramid(FSW_RW_REGEN_GRADIENT);
@@ -211,6 +218,7 @@ TEST(RwNullRegenBadInput, NullArgumentsAssertAndReturn)
   kestrel_assert_reset();
 }
 
+// Verifies: REQ-RWREGEN-006
 TEST(RwNullRegenRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 {
   for (int mode = 0; mode < 2; mode++) {
@@ -243,6 +251,7 @@ TEST(RwNullRegenRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 // interval end chosen by comparing the power at both ends.
 class RwNullRegenProperties : public ::testing::TestWithParam<int> {};
 
+// Verifies: REQ-RWREGEN-004
 TEST_P(RwNullRegenProperties, BodyTorquePowerAndLimits)
 {
   const int n = GetParam();
@@ -339,6 +348,7 @@ INSTANTIATE_TEST_SUITE_P(Wheels, RwNullRegenProperties, ::testing::ValuesIn(rwt:
 // Finding 7 (rw_null_regen): gradient mode, k_P = 10, Omega ~ max gave NaN
 // under W_SAT; now bad input with u = 0 and power = 0.  Optimum mode with
 // u_max = max (power 1e306 W) is refused by check.
+// Verifies: REQ-RWREGEN-005, REQ-RWREGEN-001
 TEST(RwNullRegenIssue13, OverflowIsBadInputAndLimitsAreBounded)
 {
   const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());
@@ -365,6 +375,7 @@ TEST(RwNullRegenIssue13, OverflowIsBadInputAndLimitsAreBounded)
 // Fuzzing after the issue-13 fixes: gradient mode, the same round-off leak
 // as rw_null's for a huge finite wheel speed (0.57 N*m of body torque at
 // 1e100 rad/s): speeds beyond FSW_RW_OMEGA_MAX are bad input.
+// Verifies: REQ-RWREGEN-005
 TEST(RwNullRegenFuzzFinding, HugeFiniteSpeedIsBadInput)
 {
   const double a = -0.57735026918962573;
@@ -390,6 +401,7 @@ TEST(RwNullRegenFuzzFinding, HugeFiniteSpeedIsBadInput)
 // FSW_E_UNSUPPORTED but kept the projector recomputed for the new mask (a
 // state change on an error).  Now the projector is that of the last
 // accepted call, byte for byte.
+// Verifies: REQ-RWREGEN-003
 TEST(RwNullRegenFuzzFinding, UnsupportedNullityLeavesTheProjectorUntouched)
 {
   double g[6][3];
@@ -416,6 +428,7 @@ TEST(RwNullRegenFuzzFinding, UnsupportedNullityLeavesTheProjectorUntouched)
 // so u = u0 + 0.4 du = (-0.1, 0.001, -0.001, 0.001) and P = 100 * -0.1 = -10 W.
 // A request already beyond its limit (u0_1 = 0.2) leaves no room: kappa = 0,
 // u = u0, W_SAT.
+// Verifies: REQ-RWREGEN-002
 TEST(RwNullRegenIssue21, GradientStepCutByALimitIsWSat)
 {
   auto f = pyramid(FSW_RW_REGEN_GRADIENT);
@@ -437,6 +450,7 @@ TEST(RwNullRegenIssue21, GradientStepCutByALimitIsWSat)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(RwNullRegenIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("rw_null_regen", fsw_rw_null_regen_check, fsw_rw_null_regen_init, fsw_rw_null_regen_reset, fsw_rw_null_regen_update);
@@ -450,6 +464,7 @@ TEST(RwNullRegenIssue21, EveryNullArgumentAssertsAndReturns)
 // (u = u0, W_SINGULAR) rather than let through.  In either real type, and
 // whatever the status: the body torque never moves by more than
 // FSW_NULL_TOL-ish of the step (1e-4 x size, the rw_null bound).
+// Verifies: REQ-RWREGEN-002
 TEST(RwNullRegenIssue21, GradientStepThatIsNotNullIsDropped)
 {
   const double g[4][3] = {{0.54167522041970195, 0.54167522041970195, 0.64278760968653936},
@@ -482,6 +497,7 @@ TEST(RwNullRegenIssue21, GradientStepThatIsNotNullIsDropped)
 // be finite: u0_1 = max/2 at Omega_1 = 1e4 gives Omega^T u = 5e3 max = inf,
 // so the call is bad input with u = 0, power = 0.  (|u0_1| > u_max leaves
 // the gradient step no room, u = u0 before the power.)
+// Verifies: REQ-RWREGEN-005
 TEST(RwNullRegenIssue21, OverflowingPowerIsBadInput)
 {
   auto f = pyramid(FSW_RW_REGEN_GRADIENT);
@@ -500,6 +516,7 @@ TEST(RwNullRegenIssue21, OverflowingPowerIsBadInput)
 // (x + y)/sqrt(2): the null vector is (1, 1, 0, -sqrt(2))/2, so wheel 3 (z)
 // takes no part in it and no alpha can bring its u0_3 = 0.2 > u_max = 0.1
 // back inside: W_SAT with u = u0.
+// Verifies: REQ-RWREGEN-003
 TEST(RwNullRegenIssue21, OptimumCannotFixAWheelOutsideTheNullSpace)
 {
   const double h = 1.0 / std::sqrt(2.0);

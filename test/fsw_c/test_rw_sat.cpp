@@ -30,6 +30,7 @@ struct Fixture {
 };
 }  // namespace
 
+// Verifies: REQ-RWSAT-001
 TEST(RwSatConfig, RejectsBadConfigurationsTableDriven)
 {
   const struct {
@@ -57,6 +58,7 @@ TEST(RwSatConfig, RejectsBadConfigurationsTableDriven)
 
 // u = (0.2, -0.05, 0.1, 0), u_max = 0.1: s = max |u|/u_max = 2.
 // SCALE: u/2 = (0.1, -0.025, 0.05, 0).  CLIP: (0.1, -0.05, 0.1, 0).
+// Verifies: REQ-RWSAT-002
 TEST(RwSatNominal, ScaleAndClipByHand)
 {
   const double u[4] = {0.2, -0.05, 0.1, 0};
@@ -79,6 +81,7 @@ TEST(RwSatNominal, ScaleAndClipByHand)
 }
 
 // An unavailable wheel is 0 and does not set the scale.
+// Verifies: REQ-RWSAT-003
 TEST(RwSatNominal, UnavailableWheelIsZeroAndIgnored)
 {
   const double u[4] = {0.05, 5.0, -0.02, 0.01};
@@ -92,6 +95,7 @@ TEST(RwSatNominal, UnavailableWheelIsZeroAndIgnored)
   for (int i = 4; i < FSW_MAX_RW; i++) EXPECT_EQ(f.out->u_s[i], 0.0);
 }
 
+// Verifies: REQ-RWSAT-004
 TEST(RwSatBadInput, NonFiniteOrBadMaskGivesZeros)
 {
   for (int row = 0; row < 3; row++) {
@@ -111,6 +115,7 @@ TEST(RwSatBadInput, NonFiniteOrBadMaskGivesZeros)
   kestrel_assert_reset();
 }
 
+// Verifies: REQ-RWSAT-005
 TEST(RwSatRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 {
   Fixture f;
@@ -131,6 +136,7 @@ TEST(RwSatRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 // within its limit; SCALE keeps the direction (u_out = u / s, with s from an
 // independent max); CLIP changes only the entries beyond their limit.
 class RwSatProperties : public ::testing::TestWithParam<int> {};
+// Verifies: REQ-RWSAT-002
 TEST_P(RwSatProperties, LimitsDirectionAndClip)
 {
   const int n = GetParam();
@@ -161,6 +167,7 @@ INSTANTIATE_TEST_SUITE_P(Wheels, RwSatProperties, ::testing::ValuesIn(rwt::kCoun
 // Issue 21: one wheel is a legal configuration (num_rw >= 1).  u = 0.25,
 // u_max = 0.1: s = 2.5, SCALE and CLIP both give 0.1 (a single wheel has no
 // direction to keep); u = -0.04 is inside: unchanged, OK.
+// Verifies: REQ-RWSAT-001, REQ-RWSAT-002
 TEST(RwSatIssue21, SingleWheelIsAcceptedAndLimited)
 {
   for (int mode : {FSW_RW_SAT_SCALE, FSW_RW_SAT_CLIP}) {
@@ -181,6 +188,7 @@ TEST(RwSatIssue21, SingleWheelIsAcceptedAndLimited)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(RwSatIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("rw_sat", fsw_rw_sat_check, fsw_rw_sat_init, fsw_rw_sat_reset, fsw_rw_sat_update);

@@ -43,6 +43,7 @@ struct Fixture {
 };
 }  // namespace
 
+// Verifies: REQ-RWSF-001
 TEST(RwSpeedFilterConfig, RejectsBadConfigurationsTableDriven)
 {
   const struct {
@@ -75,6 +76,7 @@ TEST(RwSpeedFilterConfig, RejectsBadConfigurationsTableDriven)
 // Bound over 0.1 s is 1.5 rad/s.  100 -> 101 -> 102.4 accepted; 150 rejected
 // (held at 102.4); 104.0 at 0.4 s: bound since the last good (0.2 s) is
 // 10*0.2 + 0.5 = 2.5 >= 1.6, accepted.
+// Verifies: REQ-RWSF-002
 TEST(RwSpeedFilterNominal, RejectHoldAndWideningBound)
 {
   Fixture f;
@@ -101,6 +103,7 @@ TEST(RwSpeedFilterNominal, RejectHoldAndWideningBound)
 // 10 rad/s^2 * 0.1 s + 0.5 = 1.5 rad/s from 201: 202.4 is accepted, 202.7
 // rejected.  Measured from the last good sample before the failure (100 at
 // 0 s, 0.7 s earlier) the bound would be 7.5 rad/s and 202.7 would pass.
+// Verifies: REQ-RWSF-002
 TEST(RwSpeedFilterNominal, Issue21RecoveryRestartsTheBoundAtTheRecoveryTime)
 {
   for (const double next : {202.4, 202.7}) {
@@ -127,6 +130,7 @@ TEST(RwSpeedFilterNominal, Issue21RecoveryRestartsTheBoundAtTheRecoveryTime)
 
 // k_reject = 3: three consecutive rejections (a NaN counts) mark the wheel
 // unavailable; three mutually consistent samples bring it back at the latest.
+// Verifies: REQ-RWSF-003
 TEST(RwSpeedFilterNominal, FailAfterKAndRecoverAfterN)
 {
   Fixture f;
@@ -164,6 +168,7 @@ TEST(RwSpeedFilterNominal, FailAfterKAndRecoverAfterN)
   EXPECT_EQ(g.out->Omega[0], FSW_R(80.5));
 }
 
+// Verifies: REQ-RWSF-004
 TEST(RwSpeedFilterNominal, UpstreamMaskIsCombined)
 {
   Fixture f(3);
@@ -179,6 +184,7 @@ TEST(RwSpeedFilterNominal, UpstreamMaskIsCombined)
   }
 }
 
+// Verifies: REQ-RWSF-007
 TEST(RwSpeedFilterBadInput, BadMaskAndTimeAdvanceNothing)
 {
   Fixture f(2);
@@ -206,6 +212,7 @@ TEST(RwSpeedFilterBadInput, BadMaskAndTimeAdvanceNothing)
 // output (docs/fsw-conventions.md): this module's safe output holds the last
 // good speeds, but reset forgets them, so a bad input right after reset
 // gives 0 speeds (all unavailable), not the values from before the reset.
+// Verifies: REQ-RWSF-007
 TEST(RwSpeedFilterBadInput, ResetThenBadInputGivesTheSafeOutputNotStaleValues)
 {
   Fixture f(2);
@@ -222,6 +229,7 @@ TEST(RwSpeedFilterBadInput, ResetThenBadInputGivesTheSafeOutputNotStaleValues)
   EXPECT_EQ(f.st->clock.has_prev, 0);
 }
 
+// Verifies: REQ-RWSF-008
 TEST(RwSpeedFilterRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 {
   Fixture f(4);
@@ -250,6 +258,7 @@ TEST(RwSpeedFilterRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 // the margin) is never rejected; isolated spikes beyond bound + 1 rad/s are
 // always rejected and the held value is the previous true sample.
 class RwSpeedFilterProperties : public ::testing::TestWithParam<int> {};
+// Verifies: REQ-RWSF-008
 TEST_P(RwSpeedFilterProperties, PhysicalHistoriesPassAndSpikesAreCaught)
 {
   const int n = GetParam();
@@ -287,6 +296,7 @@ INSTANTIATE_TEST_SUITE_P(Wheels, RwSpeedFilterProperties, ::testing::ValuesIn(rw
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(RwSpeedFilterIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("rw_speed_filter", fsw_rw_speed_filter_check, fsw_rw_speed_filter_init, fsw_rw_speed_filter_reset, fsw_rw_speed_filter_update);
@@ -294,6 +304,7 @@ TEST(RwSpeedFilterIssue21, EveryNullArgumentAssertsAndReturns)
 
 // ---- issue 14: the latched stale and torque-consistency tests ------------
 
+// Verifies: REQ-RWSF-001
 TEST(RwSpeedFilterConfig, TorqueToleranceIsCheckedOnlyWhenTheWindowIsOn)
 {
   Fixture f(2);
@@ -312,6 +323,7 @@ TEST(RwSpeedFilterConfig, TorqueToleranceIsCheckedOnlyWhenTheWindowIsOn)
 // With the torque test on, the applied torques are inputs: not finite or
 // beyond 2 u_max (0.4 N*m) is bad input with no state change; u_valid must
 // be 0/1.  With the test off they are not read.
+// Verifies: REQ-RWSF-007
 TEST(RwSpeedFilterBadInput, AppliedTorqueOutOfRangeIsRejectedWithNoStateChange)
 {
   Fixture f(2);
@@ -345,6 +357,7 @@ TEST(RwSpeedFilterBadInput, AppliedTorqueOutOfRangeIsRejectedWithNoStateChange)
 // fails and latches the wheel; the outlier rule's recovery (n_recover = 3
 // consistent samples) does not bring it back; reset does.  A tachometer
 // that reads 100.5 twice and then moves is not stale.
+// Verifies: REQ-RWSF-005
 TEST(RwSpeedFilterStale, ThreeRepeatsLatchAFrozenTachometerUntilReset)
 {
   Fixture f(2);
@@ -380,6 +393,7 @@ TEST(RwSpeedFilterStale, ThreeRepeatsLatchAFrozenTachometerUntilReset)
 // reading that flips its sign every call (+0.0, -0.0, +0.0, ...) is equal
 // under == but never repeats its bits: not stale, however long it lasts.
 // The same zero with one sign repeated three times is (n_stale = 3).
+// Verifies: REQ-RWSF-005
 TEST(RwSpeedFilterStale, Issue39ASignFlippingZeroIsNotARepeat)
 {
   Fixture f(2);
@@ -424,6 +438,7 @@ struct TorqueFixture : Fixture {
 };
 }  // namespace
 
+// Verifies: REQ-RWSF-006
 TEST(RwSpeedFilterTorque, ASpeedThatFollowsTheTorqueWithinToleranceIsNeverLatched)
 {
   TorqueFixture f;
@@ -437,6 +452,7 @@ TEST(RwSpeedFilterTorque, ASpeedThatFollowsTheTorqueWithinToleranceIsNeverLatche
 // Frozen at 102.5 from k = 5 on: the window opened at k = 5 closes at k = 10
 // with a measured change of 0 against 5 * 0.5 = 2.5 explained: latched at
 // k = 10, not before.  (A motor that does not deliver reads the same way.)
+// Verifies: REQ-RWSF-006
 TEST(RwSpeedFilterTorque, AFrozenReadingUnderTorqueLatchesAtTheWindowsEnd)
 {
   TorqueFixture f;
@@ -452,6 +468,7 @@ TEST(RwSpeedFilterTorque, AFrozenReadingUnderTorqueLatchesAtTheWindowsEnd)
 
 // An interval with u_valid = 0 (k = 7) restarts the window there: the
 // frozen reading is latched five calls later, at k = 12.
+// Verifies: REQ-RWSF-006
 TEST(RwSpeedFilterTorque, AnUnknownTorqueRestartsTheWindow)
 {
   TorqueFixture f;
@@ -464,6 +481,7 @@ TEST(RwSpeedFilterTorque, AnUnknownTorqueRestartsTheWindow)
 
 // The residual is signed both ways: a tachometer that runs ahead of the
 // torque (bias ramp, or a motor delivering twice its command) is caught too.
+// Verifies: REQ-RWSF-006
 TEST(RwSpeedFilterTorque, ASpeedRisingTwiceAsFastAsTheTorqueExplainsIsLatched)
 {
   TorqueFixture f;
@@ -483,6 +501,7 @@ TEST(RwSpeedFilterTorque, ASpeedRisingTwiceAsFastAsTheTorqueExplainsIsLatched)
 // = 3) takes no part in the torque test: its window closes, nothing latches,
 // and after recovery (n_recover = 3 consistent samples) it runs again: a
 // reading frozen from then on is latched one window later.
+// Verifies: REQ-RWSF-006
 TEST(RwSpeedFilterTorque, OutliersAndOutlierFailuresPauseTheWindow)
 {
   TorqueFixture f;

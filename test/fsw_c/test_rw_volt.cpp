@@ -42,6 +42,7 @@ struct Fixture {
 double ff(double u) { return u > 0 ? 47.5 * u + 0.5 : (u < 0 ? 47.5 * u - 0.5 : 0.0); }
 }  // namespace
 
+// Verifies: REQ-RWVOLT-001
 TEST(RwVoltConfig, RejectsBadConfigurationsTableDriven)
 {
   const struct {
@@ -85,6 +86,7 @@ TEST(RwVoltConfig, RejectsBadConfigurationsTableDriven)
 
 // Feed-forward: V = 47.5 u +/- 0.5, exact 0 stays 0, clip at 10 V,
 // unavailable wheel 0 V.
+// Verifies: REQ-RWVOLT-002
 TEST(RwVoltNominal, FeedForwardByHand)
 {
   Fixture f(5);
@@ -103,6 +105,7 @@ TEST(RwVoltNominal, FeedForwardByHand)
 // Speed loop, u = 0.1, Omega = 100, 100, 100.5 rad/s at 0, 0.1, 0.2 s:
 // call 1: p 0 -> 1; call 2: stores Omega, p -> 2; call 3: Omega_dot = 5,
 // J Omega_dot = 0.05, u' = 0.1 - 0.5 (0.05 - 0.1) = 0.125, V = 47.5*0.125 + 0.5.
+// Verifies: REQ-RWVOLT-003
 TEST(RwVoltNominal, SpeedLoopWarmUpAndCorrection)
 {
   Fixture f(1);
@@ -127,6 +130,7 @@ TEST(RwVoltNominal, SpeedLoopWarmUpAndCorrection)
 
 // Gate at 20 rad/s^2: a jump of 10 rad/s in 0.1 s (100 rad/s^2) is not used,
 // bit 0 of fault is set, the feed-forward alone remains; Omega_prev still moves.
+// Verifies: REQ-RWVOLT-004
 TEST(RwVoltNominal, OutlierGateSkipsCorrection)
 {
   Fixture f(2);
@@ -152,6 +156,7 @@ TEST(RwVoltNominal, OutlierGateSkipsCorrection)
 // while unavailable, not the 100 of before): u = 0.1 - 0.5 (0.01*10 - 0.1) = 0.1.
 // With a stale 100 it would be 20 rad/s^2 and u = 0.05.  A NaN sample taken
 // while unavailable (failed tachometer) is not read and skips one correction.
+// Verifies: REQ-RWVOLT-003
 TEST(RwVoltNominal, StoredSpeedOfUnavailableWheelIsUsedOnReturn)
 {
   Fixture f(2);
@@ -181,6 +186,7 @@ TEST(RwVoltNominal, StoredSpeedOfUnavailableWheelIsUsedOnReturn)
   EXPECT_NEAR(f.out->V[1], ff(0.125), kt::tol(1e-12, 1e-4));
 }
 
+// Verifies: REQ-RWVOLT-006
 TEST(RwVoltBadInput, NonFiniteBadFlagsAndTime)
 {
   for (int row = 0; row < 4; row++) {
@@ -234,6 +240,7 @@ TEST(RwVoltBadInput, NonFiniteBadFlagsAndTime)
   EXPECT_EQ(h.st->health.bad_time, 2u);
 }
 
+// Verifies: REQ-GEN-007
 TEST(RwVoltBadInput, NullArgumentsAssertAndReturn)
 {
   Fixture f;
@@ -244,6 +251,7 @@ TEST(RwVoltBadInput, NullArgumentsAssertAndReturn)
   kestrel_assert_reset();
 }
 
+// Verifies: REQ-RWVOLT-007
 TEST(RwVoltRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 {
   Fixture f;
@@ -269,6 +277,7 @@ TEST(RwVoltRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 // Properties, 3/4/6/36 wheels: |V| <= V_max, sign(V) = sign(u) without the
 // loop, |V| >= V_min for u != 0, unavailable wheels exactly 0.
 class RwVoltProperties : public ::testing::TestWithParam<int> {};
+// Verifies: REQ-RWVOLT-005, REQ-RWVOLT-002
 TEST_P(RwVoltProperties, BoundsSignAndAvailability)
 {
   const int n = GetParam();
@@ -301,6 +310,7 @@ INSTANTIATE_TEST_SUITE_P(Wheels, RwVoltProperties, ::testing::ValuesIn(rwt::kCou
 // (and the correction) overflow: V = NaN under OK.  Now that wheel is an
 // outlier (fault bit, no correction) and every voltage stays finite; the
 // next call runs the loop normally.  Also with K_V = 0 (0 * inf).
+// Verifies: REQ-RWVOLT-004
 TEST(RwVoltIssue13, SpeedGlitchOverflowIsAnOutlierNotNaN)
 {
   const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());
@@ -329,6 +339,7 @@ TEST(RwVoltIssue13, SpeedGlitchOverflowIsAnOutlierNotNaN)
 
 // Finding 3: J_s ~ max and u_max ~ min (accepted before, NaN with ordinary
 // speeds or with u = 0) are outside the physical ranges: refused by check.
+// Verifies: REQ-RWVOLT-001
 TEST(RwVoltIssue13, ConfigRangesKeepProductsFinite)
 {
   Fixture f(2);
@@ -348,6 +359,7 @@ TEST(RwVoltIssue13, ConfigRangesKeepProductsFinite)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(RwVoltIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("rw_volt", fsw_rw_volt_check, fsw_rw_volt_init, fsw_rw_volt_reset, fsw_rw_volt_update);
@@ -358,6 +370,7 @@ TEST(RwVoltIssue21, EveryNullArgumentAssertsAndReturns)
 // command of u_max then gives exactly that voltage, (V_max - V_min)/u_max *
 // u_max + V_min = V_max (to rounding); the next representable value above
 // is refused.
+// Verifies: REQ-RWVOLT-001
 TEST(RwVoltIssue21, VMaxEqualToTheLargestIsAccepted)
 {
   Fixture f(2);

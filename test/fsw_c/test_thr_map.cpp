@@ -151,6 +151,7 @@ const BadCfg kBadConfigs[] = {
     {"control axis beyond FSW_THR_MAP_AXIS_MAX", [](FswThrMapConfig* c) { set3(c->control_axes_B[0], 1e30, 0, 0); }, FSW_E_CONFIG},
 };
 
+// Verifies: REQ-THRMAP-001
 TEST(ThrMap, ConfigRejectionTable)
 {
   {
@@ -176,6 +177,7 @@ TEST(ThrMap, ConfigRejectionTable)
   }
 }
 
+// Verifies: REQ-THRMAP-002
 TEST(ThrMap, AxesCountedUpToFirstShortRowAndNormalised)
 {
   FswThrMapConfig c = six_axis_cfg();
@@ -199,6 +201,7 @@ TEST(ThrMap, AxesCountedUpToFirstShortRowAndNormalised)
 
 // --- nominal cases, min-norm mode (hand calculations) ------------------------
 
+// Verifies: REQ-THRMAP-003
 TEST(ThrMap, SixThrusterMinNormAndShift)
 {
   // D = [e_x, -e_x, e_y, -e_y, e_z, -e_z], D D^T = 2 I, so the first pass is
@@ -210,6 +213,7 @@ TEST(ThrMap, SixThrusterMinNormAndShift)
   EXPECT_EQ(0, r.st.ang_err);  // below the round-off floor of 8.5
 }
 
+// Verifies: REQ-THRMAP-003
 TEST(ThrMap, SecondPassShiftAddsTorqueWhenNotPureCouples)
 {
   // use_2nd_loop: S = {F_i > 0} = {0,2,3,4,5}; D_S D_S^T = diag(1,2,2),
@@ -224,6 +228,7 @@ TEST(ThrMap, SecondPassShiftAddsTorqueWhenNotPureCouples)
   expect_forces(r.out, {1.25, 0.0, 0.0, 0.5, 0.375, 0.125});
 }
 
+// Verifies: REQ-THRMAP-004
 TEST(ThrMap, SaturationScalingKeepsDirection)
 {
   // L = (4, 2, 0): first pass (2,-2,1,-1,0,0), shift +2 -> (4,0,3,1,2,2).
@@ -244,6 +249,7 @@ TEST(ThrMap, SaturationScalingKeepsDirection)
   EXPECT_NEAR(std::atan(0.5), r.st.ang_err, kt::tol(1e-12, 1e-5));
 }
 
+// Verifies: REQ-THRMAP-004
 TEST(ThrMap, SaturatedButParallelIsNotScaled)
 {
   // L = (4,0,0): F = (4,0,2,2,2,2); the saturated torque (1,0,0) is parallel
@@ -253,6 +259,7 @@ TEST(ThrMap, SaturatedButParallelIsNotScaled)
   expect_forces(r.out, {4.0, 0.0, 2.0, 2.0, 2.0, 2.0});
 }
 
+// Verifies: REQ-THRMAP-003
 TEST(ThrMap, OffPulsingDvTwoAxes)
 {
   // d = (1,-1,0), (1,1,0), (-1,1,0), (-1,-1,0); sum of F_max d = 0 so the
@@ -265,6 +272,7 @@ TEST(ThrMap, OffPulsingDvTwoAxes)
   expect_forces(r.out, {0.0, 0.0, -0.2, -0.2});
 }
 
+// Verifies: REQ-THRMAP-003
 TEST(ThrMap, OffPulsingOffsetRemovesAllOnTorque)
 {
   // Thruster 0 stronger (F_max 2): the all-on torque is 1*d0 = (1,-1,0), so
@@ -279,6 +287,7 @@ TEST(ThrMap, OffPulsingOffsetRemovesAllOnTorque)
   EXPECT_EQ(1u, r.st.health.singular);
 }
 
+// Verifies: REQ-THRMAP-005
 TEST(ThrMap, RankDeficientGeometryGivesZeroAndWarning)
 {
   // DV thrusters all along z give no torque about z: 3 control axes are
@@ -288,6 +297,7 @@ TEST(ThrMap, RankDeficientGeometryGivesZeroAndWarning)
   expect_forces(r.out, {0, 0, 0, 0});
 }
 
+// Verifies: REQ-THRMAP-009
 TEST(ThrMap, ZeroRequestGivesZeroForces)
 {
   for (int mode : {FSW_THR_MAP_MIN_NORM, FSW_THR_MAP_NNLS}) {
@@ -302,6 +312,7 @@ TEST(ThrMap, ZeroRequestGivesZeroForces)
   }
 }
 
+// Verifies: REQ-THRMAP-005
 TEST(ThrMap, ScalingGeometryDoesNotChangeSingularity)
 {
   // Basilisk tests det([C][D][C][D]^T) > eps with eps in m^6: a 1 mm-scale
@@ -327,6 +338,7 @@ TEST(ThrMap, ScalingGeometryDoesNotChangeSingularity)
 
 // --- bad input, repeatability ----------------------------------------------
 
+// Verifies: REQ-THRMAP-008
 TEST(ThrMap, BadInputGivesSafeOutputAndCounts)
 {
   FswThrMapConfig c = six_axis_cfg();
@@ -361,6 +373,7 @@ TEST(ThrMap, BadInputGivesSafeOutputAndCounts)
   kestrel_assert_reset();
 }
 
+// Verifies: REQ-THRMAP-009
 TEST(ThrMap, RepeatableAfterReset)
 {
   for (int mode : {FSW_THR_MAP_MIN_NORM, FSW_THR_MAP_NNLS}) {
@@ -529,6 +542,7 @@ void random_axes(kt::Rng& rng, FswThrMapConfig* c, int nc)
   for (int j = 0; j < nc; j++) set3(c->control_axes_B[j], a[j][0] * 2, a[j][1] * 2, a[j][2] * 2);
 }
 
+// Verifies: REQ-THRMAP-003
 TEST(ThrMap, MinNormMatchesIndependentImplementation)
 {
   kt::Rng rng(2024);
@@ -561,6 +575,7 @@ TEST(ThrMap, MinNormMatchesIndependentImplementation)
 
 // --- exact bounded mode (8.6) ------------------------------------------------
 
+// Verifies: REQ-THRMAP-006
 TEST(ThrMapNnls, SixThrusterFiresOneOfEachPair)
 {
   // The minimum-norm non-negative solution of D F = (1,-0.5,0.25) with
@@ -572,6 +587,7 @@ TEST(ThrMapNnls, SixThrusterFiresOneOfEachPair)
   expect_forces(r.out, {1.0, 0.0, 0.0, 0.5, 0.25, 0.0});
 }
 
+// Verifies: REQ-THRMAP-006
 TEST(ThrMapNnls, OutOfReachGivesLeastSquaresAndWarning)
 {
   // 1 axis (z), F_max = 1: L = (0,0,3) can only be met up to 1 N*m by
@@ -584,6 +600,7 @@ TEST(ThrMapNnls, OutOfReachGivesLeastSquaresAndWarning)
   EXPECT_EQ(1u, r.st.health.saturated);
 }
 
+// Verifies: REQ-THRMAP-006
 TEST(ThrMapNnls, CoMOffsetDefaultModeErrsExactModeDelivers)
 {
   // With a CoM offset the six thrusters are no longer pure couples
@@ -653,6 +670,7 @@ void expect_kkt(const double A[3][64], int m, int n, const R* F, const double* l
   }
 }
 
+// Verifies: REQ-THRMAP-006
 TEST(ThrMapNnls, DeliversEveryReachableRequestWithinLimits)
 {
   // Property: whenever some F in [0, F_max] gives the request (built here as
@@ -716,6 +734,7 @@ TEST(ThrMapNnls, DeliversEveryReachableRequestWithinLimits)
   std::printf("max NNLS iterations / thruster: %.2f\n", max_ratio);
 }
 
+// Verifies: REQ-THRMAP-006
 TEST(ThrMapNnls, UnreachableRequestsStayWithinLimits)
 {
   kt::Rng rng(5);
@@ -741,6 +760,7 @@ TEST(ThrMapNnls, UnreachableRequestsStayWithinLimits)
 // Brute force over every bound pattern (each thruster at its lower bound, at
 // its upper bound or free; 3^n patterns): the best admissible minimum-norm
 // candidate.  The library's result must be admissible and no larger.
+// Verifies: REQ-THRMAP-006
 TEST(ThrMapNnls, MinimumNormAgainstBruteForce)
 {
   kt::Rng rng(31);
@@ -811,6 +831,7 @@ TEST(ThrMapNnls, MinimumNormAgainstBruteForce)
 // that has a component along u.  Before the fix K1 accepted some of these as
 // OK (rounding-noise pivot just above the floor); now every one is
 // W_SINGULAR with F = 0, and an OK is never returned.
+// Verifies: REQ-THRMAP-005
 TEST(ThrMapIssue13, RankTwoTorqueArmsAreNeverOk)
 {
   kt::Rng rng(13);
@@ -841,6 +862,7 @@ TEST(ThrMapIssue13, RankTwoTorqueArmsAreNeverOk)
 // Finding 6 (a): a finite request so large that the forces overflow is bad
 // input with F = 0, in min-norm mode (also with a CoM offset, which gave
 // NaN under W_SAT before).
+// Verifies: REQ-THRMAP-008
 TEST(ThrMapIssue13, OverflowingRequestIsBadInput)
 {
   const double big = static_cast<double>(std::numeric_limits<R>::max());
@@ -863,6 +885,7 @@ TEST(ThrMapIssue13, OverflowingRequestIsBadInput)
 // Finding 6 (b, c): the configs that overflowed (location 1.5e308, F_max
 // 1e308) are now refused by check; a CoM beyond FSW_THR_MAP_R_MAX is bad
 // input; the bounded mode is OK only when it delivers the request.
+// Verifies: REQ-THRMAP-001, REQ-THRMAP-006, REQ-THRMAP-008
 TEST(ThrMapIssue13, BoundedModeRangesAndDeliveredTorque)
 {
   const double big = static_cast<double>(std::numeric_limits<R>::max()) / 1.2;
@@ -904,6 +927,7 @@ TEST(ThrMapIssue13, BoundedModeRangesAndDeliveredTorque)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(ThrMapIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("thr_map", fsw_thr_map_check, fsw_thr_map_init, fsw_thr_map_reset, fsw_thr_map_update);
@@ -914,6 +938,7 @@ TEST(ThrMapIssue21, EveryNullArgumentAssertsAndReturns)
 // state that was in use (ready, three counted axes, diagnostics and health
 // counters set) keeps none of it after an init with a bad config, and the
 // counted axes are 0, not a stale or default count.
+// Verifies: REQ-THRMAP-001
 TEST(ThrMapIssue21, RefusedInitClearsAUsedState)
 {
   FswThrMapConfig c = six_axis_cfg();
@@ -962,6 +987,7 @@ void start_at_atan_half(FswThrMapState& st, const FswThrMapConfig& c, FswThrMapI
 }
 }  // namespace
 
+// Verifies: REQ-THRMAP-009
 TEST(ThrMapIssue21, RequestAtOrBelowEpsilonHasNoAngleError)
 {
   FswThrMapConfig c = six_axis_cfg();
@@ -991,6 +1017,7 @@ TEST(ThrMapIssue21, RequestAtOrBelowEpsilonHasNoAngleError)
 // threshold 0.5: ang_err = atan(0.5), no scaling.
 // Cycle 2, L = (0.99 max, 0, 0): the first pass F_0 = 8 * L_x / 4 = 2 L_x
 // overflows: FSW_E_BAD_INPUT, and ang_err must still be atan(0.5).
+// Verifies: REQ-THRMAP-008
 TEST(ThrMapSeed31337, ErrorAfterTheMapperKeepsThePreviousAngleError)
 {
   FswThrMapConfig c = six_axis_cfg();
@@ -1021,6 +1048,7 @@ TEST(ThrMapSeed31337, ErrorAfterTheMapperKeepsThePreviousAngleError)
 //    2-3, 4-5 at 1/2 each.
 // Both modes then deliver exactly L from the thrusters left (the torque is
 // summed here from the arms +x, -x, +y, -y, +z, -z, +x).
+// Verifies: REQ-THRMAP-007
 TEST(ThrMapAvailability, AnUnavailableThrusterIsMappedAsAbsent)
 {
   for (int mode : {FSW_THR_MAP_MIN_NORM, FSW_THR_MAP_NNLS}) {
@@ -1062,6 +1090,7 @@ TEST(ThrMapAvailability, AnUnavailableThrusterIsMappedAsAbsent)
 // and F1 - F3 = (T_x + T_y)/2 with every F in [-1, 0].  L = (-0.2, 0.1, 0):
 // T = (0.8, -0.9), F2 = -0.85, reachable.  (L = (0.2, -0.1) would need F2 =
 // -1.15: out of reach with thruster 0 gone, FSW_W_SAT.)
+// Verifies: REQ-THRMAP-007
 TEST(ThrMapAvailability, OffPulsingUnavailableThrusterIsOffAndTheOthersDeliver)
 {
   FswThrMapConfig c = dv_cfg(2);
@@ -1088,6 +1117,7 @@ TEST(ThrMapAvailability, OffPulsingUnavailableThrusterIsOffAndTheOthersDeliver)
   EXPECT_NEAR(0.1, tau[1], kTol);
 }
 
+// Verifies: REQ-THRMAP-008
 TEST(ThrMapAvailability, AFlagOtherThanZeroOrOneIsBadInput)
 {
   const FswThrMapConfig c = six_axis_cfg();
@@ -1109,6 +1139,7 @@ TEST(ThrMapAvailability, AFlagOtherThanZeroOrOneIsBadInput)
 // FSW_W_SINGULAR, F = 0) and thruster 0 flagged: F = 0 would be "full
 // thrust" off-pulsing, so the flagged thruster keeps its off command -F_max
 // under W_SINGULAR too; the others get 0.
+// Verifies: REQ-THRMAP-007
 TEST(ThrMapAvailability, RankDeficientOffPulsingKeepsTheFlaggedThrusterOff)
 {
   FswThrMapConfig c = dv_cfg(3);
@@ -1130,6 +1161,7 @@ TEST(ThrMapAvailability, RankDeficientOffPulsingKeepsTheFlaggedThrusterOff)
 // own scale: c . (r x g) / (|r| |g|), at most 1, must exceed the rounding
 // level on some axis (FSW_RANK_TOL on the largest row's sum of squares),
 // else W_SINGULAR with F = 0, in both modes.
+// Verifies: REQ-THRMAP-005
 TEST(ThrMapIssue13, TorqueArmsNormalToEveryAxisAreSingular)
 {
   kt::Rng rng(1313);

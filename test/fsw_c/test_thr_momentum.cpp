@@ -165,6 +165,7 @@ std::vector<Cycle> simulate(Fixture& f, double h[3], int cycles, uint64_t t0 = 0
 
 // ---- configuration --------------------------------------------------------
 
+// Verifies: REQ-THRMOM-001
 TEST(ThrMomentumConfig, RejectsEachBadField)
 {
   struct Row {
@@ -259,6 +260,7 @@ TEST(ThrMomentumConfig, RejectsEachBadField)
 // h = (10 + 10 - 6 + 4, 10 - 10 - 6 - 4, 10 - 10 + 6 + 4)/sqrt3 = (18, -10, 10)/sqrt3,
 // |h| = sqrt(524/3).  Wheel 3 unavailable (Omega NaN, not read):
 // J Omega = (10, -10, 0, 4) -> h = (24, -4, 4)/sqrt3.
+// Verifies: REQ-THRMOM-002
 TEST(ThrMomentumWheels, PyramidMomentumByHand)
 {
   auto f = rwt::make0<Fixture>();
@@ -292,6 +294,7 @@ TEST(ThrMomentumWheels, PyramidMomentumByHand)
 
 // ---- hysteresis and Delta_H -------------------------------------------------
 
+// Verifies: REQ-THRMOM-003
 TEST(ThrMomentumHysteresis, NoDumpInsideTheBandDumpAboveNoRestartUntilAboveAgain)
 {
   auto f = ready();
@@ -344,6 +347,7 @@ TEST(ThrMomentumHysteresis, NoDumpInsideTheBandDumpAboveNoRestartUntilAboveAgain
 // h = (2, -1, 2) N*m*s, |h| = 3, h_upper = 2.5, h_lower = 1:
 // Delta_H = -h (1 - 1/3) = (-4/3, 2/3, -4/3), |Delta_H| = 2; the first cycle
 // commands L_dump along -h/3 and leaves 2 - L_dump dt = 2 - 1/512.
+// Verifies: REQ-THRMOM-003
 TEST(ThrMomentumDump, DeltaHIsTheExactFormula)
 {
   auto f = rwt::make0<Fixture>();
@@ -373,6 +377,7 @@ TEST(ThrMomentumDump, DeltaHIsTheExactFormula)
 // IDLE at cycle 324, t_dump = 324 / 8 = 40.5 s.  The wheels end at |h| = 1
 // along the same direction (the whole Delta_H is delivered: the last pulse
 // is 1.6 minimum pulses long).
+// Verifies: REQ-THRMOM-004
 TEST(ThrMomentumDump, ClosedLoopDumpPulsesCoastsAndEndsAtTheLowerThreshold)
 {
   auto f = ready();
@@ -433,6 +438,7 @@ TEST(ThrMomentumDump, ClosedLoopDumpPulsesCoastsAndEndsAtTheLowerThreshold)
 // A remainder below one minimum pulse is left: |Delta_H| = 1/32 + 1/512
 // (one full pulse and a half-cycle crumb, below 1/256 = one minimum pulse):
 // one pulse of 16 cycles, its coast, IDLE; the wheels end 1/512 above h_lower.
+// Verifies: REQ-THRMOM-004
 TEST(ThrMomentumDump, RemainderBelowOneMinimumPulseIsNotCommanded)
 {
   auto f = ready();
@@ -454,6 +460,7 @@ TEST(ThrMomentumDump, RemainderBelowOneMinimumPulseIsNotCommanded)
 // cycles and one at 0.4 L_dump; t_coast = 0: the next pulse starts in the
 // cycle after the last command (that command's period is the only gap-free
 // hand-over); with t_coast = 0.25 s two COAST cycles come between.
+// Verifies: REQ-THRMOM-004
 TEST(ThrMomentumDump, PulseEndsWithAReducedCycleAndZeroCoast)
 {
   auto f = rwt::make0<Fixture>();
@@ -484,6 +491,7 @@ TEST(ThrMomentumDump, PulseEndsWithAReducedCycleAndZeroCoast)
 // One dump removes at most 2e6 full cycles: L_dump = 1e-6 N*m, dt = 1/8 s
 // -> cap 0.25 N*m*s (h_upper = 0.1 <= 1e6 cycles = 0.125).  |h| = 1 with
 // h_lower = 0.05 would need 0.95: the dump takes 0.25 along -h/|h|.
+// Verifies: REQ-THRMOM-004
 TEST(ThrMomentumDump, OneDumpIsCappedAtTwoMillionCycles)
 {
   auto f = rwt::make0<Fixture>();
@@ -508,6 +516,7 @@ TEST(ThrMomentumDump, OneDumpIsCappedAtTwoMillionCycles)
 // ClosedLoop... (|Delta_H| = 0.35) is active in the calls 0..323; the on-times
 // reported by calls 1..324 belong to them: 324 cycles.  Calls before the
 // dump (previous call IDLE) and after it count nothing.
+// Verifies: REQ-THRMOM-005
 TEST(ThrMomentumPropellant, ClosedFormForConstantOnTimes)
 {
   auto f = ready();
@@ -535,6 +544,7 @@ TEST(ThrMomentumPropellant, ClosedFormForConstantOnTimes)
 
 // One cycle by hand: F = (1, 2) N, t_on_prev = (0.02, 0.0) s, Isp = 220 s:
 // dm = 0.02 / (220 * 9.80665) = 9.2701e-6 kg.
+// Verifies: REQ-THRMOM-005
 TEST(ThrMomentumPropellant, OneCycleByHand)
 {
   auto f = ready();
@@ -552,6 +562,7 @@ TEST(ThrMomentumPropellant, OneCycleByHand)
 
 // ---- enable, force, rate -------------------------------------------------------
 
+// Verifies: REQ-THRMOM-006
 TEST(ThrMomentumModes, DisableAbortsAndBlocksForceStartsInsideTheBand)
 {
   auto f = ready();
@@ -596,6 +607,7 @@ TEST(ThrMomentumModes, DisableAbortsAndBlocksForceStartsInsideTheBand)
   EXPECT_EQ(k->out->pulses, 0u);
 }
 
+// Verifies: REQ-THRMOM-006
 TEST(ThrMomentumModes, RateWarningAfterACommandedCycleOnly)
 {
   auto f = ready();
@@ -621,6 +633,7 @@ TEST(ThrMomentumModes, RateWarningAfterACommandedCycleOnly)
 
 // ---- errors ----------------------------------------------------------------------
 
+// Verifies: REQ-THRMOM-007
 TEST(ThrMomentumBadInput, SafeOutputAndNoStateChange)
 {
   struct Row {
@@ -677,6 +690,7 @@ TEST(ThrMomentumBadInput, SafeOutputAndNoStateChange)
 
 // A bad call inside a dump changes nothing: the same sequence with bad
 // calls (and time errors) interleaved gives bit-identical outputs.
+// Verifies: REQ-THRMOM-007
 TEST(ThrMomentumBadInput, InterleavedErrorsDoNotChangeTheDump)
 {
   auto a = ready();
@@ -713,6 +727,7 @@ TEST(ThrMomentumBadInput, InterleavedErrorsDoNotChangeTheDump)
   EXPECT_GT(b->st->health.bad_time, 0u);
 }
 
+// Verifies: REQ-THRMOM-007
 TEST(ThrMomentumBadInput, SameTimeStampIsATimeError)
 {
   auto f = ready();
@@ -732,6 +747,7 @@ TEST(ThrMomentumBadInput, SameTimeStampIsATimeError)
 
 // ---- reset, repeatability ---------------------------------------------------------
 
+// Verifies: REQ-THRMOM-008
 TEST(ThrMomentumReset, ForgetsTheDumpAndTheTotals)
 {
   auto f = ready();
@@ -760,6 +776,7 @@ TEST(ThrMomentumReset, ForgetsTheDumpAndTheTotals)
   EXPECT_EQ(f->out->prop_total, 0.0);
 }
 
+// Verifies: REQ-THRMOM-008
 TEST(ThrMomentumReset, SameSequenceAfterResetGivesIdenticalOutputs)
 {
   auto f = ready();
@@ -790,6 +807,7 @@ TEST(ThrMomentumReset, SameSequenceAfterResetGivesIdenticalOutputs)
 // Band 20 - 5 = 15 N*m*s under 1e-4 N*m: 150 000 s between dump starts.
 // 15 N*m*s with 1 N of thrust per N*m (lever 1 m), Isp 220 s:
 // m = 15 / (220 * 9.80665) = 6.9527e-3 kg.
+// Verifies: REQ-THRMOM-009
 TEST(ThrMomentumPlanning, IntervalAndPropellantByHand)
 {
   EXPECT_NEAR(fsw_thr_momentum_dump_interval(FSW_R(20.0), FSW_R(5.0), FSW_R(1e-4)), 150000.0,
@@ -820,6 +838,7 @@ TEST(ThrMomentumPlanning, IntervalAndPropellantByHand)
 // (12 000 cycles), to within one cycle of threshold crossing: each dump
 // removes 0.3 (+ at most Ld dt), and 0.3 = 9 pulses of 1/32 and one of
 // 0.01875 (more than a minimum pulse), so nothing is left behind.
+// Verifies: REQ-THRMOM-009
 TEST(ThrMomentumPlanning, SimulatedDumpIntervalMatchesTheHelper)
 {
   auto f = ready();
@@ -847,6 +866,7 @@ TEST(ThrMomentumPlanning, SimulatedDumpIntervalMatchesTheHelper)
 
 // ---- NULL arguments --------------------------------------------------------------------
 
+// Verifies: REQ-GEN-007
 TEST(ThrMomentumNullArgs, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("thr_momentum", fsw_thr_momentum_check, fsw_thr_momentum_init, fsw_thr_momentum_reset,

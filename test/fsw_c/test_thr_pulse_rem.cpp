@@ -75,6 +75,7 @@ const BadCfg kBadConfigs[] = {
     {"init on-time NaN", [](FswThrPulseRemConfig* c) { c->common.init_off_pulse_on_time = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
 };
 
+// Verifies: REQ-PREM-001
 TEST(ThrPulseRem, ConfigRejectionTable)
 {
   {
@@ -98,6 +99,7 @@ TEST(ThrPulseRem, ConfigRejectionTable)
   }
 }
 
+// Verifies: REQ-PREM-002
 TEST(ThrPulseRem, HandSequenceWithRemainder)
 {
   // F_max = 1, t_min = 0.1, period 1 s.  A 0.04 N request is 0.04 s: below
@@ -129,6 +131,7 @@ TEST(ThrPulseRem, HandSequenceWithRemainder)
   expect_rest_zero(p.out, 2);
 }
 
+// Verifies: REQ-PREM-002
 TEST(ThrPulseRem, OnTimeEqualToMinimumFires)
 {
   // t = (f / F_max) dt equal to t_min exactly is not "< t_min": it fires.
@@ -145,6 +148,7 @@ TEST(ThrPulseRem, OnTimeEqualToMinimumFires)
   EXPECT_EQ(static_cast<R>(1.1) * dt_of(step), p.out.t_on[0]);
 }
 
+// Verifies: REQ-PREM-003
 TEST(ThrPulseRem, OffPulsingFirstCallAndNominalFullOn)
 {
   FswThrPulseRemConfig c = cfg2();
@@ -167,6 +171,7 @@ TEST(ThrPulseRem, OffPulsingFirstCallAndNominalFullOn)
   EXPECT_EQ(FSW_W_SAT, p.step(10 * kSec, 0.2, 0));
 }
 
+// Verifies: REQ-PREM-004
 TEST(ThrPulseRem, TimeMustIncreaseAndNothingAdvances)
 {
   Pulser p(cfg2());
@@ -186,6 +191,7 @@ TEST(ThrPulseRem, TimeMustIncreaseAndNothingAdvances)
   EXPECT_NEAR(0.6, p.st.rem[0], kTol);
 }
 
+// Verifies: REQ-PREM-004
 TEST(ThrPulseRem, BadInputGivesSafeOutput)
 {
   Pulser p(cfg2());
@@ -219,6 +225,7 @@ TEST(ThrPulseRem, BadInputGivesSafeOutput)
   kestrel_assert_reset();
 }
 
+// Verifies: REQ-PREM-005
 TEST(ThrPulseRem, RepeatableAfterReset)
 {
   FswThrPulseRemConfig c = cfg2();
@@ -242,6 +249,7 @@ TEST(ThrPulseRem, RepeatableAfterReset)
   }
 }
 
+// Verifies: REQ-PREM-002
 TEST(ThrPulseRem, ImpulseTracksRequestWithinOneMinimumBit)
 {
   // Over many cycles of unsaturated requests (many below t_min), the
@@ -292,6 +300,7 @@ TEST(ThrPulseRem, ImpulseTracksRequestWithinOneMinimumBit)
 // output (docs/fsw-conventions.md): after reset, a bad input gives the
 // documented safe output (every thruster off), neither the on-times the
 // caller's buffer still holds nor the first-call output of the module.
+// Verifies: REQ-PREM-004
 TEST(ThrPulseRem, ResetThenBadInputGivesTheSafeOutputNotStaleValues)
 {
   FswThrPulseRemConfig c = cfg2();
@@ -313,6 +322,7 @@ TEST(ThrPulseRem, ResetThenBadInputGivesTheSafeOutputNotStaleValues)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(ThrPulseRemIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("thr_pulse_rem", fsw_thr_pulse_rem_check, fsw_thr_pulse_rem_init, fsw_thr_pulse_rem_reset, fsw_thr_pulse_rem_update);

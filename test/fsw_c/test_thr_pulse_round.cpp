@@ -81,6 +81,7 @@ const BadCfg kBadConfigs[] = {
     {"carry_residual 2", [](FswThrPulseRoundConfig* c) { c->carry_residual = 2; }, FSW_E_CONFIG},
 };
 
+// Verifies: REQ-PROUND-001
 TEST(ThrPulseRound, ConfigRejectionTable)
 {
   {
@@ -103,6 +104,7 @@ TEST(ThrPulseRound, ConfigRejectionTable)
   }
 }
 
+// Verifies: REQ-PROUND-002
 TEST(ThrPulseRound, RoundHalfToEven)
 {
   // q = 0.25 s and T = 1 s are exact, so t/q lands exactly on .5:
@@ -120,6 +122,7 @@ TEST(ThrPulseRound, RoundHalfToEven)
   for (int i = 5; i < FSW_MAX_THR; i++) EXPECT_EQ(0, out.t_on[i]);
 }
 
+// Verifies: REQ-PROUND-002
 TEST(ThrPulseRound, BasiliskDefaultsNominal)
 {
   // T f / F_max rounded to 0.01 s: 0.123 -> 0.12, 0.5 -> 0.5, -0.2 -> 0,
@@ -135,6 +138,7 @@ TEST(ThrPulseRound, BasiliskDefaultsNominal)
   EXPECT_LE(out.t_on[4], 1);
 }
 
+// Verifies: REQ-PROUND-002
 TEST(ThrPulseRound, PeriodForceLimitAndMinimumOnTime)
 {
   // T = 2 s, F_max = 4 N, q = 0.25, t_min = 0.5: t = 2 F / 4.
@@ -153,6 +157,7 @@ TEST(ThrPulseRound, PeriodForceLimitAndMinimumOnTime)
   EXPECT_EQ(2.0, out.t_on[3]);
 }
 
+// Verifies: REQ-PROUND-002
 TEST(ThrPulseRound, RoundingAboveThePeriodIsClipped)
 {
   // q = 0.75 does not divide T = 1: t = 1 -> 1.33 -> 1 -> 0.75; t = 0.9 ->
@@ -170,6 +175,7 @@ TEST(ThrPulseRound, RoundingAboveThePeriodIsClipped)
   EXPECT_EQ(1, out.t_on[1]);
 }
 
+// Verifies: REQ-PROUND-004
 TEST(ThrPulseRound, BadInputAndStatelessTiming)
 {
   FswThrPulseRoundConfig c = basilisk_defaults(3);
@@ -194,6 +200,7 @@ TEST(ThrPulseRound, BadInputAndStatelessTiming)
   EXPECT_NEAR(0.5, out.t_on[0], kTol);
 }
 
+// Verifies: REQ-PROUND-003
 TEST(ThrPulseRound, CarryResidualHandSequence)
 {
   // T = 1, q = 0.25, F = 0.1 N of 1 N each period (t = 0.1 s):
@@ -227,6 +234,7 @@ TEST(ThrPulseRound, CarryResidualHandSequence)
   EXPECT_EQ(0, st.common.clock.has_prev);
 }
 
+// Verifies: REQ-PROUND-003
 TEST(ThrPulseRound, CarryResidualDeliversSubResolutionRequestsOnAverage)
 {
   // Unsaturated random requests: the carried residual stays within half a
@@ -265,6 +273,7 @@ TEST(ThrPulseRound, CarryResidualDeliversSubResolutionRequestsOnAverage)
   }
 }
 
+// Verifies: REQ-PROUND-005
 TEST(ThrPulseRound, RepeatableAfterReset)
 {
   FswThrPulseRoundConfig c = basilisk_defaults(3);
@@ -287,6 +296,7 @@ TEST(ThrPulseRound, RepeatableAfterReset)
   }
 }
 
+// Verifies: REQ-GEN-007
 TEST(ThrPulseRound, NullArgumentsReachTheAssertHook)
 {
   FswThrPulseRoundConfig c = basilisk_defaults(2);
@@ -311,6 +321,7 @@ TEST(ThrPulseRound, NullArgumentsReachTheAssertHook)
 // F = F_max gave t_on = 0.1 s < t_min under OK.  A minimum on-time longer
 // than the period cannot be honoured: check refuses it; t_min = period is
 // accepted and then every non-zero on-time is >= t_min.
+// Verifies: REQ-PROUND-001
 TEST(ThrPulseRound, Issue13MinimumOnTimeLongerThanPeriodIsRefused)
 {
   FswThrPulseRoundConfig c = basilisk_defaults(1);
@@ -330,6 +341,7 @@ TEST(ThrPulseRound, Issue13MinimumOnTimeLongerThanPeriodIsRefused)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(ThrPulseRoundIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("thr_pulse_round", fsw_thr_pulse_round_check, fsw_thr_pulse_round_init, fsw_thr_pulse_round_reset, fsw_thr_pulse_round_update);
@@ -376,6 +388,7 @@ void expect_carry_sequence(std::initializer_list<CarryStep> steps)
 //   F = 0.2: t' = 0.2   -> rint(0.8) = 1 -> 0.25, r = -0.05
 //   F = 0:   t' = -0.05 -> clamp 0 -> 0,          r = -0.05
 //   F = 0.3: t' = 0.25  -> rint(1) = 1  -> 0.25,  r = 0
+// Verifies: REQ-PROUND-003
 TEST(ThrPulseRoundIssue21, NegativeCarriedRequestGivesPlusZero)
 {
   expect_carry_sequence({{0.2, FSW_OK, 0.25, -0.05},
@@ -391,6 +404,7 @@ TEST(ThrPulseRoundIssue21, NegativeCarriedRequestGivesPlusZero)
 //   F = 3: t' = 3 -> clamp 1 -> 1 (W_SAT), r = clamp(2) = 1
 //   F = 0: t' = 1 -> 1,                    r = 0
 //   F = 0: t' = 0 -> 0,                    r = 0   (unclamped: 1, 1, then 0)
+// Verifies: REQ-PROUND-003
 TEST(ThrPulseRoundIssue21, CarriedResidualIsLimitedToOnePeriod)
 {
   expect_carry_sequence({{3.0, FSW_W_SAT, 1.0, 1.0}, {0.0, FSW_OK, 1.0, 0.0}, {0.0, FSW_OK, 0.0, 0.0}});

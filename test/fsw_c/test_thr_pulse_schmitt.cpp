@@ -72,6 +72,7 @@ const BadCfg kBadConfigs[] = {
     {"init on-time negative", [](FswThrPulseSchmittConfig* c) { c->common.init_off_pulse_on_time = -2; }, FSW_E_CONFIG},
 };
 
+// Verifies: REQ-PSCHM-001
 TEST(ThrPulseSchmitt, ConfigRejectionTable)
 {
   {
@@ -97,6 +98,7 @@ TEST(ThrPulseSchmitt, ConfigRejectionTable)
   }
 }
 
+// Verifies: REQ-PSCHM-002
 TEST(ThrPulseSchmitt, HandSequenceThroughTheBand)
 {
   // F_max 1, period 1 s, t_min 0.1: level l = F / 0.1 for F < 0.1.
@@ -129,6 +131,7 @@ TEST(ThrPulseSchmitt, HandSequenceThroughTheBand)
   }
 }
 
+// Verifies: REQ-PSCHM-002
 TEST(ThrPulseSchmitt, LevelBoundariesAreInclusive)
 {
   // Levels computed with the page's own expression l = ((F/F_max) dt)/t_min
@@ -149,6 +152,7 @@ TEST(ThrPulseSchmitt, LevelBoundariesAreInclusive)
   EXPECT_EQ(0, p.st.last_on[0]);
 }
 
+// Verifies: REQ-PSCHM-003
 TEST(ThrPulseSchmitt, OffPulsingFirstCall)
 {
   FswThrPulseSchmittConfig c = cfg1(3);
@@ -163,6 +167,7 @@ TEST(ThrPulseSchmitt, OffPulsingFirstCall)
   EXPECT_NEAR(1.1, p.out.t_on[1], kTol);  // F = 0: full thrust
 }
 
+// Verifies: REQ-PSCHM-004
 TEST(ThrPulseSchmitt, TimeAndBadInputAdvanceNothing)
 {
   Pulser p(cfg1());
@@ -182,6 +187,7 @@ TEST(ThrPulseSchmitt, TimeAndBadInputAdvanceNothing)
   EXPECT_NEAR(0.1, p.out.t_on[0], kTol);
 }
 
+// Verifies: REQ-PSCHM-005
 TEST(ThrPulseSchmitt, RepeatableAfterReset)
 {
   Pulser p(cfg1());
@@ -201,6 +207,7 @@ TEST(ThrPulseSchmitt, RepeatableAfterReset)
   }
 }
 
+// Verifies: REQ-PSCHM-002
 TEST(ThrPulseSchmitt, RequestHeldBetweenLevelsNeverChatters)
 {
   // After a random history, each thruster's request is held at a level
@@ -242,6 +249,7 @@ TEST(ThrPulseSchmitt, RequestHeldBetweenLevelsNeverChatters)
   }
 }
 
+// Verifies: REQ-GEN-007
 TEST(ThrPulseSchmitt, NullArgumentsReachTheAssertHook)
 {
   FswThrPulseSchmittConfig c = cfg1();
@@ -265,6 +273,7 @@ TEST(ThrPulseSchmitt, NullArgumentsReachTheAssertHook)
 // Finding 8 (issue 13): t_min = 0.02 s and a 16 ms call period gave
 // t_on = 0.02 s, longer than the period.  The minimum pulse is now
 // min(t_min, period): it fills the period.
+// Verifies: REQ-PSCHM-003
 TEST(ThrPulseSchmitt, Issue13MinimumPulseNeverExceedsThePeriod)
 {
   FswThrPulseSchmittConfig c = cfg1();
@@ -283,6 +292,7 @@ TEST(ThrPulseSchmitt, Issue13MinimumPulseNeverExceedsThePeriod)
 // Issue 21: saturation with a period other than 1 s.  Period 0.5 s, F_max 1:
 // t = F / F_max * dt.  F = 1.5 -> t = 0.75 s > dt: on for 1.1 dt = 0.55 s and
 // W_SAT; F = 1 -> t = dt exactly: 0.55 s, not saturated (t > dt is false).
+// Verifies: REQ-PSCHM-003
 TEST(ThrPulseSchmitt, Issue21SaturationScalesWithThePeriod)
 {
   Pulser p(cfg1());
@@ -297,6 +307,7 @@ TEST(ThrPulseSchmitt, Issue21SaturationScalesWithThePeriod)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(ThrPulseSchmittIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("thr_pulse_schmitt", fsw_thr_pulse_schmitt_check, fsw_thr_pulse_schmitt_init, fsw_thr_pulse_schmitt_reset, fsw_thr_pulse_schmitt_update);
@@ -306,6 +317,7 @@ TEST(ThrPulseSchmittIssue21, EveryNullArgumentAssertsAndReturns)
 // memory, also on a state that has fired: after re-init a request in the
 // band (level 0.5, between level_off 0.25 and level_on 0.75) is off, as for
 // a fresh pulser.
+// Verifies: REQ-PSCHM-004
 TEST(ThrPulseSchmitt, Issue21InitClearsTheMemoryOfAUsedState)
 {
   Pulser p(cfg1());

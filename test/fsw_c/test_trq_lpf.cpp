@@ -36,6 +36,7 @@ constexpr uint64_t kH = 100000000u;  // 0.1 s in ns
 
 }  // namespace
 
+// Verifies: REQ-LPF-001
 TEST(TrqLpfConfig, RejectsBadConfigurationsTableDriven)
 {
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -62,6 +63,7 @@ TEST(TrqLpfConfig, RejectsBadConfigurationsTableDriven)
 // h = 0.1 s, omega_c = 2 rad/s: hw = 2 tan(0.1), a0 = 2 + hw, a1 = 2 - hw.
 // Call 1 (Lr_prev = Lr, LrF_prev = 0): LrF1 = 2 hw Lr / a0.
 // Call 2 (same Lr): LrF2 = (2 hw Lr + a1 LrF1) / a0.
+// Verifies: REQ-LPF-002
 TEST(TrqLpfNominal, FirstTwoStepsByHand)
 {
   Fixture f;
@@ -78,6 +80,7 @@ TEST(TrqLpfNominal, FirstTwoStepsByHand)
 }
 
 // DC gain 1: a constant input is reached; the error decays by a1/a0 per step.
+// Verifies: REQ-LPF-002
 TEST(TrqLpfNominal, UnitDcGain)
 {
   Fixture f;
@@ -89,6 +92,7 @@ TEST(TrqLpfNominal, UnitDcGain)
 
 // Pre-warped Tustin: the gain at omega_c is exactly 1/sqrt(2).  Drive a
 // sinusoid at omega_c and compare the steady amplitude.
+// Verifies: REQ-LPF-002
 TEST(TrqLpfNominal, HalfPowerAtCutoff)
 {
   Fixture f(0.01, 5.0);
@@ -100,6 +104,7 @@ TEST(TrqLpfNominal, HalfPowerAtCutoff)
   EXPECT_NEAR(amp, 1 / std::sqrt(2.0), 2e-3);  // sampled peak: within 0.3 %
 }
 
+// Verifies: REQ-LPF-003
 TEST(TrqLpfTiming, RateWarningAndTimeErrors)
 {
   Fixture f;
@@ -125,6 +130,7 @@ TEST(TrqLpfTiming, RateWarningAndTimeErrors)
   EXPECT_EQ(f.st.health.rate, 2u);
 }
 
+// Verifies: REQ-LPF-004
 TEST(TrqLpfBadInput, NonFiniteGivesZerosAndNoStateChange)
 {
   Fixture f, g;
@@ -144,6 +150,7 @@ TEST(TrqLpfBadInput, NonFiniteGivesZerosAndNoStateChange)
   kestrel_assert_reset();
 }
 
+// Verifies: REQ-LPF-005
 TEST(TrqLpfRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 {
   Fixture f;
@@ -169,6 +176,7 @@ TEST(TrqLpfRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 // every later call under OK (poisoned memory).  Now the huge input is bad
 // input with the safe output and the state byte-identical, and a good retry
 // at the same time stamp gives what a run without the glitch gives.
+// Verifies: REQ-LPF-004
 TEST(TrqLpfIssue13, OverflowIsBadInputAndDoesNotPoisonTheMemory)
 {
   const double big = 0.9 * static_cast<double>(std::numeric_limits<fsw_real>::max());
@@ -192,6 +200,7 @@ TEST(TrqLpfIssue13, OverflowIsBadInputAndDoesNotPoisonTheMemory)
 
 // Issue 21: every entry point with every pointer NULL in turn asserts once
 // and returns FSW_E_NULL_ARG (null_args.h).
+// Verifies: REQ-GEN-007
 TEST(TrqLpfIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("trq_lpf", fsw_trq_lpf_check, fsw_trq_lpf_init, fsw_trq_lpf_reset, fsw_trq_lpf_update);
@@ -200,6 +209,7 @@ TEST(TrqLpfIssue21, EveryNullArgumentAssertsAndReturns)
 // Issue 21 (mutation survivor of seed 2112): init starts from a cleared
 // memory, also on a state that has run: a re-initialised filter repeats a
 // fresh filter's outputs bit for bit.
+// Verifies: REQ-LPF-005
 TEST(TrqLpfIssue21, InitClearsTheMemoryOfAUsedState)
 {
   Fixture used, fresh;
