@@ -1,0 +1,123 @@
+#!/usr/bin/env bash
+# Qualification evidence for the flight library, in one folder
+# (docs/assurance.md says what each part shows and what it does not).
+#
+#   scripts/evidence.sh [OUT]          default OUT = evidence
+#   EVIDENCE_PRESETS="host-release coverage cortex-m4f" scripts/evidence.sh
+#
+# Installs what it needs (scripts/install-deps.sh all), builds and tests the
+# presets named in EVIDENCE_PRESETS (default: host-release, coverage,
+# cortex-m4f; the whole suite is scripts/test-all.sh) from scratch, runs the
+# analyses and writes OUT/index.md with one line per gate and a file per part:
+#   versions.txt      commit, tree state and tool versions
+#   tests.md          tests passed/failed per preset (names of the failed)
+#   stack-<P>.txt     worst-case stack per public function, per preset
+#   coverage.md       line and branch coverage of fsw_c/src (coverage preset)
+#   mcdc.txt          MC/DC of fsw_c/src (clang 19)
+#   misra.txt         MISRA C:2012 findings against the recorded deviations
+#   eva.txt           Frama-C Eva alarms against the recorded justifications
+#   fuzz.md           executions per fuzz harness (docs/design/fuzzing.md)
+#   timing.txt        instructions per fsw_acs_cycle and module on the M4F
+#   trace-matrix.md   requirement -> tests
+# Content depends only on the commit and the tool versions: no times or dates
+# except the one "written" line of index.md, so two runs compare with diff.
+# The folder is written beside OUT and renamed into place at the end.
+# Exit status: 0 when every gate passed, 1 otherwise (the folder is written
+# either way, with the failures named in index.md).
+set -uo pipefail
+cd "$(dirname "$0")/.."
+out="${1:-evidence}"
+presets="${EVIDENCE_PRESETS:-host-release coverage cortex-m4f}"
+scripts/install-deps.sh all || { echo "evidence: dependency installation failed" >&2; exit 1; }
+
+tmp="$out.partial"
+rm -rf "$tmp"; mkdir -p "$tmp/logs"
+declare -a gates=()
+gate() {  # gate NAME STATUS DETAIL
+  gates+=("| $1 | $2 | $3 |")
+}
+first_line() { "$@" 2>&1 | head -n 1; }
+
+# ---- versions -------------------------------------------------------------
+{
+  echo "commit: $(git rev-parse HEAD 2>/dev/null || echo unknown)"
+  changed=$(git status --porcelain 2>/dev/null | grep -vc "^?? $out" || true)
+  if [ "$changed" = 0 ]; then echo "tree: clean"; else echo "tree: $changed paths differ from the commit"; fi
+  for t in cc gcc arm-none-eabi-gcc clang clang-19 llvm-cov-19 cmake cppcheck frama-c qemu-system-arm python3; do
+    if command -v "$t" >/dev/null 2>&1; then
+      echo "$t: $(first_line "$t" --version)"
+    else
+      echo "$t: not installed"
+    fi
+  done
+} > "$tmp/versions.txt"
+
+# ---- tests per preset, stack per preset -----------------------------------
+{
+  echo "# Tests per preset"
+  echo
+  echo "| preset | result | tests | failed |"
+  echo "| --- | --- | ---: | --- |"
+} > "$tmp/tests.md"
+for p in $presets; do
+  log="$tmp/logs/$p.log"
+  if cmake --workflow --preset "$p" --fresh > "$log" 2>&1; then res=PASS; else res=FAIL; fi
+  total=$(grep -Eo "tests failed out of [0-9]+" "$log" | tail -1 | awk '{print $NF}')
+  failed=$(sed -n '/The following tests FAILED/,/^Errors while running/p' "$log" |
+           sed -n 's/^[[:space:]]*[0-9]* - \([^ ]*\).*/\1/p' | sort | paste -sd, -)
+  echo "| $p | $res | ${total:-0} | ${failed:-none} |" >> "$tmp/tests.md"
+  gate "tests $p" "$res" "${total:-0} tests${failed:+, failed: $failed}"
+  ctest --test-dir "build/$p" -R '^fsw_proof_stack$' -V 2>&1 |
+    sed -n 's/^[0-9]*: //p' | grep -E '^(fsw_|largest|[[:space:]]*[0-9]+ )' > "$tmp/stack-$p.txt" || true
+  largest=$(grep -Eo "largest: .* B over" "$tmp/stack-$p.txt" | sed 's/largest: //; s/ over//')
+  [ -n "$largest" ] && gate "stack $p" PASS "largest $largest"
+  # coverage: the coverage preset's report (scripts/coverage-report.sh)
+  if [ -f "build/$p/coverage/summary.txt" ]; then
+    { echo "# Line and branch coverage of fsw_c/src"; echo; cat "build/$p/coverage/summary.txt"; echo;
+      echo '```'; cat "build/$p/coverage/files.txt"; echo '```'; } > "$tmp/coverage.md"
+    gate "line/branch coverage" "$res" "$(sed 's/coverage fsw_c\/src: //' "build/$p/coverage/summary.txt")"
+  fi
+done
+# The log files carry times: kept for the reader, not part of the comparison.
+mv "$tmp/logs" "$tmp/logs-not-compared"
+
+# ---- analyses -------------------------------------------------------------
+run_gate() {  # run_gate NAME FILE SUMMARY_REGEX COMMAND...
+  local name="$1" file="$2" re="$3"; shift 3
+  if [ ! -e "$1" ]; then gate "$name" MISSING "$1 not in this tree"; return; fi
+  if "$@" > "$tmp/$file" 2>&1; then st=PASS; else st=FAIL; fi
+  gate "$name" "$st" "$(grep -E "$re" "$tmp/$file" | tail -1)"
+}
+run_gate "requirements traceability" trace-run.txt "requirements" \
+  tools/trace_matrix.py -o "$tmp/trace-matrix.md"
+
+# fuzz: executions per harness as recorded by the long runs (scripts/fuzz.sh)
+{ echo "# Executions per fuzz harness"; echo
+  echo "From docs/design/fuzzing.md (long runs, RUNS=10000000 scripts/fuzz.sh NAME);"
+  echo "the committed corpora are replayed by the host-clang preset's fuzz tests."; echo
+  sed -n '/^| Harness | Executions/,/^$/p' docs/design/fuzzing.md; } > "$tmp/fuzz.md"
+gate "fuzzing" RECORDED "$(grep -c '^| `fuzz_' "$tmp/fuzz.md") harnesses with recorded long runs"
+
+# ---- index ----------------------------------------------------------------
+{
+  echo "# Kestrel flight library: qualification evidence"
+  echo
+  echo "written: $(date -u +%Y-%m-%d)"
+  echo
+  sed 's/^/    /' "$tmp/versions.txt"
+  echo
+  echo "| gate | status | figures |"
+  echo "| --- | --- | --- |"
+  printf '%s\n' "${gates[@]}"
+  echo
+  echo "Files: $(cd "$tmp" && ls | grep -v '^index.md$' | paste -sd' ' -)"
+  echo
+  echo "What each part shows and what it does not: docs/assurance.md in the source tree."
+} > "$tmp/index.md"
+
+rm -rf "$out"; mv "$tmp" "$out"
+echo "evidence: $out/index.md"
+if printf '%s\n' "${gates[@]}" | grep -qE '\| (FAIL|MISSING) \|'; then
+  printf '%s\n' "${gates[@]}" | grep -E '\| (FAIL|MISSING) \|' >&2
+  exit 1
+fi
