@@ -966,3 +966,20 @@ TEST(FswAcsMomentumConfig, McdcEachSideOfTheCrossChecksAlone)
     EXPECT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field)) << which << " " << (field != nullptr ? field : "");
   }
 }
+
+// MC/DC (docs/coverage.md): mag_valid is a 0/1 flag like orbit_valid; a 2
+// is bad input of the cycle on its own (orbit_valid 1), the safe output,
+// and the good retry at the same time stamp is accepted.
+TEST(FswAcsNadir, McdcMagValidTwoAloneIsBadInput)
+{
+  const double Om[4] = {30.0, -20.0, 10.0, 5.0};
+  ASSERT_NO_FATAL_FAILURE(nadir_first_cycle(Om));
+  nadir_sensors(g_sens, kPeriodNs, Om);
+  ASSERT_EQ(1u, g_sens.orbit_valid);
+  g_sens.mag_valid = 2;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_TRUE(actuators_safe(g_act));
+  EXPECT_EQ(1, g_h.safe_output);
+  g_sens.mag_valid = 1;
+  EXPECT_EQ(FSW_OK, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+}

@@ -866,3 +866,18 @@ TEST(ThrMomentumConfig, McdcUpperThresholdZeroIsRefused)
   EXPECT_EQ(fsw_thr_momentum_check(f.cfg.get()), FSW_E_CONFIG);
   EXPECT_EQ(fsw_thr_momentum_init(f.st.get(), f.cfg.get()), FSW_E_CONFIG);
 }
+
+// MC/DC (docs/coverage.md): a forced dump at or below h_lower has nothing to
+// dump: the force alone does not trigger (the trigger's third condition).
+TEST(ThrMomentumModes, McdcForcedDumpBelowTheLowerThresholdDoesNothing)
+{
+  double h[3];
+  auto f = ready();
+  scaled_dir(h, kHlo * 0.5);
+  f->in->force_dump = 1;
+  (void)simulate(*f, h, 3);
+  EXPECT_EQ(f->out->phase, FSW_THR_MOM_IDLE);
+  EXPECT_EQ(f->out->pulses, 0u);
+  EXPECT_EQ(f->out->dumps, 0u);
+  EXPECT_EQ(norm3(f->out->L_thr_B), 0.0);
+}
