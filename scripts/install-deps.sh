@@ -7,6 +7,7 @@ host_pkgs=(cmake ninja-build g++ gcc clang libgtest-dev googletest libbenchmark-
            universal-ctags  # tools/harness_shape_check.py: function lengths of the harness
            libeigen3-dev binutils python3 pkgconf libyaml-cpp-dev libhdf5-dev libcli11-dev nlohmann-json3-dev
            nodejs chromium python3-h5py lcov  # report: npm bundle at build time, headless test
+           clang-19 llvm-19  # coverage preset: MC/DC of the flight library (-fcoverage-mcdc, llvm-cov; docs/coverage.md)
            socat  # HWIL: the serial link tested over a pseudo-terminal pair
            make xz-utils  # cFS closed loop: cFS builds with make; its bundle is a .tar.xz (docs/hwil.md, "cFS")
            openmpi-bin libopenmpi-dev slurm-wlm munge  # Monte Carlo: mpirun; the Slurm array test's one-node cluster

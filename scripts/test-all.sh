@@ -34,8 +34,9 @@ for p in $PRESETS; do
   ctest --test-dir "build/$p" -R '^fsw_proof_stack$' -V > "build/logs/$p.stack.log" 2>&1 || true
   stack=$(grep -Eo "largest: .* B over" "build/logs/$p.stack.log" | tail -1 | sed 's/.*largest: //; s/ over//')
   result[$p]="${result[$p]} ${stack:+(largest stack: $stack)}"
-  # the structural coverage of the flight library (coverage preset)
+  # the structural coverage and MC/DC of the flight library (coverage preset)
   if [ -f "build/$p/coverage/summary.txt" ]; then result[$p]="${result[$p]} ($(cat "build/$p/coverage/summary.txt"))"; fi
+  if [ -f "build/$p/mcdc/summary.txt" ]; then result[$p]="${result[$p]} ($(cat "build/$p/mcdc/summary.txt"))"; fi
 done
 
 echo

@@ -931,3 +931,71 @@ TEST(FswAcsBias, TheBiasSpeedsReachTheNullMotion)
 }
 
 }  // namespace
+
+namespace {
+
+// MC/DC of the momentum cross-checks (docs/coverage.md): the single sides the
+// table above leaves out.  A management set on a vehicle without wheels is
+// refused by name even when its other actuator is present; an axis copy
+// sized for fewer wheels is refused even when every axis it has matches;
+// a controller without the wheel model (mrp_fb.num_rw 0) has no J_s to
+// compare, so differing copies are accepted.
+const BadCfg kMcdcConfigs[] = {
+    {"thruster dumps without wheels", [](FswAcsConfig& c) { c.use_thr_mom = 1; c.has_wheels = 0; c.mrp_fb.num_rw = 0; c.initial_actuation = FSW_ACS_ACT_THRUSTERS; }, "use_thr_mom",
+     FSW_E_CONFIG},
+    {"rod desaturation without wheels", [](FswAcsConfig& c) { c.use_mtq_desat = 1; c.has_wheels = 0; c.mrp_fb.num_rw = 0; c.initial_actuation = FSW_ACS_ACT_THRUSTERS; },
+     "use_mtq_desat", FSW_E_CONFIG},
+    {"bias without wheels", [](FswAcsConfig& c) { c.use_null = 1; c.use_bias = 1; c.has_wheels = 0; c.mrp_fb.num_rw = 0; c.initial_actuation = FSW_ACS_ACT_THRUSTERS; }, "use_bias",
+     FSW_E_CONFIG},
+    {"thr_mom for three of four wheels", [](FswAcsConfig& c) { c.use_thr_mom = 1; c.thr_mom.num_rw = 3; },
+     "thr_mom.gs_hat_B", FSW_E_CONFIG},
+    {"mtq_desat for three of four wheels", [](FswAcsConfig& c) { c.use_mtq_desat = 1; c.mtq_desat.num_rw = 3; },
+     "mtq_desat.gs_hat_B", FSW_E_CONFIG},
+    {"rw_bias for three of four wheels",
+     [](FswAcsConfig& c) { c.use_null = 1; c.use_bias = 1; c.rw_bias.num_rw = 3; }, "rw_bias.gs_hat_B", FSW_E_CONFIG},
+};
+
+}  // namespace
+
+TEST(FswAcsMomentumConfig, McdcEachSideOfTheCrossChecksAlone)
+{
+  for (const BadCfg& b : kMcdcConfigs) {
+    acsfix::full_config(g_cfg);
+    b.spoil(g_cfg);
+    const char* field = nullptr;
+    const FswStatus s = fsw_acs_check(&g_cfg, &field);
+    EXPECT_EQ(b.want, s) << b.why;
+    EXPECT_STREQ(b.field, field) << b.why;
+  }
+  // no wheel model in the controller: the J_s copies are not compared
+  for (int which = 0; which < 2; which++) {
+    acsfix::full_config(g_cfg);
+    g_cfg.mrp_fb.num_rw = 0;
+    if (which == 0) {
+      g_cfg.use_thr_mom = 1;
+      g_cfg.thr_mom.J_s[2] *= 2;
+    } else {
+      g_cfg.use_mtq_desat = 1;
+      g_cfg.mtq_desat.J_s[0] *= 3;
+    }
+    const char* field = nullptr;
+    EXPECT_EQ(FSW_OK, fsw_acs_check(&g_cfg, &field)) << which << " " << (field != nullptr ? field : "");
+  }
+}
+
+// MC/DC (docs/coverage.md): mag_valid is a 0/1 flag like orbit_valid; a 2
+// is bad input of the cycle on its own (orbit_valid 1), the safe output,
+// and the good retry at the same time stamp is accepted.
+TEST(FswAcsNadir, McdcMagValidTwoAloneIsBadInput)
+{
+  const double Om[4] = {30.0, -20.0, 10.0, 5.0};
+  ASSERT_NO_FATAL_FAILURE(nadir_first_cycle(Om));
+  nadir_sensors(g_sens, kPeriodNs, Om);
+  ASSERT_EQ(1u, g_sens.orbit_valid);
+  g_sens.mag_valid = 2;
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_TRUE(actuators_safe(g_act));
+  EXPECT_EQ(1, g_h.safe_output);
+  g_sens.mag_valid = 1;
+  EXPECT_EQ(FSW_OK, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+}

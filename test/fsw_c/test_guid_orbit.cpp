@@ -426,3 +426,22 @@ TEST(GuidOrbitNullArgs, EveryNullArgumentAssertsAndReturns)
   kt::module_null_args("guid_orbit", fsw_guid_orbit_check, fsw_guid_orbit_init, fsw_guid_orbit_reset,
                        fsw_guid_orbit_update);
 }
+
+// MC/DC (docs/coverage.md): every component finite but the magnitude not:
+// |r| or |v| = sqrt(3) * (largest real) overflows, and each alone is refused
+// by its own condition (|r| >= R_MIN and finite / |v| finite).
+TEST(GuidOrbitBadInput, FiniteComponentsWhoseMagnitudeOverflowsAreRefused)
+{
+  const fsw_real big = std::numeric_limits<fsw_real>::max();
+  for (int which = 0; which < 2; which++) {
+    Fixture f;
+    ASSERT_EQ(f.init(), FSW_OK);
+    f.set(v3(7e6, 1e5, -2e5), v3(100, 7.5e3, 300));
+    fsw_real* p = which == 0 ? f.in.r_N : f.in.v_N;
+    for (int k = 0; k < 3; k++) p[k] = big;
+    f.garbage();
+    EXPECT_EQ(f.update(), FSW_E_BAD_INPUT) << which;
+    expect_safe(f.out);
+    EXPECT_EQ(f.st.health.bad_input, 1u);
+  }
+}

@@ -872,3 +872,32 @@ TEST(ThrMomentumNullArgs, EveryNullArgumentAssertsAndReturns)
   kt::module_null_args("thr_momentum", fsw_thr_momentum_check, fsw_thr_momentum_init, fsw_thr_momentum_reset,
                        fsw_thr_momentum_update);
 }
+
+// MC/DC (docs/coverage.md): an upper threshold of exactly 0 is inside
+// [0, FSW_THR_MOM_H_MAX] but not > 0, and is refused by that condition alone
+// (with h_lower 0 too, so that no later check could be what refuses it).
+TEST(ThrMomentumConfig, McdcUpperThresholdZeroIsRefused)
+{
+  Fixture ok;
+  EXPECT_EQ(fsw_thr_momentum_check(ok.cfg.get()), FSW_OK);
+  Fixture f;
+  f.cfg->h_upper = FSW_R(0.0);
+  f.cfg->h_lower = FSW_R(0.0);
+  EXPECT_EQ(fsw_thr_momentum_check(f.cfg.get()), FSW_E_CONFIG);
+  EXPECT_EQ(fsw_thr_momentum_init(f.st.get(), f.cfg.get()), FSW_E_CONFIG);
+}
+
+// MC/DC (docs/coverage.md): a forced dump at or below h_lower has nothing to
+// dump: the force alone does not trigger (the trigger's third condition).
+TEST(ThrMomentumModes, McdcForcedDumpBelowTheLowerThresholdDoesNothing)
+{
+  double h[3];
+  auto f = ready();
+  scaled_dir(h, kHlo * 0.5);
+  f->in->force_dump = 1;
+  (void)simulate(*f, h, 3);
+  EXPECT_EQ(f->out->phase, FSW_THR_MOM_IDLE);
+  EXPECT_EQ(f->out->pulses, 0u);
+  EXPECT_EQ(f->out->dumps, 0u);
+  EXPECT_EQ(norm3(f->out->L_thr_B), 0.0);
+}
