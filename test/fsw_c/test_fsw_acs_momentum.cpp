@@ -957,6 +957,7 @@ const BadCfg kMcdcConfigs[] = {
 
 }  // namespace
 
+// Verifies: REQ-ACS-002
 TEST(FswAcsMomentumConfig, McdcEachSideOfTheCrossChecksAlone)
 {
   for (const BadCfg& b : kMcdcConfigs) {
@@ -986,6 +987,7 @@ TEST(FswAcsMomentumConfig, McdcEachSideOfTheCrossChecksAlone)
 // MC/DC (docs/coverage.md): mag_valid is a 0/1 flag like orbit_valid; a 2
 // is bad input of the cycle on its own (orbit_valid 1), the safe output,
 // and the good retry at the same time stamp is accepted.
+// Verifies: REQ-ACS-005
 TEST(FswAcsNadir, McdcMagValidTwoAloneIsBadInput)
 {
   const double Om[4] = {30.0, -20.0, 10.0, 5.0};

@@ -28,6 +28,7 @@ const fsw_real kTiny = std::numeric_limits<fsw_real>::denorm_min();
 }  // namespace
 
 // bdot.c fsw_bdot_gain: !isfinite(n) || !isfinite(J_min) || !isfinite(incl)
+// Verifies: REQ-BDOT-011
 TEST(McdcBdotGain, NonFiniteInertiaAloneGivesZero)
 {
   // accepted neighbour: k = 2 n (1 + sin 0) J = 2 * 0.001 * 1 * 10 = 0.02
@@ -38,6 +39,7 @@ TEST(McdcBdotGain, NonFiniteInertiaAloneGivesZero)
 
 // bdot.c fsw_bdot_decay_time: the four conditions on k and J, the two on
 // B_rms (normalize 0) and the two on k_eff = k B_rms^2.
+// Verifies: REQ-BDOT-011
 TEST(McdcBdotDecayTime, EachInvalidArgumentAloneGivesZero)
 {
   // accepted neighbours: T = 1.5 J / k (normalize 1), 1.5 J / (k B^2) (normalize 0)
@@ -60,6 +62,7 @@ TEST(McdcBdotDecayTime, EachInvalidArgumentAloneGivesZero)
 }
 
 // thr_momentum.c: the finiteness conditions of the two planning helpers
+// Verifies: REQ-THRMOM-009
 TEST(McdcThrMomentumPlanning, EachNonFiniteArgumentAloneGivesZero)
 {
   // accepted neighbours: T = (h_u - h_l) / |L| = (3 - 1) / 0.5 = 4 s;
@@ -78,6 +81,7 @@ TEST(McdcThrMomentumPlanning, EachNonFiniteArgumentAloneGivesZero)
 // fsw_link_sec.c fsw_link_sec_protect: cap < trailer || n > cap - trailer.
 // A buffer that holds the trailer but not the packet and its trailer is
 // refused before anything is written; one byte more and the packet goes.
+// Verifies: REQ-LSEC-003
 TEST(McdcLinkSec, BufferHoldingTheTrailerButNotThePacketIsRefused)
 {
   const uint8_t key[32] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16,

@@ -430,6 +430,7 @@ TEST(GuidOrbitNullArgs, EveryNullArgumentAssertsAndReturns)
 // MC/DC (docs/coverage.md): every component finite but the magnitude not:
 // |r| or |v| = sqrt(3) * (largest real) overflows, and each alone is refused
 // by its own condition (|r| >= R_MIN and finite / |v| finite).
+// Verifies: REQ-GORB-004
 TEST(GuidOrbitBadInput, FiniteComponentsWhoseMagnitudeOverflowsAreRefused)
 {
   const fsw_real big = std::numeric_limits<fsw_real>::max();

@@ -876,6 +876,7 @@ TEST(ThrMomentumNullArgs, EveryNullArgumentAssertsAndReturns)
 // MC/DC (docs/coverage.md): an upper threshold of exactly 0 is inside
 // [0, FSW_THR_MOM_H_MAX] but not > 0, and is refused by that condition alone
 // (with h_lower 0 too, so that no later check could be what refuses it).
+// Verifies: REQ-THRMOM-001
 TEST(ThrMomentumConfig, McdcUpperThresholdZeroIsRefused)
 {
   Fixture ok;
@@ -889,6 +890,7 @@ TEST(ThrMomentumConfig, McdcUpperThresholdZeroIsRefused)
 
 // MC/DC (docs/coverage.md): a forced dump at or below h_lower has nothing to
 // dump: the force alone does not trigger (the trigger's third condition).
+// Verifies: REQ-THRMOM-006
 TEST(ThrMomentumModes, McdcForcedDumpBelowTheLowerThresholdDoesNothing)
 {
   double h[3];
