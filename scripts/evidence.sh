@@ -18,6 +18,7 @@
 #   eva.txt           Frama-C Eva alarms against the recorded justifications
 #   fuzz.md           executions per fuzz harness (docs/design/fuzzing.md)
 #   timing.txt        instructions per fsw_acs_cycle and module on the M4F
+#   footprint.txt     .text/.data/.bss and stack of the M4F programs
 #   trace-matrix.md   requirement -> tests
 # Content depends only on the commit and the tool versions: no times or dates
 # except the one "written" line of index.md, so two runs compare with diff.
@@ -77,6 +78,11 @@ for p in $presets; do
       echo '```'; cat "build/$p/coverage/files.txt"; echo '```'; } > "$tmp/coverage.md"
     gate "line/branch coverage" "$res" "$(sed 's/coverage fsw_c\/src: //' "build/$p/coverage/summary.txt")"
   fi
+  if [ -f "build/$p/mcdc/summary.txt" ]; then
+    { cat "build/$p/mcdc/summary.txt"; echo; cat "build/$p/mcdc/files.txt";
+      echo; echo "Decisions not fully covered (each justified in docs/coverage.md):"; cat "build/$p/mcdc/gaps.txt"; } > "$tmp/mcdc.txt"
+    gate "MC/DC" "$res" "$(cat "build/$p/mcdc/summary.txt")"
+  fi
 done
 # The log files carry times: kept for the reader, not part of the comparison.
 mv "$tmp/logs" "$tmp/logs-not-compared"
@@ -90,6 +96,12 @@ run_gate() {  # run_gate NAME FILE SUMMARY_REGEX COMMAND...
 }
 run_gate "requirements traceability" trace-run.txt "requirements" \
   tools/trace_matrix.py -o "$tmp/trace-matrix.md"
+
+# timing and size on the Cortex-M4F (QEMU -icount; arm-none-eabi-size)
+run_gate "instructions per cycle on the M4F" timing.txt "worst +[0-9]+ instructions" \
+  bench/target/m4f_timing.sh "build/evidence-timing"
+run_gate "flight footprint on the M4F" footprint.txt "^double +-Os +ACS only" \
+  bench/flight-footprint.sh "build/evidence-footprint"
 
 # fuzz: executions per harness as recorded by the long runs (scripts/fuzz.sh)
 { echo "# Executions per fuzz harness"; echo
