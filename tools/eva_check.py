@@ -1,0 +1,198 @@
+#!/usr/bin/env python3
+"""Absence of run-time errors in the flight library with Frama-C Eva
+(docs/eva.md).
+
+Every driver test/proofs/eva/<name>.c is analysed twice:
+  nominal    -main eva_main_nominal, Eva's default float model: every input
+             in its contract's domain; a NaN or an infinity produced by any
+             operation is an alarm;
+  nonfinite  -main eva_main_nonfinite, -warn-special-float none: one sensor
+             input NaN or +-infinity; the rejection path is analysed (a
+             float-to-int conversion of a non-finite value is still an alarm).
+A driver names the library sources it needs on a line
+`eva-sources: a.c b.c` (relative to fsw_c/src).  Each analysis is bounded
+in time.  The alarms (every property of Frama-C's report whose status is
+Unknown or Invalid) are compared with the justified ones of
+test/proofs/eva/alarms.txt, one a line:
+    driver/analysis | file:function | kind | justification
+The check fails on an alarm that is not recorded, on a record that no
+alarm matches (stale), on a driver whose entries are not all reached, on a
+Frama-C failure and on a timeout.  Prints a summary table.
+Exit 0 = pass, 1 = failure, 2 = usage.
+"""
+import argparse
+import concurrent.futures
+import csv
+import os
+import re
+import subprocess
+import sys
+import time
+
+ANALYSES = {
+    "envelope": ["-main", "eva_main_envelope"],
+    "any": ["-main", "eva_main_any", "-warn-special-float", "none"],
+}
+COMMON = ["-machdep", "x86_64", "-eva", "-eva-auto-loop-unroll", "128",
+          "-eva-split-return", "full", "-eva-slevel", "30", "-eva-msg-key=-final-states,-summary", "-kernel-warn-key", "CERT:EXP:46=inactive",
+          "-eva-warn-key", "garbled-mix=error"]
+ALARM_STATUS = re.compile(r"^(Unknown|Invalid)")
+# declared behaviour of specified functions, not checks of the analysed code
+NOT_ALARMS = {"assigns clause", "from clause", "postcondition", "termination clause"}
+ENTRY = re.compile(r"Frama_C_show_each_eva_entry_(\w+):\s*(.*)$")
+
+
+def parse_args():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--root", default=os.path.join(os.path.dirname(__file__), ".."))
+    ap.add_argument("--frama-c", default="frama-c")
+    ap.add_argument("--work", default=None, help="folder for logs and reports (default: a temporary one)")
+    ap.add_argument("--only", nargs="*", default=None,
+                    help="drivers (name) or single analyses (name/envelope, name/any); default: all")
+    ap.add_argument("--timeout", type=float, default=120.0, help="seconds per analysis")
+    ap.add_argument("--jobs", type=int, default=2)
+    return ap.parse_args()
+
+
+def read_records(path):
+    """alarms.txt -> {(driver/analysis, file:function, kind): justification}"""
+    recs = {}
+    with open(path, encoding="utf-8") as f:
+        for n, line in enumerate(f, 1):
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            parts = [p.strip() for p in line.split("|", 3)]
+            if len(parts) != 4 or not all(parts):
+                raise SystemExit(f"{path}:{n}: want 'driver/analysis | file:function | kind | justification'")
+            key = tuple(parts[:3])
+            if key in recs:
+                raise SystemExit(f"{path}:{n}: duplicate record {key}")
+            recs[key] = parts[3]
+    return recs
+
+
+def driver_sources(path):
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            m = re.search(r"eva-sources:\s*(.*?)\s*(\*/)?$", line)
+            if m:
+                return m.group(1).split()
+    raise SystemExit(f"{path}: no 'eva-sources:' line")
+
+
+def driver_entries(path):
+    with open(path, encoding="utf-8") as f:
+        return sorted(set(re.findall(r"EVA_ENTRY\((\w+)", f.read())))
+
+
+def run_one(args, root, work, name, analysis):
+    drv = os.path.join(root, "test", "proofs", "eva", name + ".c")
+    srcs = [os.path.join(root, "fsw_c", "src", s) for s in driver_sources(drv)]
+    csv_path = os.path.join(work, f"{name}.{analysis}.csv")
+    log_path = os.path.join(work, f"{name}.{analysis}.log")
+    inc = "-I{0} -I{1} -I{2}".format(os.path.join(root, "fsw_c", "include"), os.path.join(root, "fsw_c", "src"),
+                                      os.path.join(root, "test", "proofs", "eva"))
+    cmd = [args.frama_c, "-cpp-extra-args=" + inc] + COMMON + ANALYSES[analysis] + [drv] + srcs + \
+          ["-report-csv", csv_path]
+    t0 = time.monotonic()
+    res = {"name": name, "analysis": analysis, "alarms": [], "entries": {}, "error": None}
+    try:
+        with open(log_path, "w", encoding="utf-8") as log:
+            rc = subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, timeout=args.timeout,
+                                cwd=root).returncode
+    except subprocess.TimeoutExpired:
+        rc = None
+        res["error"] = f"timeout after {args.timeout:.0f} s"
+    res["time"] = time.monotonic() - t0
+    if rc is None:
+        return res
+    if rc != 0 or not os.path.exists(csv_path):
+        res["error"] = f"frama-c exit {rc} (log: {log_path})"
+        return res
+    with open(log_path, encoding="utf-8") as f:
+        for line in f:
+            if "Neither code nor specification" in line or "[kernel] User Error" in line:
+                res["error"] = f"{line.strip()} (a library source missing from eva-sources?)"
+            m = ENTRY.search(line)
+            if m:
+                res["entries"].setdefault(m.group(1), set()).add(m.group(2).strip())
+    with open(csv_path, encoding="utf-8") as f:
+        for row in csv.DictReader(f, delimiter="\t"):
+            if not ALARM_STATUS.match(row["status"]) or row["property kind"] in NOT_ALARMS:
+                continue
+            path = os.path.join(row["directory"], row["file"])
+            if not row["directory"].startswith("FRAMAC_SHARE"):
+                path = os.path.relpath(os.path.join(root, path), root)
+            loc = f"{path}:{row['function']}"
+            res["alarms"].append((loc, row["property kind"], f"{row['file']}:{row['line']}",
+                                  row["property"]))
+    return res
+
+
+def main():
+    args = parse_args()
+    root = os.path.abspath(args.root)
+    eva_dir = os.path.join(root, "test", "proofs", "eva")
+    records = read_records(os.path.join(eva_dir, "alarms.txt"))
+    all_drivers = sorted(f[:-2] for f in os.listdir(eva_dir) if f.endswith(".c"))
+    if args.only is None:
+        jobs = [(d, a) for d in all_drivers for a in ANALYSES]
+    else:
+        jobs = []
+        for item in args.only:
+            d, _, a = item.partition("/")
+            if d not in all_drivers or (a and a not in ANALYSES):
+                print(f"eva_check: no driver or analysis {item} in {eva_dir}", file=sys.stderr)
+                return 2
+            jobs += [(d, x) for x in ANALYSES if not a or x == a]
+    drivers = sorted({d for d, _ in jobs})
+    work = args.work
+    if work is None:
+        import tempfile
+        work = tempfile.mkdtemp(prefix="kestrel-eva-")
+    os.makedirs(work, exist_ok=True)
+    t0 = time.monotonic()
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+        results = list(pool.map(lambda j: run_one(args, root, work, *j), jobs))
+    wall = time.monotonic() - t0
+
+    failures = []
+    seen = set()
+    print(f"{'driver/analysis':34} {'entries':>7} {'alarms':>6} {'recorded':>8} {'time':>7}")
+    for r in results:
+        tag = f"{r['name']}/{r['analysis']}"
+        want = driver_entries(os.path.join(eva_dir, r["name"] + ".c"))
+        if r["error"]:
+            failures.append(f"{tag}: {r['error']}")
+        else:
+            missing = [e for e in want if e not in r["entries"]]
+            if missing:
+                failures.append(f"{tag}: entries never reached: {', '.join(missing)}")
+        n_rec = 0
+        for loc, kind, where, prop in r["alarms"]:
+            key = (tag, loc, kind)
+            if key in records:
+                seen.add(key)
+                n_rec += 1
+            else:
+                failures.append(f"{tag}: unrecorded alarm {kind} at {where} ({loc}): {prop}")
+        shown = "; ".join(f"{k} {v}" for k, v in sorted((k, ",".join(sorted(v))) for k, v in r["entries"].items()))
+        print(f"{tag:34} {len(r['entries']):>7} {len(r['alarms']):>6} {n_rec:>8} {r['time']:>6.1f}s  {shown}")
+    ran = {f"{r['name']}/{r['analysis']}" for r in results if not r["error"]}
+    for key in records:
+        if key[0] in ran and key not in seen:
+            failures.append(f"stale record in alarms.txt (no such alarm any more): {' | '.join(key)}")
+    n_entries = sum(len(r["entries"]) for r in results if r["analysis"] == "envelope")
+    n_alarms = sum(len(r["alarms"]) for r in results)
+    print(f"eva_check: {len(drivers)} drivers, {len(jobs)} analyses, {n_entries} entries reached, "
+          f"{n_alarms} alarms ({len(seen)} records used), {wall:.1f} s wall; logs in {work}")
+    for f in failures:
+        print("FAIL:", f)
+    print("eva_check:", "FAILED" if failures else "OK")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
