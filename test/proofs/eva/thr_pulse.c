@@ -1,5 +1,6 @@
 /* Eva driver: thr_pulse_rem, thr_pulse_round, thr_pulse_schmitt
  * (docs/fsw/thr_pulse_*.md, docs/eva.md).
+ * eva-include: thr_pulse_round_clamp.h thr_pulse_on_time.h
  * eva-sources: thr_pulse_rem.c thr_pulse_round.c thr_pulse_schmitt.c thr_pulse_common.c fsw_clock.c fsw_vec.c fsw_status.c */
 #include "eva_driver.h"
 
