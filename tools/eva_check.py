@@ -18,7 +18,7 @@ test/proofs/eva/alarms.txt, one a line:
 The check fails on an alarm that is not recorded, on a record that no
 alarm matches (stale), on a driver whose entries are not all reached, on a
 Frama-C failure and on a timeout.  Prints a summary table.
-Exit 0 = pass, 1 = failure, 2 = usage.
+Exit 0 = pass, 1 = failure, 2 = usage, 77 = Frama-C not installed (skipped).
 """
 import argparse
 import concurrent.futures
@@ -193,6 +193,10 @@ def main():
     args = parse_args()
     root = os.path.abspath(args.root)
     eva_dir = os.path.join(root, "test", "proofs", "eva")
+    import shutil
+    if shutil.which(args.frama_c) is None:
+        print(f"eva_check: {args.frama_c} not found (Debian: apt-get install frama-c-base): skipped")
+        return 77
     records = read_records(os.path.join(eva_dir, "alarms.txt"))
     all_drivers = sorted(f[:-2] for f in os.listdir(eva_dir) if f.endswith(".c"))
     if args.only is None:
@@ -252,7 +256,7 @@ def main():
             print(f"{'wp ' + target[1] + ':' + target[2]:34} goals {proved}/{total}{'':>8} {dt:>6.1f}s")
             if err:
                 failures.append("WP " + err)
-    n_entries = sum(len(r["entries"]) for r in results if r["analysis"] == "envelope")
+    n_entries = len({(r["name"], e) for r in results for e in r["entries"]})
     n_alarms = sum(len(r["alarms"]) for r in results)
     print(f"eva_check: {len(drivers)} drivers, {len(jobs)} analyses, {n_entries} entries reached, "
           f"{n_alarms} alarms ({len(seen)} records used), {wall:.1f} s wall; logs in {work}")
