@@ -54,6 +54,8 @@ def parse_args():
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--prover", default="cvc4", help="WP prover (Why3 name)")
     ap.add_argument("--no-wp", action="store_true", help="skip the WP proofs")
+    ap.add_argument("--self-test", action="store_true",
+                    help="run the planted faults of test/proofs/eva_selftest/ and pass only if each is caught")
     return ap.parse_args()
 
 
@@ -100,12 +102,12 @@ def driver_entries(path):
 
 
 def run_one(args, root, work, name, analysis):
-    drv = os.path.join(root, "test", "proofs", "eva", name + ".c")
+    drv = os.path.join(args.eva_dir, name + ".c")
     srcs = [os.path.join(root, "fsw_c", "src", s) for s in driver_sources(drv)]
     csv_path = os.path.join(work, f"{name}.{analysis}.csv")
     log_path = os.path.join(work, f"{name}.{analysis}.log")
     inc = "-I{0} -I{1} -I{2}".format(os.path.join(root, "fsw_c", "include"), os.path.join(root, "fsw_c", "src"),
-                                      os.path.join(root, "test", "proofs", "eva"))
+                                      os.path.join(root, "test", "proofs", "eva"))  # eva_driver.h
     # the envelope analysis only: in the any analysis a non-finite input
     # reaches the calls on paths Eva cannot cut (it does not narrow a value
     # by a finiteness test)
@@ -192,7 +194,10 @@ def run_wp(args, root, work, target, env):
 def main():
     args = parse_args()
     root = os.path.abspath(args.root)
-    eva_dir = os.path.join(root, "test", "proofs", "eva")
+    eva_dir = os.path.join(root, "test", "proofs", "eva_selftest" if args.self_test else "eva")
+    args.eva_dir = eva_dir
+    if args.self_test:
+        args.no_wp = True
     import shutil
     if shutil.which(args.frama_c) is None:
         print(f"eva_check: {args.frama_c} not found (Debian: apt-get install frama-c-base): skipped")
@@ -262,6 +267,12 @@ def main():
           f"{n_alarms} alarms ({len(seen)} records used), {wall:.1f} s wall; logs in {work}")
     for f in failures:
         print("FAIL:", f)
+    if args.self_test:
+        wanted = {"unrecorded alarm": "unrecorded alarm", "stale record": "stale record",
+                  "entries never reached": "entries never reached: never"}
+        missed = [k for k, v in wanted.items() if not any(v in f for f in failures)]
+        print("eva_check self-test:", "missed " + ", ".join(missed) if missed else "every planted fault caught")
+        return 1 if missed else 0
     print("eva_check:", "FAILED" if failures else "OK")
     return 1 if failures else 0
 
