@@ -77,23 +77,27 @@ def read_records(path):
     return recs
 
 
-def driver_sources(path):
+def driver_line(path, key):
+    """The words after 'key:' on a driver's line, or None without such a line."""
     with open(path, encoding="utf-8") as f:
         for line in f:
-            m = re.search(r"eva-sources:\s*(.*?)\s*(\*/)?$", line)
+            m = re.search(key + r":\s*(.*?)\s*(\*/)?$", line)
             if m:
                 return m.group(1).split()
-    raise SystemExit(f"{path}: no 'eva-sources:' line")
+    return None
+
+
+def driver_sources(path):
+    """The library sources (relative to fsw_c/src) of a driver's 'eva-sources:' line."""
+    srcs = driver_line(path, "eva-sources")
+    if srcs is None:
+        raise SystemExit(f"{path}: no 'eva-sources:' line")
+    return srcs
 
 
 def driver_includes(path):
     """WP contracts (test/proofs/wp/*.h) whose preconditions Eva checks at the calls."""
-    with open(path, encoding="utf-8") as f:
-        for line in f:
-            m = re.search(r"eva-include:\s*(.*?)\s*(\*/)?$", line)
-            if m:
-                return m.group(1).split()
-    return []
+    return driver_line(path, "eva-include") or []
 
 
 def driver_entries(path):
