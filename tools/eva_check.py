@@ -3,12 +3,15 @@
 (docs/eva.md).
 
 Every driver test/proofs/eva/<name>.c is analysed twice:
-  nominal    -main eva_main_nominal, Eva's default float model: every input
-             in its contract's domain; a NaN or an infinity produced by any
-             operation is an alarm;
-  nonfinite  -main eva_main_nonfinite, -warn-special-float none: one sensor
-             input NaN or +-infinity; the rejection path is analysed (a
-             float-to-int conversion of a non-finite value is still an alarm).
+  envelope   -main eva_main_envelope, Eva's default float model: the
+             configuration values check accepts, bounded by the operating
+             envelope where the contract only says "finite"; a NaN or an
+             infinity produced by any operation is an alarm;
+  any        -main eva_main_any, -warn-special-float none: every accepted
+             finite value up to the largest double, and every real sensor
+             input also NaN or +-infinity; undefined behaviour (bounds,
+             signed overflow, uninitialised reads, float-to-int conversion,
+             C library preconditions) is an alarm.
 A driver names the library sources it needs on a line
 `eva-sources: a.c b.c` (relative to fsw_c/src).  Each analysis is bounded
 in time.  The alarms (every property of Frama-C's report whose status is
@@ -17,7 +20,9 @@ test/proofs/eva/alarms.txt, one a line:
     driver/analysis | file:function | kind | justification
 The check fails on an alarm that is not recorded, on a record that no
 alarm matches (stale), on a driver whose entries are not all reached, on a
-Frama-C failure and on a timeout.  Prints a summary table.
+Frama-C failure and on a timeout.  Then each contract of test/proofs/wp/*.h
+is proven with WP (real model, CVC4) on the function its 'wp-target:' line
+names; a goal not proven fails.  Prints a summary table.
 Exit 0 = pass, 1 = failure, 2 = usage, 77 = Frama-C not installed (skipped).
 """
 import argparse
@@ -34,8 +39,8 @@ ANALYSES = {
     "any": ["-main", "eva_main_any", "-warn-special-float", "none"],
 }
 COMMON = ["-machdep", "x86_64", "-eva", "-eva-auto-loop-unroll", "128",
-          "-eva-split-return", "full", "-eva-slevel", "30", "-eva-msg-key=-final-states,-summary", "-kernel-warn-key", "CERT:EXP:46=inactive",
-          "-eva-warn-key", "garbled-mix=error"]
+          "-eva-split-return", "full", "-eva-slevel", "30", "-eva-msg-key=-final-states,-summary",
+          "-kernel-warn-key", "CERT:EXP:46=inactive", "-eva-warn-key", "garbled-mix=error"]
 ALARM_STATUS = re.compile(r"^(Unknown|Invalid)")
 # declared behaviour of specified functions, not checks of the analysed code
 NOT_ALARMS = {"assigns clause", "from clause", "postcondition", "termination clause"}
