@@ -260,7 +260,9 @@ def main():
     for key in records:
         if key[0] in ran and key not in seen:
             failures.append(f"stale record in alarms.txt (no such alarm any more): {' | '.join(key)}")
-    if not args.no_wp:
+    if not args.no_wp and shutil.which("why3") is None:
+        failures.append("WP: why3 not found (Debian: apt-get install why3 cvc4)")
+    elif not args.no_wp:
         # Why3's prover configuration, made here so that no user file is needed
         env = dict(os.environ, WHY3CONFIG=os.path.join(work, "why3.conf"))
         subprocess.run(["why3", "config", "detect"], env=env, stdout=subprocess.DEVNULL,
