@@ -15,7 +15,7 @@
 #   coverage.md       line and branch coverage of fsw_c/src (coverage preset)
 #   mcdc.txt          MC/DC of fsw_c/src (clang 19)
 #   misra.txt         MISRA C:2012 findings against the recorded deviations
-#   eva.txt           Frama-C Eva alarms against the recorded justifications
+#   eva.txt           Frama-C Eva alarms against the recorded justifications, WP goals
 #   fuzz.md           executions per fuzz harness (docs/design/fuzzing.md)
 #   timing.txt        instructions per fsw_acs_cycle and module on the M4F
 #   footprint.txt     .text/.data/.bss and stack of the M4F programs
@@ -102,6 +102,14 @@ run_gate "instructions per cycle on the M4F" timing.txt "worst +[0-9]+ instructi
   bench/target/m4f_timing.sh "build/evidence-timing"
 run_gate "flight footprint on the M4F" footprint.txt "^double +-Os +ACS only" \
   bench/flight-footprint.sh "build/evidence-footprint"
+
+# Frama-C Eva and WP: the set the suite's fsw_eva test analyses (docs/eva.md);
+# the analysis times are dropped so that two runs compare
+eva_set="rw_sat trq_lpf thr_pulse guid_inertial mrp_fb guid_orbit/any guid_sunsafe/any"
+if tools/eva_check.py --root . --work build/evidence-eva --jobs 2 --timeout 240 --only $eva_set \
+     > "$tmp/eva-run.txt" 2>&1; then st=PASS; else st=FAIL; fi
+sed -E 's/ +[0-9]+\.[0-9]s( |$)/\1/' "$tmp/eva-run.txt" > "$tmp/eva.txt"; rm -f "$tmp/eva-run.txt"
+gate "Frama-C Eva / WP" "$st" "$(grep -E '^eva_check: [0-9]+ drivers' "$tmp/eva.txt" | tail -1)"
 
 # fuzz: executions per harness as recorded by the long runs (scripts/fuzz.sh)
 { echo "# Executions per fuzz harness"; echo
