@@ -27,7 +27,7 @@ std::vector<Field<FswAcsConfig>> acs_config()
       KPY_SCALAR(C, Kind::Int, has_wheels, "0/1"),
       KPY_SCALAR(C, Kind::Int, use_speed_filter, "0/1: screen the tachometers"),
       KPY_SCALAR(C, Kind::Int, use_null, "0/1: null motion toward Omega_des"),
-      KPY_VEC(C, Kind::Real, Omega_des, FSW_MAX_RW, true, "[rad/s] (num_rw) desired wheel speeds"),
+      KPY_RW_VEC(C, Omega_des, "[rad/s] (num_rw) desired wheel speeds"),
       KPY_SCALAR(C, Kind::Int, use_volt, "0/1: also compute motor voltages"),
       KPY_SCALAR(C, Kind::Int, has_thrusters, "0/1"),
       KPY_SCALAR(C, Kind::Int, pulser, "0 remainder, 1 Schmitt"),
@@ -66,12 +66,12 @@ std::vector<Field<FswAcsGeometry>> geometry_fields()
   using G = FswAcsGeometry;
   return {KPY_SCALAR(G, Kind::Int, num_rw, "0..MAX_RW"),
           KPY_MAT(G, gs_hat_B, FSW_MAX_RW, 3, true, "(num_rw, 3) spin axes"),
-          KPY_VEC(G, Kind::Real, J_s, FSW_MAX_RW, true, "[kg*m^2] (num_rw)"),
-          KPY_VEC(G, Kind::Real, u_max, FSW_MAX_RW, true, "[N*m] (num_rw)"),
+          KPY_RW_VEC(G, J_s, "[kg*m^2] (num_rw)"),
+          KPY_RW_VEC(G, u_max, "[N*m] (num_rw)"),
           KPY_SCALAR(G, Kind::Int, num_thr, "0..MAX_THR"),
           KPY_MAT(G, r_thr_B, FSW_MAX_THR, 3, true, "[m] (num_thr, 3)"),
           KPY_MAT(G, gt_hat_B, FSW_MAX_THR, 3, true, "(num_thr, 3)"),
-          KPY_VEC(G, Kind::Real, F_max, FSW_MAX_THR, true, "[N] (num_thr)"),
+          KPY_VEC(G, Kind::Real, F_max, THR_CAP, true, "[N] (num_thr)"),
           KPY_SCALAR(G, Kind::Int, num_mtq, "0..MAX_MTQ"),
           KPY_MAT(G, mtq_axis_B, FSW_MAX_MTQ, 3, true, "(num_mtq, 3)"),
           KPY_VEC(G, Kind::Real, mtq_m_max, FSW_MAX_MTQ, true, "[A*m^2] (num_mtq)")};
@@ -85,10 +85,10 @@ std::vector<Field<FswAcsSensorMsg>> sensor_fields()
           KPY_VEC(S, Kind::Real, omega_BN_B, 3, false, "[rad/s] body rate"),
           KPY_VEC(S, Kind::Real, css, FSW_MAX_CSS, true, "CSS readings"),
           KPY_VEC(S, Kind::U8, css_avail, FSW_MAX_CSS, true, "0 available, 1 unavailable"),
-          KPY_VEC(S, Kind::Real, Omega, FSW_MAX_RW, true, "[rad/s] wheel speeds"),
-          KPY_VEC(S, Kind::U8, rw_avail, FSW_MAX_RW, true, "0 available, 1 unavailable"),
+          KPY_RW_VEC(S, Omega, "[rad/s] wheel speeds"),
+          KPY_RW_MASK(S, rw_avail),
           KPY_VEC(S, Kind::Real, r_CoM_B, 3, false, "[m] centre of mass"),
-          KPY_VEC(S, Kind::U8, thr_avail, FSW_MAX_THR, true, "0 available, 1 unavailable"),
+          KPY_VEC(S, Kind::U8, thr_avail, THR_CAP, true, "0 available, 1 unavailable"),
           KPY_VEC(S, Kind::Real, B_B, 3, false, "[T] magnetic field"), KPY_SCALAR(S, Kind::U8, mag_valid, ""),
           KPY_VEC(S, Kind::Real, r_N, 3, false, "[m] position"), KPY_VEC(S, Kind::Real, v_N, 3, false, "[m/s]"),
           KPY_SCALAR(S, Kind::U8, orbit_valid, "")};
@@ -110,10 +110,10 @@ std::vector<Field<FswAcsActuatorMsg>> actuator_fields()
 {
   using A = FswAcsActuatorMsg;
   return {KPY_VEC(A, Kind::Real, Lr_B, 3, false, "[N*m] control torque"),
-          KPY_VEC(A, Kind::Real, u_s, FSW_MAX_RW, true, "[N*m] wheel torques"),
-          KPY_VEC(A, Kind::Real, V, FSW_MAX_RW, true, "[V] wheel voltages"),
-          KPY_VEC(A, Kind::Real, F, FSW_MAX_THR, true, "[N] thruster forces"),
-          KPY_VEC(A, Kind::Real, t_on, FSW_MAX_THR, true, "[s] thruster on-times"),
+          KPY_RW_VEC(A, u_s, "[N*m] wheel torques"),
+          KPY_RW_VEC(A, V, "[V] wheel voltages"),
+          KPY_VEC(A, Kind::Real, F, THR_CAP, true, "[N] thruster forces"),
+          KPY_VEC(A, Kind::Real, t_on, THR_CAP, true, "[s] thruster on-times"),
           KPY_SCALAR(A, Kind::U8, wheels_active, ""), KPY_SCALAR(A, Kind::U8, thrusters_active, ""),
           KPY_VEC(A, Kind::Real, m_cmd, FSW_MAX_MTQ, true, "[A*m^2] rod dipoles"),
           KPY_SCALAR(A, Kind::U8, mtq_active, "")};

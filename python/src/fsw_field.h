@@ -57,6 +57,15 @@ struct Field {
 #define KPY_MAT_AS(T, name, expr, r, c, cap, doc) \
   Field<T> { name, Kind::Real, r, c, cap, KPY_AT(T, expr[0][0]), doc }
 #define KPY_MAT(T, expr, r, c, cap, doc) KPY_MAT_AS(T, #expr, expr, r, c, cap, doc)
+#define RW_CAP FSW_MAX_RW
+#define THR_CAP FSW_MAX_THR
+// fields many modules share
+#define KPY_RW_AXES(T) KPY_MAT(T, gs_hat_B, RW_CAP, 3, true, "(num_rw, 3) spin axes")
+#define KPY_RW_VEC(T, expr, doc) KPY_VEC(T, Kind::Real, expr, RW_CAP, true, doc)
+#define KPY_RW_MASK(T, expr) KPY_VEC(T, Kind::U8, expr, RW_CAP, true, "(num_rw) 0 available, 1 unavailable")
+#define KPY_RW_SPEEDS(T) KPY_RW_VEC(T, Omega, "[rad/s] (num_rw) wheel speeds")
+// a module's check, init, reset and update
+#define KPY_FNS(mod) fsw_##mod##_check, fsw_##mod##_init, fsw_##mod##_reset, fsw_##mod##_update
 
 static_assert(sizeof(FswStatus) == sizeof(int) && sizeof(FswCssSunMode) == sizeof(int),
               "C enums read as int (Kind::Int)");

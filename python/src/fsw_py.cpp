@@ -144,8 +144,6 @@ FswStatus guid_inertial_update(FswGuidInertialState* st, const FswGuidInertialCo
 }  // namespace
 
 // ---- config tables (also nested in fsw_acs's config) ------------------------
-#define RW_CAP FSW_MAX_RW
-#define THR_CAP FSW_MAX_THR
 
 std::vector<Field<FswMrpFbConfig>> mrp_fb_config()
 {
@@ -157,14 +155,14 @@ std::vector<Field<FswMrpFbConfig>> mrp_fb_config()
           KPY_VEC(C, Kind::Real, known_torque_B, 3, false, "[N*m] known external torque"),
           KPY_MAT(C, I_B, 3, 3, false, "[kg*m^2] inertia about the CoM, B"),
           KPY_COUNT(C, num_rw, RW_CAP, "wheels in H, 0..MAX_RW"),
-          KPY_MAT(C, gs_hat_B, RW_CAP, 3, true, "(num_rw, 3) spin axes"),
-          KPY_VEC(C, Kind::Real, J_s, RW_CAP, true, "[kg*m^2] (num_rw) wheel spin inertias")};
+          KPY_RW_AXES(C),
+          KPY_RW_VEC(C, J_s, "[kg*m^2] (num_rw) wheel spin inertias")};
 }
 
 std::vector<Field<FswRwMapConfig>> rw_map_config()
 {
   using C = FswRwMapConfig;
-  return {KPY_COUNT(C, num_rw, RW_CAP, "1..MAX_RW"), KPY_MAT(C, gs_hat_B, RW_CAP, 3, true, "(num_rw, 3) spin axes"),
+  return {KPY_COUNT(C, num_rw, RW_CAP, "1..MAX_RW"), KPY_RW_AXES(C),
           KPY_COUNT(C, num_axes, 3, "controlled axes 0..3"),
           KPY_MAT(C, ctrl_axes_B, 3, 3, true, "(num_axes, 3) control axes, rows"),
           KPY_SCALAR(C, Kind::Int, mode, "0 min-norm, 1 power"),
@@ -175,7 +173,7 @@ std::vector<Field<FswRwSatConfig>> rw_sat_config()
 {
   using C = FswRwSatConfig;
   return {KPY_COUNT(C, num_rw, RW_CAP, "1..MAX_RW"),
-          KPY_VEC(C, Kind::Real, u_max, RW_CAP, true, "[N*m] (num_rw) torque limits"),
+          KPY_RW_VEC(C, u_max, "[N*m] (num_rw) torque limits"),
           KPY_SCALAR(C, Kind::Int, mode, "0 scale, 1 clip")};
 }
 
@@ -243,8 +241,8 @@ std::vector<Field<FswMtqDesatConfig>> mtq_desat_config()
 {
   using C = FswMtqDesatConfig;
   return {KPY_COUNT(C, num_rw, RW_CAP, "wheels, 1..MAX_RW"),
-          KPY_MAT(C, gs_hat_B, RW_CAP, 3, true, "(num_rw, 3) spin axes"),
-          KPY_VEC(C, Kind::Real, J_s, RW_CAP, true, "[kg*m^2] (num_rw) spin inertias"),
+          KPY_RW_AXES(C),
+          KPY_RW_VEC(C, J_s, "[kg*m^2] (num_rw) spin inertias"),
           KPY_SCALAR(C, Kind::Real, k_desat, "[1/s] momentum feedback gain"),
           KPY_VEC(C, Kind::Real, h_target_B, 3, false, "[N*m*s] target wheel momentum"),
           KPY_SCALAR(C, Kind::Real, tau_max, "[N*m] requested torque limit"),
@@ -264,8 +262,8 @@ std::vector<Field<FswRwBiasConfig>> rw_bias_config()
 {
   using C = FswRwBiasConfig;
   return {KPY_COUNT(C, num_rw, RW_CAP, "wheels, 4..MAX_RW"),
-          KPY_MAT(C, gs_hat_B, RW_CAP, 3, true, "(num_rw, 3) spin axes"),
-          KPY_VEC(C, Kind::Real, Omega_bias, RW_CAP, true, "[rad/s] (num_rw) preferred speeds"),
+          KPY_RW_AXES(C),
+          KPY_RW_VEC(C, Omega_bias, "[rad/s] (num_rw) preferred speeds"),
           KPY_SCALAR(C, Kind::Real, Omega_keepout, "[rad/s] keep-out band half-width about 0"),
           KPY_SCALAR(C, Kind::Real, Omega_hyst, "[rad/s] hysteresis of the band")};
 }
@@ -274,9 +272,9 @@ std::vector<Field<FswRwNullConfig>> rw_null_config()
 {
   using C = FswRwNullConfig;
   return {KPY_COUNT(C, num_rw, RW_CAP, "wheels, 4..MAX_RW"),
-          KPY_MAT(C, gs_hat_B, RW_CAP, 3, true, "(num_rw, 3) spin axes"),
+          KPY_RW_AXES(C),
           KPY_SCALAR(C, Kind::Real, k_null, "[N*m*s] null-motion gain"),
-          KPY_VEC(C, Kind::Real, u_max, RW_CAP, true, "[N*m] (num_rw) torque limits (scale_to_fit)"),
+          KPY_RW_VEC(C, u_max, "[N*m] (num_rw) torque limits (scale_to_fit)"),
           KPY_SCALAR(C, Kind::Int, scale_to_fit, "0/1: shrink the null torque to the limits")};
 }
 
@@ -284,9 +282,9 @@ std::vector<Field<FswRwNullRegenConfig>> rw_null_regen_config()
 {
   using C = FswRwNullRegenConfig;
   return {KPY_COUNT(C, num_rw, RW_CAP, "wheels, 4..MAX_RW"),
-          KPY_MAT(C, gs_hat_B, RW_CAP, 3, true, "(num_rw, 3) spin axes"),
+          KPY_RW_AXES(C),
           KPY_SCALAR(C, Kind::Real, k_P, "[N*m*s] gain"),
-          KPY_VEC(C, Kind::Real, u_max, RW_CAP, true, "[N*m] (num_rw) torque limits"),
+          KPY_RW_VEC(C, u_max, "[N*m] (num_rw) torque limits"),
           KPY_SCALAR(C, Kind::Int, mode, "the law (docs/fsw/rw_null_regen.md)")};
 }
 
@@ -294,14 +292,14 @@ std::vector<Field<FswRwSpeedFilterConfig>> rw_speed_filter_config()
 {
   using C = FswRwSpeedFilterConfig;
   return {KPY_COUNT(C, num_rw, RW_CAP, "wheels, 1..MAX_RW"),
-          KPY_VEC(C, Kind::Real, u_max, RW_CAP, true, "[N*m] (num_rw) torque limits"),
-          KPY_VEC(C, Kind::Real, J_s, RW_CAP, true, "[kg*m^2] (num_rw) spin inertias"),
-          KPY_VEC(C, Kind::Real, noise, RW_CAP, true, "[rad/s] (num_rw) tachometer noise"),
+          KPY_RW_VEC(C, u_max, "[N*m] (num_rw) torque limits"),
+          KPY_RW_VEC(C, J_s, "[kg*m^2] (num_rw) spin inertias"),
+          KPY_RW_VEC(C, noise, "[rad/s] (num_rw) tachometer noise"),
           KPY_SCALAR(C, Kind::U32, k_reject, "rejections in a row that fail a wheel"),
           KPY_SCALAR(C, Kind::U32, n_recover, "good samples that recover it"),
           KPY_SCALAR(C, Kind::U32, n_stale, "identical samples that fail it"),
           KPY_SCALAR(C, Kind::U32, n_window, "torque-consistency window (0 off)"),
-          KPY_VEC(C, Kind::Real, resid_tol, RW_CAP, true, "[rad/s] (num_rw) window residual tolerance")};
+          KPY_RW_VEC(C, resid_tol, "[rad/s] (num_rw) window residual tolerance")};
 }
 
 std::vector<Field<FswRwVoltConfig>> rw_volt_config()
@@ -311,9 +309,9 @@ std::vector<Field<FswRwVoltConfig>> rw_volt_config()
           KPY_SCALAR(C, Kind::Real, V_min, "[V] smallest commanded |V| (dead zone)"),
           KPY_SCALAR(C, Kind::Real, V_max, "[V] largest |V|"),
           KPY_SCALAR(C, Kind::Real, K_V, "[V/(N*m)] volts per torque"),
-          KPY_VEC(C, Kind::Real, u_max, RW_CAP, true, "[N*m] (num_rw) torque limits"),
-          KPY_VEC(C, Kind::Real, J_s, RW_CAP, true, "[kg*m^2] (num_rw) spin inertias"),
-          KPY_VEC(C, Kind::Real, Omega_dot_max, RW_CAP, true, "[rad/s^2] (num_rw) rate gate"),
+          KPY_RW_VEC(C, u_max, "[N*m] (num_rw) torque limits"),
+          KPY_RW_VEC(C, J_s, "[kg*m^2] (num_rw) spin inertias"),
+          KPY_RW_VEC(C, Omega_dot_max, "[rad/s^2] (num_rw) rate gate"),
           KPY_SCALAR(C, Kind::Int, gate_rate, "0/1: the acceleration gate")};
 }
 
@@ -335,8 +333,8 @@ std::vector<Field<FswThrMomentumConfig>> thr_momentum_config()
 {
   using C = FswThrMomentumConfig;
   return {KPY_COUNT(C, num_rw, RW_CAP, "wheels, 1..MAX_RW"),
-          KPY_MAT(C, gs_hat_B, RW_CAP, 3, true, "(num_rw, 3) spin axes"),
-          KPY_VEC(C, Kind::Real, J_s, RW_CAP, true, "[kg*m^2] (num_rw) spin inertias"),
+          KPY_RW_AXES(C),
+          KPY_RW_VEC(C, J_s, "[kg*m^2] (num_rw) spin inertias"),
           KPY_SCALAR(C, Kind::Real, h_upper, "[N*m*s] a dump starts above it"),
           KPY_SCALAR(C, Kind::Real, h_lower, "[N*m*s] a dump ends at it"),
           KPY_SCALAR(C, Kind::Real, L_dump, "[N*m] dump torque"),
@@ -463,11 +461,10 @@ void bind_fsw(py::module_& m)
     using S = FswMrpFbState;
     auto in = std::vector<Field<I>>{KPY_SCALAR(I, Kind::U64, t_ns, "[ns]")};
     append(in, att_guid<I>());
-    append(in, {KPY_VEC(I, Kind::Real, Omega, RW_CAP, true, "[rad/s] (num_rw) wheel speeds"),
-                KPY_VEC(I, Kind::U8, rw_avail, RW_CAP, true, "(num_rw) 0 available, 1 unavailable")});
+    append(in, {KPY_RW_SPEEDS(I),
+                KPY_RW_MASK(I, rw_avail)});
     bind_algorithm(m, Spec<FswMrpFbConfig, S, I, O>{
-        "MrpFb", "MRP feedback control law (docs/fsw/mrp_fb.md)", fsw_mrp_fb_check, fsw_mrp_fb_init,
-        fsw_mrp_fb_reset, fsw_mrp_fb_update, mrp_fb_config(), in,
+        "MrpFb", "MRP feedback control law (docs/fsw/mrp_fb.md)", KPY_FNS(mrp_fb), mrp_fb_config(), in,
         {KPY_VEC(O, Kind::Real, torque_B, 3, false, "[N*m] Lr"),
          KPY_VEC(O, Kind::Real, int_torque_B, 3, false, "[N*m] integral part")},
         {KPY_SCALAR(S, Kind::Int, ready, ""), KPY_VEC(S, Kind::Real, int_sigma, 3, false, "[N*m*s]")}});
@@ -476,31 +473,28 @@ void bind_fsw(py::module_& m)
     using I = FswRwMapIn;
     using O = FswRwMapOut;
     bind_algorithm(m, Spec<FswRwMapConfig, FswRwMapState, I, O>{
-        "RwMap", "Reaction-wheel torque mapping (docs/fsw/rw_map.md)", fsw_rw_map_check, fsw_rw_map_init,
-        fsw_rw_map_reset, fsw_rw_map_update, rw_map_config(),
+        "RwMap", "Reaction-wheel torque mapping (docs/fsw/rw_map.md)", KPY_FNS(rw_map), rw_map_config(),
         {KPY_VEC(I, Kind::Real, Lr_B, 3, false, "[N*m] torque the wheels must apply to the body"),
-         KPY_VEC(I, Kind::Real, Omega, RW_CAP, true, "[rad/s] (num_rw) wheel speeds"),
-         KPY_VEC(I, Kind::U8, avail, RW_CAP, true, "(num_rw) 0 available, 1 unavailable")},
-        {KPY_VEC(O, Kind::Real, u_s, RW_CAP, true, "[N*m] motor torques (MAX_RW; 0 beyond num_rw)")},
+         KPY_RW_SPEEDS(I),
+         KPY_RW_MASK(I, avail)},
+        {KPY_RW_VEC(O, u_s, "[N*m] motor torques (MAX_RW; 0 beyond num_rw)")},
         ready_only<FswRwMapState>()});
   }
   {
     using I = FswRwSatIn;
     using O = FswRwSatOut;
     bind_algorithm(m, Spec<FswRwSatConfig, FswRwSatState, I, O>{
-        "RwSat", "Reaction-wheel torque saturation (fsw_c/include/fsw/rw_sat.h)", fsw_rw_sat_check,
-        fsw_rw_sat_init, fsw_rw_sat_reset, fsw_rw_sat_update, rw_sat_config(),
-        {KPY_VEC(I, Kind::Real, u_s, RW_CAP, true, "[N*m] (num_rw) commanded torques"),
-         KPY_VEC(I, Kind::U8, avail, RW_CAP, true, "(num_rw) 0 available, 1 unavailable")},
-        {KPY_VEC(O, Kind::Real, u_s, RW_CAP, true, "[N*m] limited torques")}, ready_only<FswRwSatState>()});
+        "RwSat", "Reaction-wheel torque saturation (fsw_c/include/fsw/rw_sat.h)", KPY_FNS(rw_sat), rw_sat_config(),
+        {KPY_RW_VEC(I, u_s, "[N*m] (num_rw) commanded torques"),
+         KPY_RW_MASK(I, avail)},
+        {KPY_RW_VEC(O, u_s, "[N*m] limited torques")}, ready_only<FswRwSatState>()});
   }
   {
     using I = FswTrqLpfIn;
     using O = FswTrqLpfOut;
     using S = FswTrqLpfState;
     bind_algorithm(m, Spec<FswTrqLpfConfig, S, I, O>{
-        "TrqLpf", "Control-torque low-pass filter, first-order Tustin (docs/fsw/trq_lpf.md)", fsw_trq_lpf_check,
-        fsw_trq_lpf_init, fsw_trq_lpf_reset, fsw_trq_lpf_update, trq_lpf_config(),
+        "TrqLpf", "Control-torque low-pass filter, first-order Tustin (docs/fsw/trq_lpf.md)", KPY_FNS(trq_lpf), trq_lpf_config(),
         {KPY_VEC(I, Kind::Real, Lr_B, 3, false, "[N*m] control torque"), KPY_SCALAR(I, Kind::U64, t_ns, "[ns]")},
         {KPY_VEC(O, Kind::Real, LrF_B, 3, false, "[N*m] filtered torque")},
         {KPY_SCALAR(S, Kind::Int, ready, ""), KPY_VEC(S, Kind::Real, Lr_prev, 3, false, "[N*m]"),
@@ -514,8 +508,7 @@ void bind_fsw(py::module_& m)
     append(in, nest("ref", &I::ref, att_ref()));
     for (auto& f : in) f.name = f.name.substr(f.name.find('.') + 1);  // ref.sigma_RN -> sigma_RN
     bind_algorithm(m, Spec<FswAttTrackConfig, FswAttTrackState, I, O>{
-        "AttTrack", "Attitude tracking error (docs/fsw/att_track.md)", fsw_att_track_check, fsw_att_track_init,
-        fsw_att_track_reset, fsw_att_track_update, att_track_config(), in,
+        "AttTrack", "Attitude tracking error (docs/fsw/att_track.md)", KPY_FNS(att_track), att_track_config(), in,
         {KPY_VEC(O, Kind::Real, sigma_BR, 3, false, "[-]"), KPY_VEC(O, Kind::Real, omega_BR_B, 3, false, "[rad/s]"),
          KPY_VEC(O, Kind::Real, omega_RN_B, 3, false, "[rad/s]"),
          KPY_VEC(O, Kind::Real, omega_dot_RN_B, 3, false, "[rad/s^2]")},
@@ -525,8 +518,7 @@ void bind_fsw(py::module_& m)
     using I = FswBdotIn;
     using O = FswBdotOut;
     bind_algorithm(m, Spec<FswBdotConfig, FswBdotState, I, O>{
-        "Bdot", "B-dot detumbling with magnetorquers (docs/fsw/bdot.md)", fsw_bdot_check, fsw_bdot_init,
-        fsw_bdot_reset, fsw_bdot_update, bdot_config(),
+        "Bdot", "B-dot detumbling with magnetorquers (docs/fsw/bdot.md)", KPY_FNS(bdot), bdot_config(),
         {KPY_SCALAR(I, Kind::U64, t_ns, "[ns]"), KPY_VEC(I, Kind::Real, B_B, 3, false, "[T] measured field"),
          KPY_SCALAR(I, Kind::U8, B_valid, "1 valid sample"),
          KPY_VEC(I, Kind::Real, omega_BN_B, 3, false, "[rad/s] body rate"),
@@ -546,7 +538,7 @@ void bind_fsw(py::module_& m)
     using O = FswCssSunOut;
     bind_algorithm(m, Spec<FswCssSunConfig, FswCssSunState, I, O>{
         "CssSun", "Sun heading from coarse sun sensors, weighted least squares (docs/fsw/css_sun.md)",
-        fsw_css_sun_check, fsw_css_sun_init, fsw_css_sun_reset, fsw_css_sun_update, css_sun_config(),
+        KPY_FNS(css_sun), css_sun_config(),
         {KPY_VEC(I, Kind::Real, reading, FSW_MAX_CSS, true, "(num_css) raw readings"),
          KPY_VEC(I, Kind::U8, avail, FSW_MAX_CSS, true, "(num_css) 0 available, 1 unavailable")},
         {KPY_VEC(O, Kind::Real, sun_hat_B, 3, false, "[-] unit Sun heading (0 when sun_valid = 0)"),
@@ -567,7 +559,7 @@ void bind_fsw(py::module_& m)
     using I = FswGuidOrbitIn;
     bind_algorithm(m, Spec<FswGuidOrbitConfig, FswGuidOrbitState, I, FswAttRef>{
         "GuidOrbit", "Orbit-referenced guidance, nadir or velocity pointing (docs/fsw/guid_orbit.md)",
-        fsw_guid_orbit_check, fsw_guid_orbit_init, fsw_guid_orbit_reset, fsw_guid_orbit_update, guid_orbit_config(),
+        KPY_FNS(guid_orbit), guid_orbit_config(),
         {KPY_VEC(I, Kind::Real, r_N, 3, false, "[m] position, N"), KPY_VEC(I, Kind::Real, v_N, 3, false, "[m/s] velocity, N"),
          KPY_SCALAR(I, Kind::U8, valid, "1 valid orbit")},
         att_ref(), ready_only<FswGuidOrbitState>()});
@@ -579,8 +571,7 @@ void bind_fsw(py::module_& m)
     append(out, {KPY_SCALAR(O, Kind::Real, sun_angle_err, "[rad] angle between s_cmd and the Sun"),
                  KPY_SCALAR(O, Kind::Int, sun_valid, "1 when a Sun heading was used")});
     bind_algorithm(m, Spec<FswGuidSunsafeConfig, FswGuidSunsafeState, I, O>{
-        "GuidSunsafe", "Sun-safe pointing guidance (docs/fsw/guid_sunsafe.md)", fsw_guid_sunsafe_check,
-        fsw_guid_sunsafe_init, fsw_guid_sunsafe_reset, fsw_guid_sunsafe_update, guid_sunsafe_config(),
+        "GuidSunsafe", "Sun-safe pointing guidance (docs/fsw/guid_sunsafe.md)", KPY_FNS(guid_sunsafe), guid_sunsafe_config(),
         {KPY_VEC(I, Kind::Real, sun_B, 3, false, "[-] Sun heading, B (0: none)"),
          KPY_VEC(I, Kind::Real, omega_BN_B, 3, false, "[rad/s] body rate")},
         out, ready_only<FswGuidSunsafeState>()});
@@ -589,10 +580,9 @@ void bind_fsw(py::module_& m)
     using I = FswMtqDesatIn;
     using O = FswMtqDesatOut;
     bind_algorithm(m, Spec<FswMtqDesatConfig, FswMtqDesatState, I, O>{
-        "MtqDesat", "Wheel momentum unloading with magnetorquers (docs/fsw/mtq_desat.md)", fsw_mtq_desat_check,
-        fsw_mtq_desat_init, fsw_mtq_desat_reset, fsw_mtq_desat_update, mtq_desat_config(),
-        {KPY_VEC(I, Kind::Real, Omega, RW_CAP, true, "[rad/s] (num_rw) wheel speeds"),
-         KPY_VEC(I, Kind::U8, avail, RW_CAP, true, "(num_rw) 0 available, 1 unavailable"),
+        "MtqDesat", "Wheel momentum unloading with magnetorquers (docs/fsw/mtq_desat.md)", KPY_FNS(mtq_desat), mtq_desat_config(),
+        {KPY_RW_SPEEDS(I),
+         KPY_RW_MASK(I, avail),
          KPY_VEC(I, Kind::Real, B_B, 3, false, "[T] field, B"), KPY_SCALAR(I, Kind::U8, B_valid, "1 valid field")},
         {KPY_VEC(O, Kind::Real, tau_req_B, 3, false, "[N*m] requested torque"),
          KPY_VEC(O, Kind::Real, m_B, 3, false, "[A*m^2] dipole"),
@@ -605,8 +595,7 @@ void bind_fsw(py::module_& m)
     using I = FswMtqMapIn;
     using O = FswMtqMapOut;
     bind_algorithm(m, Spec<FswMtqMapConfig, FswMtqMapState, I, O>{
-        "MtqMap", "Magnetorquer mapping, torque or dipole to rod commands (docs/fsw/mtq_map.md)", fsw_mtq_map_check,
-        fsw_mtq_map_init, fsw_mtq_map_reset, fsw_mtq_map_update, mtq_map_config(),
+        "MtqMap", "Magnetorquer mapping, torque or dipole to rod commands (docs/fsw/mtq_map.md)", KPY_FNS(mtq_map), mtq_map_config(),
         {KPY_VEC(I, Kind::Real, tau_B, 3, false, "[N*m] requested torque"),
          KPY_VEC(I, Kind::Real, m_req_B, 3, false, "[A*m^2] requested dipole (use_dipole = 1)"),
          KPY_SCALAR(I, Kind::U8, use_dipole, "1: map m_req_B, 0: map tau_B"),
@@ -624,11 +613,10 @@ void bind_fsw(py::module_& m)
     using I = FswRwBiasIn;
     using O = FswRwBiasOut;
     bind_algorithm(m, Spec<FswRwBiasConfig, FswRwBiasState, I, O>{
-        "RwBias", "Wheel speed biasing away from zero crossings (docs/fsw/rw_bias.md)", fsw_rw_bias_check,
-        fsw_rw_bias_init, fsw_rw_bias_reset, fsw_rw_bias_update, rw_bias_config(),
-        {KPY_VEC(I, Kind::Real, Omega, RW_CAP, true, "[rad/s] (num_rw) wheel speeds"),
-         KPY_VEC(I, Kind::U8, avail, RW_CAP, true, "(num_rw) 0 available, 1 unavailable")},
-        {KPY_VEC(O, Kind::Real, Omega_des, RW_CAP, true, "[rad/s] desired speeds"),
+        "RwBias", "Wheel speed biasing away from zero crossings (docs/fsw/rw_bias.md)", KPY_FNS(rw_bias), rw_bias_config(),
+        {KPY_RW_SPEEDS(I),
+         KPY_RW_MASK(I, avail)},
+        {KPY_RW_VEC(O, Omega_des, "[rad/s] desired speeds"),
          KPY_VEC(O, Kind::U8, in_band, RW_CAP, true, "in the keep-out band"),
          KPY_VEC(O, Kind::U8, unavoidable, RW_CAP, true, "crossing cannot be avoided"),
          KPY_SCALAR(O, Kind::U8, crossing_unavoidable, "any unavoidable"),
@@ -640,13 +628,12 @@ void bind_fsw(py::module_& m)
     using I = FswRwNullIn;
     using O = FswRwNullOut;
     bind_algorithm(m, Spec<FswRwNullConfig, FswRwNullState, I, O>{
-        "RwNull", "Reaction-wheel null motion toward desired speeds (docs/fsw/rw_null.md)", fsw_rw_null_check,
-        fsw_rw_null_init, fsw_rw_null_reset, fsw_rw_null_update, rw_null_config(),
-        {KPY_VEC(I, Kind::Real, u_s, RW_CAP, true, "[N*m] (num_rw) mapped torques"),
-         KPY_VEC(I, Kind::Real, Omega, RW_CAP, true, "[rad/s] (num_rw) wheel speeds"),
-         KPY_VEC(I, Kind::Real, Omega_des, RW_CAP, true, "[rad/s] (num_rw) desired speeds"),
-         KPY_VEC(I, Kind::U8, avail, RW_CAP, true, "(num_rw) 0 available, 1 unavailable")},
-        {KPY_VEC(O, Kind::Real, u_s, RW_CAP, true, "[N*m] torques with the null motion"),
+        "RwNull", "Reaction-wheel null motion toward desired speeds (docs/fsw/rw_null.md)", KPY_FNS(rw_null), rw_null_config(),
+        {KPY_RW_VEC(I, u_s, "[N*m] (num_rw) mapped torques"),
+         KPY_RW_SPEEDS(I),
+         KPY_RW_VEC(I, Omega_des, "[rad/s] (num_rw) desired speeds"),
+         KPY_RW_MASK(I, avail)},
+        {KPY_RW_VEC(O, u_s, "[N*m] torques with the null motion"),
          KPY_SCALAR(O, Kind::Real, kappa, "[-] scale of the null torque")},
         ready_only<FswRwNullState>()});
   }
@@ -654,12 +641,11 @@ void bind_fsw(py::module_& m)
     using I = FswRwNullRegenIn;
     using O = FswRwNullRegenOut;
     bind_algorithm(m, Spec<FswRwNullRegenConfig, FswRwNullRegenState, I, O>{
-        "RwNullRegen", "Null motion for power (docs/fsw/rw_null_regen.md)", fsw_rw_null_regen_check,
-        fsw_rw_null_regen_init, fsw_rw_null_regen_reset, fsw_rw_null_regen_update, rw_null_regen_config(),
-        {KPY_VEC(I, Kind::Real, u_s, RW_CAP, true, "[N*m] (num_rw) mapped torques"),
-         KPY_VEC(I, Kind::Real, Omega, RW_CAP, true, "[rad/s] (num_rw) wheel speeds"),
-         KPY_VEC(I, Kind::U8, avail, RW_CAP, true, "(num_rw) 0 available, 1 unavailable")},
-        {KPY_VEC(O, Kind::Real, u_s, RW_CAP, true, "[N*m] torques with the null motion"),
+        "RwNullRegen", "Null motion for power (docs/fsw/rw_null_regen.md)", KPY_FNS(rw_null_regen), rw_null_regen_config(),
+        {KPY_RW_VEC(I, u_s, "[N*m] (num_rw) mapped torques"),
+         KPY_RW_SPEEDS(I),
+         KPY_RW_MASK(I, avail)},
+        {KPY_RW_VEC(O, u_s, "[N*m] torques with the null motion"),
          KPY_SCALAR(O, Kind::Real, power, "[W] mechanical power sum u Omega")},
         ready_only<FswRwNullRegenState>()});
   }
@@ -669,14 +655,14 @@ void bind_fsw(py::module_& m)
     bind_algorithm(m, Spec<FswRwSpeedFilterConfig, FswRwSpeedFilterState, I, O>{
         "RwSpeedFilter", "Tachometer screening: outliers, NaN, stale and torque-inconsistent readings "
                          "(docs/fsw/rw_speed_filter.md)",
-        fsw_rw_speed_filter_check, fsw_rw_speed_filter_init, fsw_rw_speed_filter_reset, fsw_rw_speed_filter_update,
+        KPY_FNS(rw_speed_filter),
         rw_speed_filter_config(),
-        {KPY_VEC(I, Kind::Real, Omega_meas, RW_CAP, true, "[rad/s] (num_rw) measured speeds"),
-         KPY_VEC(I, Kind::U8, avail, RW_CAP, true, "(num_rw) 0 available, 1 unavailable"),
+        {KPY_RW_VEC(I, Omega_meas, "[rad/s] (num_rw) measured speeds"),
+         KPY_RW_MASK(I, avail),
          KPY_SCALAR(I, Kind::U64, t_ns, "[ns]"),
-         KPY_VEC(I, Kind::Real, u_applied, RW_CAP, true, "[N*m] (num_rw) torques applied last cycle"),
+         KPY_RW_VEC(I, u_applied, "[N*m] (num_rw) torques applied last cycle"),
          KPY_SCALAR(I, Kind::U8, u_valid, "1 when u_applied is known")},
-        {KPY_VEC(O, Kind::Real, Omega, RW_CAP, true, "[rad/s] screened speeds"),
+        {KPY_RW_VEC(O, Omega, "[rad/s] screened speeds"),
          KPY_VEC(O, Kind::U8, avail, RW_CAP, true, "availability after screening"),
          KPY_SCALAR(O, Kind::U64, rejected, "bit i: wheel i's sample rejected"),
          KPY_SCALAR(O, Kind::U64, failed, "bit i: wheel i failed"),
@@ -687,13 +673,12 @@ void bind_fsw(py::module_& m)
     using I = FswRwVoltIn;
     using O = FswRwVoltOut;
     bind_algorithm(m, Spec<FswRwVoltConfig, FswRwVoltState, I, O>{
-        "RwVolt", "Wheel motor voltages from torques (docs/fsw/rw_volt.md)", fsw_rw_volt_check, fsw_rw_volt_init,
-        fsw_rw_volt_reset, fsw_rw_volt_update, rw_volt_config(),
-        {KPY_VEC(I, Kind::Real, u_s, RW_CAP, true, "[N*m] (num_rw) torques"),
-         KPY_VEC(I, Kind::Real, Omega, RW_CAP, true, "[rad/s] (num_rw) wheel speeds"),
-         KPY_VEC(I, Kind::U8, avail, RW_CAP, true, "(num_rw) 0 available, 1 unavailable"),
+        "RwVolt", "Wheel motor voltages from torques (docs/fsw/rw_volt.md)", KPY_FNS(rw_volt), rw_volt_config(),
+        {KPY_RW_VEC(I, u_s, "[N*m] (num_rw) torques"),
+         KPY_RW_SPEEDS(I),
+         KPY_RW_MASK(I, avail),
          KPY_SCALAR(I, Kind::U64, t_ns, "[ns]"), KPY_SCALAR(I, Kind::Int, has_Omega, "1 when Omega is measured")},
-        {KPY_VEC(O, Kind::Real, V, RW_CAP, true, "[V] motor voltages"),
+        {KPY_RW_VEC(O, V, "[V] motor voltages"),
          KPY_SCALAR(O, Kind::U64, fault, "bit i: wheel i's rate gate tripped")},
         ready_only<FswRwVoltState>()});
   }
@@ -701,8 +686,7 @@ void bind_fsw(py::module_& m)
     using I = FswThrMapIn;
     using O = FswThrMapOut;
     bind_algorithm(m, Spec<FswThrMapConfig, FswThrMapState, I, O>{
-        "ThrMap", "Thruster force mapping, non-negative least squares (docs/fsw/thr_map.md)", fsw_thr_map_check,
-        fsw_thr_map_init, fsw_thr_map_reset, fsw_thr_map_update, thr_map_config(),
+        "ThrMap", "Thruster force mapping, non-negative least squares (docs/fsw/thr_map.md)", KPY_FNS(thr_map), thr_map_config(),
         {KPY_VEC(I, Kind::Real, Lr_B, 3, false, "[N*m] requested torque"),
          KPY_VEC(I, Kind::Real, r_CoM_B, 3, false, "[m] centre of mass, B"),
          KPY_VEC(I, Kind::U8, avail, THR_CAP, true, "(num_thr) 0 available, 1 unavailable")},
@@ -712,11 +696,10 @@ void bind_fsw(py::module_& m)
     using I = FswThrMomentumIn;
     using O = FswThrMomentumOut;
     bind_algorithm(m, Spec<FswThrMomentumConfig, FswThrMomentumState, I, O>{
-        "ThrMomentum", "Wheel momentum dumping with thrusters (docs/fsw/thr_momentum.md)", fsw_thr_momentum_check,
-        fsw_thr_momentum_init, fsw_thr_momentum_reset, fsw_thr_momentum_update, thr_momentum_config(),
+        "ThrMomentum", "Wheel momentum dumping with thrusters (docs/fsw/thr_momentum.md)", KPY_FNS(thr_momentum), thr_momentum_config(),
         {KPY_SCALAR(I, Kind::U64, t_ns, "[ns]"),
-         KPY_VEC(I, Kind::Real, Omega, RW_CAP, true, "[rad/s] (num_rw) wheel speeds"),
-         KPY_VEC(I, Kind::U8, avail, RW_CAP, true, "(num_rw) 0 available, 1 unavailable"),
+         KPY_RW_SPEEDS(I),
+         KPY_RW_MASK(I, avail),
          KPY_VEC(I, Kind::Real, t_on_prev, THR_CAP, true, "[s] (num_thr) last cycle's on-times"),
          KPY_SCALAR(I, Kind::U8, enable, "1 dumping on"), KPY_SCALAR(I, Kind::U8, force_dump, "1 dump now")},
         {KPY_VEC(O, Kind::Real, L_thr_B, 3, false, "[N*m] torque request for the thrusters"),
@@ -730,18 +713,15 @@ void bind_fsw(py::module_& m)
         ready_only<FswThrMomentumState>()});
   }
   bind_algorithm(m, Spec<FswThrPulseRemConfig, FswThrPulseRemState, FswThrPulseRemIn, FswThrPulseRemOut>{
-      "ThrPulseRem", "Thruster pulsing with remainder tracking (docs/fsw/thr_pulse_rem.md)", fsw_thr_pulse_rem_check,
-      fsw_thr_pulse_rem_init, fsw_thr_pulse_rem_reset, fsw_thr_pulse_rem_update, thr_pulse_rem_config(),
+      "ThrPulseRem", "Thruster pulsing with remainder tracking (docs/fsw/thr_pulse_rem.md)", KPY_FNS(thr_pulse_rem), thr_pulse_rem_config(),
       pulse_in<FswThrPulseRemIn>(), pulse_out<FswThrPulseRemOut>(), ready_common<FswThrPulseRemState>()});
   bind_algorithm(m, Spec<FswThrPulseSchmittConfig, FswThrPulseSchmittState, FswThrPulseSchmittIn,
                          FswThrPulseSchmittOut>{
       "ThrPulseSchmitt", "Thruster pulsing with a Schmitt trigger (docs/fsw/thr_pulse_schmitt.md)",
-      fsw_thr_pulse_schmitt_check, fsw_thr_pulse_schmitt_init, fsw_thr_pulse_schmitt_reset,
-      fsw_thr_pulse_schmitt_update, thr_pulse_schmitt_config(), pulse_in<FswThrPulseSchmittIn>(),
+      KPY_FNS(thr_pulse_schmitt), thr_pulse_schmitt_config(), pulse_in<FswThrPulseSchmittIn>(),
       pulse_out<FswThrPulseSchmittOut>(), ready_common<FswThrPulseSchmittState>()});
   bind_algorithm(m, Spec<FswThrPulseRoundConfig, FswThrPulseRoundState, FswThrPulseRoundIn, FswThrPulseRoundOut>{
-      "ThrPulseRound", "Thruster pulsing by rounding (docs/fsw/thr_pulse_round.md)", fsw_thr_pulse_round_check,
-      fsw_thr_pulse_round_init, fsw_thr_pulse_round_reset, fsw_thr_pulse_round_update, thr_pulse_round_config(),
+      "ThrPulseRound", "Thruster pulsing by rounding (docs/fsw/thr_pulse_round.md)", KPY_FNS(thr_pulse_round), thr_pulse_round_config(),
       pulse_in<FswThrPulseRoundIn>(), pulse_out<FswThrPulseRoundOut>(), ready_common<FswThrPulseRoundState>()});
 
   bind_fsw_acs(m);
