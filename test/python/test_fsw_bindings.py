@@ -16,6 +16,7 @@ import numpy as np
 import kestrel
 from kestrel import fsw
 
+THR_MAP_NNLS = 1  # FSW_THR_MAP_NNLS (fsw/thr_map.h)
 SRC = os.environ.get("KESTREL_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 
 
@@ -445,9 +446,9 @@ def golden_rows():
 
 
 class AcsTest(unittest.TestCase):
-    """fsw_acs as a whole: the golden wheel scenario (test/fsw_c/acs_fixture.hpp, golden_config(0))."""
+    """fsw_acs as a whole: the golden scenarios (test/fsw_c/acs_fixture.hpp, golden_config)."""
 
-    def golden_acs(self):
+    def base_acs(self):
         a = fsw.Acs(initial_mode=fsw.AcsMode.SUN_SAFE, initial_actuation=fsw.AcsActuation.WHEELS)
         a.set("css.num_css", 6)
         a.set("css.n_hat_B", [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]])
@@ -463,6 +464,10 @@ class AcsTest(unittest.TestCase):
         a.set("mrp_fb.I_B", np.diag([900.0, 800.0, 600.0]))
         a.set("lpf.h", 0.5)
         a.set("lpf.omega_c", 1.0)
+        return a
+
+    def golden_acs(self):
+        a = self.base_acs()
         a.set_geometry(num_rw=4, gs_hat_B=pyramid(), J_s=[0.1] * 4, u_max=[0.2] * 4)
         a.set("rw_map.num_axes", 3)
         a.set("rw_map.ctrl_axes_B", np.eye(3))
@@ -474,6 +479,37 @@ class AcsTest(unittest.TestCase):
             a.set(k, 1)
         a.set("Omega_des", [20.0])
         return a
+
+    def thruster_acs(self, pulser):
+        a = self.base_acs()
+        a.set("initial_mode", fsw.AcsMode.INERTIAL)
+        a.set("initial_actuation", fsw.AcsActuation.THRUSTERS)
+        a.set_geometry(num_thr=8, r_thr_B=ThrusterTest.R, gt_hat_B=ThrusterTest.D, F_max=[1.0] * 8)
+        a.set("mrp_fb.K", 20.0)
+        a.set("mrp_fb.P", 200.0)
+        a.set("thr_map.control_axes_B", np.eye(3))
+        a.set("thr_map.thr_force_sign", 1)
+        a.set("thr_map.mode", THR_MAP_NNLS)
+        a.set("pulser", pulser)
+        for p in ("pulse_rem", "pulse_schmitt"):
+            a.set(p + ".t_min", 0.02)
+            a.set(p + ".init_off_pulse_on_time", 2.0)
+        a.set("pulse_schmitt.level_on", 0.75)
+        a.set("pulse_schmitt.level_off", 0.25)
+        return a
+
+    def test_golden_thruster_scenarios(self):
+        for sc in (1, 2):  # remainder and Schmitt pulsers
+            a = self.thruster_acs(sc - 1)
+            self.assertEqual(a.init(), fsw.OK)
+            rows = [r for r in golden_rows() if r[0] == sc]
+            self.assertGreater(len(rows), 10)
+            for (_, cycle, mode, t_ns, sigma, omega, css, Om, status, Lr, u, V, t_on) in rows:
+                s, act, hlth = a.cycle(cmd=dict(mode=mode, actuation=1), t_ns=t_ns, att_valid=1, sigma_BN=sigma,
+                                       omega_BN_B=omega, css=css, Omega=Om)
+                self.assertEqual(int(s), status, (sc, cycle))
+                np.testing.assert_allclose(act["Lr_B"], Lr, rtol=0, atol=1e-12, err_msg=str((sc, cycle)))
+                np.testing.assert_allclose(act["t_on"][:8], t_on, rtol=0, atol=1e-12, err_msg=str((sc, cycle)))
 
     def test_golden_wheel_scenario(self):
         a = self.golden_acs()
