@@ -491,10 +491,13 @@ class FswTest(unittest.TestCase):
         self.assertEqual(m.update(t_ns=5, **self.inputs)[0], fsw.OK)
         self.assertEqual(m.update(t_ns=5, **self.inputs)[0], fsw.E_TIME)
         m.K = -1.0
-        self.assertEqual(m.check(), fsw.E_CONFIG)
+        with self.assertRaises(fsw.ConfigError) as e:
+            m.check()
+        self.assertEqual((e.exception.status, e.exception.field), (fsw.E_CONFIG, "K"))
         self.assertEqual(fsw.status_name(fsw.E_CONFIG), "FSW_E_CONFIG")
-        m.num_rw = fsw.MAX_RW + 1
-        self.assertEqual(fsw.MrpFb(K=1, P=1, I_B=np.eye(3), num_rw=fsw.MAX_RW + 1).check(), fsw.E_CAPACITY)
+        with self.assertRaises(fsw.ConfigError) as e:
+            fsw.MrpFb(K=1, P=1, I_B=np.eye(3), num_rw=fsw.MAX_RW + 1).check()
+        self.assertEqual((e.exception.status, e.exception.field), (fsw.E_CAPACITY, "num_rw"))
 
     def test_fsw_bad_python_values_raise(self):
         m = self.make()
@@ -556,7 +559,9 @@ class FswFilterTrackTest(unittest.TestCase):
         # a period 2 % off h: FSW_W_RATE, output still computed
         s, out = m.update(t_ns=199 * 100_000_000 + 102_000_000, Lr_B=Lr)
         self.assertEqual(s, fsw.W_RATE)
-        self.assertEqual(fsw.TrqLpf(h=0.1, omega_c=40.0).check(), fsw.E_CONFIG)  # omega_c h >= pi
+        with self.assertRaises(fsw.ConfigError) as e:  # omega_c h >= pi: a relation of two fields
+            fsw.TrqLpf(h=0.1, omega_c=40.0).check()
+        self.assertEqual(e.exception.status, fsw.E_CONFIG)
 
     @staticmethod
     def mrp_to_dcm(s):
@@ -712,29 +717,35 @@ class Issue39MemorySafetyTest(unittest.TestCase):
         np.testing.assert_allclose(out["u_s"][:4], [0.2, -0.1 / 1.5, 0.05 / 1.5, 0.0], rtol=1e-6)
         m.num_rw = 4  # the same value: no change
         self.assertEqual(m.update(u_s=[0.1, 0, 0, 0])[0], fsw.OK)
-        # the finding: 100 000 segfaulted, 37 read and wrote past the arrays
+        # the finding: 100 000 segfaulted, 37 read and wrote past the arrays;
+        # a count is now fixed while the module is initialised
         for n in (100000, 37, fsw.MAX_RW + 1, 3):
-            m.num_rw = n
             with self.assertRaises(ValueError) as e:
-                m.update(u_s=[0.1, 0, 0, 0])
+                m.num_rw = n
             self.assertIn("num_rw", str(e.exception))
             self.assertIn("init()", str(e.exception))
-        m.num_rw = 100000
-        self.assertEqual(m.check(), fsw.E_CAPACITY)
-        self.assertEqual(m.init(), fsw.E_CAPACITY)
-        s, out = m.update(u_s=[0.1, 0, 0, 0])  # a refused init: not initialised, safe output
-        self.assertEqual(s, fsw.E_NOT_INIT)
-        np.testing.assert_array_equal(out["u_s"], 0.0)
-        # back to a good configuration: init() again and it runs
-        m.num_rw = 4
-        self.assertEqual(m.init(), fsw.OK)
-        self.assertEqual(m.update(u_s=[0.1, 0, 0, 0])[0], fsw.OK)
+            self.assertEqual(m.num_rw, 4)
+            self.assertEqual(m.update(u_s=[0.1, 0, 0, 0])[0], fsw.OK)
         # any field, not only counts: a limit changed after init is named
         m.u_max = [0.2, 0.2, 0.2, -1.0]
         with self.assertRaises(ValueError) as e:
             m.update(u_s=[0.1, 0, 0, 0])
         self.assertIn("u_max", str(e.exception))
-        self.assertEqual(m.init(), fsw.E_CONFIG)
+        with self.assertRaises(fsw.ConfigError) as e:
+            m.init()
+        self.assertEqual((e.exception.status, e.exception.field), (fsw.E_CONFIG, "u_max"))
+        s, out = m.update(u_s=[0.1, 0, 0, 0])  # a refused init: not initialised, safe output
+        self.assertEqual(s, fsw.E_NOT_INIT)
+        np.testing.assert_array_equal(out["u_s"], 0.0)
+        # not initialised: the count may change again; a bad one is named
+        m.num_rw = 100000
+        with self.assertRaises(fsw.ConfigError) as e:
+            m.init()
+        self.assertEqual((e.exception.status, e.exception.field), (fsw.E_CAPACITY, "num_rw"))
+        m.num_rw = 4
+        m.u_max = [0.2, 0.2, 0.2, 0.2]
+        self.assertEqual(m.init(), fsw.OK)
+        self.assertEqual(m.update(u_s=[0.1, 0, 0, 0])[0], fsw.OK)
 
     def test_rw_map_num_axes_and_mrp_fb_num_rw(self):
         r = fsw.RwMap(num_rw=3, num_axes=3, mode=0)
@@ -744,18 +755,16 @@ class Issue39MemorySafetyTest(unittest.TestCase):
         s, out = r.update(Lr_B=[0.1, -0.2, 0.3])
         self.assertEqual(s, fsw.OK)
         np.testing.assert_allclose(out["u_s"][:3], [-0.1, 0.2, -0.3], rtol=1e-6)  # u = -Gs^+ Lr, Gs = I
-        r.num_axes = 37  # the finding: a segfault
         with self.assertRaises(ValueError) as e:
-            r.update(Lr_B=[0.1, -0.2, 0.3])
+            r.num_axes = 37  # the finding: a segfault
         self.assertIn("num_axes", str(e.exception))
-        self.assertNotEqual(r.init(), fsw.OK)
-        self.assertEqual(r.update(Lr_B=[0.1, -0.2, 0.3])[0], fsw.E_NOT_INIT)
+        self.assertEqual(r.update(Lr_B=[0.1, -0.2, 0.3])[0], fsw.OK)
         m = fsw.MrpFb(K=0.5, P=2.0, K_i=-1.0, integral_limit=1.0, I_B=np.eye(3))
         self.assertEqual(m.init(), fsw.OK)
-        m.num_rw = 1000
         with self.assertRaises(ValueError) as e:
-            m.update(t_ns=0)
+            m.num_rw = 1000
         self.assertIn("num_rw", str(e.exception))
+        self.assertEqual(m.update(t_ns=0)[0], fsw.OK)
 
     def test_monte_carlo_runs_capped_like_the_cli(self):
         for n in (10 ** 9, 10 ** 7 + 1):
