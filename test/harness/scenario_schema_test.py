@@ -132,7 +132,10 @@ def derived_cases(v, src):
     init_aa = copy.deepcopy(s1)
     del init_aa["spacecraft"]["initial"]["sigma_BN"]
     init_aa["spacecraft"]["initial"]["sigma_BN_axis_angle"] = {"axis": [0, 0, 1], "angle_deg": 30}
-    cases = [("s1, fsw.inertial.sigma_R0N_quaternion", inertial({"sigma_R0N_quaternion": [1, 0, 0, 0]}), None),
+    ref = copy.deepcopy(ev)
+    ref["events"][0]["actions"] = [{"device": "fsw", "action": "reference", "sigma_R0N_quaternion": [1, 0, 0, 0]}]
+    cases = [("s1_wheel_failure, an event's reference as a quaternion", ref, None),
+             ("s1, fsw.inertial.sigma_R0N_quaternion", inertial({"sigma_R0N_quaternion": [1, 0, 0, 0]}), None),
              ("s1, fsw.inertial.sigma_R0N_euler_321_deg", inertial({"sigma_R0N_euler_321_deg": [1, 2, 3]}), None),
              ("s1, spacecraft.initial.sigma_BN_axis_angle", init_aa, None),
              ("s1, sigma_R0N and sigma_R0N_quaternion",

@@ -203,3 +203,52 @@ TEST(ScenarioAttitude, RejectionsNameLineAndKey)
   EXPECT_EQ(two[0].key, "spacecraft.initial.sigma_BN_euler_321_deg");
   EXPECT_EQ(two[0].line, 7);
 }
+
+TEST(ScenarioAttitude, EventReferenceTakesTheForms)
+{
+  // line 17: the event's action
+  auto with_action = [](const std::string& action) {
+    return scenario("") + "events:\n  - {t: 0.5, actions: [" + action + "]}\n";
+  };
+  const harness::Scenario sc = harness::load_scenario_text(
+      with_action("{device: fsw, action: reference, sigma_R0N_axis_angle: {axis: [0, 0, 1], angle_deg: 270}}"),
+      "t.yaml");
+  ASSERT_EQ(sc.events.size(), 1u);
+  const auto& a = sc.events[0].actions;
+  ASSERT_EQ(a.size(), 3u);  // read as the three component commands
+  EXPECT_EQ(a[0].action, "reference_x");
+  EXPECT_EQ(a[1].action, "reference_y");
+  EXPECT_EQ(a[2].action, "reference_z");
+  EXPECT_NEAR(a[0].value, 0.0, 1e-15);
+  EXPECT_NEAR(a[1].value, 0.0, 1e-15);
+  EXPECT_NEAR(a[2].value, -std::tan(22.5 * kDeg), 1e-15);  // 270 deg: the shadow set
+  // the same as the components written, and the manifest reloads to them bit for bit
+  const harness::Scenario again = harness::load_scenario_text(harness::scenario_to_json_text(sc, 2), "m.json");
+  ASSERT_EQ(again.events[0].actions.size(), 3u);
+  for (size_t c = 0; c < 3; ++c) EXPECT_EQ(again.events[0].actions[c].value, a[c].value);
+  const harness::Scenario mrp = harness::load_scenario_text(
+      with_action("{device: fsw, action: reference, sigma_R0N: [0.1, -0.2, 0.3]}"), "t.yaml");
+  EXPECT_EQ(mrp.events[0].actions[1].value, -0.2);
+
+  struct Case {
+    std::string action, key, words;
+  };
+  const Case cases[] = {
+      {"{device: fsw, action: reference}", "events[0].actions[0].sigma_R0N", "required"},
+      {"{device: fsw, action: reference, value: 1, sigma_R0N: [0, 0, 0]}", "events[0].actions[0].value", "not a value"},
+      {"{device: gyro, action: reference, sigma_R0N: [0, 0, 0]}", "events[0].actions[0].device", "device: fsw"},
+      {"{device: fsw, action: reference, sigma_R0N: [0, 0, 0], sigma_R0N_quaternion: [1, 0, 0, 0]}",
+       "events[0].actions[0].sigma_R0N_quaternion", "one form only"},
+      {"{device: fsw, action: reference, sigma_R0N_quaternion: [3, 0, 0, 0]}",
+       "events[0].actions[0].sigma_R0N_quaternion", "unit quaternion"},
+      {"{device: fsw, action: reference_x, sigma_R0N: [0, 0, 0]}", "events[0].actions[0].sigma_R0N", "unknown"},
+  };
+  for (const Case& c : cases) {
+    const auto issues = issues_of(with_action(c.action));
+    ASSERT_FALSE(issues.empty()) << c.action;
+    bool found = false;
+    for (const auto& i : issues)
+      found = found || (i.key == c.key && i.line == 17 && i.message.find(c.words) != std::string::npos);
+    EXPECT_TRUE(found) << c.action << " -> " << issues.front().str();
+  }
+}

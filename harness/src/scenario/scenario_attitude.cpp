@@ -111,32 +111,46 @@ nlohmann::json attitude_form_json(const std::string& name, const std::string& sp
   return j;
 }
 
+int attitude_form_given(MapReader& r, const std::string& name)
+{
+  const std::vector<std::string> forms = attitude_spellings(name);
+  int given = -1;
+  for (size_t f = 0; f < forms.size(); ++f) {
+    r.mark_known(forms[f]);
+    if (!r.has(forms[f])) continue;
+    if (given >= 0) {
+      r.error_at(forms[f], "give the attitude in one form only: " + forms[static_cast<size_t>(given)] + " is given too");
+      return -2;
+    }
+    given = static_cast<int>(f);
+  }
+  return given;
+}
+
+std::optional<Eigen::Vector3d> read_attitude_form(MapReader& r, const std::string& name, int form)
+{
+  const std::string key = attitude_spellings(name).at(static_cast<size_t>(form));
+  if (form == 1) return read_quaternion(r, key);
+  if (form == 2) return read_euler_321(r, key);
+  if (form == 3) return read_axis_angle(r, key);
+  return r.vec3(key);
+}
+
 KeyDef attitude_key(KeyDef mrp)
 {
   mrp.attitude = true;
   const ReadFn plain = mrp.read;
   mrp.read = [plain](const KeyDef& k, MapReader& r, Scenario& sc, size_t i) {
-    const std::vector<std::string> forms = attitude_spellings(k.name);
-    std::vector<std::string> given;
-    for (const std::string& f : forms) {
-      r.mark_known(f);
-      if (r.has(f)) given.push_back(f);
-    }
-    if (given.size() > 1) {
-      r.error_at(given[1], "give the attitude in one form only: " + given[0] + " is given too");
-      return;
-    }
-    if (given.empty() || given[0] == k.name) {
+    const int form = attitude_form_given(r, k.name);
+    if (form == -2) return;
+    if (form <= 0) {  // the MRP itself (or nothing): the key's own reader
       plain(k, r, sc, i);
       return;
     }
-    std::optional<Eigen::Vector3d> sigma;
-    if (given[0] == forms[1]) sigma = read_quaternion(r, given[0]);
-    else if (given[0] == forms[2]) sigma = read_euler_321(r, given[0]);
-    else sigma = read_axis_angle(r, given[0]);
+    const std::optional<Eigen::Vector3d> sigma = read_attitude_form(r, k.name, form);
     if (!sigma) return;
     const std::string why = k.set(k, sc, i, ParameterValue(*sigma), false);
-    if (!why.empty()) r.error_at(given[0], why);
+    if (!why.empty()) r.error_at(attitude_spellings(k.name)[static_cast<size_t>(form)], why);
   };
   return mrp;
 }

@@ -454,6 +454,11 @@ KeyDef inertia(std::string name, F field)
 KeyDef attitude_key(KeyDef mrp);
 // The spellings of an attitude key: name, then the three alternative forms.
 std::vector<std::string> attitude_spellings(const std::string& name);
+// Which spelling of the attitude `name` a map gives (all marked known): its
+// index in attitude_spellings(), -1 none, -2 more than one (reported).
+int attitude_form_given(MapReader& r, const std::string& name);
+// The MRP (|sigma| <= 1 for forms 1..3) of spelling `form` (0..3); problems reported.
+std::optional<Eigen::Vector3d> read_attitude_form(MapReader& r, const std::string& name, int form);
 // The JSON Schema of the alternative form `spelling` (one of attitude_spellings()[1..3]).
 nlohmann::json attitude_form_json(const std::string& name, const std::string& spelling);
 
