@@ -52,6 +52,17 @@ std::vector<harness::ScenarioIssue> issues_of(const std::string& text)
   return {};
 }
 
+// `text` is refused with an issue at t.yaml line `line`, key `key`, whose message holds `words`.
+void expect_issue(const std::string& text, const std::string& key, int line, const std::string& words)
+{
+  const auto issues = issues_of(text);
+  ASSERT_FALSE(issues.empty()) << text;
+  bool found = false;
+  for (const auto& i : issues)
+    found = found || (i.key == key && i.line == line && i.file == "t.yaml" && i.message.find(words) != std::string::npos);
+  EXPECT_TRUE(found) << key << " -> " << issues.front().str();
+}
+
 // Frame rotations about x, y, z by t (the DCM [XN] of a frame X rotated by t
 // from N about that axis), written out element by element.
 Eigen::Matrix3d R1(double t)
@@ -189,14 +200,7 @@ TEST(ScenarioAttitude, RejectionsNameLineAndKey)
       {"sigma_R0N_axis_angle: [0, 0, 1]", "fsw.inertial.sigma_R0N_axis_angle", "expected a map"},
       {"sigma_R0N_euler_321_deg: [1, 2]", "fsw.inertial.sigma_R0N_euler_321_deg", ""},
   };
-  for (const Case& c : cases) {
-    const auto issues = issues_of(scenario(c.att));
-    ASSERT_FALSE(issues.empty()) << c.att;
-    bool found = false;
-    for (const auto& i : issues)
-      found = found || (i.key == c.key && i.line == 14 && i.file == "t.yaml" && i.message.find(c.words) != std::string::npos);
-    EXPECT_TRUE(found) << c.att << " -> " << issues.front().str();
-  }
+  for (const Case& c : cases) expect_issue(scenario(c.att), c.key, 14, c.words);
   // the initial attitude: two forms at line 7
   const auto two = issues_of(scenario("", "sigma_BN: [0, 0, 0], sigma_BN_euler_321_deg: [1, 2, 3]"));
   ASSERT_EQ(two.size(), 1u);
@@ -243,12 +247,5 @@ TEST(ScenarioAttitude, EventReferenceTakesTheForms)
        "events[0].actions[0].sigma_R0N_quaternion", "unit quaternion"},
       {"{device: fsw, action: reference_x, sigma_R0N: [0, 0, 0]}", "events[0].actions[0].sigma_R0N", "unknown"},
   };
-  for (const Case& c : cases) {
-    const auto issues = issues_of(with_action(c.action));
-    ASSERT_FALSE(issues.empty()) << c.action;
-    bool found = false;
-    for (const auto& i : issues)
-      found = found || (i.key == c.key && i.line == 17 && i.message.find(c.words) != std::string::npos);
-    EXPECT_TRUE(found) << c.action << " -> " << issues.front().str();
-  }
+  for (const Case& c : cases) expect_issue(with_action(c.action), c.key, 17, c.words);
 }
