@@ -249,3 +249,30 @@ TEST(ScenarioAttitude, EventReferenceTakesTheForms)
   };
   for (const Case& c : cases) expect_issue(with_action(c.action), c.key, 17, c.words);
 }
+
+TEST(ScenarioAttitude, SetOverridesTheFormsAndSetParameterTakesTheMrp)
+{
+  // --set of a form replaces the MRP written in the file (one spelling at a time)
+  const std::string text = scenario("sigma_R0N: [0.1, 0.2, 0.3]");
+  const harness::Scenario sc = harness::load_scenario_text(
+      text, "t.yaml", {harness::parse_override("fsw.inertial.sigma_R0N_axis_angle={axis: [0, 0, 1], angle_deg: 90}")});
+  EXPECT_NEAR(sc.fsw.sigma_R0N(0), 0.0, 1e-15);
+  EXPECT_NEAR(sc.fsw.sigma_R0N(2), std::tan(22.5 * kDeg), 1e-15);
+  // ...and the MRP replaces a form
+  const harness::Scenario back = harness::load_scenario_text(
+      scenario("sigma_R0N_quaternion: [0, 0, 0, 1]"), "t.yaml", {harness::parse_override("fsw.inertial.sigma_R0N=[0, 0, 0.5]")});
+  EXPECT_EQ(back.fsw.sigma_R0N, Eigen::Vector3d(0, 0, 0.5));
+  // a bad form from --set names the --set
+  try {
+    harness::load_scenario_text(text, "t.yaml", {harness::parse_override("fsw.inertial.sigma_R0N_quaternion=[2, 0, 0, 0]")});
+    ADD_FAILURE() << "not refused";
+  } catch (const harness::ScenarioError& e) {
+    EXPECT_EQ(e.issues().front().key, "fsw.inertial.sigma_R0N_quaternion");
+    EXPECT_NE(e.issues().front().message.find("unit quaternion"), std::string::npos);
+  }
+  // set_parameter takes the MRP only
+  harness::Scenario s2 = sc;
+  EXPECT_THROW(harness::set_parameter(s2, "fsw.inertial.sigma_R0N_quaternion", Eigen::Vector3d(0, 0, 0)),
+               harness::ScenarioError);
+  EXPECT_EQ(s2.fsw.sigma_R0N, sc.fsw.sigma_R0N);
+}
