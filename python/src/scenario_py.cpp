@@ -107,6 +107,21 @@ std::vector<harness::Override> overrides_of(const py::object& o)
   return ov;
 }
 
+// A nested dict as the JSON text of a scenario file (JSON is YAML), read by
+// the YAML reader: the same checks and messages, each naming its key path.
+// NumPy arrays and scalars are taken as their lists and numbers.
+std::string dict_text(const py::dict& d)
+{
+  py::module_ json = py::module_::import("json");
+  py::cpp_function plain([](const py::object& o) -> py::object {
+    if (py::hasattr(o, "tolist")) return o.attr("tolist")();
+    throw py::type_error("a scenario value is a number, bool, str, list or dict, not " +
+                         std::string(py::str(py::type::of(o).attr("__name__"))));
+  });
+  return json.attr("dumps")(d, py::arg("indent") = 1, py::arg("allow_nan") = false, py::arg("default") = plain)
+      .cast<std::string>();
+}
+
 }  // namespace
 
 py::str text(const std::string& s)
@@ -145,6 +160,30 @@ void bind_scenario(py::module_& m)
           },
           py::arg("text"), py::arg("name") = "<text>", py::arg("overrides") = py::none(),
           "The same from YAML (or JSON) text; `name` is used in messages.")
+      .def_static(
+          "from_dict",
+          [](const py::dict& d, const std::string& name, const py::object& overrides) {
+            const std::string t = dict_text(d);
+            return PyScenario{harness::load_scenario_text(t, name, overrides_of(overrides))};
+          },
+          py::arg("d"), py::arg("name") = "<dict>", py::arg("overrides") = py::none(),
+          "A scenario from a nested dict of the file's keys ({'rates': {...}, 'spacecraft': {...}, ...}), "
+          "with the file's checks and messages (`name`:line:col: key.path: message); NumPy values are accepted.")
+      .def(
+          "to_dict",
+          [](const PyScenario& s) {
+            return py::module_::import("json").attr("loads")(harness::scenario_to_json_text(s.sc, -1));
+          },
+          "The resolved scenario as a nested dict of plain Python values: every key with its effective value "
+          "(SI spellings, attitudes as MRPs), the form to_json() writes; Scenario.from_dict(s.to_dict()) == s.")
+      .def(
+          "__eq__",
+          [](const PyScenario& a, const py::object& b) -> py::object {
+            if (!py::isinstance<PyScenario>(b)) return py::reinterpret_borrow<py::object>(Py_NotImplemented);
+            return py::bool_(harness::scenario_to_json_text(a.sc, -1) ==
+                             harness::scenario_to_json_text(b.cast<const PyScenario&>().sc, -1));
+          },
+          py::is_operator(), "Equal resolved scenarios: the same to_json() (every key's effective value).")
       .def(
           "get", [](const PyScenario& s, const std::string& path) { return to_python(harness::get_parameter(s.sc, path)); },
           py::arg("path"),

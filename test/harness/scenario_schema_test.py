@@ -126,7 +126,25 @@ def derived_cases(v, src):
     ev = load(os.path.join(src, "scenarios", "s1_wheel_failure.yaml"))
     typo = copy.deepcopy(ev)
     typo["events"][0]["actions"][0]["valeu"] = 1.0
-    cases = [("s1, wheel_defaults merged into the wheels", merged, None),
+    # attitude keys: the MRP or one other form (quaternion, 3-2-1 Euler angles, axis-angle), never two
+    def inertial(form):
+        return {**s1, "fsw": {**s1["fsw"], "inertial": form}}
+    init_aa = copy.deepcopy(s1)
+    del init_aa["spacecraft"]["initial"]["sigma_BN"]
+    init_aa["spacecraft"]["initial"]["sigma_BN_axis_angle"] = {"axis": [0, 0, 1], "angle_deg": 30}
+    ref = copy.deepcopy(ev)
+    ref["events"][0]["actions"] = [{"device": "fsw", "action": "reference", "sigma_R0N_quaternion": [1, 0, 0, 0]}]
+    cases = [("s1_wheel_failure, an event's reference as a quaternion", ref, None),
+             ("s1, fsw.inertial.sigma_R0N_quaternion", inertial({"sigma_R0N_quaternion": [1, 0, 0, 0]}), None),
+             ("s1, fsw.inertial.sigma_R0N_euler_321_deg", inertial({"sigma_R0N_euler_321_deg": [1, 2, 3]}), None),
+             ("s1, spacecraft.initial.sigma_BN_axis_angle", init_aa, None),
+             ("s1, sigma_R0N and sigma_R0N_quaternion",
+              inertial({"sigma_R0N": [0, 0, 0], "sigma_R0N_quaternion": [1, 0, 0, 0]}), "sigma_R0N_quaternion"),
+             ("s1, sigma_R0N_quaternion of 3 numbers", inertial({"sigma_R0N_quaternion": [1, 0, 0]}),
+              "sigma_R0N_quaternion"),
+             ("s1, sigma_R0N_axis_angle without angle_deg", inertial({"sigma_R0N_axis_angle": {"axis": [1, 0, 0]}}),
+              "angle_deg"),
+             ("s1, wheel_defaults merged into the wheels", merged, None),
              ("s1, merged, wheels[0] without J_s", no_js, "J_s"),
              ("s1_wheel_failure, events[0].actions[0].valeu", typo, "valeu"),
              ("s1, fsw.mode: 7", {**s1, "fsw": {**s1["fsw"], "mode": 7}}, "mode"),

@@ -48,6 +48,23 @@ ListSizeFn list_sizes(const Scenario& sc)
   return [&sc](const schema::Section& list, size_t) { return list.count ? list.count(sc) : 0; };
 }
 
+namespace {
+// The attitude key of `sec` that `name` spells in another form (form: its index), or null.
+const schema::KeyDef* attitude_form(const schema::Section& sec, const std::string& name, int& form)
+{
+  for (const schema::KeyDef& k : sec.keys) {
+    if (!k.attitude) continue;
+    const std::vector<std::string> s = schema::attitude_spellings(k.name);
+    for (size_t f = 1; f < s.size(); ++f)
+      if (s[f] == name) {
+        form = static_cast<int>(f);
+        return &k;
+      }
+  }
+  return nullptr;
+}
+}  // namespace
+
 KeyTarget resolve_path(const std::vector<std::string>& parts, const ListSizeFn& list_size)
 {
   KeyTarget t;
@@ -67,6 +84,15 @@ KeyTarget resolve_path(const std::vector<std::string>& parts, const ListSizeFn& 
       if (!t.rest.empty() && !(listish && t.rest.size() == 1)) {
         t.error_key = normalise_path(parts);
         t.error = "'" + p + "' is a single value: cannot set '" + t.rest.front() + "' inside it";
+      }
+      return t;
+    }
+    if (const schema::KeyDef* k = attitude_form(*sec, p, t.form)) {  // sigma_R0N_quaternion, ...: set whole
+      t.key = k;
+      t.rest.assign(parts.begin() + static_cast<std::ptrdiff_t>(d) + 1, parts.end());
+      if (!t.rest.empty()) {
+        t.error_key = normalise_path(parts);
+        t.error = "'" + p + "' is set whole: cannot set '" + t.rest.front() + "' inside it";
       }
       return t;
     }
@@ -172,9 +198,12 @@ std::string put_value(YAML::Node& root, const std::vector<std::string>& parts, c
     last[k] = value;
   } else if (last.IsMap()) {
     last[leaf] = value;
-    // One spelling replaces the other (Omega_0 and Omega_0_rpm).
+    // One spelling replaces the other (Omega_0 and Omega_0_rpm; an attitude's forms).
     if (t.key && t.rest.empty() && !t.key->suffix.empty())
       last.remove(t.suffixed ? t.key->name : t.key->name + t.key->suffix);
+    if (t.key && t.rest.empty() && t.key->attitude)
+      for (const std::string& s : schema::attitude_spellings(t.key->name))
+        if (s != leaf) last.remove(s);
   } else {
     return "cannot set a key inside a scalar";
   }
@@ -242,6 +271,7 @@ KeyTarget settable_key(const Scenario& sc, const std::string& path, const char* 
     fail(t.error);
   }
   if (!t.key) fail("names a section, not a key: set its keys one by one");
+  if (t.form > 0) fail("an attitude form is read from a file or --set only; set '" + t.key->name + "' (the MRP)");
   if (!t.rest.empty()) fail("set the whole vector, not one element");
   for (const schema::Section* s : t.chain) {
     if (s->input_only) fail("'" + s->name + "' " + s->note);

@@ -40,6 +40,7 @@ struct KeyTarget {
   const schema::Section* section = nullptr;       // the key's section, or the section named
   std::vector<const schema::Section*> chain;      // every section on the way, top first
   bool suffixed = false;                          // key written with its unit suffix
+  int form = 0;                                   // attitude key: its spelling (attitude_spellings), 0 the MRP
   size_t index = 0;                               // element of the (innermost) list
   std::vector<std::string> rest;                  // parts after a vector key (an element index)
   std::string error;                              // non-empty: the path does not resolve

@@ -35,6 +35,40 @@ KeyDef written_if(KeyDef d, std::function<bool(const EventSpec&)> cond)
   return d;
 }
 
+// `action: reference` on the FSW: a whole inertial reference, written as
+// sigma_R0N or one of its other forms (docs/events.md), read as the three
+// component actions reference_x, _y, _z (what the manifest writes).
+void read_reference_action(MapReader& a, const std::optional<std::string>& dev, bool has_value, Scenario& sc,
+                           size_t i)
+{
+  const int form = attitude_form_given(a, "sigma_R0N");
+  std::optional<Eigen::Vector3d> sigma;
+  if (form >= 0) sigma = read_attitude_form(a, "sigma_R0N", form);
+  a.finish();
+  if (form == -1)
+    a.missing("sigma_R0N", "the new reference: sigma_R0N, sigma_R0N_quaternion, sigma_R0N_euler_321_deg or "
+                           "sigma_R0N_axis_angle");
+  if (has_value) a.error_at("value", "action 'reference' takes sigma_R0N (or one of its forms), not a value");
+  if (dev && *dev != "fsw") a.error_at("device", "action 'reference' is the FSW's (device: fsw)");
+  if (!sigma || has_value || !dev || *dev != "fsw") return;
+  if (sc.events[i].actions.size() + 3 > kMaxEventActions) {
+    a.error_at("action", "at most " + std::to_string(kMaxEventActions) +
+                             " actions per event, a reference counting as its three components");
+    return;
+  }
+  const char* parts[3] = {"reference_x", "reference_y", "reference_z"};
+  for (int c = 0; c < 3; ++c) {
+    EventActionSpec spec{*dev, parts[c], (*sigma)(c)};
+    std::string key;
+    const std::string why = check_event_action(sc, spec, key);
+    if (!why.empty()) {
+      a.error_at("action", why);
+      return;
+    }
+    sc.events[i].actions.push_back(spec);
+  }
+}
+
 void read_actions(const KeyDef&, MapReader& r, Scenario& sc, size_t i)
 {
   YAML::Node list = r.get("actions");
@@ -58,6 +92,10 @@ void read_actions(const KeyDef&, MapReader& r, Scenario& sc, size_t i)
     const auto dev = a.string("device");
     const auto act = a.string("action");
     const auto val = a.real("value");
+    if (act && *act == "reference") {
+      read_reference_action(a, dev, a.has("value"), sc, i);
+      continue;
+    }
     a.finish();
     if (!dev) {
       if (!a.has("device")) a.missing("device", "a wheel or thruster name, gyro, star_tracker or css<i>");
@@ -90,6 +128,16 @@ void write_actions(const KeyDef& k, nlohmann::json& j, const Scenario& sc, size_
   }
   j[k.name] = a;
 }
+// An action's JSON Schema: device, action, value, or (action: reference) the
+// new reference in one of the forms of sigma_R0N.
+nlohmann::json action_shape()
+{
+  nlohmann::json props = {{"device", {{"type", "string"}}}, {"action", {{"type", "string"}}}, {"value", {{"type", "number"}}}};
+  const std::vector<std::string> forms = attitude_spellings("sigma_R0N");
+  props[forms[0]] = json_vec3();
+  for (size_t f = 1; f < forms.size(); ++f) props[forms[f]] = attitude_form_json(forms[0], forms[f]);
+  return json_object_of(props, {"device", "action"});
+}
 }  // namespace
 
 const Section& events_section()
@@ -106,11 +154,7 @@ const Section& events_section()
                   real("below", KESTREL_EV(below)).unit("the column's unit"),
                   real("above", KESTREL_EV(above)).unit("the column's unit"),
                   custom("actions", read_actions, write_actions)
-                      .json_shape(json_list_of(json_object_of({{"device", {{"type", "string"}}},
-                                                               {"action", {{"type", "string"}}},
-                                                               {"value", {{"type", "number"}}}},
-                                                              {"device", "action"}),
-                                               1, kMaxEventActions))
+                      .json_shape(json_list_of(action_shape(), 1, kMaxEventActions))
                       .unit("a list of {device, action, value} (docs/events.md)"),
               },
               {}};

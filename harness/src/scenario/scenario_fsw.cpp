@@ -228,7 +228,7 @@ Section nadir_section()
                  {
                      choice<OrbitFrame>("frame", {{"nadir", OrbitFrame::Nadir}, {"velocity", OrbitFrame::Velocity}},
                                         KESTREL_FSW(orbit_frame)),
-                     vec3("sigma_BdR", KESTREL_FSW(sigma_BdR)).unit("-"),
+                     attitude_key(vec3("sigma_BdR", KESTREL_FSW(sigma_BdR)).unit("-")),
                  },
                  {}};
 }
@@ -270,7 +270,7 @@ const Section& fsw_section()
                             KESTREL_FSW(actuation)),
       },
       {
-          Section{"inertial", {vec3("sigma_R0N", KESTREL_FSW(sigma_R0N)).unit("-")}, {}},
+          Section{"inertial", {attitude_key(vec3("sigma_R0N", KESTREL_FSW(sigma_R0N)).unit("-"))}, {}},
           sun_safe_section(),
           mrp_fb_section(),
           Section{"rw_map",

@@ -84,6 +84,13 @@ json object_schema(const Section& s, bool with_required)
     } else if (!k.required.empty() && with_required) {
       required.push_back(k.name);
     }
+    if (k.attitude) {  // the MRP or one of its other forms, never two
+      const std::vector<std::string> forms = schema::attitude_spellings(k.name);
+      for (size_t f = 1; f < forms.size(); ++f) props[forms[f]] = schema::attitude_form_json(k.name, forms[f]);
+      for (size_t a = 0; a < forms.size(); ++a)
+        for (size_t b = a + 1; b < forms.size(); ++b)
+          all_of.push_back({{"not", {{"required", json::array({forms[a], forms[b]})}}}});
+    }
   }
   for (const Section& c : s.children) props[c.name] = section_schema(c);
   json j = {{"type", "object"}, {"additionalProperties", false}, {"properties", props}};

@@ -80,6 +80,8 @@ std::vector<std::string> Section::known_names() const
   for (const KeyDef& k : keys) {
     out.push_back(k.name);
     if (!k.suffix.empty()) out.push_back(k.name + k.suffix);
+    if (k.attitude)
+      for (size_t f = 1; f < attitude_spellings(k.name).size(); ++f) out.push_back(attitude_spellings(k.name)[f]);
   }
   for (const Section& c : children) out.push_back(c.name);
   return out;

@@ -82,6 +82,7 @@ struct KeyDef {
   std::vector<std::string> options;    // Choice words
   std::string doc;                     // unit or a short description (for scenario_key_list)
   nlohmann::json shape;                // Custom: its JSON Schema (null: any value; scenario_json_schema.cpp)
+  bool attitude = false;  // Vec3 MRP also given as a quaternion, Euler angles or axis-angle (attitude_key)
   ReadFn read;    // null: read by the section's own code (input-only keys such as hyperbola.*)
   WriteFn write;  // null: never written
   SetFn set;      // null: not settable with set_parameter
@@ -440,6 +441,26 @@ KeyDef inertia(std::string name, F field)
   };
   return d;
 }
+
+// ---- attitude keys (scenario_attitude.cpp, docs/scenario-schema.md) --------------
+// An MRP key sigma_XN (vec3) that is also accepted as
+//   <name>_quaternion:     [q0, q1, q2, q3], scalar first, |q| = 1 within kUnitTol (renormalised)
+//   <name>_euler_321_deg:  [yaw, pitch, roll] [deg], the 3-2-1 sequence (z, then y', then x'')
+//   <name>_axis_angle:     {axis: [x, y, z] (any length > 0), angle_deg: a} [deg], |a| <= 360
+// each the rotation from the second frame of the name to the first (sigma_BN:
+// N to B), exactly one form given, converted once to the MRP with |sigma| <= 1
+// (the shadow set for rotations beyond 180 deg) and stored through the key's
+// own setter, so the run sees the MRP as if written.  Only the MRP is written.
+KeyDef attitude_key(KeyDef mrp);
+// The spellings of an attitude key: name, then the three alternative forms.
+std::vector<std::string> attitude_spellings(const std::string& name);
+// Which spelling of the attitude `name` a map gives (all marked known): its
+// index in attitude_spellings(), -1 none, -2 more than one (reported).
+int attitude_form_given(MapReader& r, const std::string& name);
+// The MRP (|sigma| <= 1 for forms 1..3) of spelling `form` (0..3); problems reported.
+std::optional<Eigen::Vector3d> read_attitude_form(MapReader& r, const std::string& name, int form);
+// The JSON Schema of the alternative form `spelling` (one of attitude_spellings()[1..3]).
+nlohmann::json attitude_form_json(const std::string& name, const std::string& spelling);
 
 // A key the section reads and writes itself (lists of speeds or normals).
 inline KeyDef custom(std::string name, ReadFn read, WriteFn write)

@@ -239,8 +239,8 @@ const Section& spacecraft_section()
       },
       {Section{"initial",
                {
-                   vec3("sigma_BN", [](auto& sc, size_t) -> auto& { return sc.spacecraft.initial.sigma_BN; })
-                       .vcheck(mrp_in_unit_ball).unit("-"),
+                   attitude_key(vec3("sigma_BN", [](auto& sc, size_t) -> auto& { return sc.spacecraft.initial.sigma_BN; })
+                                    .vcheck(mrp_in_unit_ball).unit("-")),
                    vec3("omega_BN_B", [](auto& sc, size_t) -> auto& { return sc.spacecraft.initial.omega_BN_B; })
                        .alt("_deg_s", sim::kRadPerDeg).vcheck(rate_within(kMaxBodyRateDegS)).unit("rad/s"),
                    vec3("r_CN_N", [](auto& sc, size_t) -> auto& { return sc.spacecraft.initial.r_CN_N; }).unit("m"),
