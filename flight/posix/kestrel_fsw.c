@@ -273,7 +273,7 @@ int main(int argc, char **argv)
   (void)fflush(stdout);
   serve(t, watchdog_ms);
   (void)fsw_transport_peer_text(t, peer_text, sizeof peer_text);
-  if (!quiet)
+  if (!quiet) {
     (void)fprintf(stderr,
             "kestrel-fsw: %lu packets, %lu cycles, rejected: %lu CRC, %lu other, %lu stale; %lu missed, "
             "%lu link-safe entries, %lu recoveries; %lu retransmissions answered again; %lu foreign datagrams "
@@ -283,7 +283,7 @@ int main(int argc, char **argv)
             (unsigned long)g_node.link.rx_stale, (unsigned long)g_node.link.missed,
             (unsigned long)g_node.link.safe_entries, (unsigned long)g_node.link.recoveries,
             (unsigned long)g_node.resent, t->foreign, peer_text, (unsigned long)g_sec.rx_auth_failed,
-            (unsigned long)g_sec.rx_replayed);
+            (unsigned long)g_sec.rx_replayed); }
   fsw_transport_close(t);
   return 0;
 }

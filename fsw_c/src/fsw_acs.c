@@ -160,9 +160,9 @@ static int same_n(const fsw_real *a, const fsw_real *b, int n)
 static int same_n3(const fsw_real (*a)[3], const fsw_real (*b)[3], int n)
 {
   int i, k;
-  for (i = 0; i < n; i++)
+  for (i = 0; i < n; i++) {
     for (k = 0; k < 3; k++) {
-      if (a[i][k] != b[i][k]) { return 0; } }
+      if (a[i][k] != b[i][k]) { return 0; } } }
   return 1;
 }
 
@@ -278,9 +278,9 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
        * refuses a torque above 2 u_max: its limit must cover every torque
        * rw_sat can command (issue 39: 2.8e-4 against 0.2 N m made every
        * other cycle fail) */
-      for (i = 0; i < n; i++)
+      for (i = 0; i < n; i++) {
         if (!(cfg->speed_filter.u_max[i] >= cfg->rw_sat.u_max[i])) {
-          return fail(bad_field, "speed_filter.u_max", FSW_E_CONFIG); }
+          return fail(bad_field, "speed_filter.u_max", FSW_E_CONFIG); } }
     }
   } else if (cfg->mrp_fb.num_rw != 0) {
     return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG); /* wheels in H but no wheel chain */
@@ -314,9 +314,9 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
       b = cfg->pulse_schmitt.common.base_thrust_state;
       if (num_thr != n) { return fail(bad_field, "pulse_schmitt.num_thr", FSW_E_CONFIG); }
       if (b != b_want) { return fail(bad_field, "pulse_schmitt.base_thrust_state", FSW_E_CONFIG); }
-      for (i = 0; i < n; i++)
+      for (i = 0; i < n; i++) {
         if (F_max[i] != cfg->thr_map.F_max[i]) {
-          return fail(bad_field, "pulse_schmitt.F_max", FSW_E_CONFIG); }
+          return fail(bad_field, "pulse_schmitt.F_max", FSW_E_CONFIG); } }
     } else {
       return fail(bad_field, "pulser", FSW_E_CONFIG);
     }
@@ -774,8 +774,8 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
       int i;
       fsw_vn_zero(w->thr_out.F, FSW_MAX_THR);
       acc = combine(acc, run_pulser(st, cfg, sens, w->thr_out.F, act, h));
-      for (i = 0; i < cfg->thr_map.num_thr; i++)
-        if (act->t_on[i] > FSW_R(0.0)) act->thrusters_active = 1u; /* a carried remainder */
+      for (i = 0; i < cfg->thr_map.num_thr; i++) {
+        if (act->t_on[i] > FSW_R(0.0)) { act->thrusters_active = 1u; } } /* a carried remainder */
     }
   } else if (st->policy == FSW_ACS_MOM_MAGNETORQUERS) {
     act->mtq_active = 1u; /* rods off unless a field sample lets them act */

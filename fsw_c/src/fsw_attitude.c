@@ -65,8 +65,8 @@ void fsw_dcm_to_quat(fsw_real q[4], const fsw_real C[3][3])
   b2[1] = (FSW_R(1.0) + FSW_R(2.0) * C[0][0] - tr) / FSW_R(4.0);
   b2[2] = (FSW_R(1.0) + FSW_R(2.0) * C[1][1] - tr) / FSW_R(4.0);
   b2[3] = (FSW_R(1.0) + FSW_R(2.0) * C[2][2] - tr) / FSW_R(4.0);
-  for (i = 1; i < 4; i++)
-    if (b2[i] > b2[k]) k = i; /* lowest index wins ties */
+  for (i = 1; i < 4; i++) {
+    if (b2[i] > b2[k]) { k = i; } } /* lowest index wins ties */
   bk = FSW_SQRT(b2[k] > FSW_R(0.0) ? b2[k] : FSW_R(0.0));
   f = FSW_R(4.0) * bk;
   if (!(f > FSW_R(0.0))) {

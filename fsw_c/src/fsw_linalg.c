@@ -239,7 +239,7 @@ FswStatus fsw_null_projector(fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF],
         if (res <= FSW_NULL_TOL * n0) { break; }
       }
     }
-    if (pass == 0) continue; /* dropped: dependent on earlier rows */
+    if (pass == 0) { continue; } /* dropped: dependent on earlier rows */
     res = fsw_vn_norm(v, n);
     fsw_vn_scale(v, FSW_R(1.0) / res, v, n);
     nq++;

@@ -388,7 +388,7 @@ FswStatus fsw_link_decode_sensor(const FswLinkPacket *p, FswAcsSensorMsg *m, uin
     for (i = 0u; i < 64u; ++i) {
       const uint8_t b = (uint8_t)((bits >> i) & 1u);
       if (i < (size_t)FSW_MAX_THR) { out.thr_avail[i] = b; }
-      else if (b != 0u) ok = 0; /* a thruster beyond the capacity */
+      else if (b != 0u) { ok = 0; } /* a thruster beyond the capacity */
     }
   }
   get_reals(&r, out.B_B, 3u);

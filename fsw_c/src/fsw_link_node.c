@@ -113,16 +113,16 @@ int fsw_link_node_receive(FswLinkNode *n, const FswAcsConfig *cfg, const uint8_t
   if (n == NULL || cfg == NULL || buf == NULL) { return 0; }
   n->link.rx_packets++;
   if (fsw_link_parse(buf, len, &p, &why) != FSW_OK) {
-    if (why == FSW_LINK_E_CRC)
+    if (why == FSW_LINK_E_CRC) {
       n->link.rx_crc++;
-    else {
+    } else {
       n->link.rx_rejected++; }
     return status_only(n);
   }
   if (p.apid == FSW_LINK_APID_SENSOR) { return on_sensor(n, cfg, &p); }
-  if (fsw_link_decode_cmd(&p, &n->cmd, NULL) == FSW_OK)
+  if (fsw_link_decode_cmd(&p, &n->cmd, NULL) == FSW_OK) {
     n->have_cmd = 1u;
-  else {
+  } else {
     n->link.rx_rejected++; }
   return status_only(n);
 }

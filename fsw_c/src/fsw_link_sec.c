@@ -20,9 +20,9 @@ static void compress(uint32_t h[8], const uint8_t b[64])
 {
   uint32_t w[64], v[8];
   unsigned i;
-  for (i = 0u; i < 16u; ++i)
+  for (i = 0u; i < 16u; ++i) {
     w[i] = ((uint32_t)b[4u * i] << 24) | ((uint32_t)b[4u * i + 1u] << 16) | ((uint32_t)b[4u * i + 2u] << 8) |
-           (uint32_t)b[4u * i + 3u];
+           (uint32_t)b[4u * i + 3u]; }
   for (i = 16u; i < 64u; ++i) {
     const uint32_t s0 = rotr(w[i - 15u], 7u) ^ rotr(w[i - 15u], 18u) ^ (w[i - 15u] >> 3);
     const uint32_t s1 = rotr(w[i - 2u], 17u) ^ rotr(w[i - 2u], 19u) ^ (w[i - 2u] >> 10);

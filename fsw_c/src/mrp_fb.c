@@ -28,13 +28,13 @@ static int inertia_ok(const fsw_real I[3][3])
   fsw_real m1, m2, m3;
   int j, k;
   if (!fsw_m33_is_finite(I)) { return 0; }
-  for (j = 0; j < 3; j++)
+  for (j = 0; j < 3; j++) {
     for (k = 0; k < 3; k++) {
-      if (FSW_FABS(I[j][k]) > max_abs) { max_abs = FSW_FABS(I[j][k]); } }
+      if (FSW_FABS(I[j][k]) > max_abs) { max_abs = FSW_FABS(I[j][k]); } } }
   if (!(max_abs > FSW_R(0.0))) { return 0; }
-  for (j = 0; j < 3; j++)
+  for (j = 0; j < 3; j++) {
     for (k = j + 1; k < 3; k++) {
-      if (FSW_FABS(I[j][k] - I[k][j]) > MRP_FB_SYM_TOL * max_abs) { return 0; } }
+      if (FSW_FABS(I[j][k] - I[k][j]) > MRP_FB_SYM_TOL * max_abs) { return 0; } } }
   m1 = I[0][0];
   m2 = I[0][0] * I[1][1] - I[0][1] * I[1][0];
   m3 = fsw_m33_det(I);

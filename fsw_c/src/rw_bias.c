@@ -60,19 +60,19 @@ static void basis_compute(FswRwBiasState *st)
     for (c = 0; c < n; c++) {
       fsw_real n2 = p->tau[c][c]; /* |tau_c|^2 = tau_cc for a projector */
       if (p->avail[c] != FSW_AVAILABLE) { continue; }
-      for (m = 0; m < j; m++) n2 -= st->basis[m][c] * st->basis[m][c]; /* b_m . tau_c = b_mc */
+      for (m = 0; m < j; m++) { n2 -= st->basis[m][c] * st->basis[m][c]; } /* b_m . tau_c = b_mc */
       if (n2 > best_n2) {
         best_n2 = n2;
         best = c;
       }
     }
     if (best < 0 || !(best_n2 > FSW_NULL_TOL)) { break; }
-    for (c = 0; c < n; c++) r[c] = p->tau[c][best]; /* tau is symmetric */
-    for (pass = 0; pass < 2; pass++)
+    for (c = 0; c < n; c++) { r[c] = p->tau[c][best]; } /* tau is symmetric */
+    for (pass = 0; pass < 2; pass++) {
       for (m = 0; m < j; m++) {
         const fsw_real d = fsw_vn_dot(st->basis[m], r, n);
         for (c = 0; c < n; c++) { r[c] -= d * st->basis[m][c]; }
-      }
+      } }
     nr = fsw_vn_norm(r, n);
     if (!(nr > FSW_R(0.0))) { break; }
     for (c = 0; c < n; c++) { st->basis[j][c] = r[c] / nr; }
@@ -174,7 +174,7 @@ static void solve_k1(fsw_real *lambda, const FswRwBiasState *st, const BiasWork 
     if (a > Hlo) { Hlo = a; }
     if (c < Hhi) { Hhi = c; }
   }
-  if (Hlo > FSW_R(0.0)) Hlo = FSW_R(0.0); /* rounding: 0 is admissible */
+  if (Hlo > FSW_R(0.0)) { Hlo = FSW_R(0.0); } /* rounding: 0 is admissible */
   if (Hhi < FSW_R(0.0)) { Hhi = FSW_R(0.0); }
   /* keep-out intervals */
   Flo = Hlo;
@@ -247,9 +247,9 @@ static void solve_hildreth(fsw_real *x, const FswRwBiasState *st, const BiasWork
       }
       if (!(aa > FSW_NULL_TOL)) { continue; }
       t -= mu[i] * aa; /* a_i . lambda without this constraint's own multiplier */
-      if (t < w->lo[i])
+      if (t < w->lo[i]) {
         m_new = (w->lo[i] - t) / aa;
-      else if (t > w->hi[i]) {
+      } else if (t > w->hi[i]) {
         m_new = (w->hi[i] - t) / aa; }
       dm = m_new - mu[i];
       if (dm != FSW_R(0.0)) {
@@ -298,11 +298,11 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
     w.b[i] = cfg->Omega_keepout;
     w.s[i] = 1;
     if (in->avail[i] != FSW_AVAILABLE) { continue; }
-    if (a < cfg->Omega_keepout)
+    if (a < cfg->Omega_keepout) {
       band[i] = 1;
-    else if (a > cfg->Omega_keepout + cfg->Omega_hyst)
+    } else if (a > cfg->Omega_keepout + cfg->Omega_hyst) {
       band[i] = 0;
-    else {
+    } else {
       band[i] = st->in_band[i]; }
     if (band[i]) { w.b[i] = cfg->Omega_keepout + cfg->Omega_hyst; }
     w.s[i] = (signed char)((om > FSW_R(0.0) || (om == FSW_R(0.0) && cfg->Omega_bias[i] > FSW_R(0.0))) ? 1 : -1);
@@ -350,7 +350,7 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
       continue; /* Omega_des_i keeps its held value */
     }
     v = in->Omega[i] + delta[i];
-    if (v > FSW_RW_OMEGA_MAX) v = FSW_RW_OMEGA_MAX; /* last rounding of the alpha step */
+    if (v > FSW_RW_OMEGA_MAX) { v = FSW_RW_OMEGA_MAX; } /* last rounding of the alpha step */
     if (v < -FSW_RW_OMEGA_MAX) { v = -FSW_RW_OMEGA_MAX; }
     out->Omega_des[i] = v;
     out->in_band[i] = band[i];

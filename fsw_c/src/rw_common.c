@@ -121,11 +121,11 @@ fsw_real fsw_rw_add_scaled_to_fit(fsw_real *out, const fsw_real *u_c, const fsw_
         kappa = FSW_R(0.0);
         break;
       }
-      if (du[i] > FSW_R(0.0))
+      if (du[i] > FSW_R(0.0)) {
         step = (u_max[i] - u_c[i]) / du[i];
-      else if (du[i] < FSW_R(0.0))
+      } else if (du[i] < FSW_R(0.0)) {
         step = (-u_max[i] - u_c[i]) / du[i];
-      else {
+      } else {
         continue; }
       if (step < kappa) { kappa = step; }
     }

@@ -31,9 +31,9 @@ FswStatus fsw_rw_map_check(const FswRwMapConfig *cfg)
     if (!fsw_v3_is_finite(cfg->ctrl_axes_B[j])) { return FSW_E_CONFIG; }
     if (FSW_FABS(fsw_v3_norm(cfg->ctrl_axes_B[j]) - FSW_R(1.0)) > FSW_RW_UNIT_TOL) {
       return FSW_E_CONFIG; }
-    for (k = 0; k < j; k++)
+    for (k = 0; k < j; k++) {
       if (FSW_FABS(fsw_v3_dot(cfg->ctrl_axes_B[j], cfg->ctrl_axes_B[k])) > FSW_RW_ORTHO_TOL) {
-        return FSW_E_CONFIG; }
+        return FSW_E_CONFIG; } }
   }
   if (cfg->mode == FSW_RW_MAP_POWER) {
     if (!fsw_rw_all_positive(&cfg->eps_P, 1) || cfg->eps_P < FSW_RW_MAP_EPS_P_MIN ||
@@ -117,7 +117,7 @@ FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
   FswStatus s;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) fsw_rw_zero(out->u_s); /* safe output */
+  if (out != NULL) { fsw_rw_zero(out->u_s); } /* safe output */
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) { return FSW_E_NULL_ARG; }
   if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   w = &st->work;
@@ -132,7 +132,7 @@ FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
   if (cfg->mode == FSW_RW_MAP_MIN_NORM && w->mn_valid) {
     for (i = 0; i < n && w->mn_avail[i] == in->avail[i]; i++) {
     }
-    if (i < n) w->mn_valid = 0; /* another mask */
+    if (i < n) { w->mn_valid = 0; } /* another mask */
   }
   if (cfg->mode == FSW_RW_MAP_MIN_NORM && w->mn_valid) {
     na = w->mn_na; /* A, idx, sy and k1 as formed for this mask */

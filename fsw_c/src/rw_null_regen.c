@@ -62,11 +62,11 @@ static FswStatus regen_optimum(fsw_real *u, const FswRwNullProj *p, const fsw_re
   fsw_real om_n, om_norm, alpha;
   int n = p->num_rw, i, k = 0, have = 0;
 
-  for (i = 0; i < n; i++)
+  for (i = 0; i < n; i++) {
     if (p->tau[i][i] > tmax) {
       tmax = p->tau[i][i];
       k = i;
-    }
+    } }
   for (i = 0; i < n; i++) {
     nv[i] = p->tau[i][k] / FSW_SQRT(tmax);
     if (sg == FSW_R(0.0) && nv[i] != FSW_R(0.0)) { sg = (nv[i] > FSW_R(0.0)) ? FSW_R(1.0) : -FSW_R(1.0); }
@@ -102,7 +102,7 @@ static FswStatus regen_optimum(fsw_real *u, const FswRwNullProj *p, const fsw_re
     alpha = FSW_R(0.0); }
   for (i = 0; i < n; i++) {
     u[i] = u0[i] + alpha * nv[i];
-    if (u[i] > u_max[i]) u[i] = u_max[i]; /* last-ulp rounding only */
+    if (u[i] > u_max[i]) { u[i] = u_max[i]; } /* last-ulp rounding only */
     if (u[i] < -u_max[i]) { u[i] = -u_max[i]; }
   }
   return FSW_OK;

@@ -43,7 +43,7 @@ FswStatus fsw_rw_sat_update(FswRwSatState *st, const FswRwSatConfig *cfg, const 
   fsw_real s = FSW_R(0.0);
   int n, i, limited = 0;
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) fsw_rw_zero(out->u_s); /* safe output */
+  if (out != NULL) { fsw_rw_zero(out->u_s); } /* safe output */
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) { return FSW_E_NULL_ARG; }
   if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   n = cfg->num_rw;

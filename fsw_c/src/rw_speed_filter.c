@@ -18,9 +18,9 @@ FswStatus fsw_rw_speed_filter_check(const FswRwSpeedFilterConfig *cfg)
   for (i = 0; i < n; i++) {
     if (!isfinite(cfg->noise[i]) || cfg->noise[i] < FSW_R(0.0)) { return FSW_E_CONFIG; } }
   if (cfg->k_reject < 1u || cfg->n_recover < 1u) { return FSW_E_CONFIG; }
-  if (cfg->n_window > 0u)
+  if (cfg->n_window > 0u) {
     for (i = 0; i < n; i++) {
-      if (!isfinite(cfg->resid_tol[i]) || cfg->resid_tol[i] < FSW_R(0.0)) { return FSW_E_CONFIG; } }
+      if (!isfinite(cfg->resid_tol[i]) || cfg->resid_tol[i] < FSW_R(0.0)) { return FSW_E_CONFIG; } } }
   return FSW_OK;
 }
 
@@ -92,8 +92,8 @@ static int torques_valid(const FswRwSpeedFilterConfig *cfg, const FswRwSpeedFilt
   int i;
   if (in->u_valid > 1u) { return 0; }
   if (cfg->n_window == 0u || in->u_valid == 0u) { return 1; }
-  for (i = 0; i < n; i++)
-    if (!(FSW_FABS(in->u_applied[i]) <= FSW_R(2.0) * cfg->u_max[i])) return 0; /* NaN fails too */
+  for (i = 0; i < n; i++) {
+    if (!(FSW_FABS(in->u_applied[i]) <= FSW_R(2.0) * cfg->u_max[i])) { return 0; } } /* NaN fails too */
   return 1;
 }
 
@@ -105,7 +105,7 @@ static int stale(FswRwSpeedFilterState *st, const FswRwSpeedFilterConfig *cfg, i
 {
   if (!isfinite(x)) return 0; /* the outlier gate handles it; the run is kept */
   if (st->has_raw[i] && memcmp(&x, &st->last_raw[i], sizeof x) == 0) {
-    if (st->stale_run[i] < cfg->n_stale) st->stale_run[i]++; /* counted up to the limit only */
+    if (st->stale_run[i] < cfg->n_stale) { st->stale_run[i]++; } /* counted up to the limit only */
   } else {
     st->stale_run[i] = 0u;
   }
@@ -124,7 +124,7 @@ static int torque_inconsistent(FswRwSpeedFilterState *st, const FswRwSpeedFilter
   if (st->failed[i] || in->u_valid == 0u) st->win_open[i] = 0u; /* torque or speed unknown */
   if (st->win_open[i]) {
     st->win_exp[i] += in->u_applied[i] / cfg->J_s[i] * dt;
-    if (st->win_count[i] < cfg->n_window) st->win_count[i]++; /* waits there for an accepted sample */
+    if (st->win_count[i] < cfg->n_window) { st->win_count[i]++; } /* waits there for an accepted sample */
   }
   if (!accepted) return 0; /* the window waits for an accepted sample */
   if (st->win_open[i] && st->win_count[i] >= cfg->n_window) {

@@ -99,9 +99,9 @@ FswStatus fsw_rw_volt_update(FswRwVoltState *st, const FswRwVoltConfig *cfg,
         const fsw_real dV = cfg->K_V * (cfg->J_s[i] * Omega_dot - out->V[i]);
         /* a rate or correction that overflows (a speed glitch of ~1e308)
          * is an outlier whether or not the gate is on: no correction */
-        if ((cfg->gate_rate && FSW_FABS(Omega_dot) > cfg->Omega_dot_max[i]) || !isfinite(dV))
+        if ((cfg->gate_rate && FSW_FABS(Omega_dot) > cfg->Omega_dot_max[i]) || !isfinite(dV)) {
           out->fault |= (uint64_t)1u << i;
-        else {
+        } else {
           out->V[i] -= dV; }
       }
       /* docs/fsw/rw_volt.md: Omega_prev = Omega for every wheel (available or not) */
@@ -114,11 +114,11 @@ FswStatus fsw_rw_volt_update(FswRwVoltState *st, const FswRwVoltConfig *cfg,
   /* feed-forward with dead-band jump and clip */
   for (i = 0; i < n; i++) {
     fsw_real V;
-    if (in->avail[i] != FSW_AVAILABLE) continue; /* stays exactly 0 */
+    if (in->avail[i] != FSW_AVAILABLE) { continue; } /* stays exactly 0 */
     V = (cfg->V_max - cfg->V_min) / cfg->u_max[i] * out->V[i];
-    if (V > FSW_R(0.0))
+    if (V > FSW_R(0.0)) {
       V += cfg->V_min;
-    else if (V < FSW_R(0.0)) {
+    } else if (V < FSW_R(0.0)) {
       V -= cfg->V_min; }
     if (V > cfg->V_max) {
       V = cfg->V_max;

@@ -57,10 +57,10 @@ FswStatus fsw_thr_map_check(const FswThrMapConfig *cfg)
   if (cfg->mode != FSW_THR_MAP_MIN_NORM && cfg->mode != FSW_THR_MAP_NNLS) { return FSW_E_CONFIG; }
   if (!isfinite(cfg->epsilon) || cfg->epsilon < FSW_R(0.0)) { return FSW_E_CONFIG; }
   if (!isfinite(cfg->ang_err_thresh) || cfg->ang_err_thresh < FSW_R(0.0)) { return FSW_E_CONFIG; }
-  for (j = 0; j < 3; j++)
+  for (j = 0; j < 3; j++) {
     if (!fsw_v3_is_finite(cfg->control_axes_B[j]) ||
         fsw_vn_max_abs(cfg->control_axes_B[j], 3) > FSW_THR_MAP_AXIS_MAX) {
-      return FSW_E_CONFIG; }
+      return FSW_E_CONFIG; } }
   for (i = 0; i < cfg->num_thr; i++) {
     if (!fsw_v3_is_finite(cfg->r_thr_B[i]) || !fsw_v3_is_finite(cfg->gt_hat_B[i])) {
       return FSW_E_CONFIG; }
@@ -261,7 +261,7 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
   int i, j, k, n, nc, nnls_iter_prev;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) fsw_vn_zero(out->F, FSW_MAX_THR); /* safe output */
+  if (out != NULL) { fsw_vn_zero(out->F, FSW_MAX_THR); } /* safe output */
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
     if (st != NULL) { (void)fsw_health_record(&st->health, FSW_E_NULL_ARG); }
     return FSW_E_NULL_ARG;
@@ -292,11 +292,11 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
         /* the geometry on its own scale: c_j . (rel x g) / (|rel| |g|),
          * at most 1 in size (unit rows c_j); row sums of squares in geo */
         const fsw_real len = fsw_v3_norm(rel) * st->gt_norm[i];
-        if (len > FSW_R(0.0))
+        if (len > FSW_R(0.0)) {
           for (j = 0; j < nc; j++) {
             const fsw_real e = st->work.CD[j][i] / len;
             geo[j] += e * e;
-          }
+          } }
       }
       if (cfg->thr_force_sign < 0) {
         fsw_real Ld[3];

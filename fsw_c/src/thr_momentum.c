@@ -141,7 +141,7 @@ static void pulse_command(FswThrMomentumState *st, const FswThrMomentumConfig *c
   const fsw_real full = cfg->L_dump * cfg->dt_cycle; /* [N*m*s] */
   const fsw_real I_c = st->I_pulse < full ? st->I_pulse : full;
   fsw_real L = I_c / cfg->dt_cycle;
-  if (L > cfg->L_dump) L = cfg->L_dump; /* rounding of the quotient */
+  if (L > cfg->L_dump) { L = cfg->L_dump; } /* rounding of the quotient */
   fsw_v3_scale(L_thr_B, L, st->u_B);
   st->L_prev = L;
   st->t_cmd_ns = t_ns;
@@ -189,7 +189,7 @@ FswStatus fsw_thr_momentum_update(FswThrMomentumState *st, const FswThrMomentumC
   int i, out_phase;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) zero_out(out); /* safe output */
+  if (out != NULL) { zero_out(out); } /* safe output */
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) { return FSW_E_NULL_ARG; }
   if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   if (!input_ok(cfg, in)) {

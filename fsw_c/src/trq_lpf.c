@@ -53,7 +53,7 @@ FswStatus fsw_trq_lpf_update(FswTrqLpfState *st, const FswTrqLpfConfig *cfg,
   fsw_real Lr_prev[3], LrF[3]; /* candidate memory, committed on success */
   int k;
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) fsw_v3_zero(out->LrF_B); /* safe output */
+  if (out != NULL) { fsw_v3_zero(out->LrF_B); } /* safe output */
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) { return FSW_E_NULL_ARG; }
   if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   if (!fsw_v3_is_finite(in->Lr_B)) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
