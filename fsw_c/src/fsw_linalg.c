@@ -389,8 +389,8 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
         int blk = -1;
         it++;
         /* r0 = b - sum over fixed columns; LS on the free columns */
-        for (ni = 0, i = 0; i < n; i++)
-          if (stat[i] != K4_FREE) { idx[ni++] = i; }
+        ni = 0; for (i = 0; i < n; i++) {
+          if (stat[i] != K4_FREE) { idx[ni++] = i; } }
         for (k = 0; k < m; k++) {
           fsw_real v = b[k];
           for (q = 0; q < ni; q++) { v -= A[k][idx[q]] * F[idx[q]]; }
@@ -454,8 +454,8 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
               stat[i] = K4_AT_HI;
             }
           }
-          for (j = 0, q = 0; q < np; q++)
-            if (stat[P[q]] == K4_FREE) { P[j++] = P[q]; }
+          j = 0; for (q = 0; q < np; q++) {
+            if (stat[P[q]] == K4_FREE) { P[j++] = P[q]; } }
           np = j;
         }
       }
@@ -468,8 +468,8 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
     fsw_real M[3][3], c[3], lam[3], alpha = FSW_R(1.0), pmax = FSW_R(0.0), vbest;
     int blk = -1, best = -1, blk_lo = 0;
     it++;
-    for (ni = 0, i = 0; i < n; i++)
-      if (stat[i] == K4_FREE) { idx[ni++] = i; }
+    ni = 0; for (i = 0; i < n; i++) {
+      if (stat[i] == K4_FREE) { idx[ni++] = i; } }
     for (k = 0; k < m; k++) {
       for (j = 0; j <= k; j++) {
         fsw_real v = FSW_R(0.0);

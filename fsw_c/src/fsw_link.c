@@ -543,7 +543,7 @@ FswStatus fsw_link_frame(const uint8_t *pkt, size_t n, uint8_t *out, size_t cap,
 
 void fsw_link_deframer_init(FswLinkDeframer *d)
 {
-  if (d != NULL) { memset(d, 0, sizeof *d); }
+  if (d != NULL) { (void)memset(d, 0, sizeof *d); }
 }
 
 /* Drops the first byte of the buffer (a rejected marker start) and keeps
