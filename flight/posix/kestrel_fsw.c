@@ -125,7 +125,7 @@ static int load_key(FswTransport *t, const char *path)
   }
   (void)memset(key, 0, sizeof key);
   if (rc == 0) { rc = fsw_transport_set_key(t, &g_sec, err, sizeof err); }
-  if (rc != 0) { fprintf(stderr, "kestrel-fsw: --key: %s\n", err); }
+  if (rc != 0) { (void)fprintf(stderr, "kestrel-fsw: --key: %s\n", err); }
   return rc;
 }
 
