@@ -67,14 +67,16 @@ def sources(root):
 
 def run_cppcheck(cppcheck, root, files, jobs):
     """Findings as a sorted list of (file, line, column, rule); other messages."""
-    cmd = [cppcheck, "--addon=misra", "--std=c99", "--language=c", "-q",
-           "-j", str(jobs), "--suppress=missingIncludeSystem",
-           "--template=" + TEMPLATE]
-    cmd += ["-I" + d for d in INCLUDE_DIRS]
-    cmd += ["-D" + d for d in DEFINES]
-    cmd += files
-    proc = subprocess.run(cmd, cwd=root, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                          universal_newlines=True, check=False)
+    # the addon's .dump / .ctu-info files go to a scratch folder, not next to the sources
+    with tempfile.TemporaryDirectory(prefix="misra_check_") as scratch:
+        cmd = [cppcheck, "--addon=misra", "--std=c99", "--language=c", "-q",
+               "-j", str(jobs), "--suppress=missingIncludeSystem",
+               "--cppcheck-build-dir=" + scratch, "--template=" + TEMPLATE]
+        cmd += ["-I" + d for d in INCLUDE_DIRS]
+        cmd += ["-D" + d for d in DEFINES]
+        cmd += files
+        proc = subprocess.run(cmd, cwd=root, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                              universal_newlines=True, check=False)
     findings, other = set(), []
     for line in proc.stdout.splitlines():
         if not line.startswith("@@"):
