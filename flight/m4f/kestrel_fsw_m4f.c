@@ -90,7 +90,7 @@ static void uart_init(void)
 {
   uint32_t i;
   for (i = 0; i < 16u; ++i) { g_vectors[i] = __interrupt_vector[i]; }
-  for (i = 16u; i < NUM_VECTORS; ++i) g_vectors[i] = __interrupt_vector[2]; /* NMI handler: unexpected */
+  for (i = 16u; i < NUM_VECTORS; ++i) { g_vectors[i] = __interrupt_vector[2]; } /* NMI handler: unexpected */
   g_vectors[16u + UART0_RX_IRQ] = uart0_rx_isr;
   SCB_VTOR = (uint32_t)(uintptr_t)g_vectors;
   __asm volatile("dsb\n\tisb" ::: "memory");

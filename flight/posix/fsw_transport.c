@@ -400,7 +400,7 @@ int fsw_transport_send(FswTransport *t, const uint8_t *pkt, size_t n)
     (void)send(t->fd, pkt, n, 0); /* a refused datagram (no process on the port yet) is a lost packet */
     return 0;
   }
-  if (t->peer_len == 0u) return 0; /* nobody to answer yet */
+  if (t->peer_len == 0u) { return 0; } /* nobody to answer yet */
   return sendto(t->fd, pkt, n, 0, (const struct sockaddr *)t->peer, (socklen_t)t->peer_len) == (ssize_t)n ? 0 : -1;
 }
 

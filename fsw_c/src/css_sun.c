@@ -138,7 +138,7 @@ FswStatus fsw_css_sun_update(FswCssSunState *st, const FswCssSunConfig *cfg,
     y[i] = FSW_R(0.0);
     if (in->avail[i] != FSW_AVAILABLE) { continue; }
     y[i] = in->reading[i] / cfg->scale[i];
-    if (!isfinite(y[i])) return fsw_health_record(&st->health, FSW_E_BAD_INPUT); /* overflow */
+    if (!isfinite(y[i])) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); } /* overflow */
     if (!(y[i] > cfg->lit_threshold)) { continue; }
     lit[i] = 1u;
     num_lit++;
@@ -162,7 +162,7 @@ FswStatus fsw_css_sun_update(FswCssSunState *st, const FswCssSunConfig *cfg,
       return fsw_health_record(&st->health, FSW_OK);
     }
   }
-  if (a < 0) return fsw_health_record(&st->health, FSW_W_SINGULAR); /* NONE */
+  if (a < 0) { return fsw_health_record(&st->health, FSW_W_SINGULAR); } /* NONE */
 
   /* brightest partner of a whose normal is not parallel to n_a */
   for (i = 0; i < cfg->num_css; i++) {

@@ -336,7 +336,7 @@ static void clear_state(FswAcsState *st)
 /* Reset the stages whose memory must not survive a mode transition. */
 static void reset_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
 {
-  if (cfg->has_mtq) fsw_bdot_reset(&st->bdot); /* a fresh derivative and persistence timer */
+  if (cfg->has_mtq) { fsw_bdot_reset(&st->bdot); } /* a fresh derivative and persistence timer */
   fsw_mrp_fb_reset(&st->mrp_fb);
   if (cfg->use_lpf) { fsw_trq_lpf_reset(&st->lpf); }
   if (cfg->has_wheels && cfg->use_volt) { fsw_rw_volt_reset(&st->rw_volt); }
@@ -721,7 +721,7 @@ static FswStatus run_detumble(FswAcsState *st, const FswAcsConfig *cfg, const Fs
   fsw_vn_copy(act->m_cmd, w->mtq_out.m_cmd, cfg->mtq_map.num_mtq);
   fsw_v3_copy(h->tau_mtq_B, w->mtq_out.tau_ach_B);
   act->mtq_active = 1u;
-  if (cfg->has_wheels) act->wheels_active = 1u; /* u_s = 0: the wheels keep their momentum */
+  if (cfg->has_wheels) { act->wheels_active = 1u; } /* u_s = 0: the wheels keep their momentum */
   return acc;
 }
 

@@ -148,7 +148,7 @@ FswStatus fsw_link_sec_protect(FswLinkSec *s, const uint8_t *pkt, size_t n, uint
   uint8_t mac[FSW_SHA256_SIZE];
   if (s == NULL || pkt == NULL || out == NULL || out_len == NULL) { return FSW_E_NULL_ARG; }
   if (cap < FSW_LINK_SEC_TRAILER_SIZE || n > cap - FSW_LINK_SEC_TRAILER_SIZE) { return sec_fail(err, FSW_LINK_E_SPACE); }
-  if (s->tx_seq == 0u) return sec_fail(err, FSW_LINK_E_COUNT); /* wrapped: numbers used up */
+  if (s->tx_seq == 0u) { return sec_fail(err, FSW_LINK_E_COUNT); } /* wrapped: numbers used up */
   (void)memmove(out, pkt, n);
   put_seq(out + n, s->tx_seq);
   fsw_hmac_sha256(s->key, s->key_len, out, n + FSW_LINK_SEC_SEQ_SIZE, NULL, 0u, mac);

@@ -142,7 +142,7 @@ fsw_real fsw_vn_max_abs(const fsw_real *a, int n)
   int i;
   for (i = 0; i < n; i++) {
     fsw_real v = FSW_FABS(a[i]);
-    if (v > m || v != v) m = v; /* NaN propagates */
+    if (v > m || v != v) { m = v; } /* NaN propagates */
   }
   return m;
 }

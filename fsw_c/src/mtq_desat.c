@@ -77,7 +77,7 @@ FswStatus fsw_mtq_desat_update(FswMtqDesatState *st, const FswMtqDesatConfig *cf
   fsw_rw_momentum(out->h_w_B, cfg->gs_hat_B, cfg->J_s, in->Omega, in->avail, n);
   fsw_v3_sub(out->h_err_B, out->h_w_B, cfg->h_target_B);
   out->h_err_norm = fsw_v3_norm(out->h_err_B);
-  if (fs != FSW_OK) return fsw_health_record(&st->health, fs); /* no field: no request */
+  if (fs != FSW_OK) { return fsw_health_record(&st->health, fs); } /* no field: no request */
   if (out->h_err_norm <= cfg->h_deadband) { return fsw_health_record(&st->health, FSW_OK); }
 
   /* tau_req = -k (h - (h . b) b) = k (h x b) x b; m = (k/|B|) (h x b) */

@@ -238,7 +238,7 @@ FswStatus fsw_mtq_map_update(FswMtqMapState *st, const FswMtqMapConfig *cfg,
                      : !mtq_v3_within(in->tau_B, FSW_MTQ_TAU_REQ_MAX)) {
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
   fs = fsw_mtq_field(b_hat, &Bn, in->B_B, in->B_valid);
-  if (fs != FSW_OK) return fsw_health_record(&st->health, fs); /* W_SINGULAR: rods off */
+  if (fs != FSW_OK) { return fsw_health_record(&st->health, fs); } /* W_SINGULAR: rods off */
 
   if (in->use_dipole) {
     fsw_v3_copy(m_B, in->m_req_B);

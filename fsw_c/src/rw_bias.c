@@ -183,7 +183,7 @@ static void solve_k1(fsw_real *lambda, const FswRwBiasState *st, const BiasWork 
     fsw_real a, c;
     if (w->avail[i] != FSW_AVAILABLE) { continue; }
     if (FSW_FABS(nv[i]) <= FSW_NULL_TOL) {
-      if (w->lo[i] > FSW_R(0.0) || w->hi[i] < FSW_R(0.0)) Fhi = Flo - FSW_R(1.0); /* fixed in its band */
+      if (w->lo[i] > FSW_R(0.0) || w->hi[i] < FSW_R(0.0)) { Fhi = Flo - FSW_R(1.0); } /* fixed in its band */
       continue;
     }
     a = w->lo[i] / nv[i];

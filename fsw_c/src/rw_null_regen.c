@@ -76,7 +76,7 @@ static FswStatus regen_optimum(fsw_real *u, const FswRwNullProj *p, const fsw_re
   for (i = 0; i < n; i++) {
     fsw_real a, b;
     if (nv[i] == FSW_R(0.0)) {
-      if (FSW_FABS(u0[i]) > u_max[i]) return FSW_W_SAT; /* no alpha helps */
+      if (FSW_FABS(u0[i]) > u_max[i]) { return FSW_W_SAT; } /* no alpha helps */
       continue;
     }
     a = (-u_max[i] - u0[i]) / nv[i];

@@ -103,7 +103,7 @@ static int torques_valid(const FswRwSpeedFilterConfig *cfg, const FswRwSpeedFilt
  * frozen tachometer repeats its bits (issue 39). */
 static int stale(FswRwSpeedFilterState *st, const FswRwSpeedFilterConfig *cfg, int i, fsw_real x)
 {
-  if (!isfinite(x)) return 0; /* the outlier gate handles it; the run is kept */
+  if (!isfinite(x)) { return 0; } /* the outlier gate handles it; the run is kept */
   if (st->has_raw[i] && memcmp(&x, &st->last_raw[i], sizeof x) == 0) {
     if (st->stale_run[i] < cfg->n_stale) { st->stale_run[i]++; } /* counted up to the limit only */
   } else {
@@ -121,12 +121,12 @@ static int torque_inconsistent(FswRwSpeedFilterState *st, const FswRwSpeedFilter
                                const FswRwSpeedFilterIn *in, int i, int accepted, fsw_real dt)
 {
   if (cfg->n_window == 0u) { return 0; }
-  if (st->failed[i] || in->u_valid == 0u) st->win_open[i] = 0u; /* torque or speed unknown */
+  if (st->failed[i] || in->u_valid == 0u) { st->win_open[i] = 0u; } /* torque or speed unknown */
   if (st->win_open[i]) {
     st->win_exp[i] += in->u_applied[i] / cfg->J_s[i] * dt;
     if (st->win_count[i] < cfg->n_window) { st->win_count[i]++; } /* waits there for an accepted sample */
   }
-  if (!accepted) return 0; /* the window waits for an accepted sample */
+  if (!accepted) { return 0; } /* the window waits for an accepted sample */
   if (st->win_open[i] && st->win_count[i] >= cfg->n_window) {
     const fsw_real r = (st->Omega_good[i] - st->win_Omega0[i]) - st->win_exp[i];
     if (!(FSW_FABS(r) <= cfg->resid_tol[i])) { return 1; }

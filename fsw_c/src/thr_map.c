@@ -232,7 +232,7 @@ static FswStatus map_nnls(FswThrMapState *st, const FswThrMapConfig *cfg,
   for (i = 0; i < n; i++) {
     lo[i] = (cfg->thr_force_sign > 0) ? FSW_R(0.0) : -cfg->F_max[i];
     hi[i] = (cfg->thr_force_sign > 0) ? cfg->F_max[i] : FSW_R(0.0);
-    if (avail[i] != FSW_AVAILABLE) lo[i] = hi[i] = FSW_R(0.0); /* absent */
+    if (avail[i] != FSW_AVAILABLE) { lo[i] = hi[i] = FSW_R(0.0); } /* absent */
   }
   /* K4; its input checks cannot fail here: [C][D] and Lbar were checked
    * finite by the caller and the bounds come from a checked config */
@@ -284,7 +284,7 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
       fsw_real rel[3], d[3];
       fsw_v3_sub(rel, cfg->r_thr_B[i], in->r_CoM_B);
       fsw_v3_cross(d, rel, cfg->gt_hat_B[i]);
-      if (in->avail[i] != FSW_AVAILABLE) fsw_v3_zero(d); /* absent: no torque arm, not on */
+      if (in->avail[i] != FSW_AVAILABLE) { fsw_v3_zero(d); } /* absent: no torque arm, not on */
       for (k = 0; k < 3; k++) { st->work.D_B[k][i] = d[k]; }
       /* [C][D] */
       for (j = 0; j < nc; j++) { st->work.CD[j][i] = fsw_v3_dot(st->C[j], d); }
