@@ -315,8 +315,8 @@ static int recv_datagram(FswTransport *t, const uint8_t **pkt, size_t *len, long
           t->foreign++; /* not the pinned peer: counted, dropped, never answered */
           continue;
         }
-        if (t->sec != NULL && fsw_link_sec_verify(t->sec, t->rx, (size_t)n, &inner, NULL) != FSW_OK)
-          return FSW_TRANSPORT_REFUSED; /* unauthenticated: dropped, pins nothing */
+        if (t->sec != NULL && fsw_link_sec_verify(t->sec, t->rx, (size_t)n, &inner, NULL) != FSW_OK) {
+          return FSW_TRANSPORT_REFUSED; } /* unauthenticated: dropped, pins nothing */
         if (t->sec != NULL) { n = (ssize_t)inner; }
         if (t->peer_len == 0u && is_telecommand(t->rx, (size_t)n)) { /* the first valid packet pins its sender */
           (void)memcpy(t->peer, &from, flen);
@@ -464,9 +464,9 @@ int fsw_transport_load_key(const char *path, uint8_t *key, size_t cap, size_t *l
       digits = 0u;
       break;
     }
-    if (digits % 2u == 0u)
+    if (digits % 2u == 0u) {
       key[digits / 2u] = (uint8_t)(h << 4);
-    else {
+    } else {
       key[digits / 2u] = (uint8_t)(key[digits / 2u] | h); }
     ++digits;
   }

@@ -172,10 +172,10 @@ static void serve(FswTransport *t, long watchdog_ms)
       break;
     }
     if (rc == FSW_TRANSPORT_REFUSED) {
-      if (g_sec.rx_auth_failed + g_sec.rx_replayed == 1u)
+      if (g_sec.rx_auth_failed + g_sec.rx_replayed == 1u) {
         (void)fprintf(stderr, "kestrel-fsw: a datagram failed authentication (%s) and was dropped; is the other end "
                         "using the same key? Further ones are counted\n",
-                g_sec.rx_replayed != 0u ? "a replayed security sequence number" : "wrong key, or none");
+                g_sec.rx_replayed != 0u ? "a replayed security sequence number" : "wrong key, or none"); }
       continue;
     }
     if (rc == FSW_TRANSPORT_CLOSED) {
@@ -242,8 +242,8 @@ int main(int argc, char **argv)
       return usage();
     }
   }
-  if ((udp == NULL) == (serial == NULL) || (peer != NULL && udp == NULL) || (key_file != NULL && udp == NULL))
-    return usage();
+  if ((udp == NULL) == (serial == NULL) || (peer != NULL && udp == NULL) || (key_file != NULL && udp == NULL)) {
+    return usage(); }
   if (load_config(config) != 0) { return 1; }
   s = fsw_link_node_init(&g_node, &g_cfg, (uint32_t)max_missed, &bad);
   if (s != FSW_OK) {

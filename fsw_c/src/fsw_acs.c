@@ -175,8 +175,8 @@ static FswStatus check_momentum(const FswAcsConfig *cfg, const char **bad_field)
     if ((s = fsw_mtq_map_check(&cfg->mtq_map)) != FSW_OK) { return fail(bad_field, "mtq_map", s); }
     if ((s = fsw_bdot_check(&cfg->bdot)) != FSW_OK) { return fail(bad_field, "bdot", s); }
     if (cfg->detumble_exit_mode != -1 &&
-        (cfg->detumble_exit_mode == FSW_ACS_MODE_DETUMBLE || !mode_configured(cfg, cfg->detumble_exit_mode)))
-      return fail(bad_field, "detumble_exit_mode", FSW_E_CONFIG);
+        (cfg->detumble_exit_mode == FSW_ACS_MODE_DETUMBLE || !mode_configured(cfg, cfg->detumble_exit_mode))) {
+      return fail(bad_field, "detumble_exit_mode", FSW_E_CONFIG); }
   }
   if (cfg->has_orbit && (s = fsw_guid_orbit_check(&cfg->orbit)) != FSW_OK) { return fail(bad_field, "orbit", s); }
   if (!is_bool(cfg->use_thr_mom)) { return fail(bad_field, "use_thr_mom", FSW_E_CONFIG); }
@@ -186,27 +186,27 @@ static FswStatus check_momentum(const FswAcsConfig *cfg, const char **bad_field)
      * keeps every thruster on between pulses (zero force = full thrust) */
     if (cfg->thr_map.thr_force_sign < 0) { return fail(bad_field, "use_thr_mom", FSW_E_CONFIG); }
     if ((s = fsw_thr_momentum_check(&cfg->thr_mom)) != FSW_OK) { return fail(bad_field, "thr_mom", s); }
-    if (cfg->thr_mom.num_rw != n || !same_n3(cfg->thr_mom.gs_hat_B, cfg->rw_map.gs_hat_B, n))
-      return fail(bad_field, "thr_mom.gs_hat_B", FSW_E_CONFIG);
-    if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->thr_mom.J_s, cfg->mrp_fb.J_s, n))
-      return fail(bad_field, "thr_mom.J_s", FSW_E_CONFIG);
+    if (cfg->thr_mom.num_rw != n || !same_n3(cfg->thr_mom.gs_hat_B, cfg->rw_map.gs_hat_B, n)) {
+      return fail(bad_field, "thr_mom.gs_hat_B", FSW_E_CONFIG); }
+    if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->thr_mom.J_s, cfg->mrp_fb.J_s, n)) {
+      return fail(bad_field, "thr_mom.J_s", FSW_E_CONFIG); }
     if (cfg->thr_mom.num_thr != cfg->thr_map.num_thr) { return fail(bad_field, "thr_mom.num_thr", FSW_E_CONFIG); }
   }
   if (!is_bool(cfg->use_mtq_desat)) { return fail(bad_field, "use_mtq_desat", FSW_E_CONFIG); }
   if (cfg->use_mtq_desat) {
     if (!cfg->has_wheels || !cfg->has_mtq) { return fail(bad_field, "use_mtq_desat", FSW_E_CONFIG); }
     if ((s = fsw_mtq_desat_check(&cfg->mtq_desat)) != FSW_OK) { return fail(bad_field, "mtq_desat", s); }
-    if (cfg->mtq_desat.num_rw != n || !same_n3(cfg->mtq_desat.gs_hat_B, cfg->rw_map.gs_hat_B, n))
-      return fail(bad_field, "mtq_desat.gs_hat_B", FSW_E_CONFIG);
-    if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->mtq_desat.J_s, cfg->mrp_fb.J_s, n))
-      return fail(bad_field, "mtq_desat.J_s", FSW_E_CONFIG);
+    if (cfg->mtq_desat.num_rw != n || !same_n3(cfg->mtq_desat.gs_hat_B, cfg->rw_map.gs_hat_B, n)) {
+      return fail(bad_field, "mtq_desat.gs_hat_B", FSW_E_CONFIG); }
+    if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->mtq_desat.J_s, cfg->mrp_fb.J_s, n)) {
+      return fail(bad_field, "mtq_desat.J_s", FSW_E_CONFIG); }
   }
   if (!is_bool(cfg->use_bias)) { return fail(bad_field, "use_bias", FSW_E_CONFIG); }
   if (cfg->use_bias) {
     if (!cfg->has_wheels || cfg->use_null != 1) { return fail(bad_field, "use_bias", FSW_E_CONFIG); }
     if ((s = fsw_rw_bias_check(&cfg->rw_bias)) != FSW_OK) { return fail(bad_field, "rw_bias", s); }
-    if (cfg->rw_bias.num_rw != n || !same_n3(cfg->rw_bias.gs_hat_B, cfg->rw_map.gs_hat_B, n))
-      return fail(bad_field, "rw_bias.gs_hat_B", FSW_E_CONFIG);
+    if (cfg->rw_bias.num_rw != n || !same_n3(cfg->rw_bias.gs_hat_B, cfg->rw_map.gs_hat_B, n)) {
+      return fail(bad_field, "rw_bias.gs_hat_B", FSW_E_CONFIG); }
   }
   if (!policy_configured(cfg, cfg->initial_policy)) { return fail(bad_field, "initial_policy", FSW_E_CONFIG); }
   return FSW_OK;
@@ -245,11 +245,11 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
   if (cfg->has_wheels) {
     const int n = cfg->rw_map.num_rw;
     if ((s = fsw_rw_map_check(&cfg->rw_map)) != FSW_OK) { return fail(bad_field, "rw_map", s); }
-    if (cfg->mrp_fb.num_rw != 0 && cfg->mrp_fb.num_rw != n)
-      return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG);
+    if (cfg->mrp_fb.num_rw != 0 && cfg->mrp_fb.num_rw != n) {
+      return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG); }
     if (cfg->mrp_fb.num_rw != 0 &&
-        !same_n3(cfg->mrp_fb.gs_hat_B, cfg->rw_map.gs_hat_B, n))
-      return fail(bad_field, "mrp_fb.gs_hat_B", FSW_E_CONFIG);
+        !same_n3(cfg->mrp_fb.gs_hat_B, cfg->rw_map.gs_hat_B, n)) {
+      return fail(bad_field, "mrp_fb.gs_hat_B", FSW_E_CONFIG); }
     if ((s = fsw_rw_sat_check(&cfg->rw_sat)) != FSW_OK) { return fail(bad_field, "rw_sat", s); }
     if (cfg->rw_sat.num_rw != n) { return fail(bad_field, "rw_sat.num_rw", FSW_E_CONFIG); }
     if (!is_bool(cfg->use_null)) { return fail(bad_field, "use_null", FSW_E_CONFIG); }
@@ -264,16 +264,16 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
     if (cfg->use_volt) {
       if ((s = fsw_rw_volt_check(&cfg->rw_volt)) != FSW_OK) { return fail(bad_field, "rw_volt", s); }
       if (cfg->rw_volt.num_rw != n) { return fail(bad_field, "rw_volt.num_rw", FSW_E_CONFIG); }
-      if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->rw_volt.J_s, cfg->mrp_fb.J_s, n))
-        return fail(bad_field, "rw_volt.J_s", FSW_E_CONFIG);
+      if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->rw_volt.J_s, cfg->mrp_fb.J_s, n)) {
+        return fail(bad_field, "rw_volt.J_s", FSW_E_CONFIG); }
     }
     if (!is_bool(cfg->use_speed_filter)) { return fail(bad_field, "use_speed_filter", FSW_E_CONFIG); }
     if (cfg->use_speed_filter) {
-      if ((s = fsw_rw_speed_filter_check(&cfg->speed_filter)) != FSW_OK)
-        return fail(bad_field, "speed_filter", s);
+      if ((s = fsw_rw_speed_filter_check(&cfg->speed_filter)) != FSW_OK) {
+        return fail(bad_field, "speed_filter", s); }
       if (cfg->speed_filter.num_rw != n) { return fail(bad_field, "speed_filter.num_rw", FSW_E_CONFIG); }
-      if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->speed_filter.J_s, cfg->mrp_fb.J_s, n))
-        return fail(bad_field, "speed_filter.J_s", FSW_E_CONFIG);
+      if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->speed_filter.J_s, cfg->mrp_fb.J_s, n)) {
+        return fail(bad_field, "speed_filter.J_s", FSW_E_CONFIG); }
       /* the filter bounds a wheel's speed change by its u_max / J_s and
        * refuses a torque above 2 u_max: its limit must cover every torque
        * rw_sat can command (issue 39: 2.8e-4 against 0.2 N m made every
@@ -297,8 +297,8 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
     int num_thr, b;
     if ((s = fsw_thr_map_check(&cfg->thr_map)) != FSW_OK) { return fail(bad_field, "thr_map", s); }
     if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
-      if ((s = fsw_thr_pulse_rem_check(&cfg->pulse_rem)) != FSW_OK)
-        return fail(bad_field, "pulse_rem", s);
+      if ((s = fsw_thr_pulse_rem_check(&cfg->pulse_rem)) != FSW_OK) {
+        return fail(bad_field, "pulse_rem", s); }
       num_thr = cfg->pulse_rem.common.num_thr;
       F_max = cfg->pulse_rem.common.F_max;
       b = cfg->pulse_rem.common.base_thrust_state;
@@ -307,8 +307,8 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
       for (i = 0; i < n; i++) {
         if (F_max[i] != cfg->thr_map.F_max[i]) { return fail(bad_field, "pulse_rem.F_max", FSW_E_CONFIG); } }
     } else if (cfg->pulser == FSW_ACS_PULSE_SCHMITT) {
-      if ((s = fsw_thr_pulse_schmitt_check(&cfg->pulse_schmitt)) != FSW_OK)
-        return fail(bad_field, "pulse_schmitt", s);
+      if ((s = fsw_thr_pulse_schmitt_check(&cfg->pulse_schmitt)) != FSW_OK) {
+        return fail(bad_field, "pulse_schmitt", s); }
       num_thr = cfg->pulse_schmitt.common.num_thr;
       F_max = cfg->pulse_schmitt.common.F_max;
       b = cfg->pulse_schmitt.common.base_thrust_state;
@@ -385,8 +385,8 @@ FswStatus fsw_acs_init(FswAcsState *st, const FswAcsConfig *cfg, const char **ba
     }
     ACS_INIT(fsw_rw_sat_init(&st->rw_sat, &cfg->rw_sat), "rw_sat");
     if (cfg->use_volt) { ACS_INIT(fsw_rw_volt_init(&st->rw_volt, &cfg->rw_volt), "rw_volt"); }
-    if (cfg->use_speed_filter)
-      ACS_INIT(fsw_rw_speed_filter_init(&st->speed_filter, &cfg->speed_filter), "speed_filter");
+    if (cfg->use_speed_filter) {
+      ACS_INIT(fsw_rw_speed_filter_init(&st->speed_filter, &cfg->speed_filter), "speed_filter"); }
   }
   if (cfg->has_thrusters) {
     ACS_INIT(fsw_thr_map_init(&st->thr_map, &cfg->thr_map), "thr_map");
@@ -836,9 +836,9 @@ static void apply_set_command(FswAcsState *st, const FswAcsConfig *cfg, const Fs
     /* the pulser's clock is stale when the dumps start to use it (in the
      * thruster actuation it runs every cycle: its clock is current) */
     if (cmd->policy == FSW_ACS_MOM_THRUSTERS && st->actuation == FSW_ACS_ACT_WHEELS) {
-      if (cfg->pulser == FSW_ACS_PULSE_REMAINDER)
+      if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
         fsw_thr_pulse_rem_reset(&st->pulse_rem);
-      else {
+      } else {
         fsw_thr_pulse_schmitt_reset(&st->pulse_schmitt); }
     }
   }
@@ -871,8 +871,8 @@ static void save_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   }
   if (cfg->has_orbit) { w->saved.orbit = st->orbit; }
   if (cfg->use_thr_mom) { w->saved.thr_mom = st->thr_mom; }
-  if (cfg->use_bias)
-    for (i = 0; i < FSW_MAX_RW; i++) { w->saved.bias_in_band[i] = st->rw_bias.in_band[i]; }
+  if (cfg->use_bias) {
+    for (i = 0; i < FSW_MAX_RW; i++) { w->saved.bias_in_band[i] = st->rw_bias.in_band[i]; } }
   fsw_vn_copy(w->saved.t_on_last, w->t_on_last, thr_count(cfg));
   w->saved.mrp_fb = st->mrp_fb;
   if (cfg->use_lpf) { w->saved.lpf = st->lpf; }
@@ -883,9 +883,9 @@ static void save_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   if (cfg->has_thrusters) {
     w->saved.thr_ang_err = st->thr_map.ang_err;
     w->saved.thr_nnls_iter = st->thr_map.nnls_iter;
-    if (cfg->pulser == FSW_ACS_PULSE_REMAINDER)
+    if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
       w->saved.pulse_rem = st->pulse_rem;
-    else {
+    } else {
       w->saved.pulse_schmitt = st->pulse_schmitt; }
   }
 }
@@ -1040,8 +1040,8 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   req_policy = (cmd != NULL && cmd->set_policy == 1u) ? cmd->policy : st->policy;
   if (!mode_configured(cfg, req_mode)) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   if (!((req_act == FSW_ACS_ACT_WHEELS && cfg->has_wheels) ||
-        (req_act == FSW_ACS_ACT_THRUSTERS && cfg->has_thrusters)))
-    return finish(st, cfg, h, FSW_E_BAD_INPUT);
+        (req_act == FSW_ACS_ACT_THRUSTERS && cfg->has_thrusters))) {
+    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   if (cmd != NULL && !set_command_ok(cfg, cmd)) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   {
     fsw_real dt; /* [s] unused: the stages derive their own */
@@ -1050,13 +1050,13 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   }
   if (!fsw_v3_is_finite(sens->omega_BN_B)) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   if ((req_mode == FSW_ACS_MODE_INERTIAL || req_mode == FSW_ACS_MODE_NADIR) &&
-      (sens->att_valid != 1u || !fsw_v3_is_finite(sens->sigma_BN)))
-    return finish(st, cfg, h, FSW_E_BAD_INPUT);
+      (sens->att_valid != 1u || !fsw_v3_is_finite(sens->sigma_BN))) {
+    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   if (sens->mag_valid > 1u || sens->orbit_valid > 1u) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   if (cfg->has_mtq && sens->mag_valid && !fsw_v3_is_finite(sens->B_B)) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   if (req_mode == FSW_ACS_MODE_NADIR &&
-      (sens->orbit_valid != 1u || !fsw_v3_is_finite(sens->r_N) || !fsw_v3_is_finite(sens->v_N)))
-    return finish(st, cfg, h, FSW_E_BAD_INPUT);
+      (sens->orbit_valid != 1u || !fsw_v3_is_finite(sens->r_N) || !fsw_v3_is_finite(sens->v_N))) {
+    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   if (req_mode == FSW_ACS_MODE_SUN_SAFE) {
     for (i = 0; i < cfg->css.num_css; i++) {
       if (sens->css_avail[i] > FSW_UNAVAILABLE) { return finish(st, cfg, h, FSW_E_BAD_INPUT); } }
@@ -1072,11 +1072,11 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
       return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   }
   if ((req_act == FSW_ACS_ACT_THRUSTERS || req_policy == FSW_ACS_MOM_THRUSTERS) &&
-      !fsw_v3_is_finite(sens->r_CoM_B))
-    return finish(st, cfg, h, FSW_E_BAD_INPUT);
-  if (cfg->has_thrusters)
+      !fsw_v3_is_finite(sens->r_CoM_B)) {
+    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
+  if (cfg->has_thrusters) {
     for (i = 0; i < cfg->thr_map.num_thr; i++) {
-      if (sens->thr_avail[i] > FSW_UNAVAILABLE) { return finish(st, cfg, h, FSW_E_BAD_INPUT); } }
+      if (sens->thr_avail[i] > FSW_UNAVAILABLE) { return finish(st, cfg, h, FSW_E_BAD_INPUT); } } }
 
   /* 2. Mode transition: clear the memory that belongs to the old mode.
    *    From here on the stages advance their own state; an error status of
@@ -1113,8 +1113,8 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     }
   }
 
-  if (cfg->has_wheels) /* telemetry: mrp_fb's wheel set, available wheels */
-    fsw_rw_momentum(h->h_w_B, cfg->mrp_fb.gs_hat_B, cfg->mrp_fb.J_s, w->Omega, w->rw_avail, cfg->mrp_fb.num_rw);
+  if (cfg->has_wheels) /* telemetry: mrp_fb's wheel set, available wheels */ {
+    fsw_rw_momentum(h->h_w_B, cfg->mrp_fb.gs_hat_B, cfg->mrp_fb.J_s, w->Omega, w->rw_avail, cfg->mrp_fb.num_rw); }
   if (st->mode == FSW_ACS_MODE_DETUMBLE) {
     /* 3-5 in DETUMBLE: B-dot alone. */
     fsw_v3_zero(guid.sigma_BR);

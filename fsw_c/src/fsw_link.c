@@ -219,8 +219,8 @@ FswStatus fsw_link_encode_cmd(const FswAcsCmdMsg *m, uint64_t t_ns, uint16_t seq
   Writer w;
   if (m == NULL || buf == NULL || len == NULL) { return FSW_E_NULL_ARG; }
   if (m->mode < 0 || m->mode > 255 || m->actuation < 0 || m->actuation > 255 || m->set_ref > 1u ||
-      m->set_gains > 1u || m->set_policy > 1u || m->policy < 0 || m->policy > 255)
-    return link_fail(err, FSW_LINK_E_COUNT);
+      m->set_gains > 1u || m->set_policy > 1u || m->policy < 0 || m->policy > 255) {
+    return link_fail(err, FSW_LINK_E_COUNT); }
   if (!begin_packet(&w, buf, cap, FSW_LINK_CMD_PAYLOAD)) { return link_fail(err, FSW_LINK_E_SPACE); }
   put_headers(&w, FSW_LINK_APID_CMD, 1u, seq, t_ns, FSW_LINK_CMD_PAYLOAD);
   put_u8(&w, (uint32_t)m->mode);
@@ -275,8 +275,8 @@ FswStatus fsw_link_encode_health(const FswAcsHealthMsg *m, uint64_t t_ns, uint16
   Writer w;
   size_t i;
   if (m == NULL || buf == NULL || len == NULL) { return FSW_E_NULL_ARG; }
-  if (m->mode < 0 || m->mode > 255 || m->actuation < 0 || m->actuation > 255 || m->policy < 0 || m->policy > 255)
-    return link_fail(err, FSW_LINK_E_COUNT);
+  if (m->mode < 0 || m->mode > 255 || m->actuation < 0 || m->actuation > 255 || m->policy < 0 || m->policy > 255) {
+    return link_fail(err, FSW_LINK_E_COUNT); }
   if (!begin_packet(&w, buf, cap, FSW_LINK_HEALTH_PAYLOAD)) { return link_fail(err, FSW_LINK_E_SPACE); }
   put_headers(&w, FSW_LINK_APID_HEALTH, 0u, seq, t_ns, FSW_LINK_HEALTH_PAYLOAD);
   put_u16(&w, status_bits(m->status));
@@ -330,8 +330,8 @@ FswStatus fsw_link_parse(const uint8_t *buf, size_t n, FswLinkPacket *p, FswLink
   w0 = get_u16(&r);
   w1 = get_u16(&r);
   data_len = get_u16(&r) + 1u;
-  if ((w0 >> 13) != LINK_VERSION || ((w0 >> 11) & 1u) != 1u || (w1 >> 14) != LINK_SEQ_FLAGS)
-    return link_fail(err, FSW_LINK_E_HEADER);
+  if ((w0 >> 13) != LINK_VERSION || ((w0 >> 11) & 1u) != 1u || (w1 >> 14) != LINK_SEQ_FLAGS) {
+    return link_fail(err, FSW_LINK_E_HEADER); }
   if (data_len < FSW_LINK_SECONDARY_SIZE + FSW_LINK_CRC_SIZE) { return link_fail(err, FSW_LINK_E_HEADER); }
   total = FSW_LINK_PRIMARY_SIZE + (size_t)data_len;
   if (total > n) { return link_fail(err, FSW_LINK_E_SHORT); }
@@ -438,8 +438,8 @@ FswStatus fsw_link_decode_actuator(const FswLinkPacket *p, FswAcsActuatorMsg *m,
   Reader r;
   FswAcsActuatorMsg out;
   uint32_t nrw, nthr, nmtq, wa, ta, ma;
-  if (p == NULL || m == NULL || num_rw == NULL || num_thr == NULL || num_mtq == NULL || p->payload == NULL)
-    return FSW_E_NULL_ARG;
+  if (p == NULL || m == NULL || num_rw == NULL || num_thr == NULL || num_mtq == NULL || p->payload == NULL) {
+    return FSW_E_NULL_ARG; }
   if (expect(p, FSW_LINK_APID_ACTUATOR, 0u, &r, err) != FSW_OK) { return FSW_E_BAD_INPUT; }
   if (p->payload_len < FSW_LINK_ACTUATOR_PAYLOAD(0u, 0u, 0u)) { return link_fail(err, FSW_LINK_E_LENGTH); }
   /* the counts first (bytes 0..2): a version-1 packet has its flag
@@ -486,8 +486,8 @@ FswStatus fsw_link_decode_health(const FswLinkPacket *p, FswAcsHealthMsg *m, Fsw
   safe = get_u8(&r);
   sun_valid = get_u8(&r);
   out.num_lit = (uint8_t)get_u8(&r);
-  if (safe > 1u || sun_valid > 1u || get_u8(&r) != (uint32_t)FSW_ACS_NUM_STAGES)
-    return link_fail(err, FSW_LINK_E_COUNT);
+  if (safe > 1u || sun_valid > 1u || get_u8(&r) != (uint32_t)FSW_ACS_NUM_STAGES) {
+    return link_fail(err, FSW_LINK_E_COUNT); }
   out.safe_output = (uint8_t)safe;
   out.sun_valid = (uint8_t)sun_valid;
   out.cycles = get_u32(&r);
@@ -810,8 +810,8 @@ FswStatus fsw_link_config_decode(const uint8_t *buf, size_t n, FswAcsConfig *cfg
   ref.cap = sizeof hdr;
   put_cfg_header(&ref);
   if (memcmp(buf, hdr, FSW_LINK_CONFIG_HEADER - 4u) != 0) { return link_fail(err, FSW_LINK_E_HEADER); }
-  if (memcmp(buf + FSW_LINK_CONFIG_HEADER - 4u, hdr + FSW_LINK_CONFIG_HEADER - 4u, 4u) != 0 || n != size)
-    return link_fail(err, n < size ? FSW_LINK_E_SHORT : FSW_LINK_E_LENGTH);
+  if (memcmp(buf + FSW_LINK_CONFIG_HEADER - 4u, hdr + FSW_LINK_CONFIG_HEADER - 4u, 4u) != 0 || n != size) {
+    return link_fail(err, n < size ? FSW_LINK_E_SHORT : FSW_LINK_E_LENGTH); }
   if (fsw_link_crc16(buf, size - FSW_LINK_CRC_SIZE, 0xFFFFu) !=
       (uint16_t)(((uint32_t)buf[size - 2u] << 8) | buf[size - 1u])) {
     return link_fail(err, FSW_LINK_E_CRC); }

@@ -55,11 +55,11 @@ FswStatus fsw_guid_orbit_update(FswGuidOrbitState *st, const FswGuidOrbitConfig 
   fsw_real r, v, sin_rv, rate, rdot_r; /* |r|, |v|, |r_hat x v_hat|, |omega|, (r.v)/r^2 */
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (out != NULL) { write_safe(out); }
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL)
-    return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG);
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
+    return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG); }
   if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
-  if (in->valid != 1 || !fsw_v3_is_finite(in->r_N) || !fsw_v3_is_finite(in->v_N))
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (in->valid != 1 || !fsw_v3_is_finite(in->r_N) || !fsw_v3_is_finite(in->v_N)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
   r = fsw_v3_norm(in->r_N);
   v = fsw_v3_norm(in->v_N);
   if (!(r >= FSW_GUID_ORBIT_R_MIN) || !isfinite(r) || !isfinite(v) || !fsw_v3_normalize(rh, in->r_N) ||

@@ -43,8 +43,8 @@ FswStatus fsw_guid_sunsafe_check(const FswGuidSunsafeConfig *cfg)
       !(fsw_v3_norm(cfg->s_cmd_B) <= FSW_GUID_SUNSAFE_S_CMD_MAX)) {
     return FSW_E_CONFIG; }
   if (fsw_vn_max_abs(cfg->omega_search_B, 3) > FSW_GUID_SUNSAFE_RATE_MAX ||
-      FSW_FABS(cfg->sun_axis_spin_rate) > FSW_GUID_SUNSAFE_RATE_MAX)
-    return FSW_E_CONFIG;
+      FSW_FABS(cfg->sun_axis_spin_rate) > FSW_GUID_SUNSAFE_RATE_MAX) {
+    return FSW_E_CONFIG; }
   if (cfg->min_unit_mag < FSW_R(0.0)) { return FSW_E_CONFIG; }
   if (cfg->small_angle < FSW_R(0.0) || !(cfg->small_angle < FSW_R(0.5) * SUNSAFE_PI)) {
     return FSW_E_CONFIG;

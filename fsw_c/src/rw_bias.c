@@ -144,10 +144,10 @@ static void step_of(fsw_real *delta, const FswRwBiasState *st, const BiasWork *w
   for (i = 0; i < w->n; i++) {
     fsw_real a = alpha;
     if (w->avail[i] != FSW_AVAILABLE) { continue; }
-    if (delta[i] > FSW_R(0.0) && w->Om[i] + delta[i] > FSW_RW_OMEGA_MAX)
+    if (delta[i] > FSW_R(0.0) && w->Om[i] + delta[i] > FSW_RW_OMEGA_MAX) {
       a = (FSW_RW_OMEGA_MAX - w->Om[i]) / delta[i];
-    else if (delta[i] < FSW_R(0.0) && w->Om[i] + delta[i] < -FSW_RW_OMEGA_MAX)
-      a = (-FSW_RW_OMEGA_MAX - w->Om[i]) / delta[i];
+    } else if (delta[i] < FSW_R(0.0) && w->Om[i] + delta[i] < -FSW_RW_OMEGA_MAX) {
+      a = (-FSW_RW_OMEGA_MAX - w->Om[i]) / delta[i]; }
     if (a < alpha) { alpha = a; }
   }
   if (alpha < FSW_R(1.0)) { fsw_vn_scale(delta, alpha > FSW_R(0.0) ? alpha : FSW_R(0.0), delta, w->n); }
@@ -272,8 +272,8 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (out != NULL) { write_safe(out, cfg, in); }
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL)
-    return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG);
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
+    return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG); }
   if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   n = cfg->num_rw;
   if (!fsw_rw_avail_valid(in->avail, n) || !fsw_rw_avail_speed_ok(in->Omega, in->avail, n)) {

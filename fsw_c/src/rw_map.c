@@ -37,8 +37,8 @@ FswStatus fsw_rw_map_check(const FswRwMapConfig *cfg)
   }
   if (cfg->mode == FSW_RW_MAP_POWER) {
     if (!fsw_rw_all_positive(&cfg->eps_P, 1) || cfg->eps_P < FSW_RW_MAP_EPS_P_MIN ||
-        cfg->eps_P > FSW_RW_MAP_EPS_P_MAX)
-      return FSW_E_CONFIG;
+        cfg->eps_P > FSW_RW_MAP_EPS_P_MAX) {
+      return FSW_E_CONFIG; }
   } else if (cfg->mode != FSW_RW_MAP_MIN_NORM) {
     return FSW_E_CONFIG;
   }

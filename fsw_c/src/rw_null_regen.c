@@ -94,11 +94,11 @@ static FswStatus regen_optimum(fsw_real *u, const FswRwNullProj *p, const fsw_re
 
   om_n = fsw_vn_dot(Omega, nv, n);
   om_norm = fsw_vn_norm(Omega, n);
-  if (om_n > REGEN_TIE_TOL * om_norm)
+  if (om_n > REGEN_TIE_TOL * om_norm) {
     alpha = lo;
-  else if (om_n < -REGEN_TIE_TOL * om_norm)
+  } else if (om_n < -REGEN_TIE_TOL * om_norm) {
     alpha = hi;
-  else {
+  } else {
     alpha = FSW_R(0.0); }
   for (i = 0; i < n; i++) {
     u[i] = u0[i] + alpha * nv[i];

@@ -79,8 +79,8 @@ static void safe_output(const FswRwSpeedFilterState *st, int n, FswRwSpeedFilter
   int i;
   fsw_rw_zero(out->Omega);
   for (i = 0; i < FSW_MAX_RW; i++) { out->avail[i] = (i < n) ? (uint8_t)FSW_UNAVAILABLE : (uint8_t)0u; }
-  if (held)
-    for (i = 0; i < n; i++) { out->Omega[i] = st->has_good[i] ? st->Omega_good[i] : FSW_R(0.0); }
+  if (held) {
+    for (i = 0; i < n; i++) { out->Omega[i] = st->has_good[i] ? st->Omega_good[i] : FSW_R(0.0); } }
   out->rejected = 0u;
   out->failed = 0u;
   out->latched = 0u;

@@ -14,10 +14,10 @@ FswStatus fsw_rw_volt_check(const FswRwVoltConfig *cfg)
   n = cfg->num_rw;
   if (n < 1 || n > FSW_MAX_RW || n > 64) { return FSW_E_CAPACITY; }
   if (!isfinite(cfg->V_min) || cfg->V_min < FSW_R(0.0)) { return FSW_E_CONFIG; }
-  if (!isfinite(cfg->V_max) || !(cfg->V_max > cfg->V_min) || cfg->V_max > FSW_RW_V_MAX_MAX)
-    return FSW_E_CONFIG;
-  if (!isfinite(cfg->K_V) || cfg->K_V < FSW_R(0.0) || cfg->K_V > FSW_RW_GAIN_MAX)
-    return FSW_E_CONFIG;
+  if (!isfinite(cfg->V_max) || !(cfg->V_max > cfg->V_min) || cfg->V_max > FSW_RW_V_MAX_MAX) {
+    return FSW_E_CONFIG; }
+  if (!isfinite(cfg->K_V) || cfg->K_V < FSW_R(0.0) || cfg->K_V > FSW_RW_GAIN_MAX) {
+    return FSW_E_CONFIG; }
   if (!fsw_rw_all_in_range(cfg->u_max, n, FSW_RW_U_MAX_MIN, FSW_RW_U_MAX_MAX) ||
       !fsw_rw_all_in_range(cfg->J_s, n, FSW_R(0.0), FSW_RW_J_S_MAX)) {
     return FSW_E_CONFIG; }

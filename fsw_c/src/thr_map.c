@@ -323,9 +323,9 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
      * full-rank geometry (docs/fsw-conventions.md "Rank test"). */
     s = FSW_W_SINGULAR; /* F = 0; the diagnostics as each mode sets them */
     st->ang_err = (cfg->mode == FSW_THR_MAP_NNLS) ? FSW_R(0.0) : torque_angle_error(st, cfg, Lbar, F);
-  } else if (cfg->mode == FSW_THR_MAP_NNLS)
+  } else if (cfg->mode == FSW_THR_MAP_NNLS) {
     s = map_nnls(st, cfg, Lbar, in->avail, F);
-  else {
+  } else {
     s = map_min_norm(st, cfg, Lbar, in->avail, F); }
   /* overflow of a finite request is bad input; no NaN/Inf leaves */
   if (fsw_status_is_error(s) || !fsw_vn_is_finite(F, n) || !isfinite(st->ang_err)) {

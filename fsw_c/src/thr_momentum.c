@@ -204,8 +204,8 @@ FswStatus fsw_thr_momentum_update(FswThrMomentumState *st, const FswThrMomentumC
   /* Inputs are valid and bounded: nothing below can fail or overflow, so
    * the state is advanced in place from here on. */
   if (st->clock.has_prev && st->L_prev > FSW_R(0.0) &&
-      FSW_FABS(dt - cfg->dt_cycle) > FSW_THR_MOM_RATE_TOL * cfg->dt_cycle)
-    s = FSW_W_RATE;
+      FSW_FABS(dt - cfg->dt_cycle) > FSW_THR_MOM_RATE_TOL * cfg->dt_cycle) {
+    s = FSW_W_RATE; }
 
   fsw_rw_momentum(h, cfg->gs_hat_B, cfg->J_s, in->Omega, in->avail, cfg->num_rw);
   hn = fsw_v3_norm(h);
@@ -250,8 +250,8 @@ FswStatus fsw_thr_momentum_update(FswThrMomentumState *st, const FswThrMomentumC
       st->dumps = inc_sat(st->dumps);
     }
   }
-  if (out_phase != FSW_THR_MOM_IDLE || st->phase_out != FSW_THR_MOM_IDLE)
-    st->t_dump = ns_to_s(st->t_start_ns, in->t_ns); /* active, or ended in this call */
+  if (out_phase != FSW_THR_MOM_IDLE || st->phase_out != FSW_THR_MOM_IDLE) {
+    st->t_dump = ns_to_s(st->t_start_ns, in->t_ns); } /* active, or ended in this call */
   if (st->phase == FSW_THR_MOM_IDLE) { st->I_rem = FSW_R(0.0); }
   st->phase_out = out_phase;
   fsw_clock_commit(&st->clock, in->t_ns);

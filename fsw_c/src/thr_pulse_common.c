@@ -21,10 +21,10 @@ FswStatus fsw_thr_pulse_check_common(const FswThrPulseCommon *c)
   const FswStatus s = fsw_thr_pulse_check_thrusters(c->num_thr, c->F_max);
   if (s != FSW_OK) { return s; }
   if (!isfinite(c->t_min) || !(c->t_min > FSW_R(0.0))) { return FSW_E_CONFIG; }
-  if (c->base_thrust_state != THR_PULSE_ON_PULSING && c->base_thrust_state != THR_PULSE_OFF_PULSING)
-    return FSW_E_CONFIG;
-  if (!isfinite(c->init_off_pulse_on_time) || c->init_off_pulse_on_time < FSW_R(0.0))
-    return FSW_E_CONFIG;
+  if (c->base_thrust_state != THR_PULSE_ON_PULSING && c->base_thrust_state != THR_PULSE_OFF_PULSING) {
+    return FSW_E_CONFIG; }
+  if (!isfinite(c->init_off_pulse_on_time) || c->init_off_pulse_on_time < FSW_R(0.0)) {
+    return FSW_E_CONFIG; }
   return FSW_OK;
 }
 

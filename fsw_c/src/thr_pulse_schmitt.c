@@ -16,8 +16,8 @@ FswStatus fsw_thr_pulse_schmitt_check(const FswThrPulseSchmittConfig *cfg)
   if (s != FSW_OK) { return s; }
   if (!isfinite(cfg->level_on) || !isfinite(cfg->level_off)) { return FSW_E_CONFIG; }
   if (!(cfg->level_off >= FSW_R(0.0) && cfg->level_off < cfg->level_on &&
-        cfg->level_on <= FSW_R(1.0)))
-    return FSW_E_CONFIG;
+        cfg->level_on <= FSW_R(1.0))) {
+    return FSW_E_CONFIG; }
   return FSW_OK;
 }
 
