@@ -5,6 +5,7 @@ set -euo pipefail
 what="${1:-all}"
 host_pkgs=(cmake ninja-build g++ gcc clang libgtest-dev googletest libbenchmark-dev
            universal-ctags  # tools/harness_shape_check.py: function lengths of the harness
+           cppcheck  # tools/misra_check.py: MISRA C:2012 of the flight code (docs/misra-deviations.md)
            libeigen3-dev binutils python3 pkgconf libyaml-cpp-dev libhdf5-dev libcli11-dev nlohmann-json3-dev
            nodejs chromium python3-h5py lcov  # report: npm bundle at build time, headless test
            clang-19 llvm-19  # coverage preset: MC/DC of the flight library (-fcoverage-mcdc, llvm-cov; docs/coverage.md)

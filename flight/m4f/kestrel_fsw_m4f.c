@@ -57,7 +57,7 @@ extern const Vector __interrupt_vector[]; /* picolibc's table: the 16 system exc
 
 /* The integrator's assert hook (fsw_c calls it, then returns its safe output). */
 void fsw_assert_failed(const char *file, int line);
-void fsw_assert_failed(const char *file, int line) { fprintf(stderr, "kestrel-fsw-m4f: FSW assertion failed at %s:%d\n", file, line); }
+void fsw_assert_failed(const char *file, int line) { (void)fprintf(stderr, "kestrel-fsw-m4f: FSW assertion failed at %s:%d\n", file, line); }
 
 static Vector g_vectors[NUM_VECTORS] __attribute__((aligned(256)));
 #define RX_RING 1024u /* power of two; > one sensor packet with its marker (786 + 4 at most, ICD 2) */
@@ -89,8 +89,8 @@ void uart0_rx_isr(void)
 static void uart_init(void)
 {
   uint32_t i;
-  for (i = 0; i < 16u; ++i) g_vectors[i] = __interrupt_vector[i];
-  for (i = 16u; i < NUM_VECTORS; ++i) g_vectors[i] = __interrupt_vector[2]; /* NMI handler: unexpected */
+  for (i = 0; i < 16u; ++i) { g_vectors[i] = __interrupt_vector[i]; }
+  for (i = 16u; i < NUM_VECTORS; ++i) { g_vectors[i] = __interrupt_vector[2]; } /* NMI handler: unexpected */
   g_vectors[16u + UART0_RX_IRQ] = uart0_rx_isr;
   SCB_VTOR = (uint32_t)(uintptr_t)g_vectors;
   __asm volatile("dsb\n\tisb" ::: "memory");
@@ -114,7 +114,7 @@ static void send_replies(int count)
   int i;
   for (i = 0; i < count; ++i) {
     size_t len = 0;
-    if (fsw_link_frame(g_node.out[i], g_node.out_len[i], g_tx, sizeof g_tx, &len) == FSW_OK) uart_write(g_tx, len);
+    if (fsw_link_frame(g_node.out[i], g_node.out_len[i], g_tx, sizeof g_tx, &len) == FSW_OK) { uart_write(g_tx, len); }
   }
 }
 
@@ -145,14 +145,14 @@ static int load_config(void)
   const char *bad = NULL;
   FswStatus s;
   if (n == 0u || fsw_link_config_decode(img, n, &g_cfg, &why) != FSW_OK) {
-    fprintf(stderr, "kestrel-fsw-m4f: configuration image at 0x%08lx refused: %s\n",
+    (void)fprintf(stderr, "kestrel-fsw-m4f: configuration image at 0x%08lx refused: %s\n",
             (unsigned long)KESTREL_M4F_CONFIG_ADDR, image_error(why));
     return -1;
   }
   s = fsw_acs_check(&g_cfg, &bad);
-  if (s == FSW_OK) s = fsw_link_node_init(&g_node, &g_cfg, 3u, &bad);
+  if (s == FSW_OK) { s = fsw_link_node_init(&g_node, &g_cfg, 3u, &bad); }
   if (s != FSW_OK) {
-    fprintf(stderr, "kestrel-fsw-m4f: configuration refused: %s (field %s)\n", fsw_status_name(s),
+    (void)fprintf(stderr, "kestrel-fsw-m4f: configuration refused: %s (field %s)\n", fsw_status_name(s),
             bad != NULL ? bad : "?");
     return -1;
   }
@@ -163,7 +163,7 @@ int main(void)
 {
   uint8_t chunk[64];
   uint32_t deframer_rejected = 0;
-  if (load_config() != 0) return 1;
+  if (load_config() != 0) { return 1; }
   fsw_link_deframer_init(&g_deframer);
   uart_init();
   fprintf(stderr, "kestrel-fsw-m4f: ready (UART0, %s)\n", sizeof(fsw_real) == 4u ? "float" : "double");
@@ -172,7 +172,7 @@ int main(void)
     /* sleep until a byte arrives; WFI wakes on a pending interrupt even
      * with PRIMASK set, so no wake-up is lost between the test and WFI */
     __asm volatile("cpsid i" ::: "memory");
-    if (g_rx_head == g_rx_tail) __asm volatile("wfi" ::: "memory");
+    if (g_rx_head == g_rx_tail) { __asm volatile("wfi" ::: "memory"); }
     __asm volatile("cpsie i" ::: "memory");
     while (n < sizeof chunk && g_rx_tail != g_rx_head) {
       chunk[n++] = g_rx_ring[g_rx_tail & (RX_RING - 1u)];
@@ -182,7 +182,7 @@ int main(void)
       const uint8_t *pkt = NULL;
       size_t plen = 0;
       used += fsw_link_deframer_push(&g_deframer, chunk + used, n - used, &pkt, &plen);
-      if (pkt != NULL) send_replies(fsw_link_node_receive(&g_node, &g_cfg, pkt, plen));
+      if (pkt != NULL) { send_replies(fsw_link_node_receive(&g_node, &g_cfg, pkt, plen)); }
     }
     /* candidates the deframer rejected (header, length, CRC) count as CRC
      * rejections in the link status, as in kestrel-fsw */

@@ -24,10 +24,10 @@ static int split_spec(const char *spec, char *a, size_t a_len, const char **b)
 {
   const char *colon = strrchr(spec, ':');
   size_t n;
-  if (colon == NULL || colon == spec || colon[1] == '\0') return -1;
+  if (colon == NULL || colon == spec || colon[1] == '\0') { return -1; }
   n = (size_t)(colon - spec);
-  if (n >= a_len) return -1;
-  memcpy(a, spec, n);
+  if (n >= a_len) { return -1; }
+  (void)memcpy(a, spec, n);
   a[n] = '\0';
   *b = colon + 1;
   return 0;
@@ -42,16 +42,16 @@ static int resolve_udp(const char *spec, int flags, const char *what, struct add
   int rc;
   *res = NULL;
   if (split_spec(spec, host, sizeof host, &port) != 0) {
-    snprintf(err, err_len, "bad %s '%s' (expected HOST:PORT)", what, spec);
+    (void)snprintf(err, err_len, "bad %s '%s' (expected HOST:PORT)", what, spec);
     return -1;
   }
-  memset(&hints, 0, sizeof hints);
+  (void)memset(&hints, 0, sizeof hints);
   hints.ai_family = AF_UNSPEC;
   hints.ai_socktype = SOCK_DGRAM;
   hints.ai_flags = flags | AI_NUMERICSERV;
   rc = getaddrinfo(host, port, &hints, res);
   if (rc != 0) {
-    snprintf(err, err_len, "cannot resolve '%s': %s", spec, gai_strerror(rc));
+    (void)snprintf(err, err_len, "cannot resolve '%s': %s", spec, gai_strerror(rc));
     *res = NULL;
     return -1;
   }
@@ -79,11 +79,11 @@ static int open_udp(FswTransport *t, const char *spec, int connect_to, char *err
   struct addrinfo *res = NULL;
   int rc;
   reset(t);
-  if (resolve_udp(spec, connect_to ? 0 : AI_PASSIVE, "UDP address", &res, err, err_len) != 0) return -1;
+  if (resolve_udp(spec, connect_to ? 0 : AI_PASSIVE, "UDP address", &res, err, err_len) != 0) { return -1; }
   t->fd = socket(res->ai_family, SOCK_DGRAM, 0);
   rc = t->fd < 0 ? -1 : connect_to ? connect(t->fd, res->ai_addr, res->ai_addrlen) : bind(t->fd, res->ai_addr, res->ai_addrlen);
   if (rc != 0) {
-    snprintf(err, err_len, connect_to ? "cannot open UDP to %s: %s" : "cannot bind UDP %s: %s", spec, strerror(errno));
+    (void)snprintf(err, err_len, connect_to ? "cannot open UDP to %s: %s" : "cannot bind UDP %s: %s", spec, strerror(errno));
     freeaddrinfo(res);
     fsw_transport_close(t);
     return -1;
@@ -98,15 +98,15 @@ int fsw_transport_open_udp(FswTransport *t, const char *spec, char *err, size_t 
   struct sockaddr_storage bound;
   socklen_t blen = sizeof bound;
   char hbuf[64], pbuf[16];
-  if (open_udp(t, spec, 0, err, err_len) != 0) return -1;
+  if (open_udp(t, spec, 0, err, err_len) != 0) { return -1; }
   if (getsockname(t->fd, (struct sockaddr *)&bound, &blen) != 0 ||
       getnameinfo((struct sockaddr *)&bound, blen, hbuf, sizeof hbuf, pbuf, sizeof pbuf,
                   NI_NUMERICHOST | NI_NUMERICSERV) != 0) {
-    snprintf(err, err_len, "cannot read the bound address of %s", spec);
+    (void)snprintf(err, err_len, "cannot read the bound address of %s", spec);
     fsw_transport_close(t);
     return -1;
   }
-  snprintf(t->desc, sizeof t->desc, "udp %s:%s", hbuf, pbuf);
+  (void)snprintf(t->desc, sizeof t->desc, "udp %s:%s", hbuf, pbuf);
   return 0;
 }
 
@@ -114,16 +114,16 @@ int fsw_transport_pin_peer(FswTransport *t, const char *spec, char *err, size_t 
 {
   struct addrinfo *res = NULL;
   if (t->fd < 0 || t->stream || t->connected) {
-    snprintf(err, err_len, "a peer is pinned on a bound UDP socket only");
+    (void)snprintf(err, err_len, "a peer is pinned on a bound UDP socket only");
     return -1;
   }
-  if (resolve_udp(spec, 0, "peer address", &res, err, err_len) != 0) return -1;
+  if (resolve_udp(spec, 0, "peer address", &res, err, err_len) != 0) { return -1; }
   if (res->ai_addrlen > sizeof t->peer) {
     freeaddrinfo(res);
-    snprintf(err, err_len, "peer address '%s' too long", spec);
+    (void)snprintf(err, err_len, "peer address '%s' too long", spec);
     return -1;
   }
-  memcpy(t->peer, res->ai_addr, res->ai_addrlen);
+  (void)memcpy(t->peer, res->ai_addr, res->ai_addrlen);
   t->peer_len = (unsigned int)res->ai_addrlen;
   freeaddrinfo(res);
   return 0;
@@ -134,17 +134,17 @@ int fsw_transport_peer_text(const FswTransport *t, char *buf, size_t len)
   char h[64], p[16];
   if (t->peer_len == 0u || getnameinfo((const struct sockaddr *)t->peer, (socklen_t)t->peer_len, h, sizeof h, p,
                                        sizeof p, NI_NUMERICHOST | NI_NUMERICSERV) != 0) {
-    snprintf(buf, len, "none");
+    (void)snprintf(buf, len, "none");
     return -1;
   }
-  snprintf(buf, len, "%s:%s", h, p);
+  (void)snprintf(buf, len, "%s:%s", h, p);
   return 0;
 }
 
 int fsw_transport_connect_udp(FswTransport *t, const char *spec, char *err, size_t err_len)
 {
-  if (open_udp(t, spec, 1, err, err_len) != 0) return -1;
-  snprintf(t->desc, sizeof t->desc, "udp %s", spec);
+  if (open_udp(t, spec, 1, err, err_len) != 0) { return -1; }
+  (void)snprintf(t->desc, sizeof t->desc, "udp %s", spec);
   return 0;
 }
 
@@ -167,13 +167,13 @@ static speed_t baud_of(long baud)
 static int set_raw(int fd, speed_t sp)
 {
   struct termios tio;
-  if (tcgetattr(fd, &tio) != 0) return -1;
+  if (tcgetattr(fd, &tio) != 0) { return -1; }
   cfmakeraw(&tio);
   tio.c_cflag |= (tcflag_t)(CLOCAL | CREAD);
   tio.c_cflag &= (tcflag_t)~(tcflag_t)(CSTOPB | CRTSCTS);
   tio.c_cc[VMIN] = 1;
   tio.c_cc[VTIME] = 0;
-  if (cfsetispeed(&tio, sp) != 0 || cfsetospeed(&tio, sp) != 0 || tcsetattr(fd, TCSANOW, &tio) != 0) return -2;
+  if (cfsetispeed(&tio, sp) != 0 || cfsetospeed(&tio, sp) != 0 || tcsetattr(fd, TCSANOW, &tio) != 0) { return -2; }
   return 0;
 }
 
@@ -187,18 +187,18 @@ int fsw_transport_open_serial(FswTransport *t, const char *spec, char *err, size
   int rc, fd;
   reset(t);
   if (split_spec(spec, dev, sizeof dev, &bs) != 0) {
-    snprintf(err, err_len, "bad serial line '%s' (expected DEVICE:BAUD)", spec);
+    (void)snprintf(err, err_len, "bad serial line '%s' (expected DEVICE:BAUD)", spec);
     return -1;
   }
   baud = strtol(bs, &end, 10);
   sp = baud_of(baud);
   if (*end != '\0' || sp == (speed_t)0) {
-    snprintf(err, err_len, "unsupported baud rate '%s' (9600 ... 921600)", bs);
+    (void)snprintf(err, err_len, "unsupported baud rate '%s' (9600 ... 921600)", bs);
     return -1;
   }
   fd = open(dev, O_RDWR | O_NOCTTY);
   if (fd < 0) {
-    snprintf(err, err_len, "cannot open %s: %s", dev, strerror(errno));
+    (void)snprintf(err, err_len, "cannot open %s: %s", dev, strerror(errno));
     return -1;
   }
   rc = set_raw(fd, sp);
@@ -208,7 +208,7 @@ int fsw_transport_open_serial(FswTransport *t, const char *spec, char *err, size
     return -1;
   }
   fsw_transport_open_stream(t, fd, "");
-  snprintf(t->desc, sizeof t->desc, "serial %s %ld baud", dev, baud);
+  (void)snprintf(t->desc, sizeof t->desc, "serial %s %ld baud", dev, baud);
   return 0;
 }
 
@@ -220,7 +220,7 @@ void fsw_transport_open_stream(FswTransport *t, int fd, const char *desc)
   t->fd = fd;
   t->stream = 1;
   t->is_socket = getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &tl) == 0;
-  snprintf(t->desc, sizeof t->desc, "%s", desc);
+  (void)snprintf(t->desc, sizeof t->desc, "%s", desc);
 }
 
 int fsw_transport_connect_unix(FswTransport *t, const char *path, const char *desc, char *err, size_t err_len)
@@ -233,15 +233,15 @@ int fsw_transport_connect_unix(FswTransport *t, const char *path, const char *de
   reset(t);
   fd = socket(AF_UNIX, type, 0);
   if (fd < 0) {
-    snprintf(err, err_len, "socket: %s", strerror(errno));
+    (void)snprintf(err, err_len, "socket: %s", strerror(errno));
     return -1;
   }
-  memset(&a, 0, sizeof a);
+  (void)memset(&a, 0, sizeof a);
   a.sun_family = AF_UNIX;
-  snprintf(a.sun_path, sizeof a.sun_path, "%s", path);
+  (void)snprintf(a.sun_path, sizeof a.sun_path, "%s", path);
   if (connect(fd, (const struct sockaddr *)&a, sizeof a) != 0) {
     const int e = errno;
-    snprintf(err, err_len, "cannot connect to %s: %s", path, strerror(e));
+    (void)snprintf(err, err_len, "cannot connect to %s: %s", path, strerror(e));
     close(fd);
     errno = e;
     return FSW_TRANSPORT_NOT_LISTENING;
@@ -264,8 +264,8 @@ static int wait_readable(int fd, long long deadline)
   struct pollfd p;
   int rc;
   long long left = deadline < 0 ? -1 : deadline - now_ms();
-  if (deadline >= 0 && left < 0) left = 0;
-  if (left > INT_MAX) left = INT_MAX;
+  if (deadline >= 0 && left < 0) { left = 0; }
+  if (left > INT_MAX) { left = INT_MAX; }
   p.fd = fd;
   p.events = POLLIN;
   p.revents = 0;
@@ -278,9 +278,9 @@ static int same_address(const unsigned char *pinned, unsigned int plen, const st
                         socklen_t flen)
 {
   struct sockaddr_storage a;
-  if ((socklen_t)plen != flen) return 0;
-  memcpy(&a, pinned, plen);
-  if (a.ss_family != from->ss_family) return 0;
+  if ((socklen_t)plen != flen) { return 0; }
+  (void)memcpy(&a, pinned, plen);
+  if (a.ss_family != from->ss_family) { return 0; }
   if (a.ss_family == AF_INET) {
     const struct sockaddr_in *x = (const struct sockaddr_in *)&a, *y = (const struct sockaddr_in *)from;
     return x->sin_port == y->sin_port && x->sin_addr.s_addr == y->sin_addr.s_addr;
@@ -307,7 +307,7 @@ static int recv_datagram(FswTransport *t, const uint8_t **pkt, size_t *len, long
     size_t inner = 0u;
     ssize_t n;
     const int w = wait_readable(t->fd, deadline);
-    if (w <= 0) return w == 0 ? FSW_TRANSPORT_TIMEOUT : FSW_TRANSPORT_ERROR;
+    if (w <= 0) { return w == 0 ? FSW_TRANSPORT_TIMEOUT : FSW_TRANSPORT_ERROR; }
     n = recvfrom(t->fd, t->rx, sizeof t->rx, 0, (struct sockaddr *)&from, &flen);
     if (n >= 0) {
       if (!t->connected) {
@@ -315,22 +315,22 @@ static int recv_datagram(FswTransport *t, const uint8_t **pkt, size_t *len, long
           t->foreign++; /* not the pinned peer: counted, dropped, never answered */
           continue;
         }
-        if (t->sec != NULL && fsw_link_sec_verify(t->sec, t->rx, (size_t)n, &inner, NULL) != FSW_OK)
-          return FSW_TRANSPORT_REFUSED; /* unauthenticated: dropped, pins nothing */
-        if (t->sec != NULL) n = (ssize_t)inner;
+        if (t->sec != NULL && fsw_link_sec_verify(t->sec, t->rx, (size_t)n, &inner, NULL) != FSW_OK) {
+          return FSW_TRANSPORT_REFUSED; } /* unauthenticated: dropped, pins nothing */
+        if (t->sec != NULL) { n = (ssize_t)inner; }
         if (t->peer_len == 0u && is_telecommand(t->rx, (size_t)n)) { /* the first valid packet pins its sender */
-          memcpy(t->peer, &from, flen);
+          (void)memcpy(t->peer, &from, flen);
           t->peer_len = (unsigned int)flen;
         }
       } else if (t->sec != NULL) {
-        if (fsw_link_sec_verify(t->sec, t->rx, (size_t)n, &inner, NULL) != FSW_OK) return FSW_TRANSPORT_REFUSED;
+        if (fsw_link_sec_verify(t->sec, t->rx, (size_t)n, &inner, NULL) != FSW_OK) { return FSW_TRANSPORT_REFUSED; }
         n = (ssize_t)inner;
       }
       *pkt = t->rx;
       *len = (size_t)n;
       return FSW_TRANSPORT_PACKET;
     }
-    if (!t->connected || errno != ECONNREFUSED) return FSW_TRANSPORT_ERROR;
+    if (!t->connected || errno != ECONNREFUSED) { return FSW_TRANSPORT_ERROR; }
     deadline = now_ms(); /* ICMP refusal seen: look once more, then report a timeout */
   }
 }
@@ -343,13 +343,13 @@ static int recv_framed(FswTransport *t, const uint8_t **pkt, size_t *len, long l
     while (t->used < t->have) {
       *pkt = NULL;
       t->used += fsw_link_deframer_push(&t->deframer, t->rx + t->used, t->have - t->used, pkt, len);
-      if (*pkt != NULL) return FSW_TRANSPORT_PACKET;
+      if (*pkt != NULL) { return FSW_TRANSPORT_PACKET; }
     }
     w = wait_readable(t->fd, deadline);
-    if (w <= 0) return w == 0 ? FSW_TRANSPORT_TIMEOUT : FSW_TRANSPORT_ERROR;
+    if (w <= 0) { return w == 0 ? FSW_TRANSPORT_TIMEOUT : FSW_TRANSPORT_ERROR; }
     n = read(t->fd, t->rx, sizeof t->rx);
-    if (n < 0) return FSW_TRANSPORT_ERROR;
-    if (n == 0) return FSW_TRANSPORT_CLOSED;
+    if (n < 0) { return FSW_TRANSPORT_ERROR; }
+    if (n == 0) { return FSW_TRANSPORT_CLOSED; }
     t->have = (size_t)n;
     t->used = 0u;
   }
@@ -370,7 +370,7 @@ static int write_all(FswTransport *t, const uint8_t *buf, size_t n)
     /* a socket whose peer has gone must not raise SIGPIPE */
     const ssize_t w = t->is_socket ? send(t->fd, buf + done, n - done, MSG_NOSIGNAL) : write(t->fd, buf + done, n - done);
     if (w < 0) {
-      if (errno == EINTR || errno == EAGAIN) continue;
+      if (errno == EINTR || errno == EAGAIN) { continue; }
       return -1;
     }
     done += (size_t)w;
@@ -400,14 +400,14 @@ int fsw_transport_send(FswTransport *t, const uint8_t *pkt, size_t n)
     (void)send(t->fd, pkt, n, 0); /* a refused datagram (no process on the port yet) is a lost packet */
     return 0;
   }
-  if (t->peer_len == 0u) return 0; /* nobody to answer yet */
+  if (t->peer_len == 0u) { return 0; } /* nobody to answer yet */
   return sendto(t->fd, pkt, n, 0, (const struct sockaddr *)t->peer, (socklen_t)t->peer_len) == (ssize_t)n ? 0 : -1;
 }
 
 int fsw_transport_set_key(FswTransport *t, FswLinkSec *sec, char *err, size_t err_len)
 {
   if (t->fd < 0 || t->stream) {
-    snprintf(err, err_len, "packet authentication needs a UDP link (not a serial line or stream)");
+    (void)snprintf(err, err_len, "packet authentication needs a UDP link (not a serial line or stream)");
     return -1;
   }
   t->sec = sec;
@@ -416,9 +416,9 @@ int fsw_transport_set_key(FswTransport *t, FswLinkSec *sec, char *err, size_t er
 
 static int hex_digit(int c)
 {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  if (c >= '0' && c <= '9') { return c - '0'; }
+  if (c >= 'a' && c <= 'f') { return c - 'a' + 10; }
+  if (c >= 'A' && c <= 'F') { return c - 'A' + 10; }
   return -1;
 }
 
@@ -431,16 +431,16 @@ int fsw_transport_load_key(const char *path, uint8_t *key, size_t cap, size_t *l
   *len = 0u;
   fd = open(path, O_RDONLY | O_NOFOLLOW);
   if (fd < 0) {
-    snprintf(err, err_len, "cannot open the key file %s: %s", path, strerror(errno));
+    (void)snprintf(err, err_len, "cannot open the key file %s: %s", path, strerror(errno));
     return -1;
   }
   if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    snprintf(err, err_len, "the key file %s is not a regular file", path);
+    (void)snprintf(err, err_len, "the key file %s is not a regular file", path);
     close(fd);
     return -1;
   }
   if ((st.st_mode & 077) != 0) {
-    snprintf(err, err_len, "the key file %s is open to group or others (mode %04o): chmod 600 it", path,
+    (void)snprintf(err, err_len, "the key file %s is open to group or others (mode %04o): chmod 600 it", path,
              (unsigned)(st.st_mode & 07777));
     close(fd);
     return -1;
@@ -448,15 +448,15 @@ int fsw_transport_load_key(const char *path, uint8_t *key, size_t cap, size_t *l
   n = 0u;
   for (;;) {
     const ssize_t r = read(fd, text + n, sizeof text - n);
-    if (r <= 0) break;
+    if (r <= 0) { break; }
     n += (size_t)r;
-    if (n == sizeof text) break;
+    if (n == sizeof text) { break; }
   }
   close(fd);
   for (i = 0u; i < n; ++i) {
     const int h = hex_digit((unsigned char)text[i]);
     if (h < 0) {
-      if (text[i] == ' ' || text[i] == '\n' || text[i] == '\r' || text[i] == '\t') continue;
+      if (text[i] == ' ' || text[i] == '\n' || text[i] == '\r' || text[i] == '\t') { continue; }
       digits = 0u;
       break;
     }
@@ -464,17 +464,17 @@ int fsw_transport_load_key(const char *path, uint8_t *key, size_t cap, size_t *l
       digits = 0u;
       break;
     }
-    if (digits % 2u == 0u)
+    if (digits % 2u == 0u) {
       key[digits / 2u] = (uint8_t)(h << 4);
-    else
-      key[digits / 2u] = (uint8_t)(key[digits / 2u] | h);
+    } else {
+      key[digits / 2u] = (uint8_t)(key[digits / 2u] | h); }
     ++digits;
   }
-  memset(text, 0, sizeof text);
+  (void)memset(text, 0, sizeof text);
   if (digits % 2u != 0u || digits / 2u < FSW_LINK_SEC_KEY_MIN || digits / 2u > FSW_LINK_SEC_KEY_MAX || n == sizeof text) {
-    snprintf(err, err_len, "the key file %s must hold %u to %u hexadecimal digits (a %u- to %u-byte key) and nothing else",
+    (void)snprintf(err, err_len, "the key file %s must hold %u to %u hexadecimal digits (a %u- to %u-byte key) and nothing else",
              path, 2u * FSW_LINK_SEC_KEY_MIN, 2u * FSW_LINK_SEC_KEY_MAX, FSW_LINK_SEC_KEY_MIN, FSW_LINK_SEC_KEY_MAX);
-    memset(key, 0, cap);
+    (void)memset(key, 0, cap);
     return -1;
   }
   *len = digits / 2u;
@@ -483,6 +483,6 @@ int fsw_transport_load_key(const char *path, uint8_t *key, size_t cap, size_t *l
 
 void fsw_transport_close(FswTransport *t)
 {
-  if (t->fd >= 0) close(t->fd);
+  if (t->fd >= 0) { close(t->fd); }
   t->fd = -1;
 }

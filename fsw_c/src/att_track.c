@@ -18,9 +18,9 @@ static void write_safe(FswAttTrackOut *out)
 FswStatus fsw_att_track_check(const FswAttTrackConfig *cfg)
 {
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
-  if (!fsw_v3_is_finite(cfg->sigma_R0R)) return FSW_E_CONFIG;
-  if (!isfinite(fsw_v3_norm2(cfg->sigma_R0R))) return FSW_E_CONFIG;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
+  if (!fsw_v3_is_finite(cfg->sigma_R0R)) { return FSW_E_CONFIG; }
+  if (!isfinite(fsw_v3_norm2(cfg->sigma_R0R))) { return FSW_E_CONFIG; }
   return FSW_OK;
 }
 
@@ -28,11 +28,11 @@ FswStatus fsw_att_track_init(FswAttTrackState *st, const FswAttTrackConfig *cfg)
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
-  memset(st, 0, sizeof *st);
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
+  (void)memset(st, 0, sizeof *st);
   fsw_health_clear(&st->health);
   s = fsw_att_track_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   /* -sigma_R0R is the exact inverse rotation; no shadow switch (Basilisk
    * parity: the sum is switched by addMRP). */
   fsw_v3_scale(st->sigma_RR0, FSW_R(-1.0), cfg->sigma_R0R);
@@ -66,12 +66,12 @@ FswStatus fsw_att_track_update(FswAttTrackState *st, const FswAttTrackConfig *cf
   fsw_real omega_BR_B[3];    /* [rad/s]                             */
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) write_safe(out);
+  if (out != NULL) { write_safe(out); }
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
     return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG);
   }
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
-  if (!in_is_finite(in)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
+  if (!in_is_finite(in)) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
 
   fsw_mrp_add(sigma_RN_corr, in->ref.sigma_RN, st->sigma_RR0);
   fsw_mrp_sub(sigma_BR, in->sigma_BN, sigma_RN_corr);

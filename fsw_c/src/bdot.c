@@ -14,20 +14,20 @@ FswStatus fsw_bdot_check(const FswBdotConfig *cfg)
 {
   int i;
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
-  if (cfg->variant != FSW_BDOT_DERIV && cfg->variant != FSW_BDOT_GYRO) return FSW_E_CONFIG;
-  if (cfg->normalize != 0 && cfg->normalize != 1) return FSW_E_CONFIG;
-  if (!bdot_in_range(cfg->k_bdot, FSW_R(0.0), FSW_BDOT_K_MAX) || !(cfg->k_bdot > FSW_R(0.0))) return FSW_E_CONFIG;
-  if (!bdot_in_range(cfg->tau_f, FSW_R(0.0), FSW_BDOT_TAU_MAX)) return FSW_E_CONFIG;
-  if (cfg->max_missed < 0 || cfg->max_missed > FSW_BDOT_MISSED_MAX) return FSW_E_CONFIG;
-  for (i = 0; i < 3; i++)
-    if (!bdot_in_range(cfg->m_max_B[i], FSW_BDOT_M_MIN, FSW_BDOT_M_MAX)) return FSW_E_CONFIG;
-  if (!bdot_in_range(cfg->omega_done, FSW_R(0.0), FSW_BDOT_OMEGA_MAX) || !(cfg->omega_done > FSW_R(0.0)))
-    return FSW_E_CONFIG;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
+  if (cfg->variant != FSW_BDOT_DERIV && cfg->variant != FSW_BDOT_GYRO) { return FSW_E_CONFIG; }
+  if (cfg->normalize != 0 && cfg->normalize != 1) { return FSW_E_CONFIG; }
+  if (!bdot_in_range(cfg->k_bdot, FSW_R(0.0), FSW_BDOT_K_MAX) || !(cfg->k_bdot > FSW_R(0.0))) { return FSW_E_CONFIG; }
+  if (!bdot_in_range(cfg->tau_f, FSW_R(0.0), FSW_BDOT_TAU_MAX)) { return FSW_E_CONFIG; }
+  if (cfg->max_missed < 0 || cfg->max_missed > FSW_BDOT_MISSED_MAX) { return FSW_E_CONFIG; }
+  for (i = 0; i < 3; i++) {
+    if (!bdot_in_range(cfg->m_max_B[i], FSW_BDOT_M_MIN, FSW_BDOT_M_MAX)) { return FSW_E_CONFIG; } }
+  if (!bdot_in_range(cfg->omega_done, FSW_R(0.0), FSW_BDOT_OMEGA_MAX) || !(cfg->omega_done > FSW_R(0.0))) {
+    return FSW_E_CONFIG; }
   if (!bdot_in_range(cfg->omega_reenter, FSW_R(0.0), FSW_BDOT_OMEGA_MAX) ||
-      !(cfg->omega_reenter > cfg->omega_done))
-    return FSW_E_CONFIG;
-  if (!bdot_in_range(cfg->t_persist, FSW_R(0.0), FSW_BDOT_T_PERSIST_MAX)) return FSW_E_CONFIG;
+      !(cfg->omega_reenter > cfg->omega_done)) {
+    return FSW_E_CONFIG; }
+  if (!bdot_in_range(cfg->t_persist, FSW_R(0.0), FSW_BDOT_T_PERSIST_MAX)) { return FSW_E_CONFIG; }
   return FSW_OK;
 }
 
@@ -35,12 +35,12 @@ FswStatus fsw_bdot_init(FswBdotState *st, const FswBdotConfig *cfg)
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
   st->ready = 0;
   fsw_health_clear(&st->health);
   fsw_bdot_reset(st); /* a rejected init leaves a cleared memory too */
   s = fsw_bdot_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   st->ready = 1;
   return FSW_OK;
 }
@@ -49,7 +49,7 @@ void fsw_bdot_reset(FswBdotState *st)
 {
   FswBdotMemory *m;
   FSW_ASSERT(st != NULL);
-  if (st == NULL) return;
+  if (st == NULL) { return; }
   m = &st->mem;
   fsw_clock_reset(&m->clock);
   m->primed = 0;
@@ -81,8 +81,8 @@ static void bdot_safe_output(FswBdotOut *out)
 static int bdot_v3_within(const fsw_real v[3], fsw_real lim)
 {
   int i;
-  for (i = 0; i < 3; i++)
-    if (!isfinite(v[i]) || FSW_FABS(v[i]) > lim) return 0;
+  for (i = 0; i < 3; i++) {
+    if (!isfinite(v[i]) || FSW_FABS(v[i]) > lim) { return 0; } }
   return 1;
 }
 
@@ -106,13 +106,13 @@ static fsw_real bdot_dipole(fsw_real m[3], const FswBdotConfig *cfg, const fsw_r
       }
     }
   }
-  if (j < 0) return FSW_R(1.0);
+  if (j < 0) { return FSW_R(1.0); }
   a = FSW_FABS(m[j]);
   for (i = 0; i < 3; i++) {
     m[i] = (m[i] / a) * cfg->m_max_B[j];
     /* the product may round one ulp above the limit: clip that ulp */
-    if (m[i] > cfg->m_max_B[i]) m[i] = cfg->m_max_B[i];
-    if (m[i] < -cfg->m_max_B[i]) m[i] = -cfg->m_max_B[i];
+    if (m[i] > cfg->m_max_B[i]) { m[i] = cfg->m_max_B[i]; }
+    if (m[i] < -cfg->m_max_B[i]) { m[i] = -cfg->m_max_B[i]; }
   }
   return scale;
 }
@@ -127,14 +127,14 @@ static void bdot_detumble(FswBdotMemory *m, const FswBdotConfig *cfg, int rate_v
   }
   if (rate < cfg->omega_done) {
     m->t_below = m->below ? m->t_below + dt : FSW_R(0.0);
-    if (m->t_below > FSW_BDOT_T_PERSIST_MAX) m->t_below = FSW_BDOT_T_PERSIST_MAX;
+    if (m->t_below > FSW_BDOT_T_PERSIST_MAX) { m->t_below = FSW_BDOT_T_PERSIST_MAX; }
     m->below = 1;
-    if (m->t_below >= cfg->t_persist) m->detumbled = 1u;
+    if (m->t_below >= cfg->t_persist) { m->detumbled = 1u; }
   } else {
     m->below = 0;
     m->t_below = FSW_R(0.0);
   }
-  if (rate > cfg->omega_reenter) m->detumbled = 0u;
+  if (rate > cfg->omega_reenter) { m->detumbled = 0u; }
 }
 
 /* A missed sample: hold the last dipole within max_missed, then rods off. */
@@ -148,7 +148,7 @@ static void bdot_missed(FswBdotMemory *m, const FswBdotConfig *cfg, FswBdotOut *
     o->held = 1u;
     return;
   }
-  if (m->missed <= FSW_BDOT_MISSED_MAX) m->missed++;
+  if (m->missed <= FSW_BDOT_MISSED_MAX) { m->missed++; }
   m->primed = 0;
   m->has_bdot = 0;
   fsw_v3_zero(m->Bdot_f);
@@ -166,21 +166,21 @@ FswStatus fsw_bdot_update(FswBdotState *st, const FswBdotConfig *cfg,
   int B_ok, w_ok, sample, rate_valid = 0;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) bdot_safe_output(out);
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
-  if (in->B_valid > 1u || in->omega_valid > 1u) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (out != NULL) { bdot_safe_output(out); }
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) { return FSW_E_NULL_ARG; }
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
+  if (in->B_valid > 1u || in->omega_valid > 1u) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
   B_ok = in->B_valid == 1u;
   w_ok = in->omega_valid == 1u;
   if (B_ok) {
-    if (!bdot_v3_within(in->B_B, FSW_BDOT_B_MAX)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+    if (!bdot_v3_within(in->B_B, FSW_BDOT_B_MAX)) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
     B2 = fsw_v3_norm2(in->B_B);
-    if (!(B2 >= FSW_BDOT_B_MIN * FSW_BDOT_B_MIN)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+    if (!(B2 >= FSW_BDOT_B_MIN * FSW_BDOT_B_MIN)) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
   }
-  if (w_ok && !bdot_v3_within(in->omega_BN_B, FSW_BDOT_OMEGA_MAX))
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (w_ok && !bdot_v3_within(in->omega_BN_B, FSW_BDOT_OMEGA_MAX)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
   s = fsw_clock_dt(&st->mem.clock, in->t_ns, &dt); /* FSW_OK or FSW_E_TIME */
-  if (s != FSW_OK) return fsw_health_record(&st->health, s);
+  if (s != FSW_OK) { return fsw_health_record(&st->health, s); }
 
   nx = st->mem;
   bdot_safe_output(&o);
@@ -203,10 +203,10 @@ FswStatus fsw_bdot_update(FswBdotState *st, const FswBdotConfig *cfg,
     const fsw_real dtB = (fsw_real)(in->t_ns - nx.t_B_ns) * FSW_R(1e-9);
     fsw_real raw[3];
     int k;
-    for (k = 0; k < 3; k++) raw[k] = (in->B_B[k] - nx.B_prev[k]) / dtB;
+    for (k = 0; k < 3; k++) { raw[k] = (in->B_B[k] - nx.B_prev[k]) / dtB; }
     if (nx.has_bdot) {
       const fsw_real beta = dtB / (cfg->tau_f + dtB);
-      for (k = 0; k < 3; k++) nx.Bdot_f[k] += beta * (raw[k] - nx.Bdot_f[k]);
+      for (k = 0; k < 3; k++) { nx.Bdot_f[k] += beta * (raw[k] - nx.Bdot_f[k]); }
     } else {
       fsw_v3_copy(nx.Bdot_f, raw);
       nx.has_bdot = 1;
@@ -216,14 +216,14 @@ FswStatus fsw_bdot_update(FswBdotState *st, const FswBdotConfig *cfg,
     nx.missed = 0;
   }
   if (sample) {
-    if (cfg->variant == FSW_BDOT_GYRO) fsw_v3_copy(nx.Bdot_f, o.Bdot_B);
+    if (cfg->variant == FSW_BDOT_GYRO) { fsw_v3_copy(nx.Bdot_f, o.Bdot_B); }
     if (B_ok) {
       fsw_v3_copy(nx.B_prev, in->B_B);
       nx.t_B_ns = in->t_ns;
     }
     fsw_v3_copy(nx.m_hold, o.m_B);
     nx.scale_hold = o.scale;
-    if (o.scale < FSW_R(1.0)) s = FSW_W_SAT;
+    if (o.scale < FSW_R(1.0)) { s = FSW_W_SAT; }
   }
   /* rate estimate: the gyro when valid, else (DERIV) |Bdot_f| / |B| */
   if (w_ok) {
@@ -234,8 +234,8 @@ FswStatus fsw_bdot_update(FswBdotState *st, const FswBdotConfig *cfg,
     rate_valid = 1;
   }
   /* in-range inputs cannot overflow (header ranges); kept as the contract's guard */
-  if (!fsw_v3_is_finite(o.m_B) || !fsw_v3_is_finite(o.Bdot_B) || !isfinite(rate))
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (!fsw_v3_is_finite(o.m_B) || !fsw_v3_is_finite(o.Bdot_B) || !isfinite(rate)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
   bdot_detumble(&nx, cfg, rate_valid, rate, dt);
   fsw_clock_commit(&nx.clock, in->t_ns);
 
@@ -250,22 +250,22 @@ FswStatus fsw_bdot_update(FswBdotState *st, const FswBdotConfig *cfg,
 
 fsw_real fsw_bdot_gain(fsw_real n_orbit, fsw_real J_min, fsw_real incl_mag)
 {
-  if (!isfinite(n_orbit) || !isfinite(J_min) || !isfinite(incl_mag)) return FSW_R(0.0);
-  if (!(n_orbit > FSW_R(0.0)) || !(J_min > FSW_R(0.0))) return FSW_R(0.0);
+  if (!isfinite(n_orbit) || !isfinite(J_min) || !isfinite(incl_mag)) { return FSW_R(0.0); }
+  if (!(n_orbit > FSW_R(0.0)) || !(J_min > FSW_R(0.0))) { return FSW_R(0.0); }
   return FSW_R(2.0) * n_orbit * (FSW_R(1.0) + FSW_SIN(incl_mag)) * J_min;
 }
 
 fsw_real fsw_bdot_decay_time(fsw_real k, fsw_real J, fsw_real B_rms, int normalize)
 {
   fsw_real k_eff;
-  if (normalize != 0 && normalize != 1) return FSW_R(0.0);
-  if (!isfinite(k) || !isfinite(J) || !(k > FSW_R(0.0)) || !(J > FSW_R(0.0))) return FSW_R(0.0);
+  if (normalize != 0 && normalize != 1) { return FSW_R(0.0); }
+  if (!isfinite(k) || !isfinite(J) || !(k > FSW_R(0.0)) || !(J > FSW_R(0.0))) { return FSW_R(0.0); }
   if (normalize) {
     k_eff = k;
   } else {
-    if (!isfinite(B_rms) || !(B_rms > FSW_R(0.0))) return FSW_R(0.0);
+    if (!isfinite(B_rms) || !(B_rms > FSW_R(0.0))) { return FSW_R(0.0); }
     k_eff = k * B_rms * B_rms;
   }
-  if (!(k_eff > FSW_R(0.0)) || !isfinite(k_eff)) return FSW_R(0.0);
+  if (!(k_eff > FSW_R(0.0)) || !isfinite(k_eff)) { return FSW_R(0.0); }
   return FSW_R(1.5) * J / k_eff;
 }

@@ -20,19 +20,19 @@ FswStatus fsw_css_sun_check(const FswCssSunConfig *cfg)
 {
   int i;
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
-  if (cfg->num_css < 1) return FSW_E_CONFIG;
-  if (cfg->num_css > FSW_MAX_CSS) return FSW_E_CAPACITY;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
+  if (cfg->num_css < 1) { return FSW_E_CONFIG; }
+  if (cfg->num_css > FSW_MAX_CSS) { return FSW_E_CAPACITY; }
   if (!isfinite(cfg->lit_threshold) || cfg->lit_threshold < FSW_R(0.0) ||
       !(cfg->lit_threshold < FSW_R(1.0))) {
     return FSW_E_CONFIG;
   }
   for (i = 0; i < cfg->num_css; i++) {
-    if (!fsw_v3_is_finite(cfg->n_hat_B[i])) return FSW_E_CONFIG;
+    if (!fsw_v3_is_finite(cfg->n_hat_B[i])) { return FSW_E_CONFIG; }
     if (!(FSW_FABS(fsw_v3_norm(cfg->n_hat_B[i]) - FSW_R(1.0)) <= FSW_CSS_SUN_UNIT_TOL)) {
       return FSW_E_CONFIG;
     }
-    if (!isfinite(cfg->scale[i]) || !(cfg->scale[i] > FSW_R(0.0))) return FSW_E_CONFIG;
+    if (!isfinite(cfg->scale[i]) || !(cfg->scale[i] > FSW_R(0.0))) { return FSW_E_CONFIG; }
   }
   return FSW_OK;
 }
@@ -41,11 +41,11 @@ FswStatus fsw_css_sun_init(FswCssSunState *st, const FswCssSunConfig *cfg)
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
-  memset(st, 0, sizeof *st);
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
+  (void)memset(st, 0, sizeof *st);
   fsw_health_clear(&st->health);
   s = fsw_css_sun_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   st->ready = 1;
   fsw_css_sun_reset(st);
   return FSW_OK;
@@ -67,30 +67,30 @@ static int chol3_solve(fsw_real x[3], const fsw_real M[3][3], const fsw_real c[3
   fsw_real dmax = M[0][0];
   fsw_real tol;
   int i, j, k;
-  if (M[1][1] > dmax) dmax = M[1][1];
-  if (M[2][2] > dmax) dmax = M[2][2];
+  if (M[1][1] > dmax) { dmax = M[1][1]; }
+  if (M[2][2] > dmax) { dmax = M[2][2]; }
   fsw_v3_zero(x);
-  if (!(dmax > FSW_R(0.0))) return 0;
+  if (!(dmax > FSW_R(0.0))) { return 0; }
   tol = FSW_CSS_SUN_RANK_TOL * dmax;
   for (k = 0; k < 3; k++) {
     fsw_real p = M[k][k];
-    for (j = 0; j < k; j++) p -= L[k][j] * L[k][j];
-    if (!(p > tol)) return 0;
+    for (j = 0; j < k; j++) { p -= L[k][j] * L[k][j]; }
+    if (!(p > tol)) { return 0; }
     L[k][k] = FSW_SQRT(p);
     for (i = k + 1; i < 3; i++) {
       fsw_real s = M[i][k];
-      for (j = 0; j < k; j++) s -= L[i][j] * L[k][j];
+      for (j = 0; j < k; j++) { s -= L[i][j] * L[k][j]; }
       L[i][k] = s / L[k][k];
     }
   }
   for (i = 0; i < 3; i++) { /* L y = c */
     fsw_real s = c[i];
-    for (j = 0; j < i; j++) s -= L[i][j] * y[j];
+    for (j = 0; j < i; j++) { s -= L[i][j] * y[j]; }
     y[i] = s / L[i][i];
   }
   for (i = 2; i >= 0; i--) { /* L^T x = y */
     fsw_real s = y[i];
-    for (j = i + 1; j < 3; j++) s -= L[j][i] * x[j];
+    for (j = i + 1; j < 3; j++) { s -= L[j][i] * x[j]; }
     x[i] = s / L[i][i];
   }
   return 1;
@@ -101,7 +101,7 @@ static int in_ok(const FswCssSunConfig *cfg, const FswCssSunIn *in)
   int i;
   for (i = 0; i < cfg->num_css; i++) {
     if (in->avail[i] == FSW_AVAILABLE) {
-      if (!isfinite(in->reading[i])) return 0;
+      if (!isfinite(in->reading[i])) { return 0; }
     } else if (in->avail[i] != FSW_UNAVAILABLE) {
       return 0;
     }
@@ -123,12 +123,12 @@ FswStatus fsw_css_sun_update(FswCssSunState *st, const FswCssSunConfig *cfg,
   int i, j, k;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) write_safe(out);
+  if (out != NULL) { write_safe(out); }
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
     return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG);
   }
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
-  if (!in_ok(cfg, in)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
+  if (!in_ok(cfg, in)) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
 
   /* lit set and weighted normal equations */
   fsw_m33_zero(M);
@@ -136,15 +136,15 @@ FswStatus fsw_css_sun_update(FswCssSunState *st, const FswCssSunConfig *cfg,
   for (i = 0; i < cfg->num_css; i++) {
     lit[i] = 0u;
     y[i] = FSW_R(0.0);
-    if (in->avail[i] != FSW_AVAILABLE) continue;
+    if (in->avail[i] != FSW_AVAILABLE) { continue; }
     y[i] = in->reading[i] / cfg->scale[i];
-    if (!isfinite(y[i])) return fsw_health_record(&st->health, FSW_E_BAD_INPUT); /* overflow */
-    if (!(y[i] > cfg->lit_threshold)) continue;
+    if (!isfinite(y[i])) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); } /* overflow */
+    if (!(y[i] > cfg->lit_threshold)) { continue; }
     lit[i] = 1u;
     num_lit++;
-    if (a < 0 || y[i] > y[a]) a = i;
+    if (a < 0 || y[i] > y[a]) { a = i; }
     for (j = 0; j < 3; j++) {
-      for (k = 0; k < 3; k++) M[j][k] += y[i] * cfg->n_hat_B[i][j] * cfg->n_hat_B[i][k];
+      for (k = 0; k < 3; k++) { M[j][k] += y[i] * cfg->n_hat_B[i][j] * cfg->n_hat_B[i][k]; }
       c[j] += y[i] * y[i] * cfg->n_hat_B[i][j];
     }
   }
@@ -162,15 +162,15 @@ FswStatus fsw_css_sun_update(FswCssSunState *st, const FswCssSunConfig *cfg,
       return fsw_health_record(&st->health, FSW_OK);
     }
   }
-  if (a < 0) return fsw_health_record(&st->health, FSW_W_SINGULAR); /* NONE */
+  if (a < 0) { return fsw_health_record(&st->health, FSW_W_SINGULAR); } /* NONE */
 
   /* brightest partner of a whose normal is not parallel to n_a */
   for (i = 0; i < cfg->num_css; i++) {
     fsw_real cab;
-    if (!lit[i] || i == a) continue;
+    if (!lit[i] || i == a) { continue; }
     cab = fsw_v3_dot(cfg->n_hat_B[a], cfg->n_hat_B[i]);
-    if (!(FSW_R(1.0) - cab * cab > FSW_CSS_SUN_RANK_TOL)) continue;
-    if (b < 0 || y[i] > y[b]) b = i;
+    if (!(FSW_R(1.0) - cab * cab > FSW_CSS_SUN_RANK_TOL)) { continue; }
+    if (b < 0 || y[i] > y[b]) { b = i; }
   }
   if (b >= 0) {
     /* x = alpha n_a + beta n_b with [1 cab; cab 1][alpha; beta] = [y_a; y_b] */

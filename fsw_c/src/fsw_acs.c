@@ -40,7 +40,7 @@ const char *fsw_acs_stage_name(int stage)
 
 static FswStatus fail(const char **bad_field, const char *name, FswStatus s)
 {
-  if (bad_field != NULL) *bad_field = name;
+  if (bad_field != NULL) { *bad_field = name; }
   return s;
 }
 
@@ -52,26 +52,26 @@ static int is_bool(int v) { return v == 0 || v == 1; }
 static void copy_n(fsw_real *dst, const fsw_real *src, int n, int cap)
 {
   int i;
-  for (i = 0; i < cap; i++) dst[i] = (i < n) ? src[i] : FSW_R(0.0);
+  for (i = 0; i < cap; i++) { dst[i] = (i < n) ? src[i] : FSW_R(0.0); }
 }
 
 static void copy_n3(fsw_real (*dst)[3], const fsw_real (*src)[3], int n, int cap)
 {
   int i, k;
-  for (i = 0; i < cap; i++)
-    for (k = 0; k < 3; k++) dst[i][k] = (i < n) ? src[i][k] : FSW_R(0.0);
+  for (i = 0; i < cap; i++) {
+    for (k = 0; k < 3; k++) { dst[i][k] = (i < n) ? src[i][k] : FSW_R(0.0); } }
 }
 
 FswStatus fsw_acs_config_set_geometry(FswAcsConfig *cfg, const FswAcsGeometry *geo)
 {
   int nw, nt, nm;
   FSW_ASSERT(cfg != NULL && geo != NULL);
-  if (cfg == NULL || geo == NULL) return FSW_E_NULL_ARG;
+  if (cfg == NULL || geo == NULL) { return FSW_E_NULL_ARG; }
   nw = geo->num_rw;
   nt = geo->num_thr;
   nm = geo->num_mtq;
-  if (nw < 0 || nt < 0 || nm < 0) return FSW_E_CONFIG;
-  if (nw > FSW_MAX_RW || nt > FSW_MAX_THR || nm > FSW_MAX_MTQ) return FSW_E_CAPACITY;
+  if (nw < 0 || nt < 0 || nm < 0) { return FSW_E_CONFIG; }
+  if (nw > FSW_MAX_RW || nt > FSW_MAX_THR || nm > FSW_MAX_MTQ) { return FSW_E_CAPACITY; }
 
   /* wheels */
   cfg->has_wheels = (nw > 0) ? 1 : 0;
@@ -152,17 +152,17 @@ static int policy_configured(const FswAcsConfig *cfg, int policy)
 static int same_n(const fsw_real *a, const fsw_real *b, int n)
 {
   int i;
-  for (i = 0; i < n; i++)
-    if (a[i] != b[i]) return 0;
+  for (i = 0; i < n; i++) {
+    if (a[i] != b[i]) { return 0; } }
   return 1;
 }
 
 static int same_n3(const fsw_real (*a)[3], const fsw_real (*b)[3], int n)
 {
   int i, k;
-  for (i = 0; i < n; i++)
-    for (k = 0; k < 3; k++)
-      if (a[i][k] != b[i][k]) return 0;
+  for (i = 0; i < n; i++) {
+    for (k = 0; k < 3; k++) {
+      if (a[i][k] != b[i][k]) { return 0; } } }
   return 1;
 }
 
@@ -172,43 +172,43 @@ static FswStatus check_momentum(const FswAcsConfig *cfg, const char **bad_field)
   FswStatus s;
   const int n = cfg->rw_map.num_rw;
   if (cfg->has_mtq) {
-    if ((s = fsw_mtq_map_check(&cfg->mtq_map)) != FSW_OK) return fail(bad_field, "mtq_map", s);
-    if ((s = fsw_bdot_check(&cfg->bdot)) != FSW_OK) return fail(bad_field, "bdot", s);
+    if ((s = fsw_mtq_map_check(&cfg->mtq_map)) != FSW_OK) { return fail(bad_field, "mtq_map", s); }
+    if ((s = fsw_bdot_check(&cfg->bdot)) != FSW_OK) { return fail(bad_field, "bdot", s); }
     if (cfg->detumble_exit_mode != -1 &&
-        (cfg->detumble_exit_mode == FSW_ACS_MODE_DETUMBLE || !mode_configured(cfg, cfg->detumble_exit_mode)))
-      return fail(bad_field, "detumble_exit_mode", FSW_E_CONFIG);
+        (cfg->detumble_exit_mode == FSW_ACS_MODE_DETUMBLE || !mode_configured(cfg, cfg->detumble_exit_mode))) {
+      return fail(bad_field, "detumble_exit_mode", FSW_E_CONFIG); }
   }
-  if (cfg->has_orbit && (s = fsw_guid_orbit_check(&cfg->orbit)) != FSW_OK) return fail(bad_field, "orbit", s);
-  if (!is_bool(cfg->use_thr_mom)) return fail(bad_field, "use_thr_mom", FSW_E_CONFIG);
+  if (cfg->has_orbit && (s = fsw_guid_orbit_check(&cfg->orbit)) != FSW_OK) { return fail(bad_field, "orbit", s); }
+  if (!is_bool(cfg->use_thr_mom)) { return fail(bad_field, "use_thr_mom", FSW_E_CONFIG); }
   if (cfg->use_thr_mom) {
-    if (!cfg->has_wheels || !cfg->has_thrusters) return fail(bad_field, "use_thr_mom", FSW_E_CONFIG);
+    if (!cfg->has_wheels || !cfg->has_thrusters) { return fail(bad_field, "use_thr_mom", FSW_E_CONFIG); }
     /* dumps fire on-pulsing thrusters from off: an off-pulsing set's pulser
      * keeps every thruster on between pulses (zero force = full thrust) */
-    if (cfg->thr_map.thr_force_sign < 0) return fail(bad_field, "use_thr_mom", FSW_E_CONFIG);
-    if ((s = fsw_thr_momentum_check(&cfg->thr_mom)) != FSW_OK) return fail(bad_field, "thr_mom", s);
-    if (cfg->thr_mom.num_rw != n || !same_n3(cfg->thr_mom.gs_hat_B, cfg->rw_map.gs_hat_B, n))
-      return fail(bad_field, "thr_mom.gs_hat_B", FSW_E_CONFIG);
-    if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->thr_mom.J_s, cfg->mrp_fb.J_s, n))
-      return fail(bad_field, "thr_mom.J_s", FSW_E_CONFIG);
-    if (cfg->thr_mom.num_thr != cfg->thr_map.num_thr) return fail(bad_field, "thr_mom.num_thr", FSW_E_CONFIG);
+    if (cfg->thr_map.thr_force_sign < 0) { return fail(bad_field, "use_thr_mom", FSW_E_CONFIG); }
+    if ((s = fsw_thr_momentum_check(&cfg->thr_mom)) != FSW_OK) { return fail(bad_field, "thr_mom", s); }
+    if (cfg->thr_mom.num_rw != n || !same_n3(cfg->thr_mom.gs_hat_B, cfg->rw_map.gs_hat_B, n)) {
+      return fail(bad_field, "thr_mom.gs_hat_B", FSW_E_CONFIG); }
+    if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->thr_mom.J_s, cfg->mrp_fb.J_s, n)) {
+      return fail(bad_field, "thr_mom.J_s", FSW_E_CONFIG); }
+    if (cfg->thr_mom.num_thr != cfg->thr_map.num_thr) { return fail(bad_field, "thr_mom.num_thr", FSW_E_CONFIG); }
   }
-  if (!is_bool(cfg->use_mtq_desat)) return fail(bad_field, "use_mtq_desat", FSW_E_CONFIG);
+  if (!is_bool(cfg->use_mtq_desat)) { return fail(bad_field, "use_mtq_desat", FSW_E_CONFIG); }
   if (cfg->use_mtq_desat) {
-    if (!cfg->has_wheels || !cfg->has_mtq) return fail(bad_field, "use_mtq_desat", FSW_E_CONFIG);
-    if ((s = fsw_mtq_desat_check(&cfg->mtq_desat)) != FSW_OK) return fail(bad_field, "mtq_desat", s);
-    if (cfg->mtq_desat.num_rw != n || !same_n3(cfg->mtq_desat.gs_hat_B, cfg->rw_map.gs_hat_B, n))
-      return fail(bad_field, "mtq_desat.gs_hat_B", FSW_E_CONFIG);
-    if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->mtq_desat.J_s, cfg->mrp_fb.J_s, n))
-      return fail(bad_field, "mtq_desat.J_s", FSW_E_CONFIG);
+    if (!cfg->has_wheels || !cfg->has_mtq) { return fail(bad_field, "use_mtq_desat", FSW_E_CONFIG); }
+    if ((s = fsw_mtq_desat_check(&cfg->mtq_desat)) != FSW_OK) { return fail(bad_field, "mtq_desat", s); }
+    if (cfg->mtq_desat.num_rw != n || !same_n3(cfg->mtq_desat.gs_hat_B, cfg->rw_map.gs_hat_B, n)) {
+      return fail(bad_field, "mtq_desat.gs_hat_B", FSW_E_CONFIG); }
+    if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->mtq_desat.J_s, cfg->mrp_fb.J_s, n)) {
+      return fail(bad_field, "mtq_desat.J_s", FSW_E_CONFIG); }
   }
-  if (!is_bool(cfg->use_bias)) return fail(bad_field, "use_bias", FSW_E_CONFIG);
+  if (!is_bool(cfg->use_bias)) { return fail(bad_field, "use_bias", FSW_E_CONFIG); }
   if (cfg->use_bias) {
-    if (!cfg->has_wheels || cfg->use_null != 1) return fail(bad_field, "use_bias", FSW_E_CONFIG);
-    if ((s = fsw_rw_bias_check(&cfg->rw_bias)) != FSW_OK) return fail(bad_field, "rw_bias", s);
-    if (cfg->rw_bias.num_rw != n || !same_n3(cfg->rw_bias.gs_hat_B, cfg->rw_map.gs_hat_B, n))
-      return fail(bad_field, "rw_bias.gs_hat_B", FSW_E_CONFIG);
+    if (!cfg->has_wheels || cfg->use_null != 1) { return fail(bad_field, "use_bias", FSW_E_CONFIG); }
+    if ((s = fsw_rw_bias_check(&cfg->rw_bias)) != FSW_OK) { return fail(bad_field, "rw_bias", s); }
+    if (cfg->rw_bias.num_rw != n || !same_n3(cfg->rw_bias.gs_hat_B, cfg->rw_map.gs_hat_B, n)) {
+      return fail(bad_field, "rw_bias.gs_hat_B", FSW_E_CONFIG); }
   }
-  if (!policy_configured(cfg, cfg->initial_policy)) return fail(bad_field, "initial_policy", FSW_E_CONFIG);
+  if (!policy_configured(cfg, cfg->initial_policy)) { return fail(bad_field, "initial_policy", FSW_E_CONFIG); }
   return FSW_OK;
 }
 
@@ -217,76 +217,76 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
   FswStatus s;
   int i;
   FSW_ASSERT(cfg != NULL);
-  if (bad_field != NULL) *bad_field = NULL;
-  if (cfg == NULL) return fail(bad_field, "cfg", FSW_E_NULL_ARG);
+  if (bad_field != NULL) { *bad_field = NULL; }
+  if (cfg == NULL) { return fail(bad_field, "cfg", FSW_E_NULL_ARG); }
 
-  if (!is_bool(cfg->has_mtq)) return fail(bad_field, "has_mtq", FSW_E_CONFIG);
-  if (!is_bool(cfg->has_orbit)) return fail(bad_field, "has_orbit", FSW_E_CONFIG);
-  if (!mode_configured(cfg, cfg->initial_mode)) return fail(bad_field, "initial_mode", FSW_E_CONFIG);
-  if (!is_bool(cfg->has_wheels)) return fail(bad_field, "has_wheels", FSW_E_CONFIG);
-  if (!is_bool(cfg->has_thrusters)) return fail(bad_field, "has_thrusters", FSW_E_CONFIG);
-  if (!cfg->has_wheels && !cfg->has_thrusters) return fail(bad_field, "has_wheels", FSW_E_CONFIG);
+  if (!is_bool(cfg->has_mtq)) { return fail(bad_field, "has_mtq", FSW_E_CONFIG); }
+  if (!is_bool(cfg->has_orbit)) { return fail(bad_field, "has_orbit", FSW_E_CONFIG); }
+  if (!mode_configured(cfg, cfg->initial_mode)) { return fail(bad_field, "initial_mode", FSW_E_CONFIG); }
+  if (!is_bool(cfg->has_wheels)) { return fail(bad_field, "has_wheels", FSW_E_CONFIG); }
+  if (!is_bool(cfg->has_thrusters)) { return fail(bad_field, "has_thrusters", FSW_E_CONFIG); }
+  if (!cfg->has_wheels && !cfg->has_thrusters) { return fail(bad_field, "has_wheels", FSW_E_CONFIG); }
   if (cfg->initial_actuation == FSW_ACS_ACT_WHEELS) {
-    if (!cfg->has_wheels) return fail(bad_field, "initial_actuation", FSW_E_CONFIG);
+    if (!cfg->has_wheels) { return fail(bad_field, "initial_actuation", FSW_E_CONFIG); }
   } else if (cfg->initial_actuation == FSW_ACS_ACT_THRUSTERS) {
-    if (!cfg->has_thrusters) return fail(bad_field, "initial_actuation", FSW_E_CONFIG);
+    if (!cfg->has_thrusters) { return fail(bad_field, "initial_actuation", FSW_E_CONFIG); }
   } else {
     return fail(bad_field, "initial_actuation", FSW_E_CONFIG);
   }
 
-  if ((s = fsw_css_sun_check(&cfg->css)) != FSW_OK) return fail(bad_field, "css", s);
-  if ((s = fsw_guid_sunsafe_check(&cfg->sunsafe)) != FSW_OK) return fail(bad_field, "sunsafe", s);
-  if ((s = fsw_guid_inertial_check(&cfg->inertial)) != FSW_OK) return fail(bad_field, "inertial", s);
-  if ((s = fsw_att_track_check(&cfg->track)) != FSW_OK) return fail(bad_field, "track", s);
-  if ((s = fsw_mrp_fb_check(&cfg->mrp_fb)) != FSW_OK) return fail(bad_field, "mrp_fb", s);
-  if (!is_bool(cfg->use_lpf)) return fail(bad_field, "use_lpf", FSW_E_CONFIG);
-  if (cfg->use_lpf && (s = fsw_trq_lpf_check(&cfg->lpf)) != FSW_OK) return fail(bad_field, "lpf", s);
+  if ((s = fsw_css_sun_check(&cfg->css)) != FSW_OK) { return fail(bad_field, "css", s); }
+  if ((s = fsw_guid_sunsafe_check(&cfg->sunsafe)) != FSW_OK) { return fail(bad_field, "sunsafe", s); }
+  if ((s = fsw_guid_inertial_check(&cfg->inertial)) != FSW_OK) { return fail(bad_field, "inertial", s); }
+  if ((s = fsw_att_track_check(&cfg->track)) != FSW_OK) { return fail(bad_field, "track", s); }
+  if ((s = fsw_mrp_fb_check(&cfg->mrp_fb)) != FSW_OK) { return fail(bad_field, "mrp_fb", s); }
+  if (!is_bool(cfg->use_lpf)) { return fail(bad_field, "use_lpf", FSW_E_CONFIG); }
+  if (cfg->use_lpf && (s = fsw_trq_lpf_check(&cfg->lpf)) != FSW_OK) { return fail(bad_field, "lpf", s); }
 
   if (cfg->has_wheels) {
     const int n = cfg->rw_map.num_rw;
-    if ((s = fsw_rw_map_check(&cfg->rw_map)) != FSW_OK) return fail(bad_field, "rw_map", s);
-    if (cfg->mrp_fb.num_rw != 0 && cfg->mrp_fb.num_rw != n)
-      return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG);
+    if ((s = fsw_rw_map_check(&cfg->rw_map)) != FSW_OK) { return fail(bad_field, "rw_map", s); }
+    if (cfg->mrp_fb.num_rw != 0 && cfg->mrp_fb.num_rw != n) {
+      return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG); }
     if (cfg->mrp_fb.num_rw != 0 &&
-        !same_n3(cfg->mrp_fb.gs_hat_B, cfg->rw_map.gs_hat_B, n))
-      return fail(bad_field, "mrp_fb.gs_hat_B", FSW_E_CONFIG);
-    if ((s = fsw_rw_sat_check(&cfg->rw_sat)) != FSW_OK) return fail(bad_field, "rw_sat", s);
-    if (cfg->rw_sat.num_rw != n) return fail(bad_field, "rw_sat.num_rw", FSW_E_CONFIG);
-    if (!is_bool(cfg->use_null)) return fail(bad_field, "use_null", FSW_E_CONFIG);
+        !same_n3(cfg->mrp_fb.gs_hat_B, cfg->rw_map.gs_hat_B, n)) {
+      return fail(bad_field, "mrp_fb.gs_hat_B", FSW_E_CONFIG); }
+    if ((s = fsw_rw_sat_check(&cfg->rw_sat)) != FSW_OK) { return fail(bad_field, "rw_sat", s); }
+    if (cfg->rw_sat.num_rw != n) { return fail(bad_field, "rw_sat.num_rw", FSW_E_CONFIG); }
+    if (!is_bool(cfg->use_null)) { return fail(bad_field, "use_null", FSW_E_CONFIG); }
     if (cfg->use_null) {
-      if ((s = fsw_rw_null_check(&cfg->rw_null)) != FSW_OK) return fail(bad_field, "rw_null", s);
-      if (cfg->rw_null.num_rw != n) return fail(bad_field, "rw_null.num_rw", FSW_E_CONFIG);
-      if (!same_n3(cfg->rw_null.gs_hat_B, cfg->rw_map.gs_hat_B, n))
-        return fail(bad_field, "rw_null.gs_hat_B", FSW_E_CONFIG);
-      if (!fsw_vn_is_finite(cfg->Omega_des, n)) return fail(bad_field, "Omega_des", FSW_E_CONFIG);
+      if ((s = fsw_rw_null_check(&cfg->rw_null)) != FSW_OK) { return fail(bad_field, "rw_null", s); }
+      if (cfg->rw_null.num_rw != n) { return fail(bad_field, "rw_null.num_rw", FSW_E_CONFIG); }
+      if (!same_n3(cfg->rw_null.gs_hat_B, cfg->rw_map.gs_hat_B, n)) {
+        return fail(bad_field, "rw_null.gs_hat_B", FSW_E_CONFIG); }
+      if (!fsw_vn_is_finite(cfg->Omega_des, n)) { return fail(bad_field, "Omega_des", FSW_E_CONFIG); }
     }
-    if (!is_bool(cfg->use_volt)) return fail(bad_field, "use_volt", FSW_E_CONFIG);
+    if (!is_bool(cfg->use_volt)) { return fail(bad_field, "use_volt", FSW_E_CONFIG); }
     if (cfg->use_volt) {
-      if ((s = fsw_rw_volt_check(&cfg->rw_volt)) != FSW_OK) return fail(bad_field, "rw_volt", s);
-      if (cfg->rw_volt.num_rw != n) return fail(bad_field, "rw_volt.num_rw", FSW_E_CONFIG);
-      if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->rw_volt.J_s, cfg->mrp_fb.J_s, n))
-        return fail(bad_field, "rw_volt.J_s", FSW_E_CONFIG);
+      if ((s = fsw_rw_volt_check(&cfg->rw_volt)) != FSW_OK) { return fail(bad_field, "rw_volt", s); }
+      if (cfg->rw_volt.num_rw != n) { return fail(bad_field, "rw_volt.num_rw", FSW_E_CONFIG); }
+      if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->rw_volt.J_s, cfg->mrp_fb.J_s, n)) {
+        return fail(bad_field, "rw_volt.J_s", FSW_E_CONFIG); }
     }
-    if (!is_bool(cfg->use_speed_filter)) return fail(bad_field, "use_speed_filter", FSW_E_CONFIG);
+    if (!is_bool(cfg->use_speed_filter)) { return fail(bad_field, "use_speed_filter", FSW_E_CONFIG); }
     if (cfg->use_speed_filter) {
-      if ((s = fsw_rw_speed_filter_check(&cfg->speed_filter)) != FSW_OK)
-        return fail(bad_field, "speed_filter", s);
-      if (cfg->speed_filter.num_rw != n) return fail(bad_field, "speed_filter.num_rw", FSW_E_CONFIG);
-      if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->speed_filter.J_s, cfg->mrp_fb.J_s, n))
-        return fail(bad_field, "speed_filter.J_s", FSW_E_CONFIG);
+      if ((s = fsw_rw_speed_filter_check(&cfg->speed_filter)) != FSW_OK) {
+        return fail(bad_field, "speed_filter", s); }
+      if (cfg->speed_filter.num_rw != n) { return fail(bad_field, "speed_filter.num_rw", FSW_E_CONFIG); }
+      if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->speed_filter.J_s, cfg->mrp_fb.J_s, n)) {
+        return fail(bad_field, "speed_filter.J_s", FSW_E_CONFIG); }
       /* the filter bounds a wheel's speed change by its u_max / J_s and
        * refuses a torque above 2 u_max: its limit must cover every torque
        * rw_sat can command (issue 39: 2.8e-4 against 0.2 N m made every
        * other cycle fail) */
-      for (i = 0; i < n; i++)
-        if (!(cfg->speed_filter.u_max[i] >= cfg->rw_sat.u_max[i]))
-          return fail(bad_field, "speed_filter.u_max", FSW_E_CONFIG);
+      for (i = 0; i < n; i++) {
+        if (!(cfg->speed_filter.u_max[i] >= cfg->rw_sat.u_max[i])) {
+          return fail(bad_field, "speed_filter.u_max", FSW_E_CONFIG); } }
     }
   } else if (cfg->mrp_fb.num_rw != 0) {
     return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG); /* wheels in H but no wheel chain */
   }
 
-  if ((s = check_momentum(cfg, bad_field)) != FSW_OK) return s;
+  if ((s = check_momentum(cfg, bad_field)) != FSW_OK) { return s; }
 
   if (cfg->has_thrusters) {
     const int n = cfg->thr_map.num_thr;
@@ -295,28 +295,28 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
     const int b_want = (cfg->thr_map.thr_force_sign < 0) ? 1 : 0;
     const fsw_real *F_max;
     int num_thr, b;
-    if ((s = fsw_thr_map_check(&cfg->thr_map)) != FSW_OK) return fail(bad_field, "thr_map", s);
+    if ((s = fsw_thr_map_check(&cfg->thr_map)) != FSW_OK) { return fail(bad_field, "thr_map", s); }
     if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
-      if ((s = fsw_thr_pulse_rem_check(&cfg->pulse_rem)) != FSW_OK)
-        return fail(bad_field, "pulse_rem", s);
+      if ((s = fsw_thr_pulse_rem_check(&cfg->pulse_rem)) != FSW_OK) {
+        return fail(bad_field, "pulse_rem", s); }
       num_thr = cfg->pulse_rem.common.num_thr;
       F_max = cfg->pulse_rem.common.F_max;
       b = cfg->pulse_rem.common.base_thrust_state;
-      if (num_thr != n) return fail(bad_field, "pulse_rem.num_thr", FSW_E_CONFIG);
-      if (b != b_want) return fail(bad_field, "pulse_rem.base_thrust_state", FSW_E_CONFIG);
-      for (i = 0; i < n; i++)
-        if (F_max[i] != cfg->thr_map.F_max[i]) return fail(bad_field, "pulse_rem.F_max", FSW_E_CONFIG);
+      if (num_thr != n) { return fail(bad_field, "pulse_rem.num_thr", FSW_E_CONFIG); }
+      if (b != b_want) { return fail(bad_field, "pulse_rem.base_thrust_state", FSW_E_CONFIG); }
+      for (i = 0; i < n; i++) {
+        if (F_max[i] != cfg->thr_map.F_max[i]) { return fail(bad_field, "pulse_rem.F_max", FSW_E_CONFIG); } }
     } else if (cfg->pulser == FSW_ACS_PULSE_SCHMITT) {
-      if ((s = fsw_thr_pulse_schmitt_check(&cfg->pulse_schmitt)) != FSW_OK)
-        return fail(bad_field, "pulse_schmitt", s);
+      if ((s = fsw_thr_pulse_schmitt_check(&cfg->pulse_schmitt)) != FSW_OK) {
+        return fail(bad_field, "pulse_schmitt", s); }
       num_thr = cfg->pulse_schmitt.common.num_thr;
       F_max = cfg->pulse_schmitt.common.F_max;
       b = cfg->pulse_schmitt.common.base_thrust_state;
-      if (num_thr != n) return fail(bad_field, "pulse_schmitt.num_thr", FSW_E_CONFIG);
-      if (b != b_want) return fail(bad_field, "pulse_schmitt.base_thrust_state", FSW_E_CONFIG);
-      for (i = 0; i < n; i++)
-        if (F_max[i] != cfg->thr_map.F_max[i])
-          return fail(bad_field, "pulse_schmitt.F_max", FSW_E_CONFIG);
+      if (num_thr != n) { return fail(bad_field, "pulse_schmitt.num_thr", FSW_E_CONFIG); }
+      if (b != b_want) { return fail(bad_field, "pulse_schmitt.base_thrust_state", FSW_E_CONFIG); }
+      for (i = 0; i < n; i++) {
+        if (F_max[i] != cfg->thr_map.F_max[i]) {
+          return fail(bad_field, "pulse_schmitt.F_max", FSW_E_CONFIG); } }
     } else {
       return fail(bad_field, "pulser", FSW_E_CONFIG);
     }
@@ -330,16 +330,16 @@ static void clear_state(FswAcsState *st)
 {
   unsigned char *p = (unsigned char *)st;
   size_t k;
-  for (k = 0; k < sizeof(*st); k++) p[k] = 0u;
+  for (k = 0; k < sizeof(*st); k++) { p[k] = 0u; }
 }
 
 /* Reset the stages whose memory must not survive a mode transition. */
 static void reset_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
 {
-  if (cfg->has_mtq) fsw_bdot_reset(&st->bdot); /* a fresh derivative and persistence timer */
+  if (cfg->has_mtq) { fsw_bdot_reset(&st->bdot); } /* a fresh derivative and persistence timer */
   fsw_mrp_fb_reset(&st->mrp_fb);
-  if (cfg->use_lpf) fsw_trq_lpf_reset(&st->lpf);
-  if (cfg->has_wheels && cfg->use_volt) fsw_rw_volt_reset(&st->rw_volt);
+  if (cfg->use_lpf) { fsw_trq_lpf_reset(&st->lpf); }
+  if (cfg->has_wheels && cfg->use_volt) { fsw_rw_volt_reset(&st->rw_volt); }
   if (cfg->has_thrusters) {
     fsw_thr_map_reset(&st->thr_map);
     if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
@@ -354,10 +354,10 @@ FswStatus fsw_acs_init(FswAcsState *st, const FswAcsConfig *cfg, const char **ba
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
   clear_state(st);
   s = fsw_acs_check(cfg, bad_field);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
 
 #define ACS_INIT(call, name)                                                   \
   do {                                                                         \
@@ -375,7 +375,7 @@ FswStatus fsw_acs_init(FswAcsState *st, const FswAcsConfig *cfg, const char **ba
   ACS_INIT(fsw_guid_inertial_init(&st->inertial, &cfg->inertial), "inertial");
   ACS_INIT(fsw_att_track_init(&st->track, &cfg->track), "track");
   ACS_INIT(fsw_mrp_fb_init(&st->mrp_fb, &cfg->mrp_fb), "mrp_fb");
-  if (cfg->use_lpf) ACS_INIT(fsw_trq_lpf_init(&st->lpf, &cfg->lpf), "lpf");
+  if (cfg->use_lpf) { ACS_INIT(fsw_trq_lpf_init(&st->lpf, &cfg->lpf), "lpf"); }
   if (cfg->has_wheels) {
     ACS_INIT(fsw_rw_map_init(&st->rw_map, &cfg->rw_map), "rw_map");
     if (cfg->use_null) {
@@ -384,9 +384,9 @@ FswStatus fsw_acs_init(FswAcsState *st, const FswAcsConfig *cfg, const char **ba
       fsw_vn_copy(st->work.null_in.Omega_des, cfg->Omega_des, cfg->rw_null.num_rw);
     }
     ACS_INIT(fsw_rw_sat_init(&st->rw_sat, &cfg->rw_sat), "rw_sat");
-    if (cfg->use_volt) ACS_INIT(fsw_rw_volt_init(&st->rw_volt, &cfg->rw_volt), "rw_volt");
-    if (cfg->use_speed_filter)
-      ACS_INIT(fsw_rw_speed_filter_init(&st->speed_filter, &cfg->speed_filter), "speed_filter");
+    if (cfg->use_volt) { ACS_INIT(fsw_rw_volt_init(&st->rw_volt, &cfg->rw_volt), "rw_volt"); }
+    if (cfg->use_speed_filter) {
+      ACS_INIT(fsw_rw_speed_filter_init(&st->speed_filter, &cfg->speed_filter), "speed_filter"); }
   }
   if (cfg->has_thrusters) {
     ACS_INIT(fsw_thr_map_init(&st->thr_map, &cfg->thr_map), "thr_map");
@@ -400,10 +400,10 @@ FswStatus fsw_acs_init(FswAcsState *st, const FswAcsConfig *cfg, const char **ba
     ACS_INIT(fsw_mtq_map_init(&st->mtq_map, &cfg->mtq_map), "mtq_map");
     ACS_INIT(fsw_bdot_init(&st->bdot, &cfg->bdot), "bdot");
   }
-  if (cfg->has_orbit) ACS_INIT(fsw_guid_orbit_init(&st->orbit, &cfg->orbit), "orbit");
-  if (cfg->use_thr_mom) ACS_INIT(fsw_thr_momentum_init(&st->thr_mom, &cfg->thr_mom), "thr_mom");
-  if (cfg->use_mtq_desat) ACS_INIT(fsw_mtq_desat_init(&st->mtq_desat, &cfg->mtq_desat), "mtq_desat");
-  if (cfg->use_bias) ACS_INIT(fsw_rw_bias_init(&st->rw_bias, &cfg->rw_bias), "rw_bias");
+  if (cfg->has_orbit) { ACS_INIT(fsw_guid_orbit_init(&st->orbit, &cfg->orbit), "orbit"); }
+  if (cfg->use_thr_mom) { ACS_INIT(fsw_thr_momentum_init(&st->thr_mom, &cfg->thr_mom), "thr_mom"); }
+  if (cfg->use_mtq_desat) { ACS_INIT(fsw_mtq_desat_init(&st->mtq_desat, &cfg->mtq_desat), "mtq_desat"); }
+  if (cfg->use_bias) { ACS_INIT(fsw_rw_bias_init(&st->rw_bias, &cfg->rw_bias), "rw_bias"); }
 #undef ACS_INIT
   fsw_health_clear(&st->health);
   st->ready = 1;
@@ -414,7 +414,7 @@ FswStatus fsw_acs_init(FswAcsState *st, const FswAcsConfig *cfg, const char **ba
 void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg)
 {
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL || !st->ready) return;
+  if (st == NULL || cfg == NULL || !st->ready) { return; }
   fsw_css_sun_reset(&st->css);
   fsw_guid_sunsafe_reset(&st->sunsafe);
   /* back to the configured reference and gains */
@@ -428,9 +428,9 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg)
   fsw_att_track_reset(&st->track);
   if (cfg->has_wheels) {
     fsw_rw_map_reset(&st->rw_map);
-    if (cfg->use_null) fsw_rw_null_reset(&st->rw_null);
+    if (cfg->use_null) { fsw_rw_null_reset(&st->rw_null); }
     fsw_rw_sat_reset(&st->rw_sat);
-    if (cfg->use_speed_filter) fsw_rw_speed_filter_reset(&st->speed_filter);
+    if (cfg->use_speed_filter) { fsw_rw_speed_filter_reset(&st->speed_filter); }
   }
   if (cfg->has_mtq) {
     fsw_mtq_map_reset(&st->mtq_map);
@@ -438,10 +438,10 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg)
     fsw_v3_zero(st->B_hold);
     st->B_hold_ok = 0u;
   }
-  if (cfg->has_orbit) fsw_guid_orbit_reset(&st->orbit);
-  if (cfg->use_thr_mom) fsw_thr_momentum_reset(&st->thr_mom);
-  if (cfg->use_mtq_desat) fsw_mtq_desat_reset(&st->mtq_desat);
-  if (cfg->use_bias) fsw_rw_bias_reset(&st->rw_bias);
+  if (cfg->has_orbit) { fsw_guid_orbit_reset(&st->orbit); }
+  if (cfg->use_thr_mom) { fsw_thr_momentum_reset(&st->thr_mom); }
+  if (cfg->use_mtq_desat) { fsw_mtq_desat_reset(&st->mtq_desat); }
+  if (cfg->use_bias) { fsw_rw_bias_reset(&st->rw_bias); }
   fsw_vn_zero(st->work.t_on_last, FSW_MAX_THR);
   st->work.u_last_valid = 0u;
   reset_dynamic(st, cfg);
@@ -476,7 +476,7 @@ static void zero_bytes(FswAcsHealthMsg *h, size_t from, size_t to)
 {
   unsigned char *p = (unsigned char *)h;
   size_t k;
-  for (k = from; k < to; k++) p[k] = 0u;
+  for (k = from; k < to; k++) { p[k] = 0u; }
 }
 
 static void zero_health(FswAcsHealthMsg *h) { zero_bytes(h, 0u, sizeof(*h)); }
@@ -491,24 +491,24 @@ static void safe_health(FswAcsHealthMsg *h)
 static void u8_copy(uint8_t *out, const uint8_t *in, int n)
 {
   int i;
-  for (i = 0; i < n; i++) out[i] = in[i];
+  for (i = 0; i < n; i++) { out[i] = in[i]; }
 }
 
 /* Finite check of the entries whose availability flag is 0. */
 static int avail_finite(const fsw_real *x, const uint8_t *avail, int n)
 {
   int i;
-  for (i = 0; i < n; i++)
-    if (avail[i] == FSW_AVAILABLE && !isfinite(x[i])) return 0;
+  for (i = 0; i < n; i++) {
+    if (avail[i] == FSW_AVAILABLE && !isfinite(x[i])) { return 0; } }
   return 1;
 }
 
 /* First error wins; otherwise the first warning; otherwise OK. */
 static FswStatus combine(FswStatus acc, FswStatus s)
 {
-  if (fsw_status_is_error(acc)) return acc;
-  if (fsw_status_is_error(s)) return s;
-  if (acc != FSW_OK) return acc;
+  if (fsw_status_is_error(acc)) { return acc; }
+  if (fsw_status_is_error(s)) { return s; }
+  if (acc != FSW_OK) { return acc; }
   return s;
 }
 
@@ -522,8 +522,8 @@ static FswStatus finish(FswAcsState *st, const FswAcsConfig *cfg, FswAcsHealthMs
   h->rw_failed = 0u;
   h->rw_latched = 0u;
   for (i = 0; i < nv; i++) {
-    if (st->speed_filter.failed[i]) h->rw_failed |= (uint64_t)1u << i;
-    if (st->speed_filter.latched[i]) h->rw_latched |= (uint64_t)1u << i;
+    if (st->speed_filter.failed[i]) { h->rw_failed |= (uint64_t)1u << i; }
+    if (st->speed_filter.latched[i]) { h->rw_latched |= (uint64_t)1u << i; }
   }
   h->status = fsw_health_record(&st->health, s);
   h->safe_output = (uint8_t)(fsw_status_is_error(s) ? 1 : 0);
@@ -544,7 +544,7 @@ static FswStatus run_guidance(FswAcsState *st, const FswAcsConfig *cfg,
   int i;
   if (st->mode == FSW_ACS_MODE_SUN_SAFE) {
     const int nc = cfg->css.num_css;
-    for (i = 0; i < nc; i++) w->css_in.reading[i] = sens->css[i];
+    for (i = 0; i < nc; i++) { w->css_in.reading[i] = sens->css[i]; }
     u8_copy(w->css_in.avail, sens->css_avail, nc);
     s = fsw_css_sun_update(&st->css, &cfg->css, &w->css_in, &w->css_out);
     h->stage_status[FSW_ACS_STAGE_CSS] = s;
@@ -656,8 +656,8 @@ static FswStatus run_pulser(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   }
   h->stage_status[FSW_ACS_STAGE_THR_PULSE] = s;
   /* a flagged thruster stays off whatever its pulser remembers */
-  for (i = 0; i < n; i++)
-    if (sens->thr_avail[i] != FSW_AVAILABLE) act->t_on[i] = FSW_R(0.0);
+  for (i = 0; i < n; i++) {
+    if (sens->thr_avail[i] != FSW_AVAILABLE) { act->t_on[i] = FSW_R(0.0); } }
   return s;
 }
 
@@ -721,7 +721,7 @@ static FswStatus run_detumble(FswAcsState *st, const FswAcsConfig *cfg, const Fs
   fsw_vn_copy(act->m_cmd, w->mtq_out.m_cmd, cfg->mtq_map.num_mtq);
   fsw_v3_copy(h->tau_mtq_B, w->mtq_out.tau_ach_B);
   act->mtq_active = 1u;
-  if (cfg->has_wheels) act->wheels_active = 1u; /* u_s = 0: the wheels keep their momentum */
+  if (cfg->has_wheels) { act->wheels_active = 1u; } /* u_s = 0: the wheels keep their momentum */
   return acc;
 }
 
@@ -774,8 +774,8 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
       int i;
       fsw_vn_zero(w->thr_out.F, FSW_MAX_THR);
       acc = combine(acc, run_pulser(st, cfg, sens, w->thr_out.F, act, h));
-      for (i = 0; i < cfg->thr_map.num_thr; i++)
-        if (act->t_on[i] > FSW_R(0.0)) act->thrusters_active = 1u; /* a carried remainder */
+      for (i = 0; i < cfg->thr_map.num_thr; i++) {
+        if (act->t_on[i] > FSW_R(0.0)) { act->thrusters_active = 1u; } } /* a carried remainder */
     }
   } else if (st->policy == FSW_ACS_MOM_MAGNETORQUERS) {
     act->mtq_active = 1u; /* rods off unless a field sample lets them act */
@@ -808,12 +808,12 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
  * a policy this configuration can fly. */
 static int set_command_ok(const FswAcsConfig *cfg, const FswAcsCmdMsg *cmd)
 {
-  if (cmd->set_ref > 1u || cmd->set_gains > 1u || cmd->set_policy > 1u) return 0;
-  if (cmd->set_policy && !policy_configured(cfg, cmd->policy)) return 0;
-  if (cmd->set_ref && (!fsw_v3_is_finite(cmd->sigma_R0N) || !isfinite(fsw_v3_norm2(cmd->sigma_R0N)))) return 0;
+  if (cmd->set_ref > 1u || cmd->set_gains > 1u || cmd->set_policy > 1u) { return 0; }
+  if (cmd->set_policy && !policy_configured(cfg, cmd->policy)) { return 0; }
+  if (cmd->set_ref && (!fsw_v3_is_finite(cmd->sigma_R0N) || !isfinite(fsw_v3_norm2(cmd->sigma_R0N)))) { return 0; }
   if (cmd->set_gains &&
-      (!isfinite(cmd->K) || !(cmd->K > FSW_R(0.0)) || !isfinite(cmd->P) || !(cmd->P > FSW_R(0.0))))
-    return 0;
+      (!isfinite(cmd->K) || !(cmd->K > FSW_R(0.0)) || !isfinite(cmd->P) || !(cmd->P > FSW_R(0.0)))) {
+    return 0; }
   return 1;
 }
 
@@ -836,10 +836,10 @@ static void apply_set_command(FswAcsState *st, const FswAcsConfig *cfg, const Fs
     /* the pulser's clock is stale when the dumps start to use it (in the
      * thruster actuation it runs every cycle: its clock is current) */
     if (cmd->policy == FSW_ACS_MOM_THRUSTERS && st->actuation == FSW_ACS_ACT_WHEELS) {
-      if (cfg->pulser == FSW_ACS_PULSE_REMAINDER)
+      if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
         fsw_thr_pulse_rem_reset(&st->pulse_rem);
-      else
-        fsw_thr_pulse_schmitt_reset(&st->pulse_schmitt);
+      } else {
+        fsw_thr_pulse_schmitt_reset(&st->pulse_schmitt); }
     }
   }
 }
@@ -869,24 +869,24 @@ static void save_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
     fsw_v3_copy(w->saved.B_hold, st->B_hold);
     w->saved.B_hold_ok = st->B_hold_ok;
   }
-  if (cfg->has_orbit) w->saved.orbit = st->orbit;
-  if (cfg->use_thr_mom) w->saved.thr_mom = st->thr_mom;
-  if (cfg->use_bias)
-    for (i = 0; i < FSW_MAX_RW; i++) w->saved.bias_in_band[i] = st->rw_bias.in_band[i];
+  if (cfg->has_orbit) { w->saved.orbit = st->orbit; }
+  if (cfg->use_thr_mom) { w->saved.thr_mom = st->thr_mom; }
+  if (cfg->use_bias) {
+    for (i = 0; i < FSW_MAX_RW; i++) { w->saved.bias_in_band[i] = st->rw_bias.in_band[i]; } }
   fsw_vn_copy(w->saved.t_on_last, w->t_on_last, thr_count(cfg));
   w->saved.mrp_fb = st->mrp_fb;
-  if (cfg->use_lpf) w->saved.lpf = st->lpf;
-  if (cfg->has_wheels && cfg->use_volt) w->saved.rw_volt = st->rw_volt;
-  if (cfg->has_wheels && cfg->use_null)
-    for (i = 0; i < FSW_MAX_RW; i++) w->saved.null_avail[i] = st->rw_null.proj.avail[i];
-  if (cfg->has_wheels && cfg->use_speed_filter) w->saved.speed_filter = st->speed_filter;
+  if (cfg->use_lpf) { w->saved.lpf = st->lpf; }
+  if (cfg->has_wheels && cfg->use_volt) { w->saved.rw_volt = st->rw_volt; }
+  if (cfg->has_wheels && cfg->use_null) {
+    for (i = 0; i < FSW_MAX_RW; i++) { w->saved.null_avail[i] = st->rw_null.proj.avail[i]; } }
+  if (cfg->has_wheels && cfg->use_speed_filter) { w->saved.speed_filter = st->speed_filter; }
   if (cfg->has_thrusters) {
     w->saved.thr_ang_err = st->thr_map.ang_err;
     w->saved.thr_nnls_iter = st->thr_map.nnls_iter;
-    if (cfg->pulser == FSW_ACS_PULSE_REMAINDER)
+    if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
       w->saved.pulse_rem = st->pulse_rem;
-    else
-      w->saved.pulse_schmitt = st->pulse_schmitt;
+    } else {
+      w->saved.pulse_schmitt = st->pulse_schmitt; }
   }
 }
 
@@ -927,7 +927,7 @@ static void restore_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   }
   if (cfg->use_bias) {
     int i;
-    for (i = 0; i < FSW_MAX_RW; i++) st->rw_bias.in_band[i] = w->saved.bias_in_band[i];
+    for (i = 0; i < FSW_MAX_RW; i++) { st->rw_bias.in_band[i] = w->saved.bias_in_band[i]; }
   }
   hh = st->mrp_fb.health;
   st->mrp_fb = w->saved.mrp_fb;
@@ -942,7 +942,7 @@ static void restore_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
     st->rw_volt = w->saved.rw_volt;
     st->rw_volt.health = hh;
   }
-  if (cfg->has_wheels && cfg->use_null) (void)fsw_rw_proj_refresh(&st->rw_null.proj, w->saved.null_avail);
+  if (cfg->has_wheels && cfg->use_null) { (void)fsw_rw_proj_refresh(&st->rw_null.proj, w->saved.null_avail); }
   if (cfg->has_wheels && cfg->use_speed_filter) {
     hh = st->speed_filter.health;
     st->speed_filter = w->saved.speed_filter;
@@ -1018,13 +1018,13 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   uint8_t u_known;
 
   FSW_ASSERT(st != NULL && cfg != NULL && sens != NULL && act != NULL && h != NULL);
-  if (act != NULL) safe_output(act);
-  if (h != NULL) zero_health(h);
+  if (act != NULL) { safe_output(act); }
+  if (h != NULL) { zero_health(h); }
   if (st == NULL || cfg == NULL || sens == NULL || act == NULL || h == NULL) {
-    if (st != NULL) (void)fsw_health_record(&st->health, FSW_E_NULL_ARG);
+    if (st != NULL) { (void)fsw_health_record(&st->health, FSW_E_NULL_ARG); }
     return FSW_E_NULL_ARG;
   }
-  if (!st->ready) return finish(st, cfg, h, FSW_E_NOT_INIT);
+  if (!st->ready) { return finish(st, cfg, h, FSW_E_NOT_INIT); }
   w = &st->work;
   /* Whether last call's wheel torque held until now; from here on, until
    * this cycle succeeds with wheels active, the next call cannot know. */
@@ -1038,58 +1038,58 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   req_mode = (cmd != NULL && cmd->mode != st->cmd_mode) ? cmd->mode : st->mode;
   req_act = (cmd != NULL) ? cmd->actuation : st->actuation;
   req_policy = (cmd != NULL && cmd->set_policy == 1u) ? cmd->policy : st->policy;
-  if (!mode_configured(cfg, req_mode)) return finish(st, cfg, h, FSW_E_BAD_INPUT);
+  if (!mode_configured(cfg, req_mode)) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   if (!((req_act == FSW_ACS_ACT_WHEELS && cfg->has_wheels) ||
-        (req_act == FSW_ACS_ACT_THRUSTERS && cfg->has_thrusters)))
-    return finish(st, cfg, h, FSW_E_BAD_INPUT);
-  if (cmd != NULL && !set_command_ok(cfg, cmd)) return finish(st, cfg, h, FSW_E_BAD_INPUT);
+        (req_act == FSW_ACS_ACT_THRUSTERS && cfg->has_thrusters))) {
+    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
+  if (cmd != NULL && !set_command_ok(cfg, cmd)) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   {
     fsw_real dt; /* [s] unused: the stages derive their own */
     s = fsw_clock_dt(&st->clock, sens->t_ns, &dt);
-    if (s != FSW_OK) return finish(st, cfg, h, s);
+    if (s != FSW_OK) { return finish(st, cfg, h, s); }
   }
-  if (!fsw_v3_is_finite(sens->omega_BN_B)) return finish(st, cfg, h, FSW_E_BAD_INPUT);
+  if (!fsw_v3_is_finite(sens->omega_BN_B)) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   if ((req_mode == FSW_ACS_MODE_INERTIAL || req_mode == FSW_ACS_MODE_NADIR) &&
-      (sens->att_valid != 1u || !fsw_v3_is_finite(sens->sigma_BN)))
-    return finish(st, cfg, h, FSW_E_BAD_INPUT);
-  if (sens->mag_valid > 1u || sens->orbit_valid > 1u) return finish(st, cfg, h, FSW_E_BAD_INPUT);
-  if (cfg->has_mtq && sens->mag_valid && !fsw_v3_is_finite(sens->B_B)) return finish(st, cfg, h, FSW_E_BAD_INPUT);
+      (sens->att_valid != 1u || !fsw_v3_is_finite(sens->sigma_BN))) {
+    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
+  if (sens->mag_valid > 1u || sens->orbit_valid > 1u) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
+  if (cfg->has_mtq && sens->mag_valid && !fsw_v3_is_finite(sens->B_B)) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   if (req_mode == FSW_ACS_MODE_NADIR &&
-      (sens->orbit_valid != 1u || !fsw_v3_is_finite(sens->r_N) || !fsw_v3_is_finite(sens->v_N)))
-    return finish(st, cfg, h, FSW_E_BAD_INPUT);
+      (sens->orbit_valid != 1u || !fsw_v3_is_finite(sens->r_N) || !fsw_v3_is_finite(sens->v_N))) {
+    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   if (req_mode == FSW_ACS_MODE_SUN_SAFE) {
-    for (i = 0; i < cfg->css.num_css; i++)
-      if (sens->css_avail[i] > FSW_UNAVAILABLE) return finish(st, cfg, h, FSW_E_BAD_INPUT);
-    if (!avail_finite(sens->css, sens->css_avail, cfg->css.num_css))
-      return finish(st, cfg, h, FSW_E_BAD_INPUT);
+    for (i = 0; i < cfg->css.num_css; i++) {
+      if (sens->css_avail[i] > FSW_UNAVAILABLE) { return finish(st, cfg, h, FSW_E_BAD_INPUT); } }
+    if (!avail_finite(sens->css, sens->css_avail, cfg->css.num_css)) {
+      return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   }
   if (cfg->has_wheels) {
-    for (i = 0; i < cfg->rw_map.num_rw; i++)
-      if (sens->rw_avail[i] > FSW_UNAVAILABLE) return finish(st, cfg, h, FSW_E_BAD_INPUT);
+    for (i = 0; i < cfg->rw_map.num_rw; i++) {
+      if (sens->rw_avail[i] > FSW_UNAVAILABLE) { return finish(st, cfg, h, FSW_E_BAD_INPUT); } }
     /* with the speed filter, a non-finite speed is one wheel's fault (it
      * fails that wheel), not bad input of the cycle */
-    if (!cfg->use_speed_filter && !avail_finite(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw))
-      return finish(st, cfg, h, FSW_E_BAD_INPUT);
+    if (!cfg->use_speed_filter && !avail_finite(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw)) {
+      return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   }
   if ((req_act == FSW_ACS_ACT_THRUSTERS || req_policy == FSW_ACS_MOM_THRUSTERS) &&
-      !fsw_v3_is_finite(sens->r_CoM_B))
-    return finish(st, cfg, h, FSW_E_BAD_INPUT);
-  if (cfg->has_thrusters)
-    for (i = 0; i < cfg->thr_map.num_thr; i++)
-      if (sens->thr_avail[i] > FSW_UNAVAILABLE) return finish(st, cfg, h, FSW_E_BAD_INPUT);
+      !fsw_v3_is_finite(sens->r_CoM_B)) {
+    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
+  if (cfg->has_thrusters) {
+    for (i = 0; i < cfg->thr_map.num_thr; i++) {
+      if (sens->thr_avail[i] > FSW_UNAVAILABLE) { return finish(st, cfg, h, FSW_E_BAD_INPUT); } } }
 
   /* 2. Mode transition: clear the memory that belongs to the old mode.
    *    From here on the stages advance their own state; an error status of
    *    the cycle puts the snapshot back (validate, compute, commit only on
    *    success). */
   save_dynamic(st, cfg);
-  if (cmd != NULL) apply_set_command(st, cfg, cmd);
-  if (cmd != NULL) st->cmd_mode = cmd->mode;
+  if (cmd != NULL) { apply_set_command(st, cfg, cmd); }
+  if (cmd != NULL) { st->cmd_mode = cmd->mode; }
   if (req_mode != st->mode || req_act != st->actuation) {
     reset_dynamic(st, cfg);
     st->mode = req_mode;
     st->actuation = req_act;
-    if (st->mode_changes < UINT32_MAX) st->mode_changes++;
+    if (st->mode_changes < UINT32_MAX) { st->mode_changes++; }
   }
 
   /* 2b. Wheel speeds and availability for every stage: screened by the
@@ -1113,8 +1113,8 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     }
   }
 
-  if (cfg->has_wheels) /* telemetry: mrp_fb's wheel set, available wheels */
-    fsw_rw_momentum(h->h_w_B, cfg->mrp_fb.gs_hat_B, cfg->mrp_fb.J_s, w->Omega, w->rw_avail, cfg->mrp_fb.num_rw);
+  if (cfg->has_wheels) /* telemetry: mrp_fb's wheel set, available wheels */ {
+    fsw_rw_momentum(h->h_w_B, cfg->mrp_fb.gs_hat_B, cfg->mrp_fb.J_s, w->Omega, w->rw_avail, cfg->mrp_fb.num_rw); }
   if (st->mode == FSW_ACS_MODE_DETUMBLE) {
     /* 3-5 in DETUMBLE: B-dot alone. */
     fsw_v3_zero(guid.sigma_BR);
@@ -1135,7 +1135,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     return finish(st, cfg, h, acc);
   }
   fsw_clock_commit(&st->clock, sens->t_ns);
-  if (st->cycles < UINT32_MAX) st->cycles++;
+  if (st->cycles < UINT32_MAX) { st->cycles++; }
   if (act->wheels_active) { /* the configured wheels (act->u_s is 0 beyond them) */
     fsw_vn_copy(w->u_last, act->u_s, cfg->rw_map.num_rw);
     w->u_last_valid = 1u;
@@ -1149,7 +1149,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   if (st->mode == FSW_ACS_MODE_DETUMBLE && h->detumbled && cfg->detumble_exit_mode >= 0) {
     reset_dynamic(st, cfg);
     st->mode = cfg->detumble_exit_mode;
-    if (st->mode_changes < UINT32_MAX) st->mode_changes++;
+    if (st->mode_changes < UINT32_MAX) { st->mode_changes++; }
   }
   return finish(st, cfg, h, acc);
 }

@@ -11,7 +11,7 @@ static int s_line;
 
 void fsw_assert_failed(const char *file, int line)
 {
-  if (s_count < ULONG_MAX) s_count++;
+  if (s_count < ULONG_MAX) { s_count++; }
   s_file = file;
   s_line = line;
 }
@@ -20,8 +20,8 @@ unsigned long fsw_assert_default_count(void) { return s_count; }
 
 void fsw_assert_default_last(const char **file, int *line)
 {
-  if (file != NULL) *file = s_file;
-  if (line != NULL) *line = s_line;
+  if (file != NULL) { *file = s_file; }
+  if (line != NULL) { *line = s_line; }
 }
 
 void fsw_assert_default_reset(void)

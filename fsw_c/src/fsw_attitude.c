@@ -51,8 +51,8 @@ static void quat_normalize_pos(fsw_real q[4])
     q[1] = q[2] = q[3] = FSW_R(0.0);
     return;
   }
-  if (q[0] < FSW_R(0.0)) n = -n;
-  for (i = 0; i < 4; i++) q[i] /= n;
+  if (q[0] < FSW_R(0.0)) { n = -n; }
+  for (i = 0; i < 4; i++) { q[i] /= n; }
 }
 
 void fsw_dcm_to_quat(fsw_real q[4], const fsw_real C[3][3])
@@ -65,8 +65,8 @@ void fsw_dcm_to_quat(fsw_real q[4], const fsw_real C[3][3])
   b2[1] = (FSW_R(1.0) + FSW_R(2.0) * C[0][0] - tr) / FSW_R(4.0);
   b2[2] = (FSW_R(1.0) + FSW_R(2.0) * C[1][1] - tr) / FSW_R(4.0);
   b2[3] = (FSW_R(1.0) + FSW_R(2.0) * C[2][2] - tr) / FSW_R(4.0);
-  for (i = 1; i < 4; i++)
-    if (b2[i] > b2[k]) k = i; /* lowest index wins ties */
+  for (i = 1; i < 4; i++) {
+    if (b2[i] > b2[k]) { k = i; } } /* lowest index wins ties */
   bk = FSW_SQRT(b2[k] > FSW_R(0.0) ? b2[k] : FSW_R(0.0));
   f = FSW_R(4.0) * bk;
   if (!(f > FSW_R(0.0))) {
@@ -189,9 +189,9 @@ void fsw_mrp_bmat(fsw_real B[3][3], const fsw_real s[3])
   const fsw_real s2 = fsw_v3_norm2(s);
   int i, j;
   fsw_tilde(B, s);
-  for (i = 0; i < 3; i++)
-    for (j = 0; j < 3; j++) B[i][j] = FSW_R(2.0) * B[i][j] + FSW_R(2.0) * s[i] * s[j];
-  for (i = 0; i < 3; i++) B[i][i] += FSW_R(1.0) - s2;
+  for (i = 0; i < 3; i++) {
+    for (j = 0; j < 3; j++) { B[i][j] = FSW_R(2.0) * B[i][j] + FSW_R(2.0) * s[i] * s[j]; } }
+  for (i = 0; i < 3; i++) { B[i][i] += FSW_R(1.0) - s2; }
 }
 
 void fsw_tilde(fsw_real out[3][3], const fsw_real v[3])

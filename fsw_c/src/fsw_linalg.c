@@ -22,9 +22,9 @@
 static int pow2_exp(fsw_real m)
 {
   int e = 0;
-  if (!(m > FSW_R(0.0)) || !isfinite(m)) return 0;
+  if (!(m > FSW_R(0.0)) || !isfinite(m)) { return 0; }
   (void)FSW_FREXP(m, &e);
-  if (-e > K1_MAX_EXP - 1) e = -(K1_MAX_EXP - 1);
+  if (-e > K1_MAX_EXP - 1) { e = -(K1_MAX_EXP - 1); }
   return e;
 }
 
@@ -35,12 +35,12 @@ static void chol_solve(fsw_real z[3], const fsw_real L[3][3], const fsw_real rhs
   int i, j;
   for (i = 0; i < m; i++) {
     fsw_real v = rhs[i];
-    for (j = 0; j < i; j++) v -= L[i][j] * y[j];
+    for (j = 0; j < i; j++) { v -= L[i][j] * y[j]; }
     y[i] = v / L[i][i];
   }
   for (i = m - 1; i >= 0; i--) {
     fsw_real v = y[i];
-    for (j = i + 1; j < m; j++) v -= L[j][i] * z[j];
+    for (j = i + 1; j < m; j++) { v -= L[j][i] * z[j]; }
     z[i] = v / L[i][i];
   }
 }
@@ -52,12 +52,12 @@ static fsw_real k1_apply(fsw_real x[FSW_MAX_EFF], fsw_real r[3], const fsw_real 
   int i, j;
   for (j = 0; j < n; j++) {
     fsw_real v = FSW_R(0.0);
-    for (i = 0; i < m; i++) v += (A[i][j] * s) * z[i];
+    for (i = 0; i < m; i++) { v += (A[i][j] * s) * z[i]; }
     x[j] = v;
   }
   for (i = 0; i < m; i++) {
     fsw_real v = bs[i];
-    for (j = 0; j < n; j++) v -= (A[i][j] * s) * x[j];
+    for (j = 0; j < n; j++) { v -= (A[i][j] * s) * x[j]; }
     r[i] = v;
   }
   return fsw_vn_norm(r, m);
@@ -69,29 +69,29 @@ FswStatus fsw_minnorm_factor(FswMinnormFactor *f, const fsw_real A[3][FSW_MAX_EF
   int i, j, k;
 
   FSW_ASSERT(f != NULL && A != NULL);
-  if (f == NULL) return FSW_E_NULL_ARG;
+  if (f == NULL) { return FSW_E_NULL_ARG; }
   f->m = m;
   f->n = n;
   f->s = FSW_R(0.0);
   fsw_m33_zero(f->L);
   f->status = FSW_E_NULL_ARG;
-  if (A == NULL) return f->status;
+  if (A == NULL) { return f->status; }
   f->status = FSW_E_CAPACITY;
-  if (m < 1 || m > 3 || n < 0 || n > FSW_MAX_EFF) return f->status;
+  if (m < 1 || m > 3 || n < 0 || n > FSW_MAX_EFF) { return f->status; }
 
   f->status = FSW_E_BAD_INPUT;
   for (i = 0; i < m; i++) {
     fsw_real v;
-    if (!fsw_vn_is_finite(A[i], n)) return f->status;
+    if (!fsw_vn_is_finite(A[i], n)) { return f->status; }
     v = fsw_vn_max_abs(A[i], n);
-    if (v > amax) amax = v;
+    if (v > amax) { amax = v; }
   }
   f->status = FSW_E_SINGULAR;
-  if (n < m || amax == FSW_R(0.0)) return f->status;
+  if (n < m || amax == FSW_R(0.0)) { return f->status; }
   /* a matrix whose largest entry is subnormal cannot be scaled exactly and
    * its solution overflows for any ordinary b: bad input */
   f->status = FSW_E_BAD_INPUT;
-  if (amax < K1_MIN_NORMAL) return f->status;
+  if (amax < K1_MIN_NORMAL) { return f->status; }
 
   /* As = s A with s a power of two, formed on the fly (no copy of A: the
    * products (s A_ik)(s A_jk) are exact scalings of A_ik A_jk). */
@@ -102,18 +102,18 @@ FswStatus fsw_minnorm_factor(FswMinnormFactor *f, const fsw_real A[3][FSW_MAX_EF
   for (i = 0; i < m; i++) {
     for (j = 0; j <= i; j++) {
       fsw_real v = FSW_R(0.0);
-      for (k = 0; k < n; k++) v += (A[i][k] * s) * (A[j][k] * s);
+      for (k = 0; k < n; k++) { v += (A[i][k] * s) * (A[j][k] * s); }
       M[i][j] = v;
     }
-    if (M[i][i] > dmax) dmax = M[i][i];
+    if (M[i][i] > dmax) { dmax = M[i][i]; }
   }
   f->status = FSW_E_SINGULAR;
-  if (!(dmax > FSW_R(0.0))) return f->status;
+  if (!(dmax > FSW_R(0.0))) { return f->status; }
 
   /* Cholesky M = L L^T in fixed order; pivot test relative to max diag. */
   for (k = 0; k < m; k++) {
     fsw_real d = M[k][k];
-    for (j = 0; j < k; j++) d -= f->L[k][j] * f->L[k][j];
+    for (j = 0; j < k; j++) { d -= f->L[k][j] * f->L[k][j]; }
     if (d <= FSW_RANK_TOL * dmax) {
       fsw_m33_zero(f->L);
       return f->status;
@@ -121,7 +121,7 @@ FswStatus fsw_minnorm_factor(FswMinnormFactor *f, const fsw_real A[3][FSW_MAX_EF
     f->L[k][k] = FSW_SQRT(d);
     for (i = k + 1; i < m; i++) {
       fsw_real v = M[i][k];
-      for (j = 0; j < k; j++) v -= f->L[i][j] * f->L[k][j];
+      for (j = 0; j < k; j++) { v -= f->L[i][j] * f->L[k][j]; }
       f->L[i][k] = v / f->L[k][k];
     }
   }
@@ -138,14 +138,14 @@ FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFa
   int i, j, eb, m, n;
 
   FSW_ASSERT(x != NULL && f != NULL && A != NULL && b != NULL);
-  if (x == NULL || f == NULL || A == NULL || b == NULL) return FSW_E_NULL_ARG;
+  if (x == NULL || f == NULL || A == NULL || b == NULL) { return FSW_E_NULL_ARG; }
   m = f->m;
   n = f->n;
   fsw_vn_zero(x, n < 0 ? 0 : (n > FSW_MAX_EFF ? FSW_MAX_EFF : n)); /* safe output */
-  if (f->status == FSW_E_CAPACITY || f->status == FSW_E_NULL_ARG) return f->status;
-  for (i = 0; i < m; i++)
-    if (!isfinite(b[i])) return FSW_E_BAD_INPUT;
-  if (f->status != FSW_OK) return f->status;
+  if (f->status == FSW_E_CAPACITY || f->status == FSW_E_NULL_ARG) { return f->status; }
+  for (i = 0; i < m; i++) {
+    if (!isfinite(b[i])) { return FSW_E_BAD_INPUT; } }
+  if (f->status != FSW_OK) { return f->status; }
 
   /* b is scaled by s and by a power of two t = 2^-eb that brings max |b|
    * into [1/2, 1): the solve cannot overflow, and x = (solution) 2^eb at the
@@ -153,7 +153,7 @@ FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFa
   s = f->s;
   eb = pow2_exp(fsw_vn_max_abs(b, m));
   t = FSW_LDEXP(FSW_R(1.0), -eb);
-  for (i = 0; i < m; i++) bs[i] = (b[i] * t) * s;
+  for (i = 0; i < m; i++) { bs[i] = (b[i] * t) * s; }
 
   /* L L^T z = bs; x = As^T z (the two scale factors s cancel:
    * As^T (As As^T)^-1 bs = A^T (A A^T)^-1 b t) */
@@ -166,7 +166,7 @@ FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFa
    * pivot floor always meets FSW_RESID_TOL after it), then reject. */
   if (!(rnorm <= FSW_RESID_TOL * bnorm)) {
     chol_solve(dz, FSW_CM33(f->L), r, m);
-    for (i = 0; i < m; i++) z[i] += dz[i];
+    for (i = 0; i < m; i++) { z[i] += dz[i]; }
     rnorm = k1_apply(x, r, A, s, z, bs, m, n);
     if (!(rnorm <= FSW_RESID_TOL * bnorm)) {
       fsw_vn_zero(x, n);
@@ -180,9 +180,9 @@ FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFa
    * entry. */
   if (eb < K1_MAX_EXP) {
     const fsw_real u = FSW_LDEXP(FSW_R(1.0), eb);
-    for (j = 0; j < n; j++) x[j] *= u;
+    for (j = 0; j < n; j++) { x[j] *= u; }
   } else {
-    for (j = 0; j < n; j++) x[j] = FSW_LDEXP(x[j], eb);
+    for (j = 0; j < n; j++) { x[j] = FSW_LDEXP(x[j], eb); }
   }
   if (!fsw_vn_is_finite(x, n)) {
     fsw_vn_zero(x, n);
@@ -196,7 +196,7 @@ FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX
 {
   FswMinnormFactor f;
   FSW_ASSERT(x != NULL && A != NULL && b != NULL);
-  if (x == NULL || A == NULL || b == NULL) return FSW_E_NULL_ARG;
+  if (x == NULL || A == NULL || b == NULL) { return FSW_E_NULL_ARG; }
   (void)fsw_minnorm_factor(&f, A, m, n);
   return fsw_minnorm_solve_factored(x, &f, A, b);
 }
@@ -209,37 +209,37 @@ FswStatus fsw_null_projector(fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF],
   int nq = 0, r, i, j, k, pass;
 
   FSW_ASSERT(tau != NULL && G != NULL);
-  if (rank != NULL) *rank = 0;
-  if (tau == NULL || G == NULL) return FSW_E_NULL_ARG;
+  if (rank != NULL) { *rank = 0; }
+  if (tau == NULL || G == NULL) { return FSW_E_NULL_ARG; }
   if (n < 0 || n > FSW_MAX_EFF) {
-    for (i = 0; i < FSW_MAX_EFF; i++) fsw_vn_zero(tau[i], FSW_MAX_EFF);
+    for (i = 0; i < FSW_MAX_EFF; i++) { fsw_vn_zero(tau[i], FSW_MAX_EFF); }
     return FSW_E_CAPACITY;
   }
-  for (i = 0; i < n; i++) fsw_vn_zero(tau[i], n);
-  for (r = 0; r < 3; r++)
-    if (!fsw_vn_is_finite(G[r], n)) return FSW_E_BAD_INPUT;
+  for (i = 0; i < n; i++) { fsw_vn_zero(tau[i], n); }
+  for (r = 0; r < 3; r++) {
+    if (!fsw_vn_is_finite(G[r], n)) { return FSW_E_BAD_INPUT; } }
 
   for (r = 0; r < 3; r++) {
     fsw_real *v = Q[nq];
     fsw_real n0, res, s;
-    for (j = 0; j < n; j++)
-      v[j] = (avail != NULL && avail[j] != FSW_AVAILABLE) ? FSW_R(0.0) : G[r][j];
+    for (j = 0; j < n; j++) {
+      v[j] = (avail != NULL && avail[j] != FSW_AVAILABLE) ? FSW_R(0.0) : G[r][j]; }
     s = fsw_pow2_scale(fsw_vn_max_abs(v, n));
     fsw_vn_scale(v, s, v, n);
     n0 = fsw_vn_norm(v, n);
-    if (!(n0 > FSW_R(0.0))) continue;
+    if (!(n0 > FSW_R(0.0))) { continue; }
     /* modified Gram-Schmidt, then one re-orthogonalisation pass */
     for (pass = 0; pass < 2; pass++) {
       for (k = 0; k < nq; k++) {
         fsw_real c = fsw_vn_dot(Q[k], v, n);
-        for (j = 0; j < n; j++) v[j] -= c * Q[k][j];
+        for (j = 0; j < n; j++) { v[j] -= c * Q[k][j]; }
       }
       if (pass == 0) {
         res = fsw_vn_norm(v, n);
-        if (res <= FSW_NULL_TOL * n0) break;
+        if (res <= FSW_NULL_TOL * n0) { break; }
       }
     }
-    if (pass == 0) continue; /* dropped: dependent on earlier rows */
+    if (pass == 0) { continue; } /* dropped: dependent on earlier rows */
     res = fsw_vn_norm(v, n);
     fsw_vn_scale(v, FSW_R(1.0) / res, v, n);
     nq++;
@@ -254,11 +254,11 @@ FswStatus fsw_null_projector(fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF],
         tau[i][j] = FSW_R(0.0);
         continue;
       }
-      for (k = 0; k < nq; k++) v -= Q[k][i] * Q[k][j];
+      for (k = 0; k < nq; k++) { v -= Q[k][i] * Q[k][j]; }
       tau[i][j] = v;
     }
   }
-  if (rank != NULL) *rank = nq;
+  if (rank != NULL) { *rank = nq; }
   return FSW_OK;
 }
 
@@ -284,31 +284,31 @@ static void psd_solve(fsw_real x[3], const fsw_real M[3][3], const fsw_real rhs[
 {
   fsw_real L[3][3], d[3], y[3], dmax = FSW_R(0.0);
   int keep[3], i, j, k;
-  for (k = 0; k < m; k++)
-    if (M[k][k] > dmax) dmax = M[k][k];
+  for (k = 0; k < m; k++) {
+    if (M[k][k] > dmax) { dmax = M[k][k]; } }
   for (k = 0; k < m; k++) {
     fsw_real v = M[k][k];
-    for (j = 0; j < k; j++) v -= L[k][j] * L[k][j] * d[j];
+    for (j = 0; j < k; j++) { v -= L[k][j] * L[k][j] * d[j]; }
     keep[k] = (dmax > FSW_R(0.0) && v > FSW_RANK_TOL * dmax);
     d[k] = keep[k] ? v : FSW_R(0.0);
     L[k][k] = FSW_R(1.0);
     for (i = k + 1; i < m; i++) {
       fsw_real w = M[i][k];
-      for (j = 0; j < k; j++) w -= L[i][j] * L[k][j] * d[j];
+      for (j = 0; j < k; j++) { w -= L[i][j] * L[k][j] * d[j]; }
       L[i][k] = keep[k] ? w / d[k] : FSW_R(0.0);
     }
   }
   for (k = 0; k < m; k++) {
     fsw_real v = rhs[k];
-    for (j = 0; j < k; j++) v -= L[k][j] * y[j];
+    for (j = 0; j < k; j++) { v -= L[k][j] * y[j]; }
     y[k] = v;
   }
   for (k = m - 1; k >= 0; k--) {
     fsw_real v = keep[k] ? y[k] / d[k] : FSW_R(0.0);
-    for (i = k + 1; i < m; i++) v -= L[i][k] * x[i];
+    for (i = k + 1; i < m; i++) { v -= L[i][k] * x[i]; }
     x[k] = v;
   }
-  for (k = m; k < 3; k++) x[k] = FSW_R(0.0);
+  for (k = m; k < 3; k++) { x[k] = FSW_R(0.0); }
 }
 
 /* Column i of A dotted with an m-vector. */
@@ -316,7 +316,7 @@ static fsw_real col_dot(const fsw_real A[3][FSW_MAX_EFF], int i, const fsw_real 
 {
   fsw_real s = FSW_R(0.0);
   int k;
-  for (k = 0; k < m; k++) s += A[k][i] * v[k];
+  for (k = 0; k < m; k++) { s += A[k][i] * v[k]; }
   return s;
 }
 
@@ -350,8 +350,8 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
     fsw_real an2 = FSW_R(0.0);
     F[i] = FSW_R(0.0);
     stat[i] = (lo[i] == FSW_R(0.0)) ? K4_AT_LO : K4_AT_HI;
-    if (hi[i] - lo[i] > fscale) fscale = hi[i] - lo[i];
-    for (k = 0; k < m; k++) an2 += A[k][i] * A[k][i];
+    if (hi[i] - lo[i] > fscale) { fscale = hi[i] - lo[i]; }
+    for (k = 0; k < m; k++) { an2 += A[k][i] * A[k][i]; }
     gfloor[i] = btol * FSW_SQRT(an2);
   }
 
@@ -361,23 +361,23 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
     int best = -1, first = 1;
     for (k = 0; k < m; k++) {
       fsw_real v = b[k];
-      for (i = 0; i < n; i++) v -= A[k][i] * F[i];
+      for (i = 0; i < n; i++) { v -= A[k][i] * F[i]; }
       r[k] = v;
     }
-    if (fsw_vn_norm(r, m) <= btol) break;
+    if (fsw_vn_norm(r, m) <= btol) { break; }
     for (i = 0; i < n; i++) {
       fsw_real g;
-      if (stat[i] == K4_FREE) continue;
+      if (stat[i] == K4_FREE) { continue; }
       g = col_dot(A, i, r, m);
-      if (stat[i] == K4_AT_HI) g = -g;
+      if (stat[i] == K4_AT_HI) { g = -g; }
       if (g > gfloor[i] && g > gbest) {
         gbest = g;
         best = i;
       }
     }
-    if (best < 0) break;
+    if (best < 0) { break; }
     /* insert into P keeping index order */
-    for (q = np; q > 0 && P[q - 1] > best; q--) P[q] = P[q - 1];
+    for (q = np; q > 0 && P[q - 1] > best; q--) { P[q] = P[q - 1]; }
     P[q] = best;
     np++;
     {
@@ -389,17 +389,17 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
         int blk = -1;
         it++;
         /* r0 = b - sum over fixed columns; LS on the free columns */
-        for (ni = 0, i = 0; i < n; i++)
-          if (stat[i] != K4_FREE) idx[ni++] = i;
+        ni = 0; for (i = 0; i < n; i++) {
+          if (stat[i] != K4_FREE) { idx[ni++] = i; } }
         for (k = 0; k < m; k++) {
           fsw_real v = b[k];
-          for (q = 0; q < ni; q++) v -= A[k][idx[q]] * F[idx[q]];
+          for (q = 0; q < ni; q++) { v -= A[k][idx[q]] * F[idx[q]]; }
           r0[k] = v;
         }
         for (q = 0; q < np; q++) {
           for (j = 0; j < np; j++) {
             fsw_real v = FSW_R(0.0);
-            for (k = 0; k < m; k++) v += A[k][P[q]] * A[k][P[j]];
+            for (k = 0; k < m; k++) { v += A[k][P[q]] * A[k][P[j]]; }
             G[q][j] = v;
           }
           rhs[q] = col_dot(A, P[q], r0, m);
@@ -412,7 +412,7 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
           }
           if (entering_at_lo ? !(z[q] > lo[best]) : !(z[q] < hi[best])) {
             stat[best] = entering_at_lo ? K4_AT_LO : K4_AT_HI;
-            for (; q + 1 < np; q++) P[q] = P[q + 1];
+            for (; q + 1 < np; q++) { P[q] = P[q + 1]; }
             np--;
             stop = 1;
             break;
@@ -424,7 +424,7 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
           if (z[q] <= lo[i] || z[q] >= hi[i]) {
             fsw_real bound = (z[q] <= lo[i]) ? lo[i] : hi[i];
             fsw_real a = (bound - F[i]) / (z[q] - F[i]);
-            if (!(a > FSW_R(0.0))) a = FSW_R(0.0);
+            if (!(a > FSW_R(0.0))) { a = FSW_R(0.0); }
             if (blk < 0 || a < alpha) {
               alpha = a;
               blk = q;
@@ -432,11 +432,11 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
           }
         }
         if (blk < 0) {
-          for (q = 0; q < np; q++) F[P[q]] = z[q];
+          for (q = 0; q < np; q++) { F[P[q]] = z[q]; }
           break;
         }
-        if (alpha > FSW_R(1.0)) alpha = FSW_R(1.0);
-        for (q = 0; q < np; q++) F[P[q]] = F[P[q]] + alpha * (z[q] - F[P[q]]);
+        if (alpha > FSW_R(1.0)) { alpha = FSW_R(1.0); }
+        for (q = 0; q < np; q++) { F[P[q]] = F[P[q]] + alpha * (z[q] - F[P[q]]); }
         /* fix the blocking variable and any other that reached a bound */
         {
           const int ib = P[blk];
@@ -445,7 +445,7 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
           stat[ib] = ib_lo ? K4_AT_LO : K4_AT_HI;
           for (q = 0; q < np; q++) {
             i = P[q];
-            if (stat[i] != K4_FREE) continue;
+            if (stat[i] != K4_FREE) { continue; }
             if (F[i] <= lo[i]) {
               F[i] = lo[i];
               stat[i] = K4_AT_LO;
@@ -454,12 +454,12 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
               stat[i] = K4_AT_HI;
             }
           }
-          for (j = 0, q = 0; q < np; q++)
-            if (stat[P[q]] == K4_FREE) P[j++] = P[q];
+          j = 0; for (q = 0; q < np; q++) {
+            if (stat[P[q]] == K4_FREE) { P[j++] = P[q]; } }
           np = j;
         }
       }
-      if (stop) break;
+      if (stop) { break; }
     }
   }
 
@@ -468,18 +468,18 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
     fsw_real M[3][3], c[3], lam[3], alpha = FSW_R(1.0), pmax = FSW_R(0.0), vbest;
     int blk = -1, best = -1, blk_lo = 0;
     it++;
-    for (ni = 0, i = 0; i < n; i++)
-      if (stat[i] == K4_FREE) idx[ni++] = i;
+    ni = 0; for (i = 0; i < n; i++) {
+      if (stat[i] == K4_FREE) { idx[ni++] = i; } }
     for (k = 0; k < m; k++) {
       for (j = 0; j <= k; j++) {
         fsw_real v = FSW_R(0.0);
-        for (q = 0; q < ni; q++) v += A[k][idx[q]] * A[j][idx[q]];
+        for (q = 0; q < ni; q++) { v += A[k][idx[q]] * A[j][idx[q]]; }
         M[k][j] = v;
         M[j][k] = v;
       }
       {
         fsw_real v = FSW_R(0.0);
-        for (q = 0; q < ni; q++) v += A[k][idx[q]] * F[idx[q]];
+        for (q = 0; q < ni; q++) { v += A[k][idx[q]] * F[idx[q]]; }
         c[k] = v;
       }
     }
@@ -489,7 +489,7 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
       i = idx[q];
       za[q] = col_dot(A, i, lam, m);
       p = za[q] - F[i];
-      if (FSW_FABS(p) > pmax) pmax = FSW_FABS(p);
+      if (FSW_FABS(p) > pmax) { pmax = FSW_FABS(p); }
     }
     if (pmax > K4_TOL * fscale) {
       /* step toward the minimum-norm point of the free set, ratio test */
@@ -499,7 +499,7 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
         if (z < lo[i] || z > hi[i]) {
           fsw_real bound = (z < lo[i]) ? lo[i] : hi[i];
           fsw_real a = (bound - F[i]) / (z - F[i]);
-          if (!(a > FSW_R(0.0))) a = FSW_R(0.0);
+          if (!(a > FSW_R(0.0))) { a = FSW_R(0.0); }
           if (blk < 0 || a < alpha) {
             alpha = a;
             blk = i;
@@ -507,12 +507,12 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
           }
         }
       }
-      if (alpha > FSW_R(1.0)) alpha = FSW_R(1.0);
+      if (alpha > FSW_R(1.0)) { alpha = FSW_R(1.0); }
       for (q = 0; q < ni; q++) {
         i = idx[q];
         F[i] = F[i] + alpha * (za[q] - F[i]);
-        if (F[i] < lo[i]) F[i] = lo[i];
-        if (F[i] > hi[i]) F[i] = hi[i];
+        if (F[i] < lo[i]) { F[i] = lo[i]; }
+        if (F[i] > hi[i]) { F[i] = hi[i]; }
       }
       if (blk >= 0) {
         F[blk] = blk_lo ? lo[blk] : hi[blk];
@@ -527,7 +527,7 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
     vbest = K4_TOL * fscale;
     for (i = 0; i < n; i++) {
       fsw_real g, v;
-      if (stat[i] == K4_FREE) continue;
+      if (stat[i] == K4_FREE) { continue; }
       g = col_dot(A, i, lam, m);
       v = (stat[i] == K4_AT_LO) ? g - lo[i] : hi[i] - g;
       if (v > vbest) {
@@ -535,7 +535,7 @@ static int bounded_minnorm(fsw_real F[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX_
         best = i;
       }
     }
-    if (best < 0) break;
+    if (best < 0) { break; }
     stat[best] = K4_FREE;
   }
   return it;
@@ -548,17 +548,17 @@ FswStatus fsw_bounded_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3]
 {
   int i;
   FSW_ASSERT(x != NULL && A != NULL && b != NULL && lo != NULL && hi != NULL);
-  if (iterations != NULL) *iterations = 0;
-  if (x == NULL || A == NULL || b == NULL || lo == NULL || hi == NULL) return FSW_E_NULL_ARG;
+  if (iterations != NULL) { *iterations = 0; }
+  if (x == NULL || A == NULL || b == NULL || lo == NULL || hi == NULL) { return FSW_E_NULL_ARG; }
   fsw_vn_zero(x, n < 0 ? 0 : (n > FSW_MAX_EFF ? FSW_MAX_EFF : n)); /* safe output */
-  if (m < 1 || m > 3 || n < 0 || n > FSW_MAX_EFF) return FSW_E_CAPACITY;
-  for (i = 0; i < m; i++)
-    if (!fsw_vn_is_finite(A[i], n) || !isfinite(b[i])) return FSW_E_BAD_INPUT;
+  if (m < 1 || m > 3 || n < 0 || n > FSW_MAX_EFF) { return FSW_E_CAPACITY; }
+  for (i = 0; i < m; i++) {
+    if (!fsw_vn_is_finite(A[i], n) || !isfinite(b[i])) { return FSW_E_BAD_INPUT; } }
   for (i = 0; i < n; i++) {
-    if (!isfinite(lo[i]) || !isfinite(hi[i]) || !(lo[i] <= hi[i])) return FSW_E_BAD_INPUT;
-    if (lo[i] != FSW_R(0.0) && hi[i] != FSW_R(0.0)) return FSW_E_BAD_INPUT;
+    if (!isfinite(lo[i]) || !isfinite(hi[i]) || !(lo[i] <= hi[i])) { return FSW_E_BAD_INPUT; }
+    if (lo[i] != FSW_R(0.0) && hi[i] != FSW_R(0.0)) { return FSW_E_BAD_INPUT; }
   }
   i = bounded_minnorm(x, A, b, m, n, lo, hi);
-  if (iterations != NULL) *iterations = i;
+  if (iterations != NULL) { *iterations = i; }
   return FSW_OK;
 }

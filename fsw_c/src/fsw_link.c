@@ -10,13 +10,13 @@
 
 static FswStatus link_fail(FswLinkError *err, FswLinkError why)
 {
-  if (err != NULL) *err = why;
+  if (err != NULL) { *err = why; }
   return FSW_E_BAD_INPUT;
 }
 
 static FswStatus link_ok(FswLinkError *err)
 {
-  if (err != NULL) *err = FSW_LINK_OK;
+  if (err != NULL) { *err = FSW_LINK_OK; }
   return FSW_OK;
 }
 
@@ -24,7 +24,7 @@ uint16_t fsw_link_crc16(const uint8_t *data, size_t n, uint16_t crc)
 {
   size_t i;
   int b;
-  if (data == NULL) return crc;
+  if (data == NULL) { return crc; }
   for (i = 0u; i < n; ++i) {
     crc = (uint16_t)(crc ^ (uint16_t)((uint16_t)data[i] << 8));
     for (b = 0; b < 8; ++b) {
@@ -49,7 +49,7 @@ typedef struct {
 
 static void put_u8(Writer *w, uint32_t v)
 {
-  if (w->n < w->cap) w->p[w->n] = (uint8_t)(v & 0xFFu);
+  if (w->n < w->cap) { w->p[w->n] = (uint8_t)(v & 0xFFu); }
   w->n++;
 }
 
@@ -75,26 +75,26 @@ static void put_real(Writer *w, fsw_real x)
 {
   const double d = (double)x;
   uint64_t bits;
-  memcpy(&bits, &d, sizeof bits);
+  (void)memcpy(&bits, &d, sizeof bits);
   put_u64(w, bits);
 }
 
 static void put_reals(Writer *w, const fsw_real *x, size_t n)
 {
   size_t i;
-  for (i = 0u; i < n; ++i) put_real(w, x[i]);
+  for (i = 0u; i < n; ++i) { put_real(w, x[i]); }
 }
 
 static void put_flags(Writer *w, const uint8_t *f, size_t n)
 {
   size_t i;
-  for (i = 0u; i < n; ++i) put_u8(w, f[i]);
+  for (i = 0u; i < n; ++i) { put_u8(w, f[i]); }
 }
 
 static uint32_t get_u8(Reader *r)
 {
   uint32_t v = 0u;
-  if (r->n < r->len) v = r->p[r->n];
+  if (r->n < r->len) { v = r->p[r->n]; }
   r->n++;
   return v;
 }
@@ -121,14 +121,14 @@ static fsw_real get_real(Reader *r)
 {
   const uint64_t bits = get_u64(r);
   double d;
-  memcpy(&d, &bits, sizeof d);
+  (void)memcpy(&d, &bits, sizeof d);
   return (fsw_real)d;
 }
 
 static void get_reals(Reader *r, fsw_real *x, size_t n)
 {
   size_t i;
-  for (i = 0u; i < n; ++i) x[i] = get_real(r);
+  for (i = 0u; i < n; ++i) { x[i] = get_real(r); }
 }
 
 /* flags must be 0 or 1; returns 0 if any is not */
@@ -138,7 +138,7 @@ static int get_flags(Reader *r, uint8_t *f, size_t n)
   int ok = 1;
   for (i = 0u; i < n; ++i) {
     const uint32_t v = get_u8(r);
-    if (v > 1u) ok = 0;
+    if (v > 1u) { ok = 0; }
     f[i] = (uint8_t)v;
   }
   return ok;
@@ -159,7 +159,7 @@ static void put_headers(Writer *w, uint32_t apid, uint32_t type, uint16_t seq, u
  * was asked for, so an overflow shows as n > cap. */
 static FswStatus finish_packet(Writer *w, size_t *len, FswLinkError *err)
 {
-  if (w->n + FSW_LINK_CRC_SIZE > w->cap) return link_fail(err, FSW_LINK_E_SPACE);
+  if (w->n + FSW_LINK_CRC_SIZE > w->cap) { return link_fail(err, FSW_LINK_E_SPACE); }
   put_u16(w, fsw_link_crc16(w->p, w->n, 0xFFFFu));
   *len = w->n;
   return link_ok(err);
@@ -178,14 +178,14 @@ FswStatus fsw_link_encode_sensor(const FswAcsSensorMsg *m, uint8_t num_rw, uint8
 {
   Writer w;
   const size_t payload = FSW_LINK_SENSOR_PAYLOAD(num_rw, num_css);
-  if (m == NULL || buf == NULL || len == NULL) return FSW_E_NULL_ARG;
-  if (num_rw > FSW_MAX_RW || num_css > FSW_MAX_CSS) return link_fail(err, FSW_LINK_E_COUNT);
+  if (m == NULL || buf == NULL || len == NULL) { return FSW_E_NULL_ARG; }
+  if (num_rw > FSW_MAX_RW || num_css > FSW_MAX_CSS) { return link_fail(err, FSW_LINK_E_COUNT); }
   {
     size_t i; /* the thruster flags travel as bits: a flag other than 0/1 cannot */
-    for (i = 0u; i < (size_t)FSW_MAX_THR; ++i)
-      if (m->thr_avail[i] > 1u) return link_fail(err, FSW_LINK_E_COUNT);
+    for (i = 0u; i < (size_t)FSW_MAX_THR; ++i) {
+      if (m->thr_avail[i] > 1u) { return link_fail(err, FSW_LINK_E_COUNT); } }
   }
-  if (!begin_packet(&w, buf, cap, payload)) return link_fail(err, FSW_LINK_E_SPACE);
+  if (!begin_packet(&w, buf, cap, payload)) { return link_fail(err, FSW_LINK_E_SPACE); }
   put_headers(&w, FSW_LINK_APID_SENSOR, 1u, seq, m->t_ns, payload);
   put_u8(&w, num_rw);
   put_u8(&w, num_css);
@@ -201,8 +201,8 @@ FswStatus fsw_link_encode_sensor(const FswAcsSensorMsg *m, uint8_t num_rw, uint8
   {
     uint64_t bits = 0u;
     size_t i;
-    for (i = 0u; i < (size_t)FSW_MAX_THR; ++i)
-      if (m->thr_avail[i] != 0u) bits |= (uint64_t)1u << i;
+    for (i = 0u; i < (size_t)FSW_MAX_THR; ++i) {
+      if (m->thr_avail[i] != 0u) { bits |= (uint64_t)1u << i; } }
     put_u64(&w, bits);
   }
   put_reals(&w, m->B_B, 3u);
@@ -217,11 +217,11 @@ FswStatus fsw_link_encode_cmd(const FswAcsCmdMsg *m, uint64_t t_ns, uint16_t seq
                               size_t *len, FswLinkError *err)
 {
   Writer w;
-  if (m == NULL || buf == NULL || len == NULL) return FSW_E_NULL_ARG;
+  if (m == NULL || buf == NULL || len == NULL) { return FSW_E_NULL_ARG; }
   if (m->mode < 0 || m->mode > 255 || m->actuation < 0 || m->actuation > 255 || m->set_ref > 1u ||
-      m->set_gains > 1u || m->set_policy > 1u || m->policy < 0 || m->policy > 255)
-    return link_fail(err, FSW_LINK_E_COUNT);
-  if (!begin_packet(&w, buf, cap, FSW_LINK_CMD_PAYLOAD)) return link_fail(err, FSW_LINK_E_SPACE);
+      m->set_gains > 1u || m->set_policy > 1u || m->policy < 0 || m->policy > 255) {
+    return link_fail(err, FSW_LINK_E_COUNT); }
+  if (!begin_packet(&w, buf, cap, FSW_LINK_CMD_PAYLOAD)) { return link_fail(err, FSW_LINK_E_SPACE); }
   put_headers(&w, FSW_LINK_APID_CMD, 1u, seq, t_ns, FSW_LINK_CMD_PAYLOAD);
   put_u8(&w, (uint32_t)m->mode);
   put_u8(&w, (uint32_t)m->actuation);
@@ -241,9 +241,9 @@ FswStatus fsw_link_encode_actuator(const FswAcsActuatorMsg *m, uint8_t num_rw, u
 {
   Writer w;
   const size_t payload = FSW_LINK_ACTUATOR_PAYLOAD(num_rw, num_thr, num_mtq);
-  if (m == NULL || buf == NULL || len == NULL) return FSW_E_NULL_ARG;
-  if (num_rw > FSW_MAX_RW || num_thr > FSW_MAX_THR || num_mtq > FSW_MAX_MTQ) return link_fail(err, FSW_LINK_E_COUNT);
-  if (!begin_packet(&w, buf, cap, payload)) return link_fail(err, FSW_LINK_E_SPACE);
+  if (m == NULL || buf == NULL || len == NULL) { return FSW_E_NULL_ARG; }
+  if (num_rw > FSW_MAX_RW || num_thr > FSW_MAX_THR || num_mtq > FSW_MAX_MTQ) { return link_fail(err, FSW_LINK_E_COUNT); }
+  if (!begin_packet(&w, buf, cap, payload)) { return link_fail(err, FSW_LINK_E_SPACE); }
   put_headers(&w, FSW_LINK_APID_ACTUATOR, 0u, seq, t_ns, payload);
   put_u8(&w, num_rw);
   put_u8(&w, num_thr);
@@ -274,10 +274,10 @@ FswStatus fsw_link_encode_health(const FswAcsHealthMsg *m, uint64_t t_ns, uint16
 {
   Writer w;
   size_t i;
-  if (m == NULL || buf == NULL || len == NULL) return FSW_E_NULL_ARG;
-  if (m->mode < 0 || m->mode > 255 || m->actuation < 0 || m->actuation > 255 || m->policy < 0 || m->policy > 255)
-    return link_fail(err, FSW_LINK_E_COUNT);
-  if (!begin_packet(&w, buf, cap, FSW_LINK_HEALTH_PAYLOAD)) return link_fail(err, FSW_LINK_E_SPACE);
+  if (m == NULL || buf == NULL || len == NULL) { return FSW_E_NULL_ARG; }
+  if (m->mode < 0 || m->mode > 255 || m->actuation < 0 || m->actuation > 255 || m->policy < 0 || m->policy > 255) {
+    return link_fail(err, FSW_LINK_E_COUNT); }
+  if (!begin_packet(&w, buf, cap, FSW_LINK_HEALTH_PAYLOAD)) { return link_fail(err, FSW_LINK_E_SPACE); }
   put_headers(&w, FSW_LINK_APID_HEALTH, 0u, seq, t_ns, FSW_LINK_HEALTH_PAYLOAD);
   put_u16(&w, status_bits(m->status));
   put_u8(&w, (uint32_t)m->mode);
@@ -288,7 +288,7 @@ FswStatus fsw_link_encode_health(const FswAcsHealthMsg *m, uint64_t t_ns, uint16
   put_u8(&w, (uint32_t)FSW_ACS_NUM_STAGES);
   put_u32(&w, m->cycles);
   put_u32(&w, m->mode_changes);
-  for (i = 0u; i < (size_t)FSW_ACS_NUM_STAGES; ++i) put_u16(&w, status_bits(m->stage_status[i]));
+  for (i = 0u; i < (size_t)FSW_ACS_NUM_STAGES; ++i) { put_u16(&w, status_bits(m->stage_status[i])); }
   put_reals(&w, m->sigma_BR, 3u);
   put_reals(&w, m->omega_BR_B, 3u);
   put_real(&w, m->att_err_angle);
@@ -322,21 +322,21 @@ FswStatus fsw_link_parse(const uint8_t *buf, size_t n, FswLinkPacket *p, FswLink
   uint32_t w0, w1, data_len;
   size_t total;
   uint16_t crc;
-  if (buf == NULL || p == NULL) return FSW_E_NULL_ARG;
-  if (n < FSW_LINK_HEADER_SIZE + FSW_LINK_CRC_SIZE) return link_fail(err, FSW_LINK_E_SHORT);
+  if (buf == NULL || p == NULL) { return FSW_E_NULL_ARG; }
+  if (n < FSW_LINK_HEADER_SIZE + FSW_LINK_CRC_SIZE) { return link_fail(err, FSW_LINK_E_SHORT); }
   r.p = buf;
   r.n = 0u;
   r.len = n;
   w0 = get_u16(&r);
   w1 = get_u16(&r);
   data_len = get_u16(&r) + 1u;
-  if ((w0 >> 13) != LINK_VERSION || ((w0 >> 11) & 1u) != 1u || (w1 >> 14) != LINK_SEQ_FLAGS)
-    return link_fail(err, FSW_LINK_E_HEADER);
-  if (data_len < FSW_LINK_SECONDARY_SIZE + FSW_LINK_CRC_SIZE) return link_fail(err, FSW_LINK_E_HEADER);
+  if ((w0 >> 13) != LINK_VERSION || ((w0 >> 11) & 1u) != 1u || (w1 >> 14) != LINK_SEQ_FLAGS) {
+    return link_fail(err, FSW_LINK_E_HEADER); }
+  if (data_len < FSW_LINK_SECONDARY_SIZE + FSW_LINK_CRC_SIZE) { return link_fail(err, FSW_LINK_E_HEADER); }
   total = FSW_LINK_PRIMARY_SIZE + (size_t)data_len;
-  if (total > n) return link_fail(err, FSW_LINK_E_SHORT);
+  if (total > n) { return link_fail(err, FSW_LINK_E_SHORT); }
   crc = fsw_link_crc16(buf, total - FSW_LINK_CRC_SIZE, 0xFFFFu);
-  if (crc != (uint16_t)(((uint32_t)buf[total - 2u] << 8) | buf[total - 1u])) return link_fail(err, FSW_LINK_E_CRC);
+  if (crc != (uint16_t)(((uint32_t)buf[total - 2u] << 8) | buf[total - 1u])) { return link_fail(err, FSW_LINK_E_CRC); }
   p->apid = (uint16_t)(w0 & 0x7FFu);
   p->type = (uint8_t)((w0 >> 12) & 1u);
   p->seq = (uint16_t)(w1 & 0x3FFFu);
@@ -349,7 +349,7 @@ FswStatus fsw_link_parse(const uint8_t *buf, size_t n, FswLinkPacket *p, FswLink
 
 static FswStatus expect(const FswLinkPacket *p, uint32_t apid, uint32_t type, Reader *r, FswLinkError *err)
 {
-  if (p->apid != apid || p->type != type) return link_fail(err, FSW_LINK_E_APID);
+  if (p->apid != apid || p->type != type) { return link_fail(err, FSW_LINK_E_APID); }
   r->p = p->payload;
   r->n = 0u;
   r->len = p->payload_len;
@@ -363,14 +363,14 @@ FswStatus fsw_link_decode_sensor(const FswLinkPacket *p, FswAcsSensorMsg *m, uin
   FswAcsSensorMsg out;
   uint32_t nrw, ncss, att_valid;
   int ok;
-  if (p == NULL || m == NULL || num_rw == NULL || num_css == NULL || p->payload == NULL) return FSW_E_NULL_ARG;
-  if (expect(p, FSW_LINK_APID_SENSOR, 1u, &r, err) != FSW_OK) return FSW_E_BAD_INPUT;
-  if (p->payload_len < FSW_LINK_SENSOR_PAYLOAD(0u, 0u)) return link_fail(err, FSW_LINK_E_LENGTH);
+  if (p == NULL || m == NULL || num_rw == NULL || num_css == NULL || p->payload == NULL) { return FSW_E_NULL_ARG; }
+  if (expect(p, FSW_LINK_APID_SENSOR, 1u, &r, err) != FSW_OK) { return FSW_E_BAD_INPUT; }
+  if (p->payload_len < FSW_LINK_SENSOR_PAYLOAD(0u, 0u)) { return link_fail(err, FSW_LINK_E_LENGTH); }
   nrw = get_u8(&r);
   ncss = get_u8(&r);
-  if (nrw > FSW_MAX_RW || ncss > FSW_MAX_CSS) return link_fail(err, FSW_LINK_E_COUNT);
-  if (p->payload_len != FSW_LINK_SENSOR_PAYLOAD(nrw, ncss)) return link_fail(err, FSW_LINK_E_LENGTH);
-  memset(&out, 0, sizeof out);
+  if (nrw > FSW_MAX_RW || ncss > FSW_MAX_CSS) { return link_fail(err, FSW_LINK_E_COUNT); }
+  if (p->payload_len != FSW_LINK_SENSOR_PAYLOAD(nrw, ncss)) { return link_fail(err, FSW_LINK_E_LENGTH); }
+  (void)memset(&out, 0, sizeof out);
   out.t_ns = p->t_ns;
   att_valid = get_u8(&r);
   ok = att_valid <= 1u && get_u8(&r) == 0u;
@@ -387,8 +387,8 @@ FswStatus fsw_link_decode_sensor(const FswLinkPacket *p, FswAcsSensorMsg *m, uin
     size_t i;
     for (i = 0u; i < 64u; ++i) {
       const uint8_t b = (uint8_t)((bits >> i) & 1u);
-      if (i < (size_t)FSW_MAX_THR) out.thr_avail[i] = b;
-      else if (b != 0u) ok = 0; /* a thruster beyond the capacity */
+      if (i < (size_t)FSW_MAX_THR) { out.thr_avail[i] = b; }
+      else if (b != 0u) { ok = 0; } /* a thruster beyond the capacity */
     }
   }
   get_reals(&r, out.B_B, 3u);
@@ -396,8 +396,8 @@ FswStatus fsw_link_decode_sensor(const FswLinkPacket *p, FswAcsSensorMsg *m, uin
   get_reals(&r, out.v_N, 3u);
   ok = get_flags(&r, &out.mag_valid, 1u) && ok;
   ok = get_flags(&r, &out.orbit_valid, 1u) && ok;
-  if (!ok) return link_fail(err, FSW_LINK_E_COUNT);
-  memcpy(m, &out, sizeof out);
+  if (!ok) { return link_fail(err, FSW_LINK_E_COUNT); }
+  (void)memcpy(m, &out, sizeof out);
   *num_rw = (uint8_t)nrw;
   *num_css = (uint8_t)ncss;
   return link_ok(err);
@@ -408,9 +408,9 @@ FswStatus fsw_link_decode_cmd(const FswLinkPacket *p, FswAcsCmdMsg *m, FswLinkEr
   Reader r;
   uint32_t mode, act, set_ref, set_gains, set_policy;
   fsw_real sigma[3], K, P;
-  if (p == NULL || m == NULL || p->payload == NULL) return FSW_E_NULL_ARG;
-  if (expect(p, FSW_LINK_APID_CMD, 1u, &r, err) != FSW_OK) return FSW_E_BAD_INPUT;
-  if (p->payload_len != FSW_LINK_CMD_PAYLOAD) return link_fail(err, FSW_LINK_E_LENGTH);
+  if (p == NULL || m == NULL || p->payload == NULL) { return FSW_E_NULL_ARG; }
+  if (expect(p, FSW_LINK_APID_CMD, 1u, &r, err) != FSW_OK) { return FSW_E_BAD_INPUT; }
+  if (p->payload_len != FSW_LINK_CMD_PAYLOAD) { return link_fail(err, FSW_LINK_E_LENGTH); }
   mode = get_u8(&r);
   act = get_u8(&r);
   set_ref = get_u8(&r);
@@ -419,12 +419,12 @@ FswStatus fsw_link_decode_cmd(const FswLinkPacket *p, FswAcsCmdMsg *m, FswLinkEr
   K = get_real(&r);
   P = get_real(&r);
   set_policy = get_u8(&r);
-  if (set_ref > 1u || set_gains > 1u || set_policy > 1u) return link_fail(err, FSW_LINK_E_COUNT);
+  if (set_ref > 1u || set_gains > 1u || set_policy > 1u) { return link_fail(err, FSW_LINK_E_COUNT); }
   m->mode = (int)mode;
   m->actuation = (int)act;
   m->set_ref = (uint8_t)set_ref;
   m->set_gains = (uint8_t)set_gains;
-  memcpy(m->sigma_R0N, sigma, sizeof sigma);
+  (void)memcpy(m->sigma_R0N, sigma, sizeof sigma);
   m->K = K;
   m->P = P;
   m->set_policy = (uint8_t)set_policy;
@@ -438,10 +438,10 @@ FswStatus fsw_link_decode_actuator(const FswLinkPacket *p, FswAcsActuatorMsg *m,
   Reader r;
   FswAcsActuatorMsg out;
   uint32_t nrw, nthr, nmtq, wa, ta, ma;
-  if (p == NULL || m == NULL || num_rw == NULL || num_thr == NULL || num_mtq == NULL || p->payload == NULL)
-    return FSW_E_NULL_ARG;
-  if (expect(p, FSW_LINK_APID_ACTUATOR, 0u, &r, err) != FSW_OK) return FSW_E_BAD_INPUT;
-  if (p->payload_len < FSW_LINK_ACTUATOR_PAYLOAD(0u, 0u, 0u)) return link_fail(err, FSW_LINK_E_LENGTH);
+  if (p == NULL || m == NULL || num_rw == NULL || num_thr == NULL || num_mtq == NULL || p->payload == NULL) {
+    return FSW_E_NULL_ARG; }
+  if (expect(p, FSW_LINK_APID_ACTUATOR, 0u, &r, err) != FSW_OK) { return FSW_E_BAD_INPUT; }
+  if (p->payload_len < FSW_LINK_ACTUATOR_PAYLOAD(0u, 0u, 0u)) { return link_fail(err, FSW_LINK_E_LENGTH); }
   /* the counts first (bytes 0..2): a version-1 packet has its flag
      wheels_active (0/1) at byte 2, so it fails on its length */
   nrw = get_u8(&r);
@@ -450,10 +450,10 @@ FswStatus fsw_link_decode_actuator(const FswLinkPacket *p, FswAcsActuatorMsg *m,
   wa = get_u8(&r);
   ta = get_u8(&r);
   ma = get_u8(&r);
-  if (nrw > FSW_MAX_RW || nthr > FSW_MAX_THR || nmtq > FSW_MAX_MTQ) return link_fail(err, FSW_LINK_E_COUNT);
-  if (p->payload_len != FSW_LINK_ACTUATOR_PAYLOAD(nrw, nthr, nmtq)) return link_fail(err, FSW_LINK_E_LENGTH);
-  if (wa > 1u || ta > 1u || ma > 1u || get_u16(&r) != 0u) return link_fail(err, FSW_LINK_E_COUNT);
-  memset(&out, 0, sizeof out);
+  if (nrw > FSW_MAX_RW || nthr > FSW_MAX_THR || nmtq > FSW_MAX_MTQ) { return link_fail(err, FSW_LINK_E_COUNT); }
+  if (p->payload_len != FSW_LINK_ACTUATOR_PAYLOAD(nrw, nthr, nmtq)) { return link_fail(err, FSW_LINK_E_LENGTH); }
+  if (wa > 1u || ta > 1u || ma > 1u || get_u16(&r) != 0u) { return link_fail(err, FSW_LINK_E_COUNT); }
+  (void)memset(&out, 0, sizeof out);
   out.wheels_active = (uint8_t)wa;
   out.thrusters_active = (uint8_t)ta;
   out.mtq_active = (uint8_t)ma;
@@ -463,7 +463,7 @@ FswStatus fsw_link_decode_actuator(const FswLinkPacket *p, FswAcsActuatorMsg *m,
   get_reals(&r, out.F, nthr);
   get_reals(&r, out.t_on, nthr);
   get_reals(&r, out.m_cmd, nmtq);
-  memcpy(m, &out, sizeof out);
+  (void)memcpy(m, &out, sizeof out);
   *num_rw = (uint8_t)nrw;
   *num_thr = (uint8_t)nthr;
   *num_mtq = (uint8_t)nmtq;
@@ -476,23 +476,23 @@ FswStatus fsw_link_decode_health(const FswLinkPacket *p, FswAcsHealthMsg *m, Fsw
   FswAcsHealthMsg out;
   uint32_t safe, sun_valid, detumbled;
   size_t i;
-  if (p == NULL || m == NULL || p->payload == NULL) return FSW_E_NULL_ARG;
-  if (expect(p, FSW_LINK_APID_HEALTH, 0u, &r, err) != FSW_OK) return FSW_E_BAD_INPUT;
-  if (p->payload_len != FSW_LINK_HEALTH_PAYLOAD) return link_fail(err, FSW_LINK_E_LENGTH);
-  memset(&out, 0, sizeof out);
+  if (p == NULL || m == NULL || p->payload == NULL) { return FSW_E_NULL_ARG; }
+  if (expect(p, FSW_LINK_APID_HEALTH, 0u, &r, err) != FSW_OK) { return FSW_E_BAD_INPUT; }
+  if (p->payload_len != FSW_LINK_HEALTH_PAYLOAD) { return link_fail(err, FSW_LINK_E_LENGTH); }
+  (void)memset(&out, 0, sizeof out);
   out.status = status_of(get_u16(&r));
   out.mode = (int)get_u8(&r);
   out.actuation = (int)get_u8(&r);
   safe = get_u8(&r);
   sun_valid = get_u8(&r);
   out.num_lit = (uint8_t)get_u8(&r);
-  if (safe > 1u || sun_valid > 1u || get_u8(&r) != (uint32_t)FSW_ACS_NUM_STAGES)
-    return link_fail(err, FSW_LINK_E_COUNT);
+  if (safe > 1u || sun_valid > 1u || get_u8(&r) != (uint32_t)FSW_ACS_NUM_STAGES) {
+    return link_fail(err, FSW_LINK_E_COUNT); }
   out.safe_output = (uint8_t)safe;
   out.sun_valid = (uint8_t)sun_valid;
   out.cycles = get_u32(&r);
   out.mode_changes = get_u32(&r);
-  for (i = 0u; i < (size_t)FSW_ACS_NUM_STAGES; ++i) out.stage_status[i] = status_of(get_u16(&r));
+  for (i = 0u; i < (size_t)FSW_ACS_NUM_STAGES; ++i) { out.stage_status[i] = status_of(get_u16(&r)); }
   get_reals(&r, out.sigma_BR, 3u);
   get_reals(&r, out.omega_BR_B, 3u);
   out.att_err_angle = get_real(&r);
@@ -511,14 +511,14 @@ FswStatus fsw_link_decode_health(const FswLinkPacket *p, FswAcsHealthMsg *m, Fsw
   out.policy = (int)get_u8(&r);
   detumbled = get_u8(&r);
   out.dump_phase = (uint8_t)get_u8(&r);
-  if (detumbled > 1u || get_u8(&r) != 0u) return link_fail(err, FSW_LINK_E_COUNT);
+  if (detumbled > 1u || get_u8(&r) != 0u) { return link_fail(err, FSW_LINK_E_COUNT); }
   out.detumbled = (uint8_t)detumbled;
   out.dumps = get_u32(&r);
   get_reals(&r, out.h_w_B, 3u);
   out.rate_est = get_real(&r);
   get_reals(&r, out.tau_mtq_B, 3u);
   out.prop_used = get_real(&r);
-  memcpy(m, &out, sizeof out);
+  (void)memcpy(m, &out, sizeof out);
   return link_ok(err);
 }
 
@@ -533,24 +533,24 @@ static uint8_t asm_byte(size_t i)
 FswStatus fsw_link_frame(const uint8_t *pkt, size_t n, uint8_t *out, size_t cap, size_t *len)
 {
   size_t i;
-  if (pkt == NULL || out == NULL || len == NULL) return FSW_E_NULL_ARG;
-  if (cap < n + FSW_LINK_ASM_SIZE) return FSW_E_BAD_INPUT;
-  memmove(out + FSW_LINK_ASM_SIZE, pkt, n);
-  for (i = 0u; i < FSW_LINK_ASM_SIZE; ++i) out[i] = asm_byte(i);
+  if (pkt == NULL || out == NULL || len == NULL) { return FSW_E_NULL_ARG; }
+  if (cap < n + FSW_LINK_ASM_SIZE) { return FSW_E_BAD_INPUT; }
+  (void)memmove(out + FSW_LINK_ASM_SIZE, pkt, n);
+  for (i = 0u; i < FSW_LINK_ASM_SIZE; ++i) { out[i] = asm_byte(i); }
   *len = n + FSW_LINK_ASM_SIZE;
   return FSW_OK;
 }
 
 void fsw_link_deframer_init(FswLinkDeframer *d)
 {
-  if (d != NULL) memset(d, 0, sizeof *d);
+  if (d != NULL) { (void)memset(d, 0, sizeof *d); }
 }
 
 /* Drops the first byte of the buffer (a rejected marker start) and keeps
  * the rest for the hunt. */
 static void deframer_slip(FswLinkDeframer *d)
 {
-  memmove(d->buf, d->buf + 1, d->have - 1u);
+  (void)memmove(d->buf, d->buf + 1, d->have - 1u);
   d->have--;
 }
 
@@ -558,15 +558,15 @@ size_t fsw_link_deframer_push(FswLinkDeframer *d, const uint8_t *bytes, size_t n
                               size_t *pkt_len)
 {
   size_t used = 0u;
-  if (pkt != NULL) *pkt = NULL;
-  if (pkt_len != NULL) *pkt_len = 0u;
-  if (d == NULL || bytes == NULL || pkt == NULL || pkt_len == NULL) return 0u;
+  if (pkt != NULL) { *pkt = NULL; }
+  if (pkt_len != NULL) { *pkt_len = 0u; }
+  if (d == NULL || bytes == NULL || pkt == NULL || pkt_len == NULL) { return 0u; }
   while (used < n || d->have > 0u) {
     /* 1. the marker: the buffer always holds a prefix of it, or more */
     size_t i;
     int matched = 1;
     for (i = 0u; i < d->have && i < FSW_LINK_ASM_SIZE; ++i) {
-      if (d->buf[i] != asm_byte(i)) matched = 0;
+      if (d->buf[i] != asm_byte(i)) { matched = 0; }
     }
     if (!matched) {
       deframer_slip(d);
@@ -574,7 +574,7 @@ size_t fsw_link_deframer_push(FswLinkDeframer *d, const uint8_t *bytes, size_t n
       continue;
     }
     if (d->have < FSW_LINK_ASM_SIZE + FSW_LINK_PRIMARY_SIZE) {
-      if (used == n) break;
+      if (used == n) { break; }
       d->buf[d->have++] = bytes[used++];
       continue;
     }
@@ -591,8 +591,8 @@ size_t fsw_link_deframer_push(FswLinkDeframer *d, const uint8_t *bytes, size_t n
       if (d->have < FSW_LINK_ASM_SIZE + total) {
         const size_t want = FSW_LINK_ASM_SIZE + total - d->have;
         const size_t take = (n - used) < want ? (n - used) : want;
-        if (take == 0u) break;
-        memcpy(d->buf + d->have, bytes + used, take);
+        if (take == 0u) { break; }
+        (void)memcpy(d->buf + d->have, bytes + used, take);
         d->have += take;
         used += take;
         continue;
@@ -620,8 +620,8 @@ FswStatus fsw_link_encode_status(const FswLinkStatusMsg *m, uint64_t t_ns, uint1
                                  size_t *len, FswLinkError *err)
 {
   Writer w;
-  if (m == NULL || buf == NULL || len == NULL) return FSW_E_NULL_ARG;
-  if (!begin_packet(&w, buf, cap, FSW_LINK_STATUS_PAYLOAD)) return link_fail(err, FSW_LINK_E_SPACE);
+  if (m == NULL || buf == NULL || len == NULL) { return FSW_E_NULL_ARG; }
+  if (!begin_packet(&w, buf, cap, FSW_LINK_STATUS_PAYLOAD)) { return link_fail(err, FSW_LINK_E_SPACE); }
   put_headers(&w, FSW_LINK_APID_LINK, 0u, seq, t_ns, FSW_LINK_STATUS_PAYLOAD);
   put_u32(&w, m->rx_packets);
   put_u32(&w, m->rx_crc);
@@ -643,9 +643,9 @@ FswStatus fsw_link_decode_status(const FswLinkPacket *p, FswLinkStatusMsg *m, Fs
   Reader r;
   FswLinkStatusMsg out;
   uint32_t safe;
-  if (p == NULL || m == NULL || p->payload == NULL) return FSW_E_NULL_ARG;
-  if (expect(p, FSW_LINK_APID_LINK, 0u, &r, err) != FSW_OK) return FSW_E_BAD_INPUT;
-  if (p->payload_len != FSW_LINK_STATUS_PAYLOAD) return link_fail(err, FSW_LINK_E_LENGTH);
+  if (p == NULL || m == NULL || p->payload == NULL) { return FSW_E_NULL_ARG; }
+  if (expect(p, FSW_LINK_APID_LINK, 0u, &r, err) != FSW_OK) { return FSW_E_BAD_INPUT; }
+  if (p->payload_len != FSW_LINK_STATUS_PAYLOAD) { return link_fail(err, FSW_LINK_E_LENGTH); }
   out.rx_packets = get_u32(&r);
   out.rx_crc = get_u32(&r);
   out.rx_rejected = get_u32(&r);
@@ -658,10 +658,10 @@ FswStatus fsw_link_decode_status(const FswLinkPacket *p, FswLinkStatusMsg *m, Fs
   out.last_seq = (uint16_t)get_u16(&r);
   safe = get_u8(&r);
   out.icd_version = (uint8_t)get_u8(&r);
-  if (out.icd_version != FSW_LINK_ICD_VERSION) return link_fail(err, FSW_LINK_E_HEADER);
-  if (safe > 1u || out.last_seq >= FSW_LINK_SEQ_MODULO) return link_fail(err, FSW_LINK_E_COUNT);
+  if (out.icd_version != FSW_LINK_ICD_VERSION) { return link_fail(err, FSW_LINK_E_HEADER); }
+  if (safe > 1u || out.last_seq >= FSW_LINK_SEQ_MODULO) { return link_fail(err, FSW_LINK_E_COUNT); }
   out.link_safe = (uint8_t)safe;
-  memcpy(m, &out, sizeof out);
+  (void)memcpy(m, &out, sizeof out);
   return link_ok(err);
 }
 
@@ -734,7 +734,7 @@ static const CfgField kCfgFields[] = {
 static size_t cfg_body_size(void)
 {
   size_t i, n = 0u;
-  for (i = 0u; i < CFG_NUM_FIELDS; ++i) n += (size_t)kCfgFields[i].count * (kCfgFields[i].real != 0u ? 8u : 4u);
+  for (i = 0u; i < CFG_NUM_FIELDS; ++i) { n += (size_t)kCfgFields[i].count * (kCfgFields[i].real != 0u ? 8u : 4u); }
   return n;
 }
 
@@ -772,8 +772,8 @@ FswStatus fsw_link_config_encode(const FswAcsConfig *cfg, uint8_t *buf, size_t c
   Writer w;
   size_t i, k;
   const unsigned char *base = (const unsigned char *)cfg;
-  if (cfg == NULL || buf == NULL || len == NULL) return FSW_E_NULL_ARG;
-  if (cap < fsw_link_config_size()) return link_fail(err, FSW_LINK_E_SPACE);
+  if (cfg == NULL || buf == NULL || len == NULL) { return FSW_E_NULL_ARG; }
+  if (cap < fsw_link_config_size()) { return link_fail(err, FSW_LINK_E_SPACE); }
   w.p = buf;
   w.n = 0u;
   w.cap = cap;
@@ -802,23 +802,23 @@ FswStatus fsw_link_config_decode(const uint8_t *buf, size_t n, FswAcsConfig *cfg
   size_t i, k;
   const size_t size = fsw_link_config_size();
   unsigned char *base = (unsigned char *)cfg;
-  if (buf == NULL || cfg == NULL) return FSW_E_NULL_ARG;
-  if (n < FSW_LINK_CONFIG_HEADER) return link_fail(err, FSW_LINK_E_SHORT);
+  if (buf == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
+  if (n < FSW_LINK_CONFIG_HEADER) { return link_fail(err, FSW_LINK_E_SHORT); }
   /* the header this build writes, compared byte for byte */
   ref.p = hdr;
   ref.n = 0u;
   ref.cap = sizeof hdr;
   put_cfg_header(&ref);
-  if (memcmp(buf, hdr, FSW_LINK_CONFIG_HEADER - 4u) != 0) return link_fail(err, FSW_LINK_E_HEADER);
-  if (memcmp(buf + FSW_LINK_CONFIG_HEADER - 4u, hdr + FSW_LINK_CONFIG_HEADER - 4u, 4u) != 0 || n != size)
-    return link_fail(err, n < size ? FSW_LINK_E_SHORT : FSW_LINK_E_LENGTH);
+  if (memcmp(buf, hdr, FSW_LINK_CONFIG_HEADER - 4u) != 0) { return link_fail(err, FSW_LINK_E_HEADER); }
+  if (memcmp(buf + FSW_LINK_CONFIG_HEADER - 4u, hdr + FSW_LINK_CONFIG_HEADER - 4u, 4u) != 0 || n != size) {
+    return link_fail(err, n < size ? FSW_LINK_E_SHORT : FSW_LINK_E_LENGTH); }
   if (fsw_link_crc16(buf, size - FSW_LINK_CRC_SIZE, 0xFFFFu) !=
-      (uint16_t)(((uint32_t)buf[size - 2u] << 8) | buf[size - 1u]))
-    return link_fail(err, FSW_LINK_E_CRC);
+      (uint16_t)(((uint32_t)buf[size - 2u] << 8) | buf[size - 1u])) {
+    return link_fail(err, FSW_LINK_E_CRC); }
   r.p = buf + FSW_LINK_CONFIG_HEADER;
   r.n = 0u;
   r.len = size - FSW_LINK_CONFIG_HEADER - FSW_LINK_CRC_SIZE;
-  memset(cfg, 0, sizeof *cfg);
+  (void)memset(cfg, 0, sizeof *cfg);
   for (i = 0u; i < CFG_NUM_FIELDS; ++i) {
     for (k = 0u; k < kCfgFields[i].count; ++k) {
       if (kCfgFields[i].real != 0u) {

@@ -8,15 +8,15 @@
 FswStatus fsw_link_node_init(FswLinkNode *n, const FswAcsConfig *cfg, uint32_t max_missed, const char **bad_field)
 {
   FswStatus s;
-  if (bad_field != NULL) *bad_field = NULL;
-  if (n == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  if (bad_field != NULL) { *bad_field = NULL; }
+  if (n == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
   if (max_missed == 0u) {
-    if (bad_field != NULL) *bad_field = "max_missed";
+    if (bad_field != NULL) { *bad_field = "max_missed"; }
     return FSW_E_CONFIG;
   }
-  memset(n, 0, sizeof *n);
+  (void)memset(n, 0, sizeof *n);
   s = fsw_acs_init(&n->acs, cfg, bad_field);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   n->max_missed = max_missed;
   n->num_rw = (uint8_t)(cfg->has_wheels != 0 ? cfg->rw_map.num_rw : 0);
   n->num_thr = (uint8_t)(cfg->has_thrusters != 0 ? cfg->thr_map.num_thr : 0);
@@ -73,8 +73,8 @@ static int on_sensor(FswLinkNode *n, const FswAcsConfig *cfg, const FswLinkPacke
      * the packet came twice): the last cycle's replies once more, no cycle */
     n->link.rx_stale++;
     n->resent++;
-    memcpy(n->out, n->last_out, sizeof n->out);
-    memcpy(n->out_len, n->last_out_len, sizeof n->out_len);
+    (void)memcpy(n->out, n->last_out, sizeof n->out);
+    (void)memcpy(n->out_len, n->last_out_len, sizeof n->out_len);
     return 3;
   }
   if (n->have_last != 0u) {
@@ -101,8 +101,8 @@ static int on_sensor(FswLinkNode *n, const FswAcsConfig *cfg, const FswLinkPacke
   put_status(n, 2, p->t_ns);
   n->last_crc = packet_crc(p);
   n->have_replies = 1u;
-  memcpy(n->last_out, n->out, sizeof n->out);
-  memcpy(n->last_out_len, n->out_len, sizeof n->out_len);
+  (void)memcpy(n->last_out, n->out, sizeof n->out);
+  (void)memcpy(n->last_out_len, n->out_len, sizeof n->out_len);
   return 3;
 }
 
@@ -110,35 +110,35 @@ int fsw_link_node_receive(FswLinkNode *n, const FswAcsConfig *cfg, const uint8_t
 {
   FswLinkPacket p;
   FswLinkError why = FSW_LINK_OK;
-  if (n == NULL || cfg == NULL || buf == NULL) return 0;
+  if (n == NULL || cfg == NULL || buf == NULL) { return 0; }
   n->link.rx_packets++;
   if (fsw_link_parse(buf, len, &p, &why) != FSW_OK) {
-    if (why == FSW_LINK_E_CRC)
+    if (why == FSW_LINK_E_CRC) {
       n->link.rx_crc++;
-    else
-      n->link.rx_rejected++;
+    } else {
+      n->link.rx_rejected++; }
     return status_only(n);
   }
-  if (p.apid == FSW_LINK_APID_SENSOR) return on_sensor(n, cfg, &p);
-  if (fsw_link_decode_cmd(&p, &n->cmd, NULL) == FSW_OK)
+  if (p.apid == FSW_LINK_APID_SENSOR) { return on_sensor(n, cfg, &p); }
+  if (fsw_link_decode_cmd(&p, &n->cmd, NULL) == FSW_OK) {
     n->have_cmd = 1u;
-  else
-    n->link.rx_rejected++;
+  } else {
+    n->link.rx_rejected++; }
   return status_only(n);
 }
 
 int fsw_link_node_watchdog(FswLinkNode *n, uint64_t t_ns)
 {
-  if (n == NULL) return 0;
+  if (n == NULL) { return 0; }
   n->link.missed++;
   n->consec_missed++;
-  if (n->consec_missed < n->max_missed) return 0;
+  if (n->consec_missed < n->max_missed) { return 0; }
   n->have_replies = 0u; /* a retransmitted sensor packet is stale from now on */
   if (n->link.link_safe == 0u) {
     n->link.link_safe = 1u;
     n->link.safe_entries++;
   }
-  memset(&n->act, 0, sizeof n->act);
+  (void)memset(&n->act, 0, sizeof n->act);
   n->link.safe_cycles++;
   put_actuator(n, 0, t_ns);
   put_status(n, 1, t_ns);

@@ -20,15 +20,15 @@ static void compress(uint32_t h[8], const uint8_t b[64])
 {
   uint32_t w[64], v[8];
   unsigned i;
-  for (i = 0u; i < 16u; ++i)
+  for (i = 0u; i < 16u; ++i) {
     w[i] = ((uint32_t)b[4u * i] << 24) | ((uint32_t)b[4u * i + 1u] << 16) | ((uint32_t)b[4u * i + 2u] << 8) |
-           (uint32_t)b[4u * i + 3u];
+           (uint32_t)b[4u * i + 3u]; }
   for (i = 16u; i < 64u; ++i) {
     const uint32_t s0 = rotr(w[i - 15u], 7u) ^ rotr(w[i - 15u], 18u) ^ (w[i - 15u] >> 3);
     const uint32_t s1 = rotr(w[i - 2u], 17u) ^ rotr(w[i - 2u], 19u) ^ (w[i - 2u] >> 10);
     w[i] = w[i - 16u] + s0 + w[i - 7u] + s1;
   }
-  memcpy(v, h, sizeof v);
+  (void)memcpy(v, h, sizeof v);
   for (i = 0u; i < 64u; ++i) {
     const uint32_t t1 = v[7] + (rotr(v[4], 6u) ^ rotr(v[4], 11u) ^ rotr(v[4], 25u)) + ((v[4] & v[5]) ^ (~v[4] & v[6])) +
                         kK[i] + w[i];
@@ -42,15 +42,15 @@ static void compress(uint32_t h[8], const uint8_t b[64])
     v[1] = v[0];
     v[0] = t1 + t2;
   }
-  for (i = 0u; i < 8u; ++i) h[i] += v[i];
+  for (i = 0u; i < 8u; ++i) { h[i] += v[i]; }
 }
 
 void fsw_sha256_init(FswSha256 *c)
 {
   static const uint32_t h0[8] = {0x6a09e667u, 0xbb67ae85u, 0x3c6ef372u, 0xa54ff53au,
                                  0x510e527fu, 0x9b05688cu, 0x1f83d9abu, 0x5be0cd19u};
-  if (c == NULL) return;
-  memcpy(c->h, h0, sizeof c->h);
+  if (c == NULL) { return; }
+  (void)memcpy(c->h, h0, sizeof c->h);
   c->bytes = 0u;
   c->used = 0u;
 }
@@ -58,7 +58,7 @@ void fsw_sha256_init(FswSha256 *c)
 void fsw_sha256_update(FswSha256 *c, const uint8_t *data, size_t n)
 {
   size_t i;
-  if (c == NULL || (data == NULL && n != 0u)) return;
+  if (c == NULL || (data == NULL && n != 0u)) { return; }
   for (i = 0u; i < n; ++i) {
     c->block[c->used++] = data[i];
     if (c->used == 64u) {
@@ -75,12 +75,12 @@ void fsw_sha256_final(FswSha256 *c, uint8_t out[FSW_SHA256_SIZE])
   unsigned i;
   c->block[c->used++] = 0x80u;
   if (c->used > 56u) {
-    while (c->used < 64u) c->block[c->used++] = 0u;
+    while (c->used < 64u) { c->block[c->used++] = 0u; }
     compress(c->h, c->block);
     c->used = 0u;
   }
-  while (c->used < 56u) c->block[c->used++] = 0u;
-  for (i = 0u; i < 8u; ++i) c->block[56u + i] = (uint8_t)(bits >> (56u - 8u * i));
+  while (c->used < 56u) { c->block[c->used++] = 0u; }
+  for (i = 0u; i < 8u; ++i) { c->block[56u + i] = (uint8_t)(bits >> (56u - 8u * i)); }
   compress(c->h, c->block);
   for (i = 0u; i < 8u; ++i) {
     out[4u * i] = (uint8_t)(c->h[i] >> 24);
@@ -96,21 +96,21 @@ void fsw_hmac_sha256(const uint8_t *key, size_t key_len, const uint8_t *a, size_
   uint8_t k[64], pad[64], inner[FSW_SHA256_SIZE];
   FswSha256 c;
   unsigned i;
-  memset(k, 0, sizeof k);
+  (void)memset(k, 0, sizeof k);
   if (key_len > 64u) { /* a key longer than a block is hashed first */
     fsw_sha256_init(&c);
     fsw_sha256_update(&c, key, key_len);
     fsw_sha256_final(&c, k);
   } else if (key_len > 0u) {
-    memcpy(k, key, key_len);
+    (void)memcpy(k, key, key_len);
   }
-  for (i = 0u; i < 64u; ++i) pad[i] = (uint8_t)(k[i] ^ 0x36u);
+  for (i = 0u; i < 64u; ++i) { pad[i] = (uint8_t)(k[i] ^ 0x36u); }
   fsw_sha256_init(&c);
   fsw_sha256_update(&c, pad, 64u);
   fsw_sha256_update(&c, a, na);
   fsw_sha256_update(&c, b, nb);
   fsw_sha256_final(&c, inner);
-  for (i = 0u; i < 64u; ++i) pad[i] = (uint8_t)(k[i] ^ 0x5cu);
+  for (i = 0u; i < 64u; ++i) { pad[i] = (uint8_t)(k[i] ^ 0x5cu); }
   fsw_sha256_init(&c);
   fsw_sha256_update(&c, pad, 64u);
   fsw_sha256_update(&c, inner, sizeof inner);
@@ -119,16 +119,16 @@ void fsw_hmac_sha256(const uint8_t *key, size_t key_len, const uint8_t *a, size_
 
 static FswStatus sec_fail(FswLinkError *err, FswLinkError e)
 {
-  if (err != NULL) *err = e;
+  if (err != NULL) { *err = e; }
   return FSW_E_BAD_INPUT;
 }
 
 FswStatus fsw_link_sec_init(FswLinkSec *s, const uint8_t *key, size_t key_len)
 {
-  if (s == NULL || key == NULL) return FSW_E_NULL_ARG;
-  if (key_len < FSW_LINK_SEC_KEY_MIN || key_len > FSW_LINK_SEC_KEY_MAX) return FSW_E_CONFIG;
-  memset(s, 0, sizeof *s);
-  memcpy(s->key, key, key_len);
+  if (s == NULL || key == NULL) { return FSW_E_NULL_ARG; }
+  if (key_len < FSW_LINK_SEC_KEY_MIN || key_len > FSW_LINK_SEC_KEY_MAX) { return FSW_E_CONFIG; }
+  (void)memset(s, 0, sizeof *s);
+  (void)memcpy(s->key, key, key_len);
   s->key_len = key_len;
   s->tx_seq = 1u;
   return FSW_OK;
@@ -146,16 +146,16 @@ FswStatus fsw_link_sec_protect(FswLinkSec *s, const uint8_t *pkt, size_t n, uint
                                size_t *out_len, FswLinkError *err)
 {
   uint8_t mac[FSW_SHA256_SIZE];
-  if (s == NULL || pkt == NULL || out == NULL || out_len == NULL) return FSW_E_NULL_ARG;
-  if (cap < FSW_LINK_SEC_TRAILER_SIZE || n > cap - FSW_LINK_SEC_TRAILER_SIZE) return sec_fail(err, FSW_LINK_E_SPACE);
-  if (s->tx_seq == 0u) return sec_fail(err, FSW_LINK_E_COUNT); /* wrapped: numbers used up */
-  memmove(out, pkt, n);
+  if (s == NULL || pkt == NULL || out == NULL || out_len == NULL) { return FSW_E_NULL_ARG; }
+  if (cap < FSW_LINK_SEC_TRAILER_SIZE || n > cap - FSW_LINK_SEC_TRAILER_SIZE) { return sec_fail(err, FSW_LINK_E_SPACE); }
+  if (s->tx_seq == 0u) { return sec_fail(err, FSW_LINK_E_COUNT); } /* wrapped: numbers used up */
+  (void)memmove(out, pkt, n);
   put_seq(out + n, s->tx_seq);
   fsw_hmac_sha256(s->key, s->key_len, out, n + FSW_LINK_SEC_SEQ_SIZE, NULL, 0u, mac);
-  memcpy(out + n + FSW_LINK_SEC_SEQ_SIZE, mac, FSW_LINK_SEC_MAC_SIZE);
+  (void)memcpy(out + n + FSW_LINK_SEC_SEQ_SIZE, mac, FSW_LINK_SEC_MAC_SIZE);
   *out_len = n + FSW_LINK_SEC_TRAILER_SIZE;
   s->tx_seq++;
-  if (err != NULL) *err = FSW_LINK_OK;
+  if (err != NULL) { *err = FSW_LINK_OK; }
   return FSW_OK;
 }
 
@@ -164,14 +164,14 @@ FswStatus fsw_link_sec_verify(FswLinkSec *s, const uint8_t *buf, size_t n, size_
   uint8_t mac[FSW_SHA256_SIZE], diff = 0u;
   uint32_t seq;
   size_t body, i;
-  if (s == NULL || buf == NULL || pkt_len == NULL) return FSW_E_NULL_ARG;
+  if (s == NULL || buf == NULL || pkt_len == NULL) { return FSW_E_NULL_ARG; }
   if (n < FSW_LINK_SEC_TRAILER_SIZE + FSW_LINK_HEADER_SIZE + FSW_LINK_CRC_SIZE) {
     s->rx_auth_failed++;
     return sec_fail(err, FSW_LINK_E_AUTH);
   }
   body = n - FSW_LINK_SEC_MAC_SIZE; /* packet and sequence number */
   fsw_hmac_sha256(s->key, s->key_len, buf, body, NULL, 0u, mac);
-  for (i = 0u; i < FSW_LINK_SEC_MAC_SIZE; ++i) diff = (uint8_t)(diff | (mac[i] ^ buf[body + i]));
+  for (i = 0u; i < FSW_LINK_SEC_MAC_SIZE; ++i) { diff = (uint8_t)(diff | (mac[i] ^ buf[body + i])); }
   if (diff != 0u) {
     s->rx_auth_failed++;
     return sec_fail(err, FSW_LINK_E_AUTH);
@@ -197,6 +197,6 @@ FswStatus fsw_link_sec_verify(FswLinkSec *s, const uint8_t *buf, size_t n, size_
   }
   s->rx_ok++;
   *pkt_len = n - FSW_LINK_SEC_TRAILER_SIZE;
-  if (err != NULL) *err = FSW_LINK_OK;
+  if (err != NULL) { *err = FSW_LINK_OK; }
   return FSW_OK;
 }

@@ -5,13 +5,13 @@
 
 static void bump(uint32_t *c)
 {
-  if (*c < UINT32_MAX) (*c)++;
+  if (*c < UINT32_MAX) { (*c)++; }
 }
 
 void fsw_health_clear(FswHealth *h)
 {
   FSW_ASSERT(h != NULL);
-  if (h == NULL) return;
+  if (h == NULL) { return; }
   h->bad_input = 0u;
   h->bad_time = 0u;
   h->saturated = 0u;
@@ -24,7 +24,7 @@ void fsw_health_clear(FswHealth *h)
 
 FswStatus fsw_health_record(FswHealth *h, FswStatus s)
 {
-  if (h == NULL) return s;
+  if (h == NULL) { return s; }
   bump(&h->calls);
   h->last = s;
   switch (s) {

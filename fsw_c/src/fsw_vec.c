@@ -67,11 +67,11 @@ fsw_real fsw_v3_norm(const fsw_real a[3]) { return fsw_vn_norm(a, 3); }
 fsw_real fsw_pow2_scale(fsw_real m)
 {
   int e = 0;
-  if (!(m > FSW_R(0.0)) || !isfinite(m)) return FSW_R(1.0);
+  if (!(m > FSW_R(0.0)) || !isfinite(m)) { return FSW_R(1.0); }
   (void)FSW_FREXP(m, &e);
   /* subnormal m: 2^-e would overflow; the largest finite power of two
    * still brings m * scale into the normal range */
-  if (-e > FSW_REAL_MAX_EXP - 1) e = -(FSW_REAL_MAX_EXP - 1);
+  if (-e > FSW_REAL_MAX_EXP - 1) { e = -(FSW_REAL_MAX_EXP - 1); }
   return FSW_LDEXP(FSW_R(1.0), -e);
 }
 
@@ -100,39 +100,39 @@ int fsw_v3_is_finite(const fsw_real a[3]) { return fsw_vn_is_finite(a, 3); }
 void fsw_vn_copy(fsw_real *out, const fsw_real *a, int n)
 {
   int i;
-  if (out == a) return;
-  for (i = 0; i < n; i++) out[i] = a[i];
+  if (out == a) { return; }
+  for (i = 0; i < n; i++) { out[i] = a[i]; }
 }
 
 void fsw_vn_zero(fsw_real *out, int n)
 {
   int i;
-  for (i = 0; i < n; i++) out[i] = FSW_R(0.0);
+  for (i = 0; i < n; i++) { out[i] = FSW_R(0.0); }
 }
 
 void fsw_vn_scale(fsw_real *out, fsw_real s, const fsw_real *a, int n)
 {
   int i;
-  for (i = 0; i < n; i++) out[i] = s * a[i];
+  for (i = 0; i < n; i++) { out[i] = s * a[i]; }
 }
 
 void fsw_vn_add(fsw_real *out, const fsw_real *a, const fsw_real *b, int n)
 {
   int i;
-  for (i = 0; i < n; i++) out[i] = a[i] + b[i];
+  for (i = 0; i < n; i++) { out[i] = a[i] + b[i]; }
 }
 
 void fsw_vn_sub(fsw_real *out, const fsw_real *a, const fsw_real *b, int n)
 {
   int i;
-  for (i = 0; i < n; i++) out[i] = a[i] - b[i];
+  for (i = 0; i < n; i++) { out[i] = a[i] - b[i]; }
 }
 
 fsw_real fsw_vn_dot(const fsw_real *a, const fsw_real *b, int n)
 {
   fsw_real s = FSW_R(0.0);
   int i;
-  for (i = 0; i < n; i++) s += a[i] * b[i];
+  for (i = 0; i < n; i++) { s += a[i] * b[i]; }
   return s;
 }
 
@@ -142,7 +142,7 @@ fsw_real fsw_vn_max_abs(const fsw_real *a, int n)
   int i;
   for (i = 0; i < n; i++) {
     fsw_real v = FSW_FABS(a[i]);
-    if (v > m || v != v) m = v; /* NaN propagates */
+    if (v > m || v != v) { m = v; } /* NaN propagates */
   }
   return m;
 }
@@ -154,7 +154,7 @@ fsw_real fsw_vn_norm(const fsw_real *a, int n)
   fsw_real m = fsw_vn_max_abs(a, n);
   fsw_real s = FSW_R(0.0);
   int i;
-  if (m == FSW_R(0.0) || !isfinite(m)) return m;
+  if (m == FSW_R(0.0) || !isfinite(m)) { return m; }
   for (i = 0; i < n; i++) {
     fsw_real t = a[i] / m;
     s += t * t;
@@ -165,69 +165,69 @@ fsw_real fsw_vn_norm(const fsw_real *a, int n)
 int fsw_vn_is_finite(const fsw_real *a, int n)
 {
   int i;
-  for (i = 0; i < n; i++)
-    if (!isfinite(a[i])) return 0;
+  for (i = 0; i < n; i++) {
+    if (!isfinite(a[i])) { return 0; } }
   return 1;
 }
 
 void fsw_m33_zero(fsw_real out[3][3])
 {
   int i, j;
-  for (i = 0; i < 3; i++)
-    for (j = 0; j < 3; j++) out[i][j] = FSW_R(0.0);
+  for (i = 0; i < 3; i++) {
+    for (j = 0; j < 3; j++) { out[i][j] = FSW_R(0.0); } }
 }
 
 void fsw_m33_identity(fsw_real out[3][3])
 {
   int i;
   fsw_m33_zero(out);
-  for (i = 0; i < 3; i++) out[i][i] = FSW_R(1.0);
+  for (i = 0; i < 3; i++) { out[i][i] = FSW_R(1.0); }
 }
 
 void fsw_m33_copy(fsw_real out[3][3], const fsw_real a[3][3])
 {
   int i, j;
-  if ((const fsw_real *)out == &a[0][0]) return;
-  for (i = 0; i < 3; i++)
-    for (j = 0; j < 3; j++) out[i][j] = a[i][j];
+  if ((const fsw_real *)out == &a[0][0]) { return; }
+  for (i = 0; i < 3; i++) {
+    for (j = 0; j < 3; j++) { out[i][j] = a[i][j]; } }
 }
 
 void fsw_m33_transpose(fsw_real out[3][3], const fsw_real a[3][3])
 {
   fsw_real t[3][3];
   int i, j;
-  for (i = 0; i < 3; i++)
-    for (j = 0; j < 3; j++) t[i][j] = a[j][i];
+  for (i = 0; i < 3; i++) {
+    for (j = 0; j < 3; j++) { t[i][j] = a[j][i]; } }
   fsw_m33_copy(out, FSW_CM33(t));
 }
 
 void fsw_m33_add(fsw_real out[3][3], const fsw_real a[3][3], const fsw_real b[3][3])
 {
   int i, j;
-  for (i = 0; i < 3; i++)
-    for (j = 0; j < 3; j++) out[i][j] = a[i][j] + b[i][j];
+  for (i = 0; i < 3; i++) {
+    for (j = 0; j < 3; j++) { out[i][j] = a[i][j] + b[i][j]; } }
 }
 
 void fsw_m33_sub(fsw_real out[3][3], const fsw_real a[3][3], const fsw_real b[3][3])
 {
   int i, j;
-  for (i = 0; i < 3; i++)
-    for (j = 0; j < 3; j++) out[i][j] = a[i][j] - b[i][j];
+  for (i = 0; i < 3; i++) {
+    for (j = 0; j < 3; j++) { out[i][j] = a[i][j] - b[i][j]; } }
 }
 
 void fsw_m33_scale(fsw_real out[3][3], fsw_real s, const fsw_real a[3][3])
 {
   int i, j;
-  for (i = 0; i < 3; i++)
-    for (j = 0; j < 3; j++) out[i][j] = s * a[i][j];
+  for (i = 0; i < 3; i++) {
+    for (j = 0; j < 3; j++) { out[i][j] = s * a[i][j]; } }
 }
 
 void fsw_m33_mult(fsw_real out[3][3], const fsw_real a[3][3], const fsw_real b[3][3])
 {
   fsw_real t[3][3];
   int i, j;
-  for (i = 0; i < 3; i++)
-    for (j = 0; j < 3; j++) t[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
+  for (i = 0; i < 3; i++) {
+    for (j = 0; j < 3; j++) { t[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j]; } }
   fsw_m33_copy(out, FSW_CM33(t));
 }
 
@@ -235,8 +235,8 @@ void fsw_m33_mult_t(fsw_real out[3][3], const fsw_real a[3][3], const fsw_real b
 {
   fsw_real t[3][3];
   int i, j;
-  for (i = 0; i < 3; i++)
-    for (j = 0; j < 3; j++) t[i][j] = a[i][0] * b[j][0] + a[i][1] * b[j][1] + a[i][2] * b[j][2];
+  for (i = 0; i < 3; i++) {
+    for (j = 0; j < 3; j++) { t[i][j] = a[i][0] * b[j][0] + a[i][1] * b[j][1] + a[i][2] * b[j][2]; } }
   fsw_m33_copy(out, FSW_CM33(t));
 }
 

@@ -82,20 +82,20 @@ static inline int fsw_v3i_is_finite(const fsw_real a[3])
 static inline void fsw_vni_copy(fsw_real *out, const fsw_real *a, int n)
 {
   int i;
-  for (i = 0; i < n; i++) out[i] = a[i];
+  for (i = 0; i < n; i++) { out[i] = a[i]; }
 }
 
 static inline void fsw_vni_zero(fsw_real *out, int n)
 {
   int i;
-  for (i = 0; i < n; i++) out[i] = FSW_R(0.0);
+  for (i = 0; i < n; i++) { out[i] = FSW_R(0.0); }
 }
 
 static inline fsw_real fsw_vni_dot(const fsw_real *a, const fsw_real *b, int n)
 {
   fsw_real s = FSW_R(0.0);
   int i;
-  for (i = 0; i < n; i++) s += a[i] * b[i];
+  for (i = 0; i < n; i++) { s += a[i] * b[i]; }
   return s;
 }
 

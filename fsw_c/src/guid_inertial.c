@@ -17,10 +17,10 @@ static void write_safe(FswGuidInertialOut *out)
 FswStatus fsw_guid_inertial_check(const FswGuidInertialConfig *cfg)
 {
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
-  if (!fsw_v3_is_finite(cfg->sigma_R0N)) return FSW_E_CONFIG;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
+  if (!fsw_v3_is_finite(cfg->sigma_R0N)) { return FSW_E_CONFIG; }
   /* |sigma|^2 must be finite for the shadow switch to be meaningful */
-  if (!isfinite(fsw_v3_norm2(cfg->sigma_R0N))) return FSW_E_CONFIG;
+  if (!isfinite(fsw_v3_norm2(cfg->sigma_R0N))) { return FSW_E_CONFIG; }
   return FSW_OK;
 }
 
@@ -28,11 +28,11 @@ FswStatus fsw_guid_inertial_init(FswGuidInertialState *st, const FswGuidInertial
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
-  memset(st, 0, sizeof *st);
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
+  (void)memset(st, 0, sizeof *st);
   fsw_health_clear(&st->health);
   s = fsw_guid_inertial_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   fsw_mrp_switch(st->sigma_RN, cfg->sigma_R0N);
   st->ready = 1;
   fsw_guid_inertial_reset(st);
@@ -49,11 +49,11 @@ FswStatus fsw_guid_inertial_update(FswGuidInertialState *st, const FswGuidInerti
                                    FswGuidInertialOut *out)
 {
   FSW_ASSERT(st != NULL && cfg != NULL && out != NULL);
-  if (out != NULL) write_safe(out);
+  if (out != NULL) { write_safe(out); }
   if (st == NULL || cfg == NULL || out == NULL) {
     return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG);
   }
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   fsw_v3_copy(out->sigma_RN, st->sigma_RN);
   return fsw_health_record(&st->health, FSW_OK);
 }

@@ -18,10 +18,10 @@ static void write_safe(FswGuidOrbitOut *out)
 FswStatus fsw_guid_orbit_check(const FswGuidOrbitConfig *cfg)
 {
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
-  if (cfg->variant != FSW_GUID_ORBIT_NADIR && cfg->variant != FSW_GUID_ORBIT_VELOCITY) return FSW_E_CONFIG;
-  if (!fsw_v3_is_finite(cfg->sigma_BdR) || !isfinite(fsw_v3_norm2(cfg->sigma_BdR))) return FSW_E_CONFIG;
-  if (!isfinite(cfg->mu) || !(cfg->mu > FSW_R(0.0)) || cfg->mu > FSW_GUID_ORBIT_MU_MAX) return FSW_E_CONFIG;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
+  if (cfg->variant != FSW_GUID_ORBIT_NADIR && cfg->variant != FSW_GUID_ORBIT_VELOCITY) { return FSW_E_CONFIG; }
+  if (!fsw_v3_is_finite(cfg->sigma_BdR) || !isfinite(fsw_v3_norm2(cfg->sigma_BdR))) { return FSW_E_CONFIG; }
+  if (!isfinite(cfg->mu) || !(cfg->mu > FSW_R(0.0)) || cfg->mu > FSW_GUID_ORBIT_MU_MAX) { return FSW_E_CONFIG; }
   return FSW_OK;
 }
 
@@ -30,11 +30,11 @@ FswStatus fsw_guid_orbit_init(FswGuidOrbitState *st, const FswGuidOrbitConfig *c
   FswStatus s;
   fsw_real sw[3];
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
-  memset(st, 0, sizeof *st);
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
+  (void)memset(st, 0, sizeof *st);
   fsw_health_clear(&st->health);
   s = fsw_guid_orbit_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   fsw_mrp_switch(sw, cfg->sigma_BdR); /* same rotation, |sigma| <= 1 */
   fsw_mrp_to_dcm(st->dcm_BdR, sw);
   st->ready = 1;
@@ -54,20 +54,20 @@ FswStatus fsw_guid_orbit_update(FswGuidOrbitState *st, const FswGuidOrbitConfig 
   fsw_real rh[3], vh[3], hh[3], C[3][3], BdN[3][3], w[3], wd[3];
   fsw_real r, v, sin_rv, rate, rdot_r; /* |r|, |v|, |r_hat x v_hat|, |omega|, (r.v)/r^2 */
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) write_safe(out);
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL)
-    return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG);
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
-  if (in->valid != 1 || !fsw_v3_is_finite(in->r_N) || !fsw_v3_is_finite(in->v_N))
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (out != NULL) { write_safe(out); }
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
+    return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG); }
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
+  if (in->valid != 1 || !fsw_v3_is_finite(in->r_N) || !fsw_v3_is_finite(in->v_N)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
   r = fsw_v3_norm(in->r_N);
   v = fsw_v3_norm(in->v_N);
   if (!(r >= FSW_GUID_ORBIT_R_MIN) || !isfinite(r) || !isfinite(v) || !fsw_v3_normalize(rh, in->r_N) ||
-      !fsw_v3_normalize(vh, in->v_N))
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+      !fsw_v3_normalize(vh, in->v_N)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
   fsw_v3_cross(hh, rh, vh);
   sin_rv = fsw_v3_norm(hh);
-  if (!(sin_rv > FSW_GUID_ORBIT_SIN_MIN)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (!(sin_rv > FSW_GUID_ORBIT_SIN_MIN)) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
   fsw_v3_scale(hh, FSW_R(1.0) / sin_rv, hh);
   /* (r.v)/r^2 = (r_hat . v_hat) v / r */
   rdot_r = fsw_v3_dot(rh, vh) * (v / r);
@@ -91,7 +91,7 @@ FswStatus fsw_guid_orbit_update(FswGuidOrbitState *st, const FswGuidOrbitConfig 
     fsw_v3_scale(w, rate, hh);
     fsw_v3_scale(wd, rdot_r * (FSW_R(2.0) * g - FSW_R(3.0)), w);
   }
-  if (!fsw_v3_is_finite(w) || !fsw_v3_is_finite(wd)) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (!fsw_v3_is_finite(w) || !fsw_v3_is_finite(wd)) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
 
   fsw_m33_mult(BdN, FSW_CM33(st->dcm_BdR), FSW_CM33(C));
   fsw_dcm_to_mrp(out->sigma_RN, FSW_CM33(BdN));

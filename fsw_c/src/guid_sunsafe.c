@@ -33,19 +33,19 @@ static void write_safe(FswGuidSunsafeOut *out)
 FswStatus fsw_guid_sunsafe_check(const FswGuidSunsafeConfig *cfg)
 {
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
   if (!fsw_v3_is_finite(cfg->s_cmd_B) || !fsw_v3_is_finite(cfg->omega_search_B) ||
       !isfinite(cfg->min_unit_mag) || !isfinite(cfg->small_angle) ||
       !isfinite(cfg->sun_axis_spin_rate)) {
     return FSW_E_CONFIG;
   }
   if (!(fsw_v3_norm(cfg->s_cmd_B) >= FSW_R(0.1)) ||
-      !(fsw_v3_norm(cfg->s_cmd_B) <= FSW_GUID_SUNSAFE_S_CMD_MAX))
-    return FSW_E_CONFIG;
+      !(fsw_v3_norm(cfg->s_cmd_B) <= FSW_GUID_SUNSAFE_S_CMD_MAX)) {
+    return FSW_E_CONFIG; }
   if (fsw_vn_max_abs(cfg->omega_search_B, 3) > FSW_GUID_SUNSAFE_RATE_MAX ||
-      FSW_FABS(cfg->sun_axis_spin_rate) > FSW_GUID_SUNSAFE_RATE_MAX)
-    return FSW_E_CONFIG;
-  if (cfg->min_unit_mag < FSW_R(0.0)) return FSW_E_CONFIG;
+      FSW_FABS(cfg->sun_axis_spin_rate) > FSW_GUID_SUNSAFE_RATE_MAX) {
+    return FSW_E_CONFIG; }
+  if (cfg->min_unit_mag < FSW_R(0.0)) { return FSW_E_CONFIG; }
   if (cfg->small_angle < FSW_R(0.0) || !(cfg->small_angle < FSW_R(0.5) * SUNSAFE_PI)) {
     return FSW_E_CONFIG;
   }
@@ -59,14 +59,14 @@ FswStatus fsw_guid_sunsafe_init(FswGuidSunsafeState *st, const FswGuidSunsafeCon
   fsw_real e180[3];
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
-  memset(st, 0, sizeof *st);
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
+  (void)memset(st, 0, sizeof *st);
   fsw_health_clear(&st->health);
   s = fsw_guid_sunsafe_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   (void)fsw_v3_normalize(st->s_cmd_hat_B, cfg->s_cmd_B);
   fsw_v3_cross(e180, st->s_cmd_hat_B, x_hat);
-  if (fsw_v3_norm(e180) < FSW_R(0.1)) fsw_v3_cross(e180, st->s_cmd_hat_B, y_hat);
+  if (fsw_v3_norm(e180) < FSW_R(0.1)) { fsw_v3_cross(e180, st->s_cmd_hat_B, y_hat); }
   (void)fsw_v3_normalize(st->e180_hat_B, e180); /* |e180| >= 0.7 here */
   st->ready = 1;
   fsw_guid_sunsafe_reset(st);
@@ -85,11 +85,11 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
   fsw_real s_norm; /* [-] |s_B| */
   fsw_real s_B[3]; /* [-] sun_B scaled by a power of two (direction only) */
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) write_safe(out);
+  if (out != NULL) { write_safe(out); }
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
     return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG);
   }
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   if (!fsw_v3_is_finite(in->sun_B) || !fsw_v3_is_finite(in->omega_BN_B)) {
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   }
@@ -106,8 +106,8 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
     fsw_v3_scale(s_B, p, in->sun_B);
     s_norm = fsw_v3i_norm_pow2_scaled(s_B, m, p); /* = fsw_v3_norm(s_B) */
     c = fsw_v3_dot(st->s_cmd_hat_B, s_B) / s_norm;
-    if (c > FSW_R(1.0)) c = FSW_R(1.0);
-    if (c < FSW_R(-1.0)) c = FSW_R(-1.0);
+    if (c > FSW_R(1.0)) { c = FSW_R(1.0); }
+    if (c < FSW_R(-1.0)) { c = FSW_R(-1.0); }
     theta = FSW_ACOS(c);
     if (!(theta < cfg->small_angle)) {
       fsw_real e_hat[3];

@@ -27,14 +27,14 @@ static int inertia_ok(const fsw_real I[3][3])
   fsw_real max_abs = FSW_R(0.0);
   fsw_real m1, m2, m3;
   int j, k;
-  if (!fsw_m33_is_finite(I)) return 0;
-  for (j = 0; j < 3; j++)
-    for (k = 0; k < 3; k++)
-      if (FSW_FABS(I[j][k]) > max_abs) max_abs = FSW_FABS(I[j][k]);
-  if (!(max_abs > FSW_R(0.0))) return 0;
-  for (j = 0; j < 3; j++)
-    for (k = j + 1; k < 3; k++)
-      if (FSW_FABS(I[j][k] - I[k][j]) > MRP_FB_SYM_TOL * max_abs) return 0;
+  if (!fsw_m33_is_finite(I)) { return 0; }
+  for (j = 0; j < 3; j++) {
+    for (k = 0; k < 3; k++) {
+      if (FSW_FABS(I[j][k]) > max_abs) { max_abs = FSW_FABS(I[j][k]); } } }
+  if (!(max_abs > FSW_R(0.0))) { return 0; }
+  for (j = 0; j < 3; j++) {
+    for (k = j + 1; k < 3; k++) {
+      if (FSW_FABS(I[j][k] - I[k][j]) > MRP_FB_SYM_TOL * max_abs) { return 0; } } }
   m1 = I[0][0];
   m2 = I[0][0] * I[1][1] - I[0][1] * I[1][0];
   m3 = fsw_m33_det(I);
@@ -45,24 +45,24 @@ FswStatus fsw_mrp_fb_check(const FswMrpFbConfig *cfg)
 {
   int i;
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
-  if (!isfinite(cfg->K) || !(cfg->K > FSW_R(0.0))) return FSW_E_CONFIG;
-  if (!isfinite(cfg->P) || !(cfg->P > FSW_R(0.0))) return FSW_E_CONFIG;
-  if (!isfinite(cfg->K_i)) return FSW_E_CONFIG;
-  if (!isfinite(cfg->integral_limit) || cfg->integral_limit < FSW_R(0.0)) return FSW_E_CONFIG;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
+  if (!isfinite(cfg->K) || !(cfg->K > FSW_R(0.0))) { return FSW_E_CONFIG; }
+  if (!isfinite(cfg->P) || !(cfg->P > FSW_R(0.0))) { return FSW_E_CONFIG; }
+  if (!isfinite(cfg->K_i)) { return FSW_E_CONFIG; }
+  if (!isfinite(cfg->integral_limit) || cfg->integral_limit < FSW_R(0.0)) { return FSW_E_CONFIG; }
   if (cfg->control_law_type != FSW_MRP_FB_LAW_0 && cfg->control_law_type != FSW_MRP_FB_LAW_1) {
     return FSW_E_CONFIG;
   }
-  if (!fsw_v3_is_finite(cfg->known_torque_B)) return FSW_E_CONFIG;
-  if (!inertia_ok(cfg->I_B)) return FSW_E_CONFIG;
-  if (cfg->num_rw < 0) return FSW_E_CONFIG;
-  if (cfg->num_rw > FSW_MAX_RW) return FSW_E_CAPACITY;
+  if (!fsw_v3_is_finite(cfg->known_torque_B)) { return FSW_E_CONFIG; }
+  if (!inertia_ok(cfg->I_B)) { return FSW_E_CONFIG; }
+  if (cfg->num_rw < 0) { return FSW_E_CONFIG; }
+  if (cfg->num_rw > FSW_MAX_RW) { return FSW_E_CAPACITY; }
   for (i = 0; i < cfg->num_rw; i++) {
-    if (!fsw_v3_is_finite(cfg->gs_hat_B[i])) return FSW_E_CONFIG;
+    if (!fsw_v3_is_finite(cfg->gs_hat_B[i])) { return FSW_E_CONFIG; }
     if (!(FSW_FABS(fsw_v3_norm(cfg->gs_hat_B[i]) - FSW_R(1.0)) <= FSW_MRP_FB_UNIT_TOL)) {
       return FSW_E_CONFIG;
     }
-    if (!isfinite(cfg->J_s[i]) || !(cfg->J_s[i] > FSW_R(0.0))) return FSW_E_CONFIG;
+    if (!isfinite(cfg->J_s[i]) || !(cfg->J_s[i] > FSW_R(0.0))) { return FSW_E_CONFIG; }
   }
   return FSW_OK;
 }
@@ -71,11 +71,11 @@ FswStatus fsw_mrp_fb_init(FswMrpFbState *st, const FswMrpFbConfig *cfg)
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
-  memset(st, 0, sizeof *st);
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
+  (void)memset(st, 0, sizeof *st);
   fsw_health_clear(&st->health);
   s = fsw_mrp_fb_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   st->ready = 1;
   fsw_mrp_fb_reset(st);
   return FSW_OK;
@@ -84,7 +84,7 @@ FswStatus fsw_mrp_fb_init(FswMrpFbState *st, const FswMrpFbConfig *cfg)
 void fsw_mrp_fb_reset(FswMrpFbState *st)
 {
   FSW_ASSERT(st != NULL);
-  if (st == NULL) return;
+  if (st == NULL) { return; }
   fsw_clock_reset(&st->clock);
   fsw_v3_zero(st->int_sigma);
 }
@@ -100,7 +100,7 @@ static int wheels_ok(const FswMrpFbConfig *cfg, const FswMrpFbIn *in)
   int i;
   for (i = 0; i < cfg->num_rw; i++) {
     if (in->rw_avail[i] == FSW_AVAILABLE) {
-      if (!isfinite(in->Omega[i])) return 0;
+      if (!isfinite(in->Omega[i])) { return 0; }
     } else if (in->rw_avail[i] != FSW_UNAVAILABLE) {
       return 0;
     }
@@ -128,18 +128,18 @@ FswStatus fsw_mrp_fb_update(FswMrpFbState *st, const FswMrpFbConfig *cfg, const 
   int i;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) write_safe(out);
+  if (out != NULL) { write_safe(out); }
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
     return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG);
   }
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   g = &in->guid;
   if (!guid_is_finite(g) || !wheels_ok(cfg, in)) {
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   }
   {
     const FswStatus s = fsw_clock_dt(&st->clock, in->t_ns, &dt); /* FSW_OK or FSW_E_TIME */
-    if (s != FSW_OK) return fsw_health_record(&st->health, s);
+    if (s != FSW_OK) { return fsw_health_record(&st->health, s); }
   }
 
   /* 1. omega = omega_BR + omega_RN */

@@ -14,12 +14,12 @@ FswStatus fsw_mtq_field(fsw_real b_hat[3], fsw_real *B_norm, const fsw_real B[3]
   fsw_real n;
   fsw_v3_zero(b_hat);
   *B_norm = FSW_R(0.0);
-  if (valid > 1u) return FSW_E_BAD_INPUT;
-  if (valid == 0u) return FSW_W_SINGULAR;
-  if (!fsw_v3_is_finite(B)) return FSW_E_BAD_INPUT;
+  if (valid > 1u) { return FSW_E_BAD_INPUT; }
+  if (valid == 0u) { return FSW_W_SINGULAR; }
+  if (!fsw_v3_is_finite(B)) { return FSW_E_BAD_INPUT; }
   n = fsw_v3_norm(B);
-  if (!(n <= FSW_MTQ_B_MAX)) return FSW_E_BAD_INPUT;
-  if (n < FSW_MTQ_B_MIN) return FSW_W_SINGULAR;
+  if (!(n <= FSW_MTQ_B_MAX)) { return FSW_E_BAD_INPUT; }
+  if (n < FSW_MTQ_B_MIN) { return FSW_W_SINGULAR; }
   fsw_v3_scale(b_hat, FSW_R(1.0) / n, B);
   *B_norm = n;
   return FSW_OK;
@@ -29,15 +29,15 @@ FswStatus fsw_mtq_map_check(const FswMtqMapConfig *cfg)
 {
   int i;
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
-  if (cfg->num_mtq < 1 || cfg->num_mtq > FSW_MAX_MTQ) return FSW_E_CAPACITY;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
+  if (cfg->num_mtq < 1 || cfg->num_mtq > FSW_MAX_MTQ) { return FSW_E_CAPACITY; }
   for (i = 0; i < cfg->num_mtq; i++) {
     const fsw_real mm = cfg->m_max[i];
-    if (!fsw_v3_is_finite(cfg->gt_hat_B[i])) return FSW_E_CONFIG;
-    if (FSW_FABS(fsw_v3_norm(cfg->gt_hat_B[i]) - FSW_R(1.0)) > FSW_MTQ_UNIT_TOL) return FSW_E_CONFIG;
-    if (!(mm >= FSW_MTQ_M_MAX_MIN && mm <= FSW_MTQ_M_MAX_MAX)) return FSW_E_CONFIG;
+    if (!fsw_v3_is_finite(cfg->gt_hat_B[i])) { return FSW_E_CONFIG; }
+    if (FSW_FABS(fsw_v3_norm(cfg->gt_hat_B[i]) - FSW_R(1.0)) > FSW_MTQ_UNIT_TOL) { return FSW_E_CONFIG; }
+    if (!(mm >= FSW_MTQ_M_MAX_MIN && mm <= FSW_MTQ_M_MAX_MAX)) { return FSW_E_CONFIG; }
   }
-  if (!(cfg->duty_max >= FSW_MTQ_DUTY_MIN && cfg->duty_max <= FSW_R(1.0))) return FSW_E_CONFIG;
+  if (!(cfg->duty_max >= FSW_MTQ_DUTY_MIN && cfg->duty_max <= FSW_R(1.0))) { return FSW_E_CONFIG; }
   return FSW_OK;
 }
 
@@ -45,11 +45,11 @@ FswStatus fsw_mtq_map_init(FswMtqMapState *st, const FswMtqMapConfig *cfg)
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
   st->ready = 0;
   fsw_health_clear(&st->health);
   s = fsw_mtq_map_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   st->ready = 1;
   fsw_mtq_map_reset(st);
   return FSW_OK;
@@ -87,14 +87,14 @@ static void mtq_jacobi3(fsw_real a[3][3], fsw_real v[3][3])
       const int p = P[k], q = Q[k];
       const fsw_real apq = a[p][q];
       fsw_real theta, t, c, s;
-      if (apq == FSW_R(0.0)) continue;
+      if (apq == FSW_R(0.0)) { continue; }
       if (FSW_FABS(apq) <= FSW_REAL_EPS * FSW_R(0.01) * (FSW_FABS(a[p][p]) + FSW_FABS(a[q][q]))) {
         a[p][q] = a[q][p] = FSW_R(0.0);
         continue;
       }
       theta = (a[q][q] - a[p][p]) / (FSW_R(2.0) * apq);
       t = FSW_R(1.0) / (FSW_FABS(theta) + FSW_SQRT(theta * theta + FSW_R(1.0)));
-      if (theta < FSW_R(0.0)) t = -t;
+      if (theta < FSW_R(0.0)) { t = -t; }
       c = FSW_R(1.0) / FSW_SQRT(t * t + FSW_R(1.0));
       s = t * c;
       for (r = 0; r < 3; r++) { /* columns p, q of a P */
@@ -115,7 +115,7 @@ static void mtq_jacobi3(fsw_real a[3][3], fsw_real v[3][3])
       }
       rotated = 1;
     }
-    if (!rotated) break;
+    if (!rotated) { break; }
   }
 }
 
@@ -136,13 +136,13 @@ static void mtq_pinv_form(MtqPinv *p, const FswMtqMapConfig *cfg, const uint8_t 
   int i, j, k;
   fsw_m33_zero(M);
   for (i = 0; i < cfg->num_mtq; i++) {
-    if (avail[i] != FSW_AVAILABLE) continue;
-    for (j = 0; j < 3; j++)
-      for (k = 0; k < 3; k++) M[j][k] += cfg->gt_hat_B[i][j] * cfg->gt_hat_B[i][k];
+    if (avail[i] != FSW_AVAILABLE) { continue; }
+    for (j = 0; j < 3; j++) {
+      for (k = 0; k < 3; k++) { M[j][k] += cfg->gt_hat_B[i][j] * cfg->gt_hat_B[i][k]; } }
   }
   mtq_jacobi3(M, p->V);
-  for (k = 0; k < 3; k++)
-    if (M[k][k] > lmax) lmax = M[k][k];
+  for (k = 0; k < 3; k++) {
+    if (M[k][k] > lmax) { lmax = M[k][k]; } }
   p->rank = 0;
   for (k = 0; k < 3; k++) {
     if (lmax > FSW_R(0.0) && M[k][k] > FSW_RANK_TOL * lmax) {
@@ -165,8 +165,8 @@ static void mtq_pinv_apply(fsw_real c[FSW_MAX_MTQ], const MtqPinv *p, const FswM
     fsw_v3_axpy(y, y, p->inv[k] * fsw_v3_dot(vk, m), vk);
   }
   fsw_vn_zero(c, FSW_MAX_MTQ);
-  for (i = 0; i < cfg->num_mtq; i++)
-    if (avail[i] == FSW_AVAILABLE) c[i] = fsw_v3_dot(cfg->gt_hat_B[i], y);
+  for (i = 0; i < cfg->num_mtq; i++) {
+    if (avail[i] == FSW_AVAILABLE) { c[i] = fsw_v3_dot(cfg->gt_hat_B[i], y); } }
 }
 
 /* m = G c over the available rods. */
@@ -175,16 +175,16 @@ static void mtq_dipole(fsw_real m[3], const FswMtqMapConfig *cfg, const uint8_t 
 {
   int i;
   fsw_v3_zero(m);
-  for (i = 0; i < cfg->num_mtq; i++)
-    if (avail[i] == FSW_AVAILABLE) fsw_v3_axpy(m, m, c[i], cfg->gt_hat_B[i]);
+  for (i = 0; i < cfg->num_mtq; i++) {
+    if (avail[i] == FSW_AVAILABLE) { fsw_v3_axpy(m, m, c[i], cfg->gt_hat_B[i]); } }
 }
 
 /* 1 when every entry of v is finite and within +-lim. */
 static int mtq_v3_within(const fsw_real v[3], fsw_real lim)
 {
   int k;
-  for (k = 0; k < 3; k++)
-    if (!(FSW_FABS(v[k]) <= lim)) return 0;
+  for (k = 0; k < 3; k++) {
+    if (!(FSW_FABS(v[k]) <= lim)) { return 0; } }
   return 1;
 }
 
@@ -198,7 +198,7 @@ static fsw_real mtq_saturate(fsw_real c[FSW_MAX_MTQ], const FswMtqMapConfig *cfg
     const fsw_real lim = cfg->duty_max * cfg->m_max[i];
     if (FSW_FABS(c[i]) > lim) {
       const fsw_real si = lim / FSW_FABS(c[i]);
-      if (si < s) s = si;
+      if (si < s) { s = si; }
     }
   }
   if (s < FSW_R(1.0)) {
@@ -206,8 +206,8 @@ static fsw_real mtq_saturate(fsw_real c[FSW_MAX_MTQ], const FswMtqMapConfig *cfg
       const fsw_real lim = cfg->duty_max * cfg->m_max[i];
       c[i] *= s;
       /* the product can land one ulp above the limit: clamp it */
-      if (c[i] > lim) c[i] = lim;
-      if (c[i] < -lim) c[i] = -lim;
+      if (c[i] > lim) { c[i] = lim; }
+      if (c[i] < -lim) { c[i] = -lim; }
     }
   }
   return s;
@@ -227,18 +227,18 @@ FswStatus fsw_mtq_map_update(FswMtqMapState *st, const FswMtqMapConfig *cfg,
   int i, n;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) mtq_safe_output(out);
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  if (out != NULL) { mtq_safe_output(out); }
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) { return FSW_E_NULL_ARG; }
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   n = cfg->num_mtq;
-  if (in->use_dipole > 1u) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
-  for (i = 0; i < n; i++)
-    if (in->avail[i] > 1u) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (in->use_dipole > 1u) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
+  for (i = 0; i < n; i++) {
+    if (in->avail[i] > 1u) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); } }
   if (in->use_dipole ? !mtq_v3_within(in->m_req_B, FSW_MTQ_M_REQ_MAX)
-                     : !mtq_v3_within(in->tau_B, FSW_MTQ_TAU_REQ_MAX))
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+                     : !mtq_v3_within(in->tau_B, FSW_MTQ_TAU_REQ_MAX)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
   fs = fsw_mtq_field(b_hat, &Bn, in->B_B, in->B_valid);
-  if (fs != FSW_OK) return fsw_health_record(&st->health, fs); /* W_SINGULAR: rods off */
+  if (fs != FSW_OK) { return fsw_health_record(&st->health, fs); } /* W_SINGULAR: rods off */
 
   if (in->use_dipole) {
     fsw_v3_copy(m_B, in->m_req_B);
@@ -261,7 +261,7 @@ FswStatus fsw_mtq_map_update(FswMtqMapState *st, const FswMtqMapConfig *cfg,
   status = fsw_v3_norm(r) > FSW_RESID_TOL * fsw_v3_norm(m_B) ? FSW_W_SINGULAR : FSW_OK;
 
   s = mtq_saturate(c, cfg);
-  if (s < FSW_R(1.0) && status == FSW_OK) status = FSW_W_SAT;
+  if (s < FSW_R(1.0) && status == FSW_OK) { status = FSW_W_SAT; }
   for (i = 0; i < n; i++) {
     /* |c_i| <= fl(duty_max m_max_i), but the quotient can round one ulp
      * above duty_max */

@@ -37,8 +37,8 @@ static void write_safe(FswRwBiasOut *out, const FswRwBiasConfig *cfg, const FswR
   out->crossing_unavoidable = 0;
   out->nullity = 0;
   out->lambda_norm = FSW_R(0.0);
-  if (cfg != NULL && in != NULL && cfg->num_rw > 0 && cfg->num_rw <= FSW_MAX_RW) n = cfg->num_rw;
-  for (i = 0; i < n; i++) out->Omega_des[i] = held_speed(in->Omega[i]);
+  if (cfg != NULL && in != NULL && cfg->num_rw > 0 && cfg->num_rw <= FSW_MAX_RW) { n = cfg->num_rw; }
+  for (i = 0; i < n; i++) { out->Omega_des[i] = held_speed(in->Omega[i]); }
 }
 
 /* Orthonormal basis of null([Gs_a]) from the projector: pivoted Gram-Schmidt
@@ -51,31 +51,31 @@ static void basis_compute(FswRwBiasState *st)
   const int n = p->num_rw;
   int k = p->num_avail - p->rank, j, m, c, pass;
   fsw_real r[FSW_MAX_RW];
-  for (j = 0; j < FSW_MAX_RW; j++) fsw_vn_zero(st->basis[j], FSW_MAX_RW);
-  if (k < 0) k = 0;
+  for (j = 0; j < FSW_MAX_RW; j++) { fsw_vn_zero(st->basis[j], FSW_MAX_RW); }
+  if (k < 0) { k = 0; }
   st->nullity = 0;
   for (j = 0; j < k; j++) {
     int best = -1;
     fsw_real best_n2 = FSW_R(0.0), nr;
     for (c = 0; c < n; c++) {
       fsw_real n2 = p->tau[c][c]; /* |tau_c|^2 = tau_cc for a projector */
-      if (p->avail[c] != FSW_AVAILABLE) continue;
-      for (m = 0; m < j; m++) n2 -= st->basis[m][c] * st->basis[m][c]; /* b_m . tau_c = b_mc */
+      if (p->avail[c] != FSW_AVAILABLE) { continue; }
+      for (m = 0; m < j; m++) { n2 -= st->basis[m][c] * st->basis[m][c]; } /* b_m . tau_c = b_mc */
       if (n2 > best_n2) {
         best_n2 = n2;
         best = c;
       }
     }
-    if (best < 0 || !(best_n2 > FSW_NULL_TOL)) break;
-    for (c = 0; c < n; c++) r[c] = p->tau[c][best]; /* tau is symmetric */
-    for (pass = 0; pass < 2; pass++)
+    if (best < 0 || !(best_n2 > FSW_NULL_TOL)) { break; }
+    for (c = 0; c < n; c++) { r[c] = p->tau[c][best]; } /* tau is symmetric */
+    for (pass = 0; pass < 2; pass++) {
       for (m = 0; m < j; m++) {
         const fsw_real d = fsw_vn_dot(st->basis[m], r, n);
-        for (c = 0; c < n; c++) r[c] -= d * st->basis[m][c];
-      }
+        for (c = 0; c < n; c++) { r[c] -= d * st->basis[m][c]; }
+      } }
     nr = fsw_vn_norm(r, n);
-    if (!(nr > FSW_R(0.0))) break;
-    for (c = 0; c < n; c++) st->basis[j][c] = r[c] / nr;
+    if (!(nr > FSW_R(0.0))) { break; }
+    for (c = 0; c < n; c++) { st->basis[j][c] = r[c] / nr; }
     st->nullity = j + 1;
   }
 }
@@ -85,15 +85,15 @@ FswStatus fsw_rw_bias_check(const FswRwBiasConfig *cfg)
   FswStatus s;
   int i;
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
   s = fsw_rw_check_axes(cfg->gs_hat_B, cfg->num_rw, 1);
-  if (s != FSW_OK) return s;
-  if (!isfinite(cfg->Omega_keepout) || !(cfg->Omega_keepout > FSW_R(0.0))) return FSW_E_CONFIG;
-  if (!isfinite(cfg->Omega_hyst) || !(cfg->Omega_hyst >= FSW_R(0.0))) return FSW_E_CONFIG;
-  if (!(cfg->Omega_keepout + cfg->Omega_hyst <= FSW_R(0.5) * FSW_RW_OMEGA_MAX)) return FSW_E_CONFIG;
+  if (s != FSW_OK) { return s; }
+  if (!isfinite(cfg->Omega_keepout) || !(cfg->Omega_keepout > FSW_R(0.0))) { return FSW_E_CONFIG; }
+  if (!isfinite(cfg->Omega_hyst) || !(cfg->Omega_hyst >= FSW_R(0.0))) { return FSW_E_CONFIG; }
+  if (!(cfg->Omega_keepout + cfg->Omega_hyst <= FSW_R(0.5) * FSW_RW_OMEGA_MAX)) { return FSW_E_CONFIG; }
   for (i = 0; i < cfg->num_rw; i++) {
     const fsw_real a = FSW_FABS(cfg->Omega_bias[i]);
-    if (!isfinite(a) || !(a > cfg->Omega_keepout) || a > FSW_RW_OMEGA_MAX) return FSW_E_CONFIG;
+    if (!isfinite(a) || !(a > cfg->Omega_keepout) || a > FSW_RW_OMEGA_MAX) { return FSW_E_CONFIG; }
   }
   return FSW_OK;
 }
@@ -102,11 +102,11 @@ FswStatus fsw_rw_bias_init(FswRwBiasState *st, const FswRwBiasConfig *cfg)
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
   st->ready = 0;
   fsw_health_clear(&st->health);
   s = fsw_rw_bias_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   fsw_rw_proj_init(&st->proj, cfg->gs_hat_B, cfg->num_rw);
   basis_compute(st);
   st->ready = 1;
@@ -118,16 +118,16 @@ void fsw_rw_bias_reset(FswRwBiasState *st)
 {
   int i;
   FSW_ASSERT(st != NULL);
-  if (st == NULL) return;
-  for (i = 0; i < FSW_MAX_RW; i++) st->in_band[i] = 0;
+  if (st == NULL) { return; }
+  for (i = 0; i < FSW_MAX_RW; i++) { st->in_band[i] = 0; }
 }
 
 /* Number of available wheels whose step delta_i leaves them in their band. */
 static int count_in_band(const BiasWork *w, const fsw_real *delta)
 {
   int i, c = 0;
-  for (i = 0; i < w->n; i++)
-    if (w->avail[i] == FSW_AVAILABLE && (fsw_real)w->s[i] * (w->Om[i] + delta[i]) < (FSW_R(1.0) - FSW_RW_BIAS_TOL) * w->b[i]) c++;
+  for (i = 0; i < w->n; i++) {
+    if (w->avail[i] == FSW_AVAILABLE && (fsw_real)w->s[i] * (w->Om[i] + delta[i]) < (FSW_R(1.0) - FSW_RW_BIAS_TOL) * w->b[i]) { c++; } }
   return c;
 }
 
@@ -139,18 +139,18 @@ static void step_of(fsw_real *delta, const FswRwBiasState *st, const BiasWork *w
   int i, j;
   fsw_real alpha = FSW_R(1.0);
   fsw_vn_zero(delta, FSW_MAX_RW);
-  for (j = 0; j < st->nullity; j++)
-    for (i = 0; i < w->n; i++) delta[i] += lambda[j] * st->basis[j][i];
+  for (j = 0; j < st->nullity; j++) {
+    for (i = 0; i < w->n; i++) { delta[i] += lambda[j] * st->basis[j][i]; } }
   for (i = 0; i < w->n; i++) {
     fsw_real a = alpha;
-    if (w->avail[i] != FSW_AVAILABLE) continue;
-    if (delta[i] > FSW_R(0.0) && w->Om[i] + delta[i] > FSW_RW_OMEGA_MAX)
+    if (w->avail[i] != FSW_AVAILABLE) { continue; }
+    if (delta[i] > FSW_R(0.0) && w->Om[i] + delta[i] > FSW_RW_OMEGA_MAX) {
       a = (FSW_RW_OMEGA_MAX - w->Om[i]) / delta[i];
-    else if (delta[i] < FSW_R(0.0) && w->Om[i] + delta[i] < -FSW_RW_OMEGA_MAX)
-      a = (-FSW_RW_OMEGA_MAX - w->Om[i]) / delta[i];
-    if (a < alpha) alpha = a;
+    } else if (delta[i] < FSW_R(0.0) && w->Om[i] + delta[i] < -FSW_RW_OMEGA_MAX) {
+      a = (-FSW_RW_OMEGA_MAX - w->Om[i]) / delta[i]; }
+    if (a < alpha) { alpha = a; }
   }
-  if (alpha < FSW_R(1.0)) fsw_vn_scale(delta, alpha > FSW_R(0.0) ? alpha : FSW_R(0.0), delta, w->n);
+  if (alpha < FSW_R(1.0)) { fsw_vn_scale(delta, alpha > FSW_R(0.0) ? alpha : FSW_R(0.0), delta, w->n); }
 }
 
 /* k = 1: every constraint is an interval of lambda. */
@@ -163,7 +163,7 @@ static void solve_k1(fsw_real *lambda, const FswRwBiasState *st, const BiasWork 
   /* hard speed bounds (contain lambda = 0) */
   for (i = 0; i < w->n; i++) {
     fsw_real a, c;
-    if (w->avail[i] != FSW_AVAILABLE || FSW_FABS(nv[i]) <= FSW_NULL_TOL) continue;
+    if (w->avail[i] != FSW_AVAILABLE || FSW_FABS(nv[i]) <= FSW_NULL_TOL) { continue; }
     a = (-FSW_RW_OMEGA_MAX - w->Om[i]) / nv[i];
     c = (FSW_RW_OMEGA_MAX - w->Om[i]) / nv[i];
     if (nv[i] < FSW_R(0.0)) {
@@ -171,19 +171,19 @@ static void solve_k1(fsw_real *lambda, const FswRwBiasState *st, const BiasWork 
       a = c;
       c = t;
     }
-    if (a > Hlo) Hlo = a;
-    if (c < Hhi) Hhi = c;
+    if (a > Hlo) { Hlo = a; }
+    if (c < Hhi) { Hhi = c; }
   }
-  if (Hlo > FSW_R(0.0)) Hlo = FSW_R(0.0); /* rounding: 0 is admissible */
-  if (Hhi < FSW_R(0.0)) Hhi = FSW_R(0.0);
+  if (Hlo > FSW_R(0.0)) { Hlo = FSW_R(0.0); } /* rounding: 0 is admissible */
+  if (Hhi < FSW_R(0.0)) { Hhi = FSW_R(0.0); }
   /* keep-out intervals */
   Flo = Hlo;
   Fhi = Hhi;
   for (i = 0; i < w->n; i++) {
     fsw_real a, c;
-    if (w->avail[i] != FSW_AVAILABLE) continue;
+    if (w->avail[i] != FSW_AVAILABLE) { continue; }
     if (FSW_FABS(nv[i]) <= FSW_NULL_TOL) {
-      if (w->lo[i] > FSW_R(0.0) || w->hi[i] < FSW_R(0.0)) Fhi = Flo - FSW_R(1.0); /* fixed in its band */
+      if (w->lo[i] > FSW_R(0.0) || w->hi[i] < FSW_R(0.0)) { Fhi = Flo - FSW_R(1.0); } /* fixed in its band */
       continue;
     }
     a = w->lo[i] / nv[i];
@@ -193,8 +193,8 @@ static void solve_k1(fsw_real *lambda, const FswRwBiasState *st, const BiasWork 
       a = c;
       c = t;
     }
-    if (a > Flo) Flo = a;
-    if (c < Fhi) Fhi = c;
+    if (a > Flo) { Flo = a; }
+    if (c < Fhi) { Fhi = c; }
   }
   if (Flo <= Fhi) {
     lambda[0] = lam_u < Flo ? Flo : (lam_u > Fhi ? Fhi : lam_u);
@@ -209,7 +209,7 @@ static void solve_k1(fsw_real *lambda, const FswRwBiasState *st, const BiasWork 
       cand = lam_u;
     } else {
       i = e / 2;
-      if (w->avail[i] != FSW_AVAILABLE || FSW_FABS(nv[i]) <= FSW_NULL_TOL) continue;
+      if (w->avail[i] != FSW_AVAILABLE || FSW_FABS(nv[i]) <= FSW_NULL_TOL) { continue; }
       cand = ((e % 2) ? w->hi[i] : w->lo[i]) / nv[i];
     }
     cand = cand < Hlo ? Hlo : (cand > Hhi ? Hhi : cand);
@@ -240,25 +240,25 @@ static void solve_hildreth(fsw_real *x, const FswRwBiasState *st, const BiasWork
     fsw_real moved = FSW_R(0.0);
     for (i = 0; i < w->n; i++) {
       fsw_real aa = FSW_R(0.0), t = FSW_R(0.0), m_new = FSW_R(0.0), dm;
-      if (w->avail[i] != FSW_AVAILABLE) continue;
+      if (w->avail[i] != FSW_AVAILABLE) { continue; }
       for (j = 0; j < k; j++) {
         aa += st->basis[j][i] * st->basis[j][i];
         t += st->basis[j][i] * x[j];
       }
-      if (!(aa > FSW_NULL_TOL)) continue;
+      if (!(aa > FSW_NULL_TOL)) { continue; }
       t -= mu[i] * aa; /* a_i . lambda without this constraint's own multiplier */
-      if (t < w->lo[i])
+      if (t < w->lo[i]) {
         m_new = (w->lo[i] - t) / aa;
-      else if (t > w->hi[i])
-        m_new = (w->hi[i] - t) / aa;
+      } else if (t > w->hi[i]) {
+        m_new = (w->hi[i] - t) / aa; }
       dm = m_new - mu[i];
       if (dm != FSW_R(0.0)) {
-        for (j = 0; j < k; j++) x[j] += dm * st->basis[j][i];
+        for (j = 0; j < k; j++) { x[j] += dm * st->basis[j][i]; }
         mu[i] = m_new;
-        if (FSW_FABS(dm) * FSW_SQRT(aa) > moved) moved = FSW_FABS(dm) * FSW_SQRT(aa);
+        if (FSW_FABS(dm) * FSW_SQRT(aa) > moved) { moved = FSW_FABS(dm) * FSW_SQRT(aa); }
       }
     }
-    if (moved <= stop) break;
+    if (moved <= stop) { break; }
   }
 }
 
@@ -271,13 +271,13 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
   int n, i, j, any = 0;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) write_safe(out, cfg, in);
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL)
-    return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG);
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  if (out != NULL) { write_safe(out, cfg, in); }
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
+    return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG); }
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   n = cfg->num_rw;
-  if (!fsw_rw_avail_valid(in->avail, n) || !fsw_rw_avail_speed_ok(in->Omega, in->avail, n))
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (!fsw_rw_avail_valid(in->avail, n) || !fsw_rw_avail_speed_ok(in->Omega, in->avail, n)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
 
   /* hysteresis state and the constraints of this call */
   lam_u = st->scratch.lam_u;
@@ -297,14 +297,14 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
     w.lo[i] = w.hi[i] = FSW_R(0.0);
     w.b[i] = cfg->Omega_keepout;
     w.s[i] = 1;
-    if (in->avail[i] != FSW_AVAILABLE) continue;
-    if (a < cfg->Omega_keepout)
+    if (in->avail[i] != FSW_AVAILABLE) { continue; }
+    if (a < cfg->Omega_keepout) {
       band[i] = 1;
-    else if (a > cfg->Omega_keepout + cfg->Omega_hyst)
+    } else if (a > cfg->Omega_keepout + cfg->Omega_hyst) {
       band[i] = 0;
-    else
-      band[i] = st->in_band[i];
-    if (band[i]) w.b[i] = cfg->Omega_keepout + cfg->Omega_hyst;
+    } else {
+      band[i] = st->in_band[i]; }
+    if (band[i]) { w.b[i] = cfg->Omega_keepout + cfg->Omega_hyst; }
     w.s[i] = (signed char)((om > FSW_R(0.0) || (om == FSW_R(0.0) && cfg->Omega_bias[i] > FSW_R(0.0))) ? 1 : -1);
     if (w.s[i] > 0) {
       w.lo[i] = w.b[i] - om;
@@ -315,15 +315,15 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
     }
   }
 
-  if (fsw_rw_proj_refresh(&st->proj, in->avail)) basis_compute(st);
+  if (fsw_rw_proj_refresh(&st->proj, in->avail)) { basis_compute(st); }
 
   /* unconstrained optimum in the null space */
   fsw_vn_zero(lam_u, FSW_MAX_RW);
   fsw_vn_zero(lambda, FSW_MAX_RW);
   for (j = 0; j < st->nullity; j++) {
     fsw_real sum = FSW_R(0.0);
-    for (i = 0; i < n; i++)
-      if (in->avail[i] == FSW_AVAILABLE) sum += st->basis[j][i] * (cfg->Omega_bias[i] - in->Omega[i]);
+    for (i = 0; i < n; i++) {
+      if (in->avail[i] == FSW_AVAILABLE) { sum += st->basis[j][i] * (cfg->Omega_bias[i] - in->Omega[i]); } }
     lam_u[j] = sum;
   }
   if (st->nullity == 1) {
@@ -337,7 +337,7 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
     if (c1 > 0) { /* not kept out: the unconstrained choice may leave fewer in the band */
       step_of(lambda, st, &w, lam_u); /* lambda is free now: holds that step */
       c2 = count_in_band(&w, lambda);
-      if (c2 < c1) fsw_vn_copy(delta, lambda, FSW_MAX_RW);
+      if (c2 < c1) { fsw_vn_copy(delta, lambda, FSW_MAX_RW); }
     }
   } else {
     fsw_vn_zero(delta, FSW_MAX_RW);
@@ -350,8 +350,8 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
       continue; /* Omega_des_i keeps its held value */
     }
     v = in->Omega[i] + delta[i];
-    if (v > FSW_RW_OMEGA_MAX) v = FSW_RW_OMEGA_MAX; /* last rounding of the alpha step */
-    if (v < -FSW_RW_OMEGA_MAX) v = -FSW_RW_OMEGA_MAX;
+    if (v > FSW_RW_OMEGA_MAX) { v = FSW_RW_OMEGA_MAX; } /* last rounding of the alpha step */
+    if (v < -FSW_RW_OMEGA_MAX) { v = -FSW_RW_OMEGA_MAX; }
     out->Omega_des[i] = v;
     out->in_band[i] = band[i];
     if ((fsw_real)w.s[i] * v < (FSW_R(1.0) - FSW_RW_BIAS_TOL) * w.b[i]) {
@@ -359,7 +359,7 @@ FswStatus fsw_rw_bias_update(FswRwBiasState *st, const FswRwBiasConfig *cfg, con
       any = 1;
     }
   }
-  for (i = 0; i < FSW_MAX_RW; i++) st->in_band[i] = (i < n) ? band[i] : (uint8_t)0;
+  for (i = 0; i < FSW_MAX_RW; i++) { st->in_band[i] = (i < n) ? band[i] : (uint8_t)0; }
   out->crossing_unavoidable = (uint8_t)any;
   out->nullity = st->nullity;
   out->lambda_norm = fsw_vn_norm(delta, n);

@@ -23,22 +23,22 @@ FswStatus fsw_rw_map_check(const FswRwMapConfig *cfg)
   FswStatus s;
   int j, k;
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
   s = fsw_rw_check_axes(cfg->gs_hat_B, cfg->num_rw, 1);
-  if (s != FSW_OK) return s;
-  if (cfg->num_axes < 0 || cfg->num_axes > 3) return FSW_E_CONFIG;
+  if (s != FSW_OK) { return s; }
+  if (cfg->num_axes < 0 || cfg->num_axes > 3) { return FSW_E_CONFIG; }
   for (j = 0; j < cfg->num_axes; j++) {
-    if (!fsw_v3_is_finite(cfg->ctrl_axes_B[j])) return FSW_E_CONFIG;
-    if (FSW_FABS(fsw_v3_norm(cfg->ctrl_axes_B[j]) - FSW_R(1.0)) > FSW_RW_UNIT_TOL)
-      return FSW_E_CONFIG;
-    for (k = 0; k < j; k++)
-      if (FSW_FABS(fsw_v3_dot(cfg->ctrl_axes_B[j], cfg->ctrl_axes_B[k])) > FSW_RW_ORTHO_TOL)
-        return FSW_E_CONFIG;
+    if (!fsw_v3_is_finite(cfg->ctrl_axes_B[j])) { return FSW_E_CONFIG; }
+    if (FSW_FABS(fsw_v3_norm(cfg->ctrl_axes_B[j]) - FSW_R(1.0)) > FSW_RW_UNIT_TOL) {
+      return FSW_E_CONFIG; }
+    for (k = 0; k < j; k++) {
+      if (FSW_FABS(fsw_v3_dot(cfg->ctrl_axes_B[j], cfg->ctrl_axes_B[k])) > FSW_RW_ORTHO_TOL) {
+        return FSW_E_CONFIG; } }
   }
   if (cfg->mode == FSW_RW_MAP_POWER) {
     if (!fsw_rw_all_positive(&cfg->eps_P, 1) || cfg->eps_P < FSW_RW_MAP_EPS_P_MIN ||
-        cfg->eps_P > FSW_RW_MAP_EPS_P_MAX)
-      return FSW_E_CONFIG;
+        cfg->eps_P > FSW_RW_MAP_EPS_P_MAX) {
+      return FSW_E_CONFIG; }
   } else if (cfg->mode != FSW_RW_MAP_MIN_NORM) {
     return FSW_E_CONFIG;
   }
@@ -49,12 +49,12 @@ FswStatus fsw_rw_map_init(FswRwMapState *st, const FswRwMapConfig *cfg)
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
   st->ready = 0;
   st->work.mn_valid = 0;
   fsw_health_clear(&st->health);
   s = fsw_rw_map_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   st->ready = 1;
   fsw_rw_map_reset(st);
   return FSW_OK;
@@ -65,7 +65,7 @@ void fsw_rw_map_reset(FswRwMapState *st)
   FSW_ASSERT(st != NULL);
   /* stateless: nothing time-varying to clear; the MIN_NORM factor kept for
    * the last mask (FswRwMapWork) is formed anew at the next update */
-  if (st != NULL) st->work.mn_valid = 0;
+  if (st != NULL) { st->work.mn_valid = 0; }
 }
 
 /* A = [C][Gs_a] diag(sqrt(y)) over the available wheels, with idx, sy and
@@ -78,7 +78,7 @@ static FswStatus form_map(FswRwMapWork *w, const FswRwMapConfig *cfg, const FswR
   const int n = cfg->num_rw, nc = cfg->num_axes;
   int na = 0, i, j, k;
   for (i = 0; i < n; i++) {
-    if (in->avail[i] != FSW_AVAILABLE) continue;
+    if (in->avail[i] != FSW_AVAILABLE) { continue; }
     w->idx[na] = i;
     /* y = 1/W, W = Omega^2 + eps_P; Omega^2 overflowing gives y = 0 */
     w->sy[na] = (cfg->mode == FSW_RW_MAP_POWER)
@@ -87,7 +87,7 @@ static FswStatus form_map(FswRwMapWork *w, const FswRwMapConfig *cfg, const FswR
     na++;
   }
   *na_out = na;
-  if (na < nc) return FSW_W_SINGULAR;
+  if (na < nc) { return FSW_W_SINGULAR; }
   for (j = 0; j < nc; j++) {
     d = FSW_R(0.0);
     for (k = 0; k < na; k++) {
@@ -95,7 +95,7 @@ static FswStatus form_map(FswRwMapWork *w, const FswRwMapConfig *cfg, const FswR
       d += m * m;
       w->A[j][k] = m * w->sy[k];
     }
-    if (d > d_max) d_max = d;
+    if (d > d_max) { d_max = d; }
   }
   /* The geometry [C][Gs_a] is dimensionless (unit rows and columns, so
    * each entry is at most 1 in size): when every entry is at the rounding
@@ -103,7 +103,7 @@ static FswStatus form_map(FswRwMapWork *w, const FswRwMapConfig *cfg, const FswR
    * FSW_RANK_TOL), no control axis can be reached, however the entries'
    * rounding noise makes K1's scale-invariant test see a full-rank A
    * (a single wheel at 90 deg to a single control axis: c . g ~ 1e-17). */
-  if (!(d_max > FSW_RANK_TOL)) return FSW_W_SINGULAR;
+  if (!(d_max > FSW_RANK_TOL)) { return FSW_W_SINGULAR; }
   (void)fsw_minnorm_factor(&w->k1, FSW_CM3N(w->A), nc, na);
   return FSW_OK;
 }
@@ -117,22 +117,22 @@ FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
   FswStatus s;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) fsw_rw_zero(out->u_s); /* safe output */
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  if (out != NULL) { fsw_rw_zero(out->u_s); } /* safe output */
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) { return FSW_E_NULL_ARG; }
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   w = &st->work;
   n = cfg->num_rw;
   nc = cfg->num_axes;
 
   if (!fsw_v3_is_finite(in->Lr_B) || !fsw_rw_avail_valid(in->avail, n) ||
-      (cfg->mode == FSW_RW_MAP_POWER && !fsw_rw_avail_finite(in->Omega, in->avail, n)))
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
-  if (nc == 0) return fsw_health_record(&st->health, FSW_OK);
+      (cfg->mode == FSW_RW_MAP_POWER && !fsw_rw_avail_finite(in->Omega, in->avail, n))) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
+  if (nc == 0) { return fsw_health_record(&st->health, FSW_OK); }
 
   if (cfg->mode == FSW_RW_MAP_MIN_NORM && w->mn_valid) {
     for (i = 0; i < n && w->mn_avail[i] == in->avail[i]; i++) {
     }
-    if (i < n) w->mn_valid = 0; /* another mask */
+    if (i < n) { w->mn_valid = 0; } /* another mask */
   }
   if (cfg->mode == FSW_RW_MAP_MIN_NORM && w->mn_valid) {
     na = w->mn_na; /* A, idx, sy and k1 as formed for this mask */
@@ -140,24 +140,24 @@ FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
   } else {
     s = form_map(w, cfg, in, &na);
     if (cfg->mode == FSW_RW_MAP_MIN_NORM) {
-      for (i = 0; i < n; i++) w->mn_avail[i] = in->avail[i];
+      for (i = 0; i < n; i++) { w->mn_avail[i] = in->avail[i]; }
       w->mn_na = na;
       w->mn_geo = s;
       w->mn_valid = 1;
     }
   }
-  if (s != FSW_OK) return fsw_health_record(&st->health, s);
+  if (s != FSW_OK) { return fsw_health_record(&st->health, s); }
 
-  for (j = 0; j < nc; j++) b[j] = -fsw_v3_dot(cfg->ctrl_axes_B[j], in->Lr_B);
+  for (j = 0; j < nc; j++) { b[j] = -fsw_v3_dot(cfg->ctrl_axes_B[j], in->Lr_B); }
   /* K1 judges rank by its pivot floor and by the delivered residual
    * (fsw_linalg.h); FSW_E_BAD_INPUT from it means b = -[C] Lr or the
    * solution overflows the real type (finite but huge Lr). */
   s = fsw_minnorm_solve_factored(w->x, &w->k1, FSW_CM3N(w->A), b);
-  if (s == FSW_E_SINGULAR) return fsw_health_record(&st->health, FSW_W_SINGULAR);
-  if (s != FSW_OK) return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
-  for (j = 0; j < nc; j++) r[j] = b[j] - fsw_vn_dot(w->A[j], w->x, na);
-  if (fsw_minnorm_solve_factored(w->dx, &w->k1, FSW_CM3N(w->A), r) == FSW_OK)
-    for (k = 0; k < na; k++) w->x[k] += w->dx[k];
+  if (s == FSW_E_SINGULAR) { return fsw_health_record(&st->health, FSW_W_SINGULAR); }
+  if (s != FSW_OK) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
+  for (j = 0; j < nc; j++) { r[j] = b[j] - fsw_vn_dot(w->A[j], w->x, na); }
+  if (fsw_minnorm_solve_factored(w->dx, &w->k1, FSW_CM3N(w->A), r) == FSW_OK) {
+    for (k = 0; k < na; k++) { w->x[k] += w->dx[k]; } }
   for (k = 0; k < na; k++) {
     const fsw_real u = w->x[k] * w->sy[k];
     if (!isfinite(u)) { /* overflow of a finite request: bad input, u = 0 */

@@ -9,14 +9,14 @@ FswStatus fsw_rw_null_check(const FswRwNullConfig *cfg)
 {
   FswStatus s;
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
   s = fsw_rw_check_axes(cfg->gs_hat_B, cfg->num_rw, 1);
-  if (s != FSW_OK) return s;
-  if (!fsw_rw_all_in_range(&cfg->k_null, 1, FSW_R(0.0), FSW_RW_GAIN_MAX)) return FSW_E_CONFIG;
-  if (cfg->scale_to_fit != 0 && cfg->scale_to_fit != 1) return FSW_E_CONFIG;
+  if (s != FSW_OK) { return s; }
+  if (!fsw_rw_all_in_range(&cfg->k_null, 1, FSW_R(0.0), FSW_RW_GAIN_MAX)) { return FSW_E_CONFIG; }
+  if (cfg->scale_to_fit != 0 && cfg->scale_to_fit != 1) { return FSW_E_CONFIG; }
   if (cfg->scale_to_fit &&
-      !fsw_rw_all_in_range(cfg->u_max, cfg->num_rw, FSW_RW_U_MAX_MIN, FSW_RW_U_MAX_MAX))
-    return FSW_E_CONFIG;
+      !fsw_rw_all_in_range(cfg->u_max, cfg->num_rw, FSW_RW_U_MAX_MIN, FSW_RW_U_MAX_MAX)) {
+    return FSW_E_CONFIG; }
   return FSW_OK;
 }
 
@@ -24,11 +24,11 @@ FswStatus fsw_rw_null_init(FswRwNullState *st, const FswRwNullConfig *cfg)
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
   st->ready = 0;
   fsw_health_clear(&st->health);
   s = fsw_rw_null_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   fsw_rw_proj_init(&st->proj, cfg->gs_hat_B, cfg->num_rw);
   st->ready = 1;
   fsw_rw_null_reset(st);
@@ -55,15 +55,15 @@ FswStatus fsw_rw_null_update(FswRwNullState *st, const FswRwNullConfig *cfg,
     fsw_rw_zero(out->u_s); /* safe output */
     out->kappa = FSW_R(0.0);
   }
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) { return FSW_E_NULL_ARG; }
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   n = cfg->num_rw;
   if (!fsw_rw_avail_valid(in->avail, n) || !fsw_vn_is_finite(in->u_s, n) ||
       !fsw_rw_avail_speed_ok(in->Omega, in->avail, n) ||
-      !fsw_rw_avail_speed_ok(in->Omega_des, in->avail, n))
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+      !fsw_rw_avail_speed_ok(in->Omega_des, in->avail, n)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
 
-  for (i = 0; i < FSW_MAX_RW; i++) avail_prev[i] = st->proj.avail[i];
+  for (i = 0; i < FSW_MAX_RW; i++) { avail_prev[i] = st->proj.avail[i]; }
   (void)fsw_rw_proj_refresh(&st->proj, in->avail);
   for (i = 0; i < n; i++) {
     const int a = in->avail[i] == FSW_AVAILABLE;

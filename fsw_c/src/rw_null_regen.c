@@ -16,16 +16,16 @@ FswStatus fsw_rw_null_regen_check(const FswRwNullRegenConfig *cfg)
 {
   FswStatus s;
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
   s = fsw_rw_check_axes(cfg->gs_hat_B, cfg->num_rw, 1);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   if (cfg->mode == FSW_RW_REGEN_GRADIENT) {
-    if (!fsw_rw_all_in_range(&cfg->k_P, 1, FSW_R(0.0), FSW_RW_GAIN_MAX)) return FSW_E_CONFIG;
+    if (!fsw_rw_all_in_range(&cfg->k_P, 1, FSW_R(0.0), FSW_RW_GAIN_MAX)) { return FSW_E_CONFIG; }
   } else if (cfg->mode != FSW_RW_REGEN_OPTIMUM) {
     return FSW_E_CONFIG;
   }
-  if (!fsw_rw_all_in_range(cfg->u_max, cfg->num_rw, FSW_RW_U_MAX_MIN, FSW_RW_U_MAX_MAX))
-    return FSW_E_CONFIG;
+  if (!fsw_rw_all_in_range(cfg->u_max, cfg->num_rw, FSW_RW_U_MAX_MIN, FSW_RW_U_MAX_MAX)) {
+    return FSW_E_CONFIG; }
   return FSW_OK;
 }
 
@@ -33,11 +33,11 @@ FswStatus fsw_rw_null_regen_init(FswRwNullRegenState *st, const FswRwNullRegenCo
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
   st->ready = 0;
   fsw_health_clear(&st->health);
   s = fsw_rw_null_regen_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   fsw_rw_proj_init(&st->proj, cfg->gs_hat_B, cfg->num_rw);
   st->ready = 1;
   fsw_rw_null_regen_reset(st);
@@ -62,21 +62,21 @@ static FswStatus regen_optimum(fsw_real *u, const FswRwNullProj *p, const fsw_re
   fsw_real om_n, om_norm, alpha;
   int n = p->num_rw, i, k = 0, have = 0;
 
-  for (i = 0; i < n; i++)
+  for (i = 0; i < n; i++) {
     if (p->tau[i][i] > tmax) {
       tmax = p->tau[i][i];
       k = i;
-    }
+    } }
   for (i = 0; i < n; i++) {
     nv[i] = p->tau[i][k] / FSW_SQRT(tmax);
-    if (sg == FSW_R(0.0) && nv[i] != FSW_R(0.0)) sg = (nv[i] > FSW_R(0.0)) ? FSW_R(1.0) : -FSW_R(1.0);
+    if (sg == FSW_R(0.0) && nv[i] != FSW_R(0.0)) { sg = (nv[i] > FSW_R(0.0)) ? FSW_R(1.0) : -FSW_R(1.0); }
   }
-  for (i = 0; i < n; i++) nv[i] *= sg;
+  for (i = 0; i < n; i++) { nv[i] *= sg; }
 
   for (i = 0; i < n; i++) {
     fsw_real a, b;
     if (nv[i] == FSW_R(0.0)) {
-      if (FSW_FABS(u0[i]) > u_max[i]) return FSW_W_SAT; /* no alpha helps */
+      if (FSW_FABS(u0[i]) > u_max[i]) { return FSW_W_SAT; } /* no alpha helps */
       continue;
     }
     a = (-u_max[i] - u0[i]) / nv[i];
@@ -86,24 +86,24 @@ static FswStatus regen_optimum(fsw_real *u, const FswRwNullProj *p, const fsw_re
       a = b;
       b = t;
     }
-    if (!have || a > lo) lo = a;
-    if (!have || b < hi) hi = b;
+    if (!have || a > lo) { lo = a; }
+    if (!have || b < hi) { hi = b; }
     have = 1;
   }
-  if (lo > hi) return FSW_W_SAT;
+  if (lo > hi) { return FSW_W_SAT; }
 
   om_n = fsw_vn_dot(Omega, nv, n);
   om_norm = fsw_vn_norm(Omega, n);
-  if (om_n > REGEN_TIE_TOL * om_norm)
+  if (om_n > REGEN_TIE_TOL * om_norm) {
     alpha = lo;
-  else if (om_n < -REGEN_TIE_TOL * om_norm)
+  } else if (om_n < -REGEN_TIE_TOL * om_norm) {
     alpha = hi;
-  else
-    alpha = FSW_R(0.0);
+  } else {
+    alpha = FSW_R(0.0); }
   for (i = 0; i < n; i++) {
     u[i] = u0[i] + alpha * nv[i];
-    if (u[i] > u_max[i]) u[i] = u_max[i]; /* last-ulp rounding only */
-    if (u[i] < -u_max[i]) u[i] = -u_max[i];
+    if (u[i] > u_max[i]) { u[i] = u_max[i]; } /* last-ulp rounding only */
+    if (u[i] < -u_max[i]) { u[i] = -u_max[i]; }
   }
   return FSW_OK;
 }
@@ -121,14 +121,14 @@ FswStatus fsw_rw_null_regen_update(FswRwNullRegenState *st, const FswRwNullRegen
     fsw_rw_zero(out->u_s); /* safe output */
     out->power = FSW_R(0.0);
   }
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) { return FSW_E_NULL_ARG; }
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   n = cfg->num_rw;
   if (!fsw_rw_avail_valid(in->avail, n) || !fsw_vn_is_finite(in->u_s, n) ||
-      !fsw_rw_avail_speed_ok(in->Omega, in->avail, n))
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+      !fsw_rw_avail_speed_ok(in->Omega, in->avail, n)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
 
-  for (i = 0; i < FSW_MAX_RW; i++) avail_prev[i] = st->proj.avail[i];
+  for (i = 0; i < FSW_MAX_RW; i++) { avail_prev[i] = st->proj.avail[i]; }
   (void)fsw_rw_proj_refresh(&st->proj, in->avail);
   for (i = 0; i < n; i++) {
     const int a = in->avail[i] == FSW_AVAILABLE;
@@ -142,7 +142,7 @@ FswStatus fsw_rw_null_regen_update(FswRwNullRegenState *st, const FswRwNullRegen
     /* steepest descent of P in the null space: -k_P [tau] Omega */
     fsw_vn_scale(d, -cfg->k_P, om, n);
     fsw_rw_proj_apply(du, &st->proj, d);
-    if (fsw_rw_add_scaled_to_fit(out->u_s, u0, du, cfg->u_max, n) < FSW_R(1.0)) s = FSW_W_SAT;
+    if (fsw_rw_add_scaled_to_fit(out->u_s, u0, du, cfg->u_max, n) < FSW_R(1.0)) { s = FSW_W_SAT; }
   } else if (nullity == 1) {
     s = regen_optimum(out->u_s, &st->proj, u0, om, cfg->u_max);
   } else if (nullity > 1) {

@@ -10,10 +10,10 @@
 FswStatus fsw_rw_sat_check(const FswRwSatConfig *cfg)
 {
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
-  if (cfg->num_rw < 1 || cfg->num_rw > FSW_MAX_RW) return FSW_E_CAPACITY;
-  if (!fsw_rw_all_positive(cfg->u_max, cfg->num_rw)) return FSW_E_CONFIG;
-  if (cfg->mode != FSW_RW_SAT_SCALE && cfg->mode != FSW_RW_SAT_CLIP) return FSW_E_CONFIG;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
+  if (cfg->num_rw < 1 || cfg->num_rw > FSW_MAX_RW) { return FSW_E_CAPACITY; }
+  if (!fsw_rw_all_positive(cfg->u_max, cfg->num_rw)) { return FSW_E_CONFIG; }
+  if (cfg->mode != FSW_RW_SAT_SCALE && cfg->mode != FSW_RW_SAT_CLIP) { return FSW_E_CONFIG; }
   return FSW_OK;
 }
 
@@ -21,11 +21,11 @@ FswStatus fsw_rw_sat_init(FswRwSatState *st, const FswRwSatConfig *cfg)
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
   st->ready = 0;
   fsw_health_clear(&st->health);
   s = fsw_rw_sat_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   st->ready = 1;
   fsw_rw_sat_reset(st);
   return FSW_OK;
@@ -43,27 +43,27 @@ FswStatus fsw_rw_sat_update(FswRwSatState *st, const FswRwSatConfig *cfg, const 
   fsw_real s = FSW_R(0.0);
   int n, i, limited = 0;
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) fsw_rw_zero(out->u_s); /* safe output */
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  if (out != NULL) { fsw_rw_zero(out->u_s); } /* safe output */
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) { return FSW_E_NULL_ARG; }
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   n = cfg->num_rw;
-  if (!fsw_vn_is_finite(in->u_s, n) || !fsw_rw_avail_valid(in->avail, n))
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  if (!fsw_vn_is_finite(in->u_s, n) || !fsw_rw_avail_valid(in->avail, n)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
 
   for (i = 0; i < n; i++) {
     fsw_real r;
-    if (in->avail[i] != FSW_AVAILABLE) continue;
+    if (in->avail[i] != FSW_AVAILABLE) { continue; }
     out->u_s[i] = in->u_s[i];
     r = FSW_FABS(in->u_s[i]) / cfg->u_max[i];
-    if (r > s) s = r;
+    if (r > s) { s = r; }
   }
   if (s > FSW_R(1.0)) {
     limited = 1;
     for (i = 0; i < n; i++) {
-      if (cfg->mode == FSW_RW_SAT_SCALE) out->u_s[i] /= s;
+      if (cfg->mode == FSW_RW_SAT_SCALE) { out->u_s[i] /= s; }
       /* CLIP, and the last rounding of SCALE */
-      if (out->u_s[i] > cfg->u_max[i]) out->u_s[i] = cfg->u_max[i];
-      if (out->u_s[i] < -cfg->u_max[i]) out->u_s[i] = -cfg->u_max[i];
+      if (out->u_s[i] > cfg->u_max[i]) { out->u_s[i] = cfg->u_max[i]; }
+      if (out->u_s[i] < -cfg->u_max[i]) { out->u_s[i] = -cfg->u_max[i]; }
     }
   }
   return fsw_health_record(&st->health, limited ? FSW_W_SAT : FSW_OK);

@@ -22,26 +22,26 @@ FswStatus fsw_thr_momentum_check(const FswThrMomentumConfig *cfg)
   FswStatus s;
   fsw_real cycle; /* [N*m*s] impulse of one full-torque cycle */
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
   s = fsw_rw_check_axes(cfg->gs_hat_B, cfg->num_rw, 1);
-  if (s != FSW_OK) return s;
-  if (cfg->num_thr < 1 || cfg->num_thr > FSW_MAX_THR) return FSW_E_CAPACITY;
-  if (!fsw_rw_all_in_range(cfg->J_s, cfg->num_rw, FSW_R(0.0), FSW_RW_J_S_MAX)) return FSW_E_CONFIG;
-  if (!in_range(cfg->L_dump, FSW_THR_MOM_L_MIN, FSW_THR_MOM_L_MAX)) return FSW_E_CONFIG;
-  if (!in_range(cfg->dt_cycle, FSW_THR_MOM_T_MIN, FSW_THR_MOM_DT_MAX)) return FSW_E_CONFIG;
-  if (!in_range(cfg->t_min_pulse, FSW_THR_MOM_T_MIN, FSW_THR_MOM_T_MAX)) return FSW_E_CONFIG;
-  if (!in_range(cfg->t_pulse_max, cfg->t_min_pulse, FSW_THR_MOM_T_MAX)) return FSW_E_CONFIG;
-  if (!(cfg->t_pulse_max <= FSW_THR_MOM_CYCLES_MAX * cfg->dt_cycle)) return FSW_E_CONFIG;
-  if (!in_range(cfg->t_coast, FSW_R(0.0), FSW_THR_MOM_T_MAX)) return FSW_E_CONFIG;
+  if (s != FSW_OK) { return s; }
+  if (cfg->num_thr < 1 || cfg->num_thr > FSW_MAX_THR) { return FSW_E_CAPACITY; }
+  if (!fsw_rw_all_in_range(cfg->J_s, cfg->num_rw, FSW_R(0.0), FSW_RW_J_S_MAX)) { return FSW_E_CONFIG; }
+  if (!in_range(cfg->L_dump, FSW_THR_MOM_L_MIN, FSW_THR_MOM_L_MAX)) { return FSW_E_CONFIG; }
+  if (!in_range(cfg->dt_cycle, FSW_THR_MOM_T_MIN, FSW_THR_MOM_DT_MAX)) { return FSW_E_CONFIG; }
+  if (!in_range(cfg->t_min_pulse, FSW_THR_MOM_T_MIN, FSW_THR_MOM_T_MAX)) { return FSW_E_CONFIG; }
+  if (!in_range(cfg->t_pulse_max, cfg->t_min_pulse, FSW_THR_MOM_T_MAX)) { return FSW_E_CONFIG; }
+  if (!(cfg->t_pulse_max <= FSW_THR_MOM_CYCLES_MAX * cfg->dt_cycle)) { return FSW_E_CONFIG; }
+  if (!in_range(cfg->t_coast, FSW_R(0.0), FSW_THR_MOM_T_MAX)) { return FSW_E_CONFIG; }
   cycle = cfg->L_dump * cfg->dt_cycle;
   if (!in_range(cfg->h_upper, FSW_R(0.0), FSW_THR_MOM_H_MAX) || !(cfg->h_upper > FSW_R(0.0)) ||
-      !(cfg->h_upper <= FSW_THR_MOM_CYCLES_MAX * cycle))
-    return FSW_E_CONFIG;
-  if (!in_range(cfg->h_lower, FSW_R(0.0), cfg->h_upper) || !(cfg->h_lower < cfg->h_upper)) return FSW_E_CONFIG;
+      !(cfg->h_upper <= FSW_THR_MOM_CYCLES_MAX * cycle)) {
+    return FSW_E_CONFIG; }
+  if (!in_range(cfg->h_lower, FSW_R(0.0), cfg->h_upper) || !(cfg->h_lower < cfg->h_upper)) { return FSW_E_CONFIG; }
   /* the band must hold at least one minimum pulse, or no dump can start */
-  if (!(cfg->h_upper - cfg->h_lower >= cfg->L_dump * cfg->t_min_pulse)) return FSW_E_CONFIG;
-  if (!fsw_rw_all_in_range(cfg->F_max, cfg->num_thr, FSW_R(0.0), FSW_THR_MOM_F_MAX)) return FSW_E_CONFIG;
-  if (!in_range(cfg->Isp, FSW_THR_MOM_ISP_MIN, FSW_THR_MOM_ISP_MAX)) return FSW_E_CONFIG;
+  if (!(cfg->h_upper - cfg->h_lower >= cfg->L_dump * cfg->t_min_pulse)) { return FSW_E_CONFIG; }
+  if (!fsw_rw_all_in_range(cfg->F_max, cfg->num_thr, FSW_R(0.0), FSW_THR_MOM_F_MAX)) { return FSW_E_CONFIG; }
+  if (!in_range(cfg->Isp, FSW_THR_MOM_ISP_MIN, FSW_THR_MOM_ISP_MAX)) { return FSW_E_CONFIG; }
   return FSW_OK;
 }
 
@@ -49,11 +49,11 @@ FswStatus fsw_thr_momentum_init(FswThrMomentumState *st, const FswThrMomentumCon
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
   st->ready = 0;
   fsw_health_clear(&st->health);
   s = fsw_thr_momentum_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   st->ready = 1;
   fsw_thr_momentum_reset(st);
   return FSW_OK;
@@ -62,7 +62,7 @@ FswStatus fsw_thr_momentum_init(FswThrMomentumState *st, const FswThrMomentumCon
 void fsw_thr_momentum_reset(FswThrMomentumState *st)
 {
   FSW_ASSERT(st != NULL);
-  if (st == NULL) return;
+  if (st == NULL) { return; }
   fsw_clock_reset(&st->clock);
   st->phase = FSW_THR_MOM_IDLE;
   st->phase_out = FSW_THR_MOM_IDLE;
@@ -86,8 +86,8 @@ void fsw_thr_momentum_reset(FswThrMomentumState *st)
 static void report(FswThrMomentumOut *out, const FswThrMomentumState *st)
 {
   out->phase = st->phase_out;
-  if (st->phase_out != FSW_THR_MOM_IDLE) fsw_v3_scale(out->dH_rem_B, st->I_rem, st->u_B);
-  else fsw_v3_zero(out->dH_rem_B);
+  if (st->phase_out != FSW_THR_MOM_IDLE) { fsw_v3_scale(out->dH_rem_B, st->I_rem, st->u_B); }
+  else { fsw_v3_zero(out->dH_rem_B); }
   fsw_v3_copy(out->dH_B, st->dH_B);
   out->dumps = st->dumps;
   out->aborts = st->aborts;
@@ -116,11 +116,11 @@ static void zero_out(FswThrMomentumOut *out)
 static int input_ok(const FswThrMomentumConfig *cfg, const FswThrMomentumIn *in)
 {
   int j;
-  if (!fsw_rw_avail_valid(in->avail, cfg->num_rw)) return 0;
-  if (!fsw_rw_avail_speed_ok(in->Omega, in->avail, cfg->num_rw)) return 0;
-  for (j = 0; j < cfg->num_thr; j++)
-    if (!in_range(in->t_on_prev[j], FSW_R(0.0), FSW_THR_MOM_T_ON_MAX)) return 0;
-  if (in->enable > 1u || in->force_dump > 1u) return 0;
+  if (!fsw_rw_avail_valid(in->avail, cfg->num_rw)) { return 0; }
+  if (!fsw_rw_avail_speed_ok(in->Omega, in->avail, cfg->num_rw)) { return 0; }
+  for (j = 0; j < cfg->num_thr; j++) {
+    if (!in_range(in->t_on_prev[j], FSW_R(0.0), FSW_THR_MOM_T_ON_MAX)) { return 0; } }
+  if (in->enable > 1u || in->force_dump > 1u) { return 0; }
   return 1;
 }
 
@@ -141,7 +141,7 @@ static void pulse_command(FswThrMomentumState *st, const FswThrMomentumConfig *c
   const fsw_real full = cfg->L_dump * cfg->dt_cycle; /* [N*m*s] */
   const fsw_real I_c = st->I_pulse < full ? st->I_pulse : full;
   fsw_real L = I_c / cfg->dt_cycle;
-  if (L > cfg->L_dump) L = cfg->L_dump; /* rounding of the quotient */
+  if (L > cfg->L_dump) { L = cfg->L_dump; } /* rounding of the quotient */
   fsw_v3_scale(L_thr_B, L, st->u_B);
   st->L_prev = L;
   st->t_cmd_ns = t_ns;
@@ -189,9 +189,9 @@ FswStatus fsw_thr_momentum_update(FswThrMomentumState *st, const FswThrMomentumC
   int i, out_phase;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) zero_out(out); /* safe output */
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL) return FSW_E_NULL_ARG;
-  if (!st->ready) return fsw_health_record(&st->health, FSW_E_NOT_INIT);
+  if (out != NULL) { zero_out(out); } /* safe output */
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) { return FSW_E_NULL_ARG; }
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   if (!input_ok(cfg, in)) {
     report(out, st);
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
@@ -204,8 +204,8 @@ FswStatus fsw_thr_momentum_update(FswThrMomentumState *st, const FswThrMomentumC
   /* Inputs are valid and bounded: nothing below can fail or overflow, so
    * the state is advanced in place from here on. */
   if (st->clock.has_prev && st->L_prev > FSW_R(0.0) &&
-      FSW_FABS(dt - cfg->dt_cycle) > FSW_THR_MOM_RATE_TOL * cfg->dt_cycle)
-    s = FSW_W_RATE;
+      FSW_FABS(dt - cfg->dt_cycle) > FSW_THR_MOM_RATE_TOL * cfg->dt_cycle) {
+    s = FSW_W_RATE; }
 
   fsw_rw_momentum(h, cfg->gs_hat_B, cfg->J_s, in->Omega, in->avail, cfg->num_rw);
   hn = fsw_v3_norm(h);
@@ -213,7 +213,7 @@ FswStatus fsw_thr_momentum_update(FswThrMomentumState *st, const FswThrMomentumC
   /* propellant of the previous cycle's on-times, attributed to that cycle */
   if (st->clock.has_prev && st->phase_out != FSW_THR_MOM_IDLE) {
     dm = FSW_R(0.0);
-    for (i = 0; i < cfg->num_thr; i++) dm += cfg->F_max[i] * in->t_on_prev[i];
+    for (i = 0; i < cfg->num_thr; i++) { dm += cfg->F_max[i] * in->t_on_prev[i]; }
     dm /= cfg->Isp * FSW_THR_MOM_G0;
     st->prop_dump += dm;
     st->prop_total += dm;
@@ -250,9 +250,9 @@ FswStatus fsw_thr_momentum_update(FswThrMomentumState *st, const FswThrMomentumC
       st->dumps = inc_sat(st->dumps);
     }
   }
-  if (out_phase != FSW_THR_MOM_IDLE || st->phase_out != FSW_THR_MOM_IDLE)
-    st->t_dump = ns_to_s(st->t_start_ns, in->t_ns); /* active, or ended in this call */
-  if (st->phase == FSW_THR_MOM_IDLE) st->I_rem = FSW_R(0.0);
+  if (out_phase != FSW_THR_MOM_IDLE || st->phase_out != FSW_THR_MOM_IDLE) {
+    st->t_dump = ns_to_s(st->t_start_ns, in->t_ns); } /* active, or ended in this call */
+  if (st->phase == FSW_THR_MOM_IDLE) { st->I_rem = FSW_R(0.0); }
   st->phase_out = out_phase;
   fsw_clock_commit(&st->clock, in->t_ns);
 
@@ -265,8 +265,8 @@ FswStatus fsw_thr_momentum_update(FswThrMomentumState *st, const FswThrMomentumC
 fsw_real fsw_thr_momentum_dump_interval(fsw_real h_upper, fsw_real h_lower, fsw_real L_dist)
 {
   fsw_real T;
-  if (!isfinite(h_upper) || !isfinite(h_lower) || !isfinite(L_dist)) return FSW_R(0.0);
-  if (!(h_lower >= FSW_R(0.0)) || !(h_upper > h_lower) || L_dist == FSW_R(0.0)) return FSW_R(0.0);
+  if (!isfinite(h_upper) || !isfinite(h_lower) || !isfinite(L_dist)) { return FSW_R(0.0); }
+  if (!(h_lower >= FSW_R(0.0)) || !(h_upper > h_lower) || L_dist == FSW_R(0.0)) { return FSW_R(0.0); }
   T = (h_upper - h_lower) / FSW_FABS(L_dist);
   return isfinite(T) ? T : FSW_R(0.0);
 }
@@ -274,8 +274,8 @@ fsw_real fsw_thr_momentum_dump_interval(fsw_real h_upper, fsw_real h_lower, fsw_
 fsw_real fsw_thr_momentum_prop_per_dump(fsw_real dH, fsw_real lever_arm, fsw_real Isp)
 {
   fsw_real m;
-  if (!isfinite(dH) || !isfinite(lever_arm) || !isfinite(Isp)) return FSW_R(0.0);
-  if (!(lever_arm > FSW_R(0.0)) || !(Isp > FSW_R(0.0))) return FSW_R(0.0);
+  if (!isfinite(dH) || !isfinite(lever_arm) || !isfinite(Isp)) { return FSW_R(0.0); }
+  if (!(lever_arm > FSW_R(0.0)) || !(Isp > FSW_R(0.0))) { return FSW_R(0.0); }
   m = FSW_FABS(dH) / lever_arm / (Isp * FSW_THR_MOM_G0);
   return isfinite(m) ? m : FSW_R(0.0);
 }

@@ -9,14 +9,14 @@
 FswStatus fsw_thr_pulse_rem_check(const FswThrPulseRemConfig *cfg)
 {
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
   return fsw_thr_pulse_check_common(&cfg->common);
 }
 
 void fsw_thr_pulse_rem_reset(FswThrPulseRemState *st)
 {
   FSW_ASSERT(st != NULL);
-  if (st == NULL) return;
+  if (st == NULL) { return; }
   fsw_vn_zero(st->rem, FSW_MAX_THR);
   fsw_clock_reset(&st->common.clock);
 }
@@ -25,11 +25,11 @@ FswStatus fsw_thr_pulse_rem_init(FswThrPulseRemState *st, const FswThrPulseRemCo
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
   fsw_thr_pulse_init_common(&st->common);
   fsw_thr_pulse_rem_reset(st);
   s = fsw_thr_pulse_rem_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   st->common.ready = 1;
   return FSW_OK;
 }
@@ -43,14 +43,14 @@ FswStatus fsw_thr_pulse_rem_update(FswThrPulseRemState *st, const FswThrPulseRem
   int i, saturated = 0;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) fsw_thr_pulse_safe_output(out->t_on);
+  if (out != NULL) { fsw_thr_pulse_safe_output(out->t_on); }
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
-    if (st != NULL) (void)fsw_health_record(&st->common.health, FSW_E_NULL_ARG);
+    if (st != NULL) { (void)fsw_health_record(&st->common.health, FSW_E_NULL_ARG); }
     return FSW_E_NULL_ARG;
   }
   c = &cfg->common;
   s = fsw_thr_pulse_begin(&st->common, in->F, c->num_thr, 1, in->t_ns, &dt);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
 
   if (!st->common.clock.has_prev) {
     fsw_thr_pulse_first_output(out->t_on, c);
@@ -64,7 +64,7 @@ FswStatus fsw_thr_pulse_rem_update(FswThrPulseRemState *st, const FswThrPulseRem
         st->rem[i] = t / c->t_min;
         out->t_on[i] = FSW_R(0.0);
       } else if (t >= dt) {
-        if (t > dt) saturated = 1;
+        if (t > dt) { saturated = 1; }
         out->t_on[i] = THR_PULSE_SAT_FACTOR * dt;
       } else {
         out->t_on[i] = t;

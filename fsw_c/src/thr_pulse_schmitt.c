@@ -11,21 +11,21 @@ FswStatus fsw_thr_pulse_schmitt_check(const FswThrPulseSchmittConfig *cfg)
 {
   FswStatus s;
   FSW_ASSERT(cfg != NULL);
-  if (cfg == NULL) return FSW_E_NULL_ARG;
+  if (cfg == NULL) { return FSW_E_NULL_ARG; }
   s = fsw_thr_pulse_check_common(&cfg->common);
-  if (s != FSW_OK) return s;
-  if (!isfinite(cfg->level_on) || !isfinite(cfg->level_off)) return FSW_E_CONFIG;
+  if (s != FSW_OK) { return s; }
+  if (!isfinite(cfg->level_on) || !isfinite(cfg->level_off)) { return FSW_E_CONFIG; }
   if (!(cfg->level_off >= FSW_R(0.0) && cfg->level_off < cfg->level_on &&
-        cfg->level_on <= FSW_R(1.0)))
-    return FSW_E_CONFIG;
+        cfg->level_on <= FSW_R(1.0))) {
+    return FSW_E_CONFIG; }
   return FSW_OK;
 }
 
 void fsw_thr_pulse_schmitt_reset(FswThrPulseSchmittState *st)
 {
   FSW_ASSERT(st != NULL);
-  if (st == NULL) return;
-  memset(st->last_on, 0, sizeof st->last_on);
+  if (st == NULL) { return; }
+  (void)memset(st->last_on, 0, sizeof st->last_on);
   fsw_clock_reset(&st->common.clock);
 }
 
@@ -34,11 +34,11 @@ FswStatus fsw_thr_pulse_schmitt_init(FswThrPulseSchmittState *st,
 {
   FswStatus s;
   FSW_ASSERT(st != NULL && cfg != NULL);
-  if (st == NULL || cfg == NULL) return FSW_E_NULL_ARG;
+  if (st == NULL || cfg == NULL) { return FSW_E_NULL_ARG; }
   fsw_thr_pulse_init_common(&st->common);
   fsw_thr_pulse_schmitt_reset(st);
   s = fsw_thr_pulse_schmitt_check(cfg);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
   st->common.ready = 1;
   return FSW_OK;
 }
@@ -54,14 +54,14 @@ FswStatus fsw_thr_pulse_schmitt_update(FswThrPulseSchmittState *st,
   int i, saturated = 0;
 
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) fsw_thr_pulse_safe_output(out->t_on);
+  if (out != NULL) { fsw_thr_pulse_safe_output(out->t_on); }
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
-    if (st != NULL) (void)fsw_health_record(&st->common.health, FSW_E_NULL_ARG);
+    if (st != NULL) { (void)fsw_health_record(&st->common.health, FSW_E_NULL_ARG); }
     return FSW_E_NULL_ARG;
   }
   c = &cfg->common;
   s = fsw_thr_pulse_begin(&st->common, in->F, c->num_thr, 1, in->t_ns, &dt);
-  if (s != FSW_OK) return s;
+  if (s != FSW_OK) { return s; }
 
   if (!st->common.clock.has_prev) {
     fsw_thr_pulse_first_output(out->t_on, c);
@@ -84,7 +84,7 @@ FswStatus fsw_thr_pulse_schmitt_update(FswThrPulseSchmittState *st,
           out->t_on[i] = st->last_on[i] ? t_pulse : FSW_R(0.0);
         }
       } else if (t >= dt) {
-        if (t > dt) saturated = 1;
+        if (t > dt) { saturated = 1; }
         st->last_on[i] = 1u;
         out->t_on[i] = THR_PULSE_SAT_FACTOR * dt;
       } else {
