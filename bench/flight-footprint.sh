@@ -15,10 +15,8 @@
 # stack: main's frame (-fstack-usage) + the deepest flight-library call it
 # makes (tools/fsw_stack_report.py, the method of fsw_proof_stack); for the
 # PIL program also its UART interrupt and 104 B of exception stacking.
-# Warnings are not errors here: with FSW_MAX_THR > FSW_MAX_RW, GCC 12 at -Os
-# and -O2 reports -Wstringop-overread for rw_common.c's call of
-# fsw_null_projector (a uint8_t[FSW_MAX_RW] passed for a parameter declared
-# [FSW_MAX_EFF]; docs/flight-footprint.md).  Prints figures; asserts nothing.
+# Built with warnings as errors, like every flight build.  Prints figures;
+# asserts nothing.
 #
 #   bench/flight-footprint.sh [work-dir]     (default build/footprint)
 set -euo pipefail
@@ -72,7 +70,7 @@ for real in double float; do
     cmake -S bench/footprint -B "$b" -G Ninja --fresh -DKESTREL_DIR="$src" \
       -DCMAKE_TOOLCHAIN_FILE="$src/toolchains/cortex-m4f.cmake" -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_C_FLAGS_RELEASE="-$opt -DNDEBUG" -DKESTREL_REAL="$real" \
-      -DKESTREL_FSW_MAX_RW=4 -DKESTREL_FSW_MAX_THR=8 -DKESTREL_WERROR=OFF "${launcher[@]}" > "$b.configure.log" 2>&1 \
+      -DKESTREL_FSW_MAX_RW=4 -DKESTREL_FSW_MAX_THR=8 -DKESTREL_WERROR=ON "${launcher[@]}" > "$b.configure.log" 2>&1 \
       || { cat "$b.configure.log" >&2; exit 1; }
     cmake --build "$b" -j2 > "$b.build.log" 2>&1 || { tail -30 "$b.build.log" >&2; exit 1; }
     report=$(python3 tools/fsw_stack_report.py --objdir "$b/kestrel/fsw_c/CMakeFiles/fsw.dir" \

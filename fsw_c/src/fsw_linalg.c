@@ -203,7 +203,7 @@ FswStatus fsw_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3][FSW_MAX
 
 FswStatus fsw_null_projector(fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF],
                              const fsw_real G[3][FSW_MAX_EFF], int n,
-                             const uint8_t avail[FSW_MAX_EFF], int *rank)
+                             const uint8_t *avail, int *rank)
 {
   fsw_real Q[3][FSW_MAX_EFF];
   int nq = 0, r, i, j, k, pass;

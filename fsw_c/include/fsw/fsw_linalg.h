@@ -66,14 +66,14 @@ FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFa
  * I - Q^T Q, Q an orthonormal basis of the row space of G by modified
  * Gram-Schmidt over the rows in index order (one re-orthogonalisation pass),
  * dropping a row whose residual is <= FSW_NULL_TOL x its original norm.
- * `avail` (may be NULL = all available) masks columns: an UNAVAILABLE column
+ * `avail` (n entries; may be NULL = all available) masks columns: an UNAVAILABLE column
  * is treated as absent and its row and column of tau are exactly 0.
  * `rank` (may be NULL) receives the rank found (0..3).
  * Returns FSW_OK; FSW_E_CAPACITY (tau = 0) if n is out of range;
  * FSW_E_BAD_INPUT (tau = 0) if G holds NaN or Inf. */
 FswStatus fsw_null_projector(fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF],
                              const fsw_real G[3][FSW_MAX_EFF], int n,
-                             const uint8_t avail[FSW_MAX_EFF], int *rank);
+                             const uint8_t *avail, int *rank);
 
 /* K4.  Bounded least squares, then least norm:
  *   phase 1: minimise |A x - b| subject to lo <= x <= hi (Lawson-Hanson /
