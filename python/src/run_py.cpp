@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common.h"
+#include "harness/core/checkpoint.h"
 #include "harness/drive/run_scenario.h"
 #include "scenario/scenario_limits.h"  // kMaxScenarioEvents
 
@@ -383,6 +384,34 @@ void bind_run(py::module_& m)
       .def_property_readonly("t", [](PyRun& r) { return static_cast<double>(r.run->tick()) * r.sc.rates.dt; },
                              "[s] time of the next tick")
       .def_property_readonly("done", [](PyRun& r) { return r.run->done(); })
+      .def(
+          "save",
+          [](PyRun& r, const std::string& path) {
+            py::gil_scoped_release nogil;
+            std::lock_guard<std::mutex> g(r.mu);
+            const std::string why = r.run->checkpoint_refusal();
+            if (!why.empty()) throw py::value_error("Run.save: " + why);
+            // the run's scenario: with the events apply_event added
+            harness::save_checkpoint(*r.run, path, harness::scenario_to_json_text(r.run->scenario()));
+          },
+          py::arg("path"),
+          "Writes a checkpoint of the run between two ticks (docs/checkpoint.md; atomic: temporary file, fsync, "
+          "rename).  ValueError when the run cannot be saved (ended, failed).")
+      .def_static(
+          "restore",
+          [](const std::string& path) {
+            py::gil_scoped_release nogil;
+            std::vector<uint8_t> state;
+            const harness::CheckpointInfo info =
+                harness::decode_checkpoint(harness::read_checkpoint_file(path), state, path);
+            auto r = std::make_unique<PyRun>(harness::load_scenario_text(info.scenario_text, path));
+            harness::restore_run_state(*r->run, state);
+            return r;
+          },
+          py::arg("path"),
+          "A Run continued from a checkpoint Run.save wrote: it goes on exactly as the saved run would.  Its "
+          "results() hold the rows from the checkpoint on.  RuntimeError naming the problem for a damaged file or "
+          "a checkpoint of another build.")
       .def_property_readonly("failure", [](PyRun& r) { return r.run->failure(); })
       .def(
           "state",

@@ -52,6 +52,22 @@ void SampledEnvironmentEffector::at_instant(int64_t t_ns)
   if (none || t_ns / period_ns_ > sample_ns_ / period_ns_) take_sample(t_ns);
 }
 
+void SampledEnvironmentEffector::state_io(StateIO& io)
+{
+  io.value("environment.H_N", H_N_);
+  io.value("environment.h_s", h_s_);
+  io.value("environment.H_sub_N", H_sub_N_);
+  io.value("environment.M_sub", M_sub_);
+  io.value("environment.stage", stage_);
+  io.value("environment.t0_ns", t0_ns_);
+  io.value("environment.sample_ns", sample_ns_);
+  io.value("environment.held_load", held_load_);
+  io.value("environment.held_L_C_B", held_L_C_B_);
+  io.value("environment.load_stale", load_stale_);
+  io.value("environment.in_step", in_step_);
+  derived_state_io(io);
+}
+
 void SampledEnvironmentEffector::prepare_now(int64_t t_ns)
 {
   t0_ns_ = t_ns;
@@ -123,6 +139,12 @@ GravityGradientEffector::GravityGradientEffector(const Plant& plant, const Earth
 {
 }
 
+void GravityGradientEffector::derived_state_io(StateIO& io)
+{
+  io.value("gravity_gradient.R_held_N", R_held_N_);
+  io.value("gravity_gradient.I_held_C_B", I_held_C_B_);
+}
+
 void GravityGradientEffector::sample(double /*t_s*/, const StateVector& x)
 {
   const MassProps mp = plant_.model().mass_props(x, plant_.hub_with_propellant(x));
@@ -152,6 +174,12 @@ SolarPressureEffector::SolarPressureEffector(const Plant& plant, const EarthCont
     : SampledEnvironmentEffector(plant, ctx, p.period_ns, "solar_pressure"), facets_(p.facets)
 {
   validate(facets_, "solar_pressure.facets");
+}
+
+void SolarPressureEffector::derived_state_io(StateIO& io)
+{
+  io.value("solar_pressure.s_held_N", s_held_N_);
+  io.value("solar_pressure.flux_held", flux_held_);
 }
 
 void SolarPressureEffector::sample(double t_s, const StateVector& x)
@@ -188,6 +216,12 @@ DragEffector::DragEffector(const Plant& plant, const EarthContext& ctx, const Dr
   validate(facets_, "drag.facets");
   validate(p.atmosphere, "drag.atmosphere");
   atm_ = p.atmosphere;
+}
+
+void DragEffector::derived_state_io(StateIO& io)
+{
+  io.value("drag.density_scale", atm_.scale);  // settable (events)
+  io.value("drag.rho_held", rho_held_);
 }
 
 void DragEffector::set_density_scale(double scale)
@@ -288,6 +322,16 @@ Vector3d MagneticEffector::field_N(double t_s, const Vector3d& r_N) const
 {
   const Matrix3d C_EN = ctx_.dcm_EN(t_s);
   return C_EN.transpose() * igrf_.field_E(C_EN * r_N);
+}
+
+void MagneticEffector::derived_state_io(StateIO& io)
+{
+  for (Magnetorquer& r : rods_) r.state_io(io);
+  io.value("magnetic.health", health_);
+  io.value("magnetic.scale", scale_);
+  io.value("magnetic.dipole", dipole_);
+  io.value("magnetic.m_total_B", m_total_B_);
+  io.value("magnetic.B_held_N", B_held_N_);
 }
 
 void MagneticEffector::sample(double t_s, const StateVector& x) { B_held_N_ = field_N(t_s, position_N(x)); }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -71,6 +72,34 @@ void Plant::set_state(const StateVector& x)
   if (x.size() != layout().size())
     detail::fail("state.size()", static_cast<double>(x.size()), "must equal 12 + 2*num_rw + num_tanks");
   x_ = x;
+}
+
+void Plant::state_io(StateIO& io)
+{
+  int dim = static_cast<int>(x_.size());
+  io.value("plant.state_dim", dim);
+  if (dim != layout().size()) throw std::runtime_error("checkpoint: the plant's state has another size");
+  io.bytes("plant.x", x_.data(), sizeof(double) * static_cast<size_t>(dim));
+  io.value("plant.t_ns", t_ns_);
+  io.value("plant.held", held_);
+  io.value("plant.wheel_health", wheel_health_);
+  io.value("plant.Omega_prev", Omega_prev_);
+  io.value("plant.first_step", first_step_);
+  io.value("plant.switches", switches_);
+  io.value("plant.steps", steps_);
+  io.value("plant.split_sub_steps", split_sub_steps_);
+  io.value("plant.status", status_);
+  for (int i = 0; i < num_rw(); ++i) {  // the wheel parameters settable during a run
+    ReactionWheelParams w = wheel_params(i);
+    io.value("wheel.u_max", w.u_max);
+    io.value("wheel.Omega_max", w.Omega_max);
+    io.value("wheel.friction", w.friction);
+    if (!io.loading()) continue;
+    model_.set_wheel_u_max(i, w.u_max);
+    model_.set_wheel_Omega_max(i, w.Omega_max);
+    model_.set_wheel_friction(i, w.friction);
+  }
+  for_each_effector([&io](ForceTorqueEffector& e) { e.state_io(io); });
 }
 
 void Plant::check_wheel_index(int i) const

@@ -385,6 +385,27 @@ void ThrusterSet::end_substep()
   }
 }
 
+void ThrusterSet::state_io(StateIO& io)
+{
+  io.value("thrusters.T_req", T_req_);
+  io.value("thrusters.pending", pending_);
+  io.value("thrusters.schedules", sched_);
+  io.value("thrusters.health", health_);
+  io.value("thrusters.scale", scale_);
+  io.value("thrusters.unit", unit_);
+  io.value("thrusters.kappa_fo", kappa_fo_);
+  io.value("thrusters.t0_ns", t0_ns_);
+  io.value("thrusters.s_at_t0", s_at_t0_);
+  io.value("thrusters.substep_formed", substep_formed_);
+  io.value("thrusters.open", open_);
+  io.value("thrusters.first_order", fo_);
+  io.value("thrusters.stage_t", stage_t_);
+  io.value("thrusters.active", active_);
+  io.value("thrusters.num_active", num_active_);
+  io.value("thrusters.counters", counters_);
+  io.value("thrusters.open_done", open_done_);
+}
+
 void ThrusterSet::prepare_now(int64_t t_ns)
 {
   begin_segment(t_ns);

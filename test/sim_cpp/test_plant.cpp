@@ -347,6 +347,11 @@ class ConstantLoad final : public sim::ForceTorqueEffector {
     sums.F_B += F_;
     sums.L_B += L_;
   }
+  void state_io(sim::StateIO& io) override
+  {
+    io.value("constant_load.F", F_);
+    io.value("constant_load.L", L_);
+  }
   void set(const Vector3d& F, const Vector3d& L)
   {
     F_ = F;

@@ -25,12 +25,45 @@ EventTask::EventTask(const Scenario& sc, sim::Plant& plant, SensorSuite& sensors
 {
   for (size_t i = 0; i < sc.events.size(); ++i) ev_.push_back(make(i));
   log_.reserve(ev_.size());
+  log_index_.reserve(ev_.size());
 }
 
 void EventTask::add()
 {
   ev_.push_back(make(sc_.events.size() - 1));
   log_.reserve(ev_.size());
+  log_index_.reserve(ev_.size());
+}
+
+void EventTask::state_io(sim::StateIO& io)
+{
+  uint64_t n_ev = ev_.size(), n_log = log_.size();
+  io.value("events.count", n_ev);
+  if (n_ev != ev_.size()) throw std::runtime_error("checkpoint: the run has another number of events");
+  io.value("events.command", cmd_);
+  for (Ev& e : ev_) {
+    io.value("events.t_ns", e.t_ns);
+    io.value("events.applied", e.applied);
+  }
+  io.value("events.log_size", n_log);
+  if (io.loading()) {
+    log_.clear();
+    log_index_.clear();
+  }
+  for (uint64_t j = 0; j < n_log; ++j) {
+    uint32_t idx = io.loading() ? 0 : log_index_[j];
+    AppliedEvent a = io.loading() ? AppliedEvent{} : log_[j];
+    io.value("events.log_index", idx);
+    io.value("events.log_tick", a.tick);
+    io.value("events.log_t", a.t);
+    if (!io.loading()) continue;
+    if (idx >= ev_.size()) throw std::runtime_error("checkpoint: an applied event is not in the run");
+    AppliedEvent entry = make(idx).entry;
+    entry.tick = a.tick;
+    entry.t = a.t;
+    log_.push_back(std::move(entry));
+    log_index_.push_back(idx);
+  }
 }
 
 EventTask::Ev EventTask::make(size_t i) const
@@ -103,6 +136,7 @@ void EventTask::operator()(uint64_t k)
     e.entry.tick = k;
     e.entry.t = static_cast<double>(t_ns) / 1e9;  // as the recorded t
     log_.push_back(std::move(e.entry));
+    log_index_.push_back(static_cast<uint32_t>(i));
     for (Ev& f : ev_)  // events that follow this one: their time is now known
       if (f.after == static_cast<int>(i))
         f.t_ns = f.delay_ns > std::numeric_limits<uint64_t>::max() - t_ns ? std::numeric_limits<uint64_t>::max()

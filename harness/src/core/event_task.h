@@ -53,6 +53,10 @@ class EventTask {
   // The run's drag model (runs with environment.drag): the atmosphere
   // actions act on it; `scale` is the scenario's density scale (restore).
   void attach_atmosphere(sim::DragEffector* drag, double scale);
+  // For a checkpoint (sim/state_io.h): the commands so far, each event's
+  // trigger time and whether it applied, and the log (event index, tick, t).
+  // The actions' effects are in the state of what they act on.
+  void state_io(sim::StateIO& io);
 
  private:
   struct Act {
@@ -93,6 +97,7 @@ class EventTask {
   Writer<MtqCmdMsg> mtq_cmd_;
   std::vector<Ev> ev_;
   std::vector<AppliedEvent> log_;
+  std::vector<uint32_t> log_index_;  // the event of each log entry
 };
 
 }  // namespace harness

@@ -4,9 +4,27 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+extern "C" {
+#include "fsw/fsw_acs_save.h"
+}
 
 namespace harness {
 
+
+void InProcessFsw::state_io(sim::StateIO& io)
+{
+  std::vector<uint8_t> image(fsw_acs_save_size());
+  size_t len = 0;
+  if (!io.loading() && fsw_acs_save(&st_, image.data(), image.size(), &len) != FSW_OK)
+    throw FswEndpointError("fsw_acs_save failed");
+  io.bytes("fsw.state", image.data(), image.size());
+  if (io.loading() && fsw_acs_restore(&st_, image.data(), image.size()) != FSW_OK)
+    throw std::runtime_error("checkpoint: the flight software's image does not fit this build (fsw_acs_save tag)");
+  io.value("fsw.command", cmd_);
+  io.value("fsw.have_command", have_cmd_);
+}
 
 InProcessFsw::InProcessFsw(const FswAcsConfig& cfg) : cfg_(cfg)
 {

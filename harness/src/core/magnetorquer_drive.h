@@ -36,6 +36,13 @@ class MtqPwmDriver final : public sim::ForceTorqueEffector {
 
   void at_instant(int64_t t_ns) override;               // the rods' levels for the segment from t_ns
   int64_t next_cut_ns(int64_t t_ns) const override;     // the next switch instant after t_ns
+  void state_io(sim::StateIO& io) override
+  {
+    io.value("mtq_pwm.start_ns", start_ns_);
+    io.value("mtq_pwm.on_ns", on_ns_);
+    io.value("mtq_pwm.level", level_);
+    io.value("mtq_pwm.out", out_);
+  }
 
  private:
   sim::MagneticEffector& mag_;

@@ -96,6 +96,27 @@ void Recorder::finish(bool complete)
   for (RecordSink* s : sinks_) s->end(complete);
 }
 
+void Recorder::state_io(sim::StateIO& io)
+{
+  const size_t ncol = layout_.columns.size();
+  uint64_t cols = ncol, pending = pending_, chunk = chunk_rows_;
+  io.value("recorder.columns", cols);
+  io.value("recorder.chunk_rows", chunk);
+  if (cols != ncol || chunk != chunk_rows_)
+    throw std::runtime_error("checkpoint: the recorder has other columns or another chunk size");
+  io.value("recorder.rows", rows_);
+  io.value("recorder.overflow", overflow_);
+  io.value("recorder.pending", pending);
+  if (pending > chunk_rows_ || pending > rows_) throw std::runtime_error("checkpoint: the recorder's chunk does not fit");
+  pending_ = static_cast<size_t>(pending);
+  // the waiting rows fill slots 0 .. pending - 1 (the chunk is handed on whole)
+  io.bytes("recorder.chunk", chunk_.data(), pending_ * ncol * sizeof(double));
+  if (rows_ > 0) {
+    const size_t slot = static_cast<size_t>((rows_ - 1) % chunk_rows_);
+    io.bytes("recorder.last_row", chunk_.data() + slot * ncol, ncol * sizeof(double));
+  }
+}
+
 const double* Recorder::last_row() const
 {
   if (rows_ == 0) return nullptr;

@@ -11,6 +11,35 @@
 
 namespace harness {
 
+void SensorSuite::state_io(sim::StateIO& io)
+{
+  io.value("sensors.gyro_fault", gyro_fault_);
+  io.value("sensors.st_fault", st_fault_);
+  io.value("sensors.gyro_frozen", gyro_frozen_);
+  io.value("sensors.st_frozen", st_frozen_);
+  io.value("sensors.st_frozen_valid", st_frozen_valid_);
+  io.value("sensors.css_fault", css_fault_);
+  io.value("sensors.css_frozen", css_frozen_);
+  io.value("sensors.tach_fault", tach_fault_);
+  io.value("sensors.tach_value", tach_value_);
+  io.value("sensors.rw_unavailable", rw_unavail_);
+  io.value("sensors.thr_unavailable", thr_unavail_);
+  io.value("sensors.gyro_bias", gyro_bias_);
+  io.value("sensors.st_bias", st_bias_);
+  io.value("sensors.css_bias", css_bias_);
+  io.value("sensors.any_fault", any_fault_);
+  io.value("sensors.truth", truth_);
+  for (sim::CoarseSunSensor& c : css_) c.state_io(io);
+  if (gyro_) gyro_->state_io(io);
+  if (st_) st_->state_io(io);
+  if (tach_) tach_->state_io(io);
+  if (mag_) mag_->state_io(io);
+  io.value("sensors.mag_fault", mag_fault_);
+  io.value("sensors.mag_frozen", mag_frozen_);
+  io.value("sensors.mag_last", mag_last_);
+  io.value("sensors.mag_bias", mag_bias_);
+}
+
 SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant,
                          const sim::MagneticEffector* field)
     : plant_(plant),

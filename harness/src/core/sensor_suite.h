@@ -97,6 +97,12 @@ class SensorSuite {
   void set_magnetometer_bias(int a, double v);
   void set_magnetometer_noise_scale(double k);
 
+  // For a checkpoint (sim/state_io.h): the faults, biases and held readings
+  // set so far and every sensor model's state (noise streams, outputs).
+  // Members fixed at setup are not in it; a member that changes during a
+  // run must be.
+  void state_io(sim::StateIO& io);
+
  private:
   struct SensorFault {
     Fault fault = Fault::None;

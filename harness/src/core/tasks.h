@@ -75,6 +75,15 @@ struct BurnMonitor {
   Eigen::Vector3d dv_ng = Eigen::Vector3d::Zero();
   Snap start, end;
   void operator()(uint64_t k);
+  void state_io(sim::StateIO& io)  // a checkpoint (sim/state_io.h)
+  {
+    io.value("burn.have_prev", have_prev);
+    io.value("burn.r_prev", r_prev);
+    io.value("burn.v_prev", v_prev);
+    io.value("burn.dv_ng", dv_ng);
+    io.value("burn.start", start);
+    io.value("burn.end", end);
+  }
 
  private:
   void snap(Snap& s, double t, const TruthMsg& tr) const;
@@ -125,6 +134,7 @@ struct FswTask {
   Reader<FswAcsCmdMsg> cmd;   // unset in runs that take no FSW commands
   uint64_t cmd_seen = 0;      // write count of `fsw_cmd` handed on so far
   void operator()(uint64_t k);
+  void state_io(sim::StateIO& io) { io.value("fsw_task.cmd_seen", cmd_seen); }  // a checkpoint
 };
 
 // FSW actuator message -> plant commands (FSW ticks): wheel torques
@@ -213,6 +223,16 @@ struct MetricsTask {
   OrbitFrame frame = OrbitFrame::Nadir;
   Eigen::Vector3d sigma_BdR = Eigen::Vector3d::Zero();
   void operator()(uint64_t k);
+  void state_io(sim::StateIO& io)  // a checkpoint (sim/state_io.h)
+  {
+    io.value("metrics.ref", ref);
+    io.value("metrics.sigma_ref", sigma_ref);
+    io.value("metrics.ref_commanded", ref_commanded);
+    io.value("metrics.cmd_seen", cmd_seen);
+    io.value("metrics.max_err_burn", max_err_burn);
+    io.value("metrics.frame", frame);
+    io.value("metrics.sigma_BdR", sigma_BdR);
+  }
   // Takes a new command of `fsw_cmd`: its mode's reference, its inertial
   // reference when it sets one (a set command the FSW refuses, |sigma|^2
   // not finite, changes nothing, as in the FSW).

@@ -33,6 +33,7 @@
 
 #include "sim/capacities.h"
 #include "sim/spacecraft.h"  // StateVector, StateLayout
+#include "sim/state_io.h"
 
 namespace sim {
 
@@ -76,6 +77,11 @@ class ForceTorqueEffector {
   virtual void begin_substep(double /*tau*/, double /*h*/) {}
   virtual void end_substep() {}
   virtual void prepare_now(int64_t /*t_ns*/) {}
+
+  // Its run state for a checkpoint (sim/state_io.h): every member that
+  // changes during a run.  Pure, so that a new effector cannot be added
+  // without saying what it saves.
+  virtual void state_io(StateIO& io) = 0;
 };
 
 }  // namespace sim

@@ -95,6 +95,8 @@ class SampledEnvironmentEffector : public ForceTorqueEffector {
   void begin_substep(double tau, double h) final;
   void end_substep() final;
   void prepare_now(int64_t t_ns) final;
+  // The sampling and momentum state, then the derived class's (derived_state_io).
+  void state_io(StateIO& io) final;
 
  protected:
   // period_ns >= 0, else std::invalid_argument naming `name`.period_ns.
@@ -102,6 +104,8 @@ class SampledEnvironmentEffector : public ForceTorqueEffector {
                              const char* name);
   // Evaluate and store the environment at plant time t_s and state x.
   virtual void sample(double t_s, const StateVector& x) = 0;
+  // The derived class's held environment and settable members (state_io).
+  virtual void derived_state_io(StateIO& io) = 0;
   // A setter changed the load: evaluate it again at the next step start.
   void refresh_load() { load_stale_ = true; }
 
@@ -151,6 +155,7 @@ class GravityGradientEffector final : public SampledEnvironmentEffector {
 
  private:
   void sample(double t_s, const StateVector& x) override;
+  void derived_state_io(StateIO& io) override;
   Eigen::Vector3d R_held_N_ = Eigen::Vector3d::Zero();  // [m] held position of C
   Eigen::Matrix3d I_held_C_B_ = Eigen::Matrix3d::Zero();  // [kg*m^2] held inertia about C, B
 };
@@ -175,6 +180,7 @@ class SolarPressureEffector final : public SampledEnvironmentEffector {
 
  private:
   void sample(double t_s, const StateVector& x) override;
+  void derived_state_io(StateIO& io) override;
   FacetSet facets_;
   Eigen::Vector3d s_held_N_ = Eigen::Vector3d::UnitX();  // [-] held unit vector to the Sun
   double flux_held_ = 0.0;                               // [-] held flux scale x illumination
@@ -206,6 +212,7 @@ class DragEffector final : public SampledEnvironmentEffector {
 
  private:
   void sample(double t_s, const StateVector& x) override;
+  void derived_state_io(StateIO& io) override;
   FacetSet facets_;
   ExponentialAtmosphere atm_;
   double rho_held_ = 0.0;  // [kg/m^3] held nominal density (scale 1)
@@ -257,6 +264,7 @@ class MagneticEffector final : public SampledEnvironmentEffector {
 
  private:
   void sample(double t_s, const StateVector& x) override;
+  void derived_state_io(StateIO& io) override;
   void refresh_dipole();
 
   Igrf14 igrf_;

@@ -6,6 +6,8 @@
 
 #include <Eigen/Dense>
 
+#include "sim/state_io.h"
+
 namespace sim {
 
 struct MagnetorquerParams {
@@ -34,6 +36,14 @@ class Magnetorquer {
   double power() const { return power_; }                 // [W]
   bool saturated() const { return saturated_; }
   const MagnetorquerParams& params() const { return p_; }
+  // Run state for a checkpoint (sim/state_io.h).
+  void state_io(StateIO& io)
+  {
+    io.value("rod.m", m_);
+    io.value("rod.power", power_);
+    io.value("rod.last_sign", last_sign_);
+    io.value("rod.saturated", saturated_);
+  }
 
  private:
   MagnetorquerParams p_;

@@ -120,6 +120,11 @@ class Plant {
 
   const StateVector& state() const { return x_; }
   void set_state(const StateVector& x);  // for tests and scenario restarts
+  // The whole run state for a checkpoint (sim/state_io.h, docs/checkpoint.md):
+  // the state vector and clock, held inputs, wheel health, the settable
+  // wheel parameters, the step counters and every effector's state.
+  // Restored into a Plant built from the same parameters.
+  void state_io(StateIO& io);
   int64_t t_ns() const { return t_ns_; }
 
   Eigen::Vector3d r_BN_N() const { return x_.segment<3>(StateLayout::r_BN_N); }

@@ -24,6 +24,8 @@
 
 #include <Eigen/Dense>
 
+#include "sim/state_io.h"
+
 namespace sim {
 
 // 64-bit FNV-1a hash of a name (offset basis 0xcbf29ce484222325, prime 0x100000001b3).
@@ -87,6 +89,15 @@ class Rng {
     const double y = normal();
     const double z = normal();
     return Eigen::Vector3d(x, y, z);
+  }
+
+  // The stream's position (a checkpoint, sim/state_io.h): the engine's
+  // words and index, and the spare normal draw.
+  void state_io(StateIO& io)
+  {
+    io.value("rng.engine", eng_);
+    io.value("rng.has_spare", has_spare_);
+    io.value("rng.spare", spare_);
   }
 
  private:

@@ -97,6 +97,15 @@ class Gyro {
   void set_noise_scale(double k);
   double noise_scale() const { return k_noise_; }
 
+  // Run state for a checkpoint (sim/state_io.h); the parameters are the configuration's.
+  void state_io(StateIO& io)
+  {
+    io.value("gyro.noise_scale", k_noise_);
+    rng_.state_io(io);
+    io.value("gyro.bias_walk", b_);
+    io.value("gyro.output", out_);
+  }
+
  private:
   GyroParams p_;
   bool noise_;
@@ -137,6 +146,14 @@ class StarTracker {
   // the draws per sample are unchanged, so the stream stays aligned.
   void set_noise_scale(double k);
   double noise_scale() const { return k_noise_; }
+
+  // Run state for a checkpoint (sim/state_io.h); the parameters are the configuration's.
+  void state_io(StateIO& io)
+  {
+    io.value("star_tracker.noise_scale", k_noise_);
+    rng_.state_io(io);
+    io.value("star_tracker.output", out_);
+  }
 
  private:
   StarTrackerParams p_;
@@ -191,6 +208,14 @@ class CoarseSunSensor {
   void set_noise_scale(double k);
   double noise_scale() const { return k_noise_; }
 
+  // Run state for a checkpoint (sim/state_io.h); the parameters are the configuration's.
+  void state_io(StateIO& io)
+  {
+    io.value("css.noise_scale", k_noise_);
+    rng_.state_io(io);
+    io.value("css.output", out_);
+  }
+
  private:
   CssParams p_;
   double cos_fov_;  // cos(fov_half)
@@ -228,6 +253,14 @@ class WheelTachometers {
   // unchanged, so the stream stays aligned.
   void set_noise_scale(int i, double k);
   double noise_scale(int i) const { return k_noise_.at(static_cast<size_t>(i)); }
+
+  // Run state for a checkpoint (sim/state_io.h); the parameters are the configuration's.
+  void state_io(StateIO& io)
+  {
+    rng_.state_io(io);
+    io.value("tach.output", out_);
+    io.value("tach.noise_scale", k_noise_);
+  }
 
  private:
   TachParams p_;
@@ -275,6 +308,14 @@ class Magnetometer {
   const MagnetometerParams& params() const { return p_; }
   void set_noise_scale(double k);  // as the other sensors
   double noise_scale() const { return k_noise_; }
+
+  // Run state for a checkpoint (sim/state_io.h); the parameters are the configuration's.
+  void state_io(StateIO& io)
+  {
+    io.value("magnetometer.noise_scale", k_noise_);
+    rng_.state_io(io);
+    io.value("magnetometer.output", out_);
+  }
 
  private:
   MagnetometerParams p_;

@@ -84,6 +84,7 @@ class ThrusterSet final : public ForceTorqueEffector {
   void begin_substep(double tau, double tau_end) override;
   void end_substep() override;
   void prepare_now(int64_t t_ns) override;
+  void state_io(StateIO& io) override;  // every member after cmd_ (below)
 
  private:
   // FirstOrder closed form over the current sub-step: stage times (as RK4
@@ -107,8 +108,9 @@ class ThrusterSet final : public ForceTorqueEffector {
   // "now" (tau = tau_end = 0) on first use after prepare_now (below).
   void form_substep(double tau, double tau_end) const;
 
-  std::vector<ThrusterParams> p_;
-  ThrusterCommandParams cmd_;
+  // ---- run state from here on (state_io saves each member below)
+  std::vector<ThrusterParams> p_;  // fixed for a run
+  ThrusterCommandParams cmd_;      // fixed for a run
   ThrusterArray T_req_{};
   bool pending_ = false;
   std::array<ValveSchedule, kMaxThrusters> sched_{};

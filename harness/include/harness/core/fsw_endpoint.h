@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/state_io.h"
+
 extern "C" {
 #include "fsw/fsw_acs.h"
 }
@@ -44,6 +46,16 @@ class FswEndpoint {
   // one say so (accepts_commands false; command throws FswEndpointError).
   virtual bool accepts_commands() const { return false; }
   virtual void command(const FswAcsCmdMsg&) { throw FswEndpointError(describe() + ": takes no FSW commands"); }
+  // Its state for a checkpoint (docs/checkpoint.md).  An endpoint whose FSW
+  // runs elsewhere (another process, a board) has its state there: it
+  // cannot be checkpointed (checkpointable false; state_io throws
+  // FswEndpointError).
+  virtual bool checkpointable() const { return false; }
+  virtual void state_io(sim::StateIO&)
+  {
+    throw FswEndpointError(describe() + ": the flight software's state lives outside this process; a run with it "
+                                        "cannot be checkpointed (docs/checkpoint.md)");
+  }
 };
 
 // The FSW application in this process.
@@ -61,6 +73,10 @@ class InProcessFsw : public FswEndpoint {
     cmd_ = cmd;
     have_cmd_ = true;
   }
+  bool checkpointable() const override { return true; }
+  // The application's state through its own image (fsw/fsw_acs_save.h),
+  // then the pending command.
+  void state_io(sim::StateIO& io) override;
 
  private:
   FswAcsConfig cfg_;

@@ -16,6 +16,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "sim/state_io.h"
+
 namespace harness {
 
 class ChannelBase {
@@ -25,6 +27,12 @@ class ChannelBase {
   const std::string& name() const { return name_; }
   uint64_t write_count() const { return writes_; }
   uint64_t t_ns() const { return t_ns_; }
+  // The value, its time stamp and write count, for a checkpoint (sim/state_io.h).
+  virtual void state_io(sim::StateIO& io)
+  {
+    io.value("message.writes", writes_);
+    io.value("message.t_ns", t_ns_);
+  }
 
  protected:
   std::string name_;
@@ -44,6 +52,11 @@ class Channel : public ChannelBase {
     value_ = v;
     t_ns_ = t_ns;
     ++writes_;
+  }
+  void state_io(sim::StateIO& io) override
+  {
+    io.value(name_.c_str(), value_);
+    ChannelBase::state_io(io);
   }
 
  private:
@@ -122,6 +135,13 @@ class DataFlow {
   // Graphviz DOT: components as boxes, messages as ellipses, edges in the
   // data direction.  Deterministic (registration order).
   std::string to_dot(const std::string& graph_name = "kestrel") const;
+
+  // Every message's value, time stamp and write count, in registration
+  // order, for a checkpoint (sim/state_io.h).
+  void state_io(sim::StateIO& io)
+  {
+    for (auto& c : channels_) c->state_io(io);
+  }
 
  private:
   void check_new_message(const std::string& name) const;

@@ -123,6 +123,12 @@ class Recorder {
   const double* last_row() const;
   const std::vector<std::string>& recorded_messages() const { return messages_; }
   const double* chunk_address() const { return chunk_.data(); }  // for no-realloc tests
+  // Rows handed to the sinks so far (the rest waits in the chunk).
+  uint64_t sink_rows() const { return rows_ - pending_; }
+  // For a checkpoint (sim/state_io.h): the rows sampled, the overflow, the
+  // rows waiting in the chunk and the latest row (events watch it).  A
+  // restored recorder hands its sinks the rows from sink_rows() on.
+  void state_io(sim::StateIO& io);
 
  private:
   void flush();

@@ -41,6 +41,7 @@
 #include "harness/core/scenario_types.h"
 #include "harness/core/scheduler.h"
 #include "sim/plant.h"
+#include "sim/state_io.h"
 
 namespace harness {
 
@@ -187,6 +188,17 @@ class Run {
   // {name, ns} for each task of the scheduler and "plant", summed so far.
   void set_profiling(bool on);
   std::vector<std::pair<std::string, uint64_t>> profile() const;
+
+  // Checkpoint (docs/checkpoint.md; the file: harness/core/checkpoint.h).
+  // Why the run cannot be saved now, "" when it can: it failed or ended, or
+  // its FSW runs outside this process.
+  std::string checkpoint_refusal() const;
+  // Walks the run's whole state between ticks, saving or restoring
+  // (sim/state_io.h), part by part in a fixed order: the run's clock, the
+  // plant and its effectors, the FSW endpoint, the sensors, every message,
+  // the recorder, the stateful tasks.  Restoring needs a run built from the
+  // same scenario, its sinks attached, before its first step.
+  void state_io(sim::StateIO& io);
 
  private:
   struct Impl;
