@@ -3,6 +3,7 @@
 // FSW's configuration), sensor_suite (sensor models), tasks (the tick
 // protocol's tasks), telemetry_columns (what is recorded).
 #include "harness/core/run.h"
+#include "harness/core/loop_error.h"
 
 #include <algorithm>
 #include <array>
@@ -476,7 +477,16 @@ bool Run::step_ticks(uint64_t n)
       return false;
     }
     if (m.tick < m.n_ticks) {
-      if (!m.step_plant()) {
+      bool stepped = false;
+      try {
+        stepped = m.step_plant();
+      } catch (const InLoopError& e) {  // e.g. a Python effector (docs/python.md)
+        m.failure = std::string("plant at t = ") + std::to_string(static_cast<double>(m.sched.t_ns(m.tick)) * 1e-9) +
+                    " s: " + e.what();
+        finish();
+        return false;
+      }
+      if (!stepped) {
         m.failure = "plant state became non-finite at t = " +
                     std::to_string(static_cast<double>(m.sched.t_ns(m.tick)) * 1e-9) + " s";
         ++m.tick;
