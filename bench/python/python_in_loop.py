@@ -7,6 +7,8 @@ S1 at 10 Hz FSW, 100 Hz ticks, run in memory.
 
   - the C FSW (in process) against a Python FSW calling the same C
     application through kestrel.fsw.Acs (10 Hz): the difference per FSW cycle
+  - a Python FSW returning {} (commands nothing): the cost of the seam
+    alone (sensor dict out, actuator dict in)
   - no effector against a Python effector returning a constant torque at
     every tick: the difference per tick
 
@@ -58,6 +60,7 @@ def main():
     cycles = ticks // sc.get("rates.fsw_divisor") + 1
     t_c = best(reps, lambda: kestrel.run(sc))
     t_py = best(reps, lambda: kestrel.run(sc, fsw=AcsInPython(sc)))
+    t_nil = best(reps, lambda: kestrel.run(sc, fsw=lambda sensors: {}))
     t_eff = best(reps, lambda: kestrel.run(sc, effectors=[disturbance]))
     c, p = kestrel.run(sc), kestrel.run(sc, fsw=AcsInPython(sc))
     cmd = [i for i, n in enumerate(c.columns) if n.startswith(("Lr_B_", "wheel_cmd_", "omega_BN_B_", "sigma_BN_"))]
@@ -66,6 +69,8 @@ def main():
     print("  C FSW, no effector          %8.3f s  (%6.2f us per tick)" % (t_c, 1e6 * t_c / ticks))
     print("  Python FSW (Acs, 10 Hz)     %8.3f s  overhead %7.1f us per FSW cycle" %
           (t_py, 1e6 * (t_py - t_c) / cycles))
+    print("  Python FSW returning {}     %8.3f s  overhead %7.1f us per FSW cycle (the seam alone)" %
+          (t_nil, 1e6 * (t_nil - t_c) / cycles))
     print("  Python effector every tick  %8.3f s  overhead %7.1f us per tick" % (t_eff, 1e6 * (t_eff - t_c) / ticks))
     print("  Python FSW commands and attitude == the C FSW's, bit for bit: %s" % same)
 

@@ -144,6 +144,11 @@ class PythonFsw(unittest.TestCase):
             kestrel.run(sc, fsw=FiveHz())
         with self.assertRaisesRegex(ValueError, "out_dir"):
             kestrel.run(sc, fsw=zero_fsw, out_dir=tempfile.mkdtemp())
+        # a Python FSW takes no FSW commands (mode, reference): refused like
+        # for any endpoint that takes none
+        run = kestrel.Run(sc, fsw=zero_fsw)
+        with self.assertRaisesRegex(ValueError, "takes no commands"):
+            run.apply_event("fsw", "mode_inertial")
 
     def test_manifest_names_it_and_the_cli_refuses_a_rerun(self):
         sc = s1(1.0)
