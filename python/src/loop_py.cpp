@@ -7,6 +7,8 @@
 //               (force_B, torque_B) at the start of a tick (every tick or
 //               every rate_hz period) and holding it over the plant's RK4
 //               sub-steps until the next call
+//   PySensor    a recorded quantity f(t, truth) -> reading (size,) at every
+//               recorded row (RunConfig::truth_sources), group "python"
 // Both take the GIL for the call (the run steps with it released) and turn a
 // Python exception into the run's failure at that tick (FswEndpointError,
 // InLoopError), with the traceback in the message.
@@ -18,6 +20,7 @@
 #include "fsw_field.h"
 #include "harness/core/fsw_endpoint.h"
 #include "harness/core/loop_error.h"
+#include "harness/core/loop_messages.h"
 #include "sim/effector.h"
 
 namespace kpy {
@@ -181,7 +184,7 @@ class PyEffector : public sim::ForceTorqueEffector {
       std::vector<double> Om;
       for (int i = 0; i < plant_.num_rw(); ++i) Om.push_back(plant_.Omega(i));
       st["Omega"] = vec(Om.data(), static_cast<py::ssize_t>(Om.size()));
-      py::object out = f_(static_cast<double>(t_ns) * 1e-9, st);
+      py::object out = f_(static_cast<double>(t_ns) / 1e9, st);
       if (!py::isinstance<py::sequence>(out) || py::len(out) != 2)
         throw py::type_error("returned " + py::str(py::type::of(out).attr("__name__")).cast<std::string>() +
                              ", not (force_B, torque_B)");
@@ -201,6 +204,52 @@ class PyEffector : public sim::ForceTorqueEffector {
   Eigen::Vector3d L_B_ = Eigen::Vector3d::Zero();
 };
 
+// Held by shared_ptr in the recorder's fill function (copied without the GIL).
+class PySensor {
+ public:
+  PySensor(const PyLoop::Sensor& s, int num_rw) : s_(s), num_rw_(num_rw) {}
+  ~PySensor()
+  {
+    py::gil_scoped_acquire gil;
+    s_.f = py::object();
+  }
+  void fill(int64_t t_ns, const harness::TruthMsg& x, double* out)
+  {
+    py::gil_scoped_acquire gil;
+    const std::string err = call_guarded([&] {
+      py::dict st;
+      st["sigma_BN"] = vec(x.sigma_BN, 3);
+      st["omega_BN_B"] = vec(x.omega_BN_B, 3);
+      st["r_BN_N"] = vec(x.r_BN_N, 3);
+      st["v_BN_N"] = vec(x.v_BN_N, 3);
+      st["Omega"] = vec(x.Omega, num_rw_);
+      st["m_sc"] = x.m_sc;
+      st["field_B"] = vec(x.field_B, 3);
+      st["illumination"] = x.illumination;
+      py::object r = s_.f(static_cast<double>(t_ns) / 1e9, st);
+      py::array_t<double, py::array::c_style | py::array::forcecast> a;
+      try {
+        a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(r);
+      } catch (const py::error_already_set&) {
+      }
+      const bool scalar_ok = s_.size == 1 && a && a.ndim() == 0;
+      if (!a || !(scalar_ok || (a.ndim() == 1 && a.shape(0) == s_.size))) {
+        PyErr_Clear();
+        throw py::value_error("reading: shape (" + std::to_string(s_.size) + ",) expected");
+      }
+      for (int i = 0; i < s_.size; ++i) {
+        out[i] = a.data()[i];
+        if (!std::isfinite(out[i])) throw py::value_error("reading: not finite (element " + std::to_string(i) + ")");
+      }
+    });
+    if (!err.empty()) throw harness::InLoopError("Python sensor " + s_.name + " (" + s_.object_name + "): " + err);
+  }
+
+ private:
+  PyLoop::Sensor s_;
+  py::ssize_t num_rw_;
+};
+
 // The declared rate_hz of o as a whole number of ticks (1 without one).
 uint64_t period_ticks(const py::object& o, const std::string& name, const harness::Scenario& sc, const char* what)
 {
@@ -215,13 +264,31 @@ uint64_t period_ticks(const py::object& o, const std::string& name, const harnes
 
 }  // namespace
 
-PyLoop loop_from(const py::object& fsw, const py::object& effectors)
+PyLoop loop_from(const py::object& fsw, const py::object& effectors, const py::object& sensors)
 {
   PyLoop l;
   l.fsw = fsw;
   if (!fsw.is_none()) {
     if (!PyCallable_Check(fsw.ptr())) throw py::type_error("fsw: a callable f(sensors: dict) -> dict");
     l.fsw_name = object_name(fsw);
+  }
+  if (!sensors.is_none()) {
+    if (!py::isinstance<py::dict>(sensors)) throw py::type_error("sensors: a dict name -> (callable, size)");
+    for (auto kv : sensors.cast<py::dict>()) {
+      PyLoop::Sensor s;
+      s.name = py::str(kv.first).cast<std::string>();
+      py::tuple t;
+      if (py::isinstance<py::tuple>(kv.second)) t = kv.second.cast<py::tuple>();
+      if (t.size() != 2 || !PyCallable_Check(t[0].ptr()) || !py::isinstance<py::int_>(t[1]))
+        throw py::type_error("sensors['" + s.name + "']: (f(t, truth: dict) -> reading, size: int)");
+      s.f = t[0];
+      s.size = t[1].cast<int>();
+      if (s.size < 1 || s.size > 64) throw py::value_error("sensors['" + s.name + "']: size in [1, 64]");
+      if (s.name.empty() || s.name.find_first_of("/ ") != std::string::npos)
+        throw py::value_error("sensors: '" + s.name + "' is not a column name (no '/', no space)");
+      s.object_name = object_name(s.f);
+      l.sensors.push_back(s);
+    }
   }
   if (effectors.is_none()) return l;
   py::list list;
@@ -254,6 +321,19 @@ void install_fsw(const PyLoop& loop, const harness::Scenario& sc, harness::RunCo
   cfg.fsw = std::make_unique<PyFsw>(loop.fsw, loop.fsw_name, c);
 }
 
+void install_sensors(const PyLoop& loop, const harness::Scenario& sc, harness::RunConfig& cfg)
+{
+  for (const PyLoop::Sensor& s : loop.sensors) {
+    harness::Quantity q;
+    q.name = s.name;
+    q.unit = "-";
+    for (int i = 0; i < s.size; ++i) q.columns.push_back(s.size == 1 ? s.name : s.name + "_" + std::to_string(i));
+    auto ps = std::make_shared<PySensor>(s, static_cast<int>(sc.wheels.size()));
+    cfg.truth_sources.push_back(
+        {"python", {q}, [ps](int64_t t_ns, const harness::TruthMsg& x, double* out) { ps->fill(t_ns, x, out); }});
+  }
+}
+
 void install_effectors(const PyLoop& loop, const harness::Scenario& sc, harness::Run& run)
 {
   for (size_t i = 0; i < loop.effectors.size(); ++i) {
@@ -274,6 +354,9 @@ std::string manifest_with_loop(const std::string& manifest, const PyLoop& loop)
   py::dict d;
   if (loop.has_fsw()) d["fsw"] = loop.fsw_name;
   if (!loop.effectors.empty()) d["effectors"] = loop.effector_names;
+  py::dict sd;
+  for (const PyLoop::Sensor& x : loop.sensors) sd[py::str(x.name)] = x.object_name;
+  if (!loop.sensors.empty()) d["sensors"] = sd;
   const std::string j = py::module_::import("json").attr("dumps")(d).cast<std::string>();
   const size_t open = manifest.find('{');
   if (open == std::string::npos) return manifest;

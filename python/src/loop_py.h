@@ -19,14 +19,24 @@ struct PyLoop {
   std::string fsw_name;                // "python:module.qualname"
   std::vector<std::string> effector_names;
   bool has_fsw() const { return fsw && !fsw.is_none(); }
-  bool any() const { return has_fsw() || !effectors.empty(); }
+  struct Sensor {
+    std::string name;  // its recorded quantity (group "python")
+    py::object f;
+    int size = 0;  // columns
+    std::string object_name;
+  };
+  std::vector<Sensor> sensors;
+  bool any() const { return has_fsw() || !effectors.empty() || !sensors.empty(); }
 };
 
-// TypeError when fsw or an effector is not callable.
-PyLoop loop_from(const py::object& fsw, const py::object& effectors);
+// TypeError when fsw, an effector or a sensor is not callable (sensors: None
+// or a dict name -> (callable, size)).
+PyLoop loop_from(const py::object& fsw, const py::object& effectors, const py::object& sensors = py::none());
 // Before the Run: a Python FSW becomes cfg.fsw (ValueError when its declared
 // rate_hz is not the scenario's FSW rate).
 void install_fsw(const PyLoop& loop, const harness::Scenario& sc, harness::RunConfig& cfg);
+// Before the Run: the sensors become cfg.truth_sources.
+void install_sensors(const PyLoop& loop, const harness::Scenario& sc, harness::RunConfig& cfg);
 // After the Run is built, before its first step: the effectors join its plant.
 void install_effectors(const PyLoop& loop, const harness::Scenario& sc, harness::Run& run);
 // The manifest text with a "python_in_loop" object naming the objects

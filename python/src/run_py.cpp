@@ -152,6 +152,7 @@ struct PyRun {
     cfg.chunk_rows = 1;  // every row reaches the memory sink at once: results() at any tick
     cfg.accept_events = true;  // apply_event()
     install_fsw(loop, sc, cfg);
+    install_sensors(loop, sc, cfg);
     {
       py::gil_scoped_release nogil;
       run = std::make_unique<harness::Run>(sc, std::move(cfg));
@@ -208,6 +209,7 @@ Results run_to_results(const harness::Scenario& sc, const py::object& out_dir, b
     harness::RunConfig cfg;
     cfg.keep_in_memory = true;
     install_fsw(loop, sc, cfg);
+    install_sensors(loop, sc, cfg);
     {
       py::gil_scoped_release nogil;
       run = std::make_unique<harness::Run>(sc, std::move(cfg));
@@ -358,22 +360,24 @@ void bind_run(py::module_& m)
 
   m.def(
       "run",
-      [](const PyScenario& s, const py::object& out_dir, bool force, const py::object& fsw, const py::object& effectors) {
-        return run_to_results(s.sc, out_dir, force, loop_from(fsw, effectors));
-      },
+      [](const PyScenario& s, const py::object& out_dir, bool force, const py::object& fsw, const py::object& effectors,
+         const py::object& sensors) { return run_to_results(s.sc, out_dir, force, loop_from(fsw, effectors, sensors)); },
       py::arg("scenario"), py::arg("out_dir") = py::none(), py::arg("force") = false, py::arg("fsw") = py::none(),
-      py::arg("effectors") = py::none(),
+      py::arg("effectors") = py::none(), py::arg("sensors") = py::none(),
       "Runs a scenario to its end (the GIL released) and returns Results.  With out_dir, also writes the CLI's "
       "files and report there (run_scenario: results.h5, manifest.json, summary.txt, report.html, ...); force "
       "replaces an existing results folder.  fsw: a Python flight software f(sensors: dict) -> actuator dict in "
-      "place of the C FSW; effectors: Python force/torque effectors f(t, state: dict) -> (force_B, torque_B) "
+      "place of the C FSW; effectors: Python force/torque effectors f(t, state: dict) -> (force_B, torque_B); "
+      "sensors: {name: (f(t, truth: dict) -> reading, size)}, recorded as python/name "
       "(docs/python.md, \"Python in the loop\"; not with out_dir).");
 
   py::class_<PyRun>(m, "Run", "A run stepped from Python: step(n), tick, t, state(), apply_event(), results()")
-      .def(py::init([](const PyScenario& s, const py::object& fsw, const py::object& effectors) {
-             return std::make_unique<PyRun>(s.sc, loop_from(fsw, effectors));
+      .def(py::init([](const PyScenario& s, const py::object& fsw, const py::object& effectors,
+                       const py::object& sensors) {
+             return std::make_unique<PyRun>(s.sc, loop_from(fsw, effectors, sensors));
            }),
            py::arg("scenario"), py::arg("fsw") = py::none(), py::arg("effectors") = py::none(),
+           py::arg("sensors") = py::none(),
            "A run of the scenario; fsw, effectors: Python in the loop as in kestrel.run()")
       .def(
           "step",

@@ -256,5 +256,69 @@ class PythonEffector(unittest.TestCase):
             kestrel.run(sc, effectors=[1])
 
 
+
+def omega(res):
+    return res["truth/omega_BN_B"] if "truth/omega_BN_B" in res else res["omega_BN_B"]
+
+
+class PythonSensor(unittest.TestCase):
+    def test_readings_recorded_at_every_row(self):
+        sc = s1(3.0)
+        times = []
+
+        def doubled_rate(t, truth):
+            times.append(t)
+            return 2.0 * truth["omega_BN_B"]
+
+        def clock(t, truth):
+            return t
+
+        r = kestrel.run(sc, sensors={"rate2": (doubled_rate, 3), "clock": (clock, 1)})
+        self.assertTrue(r.complete, r.failure)
+        self.assertEqual(len(times), len(r))  # one call per recorded row (10 Hz)
+        self.assertEqual(r.columns[-4:], ["rate2_0", "rate2_1", "rate2_2", "clock"])
+        # x2 is exact in binary floating point: the truth at the same row
+        np.testing.assert_array_equal(r["python/rate2"], 2.0 * omega(r))
+        np.testing.assert_array_equal(r["python/clock"][:, 0], r.t)
+        self.assertEqual(json.loads(r.manifest)["python_in_loop"]["sensors"],
+                         {"rate2": "python:" + __name__ + ".PythonSensor.test_readings_recorded_at_every_row."
+                                   "<locals>.doubled_rate",
+                          "clock": "python:" + __name__ + ".PythonSensor.test_readings_recorded_at_every_row."
+                                   "<locals>.clock"})
+        # the same through a stepped Run, and the loop's other rows unchanged by it
+        run = kestrel.Run(sc, sensors={"rate2": (doubled_rate, 3)})
+        run.step(10**9)
+        np.testing.assert_array_equal(run.results()["python/rate2"], r["python/rate2"])
+        plain = kestrel.run(sc)
+        np.testing.assert_array_equal(plain.data, r.data[:, :-4])
+
+    def test_exception_and_bad_reading_stop_the_run(self):
+        sc = s1(3.0)
+
+        def failing(t, truth):
+            if t >= 1.0:
+                raise KeyError("no such truth")
+            return [0.0]
+
+        r = kestrel.run(sc, sensors={"bad": (failing, 1)})
+        self.assertFalse(r.complete)
+        self.assertIn("at t = 1.0", r.failure)
+        self.assertIn("Python sensor bad", r.failure)
+        self.assertIn("KeyError: 'no such truth'", r.failure)
+        self.assertEqual(len(r), 10)  # rows t = 0 .. 0.9 s
+        for f, want in [(lambda t, x: np.zeros(2), "reading: shape (3,)"),
+                        (lambda t, x: [0.0, np.nan, 0.0], "reading: not finite (element 1)")]:
+            r = kestrel.run(sc, sensors={"s": (f, 3)})
+            self.assertFalse(r.complete)
+            self.assertIn(want, r.failure)
+            self.assertEqual(len(r), 0)
+        with self.assertRaisesRegex(TypeError, "reading, size: int"):
+            kestrel.run(sc, sensors={"s": lambda t, x: 0.0})
+        with self.assertRaisesRegex(ValueError, "not a column name"):
+            kestrel.run(sc, sensors={"a/b": (lambda t, x: 0.0, 1)})
+        with self.assertRaisesRegex(ValueError, "declared twice"):
+            kestrel.run(sc, sensors={"t": (lambda t, x: 0.0, 1)})
+
+
 if __name__ == "__main__":
     unittest.main()

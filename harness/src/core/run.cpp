@@ -171,6 +171,11 @@ void Run::Impl::wire(RunConfig& cfg)
   const Messages m = add_messages(fsw_commands);
   add_tasks(m);
   add_recorder(m);
+  for (RunConfig::TruthSource& x : cfg.truth_sources) {  // e.g. Python sensors
+    const Channel<TruthMsg>* truth = m.truth;
+    auto fill = std::move(x.fill);
+    rec.add_source(x.group, x.quantities, [this, truth, fill](double* o) { fill(sched.t_ns(tick), truth->value(), o); });
+  }
   const RateGroup fsw_group{"fsw", sc.rates.fsw_divisor, sc.rates.fsw_offset};
   const RateGroup rec_group{"record", sc.rates.record_divisor, 0};
   if (!sc.events.empty() || cfg.accept_events) add_events();
@@ -467,6 +472,12 @@ bool Run::step_ticks(uint64_t n)
       m.sched.run_tick(m.tick);
     } catch (const FswEndpointError& e) {  // e.g. a remote FSW endpoint's link
       m.failure = std::string("FSW endpoint at t = ") + std::to_string(static_cast<double>(m.sched.t_ns(m.tick)) * 1e-9) +
+                  " s: " + e.what();
+      finish();
+      return false;
+    }
+    catch (const InLoopError& e) {  // e.g. a Python sensor at a recorded row
+      m.failure = std::string("at t = ") + std::to_string(static_cast<double>(m.sched.t_ns(m.tick)) * 1e-9) +
                   " s: " + e.what();
       finish();
       return false;

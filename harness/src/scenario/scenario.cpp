@@ -276,7 +276,7 @@ void refuse_python_in_loop(Ctx& ctx, const YAML::Node& root)
   ctx.error(p, "python_in_loop",
             "this run had Python objects in the loop (" + std::string(what.c_str()) +
                 "), which a manifest cannot hold: rerun it from Python with the same objects "
-                "(kestrel.run(scenario, fsw=..., effectors=...); docs/python.md, \"Python in the loop\")");
+                "(kestrel.run(scenario, fsw=..., effectors=..., sensors=...); docs/python.md, \"Python in the loop\")");
   throw ScenarioError(*ctx.issues);
 }
 
