@@ -77,6 +77,9 @@ std::vector<Field<FswAcsGeometry>> geometry_fields()
           KPY_VEC(G, Kind::Real, mtq_m_max, FSW_MAX_MTQ, true, "[A*m^2] (num_mtq)")};
 }
 
+}  // namespace
+
+// (fsw_field.h: also the Python FSW's messages, loop_py.cpp)
 std::vector<Field<FswAcsSensorMsg>> sensor_fields()
 {
   using S = FswAcsSensorMsg;
@@ -118,6 +121,8 @@ std::vector<Field<FswAcsActuatorMsg>> actuator_fields()
           KPY_VEC(A, Kind::Real, m_cmd, FSW_MAX_MTQ, true, "[A*m^2] rod dipoles"),
           KPY_SCALAR(A, Kind::U8, mtq_active, "")};
 }
+
+namespace {
 
 std::vector<Field<FswAcsHealthMsg>> health_fields()
 {
@@ -182,6 +187,20 @@ void bind_fsw_acs(py::module_& m)
              return a;
            }),
            "A zeroed configuration; keyword arguments set config fields (**{'mrp_fb.K': 0.5})")
+      .def_static(
+          "from_scenario",
+          [](const PyScenario& s) {
+            auto a = std::make_unique<Acs>();
+            try {
+              a->cfg = harness::fsw_acs_config_of(s.sc);
+            } catch (const harness::ScenarioError& e) {
+              throw py::value_error(e.what());
+            }
+            return a;
+          },
+          py::arg("scenario"),
+          "from_scenario(scenario) -> Acs: the configuration a run of the scenario gives its C FSW "
+          "(fsw_acs_config_of), not yet init()")
       .def_property_readonly_static("fields", [cf](const py::object&) {
         std::vector<std::string> v;
         for (const auto& f : *cf) v.push_back(f.name);

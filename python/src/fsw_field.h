@@ -245,6 +245,10 @@ std::vector<Field<FswThrMomentumConfig>> thr_momentum_config();
 std::vector<Field<FswThrPulseRemConfig>> thr_pulse_rem_config();
 std::vector<Field<FswThrPulseSchmittConfig>> thr_pulse_schmitt_config();
 std::vector<Field<FswThrPulseRoundConfig>> thr_pulse_round_config();
+// fsw_acs's messages (fsw_acs_py.cpp): kestrel.fsw.Acs and the Python FSW in the loop
+std::vector<Field<FswAcsSensorMsg>> sensor_fields();
+std::vector<Field<FswAcsCmdMsg>> cmd_fields();
+std::vector<Field<FswAcsActuatorMsg>> actuator_fields();
 std::vector<Field<FswRwNullRegenConfig>> rw_null_regen_config();
 
 void bind_fsw_acs(py::module_& m);

@@ -10,6 +10,7 @@
 
 #include "common.h"
 #include "harness/core/checkpoint.h"
+#include "loop_py.h"
 #include "harness/drive/run_scenario.h"
 #include "scenario/scenario_limits.h"  // kMaxScenarioEvents
 
@@ -140,16 +141,27 @@ void summary_from_text(Results& r, const std::string& text)
 
 // A Run owned by Python, with the scenario it was built from.
 struct PyRun {
-  explicit PyRun(const harness::Scenario& s) : sc(s)
+  // With the GIL held (the Python objects in the loop are installed with it).
+  PyRun(const harness::Scenario& s, PyLoop l) : sc(s), loop(std::move(l))
   {
-    validate_like_cli(sc, false);
+    {
+      py::gil_scoped_release nogil;
+      validate_like_cli(sc, false);
+    }
     harness::RunConfig cfg;
     cfg.keep_in_memory = true;
     cfg.chunk_rows = 1;  // every row reaches the memory sink at once: results() at any tick
     cfg.accept_events = true;  // apply_event()
-    run = std::make_unique<harness::Run>(sc, std::move(cfg));
+    install_fsw(loop, sc, cfg);
+    install_sensors(loop, sc, cfg);
+    {
+      py::gil_scoped_release nogil;
+      run = std::make_unique<harness::Run>(sc, std::move(cfg));
+    }
+    install_effectors(loop, sc, *run);
   }
   harness::Scenario sc;
+  PyLoop loop;  // Python objects in the loop (docs/python.md)
   std::unique_ptr<harness::Run> run;
   std::mutex mu;  // one Python thread at a time steps or reads this run
   struct Applied {
@@ -160,7 +172,7 @@ struct PyRun {
   std::vector<Applied> applied;  // apply_event() log
 };
 
-Results results_of(harness::Run& run, const harness::Scenario& sc)
+Results results_of(harness::Run& run, const harness::Scenario& sc, const PyLoop& loop)
 {
   Results r;
   const harness::MemorySink& mem = run.memory();
@@ -178,31 +190,44 @@ Results results_of(harness::Run& run, const harness::Scenario& sc)
   r.summary_units["complete"] = "";
   r.summary_units["t_reached"] = "s";
   summary_from_items(r, run.summary());
-  r.manifest = harness::manifest_text(sc, {}, &st);
+  r.manifest = manifest_with_loop(harness::manifest_text(sc, {}, &st), loop);
   r.events = events_list(st.events);
   return r;
 }
 
-Results run_to_results(const harness::Scenario& sc, const py::object& out_dir, bool force)
+Results run_to_results(const harness::Scenario& sc, const py::object& out_dir, bool force, const PyLoop& loop = {})
 {
+  if (loop.any() && !out_dir.is_none())
+    throw py::value_error("run(out_dir=...) with Python in the loop: not supported (the CLI's files are written by a "
+                          "run of the C FSW); keep the Results (r.manifest names the Python objects)");
   if (out_dir.is_none()) {
     std::unique_ptr<harness::Run> run;
     double wall = 0.0;
     {
       py::gil_scoped_release nogil;
       validate_like_cli(sc, false);  // a scenario changed by set(): the checks of loading it
-      harness::RunConfig cfg;
-      cfg.keep_in_memory = true;
+    }
+    harness::RunConfig cfg;
+    cfg.keep_in_memory = true;
+    install_fsw(loop, sc, cfg);
+    install_sensors(loop, sc, cfg);
+    {
+      py::gil_scoped_release nogil;
       run = std::make_unique<harness::Run>(sc, std::move(cfg));
+    }
+    install_effectors(loop, sc, *run);
+    {
+      py::gil_scoped_release nogil;
       const auto t0 = std::chrono::steady_clock::now();
       while (!run->done())
         if (!run->step_ticks(1000)) break;
       wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       run->finish();
     }
-    Results r = results_of(*run, sc);
+    Results r = results_of(*run, sc, loop);
     r.wall_seconds = wall;
-    r.scenario = std::make_shared<const harness::Scenario>(sc);
+    // write() reruns the scenario alone: not these results with Python in the loop
+    if (!loop.any()) r.scenario = std::make_shared<const harness::Scenario>(sc);
     return r;
   }
   // the CLI's files and report (run_scenario), and the rows in memory too
@@ -314,8 +339,8 @@ void bind_run(py::module_& m)
           "write",
           [](const Results& r, const py::object& out_dir, bool force) {
             if (!r.scenario)
-              throw py::value_error("write(): only the Results of kestrel.run() (a Run's results() may hold faults "
-                                    "applied from Python that a rerun would not have)");
+              throw py::value_error("write(): only the Results of kestrel.run() without Python in the loop (a Run's "
+                                    "results() may hold faults applied from Python that a rerun would not have)");
             if (out_dir.is_none()) throw py::type_error("write(out_dir): a folder");
             Results again = run_to_results(*r.scenario, out_dir, force);
             // a run depends on its scenario only: the rerun's rows are these
@@ -336,18 +361,25 @@ void bind_run(py::module_& m)
 
   m.def(
       "run",
-      [](const PyScenario& s, const py::object& out_dir, bool force) { return run_to_results(s.sc, out_dir, force); },
-      py::arg("scenario"), py::arg("out_dir") = py::none(), py::arg("force") = false,
+      [](const PyScenario& s, const py::object& out_dir, bool force, const py::object& fsw, const py::object& effectors,
+         const py::object& sensors) { return run_to_results(s.sc, out_dir, force, loop_from(fsw, effectors, sensors)); },
+      py::arg("scenario"), py::arg("out_dir") = py::none(), py::arg("force") = false, py::arg("fsw") = py::none(),
+      py::arg("effectors") = py::none(), py::arg("sensors") = py::none(),
       "Runs a scenario to its end (the GIL released) and returns Results.  With out_dir, also writes the CLI's "
       "files and report there (run_scenario: results.h5, manifest.json, summary.txt, report.html, ...); force "
-      "replaces an existing results folder.");
+      "replaces an existing results folder.  fsw: a Python flight software f(sensors: dict) -> actuator dict in "
+      "place of the C FSW; effectors: Python force/torque effectors f(t, state: dict) -> (force_B, torque_B); "
+      "sensors: {name: (f(t, truth: dict) -> reading, size)}, recorded as python/name "
+      "(docs/python.md, \"Python in the loop\"; not with out_dir).");
 
   py::class_<PyRun>(m, "Run", "A run stepped from Python: step(n), tick, t, state(), apply_event(), results()")
-      .def(py::init([](const PyScenario& s) {
-             py::gil_scoped_release nogil;
-             return std::make_unique<PyRun>(s.sc);
+      .def(py::init([](const PyScenario& s, const py::object& fsw, const py::object& effectors,
+                       const py::object& sensors) {
+             return std::make_unique<PyRun>(s.sc, loop_from(fsw, effectors, sensors));
            }),
-           py::arg("scenario"))
+           py::arg("scenario"), py::arg("fsw") = py::none(), py::arg("effectors") = py::none(),
+           py::arg("sensors") = py::none(),
+           "A run of the scenario; fsw, effectors: Python in the loop as in kestrel.run()")
       .def(
           "step",
           [](PyRun& r, py::object n_obj) {
@@ -404,7 +436,7 @@ void bind_run(py::module_& m)
             std::vector<uint8_t> state;
             const harness::CheckpointInfo info =
                 harness::decode_checkpoint(harness::read_checkpoint_file(path), state, path);
-            auto r = std::make_unique<PyRun>(harness::load_scenario_text(info.scenario_text, path));
+            auto r = std::make_unique<PyRun>(harness::load_scenario_text(info.scenario_text, path), PyLoop{});
             harness::restore_run_state(*r->run, state);
             return r;
           },
@@ -492,7 +524,7 @@ void bind_run(py::module_& m)
             std::lock_guard<std::mutex> g(r.mu);
             // the run's scenario: the events apply_event() added are in its
             // manifest, which replays them
-            return results_of(*r.run, r.run->scenario());
+            return results_of(*r.run, r.run->scenario(), r.loop);
           },
           "The rows recorded so far as Results (the run goes on).");
 }

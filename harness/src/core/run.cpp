@@ -3,6 +3,7 @@
 // FSW's configuration), sensor_suite (sensor models), tasks (the tick
 // protocol's tasks), telemetry_columns (what is recorded).
 #include "harness/core/run.h"
+#include "harness/core/loop_error.h"
 
 #include <algorithm>
 #include <array>
@@ -112,6 +113,7 @@ struct Run::Impl {
   Scheduler sched;
   DataFlow flow;
   Recorder rec{"telemetry"};
+  size_t n_truth_sources = 0;  // callers' truth sources (Python sensors): state outside the run
   std::optional<MemorySink> mem;
   uint64_t tick = 0;
   uint64_t n_ticks = 0;
@@ -192,6 +194,12 @@ void Run::Impl::wire(RunConfig& cfg)
   const Messages m = add_messages(fsw_commands);
   add_tasks(m);
   add_recorder(m);
+  for (RunConfig::TruthSource& x : cfg.truth_sources) {  // e.g. Python sensors
+    ++n_truth_sources;
+    const Channel<TruthMsg>* truth = m.truth;
+    auto fill = std::move(x.fill);
+    rec.add_source(x.group, x.quantities, [this, truth, fill](double* o) { fill(sched.t_ns(tick), truth->value(), o); });
+  }
   const RateGroup fsw_group{"fsw", sc.rates.fsw_divisor, sc.rates.fsw_offset};
   const RateGroup rec_group{"record", sc.rates.record_divisor, 0};
   if (!sc.events.empty() || cfg.accept_events) add_events();
@@ -492,13 +500,28 @@ bool Run::step_ticks(uint64_t n)
       finish();
       return false;
     }
+    catch (const InLoopError& e) {  // e.g. a Python sensor at a recorded row
+      m.failure = std::string("at t = ") + std::to_string(static_cast<double>(m.sched.t_ns(m.tick)) * 1e-9) +
+                  " s: " + e.what();
+      finish();
+      return false;
+    }
     if (m.rec.overflow() > 0) {
       m.failure = "recorder overflow at tick " + std::to_string(m.tick) + " (internal error)";
       finish();
       return false;
     }
     if (m.tick < m.n_ticks) {
-      if (!m.step_plant()) {
+      bool stepped = false;
+      try {
+        stepped = m.step_plant();
+      } catch (const InLoopError& e) {  // e.g. a Python effector (docs/python.md)
+        m.failure = std::string("plant at t = ") + std::to_string(static_cast<double>(m.sched.t_ns(m.tick)) * 1e-9) +
+                    " s: " + e.what();
+        finish();
+        return false;
+      }
+      if (!stepped) {
         m.failure = "plant state became non-finite at t = " +
                     std::to_string(static_cast<double>(m.sched.t_ns(m.tick)) * 1e-9) + " s";
         ++m.tick;
@@ -600,8 +623,8 @@ std::string Run::checkpoint_refusal() const
   if (!m.failure.empty()) return "the run failed: " + m.failure;
   if (m.tick > m.n_ticks) return "the run has ended";
   if (!m.fsw->checkpointable())
-    return "the flight software runs outside this process (" + m.fsw->describe() +
-           "): its state is not in this process to save";
+    return "the flight software (" + m.fsw->describe() + ") keeps state the harness cannot save";
+  if (m.n_truth_sources > 0) return "sensors of the caller's own (Python) are in the loop: their state is not the harness's to save";
   return "";
 }
 

@@ -262,11 +262,30 @@ void read_scenario(const Ctx& ctx, const YAML::Node& root, Scenario& sc)
   if (ctx.issues->empty()) check_monte_carlo(ctx, sc);    // the dispersed keys, against the scenario read
 }
 
+// A manifest of a run with Python objects in the loop (written by the Python
+// module, docs/python.md "Python in the loop"): the objects are not in it, so
+// it cannot be rerun here.
+void refuse_python_in_loop(Ctx& ctx, const YAML::Node& root)
+{
+  const YAML::Node p = root["python_in_loop"];
+  if (!p.IsDefined()) return;
+  YAML::Emitter what;
+  what.SetMapFormat(YAML::Flow);
+  what.SetSeqFormat(YAML::Flow);
+  what << p;
+  ctx.error(p, "python_in_loop",
+            "this run had Python objects in the loop (" + std::string(what.c_str()) +
+                "), which a manifest cannot hold: rerun it from Python with the same objects "
+                "(kestrel.run(scenario, fsw=..., effectors=..., sensors=...); docs/python.md, \"Python in the loop\")");
+  throw ScenarioError(*ctx.issues);
+}
+
 Scenario load_from_root(YAML::Node root, const std::string& file, const std::vector<Override>& overrides)
 {
   std::vector<ScenarioIssue> issues;
   Ctx ctx{file, &issues, {}};
   if (root.IsMap() && root["kestrel_manifest"].IsDefined()) {
+    refuse_python_in_loop(ctx, root);
     YAML::Node s = root["scenario"];
     if (!s.IsDefined() || !s.IsMap()) {
       ctx.error(root, "scenario", "a manifest needs a 'scenario' map");

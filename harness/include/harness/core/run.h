@@ -30,6 +30,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -94,6 +95,8 @@ struct SummaryItem {
   std::string what;
 };
 
+struct TruthMsg;  // harness/core/loop_messages.h
+
 struct RunConfig {
   // Keep every recorded row in memory (Run::memory()): tests, the C++ API,
   // short runs.  Off for streaming-only runs (memory bounded for any duration).
@@ -105,6 +108,16 @@ struct RunConfig {
   // Build the events task even when the scenario has no events, so events
   // can be added while the run goes (add_event; the live view).
   bool accept_events = false;
+  // Further recorded quantities computed from the truth at every recorded
+  // row, after the run's own columns (a Python sensor, docs/python.md):
+  // fill(t_ns, truth, out) writes every column of `quantities`; it may throw
+  // InLoopError (harness/core/loop_error.h) to fail the run at that tick.
+  struct TruthSource {
+    std::string group;
+    std::vector<Quantity> quantities;
+    std::function<void(int64_t, const TruthMsg&, double*)> fill;
+  };
+  std::vector<TruthSource> truth_sources;
 };
 
 // The FSW application configuration a scenario gives (what InProcessFsw is
