@@ -4,7 +4,9 @@ setuptools and wheel, the venv made with --system-site-packages so that
 Debian's NumPy and pandas are seen.  The module is the one this CMake tree
 built (KESTREL_PREBUILT_DIR=KESTREL_BUILD_TREE: setup.py packages it instead
 of compiling it again; the from-scratch build's time is in docs/python.md).
-Then, from outside the source tree: import kestrel from the venv, a 5 s S1
+The package's files are copied to a temporary folder first (the CMake
+sources are not needed to package a built module).  Then, from outside the
+source tree: import kestrel from the venv, a 5 s S1
 run, to_pandas(), the installed files and the declared dependencies.
 
 Environment (ctest): KESTREL_SOURCE_DIR, KESTREL_BUILD_TREE.
@@ -35,6 +37,19 @@ print(json.dumps({
 """
 
 
+def package_source(tmp):
+    """The package's files of the source tree copied to tmp/src: with
+    KESTREL_PREBUILT_DIR the build needs no CMake sources, and setuptools'
+    in-tree files (build/, kestrel.egg-info) stay out of the source tree."""
+    dst = os.path.join(tmp, "src")
+    for f in ("pyproject.toml", "setup.py", "MANIFEST.in", "README.md"):
+        os.makedirs(dst, exist_ok=True)
+        shutil.copy(os.path.join(SRC, f), dst)
+    shutil.copytree(os.path.join(SRC, "python", "kestrel"), os.path.join(dst, "python", "kestrel"),
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    return dst
+
+
 def have_tools():
     try:
         import setuptools  # noqa: F401
@@ -52,11 +67,14 @@ class PipInstallTest(unittest.TestCase):
     def test_pip_install_into_venv_offline(self):
         with tempfile.TemporaryDirectory() as tmp:
             venv = os.path.join(tmp, "venv")
-            subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", venv], check=True, timeout=120)
+            # Debian's pip drives the venv's interpreter (--python): no copy of pip in the venv
+            subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", "--without-pip", venv],
+                           check=True, timeout=120)
             py = os.path.join(venv, "bin", "python")
+            pip = [sys.executable, "-m", "pip", "--python", py]
             env = dict(os.environ, KESTREL_PREBUILT_DIR=TREE, PIP_NO_INDEX="1", PIP_DISABLE_PIP_VERSION_CHECK="1")
             env.pop("PYTHONPATH", None)  # the venv's kestrel, not the build tree's
-            p = subprocess.run([py, "-m", "pip", "install", "--no-index", "--no-build-isolation", SRC],
+            p = subprocess.run(pip + ["install", "--no-index", "--no-build-isolation", package_source(tmp)],
                                env=env, capture_output=True, text=True, timeout=240, cwd=tmp)
             self.assertEqual(p.returncode, 0, p.stdout[-3000:] + p.stderr[-3000:])
             p = subprocess.run([py, "-c", CHECK, os.path.join(SRC, "scenarios", "s1_sun_pointing.yaml")],
@@ -77,21 +95,23 @@ class PipInstallTest(unittest.TestCase):
                                 for q in r["requires"]),
                             r["requires"])
             self.assertEqual(r["dist_version"], r["version"])
-            p = subprocess.run([py, "-m", "pip", "uninstall", "-y", "kestrel"], env=env, capture_output=True,
+            p = subprocess.run(pip + ["uninstall", "-y", "kestrel"], env=env, capture_output=True,
                                text=True, timeout=120)
             self.assertEqual(p.returncode, 0, p.stderr)
 
     def test_prebuilt_dir_without_module_is_refused(self):
-        # KESTREL_PREBUILT_DIR pointing at a folder with no module: a clear error, no half-made wheel
+        # KESTREL_PREBUILT_DIR at a folder with no module: a clear error, nothing built
         with tempfile.TemporaryDirectory() as tmp:
+            src = package_source(tmp)
             env = dict(os.environ, KESTREL_PREBUILT_DIR=tmp)
-            out = os.path.join(tmp, "wheels")
-            p = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-index", "--no-build-isolation",
-                                "--no-deps", "-w", out, SRC], env=env, capture_output=True, text=True, timeout=240,
-                               cwd=tmp)
+            lib = os.path.join(tmp, "lib")
+            p = subprocess.run([sys.executable, "setup.py", "-q", "build_ext", "--build-lib", lib,
+                                "--build-temp", os.path.join(tmp, "temp")], env=env, capture_output=True,
+                               text=True, timeout=240, cwd=src)
             self.assertNotEqual(p.returncode, 0)
             self.assertIn("no _kestrel", p.stdout + p.stderr)
-            self.assertFalse(os.path.isdir(out) and os.listdir(out))
+            self.assertIn(tmp, p.stdout + p.stderr)
+            self.assertFalse(os.path.isdir(os.path.join(lib, "kestrel")) and os.listdir(os.path.join(lib, "kestrel")))
 
 
 if __name__ == "__main__":
