@@ -1,9 +1,9 @@
 # Type stub of the package kestrel (the extension kestrel._kestrel re-exported
 # by __init__.py, plus Results.to_pandas).  Written by hand (Debian has no
 # pybind11-stubgen); test/python/test_package.py checks that its names are the
-# module's, class by class.
-import os
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+# module's, class by class (mypy.stubtest, run by hand, finds only what pybind11
+# classes differ in: their metaclass, the *args of a class Python cannot construct).
+from typing import Any, Dict, List, Mapping, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -12,7 +12,6 @@ from . import fsw as fsw
 
 __version__: str
 
-_Path = Union[str, "os.PathLike[str]"]
 _Value = Union[bool, int, float, str, npt.ArrayLike]
 
 class ScenarioError(ValueError):
@@ -33,6 +32,8 @@ class Scenario:
     def validate(self) -> None: ...
     def to_json(self, indent: int = 2) -> str: ...
     def copy(self) -> Scenario: ...
+    def __copy__(self) -> Scenario: ...
+    def __deepcopy__(self, memo: Any) -> Scenario: ...
     @property
     def name(self) -> str: ...
     @property
