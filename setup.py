@@ -61,4 +61,6 @@ class CMakeBuild(build_ext):
         shutil.copyfile(built, dest)
 
 
-setup(ext_modules=[Extension("kestrel._kestrel", sources=[])], cmdclass={"build_ext": CMakeBuild})
+setup(packages=["kestrel"], package_dir={"kestrel": "python/kestrel"},
+      package_data={"kestrel": ["py.typed", "*.pyi"]}, include_package_data=False,
+      ext_modules=[Extension("kestrel._kestrel", sources=[])], cmdclass={"build_ext": CMakeBuild})
