@@ -17,7 +17,9 @@ extern "C" void fsw_assert_failed(const char* file, int line)
 
 namespace py = pybind11;
 
-PYBIND11_MODULE(kestrel, m)
+// The extension kestrel._kestrel; the package kestrel (python/kestrel/__init__.py)
+// re-exports its names and registers kestrel.fsw.
+PYBIND11_MODULE(_kestrel, m)
 {
   m.doc() = "Kestrel: scenarios, closed-loop runs, Monte Carlo campaigns and the FSW algorithms (docs/python.md)";
   m.attr("__version__") = harness::version();
@@ -50,6 +52,4 @@ PYBIND11_MODULE(kestrel, m)
   kpy::bind_mc(m);
   py::module_ fsw = m.def_submodule("fsw", "Thin bindings of single FSW algorithms (fsw_c), NumPy in and out");
   kpy::bind_fsw(fsw);
-  // `import kestrel.fsw` / `from kestrel.fsw import MrpFb`
-  py::module_::import("sys").attr("modules")["kestrel.fsw"] = fsw;
 }
