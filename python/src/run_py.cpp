@@ -432,12 +432,18 @@ void bind_run(py::module_& m)
       .def_static(
           "restore",
           [](const std::string& path) {
-            py::gil_scoped_release nogil;
             std::vector<uint8_t> state;
-            const harness::CheckpointInfo info =
-                harness::decode_checkpoint(harness::read_checkpoint_file(path), state, path);
-            auto r = std::make_unique<PyRun>(harness::load_scenario_text(info.scenario_text, path), PyLoop{});
-            harness::restore_run_state(*r->run, state);
+            std::string scenario_text;
+            {
+              py::gil_scoped_release nogil;
+              scenario_text = harness::decode_checkpoint(harness::read_checkpoint_file(path), state, path).scenario_text;
+            }
+            // built with the GIL held, like any PyRun (no Python objects in its loop)
+            auto r = std::make_unique<PyRun>(harness::load_scenario_text(scenario_text, path), PyLoop{});
+            {
+              py::gil_scoped_release nogil;
+              harness::restore_run_state(*r->run, state);
+            }
             return r;
           },
           py::arg("path"),
