@@ -6,6 +6,7 @@ Environment (ctest): PYTHONPATH at the build's python/ folder,
 KESTREL_SOURCE_DIR.
 """
 import ast
+import enum
 import os
 import unittest
 
@@ -100,6 +101,8 @@ def stub_names(path):
                     members.add(b.name)
                 elif isinstance(b, ast.AnnAssign) and isinstance(b.target, ast.Name):
                     members.add(b.target.id)
+                elif isinstance(b, ast.Assign):  # an enum's member: OK = 0
+                    members |= {t.id for t in b.targets if isinstance(t, ast.Name)}
             for base in node.bases:
                 if isinstance(base, ast.Name) and base.id in classes:
                     members |= classes[base.id]
@@ -113,6 +116,14 @@ def stub_names(path):
             for a in node.names:
                 top[a.asname or a.name] = None
     return {k: v for k, v in top.items() if not k.startswith("_") or k == "__version__"}
+
+
+def stub_enum_values(path, name):
+    """{member: value} of the stub's enum class `name` (its NAME = literal lines)."""
+    tree = ast.parse(open(path, encoding="utf-8").read(), path)
+    cls = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == name)
+    return {t.id: ast.literal_eval(b.value) for b in cls.body if isinstance(b, ast.Assign)
+            for t in b.targets if isinstance(t, ast.Name)}
 
 
 def public(obj):
@@ -129,6 +140,10 @@ class StubTest(unittest.TestCase):
         for n, members in names.items():
             obj = getattr(module, n)
             if members is None or not isinstance(obj, type) or issubclass(obj, BaseException):
+                continue
+            if issubclass(obj, enum.Enum):  # its members and their values (int's methods are int's)
+                self.assertEqual(stub_enum_values(os.path.join(PKG, stub), n),
+                                 {k: v.value for k, v in obj.__members__.items()}, "%s: enum %s" % (stub, n))
                 continue
             base = public(object)
             want = {m for m in members if not m.startswith("_")}
@@ -147,9 +162,11 @@ class StubTest(unittest.TestCase):
         import tempfile
         with tempfile.NamedTemporaryFile("w", suffix=".pyi", delete=False) as f:
             f.write("class _B:\n    def check(self) -> int: ...\nclass A(_B):\n    x: int\n    def y(self) -> None: ...\n"
-                    "def g() -> None: ...\nOK: int\nfrom . import fsw as fsw\n")
+                    "def g() -> None: ...\nOK: int\nfrom . import fsw as fsw\nclass E:\n    A = 1\n")
         try:
-            self.assertEqual(stub_names(f.name), {"A": {"check", "x", "y"}, "g": None, "OK": None, "fsw": None})
+            self.assertEqual(stub_names(f.name), {"A": {"check", "x", "y"}, "g": None, "OK": None, "fsw": None,
+                                                   "E": {"A"}})
+            self.assertEqual(stub_enum_values(f.name, "E"), {"A": 1})
         finally:
             os.unlink(f.name)
 
