@@ -45,6 +45,7 @@ void cycle(FswAcsState& st, uint64_t c, FswAcsActuatorMsg& act, FswAcsHealthMsg&
 
 }  // namespace
 
+// Verifies: REQ-ACS-017
 TEST(FswAcsSave, TagAndSize)
 {
   EXPECT_EQ(16u + sizeof(FswAcsState), fsw_acs_save_size());
@@ -62,6 +63,7 @@ TEST(FswAcsSave, TagAndSize)
   EXPECT_EQ(0, std::memcmp(buf.data() + 16, &g_a, sizeof g_a));
 }
 
+// Verifies: REQ-ACS-017
 TEST(FswAcsSave, RestoredStateContinuesBitForBit)
 {
   acsfix::wheel_config(g_cfg);
@@ -86,6 +88,7 @@ TEST(FswAcsSave, RestoredStateContinuesBitForBit)
   EXPECT_EQ(0, std::memcmp(&g_a, &g_b, sizeof g_a));
 }
 
+// Verifies: REQ-ACS-017
 TEST(FswAcsSave, RefusesAWrongImageAndLeavesTheStateAlone)
 {
   acsfix::wheel_config(g_cfg);
@@ -110,6 +113,7 @@ TEST(FswAcsSave, RefusesAWrongImageAndLeavesTheStateAlone)
   for (uint8_t v : small) ASSERT_EQ(0xEE, v);
 }
 
+// Verifies: REQ-ACS-017, REQ-GEN-007
 TEST(FswAcsSave, NullArguments)
 {
   std::vector<uint8_t> buf(fsw_acs_save_size());
