@@ -16,7 +16,8 @@ host_pkgs=(cmake ninja-build g++ gcc clang libgtest-dev googletest libbenchmark-
            python3-jsonschema python3-yaml  # the scenario JSON Schema's test (docs/scenario-schema.md), the packet dictionary (tools/icd_gen.py)
            pybind11-dev python3-numpy python3-dev python3-matplotlib python3-pytest  # the kestrel Python module and its example (docs/python.md)
            frama-c-base why3 cvc4  # test fsw_eva (docs/eva.md): Frama-C's Eva and WP; why3 and cvc4 are only recommended by frama-c-base
-           python3-pandas python3-setuptools python3-wheel python3-build python3-venv python3-pip)  # Results.to_pandas(); pip install . / python3 -m build offline (docs/python.md)
+           python3-pandas python3-setuptools python3-wheel python3-build python3-venv python3-pip  # Results.to_pandas(); pip install . / python3 -m build offline (docs/python.md)
+           python3-nbclient python3-nbformat python3-ipykernel)  # the tutorial notebooks, executed by their test (examples/notebooks/, docs/python.md)
 # NodeSource's nodejs ships npm and conflicts with Debian's npm package
 command -v npm >/dev/null 2>&1 || host_pkgs+=(npm)
 target_pkgs=(gcc-arm-none-eabi binutils-arm-none-eabi picolibc-arm-none-eabi
