@@ -12,6 +12,7 @@
 #include "harness/core/checkpoint.h"
 #include "loop_py.h"
 #include "harness/drive/run_scenario.h"
+#include "core/events.h"  // check_event_action, event_actions
 #include "scenario/scenario_limits.h"  // kMaxScenarioEvents
 
 namespace kpy {
@@ -267,6 +268,155 @@ void fill_results(Results& r, const std::vector<harness::Column>& cols, const do
   if (rows > 0 && !cols.empty()) std::memcpy(r.data.mutable_data(), data, sizeof(double) * rows * cols.size());
 }
 
+namespace {
+
+// Actions as one scenario event at this tick boundary, exactly as if the
+// scenario had listed it (Run::add_event: checked like one, logged in the
+// results' events and replayed by the run's scenario).  `who` heads the
+// ValueError.  With r.mu held.
+void add_actions(PyRun& r, const std::vector<harness::EventActionSpec>& acts, const std::string& who)
+{
+  // the scenario's cap counts the scenario's own events and these
+  if (r.run->scenario().events.size() >= harness::kMaxScenarioEvents)
+    throw py::value_error(who + ": at most " + std::to_string(harness::kMaxScenarioEvents) +
+                          " events in a run (the scenario's and apply_event's), as in a scenario");
+  const uint64_t k = r.run->tick();
+  harness::EventSpec e;
+  e.name = "py" + std::to_string(r.applied.size() + 1);
+  for (bool taken = true; taken;) {  // unique among the scenario's names
+    taken = false;
+    for (const harness::EventSpec& x : r.run->scenario().events) taken = taken || x.name == e.name;
+    if (taken) e.name += "_";
+  }
+  const double t = static_cast<double>(k * r.sc.tick_ns()) / 1e9;  // as the recorded t
+  e.t = t;
+  e.actions = acts;
+  try {
+    r.run->add_event(e);
+  } catch (const harness::ScenarioError& ex) {
+    throw py::value_error(who + ": " + ex.what());
+  }
+  for (const harness::EventActionSpec& a : acts) {
+    std::string what = a.device + " " + a.action;
+    if (!std::isnan(a.value)) what += " " + py::str(py::float_(a.value)).cast<std::string>();
+    r.applied.push_back({k, t, what});
+  }
+}
+
+// A 1-D array of n finite numbers for set_state's `field` (ValueError naming it).
+std::vector<double> state_values(const py::object& v, const char* field, size_t n)
+{
+  py::array_t<double, py::array::c_style | py::array::forcecast> a;
+  try {
+    a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(v);
+  } catch (const py::error_already_set&) {
+  }
+  if (!a || a.ndim() > 1 || static_cast<size_t>(a.size()) != n)
+    throw py::value_error(std::string("set_state: ") + field + " takes " + std::to_string(n) + " number" +
+                          (n == 1 ? "" : "s"));
+  std::vector<double> out(a.data(), a.data() + n);
+  for (size_t i = 0; i < n; ++i)
+    if (!std::isfinite(out[i]))
+      throw py::value_error(std::string("set_state: ") + field + "[" + std::to_string(i) + "] is not finite");
+  return out;
+}
+
+py::array_t<double> to_array(const double* p, size_t n)
+{
+  py::array_t<double> a(static_cast<py::ssize_t>(n));
+  std::copy(p, p + n, a.mutable_data());
+  return a;
+}
+
+// The plant's truth now: the state vector's parts as NumPy arrays.
+py::dict plant_state(const sim::Plant& p)
+{
+  const sim::StateVector& x = p.state();
+  const sim::StateLayout& L = p.layout();
+  py::dict d;
+  d["attitude"] = to_array(x.data() + sim::StateLayout::sigma_BN, 3);
+  d["omega"] = to_array(x.data() + sim::StateLayout::omega_BN_B, 3);
+  d["wheel_speeds"] = to_array(x.data() + (p.num_rw() ? L.Omega(0) : 0), static_cast<size_t>(p.num_rw()));
+  d["position"] = to_array(x.data() + sim::StateLayout::r_BN_N, 3);
+  d["velocity"] = to_array(x.data() + sim::StateLayout::v_BN_N, 3);
+  d["propellant"] = to_array(x.data() + (p.num_tanks() ? L.m_p(0) : 0), static_cast<size_t>(p.num_tanks()));
+  d["t"] = static_cast<double>(p.t_ns()) / 1e9;
+  return d;
+}
+
+// set_state's fields as event actions; the whole set checked before any is applied.
+void set_plant_state(PyRun& r, const py::dict& fields)
+{
+  static const char* const kAxes = "xyz";
+  const harness::Scenario& sc = r.run->scenario();
+  std::vector<harness::EventActionSpec> acts;
+  std::vector<std::string> field_of;
+  auto vec = [&](const char* field, const char* prefix) {
+    if (!fields.contains(field) || fields[field].is_none()) return;
+    const std::vector<double> v = state_values(fields[field], field, 3);
+    for (size_t i = 0; i < 3; ++i) {
+      acts.push_back({"spacecraft", std::string(prefix) + kAxes[i], v[i]});
+      field_of.push_back(std::string(field) + "[" + std::to_string(i) + "]");
+    }
+  };
+  for (const auto& kv : fields) {
+    const std::string k = py::str(kv.first);
+    if (k != "attitude" && k != "omega" && k != "wheel_speeds" && k != "position" && k != "velocity" &&
+        k != "propellant")
+      throw py::type_error("set_state: no field '" + k +
+                           "' (attitude, omega, wheel_speeds, position, velocity, propellant)");
+  }
+  vec("attitude", "sigma_BN_");
+  vec("omega", "omega_BN_B_");
+  vec("position", "r_N_");
+  vec("velocity", "v_N_");
+  if (fields.contains("wheel_speeds") && !fields["wheel_speeds"].is_none()) {
+    const std::vector<double> v = state_values(fields["wheel_speeds"], "wheel_speeds", sc.wheels.size());
+    for (size_t i = 0; i < v.size(); ++i) {
+      acts.push_back({sc.wheels[i].name, "speed", v[i]});
+      field_of.push_back("wheel_speeds[" + std::to_string(i) + "]");
+    }
+  }
+  if (fields.contains("propellant") && !fields["propellant"].is_none()) {
+    acts.push_back({"spacecraft", "propellant_mass", state_values(fields["propellant"], "propellant", 1)[0]});
+    field_of.push_back("propellant");
+  }
+  for (size_t j = 0; j < acts.size(); ++j) {
+    std::string key;
+    const std::string why = harness::check_event_action(sc, acts[j], key);
+    if (!why.empty()) throw py::value_error("set_state: " + field_of[j] + ": " + why);
+  }
+  if (!acts.empty()) add_actions(r, acts, "set_state");
+}
+
+// What can be set during this run: every device's actions this scenario accepts.
+py::list settable_list(const PyRun& r)
+{
+  const harness::Scenario& sc = r.run->scenario();
+  std::vector<std::string> names = harness::event_device_names(sc);
+  if (r.run->fsw_accepts_commands()) names.push_back("fsw");
+  py::list out;
+  for (const std::string& name : names) {
+    harness::EventTarget tg;
+    if (!harness::resolve_event_device(sc, name, tg).empty()) continue;
+    for (const harness::EventActionDef& d : harness::event_actions(tg.device)) {
+      const double probe = d.value == harness::EventValue::None ? std::numeric_limits<double>::quiet_NaN() : 0.5;
+      std::string key;
+      if (!harness::check_event_action(sc, {name, d.word, probe}, key).empty()) continue;
+      py::dict e;
+      e["device"] = name;
+      e["action"] = d.word;
+      e["takes_value"] = d.value != harness::EventValue::None;
+      e["unit"] = d.unit;
+      e["description"] = d.what;
+      out.append(e);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 void bind_run(py::module_& m)
 {
   py::class_<Results>(m, "Results",
@@ -478,32 +628,7 @@ void bind_run(py::module_& m)
               a.value = value.cast<double>();
               if (std::isnan(a.value)) throw py::value_error("apply_event: " + action + ": the value is NaN");
             }
-            // a scenario event at this tick boundary, exactly as if the
-            // scenario had listed it (Run::add_event: checked like one, logged
-            // in the results' events and replayed by the run's scenario)
-            // the scenario's cap counts the scenario's own events and these
-            if (r.run->scenario().events.size() >= harness::kMaxScenarioEvents)
-              throw py::value_error("apply_event: at most " + std::to_string(harness::kMaxScenarioEvents) +
-                                    " events in a run (the scenario's and apply_event's), as in a scenario");
-            const uint64_t k = r.run->tick();
-            harness::EventSpec e;
-            e.name = "py" + std::to_string(r.applied.size() + 1);
-            for (bool taken = true; taken;) {  // unique among the scenario's names
-              taken = false;
-              for (const harness::EventSpec& x : r.run->scenario().events) taken = taken || x.name == e.name;
-              if (taken) e.name += "_";
-            }
-            const double t = static_cast<double>(k * r.sc.tick_ns()) / 1e9;  // as the recorded t
-            e.t = t;
-            e.actions.push_back(a);
-            try {
-              r.run->add_event(e);
-            } catch (const harness::ScenarioError& ex) {
-              throw py::value_error(std::string("apply_event: ") + ex.what());
-            }
-            std::string what = device + " " + action;
-            if (!value.is_none()) what += " " + py::str(py::float_(a.value)).cast<std::string>();
-            r.applied.push_back({k, t, what});
+            add_actions(r, {a}, "apply_event");
           },
           py::arg("device"), py::arg("action"), py::arg("value") = py::none(),
           "Applies a scenario event action at this tick boundary (before the next tick): any device and action of "
@@ -524,6 +649,34 @@ void bind_run(py::module_& m)
             return l;
           },
           "apply_event() log: dicts tick, t, what")
+      .def(
+          "get_state",
+          [](PyRun& r) {
+            std::lock_guard<std::mutex> g(r.mu);
+            return plant_state(r.run->plant());
+          },
+          "The plant's truth now (not the last recorded row), as NumPy arrays: attitude (MRP sigma_BN), omega "
+          "(omega_BN_B [rad/s]), wheel_speeds (each wheel's rotor speed relative to the body [rad/s]), position "
+          "(r_BN_N [m]), velocity (v_BN_N [m/s]), propellant (each tank [kg]); t [s], the plant's time")
+      .def(
+          "set_state",
+          [](PyRun& r, const py::kwargs& fields) {
+            std::lock_guard<std::mutex> g(r.mu);
+            set_plant_state(r, fields);
+          },
+          "Sets parts of the plant's state at this tick boundary (in effect when the next tick starts): "
+          "attitude (3, MRP; the shadow set if |sigma| > 1), omega (3, rad/s), wheel_speeds (one per wheel, "
+          "rad/s, within Omega_max), position (3, m), velocity (3, m/s), propellant (kg, the first tank, within "
+          "[0, its load]).  Each component is one action of one event (device spacecraft or the wheel), logged "
+          "in applied and replayed by the run's manifest.  ValueError naming the field; nothing is set then.")
+      .def(
+          "settable",
+          [](PyRun& r) {
+            std::lock_guard<std::mutex> g(r.mu);
+            return settable_list(r);
+          },
+          "Everything that can be set during this run (the event actions this scenario accepts, "
+          "docs/events.md): dicts device, action, takes_value, unit, description")
       .def(
           "results",
           [](PyRun& r) {

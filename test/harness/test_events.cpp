@@ -1145,3 +1145,40 @@ TEST(Events, FswCommandsAreCheckedAgainstTheScenario)
             std::string::npos);
   EXPECT_EQ(problem(s1_with("events:\n  - {t: 1, actions: [{device: fsw, action: mode_inertial}]}\n")), "");
 }
+
+// The plant-state actions (device spacecraft, a wheel's speed): accepted in a
+// scenario's events, refused out of range with the key at fault.
+TEST(Events, PlantStateActionsAreCheckedAgainstTheScenario)
+{
+  EXPECT_EQ(problem(s1_with("events:\n  - {t: 1, actions: [{device: spacecraft, action: omega_BN_B_x, value: 0.01},\n"
+                            "      {device: spacecraft, action: sigma_BN_z, value: -0.3},\n"
+                            "      {device: spacecraft, action: r_N_y, value: 7e6},\n"
+                            "      {device: spacecraft, action: v_N_z, value: 7500},\n"
+                            "      {device: rw2, action: speed, value: -628}]}\n")),
+            "");
+  // S1's wheels: Omega_max_rpm 6000 = 628.3185 rad/s
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 1, actions: [{device: rw1, action: speed, value: 629}]}\n"))
+                .find("'speed' needs |value| <= the wheel's Omega_max 628.318531 [rad/s]"),
+            std::string::npos);
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 1, actions: [{device: spacecraft, action: propellant_mass, value: 1}]}\n"))
+                .find("'propellant_mass' needs a propellant tank"),
+            std::string::npos);
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 1, actions: [{device: spacecraft, action: omega_BN_B_x}]}\n"))
+                .find("'omega_BN_B_x' needs a finite value [rad/s]"),
+            std::string::npos);
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 1, actions: [{device: spacecraft, action: omega_x, value: 1}]}\n"))
+                .find("a spacecraft takes one of {sigma_BN_x, sigma_BN_y, sigma_BN_z, omega_BN_B_x"),
+            std::string::npos);
+  EXPECT_NE(problem(s1_with("events:\n  - {t: 1, actions: [{device: spacecarft, action: omega_BN_B_x, value: 1}]}\n"))
+                .find("fsw, spacecraft)"),
+            std::string::npos);
+  const std::string s2 = text_of(kDir + "s2_mars_orbit_insertion.yaml");
+  EXPECT_NE(problem(s2 + "\nevents:\n  - {t: 1, actions: [{device: spacecraft, action: propellant_mass, value: 1e9}]}\n")
+                .find("'propellant_mass' needs a value <= the tank's load"),
+            std::string::npos);
+  EXPECT_NE(problem(s2 + "\nevents:\n  - {t: 1, actions: [{device: spacecraft, action: propellant_mass, value: -1}]}\n")
+                .find("'propellant_mass' needs a value >= 0 [kg]"),
+            std::string::npos);
+  EXPECT_EQ(problem(s2 + "\nevents:\n  - {t: 1, actions: [{device: spacecraft, action: propellant_mass, value: 10}]}\n"),
+            "");
+}

@@ -131,7 +131,13 @@ void EventTask::operator()(uint64_t k)
       fire = t_ns >= e.t_ns;
     }
     if (!fire) continue;
-    for (const Act& a : e.acts) apply(a, t_ns);
+    bool attitude = false;
+    for (const Act& a : e.acts) {
+      apply(a, t_ns);
+      attitude = attitude || a.action == EventAction::ScSigmaX || a.action == EventAction::ScSigmaY ||
+                 a.action == EventAction::ScSigmaZ;
+    }
+    if (attitude) attitude_to_short_set();
     e.applied = true;
     e.entry.tick = k;
     e.entry.t = static_cast<double>(t_ns) / 1e9;  // as the recorded t
@@ -148,7 +154,13 @@ void EventTask::operator()(uint64_t k)
 void EventTask::apply(const Act& a, uint64_t t_ns)
 {
   switch (a.target.device) {
-    case EventDevice::Wheel: apply_wheel(a); break;
+    case EventDevice::Wheel:
+      if (a.action == EventAction::WheelSpeed)
+        apply_state(a);
+      else
+        apply_wheel(a);
+      break;
+    case EventDevice::Spacecraft: apply_state(a); break;
     case EventDevice::Thruster: apply_thruster(a); break;
     case EventDevice::Fsw: apply_fsw(a, t_ns); break;
     case EventDevice::Magnetorquer: apply_magnetorquer(a, t_ns); break;
@@ -160,6 +172,44 @@ void EventTask::apply(const Act& a, uint64_t t_ns)
     case EventDevice::StarTracker:
     case EventDevice::Css: apply_sensor(a, t_ns); break;
   }
+}
+
+// One component of the plant's state (checked by check_event_action).
+void EventTask::apply_state(const Act& a)
+{
+  const sim::StateLayout& L = plant_.layout();
+  int at = 0;
+  switch (a.action) {
+    case EventAction::ScSigmaX: at = sim::StateLayout::sigma_BN; break;
+    case EventAction::ScSigmaY: at = sim::StateLayout::sigma_BN + 1; break;
+    case EventAction::ScSigmaZ: at = sim::StateLayout::sigma_BN + 2; break;
+    case EventAction::ScOmegaX: at = sim::StateLayout::omega_BN_B; break;
+    case EventAction::ScOmegaY: at = sim::StateLayout::omega_BN_B + 1; break;
+    case EventAction::ScOmegaZ: at = sim::StateLayout::omega_BN_B + 2; break;
+    case EventAction::ScPosX: at = sim::StateLayout::r_BN_N; break;
+    case EventAction::ScPosY: at = sim::StateLayout::r_BN_N + 1; break;
+    case EventAction::ScPosZ: at = sim::StateLayout::r_BN_N + 2; break;
+    case EventAction::ScVelX: at = sim::StateLayout::v_BN_N; break;
+    case EventAction::ScVelY: at = sim::StateLayout::v_BN_N + 1; break;
+    case EventAction::ScVelZ: at = sim::StateLayout::v_BN_N + 2; break;
+    case EventAction::ScPropellant: at = L.m_p(0); break;
+    case EventAction::WheelSpeed: at = L.Omega(a.target.index); break;
+    default: return;
+  }
+  sim::StateVector x = plant_.state();
+  x[at] = a.value;
+  plant_.set_state(x);
+}
+
+// After an event's actions: |sigma_BN| > 1 (components set one by one) is
+// switched to the shadow set -sigma/|sigma|^2, the same attitude.
+void EventTask::attitude_to_short_set()
+{
+  sim::StateVector x = plant_.state();
+  const double s2 = x.segment<3>(sim::StateLayout::sigma_BN).squaredNorm();
+  if (!(s2 > 1.0)) return;
+  x.segment<3>(sim::StateLayout::sigma_BN) *= -1.0 / s2;
+  plant_.set_state(x);
 }
 
 // Wheel health, limits and friction (plant); tachometer faults and the

@@ -81,6 +81,8 @@ class EventTask {
   void apply_fsw(const Act& a, uint64_t t_ns);
   void apply_sensor(const Act& a, uint64_t t_ns);
   void apply_magnetorquer(const Act& a, uint64_t t_ns);
+  void apply_state(const Act& a);
+  void attitude_to_short_set();
   Ev make(size_t i) const;  // event i of the scenario, checked
 
   const Scenario& sc_;

@@ -23,6 +23,8 @@ const std::vector<EventActionDef> kWheelActions = {
      "the FSW is told the wheel is unavailable (FswAcsSensorMsg.rw_avail = 1)"},
     {"command_available", EventAction::CommandAvailable, EventValue::None, "-",
      "the FSW is told the wheel is available again (rw_avail = 0)"},
+    {"speed", EventAction::WheelSpeed, EventValue::Finite, "rad/s",
+     "its rotor speed relative to the body set to value (|value| <= its Omega_max when set)"},
     {"restore", EventAction::Restore, EventValue::None, "-",
      "rotor free, motor, torque limit, friction and tachometer back to the scenario's values"},
 };
@@ -78,6 +80,23 @@ const std::vector<EventActionDef> kAtmosphereActions = {
      "(a geomagnetic storm)"},
     {"restore", EventAction::Restore, EventValue::None, "-", "back to environment.drag.density_scale"},
 };
+const std::vector<EventActionDef> kSpacecraftActions = {
+    {"sigma_BN_x", EventAction::ScSigmaX, EventValue::Finite, "-",
+     "attitude MRP sigma_BN component x set to value (the others kept; the shadow set when |sigma_BN| > 1)"},
+    {"sigma_BN_y", EventAction::ScSigmaY, EventValue::Finite, "-", "as sigma_BN_x, component y"},
+    {"sigma_BN_z", EventAction::ScSigmaZ, EventValue::Finite, "-", "as sigma_BN_x, component z"},
+    {"omega_BN_B_x", EventAction::ScOmegaX, EventValue::Finite, "rad/s", "body rate omega_BN_B component x set to value"},
+    {"omega_BN_B_y", EventAction::ScOmegaY, EventValue::Finite, "rad/s", "as omega_BN_B_x, component y"},
+    {"omega_BN_B_z", EventAction::ScOmegaZ, EventValue::Finite, "rad/s", "as omega_BN_B_x, component z"},
+    {"r_N_x", EventAction::ScPosX, EventValue::Finite, "m", "position r_BN_N component x set to value"},
+    {"r_N_y", EventAction::ScPosY, EventValue::Finite, "m", "as r_N_x, component y"},
+    {"r_N_z", EventAction::ScPosZ, EventValue::Finite, "m", "as r_N_x, component z"},
+    {"v_N_x", EventAction::ScVelX, EventValue::Finite, "m/s", "velocity v_BN_N component x set to value"},
+    {"v_N_y", EventAction::ScVelY, EventValue::Finite, "m/s", "as v_N_x, component y"},
+    {"v_N_z", EventAction::ScVelZ, EventValue::Finite, "m/s", "as v_N_x, component z"},
+    {"propellant_mass", EventAction::ScPropellant, EventValue::NonNegative, "kg",
+     "the propellant of the first tank set to value (0 <= value <= its capacity)"},
+};
 const std::vector<EventActionDef> kFswActions = {
     {"mode_inertial", EventAction::FswModeInertial, EventValue::None, "-",
      "command inertial pointing (guid_inertial -> att_track; needs an attitude: star tracker or truth)"},
@@ -108,6 +127,7 @@ const char* to_string(EventDevice d)
     case EventDevice::Magnetorquer: return "magnetorquer";
     case EventDevice::Magnetometer: return "magnetometer";
     case EventDevice::Atmosphere: return "atmosphere";
+    case EventDevice::Spacecraft: return "spacecraft";
   }
   return "?";
 }
@@ -121,6 +141,7 @@ const std::vector<EventActionDef>& event_actions(EventDevice d)
     case EventDevice::Magnetorquer: return kMagnetorquerActions;
     case EventDevice::Magnetometer: return kMagnetometerActions;
     case EventDevice::Atmosphere: return kAtmosphereActions;
+    case EventDevice::Spacecraft: return kSpacecraftActions;
     default: return kSensorActions;
   }
 }
@@ -151,6 +172,10 @@ std::string resolve_event_device(const Scenario& sc, const std::string& name, Ev
     }
   if (name == "fsw") {
     out = {EventDevice::Fsw, 0};
+    return "";
+  }
+  if (name == "spacecraft") {
+    out = {EventDevice::Spacecraft, 0};
     return "";
   }
   if (name == "atmosphere") {
@@ -189,9 +214,32 @@ std::string resolve_event_device(const Scenario& sc, const std::string& name, Ev
   for (const WheelSpec& w : sc.wheels) known += w.name + ", ";
   for (const ThrusterSpec& t : sc.thrusters) known += t.name + ", ";
   for (const MagnetorquerSpec& m : sc.magnetorquers) known += m.name + ", ";
-  known += "gyro, star_tracker, css<i>, magnetometer, atmosphere, fsw";
+  known += "gyro, star_tracker, css<i>, magnetometer, atmosphere, fsw, spacecraft";
   return "no device named '" + escape_bytes(name) + "' (devices: " + known + ")";
 }
+
+namespace {
+// The plant-state actions' limits: a wheel's speed within its Omega_max, the
+// propellant within [0, the tank's load].  "" or the reason (`key` set).
+std::string check_state_action(const Scenario& sc, const EventTarget& tg, EventAction x, double v, std::string& key)
+{
+  if (x == EventAction::ScPropellant) {
+    const std::optional<TankSpec>& tank = sc.tank ? sc.tank : sc.rcs_tank;
+    key = "action";
+    if (!tank) return "'propellant_mass' needs a propellant tank (tank or rcs_tank)";
+    key = "value";
+    if (std::isfinite(v) && v > tank->mass)
+      return "'propellant_mass' needs a value <= the tank's load " + std::to_string(tank->mass) + " [kg]";
+  }
+  if (x == EventAction::WheelSpeed) {
+    const double lim = sc.wheels[static_cast<size_t>(tg.index)].params.Omega_max;
+    key = "value";
+    if (std::isfinite(v) && lim > 0.0 && std::fabs(v) > lim)
+      return "'speed' needs |value| <= the wheel's Omega_max " + std::to_string(lim) + " [rad/s]";
+  }
+  return "";
+}
+}  // namespace
 
 std::string check_event_action(const Scenario& sc, const EventActionSpec& a, std::string& key)
 {
@@ -243,6 +291,10 @@ std::string check_event_action(const Scenario& sc, const EventActionSpec& a, std
     if (x == EventAction::FswActuationThrusters && !acs)
       return "'actuation_thrusters' needs ACS thrusters (thrusters with acs: true)";
   }
+  {
+    const std::string why_state = check_state_action(sc, tg, d->action, a.value, key);
+    if (!why_state.empty()) return why_state;
+  }
   key = "value";
   const double v = a.value;
   switch (d->value) {
@@ -260,6 +312,21 @@ std::string check_event_action(const Scenario& sc, const EventActionSpec& a, std
       return "";
   }
   return "";
+}
+
+std::vector<std::string> event_device_names(const Scenario& sc)
+{
+  std::vector<std::string> out;
+  for (const WheelSpec& w : sc.wheels) out.push_back(w.name);
+  for (const ThrusterSpec& t : sc.thrusters) out.push_back(t.name);
+  if (sc.sensors.gyro.enabled) out.push_back("gyro");
+  if (sc.sensors.star_tracker.enabled) out.push_back("star_tracker");
+  for (size_t i = 0; i < sc.sensors.css.normals_B.size(); ++i) out.push_back("css" + std::to_string(i));
+  for (const MagnetorquerSpec& r : sc.magnetorquers) out.push_back(r.name);
+  if (sc.sensors.magnetometer.enabled) out.push_back("magnetometer");
+  if (sc.environment.drag.enabled) out.push_back("atmosphere");
+  out.push_back("spacecraft");
+  return out;
 }
 
 std::vector<std::string> event_watch_columns(const Scenario& sc)

@@ -12,7 +12,7 @@
 
 namespace harness {
 
-enum class EventDevice { Wheel, Thruster, Gyro, StarTracker, Css, Fsw, Magnetorquer, Magnetometer, Atmosphere };
+enum class EventDevice { Wheel, Thruster, Gyro, StarTracker, Css, Fsw, Magnetorquer, Magnetometer, Atmosphere, Spacecraft };
 
 enum class EventAction {
   // wheels (the plant's motor, limits, friction; the tachometer; the FSW's availability flag)
@@ -29,6 +29,9 @@ enum class EventAction {
   // the flight software (a ground/executive command, FswAcsCmdMsg)
   FswModeInertial, FswModeSunSafe, FswActuationWheels, FswActuationThrusters, FswReferenceX, FswReferenceY,
   FswReferenceZ, FswGainK, FswGainP,
+  // the plant's state (the spacecraft; a wheel's speed), set at the tick boundary
+  ScSigmaX, ScSigmaY, ScSigmaZ, ScOmegaX, ScOmegaY, ScOmegaZ, ScPosX, ScPosY, ScPosZ, ScVelX, ScVelY, ScVelZ,
+  ScPropellant, WheelSpeed,
   // every device: back to nominal (a wheel: motor, limits, friction, tachometer)
   Restore
 };
@@ -50,7 +53,7 @@ struct EventTarget {
 };
 
 // Resolves a device name (wheel, thruster or magnetorquer name, "gyro",
-// "star_tracker", "css<i>", "magnetometer", "fsw"): "" or the reason it names nothing.
+// "star_tracker", "css<i>", "magnetometer", "fsw", "spacecraft"): "" or the reason it names nothing.
 std::string resolve_event_device(const Scenario& sc, const std::string& name, EventTarget& out);
 // The actions a device takes.
 const std::vector<EventActionDef>& event_actions(EventDevice d);
@@ -60,6 +63,10 @@ const EventActionDef* find_event_action(EventDevice d, const std::string& word);
 // Checks one action against the scenario: "" or the reason; `key` receives
 // the key at fault ("device", "action" or "value").
 std::string check_event_action(const Scenario& sc, const EventActionSpec& a, std::string& key);
+// The names of the scenario's devices that take actions (wheels, thrusters,
+// sensors that are enabled, magnetorquers, magnetometer, atmosphere,
+// spacecraft; not "fsw", which depends on the run's flight software).
+std::vector<std::string> event_device_names(const Scenario& sc);
 // The recorded columns a `when` trigger may watch in this scenario.
 std::vector<std::string> event_watch_columns(const Scenario& sc);
 

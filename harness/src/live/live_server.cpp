@@ -73,14 +73,7 @@ json devices_json(const Run& run)
     }
     devices.push_back({{"name", name}, {"kind", to_string(tg.device)}, {"index", tg.index}, {"actions", acts}});
   };
-  for (const WheelSpec& w : sc.wheels) add_device(w.name);
-  for (const ThrusterSpec& t : sc.thrusters) add_device(t.name);
-  if (sc.sensors.gyro.enabled) add_device("gyro");
-  if (sc.sensors.star_tracker.enabled) add_device("star_tracker");
-  for (size_t i = 0; i < sc.sensors.css.normals_B.size(); ++i) add_device("css" + std::to_string(i));
-  for (const MagnetorquerSpec& r : sc.magnetorquers) add_device(r.name);
-  if (sc.sensors.magnetometer.enabled) add_device("magnetometer");
-  if (sc.environment.drag.enabled) add_device("atmosphere");
+  for (const std::string& name : event_device_names(sc)) add_device(name);
   if (run.fsw_accepts_commands()) add_device("fsw");  // mode and actuation commands
   return devices;
 }
