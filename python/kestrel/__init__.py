@@ -13,11 +13,13 @@ from . import _kestrel
 from ._kestrel import *  # noqa: F401,F403  (the extension's public names)
 from ._kestrel import __version__, fsw  # noqa: F401
 from ._pandas import to_pandas as _to_pandas
+from ._run_set import run_set as _run_set
 
 # `import kestrel.fsw` / `from kestrel.fsw import MrpFb`
 _sys.modules[__name__ + ".fsw"] = fsw
 
 _kestrel.Results.to_pandas = _to_pandas
+_kestrel.Run.set = _run_set
 
 __all__ = [n for n in dir(_kestrel) if not n.startswith("_")]
 

@@ -566,6 +566,13 @@ void bind_run(py::module_& m)
       .def_property_readonly("t", [](PyRun& r) { return static_cast<double>(r.run->tick()) * r.sc.rates.dt; },
                              "[s] time of the next tick")
       .def_property_readonly("done", [](PyRun& r) { return r.run->done(); })
+      .def_property_readonly(
+          "scenario",
+          [](PyRun& r) {
+            std::lock_guard<std::mutex> g(r.mu);
+            return PyScenario{r.run->scenario()};
+          },
+          "A copy of the run's scenario, with the events added during the run (what its manifest replays)")
       .def(
           "save",
           [](PyRun& r, const std::string& path) {
