@@ -491,20 +491,20 @@ bool Run::step_ticks(uint64_t n)
 {
   Impl& m = *impl_;
   if (!m.failure.empty()) return false;
+  // an error of a part outside the run's own code stops the run at this tick, rows kept
+  const auto fail = [&](const char* who, const std::exception& e) {
+    m.failure = std::string(who) + "at t = " + std::to_string(static_cast<double>(m.sched.t_ns(m.tick)) * 1e-9) +
+                " s: " + e.what();
+    finish();
+    return false;
+  };
   for (uint64_t i = 0; i < n && m.tick <= m.n_ticks; ++i) {
     try {
       m.sched.run_tick(m.tick);
     } catch (const FswEndpointError& e) {  // e.g. a remote FSW endpoint's link
-      m.failure = std::string("FSW endpoint at t = ") + std::to_string(static_cast<double>(m.sched.t_ns(m.tick)) * 1e-9) +
-                  " s: " + e.what();
-      finish();
-      return false;
-    }
-    catch (const InLoopError& e) {  // e.g. a Python sensor at a recorded row
-      m.failure = std::string("at t = ") + std::to_string(static_cast<double>(m.sched.t_ns(m.tick)) * 1e-9) +
-                  " s: " + e.what();
-      finish();
-      return false;
+      return fail("FSW endpoint ", e);
+    } catch (const InLoopError& e) {  // e.g. a Python sensor at a recorded row
+      return fail("", e);
     }
     if (m.rec.overflow() > 0) {
       m.failure = "recorder overflow at tick " + std::to_string(m.tick) + " (internal error)";
@@ -516,10 +516,7 @@ bool Run::step_ticks(uint64_t n)
       try {
         stepped = m.step_plant();
       } catch (const InLoopError& e) {  // e.g. a Python effector (docs/python.md)
-        m.failure = std::string("plant at t = ") + std::to_string(static_cast<double>(m.sched.t_ns(m.tick)) * 1e-9) +
-                    " s: " + e.what();
-        finish();
-        return false;
+        return fail("plant ", e);
       }
       if (!stepped) {
         m.failure = "plant state became non-finite at t = " +
@@ -631,7 +628,10 @@ std::string Run::checkpoint_refusal() const
 void Run::state_io(sim::StateIO& io)
 {
   Impl& m = *impl_;
-  if (!io.loading() && !checkpoint_refusal().empty()) throw std::logic_error("checkpoint: " + checkpoint_refusal());
+  if (!io.loading()) {
+    const std::string why = checkpoint_refusal();
+    if (!why.empty()) throw std::logic_error("checkpoint: " + why);
+  }
   if (io.loading() && m.tick != 0) throw std::logic_error("checkpoint: restore into a run that has not started");
   uint64_t n_ticks = m.n_ticks;
   io.value("run.num_ticks", n_ticks);
