@@ -602,3 +602,36 @@ TEST(FswLinkNode, ARetransmittedSensorPacketIsAnsweredAgainWithoutASecondCycle)
   EXPECT_EQ(node.n.resent, 1u);
   EXPECT_EQ(node.n.acs.cycles, 1u);
 }
+
+// MC/DC of the retransmission test (fsw_link_node.c: have_last &&
+// have_replies && seq == last && t == last_t && crc == last_crc): the last
+// packet's sequence count with another time (one period later, the other
+// fields unchanged) is not a retransmission: it is stale (the count did not
+// advance), answered by the link status alone, and runs no cycle; the exact
+// retransmission right after it is still answered with the three replies.
+// Verifies: REQ-NODE-002, REQ-NODE-005
+TEST(FswLinkNode, McdcTheSameCountWithAnotherTimeIsStaleNotARetransmission)
+{
+  auto nodep = std::make_unique<Node>();
+  Node& node = *nodep;
+  const Bytes first = sensor_packet(sensors(5), 100);
+  ASSERT_EQ(node.feed(first), 3);
+  FswAcsSensorMsg later = sensors(5);
+  later.t_ns += acsfix::kPeriodNs;
+  EXPECT_EQ(node.feed(sensor_packet(later, 100)), 1);
+  EXPECT_EQ(node.n.link.rx_stale, 1u);
+  EXPECT_EQ(node.n.resent, 0u);
+  EXPECT_EQ(node.n.acs.cycles, 1u);
+  {  // the status answer, stamped with the last accepted time
+    const FswLinkPacket p = node.reply(0);
+    FswLinkStatusMsg ls;
+    ASSERT_EQ(fsw_link_decode_status(&p, &ls, nullptr), FSW_OK);
+    EXPECT_EQ(p.t_ns, sensors(5).t_ns);
+    EXPECT_EQ(ls.rx_stale, 1u);
+    EXPECT_EQ(ls.cycles, 1u);
+  }
+  ASSERT_EQ(node.feed(first), 3);
+  EXPECT_EQ(node.n.resent, 1u);
+  EXPECT_EQ(node.n.link.rx_stale, 2u);
+  EXPECT_EQ(node.n.acs.cycles, 1u);
+}
