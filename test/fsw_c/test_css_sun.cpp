@@ -102,6 +102,18 @@ double angle(const double a[3], const double b[3])
   return std::atan2(gref::norm(c), gref::dot(a, b));
 }
 
+// Three sensors with coplanar normals x, y, (x+y)/sqrt(2), scale 1.
+void coplanar_xy(FswCssSunConfig& c)
+{
+  c.num_css = 3;
+  const double r2 = 1.0 / std::sqrt(2.0);
+  gref::set3(c.n_hat_B[0], 1, 0, 0);
+  gref::set3(c.n_hat_B[1], 0, 1, 0);
+  gref::set3(c.n_hat_B[2], r2, r2, 0);
+  for (int i = 0; i < 3; i++) c.scale[i] = FSW_R(1.0);
+  c.lit_threshold = FSW_R(0.05);
+}
+
 class CssSun : public ::testing::Test {
  protected:
   void SetUp() override
@@ -202,13 +214,7 @@ TEST_F(CssSun, CoplanarLitSensorsFallBackToTwo)
   // brightest non-parallel partner b = 1 (+y); x = projection of s on the
   // x-y plane = s (s lies in it).
   FswCssSunConfig c{};
-  c.num_css = 3;
-  const double r2 = 1.0 / std::sqrt(2.0);
-  gref::set3(c.n_hat_B[0], 1, 0, 0);
-  gref::set3(c.n_hat_B[1], 0, 1, 0);
-  gref::set3(c.n_hat_B[2], r2, r2, 0);
-  for (int i = 0; i < 3; i++) c.scale[i] = FSW_R(1.0);
-  c.lit_threshold = FSW_R(0.05);
+  coplanar_xy(c);
   ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_, &c));
   const double s[3] = {0.6, 0.8, 0.0};
   readings(in_, c, s);
@@ -557,15 +563,9 @@ TEST_F(CssSun, Issue21OverflowOfTheNormalMatrixIsBadInput)
 TEST_F(CssSun, McdcTheBrighterOfTwoPartnersIsTakenEitherOrder)
 {
   FswCssSunConfig c{};
-  c.num_css = 3;
-  const double r2 = 1.0 / std::sqrt(2.0);
-  gref::set3(c.n_hat_B[0], 1, 0, 0);
-  gref::set3(c.n_hat_B[1], 0, 1, 0);
-  gref::set3(c.n_hat_B[2], r2, r2, 0);
-  for (int i = 0; i < 3; i++) c.scale[i] = FSW_R(1.0);
-  c.lit_threshold = FSW_R(0.05);
+  coplanar_xy(c);
   ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_, &c));
-  const double y2 = 1.4 * r2;
+  const double y2 = 1.4 / std::sqrt(2.0);
   const struct {
     double y0, y1, want[3];
   } rows[] = {{0.8, 0.3, {0.8, 0.6, 0.0}}, {0.3, 0.8, {0.6, 0.8, 0.0}}};
