@@ -102,6 +102,18 @@ double angle(const double a[3], const double b[3])
   return std::atan2(gref::norm(c), gref::dot(a, b));
 }
 
+// Three sensors with coplanar normals x, y, (x+y)/sqrt(2), scale 1.
+void coplanar_xy(FswCssSunConfig& c)
+{
+  c.num_css = 3;
+  const double r2 = 1.0 / std::sqrt(2.0);
+  gref::set3(c.n_hat_B[0], 1, 0, 0);
+  gref::set3(c.n_hat_B[1], 0, 1, 0);
+  gref::set3(c.n_hat_B[2], r2, r2, 0);
+  for (int i = 0; i < 3; i++) c.scale[i] = FSW_R(1.0);
+  c.lit_threshold = FSW_R(0.05);
+}
+
 class CssSun : public ::testing::Test {
  protected:
   void SetUp() override
@@ -202,13 +214,7 @@ TEST_F(CssSun, CoplanarLitSensorsFallBackToTwo)
   // brightest non-parallel partner b = 1 (+y); x = projection of s on the
   // x-y plane = s (s lies in it).
   FswCssSunConfig c{};
-  c.num_css = 3;
-  const double r2 = 1.0 / std::sqrt(2.0);
-  gref::set3(c.n_hat_B[0], 1, 0, 0);
-  gref::set3(c.n_hat_B[1], 0, 1, 0);
-  gref::set3(c.n_hat_B[2], r2, r2, 0);
-  for (int i = 0; i < 3; i++) c.scale[i] = FSW_R(1.0);
-  c.lit_threshold = FSW_R(0.05);
+  coplanar_xy(c);
   ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_, &c));
   const double s[3] = {0.6, 0.8, 0.0};
   readings(in_, c, s);
@@ -539,4 +545,38 @@ TEST_F(CssSun, Issue21OverflowOfTheNormalMatrixIsBadInput)
   in.reading[0] = in.reading[1] = static_cast<fsw_real>(0.9) * std::numeric_limits<fsw_real>::max();
   EXPECT_EQ(FSW_E_BAD_INPUT, fsw_css_sun_update(&st, &c, &in, &out_));
   EXPECT_EQ(0, out_.sun_valid);
+}
+
+// MC/DC of the partner search (css_sun.c, `b < 0 || y[i] > y[b]`): three
+// coplanar lit sensors x, y, (x+y)/sqrt(2) (WLS refused), a = 2 the
+// brightest; the partner is the brighter of sensors 0 and 1, whichever
+// comes first.  The readings of the two candidates are inconsistent on
+// purpose, so the heading tells which one was taken: with partner b the
+// heading solves n_2.x = y_2 = 1.4/sqrt(2) (x_x + x_y = 1.4) and
+// n_b.x = y_b only.
+//   y = (0.8, 0.3, 1.4/sqrt(2)): sensor 1 is dimmer than sensor 0 (the
+//   condition false for it), b = 0: x = (0.8, 0.6, 0), |x| = 1.
+//   y = (0.3, 0.8, 1.4/sqrt(2)): sensor 1 is brighter, b = 1:
+//   x = (0.6, 0.8, 0).
+// (Taking the dimmer one would give (0.8, 0.3)/(0.3, 1.1) normalised.)
+// Verifies: REQ-CSS-002
+TEST_F(CssSun, McdcTheBrighterOfTwoPartnersIsTakenEitherOrder)
+{
+  FswCssSunConfig c{};
+  coplanar_xy(c);
+  ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_, &c));
+  const double y2 = 1.4 / std::sqrt(2.0);
+  const struct {
+    double y0, y1, want[3];
+  } rows[] = {{0.8, 0.3, {0.8, 0.6, 0.0}}, {0.3, 0.8, {0.6, 0.8, 0.0}}};
+  for (const auto& r : rows) {
+    in_.reading[0] = static_cast<fsw_real>(r.y0);
+    in_.reading[1] = static_cast<fsw_real>(r.y1);
+    in_.reading[2] = static_cast<fsw_real>(y2);
+    ASSERT_EQ(FSW_W_SINGULAR, fsw_css_sun_update(&st_, &c, &in_, &out_)) << r.y0;
+    EXPECT_EQ(FSW_CSS_SUN_TWO, out_.mode);
+    EXPECT_EQ(3, out_.num_lit);
+    EXPECT_V3_NEAR(r.want[0], r.want[1], r.want[2], out_.sun_hat_B, kt::tol(1e-14, 4e-6));
+    EXPECT_NEAR(1.0, out_.sun_mag, kt::tol(1e-14, 4e-6)) << r.y0;
+  }
 }

@@ -1001,3 +1001,140 @@ TEST(FswAcsNadir, McdcMagValidTwoAloneIsBadInput)
   g_sens.mag_valid = 1;
   EXPECT_EQ(FSW_OK, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
 }
+
+/* ---- MC/DC of the command's policy and actuation (docs/coverage.md) ---- */
+
+namespace {
+
+// One cycle at the reference with wheel speeds Om and body rate w (r_CoM
+// as given), commanding mode INERTIAL, actuation `act`, and, when `set`,
+// the policy `pol`.
+FswStatus cmd_cycle(FswAcsState& st, FswAcsActuatorMsg& a, FswAcsHealthMsg& h, uint64_t t, const double Om[4],
+                    const double w[3], int act, int set, int pol, fsw_real r_com = R(0.0))
+{
+  sensors(g_sens, t, w, nullptr, 0);
+  set_speeds(g_sens, Om);
+  for (int q = 0; q < 3; q++) {
+    g_sens.sigma_BN[q] = g_cfg.inertial.sigma_R0N[q];
+    g_sens.r_CoM_B[q] = r_com;
+  }
+  std::memset(&g_cmd, 0, sizeof g_cmd);
+  g_cmd.mode = FSW_ACS_MODE_INERTIAL;
+  g_cmd.actuation = act;
+  g_cmd.set_policy = static_cast<uint8_t>(set);
+  g_cmd.policy = pol;
+  return fsw_acs_cycle(&st, &g_cfg, &g_sens, &g_cmd, &a, &h);
+}
+
+const double kRest[3] = {0, 0, 0};
+// |h_w| = 0.586 N m s: below h_lower (1) and h_upper (4), no dump
+const double kLowOm[4] = {6.0, -4.0, 2.0, 1.0};
+
+}  // namespace
+
+// fsw_acs.c input check `(actuation == THRUSTERS || policy == THRUSTERS) &&
+// !finite(r_CoM)`: in the wheel actuation a non-finite centre of mass is
+// bad input exactly when the THRUSTERS policy is requested (it maps the
+// dumps); under the NONE policy it is not read.
+// Verifies: REQ-ACS-005
+TEST(FswAcsPolicyCommand, McdcNonFiniteCentreOfMassIsBadInputOnlyForThrusterDumps)
+{
+  thr_config(g_cfg);
+  g_cfg.initial_policy = FSW_ACS_MOM_NONE;
+  init_ok(g_cfg, g_st);
+  ASSERT_EQ(FSW_OK, cmd_cycle(g_st, g_act, g_h, 0, kLowOm, kRest, FSW_ACS_ACT_WHEELS, 0, 0, kNaN));
+  EXPECT_EQ(FSW_ACS_MOM_NONE, g_h.policy);
+  EXPECT_EQ(1, g_act.wheels_active);
+  EXPECT_EQ(FSW_E_BAD_INPUT, cmd_cycle(g_st, g_act, g_h, kPeriodNs, kLowOm, kRest, FSW_ACS_ACT_WHEELS, 1,
+                                       FSW_ACS_MOM_THRUSTERS, kNaN));
+  EXPECT_TRUE(actuators_safe(g_act));
+  EXPECT_EQ(FSW_ACS_MOM_NONE, g_st.policy);
+  // the same command with a finite centre of mass is taken
+  ASSERT_GE(cmd_cycle(g_st, g_act, g_h, kPeriodNs, kLowOm, kRest, FSW_ACS_ACT_WHEELS, 1, FSW_ACS_MOM_THRUSTERS), 0);
+  EXPECT_EQ(FSW_ACS_MOM_THRUSTERS, g_h.policy);
+}
+
+// fsw_acs.c transition `mode changed || actuation changed`: a command that
+// keeps the mode and changes the actuation is a transition (counted once,
+// the memory of the old actuation reset); repeating it is not.
+// Verifies: REQ-ACS-007
+TEST(FswAcsPolicyCommand, McdcAnActuationChangeAloneIsATransition)
+{
+  acsfix::full_config(g_cfg);
+  g_cfg.initial_mode = FSW_ACS_MODE_INERTIAL;
+  init_ok(g_cfg, g_st);
+  ASSERT_EQ(FSW_OK, cmd_cycle(g_st, g_act, g_h, 0, kLowOm, kRest, FSW_ACS_ACT_WHEELS, 0, 0));
+  EXPECT_EQ(0u, g_h.mode_changes);
+  const double w[3] = {0.01, 0, 0};
+  ASSERT_GE(cmd_cycle(g_st, g_act, g_h, kPeriodNs, kLowOm, w, FSW_ACS_ACT_THRUSTERS, 0, 0), 0);
+  EXPECT_EQ(1u, g_h.mode_changes);
+  EXPECT_EQ(FSW_ACS_MODE_INERTIAL, g_h.mode);
+  EXPECT_EQ(FSW_ACS_ACT_THRUSTERS, g_h.actuation);
+  EXPECT_EQ(0, g_act.wheels_active);
+  // the pulser was reset by the transition: its first cycle times no period
+  // and commands nothing; the next one fires against the rate
+  double ton = 0;
+  for (int j = 0; j < 8; j++) ton += g_act.t_on[j];
+  EXPECT_EQ(0.0, ton);
+  ASSERT_GE(cmd_cycle(g_st, g_act, g_h, 2 * kPeriodNs, kLowOm, w, FSW_ACS_ACT_THRUSTERS, 0, 0), 0);
+  EXPECT_EQ(1u, g_h.mode_changes);
+  for (int j = 0; j < 8; j++) ton += g_act.t_on[j];
+  EXPECT_GT(ton, 0.0);
+}
+
+// fsw_acs.c set_policy: `policy == THRUSTERS && actuation == WHEELS`
+// restarts the pulser, whose clock went stale while the dumps were off:
+// the first cycle of the THRUSTERS policy then times no pulser period and
+// starts no dump even above h_upper; the next cycle does.  In the thruster
+// actuation (the pulser runs every cycle) the same command restarts
+// nothing: a twin run without it commands the same on-times, bit for bit.
+// Verifies: REQ-ACS-011
+TEST(FswAcsPolicyCommand, McdcThrustersPolicyRestartsAStalePulserOnlyInTheWheelActuation)
+{
+  thr_config(g_cfg);
+  init_ok(g_cfg, g_st);
+  uint64_t t = 0;
+  for (int k = 0; k < 2; k++, t += kPeriodNs) {
+    ASSERT_GE(cmd_cycle(g_st, g_act, g_h, t, kLowOm, kRest, FSW_ACS_ACT_WHEELS, 0, 0), 0) << k;
+    EXPECT_EQ(FSW_THR_MOM_IDLE, g_h.dump_phase);
+  }
+  ASSERT_EQ(1, g_st.pulse_rem.common.clock.has_prev);
+  // dumps off for two cycles: the pulser does not run, its clock goes stale
+  ASSERT_GE(cmd_cycle(g_st, g_act, g_h, t, kLowOm, kRest, FSW_ACS_ACT_WHEELS, 1, FSW_ACS_MOM_NONE), 0);
+  t += kPeriodNs;
+  ASSERT_GE(cmd_cycle(g_st, g_act, g_h, t, kDumpOm, kRest, FSW_ACS_ACT_WHEELS, 0, 0), 0);
+  t += kPeriodNs;
+  EXPECT_EQ(FSW_THR_MOM_IDLE, g_h.dump_phase);
+  ASSERT_EQ(1, g_st.pulse_rem.common.clock.has_prev);
+  // back to THRUSTERS above h_upper: no dump in the first cycle, then one
+  ASSERT_GE(cmd_cycle(g_st, g_act, g_h, t, kDumpOm, kRest, FSW_ACS_ACT_WHEELS, 1, FSW_ACS_MOM_THRUSTERS), 0);
+  t += kPeriodNs;
+  EXPECT_EQ(FSW_ACS_MOM_THRUSTERS, g_h.policy);
+  EXPECT_EQ(FSW_THR_MOM_IDLE, g_h.dump_phase);
+  EXPECT_EQ(0, g_act.thrusters_active);
+  ASSERT_GE(cmd_cycle(g_st, g_act, g_h, t, kDumpOm, kRest, FSW_ACS_ACT_WHEELS, 0, 0), 0);
+  EXPECT_EQ(FSW_THR_MOM_PULSE, g_h.dump_phase);
+  EXPECT_EQ(1, g_act.thrusters_active);
+
+  // thruster actuation, policy NONE, a body rate to fight: twins st, st2
+  thr_config(g_cfg);
+  g_cfg.initial_policy = FSW_ACS_MOM_NONE;
+  g_cfg.initial_actuation = FSW_ACS_ACT_THRUSTERS;
+  init_ok(g_cfg, g_st);
+  init_ok(g_cfg, g_st2);
+  const double w[3] = {0.01, -0.004, 0.002};
+  double fired = 0;
+  for (int k = 0; k < 5; k++) {
+    const uint64_t tk = static_cast<uint64_t>(k) * kPeriodNs;
+    const int set = k == 3 ? 1 : 0;
+    ASSERT_GE(cmd_cycle(g_st, g_act, g_h, tk, kLowOm, w, FSW_ACS_ACT_THRUSTERS, 0, 0), 0) << k;
+    ASSERT_GE(cmd_cycle(g_st2, g_act2, g_h2, tk, kLowOm, w, FSW_ACS_ACT_THRUSTERS, set, FSW_ACS_MOM_THRUSTERS), 0)
+        << k;
+    EXPECT_EQ(k >= 3 ? FSW_ACS_MOM_THRUSTERS : FSW_ACS_MOM_NONE, g_h2.policy) << k;
+    for (int j = 0; j < 8; j++) {
+      EXPECT_EQ(g_act.t_on[j], g_act2.t_on[j]) << k << " " << j;
+      if (k == 3) fired += g_act2.t_on[j];
+    }
+  }
+  EXPECT_GT(fired, 0.0);  // a restarted pulser would have commanded nothing
+}

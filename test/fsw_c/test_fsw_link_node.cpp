@@ -377,6 +377,16 @@ struct Node {  // always on the heap (make_unique): large for a target's test st
     EXPECT_EQ(fsw_link_parse(n.out[i], n.out_len[i], &p, nullptr), FSW_OK);
     return p;
   }
+  // The link status in reply 0, decoded; its time stamp in t_ns.
+  FswLinkStatusMsg status(uint64_t& t_ns) const
+  {
+    const FswLinkPacket p = reply(0);
+    FswLinkStatusMsg ls;
+    std::memset(&ls, 0, sizeof ls);
+    EXPECT_EQ(fsw_link_decode_status(&p, &ls, nullptr), FSW_OK);
+    t_ns = p.t_ns;
+    return ls;
+  }
 };
 
 }  // namespace
@@ -440,10 +450,9 @@ TEST(FswLinkNode, StaleDamagedAndForeignPacketsAreCountedAndAnsweredByTheStatus)
   EXPECT_EQ(node.feed(sensor_packet(sensors(6), uint16_t(100 + 8192))), 1);  // half the circle: behind
   EXPECT_EQ(node.n.link.rx_stale, 5u);
   {  // the status answer: the counters so far, the last accepted time stamp
-    const FswLinkPacket p = node.reply(0);
-    FswLinkStatusMsg ls;
-    ASSERT_EQ(fsw_link_decode_status(&p, &ls, nullptr), FSW_OK);
-    EXPECT_EQ(p.t_ns, sensors(5).t_ns);
+    uint64_t t = 0;
+    const FswLinkStatusMsg ls = node.status(t);
+    EXPECT_EQ(t, sensors(5).t_ns);
     EXPECT_EQ(ls.rx_stale, 5u);
     EXPECT_EQ(ls.rx_packets, 6u);
     EXPECT_EQ(ls.cycles, 1u);
@@ -600,5 +609,35 @@ TEST(FswLinkNode, ARetransmittedSensorPacketIsAnsweredAgainWithoutASecondCycle)
   ASSERT_EQ(node.n.link.link_safe, 1u);
   EXPECT_EQ(node.feed(first), 1);
   EXPECT_EQ(node.n.resent, 1u);
+  EXPECT_EQ(node.n.acs.cycles, 1u);
+}
+
+// MC/DC of the retransmission test (fsw_link_node.c: have_last &&
+// have_replies && seq == last && t == last_t && crc == last_crc): the last
+// packet's sequence count with another time (one period later, the other
+// fields unchanged) is not a retransmission: it is stale (the count did not
+// advance), answered by the link status alone, and runs no cycle; the exact
+// retransmission right after it is still answered with the three replies.
+// Verifies: REQ-NODE-002, REQ-NODE-005
+TEST(FswLinkNode, McdcTheSameCountWithAnotherTimeIsStaleNotARetransmission)
+{
+  auto nodep = std::make_unique<Node>();
+  Node& node = *nodep;
+  const Bytes first = sensor_packet(sensors(5), 100);
+  ASSERT_EQ(node.feed(first), 3);
+  FswAcsSensorMsg later = sensors(5);
+  later.t_ns += acsfix::kPeriodNs;
+  EXPECT_EQ(node.feed(sensor_packet(later, 100)), 1);
+  EXPECT_EQ(node.n.link.rx_stale, 1u);
+  EXPECT_EQ(node.n.resent, 0u);
+  EXPECT_EQ(node.n.acs.cycles, 1u);
+  uint64_t t = 0;
+  const FswLinkStatusMsg ls = node.status(t);  // stamped with the last accepted time
+  EXPECT_EQ(t, sensors(5).t_ns);
+  EXPECT_EQ(ls.rx_stale, 1u);
+  EXPECT_EQ(ls.cycles, 1u);
+  ASSERT_EQ(node.feed(first), 3);
+  EXPECT_EQ(node.n.resent, 1u);
+  EXPECT_EQ(node.n.link.rx_stale, 2u);
   EXPECT_EQ(node.n.acs.cycles, 1u);
 }

@@ -651,3 +651,40 @@ TEST(MtqMapIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("mtq_map", fsw_mtq_map_check, fsw_mtq_map_init, fsw_mtq_map_reset, fsw_mtq_map_update);
 }
+
+// MC/DC of the saturation status (mtq_map.c, `scale < 1 && status == OK`):
+// the request of MtqMapSaturation.CommonFactorHandNumbers (B = (0, 3e-5,
+// 4e-5), tau = (2.5e-5, 0, 0): m_B = B x tau / |B|^2 = (0, 0.4, -0.3)) on
+// two rods x and y (limit 0.5 * 0.2 = 0.1).  The rods cannot make the z part
+// (W_SINGULAR); the least-squares commands (0, 0.4) are scaled by
+// 0.1 / 0.4 = 0.25 to (0, 0.1), and the status stays W_SINGULAR (the scale
+// tells the saturation).  With the third rod the same request is W_SAT.
+// Verifies: REQ-MTQMAP-003, REQ-MTQMAP-004
+TEST(MtqMapSaturation, McdcASingularRodSetThatSaturatesStaysSingular)
+{
+  const double tau[3] = {2.5e-5, 0, 0};
+  const double tol = kt::tol(1e-15, 1e-7);
+  auto f = make0<Fixture>();
+  f->setup(kOrtho, 2, 0.2, 0.5);
+  ASSERT_EQ(f->init(), FSW_OK);
+  f->set_B(0, 3e-5, 4e-5);
+  f->set_tau(tau);
+  ASSERT_EQ(f->update(), FSW_W_SINGULAR);
+  EXPECT_EQ(f->out->rank, 2);
+  EXPECT_NEAR(f->out->scale, 0.25, tol);
+  EXPECT_NEAR(f->out->m_cmd[0], 0.0, tol);
+  EXPECT_NEAR(f->out->m_cmd[1], 0.1, tol);
+  EXPECT_NEAR(f->out->duty[1], 0.5, tol * 5);
+  // m_ach = (0, 0.1, 0); tau_ach = m_ach x B = (0.1 * 4e-5, 0, 0)
+  EXPECT_NEAR(f->out->m_ach_B[1], 0.1, tol);
+  EXPECT_EQ(f->out->m_ach_B[2], 0.0);
+  EXPECT_NEAR(f->out->tau_ach_B[0], 4e-6, kt::tol(1e-18, 1e-11));
+  EXPECT_EQ(f->st->health.singular, 1u);
+  EXPECT_EQ(f->st->health.saturated, 0u);
+  // the third rod spans m_B: the same saturation is W_SAT
+  auto g = ortho(0.2, 0.5);
+  g->set_B(0, 3e-5, 4e-5);
+  g->set_tau(tau);
+  EXPECT_EQ(g->update(), FSW_W_SAT);
+  EXPECT_NEAR(g->out->scale, 0.25, tol);
+}

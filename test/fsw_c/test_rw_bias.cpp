@@ -572,3 +572,131 @@ TEST(RwBiasNullArgs, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("rw_bias", fsw_rw_bias_check, fsw_rw_bias_init, fsw_rw_bias_reset, fsw_rw_bias_update);
 }
+
+// MC/DC of the side of a wheel at rest (rw_bias.c, `om > 0 || (om == 0 &&
+// bias > 0)`): wheel 1 at exactly 0 takes the side of its bias.  Pyramid,
+// keepout 10, hyst 5, Omega = (0, -100, 100, -100).
+//   bias_1 = -100: side -1, in band, b = 15: Omega_des_1 <= -15, i.e.
+//   lambda/2 <= -15.  lambda_u = n.(bias - Omega) = (-100)/2 = -50 is
+//   admissible (the others allow lambda >= -180): Omega_des = Omega - 50 n
+//   = (-25, -75, 75, -75).
+//   bias_1 = +100: side +1, lambda_u = +50: (25, -125, 125, -125) (as in
+//   WheelNearZeroIsPushedOutOnItsOwnSide).
+// Verifies: REQ-RWBIAS-003
+TEST(RwBiasNominal, McdcWheelAtRestTakesTheSideOfItsNegativeBias)
+{
+  auto f = pyramid();
+  f->cfg->Omega_bias[0] = FSW_R(-100.0);
+  ASSERT_EQ(f->init(), FSW_OK);
+  f->speeds({0, -100, 100, -100});
+  ASSERT_EQ(f->update(), FSW_OK);
+  expect_des(*f, {-25, -75, 75, -75}, "negative bias");
+  EXPECT_EQ(f->out->in_band[0], 1);
+  EXPECT_NEAR(f->out->lambda_norm, 50.0, kTol * 50);
+  f->cfg->Omega_bias[0] = FSW_R(100.0);
+  ASSERT_EQ(f->init(), FSW_OK);
+  ASSERT_EQ(f->update(), FSW_OK);
+  expect_des(*f, {25, -125, 125, -125}, "positive bias");
+}
+
+namespace {
+
+// Five wheels: two along x, one along y, one along z, one along
+// (1,1,1)/sqrt(3) that is unavailable.  The four available wheels have
+// nullity 1, null vector n = (1, -1, 0, 0, 0)/sqrt(2) (sign immaterial):
+// wheels 3 and 4 (y, z) lie outside the null motion (n_i = 0) and wheel 5
+// is not available.  Keepout 10, hyst 5, bias (100, -100, 100, -100, 100).
+std::unique_ptr<Fixture> xxyz_and_one_failed()
+{
+  const double s = 1.0 / std::sqrt(3.0);
+  const double g[5][3] = {{1, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {s, s, s}};
+  auto f = rwt::make0<Fixture>();
+  f->setup(g, 5);
+  EXPECT_EQ(f->init(), FSW_OK);
+  EXPECT_EQ(f->st->nullity, 2);
+  f->in->avail[4] = FSW_UNAVAILABLE;
+  return f;
+}
+
+}  // namespace
+
+// MC/DC of the k = 1 solver's tests for a wheel outside the null motion
+// and for an unavailable wheel (rw_bias.c solve_k1: the speed bounds, the
+// keep-out intervals `lo > 0 || hi < 0`, the candidates of the infeasible
+// case).  Wheels 1, 2 (x) at 50 and 30, r = 1/sqrt(2), the step is
+// (lambda r, -lambda r, 0, 0, 0); bias_2 = 40 - 10 T (T =
+// FSW_RW_BIAS_TOL), so lambda_u r = r^2 ((100 - 50) - (bias_2 - 30)) =
+// 20 + 5 T.  Wheel 2 keeps out for 30 - lambda r >= 10, lambda r <= 20;
+// it counts as kept out down to (1 - T) 10, lambda r <= 20 + 10 T.
+// (a) y and z wheels at 200 and -300, out of their bands: they bound
+//   nothing; the constraints are feasible and lambda is lambda_u clamped
+//   to lambda r <= 20: Omega_des = (70, 10, 200, -300, held 123), FSW_OK.
+// (b) y wheel at +5 (in band, its side +): it cannot move, so no lambda
+//   keeps it out; lambda is the candidate with the fewest wheels in the
+//   band, then the nearest to lambda_u: lambda_u itself (wheel 3 only:
+//   wheel 2 at 10 - 5 T counts as out), Omega_des = (70 + 5 T, 10 - 5 T,
+//   5, -300, 123), wheel 3 flagged, FSW_W_SAT.
+// (c) z wheel at -5 (in band, its side -): as (b) with wheel 4 flagged.
+// Verifies: REQ-RWBIAS-002, REQ-RWBIAS-003, REQ-RWBIAS-004
+TEST(RwBiasInfeasible, McdcWheelsOutsideTheNullMotionAndAFailedWheel)
+{
+  const double T = FSW_RW_BIAS_TOL;
+  const struct {
+    const char* why;
+    double om3, om4, step;
+    FswStatus want;
+    int flagged;
+  } rows[] = {{"(a) out of band", 200, -300, 20, FSW_OK, -1},
+              {"(b) y wheel in band, + side", 5, -300, 20 + 5 * T, FSW_W_SAT, 2},
+              {"(c) z wheel in band, - side", 200, -5, 20 + 5 * T, FSW_W_SAT, 3}};
+  for (const auto& r : rows) {
+    auto f = xxyz_and_one_failed();
+    f->cfg->Omega_bias[1] = static_cast<fsw_real>(40 - 10 * T);
+    ASSERT_EQ(f->init(), FSW_OK);
+    f->speeds({50, 30, r.om3, r.om4, 123});
+    EXPECT_EQ(f->update(), r.want) << r.why;
+    EXPECT_EQ(f->out->nullity, 1) << r.why;
+    expect_des(*f, {50 + r.step, 30 - r.step, r.om3, r.om4, 123}, r.why);
+    for (int i = 0; i < 5; i++) EXPECT_EQ(f->out->unavoidable[i], i == r.flagged ? 1 : 0) << r.why << " " << i;
+    EXPECT_EQ(f->out->crossing_unavoidable, r.flagged >= 0 ? 1 : 0) << r.why;
+    EXPECT_NEAR(f->out->lambda_norm, r.step * std::sqrt(2.0), kTol * 40) << r.why;
+    EXPECT_LT(momentum_change(*f->cfg, f->out->Omega_des, f->in->Omega, f->in->avail), kTol) << r.why;
+  }
+}
+
+// MC/DC of the speed limit of a step (rw_bias.c step_of, `delta > 0 &&
+// Omega + delta > OMEGA_MAX` and its negative twin): three wheels along x
+// (nullity 2: every step with d_1 + d_2 + d_3 = 0), y and z wheels at 200
+// and -300 (outside the null motion, out of their bands).  The x wheels at
+// 5 rad/s, all in their band on the + side (b = 15): keeping all three out
+// needs a sum of at least 45, the momentum fixes it at 15, so at least one
+// stays in the band whatever the step.  Bias (M, M, -M) with M =
+// FSW_RW_OMEGA_MAX = 1e4: the unconstrained step is the projection of
+// bias - Omega = (9995, 9995, -10005) on the null space, minus its mean
+// 9985/3: (20000/3, 20000/3, -40000/3).  It would take wheel 3 to
+// -13328.3, beyond -M: the step is scaled by alpha = (M + 5)/(40000/3) =
+// 0.750375 to (5002.5, 5002.5, -10005) (wheels 1, 2 stay below M: their
+// test is false), Omega_des = (5007.5, 5007.5, -10000): one wheel in the
+// band (the fewest possible: the solver's own iterate, which cannot meet
+// every constraint, leaves more), FSW_W_SAT, |delta| = 5002.5 sqrt(6).
+// The mirror image (speeds -5, bias (-M, -M, M)) exercises the + limit.
+// Verifies: REQ-RWBIAS-002, REQ-RWBIAS-004
+TEST(RwBiasInfeasible, McdcAStepBeyondTheSpeedLimitIsScaledBackWhole)
+{
+  const double g[5][3] = {{1, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const double M = 1e4;
+  for (int sign = 1; sign >= -1; sign -= 2) {
+    auto f = rwt::make0<Fixture>();
+    f->setup(g, 5);
+    const double bias[5] = {sign * M, sign * M, -sign * M, 100, -100};
+    for (int i = 0; i < 5; i++) f->cfg->Omega_bias[i] = static_cast<fsw_real>(bias[i]);
+    ASSERT_EQ(f->init(), FSW_OK);
+    EXPECT_EQ(f->st->nullity, 2);
+    f->speeds({sign * 5.0, sign * 5.0, sign * 5.0, 200, -300});
+    EXPECT_EQ(f->update(), FSW_W_SAT) << sign;
+    expect_des(*f, {sign * 5007.5, sign * 5007.5, -sign * M, 200, -300}, sign > 0 ? "- limit" : "+ limit");
+    for (int i = 0; i < 5; i++) EXPECT_EQ(f->out->unavoidable[i], i == 2 ? 1 : 0) << sign << " " << i;
+    EXPECT_NEAR(f->out->lambda_norm, 5002.5 * std::sqrt(6.0), kTol * 2e4) << sign;
+    EXPECT_LT(momentum_change(*f->cfg, f->out->Omega_des, f->in->Omega, f->in->avail), kTol) << sign;
+  }
+}
