@@ -53,9 +53,7 @@ json settled(Served& s, uint64_t id)
 TEST(LiveSave, CheckpointAtATickBoundaryRestoresBitForBit)
 {
   const fs::path dir = temp_dir("save");
-  harness::LiveOptions lo;
-  lo.start_paused = true;
-  Served s(lo);
+  Served s(paused_options());
   harness::RunResult res;
   std::thread sim = s.start_run(dir / "run", res);
   ASSERT_TRUE(s.started());
@@ -142,9 +140,7 @@ TEST(LiveSave, CheckpointAtATickBoundaryRestoresBitForBit)
 // with the reason, nothing queued; the page's info says so too.
 TEST(LiveSave, RefusedWithoutAResultsFolder)
 {
-  harness::LiveOptions lo;
-  lo.start_paused = true;
-  Served s(lo);
+  Served s(paused_options());
   harness::RunResult res;
   std::thread sim = s.start_run(fs::path(), res);  // out_dir "": no files
   ASSERT_TRUE(s.started());

@@ -3,6 +3,7 @@
 // thread at a tick boundary (drain), and the bounded log of them
 // (/api/commands).  A save writes a checkpoint of the run into its results
 // folder at the boundary (save_state).
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -253,6 +254,7 @@ void LiveServer::Impl::save_state(Run& run, uint64_t id, uint64_t k, double t_k)
   }
   const std::string name = "checkpoint-" + std::to_string(k) + ".kckp";
   const std::filesystem::path path = std::filesystem::path(save_dir) / name;
+  const auto t0 = std::chrono::steady_clock::now();
   try {
     // the scenario with the events added so far (live commands): the one
     // a restored run is built from
@@ -262,11 +264,16 @@ void LiveServer::Impl::save_state(Run& run, uint64_t id, uint64_t k, double t_k)
     set_log(id, "refused", std::string("cannot save the state: ") + ex.what(), k, t_k);
     return;
   }
+  std::ostringstream ms;  // what the run waited for it
+  ms.precision(3);
+  ms << seconds_since(t0) * 1e3;
   std::error_code ec;
-  const uintmax_t bytes = std::filesystem::file_size(path, ec);
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  const uint64_t bytes = ec ? 0 : static_cast<uint64_t>(size);
   ++applied;
-  set_log(id, "applied", "saved " + name + " (" + std::to_string(ec ? 0 : bytes) + " bytes) into " + save_target, k,
-          t_k, name, ec ? 0 : static_cast<uint64_t>(bytes));
+  set_log(id, "applied",
+          "saved " + name + " (" + std::to_string(bytes) + " bytes, written in " + ms.str() + " ms) into " + save_target,
+          k, t_k, name, bytes);
 }
 
 }  // namespace harness
