@@ -327,7 +327,11 @@ async function loadInfo() {
   for (;;) {
     try {
       const i = await api('/api/info');
-      if (i.ok) { info = i.body; status.info = info; buildPage(); buildDevices(); return; }
+      if (i.ok) {
+        info = i.body; status.info = info; buildPage(); buildDevices();
+        if (info.save_refused) setText('saved', `save state: not possible in this run: ${info.save_refused}`, 'saved bad');
+        return;
+      }
       if (i.status === 403) { message(`the server refused: ${i.body && i.body.error}`, true); return; }
     } catch (e) {
       message(`the server does not answer: ${e.message}`, true);
