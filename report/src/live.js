@@ -5,7 +5,7 @@
 //                             one (the last recorded row each), run state, gains in force, the command
 //                             log, drop counters
 //   GET  /api/frames?since=N  the same, asked for: the fallback when the stream is refused
-//   POST /api/command         {op: pause|resume|step|rate|event, ...}
+//   POST /api/command         {op: pause|resume|step|rate|event|save, ...}
 // every request with the access token of the page's URL (X-Kestrel-Token).
 // Offline like the report: uPlot and three.js are bundled, nothing is fetched
 // from elsewhere.
@@ -222,7 +222,19 @@ function showStatus(row) {
   tb.replaceChildren(...rows);
 }
 
+// the last save (from this page, another or a script): the checkpoint's
+// name, tick, time and size once it is written, or why it was refused
+function showSaved(cmds) {
+  const c = cmds.filter((x) => x.command === 'save state').pop();
+  if (!c) return;
+  if (c.status === 'queued') setText('saved', `#${c.id} saving at the next tick boundary\u2026`, 'saved');
+  else if (c.status === 'applied' && c.file) {
+    setText('saved', `saved ${c.file.name}: tick ${c.tick}, t = ${fmt(c.t, 8)} s, ${fmt(c.file.bytes / 1000, 4)} kB`, 'saved');
+  } else setText('saved', `not saved: ${c.detail}`, 'saved bad');
+}
+
 function showCommands(cmds) {
+  showSaved(cmds);
   const tb = document.getElementById('commands');
   tb.replaceChildren(...cmds.slice().reverse().map((c) => el('tr', { class: 'cmd-' + c.status, 'data-id': String(c.id) },
     el('td', { text: '#' + c.id }), el('td', { text: c.command }), el('td', { text: c.status }),
@@ -315,7 +327,11 @@ async function loadInfo() {
   for (;;) {
     try {
       const i = await api('/api/info');
-      if (i.ok) { info = i.body; status.info = info; buildPage(); buildDevices(); return; }
+      if (i.ok) {
+        info = i.body; status.info = info; buildPage(); buildDevices();
+        if (info.save_refused) setText('saved', `save state: not possible in this run: ${info.save_refused}`, 'saved bad');
+        return;
+      }
       if (i.status === 403) { message(`the server refused: ${i.body && i.body.error}`, true); return; }
     } catch (e) {
       message(`the server does not answer: ${e.message}`, true);
@@ -366,6 +382,10 @@ function wireControls() {
   document.getElementById('resume').addEventListener('click', () => command({ op: 'resume' }));
   document.getElementById('step').addEventListener('click', () => command({ op: 'step', ticks: Math.max(1, Math.round(Number(document.getElementById('step-n').value) || 1)) }));
   document.getElementById('rate').addEventListener('click', () => command({ op: 'rate', value: Number(document.getElementById('rate-x').value) }));
+  document.getElementById('save').addEventListener('click', async () => {
+    const r = await command({ op: 'save' });
+    if (r && !r.ok) setText('saved', `not saved: ${r.body && r.body.error ? r.body.error : 'HTTP ' + r.status}`, 'saved bad');
+  });
 }
 
 wireControls();

@@ -46,6 +46,14 @@ inline fs::path temp_dir(const std::string& what)
   return d;
 }
 
+// A server whose run waits at the boundary after tick 0 for resume or step.
+inline harness::LiveOptions paused_options()
+{
+  harness::LiveOptions lo;
+  lo.start_paused = true;
+  return lo;
+}
+
 struct Served {
   harness::LiveServer srv;
   httplib::Client cli;

@@ -498,9 +498,7 @@ TEST(LiveServer, IdleAndSlowConnectionsDoNotHoldThePage)
 TEST(LiveServer, CommandLogIsBoundedAndPages)
 {
   const fs::path dir = temp_dir("log");
-  harness::LiveOptions lo;
-  lo.start_paused = true;
-  Served s(lo);
+  Served s(paused_options());
   harness::RunResult res;
   std::thread sim = s.start_run(dir / "run", res);
   ASSERT_TRUE(s.started());

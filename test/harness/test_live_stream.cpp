@@ -128,9 +128,7 @@ TEST(LiveStream, WithoutAPageTheWaitEnds)
 TEST(LiveStream, GainsInForceAndStreamsBounded)
 {
   const fs::path dir = temp_dir("gains");
-  harness::LiveOptions lo;
-  lo.start_paused = true;
-  Served s(lo);
+  Served s(paused_options());
   harness::RunResult res;
   std::thread sim = s.start_run(dir / "run", res);
   ASSERT_TRUE(s.started());

@@ -8,8 +8,10 @@
 // the telemetry under the scenario's device names, clicks "fail_off" of rw2 (wheel 2), waits for
 // the run to end and the report link, and checks in the recorded
 // telemetry.csv that wheel 2's torque (wheel_torque_1) is 0 from the row of
-// the tick the command entered at, and not in the row before, and that
-// `kestrel run manifest.json` reproduces telemetry.csv byte for byte.  Requests to
+// the tick the command entered at, and not in the row before, that
+// `kestrel run manifest.json` reproduces telemetry.csv byte for byte, and
+// that "save state" shows the checkpoint it wrote into the results folder
+// (name, tick, size: the file's).  Requests to
 // anything but the live server are aborted and count as failures.
 //
 //   NODE_PATH=<build>/report/npm/node_modules node live_browser_test.cjs KESTREL S1.yaml OUT_DIR
@@ -147,6 +149,13 @@ async function main() {
     const cmdRow = await page.evaluate(() => [...document.querySelectorAll('#commands tr')].find((r) => r.textContent.includes('rw2 fail_off')).textContent);
     const tick = Number((cmdRow.match(/tick (\d+)/) || [])[1]);
     console.log(`  command: ${cmdRow}`);
+    // save state: the page shows the checkpoint's name, tick, time and size
+    await page.click('#save');
+    await page.waitForFunction(() => /^(saved|not saved)/.test(document.getElementById('saved').textContent), null, { timeout: 15000 });
+    const saved = await page.evaluate(() => document.getElementById('saved').textContent);
+    console.log(`  save state: ${saved}`);
+    const sm = saved.match(/^saved (checkpoint-(\d+)\.kckp): tick (\d+), t = [0-9.e+-]+ s, ([0-9.]+) kB$/);
+    if (!sm || sm[2] !== sm[3]) fail(`save state shows "${saved}"`);
     await page.waitForTimeout(500); // a few more frames and 3D drawings
     await page.screenshot({ path: path.join(outDir, 'live.png'), fullPage: true });
     // the end: state and the report link
@@ -177,6 +186,12 @@ async function main() {
       if (bad.length) fail(`rw2 torque not 0 at t = ${bad[0][ct]} after the command at t = ${tk}`);
       console.log(`  telemetry: rw2 torque ${csv.rows[at - 1][cw]} N m at t = ${csv.rows[at - 1][ct]} s, 0 from t = ${tk} s ` +
         `to ${csv.rows[csv.rows.length - 1][ct]} s (${csv.rows.length - at} rows)`);
+    }
+    if (sm) {
+      const f = path.join(outDir, 'run', sm[1]);
+      const bytes = fs.existsSync(f) ? fs.statSync(f).size : -1;
+      if (!(Math.abs(bytes / 1000 - Number(sm[4])) <= 0.0005 * bytes / 1000)) fail(`${f}: ${bytes} bytes, the page said ${sm[4]} kB`);
+      else console.log(`  ${sm[1]} in the results folder: ${bytes} bytes`);
     }
     const man = JSON.parse(fs.readFileSync(path.join(outDir, 'run', 'manifest.json'), 'utf8'));
     // the gain boxes showed the scenario's gains; the page names the devices as the scenario does

@@ -339,6 +339,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   cfg.accept_events = opt.control != nullptr;  // the live view's commands are events
   Run run(sc, std::move(cfg));
   outputs.open(run, opt.overrides, opt.extra_sinks);
+  if (opt.control && outputs.files()) opt.control->results_folder(outputs.work().string(), opt.out_dir);
   drive(run, o, pacing, res);
   finish_run(run, remote, res);
   outputs.write(run, res, opt.overrides);

@@ -1,10 +1,16 @@
 // live_commands.cpp: the live view's commands (docs/live.md): read and
 // checked when they arrive (POST /api/command), queued, applied by the sim
 // thread at a tick boundary (drain), and the bounded log of them
-// (/api/commands).
+// (/api/commands).  A save writes a checkpoint of the run into its results
+// folder at the boundary (save_state).
+#include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <sstream>
 
+#include "harness/core/checkpoint.h"
+#include "harness/scenario/scenario.h"
 #include "live/live_impl.h"
 #include "scenario/scenario_limits.h"
 
@@ -39,6 +45,10 @@ std::string LiveServer::Impl::read_command(const json& j, Command& c, std::strin
   c.op = j["op"].get<std::string>();
   text = c.op;
   if (c.op == "pause" || c.op == "resume") return "";
+  if (c.op == "save") {
+    text = "save state";
+    return "";
+  }
   if (c.op == "step") {
     const json n = j.value("ticks", json(1));
     if (!n.is_number_integer() || n.get<int64_t>() < 1 || n.get<int64_t>() > 1000000)
@@ -59,7 +69,7 @@ std::string LiveServer::Impl::read_command(const json& j, Command& c, std::strin
     return "";
   }
   if (c.op == "event") return read_event(j, c, text);
-  return "unknown command '" + escape_bytes(c.op) + "' (pause, resume, step, rate, event)";
+  return "unknown command '" + escape_bytes(c.op) + "' (pause, resume, step, rate, event, save)";
 }
 
 bool LiveServer::Impl::enqueue(Command& c, const std::string& text, httplib::Response& res)
@@ -85,7 +95,7 @@ bool LiveServer::Impl::enqueue(Command& c, const std::string& text, httplib::Res
     ++live_events;
   }
   c.id = next_id++;
-  log.push_back({c.id, text, "queued", "", 0, 0.0});
+  log.push_back({c.id, text, "queued", "", 0, 0.0, "", 0});
   while (log.size() > kLogKept) {
     log.pop_front();
     ++log_base;
@@ -106,7 +116,7 @@ void LiveServer::Impl::post_command(const httplib::Request& req, httplib::Respon
     return;
   }
   if (!j.is_object() || !j.contains("op") || !j["op"].is_string()) {
-    refuse(res, 400, "a command is {\"op\": pause|resume|step|rate|event, ...}");
+    refuse(res, 400, "a command is {\"op\": pause|resume|step|rate|event|save, ...}");
     return;
   }
   {
@@ -125,6 +135,11 @@ void LiveServer::Impl::post_command(const httplib::Request& req, httplib::Respon
   const std::string why = read_command(j, c, text);
   if (!why.empty()) {
     refuse(res, 400, why);
+    return;
+  }
+  const std::string no_save = c.op == "save" ? save_refused_now() : "";
+  if (!no_save.empty()) {
+    refuse(res, 409, no_save);
     return;
   }
   if (!enqueue(c, text, res)) return;
@@ -187,6 +202,9 @@ void LiveServer::Impl::drain(Run& run, double& pace)
       paced = true;
       rate_shown.store(rate);
       if (!paused) pace = rate;
+    } else if (c.op == "save") {
+      save_state(run, c.id, k, t_k);
+      continue;
     } else if (c.op == "event") {
       if (k + 1 >= total_ticks) {  // t_k would be the run's end: the manifest would not take it
         ++refused;
@@ -216,6 +234,46 @@ void LiveServer::Impl::drain(Run& run, double& pace)
     ++applied;
     set_log(c.id, "applied", "", k, t_k);
   }
+}
+
+std::string LiveServer::Impl::save_refused_now()
+{
+  std::lock_guard<std::mutex> lk(info_mu);
+  if (save_dir.empty()) return "save: the run writes no results folder (-o): there is nowhere to save its state";
+  if (!save_refusal.empty()) return "save: cannot save the state: " + save_refusal;
+  return "";
+}
+
+void LiveServer::Impl::save_state(Run& run, uint64_t id, uint64_t k, double t_k)
+{
+  const std::string why = run.checkpoint_refusal();  // a failed or ended run, and what started() saw
+  if (!why.empty()) {
+    ++refused;
+    set_log(id, "refused", "cannot save the state: " + why, k, t_k);
+    return;
+  }
+  const std::string name = "checkpoint-" + std::to_string(k) + ".kckp";
+  const std::filesystem::path path = std::filesystem::path(save_dir) / name;
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    // the scenario with the events added so far (live commands): the one
+    // a restored run is built from
+    save_checkpoint(run, path.string(), scenario_to_json_text(run.scenario()));
+  } catch (const std::exception& ex) {
+    ++refused;
+    set_log(id, "refused", std::string("cannot save the state: ") + ex.what(), k, t_k);
+    return;
+  }
+  std::ostringstream ms;  // what the run waited for it
+  ms.precision(3);
+  ms << seconds_since(t0) * 1e3;
+  std::error_code ec;
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  const uint64_t bytes = ec ? 0 : static_cast<uint64_t>(size);
+  ++applied;
+  set_log(id, "applied",
+          "saved " + name + " (" + std::to_string(bytes) + " bytes, written in " + ms.str() + " ms) into " + save_target,
+          k, t_k, name, bytes);
 }
 
 }  // namespace harness

@@ -80,7 +80,7 @@ struct LiveServer::Impl {
   // ---- commands ------------------------------------------------------------------
   struct Command {
     uint64_t id = 0;
-    std::string op;  // pause, resume, step, rate, event
+    std::string op;  // pause, resume, step, rate, event, save
     uint64_t ticks = 0;
     double value = 0.0;
     EventActionSpec action;
@@ -91,6 +91,8 @@ struct LiveServer::Impl {
     std::string detail;
     uint64_t tick = 0;
     double t = 0.0;
+    std::string file;  // save: the checkpoint's name in the results folder
+    uint64_t bytes = 0;  // ... and its size
   };
   std::mutex cmd_mu;
   std::condition_variable cmd_cv;
@@ -120,6 +122,11 @@ struct LiveServer::Impl {
   uint64_t step_until = 0;  // paused: run up to this tick (step)
   std::string report_path;    // after ended()
   std::string end_text;
+  // save: the results folder's working folder the checkpoints go into and
+  // the folder they appear in (RunControl::results_folder, before
+  // started()); why this run cannot be saved at all (set at started():
+  // its FSW or sensors outside the harness)
+  std::string save_dir, save_target, save_refusal;
 
   void serve();
   // Before the body is read (from the request line and headers): the token,
@@ -134,7 +141,9 @@ struct LiveServer::Impl {
   }
   json log_json(const LogEntry& e) const
   {
-    return {{"id", e.id}, {"command", e.text}, {"status", e.status}, {"detail", e.detail}, {"tick", e.tick}, {"t", e.t}};
+    json j = {{"id", e.id}, {"command", e.text}, {"status", e.status}, {"detail", e.detail}, {"tick", e.tick}, {"t", e.t}};
+    if (!e.file.empty()) j["file"] = {{"name", e.file}, {"bytes", e.bytes}};
+    return j;
   }
   std::string commands_text(const httplib::Request& req);
   void refuse(httplib::Response& res, int status, const std::string& msg)
@@ -162,7 +171,14 @@ struct LiveServer::Impl {
   void publish(const Run& run, bool force);
   // the sim thread: applies what is queued at the boundary before tick k
   void drain(Run& run, double& pace);
-  void set_log(uint64_t id, const std::string& status, const std::string& detail, uint64_t tick, double t)
+  // the sim thread, at the boundary before tick k: a checkpoint of the run
+  // into the results folder (checkpoint-<k>.kckp), logged as applied with
+  // its name and size, or refused with why
+  void save_state(Run& run, uint64_t id, uint64_t k, double t_k);
+  // a save command that cannot apply whatever the tick: why ("" when it can)
+  std::string save_refused_now();
+  void set_log(uint64_t id, const std::string& status, const std::string& detail, uint64_t tick, double t,
+               const std::string& file = "", uint64_t bytes = 0)
   {
     std::lock_guard<std::mutex> lk(cmd_mu);
     if (id < log_base) return;  // forgotten (kLogKept newer ones since)
@@ -171,6 +187,8 @@ struct LiveServer::Impl {
     e.detail = detail;
     e.tick = tick;
     e.t = t;
+    e.file = file;
+    e.bytes = bytes;
     bump();
   }
 };

@@ -304,6 +304,13 @@ std::string LiveServer::url() const
   return "http://" + (v6 ? "[" + h + "]" : h) + ":" + std::to_string(impl_->port) + "/?token=" + impl_->token;
 }
 
+void LiveServer::results_folder(const std::string& working, const std::string& target)
+{
+  std::lock_guard<std::mutex> lk(impl_->info_mu);
+  impl_->save_dir = working;
+  impl_->save_target = target;
+}
+
 void LiveServer::started(Run& run, double realtime_scale, const std::atomic<int>* stop)
 {
   Impl& m = *impl_;
@@ -349,9 +356,11 @@ void LiveServer::started(Run& run, double realtime_scale, const std::atomic<int>
                {"geometry", json::parse(geometry_json_text(run))},
                {"publish_period", kPublishPeriod},
                {"wait_for_page", m.wait_s},
+               {"save_refused", m.save_dir.empty() ? "the run writes no results folder (-o)" : run.checkpoint_refusal()},
                {"ring_frames", kRingFrames}};
   std::lock_guard<std::mutex> lk(m.info_mu);
   m.sc = sc;
+  m.save_refusal = run.checkpoint_refusal();  // FSW or sensors outside the harness: no save at all
   m.max_live_events = kMaxScenarioEvents > sc.events.size() ? kMaxScenarioEvents - sc.events.size() : 0;
   m.info_text = info.dump();
   m.info_ready = true;

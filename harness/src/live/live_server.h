@@ -20,7 +20,9 @@
 //              it (bounded, kMaxQueued); boundary() drains the queue before
 //              the tick it is called for: an event action becomes a scenario
 //              event {name live<n>, t = t_k, actions} added with
-//              Run::add_event(), so the manifest replays it.
+//              Run::add_event(), so the manifest replays it; a save
+//              writes a checkpoint (checkpoint.h) into the results folder
+//              there, between two ticks.
 // Not in the library the fuzzers link (kestrel::harness_live, linked by the
 // kestrel program only).
 #ifndef HARNESS_SRC_LIVE_SERVER_H
@@ -84,6 +86,7 @@ class LiveServer : public RunControl {
   const std::string& token() const;
   std::string url() const;  // http://HOST:PORT/?token=...
 
+  void results_folder(const std::string& working, const std::string& target) override;
   void started(Run& run, double realtime_scale, const std::atomic<int>* stop) override;
   uint64_t boundary(Run& run, double& pace) override;
   void ended(const Run& run, const RunResult& res) override;

@@ -40,7 +40,17 @@ bool ResultsDir::is_result_file_name(const std::string& name)
                                                     "fsw_health.txt",   "summary.txt"};
   for (const char* n : kNames)
     if (name == n) return true;
-  return false;
+  return is_live_checkpoint_name(name);
+}
+
+bool ResultsDir::is_live_checkpoint_name(const std::string& name)
+{
+  const std::string head = "checkpoint-", tail = ".kckp";
+  if (name.size() <= head.size() + tail.size() || name.compare(0, head.size(), head) != 0 ||
+      name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
+    return false;
+  const std::string tick = name.substr(head.size(), name.size() - head.size() - tail.size());
+  return tick.size() <= 20 && tick.find_first_not_of("0123456789") == std::string::npos;
 }
 
 bool ResultsDir::is_campaign_file_name(const std::string& name)

@@ -26,6 +26,14 @@ struct RunResult;
 class RunControl {
  public:
   virtual ~RunControl() = default;
+  // Before started(), when the run writes a results folder: the working
+  // folder its files go into (they appear in `target` when the run ends,
+  // results_dir.h).  Not called for a run without files.
+  virtual void results_folder(const std::string& working, const std::string& target)
+  {
+    (void)working;
+    (void)target;
+  }
   // After the run is built, before its first tick; `realtime_scale` 0: not paced.
   virtual void started(Run& run, double realtime_scale, const std::atomic<int>* stop) = 0;
   // At the boundary before tick run.tick(): applies what was asked

@@ -41,6 +41,9 @@ class RunOutputs {
   RunOutputs& operator=(const RunOutputs&) = delete;
 
   bool files() const { return dir_.has_value(); }
+  // The working folder (results_dir.h): what is written there appears in
+  // the results folder when the run ends ("" without files).
+  const std::filesystem::path& work() const { return work_; }
   // What killed runs left beside the results folder (ResultsDir::notes()).
   std::vector<std::string> notes() const { return dir_ ? dir_->notes() : std::vector<std::string>(); }
   // Checks the free space for the run's output, writes the input record

@@ -61,6 +61,8 @@ class ResultsDir {
 
   // The file names a results folder may hold (what --force may replace).
   static bool is_result_file_name(const std::string& name);
+  // ... among them the checkpoints the live view saves: checkpoint-<tick>.kckp
+  static bool is_live_checkpoint_name(const std::string& name);
   // ... and those of a Monte Carlo campaign's folder (with mc_manifest.json,
   // whose runs/ and shards/ folders --force also replaces).
   static bool is_campaign_file_name(const std::string& name);
