@@ -206,8 +206,8 @@ TEST(Checkpoint, DamagedFilesAreRefused)
   EXPECT_NE(std::string::npos, restore_bytes(cut).find("checksum mismatch"));
   EXPECT_NE(std::string::npos, restore_bytes({'h', 'e', 'l', 'l', 'o'}).find("not a Kestrel checkpoint"));
   std::vector<uint8_t> v2 = good;
-  v2[8] = 2;  // another format version: named before the checksum is looked at
-  EXPECT_NE(std::string::npos, restore_bytes(v2).find("checkpoint format 2; this kestrel reads format 1"));
+  v2[8] = 3;  // another format version: named before the checksum is looked at
+  EXPECT_NE(std::string::npos, restore_bytes(v2).find("checkpoint format 3; this kestrel reads format 2"));
   // the file on disk is never touched by a refused restore
   EXPECT_EQ(good, harness::read_checkpoint_file(f("c.ckpt")));
 }
