@@ -55,7 +55,8 @@ def start_and_kill(cmd, target, rng, every_count, low=1):
         w = work_folder(target)
         if w:
             try:
-                m = os.stat(os.path.join(w, "checkpoint.kckp")).st_mtime_ns
+                st = os.stat(os.path.join(w, "checkpoint.kckp"))
+                m = (st.st_ino, st.st_mtime_ns)  # each checkpoint is a new file renamed into place
             except OSError:
                 m = None
             if m is not None and m != last:

@@ -107,10 +107,12 @@ CLI::App* add_run(CLI::App& app, harness::RunCommand& rc)
   run->add_option("--checkpoint-every", rc.checkpoint_every,
                   "write a checkpoint every T simulated seconds (rounded to whole ticks) so that --resume can "
                   "continue the run if it is killed; not with --fsw or --live (docs/checkpoint.md)")
+      ->type_name("T")
       ->check(CLI::PositiveNumber);
   run->add_option("--resume", rc.resume,
                   "continue the killed run of the results folder DIR (started with --checkpoint-every) from its "
                   "last checkpoint; the scenario, --set lines and interval are the checkpoint's")
+      ->type_name("DIR")
       ->excludes("--checkpoint-every");
   add_link_flags(run, rc);
   add_live_flags(run, rc.live);
