@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/core/checkpoint.h"
+#include "harness/output/outputs.h"
+#include "harness/output/results_dir.h"
 
 namespace harness {
 
@@ -73,7 +75,15 @@ void RunCheckpoints::attach(Run& run, const std::vector<RecordSink*>& sinks)
 {
   const std::string why = run.checkpoint_refusal();
   if (!why.empty()) throw CheckpointError("--checkpoint-every: this run cannot be checkpointed: " + why);
-  if (!resume_) scenario_text_ = scenario_to_json_text(run.scenario());
+  if (!resume_) {
+    scenario_text_ = scenario_to_json_text(run.scenario());
+    // the rows file: every value of the run, 8 bytes each (the other
+    // result files were counted by RunOutputs::open)
+    const uint64_t need = run.recorder().capacity() * run.recorder().num_columns() * 8 + (1u << 20);
+    if (free_bytes(work_) < need)
+      throw OutputError(work_.string() + ": not enough free space for the checkpoints' rows file (about " +
+                        std::to_string((need >> 20) + 1) + " MiB more); nothing was simulated");
+  }
   rows_ = std::make_unique<RowJournal>((work_ / kRowsName).string(), resume_);
   run.add_sink(*rows_);
   if (!resume_) return;
