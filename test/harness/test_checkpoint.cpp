@@ -173,7 +173,7 @@ TEST(Checkpoint, FileRoundTripAndAtomicReplacement)
   // the layout's fixed header (docs/checkpoint.md): magic, format, flags, tick
   const std::vector<uint8_t> bytes = harness::read_checkpoint_file(f("c.ckpt"));
   EXPECT_EQ(0, std::memcmp(bytes.data(), "KSTRLCKP", 8));
-  EXPECT_EQ(1u, bytes[8]);
+  EXPECT_EQ(2u, bytes[8]);
   uint64_t tick = 0;
   for (int i = 0; i < 8; ++i) tick |= uint64_t(bytes[16 + size_t(i)]) << (8 * i);
   EXPECT_EQ(200u, tick);
@@ -206,10 +206,45 @@ TEST(Checkpoint, DamagedFilesAreRefused)
   EXPECT_NE(std::string::npos, restore_bytes(cut).find("checksum mismatch"));
   EXPECT_NE(std::string::npos, restore_bytes({'h', 'e', 'l', 'l', 'o'}).find("not a Kestrel checkpoint"));
   std::vector<uint8_t> v2 = good;
-  v2[8] = 2;  // another format version: named before the checksum is looked at
-  EXPECT_NE(std::string::npos, restore_bytes(v2).find("checkpoint format 2; this kestrel reads format 1"));
+  v2[8] = 3;  // another format version: named before the checksum is looked at
+  EXPECT_NE(std::string::npos, restore_bytes(v2).find("checkpoint format 3; this kestrel reads format 2"));
   // the file on disk is never touched by a refused restore
   EXPECT_EQ(good, harness::read_checkpoint_file(f("c.ckpt")));
+}
+
+// Format 2 added the `outputs` text after the scenario; a format-1 file
+// (the same bytes without that field, version 1, its own checksum: made
+// here by hand from the layout in docs/checkpoint.md) is still read.
+TEST(Checkpoint, OutputsTextRoundTripsAndFormatOneIsStillRead)
+{
+  const Scenario sc = s1_short();
+  harness::Run a(sc);
+  ASSERT_TRUE(a.step_ticks(50));
+  harness::CheckpointInfo info;
+  info.tick = 50;
+  info.total_ticks = a.total_ticks();
+  info.kestrel_version = "v";
+  info.scenario_name = sc.name;
+  info.scenario_text = harness::scenario_to_json_text(sc);
+  info.outputs = "{\"x\":1}";
+  const std::vector<uint8_t> state = harness::save_run_state(a);
+  std::vector<uint8_t> back;
+  const std::vector<uint8_t> v2 = harness::encode_checkpoint(info, state);
+  EXPECT_EQ("{\"x\":1}", harness::decode_checkpoint(v2, back).outputs);
+  EXPECT_EQ(state, back);
+  // format 1: drop the outputs field (u64 length + 7 bytes), version 1, new FNV-1a 64
+  const size_t at = 40 + (8 + info.kestrel_version.size()) + (8 + info.scenario_name.size()) +
+                    (8 + info.scenario_text.size());
+  std::vector<uint8_t> v1(v2.begin(), v2.end() - 8);
+  v1.erase(v1.begin() + std::ptrdiff_t(at), v1.begin() + std::ptrdiff_t(at + 8 + info.outputs.size()));
+  v1[8] = 1;
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (uint8_t b : v1) h = (h ^ b) * 0x100000001b3ull;
+  for (int i = 0; i < 8; ++i) v1.push_back(uint8_t(h >> (8 * i)));
+  const harness::CheckpointInfo old = harness::decode_checkpoint(v1, back);
+  EXPECT_EQ("", old.outputs);
+  EXPECT_EQ(info.scenario_text, old.scenario_text);
+  EXPECT_EQ(state, back);
 }
 
 TEST(Checkpoint, AForeignScenarioIsRefusedWithTheDifference)

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <optional>
 #include <sstream>
@@ -16,6 +17,7 @@
 #include "harness/mc/monte_carlo.h"
 #include "harness/drive/run_scenario.h"
 #include "harness/output/results_dir.h"
+#include "harness/core/checkpoint.h"
 #include "harness/core/run.h"
 #include "harness/scenario/scenario.h"
 
@@ -199,11 +201,13 @@ void attach_messages(const RunCommand& c, RunOptions& opt, std::ostream& err)
   };
 }
 
-// run_scenario, its exceptions as exit codes (with their message on err).
-std::optional<int> run_caught(const Scenario& sc, const RunOptions& opt, bool bar, RunResult& r, std::ostream& err)
+// run_scenario (or resume_scenario), its exceptions as exit codes (with
+// their message on err).
+std::optional<int> run_caught(const std::function<RunResult()>& go, const RunOptions& opt, bool bar, RunResult& r,
+                              std::ostream& err)
 {
   try {
-    r = run_scenario(sc, opt);
+    r = go();
     if (bar) err << "\n";
     return std::nullopt;
   } catch (const ScenarioError& e) {
@@ -211,6 +215,10 @@ std::optional<int> run_caught(const Scenario& sc, const RunOptions& opt, bool ba
     print_issues(e, err);
     return kExitInvalidScenario;
   } catch (const ResultsDirRefused& e) {
+    if (bar) err << "\n";
+    err << "kestrel: " << e.what() << "\n";
+    return kExitRefused;
+  } catch (const CheckpointError& e) {
     if (bar) err << "\n";
     err << "kestrel: " << e.what() << "\n";
     return kExitRefused;
@@ -224,6 +232,23 @@ std::optional<int> run_caught(const Scenario& sc, const RunOptions& opt, bool ba
     err << "kestrel: run failed: " << e.what() << "\n";
     return kExitRunFailed;
   }
+}
+
+// The options --checkpoint-every and --resume do not take (a usage error).
+std::string checkpoint_option_conflict(const RunCommand& c)
+{
+  if (c.checkpoint_every <= 0.0 && c.resume.empty()) return c.scenario.empty() ? "a scenario is required (or --resume DIR)" : "";
+  const char* opt = c.resume.empty() ? "--checkpoint-every" : "--resume";
+  if (!c.fsw.empty())
+    return std::string(opt) + ": the flight software runs outside this process (--fsw " + c.fsw +
+           "): its state is on the other side of the link, which a checkpoint cannot hold; refused";
+  if (c.live.on || c.control) return std::string(opt) + " is not taken with --live";
+  if (c.resume.empty()) return "";
+  if (!c.out_dir.empty()) return "--resume DIR names the results folder; -o is not taken with it";
+  if (c.force) return "--force is not taken with --resume (the run replaces what its first start would have)";
+  if (c.scenario.empty() && (!c.sets.empty() || c.csv))
+    return "with --resume, --set and --csv only check the checkpoint's scenario: give the scenario too";
+  return "";
 }
 
 // The figures of a run that went to its end: speed, pacing, link, files.
@@ -255,13 +280,27 @@ void print_run(const RunCommand& c, const Scenario& sc, const RunOptions& opt, c
 
 int cmd_run(const RunCommand& c, std::ostream& out, std::ostream& err)
 {
+  const std::string conflict = checkpoint_option_conflict(c);
+  if (!conflict.empty()) {
+    err << "kestrel run: " << conflict << "\n";
+    return kExitUsage;
+  }
   std::vector<Override> ov;
   Scenario sc;
-  if (const std::optional<int> code = load_run_scenario(c, sc, ov, err)) return *code;
+  if (!c.scenario.empty())
+    if (const std::optional<int> code = load_run_scenario(c, sc, ov, err)) return *code;
   RunOptions opt = run_options_of(c, sc, ov);
   attach_messages(c, opt, err);
   RunResult r;
-  if (const std::optional<int> code = run_caught(sc, opt, c.progress, r, err)) return *code;
+  std::function<RunResult()> go = [&] { return run_scenario(sc, opt); };
+  if (!c.resume.empty()) {
+    opt.out_dir = c.resume;
+    go = [&, expected = c.scenario.empty() ? std::optional<Scenario>() : std::optional<Scenario>(sc)] {
+      return resume_scenario(opt, expected ? &*expected : nullptr, sc);
+    };
+  }
+  opt.checkpoint_every = c.checkpoint_every;
+  if (const std::optional<int> code = run_caught(go, opt, c.progress, r, err)) return *code;
   if (r.stopped_by_signal != 0) {
     err << "kestrel: interrupted by " << r.status.stopped_by << " at t = " << r.status.t_reached << " s of "
         << sc.duration << " s; the results so far are in " << opt.out_dir << ", marked incomplete\n";

@@ -82,7 +82,8 @@ void add_live_flags(CLI::App* run, harness::LiveRequest& live)
 CLI::App* add_run(CLI::App& app, harness::RunCommand& rc)
 {
   auto* run = app.add_subcommand("run", "run a scenario (YAML or a run manifest.json) and write its results");
-  run->add_option("scenario", rc.scenario, "scenario file or manifest.json")->required();
+  run->add_option("scenario", rc.scenario,
+                  "scenario file or manifest.json (with --resume: optional, must be the checkpoint's scenario)");
   run->add_option("-o,--output", rc.out_dir, "results directory (default runs/<scenario name>)");
   run->add_option("--set", rc.sets, "override a scenario key: key.path=value (repeatable)");
   run->add_flag("--csv", rc.csv, "also write telemetry.csv");
@@ -103,6 +104,16 @@ CLI::App* add_run(CLI::App& app, harness::RunCommand& rc)
             return why;  // CLI11 puts "--rt-scale: " before it
           },
           "SCALE"));
+  run->add_option("--checkpoint-every", rc.checkpoint_every,
+                  "write a checkpoint every T simulated seconds (rounded to whole ticks) so that --resume can "
+                  "continue the run if it is killed; not with --fsw or --live (docs/checkpoint.md)")
+      ->type_name("T")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--resume", rc.resume,
+                  "continue the killed run of the results folder DIR (started with --checkpoint-every) from its "
+                  "last checkpoint; the scenario, --set lines and interval are the checkpoint's")
+      ->type_name("DIR")
+      ->excludes("--checkpoint-every");
   add_link_flags(run, rc);
   add_live_flags(run, rc.live);
   return run;

@@ -152,6 +152,7 @@ std::vector<uint8_t> encode_checkpoint(const CheckpointInfo& info, const std::ve
   put_text(o, info.kestrel_version);
   put_text(o, info.scenario_name);
   put_text(o, info.scenario_text);
+  put_text(o, info.outputs);
   put_bytes(o, state.data(), state.size());
   put_u64(o, fnv1a64(o.data(), o.size()));
   return o;
@@ -164,7 +165,7 @@ CheckpointInfo decode_checkpoint(const std::vector<uint8_t>& file, std::vector<u
   Cursor c{file, file.size() - 8, path};
   c.pos = 8;
   const uint64_t format = c.u(4);
-  if (format != kCheckpointFormat)
+  if (format != kCheckpointFormat && format != 1)
     throw CheckpointError(path + ": checkpoint format " + std::to_string(format) + "; this kestrel reads format " +
                           std::to_string(kCheckpointFormat));
   uint64_t sum = 0;
@@ -179,6 +180,7 @@ CheckpointInfo decode_checkpoint(const std::vector<uint8_t>& file, std::vector<u
   info.kestrel_version = c.text();
   info.scenario_name = c.text();
   info.scenario_text = c.text();
+  if (format >= 2) info.outputs = c.text();
   state = c.blob();
   if (c.pos != c.end) throw CheckpointError(path + ": checkpoint has bytes after its state");
   return info;
@@ -240,7 +242,7 @@ std::string first_difference(const std::string& a, const std::string& b)
   }
 }
 
-void save_checkpoint(Run& run, const std::string& path, const std::string& scenario_text)
+void save_checkpoint(Run& run, const std::string& path, const std::string& scenario_text, const std::string& outputs)
 {
   CheckpointInfo info;
   info.tick = run.tick();
@@ -249,6 +251,7 @@ void save_checkpoint(Run& run, const std::string& path, const std::string& scena
   info.kestrel_version = version();
   info.scenario_name = run.scenario().name;
   info.scenario_text = scenario_text;
+  info.outputs = outputs;
   write_checkpoint_file(path, encode_checkpoint(info, save_run_state(run)));
 }
 

@@ -9,8 +9,10 @@
 #include <optional>
 #include <sstream>
 
+#include "harness/drive/run_checkpoints.h"
 #include "harness/drive/run_scenario.h"
 #include "harness/drive/run_steps.h"
+#include "harness/core/checkpoint.h"
 #include "harness/link/pil.h"
 #include "harness/output/results_dir.h"
 
@@ -116,6 +118,13 @@ RunOutputs::RunOutputs(const std::string& out_dir, bool force)
   }
 }
 
+RunOutputs::RunOutputs(const std::string& out_dir, const std::string& marker)
+{
+  dir_.emplace(out_dir, marker);
+  dir_->keep_work();  // a resume that fails leaves the folder as it found it, to be resumed again
+  work_ = dir_->work();
+}
+
 void RunOutputs::write_file(const std::string& name, const std::string& text)
 {
   write_text((work_ / name).string(), text);
@@ -124,6 +133,10 @@ void RunOutputs::write_file(const std::string& name, const std::string& text)
 
 void RunOutputs::open(Run& run, const std::vector<Override>& overrides, const std::vector<RecordSink*>& extra)
 {
+  const auto add = [&run, this](RecordSink& s) {
+    run.add_sink(s);
+    sinks_.push_back(&s);
+  };
   if (files()) {
     const Scenario& sc = run.scenario();
     dir_->require_free_space(output_estimate(run, sc));
@@ -132,22 +145,22 @@ void RunOutputs::open(Run& run, const std::vector<Override>& overrides, const st
     if (sc.outputs.hdf5) {
       h5_.emplace((work_ / "results.h5").string(), sc, manifest_);
       h5_->set_events(&run.events_applied());  // with the events added while running
-      run.add_sink(*h5_);
+      add(*h5_);
     }
     if (sc.outputs.csv) {
       csv_.emplace((work_ / "telemetry.csv").string());
-      run.add_sink(*csv_);
+      add(*csv_);
     }
     if (sc.outputs.report_data) {
       report_.emplace();
-      run.add_sink(*report_);
+      add(*report_);
     }
     if (sc.monte_carlo && !sc.monte_carlo->criteria.empty()) {
       requirements_.emplace(criterion_metrics(sc, run.recorder().layout()));
-      run.add_sink(*requirements_);
+      add(*requirements_);
     }
   }
-  for (RecordSink* s : extra) run.add_sink(*s);
+  for (RecordSink* s : extra) add(*s);
 }
 
 void RunOutputs::write_report(const Run& run, const RunResult& res)
@@ -222,7 +235,7 @@ bool RunPacing::step(Run& run, const std::function<void(const std::string&)>& no
   return true;
 }
 
-void drive(Run& run, const RunOptions& opt, RunPacing& pacing, RunResult& res)
+void drive(Run& run, const RunOptions& opt, RunPacing& pacing, RunResult& res, RunCheckpoints* checkpoints)
 {
   const Scenario& sc = run.scenario();
   // chunks of at most 1000 ticks: a stop request is seen within milliseconds
@@ -244,6 +257,7 @@ void drive(Run& run, const RunOptions& opt, RunPacing& pacing, RunResult& res)
       if (pace > 0.0) pacing.pace_at(sc, pace, opt.notice, opt.stop);
       if (stop_asked()) continue;
     }
+    if (checkpoints) limit = std::min(limit, checkpoints->boundary(run));
     if (pacing.on()) {  // one tick at a time, each at its deadline
       if (!pacing.step(run, opt.notice)) break;
       if (opt.progress && run.tick() % chunk == 0)
@@ -318,10 +332,13 @@ std::string summary_text(const RunStatus& st, double duration, const std::vector
 
 // ---- the whole run ------------------------------------------------------
 
-RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
+namespace {
+
+// A run into `outputs` (opened already); with `checkpoints`, checkpointed
+// or continued from one.
+RunResult run_into(RunOutputs& outputs, const Scenario& sc, const RunOptions& opt, RunCheckpoints* checkpoints)
 {
   RunResult res;
-  RunOutputs outputs(opt.out_dir, opt.force);  // lock, refuse or replace: before anything is simulated
   if (opt.notice)
     for (const std::string& n : outputs.notes()) opt.notice(n);
   res.warnings = jitter_step_warnings(sc);
@@ -340,11 +357,41 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   Run run(sc, std::move(cfg));
   outputs.open(run, opt.overrides, opt.extra_sinks);
   if (opt.control && outputs.files()) opt.control->results_folder(outputs.work().string(), opt.out_dir);
-  drive(run, o, pacing, res);
+  if (checkpoints) checkpoints->attach(run, outputs.sinks());
+  drive(run, o, pacing, res, checkpoints);
   finish_run(run, remote, res);
+  if (checkpoints) checkpoints->discard();  // not part of the results
   outputs.write(run, res, opt.overrides);
   if (opt.control) opt.control->ended(run, res);
   return res;
+}
+
+}  // namespace
+
+RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
+{
+  RunOutputs outputs(opt.out_dir, opt.force);  // lock, refuse or replace: before anything is simulated
+  std::optional<RunCheckpoints> checkpoints;
+  if (opt.checkpoint_every > 0.0 && outputs.files())
+    checkpoints.emplace(outputs.work(), sc, opt.overrides, opt.checkpoint_every);
+  return run_into(outputs, sc, opt, checkpoints ? &*checkpoints : nullptr);
+}
+
+RunResult resume_scenario(const RunOptions& opt, const Scenario* expected, Scenario& resumed)
+{
+  RunOutputs outputs(opt.out_dir, std::string(RunCheckpoints::kCheckpointName));  // not the bool overload
+  RunCheckpoints checkpoints(outputs.work());
+  if (expected) {
+    const std::string diff = first_difference(scenario_to_json_text(checkpoints.scenario()), scenario_to_json_text(*expected));
+    if (!diff.empty())
+      throw CheckpointError(opt.out_dir + ": its checkpoint is of scenario '" + checkpoints.scenario().name +
+                            "', not of the one given ('" + expected->name + "'): refused (" + diff + ")");
+  }
+  resumed = checkpoints.scenario();
+  RunOptions o = opt;
+  o.overrides = checkpoints.overrides();
+  o.checkpoint_every = checkpoints.every_seconds();
+  return run_into(outputs, resumed, o, &checkpoints);
 }
 
 }  // namespace harness

@@ -34,7 +34,9 @@ void write_events(hid_t file, const std::vector<AppliedEvent>& log, const std::s
 {
   hsize_t dims[2] = {log.size(), 2};
   H5Id space(H5Screate_simple(2, dims, nullptr), H5Sclose);
-  H5Id d(H5Dcreate2(file, "/events", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  H5Id dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  H5Pset_obj_track_times(dcpl, 0);  // no wall-clock times: the same run gives the same bytes
+  H5Id d(H5Dcreate2(file, "/events", H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT), H5Dclose);
   h5check(d, "creating /events", path);
   std::vector<double> v;
   std::vector<std::string> names, what;
@@ -66,7 +68,14 @@ void Hdf5Sink::begin(const RecordLayout& layout, uint64_t expected_rows)
 {
   h5_setup();
   f_ = std::make_unique<File>();
-  f_->file = H5Id(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  // no object has its wall-clock creation and change times (HDF5 stores
+  // them by default): the same run gives the same bytes, and a run
+  // continued from a checkpoint the bytes of an uninterrupted one
+  H5Id fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
+  H5Pset_obj_track_times(fcpl, 0);
+  H5Id gcpl(H5Pcreate(H5P_GROUP_CREATE), H5Pclose);
+  H5Pset_obj_track_times(gcpl, 0);
+  f_->file = H5Id(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT), H5Fclose);
   h5check(f_->file, "creating the file", path_);
   const hid_t file = f_->file;
   std::vector<std::string> groups;
@@ -74,13 +83,14 @@ void Hdf5Sink::begin(const RecordLayout& layout, uint64_t expected_rows)
   const hsize_t chunk_rows = std::max<hsize_t>(1, std::min<hsize_t>(1024, expected_rows));
   for (const QuantityInfo& q : layout.quantities) {
     if (!q.group.empty() && std::find(groups.begin(), groups.end(), q.group) == groups.end()) {
-      H5Id g(H5Gcreate2(file, ("/" + q.group).c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+      H5Id g(H5Gcreate2(file, ("/" + q.group).c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), H5Gclose);
       h5check(g, "creating group /" + q.group, path_);
       groups.push_back(q.group);
     }
     hsize_t dims[2] = {0, q.num_cols}, maxdims[2] = {H5S_UNLIMITED, q.num_cols};
     H5Id space(H5Screate_simple(2, dims, maxdims), H5Sclose);
     H5Id dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+    H5Pset_obj_track_times(dcpl, 0);
     hsize_t chunk[2] = {chunk_rows, q.num_cols};
     H5Pset_chunk(dcpl, 2, chunk);
     H5Pset_shuffle(dcpl);

@@ -115,7 +115,7 @@ void check_existing(const fs::path& t, const std::string& target, bool force)
 
 }  // namespace
 
-ResultsDir::ResultsDir(const std::string& target, bool force)
+void ResultsDir::lock_target(const std::string& target)
 {
   if (target.empty()) throw OutputError("no results folder given");
   fs::path t = fs::absolute(fs::path(target)).lexically_normal();
@@ -152,6 +152,12 @@ ResultsDir::ResultsDir(const std::string& target, bool force)
   if (::ftruncate(lock_.fd, 0) != 0 || ::pwrite(lock_.fd, me.data(), me.size(), 0) != static_cast<ssize_t>(me.size())) {
     // the lock holds without the pid; only the refusal message is poorer
   }
+}
+
+ResultsDir::ResultsDir(const std::string& target, bool force)
+{
+  const fs::path& t = target_;
+  lock_target(target);
 
   // 2. what is there already
   check_existing(t, target, force);
@@ -162,10 +168,50 @@ ResultsDir::ResultsDir(const std::string& target, bool force)
 
   // 4. the working folder (the writability check, before simulating)
   work_ = beside(t, ".kestrel-work-" + std::to_string(::getpid()));
+  std::error_code ec;
   fs::remove_all(work_, ec);  // a stale one of a crashed run with our pid
   if (!fs::create_directory(work_, ec) || ec) {
     throw OutputError(target + ": cannot create the working folder " + work_.string() +
                       (ec ? ": " + ec.message() : ""));
+  }
+}
+
+ResultsDir::ResultsDir(const std::string& target, const std::string& marker)
+{
+  lock_target(target);
+  // what is there already may only be Kestrel results (a run started with
+  // --force replaces them at its end, as it would have)
+  check_existing(target_, target, true);
+  adopt_work(target, marker);
+  find_leftovers(target_);
+}
+
+void ResultsDir::adopt_work(const std::string& target, const std::string& marker)
+{
+  const std::string prefix = beside(target_, ".kestrel-work-").filename().string();
+  std::vector<fs::path> found;
+  std::error_code ec;
+  for (fs::directory_iterator it(target_.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string n = it->path().filename().string();
+    if (n.size() > prefix.size() && n.compare(0, prefix.size(), prefix) == 0 &&
+        fs::is_regular_file(it->path() / marker))
+      found.push_back(it->path());
+  }
+  if (found.empty())
+    throw ResultsDirRefused(
+        target + ": nothing to resume: no unfinished run of these results left a checkpoint (" +
+        (fs::exists(target_ / "manifest.json") ? "the folder holds a finished run's results, whose checkpoint is removed "
+                                                  "when it ends"
+                                                : "a run is continued only when started with --checkpoint-every") +
+        ")");
+  if (found.size() > 1)
+    throw ResultsDirRefused(target + ": several killed runs left a checkpoint (" + found[0].filename().string() +
+                            ", " + found[1].filename().string() + "); remove all but the one to continue");
+  work_ = beside(target_, ".kestrel-work-" + std::to_string(::getpid()));
+  if (found[0] != work_) {
+    fs::remove_all(work_, ec);
+    fs::rename(found[0], work_, ec);
+    if (ec) throw OutputError(target + ": cannot take over " + found[0].string() + ": " + ec.message());
   }
 }
 

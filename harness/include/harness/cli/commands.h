@@ -71,6 +71,8 @@ struct RunCommand {
   LinkOptions link;
   LiveRequest live;                 // --live (cmd_run_program)
   RunControl* control = nullptr;    // steers the run while it goes: the live view (docs/live.md)
+  double checkpoint_every = 0.0;    // [s] > 0: --checkpoint-every (docs/checkpoint.md)
+  std::string resume;               // --resume DIR: continue the killed run of these results
 };
 
 // Writes the FSW configuration image of a scenario (docs/hwil.md).

@@ -27,7 +27,9 @@ class CheckpointError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-constexpr uint32_t kCheckpointFormat = 1;
+// Format 2 adds `outputs` (the results folder's state); format 1 files are
+// still read (their `outputs` is empty).
+constexpr uint32_t kCheckpointFormat = 2;
 
 struct CheckpointInfo {
   uint64_t tick = 0;         // the next tick to run
@@ -36,6 +38,9 @@ struct CheckpointInfo {
   std::string kestrel_version;
   std::string scenario_name;
   std::string scenario_text;  // canonical JSON of the run's scenario
+  // What the run's results folder needs to be continued (written and read
+  // by the drive room, opaque here); "" when the run has none.
+  std::string outputs;
 };
 
 // The run's state (Run::state_io) as bytes; std::logic_error when the run
@@ -59,7 +64,9 @@ std::vector<uint8_t> read_checkpoint_file(const std::string& path);
 
 // The whole round trip: `scenario_text` is the run's scenario as canonical
 // JSON (scenario_to_json_text of run.scenario()).
-void save_checkpoint(Run& run, const std::string& path, const std::string& scenario_text);
+// `outputs`: CheckpointInfo::outputs.
+void save_checkpoint(Run& run, const std::string& path, const std::string& scenario_text,
+                     const std::string& outputs = "");
 // Refuses (CheckpointError) a checkpoint of another scenario, naming both
 // and the first line where they differ.  Returns the file's header.
 CheckpointInfo restore_checkpoint(Run& run, const std::string& path, const std::string& scenario_text);

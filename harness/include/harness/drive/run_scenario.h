@@ -69,6 +69,10 @@ struct RunOptions {
   std::vector<RecordSink*> extra_sinks;
   // Optional: steers the run at its tick boundaries (the live view).
   RunControl* control = nullptr;
+  // > 0: a checkpoint every this many simulated seconds (rounded to whole
+  // ticks) in the results' working folder, so that resume_scenario() can
+  // continue the run if it is killed (run_checkpoints.h, docs/checkpoint.md).
+  double checkpoint_every = 0.0;
 };
 
 struct RunResult {
@@ -105,6 +109,15 @@ struct RunResult {
 // rejected), ResultsDirRefused (target exists / in use; nothing ran) or
 // OutputError (files; the target is left as it was).
 RunResult run_scenario(const Scenario& sc, const RunOptions& opt = {});
+
+// Continues the run of the results folder opt.out_dir that was killed after
+// writing a checkpoint (RunOptions::checkpoint_every): the scenario, --set
+// lines and checkpoint interval are the checkpoint's (`resumed` is set to
+// that scenario); the result files come out as an uninterrupted run's.
+// `expected`, when given, must be that scenario.  Throws ResultsDirRefused
+// (nothing to resume), CheckpointError (damaged, foreign, another
+// scenario) and what run_scenario() throws.
+RunResult resume_scenario(const RunOptions& opt, const Scenario* expected, Scenario& resumed);
 
 }  // namespace harness
 

@@ -37,6 +37,9 @@ class RunOutputs {
   // folder (results_dir.h): before anything is simulated.  out_dir "": no
   // files (open() then adds the extra sinks only, write() does nothing).
   RunOutputs(const std::string& out_dir, bool force);
+  // Continuing a killed run: takes over its working folder, the one holding
+  // `marker` (ResultsDir's resume constructor).
+  RunOutputs(const std::string& out_dir, const std::string& marker);
   RunOutputs(const RunOutputs&) = delete;
   RunOutputs& operator=(const RunOutputs&) = delete;
 
@@ -44,6 +47,8 @@ class RunOutputs {
   // The working folder (results_dir.h): what is written there appears in
   // the results folder when the run ends ("" without files).
   const std::filesystem::path& work() const { return work_; }
+  // The sinks open() attached, in order (the extra ones last).
+  const std::vector<RecordSink*>& sinks() const { return sinks_; }
   // What killed runs left beside the results folder (ResultsDir::notes()).
   std::vector<std::string> notes() const { return dir_ ? dir_->notes() : std::vector<std::string>(); }
   // Checks the free space for the run's output, writes the input record
@@ -68,6 +73,7 @@ class RunOutputs {
   std::optional<CsvSink> csv_;
   std::optional<ReportSink> report_;
   std::optional<MetricSink> requirements_;  // the scenario's criteria, when it has some
+  std::vector<RecordSink*> sinks_;
 };
 
 // Wall-clock pacing of a run (pacer.h).  Made before the run: the FSW link
@@ -101,7 +107,9 @@ class RunPacing {
 // milliseconds), or one tick at a time when paced; the run control's
 // boundary before each; progress between chunks.  Sets res.wall_seconds,
 // res.stopped_by_signal and, when paced, res.paced and res.pacing.
-void drive(Run& run, const RunOptions& opt, RunPacing& pacing, RunResult& res);
+class RunCheckpoints;  // harness/drive/run_checkpoints.h
+// `checkpoints`: asked at every boundary (RunCheckpoints::boundary).
+void drive(Run& run, const RunOptions& opt, RunPacing& pacing, RunResult& res, RunCheckpoints* checkpoints = nullptr);
 
 // Run::finish() (the rows recorded so far are in the files, marked
 // incomplete when the run did not end), then the run's figures and status

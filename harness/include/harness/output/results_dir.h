@@ -39,6 +39,12 @@ class ResultsDir {
   // Locks `target`, checks it and creates the working folder.  Throws
   // ResultsDirRefused, or OutputError (a folder cannot be created/written).
   ResultsDir(const std::string& target, bool force);
+  // Continuing a run killed before it ended (`kestrel run --resume`): locks
+  // `target` and takes over the working folder a killed run of it left
+  // with `marker` in it (renamed to this process's working folder).
+  // ResultsDirRefused when there is none (naming why: the results are
+  // finished, or no run of them wrote a checkpoint) or several.
+  ResultsDir(const std::string& target, const std::string& marker);
   ~ResultsDir();
   ResultsDir(const ResultsDir&) = delete;
   ResultsDir& operator=(const ResultsDir&) = delete;
@@ -78,7 +84,9 @@ class ResultsDir {
     ~Fd() { reset(); }
     void reset();
   };
+  void lock_target(const std::string& target);
   void find_leftovers(const std::filesystem::path& t);
+  void adopt_work(const std::string& target, const std::string& marker);
   std::filesystem::path target_, work_, lock_path_;
   std::vector<std::string> notes_;
   Fd lock_;
