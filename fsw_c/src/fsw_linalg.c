@@ -37,15 +37,25 @@ static void chol_solve(fsw_real z[3], const fsw_real L[3][3], const fsw_real rhs
 {
   fsw_real y[3];
   int i, j;
-  for (i = 0; i < m; i++) {
-    fsw_real v = rhs[i];
-    for (j = 0; j < i; j++) { v -= L[i][j] * y[j]; }
-    y[i] = v / L[i][i];
-  }
-  for (i = m - 1; i >= 0; i--) {
-    fsw_real v = y[i];
-    for (j = i + 1; j < m; j++) { v -= L[j][i] * z[j]; }
-    z[i] = v / L[i][i];
+  if (m == 3) { /* the loops below for m = 3, written out (the same order) */
+    const fsw_real y0 = rhs[0] / L[0][0];
+    const fsw_real y1 = (rhs[1] - (L[1][0] * y0)) / L[1][1];
+    const fsw_real y2 = ((rhs[2] - (L[2][0] * y0)) - (L[2][1] * y1)) / L[2][2];
+    const fsw_real z2 = y2 / L[2][2];
+    const fsw_real z1 = (y1 - (L[2][1] * z2)) / L[1][1];
+    const fsw_real z0 = ((y0 - (L[1][0] * z1)) - (L[2][0] * z2)) / L[0][0];
+    fsw_v3_set(z, z0, z1, z2);
+  } else {
+    for (i = 0; i < m; i++) {
+      fsw_real v = rhs[i];
+      for (j = 0; j < i; j++) { v -= L[i][j] * y[j]; }
+      y[i] = v / L[i][i];
+    }
+    for (i = m - 1; i >= 0; i--) {
+      fsw_real v = y[i];
+      for (j = i + 1; j < m; j++) { v -= L[j][i] * z[j]; }
+      z[i] = v / L[i][i];
+    }
   }
 }
 
