@@ -23,7 +23,11 @@ static int pow2_exp(fsw_real m)
 {
   int e = 0;
   if (!(m > FSW_R(0.0)) || !isfinite(m)) { return 0; }
-  (void)FSW_FREXP(m, &e);
+  if (m >= K1_MIN_NORMAL) {
+    e = fsw_frexp_exp_normal(m); /* frexp's e; >= MIN_EXP, no clamp needed */
+  } else {
+    (void)FSW_FREXP(m, &e);
+  }
   if (-e > K1_MAX_EXP - 1) { e = -(K1_MAX_EXP - 1); }
   return e;
 }
@@ -33,34 +37,105 @@ static void chol_solve(fsw_real z[3], const fsw_real L[3][3], const fsw_real rhs
 {
   fsw_real y[3];
   int i, j;
-  for (i = 0; i < m; i++) {
-    fsw_real v = rhs[i];
-    for (j = 0; j < i; j++) { v -= L[i][j] * y[j]; }
-    y[i] = v / L[i][i];
-  }
-  for (i = m - 1; i >= 0; i--) {
-    fsw_real v = y[i];
-    for (j = i + 1; j < m; j++) { v -= L[j][i] * z[j]; }
-    z[i] = v / L[i][i];
+  if (m == 3) { /* the loops below for m = 3, written out (the same order) */
+    const fsw_real y0 = rhs[0] / L[0][0];
+    const fsw_real y1 = (rhs[1] - (L[1][0] * y0)) / L[1][1];
+    const fsw_real y2 = ((rhs[2] - (L[2][0] * y0)) - (L[2][1] * y1)) / L[2][2];
+    const fsw_real z2 = y2 / L[2][2];
+    const fsw_real z1 = (y1 - (L[2][1] * z2)) / L[1][1];
+    const fsw_real z0 = ((y0 - (L[1][0] * z1)) - (L[2][0] * z2)) / L[0][0];
+    fsw_v3_set(z, z0, z1, z2);
+  } else {
+    for (i = 0; i < m; i++) {
+      fsw_real v = rhs[i];
+      for (j = 0; j < i; j++) { v -= L[i][j] * y[j]; }
+      y[i] = v / L[i][i];
+    }
+    for (i = m - 1; i >= 0; i--) {
+      fsw_real v = y[i];
+      for (j = i + 1; j < m; j++) { v -= L[j][i] * z[j]; }
+      z[i] = v / L[i][i];
+    }
   }
 }
 
-/* x = As^T z and r = bs - As x (As = s A formed on the fly); returns |r|. */
-static fsw_real k1_apply(fsw_real x[FSW_MAX_EFF], fsw_real r[3], const fsw_real A[3][FSW_MAX_EFF],
-                         fsw_real s, const fsw_real z[3], const fsw_real bs[3], int m, int n)
+/* x = As^T z and r = bs - As x (As = s A formed on the fly).  Three rows
+ * (the wheel and thruster mappings' usual case) with the sum over the rows
+ * written out: the same terms added in the same order from 0. */
+static void k1_apply(fsw_real x[FSW_MAX_EFF], fsw_real r[3], const fsw_real A[3][FSW_MAX_EFF],
+                     fsw_real s, const fsw_real z[3], const fsw_real bs[3], int m, int n)
 {
   int i, j;
-  for (j = 0; j < n; j++) {
-    fsw_real v = FSW_R(0.0);
-    for (i = 0; i < m; i++) { v += (A[i][j] * s) * z[i]; }
-    x[j] = v;
+  if (m == 3) {
+    const fsw_real z0 = z[0];
+    const fsw_real z1 = z[1];
+    const fsw_real z2 = z[2];
+    fsw_real r0 = bs[0];
+    fsw_real r1 = bs[1];
+    fsw_real r2 = bs[2];
+    for (j = 0; j < n; j++) {
+      fsw_real v = FSW_R(0.0);
+      v += (A[0][j] * s) * z0;
+      v += (A[1][j] * s) * z1;
+      v += (A[2][j] * s) * z2;
+      x[j] = v;
+    }
+    for (j = 0; j < n; j++) {
+      const fsw_real xj = x[j];
+      r0 -= (A[0][j] * s) * xj;
+      r1 -= (A[1][j] * s) * xj;
+      r2 -= (A[2][j] * s) * xj;
+    }
+    fsw_v3_set(r, r0, r1, r2);
+  } else {
+    for (j = 0; j < n; j++) {
+      fsw_real v = FSW_R(0.0);
+      for (i = 0; i < m; i++) { v += (A[i][j] * s) * z[i]; }
+      x[j] = v;
+    }
+    for (i = 0; i < m; i++) {
+      fsw_real v = bs[i];
+      for (j = 0; j < n; j++) { v -= (A[i][j] * s) * x[j]; }
+      r[i] = v;
+    }
   }
+}
+
+/* The delivered-residual test |r| <= FSW_RESID_TOL |bs|, decided as the
+ * overflow-safe norms (fsw_vn_norm) decide it.  A plain sum of squares
+ * settles it first when the answer is clear by a wide margin: with
+ * rr = sum r_i^2 and bb = sum bs_i^2 (each within a few rounding units of
+ * |r|^2 and |bs|^2, bb finite and >= K1_FAST_BB_MIN, so that squares of
+ * r_i lost to underflow are far below the margin), rr <= RESID_TOL^2 bb / 4
+ * means |r| <= ~RESID_TOL |bs| / 2, which the scaled norms (each within a
+ * few rounding units) also pass.  Otherwise (near the threshold, rank
+ * deficient, bb out of range, NaN) the scaled norms decide. */
+#if FSW_USE_FLOAT
+#define K1_FAST_BB_MIN FSW_R(1e-20)
+#define K1_FAST_BB_MAX FSW_R(1e30)
+#else
+#define K1_FAST_BB_MIN FSW_R(1e-200)
+#define K1_FAST_BB_MAX FSW_R(1e300)
+#endif
+static int k1_resid_ok(const fsw_real r[3], const fsw_real bs[3], int m)
+{
+  fsw_real rr = FSW_R(0.0);
+  fsw_real bb = FSW_R(0.0);
+  int ok = 0;
+  int i;
   for (i = 0; i < m; i++) {
-    fsw_real v = bs[i];
-    for (j = 0; j < n; j++) { v -= (A[i][j] * s) * x[j]; }
-    r[i] = v;
+    rr += r[i] * r[i];
+    bb += bs[i] * bs[i];
   }
-  return fsw_vn_norm(r, m);
+  if ((bb >= K1_FAST_BB_MIN) && (bb <= K1_FAST_BB_MAX) &&
+      (rr <= ((FSW_R(0.25) * FSW_RESID_TOL * FSW_RESID_TOL) * bb))) {
+    ok = 1;
+  } else if (fsw_vn_norm(r, m) <= (FSW_RESID_TOL * fsw_vn_norm(bs, m))) {
+    ok = 1;
+  } else {
+    ok = 0;
+  }
+  return ok;
 }
 
 FswStatus fsw_minnorm_factor(FswMinnormFactor *f, const fsw_real A[3][FSW_MAX_EFF], int m, int n)
@@ -134,7 +209,7 @@ FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFa
                                      const fsw_real A[3][FSW_MAX_EFF], const fsw_real b[3])
 {
   fsw_real bs[3], r[3], dz[3], z[3];
-  fsw_real s, t, bnorm, rnorm;
+  fsw_real s, t;
   int i, j, eb, m, n;
 
   FSW_ASSERT(x != NULL && f != NULL && A != NULL && b != NULL);
@@ -152,25 +227,24 @@ FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFa
    * end (exact scalings: the digits are those of the unscaled solve). */
   s = f->s;
   eb = pow2_exp(fsw_vn_max_abs(b, m));
-  t = FSW_LDEXP(FSW_R(1.0), -eb);
+  t = (fsw_pow2i_normal(-eb) != 0) ? fsw_pow2i(-eb) : FSW_LDEXP(FSW_R(1.0), -eb);
   for (i = 0; i < m; i++) { bs[i] = (b[i] * t) * s; }
 
   /* L L^T z = bs; x = As^T z (the two scale factors s cancel:
    * As^T (As As^T)^-1 bs = A^T (A A^T)^-1 b t) */
   chol_solve(z, FSW_CM33(f->L), bs, m);
-  bnorm = fsw_vn_norm(bs, m);
-  rnorm = k1_apply(x, r, A, s, z, bs, m, n);
+  k1_apply(x, r, A, s, z, bs, m, n);
   /* Delivered-residual rank test (docs/fsw-conventions.md "Rank test"):
    * a pivot above the floor can still be rounding noise; then A x is far
    * from b.  One refinement step first (a full-rank A that passes the
    * pivot floor always meets FSW_RESID_TOL after it), then reject. */
-  if (!(rnorm <= FSW_RESID_TOL * bnorm)) {
+  if (!k1_resid_ok(r, bs, m)) {
     chol_solve(dz, FSW_CM33(f->L), r, m);
     for (i = 0; i < m; i++) { z[i] += dz[i]; }
-    rnorm = k1_apply(x, r, A, s, z, bs, m, n);
-    if (!(rnorm <= FSW_RESID_TOL * bnorm)) {
+    k1_apply(x, r, A, s, z, bs, m, n);
+    if (!k1_resid_ok(r, bs, m)) {
       fsw_vn_zero(x, n);
-      return isfinite(rnorm) ? FSW_E_SINGULAR : FSW_E_BAD_INPUT;
+      return isfinite(fsw_vn_norm(r, m)) ? FSW_E_SINGULAR : FSW_E_BAD_INPUT;
     }
   }
   /* undo the scaling of b; a solution beyond the real's range is bad input.
@@ -179,7 +253,7 @@ FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFa
    * same bits for every x, with one ldexp per call instead of one per
    * entry. */
   if (eb < K1_MAX_EXP) {
-    const fsw_real u = FSW_LDEXP(FSW_R(1.0), eb);
+    const fsw_real u = (fsw_pow2i_normal(eb) != 0) ? fsw_pow2i(eb) : FSW_LDEXP(FSW_R(1.0), eb);
     for (j = 0; j < n; j++) { x[j] *= u; }
   } else {
     for (j = 0; j < n; j++) { x[j] = FSW_LDEXP(x[j], eb); }

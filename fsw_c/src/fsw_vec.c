@@ -68,11 +68,17 @@ fsw_real fsw_pow2_scale(fsw_real m)
 {
   int e = 0;
   if (!(m > FSW_R(0.0)) || !isfinite(m)) { return FSW_R(1.0); }
-  (void)FSW_FREXP(m, &e);
-  /* subnormal m: 2^-e would overflow; the largest finite power of two
-   * still brings m * scale into the normal range */
-  if (-e > FSW_REAL_MAX_EXP - 1) { e = -(FSW_REAL_MAX_EXP - 1); }
-  return FSW_LDEXP(FSW_R(1.0), -e);
+  if (m >= FSW_RB_MIN_NORMAL) {
+    e = fsw_frexp_exp_normal(m); /* frexp's e, from the exponent field */
+  } else {
+    (void)FSW_FREXP(m, &e);
+    /* subnormal m: 2^-e would overflow; the largest finite power of two
+     * still brings m * scale into the normal range */
+    if (-e > FSW_REAL_MAX_EXP - 1) { e = -(FSW_REAL_MAX_EXP - 1); }
+  }
+  /* 2^-e is a normal number but for m at or above 2^(MAX_EXP-2), where it
+   * is subnormal (ldexp) */
+  return (fsw_pow2i_normal(-e) != 0) ? fsw_pow2i(-e) : FSW_LDEXP(FSW_R(1.0), -e);
 }
 
 int fsw_v3_normalize(fsw_real out[3], const fsw_real a[3])

@@ -12,6 +12,10 @@
 #ifndef FSW_VEC_INLINE_H
 #define FSW_VEC_INLINE_H
 
+#include <float.h>
+#include <stdint.h>
+#include <string.h>
+
 #include "fsw/fsw_config.h"
 #include "fsw/fsw_vec.h"
 
@@ -130,7 +134,60 @@ static inline fsw_real fsw_v3i_norm_pow2_scaled(const fsw_real b[3], fsw_real m,
   return mb * FSW_SQRT(s);
 }
 
-/* fsw_vec.c includes this header for fsw_v3i_norm_pow2_scaled only. */
+/* Powers of two from the bits of the real type (IEEE 754 binary64, or
+ * binary32 when fsw_real is float: the same bit layout as the link's wire
+ * encoding assumes).  They give the bits frexp and ldexp give, for normal
+ * numbers only (the callers keep frexp and ldexp for the rest), without a
+ * call into the math library. */
+#if FSW_USE_FLOAT
+typedef uint32_t fsw_real_bits;
+#define FSW_RB_MANT 23
+#define FSW_RB_BIAS 127
+#define FSW_RB_EMASK 0xFFu
+#define FSW_RB_MIN_EXP FLT_MIN_EXP
+#define FSW_RB_MAX_EXP FLT_MAX_EXP
+#define FSW_RB_MIN_NORMAL FLT_MIN
+#else
+typedef uint64_t fsw_real_bits;
+#define FSW_RB_MANT 52
+#define FSW_RB_BIAS 1023
+#define FSW_RB_EMASK 0x7FFu
+#define FSW_RB_MIN_EXP DBL_MIN_EXP
+#define FSW_RB_MAX_EXP DBL_MAX_EXP
+#define FSW_RB_MIN_NORMAL DBL_MIN
+#endif
+
+/* 1 if 2^k is a normal number of the real type. */
+static inline int fsw_pow2i_normal(int k)
+{
+  return (k >= (FSW_RB_MIN_EXP - 1)) && (k <= (FSW_RB_MAX_EXP - 1));
+}
+
+/* 2^k for a k with fsw_pow2i_normal(k): exactly ldexp(1, k). */
+static inline fsw_real fsw_pow2i(int k)
+{
+  const int biased = k + FSW_RB_BIAS; /* 1 .. 2 MAX_EXP - 2 */
+  fsw_real_bits bits = (fsw_real_bits)biased;
+  fsw_real v;
+  bits <<= FSW_RB_MANT;
+  (void)memcpy(&v, &bits, sizeof v);
+  return v;
+}
+
+/* The exponent e of frexp(m, &e) (m = f 2^e, 1/2 <= f < 1) for a normal,
+ * finite m: the biased exponent field less (bias - 1). */
+static inline int fsw_frexp_exp_normal(fsw_real m)
+{
+  fsw_real_bits bits;
+  int field;
+  (void)memcpy(&bits, &m, sizeof bits);
+  bits >>= FSW_RB_MANT;
+  bits &= FSW_RB_EMASK;
+  field = (int)bits;
+  return field - (FSW_RB_BIAS - 1);
+}
+
+/* fsw_vec.c includes this header for the functions above only. */
 #ifndef FSW_VEC_INLINE_NO_ALIASES
 #define fsw_v3_set fsw_v3i_set
 #define fsw_v3_copy fsw_v3i_copy

@@ -1028,6 +1028,34 @@ TEST(FswMinNorm, Issue21SubnormalRightHandSide)
   EXPECT_EQ(b[0], x[0]);
 }
 
+// K1's digits do not depend on the scale of A: A is scaled by a power of two
+// s (exact) and b by 2^-e, so A 2^k gives exactly x 2^-k.  Scales far from 1
+// (2^600 and 2^-600 in double, 2^60 and 2^-60 in float) put the sum of
+// squares of the scaled b out of the range where the residual test is first
+// decided by plain sums of squares (it underflows or overflows), so the
+// overflow-safe norms decide; the result is the same bits as at scale 1.
+// Verifies: REQ-LINALG-001
+TEST(FswMinNorm, ScaleOfAFarFromOneGivesTheScaledSolutionBitForBit)
+{
+  const int k = sizeof(fsw_real) == 4 ? 60 : 600;
+  kt::Rng r(4501);
+  for (int trial = 0; trial < 50; trial++) {
+    const int m = 1 + trial % 3, n = m + trial % 4;
+    static Mat3N A, As;
+    A = random_well_conditioned(r, m, n);
+    fsw_real b[3] = {0, 0, 0}, x[FSW_MAX_EFF], xs[FSW_MAX_EFF];
+    for (int i = 0; i < m; i++) b[i] = static_cast<fsw_real>(r.uniform(-5, 5));
+    ASSERT_EQ(FSW_OK, fsw_minnorm_solve(x, A.a, b, m, n)) << trial;
+    for (const int sgn : {1, -1}) {
+      As = A;
+      for (int i = 0; i < m; i++)
+        for (int j = 0; j < n; j++) As.a[i][j] = std::ldexp(A.a[i][j], sgn * k);
+      ASSERT_EQ(FSW_OK, fsw_minnorm_solve(xs, As.a, b, m, n)) << trial << " " << sgn;
+      for (int j = 0; j < n; j++) EXPECT_EQ(std::ldexp(x[j], -sgn * k), xs[j]) << trial << " " << sgn << " " << j;
+    }
+  }
+}
+
 // Issue 21 (mutation survivors of seed 2112): K2's row-drop test is relative
 // to the row's own norm, |residual| <= FSW_NULL_TOL |row|.  16 columns,
 // row 0 = (1, ..., 1), row 1 = row 0 + rho (1, -1, 1, -1, ...): the part of

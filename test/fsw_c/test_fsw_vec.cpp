@@ -270,6 +270,31 @@ TEST(FswVecIssue21, NonFiniteAndAliasedArguments)
   EXPECT_EQ(6.0, m[1][2]);
 }
 
+// fsw_pow2_scale(m) = 2^-e with m = f 2^e, 1/2 <= f < 1, over the whole
+// range of the real type: m = 2^j and m = 1.5 2^j give 2^-(j+1) (std::ldexp
+// as the reference), so m p is exactly 1/2 and 3/4; where 2^-(j+1) is not
+// a normal number (m >= 2^(MAX_EXP-2)) it is the subnormal power of two;
+// a subnormal m gives the largest finite power of two, 2^(MAX_EXP-1).
+// Verifies: REQ-VEC-001
+TEST(FswVec, Pow2ScaleOverTheWholeRange)
+{
+  using L = std::numeric_limits<fsw_real>;
+  for (int j = L::min_exponent - 1; j < L::max_exponent; j++) {
+    const fsw_real p = std::ldexp(FSW_R(1.0), -(j + 1));
+    EXPECT_EQ(p, fsw_pow2_scale(std::ldexp(FSW_R(1.0), j))) << j;
+    EXPECT_EQ(p, fsw_pow2_scale(std::ldexp(FSW_R(1.5), j))) << j;
+    if (j + 1 <= L::max_exponent - 1) {
+      EXPECT_EQ(FSW_R(0.5), std::ldexp(FSW_R(1.0), j) * fsw_pow2_scale(std::ldexp(FSW_R(1.0), j))) << j;
+      EXPECT_EQ(FSW_R(0.75), std::ldexp(FSW_R(1.5), j) * fsw_pow2_scale(std::ldexp(FSW_R(1.5), j))) << j;
+    }
+  }
+  const fsw_real big = std::ldexp(FSW_R(1.0), L::max_exponent - 1);
+  EXPECT_EQ(big, fsw_pow2_scale(L::denorm_min()));
+  EXPECT_EQ(big, fsw_pow2_scale(L::min() / 4));
+  EXPECT_EQ(big / 2, fsw_pow2_scale(L::min() / 2));
+  EXPECT_EQ(std::ldexp(FSW_R(1.0), -L::max_exponent), fsw_pow2_scale(L::max()));
+}
+
 // Mutation seed 31337 (fsw_vec.c:277): the singularity test is relative to
 // the product of all three row norms.  diag(s, 1, 1) with s = 1e-9 has
 // |det| = s and |a0| |a1| |a2| = s, so |det| / scale = 1 > rel_tol = 1e-6:
