@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "harness/drive/run_scenario.h"
+#include "harness/drive/branch.h"
 #include "harness/drive/run_steps.h"
 #include "harness/link/pil.h"
 #include "harness/output/results_dir.h"
@@ -321,6 +322,8 @@ std::string summary_text(const RunStatus& st, double duration, const std::vector
 RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
 {
   RunResult res;
+  // a run that starts from a checkpoint: the file checked before the folder is made
+  const std::shared_ptr<const Branch> branch = sc.from_checkpoint ? open_branch(sc) : nullptr;
   RunOutputs outputs(opt.out_dir, opt.force);  // lock, refuse or replace: before anything is simulated
   if (opt.notice)
     for (const std::string& n : outputs.notes()) opt.notice(n);
@@ -337,8 +340,10 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
   if (!opt.fsw_link.empty())
     cfg.fsw = make_remote_fsw(sc, opt, remote, [&pacing] { return pacing.time_left(); });
   cfg.accept_events = opt.control != nullptr;  // the live view's commands are events
+  if (branch) cfg.accept_events = branch_accepts_events(*branch);
   Run run(sc, std::move(cfg));
   outputs.open(run, opt.overrides, opt.extra_sinks);
+  if (branch) start_branch(run, *branch);
   drive(run, o, pacing, res);
   finish_run(run, remote, res);
   outputs.write(run, res, opt.overrides);
