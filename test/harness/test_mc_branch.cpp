@@ -263,6 +263,17 @@ TEST_F(McBranch, FixedKeysAndBadCheckpointsAreRefusedBeforeAnyRun)
   const std::string delay = variant("    - {key: \"events[1].delay\", dist: uniform, min: 0.1, max: 0.5}\n", "d.yaml");
   EXPECT_EQ(mc_cli(delay, ckpt_, (dir_ / "c1").string(), err), 3);
   EXPECT_NE(err.find("events[1].delay: the event fires before the checkpoint"), std::string::npos) << err;
+  // an event time drawn before the checkpoint: that run is an invalid draw, the others run
+  std::string t = text;
+  const std::string at = "min: 8.5, max: 15}";
+  t.replace(t.find(at), at.size(), "min: 2, max: 15}");
+  const fs::path early = dir_ / "early.yaml";
+  std::ofstream(early) << t;
+  EXPECT_EQ(mc_cli(early.string(), ckpt_, (dir_ / "c2").string(), err), 6) << err;
+  const std::string summary = read_text(dir_ / "c2" / "summary.csv");
+  EXPECT_NE(summary.find("invalid draw: events[0].t: drawn "), std::string::npos) << summary;
+  EXPECT_NE(summary.find(" s, before the checkpoint (t = 8 s)"), std::string::npos) << summary;
+  EXPECT_NE(summary.find(",pass,"), std::string::npos) << summary;
   // (d) a checkpoint of another scenario
   Scenario other = *nominal_;
   set_parameter(other, "fsw.mrp_fb.P", 31.0);
