@@ -62,11 +62,12 @@ class McBranch : public ::testing::Test {
   }
 
   // A checkpoint of sc saved before tick `tick`, from a run that accepts events.
-  static void save_at(const Scenario& sc, const std::string& path, uint64_t tick, size_t chunk_rows = 1024)
+  static void save_at(const Scenario& sc, const std::string& path, uint64_t tick, size_t chunk_rows = 1024,
+                      bool accept_events = true)
   {
     RunConfig c;
     c.chunk_rows = chunk_rows;
-    c.accept_events = true;
+    c.accept_events = accept_events;
     c.keep_in_memory = false;
     harness::Run a(sc, std::move(c));
     ASSERT_TRUE(a.step_ticks(tick));
@@ -278,6 +279,13 @@ TEST_F(McBranch, FixedKeysAndBadCheckpointsAreRefusedBeforeAnyRun)
   EXPECT_NE(summary.find("invalid draw: events[0].t: drawn "), std::string::npos) << summary;
   EXPECT_NE(summary.find(" s, before the checkpoint (t = 8 s)"), std::string::npos) << summary;
   EXPECT_NE(summary.find(",pass,"), std::string::npos) << summary;
+  // a settable key needs a checkpoint of a run that accepts events (the state's layout)
+  const std::string closed = (dir_ / "closed.ckpt").string();
+  save_at(*nominal_, closed, kSaveTick, 1024, false);
+  EXPECT_EQ(mc_cli(kYaml, closed, (dir_ / "c1").string(), err), 3);
+  EXPECT_NE(err.find("monte_carlo.dispersions[1].key: fsw.mrp_fb.K: set by an event action at the checkpoint, but "
+                     "the checkpoint's run was built without RunConfig::accept_events"),
+            std::string::npos) << err;
   // (d) a checkpoint of another scenario
   Scenario other = *nominal_;
   set_parameter(other, "fsw.mrp_fb.P", 31.0);
