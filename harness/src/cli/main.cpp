@@ -183,6 +183,9 @@ CLI::App* add_mc(CLI::App& app, harness::McCommand& mc, std::string& shard)
   mcc->add_flag("--force", mc.force, "replace an existing campaign folder whole");
   mcc->add_option("--resume", mc.resume,
                   "continue the interrupted (killed or stopped) campaign in this folder: only its missing runs");
+  mcc->add_option("--from", mc.from,
+                  "start every run from this checkpoint of the nominal scenario; only events after it, keys settable "
+                  "during a run and the sensor noise may be dispersed (docs/checkpoint.md, \"Branching a campaign\")");
   return mcc;
 }
 

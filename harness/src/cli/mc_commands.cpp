@@ -52,6 +52,11 @@ std::string mc_manifest_text(const McPlan& plan, const std::string& source, cons
   j["runs_done"] = record_hashes.size();
   if (!merged_from.is_null()) j["merged_from"] = merged_from;
   j["scenario"] = scenario_to_json(plan.nominal);
+  if (plan.from) {  // kestrel mc --from: every run starts from this checkpoint
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(plan.from->fnv1a64));
+    j["from_checkpoint"] = {{"path", plan.from->path}, {"fnv1a64", hex}, {"tick", plan.from->info.tick}};
+  }
   // what `mc merge` checks a shard against (mc_validate.h)
   j["scenario_fnv1a64"] = mc_scenario_hash(j["scenario"]);
   j["record_fnv1a64"] = record_hashes;  // [index, mc_record_hash] per finished run
@@ -213,6 +218,10 @@ int write_slurm(const McCommand& c, const McPlan& plan, const std::vector<Overri
 std::optional<int> load_plan(const McCommand& c, std::vector<Override>& ov, McPlan& plan, std::ostream& rerr)
 {
   if (!parse_sets(c.sets, ov, rerr)) return kExitUsage;
+  if (!c.from.empty() && (c.shard_count > 1 || c.slurm_tasks > 0 || !c.resume.empty())) {
+    rerr << "kestrel: --from runs in one process (threads) or under mpirun; not with --shard, --slurm or --resume\n";
+    return kExitUsage;
+  }
   try {
     const Scenario sc = load_scenario(c.scenario, ov);
     if (!sc.monte_carlo) {
@@ -220,8 +229,12 @@ std::optional<int> load_plan(const McCommand& c, std::vector<Override>& ov, McPl
       return kExitInvalidScenario;
     }
     plan = make_mc_plan(sc, c.seed ? *c.seed : sc.monte_carlo->seed, c.runs ? *c.runs : sc.monte_carlo->runs);
+    if (!c.from.empty()) branch_mc_plan(plan, c.from);
   } catch (const ScenarioError& e) {
     print_issues(e, rerr);
+    return kExitInvalidScenario;
+  } catch (const CheckpointError& e) {
+    rerr << "kestrel: --from: " << e.what() << "\n";
     return kExitInvalidScenario;
   }
   if (plan.runs == 0) {

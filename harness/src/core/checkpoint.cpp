@@ -33,7 +33,7 @@ class StateWriter final : public sim::StateIO {
 // Restoring: every part must have the byte count the run has for it.
 class StateReader final : public sim::StateIO {
  public:
-  explicit StateReader(const std::vector<uint8_t>& in) : in_(in) {}
+  StateReader(const std::vector<uint8_t>& in, bool keep_streams) : in_(in), keep_streams_(keep_streams) {}
   bool loading() const override { return true; }
   void bytes(const char* what, void* p, std::size_t n) override
   {
@@ -47,13 +47,14 @@ class StateReader final : public sim::StateIO {
         << " (a checkpoint of another build or configuration)";
       throw CheckpointError(e.str());
     }
-    std::memcpy(p, in_.data() + pos_, n);
+    if (!keep_streams_ || std::strncmp(what, "rng.", 4) != 0) std::memcpy(p, in_.data() + pos_, n);
     pos_ += n;
   }
   bool at_end() const { return pos_ == in_.size(); }
 
  private:
   const std::vector<uint8_t>& in_;
+  const bool keep_streams_;  // the random streams (sim::Rng, parts "rng.*") keep the run's
   size_t pos_ = 0;
 };
 
@@ -128,15 +129,30 @@ std::vector<uint8_t> save_run_state(Run& run)
   return std::move(w.out);
 }
 
-void restore_run_state(Run& run, const std::vector<uint8_t>& state)
+namespace {
+void restore_state(Run& run, const std::vector<uint8_t>& state, bool keep_streams)
 {
-  StateReader r(state);
+  StateReader r(state, keep_streams);
   try {
     run.state_io(r);
   } catch (const std::runtime_error& e) {
     throw CheckpointError(e.what());
   }
   if (!r.at_end()) throw CheckpointError("checkpoint: the state holds more than this run has (another configuration)");
+}
+}  // namespace
+
+void restore_run_state(Run& run, const std::vector<uint8_t>& state) { restore_state(run, state, false); }
+
+void restore_branch_state(Run& run, const std::vector<uint8_t>& state) { restore_state(run, state, true); }
+
+uint64_t checkpoint_checksum(const std::vector<uint8_t>& file, const std::string& path)
+{
+  std::vector<uint8_t> state;
+  decode_checkpoint(file, state, path);
+  uint64_t sum = 0;
+  for (int i = 0; i < 8; ++i) sum |= static_cast<uint64_t>(file[file.size() - 8 + static_cast<size_t>(i)]) << (8 * i);
+  return sum;
 }
 
 std::vector<uint8_t> encode_checkpoint(const CheckpointInfo& info, const std::vector<uint8_t>& state)
@@ -145,7 +161,7 @@ std::vector<uint8_t> encode_checkpoint(const CheckpointInfo& info, const std::ve
   o.reserve(state.size() + info.scenario_text.size() + 256);
   for (const char c : kMagic) o.push_back(static_cast<uint8_t>(c));
   put_u32(o, kCheckpointFormat);
-  put_u32(o, 0);  // flags, none defined
+  put_u32(o, info.accepts_events ? 1u : 0u);  // flags: bit 0 the run accepts events
   put_u64(o, info.tick);
   put_u64(o, info.total_ticks);
   put_u64(o, info.sink_rows);
@@ -172,8 +188,9 @@ CheckpointInfo decode_checkpoint(const std::vector<uint8_t>& file, std::vector<u
   for (int i = 0; i < 8; ++i) sum |= static_cast<uint64_t>(file[file.size() - 8 + static_cast<size_t>(i)]) << (8 * i);
   if (sum != fnv1a64(file.data(), file.size() - 8))
     throw CheckpointError(path + ": checksum mismatch: the checkpoint is damaged (or was cut short); refused");
-  c.u(4);  // flags
+  const uint64_t flags = c.u(4);
   CheckpointInfo info;
+  info.accepts_events = (flags & 1u) != 0;
   info.tick = c.u(8);
   info.total_ticks = c.u(8);
   info.sink_rows = c.u(8);
@@ -252,6 +269,7 @@ void save_checkpoint(Run& run, const std::string& path, const std::string& scena
   info.scenario_name = run.scenario().name;
   info.scenario_text = scenario_text;
   info.outputs = outputs;
+  info.accepts_events = run.accepts_events();
   write_checkpoint_file(path, encode_checkpoint(info, save_run_state(run)));
 }
 

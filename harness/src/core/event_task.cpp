@@ -39,11 +39,18 @@ void EventTask::state_io(sim::StateIO& io)
 {
   uint64_t n_ev = ev_.size(), n_log = log_.size();
   io.value("events.count", n_ev);
-  if (n_ev != ev_.size()) throw std::runtime_error("checkpoint: the run has another number of events");
+  // restoring, the run's scenario may list events after the saved ones: events
+  // added since the checkpoint (a branched run's), still to come
+  if (n_ev > ev_.size()) throw std::runtime_error("checkpoint: the run has another number of events");
   io.value("events.command", cmd_);
-  for (Ev& e : ev_) {
+  for (size_t i = 0; i < n_ev; ++i) {
+    Ev& e = ev_[i];
     io.value("events.t_ns", e.t_ns);
     io.value("events.applied", e.applied);
+    // a time event still to come fires at its time in this run's scenario: the
+    // saved one for the scenario that saved it, a dispersed one in a campaign
+    // branched from the checkpoint (docs/checkpoint.md, "Branching a campaign")
+    if (io.loading() && !e.applied && sc_.events[i].t) e.t_ns = ceil_to_tick(*sc_.events[i].t, tick_ns_);
   }
   io.value("events.log_size", n_log);
   if (io.loading()) {

@@ -102,8 +102,13 @@ void Recorder::state_io(sim::StateIO& io)
   uint64_t cols = ncol, pending = pending_, chunk = chunk_rows_;
   io.value("recorder.columns", cols);
   io.value("recorder.chunk_rows", chunk);
-  if (cols != ncol || chunk != chunk_rows_)
-    throw std::runtime_error("checkpoint: the recorder has other columns or another chunk size");
+  if (cols != ncol) throw std::runtime_error("checkpoint: the recorder has other columns");
+  if (io.loading() && chunk != chunk_rows_) {  // the saved run's chunk size (a Python run hands on every row)
+    if (chunk == 0 || chunk > (uint64_t{1} << 20))
+      throw std::runtime_error("checkpoint: the recorder's chunk size " + std::to_string(chunk) + " is out of range");
+    chunk_rows_ = static_cast<size_t>(chunk);
+    chunk_.assign(chunk_rows_ * std::max<size_t>(1, ncol), 0.0);
+  }
   io.value("recorder.rows", rows_);
   io.value("recorder.overflow", overflow_);
   io.value("recorder.pending", pending);

@@ -102,6 +102,7 @@ constexpr Slot kTickProtocol[] = {
 
 struct Run::Impl {
   Scenario sc;
+  bool accept_events = false;  // RunConfig::accept_events
   EnvEffectors env{};  // filled by build_plant (before plant_owner)
   SettableParts mag{};  // likewise
   std::optional<SunSource> sun;  // the run's Sun (TruthTask: illumination)
@@ -186,6 +187,7 @@ void Run::Impl::wire(RunConfig& cfg)
   substep_ns = static_cast<int64_t>(sc.tick_ns() / sc.rates.plant_substeps);  // exact (checked at load)
   for (size_t i = 0; i < sc.wheels.size(); ++i)
     if (wheel_jitters(sc.wheels[i].params)) jitter_wheels.push_back(static_cast<int>(i));
+  accept_events = cfg.accept_events;
   build_fsw(cfg);
   // FSW commands come from the events: the scenario's, or the live view's
   // and Python's (accept_events); the message exists only then, so a run
@@ -558,6 +560,8 @@ void Run::add_event(const EventSpec& e)
 }
 
 bool Run::fsw_accepts_commands() const { return impl_->fsw->accepts_commands(); }
+
+bool Run::accepts_events() const { return impl_->accept_events; }
 
 std::array<double, 2> Run::fsw_gains() const
 {

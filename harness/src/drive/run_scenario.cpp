@@ -8,9 +8,11 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include "harness/drive/run_checkpoints.h"
 #include "harness/drive/run_scenario.h"
+#include "harness/drive/branch.h"
 #include "harness/drive/run_steps.h"
 #include "harness/core/checkpoint.h"
 #include "harness/link/pil.h"
@@ -335,8 +337,9 @@ std::string summary_text(const RunStatus& st, double duration, const std::vector
 namespace {
 
 // A run into `outputs` (opened already); with `checkpoints`, checkpointed
-// or continued from one.
-RunResult run_into(RunOutputs& outputs, const Scenario& sc, const RunOptions& opt, RunCheckpoints* checkpoints)
+// or continued from one; with `branch`, started from a campaign's checkpoint.
+RunResult run_into(RunOutputs& outputs, const Scenario& sc, const RunOptions& opt, RunCheckpoints* checkpoints,
+                   const Branch* branch)
 {
   RunResult res;
   if (opt.notice)
@@ -354,9 +357,11 @@ RunResult run_into(RunOutputs& outputs, const Scenario& sc, const RunOptions& op
   if (!opt.fsw_link.empty())
     cfg.fsw = make_remote_fsw(sc, opt, remote, [&pacing] { return pacing.time_left(); });
   cfg.accept_events = opt.control != nullptr;  // the live view's commands are events
+  if (branch) cfg.accept_events = branch_accepts_events(*branch);
   Run run(sc, std::move(cfg));
   outputs.open(run, opt.overrides, opt.extra_sinks);
   if (opt.control && outputs.files()) opt.control->results_folder(outputs.work().string(), opt.out_dir);
+  if (branch) start_branch(run, *branch);
   if (checkpoints) checkpoints->attach(run, outputs.sinks());
   drive(run, o, pacing, res, checkpoints);
   finish_run(run, remote, res);
@@ -370,11 +375,16 @@ RunResult run_into(RunOutputs& outputs, const Scenario& sc, const RunOptions& op
 
 RunResult run_scenario(const Scenario& sc, const RunOptions& opt)
 {
+  if (sc.from_checkpoint && opt.checkpoint_every > 0.0)
+    throw std::invalid_argument("--checkpoint-every: a run started from a campaign's checkpoint (the manifest's "
+                                "from_checkpoint) is not checkpointed again; refused");
+  // a run that starts from a checkpoint: the file checked before the folder is made
+  const std::shared_ptr<const Branch> branch = sc.from_checkpoint ? open_branch(sc) : nullptr;
   RunOutputs outputs(opt.out_dir, opt.force);  // lock, refuse or replace: before anything is simulated
   std::optional<RunCheckpoints> checkpoints;
   if (opt.checkpoint_every > 0.0 && outputs.files())
     checkpoints.emplace(outputs.work(), sc, opt.overrides, opt.checkpoint_every);
-  return run_into(outputs, sc, opt, checkpoints ? &*checkpoints : nullptr);
+  return run_into(outputs, sc, opt, checkpoints ? &*checkpoints : nullptr, branch.get());
 }
 
 RunResult resume_scenario(const RunOptions& opt, const Scenario* expected, Scenario& resumed)
@@ -391,7 +401,7 @@ RunResult resume_scenario(const RunOptions& opt, const Scenario* expected, Scena
   RunOptions o = opt;
   o.overrides = checkpoints.overrides();
   o.checkpoint_every = checkpoints.every_seconds();
-  return run_into(outputs, resumed, o, &checkpoints);
+  return run_into(outputs, resumed, o, &checkpoints, nullptr);  // its state is the checkpoint's
 }
 
 }  // namespace harness

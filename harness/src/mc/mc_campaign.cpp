@@ -23,7 +23,11 @@ namespace {
 // series, streaming (memory bounded for any duration).
 class McSink : public RecordSink {
  public:
-  explicit McSink(const McPlan& plan) : plan_(plan), metrics_(plan.metrics) {}
+  // a run branched from a checkpoint is handed the rows from the checkpoint's sink_rows on
+  explicit McSink(const McPlan& plan)
+      : plan_(plan), metrics_(plan.metrics), first_row_(plan.from ? plan.from->info.sink_rows : 0)
+  {
+  }
 
   void begin(const RecordLayout& layout, uint64_t expected_rows) override
   {
@@ -35,8 +39,9 @@ class McSink : public RecordSink {
     }
     series_.assign(plan_.series_rows.size() * plan_.series_columns.size(), std::nanf(""));
     ncols_ = layout.columns.size();
-    row_ = 0;
+    row_ = first_row_;
     next_sample_ = 0;
+    while (next_sample_ < plan_.series_rows.size() && plan_.series_rows[next_sample_] < row_) ++next_sample_;
   }
 
   void write(const double* rows, size_t n) override
@@ -64,6 +69,7 @@ class McSink : public RecordSink {
   std::vector<size_t> series_cols_;
   std::vector<float> series_;
   size_t ncols_ = 0;
+  const uint64_t first_row_;
   uint64_t row_ = 0;
   size_t next_sample_ = 0;
 };
@@ -179,7 +185,8 @@ RunResult run_full(const Scenario& sc, const fs::path& dir, McSink& sink, const 
 
 // A run without files but its manifest (with how it ended): the same steps
 // as run_scenario(), the campaign's sink the only one.
-RunResult run_light(const Scenario& sc, const fs::path& dir, McSink& sink, const std::atomic<int>* stop)
+RunResult run_light(const Scenario& sc, const Branch* from, const fs::path& dir, McSink& sink,
+                    const std::atomic<int>* stop)
 {
   RunOptions o;
   o.stop = stop;
@@ -188,8 +195,10 @@ RunResult run_light(const Scenario& sc, const fs::path& dir, McSink& sink, const
   RunPacing pacing;
   RunConfig rc;
   rc.keep_in_memory = false;
+  if (from) rc.accept_events = branch_accepts_events(*from);
   Run run(sc, std::move(rc));
   outputs.open(run, {}, {&sink});
+  if (from) start_branch(run, *from);
   drive(run, o, pacing, r);
   finish_run(run, nullptr, r);
   fs::create_directories(dir);
@@ -204,7 +213,7 @@ void run_draw(const McPlan& plan, const Scenario& sc, const fs::path& dir, bool 
   McSink sink(plan);
   std::string failure;
   try {
-    const RunResult r = full ? run_full(sc, dir, sink, stop) : run_light(sc, dir, sink, stop);
+    const RunResult r = full ? run_full(sc, dir, sink, stop) : run_light(sc, plan.from.get(), dir, sink, stop);
     rec.interrupted = r.stopped_by_signal != 0;
     failure = r.failure;
     rec.complete = r.status.complete;
@@ -247,6 +256,7 @@ McRecord run_mc_one(const McPlan& plan, uint64_t k, const fs::path& dir, bool fu
   rec.metrics.assign(plan.metrics.size(), NAN);
   rec.series.assign(plan.series_rows.size() * plan.series_columns.size(), std::nanf(""));
   d.sc.source_file = plan.nominal.source_file;
+  if (plan.from && d.invalid.empty()) d.invalid = branch_draw(plan, d.sc);  // --from: starts from the checkpoint
   if (!d.invalid.empty()) {
     rec.invalid = true;
     rec.reason = "invalid draw: " + d.invalid;

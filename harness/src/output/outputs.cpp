@@ -2,6 +2,7 @@
 #include "harness/output/outputs.h"
 #include "harness/core/pacer.h"
 
+#include <cstdio>
 #include <cmath>
 #include <fstream>
 
@@ -68,6 +69,11 @@ std::string manifest_text(const Scenario& sc, const std::vector<Override>& overr
   for (const Override& o : overrides) ov.push_back(o.path + "=" + o.value);
   j["overrides"] = ov;
   j["scenario"] = scenario_to_json(sc);
+  if (sc.from_checkpoint) {
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(sc.from_checkpoint->fnv1a64));
+    j["from_checkpoint"] = {{"path", sc.from_checkpoint->path}, {"fnv1a64", hex}, {"tick", sc.from_checkpoint->tick}};
+  }
   if (status)
     j["result"] = {{"complete", status->complete},
                    {"ticks", status->ticks},

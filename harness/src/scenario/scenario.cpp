@@ -3,6 +3,7 @@
 #include "harness/scenario/scenario.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -280,12 +281,39 @@ void refuse_python_in_loop(Ctx& ctx, const YAML::Node& root)
   throw ScenarioError(*ctx.issues);
 }
 
+// A manifest's `from_checkpoint` ({path, fnv1a64: 16 hex digits, tick}):
+// the run starts from that checkpoint (docs/checkpoint.md, "Branching a campaign").
+std::optional<CheckpointRef> read_from_checkpoint(const Ctx& ctx, const YAML::Node& root)
+{
+  const YAML::Node f = root["from_checkpoint"];
+  if (!f.IsDefined()) return std::nullopt;
+  CheckpointRef ref;
+  const YAML::Node path = f["path"], sum = f["fnv1a64"], tick = f["tick"];
+  std::string hex = sum.IsScalar() ? sum.Scalar() : "";
+  char* end = nullptr;
+  if (hex.size() == 16) ref.fnv1a64 = std::strtoull(hex.c_str(), &end, 16);
+  if (!f.IsMap() || !path.IsScalar() || path.Scalar().empty() || !tick.IsScalar() || hex.size() != 16 ||
+      end != hex.c_str() + 16) {
+    ctx.error(f, "from_checkpoint", "needs {path: the checkpoint file, fnv1a64: its checksum (16 hex digits), tick}");
+    return std::nullopt;
+  }
+  ref.path = path.Scalar();
+  try {
+    ref.tick = tick.as<uint64_t>();
+  } catch (const YAML::Exception&) {
+    ctx.error(tick, "from_checkpoint.tick", "not a tick number");
+  }
+  return ref;
+}
+
 Scenario load_from_root(YAML::Node root, const std::string& file, const std::vector<Override>& overrides)
 {
   std::vector<ScenarioIssue> issues;
   Ctx ctx{file, &issues, {}};
+  std::optional<CheckpointRef> from;
   if (root.IsMap() && root["kestrel_manifest"].IsDefined()) {
     refuse_python_in_loop(ctx, root);
+    from = read_from_checkpoint(ctx, root);
     YAML::Node s = root["scenario"];
     if (!s.IsDefined() || !s.IsMap()) {
       ctx.error(root, "scenario", "a manifest needs a 'scenario' map");
@@ -307,6 +335,7 @@ Scenario load_from_root(YAML::Node root, const std::string& file, const std::vec
   }
   Scenario sc;
   sc.source_file = file;
+  sc.from_checkpoint = from;
   if (issues.empty()) {
     try {
       read_scenario(ctx, root, sc);

@@ -104,6 +104,7 @@ struct McCommand {
   unsigned slurm_tasks = 0;          // > 0: write Slurm batch scripts for this many shards instead
   bool force = false;
   std::string resume;                // --resume DIR: continue the interrupted campaign in DIR
+  std::string from;                  // --from CHECKPOINT: every run starts from its state
   bool progress = false;
   const std::atomic<int>* stop = nullptr;
 };

@@ -41,6 +41,7 @@ struct CheckpointInfo {
   // What the run's results folder needs to be continued (written and read
   // by the drive room, opaque here); "" when the run has none.
   std::string outputs;
+  bool accepts_events = false;  // the run was built with RunConfig::accept_events (flag bit 0)
 };
 
 // The run's state (Run::state_io) as bytes; std::logic_error when the run
@@ -49,6 +50,16 @@ std::vector<uint8_t> save_run_state(Run& run);
 // Restores it into a run built from the same scenario (sinks attached, no
 // tick run).  CheckpointError when it does not fit; the run is then unusable.
 void restore_run_state(Run& run, const std::vector<uint8_t>& state);
+
+// The same but the sensors' random streams: they keep those the run was
+// built with, i.e. they start as a run of the run's own seed starts
+// (sim::Rng(seed, name), from its first draw).  A run branched from a
+// checkpoint (docs/checkpoint.md, "Branching a campaign") gets its own noise.
+void restore_branch_state(Run& run, const std::vector<uint8_t>& state);
+
+// The checksum a checkpoint file ends with (FNV-1a 64 of every byte before
+// it); the file is decoded first (CheckpointError when it is damaged).
+uint64_t checkpoint_checksum(const std::vector<uint8_t>& file, const std::string& path = "checkpoint");
 
 // The file's bytes and back (CheckpointError naming the problem: not a
 // checkpoint, another format version, truncated, checksum mismatch).

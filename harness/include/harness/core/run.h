@@ -168,6 +168,8 @@ class Run {
   // action does not fit the scenario (check_event_action) and
   // std::logic_error without RunConfig::accept_events; nothing is added then.
   void add_event(const EventSpec& e);
+  // RunConfig::accept_events as the run was built (a checkpoint records it).
+  bool accepts_events() const;
   // Whether the FSW endpoint takes commands (scenario events on device fsw).
   bool fsw_accepts_commands() const;
   // The mrp_fb gains in force {K [N*m], P [N*m*s]}: the configuration's,

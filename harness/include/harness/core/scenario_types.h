@@ -384,6 +384,14 @@ struct OutputsSpec {
   bool report_data = true;
 };
 
+// The checkpoint a run starts from: the file, the checksum it ends with
+// (FNV-1a 64) and the tick it was saved before.
+struct CheckpointRef {
+  std::string path;
+  uint64_t fnv1a64 = 0;
+  uint64_t tick = 0;
+};
+
 struct Scenario {
   std::string name;
   std::string description;
@@ -404,6 +412,11 @@ struct Scenario {
   std::vector<EventSpec> events;  // applied at tick boundaries (docs/events.md)
   std::optional<MonteCarloSpec> monte_carlo;  // `kestrel mc` (docs/monte-carlo.md); runs ignore it
   OutputsSpec outputs;
+
+  // A run that starts from a checkpoint's state instead of tick 0 (a run of a
+  // campaign branched from it: docs/checkpoint.md, "Branching a campaign").
+  // Not a scenario key: its manifest's `from_checkpoint`.
+  std::optional<CheckpointRef> from_checkpoint;
 
   std::string source_file;  // where it was loaded from (not part of the physics)
   // Where each key was written in the file: dotted path -> (line, column),

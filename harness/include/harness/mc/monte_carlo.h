@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/drive/branch.h"
 #include "harness/output/metrics.h"  // McMetric
 #include "harness/scenario/mc_column.h"
 #include "harness/scenario/scenario.h"
@@ -47,12 +48,32 @@ struct McPlan {
   std::vector<std::string> channel_units;
   std::vector<uint64_t> series_rows;  // recorded row index of each thinned sample
   std::vector<double> series_t;       // [s] their times
+  // Branched from a checkpoint (kestrel mc --from, branch_mc_plan): every run
+  // starts from its state; null: from tick 0.
+  std::shared_ptr<const Branch> from;
+  std::vector<char> from_settable;  // per bound target: 1 a key settable during a run, 0 an event's key
 };
 
 // The plan of a loaded scenario (throws ScenarioError: no monte_carlo
 // section, a dispersion whose key does not fit the scenario, a criterion
 // naming a column the run does not record).
 McPlan make_mc_plan(const Scenario& nominal, uint64_t master_seed, uint64_t runs);
+
+// Branches the campaign from a checkpoint of its nominal scenario
+// (docs/checkpoint.md, "Branching a campaign"): every run then starts from
+// the checkpoint's state.  Only what may change after the checkpoint may be
+// dispersed: the keys of time events at or after its time, and the keys
+// settable during a run (applied as event actions at the checkpoint's tick);
+// each run's sensor noise starts from its own seed.  Throws CheckpointError
+// (unreadable, damaged, of another scenario) or ScenarioError naming the
+// dispersion of a key fixed before the checkpoint; the plan is unchanged then.
+void branch_mc_plan(McPlan& plan, const std::string& checkpoint);
+
+// Run k's drawn scenario made to start from plan.from: each drawn value of a
+// settable key back to the nominal one and set instead by an event at the
+// checkpoint's time, from_checkpoint set.  Returns "" or why the draw cannot
+// start from the checkpoint (an event time drawn before it).
+std::string branch_draw(const McPlan& plan, Scenario& sc);
 
 // One run's outcome.
 struct McRecord {
