@@ -13,7 +13,8 @@ Every driver test/proofs/eva/<name>.c is analysed twice:
              signed overflow, uninitialised reads, float-to-int conversion,
              C library preconditions) is an alarm.
 A driver names the library sources it needs on a line
-`eva-sources: a.c b.c` (relative to fsw_c/src).  Each analysis is bounded
+`eva-sources: a.c b.c` (relative to fsw_c/src), and may add Eva options on
+a line `eva-options: ...`.  Each analysis is bounded
 in time.  The alarms (every property of Frama-C's report whose status is
 Unknown or Invalid) are compared with the justified ones of
 test/proofs/eva/alarms.txt, one a line:
@@ -45,6 +46,7 @@ ALARM_STATUS = re.compile(r"^(Unknown|Invalid)")
 # declared behaviour of specified functions, not checks of the analysed code
 NOT_ALARMS = {"assigns clause", "from clause", "postcondition", "termination clause"}
 ENTRY = re.compile(r"Frama_C_show_each_eva_entry_(\w+):\s*(.*)$")
+WALL_FACTOR = 10  # wall-time bound of an analysis, in multiples of its CPU bound (a loaded machine)
 
 
 def parse_args():
@@ -55,7 +57,8 @@ def parse_args():
     ap.add_argument("--work", default=None, help="folder for logs and reports (default: a temporary one)")
     ap.add_argument("--only", nargs="*", default=None,
                     help="drivers (name) or single analyses (name/envelope, name/any); default: all")
-    ap.add_argument("--timeout", type=float, default=120.0, help="seconds per analysis")
+    ap.add_argument("--timeout", type=float, default=120.0,
+                    help="CPU seconds per analysis (and %d times that of wall time)" % WALL_FACTOR)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--prover", default="cvc4", help="WP prover (Why3 name)")
     ap.add_argument("--no-wp", action="store_true", help="skip the WP proofs")
@@ -105,9 +108,47 @@ def driver_includes(path):
     return driver_line(path, "eva-include") or []
 
 
+def driver_options(path):
+    """Extra Eva options of a driver's 'eva-options:' line (e.g. -eva-min-loop-unroll 33 for a loop
+    Eva's automatic unrolling does not take because it returns from inside)."""
+    return driver_line(path, "eva-options") or []
+
+
 def driver_entries(path):
     with open(path, encoding="utf-8") as f:
         return sorted(set(re.findall(r"EVA_ENTRY\((\w+)", f.read())))
+
+
+def cpu_so_far(pid):
+    """CPU seconds a running process has used (Linux /proc), or None where unknown."""
+    try:
+        with open(f"/proc/{pid}/stat", encoding="ascii") as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return None
+
+
+def run_timed(cmd, log, cwd, timeout):
+    """Run cmd with its output to log; (exit code or None on timeout, CPU seconds it used).
+    The CPU time is the analysis's own cost, independent of what else shares the machine:
+    the bound is timeout seconds of CPU, and WALL_FACTOR times that of wall time (where the
+    CPU time cannot be read, the wall time alone)."""
+    proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT, cwd=cwd)
+    t_end = time.monotonic() + WALL_FACTOR * timeout
+    while True:
+        pid, status, ru = os.wait4(proc.pid, os.WNOHANG)
+        if pid == proc.pid:
+            proc.returncode = os.waitstatus_to_exitcode(status)
+            return proc.returncode, ru.ru_utime + ru.ru_stime
+        cpu = cpu_so_far(proc.pid)
+        if time.monotonic() > (t_end if cpu is not None else t_end - (WALL_FACTOR - 1) * timeout) or \
+                (cpu is not None and cpu > timeout):
+            proc.kill()
+            _, _, ru = os.wait4(proc.pid, 0)
+            proc.returncode = -9
+            return None, ru.ru_utime + ru.ru_stime
+        time.sleep(0.05)
 
 
 def run_one(args, root, work, name, analysis):
@@ -122,17 +163,14 @@ def run_one(args, root, work, name, analysis):
     # by a finiteness test)
     for h in (driver_includes(drv) if analysis == "envelope" else []):
         inc += " -include " + os.path.join(root, "test", "proofs", "wp", h)
-    cmd = [args.frama_c, "-cpp-extra-args=" + inc] + COMMON + ANALYSES[analysis] + [drv] + srcs + \
+    cmd = [args.frama_c, "-cpp-extra-args=" + inc] + COMMON + driver_options(drv) + ANALYSES[analysis] + [drv] + srcs + \
           ["-report-csv", csv_path]
     t0 = time.monotonic()
     res = {"name": name, "analysis": analysis, "alarms": [], "entries": {}, "error": None}
-    try:
-        with open(log_path, "w", encoding="utf-8") as log:
-            rc = subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, timeout=args.timeout,
-                                cwd=root).returncode
-    except subprocess.TimeoutExpired:
-        rc = None
-        res["error"] = f"timeout after {args.timeout:.0f} s"
+    with open(log_path, "w", encoding="utf-8") as log:
+        rc, res["cpu"] = run_timed(cmd, log, root, args.timeout)
+    if rc is None:
+        res["error"] = f"timeout: over {args.timeout:.0f} s of CPU or {WALL_FACTOR * args.timeout:.0f} s of wall time"
     res["time"] = time.monotonic() - t0
     if rc is None:
         return res
@@ -236,7 +274,7 @@ def main():
 
     failures = []
     seen = set()
-    print(f"{'driver/analysis':34} {'entries':>7} {'alarms':>6} {'recorded':>8} {'time':>7}")
+    print(f"{'driver/analysis':34} {'entries':>7} {'alarms':>6} {'recorded':>8} {'time':>7} {'cpu':>7}")
     for r in results:
         tag = f"{r['name']}/{r['analysis']}"
         want = driver_entries(os.path.join(eva_dir, r["name"] + ".c"))
@@ -255,7 +293,7 @@ def main():
             else:
                 failures.append(f"{tag}: unrecorded alarm {kind} at {where} ({loc}): {prop}")
         shown = "; ".join(f"{k} {v}" for k, v in sorted((k, ",".join(sorted(v))) for k, v in r["entries"].items()))
-        print(f"{tag:34} {len(r['entries']):>7} {len(r['alarms']):>6} {n_rec:>8} {r['time']:>6.1f}s  {shown}")
+        print(f"{tag:34} {len(r['entries']):>7} {len(r['alarms']):>6} {n_rec:>8} {r['time']:>6.1f}s {r['cpu']:>6.1f}s  {shown}")
     ran = {f"{r['name']}/{r['analysis']}" for r in results if not r["error"]}
     for key in records:
         if key[0] in ran and key not in seen:
@@ -275,7 +313,8 @@ def main():
     n_entries = len({(r["name"], e) for r in results for e in r["entries"]})
     n_alarms = sum(len(r["alarms"]) for r in results)
     print(f"eva_check: {len(drivers)} drivers, {len(jobs)} analyses, {n_entries} entries reached, "
-          f"{n_alarms} alarms ({len(seen)} records used), {wall:.1f} s wall; logs in {work}")
+          f"{n_alarms} alarms ({len(seen)} records used), {wall:.1f} s wall, "
+          f"{sum(r['cpu'] for r in results):.1f} s CPU of the analyses; logs in {work}")
     for f in failures:
         print("FAIL:", f)
     if args.self_test:

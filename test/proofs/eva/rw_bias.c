@@ -1,0 +1,36 @@
+/* Eva driver: rw_bias (docs/fsw/rw_bias.md, docs/eva.md).
+ * eva-sources: rw_bias.c rw_common.c fsw_linalg.c fsw_vec.c fsw_status.c */
+#include "eva_driver.h"
+
+#include "fsw/rw_common.h"
+#include "fsw/rw_bias.h"
+
+static void run(void)
+{
+  static FswRwBiasState st; /* large projector and basis: static, as a flight build holds it */
+  FswRwBiasConfig cfg;
+  FswRwBiasIn in;
+  FswRwBiasOut out;
+  FswStatus s;
+  int i, k;
+  const fsw_real u = 1.0 + FSW_RW_UNIT_TOL;
+  cfg.num_rw = eva_int(1, FSW_MAX_RW);
+  /*@ loop unroll 64; */
+  for (i = 0; i < FSW_MAX_RW; i++) eva_reals(cfg.gs_hat_B[i], 3, -u, u); /* unit within tolerance */
+  /* signed preferred speeds; check refuses those inside the keep-out band */
+  eva_reals(cfg.Omega_bias, FSW_MAX_RW, -FSW_RW_OMEGA_MAX, FSW_RW_OMEGA_MAX);
+  cfg.Omega_keepout = eva_real(eva_any_mode ? EVA_TINY : EVA_ENV_MIN, FSW_RW_OMEGA_MAX / 2);
+  cfg.Omega_hyst = eva_real(0.0, FSW_RW_OMEGA_MAX / 2);
+  EVA_ENTRY(check, fsw_rw_bias_check(&cfg));
+  s = fsw_rw_bias_init(&st, &cfg);
+  EVA_ENTRY(init, s);
+  if (s != FSW_OK) return;
+  for (k = 0; k < 2; k++) { /* the kept basis and hysteresis read by a second call */
+    eva_sensors(in.Omega, FSW_MAX_RW);
+    eva_bytes(in.avail, FSW_MAX_RW, 0, 255);
+    s = fsw_rw_bias_update(&st, &cfg, &in, &out);
+    EVA_ENTRY(update, s);
+  }
+}
+
+EVA_MAINS

@@ -1,0 +1,37 @@
+/* Eva driver: rw_null (docs/fsw/rw_null.md, docs/eva.md).
+ * eva-sources: rw_null.c rw_common.c fsw_linalg.c fsw_vec.c fsw_status.c */
+#include "eva_driver.h"
+
+#include "fsw/rw_common.h"
+#include "fsw/rw_null.h"
+
+static void run(void)
+{
+  static FswRwNullState st; /* large projector: static, as a flight build holds it */
+  FswRwNullConfig cfg;
+  FswRwNullIn in;
+  FswRwNullOut out;
+  FswStatus s;
+  int i, k;
+  const fsw_real u = 1.0 + FSW_RW_UNIT_TOL;
+  cfg.num_rw = eva_int(1, FSW_MAX_RW);
+  /*@ loop unroll 64; */
+  for (i = 0; i < FSW_MAX_RW; i++) eva_reals(cfg.gs_hat_B[i], 3, -u, u); /* unit within tolerance */
+  cfg.k_null = eva_real(eva_any_mode ? EVA_TINY : EVA_ENV_MIN, FSW_RW_GAIN_MAX);
+  cfg.scale_to_fit = eva_int(0, 1);
+  eva_reals(cfg.u_max, FSW_MAX_RW, FSW_RW_U_MAX_MIN, FSW_RW_U_MAX_MAX);
+  EVA_ENTRY(check, fsw_rw_null_check(&cfg));
+  s = fsw_rw_null_init(&st, &cfg);
+  EVA_ENTRY(init, s);
+  if (s != FSW_OK) return;
+  for (k = 0; k < 2; k++) { /* the kept projector read by a second call */
+    eva_sensors(in.u_s, FSW_MAX_RW);
+    eva_sensors(in.Omega, FSW_MAX_RW);
+    eva_sensors(in.Omega_des, FSW_MAX_RW);
+    eva_bytes(in.avail, FSW_MAX_RW, 0, 255);
+    s = fsw_rw_null_update(&st, &cfg, &in, &out);
+    EVA_ENTRY(update, s);
+  }
+}
+
+EVA_MAINS

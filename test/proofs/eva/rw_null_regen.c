@@ -1,0 +1,36 @@
+/* Eva driver: rw_null_regen (docs/fsw/rw_null_regen.md, docs/eva.md).
+ * eva-sources: rw_null_regen.c rw_common.c fsw_linalg.c fsw_vec.c fsw_status.c */
+#include "eva_driver.h"
+
+#include "fsw/rw_common.h"
+#include "fsw/rw_null_regen.h"
+
+static void run(void)
+{
+  static FswRwNullRegenState st; /* large projector: static, as a flight build holds it */
+  FswRwNullRegenConfig cfg;
+  FswRwNullRegenIn in;
+  FswRwNullRegenOut out;
+  FswStatus s;
+  int i, k;
+  const fsw_real u = 1.0 + FSW_RW_UNIT_TOL;
+  cfg.num_rw = eva_int(1, FSW_MAX_RW);
+  /*@ loop unroll 64; */
+  for (i = 0; i < FSW_MAX_RW; i++) eva_reals(cfg.gs_hat_B[i], 3, -u, u); /* unit within tolerance */
+  cfg.mode = eva_int(FSW_RW_REGEN_GRADIENT, FSW_RW_REGEN_OPTIMUM);
+  cfg.k_P = eva_real(eva_any_mode ? EVA_TINY : EVA_ENV_MIN, FSW_RW_GAIN_MAX);
+  eva_reals(cfg.u_max, FSW_MAX_RW, FSW_RW_U_MAX_MIN, FSW_RW_U_MAX_MAX);
+  EVA_ENTRY(check, fsw_rw_null_regen_check(&cfg));
+  s = fsw_rw_null_regen_init(&st, &cfg);
+  EVA_ENTRY(init, s);
+  if (s != FSW_OK) return;
+  for (k = 0; k < 2; k++) { /* the kept projector read by a second call */
+    eva_sensors(in.u_s, FSW_MAX_RW);
+    eva_sensors(in.Omega, FSW_MAX_RW);
+    eva_bytes(in.avail, FSW_MAX_RW, 0, 255);
+    s = fsw_rw_null_regen_update(&st, &cfg, &in, &out);
+    EVA_ENTRY(update, s);
+  }
+}
+
+EVA_MAINS
