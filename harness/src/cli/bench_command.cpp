@@ -105,8 +105,9 @@ RunConfig bench_config()
 // environment model on and the magnetorquers driven, FSW at 10 Hz,
 // dt = 0.1 s: fully-coupled wheels (a 0.13 kg rotor with a small wheel's
 // imbalance, values of the class, assumed) at the
-// 1 % jitter sub-step (16 sub-steps: the 3,000 rpm wheel at |Omega| h =
-// 1.96 rad <= kJitterStepLimit), and balanced wheels; and a Monte Carlo
+// 1 % jitter sub-step (16 sub-steps: the 3,000 rpm wheel starts at
+// |Omega| h = 1.96 rad; over a day the wheels reach 2.16 rad, about 1 % on
+// the jitter amplitude, docs/performance.md), and balanced wheels; and a Monte Carlo
 // campaign of 20 short runs of the S3 campaign on one thread.
 void s3_cases(const std::string& dir, std::vector<Case>& cases)
 {
