@@ -10,6 +10,7 @@ host_pkgs=(cmake ninja-build g++ gcc clang libgtest-dev googletest libbenchmark-
            nodejs chromium python3-h5py lcov  # report: npm bundle at build time, headless test
            clang-19 llvm-19  # coverage preset: MC/DC of the flight library (-fcoverage-mcdc, llvm-cov; docs/coverage.md)
            socat  # HWIL: the serial link tested over a pseudo-terminal pair
+           valgrind  # kestrel bench --callgrind: instructions per tick (docs/performance.md)
            make xz-utils  # cFS closed loop: cFS builds with make; its bundle is a .tar.xz (docs/hwil.md, "cFS")
            openmpi-bin libopenmpi-dev slurm-wlm munge  # Monte Carlo: mpirun; the Slurm array test's one-node cluster
            libcpp-httplib-dev  # live view: the local HTTP server of `kestrel run --live`

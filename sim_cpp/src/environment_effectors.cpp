@@ -137,6 +137,13 @@ GravityGradientEffector::GravityGradientEffector(const Plant& plant, const Earth
                                                  const GravityGradientParams& p)
     : SampledEnvironmentEffector(plant, ctx, p.period_ns, "gravity_gradient")
 {
+  fixed_mass_ = plant.num_tanks() == 0;
+  for (const ReactionWheelParams& w : plant.model().params().wheels)
+    fixed_mass_ = fixed_mass_ && w.model != WheelModel::FullyCoupled;
+  if (!fixed_mass_) return;
+  const MassProps mp = plant.mass_props();
+  c_fixed_B_ = mp.c_B;
+  I_fixed_C_B_ = mp.I_sc_B - parallel_axis(mp.m_sc, mp.c_B);
 }
 
 void GravityGradientEffector::derived_state_io(StateIO& io)
@@ -158,6 +165,11 @@ BodyLoad GravityGradientEffector::load(double /*t_s*/, const StateVector& x) con
   BodyLoad l;
   if (period_ns() > 0) {
     l.L_B = gravity_gradient_torque(plant_.model().params().mu, C_BN * R_held_N_, I_held_C_B_);
+    return l;
+  }
+  if (fixed_mass_) {
+    const Vector3d R_N = position_N(x) + C_BN.transpose() * c_fixed_B_;
+    l.L_B = gravity_gradient_torque(plant_.model().params().mu, C_BN * R_N, I_fixed_C_B_);
     return l;
   }
   const MassProps mp = plant_.model().mass_props(x, plant_.hub_with_propellant(x));

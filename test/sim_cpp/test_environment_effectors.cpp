@@ -162,6 +162,39 @@ TEST(GravityGradientEffector, FullInertiaAboutTheMassCentre)
   EXPECT_EQ(l.F_B, Vector3d::Zero());
 }
 
+// No tank and no fully-coupled wheel: the mass centre and the inertia about
+// it are formed once, at construction; the torque still follows the state
+// (attitude and position after an hour of steps), with I_C and c written
+// out here (a Balanced wheel's rotor is inside the hub's inertia).
+TEST(GravityGradientEffector, FixedMassPropertiesFollowTheState)
+{
+  sim::PlantParams pp;
+  pp.sc.hub = simtest::reference_hub();
+  pp.sc.hub.r_BcB_B = Vector3d(0.05, -0.02, 0.11);
+  pp.sc.mu = sim::kMuEarth;
+  sim::ReactionWheelParams w;
+  w.model = sim::WheelModel::Balanced;
+  w.gs_hat_nom_B = Vector3d(1.0, 2.0, 2.0) / 3.0;
+  w.m_w = 12.0;
+  w.J_s = 0.09;
+  w.Omega_0 = 150.0;
+  pp.sc.wheels = {w};
+  sim::InitialConditions ic = simtest::leo_ic();
+  ic.omega_BN_B = Vector3d(0.01, -0.02, 0.015);
+  sim::Plant plant(pp, ic);
+  auto& gg = plant.add_effector(std::make_unique<sim::GravityGradientEffector>(plant, context()));
+  const sim::HubParams& h = pp.sc.hub;
+  const Vector3d c = h.r_BcB_B;
+  const Matrix3d I_C = h.I_hBc_B;
+  for (int k = 0; k < 360; ++k) ASSERT_EQ(plant.step(10000000000LL), sim::StepStatus::Ok);
+  const Matrix3d C_BN = simtest::dcm_BN_via_quaternion(plant.sigma_BN());
+  const Vector3d R_B = C_BN * plant.r_BN_N() + c;
+  const Vector3d expected = 3.0 * sim::kMuEarth / std::pow(R_B.norm(), 5) * R_B.cross(I_C * R_B);
+  const sim::BodyLoad l = gg.load(0.0, plant.state());
+  EXPECT_GT(expected.norm(), 0.0);
+  EXPECT_LT((l.L_B - expected).norm(), 1e-12 * expected.norm());
+}
+
 // ------------------------------------------------------ momentum balance
 
 // Two plates whose normals stay within 65 deg of the Sun (B x) and of the

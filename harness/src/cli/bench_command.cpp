@@ -7,20 +7,30 @@
 // the scheduler's profiling on times every task call and every plant step
 // (steady clock) and gives the split per tick: plant, sensors, FSW,
 // recording and other.  The timer's own cost is measured and printed; it
-// is in the split's figures, not in the real-time factors.
+// is in the split's figures, not in the real-time factors.  The Monte
+// Carlo case times a small campaign (`kestrel mc`, one thread) against the
+// same number of bare runs.  With --callgrind, each case runs once more in
+// a child process under valgrind's callgrind, counting the instructions of
+// Run::step_ticks.
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstdint>
 #include <ctime>
 #include <filesystem>
 #include <iomanip>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "cli/command_util.h"
 #include "harness/cli/commands.h"
 #include "harness/core/run.h"
+#include "harness/mc/monte_carlo.h"
 #include "harness/scenario/scenario.h"
 
 namespace harness {
@@ -55,8 +65,11 @@ double timer_pair_ns()
 const char* category(const std::string& task)
 {
   static const std::map<std::string, const char*> m{
-      {"plant", "plant"},          {"sample_sensors", "sensors"}, {"css", "sensors"},  {"sensors", "sensors"},
-      {"fsw_acs", "fsw"},          {"metrics", "recording"},      {"recorder", "recording"},
+      {"plant", "plant"},         {"truth", "truth"},          {"sample_sensors", "sensors"},
+      {"css", "sensors"},         {"sensors", "sensors"},      {"magnetometer", "sensors"},
+      {"fsw_acs", "fsw"},         {"metrics", "recording"},    {"recorder", "recording"},
+      {"mtq_state", "recording"}, {"events", "events"},        {"burn_monitor", "events"},
+      {"actuators", "actuators"}, {"plant_input", "actuators"}, {"magnetorquers", "actuators"},
   };
   const auto it = m.find(task);
   return it == m.end() ? "other" : it->second;
@@ -69,6 +82,7 @@ struct Case {
   std::vector<Override> ov;
   bool fully_coupled = false;
   bool extra = false;  // run only when named with --case
+  uint64_t mc_runs = 0;  // > 0: a Monte Carlo campaign of this many runs (bench_mc)
 };
 
 Scenario load_case(const Case& c)
@@ -84,6 +98,34 @@ RunConfig bench_config()
   RunConfig cfg;
   cfg.keep_in_memory = false;
   return cfg;
+}
+
+// Extra S3 cases (docs/performance.md, "S3"): the detumble-and-hold
+// scenario's first 2,000 s (B-dot on the rods, then the hold) with every
+// environment model on and the magnetorquers driven, FSW at 10 Hz,
+// dt = 0.1 s: fully-coupled wheels (a 0.13 kg rotor with a small wheel's
+// imbalance, values of the class, assumed) at the
+// 1 % jitter sub-step (16 sub-steps: the 3,000 rpm wheel starts at
+// |Omega| h = 1.96 rad; over a day the wheels reach 2.16 rad, about 1 % on
+// the jitter amplitude, docs/performance.md), and balanced wheels; and a Monte Carlo
+// campaign of 20 short runs of the S3 campaign on one thread.
+void s3_cases(const std::string& dir, std::vector<Case>& cases)
+{
+  const std::string hold = (fs::path(dir) / "s3_detumble_hold.yaml").string();
+  const std::vector<Override> s3{{"duration", "2000"}};
+  Case coupled{"s3-env", "S3 every environment model, fully coupled", hold, s3, true, true};
+  for (const Override& o : std::vector<Override>{{"wheel_defaults.model", "fully_coupled"},
+                                                 {"wheel_defaults.m_w", "0.13"},
+                                                 {"wheel_defaults.U_s", "1.0e-7"},
+                                                 {"wheel_defaults.U_d", "5.0e-9"},
+                                                 {"rates.plant_substeps", "16"}})
+    coupled.ov.push_back(o);
+  cases.push_back(coupled);
+  cases.push_back({"s3-env-balanced", "S3 every environment model, balanced", hold, s3, false, true});
+  Case mc{"s3-mc", "S3 Monte Carlo, 20 runs of 300 s",
+          (fs::path(dir) / "s3_monte_carlo.yaml").string(), {{"duration", "300"}}, false, true};
+  mc.mc_runs = 20;
+  cases.push_back(mc);
 }
 
 // The reference cases: S1 fully coupled at dt = 0.01 s and 0.1 s, S1 with
@@ -133,6 +175,7 @@ std::vector<Case> reference_cases(const std::string& dir)
     off.ov.push_back({std::string("environment.") + m + ".enabled", "false"});
   cases.push_back(env);
   cases.push_back(off);
+  s3_cases(dir, cases);
   return cases;
 }
 
@@ -177,8 +220,8 @@ std::vector<double> speeds(const Case& c, const Scenario& sc, std::ostream& err)
   return rtf;
 }
 
-// Where a tick's time goes, from one profiled run [ns in all]: plant,
-// sensors, fsw, recording, other; `calls`: the timed calls.
+// Where a tick's time goes, from one profiled run [ns in all], by the
+// categories of category() and "other"; `calls`: the timed calls.
 std::map<std::string, double> split_of(const Scenario& sc, double& calls)
 {
   Run run(sc, bench_config());
@@ -186,11 +229,11 @@ std::map<std::string, double> split_of(const Scenario& sc, double& calls)
   const auto w0 = std::chrono::steady_clock::now();
   run.step_ticks(run.total_ticks());
   const double wall_ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - w0).count();
-  std::map<std::string, double> split{{"plant", 0}, {"sensors", 0}, {"fsw", 0}, {"recording", 0}, {"other", 0}};
+  std::map<std::string, double> split{{"plant", 0},  {"truth", 0},     {"sensors", 0},   {"fsw", 0},
+                                      {"actuators", 0}, {"recording", 0}, {"events", 0}, {"other", 0}};
   double timed = 0.0;
   calls = 0.0;
-  const auto prof = run.profile();
-  for (const auto& [name, ns] : prof) {
+  for (const auto& [name, ns] : run.profile()) {
     split[category(name)] += static_cast<double>(ns);
     timed += static_cast<double>(ns);
   }
@@ -200,40 +243,149 @@ std::map<std::string, double> split_of(const Scenario& sc, double& calls)
   return split;
 }
 
-// One case's two lines; false when a run failed.
-bool bench_case(const Case& c, double pair_ns, std::ostream& out, std::ostream& err)
+// valgrind on PATH ("" when absent).
+std::string find_valgrind()
+{
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "");
+  std::string d;
+  while (std::getline(dirs, d, ':')) {
+    const fs::path v = fs::path(d.empty() ? "." : d) / "valgrind";
+    std::error_code ec;
+    if (fs::is_regular_file(v, ec)) return v.string();
+  }
+  return "";
+}
+
+// Instructions of Run::step_ticks in one run of the case (`kestrel bench
+// --case ID --once` under callgrind, in a child process); < 0 when the
+// count failed.
+double callgrind_instructions(const std::string& valgrind, const Case& c)
+{
+  const fs::path out = fs::temp_directory_path() / ("kestrel_bench_" + c.id + "_" + std::to_string(::getpid()) + ".cg");
+  std::error_code ec;
+  const std::string self = fs::read_symlink("/proc/self/exe", ec).string();
+  if (ec) return -1.0;
+  const std::string cmd = "'" + valgrind + "' --tool=callgrind --callgrind-out-file='" + out.string() +
+                          "' --toggle-collect='harness::Run::step_ticks*' '" + self + "' bench --once --case " + c.id +
+                          " >/dev/null 2>&1";
+  double ir = -1.0;
+  if (std::system(cmd.c_str()) == 0) {
+    std::ifstream f(out);
+    std::string line;
+    while (std::getline(f, line))
+      if (line.rfind("summary:", 0) == 0 || line.rfind("totals:", 0) == 0) ir = std::stod(line.substr(line.find(':') + 1));
+  }
+  fs::remove(out, ec);
+  return ir;
+}
+
+// The split line of a case.
+void print_split(std::map<std::string, double>& split, double ticks, double timer_ns, std::ostream& out)
+{
+  const auto us = [ticks](double ns) { return ns / ticks / 1e3; };  // [us per tick]
+  out << std::fixed << std::setprecision(2) << "      split [us per tick]: plant " << us(split["plant"]) << ", truth "
+      << us(split["truth"]) << ", sensors " << us(split["sensors"]) << ", FSW " << us(split["fsw"]) << ", actuators "
+      << us(split["actuators"]) << ", recording " << us(split["recording"]) << ", events " << us(split["events"])
+      << ", other " << us(split["other"]) << "  (timer cost in these: " << us(timer_ns) << ")\n";
+  out.unsetf(std::ios::fixed);
+}
+
+// One case's lines; false when a run failed.
+bool bench_case(const Case& c, const BenchOptions& o, double pair_ns, std::ostream& out, std::ostream& err)
 {
   const Scenario sc = load_case(c);
+  if (o.once) {  // the child of --callgrind: one plain run
+    Run run(sc, bench_config());
+    run.step_ticks(run.total_ticks());
+    return run.failure().empty();
+  }
   const std::vector<double> rtf = speeds(c, sc, err);
   if (rtf.empty()) return false;
   const double ticks = static_cast<double>(sc.num_ticks() + 1);
   const double us_tick = sc.duration / rtf[kRepeats / 2] / ticks * 1e6;
   double calls = 0.0;
   std::map<std::string, double> split = split_of(sc, calls);
-  const auto us = [ticks](double ns) { return ns / ticks / 1e3; };  // [us per tick]
   out << "  " << std::left << std::setw(38) << c.label << std::right << std::fixed << std::setprecision(0)
       << std::setw(8) << rtf[kRepeats / 2] << "x real time (" << rtf[0] << " / " << rtf[kRepeats / 2] << " / "
-      << rtf[kRepeats - 1] << ")  " << std::setprecision(2) << us_tick << " us per tick\n"
-      << "      split [us per tick]: plant " << us(split["plant"]) << ", sensors " << us(split["sensors"])
-      << ", FSW " << us(split["fsw"]) << ", recording " << us(split["recording"]) << ", other "
-      << us(split["other"]) << "  (timer cost in these: " << us(pair_ns * calls) << ")\n";
+      << rtf[kRepeats - 1] << ")  " << std::setprecision(2) << us_tick << " us per tick";
+  if (sc.rates.plant_substeps > 1) out << " (" << sc.rates.plant_substeps << " plant sub-steps)";
+  out << "\n";
+  out.unsetf(std::ios::fixed);
+  print_split(split, ticks, pair_ns * calls, out);
+  if (!o.valgrind.empty()) {
+    const double ir = callgrind_instructions(o.valgrind, c);
+    if (ir < 0) out << "      instructions per tick: (callgrind failed)\n";
+    else out << "      instructions per tick (callgrind, Run::step_ticks): " << std::fixed << std::setprecision(0)
+             << ir / ticks << "\n";
+    out.unsetf(std::ios::fixed);
+  }
+  return true;
+}
+
+// The Monte Carlo case: a campaign of c.mc_runs runs on one thread into a
+// temporary folder (plan, runs with their manifests and records, the
+// retained runs' full results, the summary files: what `kestrel mc` does),
+// against as many bare runs of the nominal scenario (built and run, no
+// files): process CPU per run of each.  Failing runs are not rerun for
+// their full results: the short runs fail the S3 campaign's detumble
+// criteria by design, and those reruns are the retention's price.
+double campaign_cpu(const Case& c, Scenario sc)
+{
+  sc.monte_carlo->retention.keep_failing = false;
+  const McPlan plan = make_mc_plan(sc, sc.monte_carlo->seed, c.mc_runs);
+  McRunOptions ro;
+  for (uint64_t k = 0; k < c.mc_runs; ++k) ro.indices.push_back(k);
+  const fs::path dir = fs::temp_directory_path() / ("kestrel_bench_mc_" + std::to_string(::getpid()));
+  const double c0 = cpu_seconds();
+  bool stopped = false;
+  const std::vector<McRecord> records = run_mc_runs(plan, dir, ro, stopped);
+  McSummaryInfo info;
+  info.source = c.file;
+  write_mc_outputs(plan, records, info, dir);
+  const double cpu = cpu_seconds() - c0;
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  return cpu;
+}
+
+bool bench_mc(const Case& c, std::ostream& out)
+{
+  const Scenario sc = load_case(c);
+  const double b0 = cpu_seconds();
+  for (uint64_t k = 0; k < c.mc_runs; ++k) {
+    Run run(sc, bench_config());
+    run.step_ticks(run.total_ticks());
+  }
+  const double bare = (cpu_seconds() - b0) / static_cast<double>(c.mc_runs);
+  const double per_run = campaign_cpu(c, sc) / static_cast<double>(c.mc_runs);
+  out << "  " << std::left << std::setw(38) << c.label << std::right << std::fixed << std::setprecision(1)
+      << " campaign " << per_run * 1e3 << " ms CPU per run, bare run " << bare * 1e3 << " ms: overhead "
+      << std::setprecision(0) << 100.0 * (per_run / bare - 1.0) << " %; " << sc.duration / bare
+      << "x real time bare\n";
   out.unsetf(std::ios::fixed);
   return true;
 }
 
 }  // namespace
 
-int cmd_bench(const std::string& dir, const std::vector<std::string>& only, std::ostream& out, std::ostream& err)
+int cmd_bench(const std::string& dir, BenchOptions o, std::ostream& out, std::ostream& err)
 {
   std::vector<Case> cases = reference_cases(dir);
-  if (!select_cases(only, cases, err)) return kExitUsage;
-  const double pair_ns = timer_pair_ns();
-  out << "kestrel bench (" << version() << "): one core, FSW at 10 Hz (unless the case says otherwise), recording at 1 Hz (S2 as shipped), no files;\n"
-      << "speed = simulated s per process-CPU s over " << kRepeats
-      << " runs (min / median / max); split = one timed run, us per tick\n";
+  if (!select_cases(o.only, cases, err)) return kExitUsage;
+  if (o.callgrind && !o.once) {
+    o.valgrind = find_valgrind();
+    if (o.valgrind.empty()) out << "kestrel bench: --callgrind: no valgrind on PATH; instruction counts skipped\n";
+  }
+  const double pair_ns = o.once ? 0.0 : timer_pair_ns();
+  if (!o.once)
+    out << "kestrel bench (" << version() << "): one core, FSW at 10 Hz (unless the case says otherwise), recording at 1 Hz (S2 as shipped), no files;\n"
+        << "speed = simulated s per process-CPU s over " << kRepeats
+        << " runs (min / median / max); split = one timed run, us per tick\n";
   for (const Case& c : cases) {
     try {
-      if (!bench_case(c, pair_ns, out, err)) return kExitRunFailed;
+      const bool ok = c.mc_runs > 0 ? (o.once || bench_mc(c, out)) : bench_case(c, o, pair_ns, out, err);
+      if (!ok) return kExitRunFailed;
     } catch (const ScenarioError& e) {
       print_issues(e, err);
       return kExitInvalidScenario;

@@ -226,8 +226,10 @@ int main(int argc, char** argv)
   std::string schema_out;
   schema->add_option("-o,--output", schema_out, "write it to this file instead");
   auto* bench = app.add_subcommand("bench", "print real-time factors of the reference scenarios");
-  std::vector<std::string> bench_cases;
-  bench->add_option("--case", bench_cases, "only these cases: s1-0.01, s1-0.1, s1-substeps, s2; extra (only when named): s1-fsw-every-step, s1-leo-env, s1-leo-off (repeatable)");
+  harness::BenchOptions bo;
+  bench->add_option("--case", bo.only, "only these cases: s1-0.01, s1-0.1, s1-substeps, s2; extra (only when named): s1-fsw-every-step, s1-leo-env, s1-leo-off, s3-env, s3-env-balanced, s3-mc (repeatable)");
+  bench->add_flag("--callgrind", bo.callgrind, "also count instructions per tick under valgrind's callgrind (skipped without valgrind)");
+  bench->add_flag("--once", bo.once, "run each case once, print nothing (what --callgrind counts)")->group("");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -243,6 +245,6 @@ int main(int argc, char** argv)
   if (*fcfg) return harness::cmd_fsw_config(fa.path, fa.sets, fa.out_file, std::cout, std::cerr);
   if (*list) return harness::cmd_list(harness::scenario_dir(), std::cout, std::cerr);
   if (*schema) return harness::cmd_schema(schema_out, std::cout, std::cerr);
-  if (*bench) return harness::cmd_bench(harness::scenario_dir(), bench_cases, std::cout, std::cerr);
+  if (*bench) return harness::cmd_bench(harness::scenario_dir(), bo, std::cout, std::cerr);
   return harness::kExitUsage;
 }

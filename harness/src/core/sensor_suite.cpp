@@ -29,6 +29,7 @@ void SensorSuite::state_io(sim::StateIO& io)
   io.value("sensors.css_bias", css_bias_);
   io.value("sensors.any_fault", any_fault_);
   io.value("sensors.truth", truth_);
+  truth_tick_ = 0;
   for (sim::CoarseSunSensor& c : css_) c.state_io(io);
   if (gyro_) gyro_->state_io(io);
   if (st_) st_->state_io(io);
@@ -190,6 +191,7 @@ bool SensorSuite::sample(uint64_t k, SensorSampleMsg& out)
   const bool g = gyro_ && k % div_gyro_ == 0, a = st_ && k % div_st_ == 0, w = tach_ && k % div_tach_ == 0;
   if (!(g || a || w)) return false;
   const sim::SensorTruth& st = truth_now();
+  truth_tick_ = k + 1;
   if (g && gyro_->update(st)) {
     const sim::GyroOutput& o = gyro_->output();
     put3(out.omega_PN_P, o.omega_PN_P);
@@ -211,9 +213,10 @@ bool SensorSuite::sample(uint64_t k, SensorSampleMsg& out)
   return true;
 }
 
-void SensorSuite::read_css(CssMsg& out)
+void SensorSuite::read_css(uint64_t k, CssMsg& out)
 {
-  const sim::SensorTruth& st = truth_now();
+  const sim::SensorTruth& st = truth_tick_ == k + 1 ? truth_ : truth_now();
+  truth_tick_ = 0;
   const sim::SunGeometry sun = sim::sun_geometry(st);  // once for the set
   for (size_t i = 0; i < css_.size(); ++i) {
     css_[i].update(st, sun);

@@ -43,7 +43,7 @@ class SensorSuite {
   // `out` keeps the held outputs of the others.  False when none was due.
   bool sample(uint64_t k, SensorSampleMsg& out);
   // The coarse sun sensors at an FSW tick.
-  void read_css(CssMsg& out);
+  void read_css(uint64_t k, CssMsg& out);
   // The FSW input: the held samples (gyro -> omega_BN_B, star tracker ->
   // sigma_BN + att_valid, tachometers -> Omega), CSS readings (or the ideal
   // cube-face readings), truth for a disabled sensor and for r_CoM_B.
@@ -122,6 +122,10 @@ class SensorSuite {
   bool any_fault_ = false;  // a fault was ever set (the nominal path stays as it was)
 
   const sim::SensorTruth& truth_now();
+  // k + 1 of the tick whose truth_ sample() formed, 0 when none: read_css
+  // at that tick reads the same plant state (no task between them moves
+  // it) and uses truth_ as it is, once; a checkpoint's state_io clears it.
+  uint64_t truth_tick_ = 0;
   void apply_faults(uint64_t t_ns, FswAcsSensorMsg& msg) const;
   const sim::Plant& plant_;
   sim::SensorTruth truth_;

@@ -129,7 +129,7 @@ void SampleSensorsTask::operator()(uint64_t k) const
 void CssTask::operator()(uint64_t k) const
 {
   CssMsg m{};
-  sensors->read_css(m);
+  sensors->read_css(k, m);
   out.write(m, k * tick_ns);
 }
 

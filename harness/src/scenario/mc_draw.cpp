@@ -350,9 +350,8 @@ void check_draw(McDraw& d)
 {
   try {
     const std::string src = d.sc.source_file;
-    d.sc = load_scenario_text(scenario_to_json_text(d.sc), "(drawn scenario)");
+    d.sc = load_canonical_scenario_text(scenario_to_json_text(d.sc), "(drawn scenario)");
     d.sc.source_file = src;
-    d.sc.key_lines.clear();  // lines of the canonical text, not of the file
     check_run_configuration(d.sc);
   } catch (const ScenarioError& e) {
     const ScenarioIssue& is = e.issues().front();

@@ -306,7 +306,8 @@ std::optional<CheckpointRef> read_from_checkpoint(const Ctx& ctx, const YAML::No
   return ref;
 }
 
-Scenario load_from_root(YAML::Node root, const std::string& file, const std::vector<Override>& overrides)
+Scenario load_from_root(YAML::Node root, const std::string& file, const std::vector<Override>& overrides,
+                        bool key_lines = true)
 {
   std::vector<ScenarioIssue> issues;
   Ctx ctx{file, &issues, {}};
@@ -339,7 +340,7 @@ Scenario load_from_root(YAML::Node root, const std::string& file, const std::vec
   if (issues.empty()) {
     try {
       read_scenario(ctx, root, sc);
-      collect_key_lines(root, "", sc.key_lines);
+      if (key_lines) collect_key_lines(root, "", sc.key_lines);
     } catch (const YAML::Exception& e) {  // safety net: never crash on odd input
       ScenarioIssue is;
       is.file = file;
@@ -401,6 +402,19 @@ Scenario load_scenario_text(const std::string& text, const std::string& file_nam
     throw ScenarioError({file_issue(file_name, e.mark.line + 1, e.mark.column + 1, "YAML syntax error: " + e.msg)});
   }
   return load_from_root(root, file_name, overrides);
+}
+
+Scenario load_canonical_scenario_text(const std::string& text, const std::string& file_name)
+{
+  if (text.size() > kMaxYamlBytes)  // as load_scenario_text: a manifest of it would be refused
+    throw ScenarioError({file_issue(file_name, 0, 0, "longer than " + std::to_string(kMaxYamlBytes) + " bytes")});
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw ScenarioError({file_issue(file_name, e.mark.line + 1, e.mark.column + 1, "YAML syntax error: " + e.msg)});
+  }
+  return load_from_root(root, file_name, {}, false);
 }
 
 Scenario load_scenario(const std::string& path, const std::vector<Override>& overrides)

@@ -158,6 +158,12 @@ class GravityGradientEffector final : public SampledEnvironmentEffector {
   void derived_state_io(StateIO& io) override;
   Eigen::Vector3d R_held_N_ = Eigen::Vector3d::Zero();  // [m] held position of C
   Eigen::Matrix3d I_held_C_B_ = Eigen::Matrix3d::Zero();  // [kg*m^2] held inertia about C, B
+  // No tanks and no fully-coupled wheel: the mass properties do not change
+  // during the run, so c_B and I_C are formed once (the same operations on
+  // the same operands as per evaluation: the same bits).
+  bool fixed_mass_ = false;
+  Eigen::Vector3d c_fixed_B_ = Eigen::Vector3d::Zero();    // [m]
+  Eigen::Matrix3d I_fixed_C_B_ = Eigen::Matrix3d::Zero();  // [kg*m^2]
 };
 
 // --------------------------------------------- solar radiation pressure

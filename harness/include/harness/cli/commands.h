@@ -119,8 +119,15 @@ int cmd_validate(const std::string& scenario, const std::vector<std::string>& se
                  std::ostream& err);
 int cmd_list(const std::string& dir, std::ostream& out, std::ostream& err);
 // `kestrel bench`: the reference cases (only those named in `only`, when
-// it is not empty: s1-0.01, s1-0.1, s1-substeps, s2); exit 2 on an unknown name.
-int cmd_bench(const std::string& dir, const std::vector<std::string>& only, std::ostream& out, std::ostream& err);
+// it is not empty: s1-0.01, s1-0.1, s1-substeps, s2, or an extra case); exit 2
+// on an unknown name.
+struct BenchOptions {
+  std::vector<std::string> only;  // --case
+  bool callgrind = false;         // --callgrind: instructions per tick when valgrind is on PATH
+  bool once = false;              // --once: one plain run of each case, nothing printed (callgrind's child)
+  std::string valgrind;           // set by cmd_bench
+};
+int cmd_bench(const std::string& dir, BenchOptions o, std::ostream& out, std::ostream& err);
 
 // Directory of the shipped scenarios: $KESTREL_SCENARIO_DIR, else the
 // installed ones (share/kestrel/scenarios beside the installed program's

@@ -42,6 +42,12 @@ Scenario load_scenario(const std::string& path, const std::vector<Override>& ove
 // The same from text (`file_name` is used in messages).
 Scenario load_scenario_text(const std::string& text, const std::string& file_name,
                             const std::vector<Override>& overrides = {});
+// The same for the writer's canonical text of a loaded scenario
+// (scenario_to_json_text, e.g. a Monte Carlo draw): the same reading and
+// checks of every key, without the bounds on the text's form that the
+// writer's output meets by construction (one document, depth, aliases,
+// bytes; its length is still checked) and without key_lines (empty).
+Scenario load_canonical_scenario_text(const std::string& text, const std::string& file_name);
 
 // The fully resolved scenario as canonical JSON (SI keys only, every default
 // filled in).  load_scenario_text() of this text gives the same Scenario.
