@@ -12,6 +12,16 @@
 
 namespace harness {
 
+uint64_t fnv1a64_bytes(uint64_t h, const void* p, size_t n)
+{
+  const auto* b = static_cast<const uint8_t*>(p);
+  for (size_t i = 0; i < n; ++i) {
+    h ^= b[i];
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
+
 namespace {
 
 constexpr char kMagic[8] = {'K', 'S', 'T', 'R', 'L', 'C', 'K', 'P'};
@@ -58,15 +68,7 @@ class StateReader final : public sim::StateIO {
   size_t pos_ = 0;
 };
 
-uint64_t fnv1a64(const uint8_t* p, size_t n)
-{
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (size_t i = 0; i < n; ++i) {
-    h ^= p[i];
-    h *= 0x100000001b3ull;
-  }
-  return h;
-}
+uint64_t fnv1a64(const uint8_t* p, size_t n) { return fnv1a64_bytes(kFnv1a64Start, p, n); }
 
 void put_u32(std::vector<uint8_t>& o, uint32_t v)
 {

@@ -14,17 +14,9 @@ namespace harness {
 namespace {
 
 constexpr char kMagic[8] = {'K', 'S', 'T', 'R', 'L', 'R', 'O', 'W'};
-constexpr uint64_t kFnvStart = 0xcbf29ce484222325ull;
+constexpr uint64_t kFnvStart = kFnv1a64Start;
 
-uint64_t fnv1a64(uint64_t h, const void* p, size_t n)
-{
-  const auto* b = static_cast<const uint8_t*>(p);
-  for (size_t i = 0; i < n; ++i) {
-    h ^= b[i];
-    h *= 0x100000001b3ull;
-  }
-  return h;
-}
+uint64_t fnv1a64(uint64_t h, const void* p, size_t n) { return fnv1a64_bytes(h, p, n); }
 
 uint64_t get_u64(const uint8_t* p)
 {

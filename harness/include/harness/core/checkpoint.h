@@ -57,6 +57,11 @@ void restore_run_state(Run& run, const std::vector<uint8_t>& state);
 // checkpoint (docs/checkpoint.md, "Branching a campaign") gets its own noise.
 void restore_branch_state(Run& run, const std::vector<uint8_t>& state);
 
+// FNV-1a 64 of n bytes, continued from h (kFnv1a64Start for a fresh sum):
+// the checksum of checkpoint files and of kestrel run's rows file.
+constexpr uint64_t kFnv1a64Start = 0xcbf29ce484222325ull;
+uint64_t fnv1a64_bytes(uint64_t h, const void* p, size_t n);
+
 // The checksum a checkpoint file ends with (FNV-1a 64 of every byte before
 // it); the file is decoded first (CheckpointError when it is damaged).
 uint64_t checkpoint_checksum(const std::vector<uint8_t>& file, const std::string& path = "checkpoint");
