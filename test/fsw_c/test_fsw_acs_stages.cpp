@@ -142,16 +142,8 @@ TEST(FswAcsStages, TheStagesKeptGiveTheFullBuildsNumbers)
       first = false;
     }
     FswAcsSensorMsg m;
-    std::memset(&m, 0, sizeof m);
-    m.t_ns = g.t_ns;
-    m.att_valid = 1;
-    for (int i = 0; i < 3; i++) {
-      m.sigma_BN[i] = g.sigma[i];
-      m.omega_BN_B[i] = g.omega[i];
-    }
-    for (int i = 0; i < 6; i++) m.css[i] = g.css[i];
-    for (int i = 0; i < 4; i++) m.Omega[i] = g.Omega[i];
-    const FswAcsCmdMsg cmd = {g.mode, g_cfg.initial_actuation};
+    FswAcsCmdMsg cmd;
+    acsfix::golden_inputs(g, g_cfg, m, cmd);
     FswAcsActuatorMsg a;
     FswAcsHealthMsg h;
     EXPECT_EQ(g.status, static_cast<int>(fsw_acs_cycle(&g_st, &g_cfg, &m, &cmd, &a, &h))) << g.cycle;
