@@ -8,10 +8,15 @@
 #              (deframer, codec, node, configuration image), UART, two console lines
 #   ACS only   bench/footprint/acs_only.c: fsw_acs alone, configuration and
 #              messages in memory
-# and prints per program: .text/.data/.bss of the whole ELF
+# each with every stage of fsw_acs ("full") and with the typical selection
+# (FSW_CFG_<stage>=0 for the stages a wheel-and-thruster mission does not
+# fly; the list is $typical below), and prints per program: .text/.data/.bss of the whole ELF
 # (arm-none-eabi-size; .text includes .rodata, picolibc's start-up, libm
 # and, for double, the soft-float routines), the part of .text that comes
-# from the flight library's archive (from the link map), and the worst-case
+# from the flight library's archive (from the link map), for the ACS-only
+# program the "chain": its code linked without start-up files (the library
+# with the libm, soft-float and string routines it calls), whether each of
+# the two is under the goal of 32 KiB, and the worst-case
 # stack: main's frame (-fstack-usage) + the deepest flight-library call it
 # makes (tools/fsw_stack_report.py, the method of fsw_proof_stack); for the
 # PIL program also its UART interrupt and 104 B of exception stacking.
@@ -63,40 +68,57 @@ else:
 PY
 }
 
-printf "%-7s %-4s %-9s %8s %8s %8s %10s %8s\n" real opt program .text .data .bss "fsw .text" stack
+# The typical selection of docs/flight-footprint.md: wheels (rw_map, rw_null,
+# rw_sat), thrusters (thr_map, remainder pulsing), thruster momentum dumps,
+# sun-safe and inertial pointing; everything else left out.
+typical="MTQ;MTQ_DESAT;ORBIT;RW_BIAS;RW_VOLT;SPEED_FILTER;LPF;PULSE_SCHMITT"
+goal=32768  # [B] the ACS chain without the link at -Os
+fmt="%-7s %-4s %-8s %-9s %8s %6s %7s %10s %12s %6s %-s\n"
+printf "$fmt" real opt stages program .text .data .bss "fsw .text" "chain .text" stack "under 32 KiB (fsw/chain)"
 for real in double float; do
   for opt in Os O2; do
-    b="$work/$real-$opt"
-    cmake -S bench/footprint -B "$b" -G Ninja --fresh -DKESTREL_DIR="$src" \
-      -DCMAKE_TOOLCHAIN_FILE="$src/toolchains/cortex-m4f.cmake" -DCMAKE_BUILD_TYPE=Release \
-      -DCMAKE_C_FLAGS_RELEASE="-$opt -DNDEBUG" -DKESTREL_REAL="$real" \
-      -DKESTREL_FSW_MAX_RW=4 -DKESTREL_FSW_MAX_THR=8 -DKESTREL_WERROR=ON "${launcher[@]}" > "$b.configure.log" 2>&1 \
-      || { cat "$b.configure.log" >&2; exit 1; }
-    cmake --build "$b" -j2 > "$b.build.log" 2>&1 || { tail -30 "$b.build.log" >&2; exit 1; }
-    report=$(python3 tools/fsw_stack_report.py --objdir "$b/kestrel/fsw_c/CMakeFiles/fsw.dir" \
-             --archive "$b/kestrel/fsw_c/libkestrel_fsw.a" --nm arm-none-eabi-nm --objdump arm-none-eabi-objdump \
-             --limit 1000000)
-    w() { for f in "$@"; do echo "$report" | awk -v f="$f" '$3 == f { print $1 }'; done | sort -n | tail -1; }
-    for prog in acs_only with_link; do
-      read -r text data bss _ < <(arm-none-eabi-size "$b/$prog.elf" | tail -1)
-      su=$(find "$b/CMakeFiles/$prog.dir" -name '*.su')
-      main=$(awk -F'\t' '$1 ~ /:main$/ { print $2 }' "$su")
-      if [ "$prog" = acs_only ]; then
-        deep=$(w fsw_acs_init fsw_acs_cycle)
-        stack=$((main + deep))
-        name="ACS only"
-      else
-        deep=$(w fsw_link_node_receive fsw_link_config_decode fsw_acs_check fsw_link_node_init)
-        isr=$(awk -F'\t' '$1 ~ /:uart0_rx_isr$/ { print $2 }' "$su")
-        stack=$((main + deep + isr + 104))
-        name="with link"
-      fi
-      printf "%-7s %-4s %-9s %8s %8s %8s %10s %8s\n" "$real" "-$opt" "$name" "$text" "$data" "$bss" \
-        "$(lib_text "$b/$prog.map")" "$stack"
+    for sel in full typical; do
+      b="$work/$real-$opt-$sel"
+      leave=""
+      if [ "$sel" = typical ]; then leave="$typical"; fi
+      cmake -S bench/footprint -B "$b" -G Ninja --fresh -DKESTREL_DIR="$src" \
+        -DCMAKE_TOOLCHAIN_FILE="$src/toolchains/cortex-m4f.cmake" -DCMAKE_BUILD_TYPE=Release \
+        -DCMAKE_C_FLAGS_RELEASE="-$opt -DNDEBUG" -DKESTREL_REAL="$real" \
+        -DKESTREL_FSW_MAX_RW=4 -DKESTREL_FSW_MAX_THR=8 -DKESTREL_FSW_LEAVE_OUT="$leave" \
+        -DKESTREL_WERROR=ON "${launcher[@]}" > "$b.configure.log" 2>&1 \
+        || { cat "$b.configure.log" >&2; exit 1; }
+      cmake --build "$b" -j2 > "$b.build.log" 2>&1 || { tail -30 "$b.build.log" >&2; exit 1; }
+      report=$(python3 tools/fsw_stack_report.py --objdir "$b/kestrel/fsw_c/CMakeFiles/fsw.dir" \
+               --archive "$b/kestrel/fsw_c/libkestrel_fsw.a" --nm arm-none-eabi-nm --objdump arm-none-eabi-objdump \
+               --limit 1000000)
+      w() { for f in "$@"; do echo "$report" | awk -v f="$f" '$3 == f { print $1 }'; done | sort -n | tail -1; }
+      for prog in acs_only with_link; do
+        read -r text data bss _ < <(arm-none-eabi-size "$b/$prog.elf" | tail -1)
+        su=$(find "$b/CMakeFiles/$prog.dir" -name '*.su')
+        main=$(awk -F'\t' '$1 ~ /:main$/ { print $2 }' "$su")
+        fsw=$(lib_text "$b/$prog.map")
+        if [ "$prog" = acs_only ]; then
+          deep=$(w fsw_acs_init fsw_acs_cycle)
+          stack=$((main + deep))
+          name="ACS only"
+          chain=$(arm-none-eabi-size "$b/acs_chain.elf" | tail -1 | awk '{ print $1 }')
+          verdict="$([ "$fsw" -le $goal ] && echo yes || echo no)/$([ "$chain" -le $goal ] && echo yes || echo no)"
+        else
+          deep=$(w fsw_link_node_receive fsw_link_config_decode fsw_acs_check fsw_link_node_init)
+          isr=$(awk -F'\t' '$1 ~ /:uart0_rx_isr$/ { print $2 }' "$su")
+          stack=$((main + deep + isr + 104))
+          name="with link"
+          chain="-"
+          verdict=""
+        fi
+        printf "$fmt" "$real" "-$opt" "$sel" "$name" "$text" "$data" "$bss" "$fsw" "$chain" "$stack" "$verdict"
+      done
     done
   done
 done
 for real in double float; do
-  echo "largest flight-library objects in the ACS-only program, $real -Os (.text + .rodata, bytes):"
-  lib_text "$work/$real-Os/acs_only.map" 10
+  for sel in full typical; do
+    echo "largest flight-library objects in the ACS-only program, $real -Os, $sel (.text + .rodata, bytes):"
+    lib_text "$work/$real-Os-$sel/acs_only.map" 10
+  done
 done

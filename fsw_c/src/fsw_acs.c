@@ -46,6 +46,50 @@ static FswStatus fail(const char **bad_field, const char *name, FswStatus s)
 
 static int is_bool(int v) { return v == 0 || v == 1; }
 
+/* ---- stages left out of the build (fsw_config.h, FSW_CFG_*) -------------- */
+
+/* FSW_E_UNSUPPORTED, with the flag's name, for a configuration that asks
+ * for a stage this build does not have; FSW_OK otherwise (the values of
+ * the flags are checked afterwards). */
+static FswStatus check_stages_built(const FswAcsConfig *cfg, const char **bad_field)
+{
+#if !FSW_CFG_MTQ
+  if (cfg->has_mtq != 0) { return fail(bad_field, "has_mtq", FSW_E_UNSUPPORTED); }
+#endif
+#if !FSW_CFG_MTQ_DESAT
+  if (cfg->use_mtq_desat != 0) { return fail(bad_field, "use_mtq_desat", FSW_E_UNSUPPORTED); }
+#endif
+#if !FSW_CFG_ORBIT
+  if (cfg->has_orbit != 0) { return fail(bad_field, "has_orbit", FSW_E_UNSUPPORTED); }
+#endif
+#if !FSW_CFG_THR_MOM
+  if (cfg->use_thr_mom != 0) { return fail(bad_field, "use_thr_mom", FSW_E_UNSUPPORTED); }
+#endif
+#if !FSW_CFG_RW_BIAS
+  if (cfg->use_bias != 0) { return fail(bad_field, "use_bias", FSW_E_UNSUPPORTED); }
+#endif
+#if !FSW_CFG_RW_NULL
+  if (cfg->has_wheels != 0 && cfg->use_null != 0) { return fail(bad_field, "use_null", FSW_E_UNSUPPORTED); }
+#endif
+#if !FSW_CFG_RW_VOLT
+  if (cfg->has_wheels != 0 && cfg->use_volt != 0) { return fail(bad_field, "use_volt", FSW_E_UNSUPPORTED); }
+#endif
+#if !FSW_CFG_SPEED_FILTER
+  if (cfg->has_wheels != 0 && cfg->use_speed_filter != 0) {
+    return fail(bad_field, "use_speed_filter", FSW_E_UNSUPPORTED); }
+#endif
+#if !FSW_CFG_LPF
+  if (cfg->use_lpf != 0) { return fail(bad_field, "use_lpf", FSW_E_UNSUPPORTED); }
+#endif
+#if !FSW_CFG_PULSE_SCHMITT
+  if (cfg->has_thrusters != 0 && cfg->pulser == FSW_ACS_PULSE_SCHMITT) {
+    return fail(bad_field, "pulser", FSW_E_UNSUPPORTED); }
+#endif
+  (void)cfg;
+  (void)bad_field;
+  return FSW_OK;
+}
+
 /* ---- geometry ------------------------------------------------------------- */
 
 /* dst[i] = src[i] for i < n, 0 up to cap. */
@@ -148,6 +192,7 @@ static int policy_configured(const FswAcsConfig *cfg, int policy)
  * (spin axes, spin inertias) must be bit-for-bit equal.  Torque limits are
  * not compared: a module may be given a derated limit on purpose. */
 
+#if FSW_CFG_RW_VOLT || FSW_CFG_SPEED_FILTER || FSW_CFG_THR_MOM || FSW_CFG_MTQ_DESAT
 /* 1 if the first n entries of a and b are equal. */
 static int same_n(const fsw_real *a, const fsw_real *b, int n)
 {
@@ -156,6 +201,7 @@ static int same_n(const fsw_real *a, const fsw_real *b, int n)
     if (a[i] != b[i]) { return 0; } }
   return 1;
 }
+#endif
 
 static int same_n3(const fsw_real (*a)[3], const fsw_real (*b)[3], int n)
 {
@@ -171,6 +217,7 @@ static FswStatus check_momentum(const FswAcsConfig *cfg, const char **bad_field)
 {
   FswStatus s;
   const int n = cfg->rw_map.num_rw;
+#if FSW_CFG_MTQ
   if (cfg->has_mtq) {
     if ((s = fsw_mtq_map_check(&cfg->mtq_map)) != FSW_OK) { return fail(bad_field, "mtq_map", s); }
     if ((s = fsw_bdot_check(&cfg->bdot)) != FSW_OK) { return fail(bad_field, "bdot", s); }
@@ -178,8 +225,12 @@ static FswStatus check_momentum(const FswAcsConfig *cfg, const char **bad_field)
         (cfg->detumble_exit_mode == FSW_ACS_MODE_DETUMBLE || !mode_configured(cfg, cfg->detumble_exit_mode))) {
       return fail(bad_field, "detumble_exit_mode", FSW_E_CONFIG); }
   }
+#endif
+#if FSW_CFG_ORBIT
   if (cfg->has_orbit && (s = fsw_guid_orbit_check(&cfg->orbit)) != FSW_OK) { return fail(bad_field, "orbit", s); }
+#endif
   if (!is_bool(cfg->use_thr_mom)) { return fail(bad_field, "use_thr_mom", FSW_E_CONFIG); }
+#if FSW_CFG_THR_MOM
   if (cfg->use_thr_mom) {
     if (!cfg->has_wheels || !cfg->has_thrusters) { return fail(bad_field, "use_thr_mom", FSW_E_CONFIG); }
     /* dumps fire on-pulsing thrusters from off: an off-pulsing set's pulser
@@ -192,7 +243,9 @@ static FswStatus check_momentum(const FswAcsConfig *cfg, const char **bad_field)
       return fail(bad_field, "thr_mom.J_s", FSW_E_CONFIG); }
     if (cfg->thr_mom.num_thr != cfg->thr_map.num_thr) { return fail(bad_field, "thr_mom.num_thr", FSW_E_CONFIG); }
   }
+#endif
   if (!is_bool(cfg->use_mtq_desat)) { return fail(bad_field, "use_mtq_desat", FSW_E_CONFIG); }
+#if FSW_CFG_MTQ_DESAT
   if (cfg->use_mtq_desat) {
     if (!cfg->has_wheels || !cfg->has_mtq) { return fail(bad_field, "use_mtq_desat", FSW_E_CONFIG); }
     if ((s = fsw_mtq_desat_check(&cfg->mtq_desat)) != FSW_OK) { return fail(bad_field, "mtq_desat", s); }
@@ -201,13 +254,23 @@ static FswStatus check_momentum(const FswAcsConfig *cfg, const char **bad_field)
     if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->mtq_desat.J_s, cfg->mrp_fb.J_s, n)) {
       return fail(bad_field, "mtq_desat.J_s", FSW_E_CONFIG); }
   }
+#endif
   if (!is_bool(cfg->use_bias)) { return fail(bad_field, "use_bias", FSW_E_CONFIG); }
+#if FSW_CFG_RW_BIAS
   if (cfg->use_bias) {
     if (!cfg->has_wheels || cfg->use_null != 1) { return fail(bad_field, "use_bias", FSW_E_CONFIG); }
     if ((s = fsw_rw_bias_check(&cfg->rw_bias)) != FSW_OK) { return fail(bad_field, "rw_bias", s); }
     if (cfg->rw_bias.num_rw != n || !same_n3(cfg->rw_bias.gs_hat_B, cfg->rw_map.gs_hat_B, n)) {
       return fail(bad_field, "rw_bias.gs_hat_B", FSW_E_CONFIG); }
   }
+#endif
+#if !(FSW_CFG_THR_MOM || FSW_CFG_MTQ_DESAT || FSW_CFG_RW_BIAS)
+  (void)n; /* the wheel count the momentum stages check */
+#if !(FSW_CFG_MTQ || FSW_CFG_ORBIT)
+  s = FSW_OK; /* the status of the magnetic and orbit checks */
+  (void)s;
+#endif
+#endif
   if (!policy_configured(cfg, cfg->initial_policy)) { return fail(bad_field, "initial_policy", FSW_E_CONFIG); }
   return FSW_OK;
 }
@@ -218,7 +281,8 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
   int i;
   FSW_ASSERT(cfg != NULL);
   if (bad_field != NULL) { *bad_field = NULL; }
-  if (cfg == NULL) { return fail(bad_field, "cfg", FSW_E_NULL_ARG); }
+  s = (cfg == NULL) ? fail(bad_field, "cfg", FSW_E_NULL_ARG) : check_stages_built(cfg, bad_field);
+  if (s != FSW_OK) { return s; }
 
   if (!is_bool(cfg->has_mtq)) { return fail(bad_field, "has_mtq", FSW_E_CONFIG); }
   if (!is_bool(cfg->has_orbit)) { return fail(bad_field, "has_orbit", FSW_E_CONFIG); }
@@ -240,7 +304,9 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
   if ((s = fsw_att_track_check(&cfg->track)) != FSW_OK) { return fail(bad_field, "track", s); }
   if ((s = fsw_mrp_fb_check(&cfg->mrp_fb)) != FSW_OK) { return fail(bad_field, "mrp_fb", s); }
   if (!is_bool(cfg->use_lpf)) { return fail(bad_field, "use_lpf", FSW_E_CONFIG); }
+#if FSW_CFG_LPF
   if (cfg->use_lpf && (s = fsw_trq_lpf_check(&cfg->lpf)) != FSW_OK) { return fail(bad_field, "lpf", s); }
+#endif
 
   if (cfg->has_wheels) {
     const int n = cfg->rw_map.num_rw;
@@ -253,6 +319,7 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
     if ((s = fsw_rw_sat_check(&cfg->rw_sat)) != FSW_OK) { return fail(bad_field, "rw_sat", s); }
     if (cfg->rw_sat.num_rw != n) { return fail(bad_field, "rw_sat.num_rw", FSW_E_CONFIG); }
     if (!is_bool(cfg->use_null)) { return fail(bad_field, "use_null", FSW_E_CONFIG); }
+#if FSW_CFG_RW_NULL
     if (cfg->use_null) {
       if ((s = fsw_rw_null_check(&cfg->rw_null)) != FSW_OK) { return fail(bad_field, "rw_null", s); }
       if (cfg->rw_null.num_rw != n) { return fail(bad_field, "rw_null.num_rw", FSW_E_CONFIG); }
@@ -260,14 +327,18 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
         return fail(bad_field, "rw_null.gs_hat_B", FSW_E_CONFIG); }
       if (!fsw_vn_is_finite(cfg->Omega_des, n)) { return fail(bad_field, "Omega_des", FSW_E_CONFIG); }
     }
+#endif
     if (!is_bool(cfg->use_volt)) { return fail(bad_field, "use_volt", FSW_E_CONFIG); }
+#if FSW_CFG_RW_VOLT
     if (cfg->use_volt) {
       if ((s = fsw_rw_volt_check(&cfg->rw_volt)) != FSW_OK) { return fail(bad_field, "rw_volt", s); }
       if (cfg->rw_volt.num_rw != n) { return fail(bad_field, "rw_volt.num_rw", FSW_E_CONFIG); }
       if (cfg->mrp_fb.num_rw != 0 && !same_n(cfg->rw_volt.J_s, cfg->mrp_fb.J_s, n)) {
         return fail(bad_field, "rw_volt.J_s", FSW_E_CONFIG); }
     }
+#endif
     if (!is_bool(cfg->use_speed_filter)) { return fail(bad_field, "use_speed_filter", FSW_E_CONFIG); }
+#if FSW_CFG_SPEED_FILTER
     if (cfg->use_speed_filter) {
       if ((s = fsw_rw_speed_filter_check(&cfg->speed_filter)) != FSW_OK) {
         return fail(bad_field, "speed_filter", s); }
@@ -282,6 +353,7 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
         if (!(cfg->speed_filter.u_max[i] >= cfg->rw_sat.u_max[i])) {
           return fail(bad_field, "speed_filter.u_max", FSW_E_CONFIG); } }
     }
+#endif
   } else if (cfg->mrp_fb.num_rw != 0) {
     return fail(bad_field, "mrp_fb.num_rw", FSW_E_CONFIG); /* wheels in H but no wheel chain */
   }
@@ -306,6 +378,7 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
       if (b != b_want) { return fail(bad_field, "pulse_rem.base_thrust_state", FSW_E_CONFIG); }
       for (i = 0; i < n; i++) {
         if (F_max[i] != cfg->thr_map.F_max[i]) { return fail(bad_field, "pulse_rem.F_max", FSW_E_CONFIG); } }
+#if FSW_CFG_PULSE_SCHMITT
     } else if (cfg->pulser == FSW_ACS_PULSE_SCHMITT) {
       if ((s = fsw_thr_pulse_schmitt_check(&cfg->pulse_schmitt)) != FSW_OK) {
         return fail(bad_field, "pulse_schmitt", s); }
@@ -317,6 +390,7 @@ FswStatus fsw_acs_check(const FswAcsConfig *cfg, const char **bad_field)
       for (i = 0; i < n; i++) {
         if (F_max[i] != cfg->thr_map.F_max[i]) {
           return fail(bad_field, "pulse_schmitt.F_max", FSW_E_CONFIG); } }
+#endif
     } else {
       return fail(bad_field, "pulser", FSW_E_CONFIG);
     }
@@ -336,16 +410,24 @@ static void clear_state(FswAcsState *st)
 /* Reset the stages whose memory must not survive a mode transition. */
 static void reset_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
 {
+#if FSW_CFG_MTQ
   if (cfg->has_mtq) { fsw_bdot_reset(&st->bdot); } /* a fresh derivative and persistence timer */
+#endif
   fsw_mrp_fb_reset(&st->mrp_fb);
+#if FSW_CFG_LPF
   if (cfg->use_lpf) { fsw_trq_lpf_reset(&st->lpf); }
+#endif
+#if FSW_CFG_RW_VOLT
   if (cfg->has_wheels && cfg->use_volt) { fsw_rw_volt_reset(&st->rw_volt); }
+#endif
   if (cfg->has_thrusters) {
     fsw_thr_map_reset(&st->thr_map);
     if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
       fsw_thr_pulse_rem_reset(&st->pulse_rem);
     } else {
+#if FSW_CFG_PULSE_SCHMITT
       fsw_thr_pulse_schmitt_reset(&st->pulse_schmitt);
+#endif
     }
   }
 }
@@ -375,35 +457,55 @@ FswStatus fsw_acs_init(FswAcsState *st, const FswAcsConfig *cfg, const char **ba
   ACS_INIT(fsw_guid_inertial_init(&st->inertial, &cfg->inertial), "inertial");
   ACS_INIT(fsw_att_track_init(&st->track, &cfg->track), "track");
   ACS_INIT(fsw_mrp_fb_init(&st->mrp_fb, &cfg->mrp_fb), "mrp_fb");
+#if FSW_CFG_LPF
   if (cfg->use_lpf) { ACS_INIT(fsw_trq_lpf_init(&st->lpf, &cfg->lpf), "lpf"); }
+#endif
   if (cfg->has_wheels) {
     ACS_INIT(fsw_rw_map_init(&st->rw_map, &cfg->rw_map), "rw_map");
+#if FSW_CFG_RW_NULL
     if (cfg->use_null) {
       ACS_INIT(fsw_rw_null_init(&st->rw_null, &cfg->rw_null), "rw_null");
       /* desired speeds are configuration: copied into the stage input once */
       fsw_vn_copy(st->work.null_in.Omega_des, cfg->Omega_des, cfg->rw_null.num_rw);
     }
+#endif
     ACS_INIT(fsw_rw_sat_init(&st->rw_sat, &cfg->rw_sat), "rw_sat");
+#if FSW_CFG_RW_VOLT
     if (cfg->use_volt) { ACS_INIT(fsw_rw_volt_init(&st->rw_volt, &cfg->rw_volt), "rw_volt"); }
+#endif
+#if FSW_CFG_SPEED_FILTER
     if (cfg->use_speed_filter) {
       ACS_INIT(fsw_rw_speed_filter_init(&st->speed_filter, &cfg->speed_filter), "speed_filter"); }
+#endif
   }
   if (cfg->has_thrusters) {
     ACS_INIT(fsw_thr_map_init(&st->thr_map, &cfg->thr_map), "thr_map");
     if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
       ACS_INIT(fsw_thr_pulse_rem_init(&st->pulse_rem, &cfg->pulse_rem), "pulse_rem");
     } else {
+#if FSW_CFG_PULSE_SCHMITT
       ACS_INIT(fsw_thr_pulse_schmitt_init(&st->pulse_schmitt, &cfg->pulse_schmitt), "pulse_schmitt");
+#endif
     }
   }
+#if FSW_CFG_MTQ
   if (cfg->has_mtq) {
     ACS_INIT(fsw_mtq_map_init(&st->mtq_map, &cfg->mtq_map), "mtq_map");
     ACS_INIT(fsw_bdot_init(&st->bdot, &cfg->bdot), "bdot");
   }
+#endif
+#if FSW_CFG_ORBIT
   if (cfg->has_orbit) { ACS_INIT(fsw_guid_orbit_init(&st->orbit, &cfg->orbit), "orbit"); }
+#endif
+#if FSW_CFG_THR_MOM
   if (cfg->use_thr_mom) { ACS_INIT(fsw_thr_momentum_init(&st->thr_mom, &cfg->thr_mom), "thr_mom"); }
+#endif
+#if FSW_CFG_MTQ_DESAT
   if (cfg->use_mtq_desat) { ACS_INIT(fsw_mtq_desat_init(&st->mtq_desat, &cfg->mtq_desat), "mtq_desat"); }
+#endif
+#if FSW_CFG_RW_BIAS
   if (cfg->use_bias) { ACS_INIT(fsw_rw_bias_init(&st->rw_bias, &cfg->rw_bias), "rw_bias"); }
+#endif
 #undef ACS_INIT
   fsw_health_clear(&st->health);
   st->ready = 1;
@@ -428,20 +530,34 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg)
   fsw_att_track_reset(&st->track);
   if (cfg->has_wheels) {
     fsw_rw_map_reset(&st->rw_map);
+#if FSW_CFG_RW_NULL
     if (cfg->use_null) { fsw_rw_null_reset(&st->rw_null); }
+#endif
     fsw_rw_sat_reset(&st->rw_sat);
+#if FSW_CFG_SPEED_FILTER
     if (cfg->use_speed_filter) { fsw_rw_speed_filter_reset(&st->speed_filter); }
+#endif
   }
+#if FSW_CFG_MTQ
   if (cfg->has_mtq) {
     fsw_mtq_map_reset(&st->mtq_map);
     fsw_bdot_reset(&st->bdot);
     fsw_v3_zero(st->B_hold);
     st->B_hold_ok = 0u;
   }
+#endif
+#if FSW_CFG_ORBIT
   if (cfg->has_orbit) { fsw_guid_orbit_reset(&st->orbit); }
+#endif
+#if FSW_CFG_THR_MOM
   if (cfg->use_thr_mom) { fsw_thr_momentum_reset(&st->thr_mom); }
+#endif
+#if FSW_CFG_MTQ_DESAT
   if (cfg->use_mtq_desat) { fsw_mtq_desat_reset(&st->mtq_desat); }
+#endif
+#if FSW_CFG_RW_BIAS
   if (cfg->use_bias) { fsw_rw_bias_reset(&st->rw_bias); }
+#endif
   fsw_vn_zero(st->work.t_on_last, FSW_MAX_THR);
   st->work.u_last_valid = 0u;
   reset_dynamic(st, cfg);
@@ -569,11 +685,15 @@ static FswStatus run_guidance(FswAcsState *st, const FswAcsConfig *cfg,
     h->num_lit = (uint8_t)w->css_out.num_lit;
   } else {
     if (st->mode == FSW_ACS_MODE_NADIR) {
+#if FSW_CFG_ORBIT
       fsw_v3_copy(w->orbit_in.r_N, sens->r_N);
       fsw_v3_copy(w->orbit_in.v_N, sens->v_N);
       w->orbit_in.valid = sens->orbit_valid;
       s = fsw_guid_orbit_update(&st->orbit, &cfg->orbit, &w->orbit_in, &w->orbit_out);
       w->track_in.ref = w->orbit_out;
+#else
+      s = FSW_E_UNSUPPORTED; /* not reached: fsw_acs_check rejects the stage */
+#endif
     } else {
       s = fsw_guid_inertial_update(&st->inertial, &st->inertial_cfg, &w->inertial_out);
       w->track_in.ref = w->inertial_out;
@@ -606,6 +726,7 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   acc = combine(acc, s);
   u = w->map_out.u_s;
 
+#if FSW_CFG_RW_NULL
   if (cfg->use_null) {
     fsw_vn_copy(w->null_in.u_s, u, n);
     fsw_vn_copy(w->null_in.Omega, w->Omega, n);
@@ -615,6 +736,7 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
     acc = combine(acc, s);
     u = w->null_out.u_s;
   }
+#endif
 
   fsw_vn_copy(w->sat_in.u_s, u, n);
   u8_copy(w->sat_in.avail, w->rw_avail, n);
@@ -623,6 +745,7 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   acc = combine(acc, s);
   fsw_vn_copy(act->u_s, w->sat_out.u_s, n);
 
+#if FSW_CFG_RW_VOLT
   if (cfg->use_volt) {
     fsw_vn_copy(w->volt_in.u_s, w->sat_out.u_s, n);
     fsw_vn_copy(w->volt_in.Omega, w->Omega, n);
@@ -634,6 +757,9 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
     acc = combine(acc, s);
     fsw_vn_copy(act->V, w->volt_out.V, n);
   }
+#else
+  (void)sens; /* its time stamp is rw_volt's */
+#endif
   act->wheels_active = 1u;
   return acc;
 }
@@ -652,11 +778,15 @@ static FswStatus run_pulser(FswAcsState *st, const FswAcsConfig *cfg, const FswA
     s = fsw_thr_pulse_rem_update(&st->pulse_rem, &cfg->pulse_rem, &w->rem_in, &w->rem_out);
     fsw_vn_copy(act->t_on, w->rem_out.t_on, n);
   } else {
+#if FSW_CFG_PULSE_SCHMITT
     w->sch_in.t_ns = sens->t_ns;
     fsw_vn_copy(w->sch_in.F, F, n);
     s = fsw_thr_pulse_schmitt_update(&st->pulse_schmitt, &cfg->pulse_schmitt, &w->sch_in,
                                      &w->sch_out);
     fsw_vn_copy(act->t_on, w->sch_out.t_on, n);
+#else
+    s = FSW_E_UNSUPPORTED; /* not reached: fsw_acs_check rejects the stage */
+#endif
   }
   h->stage_status[FSW_ACS_STAGE_THR_PULSE] = s;
   /* a flagged thruster stays off whatever its pulser remembers */
@@ -665,12 +795,14 @@ static FswStatus run_pulser(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   return s;
 }
 
+#if FSW_CFG_THR_MOM
 /* 1 if the pulser has timed a period (it has run since its last reset). */
 static int pulser_has_period(const FswAcsState *st, const FswAcsConfig *cfg)
 {
   return (cfg->pulser == FSW_ACS_PULSE_REMAINDER) ? st->pulse_rem.common.clock.has_prev
                                                   : st->pulse_schmitt.common.clock.has_prev;
 }
+#endif
 
 static FswStatus run_thrusters(FswAcsState *st, const FswAcsConfig *cfg,
                                const FswAcsSensorMsg *sens, const fsw_real Lr_B[3],
@@ -692,6 +824,7 @@ static FswStatus run_thrusters(FswAcsState *st, const FswAcsConfig *cfg,
   return acc;
 }
 
+#if FSW_CFG_MTQ
 /* DETUMBLE: B-dot's dipole through the rod map; no attitude control, the
  * wheels hold zero torque. */
 static FswStatus run_detumble(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
@@ -728,7 +861,9 @@ static FswStatus run_detumble(FswAcsState *st, const FswAcsConfig *cfg, const Fs
   if (cfg->has_wheels) { act->wheels_active = 1u; } /* u_s = 0: the wheels keep their momentum */
   return acc;
 }
+#endif
 
+#if FSW_CFG_THR_MOM || FSW_CFG_MTQ_DESAT || FSW_CFG_RW_BIAS
 /* Momentum management ahead of the wheel chain: the desired wheel speeds
  * (rw_bias), then the policy's external torque (thruster dump pulses or the
  * rods' torque), which the wheels absorb: Lw = Lr - L_ext holds the
@@ -741,6 +876,7 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
   const int n = cfg->rw_map.num_rw;
   FswStatus acc = FSW_OK, s;
   fsw_v3_copy(Lw_B, Lr_B);
+#if FSW_CFG_RW_BIAS
   if (cfg->use_bias) {
     fsw_vn_copy(w->bias_in.Omega, w->Omega, n);
     u8_copy(w->bias_in.avail, w->rw_avail, n);
@@ -749,7 +885,9 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
     acc = combine(acc, s);
     fsw_vn_copy(w->null_in.Omega_des, w->bias_out.Omega_des, n);
   }
+#endif
   if (st->policy == FSW_ACS_MOM_THRUSTERS) {
+#if FSW_CFG_THR_MOM
     /* The pulser turns a force into an on-time over the period since its
      * own last call, so it runs in every cycle of this policy (zero force
      * between pulses) and that period is the control period.  Its first
@@ -781,7 +919,11 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
       for (i = 0; i < cfg->thr_map.num_thr; i++) {
         if (act->t_on[i] > FSW_R(0.0)) { act->thrusters_active = 1u; } } /* a carried remainder */
     }
+#else
+    acc = combine(acc, FSW_E_UNSUPPORTED); /* not reached: fsw_acs_check rejects the stage */
+#endif
   } else if (st->policy == FSW_ACS_MOM_MAGNETORQUERS) {
+#if FSW_CFG_MTQ_DESAT
     act->mtq_active = 1u; /* rods off unless a field sample lets them act */
     if (sens->mag_valid) {
       fsw_vn_copy(w->desat_in.Omega, w->Omega, n);
@@ -803,9 +945,13 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
       fsw_v3_copy(h->tau_mtq_B, w->mtq_out.tau_ach_B);
       fsw_v3_sub(Lw_B, Lw_B, w->mtq_out.tau_ach_B);
     }
+#else
+    acc = combine(acc, FSW_E_UNSUPPORTED); /* not reached: fsw_acs_check rejects the stage */
+#endif
   }
   return acc;
 }
+#endif
 
 /* The set fields of a command: flags 0/1, a finite reference, gains finite
  * and > 0 (what fsw_guid_inertial_check and fsw_mrp_fb_check ask of them),
@@ -843,7 +989,10 @@ static void apply_set_command(FswAcsState *st, const FswAcsConfig *cfg, const Fs
       if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
         fsw_thr_pulse_rem_reset(&st->pulse_rem);
       } else {
-        fsw_thr_pulse_schmitt_reset(&st->pulse_schmitt); }
+#if FSW_CFG_PULSE_SCHMITT
+        fsw_thr_pulse_schmitt_reset(&st->pulse_schmitt);
+#endif
+      }
     }
   }
 }
@@ -990,6 +1139,7 @@ static FswStatus run_pointing(FswAcsState *st, const FswAcsConfig *cfg, const Fs
   acc = combine(acc, s);
   Lr = w->fb_out.torque_B;
 
+#if FSW_CFG_LPF
   if (cfg->use_lpf) {
     fsw_v3_copy(w->lpf_in.Lr_B, Lr);
     w->lpf_in.t_ns = sens->t_ns;
@@ -998,12 +1148,17 @@ static FswStatus run_pointing(FswAcsState *st, const FswAcsConfig *cfg, const Fs
     acc = combine(acc, s);
     Lr = w->lpf_out.LrF_B;
   }
+#endif
   fsw_v3_copy(act->Lr_B, Lr);
 
   /* 5. Actuation chain (with wheels: momentum management first). */
   if (st->actuation == FSW_ACS_ACT_WHEELS) {
     fsw_real Lw[3];
+#if FSW_CFG_THR_MOM || FSW_CFG_MTQ_DESAT || FSW_CFG_RW_BIAS
     acc = combine(acc, run_momentum(st, cfg, sens, Lr, Lw, act, h));
+#else
+    fsw_v3_copy(Lw, Lr); /* no momentum management in this build */
+#endif
     acc = combine(acc, run_wheels(st, cfg, sens, Lw, act, h));
   } else {
     acc = combine(acc, run_thrusters(st, cfg, sens, Lr, act, h));
@@ -1102,6 +1257,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   if (cfg->has_wheels) {
     const int n = cfg->rw_map.num_rw;
     if (cfg->use_speed_filter) {
+#if FSW_CFG_SPEED_FILTER
       fsw_vn_copy(w->filt_in.Omega_meas, sens->Omega, n);
       u8_copy(w->filt_in.avail, sens->rw_avail, n);
       w->filt_in.t_ns = sens->t_ns;
@@ -1111,6 +1267,9 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
       acc = combine(acc, s); /* OK: its inputs were validated above */
       fsw_vn_copy(w->Omega, w->filt_out.Omega, n);
       u8_copy(w->rw_avail, w->filt_out.avail, n);
+#else
+      (void)u_known; /* not reached: fsw_acs_check rejects the stage */
+#endif
     } else {
       fsw_vn_copy(w->Omega, sens->Omega, n);
       u8_copy(w->rw_avail, sens->rw_avail, n);
@@ -1123,7 +1282,11 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     /* 3-5 in DETUMBLE: B-dot alone. */
     fsw_v3_zero(guid.sigma_BR);
     fsw_v3_zero(guid.omega_BR_B);
+#if FSW_CFG_MTQ
     acc = combine(acc, run_detumble(st, cfg, sens, act, h));
+#else
+    acc = combine(acc, FSW_E_UNSUPPORTED); /* not reached: fsw_acs_check rejects the stage */
+#endif
   } else {
     acc = combine(acc, run_pointing(st, cfg, sens, act, h, &guid));
   }

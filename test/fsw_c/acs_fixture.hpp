@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "data/fsw_acs_golden.h"
 #include "fsw/fsw_acs.h"
 
 namespace acsfix {
@@ -255,6 +256,23 @@ inline void golden_config(int scenario, FswAcsConfig& c)
   } else {
     thruster_config(c, scenario == 1 ? FSW_ACS_PULSE_REMAINDER : FSW_ACS_PULSE_SCHMITT);
   }
+}
+// The sensor message and the command of one recorded golden cycle
+// (data/fsw_acs_golden.inc; test_fsw_acs_golden, test_fsw_acs_stages).
+inline void golden_inputs(const FswAcsGoldenCycle& g, const FswAcsConfig& c, FswAcsSensorMsg& m, FswAcsCmdMsg& cmd)
+{
+  std::memset(&m, 0, sizeof m);
+  m.t_ns = g.t_ns;
+  m.att_valid = 1;
+  for (int i = 0; i < 3; i++) {
+    m.sigma_BN[i] = R(g.sigma[i]);
+    m.omega_BN_B[i] = R(g.omega[i]);
+  }
+  for (int i = 0; i < 6; i++) m.css[i] = R(g.css[i]);
+  for (int i = 0; i < 4; i++) m.Omega[i] = R(g.Omega[i]);
+  std::memset(&cmd, 0, sizeof cmd);
+  cmd.mode = g.mode;
+  cmd.actuation = c.initial_actuation;
 }
 inline int golden_mode(int scenario, int cycle)
 {

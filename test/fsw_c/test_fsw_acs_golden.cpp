@@ -53,16 +53,8 @@ TEST(FswAcsGolden, HostAndTargetGiveTheSameNumbers)
       sc_prev = g.scenario;
     }
     FswAcsSensorMsg m;
-    std::memset(&m, 0, sizeof m);
-    m.t_ns = g.t_ns;
-    m.att_valid = 1;
-    for (int i = 0; i < 3; i++) {
-      m.sigma_BN[i] = g.sigma[i];
-      m.omega_BN_B[i] = g.omega[i];
-    }
-    for (int i = 0; i < 6; i++) m.css[i] = g.css[i];
-    for (int i = 0; i < 4; i++) m.Omega[i] = g.Omega[i];
-    const FswAcsCmdMsg cmd = {g.mode, g_cfg.initial_actuation};
+    FswAcsCmdMsg cmd;
+    acsfix::golden_inputs(g, g_cfg, m, cmd);
     FswAcsActuatorMsg a;
     FswAcsHealthMsg h;
     const FswStatus s = fsw_acs_cycle(&g_st, &g_cfg, &m, &cmd, &a, &h);

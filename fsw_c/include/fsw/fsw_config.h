@@ -106,6 +106,62 @@ typedef double fsw_real;
 #define FSW_MAX_EFF FSW_MAX_THR
 #endif
 
+/* ---- Stages of fsw_acs ------------------------------------------------------
+ * FSW_CFG_<stage> = 1 (default): fsw_acs can run the stage.  0: fsw_acs is
+ * built without it, so a program that links fsw_acs does not link the
+ * stage's module either (docs/flight-footprint.md).  fsw_acs_check (and so
+ * fsw_acs_init) rejects a configuration whose flag asks for a stage left
+ * out with FSW_E_UNSUPPORTED and the flag's name in *bad_field; init then
+ * leaves the state not ready, so every cycle gives the safe output.  The
+ * modules themselves, the structure layouts and the configuration image
+ * are the same in every selection.
+ *   FSW_CFG_MTQ           has_mtq: mtq_map, bdot (DETUMBLE), mtq_desat
+ *   FSW_CFG_MTQ_DESAT     use_mtq_desat: the MAGNETORQUERS policy
+ *   FSW_CFG_ORBIT         has_orbit: guid_orbit (NADIR)
+ *   FSW_CFG_THR_MOM       use_thr_mom: the THRUSTERS policy (thr_momentum)
+ *   FSW_CFG_RW_BIAS       use_bias: rw_bias
+ *   FSW_CFG_RW_NULL       use_null: rw_null
+ *   FSW_CFG_RW_VOLT       use_volt: rw_volt
+ *   FSW_CFG_SPEED_FILTER  use_speed_filter: rw_speed_filter
+ *   FSW_CFG_LPF           use_lpf: trq_lpf
+ *   FSW_CFG_PULSE_SCHMITT pulser = FSW_ACS_PULSE_SCHMITT: thr_pulse_schmitt */
+#ifndef FSW_CFG_MTQ
+#define FSW_CFG_MTQ 1
+#endif
+#ifndef FSW_CFG_MTQ_DESAT
+#define FSW_CFG_MTQ_DESAT FSW_CFG_MTQ
+#endif
+#ifndef FSW_CFG_ORBIT
+#define FSW_CFG_ORBIT 1
+#endif
+#ifndef FSW_CFG_THR_MOM
+#define FSW_CFG_THR_MOM 1
+#endif
+#ifndef FSW_CFG_RW_BIAS
+#define FSW_CFG_RW_BIAS 1
+#endif
+#ifndef FSW_CFG_RW_NULL
+#define FSW_CFG_RW_NULL 1
+#endif
+#ifndef FSW_CFG_RW_VOLT
+#define FSW_CFG_RW_VOLT 1
+#endif
+#ifndef FSW_CFG_SPEED_FILTER
+#define FSW_CFG_SPEED_FILTER 1
+#endif
+#ifndef FSW_CFG_LPF
+#define FSW_CFG_LPF 1
+#endif
+#ifndef FSW_CFG_PULSE_SCHMITT
+#define FSW_CFG_PULSE_SCHMITT 1
+#endif
+#if FSW_CFG_MTQ_DESAT && !FSW_CFG_MTQ
+#error "FSW_CFG_MTQ_DESAT needs FSW_CFG_MTQ"
+#endif
+#if FSW_CFG_RW_BIAS && !FSW_CFG_RW_NULL
+#error "FSW_CFG_RW_BIAS needs FSW_CFG_RW_NULL"
+#endif
+
 /* Availability flags (docs/fsw-conventions.md, "Frames, units and signs"): zero-initialised = available. */
 #define FSW_AVAILABLE 0
 #define FSW_UNAVAILABLE 1
