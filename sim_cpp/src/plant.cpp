@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -194,6 +195,23 @@ void Plant::fill_sensor_truth(SensorTruth& out, const Eigen::Vector3d& r_SunN_N,
   for (int i = 0; i < num_rw(); ++i) out.Omega[static_cast<size_t>(i)] = Omega(i);
 }
 
+const RotorSinCos* Plant::rotor_sin_cos_now() const
+{
+  if (!model_.needs_rotor_angles()) return nullptr;
+  bool same = rotor_now_set_;
+  for (int i = 0; i < num_rw(); ++i) {  // the angles' bits (-0 and +0 differ, as their sines do)
+    uint64_t b = 0;
+    std::memcpy(&b, &x_(layout().theta(i)), sizeof b);
+    same = same && b == rotor_now_theta_[static_cast<size_t>(i)];
+    rotor_now_theta_[static_cast<size_t>(i)] = b;
+  }
+  if (!same) {
+    model_.rotor_sin_cos(x_, rotor_now_);
+    rotor_now_set_ = true;
+  }
+  return &rotor_now_;
+}
+
 SensorTruth Plant::sensor_truth(const Eigen::Vector3d& r_SunN_N, double f_illum) const
 {
   SensorTruth t;
@@ -217,9 +235,10 @@ StateVector Plant::derivatives(double t, const StateVector& x, Accelerations* ac
   ExternalLoads loads;
   loads.F_ext_B = sums.F_B;
   loads.L_ext_B = sums.L_B;
+  const RotorSinCos* sc = &x == &x_ ? rotor_sin_cos_now() : nullptr;  // a step's first stage
   StateVector xd = num_tanks() == 0
-                       ? model_.derivatives(t, x, held_.wheels, loads, model_.params().hub, acc)
-                       : model_.derivatives(t, x, held_.wheels, loads, hub_with_propellant(x), acc);
+                       ? model_.derivatives(t, x, held_.wheels, loads, model_.params().hub, acc, sc)
+                       : model_.derivatives(t, x, held_.wheels, loads, hub_with_propellant(x), acc, sc);
   for (int k = 0; k < num_tanks(); ++k) xd(layout().m_p(k)) = sums.m_p_dot[static_cast<size_t>(k)];
   return xd;
 }

@@ -302,7 +302,12 @@ MassProps SpacecraftModel::mass_props(const StateVector& x, const HubParams& hub
   return mass_props_from_stages(p_, hub, layout_, st);
 }
 
-MassCentre SpacecraftModel::mass_centre(const StateVector& x, const HubParams& hub) const
+void SpacecraftModel::rotor_sin_cos(const StateVector& x, RotorSinCos& out) const
+{
+  sim::rotor_sin_cos(p_, layout_, x, out);
+}
+
+MassCentre SpacecraftModel::mass_centre(const StateVector& x, const HubParams& hub, const RotorSinCos* sc) const
 {
   // as in derivatives(): sum m_w r_Wc = sum m_w r_W + m_w d w2(theta)
   MassCentre mc;
@@ -312,7 +317,7 @@ MassCentre SpacecraftModel::mass_centre(const StateVector& x, const HubParams& h
     const auto ui = static_cast<size_t>(i);
     if (p_.wheels[ui].model != WheelModel::FullyCoupled) continue;
     const ReactionWheelDerived& dv = derived_[ui];
-    const SinCos th = sin_cos(x(layout_.theta(i)));
+    const SinCos th = sc ? (*sc)[ui] : sin_cos(x(layout_.theta(i)));
     first_moment += rc_[ui].md * (th.c * dv.w2_0_hat_B + th.s * dv.w3_0_hat_B);
   }
   mc.c_B = first_moment / mc.m_sc;
@@ -329,7 +334,7 @@ double SpacecraftModel::friction_torque(int i, const StateVector& x, bool stribe
 
 StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, const WheelInputs& in,
                                          const ExternalLoads& loads, const HubParams& hub,
-                                         Accelerations* acc) const
+                                         Accelerations* acc, const RotorSinCos* sc) const
 {
   // docs/dynamics.md "The derivative as computed": the equations of §3 and
   // §4.9 with the rotor-angle-dependent inertia terms formed as vectors, the
@@ -348,8 +353,9 @@ StateVector SpacecraftModel::derivatives(double /*t*/, const StateVector& x, con
     double rW_w3;             // r_W . w3 (FC)
   };
   std::array<Rotor, kMaxWheels> ro;
-  std::array<SinCos, kMaxWheels> rotor_sc;
-  if (any_rotor_angle_) rotor_sin_cos(p_, layout_, x, rotor_sc);
+  RotorSinCos rotor_own;
+  if (any_rotor_angle_ && !sc) sim::rotor_sin_cos(p_, layout_, x, rotor_own);
+  const RotorSinCos& rotor_sc = sc ? *sc : rotor_own;
   const double m = hub.m_h + m_fc_;
   Vector3d first_moment = hub.m_h * hub.r_BcB_B + first_moment_fc_;
   Vector3d first_moment_prime = Vector3d::Zero();

@@ -428,4 +428,38 @@ TEST(PlantAccessors, SensorTruthAndHeldInputsComeFromThePlant)
              sim::dcm_BN_from_sigma(plant.sigma_BN()).transpose() * plant.mass_props().c_B).norm(), 1e-6);
 }
 
+// The cos and sin of the rotor angles are formed once per state (the
+// truth's mass centre and a step's first derivative share them): the mass
+// centre and the derivative at the plant's state are those the model forms
+// from a copy of it, bit for bit, after steps and after set_state.
+TEST(PlantAccessors, SharedRotorAnglesGiveTheModelsOwnBits)
+{
+  sim::PlantParams p;
+  p.sc.hub = simtest::reference_hub();
+  p.sc.wheels = simtest::pyramid_wheels(WheelModel::FullyCoupled);
+  sim::Plant plant(p, simtest::leo_ic());
+  plant.latch_wheel_commands(sim::WheelArray{0.01, -0.02, 0.03, 0.05});
+  const auto expect_model_bits = [&plant](const char* when) {
+    SCOPED_TRACE(when);
+    const sim::StateVector x = plant.state();  // a copy: the model forms its own cos and sin
+    const sim::MassCentre own = plant.model().mass_centre(x, plant.hub_with_propellant(x));
+    const sim::MassCentre shared = plant.mass_centre();
+    EXPECT_EQ(shared.m_sc, own.m_sc);
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(shared.c_B(i), own.c_B(i));
+    const sim::StateVector d_own = plant.derivatives(0.0, x);
+    const sim::StateVector d_shared = plant.derivatives(0.0, plant.state());
+    ASSERT_EQ(d_own.size(), d_shared.size());
+    for (Eigen::Index i = 0; i < d_own.size(); ++i) EXPECT_EQ(d_shared(i), d_own(i)) << "entry " << i;
+  };
+  expect_model_bits("at start");
+  for (int k = 0; k < 5; ++k) {
+    ASSERT_EQ(plant.step(10 * kMs), sim::StepStatus::Ok);
+    expect_model_bits("after a step");
+  }
+  sim::StateVector x = plant.state();
+  for (int i = 0; i < plant.num_rw(); ++i) x(plant.layout().theta(i)) += 0.5 * (i + 1);
+  plant.set_state(x);  // the angles the shared values were of change
+  expect_model_bits("after set_state");
+}
+
 }  // namespace

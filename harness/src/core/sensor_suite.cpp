@@ -28,8 +28,7 @@ void SensorSuite::state_io(sim::StateIO& io)
   io.value("sensors.st_bias", st_bias_);
   io.value("sensors.css_bias", css_bias_);
   io.value("sensors.any_fault", any_fault_);
-  io.value("sensors.truth", truth_);
-  truth_tick_ = 0;
+  truth_.state_io(io);
   for (sim::CoarseSunSensor& c : css_) c.state_io(io);
   if (gyro_) gyro_->state_io(io);
   if (st_) st_->state_io(io);
@@ -46,7 +45,7 @@ SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Pla
     : plant_(plant),
       n_rw_(static_cast<int>(sc.wheels.size())),
       num_css_(fsw.cfg.css.num_css),
-      sun_(sc),
+      truth_(plant, sc),
       ideal_css_(fsw.ideal_css),
       ideal_normals_(fsw.ideal_normals),
       div_gyro_(sc.sensors.gyro.divisor),
@@ -175,8 +174,11 @@ void SensorSuite::set_magnetometer_noise_scale(double k)
   if (mag_) mag_->set_noise_scale(k);
 }
 
-const sim::SensorTruth& SensorSuite::truth_now()
+const sim::SensorTruth& TickSensorTruth::at(uint64_t k)
 {
+  if (formed_ && tick_ == k) return truth_;
+  formed_ = true;
+  tick_ = k;
   if (!sun_.dated()) {
     plant_.fill_sensor_truth(truth_, sun_.position_N(0));
     return truth_;
@@ -190,8 +192,7 @@ bool SensorSuite::sample(uint64_t k, SensorSampleMsg& out)
 {
   const bool g = gyro_ && k % div_gyro_ == 0, a = st_ && k % div_st_ == 0, w = tach_ && k % div_tach_ == 0;
   if (!(g || a || w)) return false;
-  const sim::SensorTruth& st = truth_now();
-  truth_tick_ = k + 1;
+  const sim::SensorTruth& st = truth_.at(k);
   if (g && gyro_->update(st)) {
     const sim::GyroOutput& o = gyro_->output();
     put3(out.omega_PN_P, o.omega_PN_P);
@@ -215,8 +216,7 @@ bool SensorSuite::sample(uint64_t k, SensorSampleMsg& out)
 
 void SensorSuite::read_css(uint64_t k, CssMsg& out)
 {
-  const sim::SensorTruth& st = truth_tick_ == k + 1 ? truth_ : truth_now();
-  truth_tick_ = 0;
+  const sim::SensorTruth& st = truth_.at(k);
   const sim::SunGeometry sun = sim::sun_geometry(st);  // once for the set
   for (size_t i = 0; i < css_.size(); ++i) {
     css_[i].update(st, sun);
@@ -241,9 +241,10 @@ void SensorSuite::fsw_input(uint64_t t_ns, const TruthMsg& t, const SensorSample
   else copy3(msg.omega_BN_B, t.omega_BN_B);
   if (ideal_css_) {
     // cube-face cosines, times the visible fraction of the Sun (1 without an epoch)
-    const Eigen::Vector3d r_sun_N = sun_.position_N(static_cast<int64_t>(t_ns));
+    const SunSource& sun = truth_.sun();
+    const Eigen::Vector3d r_sun_N = sun.position_N(static_cast<int64_t>(t_ns));
     const Eigen::Vector3d d_B = sim::dcm_BN_from_sigma(ev(t.sigma_BN)) * (r_sun_N - ev(t.r_BN_N)).normalized();
-    const double f = sun_.illumination(ev(t.r_BN_N), r_sun_N);
+    const double f = sun.illumination(ev(t.r_BN_N), r_sun_N);
     for (int i = 0; i < kIdealCss; ++i)
       msg.css[i] = static_cast<fsw_real>(f * std::max(0.0, ideal_normals_[static_cast<size_t>(i)].dot(d_B)));
   } else {

@@ -19,6 +19,32 @@
 
 namespace harness {
 
+// The plant's sensor truth (sim::Plant::fill_sensor_truth) with the run's
+// Sun, formed at most once a tick: the sampled models and the coarse sun
+// sensors due at one tick read the same plant state (no task between them
+// moves it).
+class TickSensorTruth {
+ public:
+  TickSensorTruth(const sim::Plant& plant, const Scenario& sc) : plant_(plant), sun_(sc) {}
+  // The truth at tick k: formed at the first call of the tick.
+  const sim::SensorTruth& at(uint64_t k);
+  const SunSource& sun() const { return sun_; }  // fixed, or the almanac Sun of the epoch with the Earth's shadow
+  // A checkpoint (sim/state_io.h): the truth last formed, kept in the
+  // file; a restored run forms it again at its next call.
+  void state_io(sim::StateIO& io)
+  {
+    io.value("sensors.truth", truth_);
+    formed_ = false;
+  }
+
+ private:
+  const sim::Plant& plant_;
+  SunSource sun_;
+  sim::SensorTruth truth_;
+  uint64_t tick_ = 0;    // the tick truth_ is of, when formed_
+  bool formed_ = false;
+};
+
 class SensorSuite {
  public:
   // Each model on its own stream Rng(seed, name); one noise switch.  Throws
@@ -121,17 +147,11 @@ class SensorSuite {
   std::array<double, FSW_MAX_CSS> css_bias_{};
   bool any_fault_ = false;  // a fault was ever set (the nominal path stays as it was)
 
-  const sim::SensorTruth& truth_now();
-  // k + 1 of the tick whose truth_ sample() formed, 0 when none: read_css
-  // at that tick reads the same plant state (no task between them moves
-  // it) and uses truth_ as it is, once; a checkpoint's state_io clears it.
-  uint64_t truth_tick_ = 0;
   void apply_faults(uint64_t t_ns, FswAcsSensorMsg& msg) const;
   const sim::Plant& plant_;
-  sim::SensorTruth truth_;
   int n_rw_ = 0;
   int num_css_ = 0;
-  SunSource sun_;  // fixed, or the almanac Sun of the epoch with the Earth's shadow
+  TickSensorTruth truth_;  // what the models sample, and the run's Sun
   bool ideal_css_ = false;
   std::array<Eigen::Vector3d, kIdealCss> ideal_normals_{};
   uint64_t div_gyro_ = 1, div_st_ = 1, div_tach_ = 1;

@@ -26,7 +26,9 @@ void TruthTask::operator()(uint64_t k) const
   const sim::Plant& p = *plant;
   const sim::StateVector& x = p.state();
   const sim::MassCentre mp = p.mass_centre();
-  TruthMsg t{};
+  // in place: every field is set below, or stays 0 (entries beyond the
+  // run's wheels and thrusters, never written)
+  TruthMsg& t = out.edit();
   for (int i = 0; i < 3; ++i) {
     t.r_BN_N[i] = x(sim::StateLayout::r_BN_N + i);
     t.v_BN_N[i] = x(sim::StateLayout::v_BN_N + i);
@@ -43,6 +45,7 @@ void TruthTask::operator()(uint64_t k) const
     t.v_CN_N[i] = vC(i);
   }
   t.m_sc = mp.m_sc;
+  t.m_prop = 0.0;
   for (int k2 = 0; k2 < p.num_tanks(); ++k2) t.m_prop += p.m_prop(k2);
   for (int i = 0; i < p.num_rw(); ++i) {
     t.Omega[i] = p.Omega(i);
@@ -51,29 +54,34 @@ void TruthTask::operator()(uint64_t k) const
   for (int j = 0; j < p.num_thr(); ++j) t.F_thr[j] = p.thruster_effect(j).F_B.norm();
   static_assert(kMaxEnvSources == kNumEnvSources, "one torque per environment source");
   const double t_s = static_cast<double>(k * tick_ns) * 1e-9;
-  for (int s = 0; s < kNumEnvSources; ++s)
+  for (int s = 0; s < kNumEnvSources; ++s) {
+    Eigen::Vector3d L_C = Eigen::Vector3d::Zero();
     if (const sim::SampledEnvironmentEffector* e = env[static_cast<size_t>(s)]) {
       const sim::BodyLoad l = e->load(t_s, x);
-      const Eigen::Vector3d L_C = l.L_B - mp.c_B.cross(l.F_B);
-      for (int i = 0; i < 3; ++i) t.L_env_C_B[s][i] = L_C(i);
+      L_C = l.L_B - mp.c_B.cross(l.F_B);
     }
+    put3(t.L_env_C_B[s], L_C);
+  }
   environment_truth(t, k * tick_ns, t_s);
-  out.write(t, k * tick_ns);
+  out.publish(k * tick_ns);
 }
 
 void TruthTask::environment_truth(TruthMsg& t, uint64_t t_ns, double t_s) const
 {
   const sim::Plant& p = *plant;
   const Eigen::Vector3d r_B = ev(t.r_BN_N);
-  if (sun && sun->dated()) t.illumination = sun->illumination(r_B, sun->position_N(static_cast<int64_t>(t_ns)));
+  t.illumination =
+      sun && sun->dated() ? sun->illumination(r_B, sun->position_N(static_cast<int64_t>(t_ns))) : 0.0;
   const auto* mag = static_cast<const sim::MagneticEffector*>(env[static_cast<size_t>(EnvSource::Magnetic)]);
-  if (mag) put3(t.field_B, mag->field_B(t_s, p.state()));  // index Magnetic holds a MagneticEffector
+  // index Magnetic holds a MagneticEffector
+  put3(t.field_B, mag ? mag->field_B(t_s, p.state()) : Eigen::Vector3d(Eigen::Vector3d::Zero()));
   bool any = false;
-  for (int s = 0; s < kNumEnvSources; ++s)
-    if (const sim::SampledEnvironmentEffector* e = env[static_cast<size_t>(s)]) {
-      any = true;
-      put3(t.H_env_N[s], e->momentum_N());
-    }
+  for (int s = 0; s < kNumEnvSources; ++s) {
+    const sim::SampledEnvironmentEffector* e = env[static_cast<size_t>(s)];
+    any = any || e;
+    put3(t.H_env_N[s], e ? e->momentum_N() : Eigen::Vector3d(Eigen::Vector3d::Zero()));
+  }
+  put3(t.H_wheels_N, Eigen::Vector3d::Zero());
   if (!any) return;
   Eigen::Vector3d h_B = Eigen::Vector3d::Zero();
   for (int i = 0; i < p.num_rw(); ++i) h_B += p.wheel_params(i).J_s * p.Omega(i) * p.model().wheel_derived(i).gs_hat_B;
@@ -122,25 +130,24 @@ void BurnMonitor::operator()(uint64_t k)
 
 void SampleSensorsTask::operator()(uint64_t k) const
 {
-  SensorSampleMsg s = out.channel().value();  // held outputs of the models not due
-  if (sensors->sample(k, s)) out.write(s, k * tick_ns);
+  // in place: the held outputs of the models not due stay
+  if (sensors->sample(k, out.edit())) out.publish(k * tick_ns);
 }
 
 void CssTask::operator()(uint64_t k) const
 {
-  CssMsg m{};
-  sensors->read_css(k, m);
-  out.write(m, k * tick_ns);
+  sensors->read_css(k, out.edit());  // in place: the readings of the run's sensors (the rest stay 0)
+  out.publish(k * tick_ns);
 }
 
 void FswInputTask::operator()(uint64_t k) const
 {
   static const SensorSampleMsg kNoSamples{};
   static const CssMsg kNoCss{};
-  FswAcsSensorMsg msg;
+  FswAcsSensorMsg& msg = out.edit();  // in place: fsw_input sets the whole message
   sensors->fsw_input(k * tick_ns, truth.read(), samples.valid() ? samples.read() : kNoSamples,
                      css.valid() ? css.read() : kNoCss, mag.valid() ? &mag.read() : nullptr, msg);
-  out.write(msg, msg.t_ns);
+  out.publish(msg.t_ns);
 }
 
 void FswTask::operator()(uint64_t k)
@@ -150,11 +157,12 @@ void FswTask::operator()(uint64_t k)
     cmd_seen = cmd.write_count();
     fsw->command(cmd.read());
   }
-  FswAcsActuatorMsg a = act.channel().value();
-  FswAcsHealthMsg h = health.channel().value();
-  fsw->cycle(in.read(), a, h);
-  act.write(a, t_ns);
-  health.write(h, t_ns);
+  // in place: the endpoint writes both messages when it delivers, and
+  // throws (FswEndpointError) before writing either when it cannot
+  FswAcsHealthMsg& h = health.edit();
+  fsw->cycle(in.read(), act.edit(), h);
+  act.publish(t_ns);
+  health.publish(t_ns);
   if (has_sun) {
     // the css_sun estimate the cycle used
     SunHeadingMsg s{};
@@ -168,13 +176,13 @@ void FswTask::operator()(uint64_t k)
 void ActuatorTask::operator()(uint64_t k) const
 {
   const FswAcsActuatorMsg& a = in.read();
-  PlantCmdMsg c{};
-  if (a.wheels_active)
-    for (int i = 0; i < n_rw; ++i) c.u_s[i] = static_cast<double>(a.u_s[i]);
+  PlantCmdMsg& c = out.edit();  // in place: the run's wheels and thrusters set (entries beyond them stay 0)
+  for (int i = 0; i < n_rw; ++i) c.u_s[i] = a.wheels_active ? static_cast<double>(a.u_s[i]) : 0.0;
+  for (int j = 0; j < n_thr; ++j) c.T_on[j] = 0.0;
   if (a.thrusters_active)
     for (int i = 0; i < n_acs; ++i) c.T_on[acs_to_plant[static_cast<size_t>(i)]] = static_cast<double>(a.t_on[i]);
   if (burn.engine >= 0) c.T_on[burn.engine] = burn.on_time(static_cast<int64_t>(k * tick_ns));
-  out.write(c, k * tick_ns);
+  out.publish(k * tick_ns);
   if (n_mtq > 0) {  // the rods: the FSW's dipoles, or off
     MtqCmdMsg m{};
     if (a.mtq_active)

@@ -153,7 +153,7 @@ class Plant {
   HubParams hub_with_propellant(const StateVector& x) const;  // §5.6 (params hub without tanks)
   MassProps mass_props() const { return model_.mass_props(x_, hub_with_propellant(x_)); }
   // m_sc and c_B of mass_props() without the inertias (the per-tick truth).
-  MassCentre mass_centre() const { return model_.mass_centre(x_, hub_with_propellant(x_)); }
+  MassCentre mass_centre() const { return model_.mass_centre(x_, hub_with_propellant(x_), rotor_sin_cos_now()); }
   EnergyMomentum energy_momentum() const { return model_.energy_momentum(x_, hub_with_propellant(x_)); }
   const HeldInputs& held_inputs() const { return held_; }
   uint64_t mrp_switch_count() const { return switches_; }
@@ -171,6 +171,10 @@ class Plant {
   void check_wheel_index(int i) const;
   bool integrate_segment(int64_t t0_ns, int64_t t1_ns);
   void prepare_effectors_now();
+  // cos and sin of the rotor angles of x_ (null when no wheel jitters),
+  // formed once for the angles they are of: the per-tick truth's mass
+  // centre and the first derivative of the next step read the same ones.
+  const RotorSinCos* rotor_sin_cos_now() const;
   template <class F>
   void for_each_effector(F&& f)
   {
@@ -193,6 +197,11 @@ class Plant {
   uint64_t steps_ = 0;
   uint64_t split_sub_steps_ = 0;
   StepStatus status_ = StepStatus::Ok;
+  // rotor_sin_cos_now()'s values and the bits of the angles they are of
+  // (a cache: not part of the plant's state)
+  mutable RotorSinCos rotor_now_{};
+  mutable std::array<uint64_t, kMaxWheels> rotor_now_theta_{};
+  mutable bool rotor_now_set_ = false;
 };
 
 }  // namespace sim

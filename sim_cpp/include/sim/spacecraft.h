@@ -33,6 +33,7 @@
 
 #include "sim/capacities.h"
 #include "sim/reaction_wheel.h"
+#include "sim/sin_cos.h"
 
 namespace sim {
 
@@ -124,6 +125,10 @@ struct MassCentre {  // the first two members of MassProps
   Eigen::Vector3d c_B = Eigen::Vector3d::Zero();  // [m] r_CB_B
 };
 
+// cos and sin of the rotor angles theta_i of one state: the entries of the
+// jittering wheels (SimpleJitter, FullyCoupled); a Balanced wheel's is unset.
+using RotorSinCos = std::array<SinCos, kMaxWheels>;
+
 struct EnergyMomentum {  // §8
   Eigen::Vector3d r_CN_N, v_CN_N;  // [m], [m/s]
   Eigen::Vector3d H_C_B, H_C_N;    // [kg*m^2/s] rotational angular momentum about C
@@ -154,14 +159,19 @@ class SpacecraftModel {
 
   MassProps mass_props(const StateVector& x, const HubParams& hub) const;
   // m_sc and c_B alone, from the per-configuration constants (cheap).
-  MassCentre mass_centre(const StateVector& x, const HubParams& hub) const;
+  // `sc`: rotor_sin_cos(x, ...) when the caller has it, else null.
+  MassCentre mass_centre(const StateVector& x, const HubParams& hub, const RotorSinCos* sc = nullptr) const;
+  // A wheel jitters: the derivative and the mass centre need cos/sin theta.
+  bool needs_rotor_angles() const { return any_rotor_angle_; }
+  void rotor_sin_cos(const StateVector& x, RotorSinCos& out) const;
 
   // Pure: x_dot = f(x, wheel inputs, loads, hub).  Autonomous (t is accepted
   // for rk4_step only).  The tank entries of x_dot are 0; the Plant adds the
   // mass flows.
+  // `sc`: rotor_sin_cos(x, ...) when the caller has it, else null.
   StateVector derivatives(double t, const StateVector& x, const WheelInputs& in,
                           const ExternalLoads& loads, const HubParams& hub,
-                          Accelerations* acc = nullptr) const;
+                          Accelerations* acc = nullptr, const RotorSinCos* sc = nullptr) const;
 
   EnergyMomentum energy_momentum(const StateVector& x, const HubParams& hub) const;
 

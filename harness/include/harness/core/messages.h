@@ -5,7 +5,9 @@
 // setup each obtains a Writer<T> or Reader<T> from the DataFlow registry,
 // which records who writes and who reads which message (one writer per
 // message).  DataFlow::to_dot() writes that map as Graphviz DOT.
-// No allocation happens after setup: write() and read() copy plain structs.
+// No allocation happens after setup: write() and read() copy plain structs;
+// a writer that fills a large message field by field does it in place
+// (edit(), then publish()), without a copy.
 #ifndef HARNESS_MESSAGES_H
 #define HARNESS_MESSAGES_H
 
@@ -50,6 +52,14 @@ class Channel : public ChannelBase {
   void write(const T& v, uint64_t t_ns)
   {
     value_ = v;
+    publish(t_ns);
+  }
+  // In place: the latest value, to be changed by its writer, then published
+  // as a write at t_ns (tasks run one at a time, so no reader sees it
+  // half-filled).  Fields the writer leaves alone keep their latest value.
+  T& edit() { return value_; }
+  void publish(uint64_t t_ns)
+  {
     t_ns_ = t_ns;
     ++writes_;
   }
@@ -70,6 +80,8 @@ class Writer {
   explicit Writer(Channel<T>* c) : c_(c) {}
   bool valid() const { return c_ != nullptr; }
   void write(const T& v, uint64_t t_ns) const { c_->write(v, t_ns); }
+  T& edit() const { return c_->edit(); }                       // Channel::edit
+  void publish(uint64_t t_ns) const { c_->publish(t_ns); }     // Channel::publish
   const Channel<T>& channel() const { return *c_; }
 
  private:
