@@ -23,7 +23,10 @@ The check fails on an alarm that is not recorded, on a record that no
 alarm matches (stale), on a driver whose entries are not all reached, on a
 Frama-C failure and on a timeout.  Then each contract of test/proofs/wp/*.h
 is proven with WP (real model, CVC4) on the function its 'wp-target:' line
-names; a goal not proven fails.  Prints a summary table.
+names, with the WP options of its 'wp-options:' line if it has one; a goal
+not proven fails.  Prints a summary table.  --self-test runs the planted
+faults of test/proofs/eva_selftest/ and the planted wrong contracts of
+test/proofs/wp_selftest/, and passes only if each one is caught.
 Exit 0 = pass, 1 = failure, 2 = usage, 77 = Frama-C not installed (skipped).
 """
 import argparse
@@ -129,12 +132,12 @@ def cpu_so_far(pid):
         return None
 
 
-def run_timed(cmd, log, cwd, timeout):
+def run_timed(cmd, log, cwd, timeout, env=None):
     """Run cmd with its output to log; (exit code or None on timeout, CPU seconds it used).
     The CPU time is the analysis's own cost, independent of what else shares the machine:
     the bound is timeout seconds of CPU, and WALL_FACTOR times that of wall time (where the
     CPU time cannot be read, the wall time alone)."""
-    proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT, cwd=cwd)
+    proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT, cwd=cwd, env=env)
     t_end = time.monotonic() + WALL_FACTOR * timeout
     while True:
         pid, status, ru = os.wait4(proc.pid, os.WNOHANG)
@@ -197,9 +200,8 @@ def run_one(args, root, work, name, analysis):
     return res
 
 
-def wp_targets(root):
-    """test/proofs/wp/*.h -> [(header, source, function)] from their 'wp-target:' lines."""
-    wp_dir = os.path.join(root, "test", "proofs", "wp")
+def wp_targets(wp_dir):
+    """<wp_dir>/*.h -> [(header path, source, function)] from their 'wp-target:' lines."""
     out = []
     for h in sorted(os.listdir(wp_dir)) if os.path.isdir(wp_dir) else []:
         if not h.endswith(".h"):
@@ -208,34 +210,35 @@ def wp_targets(root):
             m = re.search(r"wp-target:\s*(\S+)\s+(\w+)", f.read())
         if not m:
             raise SystemExit(f"{wp_dir}/{h}: no 'wp-target: file.c function' line")
-        out.append((h, m.group(1), m.group(2)))
+        out.append((os.path.join(wp_dir, h), m.group(1), m.group(2)))
     return out
 
 
 def run_wp(args, root, work, target, env):
-    """Prove one contract with WP (real model, CVC4): every goal must be proven."""
-    h, src, fct = target
+    """Prove one contract with WP (real model, CVC4, and the header's 'wp-options:'): every goal
+    must be proven."""
+    path, src, fct = target
+    h = os.path.basename(path)
     inc = "-I{0} -I{1} -include {2}".format(os.path.join(root, "fsw_c", "include"),
-                                          os.path.join(root, "fsw_c", "src"),
-                                          os.path.join(root, "test", "proofs", "wp", h))
+                                          os.path.join(root, "fsw_c", "src"), path)
     cmd = [args.frama_c, "-machdep", "x86_64", "-cpp-extra-args=" + inc,
            "-kernel-warn-key", "CERT:EXP:46=inactive", "-kernel-warn-key", "annot:missing-spec=inactive",
            os.path.join(root, "fsw_c", "src", src), "-wp", "-wp-fct", fct, "-wp-model", "real",
-           "-wp-prover", args.prover, "-wp-timeout", "20"]
+           "-wp-prover", args.prover, "-wp-timeout", "20"] + (driver_line(path, "wp-options") or [])
+    log_path = os.path.join(work, f"wp.{h}.log")
     t0 = time.monotonic()
-    try:
-        out = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                             timeout=args.timeout, cwd=root, env=env).stdout
-    except subprocess.TimeoutExpired:
-        return f"{h}: timeout", 0, 0, time.monotonic() - t0
-    with open(os.path.join(work, f"wp.{h}.log"), "w", encoding="utf-8") as f:
-        f.write(out)
-    m = re.search(r"Proved goals:\s*(\d+)\s*/\s*(\d+)", out)
+    with open(log_path, "w", encoding="utf-8") as log:
+        rc, cpu = run_timed(cmd, log, root, args.timeout, env)
+    dt = time.monotonic() - t0
+    if rc is None:
+        return f"{h}: timeout (log: {log_path})", 0, 0, dt, cpu
+    with open(log_path, encoding="utf-8") as f:
+        m = re.search(r"Proved goals:\s*(\d+)\s*/\s*(\d+)", f.read())
     if not m:
-        return f"{h}: no WP result (log: {work}/wp.{h}.log)", 0, 0, time.monotonic() - t0
+        return f"{h}: no WP result (log: {log_path})", 0, 0, dt, cpu
     proved, total = int(m.group(1)), int(m.group(2))
-    err = None if proved == total and total > 0 else f"{h}: {proved}/{total} goals proven (log: {work}/wp.{h}.log)"
-    return err, proved, total, time.monotonic() - t0
+    err = None if proved == total and total > 0 else f"{h}: {proved}/{total} goals proven (log: {log_path})"
+    return err, proved, total, dt, cpu
 
 
 def main():
@@ -243,8 +246,6 @@ def main():
     root = os.path.abspath(args.root)
     eva_dir = os.path.join(root, "test", "proofs", "eva_selftest" if args.self_test else "eva")
     args.eva_dir = eva_dir
-    if args.self_test:
-        args.no_wp = True
     import shutil
     if shutil.which(args.frama_c) is None:
         print(f"eva_check: {args.frama_c} not found (Debian: apt-get install frama-c-base): skipped")
@@ -305,9 +306,10 @@ def main():
         env = dict(os.environ, WHY3CONFIG=os.path.join(work, "why3.conf"))
         subprocess.run(["why3", "config", "detect"], env=env, stdout=subprocess.DEVNULL,
                        stderr=subprocess.DEVNULL, check=False)
-        for target in wp_targets(root):
-            err, proved, total, dt = run_wp(args, root, work, target, env)
-            print(f"{'wp ' + target[1] + ':' + target[2]:34} goals {proved}/{total}{'':>8} {dt:>6.1f}s")
+        wp_dir = os.path.join(root, "test", "proofs", "wp_selftest" if args.self_test else "wp")
+        for target in wp_targets(wp_dir):
+            err, proved, total, dt, cpu = run_wp(args, root, work, target, env)
+            print(f"{'wp ' + target[1] + ':' + target[2]:34} goals {proved}/{total}{'':>8} {dt:>6.1f}s {cpu:>6.1f}s")
             if err:
                 failures.append("WP " + err)
     n_entries = len({(r["name"], e) for r in results for e in r["entries"]})
@@ -319,7 +321,8 @@ def main():
         print("FAIL:", f)
     if args.self_test:
         wanted = {"unrecorded alarm": "unrecorded alarm", "stale record": "stale record",
-                  "entries never reached": "entries never reached: never"}
+                  "entries never reached": "entries never reached: never",
+                  "WP goal not proven": "rw_sat_half_bound.h: 0/1 goals proven"}
         missed = [k for k, v in wanted.items() if not any(v in f for f in failures)]
         print("eva_check self-test:", "missed " + ", ".join(missed) if missed else "every planted fault caught")
         return 1 if missed else 0

@@ -50,6 +50,20 @@ FswStatus fsw_rw_sat_update(FswRwSatState *st, const FswRwSatConfig *cfg, const 
   if (!fsw_vn_is_finite(in->u_s, n) || !fsw_rw_avail_valid(in->avail, n)) {
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
 
+  /* WP (docs/eva.md, "WP proofs"): the saturation bound, proven from
+   * these loop invariants and the contract of test/proofs/wp/rw_sat_bound.h.
+   * Each invariant also holds in IEEE arithmetic: a rounded |u|/u_max <= 1
+   * implies |u| <= u_max. */
+  /*@ loop invariant 0 <= i <= n && 0 <= s;
+      loop invariant copied: \forall integer k; 0 <= k < i ==> in->avail[k] == FSW_AVAILABLE ==>
+        out->u_s[k] == in->u_s[k];
+      loop invariant within: \forall integer k; 0 <= k < i ==> in->avail[k] == FSW_AVAILABLE ==>
+        s > 1 || \abs(in->u_s[k]) <= cfg->u_max[k];
+      loop invariant \forall integer k; 0 <= k < i ==> in->avail[k] != FSW_AVAILABLE ==>
+        0 <= out->u_s[k] <= 0;
+      loop invariant \forall integer k; i <= k < FSW_MAX_RW ==> 0 <= out->u_s[k] <= 0;
+      loop assigns i, s, out->u_s[0 .. n - 1];
+      loop variant n - i; */
   for (i = 0; i < n; i++) {
     fsw_real r;
     if (in->avail[i] != FSW_AVAILABLE) { continue; }
@@ -59,6 +73,15 @@ FswStatus fsw_rw_sat_update(FswRwSatState *st, const FswRwSatConfig *cfg, const 
   }
   if (s > FSW_R(1.0)) {
     limited = 1;
+    /*@ loop invariant 0 <= i <= n;
+        loop invariant \forall integer k; 0 <= k < i ==>
+          -cfg->u_max[k] <= out->u_s[k] <= cfg->u_max[k];
+        loop invariant \forall integer k; i <= k < n ==> in->avail[k] != FSW_AVAILABLE ==>
+          0 <= out->u_s[k] <= 0;
+        loop invariant \forall integer k; 0 <= k < i ==> in->avail[k] != FSW_AVAILABLE ==>
+          0 <= out->u_s[k] <= 0;
+        loop assigns i, out->u_s[0 .. n - 1];
+        loop variant n - i; */
     for (i = 0; i < n; i++) {
       if (cfg->mode == FSW_RW_SAT_SCALE) { out->u_s[i] /= s; }
       /* CLIP, and the last rounding of SCALE */

@@ -71,6 +71,14 @@ FswStatus fsw_thr_pulse_round_update(FswThrPulseRoundState *st, const FswThrPuls
   s = fsw_thr_pulse_begin(&st->common, in->F, n, cfg->carry_residual, in->t_ns, &dt);
   if (s != FSW_OK) { return s; }
 
+  /* WP (docs/eva.md, "WP proofs"): every on-time within [0, T], proven from
+   * this loop invariant and test/proofs/wp/thr_pulse_round_bound.h. */
+  /*@ loop invariant 0 <= i <= n;
+      loop invariant \forall integer k; 0 <= k < i ==> 0 <= out->t_on[k] <= T;
+      loop invariant \forall integer k; i <= k < FSW_MAX_THR ==> 0 <= out->t_on[k] <= 0;
+      loop invariant \forall integer k; 0 <= k < n ==> -T <= st->resid[k] <= T;
+      loop assigns i, saturated, out->t_on[0 .. n - 1], st->resid[0 .. n - 1];
+      loop variant n - i; */
   for (i = 0; i < n; i++) {
     fsw_real f = (in->F[i] > FSW_R(0.0)) ? in->F[i] : FSW_R(0.0);
     fsw_real t = T * f / cfg->F_max[i];

@@ -446,3 +446,29 @@ TEST(GuidOrbitBadInput, FiniteComponentsWhoseMagnitudeOverflowsAreRefused)
     EXPECT_EQ(f.st.health.bad_input, 1u);
   }
 }
+
+// MC/DC (docs/coverage.md, guid_orbit's rate check): the rate finite but its
+// derivative not.  Nadir frame, |r| = 7e6 m, a finite speed of about a third
+// of the largest real at 45 deg to r: |omega| = sin(45) |v| / |r| is about
+// 5e-8 of the largest real, finite; |omega_dot| = 2 |(r.v)/r^2| |omega| is
+// of the order of (5e-8 largest)^2, which overflows in either real type.
+// Refused as bad input, like any finite input whose rates overflow.
+// Verifies: REQ-GORB-004
+TEST(GuidOrbitBadInput, FiniteRateWhoseDerivativeOverflowsIsRefused)
+{
+  const fsw_real quarter = std::numeric_limits<fsw_real>::max() / 4;
+  Fixture f(FSW_GUID_ORBIT_NADIR);
+  ASSERT_EQ(f.init(), FSW_OK);
+  f.set(v3(7e6, 0, 0), v3(0, 0, 0));
+  f.in.v_N[0] = quarter;
+  f.in.v_N[1] = quarter;
+  f.garbage();
+  EXPECT_EQ(f.update(), FSW_E_BAD_INPUT);
+  expect_safe(f.out);
+  EXPECT_EQ(f.st.health.bad_input, 1u);
+  // the same geometry at an orbital speed is accepted: the overflow alone refuses
+  Fixture g(FSW_GUID_ORBIT_NADIR);
+  ASSERT_EQ(g.init(), FSW_OK);
+  g.set(v3(7e6, 0, 0), v3(5e3, 5e3, 0));
+  EXPECT_EQ(g.update(), FSW_OK);
+}

@@ -136,7 +136,7 @@ TEST(RwSatRepeatability, SameInputsAfterResetGiveIdenticalOutputs)
 // within its limit; SCALE keeps the direction (u_out = u / s, with s from an
 // independent max); CLIP changes only the entries beyond their limit.
 class RwSatProperties : public ::testing::TestWithParam<int> {};
-// Verifies: REQ-RWSAT-002
+// Verifies: REQ-RWSAT-002, REQ-RWSAT-006
 TEST_P(RwSatProperties, LimitsDirectionAndClip)
 {
   const int n = GetParam();
@@ -163,6 +163,36 @@ TEST_P(RwSatProperties, LimitsDirectionAndClip)
   }
 }
 INSTANTIATE_TEST_SUITE_P(Wheels, RwSatProperties, ::testing::ValuesIn(rwt::kCounts));
+
+// The bound holds in IEEE arithmetic, not only for real numbers (docs/eva.md,
+// "WP proofs"): a torque one ulp above its limit gives a rounded ratio above
+// 1 (FSW_W_SAT, scaled or clipped to within the limit, the sign kept); a
+// torque at its limit, a ratio of exactly 1 (FSW_OK, unchanged).  Limits just
+// below a power of two (where a ratio of neighbours is closest to 1), 1, 0.1,
+// a subnormal and a huge one, in both modes and both signs.
+// Verifies: REQ-RWSAT-006
+TEST(RwSatBound, OneUlpAboveTheLimitIsLimitedAtTheLimitIsNot)
+{
+  using lim = std::numeric_limits<fsw_real>;
+  const fsw_real limits[] = {FSW_R(0.1), FSW_R(1.0), std::nextafter(FSW_R(1.0), FSW_R(0.0)),
+                             std::nextafter(FSW_R(2.0), FSW_R(0.0)), lim::denorm_min() * 3,
+                             lim::max() / 2};
+  for (int mode : {FSW_RW_SAT_SCALE, FSW_RW_SAT_CLIP}) {
+    for (fsw_real um : limits) {
+      for (fsw_real sign : {FSW_R(1.0), FSW_R(-1.0)}) {
+        Fixture f(1, mode);
+        f.cfg->u_max[0] = um;
+        f.in->u_s[0] = sign * um;
+        EXPECT_EQ(f.update(), FSW_OK) << um;
+        EXPECT_EQ(f.out->u_s[0], sign * um) << um;
+        f.in->u_s[0] = sign * std::nextafter(um, lim::infinity());
+        EXPECT_EQ(f.update(), FSW_W_SAT) << um;
+        EXPECT_LE(std::fabs(f.out->u_s[0]), um) << um;
+        EXPECT_GT(sign * f.out->u_s[0], FSW_R(0.0)) << um;
+      }
+    }
+  }
+}
 
 // Issue 21: one wheel is a legal configuration (num_rw >= 1).  u = 0.25,
 // u_max = 0.1: s = 2.5, SCALE and CLIP both give 0.1 (a single wheel has no
