@@ -41,12 +41,12 @@ void SensorSuite::state_io(sim::StateIO& io)
   io.value("sensors.mag_bias", mag_bias_);
 }
 
-SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant,
+SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant, const SunSource& sun,
                          const sim::MagneticEffector* field)
     : plant_(plant),
       n_rw_(static_cast<int>(sc.wheels.size())),
       num_css_(fsw.cfg.css.num_css),
-      sun_(sc),
+      sun_(sun),
       ideal_css_(fsw.ideal_css),
       ideal_normals_(fsw.ideal_normals),
       div_gyro_(sc.sensors.gyro.divisor),

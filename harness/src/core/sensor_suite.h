@@ -24,9 +24,10 @@ class SensorSuite {
   // Each model on its own stream Rng(seed, name); one noise switch.  Throws
   // ScenarioError (at the sensor's key) when a model rejects its parameters.
   // The models sample the plant's own sensor truth (sim::Plant::fill_sensor_truth).
-  // `field`: the run's magnetic effector (the field model and the rods the
-  // magnetometer reads; null without environment.magnetic).
-  SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant,
+  // `sun`: the run's Sun (it must outlive the suite). `field`: the run's
+  // magnetic effector (the field model and the rods the magnetometer reads;
+  // null without environment.magnetic).
+  SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant, const SunSource& sun,
               const sim::MagneticEffector* field = nullptr);
 
   bool has_css_models() const { return !css_.empty(); }
@@ -131,7 +132,7 @@ class SensorSuite {
   sim::SensorTruth truth_;
   int n_rw_ = 0;
   int num_css_ = 0;
-  SunSource sun_;  // fixed, or the almanac Sun of the epoch with the Earth's shadow
+  const SunSource& sun_;  // the run's: fixed, or the almanac Sun of the epoch with the Earth's shadow
   bool ideal_css_ = false;
   std::array<Eigen::Vector3d, kIdealCss> ideal_normals_{};
   uint64_t div_gyro_ = 1, div_st_ = 1, div_tach_ = 1;
