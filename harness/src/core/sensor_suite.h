@@ -37,7 +37,10 @@ class SensorSuite {
   // Every tick (with a magnetometer): when its period is due at tick k it
   // samples the field model at the position and attitude of B and the rods'
   // acting dipoles (its interference); `out` is the reading handed on, the
-  // held sample with the magnetometer faults below applied.
+  // held sample with the magnetometer faults below applied.  With a field
+  // period T (sensors.magnetometer.field_period > 0) the field in N is
+  // evaluated at the samples at t = j T and, between them, extrapolated
+  // linearly from the last two evaluations (held until there are two).
   void magnetometer(uint64_t k, MagnetometerMsg& out);
 
   // Every tick: the models whose own period is due at tick k sample truth;
@@ -144,6 +147,13 @@ class SensorSuite {
   const sim::MagneticEffector* field_ = nullptr;
   std::unique_ptr<sim::Magnetometer> mag_;
   uint64_t tick_ns_ = 0, div_mag_ = 1;
+  // sensors.magnetometer.field_period in ticks (0: the field at every
+  // sample); the last two field evaluations [T, N] and their ticks
+  uint64_t div_field_ = 0;
+  Eigen::Vector3d field_prev_N_ = Eigen::Vector3d::Zero(), field_last_N_ = Eigen::Vector3d::Zero();
+  uint64_t field_prev_k_ = 0, field_last_k_ = 0;
+  int field_count_ = 0;  // evaluations so far, up to 2
+  Eigen::Vector3d mag_field_N(uint64_t k, double t_s, const Eigen::Vector3d& r_N);
   SensorFault mag_fault_;
   MagnetometerMsg mag_frozen_{}, mag_last_{};  // held by a Frozen fault; the last handed on
   Eigen::Vector3d mag_bias_ = Eigen::Vector3d::Zero();  // [T] S
