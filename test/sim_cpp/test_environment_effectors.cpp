@@ -570,15 +570,21 @@ TEST(DragEffector, PlateAgainstTheFlowAndDensityScale)
 
 // -------------------------------------------------------- magnetorquers
 
+// The reference hub in LEO about the Earth (the magnetic effector's plant).
+sim::PlantParams leo_hub_params()
+{
+  sim::PlantParams pp;
+  pp.sc.hub = simtest::reference_hub();
+  pp.sc.mu = sim::kMuEarth;
+  return pp;
+}
+
 // field_N keeps its last evaluation: the same arguments give it back, and a
 // change of either the time or the position evaluates the model again (each
 // result equals IGRF-14 formed here).
 TEST(MagneticEffector, FieldNIsTheModelAfterARepeatedOrChangedCall)
 {
-  sim::PlantParams pp;
-  pp.sc.hub = simtest::reference_hub();
-  pp.sc.mu = sim::kMuEarth;
-  sim::Plant plant(pp, simtest::leo_ic());
+  sim::Plant plant(leo_hub_params(), simtest::leo_ic());
   const sim::EarthContext ctx = context();
   sim::MagneticParams p;
   auto& m = plant.add_effector(std::make_unique<sim::MagneticEffector>(plant, ctx, p));
@@ -600,10 +606,7 @@ TEST(MagneticEffector, FieldNIsTheModelAfterARepeatedOrChangedCall)
 
 TEST(MagneticEffector, CommandsSaturationFaultsAndTorque)
 {
-  sim::PlantParams pp;
-  pp.sc.hub = simtest::reference_hub();
-  pp.sc.mu = sim::kMuEarth;
-  sim::Plant plant(pp, simtest::leo_ic());
+  sim::Plant plant(leo_hub_params(), simtest::leo_ic());
   const sim::EarthContext ctx = context();
   sim::MagneticParams p;
   p.m_residual_B = Vector3d(0.1, 0.2, 0.3);
