@@ -332,8 +332,14 @@ void MagneticEffector::set_rod_scale(int i, double s)
 
 Vector3d MagneticEffector::field_N(double t_s, const Vector3d& r_N) const
 {
+  // bitwise equality of the arguments (a NaN never matches: evaluated again)
+  if (has_last_ && t_s == last_t_s_ && r_N == last_r_N_) return last_B_N_;
   const Matrix3d C_EN = ctx_.dcm_EN(t_s);
-  return C_EN.transpose() * igrf_.field_E(C_EN * r_N);
+  last_B_N_ = C_EN.transpose() * igrf_.field_E(C_EN * r_N);
+  last_t_s_ = t_s;
+  last_r_N_ = r_N;
+  has_last_ = true;
+  return last_B_N_;
 }
 
 void MagneticEffector::derived_state_io(StateIO& io)

@@ -7,6 +7,7 @@
 // remanence, the interference matrix and the duty cycle formed here by hand.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
@@ -185,6 +186,66 @@ TEST(Magnetics, MagnetometerReadsFieldPlusInterference)
   EXPECT_GT(largest_interference, 5e-6);  // seen: 1/6 of the field
 }
 
+// sensors.magnetometer.field_period T = 1 s (samples every 0.2 s, rods off,
+// 60 s of a 7000 km orbit): at t = j T the reading is the exact field (the
+// model evaluated there); before the second evaluation it holds the first;
+// after it, the field in N is B_j + s (B_j - B_(j-1)), s = (t - t_j) / T,
+// formed here from the exact field at the two sample times.  Its error from
+// the exact field: Taylor's theorem gives e = tau (tau + T) / 2 B'' (tau = t
+// - t_j < T), so |e| <= T^2 max|B''|.  For the dipole on a circular orbit of
+// rate w, B = B0 (3 (m.r) r - m) has harmonics 0, w and 2 w of the orbit
+// angle, with |B''| <= 4 w^2 (3/2) B0 = 6 w^2 B0 <= 6 w^2 |B| (|B| >= B0);
+// with the Earth turning the dipole, w -> w + w_E.  The bound taken: twice
+// that, 12 (w + w_E)^2 T^2 |B| (the higher degrees, ~15 % of the field at
+// 7000 km but with harmonics up to (n + 1) w).  The field held instead would
+// be off by up to |B'| T ~ 2 w T |B|: far outside it (the check discriminates).
+TEST(Magnetics, MagnetometerFieldPeriodExtrapolatesWithinTheBound)
+{
+  const double T = 1.0;
+  const harness::Scenario sc = harness::load_scenario(
+      kFile, {{"duration", "60.0"}, {"sensors.magnetometer.field_period", "1.0"}});
+  harness::Run run(sc);
+  run_to_end(run);
+  const Rows r{run.memory()};
+  const Field f;
+  const Eigen::Matrix3d SB = sensor_from_body();
+  const Eigen::Vector3d r0(7.0e6, 0.0, 0.0), v0(0.0, 5000.0, 5500.0);  // the file's initial orbit
+  const double w = v0.norm() / r0.norm() + 7.292115e-5;                 // [rad/s] orbit rate + w_E
+  const double bound = 12.0 * w * w * T * T;                             // [-] relative to |B|
+  auto field_at = [&](size_t k) { return f.N(r.t(k), r.v("r_BN_N", k)); };
+  double worst = 0.0, worst_held = 0.0;
+  size_t j1 = 0, j0 = 0;  // rows of the last two field samples
+  int n_fields = 0;
+  for (size_t k = 0; k < r.m.rows(); k += 2) {  // the magnetometer's sample rows (0.2 s)
+    const Eigen::Vector3d B_exact_N = field_at(k);
+    const bool field_sample = std::fmod(r.t(k) + 1e-9, T) < 1e-6;
+    Eigen::Vector3d B_N;
+    if (field_sample) {
+      j0 = j1;
+      j1 = k;
+      ++n_fields;
+      B_N = B_exact_N;
+    } else if (n_fields < 2) {
+      B_N = field_at(j1);  // held
+    } else {
+      const double s = (r.t(k) - r.t(j1)) / (r.t(j1) - r.t(j0));
+      B_N = field_at(j1) + s * (field_at(j1) - field_at(j0));
+    }
+    const Eigen::Matrix3d BN = dcm_from_mrp(r.v("sigma_BN", k));
+    EXPECT_LT((r.v("mag_B_S", k) - SB * BN * B_N).norm(), 1e-16) << r.t(k);  // |b| ~ 3e-5 T
+    if (n_fields >= 2) {
+      const Eigen::Vector3d b = SB * BN * B_exact_N, m = r.v("mag_B_S", k);
+      worst = std::max(worst, std::atan2(b.cross(m).norm(), b.dot(m)));
+      const Eigen::Vector3d h = SB * BN * field_at(j1);
+      worst_held = std::max(worst_held, std::atan2(b.cross(h).norm(), b.dot(h)));
+    }
+  }
+  EXPECT_EQ(n_fields, 61);
+  std::printf("field period 1 s: largest angle error %.3g rad, bound %.3g, held %.3g\n", worst, bound, worst_held);
+  EXPECT_LT(worst, bound);
+  EXPECT_GT(worst_held, 10.0 * bound);
+}
+
 // Dropout, frozen, restore and a bias step on the magnetometer.
 TEST(Magnetics, MagnetometerDropoutFrozenBias)
 {
@@ -304,6 +365,10 @@ TEST(Magnetics, RulesNameTheKey)
       {{{"sensors.magnetometer.dcm_SB", "[[1, 0.01, 0], [0, 1, 0], [0, 0, 1]]"}}, "sensors.magnetometer.dcm_SB",
        "orthonormal"},
       {{{"sensors.magnetometer.period", "0.15"}}, "sensors.magnetometer.period", "whole number of steps"},
+      {{{"sensors.magnetometer.field_period", "0.3"}}, "sensors.magnetometer.field_period",
+       "whole number of the magnetometer's sample period (0.2 s)"},
+      {{{"sensors.magnetometer.field_period", "0.1"}}, "sensors.magnetometer.field_period", "whole number"},
+      {{{"sensors.magnetometer.field_period", "-1"}}, "sensors.magnetometer.field_period", ">= 0"},
       {{{"sensors.magnetometer.scale_error", "[0, -1, 0]"}}, "sensors.magnetometer.scale_error", "> -1"},
       {{{"sensors.magnetometer.sigma", "-1e-9"}}, "sensors.magnetometer.sigma", ">= 0"},
       {{{"magnetorquer_drive", "{mode: pwm, pwm_period: 0.03}"}}, "magnetorquer_drive.pwm_period", "whole number"},

@@ -570,12 +570,43 @@ TEST(DragEffector, PlateAgainstTheFlowAndDensityScale)
 
 // -------------------------------------------------------- magnetorquers
 
-TEST(MagneticEffector, CommandsSaturationFaultsAndTorque)
+// The reference hub in LEO about the Earth (the magnetic effector's plant).
+sim::PlantParams leo_hub_params()
 {
   sim::PlantParams pp;
   pp.sc.hub = simtest::reference_hub();
   pp.sc.mu = sim::kMuEarth;
-  sim::Plant plant(pp, simtest::leo_ic());
+  return pp;
+}
+
+// field_N keeps its last evaluation: the same arguments give it back, and a
+// change of either the time or the position evaluates the model again (each
+// result equals IGRF-14 formed here).
+TEST(MagneticEffector, FieldNIsTheModelAfterARepeatedOrChangedCall)
+{
+  sim::Plant plant(leo_hub_params(), simtest::leo_ic());
+  const sim::EarthContext ctx = context();
+  sim::MagneticParams p;
+  auto& m = plant.add_effector(std::make_unique<sim::MagneticEffector>(plant, ctx, p));
+  const sim::Igrf14 igrf(ctx.decimal_year(), 13);
+  auto model = [&](double t, const Vector3d& r) {
+    const Matrix3d C_EN = ctx.dcm_EN(t);
+    return Vector3d(C_EN.transpose() * igrf.field_E(C_EN * r));
+  };
+  const Vector3d r1 = plant.r_BN_N(), r2 = r1 + Vector3d(7.5e3, -2.0e3, 1.0e3);  // [m] a second later
+  const Vector3d a = m.field_N(10.0, r1);
+  const double tol = 1e-18;  // [T] |B| ~ 3e-5 T: ~100 roundings
+  EXPECT_LT((a - model(10.0, r1)).norm(), tol);
+  EXPECT_EQ(m.field_N(10.0, r1), a);                           // kept
+  EXPECT_LT((m.field_N(11.0, r1) - model(11.0, r1)).norm(), tol);  // the time changed
+  EXPECT_LT((m.field_N(11.0, r2) - model(11.0, r2)).norm(), tol);  // the position changed
+  EXPECT_GT((model(11.0, r2) - model(11.0, r1)).norm(), 1e-8);  // [T] they differ (a change is seen)
+  EXPECT_EQ(m.field_N(10.0, r1), a);             // and back
+}
+
+TEST(MagneticEffector, CommandsSaturationFaultsAndTorque)
+{
+  sim::Plant plant(leo_hub_params(), simtest::leo_ic());
   const sim::EarthContext ctx = context();
   sim::MagneticParams p;
   p.m_residual_B = Vector3d(0.1, 0.2, 0.3);

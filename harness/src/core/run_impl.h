@@ -24,7 +24,7 @@ struct Run::Impl {
   bool accept_events = false;  // RunConfig::accept_events
   EnvEffectors env{};  // filled by build_plant (before plant_owner)
   SettableParts mag{};  // likewise
-  std::optional<SunSource> sun;  // the run's Sun (TruthTask: illumination)
+  SunSource sun;  // the run's Sun (sensors, truth, metrics: one shared)
   std::unique_ptr<sim::Plant> plant_owner;
   sim::Plant& plant;
   FswSetup fsw_setup;
@@ -83,7 +83,7 @@ struct Run::Impl {
   Channel<FswAcsCmdMsg>* fsw_cmd_ch = nullptr;  // events write it (runs that take FSW commands)
 
   explicit Impl(const Scenario& s)
-      : sc(s), plant_owner(build_plant(s, &env, &mag)), plant(*plant_owner), sched(s.tick_ns())
+      : sc(s), sun(sc), plant_owner(build_plant(s, &env, &mag)), plant(*plant_owner), sched(s.tick_ns())
   {
   }
   void wire(RunConfig& cfg);

@@ -84,7 +84,7 @@ void Run::Impl::build_fsw(RunConfig& cfg)
       throw config_error(sc, "fsw", e.what());
     }
   }
-  sensors = std::make_unique<SensorSuite>(sc, fsw_setup, plant, mag.effector);
+  sensors = std::make_unique<SensorSuite>(sc, fsw_setup, plant, sun, mag.effector);
 }
 
 // The command in force before any event: the configuration's mode,
@@ -138,8 +138,7 @@ void Run::Impl::add_tasks(const Messages& m)
 {
   DataFlow& f = flow;
   const uint64_t tk = sc.tick_ns();
-  sun.emplace(sc);
-  truth.emplace(TruthTask{&plant, tk, f.writer("plant", *m.truth), env, &*sun});
+  truth.emplace(TruthTask{&plant, tk, f.writer("plant", *m.truth), env, &sun});
   const BurnSchedule burn_sched = burn_schedule(sc, plant);
   if (m.burn) {
     f.add_component("burn_monitor", "harness");
@@ -174,7 +173,7 @@ void Run::Impl::add_tasks(const Messages& m)
   plant_input.emplace(PlantInputTask{&plant, f.reader("plant", *m.cmd)});
   f.add_component("metrics", "harness");
   add_magnetic_tasks(m);
-  metrics.emplace(&plant, tk, configured_reference(sc.fsw), sc.fsw.sigma_R0N, sc.fsw.sun_axis_B, sc,
+  metrics.emplace(&plant, tk, configured_reference(sc.fsw), sc.fsw.sigma_R0N, sc.fsw.sun_axis_B, &sun,
                   sc.environment.mu, f.reader("metrics", *m.truth),
                   m.burn ? f.reader("metrics", *m.burn) : Reader<BurnStateMsg>(), m.burn != nullptr,
                   f.writer("metrics", *m.metrics));
@@ -228,7 +227,7 @@ void Run::Impl::add_recorder(const Messages& m)
   const FswSpec& fs = sc.fsw;
   if (fs.mtq || fs.policy != MomentumPolicy::None || fs.rw_bias || fs.mode == FswMode::Nadir)
     declare_fsw_momentum(rec, rc);
-  declare_environment_truth(rec, rc, env_on, sun->dated(), plant.num_rw());
+  declare_environment_truth(rec, rc, env_on, sun.dated(), plant.num_rw());
 }
 
 void Run::Impl::add_events()

@@ -38,14 +38,21 @@ void SensorSuite::state_io(sim::StateIO& io)
   io.value("sensors.mag_frozen", mag_frozen_);
   io.value("sensors.mag_last", mag_last_);
   io.value("sensors.mag_bias", mag_bias_);
+  if (div_field_ > 0) {
+    io.value("sensors.mag_field_prev_N", field_prev_N_);
+    io.value("sensors.mag_field_last_N", field_last_N_);
+    io.value("sensors.mag_field_prev_k", field_prev_k_);
+    io.value("sensors.mag_field_last_k", field_last_k_);
+    io.value("sensors.mag_field_count", field_count_);
+  }
 }
 
-SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant,
+SensorSuite::SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant, const SunSource& sun,
                          const sim::MagneticEffector* field)
     : plant_(plant),
       n_rw_(static_cast<int>(sc.wheels.size())),
       num_css_(fsw.cfg.css.num_css),
-      truth_(plant, sc),
+      truth_(plant, sun),
       ideal_css_(fsw.ideal_css),
       ideal_normals_(fsw.ideal_normals),
       div_gyro_(sc.sensors.gyro.divisor),
@@ -118,6 +125,7 @@ void SensorSuite::build_magnetometer(const Scenario& sc)
   const uint64_t p_ns = g.period > 0.0 ? static_cast<uint64_t>(std::llround(g.period * 1e9))
                                        : static_cast<uint64_t>(sc.rates.fsw_divisor) * tick_ns_;
   div_mag_ = std::max<uint64_t>(1, p_ns / tick_ns_);
+  if (g.field_period > 0.0) div_field_ = static_cast<uint64_t>(std::llround(g.field_period * 1e9)) / tick_ns_;
   sim::MagnetometerParams mp;
   mp.name = "magnetometer";
   mp.dcm_SB = g.dcm_SB;
@@ -140,7 +148,7 @@ void SensorSuite::magnetometer(uint64_t k, MagnetometerMsg& out)
     const sim::StateVector& x = plant_.state();
     const Eigen::Vector3d r_N = x.segment<3>(sim::StateLayout::r_BN_N);
     const Eigen::Vector3d B_B = sim::dcm_BN_from_sigma(x.segment<3>(sim::StateLayout::sigma_BN)) *
-                                field_->field_N(static_cast<double>(t_ns) * 1e-9, r_N);
+                                mag_field_N(k, static_cast<double>(t_ns) * 1e-9, r_N);
     sim::MagnetorquerArray m{};
     for (int i = 0; i < field_->num_rods(); ++i) m[static_cast<size_t>(i)] = field_->rod_dipole(i);
     if (mag_->update(static_cast<int64_t>(t_ns), B_B, m)) {
@@ -159,6 +167,25 @@ void SensorSuite::magnetometer(uint64_t k, MagnetometerMsg& out)
     out.valid = 0;
   }
   mag_last_ = out;
+}
+
+// The field in N at a magnetometer sample (tick k, time t_s, position r_N):
+// the model itself, or with a field period its evaluation at t = j T and
+// the line through the last two evaluations between them.
+Eigen::Vector3d SensorSuite::mag_field_N(uint64_t k, double t_s, const Eigen::Vector3d& r_N)
+{
+  if (div_field_ == 0) return field_->field_N(t_s, r_N);
+  if (k % div_field_ == 0 || field_count_ == 0) {  // (a first sample off the grid: evaluated too)
+    field_prev_N_ = field_last_N_;
+    field_prev_k_ = field_last_k_;
+    field_last_N_ = field_->field_N(t_s, r_N);
+    field_last_k_ = k;
+    field_count_ = std::min(field_count_ + 1, 2);
+    return field_last_N_;
+  }
+  if (field_count_ < 2) return field_last_N_;
+  const double s = static_cast<double>(k - field_last_k_) / static_cast<double>(field_last_k_ - field_prev_k_);
+  return field_last_N_ + s * (field_last_N_ - field_prev_N_);
 }
 
 void SensorSuite::set_magnetometer_fault(Fault f, uint64_t until_ns)

@@ -25,7 +25,8 @@ namespace harness {
 // moves it).
 class TickSensorTruth {
  public:
-  TickSensorTruth(const sim::Plant& plant, const Scenario& sc) : plant_(plant), sun_(sc) {}
+  // `sun`: the run's (it must outlive this object).
+  TickSensorTruth(const sim::Plant& plant, const SunSource& sun) : plant_(plant), sun_(sun) {}
   // The truth at tick k: formed at the first call of the tick.
   const sim::SensorTruth& at(uint64_t k);
   const SunSource& sun() const { return sun_; }  // fixed, or the almanac Sun of the epoch with the Earth's shadow
@@ -39,7 +40,7 @@ class TickSensorTruth {
 
  private:
   const sim::Plant& plant_;
-  SunSource sun_;
+  const SunSource& sun_;
   sim::SensorTruth truth_;
   uint64_t tick_ = 0;    // the tick truth_ is of, when formed_
   bool formed_ = false;
@@ -50,9 +51,10 @@ class SensorSuite {
   // Each model on its own stream Rng(seed, name); one noise switch.  Throws
   // ScenarioError (at the sensor's key) when a model rejects its parameters.
   // The models sample the plant's own sensor truth (sim::Plant::fill_sensor_truth).
-  // `field`: the run's magnetic effector (the field model and the rods the
-  // magnetometer reads; null without environment.magnetic).
-  SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant,
+  // `sun`: the run's Sun (it must outlive the suite). `field`: the run's
+  // magnetic effector (the field model and the rods the magnetometer reads;
+  // null without environment.magnetic).
+  SensorSuite(const Scenario& sc, const FswSetup& fsw, const sim::Plant& plant, const SunSource& sun,
               const sim::MagneticEffector* field = nullptr);
 
   bool has_css_models() const { return !css_.empty(); }
@@ -62,7 +64,10 @@ class SensorSuite {
   // Every tick (with a magnetometer): when its period is due at tick k it
   // samples the field model at the position and attitude of B and the rods'
   // acting dipoles (its interference); `out` is the reading handed on, the
-  // held sample with the magnetometer faults below applied.
+  // held sample with the magnetometer faults below applied.  With a field
+  // period T (sensors.magnetometer.field_period > 0) the field in N is
+  // evaluated at the samples at t = j T and, between them, extrapolated
+  // linearly from the last two evaluations (held until there are two).
   void magnetometer(uint64_t k, MagnetometerMsg& out);
 
   // Every tick: the models whose own period is due at tick k sample truth;
@@ -163,6 +168,13 @@ class SensorSuite {
   const sim::MagneticEffector* field_ = nullptr;
   std::unique_ptr<sim::Magnetometer> mag_;
   uint64_t tick_ns_ = 0, div_mag_ = 1;
+  // sensors.magnetometer.field_period in ticks (0: the field at every
+  // sample); the last two field evaluations [T, N] and their ticks
+  uint64_t div_field_ = 0;
+  Eigen::Vector3d field_prev_N_ = Eigen::Vector3d::Zero(), field_last_N_ = Eigen::Vector3d::Zero();
+  uint64_t field_prev_k_ = 0, field_last_k_ = 0;
+  int field_count_ = 0;  // evaluations so far, up to 2
+  Eigen::Vector3d mag_field_N(uint64_t k, double t_s, const Eigen::Vector3d& r_N);
   SensorFault mag_fault_;
   MagnetometerMsg mag_frozen_{}, mag_last_{};  // held by a Frozen fault; the last handed on
   Eigen::Vector3d mag_bias_ = Eigen::Vector3d::Zero();  // [T] S

@@ -290,7 +290,7 @@ double MetricsTask::pointing_error(uint64_t k, const TruthMsg& t) const
     case PointingReference::Inertial: return principal_angle(sigma, sigma_ref);
     case PointingReference::SunAxis: break;
   }
-  const Eigen::Vector3d r_sun_N = sun.position_N(static_cast<int64_t>(k * tick_ns));
+  const Eigen::Vector3d r_sun_N = sun->position_N(static_cast<int64_t>(k * tick_ns));
   const Eigen::Vector3d d_B = sim::dcm_BN_from_sigma(sigma) * (r_sun_N - ev(t.r_BN_N)).normalized();
   return std::atan2(sun_axis_B.cross(d_B).norm(), sun_axis_B.dot(d_B));
 }

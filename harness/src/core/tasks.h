@@ -195,10 +195,10 @@ struct MtqStateTask {
 // it checks the FSW independently of the FSW's own error output.
 struct MetricsTask {
   MetricsTask(const sim::Plant* p, uint64_t tk, PointingReference ref_, const Eigen::Vector3d& sigma_R0N_,
-              const Eigen::Vector3d& sun_axis_B_, const Scenario& sc, double mu_, Reader<TruthMsg> t,
+              const Eigen::Vector3d& sun_axis_B_, const SunSource* sun_, double mu_, Reader<TruthMsg> t,
               Reader<BurnStateMsg> b, bool has_b, Writer<MetricsMsg> w)
       : plant(p), tick_ns(tk), ref0(ref_), ref(ref_), sigma_R0N(sigma_R0N_), sigma_ref(sigma_R0N_),
-        sun_axis_B(sun_axis_B_), sun(sc), mu(mu_), truth(t), burn(b), has_burn(has_b), out(w)
+        sun_axis_B(sun_axis_B_), sun(sun_), mu(mu_), truth(t), burn(b), has_burn(has_b), out(w)
   {
   }
   const sim::Plant* plant;
@@ -209,7 +209,7 @@ struct MetricsTask {
   Eigen::Vector3d sigma_ref;         // the inertial reference in force
   bool ref_commanded = false;        // a command changed the reference in force
   Eigen::Vector3d sun_axis_B;
-  SunSource sun;  // the Sun of the pointing error
+  const SunSource* sun;  // the run's Sun (of the pointing error)
   double mu;
   Reader<TruthMsg> truth;
   Reader<BurnStateMsg> burn;  // unset without thrusters

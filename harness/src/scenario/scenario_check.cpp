@@ -23,7 +23,8 @@ void check_run_configuration(const Scenario& sc)
   } catch (const std::invalid_argument& e) {
     throw config_error(sc, "fsw", e.what());
   }
-  const SensorSuite sensors(sc, fsw, *plant, mag.effector);
+  const SunSource sun(sc);
+  const SensorSuite sensors(sc, fsw, *plant, sun, mag.effector);
   (void)burn_schedule(sc, *plant);
 }
 

@@ -175,6 +175,9 @@ Section magnetometer_section()
                 boolean("enabled", KESTREL_MAG(enabled)).unit("default false"),
                 dcm_key(),
                 real("period", KESTREL_MAG(period)).bounds(non_negative("s")).unit("s, 0: the FSW period"),
+                real("field_period", KESTREL_MAG(field_period))
+                    .bounds(non_negative("s"))
+                    .unit("s, 0: the field model at every sample"),
                 real("sigma", KESTREL_MAG(sigma)).bounds(non_negative("T")).unit("T"),
                 vec3("bias", KESTREL_MAG(bias)).unit("T"),
                 vec3("scale_error", KESTREL_MAG(scale_error)).vcheck(scale_errors_above_minus_one).unit("-"),
@@ -260,6 +263,12 @@ void check_magnetometer(MapReader& m, const Scenario& sc)
   if (g.period > 0.0 && tick > 0 && (p < tick || p % tick != 0))
     m.error_at("period", "must be a whole number of steps dt = " + fmt(sc.rates.dt) + " s, got " + fmt(g.period) + " s");
   if (g.range > 0.0 && g.lsb > g.range) m.error_at("lsb", "must not exceed range (" + fmt(g.range) + " T)");
+  // the field's samples are magnetometer samples: a whole number of its period
+  const int64_t sample = g.period > 0.0 ? p : tick * static_cast<int64_t>(sc.rates.fsw_divisor);
+  const int64_t f = to_ns(g.field_period);
+  if (g.field_period > 0.0 && sample > 0 && (f < sample || f % sample != 0))
+    m.error_at("field_period", "must be a whole number of the magnetometer's sample period (" +
+                                   fmt(1e-9 * static_cast<double>(sample)) + " s), got " + fmt(g.field_period) + " s");
 }
 
 }  // namespace harness::schema

@@ -265,7 +265,12 @@ class MagneticEffector final : public SampledEnvironmentEffector {
   Eigen::Vector3d dipole_B() const { return m_total_B_; }  // [A*m^2] residual + rods, B
   Eigen::Vector3d field_held_N() const { return B_held_N_; }  // [T] held field, N
   // [T] the field model evaluated (not held) at plant time t_s [s] and
-  // position r_N [m], N components (what a magnetometer reads).
+  // position r_N [m], N components (what a magnetometer reads).  The last
+  // evaluation is kept with its arguments: a call with equal t_s and r_N (a
+  // magnetometer sample and this effector's own sample at the same instant
+  // and state) returns it without evaluating the model again (a pure
+  // function of its arguments: the same result, nothing to save in a
+  // checkpoint).
   Eigen::Vector3d field_N(double t_s, const Eigen::Vector3d& r_N) const;
 
  private:
@@ -282,6 +287,11 @@ class MagneticEffector final : public SampledEnvironmentEffector {
   std::array<double, kMaxMagnetorquers> dipole_{};  // [A*m^2] each rod's acting dipole
   Eigen::Vector3d m_total_B_ = Eigen::Vector3d::Zero();  // [A*m^2]
   Eigen::Vector3d B_held_N_ = Eigen::Vector3d::Zero();   // [T]
+  // the last field_N evaluation and its arguments
+  mutable double last_t_s_ = 0.0;                                  // [s]
+  mutable Eigen::Vector3d last_r_N_ = Eigen::Vector3d::Zero();     // [m]
+  mutable Eigen::Vector3d last_B_N_ = Eigen::Vector3d::Zero();     // [T]
+  mutable bool has_last_ = false;
 };
 
 }  // namespace sim

@@ -208,6 +208,10 @@ struct MagnetometerSpec {
   bool enabled = false;
   Eigen::Matrix3d dcm_SB = Eigen::Matrix3d::Identity();  // [-] sensor axes S from B (rows: x_S, y_S, z_S in B)
   double period = 0.0;                                    // [s] sample period; 0: the FSW period
+  // [s] the field model's own period: 0, the field evaluated at every
+  // sample; T > 0 (a whole number of sample periods), evaluated every T and
+  // extrapolated linearly from the last two evaluations between them
+  double field_period = 0.0;
   double sigma = 0.0;                                     // [T] white noise 1-sigma per axis
   Eigen::Vector3d bias = Eigen::Vector3d::Zero();         // [T] S
   Eigen::Vector3d scale_error = Eigen::Vector3d::Zero();  // [-] per axis, each > -1
