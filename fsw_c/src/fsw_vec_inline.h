@@ -80,6 +80,15 @@ static inline int fsw_v3i_is_finite(const fsw_real a[3])
   return (isfinite(a[0]) != 0) & (isfinite(a[1]) != 0) & (isfinite(a[2]) != 0);
 }
 
+/* fsw_vn_is_finite(a, n): 1 if all n entries are finite. */
+static inline int fsw_vni_is_finite(const fsw_real *a, int n)
+{
+  int i;
+  for (i = 0; i < n; i++) {
+    if (!isfinite(a[i])) { return 0; } }
+  return 1;
+}
+
 /* fsw_vn_copy and fsw_vn_zero of n entries.  The copy runs through the
  * entries also when out == a (each entry is written with its own value, the
  * same result as fsw_vn_copy's early return). */
@@ -132,6 +141,26 @@ static inline fsw_real fsw_v3i_norm_pow2_scaled(const fsw_real b[3], fsw_real m,
   t = b[2] / mb;
   s += t * t;
   return mb * FSW_SQRT(s);
+}
+
+/* sqrt(sum (a_i / m)^2) for m = fsw_vn_max_abs(a, 3) > 0 and finite: the
+ * root fsw_vn_norm forms, so fsw_v3_norm(a) is m times it, bit for bit.  For
+ * b = p a with p = fsw_pow2_scale(m) it is also the root of b's scaled sum
+ * (fsw_v3i_norm_pow2_scaled(b, m, p) = (m p) times it): b_i / (m p) is the
+ * exact quotient a_i / m rounded once; p a_i is rounded only where it is
+ * subnormal with p < 1, where m p is in [1/2, 1), so both quotients are
+ * below 2^MIN_EXP and both squares round to 0. */
+static inline fsw_real fsw_v3i_scaled_root(const fsw_real a[3], fsw_real m)
+{
+  fsw_real s = FSW_R(0.0);
+  fsw_real t;
+  t = a[0] / m;
+  s += t * t;
+  t = a[1] / m;
+  s += t * t;
+  t = a[2] / m;
+  s += t * t;
+  return FSW_SQRT(s);
 }
 
 /* Powers of two from the bits of the real type (IEEE 754 binary64, or
