@@ -101,7 +101,7 @@ int fsw_v3_norm_normalize(fsw_real out[3], fsw_real *norm, const fsw_real a[3])
   *norm = m * r;
   p = fsw_pow2_scale(m);
   fsw_v3_scale(b, p, a);
-  n = (m * p) * r; /* = fsw_v3i_norm_pow2_scaled(b, m, p) */
+  n = (m * p) * r; /* = fsw_v3_norm(b) */
   fsw_v3_set(out, b[0] / n, b[1] / n, b[2] / n);
   return 1;
 }

@@ -124,32 +124,15 @@ static inline void fsw_m33i_tmult_v3(fsw_real out[3], const fsw_real a[3][3], co
               a[0][2] * v[0] + a[1][2] * v[1] + a[2][2] * v[2]);
 }
 
-/* |b| for b = p a, where p = fsw_pow2_scale(m) and m = max |a_i| > 0 is
- * finite: the bits of fsw_v3_norm(b) without searching b again.  max |b_i|
- * is m p exactly (|a_k| = m gives |b_k| = m p, the same product; every
- * other |b_i| is a rounded |a_i| p <= m p), and m p is in [1/2, 1) or, for
- * a subnormal m, a positive normal number, so the scaled sum of squares is
- * formed as fsw_vn_norm forms it, term by term in the same order. */
-static inline fsw_real fsw_v3i_norm_pow2_scaled(const fsw_real b[3], fsw_real m, fsw_real p)
-{
-  const fsw_real mb = m * p;
-  fsw_real s = FSW_R(0.0), t;
-  t = b[0] / mb;
-  s += t * t;
-  t = b[1] / mb;
-  s += t * t;
-  t = b[2] / mb;
-  s += t * t;
-  return mb * FSW_SQRT(s);
-}
-
 /* sqrt(sum (a_i / m)^2) for m = fsw_vn_max_abs(a, 3) > 0 and finite: the
  * root fsw_vn_norm forms, so fsw_v3_norm(a) is m times it, bit for bit.  For
- * b = p a with p = fsw_pow2_scale(m) it is also the root of b's scaled sum
- * (fsw_v3i_norm_pow2_scaled(b, m, p) = (m p) times it): b_i / (m p) is the
- * exact quotient a_i / m rounded once; p a_i is rounded only where it is
- * subnormal with p < 1, where m p is in [1/2, 1), so both quotients are
- * below 2^MIN_EXP and both squares round to 0. */
+ * b = p a with p = fsw_pow2_scale(m) it is also the root fsw_vn_norm forms
+ * for b, so fsw_v3_norm(b) is (m p) times it without searching b again:
+ * max |b_i| is m p exactly (|a_k| = m gives the same product; every other
+ * |b_i| is a rounded |a_i| p <= m p), and b_i / (m p) is the exact quotient
+ * a_i / m rounded once; p a_i is rounded only where it is subnormal with
+ * p < 1, where m p is in [1/2, 1), so both quotients are below 2^MIN_EXP
+ * and both squares round to 0. */
 static inline fsw_real fsw_v3i_scaled_root(const fsw_real a[3], fsw_real m)
 {
   fsw_real s = FSW_R(0.0);

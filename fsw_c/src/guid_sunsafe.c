@@ -110,7 +110,7 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
      * product overflows or underflows for any finite sun_B. */
     const fsw_real p = fsw_pow2_scale(m);
     fsw_v3_scale(s_B, p, in->sun_B);
-    s_norm = (m * p) * r; /* = fsw_v3i_norm_pow2_scaled(s_B, m, p) = fsw_v3_norm(s_B) */
+    s_norm = (m * p) * r; /* = fsw_v3_norm(s_B) */
     c = fsw_v3_dot(st->s_cmd_hat_B, s_B) / s_norm;
     if (c > FSW_R(1.0)) { c = FSW_R(1.0); }
     if (c < FSW_R(-1.0)) { c = FSW_R(-1.0); }
