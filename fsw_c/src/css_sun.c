@@ -6,6 +6,7 @@
 
 #include "fsw/fsw_vec.h"
 #include "fsw_vec_inline.h"
+#include "fsw_status_inline.h"
 
 static void write_safe(FswCssSunOut *out)
 {
@@ -154,12 +155,11 @@ FswStatus fsw_css_sun_update(FswCssSunState *st, const FswCssSunConfig *cfg,
   out->num_lit = num_lit;
 
   if (num_lit >= 3 && chol3_solve(x, FSW_CM33(M), c)) {
-    x_norm = fsw_v3_norm(x);
-    if (fsw_v3_normalize(out->sun_hat_B, x)) {
+    if (fsw_v3_norm_normalize(out->sun_hat_B, &x_norm, x)) {
       out->sun_mag = x_norm;
       out->sun_valid = 1;
       out->mode = FSW_CSS_SUN_WLS;
-      return fsw_health_record(&st->health, FSW_OK);
+      return fsw_health_record_ok_i(&st->health);
     }
   }
   if (a < 0) { return fsw_health_record(&st->health, FSW_W_SINGULAR); } /* NONE */
@@ -180,8 +180,7 @@ FswStatus fsw_css_sun_update(FswCssSunState *st, const FswCssSunConfig *cfg,
     const fsw_real beta = (y[b] - cab * y[a]) / det;
     fsw_v3_scale(x, alpha, cfg->n_hat_B[a]);
     fsw_v3_axpy(x, x, beta, cfg->n_hat_B[b]);
-    x_norm = fsw_v3_norm(x);
-    if (fsw_v3_normalize(out->sun_hat_B, x)) {
+    if (fsw_v3_norm_normalize(out->sun_hat_B, &x_norm, x)) {
       out->sun_mag = x_norm;
       out->sun_valid = 1;
       out->mode = FSW_CSS_SUN_TWO;

@@ -6,6 +6,7 @@
 #include "fsw/fsw_attitude.h"
 #include "fsw/fsw_vec.h"
 #include "fsw_vec_inline.h"
+#include "fsw_status_inline.h"
 #include "fsw/rw_common.h"
 
 /* ---- stage names --------------------------------------------------------- */
@@ -619,15 +620,11 @@ static int avail_finite(const fsw_real *x, const uint8_t *avail, int n)
   return 1;
 }
 
-/* is_error(s), inline: the cycle asks it of every stage's
- * status (about 20 times a cycle). */
-static int is_error(FswStatus s) { return (int)s < 0; }
-
 /* First error wins; otherwise the first warning; otherwise OK. */
 static FswStatus combine(FswStatus acc, FswStatus s)
 {
-  if (is_error(acc)) { return acc; }
-  if (is_error(s)) { return s; }
+  if (fsw_status_is_error_i(acc)) { return acc; }
+  if (fsw_status_is_error_i(s)) { return s; }
   if (acc != FSW_OK) { return acc; }
   return s;
 }
@@ -646,7 +643,7 @@ static FswStatus finish(FswAcsState *st, const FswAcsConfig *cfg, FswAcsHealthMs
     if (st->speed_filter.latched[i]) { h->rw_latched |= (uint64_t)1u << i; }
   }
   h->status = fsw_health_record(&st->health, s);
-  h->safe_output = (uint8_t)(is_error(s) ? 1 : 0);
+  h->safe_output = (uint8_t)(fsw_status_is_error_i(s) ? 1 : 0);
   h->mode = st->mode;
   h->actuation = st->actuation;
   h->policy = st->policy;
@@ -1295,7 +1292,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   fsw_v3_copy(h->sigma_BR, guid.sigma_BR);
   fsw_v3_copy(h->omega_BR_B, guid.omega_BR_B);
   h->att_err_angle = fsw_mrp_angle(guid.sigma_BR);
-  if (is_error(acc)) {
+  if (fsw_status_is_error_i(acc)) {
     safe_output(act);
     restore_dynamic(st, cfg); /* no state advance on an error cycle */
     safe_health(h);

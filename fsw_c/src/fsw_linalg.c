@@ -157,7 +157,7 @@ FswStatus fsw_minnorm_factor(FswMinnormFactor *f, const fsw_real A[3][FSW_MAX_EF
   f->status = FSW_E_BAD_INPUT;
   for (i = 0; i < m; i++) {
     fsw_real v;
-    if (!fsw_vn_is_finite(A[i], n)) { return f->status; }
+    if (!fsw_vni_is_finite(A[i], n)) { return f->status; }
     v = fsw_vn_max_abs(A[i], n);
     if (v > amax) { amax = v; }
   }
@@ -258,7 +258,7 @@ FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFa
   } else {
     for (j = 0; j < n; j++) { x[j] = FSW_LDEXP(x[j], eb); }
   }
-  if (!fsw_vn_is_finite(x, n)) {
+  if (!fsw_vni_is_finite(x, n)) {
     fsw_vn_zero(x, n);
     return FSW_E_BAD_INPUT;
   }
@@ -291,7 +291,7 @@ FswStatus fsw_null_projector(fsw_real tau[FSW_MAX_EFF][FSW_MAX_EFF],
   }
   for (i = 0; i < n; i++) { fsw_vn_zero(tau[i], n); }
   for (r = 0; r < 3; r++) {
-    if (!fsw_vn_is_finite(G[r], n)) { return FSW_E_BAD_INPUT; } }
+    if (!fsw_vni_is_finite(G[r], n)) { return FSW_E_BAD_INPUT; } }
 
   for (r = 0; r < 3; r++) {
     fsw_real *v = Q[nq];
@@ -627,7 +627,7 @@ FswStatus fsw_bounded_minnorm_solve(fsw_real x[FSW_MAX_EFF], const fsw_real A[3]
   fsw_vn_zero(x, n < 0 ? 0 : (n > FSW_MAX_EFF ? FSW_MAX_EFF : n)); /* safe output */
   if (m < 1 || m > 3 || n < 0 || n > FSW_MAX_EFF) { return FSW_E_CAPACITY; }
   for (i = 0; i < m; i++) {
-    if (!fsw_vn_is_finite(A[i], n) || !isfinite(b[i])) { return FSW_E_BAD_INPUT; } }
+    if (!fsw_vni_is_finite(A[i], n) || !isfinite(b[i])) { return FSW_E_BAD_INPUT; } }
   for (i = 0; i < n; i++) {
     if (!isfinite(lo[i]) || !isfinite(hi[i]) || !(lo[i] <= hi[i])) { return FSW_E_BAD_INPUT; }
     if (lo[i] != FSW_R(0.0) && hi[i] != FSW_R(0.0)) { return FSW_E_BAD_INPUT; }

@@ -1,5 +1,6 @@
 /* fsw_status: health counters and status names. */
 #include "fsw/fsw_status.h"
+#include "fsw_status_inline.h"
 
 #include <stddef.h>
 
@@ -64,4 +65,4 @@ const char *fsw_status_name(FswStatus s)
   }
 }
 
-int fsw_status_is_error(FswStatus s) { return (int)s < 0; }
+int fsw_status_is_error(FswStatus s) { return fsw_status_is_error_i(s); }

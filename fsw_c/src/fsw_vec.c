@@ -81,24 +81,35 @@ fsw_real fsw_pow2_scale(fsw_real m)
   return (fsw_pow2i_normal(-e) != 0) ? fsw_pow2i(-e) : FSW_LDEXP(FSW_R(1.0), -e);
 }
 
-int fsw_v3_normalize(fsw_real out[3], const fsw_real a[3])
+int fsw_v3_norm_normalize(fsw_real out[3], fsw_real *norm, const fsw_real a[3])
 {
   /* Pre-scaled by a power of two (exact): the same bits as a/|a| in the
    * normal range, and a unit vector also for entries near the real's
-   * maximum (|a| would overflow) or subnormal (|a| would lose digits). */
+   * maximum (|a| would overflow) or subnormal (|a| would lose digits).  The
+   * largest entry is searched and the scaled sum of squares formed once for
+   * |a| and the direction (fsw_v3i_scaled_root). */
   const fsw_real m = fsw_vn_max_abs(a, 3);
-  fsw_real b[3], p, n;
+  fsw_real b[3], p, r, n;
   /* m is finite only if every entry is: fsw_vn_max_abs returns NaN for a
    * NaN entry and infinity for an infinite one. */
   if (!(m > FSW_R(0.0)) || !isfinite(m)) {
+    *norm = m; /* fsw_vn_norm's value: 0, NaN or infinity */
     fsw_v3_zero(out);
     return 0;
   }
+  r = fsw_v3i_scaled_root(a, m);
+  *norm = m * r;
   p = fsw_pow2_scale(m);
   fsw_v3_scale(b, p, a);
-  n = fsw_v3i_norm_pow2_scaled(b, m, p);
+  n = (m * p) * r; /* = fsw_v3_norm(b) */
   fsw_v3_set(out, b[0] / n, b[1] / n, b[2] / n);
   return 1;
+}
+
+int fsw_v3_normalize(fsw_real out[3], const fsw_real a[3])
+{
+  fsw_real norm;
+  return fsw_v3_norm_normalize(out, &norm, a);
 }
 
 int fsw_v3_is_finite(const fsw_real a[3]) { return fsw_vn_is_finite(a, 3); }
@@ -168,13 +179,7 @@ fsw_real fsw_vn_norm(const fsw_real *a, int n)
   return m * FSW_SQRT(s);
 }
 
-int fsw_vn_is_finite(const fsw_real *a, int n)
-{
-  int i;
-  for (i = 0; i < n; i++) {
-    if (!isfinite(a[i])) { return 0; } }
-  return 1;
-}
+int fsw_vn_is_finite(const fsw_real *a, int n) { return fsw_vni_is_finite(a, n); }
 
 void fsw_m33_zero(fsw_real out[3][3])
 {

@@ -80,6 +80,15 @@ static inline int fsw_v3i_is_finite(const fsw_real a[3])
   return (isfinite(a[0]) != 0) & (isfinite(a[1]) != 0) & (isfinite(a[2]) != 0);
 }
 
+/* fsw_vn_is_finite(a, n): 1 if all n entries are finite. */
+static inline int fsw_vni_is_finite(const fsw_real *a, int n)
+{
+  int i;
+  for (i = 0; i < n; i++) {
+    if (!isfinite(a[i])) { return 0; } }
+  return 1;
+}
+
 /* fsw_vn_copy and fsw_vn_zero of n entries.  The copy runs through the
  * entries also when out == a (each entry is written with its own value, the
  * same result as fsw_vn_copy's early return). */
@@ -115,23 +124,26 @@ static inline void fsw_m33i_tmult_v3(fsw_real out[3], const fsw_real a[3][3], co
               a[0][2] * v[0] + a[1][2] * v[1] + a[2][2] * v[2]);
 }
 
-/* |b| for b = p a, where p = fsw_pow2_scale(m) and m = max |a_i| > 0 is
- * finite: the bits of fsw_v3_norm(b) without searching b again.  max |b_i|
- * is m p exactly (|a_k| = m gives |b_k| = m p, the same product; every
- * other |b_i| is a rounded |a_i| p <= m p), and m p is in [1/2, 1) or, for
- * a subnormal m, a positive normal number, so the scaled sum of squares is
- * formed as fsw_vn_norm forms it, term by term in the same order. */
-static inline fsw_real fsw_v3i_norm_pow2_scaled(const fsw_real b[3], fsw_real m, fsw_real p)
+/* sqrt(sum (a_i / m)^2) for m = fsw_vn_max_abs(a, 3) > 0 and finite: the
+ * root fsw_vn_norm forms, so fsw_v3_norm(a) is m times it, bit for bit.  For
+ * b = p a with p = fsw_pow2_scale(m) it is also the root fsw_vn_norm forms
+ * for b, so fsw_v3_norm(b) is (m p) times it without searching b again:
+ * max |b_i| is m p exactly (|a_k| = m gives the same product; every other
+ * |b_i| is a rounded |a_i| p <= m p), and b_i / (m p) is the exact quotient
+ * a_i / m rounded once; p a_i is rounded only where it is subnormal with
+ * p < 1, where m p is in [1/2, 1), so both quotients are below 2^MIN_EXP
+ * and both squares round to 0. */
+static inline fsw_real fsw_v3i_scaled_root(const fsw_real a[3], fsw_real m)
 {
-  const fsw_real mb = m * p;
-  fsw_real s = FSW_R(0.0), t;
-  t = b[0] / mb;
+  fsw_real s = FSW_R(0.0);
+  fsw_real t;
+  t = a[0] / m;
   s += t * t;
-  t = b[1] / mb;
+  t = a[1] / m;
   s += t * t;
-  t = b[2] / mb;
+  t = a[2] / m;
   s += t * t;
-  return mb * FSW_SQRT(s);
+  return FSW_SQRT(s);
 }
 
 /* Powers of two from the bits of the real type (IEEE 754 binary64, or

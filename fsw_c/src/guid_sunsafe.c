@@ -7,6 +7,7 @@
 #include "fsw/fsw_attitude.h"
 #include "fsw/fsw_vec.h"
 #include "fsw_vec_inline.h"
+#include "fsw_status_inline.h"
 
 /* Library guard (docs/fsw/guid_sunsafe.md): in the "normal" branch a cross product
  * |s_B x s_cmd| <= tol * |s_B| is treated as antiparallel (use e180).
@@ -84,6 +85,8 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
 {
   fsw_real s_norm; /* [-] |s_B| */
   fsw_real s_B[3]; /* [-] sun_B scaled by a power of two (direction only) */
+  fsw_real m;      /* [-] max |sun_B_i| */
+  fsw_real r;      /* [-] the root of sun_B's scaled sum of squares */
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (out != NULL) { write_safe(out); }
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
@@ -94,17 +97,20 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   }
 
-  s_norm = fsw_v3_norm(in->sun_B);
+  /* |sun_B| as fsw_v3_norm forms it: m times the root of the scaled sum
+   * (0 for a zero sun_B; sun_B is finite here, so m is) */
+  m = fsw_vn_max_abs(in->sun_B, 3);
+  r = (m > FSW_R(0.0)) ? fsw_v3i_scaled_root(in->sun_B, m) : FSW_R(0.0);
+  s_norm = m * r;
   if (s_norm > cfg->min_unit_mag && s_norm > FSW_R(0.0)) {
     fsw_real c, theta; /* cos(theta); [rad] */
     fsw_real omega_RN_B[3];
     /* Only the direction of sun_B is used below: scale it by a power of
      * two (exact, same digits) so that |s_B| is in [1/2, 2 sqrt 3) and no
      * product overflows or underflows for any finite sun_B. */
-    const fsw_real m = fsw_vn_max_abs(in->sun_B, 3); /* > 0 and finite here */
     const fsw_real p = fsw_pow2_scale(m);
     fsw_v3_scale(s_B, p, in->sun_B);
-    s_norm = fsw_v3i_norm_pow2_scaled(s_B, m, p); /* = fsw_v3_norm(s_B) */
+    s_norm = (m * p) * r; /* = fsw_v3_norm(s_B) */
     c = fsw_v3_dot(st->s_cmd_hat_B, s_B) / s_norm;
     if (c > FSW_R(1.0)) { c = FSW_R(1.0); }
     if (c < FSW_R(-1.0)) { c = FSW_R(-1.0); }
@@ -115,9 +121,11 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
       if (SUNSAFE_PI - theta < cfg->small_angle) {
         fsw_v3_copy(e_hat, st->e180_hat_B);
       } else {
+        fsw_real e_norm; /* [-] |s_B x s_cmd| */
+        int e_unit;      /* 1 if e_hat was normalised */
         fsw_v3_cross(e_hat, s_B, st->s_cmd_hat_B);
-        if (!(fsw_v3_norm(e_hat) > SUNSAFE_PARALLEL_TOL * s_norm) ||
-            !fsw_v3_normalize(e_hat, e_hat)) {
+        e_unit = fsw_v3_norm_normalize(e_hat, &e_norm, e_hat);
+        if (!(e_norm > SUNSAFE_PARALLEL_TOL * s_norm) || !e_unit) {
           fsw_v3_copy(e_hat, st->e180_hat_B);
         }
       }
@@ -141,5 +149,5 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
     write_safe(out);
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   }
-  return fsw_health_record(&st->health, FSW_OK);
+  return fsw_health_record_ok_i(&st->health);
 }

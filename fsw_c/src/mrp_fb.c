@@ -6,6 +6,7 @@
 
 #include "fsw/fsw_vec.h"
 #include "fsw_vec_inline.h"
+#include "fsw_status_inline.h"
 
 /* Relative symmetry tolerance of the inertia: |I_jk - I_kj| <= tol * max|I|. */
 #if FSW_USE_FLOAT
@@ -202,5 +203,5 @@ FswStatus fsw_mrp_fb_update(FswMrpFbState *st, const FswMrpFbConfig *cfg, const 
   fsw_v3_scale(out->int_torque_B, FSW_R(-1.0), P_Ki_z);
   fsw_v3_copy(st->int_sigma, int_sigma);
   fsw_clock_commit(&st->clock, in->t_ns);
-  return fsw_health_record(&st->health, FSW_OK);
+  return fsw_health_record_ok_i(&st->health);
 }

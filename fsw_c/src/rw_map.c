@@ -16,6 +16,7 @@
 #include "fsw/fsw_linalg.h"
 #include "fsw/fsw_vec.h"
 #include "fsw_vec_inline.h"
+#include "fsw_status_inline.h"
 #include "fsw/rw_common.h"
 
 FswStatus fsw_rw_map_check(const FswRwMapConfig *cfg)
@@ -127,7 +128,7 @@ FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
   if (!fsw_v3_is_finite(in->Lr_B) || !fsw_rw_avail_valid(in->avail, n) ||
       (cfg->mode == FSW_RW_MAP_POWER && !fsw_rw_avail_finite(in->Omega, in->avail, n))) {
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
-  if (nc == 0) { return fsw_health_record(&st->health, FSW_OK); }
+  if (nc == 0) { return fsw_health_record_ok_i(&st->health); }
 
   if (cfg->mode == FSW_RW_MAP_MIN_NORM && w->mn_valid) {
     for (i = 0; i < n && w->mn_avail[i] == in->avail[i]; i++) {
@@ -166,5 +167,5 @@ FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
     }
     out->u_s[w->idx[k]] = u;
   }
-  return fsw_health_record(&st->health, FSW_OK);
+  return fsw_health_record_ok_i(&st->health);
 }

@@ -2,6 +2,7 @@
 // properties over seeded random inputs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -78,6 +79,73 @@ TEST(FswV3, NormalizeHandlesZeroAndNonFinite)
   EXPECT_EQ(0, w[0]); EXPECT_EQ(-1, w[1]); EXPECT_EQ(0, w[2]);
   EXPECT_FALSE(fsw_v3_is_finite(v));
   EXPECT_TRUE(fsw_v3_is_finite(w));
+}
+
+// fsw_v3_norm_normalize gives fsw_vn_norm's |a| and the direction the
+// scaled normalisation gives, bit for bit, from one search and one sum.  The
+// direction's reference is written here: m = max |a_i|, 2^-e from frexp and
+// ldexp (e clamped for a subnormal m), b = 2^-e a, n = (m 2^-e) sqrt(sum
+// (b_i / (m 2^-e))^2), out = b / n.  Entries span the whole exponent range
+// with mixed scales, so that 2^-e a_i is subnormal for some entries.
+// Verifies: REQ-VEC-002, REQ-VEC-003
+TEST(FswV3, NormNormalizeIsTheNormAndTheScaledDirection)
+{
+  using L = std::numeric_limits<fsw_real>;
+  kt::Rng r(20261206);
+  auto same = [](fsw_real x, fsw_real y) {
+    return (std::isnan(x) && std::isnan(y)) || (x == y && std::signbit(x) == std::signbit(y));
+  };
+  for (int k = 0; k < 20000; k++) {
+    fsw_real a[3];
+    for (int i = 0; i < 3; i++) {
+      const int e = r.uniform_int(L::min_exponent - L::digits, L::max_exponent - 1);
+      a[i] = std::ldexp(static_cast<fsw_real>(r.uniform(0.5, 1.0)), e);
+      if (r.uniform() < 0.5) a[i] = -a[i];
+      if (r.uniform() < 0.05) a[i] = 0;
+    }
+    fsw_real out[3], norm = -1;
+    const int ok = fsw_v3_norm_normalize(out, &norm, a);
+    ASSERT_TRUE(same(fsw_vn_norm(a, 3), norm)) << k;
+    fsw_real m = 0;
+    for (int i = 0; i < 3; i++) m = std::max(m, std::fabs(a[i]));
+    if (m == 0) {
+      EXPECT_EQ(0, ok);
+      continue;
+    }
+    int e = 0;
+    (void)std::frexp(m, &e);
+    if (-e > L::max_exponent - 1) e = -(L::max_exponent - 1);
+    const fsw_real p = std::ldexp(FSW_R(1.0), -e);
+    const fsw_real b[3] = {p * a[0], p * a[1], p * a[2]};
+    const fsw_real mb = m * p;
+    fsw_real sum = 0;
+    for (int i = 0; i < 3; i++) {
+      const fsw_real t = b[i] / mb;
+      sum += t * t;
+    }
+    const fsw_real n = mb * std::sqrt(sum);
+    ASSERT_EQ(1, ok) << k;
+    for (int i = 0; i < 3; i++) ASSERT_TRUE(same(b[i] / n, out[i])) << k << " " << i;
+    fsw_real again[3] = {a[0], a[1], a[2]}, norm2 = -1;  // out may be a
+    ASSERT_EQ(1, fsw_v3_norm_normalize(again, &norm2, again));
+    for (int i = 0; i < 3; i++) ASSERT_TRUE(same(out[i], again[i])) << k;
+    ASSERT_TRUE(same(norm, norm2));
+  }
+  // zero, NaN and infinite a: 0 returned, out = 0, *norm = fsw_vn_norm's 0, NaN, infinity
+  fsw_real z[3] = {0, 0, 0}, out[3] = {9, 9, 9}, norm = -1;
+  EXPECT_EQ(0, fsw_v3_norm_normalize(out, &norm, z));
+  EXPECT_EQ(0, norm);
+  EXPECT_EQ(0, out[0]); EXPECT_EQ(0, out[1]); EXPECT_EQ(0, out[2]);
+  fsw_real v[3] = {1, L::quiet_NaN(), 2};
+  out[1] = 9;
+  EXPECT_EQ(0, fsw_v3_norm_normalize(out, &norm, v));
+  EXPECT_TRUE(std::isnan(norm));
+  EXPECT_EQ(0, out[1]);
+  v[1] = -L::infinity();
+  out[2] = 9;
+  EXPECT_EQ(0, fsw_v3_norm_normalize(out, &norm, v));
+  EXPECT_EQ(L::infinity(), norm);
+  EXPECT_EQ(0, out[2]);
 }
 
 // Verifies: REQ-VEC-003

@@ -28,6 +28,11 @@ fsw_real fsw_v3_norm(const fsw_real a[3]);  /* overflow-safe Euclidean norm */
  * 1 on success (also for finite a whose norm would overflow or underflow:
  * a is pre-scaled by a power of two, which changes no digit otherwise). */
 int fsw_v3_normalize(fsw_real out[3], const fsw_real a[3]);
+/* fsw_v3_normalize(out, a) and *norm = fsw_v3_norm(a), the same bits as the
+ * two calls (also for a zero or non-finite a: *norm is then 0, NaN or
+ * infinity), with one search for the largest entry and one sum.  out may be
+ * a. */
+int fsw_v3_norm_normalize(fsw_real out[3], fsw_real *norm, const fsw_real a[3]);
 int fsw_v3_is_finite(const fsw_real a[3]); /* 1 if all entries are finite */
 /* 2^-e with 2^(e-1) <= m < 2^e (1 for m <= 0 or non-finite; for subnormal
  * m the largest finite power of two): multiplying by it is exact barring
