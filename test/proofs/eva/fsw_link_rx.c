@@ -2,8 +2,8 @@
  * docs/eva.md): any bytes of any length up to a buffer's size are parsed,
  * each decoder reads a packet that parsed, the deframer takes any byte
  * stream in two pushes and the configuration decoder any image.  No
- * floating-point operation is made on the received bytes (a decoded real is
- * a copy of its bits), so the two analyses are the same.
+ * arithmetic is made on the received reals: each is a copy of its 64 bits,
+ * so the envelope analysis reports the non-finite ones (recorded).
  * eva-sources: fsw_link.c fsw_status.c */
 #include "eva_driver.h"
 
