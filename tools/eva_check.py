@@ -118,8 +118,17 @@ def driver_options(path):
 
 
 def driver_entries(path):
+    """The entries a driver marks with EVA_ENTRY, in its file and in the headers of its
+    folder that it includes (a body shared by the drivers of one module's parts), not
+    eva_driver.h (which defines the macro)."""
     with open(path, encoding="utf-8") as f:
-        return sorted(set(re.findall(r"EVA_ENTRY\((\w+)", f.read())))
+        text = f.read()
+    for h in re.findall(r'#include "(\w+\.h)"', text):
+        hp = os.path.join(os.path.dirname(path), h)
+        if h != "eva_driver.h" and os.path.exists(hp):
+            with open(hp, encoding="utf-8") as f:
+                text += f.read()
+    return sorted(set(re.findall(r"EVA_ENTRY\((\w+)", text)))
 
 
 def cpu_so_far(pid):

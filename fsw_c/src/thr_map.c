@@ -29,15 +29,21 @@
 #define THR_NNLS_SAT_TOL (FSW_R(10000.0) * FSW_REAL_EPS)
 
 /* Count the control axes (rows up to the first with norm <= epsilon) and
- * write them normalised into C.  Returns the count (0..3). */
+ * write them normalised into C.  Returns the count (0..3), or -1 for a
+ * counted row so short that 1/|row| overflows (a norm below the inverse of
+ * the largest real, possible with epsilon 0): its normalised row would be
+ * infinite, so check refuses it. */
 static int count_axes(fsw_real C[3][3], const FswThrMapConfig *cfg)
 {
   int nc = 0, j;
   fsw_m33_zero(C);
   for (j = 0; j < 3; j++) {
     fsw_real n = fsw_v3_norm(cfg->control_axes_B[j]);
+    fsw_real inv;
     if (!(n > cfg->epsilon) || !isfinite(n)) { break; }
-    fsw_v3_scale(C[j], FSW_R(1.0) / n, cfg->control_axes_B[j]);
+    inv = FSW_R(1.0) / n;
+    if (!isfinite(inv)) { return -1; }
+    fsw_v3_scale(C[j], inv, cfg->control_axes_B[j]);
     nc++;
   }
   return nc;
@@ -71,7 +77,7 @@ FswStatus fsw_thr_map_check(const FswThrMapConfig *cfg)
     if (!isfinite(cfg->F_max[i]) || !(cfg->F_max[i] > FSW_R(0.0))) { return FSW_E_CONFIG; }
   }
   nc = count_axes(C, cfg);
-  if (nc == 0) { return FSW_E_CONFIG; }
+  if (nc <= 0) { return FSW_E_CONFIG; } /* no counted row, or one too short to normalise */
   /* The counted (unit) axes must be independent: the K1 rank rule applied
    * to [C]: Cholesky of [C][C]^T, fail if a pivot <= FSW_RANK_TOL * max diag
    * (max diag = 1 for unit rows). */

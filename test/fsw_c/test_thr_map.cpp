@@ -134,6 +134,10 @@ const BadCfg kBadConfigs[] = {
     {"direction not unit", [](FswThrMapConfig* c) { set3(c->gt_hat_B[3], 2, 0, 0); }, FSW_E_CONFIG},
     {"direction zero", [](FswThrMapConfig* c) { set3(c->gt_hat_B[3], 0, 0, 0); }, FSW_E_CONFIG},
     {"no control axis", [](FswThrMapConfig* c) { std::memset(c->control_axes_B, 0, sizeof c->control_axes_B); }, FSW_E_CONFIG},
+    {"control axis too short to normalise (1/|row| overflows)", [](FswThrMapConfig* c) {
+       const R t = std::numeric_limits<R>::denorm_min();
+       c->epsilon = 0;
+       set3(c->control_axes_B[0], t, t, t); }, FSW_E_CONFIG},
     {"control axis NaN", [](FswThrMapConfig* c) { c->control_axes_B[1][0] = std::numeric_limits<R>::quiet_NaN(); }, FSW_E_CONFIG},
     {"dependent control axes", [](FswThrMapConfig* c) { set3(c->control_axes_B[2], 1, 1, 0); }, FSW_E_SINGULAR},
     {"repeated control axis", [](FswThrMapConfig* c) { set3(c->control_axes_B[1], 2, 0, 0); }, FSW_E_SINGULAR},

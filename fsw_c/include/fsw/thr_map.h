@@ -47,7 +47,8 @@ typedef enum {
 typedef struct {
   /* [-] (3 rows) control axes, B components.  Rows are counted in order up
    * to the first whose norm is <= epsilon (0 counted rows is an error) and
-   * normalised by init; the counted rows must be linearly independent. */
+   * normalised by init; the counted rows must be linearly independent, and
+   * none so short that 1/norm overflows (FSW_E_CONFIG). */
   fsw_real control_axes_B[3][3];
   int num_thr;                         /* [-]   1..FSW_MAX_THR                */
   fsw_real r_thr_B[FSW_MAX_THR][3];    /* [m]   (num_thr) thruster locations,

@@ -12,7 +12,7 @@ static void run(void)
   FswBdotOut out;
   FswStatus s;
   int k;
-  const fsw_real pmin = eva_any_mode ? EVA_TINY : EVA_ENV_MIN;
+  const fsw_real pmin = eva_pos_min();
   cfg.variant = eva_int(FSW_BDOT_DERIV, FSW_BDOT_GYRO);
   cfg.k_bdot = eva_real(pmin, FSW_BDOT_K_MAX);
   cfg.normalize = eva_int(0, 1);

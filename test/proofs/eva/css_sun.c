@@ -12,11 +12,8 @@ static void run(void)
   FswCssSunIn in;
   FswCssSunOut out;
   FswStatus s;
-  int i;
-  const fsw_real u = 1.0 + FSW_CSS_SUN_UNIT_TOL;
   cfg.num_css = eva_int(1, FSW_MAX_CSS);
-  /*@ loop unroll 64; */
-  for (i = 0; i < FSW_MAX_CSS; i++) eva_reals(cfg.n_hat_B[i], 3, -u, u); /* unit within tolerance */
+  eva_units(cfg.n_hat_B, FSW_MAX_CSS, FSW_CSS_SUN_UNIT_TOL);
   eva_positives(cfg.scale, FSW_MAX_CSS);
   cfg.lit_threshold = eva_real(0.0, 0.99999999);
   EVA_ENTRY(check, fsw_css_sun_check(&cfg));

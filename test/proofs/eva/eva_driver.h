@@ -59,6 +59,13 @@ static fsw_real eva_positive(void) { return eva_any_mode ? eva_real(EVA_TINY, EV
 /* A non-negative real the contract leaves unbounded above. */
 static fsw_real eva_nonneg(void) { return eva_any_mode ? eva_real(0.0, EVA_MAX) : eva_real(0.0, EVA_ENV); }
 
+/* The lower end of a positive real the contract leaves unbounded below:
+ * EVA_ENV_MIN, or (any) the smallest positive double. */
+static fsw_real eva_pos_min(void) { return eva_any_mode ? EVA_TINY : EVA_ENV_MIN; }
+
+/* A positive real the contract bounds above by hi only. */
+static fsw_real eva_positive_to(fsw_real hi) { return eva_real(eva_pos_min(), hi); }
+
 static int eva_int(int lo, int hi) { return Frama_C_interval(lo, hi); }
 
 /* A real sensor or command input: in the envelope, or (any) finite of any
@@ -89,6 +96,15 @@ static void eva_reals(fsw_real *v, int n, fsw_real lo, fsw_real hi)
   int i;
   /*@ loop unroll 64; */
   for (i = 0; i < n; i++) v[i] = eva_real(lo, hi);
+}
+
+/* n unit vectors as check accepts them within tol: each component in
+ * [-(1 + tol), 1 + tol] (a superset of the unit vectors). */
+static void eva_units(fsw_real (*v)[3], int n, fsw_real tol)
+{
+  int i;
+  /*@ loop unroll 64; */
+  for (i = 0; i < n; i++) eva_reals(v[i], 3, -(1.0 + tol), 1.0 + tol);
 }
 
 static void eva_positives(fsw_real *v, int n)

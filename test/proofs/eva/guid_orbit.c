@@ -13,7 +13,7 @@ static void run(void)
   FswStatus s;
   cfg.variant = eva_int(FSW_GUID_ORBIT_NADIR, FSW_GUID_ORBIT_VELOCITY);
   eva_reals(cfg.sigma_BdR, 3, eva_any_mode ? -EVA_SQ : -EVA_ENV, eva_any_mode ? EVA_SQ : EVA_ENV);
-  cfg.mu = eva_real(eva_any_mode ? EVA_TINY : EVA_ENV_MIN, FSW_GUID_ORBIT_MU_MAX);
+  cfg.mu = eva_positive_to(FSW_GUID_ORBIT_MU_MAX);
   EVA_ENTRY(check, fsw_guid_orbit_check(&cfg));
   s = fsw_guid_orbit_init(&st, &cfg);
   EVA_ENTRY(init, s);

@@ -12,7 +12,6 @@ static void run(void)
   FswMrpFbOut out;
   FswStatus s;
   int i, j, k;
-  const fsw_real u = 1.0 + FSW_MRP_FB_UNIT_TOL;
   cfg.K = eva_positive();
   cfg.P = eva_positive();
   cfg.K_i = eva_finite();
@@ -29,8 +28,7 @@ static void run(void)
     }
   }
   cfg.num_rw = eva_int(0, FSW_MAX_RW);
-  /*@ loop unroll 64; */
-  for (i = 0; i < FSW_MAX_RW; i++) eva_reals(cfg.gs_hat_B[i], 3, -u, u); /* unit within tolerance */
+  eva_units(cfg.gs_hat_B, FSW_MAX_RW, FSW_MRP_FB_UNIT_TOL);
   eva_positives(cfg.J_s, FSW_MAX_RW);
   EVA_ENTRY(check, fsw_mrp_fb_check(&cfg));
   s = fsw_mrp_fb_init(&st, &cfg);

@@ -12,13 +12,10 @@ static void run(void)
   FswMtqDesatIn in;
   FswMtqDesatOut out;
   FswStatus s;
-  int i;
-  const fsw_real u = 1.0 + FSW_RW_UNIT_TOL;
   cfg.num_rw = eva_int(1, FSW_MAX_RW);
-  /*@ loop unroll 64; */
-  for (i = 0; i < FSW_MAX_RW; i++) eva_reals(cfg.gs_hat_B[i], 3, -u, u); /* unit within tolerance */
-  eva_reals(cfg.J_s, FSW_MAX_RW, eva_any_mode ? EVA_TINY : EVA_ENV_MIN, FSW_RW_J_S_MAX);
-  cfg.k_desat = eva_real(eva_any_mode ? EVA_TINY : EVA_ENV_MIN, FSW_MTQ_DESAT_K_MAX);
+  eva_units(cfg.gs_hat_B, FSW_MAX_RW, FSW_RW_UNIT_TOL);
+  eva_reals(cfg.J_s, FSW_MAX_RW, eva_pos_min(), FSW_RW_J_S_MAX);
+  cfg.k_desat = eva_positive_to(FSW_MTQ_DESAT_K_MAX);
   eva_reals(cfg.h_target_B, 3, -FSW_MTQ_DESAT_H_MAX, FSW_MTQ_DESAT_H_MAX);
   cfg.tau_max = eva_real(FSW_MTQ_DESAT_TAU_MIN, FSW_MTQ_DESAT_TAU_MAX);
   cfg.h_deadband = eva_real(0.0, FSW_MTQ_DESAT_H_MAX);

@@ -11,11 +11,8 @@ static void run(void)
   FswMtqMapIn in;
   FswMtqMapOut out;
   FswStatus s;
-  int i;
-  const fsw_real u = 1.0 + FSW_MTQ_UNIT_TOL;
   cfg.num_mtq = eva_int(1, FSW_MAX_MTQ);
-  /*@ loop unroll 64; */
-  for (i = 0; i < FSW_MAX_MTQ; i++) eva_reals(cfg.gt_hat_B[i], 3, -u, u); /* unit within tolerance */
+  eva_units(cfg.gt_hat_B, FSW_MAX_MTQ, FSW_MTQ_UNIT_TOL);
   eva_reals(cfg.m_max, FSW_MAX_MTQ, FSW_MTQ_M_MAX_MIN, FSW_MTQ_M_MAX_MAX);
   cfg.duty_max = eva_real(FSW_MTQ_DUTY_MIN, 1.0);
   EVA_ENTRY(check, fsw_mtq_map_check(&cfg));

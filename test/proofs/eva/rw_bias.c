@@ -12,14 +12,12 @@ static void run(void)
   FswRwBiasIn in;
   FswRwBiasOut out;
   FswStatus s;
-  int i, k;
-  const fsw_real u = 1.0 + FSW_RW_UNIT_TOL;
+  int k;
   cfg.num_rw = eva_int(1, FSW_MAX_RW);
-  /*@ loop unroll 64; */
-  for (i = 0; i < FSW_MAX_RW; i++) eva_reals(cfg.gs_hat_B[i], 3, -u, u); /* unit within tolerance */
+  eva_units(cfg.gs_hat_B, FSW_MAX_RW, FSW_RW_UNIT_TOL);
   /* signed preferred speeds; check refuses those inside the keep-out band */
   eva_reals(cfg.Omega_bias, FSW_MAX_RW, -FSW_RW_OMEGA_MAX, FSW_RW_OMEGA_MAX);
-  cfg.Omega_keepout = eva_real(eva_any_mode ? EVA_TINY : EVA_ENV_MIN, FSW_RW_OMEGA_MAX / 2);
+  cfg.Omega_keepout = eva_positive_to(FSW_RW_OMEGA_MAX / 2);
   cfg.Omega_hyst = eva_real(0.0, FSW_RW_OMEGA_MAX / 2);
   EVA_ENTRY(check, fsw_rw_bias_check(&cfg));
   s = fsw_rw_bias_init(&st, &cfg);

@@ -12,13 +12,11 @@ static void run(void)
   FswRwMapIn in;
   FswRwMapOut out;
   FswStatus s;
-  int i, k;
-  const fsw_real u = 1.0 + FSW_RW_UNIT_TOL;
+  int k;
   cfg.num_rw = eva_int(1, FSW_MAX_RW);
-  /*@ loop unroll 64; */
-  for (i = 0; i < FSW_MAX_RW; i++) eva_reals(cfg.gs_hat_B[i], 3, -u, u); /* unit within tolerance */
+  eva_units(cfg.gs_hat_B, FSW_MAX_RW, FSW_RW_UNIT_TOL);
   cfg.num_axes = eva_int(0, 3);
-  for (i = 0; i < 3; i++) eva_reals(cfg.ctrl_axes_B[i], 3, -u, u);
+  eva_units(cfg.ctrl_axes_B, 3, FSW_RW_UNIT_TOL);
   cfg.mode = eva_int(FSW_RW_MAP_MIN_NORM, FSW_RW_MAP_POWER);
   cfg.eps_P = eva_real(FSW_RW_MAP_EPS_P_MIN, FSW_RW_MAP_EPS_P_MAX);
   EVA_ENTRY(check, fsw_rw_map_check(&cfg));

@@ -12,13 +12,11 @@ static void run(void)
   FswRwNullRegenIn in;
   FswRwNullRegenOut out;
   FswStatus s;
-  int i, k;
-  const fsw_real u = 1.0 + FSW_RW_UNIT_TOL;
+  int k;
   cfg.num_rw = eva_int(1, FSW_MAX_RW);
-  /*@ loop unroll 64; */
-  for (i = 0; i < FSW_MAX_RW; i++) eva_reals(cfg.gs_hat_B[i], 3, -u, u); /* unit within tolerance */
+  eva_units(cfg.gs_hat_B, FSW_MAX_RW, FSW_RW_UNIT_TOL);
   cfg.mode = eva_int(FSW_RW_REGEN_GRADIENT, FSW_RW_REGEN_OPTIMUM);
-  cfg.k_P = eva_real(eva_any_mode ? EVA_TINY : EVA_ENV_MIN, FSW_RW_GAIN_MAX);
+  cfg.k_P = eva_positive_to(FSW_RW_GAIN_MAX);
   eva_reals(cfg.u_max, FSW_MAX_RW, FSW_RW_U_MAX_MIN, FSW_RW_U_MAX_MAX);
   EVA_ENTRY(check, fsw_rw_null_regen_check(&cfg));
   s = fsw_rw_null_regen_init(&st, &cfg);

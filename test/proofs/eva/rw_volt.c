@@ -13,7 +13,7 @@ static void run(void)
   FswRwVoltOut out;
   FswStatus s;
   int k;
-  const fsw_real pmin = eva_any_mode ? EVA_TINY : EVA_ENV_MIN;
+  const fsw_real pmin = eva_pos_min();
   cfg.num_rw = eva_int(1, FSW_MAX_RW);
   cfg.V_min = eva_real(0.0, FSW_RW_V_MAX_MAX);
   cfg.V_max = eva_real(pmin, FSW_RW_V_MAX_MAX); /* check refuses V_max <= V_min */

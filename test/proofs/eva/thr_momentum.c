@@ -12,12 +12,10 @@ static void run(void)
   FswThrMomentumIn in;
   FswThrMomentumOut out;
   FswStatus s;
-  int i, k;
-  const fsw_real u = 1.0 + FSW_RW_UNIT_TOL;
-  const fsw_real pmin = eva_any_mode ? EVA_TINY : EVA_ENV_MIN;
+  int k;
+  const fsw_real pmin = eva_pos_min();
   cfg.num_rw = eva_int(1, FSW_MAX_RW);
-  /*@ loop unroll 64; */
-  for (i = 0; i < FSW_MAX_RW; i++) eva_reals(cfg.gs_hat_B[i], 3, -u, u); /* unit within tolerance */
+  eva_units(cfg.gs_hat_B, FSW_MAX_RW, FSW_RW_UNIT_TOL);
   eva_reals(cfg.J_s, FSW_MAX_RW, pmin, FSW_RW_J_S_MAX);
   /* intervals of each value; check refuses the combinations the contract excludes */
   cfg.h_upper = eva_real(pmin, FSW_THR_MOM_H_MAX);
