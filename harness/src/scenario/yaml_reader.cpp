@@ -310,6 +310,26 @@ std::vector<ScenarioIssue> check_yaml_text(const std::string& text, const std::s
   return issues;
 }
 
+YAML::Node yaml_of_json(const nlohmann::json& j)
+{
+  switch (j.type()) {
+    case nlohmann::json::value_t::object: {
+      YAML::Node m(YAML::NodeType::Map);
+      for (auto it = j.begin(); it != j.end(); ++it) m.force_insert(it.key(), yaml_of_json(it.value()));
+      return m;
+    }
+    case nlohmann::json::value_t::array: {
+      YAML::Node q(YAML::NodeType::Sequence);
+      for (const nlohmann::json& e : j) q.push_back(yaml_of_json(e));
+      return q;
+    }
+    case nlohmann::json::value_t::string: return YAML::Node(j.get_ref<const std::string&>());
+    case nlohmann::json::value_t::null:
+    case nlohmann::json::value_t::discarded: return YAML::Node(YAML::NodeType::Null);
+    default: return YAML::Node(j.dump());  // a number or a boolean, as the text writes it
+  }
+}
+
 void collect_key_lines(const YAML::Node& n, const std::string& path, std::map<std::string, std::pair<int, int>>& out)
 {
   if (n.IsMap()) {
