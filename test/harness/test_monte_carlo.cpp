@@ -802,3 +802,87 @@ TEST(S3MonteCarlo, ShortCampaignEvaluatesItsCriteriaRepeatablyAndWritesItsReport
   fs::remove_all(d1);
   fs::remove_all(d2);
 }
+
+namespace {
+
+// Two node trees alike in everything the reader looks at: the kind, a
+// scalar's text, a map's keys in order, each element.
+void expect_same_tree(const YAML::Node& a, const YAML::Node& b, const std::string& at)
+{
+  ASSERT_EQ(a.Type(), b.Type()) << at;
+  switch (a.Type()) {
+    case YAML::NodeType::Scalar: EXPECT_EQ(a.Scalar(), b.Scalar()) << at; break;
+    case YAML::NodeType::Sequence:
+      ASSERT_EQ(a.size(), b.size()) << at;
+      for (size_t i = 0; i < a.size(); ++i) expect_same_tree(a[i], b[i], at + "[" + std::to_string(i) + "]");
+      break;
+    case YAML::NodeType::Map: {
+      ASSERT_EQ(a.size(), b.size()) << at;
+      auto ib = b.begin();
+      for (auto ia = a.begin(); ia != a.end(); ++ia, ++ib) {
+        ASSERT_EQ(ia->first.Scalar(), ib->first.Scalar()) << at;
+        expect_same_tree(ia->second, ib->second, at + "." + ia->first.Scalar());
+      }
+      break;
+    }
+    default: break;
+  }
+}
+
+// A scenario through the writer's text and YAML::Load, and through the
+// tree built from the writer's JSON: the same tree, and the same scenario
+// read from it (or the same first problem).
+void expect_same_reload(const Scenario& sc, const std::string& what)
+{
+  const std::string text = scenario_to_json_text(sc);
+  expect_same_tree(YAML::Load(text), yaml_of_json(nlohmann::json::parse(text)), what);
+  std::string via_text, direct;
+  try {
+    via_text = scenario_to_json_text(load_canonical_scenario_text(text, "(drawn scenario)"));
+  } catch (const ScenarioError& e) {
+    via_text = "refused: " + e.issues().front().key + ": " + e.issues().front().message;
+  }
+  try {
+    direct = scenario_to_json_text(reload_canonical_scenario(sc, "(drawn scenario)"));
+  } catch (const ScenarioError& e) {
+    direct = "refused: " + e.issues().front().key + ": " + e.issues().front().message;
+  }
+  EXPECT_EQ(via_text, direct) << what;
+}
+
+}  // namespace
+
+// A draw is read back from the node tree built from the writer's JSON, not
+// from its text (check_draw): for the draws of the shipped campaigns and
+// of every kind of dispersion, for refused draws and for every shipped
+// scenario, that tree is the one YAML::Load makes of the text, and the
+// scenario read (or the problem found) is the same.
+TEST(McDraw, TheReloadWithoutTextIsTheReloadOfTheText)
+{
+  const std::string dir = std::string(KESTREL_SOURCE_DIR) + "/scenarios/";
+  std::vector<std::pair<std::string, Scenario>> campaigns;
+  for (const char* f : {"s1_monte_carlo.yaml", "s3_monte_carlo.yaml", "mc_demo_drivers.yaml"})
+    campaigns.emplace_back(f, load_scenario(dir + f));
+  campaigns.emplace_back("every kind", load(kEveryKind));
+  // events[0].t beyond the 20 s run: about half the draws are refused when read back
+  campaigns.emplace_back("late event", load("  dispersions: [{key: \"events[0].t\", dist: uniform, min: 2, max: 40}]\n"));
+  size_t refused = 0;
+  for (const auto& [name, sc] : campaigns)
+    for (uint64_t k = 0; k < 60; ++k) {
+      const McDraw d = draw_run(sc, sc.monte_carlo->seed, k, false);  // the draws, not yet read back
+      ASSERT_TRUE(d.invalid.empty()) << name << " run " << k << ": " << d.invalid;
+      expect_same_reload(d.sc, name + " run " + std::to_string(k));
+      refused += draw_run(sc, sc.monte_carlo->seed, k).invalid.empty() ? 0 : 1;
+    }
+  EXPECT_GT(refused, 10u);
+  EXPECT_LT(refused, 50u);
+  for (const fs::directory_entry& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".yaml") expect_same_reload(load_scenario(e.path().string()), e.path().filename().string());
+  // strings the text escapes or that read as other kinds when plain
+  Scenario odd = load(kEveryKind);
+  for (const char* s : {"", "null", "~", "true", "0x1f", "1e3", "a \"quoted\" \\ back\\slash", "tab\there\nline",
+                        "\xc3\xa9t\xc3\xa9 \x01\x1f", "# not a comment: - [x] {y}"}) {
+    odd.description = s;
+    expect_same_reload(odd, std::string("description ") + s);
+  }
+}

@@ -30,6 +30,7 @@
 #include "cli/command_util.h"
 #include "harness/cli/commands.h"
 #include "harness/core/run.h"
+#include "harness/mc/mc_journal.h"
 #include "harness/mc/monte_carlo.h"
 #include "harness/scenario/scenario.h"
 
@@ -108,7 +109,8 @@ RunConfig bench_config()
 // 1 % jitter sub-step (16 sub-steps: the 3,000 rpm wheel starts at
 // |Omega| h = 1.96 rad; over a day the wheels reach 2.16 rad, about 1 % on
 // the jitter amplitude, docs/performance.md), and balanced wheels; and a Monte Carlo
-// campaign of 20 short runs of the S3 campaign on one thread.
+// campaign of 20 short runs of the S3 campaign on one thread (--mc-runs,
+// --mc-duration).
 void s3_cases(const std::string& dir, std::vector<Case>& cases)
 {
   const std::string hold = (fs::path(dir) / "s3_detumble_hold.yaml").string();
@@ -122,8 +124,7 @@ void s3_cases(const std::string& dir, std::vector<Case>& cases)
     coupled.ov.push_back(o);
   cases.push_back(coupled);
   cases.push_back({"s3-env-balanced", "S3 every environment model, balanced", hold, s3, false, true});
-  Case mc{"s3-mc", "S3 Monte Carlo, 20 runs of 300 s",
-          (fs::path(dir) / "s3_monte_carlo.yaml").string(), {{"duration", "300"}}, false, true};
+  Case mc{"s3-mc", "S3 Monte Carlo", (fs::path(dir) / "s3_monte_carlo.yaml").string(), {{"duration", "300"}}, false, true};
   mc.mc_runs = 20;
   cases.push_back(mc);
 }
@@ -175,6 +176,10 @@ std::vector<Case> reference_cases(const std::string& dir)
     off.ov.push_back({std::string("environment.") + m + ".enabled", "false"});
   cases.push_back(env);
   cases.push_back(off);
+  // Extra: S1's campaign as shipped (a wheel failure at a random time), 20 runs of 600 s.
+  Case mc{"s1-mc", "S1 Monte Carlo", (fs::path(dir) / "s1_monte_carlo.yaml").string(), {}, false, true};
+  mc.mc_runs = 20;
+  cases.push_back(mc);
   s3_cases(dir, cases);
   return cases;
 }
@@ -323,13 +328,14 @@ bool bench_case(const Case& c, const BenchOptions& o, double pair_ns, std::ostre
   return true;
 }
 
-// The Monte Carlo case: a campaign of c.mc_runs runs on one thread into a
-// temporary folder (plan, runs with their manifests and records, the
-// retained runs' full results, the summary files: what `kestrel mc` does),
-// against as many bare runs of the nominal scenario (built and run, no
-// files): process CPU per run of each.  Failing runs are not rerun for
-// their full results: the short runs fail the S3 campaign's detumble
-// criteria by design, and those reruns are the retention's price.
+// The Monte Carlo cases: a campaign of c.mc_runs runs on one thread into a
+// temporary folder (plan, runs with their manifests and the journal of
+// records, the retained runs' full results, the summary files written from
+// the journal: what `kestrel mc` does), against as many bare runs of the
+// nominal scenario (built and run, no files): process CPU per run of each.
+// Failing runs are not rerun for their full results: the short runs fail
+// the campaigns' criteria by design, and those reruns are the retention's
+// price.
 double campaign_cpu(const Case& c, Scenario sc)
 {
   sc.monte_carlo->retention.keep_failing = false;
@@ -339,10 +345,10 @@ double campaign_cpu(const Case& c, Scenario sc)
   const fs::path dir = fs::temp_directory_path() / ("kestrel_bench_mc_" + std::to_string(::getpid()));
   const double c0 = cpu_seconds();
   bool stopped = false;
-  const std::vector<McRecord> records = run_mc_runs(plan, dir, ro, stopped);
+  const std::vector<McRunState> states = run_mc_journal(plan, dir, ro, stopped);
   McSummaryInfo info;
   info.source = c.file;
-  write_mc_outputs(plan, records, info, dir);
+  write_mc_outputs(plan, McJournalRecords(dir, states), info, dir);
   const double cpu = cpu_seconds() - c0;
   std::error_code ec;
   fs::remove_all(dir, ec);
@@ -359,12 +365,27 @@ bool bench_mc(const Case& c, std::ostream& out)
   }
   const double bare = (cpu_seconds() - b0) / static_cast<double>(c.mc_runs);
   const double per_run = campaign_cpu(c, sc) / static_cast<double>(c.mc_runs);
-  out << "  " << std::left << std::setw(38) << c.label << std::right << std::fixed << std::setprecision(1)
+  std::ostringstream label;
+  label << c.label << ", " << c.mc_runs << " runs of " << sc.duration << " s";
+  out << "  " << std::left << std::setw(38) << label.str() << std::right << std::fixed << std::setprecision(2)
       << " campaign " << per_run * 1e3 << " ms CPU per run, bare run " << bare * 1e3 << " ms: overhead "
-      << std::setprecision(0) << 100.0 * (per_run / bare - 1.0) << " %; " << sc.duration / bare
-      << "x real time bare\n";
+      << std::setprecision(1) << 100.0 * (per_run / bare - 1.0) << " %; " << std::setprecision(0)
+      << sc.duration / bare << "x real time bare\n";
   out.unsetf(std::ios::fixed);
   return true;
+}
+
+// --mc-runs, --mc-duration: the Monte Carlo cases' size.
+void size_mc_cases(const BenchOptions& o, std::vector<Case>& cases)
+{
+  for (Case& c : cases) {
+    if (c.mc_runs == 0) continue;
+    if (o.mc_runs > 0) c.mc_runs = o.mc_runs;
+    if (o.mc_duration <= 0.0) continue;
+    c.ov.erase(std::remove_if(c.ov.begin(), c.ov.end(), [](const Override& ov) { return ov.path == "duration"; }),
+               c.ov.end());
+    c.ov.push_back({"duration", std::to_string(o.mc_duration)});
+  }
 }
 
 }  // namespace
@@ -373,6 +394,7 @@ int cmd_bench(const std::string& dir, BenchOptions o, std::ostream& out, std::os
 {
   std::vector<Case> cases = reference_cases(dir);
   if (!select_cases(o.only, cases, err)) return kExitUsage;
+  size_mc_cases(o, cases);
   if (o.callgrind && !o.once) {
     o.valgrind = find_valgrind();
     if (o.valgrind.empty()) out << "kestrel bench: --callgrind: no valgrind on PATH; instruction counts skipped\n";

@@ -227,7 +227,10 @@ int main(int argc, char** argv)
   schema->add_option("-o,--output", schema_out, "write it to this file instead");
   auto* bench = app.add_subcommand("bench", "print real-time factors of the reference scenarios");
   harness::BenchOptions bo;
-  bench->add_option("--case", bo.only, "only these cases: s1-0.01, s1-0.1, s1-substeps, s2; extra (only when named): s1-fsw-every-step, s1-leo-env, s1-leo-off, s3-env, s3-env-balanced, s3-mc (repeatable)");
+  bench->add_option("--case", bo.only, "only these cases: s1-0.01, s1-0.1, s1-substeps, s2; extra (only when named): s1-fsw-every-step, s1-leo-env, s1-leo-off, s3-env, s3-env-balanced, s1-mc, s3-mc (repeatable)");
+  bench->add_option("--mc-runs", bo.mc_runs, "runs of the Monte Carlo cases (default 20)")->check(CLI::Range(1, 100000));
+  bench->add_option("--mc-duration", bo.mc_duration, "[s] duration of the Monte Carlo cases' runs (default: s1-mc 600, s3-mc 300)")
+      ->check(CLI::Range(1.0, 1e6));
   bench->add_flag("--callgrind", bo.callgrind, "also count instructions per tick under valgrind's callgrind (skipped without valgrind)");
   bench->add_flag("--once", bo.once, "run each case once, print nothing (what --callgrind counts)")->group("");
   try {

@@ -53,9 +53,7 @@ std::string mc_manifest_text(const McPlan& plan, const std::string& source, cons
   if (!merged_from.is_null()) j["merged_from"] = merged_from;
   j["scenario"] = scenario_to_json(plan.nominal);
   if (plan.from) {  // kestrel mc --from: every run starts from this checkpoint
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(plan.from->fnv1a64));
-    j["from_checkpoint"] = {{"path", plan.from->path}, {"fnv1a64", hex}, {"tick", plan.from->info.tick}};
+    j["from_checkpoint"] = {{"path", plan.from->path}, {"fnv1a64", hex64(plan.from->fnv1a64)}, {"tick", plan.from->info.tick}};
   }
   // what `mc merge` checks a shard against (mc_validate.h)
   j["scenario_fnv1a64"] = mc_scenario_hash(j["scenario"]);

@@ -2,6 +2,7 @@
 #include "harness/core/checkpoint.h"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
@@ -20,6 +21,13 @@ uint64_t fnv1a64_bytes(uint64_t h, const void* p, size_t n)
     h *= 0x100000001b3ull;
   }
   return h;
+}
+
+std::string hex64(uint64_t h)
+{
+  char b[17];
+  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h));
+  return b;
 }
 
 namespace {

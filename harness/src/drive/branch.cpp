@@ -1,7 +1,6 @@
 // branch.cpp: runs started from a checkpoint (harness/drive/branch.h).
 #include "harness/drive/branch.h"
 
-#include <cstdio>
 #include <filesystem>
 
 namespace harness {
@@ -76,10 +75,7 @@ std::shared_ptr<const Branch> open_branch(const Scenario& sc)
     throw CheckpointError(std::string("the run starts from a checkpoint (from_checkpoint): ") + e.what());
   }
   if (b->fnv1a64 != ref.fnv1a64) {
-    char want[17], have[17];
-    std::snprintf(want, sizeof want, "%016llx", static_cast<unsigned long long>(ref.fnv1a64));
-    std::snprintf(have, sizeof have, "%016llx", static_cast<unsigned long long>(b->fnv1a64));
-    throw CheckpointError(b->path + ": checksum " + have + ", the run was made from " + want +
+    throw CheckpointError(b->path + ": checksum " + hex64(b->fnv1a64) + ", the run was made from " + hex64(ref.fnv1a64) +
                           ": the checkpoint has changed since; refused");
   }
   if (b->info.tick != ref.tick)

@@ -6,7 +6,6 @@
 
 #include <cfloat>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <limits>
 
@@ -98,12 +97,6 @@ bool is_hash_text(const std::string& s)
   return s.size() == 16 && s.find_first_not_of("0123456789abcdef") == std::string::npos;
 }
 
-std::string hex64(uint64_t h)
-{
-  char b[17];
-  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h));
-  return b;
-}
 
 void read_partition(const json& p, const std::string& file, McShardManifest& m)
 {

@@ -1,5 +1,6 @@
 // outputs.cpp: CSV sink, manifest, report data and text files.
 #include "harness/output/outputs.h"
+#include "harness/core/checkpoint.h"
 #include "harness/core/pacer.h"
 
 #include <cstdio>
@@ -70,9 +71,8 @@ std::string manifest_text(const Scenario& sc, const std::vector<Override>& overr
   j["overrides"] = ov;
   j["scenario"] = scenario_to_json(sc);
   if (sc.from_checkpoint) {
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(sc.from_checkpoint->fnv1a64));
-    j["from_checkpoint"] = {{"path", sc.from_checkpoint->path}, {"fnv1a64", hex}, {"tick", sc.from_checkpoint->tick}};
+    j["from_checkpoint"] = {
+        {"path", sc.from_checkpoint->path}, {"fnv1a64", hex64(sc.from_checkpoint->fnv1a64)}, {"tick", sc.from_checkpoint->tick}};
   }
   if (status)
     j["result"] = {{"complete", status->complete},

@@ -350,7 +350,7 @@ void check_draw(McDraw& d)
 {
   try {
     const std::string src = d.sc.source_file;
-    d.sc = load_canonical_scenario_text(scenario_to_json_text(d.sc), "(drawn scenario)");
+    d.sc = reload_canonical_scenario(d.sc, "(drawn scenario)");
     d.sc.source_file = src;
     check_run_configuration(d.sc);
   } catch (const ScenarioError& e) {

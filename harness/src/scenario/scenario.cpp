@@ -15,6 +15,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "scenario/json_util.h"
 #include "scenario/mc_draw.h"
 #include "scenario/overrides.h"
 #include "scenario/scenario_schema.h"
@@ -415,6 +416,14 @@ Scenario load_canonical_scenario_text(const std::string& text, const std::string
     throw ScenarioError({file_issue(file_name, e.mark.line + 1, e.mark.column + 1, "YAML syntax error: " + e.msg)});
   }
   return load_from_root(root, file_name, {}, false);
+}
+
+Scenario reload_canonical_scenario(const Scenario& sc, const std::string& file_name)
+{
+  const nlohmann::json j = scenario_to_json(sc);
+  if (j.dump(2).size() > kMaxYamlBytes)  // as load_canonical_scenario_text of the writer's text
+    throw ScenarioError({file_issue(file_name, 0, 0, "longer than " + std::to_string(kMaxYamlBytes) + " bytes")});
+  return load_from_root(yaml_of_json(j), file_name, {}, false);
 }
 
 Scenario load_scenario(const std::string& path, const std::vector<Override>& overrides)

@@ -310,6 +310,44 @@ std::vector<ScenarioIssue> check_yaml_text(const std::string& text, const std::s
   return issues;
 }
 
+namespace {
+
+bool is_container(const nlohmann::json& j) { return j.is_object() || j.is_array(); }
+
+// A scalar or null node of j (not an object or array).
+YAML::Node yaml_scalar_of_json(const nlohmann::json& j)
+{
+  if (j.is_string()) return YAML::Node(j.get_ref<const std::string&>());
+  if (j.is_null() || j.is_discarded()) return YAML::Node(YAML::NodeType::Null);
+  return YAML::Node(j.dump());  // a number or a boolean, as the text writes it
+}
+
+// The elements of object or array j into n (a map or a sequence), top
+// down: each new node joins the tree's node memory alone (yaml-cpp merges
+// a subtree's memory node by node into its parent's when it is inserted).
+void fill_yaml(YAML::Node& n, const nlohmann::json& j)
+{
+  const bool map = j.is_object();
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const nlohmann::json& v = it.value();
+    YAML::Node c = is_container(v) ? YAML::Node(v.is_object() ? YAML::NodeType::Map : YAML::NodeType::Sequence)
+                                   : yaml_scalar_of_json(v);
+    if (map) n.force_insert(it.key(), c);
+    else n.push_back(c);
+    if (is_container(v)) fill_yaml(c, v);
+  }
+}
+
+}  // namespace
+
+YAML::Node yaml_of_json(const nlohmann::json& j)
+{
+  if (!is_container(j)) return yaml_scalar_of_json(j);
+  YAML::Node root(j.is_object() ? YAML::NodeType::Map : YAML::NodeType::Sequence);
+  fill_yaml(root, j);
+  return root;
+}
+
 void collect_key_lines(const YAML::Node& n, const std::string& path, std::map<std::string, std::pair<int, int>>& out)
 {
   if (n.IsMap()) {

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
 #include "harness/scenario/scenario.h"
@@ -81,6 +82,12 @@ constexpr size_t kMaxYamlList = 1000;        // [-] entries of one list or map
 ScenarioIssue file_issue(const std::string& file, int line, int col, const std::string& msg);
 
 std::vector<ScenarioIssue> check_yaml_text(const std::string& text, const std::string& file);
+
+// The node tree YAML::Load(j.dump(indent)) gives, built from j without the
+// text: maps in j's key order, sequences, scalars holding the text the
+// dump writes for a number or a boolean and the unescaped string of a
+// string, null as a null node.  Only the marks differ (none: no line).
+YAML::Node yaml_of_json(const nlohmann::json& j);
 
 // Where every key sits in a document: dotted path (list indices as [i]) ->
 // (line, column), 1-based.

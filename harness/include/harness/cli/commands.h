@@ -125,6 +125,8 @@ struct BenchOptions {
   std::vector<std::string> only;  // --case
   bool callgrind = false;         // --callgrind: instructions per tick when valgrind is on PATH
   bool once = false;              // --once: one plain run of each case, nothing printed (callgrind's child)
+  uint64_t mc_runs = 0;           // --mc-runs: the Monte Carlo cases' runs (0: their own, 20)
+  double mc_duration = 0.0;       // --mc-duration [s]: their runs' duration (0: their own)
   std::string valgrind;           // set by cmd_bench
 };
 int cmd_bench(const std::string& dir, BenchOptions o, std::ostream& out, std::ostream& err);

@@ -61,6 +61,9 @@ void restore_branch_state(Run& run, const std::vector<uint8_t>& state);
 // the checksum of checkpoint files and of kestrel run's rows file.
 constexpr uint64_t kFnv1a64Start = 0xcbf29ce484222325ull;
 uint64_t fnv1a64_bytes(uint64_t h, const void* p, size_t n);
+// A 64-bit checksum as written in manifests and messages: 16 lowercase hex
+// digits.
+std::string hex64(uint64_t h);
 
 // The checksum a checkpoint file ends with (FNV-1a 64 of every byte before
 // it); the file is decoded first (CheckpointError when it is damaged).

@@ -48,6 +48,11 @@ Scenario load_scenario_text(const std::string& text, const std::string& file_nam
 // writer's output meets by construction (one document, depth, aliases,
 // bytes; its length is still checked) and without key_lines (empty).
 Scenario load_canonical_scenario_text(const std::string& text, const std::string& file_name);
+// load_canonical_scenario_text(scenario_to_json_text(sc), file_name), without
+// the text: the reader is given the node tree that parsing the writer's
+// text gives (yaml_of_json, scenario/yaml_reader.h), built from the
+// writer's JSON; the same keys read, the same checks, the same Scenario.
+Scenario reload_canonical_scenario(const Scenario& sc, const std::string& file_name);
 
 // The fully resolved scenario as canonical JSON (SI keys only, every default
 // filled in).  load_scenario_text() of this text gives the same Scenario.
