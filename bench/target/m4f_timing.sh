@@ -8,8 +8,8 @@
 #       each under QEMU mps2-an386 with -icount shift=0 (1 ns of virtual time
 #       per instruction), prints each build's table (min / median / max per
 #       mode and item over the golden replay), the worst case per item across
-#       the builds; for the double builds also m4f_fuzz_replay.cpp, every
-#       fsw_acs_cycle of the fuzz corpus test/fuzz/fsw/corpus/acs; and the
+#       the builds; m4f_fuzz_replay.cpp, every fsw_acs_cycle of the fuzz
+#       corpus test/fuzz/fsw/corpus/acs (float builds too); and the
 #       share of a 10 Hz period the worst cycle (golden replay and fuzz
 #       corpus) takes on a CLOCK_MHZ (default 168) part at CPI 1.0 and
 #       CPI_HIGH (default 1.5).
@@ -55,17 +55,15 @@ for b in "${builds[@]}"; do
     -DKESTREL_BUILD_SIM=OFF -DKESTREL_BUILD_HARNESS=OFF -DKESTREL_BUILD_BENCHMARKS=OFF -DKESTREL_INSTALL=OFF \
     -DKESTREL_BUILD_FSW_M4F=OFF -DKESTREL_BUILD_M4F_TIMING=ON "${launcher[@]}" >"$out/cmake.log" 2>&1 ||
     { cat "$out/cmake.log"; exit 1; }
-  targets=(m4f_cycles m4f_counter_check); [[ $real == double ]] && targets+=(m4f_fuzz_replay)
+  targets=(m4f_cycles m4f_counter_check m4f_fuzz_replay)
   cmake --build "$dir" --target "${targets[@]}" >"$out/build.log" 2>&1 || { cat "$out/build.log"; exit 1; }
   # semihosting writes to QEMU's stderr
   "${qemu[@]}" "$dir/bench/target/m4f-counter-check.elf" >"$out/check-$real$opt.txt" 2>&1
   "${qemu[@]}" "$dir/bench/target/m4f-cycles.elf" >"$out/$real$opt.txt" 2>&1
   echo "== fsw_real $real, $opt (GCC $(arm-none-eabi-gcc -dumpversion), -mcpu=cortex-m4 -mfpu=fpv4-sp-d16 -mfloat-abi=hard)"
   cat "$out/check-$real$opt.txt" "$out/$real$opt.txt"
-  if [[ $real == double ]]; then
-    "${qemu[@]}" "$dir/bench/target/m4f-fuzz-replay.elf" >"$out/fuzz-$real$opt.txt" 2>&1
-    cat "$out/fuzz-$real$opt.txt"
-  fi
+  "${qemu[@]}" "$dir/bench/target/m4f-fuzz-replay.elf" >"$out/fuzz-$real$opt.txt" 2>&1
+  cat "$out/fuzz-$real$opt.txt"
 done
 
 echo
