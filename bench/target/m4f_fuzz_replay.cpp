@@ -5,13 +5,14 @@
 // (faults, saturation, NaN, time going backwards) the golden replay does not.
 // Every call of fsw_acs_cycle is counted (the link wraps it,
 // -Wl,--wrap=fsw_acs_cycle) and filed by the mode and actuation in force
-// after it.  Prints min / mean / max per mode and actuation, and the input
-// of the maximum.  A benchmark: it asserts nothing of its own.  In a double
+// after it.  Prints min / median (lower middle) / max per mode and
+// actuation, and the input of the maximum.  A benchmark: it asserts nothing of its own.  In a double
 // build a contract violation of the fuzz target aborts, as in the fuzzer; in
 // a float build (KESTREL_FUZZ_COUNT_VIOLATIONS) the checks, written for
 // double, are counted when not met and the input runs on: the fuzz target
 // hands the cycle its inputs converted to fsw_real, as the float API takes
 // them, and a cycle that rejects them is counted like any other.
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 
@@ -56,9 +57,12 @@ const char *const kModeName[kModes] = {"SUN_SAFE", "INERTIAL", "DETUMBLE", "NADI
 const char *const kActName[kActs] = {"wheels", "thrusters"};
 struct Stat {
   uint32_t n = 0, min = UINT32_MAX, max = 0, max_input = 0, errors = 0;
-  uint64_t sum = 0;
 };
 Stat g_stat[kModes][kActs];
+constexpr uint32_t kMaxSamples = 2048;
+uint32_t g_sample[kMaxSamples];  // every counted cycle, with its mode and actuation
+uint8_t g_sample_group[kMaxSamples];
+uint32_t g_samples;
 uint32_t g_input, g_other, g_bad_counts, g_violations;
 }  // namespace
 
@@ -77,7 +81,10 @@ extern "C" FswStatus __wrap_fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *c
   } else {
     Stat &s = g_stat[st->mode][st->actuation];
     s.n++;
-    s.sum += n;
+    if (g_samples < kMaxSamples) {
+      g_sample[g_samples] = n;
+      g_sample_group[g_samples++] = static_cast<uint8_t>(st->mode * kActs + st->actuation);
+    }
     if (n < s.min) s.min = n;
     if (n > s.max) {
       s.max = n;
@@ -101,15 +108,20 @@ int main()
               sizeof(fsw_real) == 4u ? "float" : "double", static_cast<unsigned long>(m4f_corpus_count),
               static_cast<unsigned long>(g_bad_counts), static_cast<unsigned long>(g_other),
               static_cast<unsigned long>(g_violations), sizeof(fsw_real) == 4u ? " (written for double)" : "");
-  std::printf("| mode, actuation (after the cycle) | cycles | of them errors | min | mean | max | corpus input of the max |\n"
+  std::printf("| mode, actuation (after the cycle) | cycles | of them errors | min | median | max | corpus input of the max |\n"
               "| --- | ---: | ---: | ---: | ---: | ---: | --- |\n");
   for (int m = 0; m < kModes; ++m)
     for (int a = 0; a < kActs; ++a) {
       const Stat &s = g_stat[m][a];
       if (s.n == 0) continue;
+      static uint32_t v[kMaxSamples];
+      uint32_t k = 0;
+      for (uint32_t i = 0; i < g_samples; ++i)
+        if (g_sample_group[i] == m * kActs + a) v[k++] = g_sample[i];
+      std::sort(v, v + k);
       std::printf("| %s, %s | %lu | %lu | %lu | %lu | %lu | %s |\n", kModeName[m], kActName[a],
                   static_cast<unsigned long>(s.n), static_cast<unsigned long>(s.errors),
-                  static_cast<unsigned long>(s.min), static_cast<unsigned long>(s.sum / s.n),
+                  static_cast<unsigned long>(s.min), static_cast<unsigned long>(k > 0 ? v[(k - 1) / 2] : 0),
                   static_cast<unsigned long>(s.max), m4f_corpus[s.max_input].name);
     }
   return 0;
