@@ -80,6 +80,27 @@ awk -F'|' -v nb="${#builds[@]}" '
   END { for (i = 1; i <= n; i++) { printf "|%s|", order[i]; for (j = 1; j <= nb; j++) printf " %d |", v[order[i], j]; print "" } }' "${files[@]}"
 
 echo
+echo "== fsw_acs_cycle per mode and real type, median / max over each replay, instructions"
+printf '| replay | mode, actuation |'; for b in "${builds[@]}"; do printf ' %s %s |' "${b%%:*}" "${b#*:}"; done; echo
+printf '| --- | --- |'; for _ in "${builds[@]}"; do printf ' ---: |'; done; echo
+files=()
+for src in golden fuzz link; do
+  for b in "${builds[@]}"; do
+    case $src in golden) files+=("$out/${b%%:*}${b#*:}.txt") ;; *) files+=("$out/$src-${b%%:*}${b#*:}.txt") ;; esac
+  done
+done
+awk -F'|' -v nb="${#builds[@]}" '
+  function cell(k) { return (k in v) ? v[k] : "-" }
+  FNR == 1 { f++; src = f <= nb ? "golden replay" : f <= 2 * nb ? "fuzz corpus" : "S1 packets"; col = (f - 1) % nb + 1 }
+  src == "fuzz corpus" && $3 ~ /^ *[0-9]+ *$/ { r = src "|" $2 }
+  src != "fuzz corpus" && $3 ~ /^ *fsw_acs_cycle *$/ { r = src "|" $2 }
+  src == "S1 packets" && $3 ~ /whole packet/ { r = "S1 packets, with the link|" $2 }
+  r != "" { if (!(r in seen)) { seen[r] = 1; order[++n] = r }
+            gsub(/ /, "", $6); gsub(/ /, "", $7); v[r, col] = $6 " / " $7; r = "" }
+  END { for (i = 1; i <= n; i++) { split(order[i], p, "|"); printf "| %s |%s|", p[1], p[2]
+                                   for (j = 1; j <= nb; j++) printf " %s |", cell(order[i] SUBSEP j); print "" } }' "${files[@]}"
+
+echo
 echo "== share of a 10 Hz period (100 ms) for the worst fsw_acs_cycle, at $clock MHz"
 for b in "${builds[@]}"; do
   f="$out/${b%%:*}${b#*:}.txt" z="$out/fuzz-${b%%:*}${b#*:}.txt" l="$out/link-${b%%:*}${b#*:}.txt"
