@@ -28,6 +28,7 @@
 #include "fsw/fsw_link.h"
 #include "fsw/fsw_link_node.h"
 #include "m4f_counter.h"
+#include "m4f_wrap_cycle.h"
 
 void fsw_assert_failed(const char *file, int line);
 void fsw_assert_failed(const char *file, int line) { printf("m4f_link_replay: FSW assertion failed at %s:%d\n", file, line); }
@@ -37,11 +38,6 @@ extern const uint8_t m4f_link_config[];
 extern const uint32_t m4f_link_config_size;
 extern const uint8_t m4f_link_uplink[]; /* records: u16 big-endian length, packet */
 extern const uint32_t m4f_link_uplink_size;
-
-FswStatus __real_fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
-                               const FswAcsCmdMsg *cmd, FswAcsActuatorMsg *act, FswAcsHealthMsg *h);
-FswStatus __wrap_fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
-                               const FswAcsCmdMsg *cmd, FswAcsActuatorMsg *act, FswAcsHealthMsg *h);
 
 enum { I_CYCLE, I_RECEIVE, I_DEFRAME, I_FRAME, I_LINK, I_PACKET, NUM_ITEMS };
 static const char *const kItemName[NUM_ITEMS] = {
@@ -67,34 +63,13 @@ static uint32_t g_samples[NUM_ITEMS][MAX_SAMPLES];
 static uint8_t g_group[MAX_SAMPLES];
 static uint32_t g_n;
 
-typedef struct {
-  FswAcsState *st;
-  const FswAcsConfig *cfg;
-  const FswAcsSensorMsg *sens;
-  const FswAcsCmdMsg *cmd;
-  FswAcsActuatorMsg *act;
-  FswAcsHealthMsg *h;
-  FswStatus status;
-} Call;
-static void run_cycle(void *p)
-{
-  Call *c = (Call *)p;
-  c->status = __real_fsw_acs_cycle(c->st, c->cfg, c->sens, c->cmd, c->act, c->h);
-}
 FswStatus __wrap_fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
                                const FswAcsCmdMsg *cmd, FswAcsActuatorMsg *act, FswAcsHealthMsg *h)
 {
-  Call c;
-  c.st = st;
-  c.cfg = cfg;
-  c.sens = sens;
-  c.cmd = cmd;
-  c.act = act;
-  c.h = h;
-  c.status = FSW_OK;
+  M4fCycleCall c = {st, cfg, sens, cmd, act, h, FSW_OK};
   g_cycles_run++;
   if (!g_count_cycle) return __real_fsw_acs_cycle(st, cfg, sens, cmd, act, h);
-  g_cycle_n = m4f_count(run_cycle, &c);
+  g_cycle_n = m4f_count(m4f_run_real_cycle, &c);
   return c.status;
 }
 
@@ -137,16 +112,6 @@ static uint32_t count(M4fCountFn fn)
   return n;
 }
 
-static void sort(uint32_t *v, uint32_t n)
-{
-  uint32_t i, j;
-  for (i = 1; i < n; ++i) {
-    const uint32_t x = v[i];
-    for (j = i; j > 0 && v[j - 1] > x; --j) v[j] = v[j - 1];
-    v[j] = x;
-  }
-}
-
 static uint32_t be32(const uint8_t *p)
 {
   return ((uint32_t)p[0] << 24) | ((uint32_t)p[1] << 16) | ((uint32_t)p[2] << 8) | (uint32_t)p[3];
@@ -163,7 +128,7 @@ static void print_table(void)
       for (k = 0; k < g_n; ++k)
         if (g_group[k] == g) v[n++] = g_samples[i][k];
       if (n == 0u) continue;
-      sort(v, n);
+      m4f_sort(v, n);
       printf("| %s, %s | %s | %lu | %lu | %lu | %lu |\n", kModeName[g / 2], kActName[g % 2], kItemName[i],
              (unsigned long)n, (unsigned long)v[0], (unsigned long)v[(n - 1u) / 2u], (unsigned long)v[n - 1u]);
     }
