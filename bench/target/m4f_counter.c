@@ -67,3 +67,13 @@ uint32_t m4f_count(M4fCountFn fn, void *arg)
   const uint32_t r = measure_raw(fn, arg);
   return r == UINT32_MAX ? r : r - g_fixed;
 }
+
+void m4f_sort(uint32_t *v, uint32_t n)
+{
+  uint32_t i, j;
+  for (i = 1; i < n; ++i) {
+    const uint32_t x = v[i];
+    for (j = i; j > 0 && v[j - 1] > x; --j) v[j] = v[j - 1];
+    v[j] = x;
+  }
+}

@@ -17,6 +17,9 @@ int m4f_counter_init(void);
  * return inclusive; UINT32_MAX when the vernier failed. */
 uint32_t m4f_count(M4fCountFn fn, void *arg);
 
+/* Sorts v[0..n) in ascending order (insertion sort: a few hundred samples). */
+void m4f_sort(uint32_t *v, uint32_t n);
+
 /* The hand-countable routines (m4f_counter_asm.S): `bx lr`, 1 instruction;
  * `1: subs r0, r0, #1; bne 1b; bx lr` with r0 = n (n >= 1, passed as
  * (void *)(uintptr_t)n), 2 n + 1 instructions. */

@@ -221,16 +221,6 @@ static void record_modules(int group)
   }
 }
 
-static void sort(uint32_t *v, uint32_t n)
-{
-  uint32_t i, j;
-  for (i = 1; i < n; ++i) {
-    const uint32_t x = v[i];
-    for (j = i; j > 0 && v[j - 1] > x; --j) v[j] = v[j - 1];
-    v[j] = x;
-  }
-}
-
 int main(void)
 {
   size_t k;
@@ -281,7 +271,7 @@ int main(void)
     for (i = 0; i < NUM_ITEMS; ++i) {
       const uint32_t n = g_count[g][i];
       if (n == 0u) continue;
-      sort(g_samples[g][i], n);
+      m4f_sort(g_samples[g][i], n);
       printf("| %s | %s | %lu | %lu | %lu | %lu |\n", kGroupName[g], kItemName[i], (unsigned long)n,
              (unsigned long)g_samples[g][i][0], (unsigned long)g_samples[g][i][(n - 1u) / 2u],
              (unsigned long)g_samples[g][i][n - 1u]);

@@ -8,11 +8,13 @@
 #       each under QEMU mps2-an386 with -icount shift=0 (1 ns of virtual time
 #       per instruction), prints each build's table (min / median / max per
 #       mode and item over the golden replay), the worst case per item across
-#       the builds; for the double builds also m4f_fuzz_replay.cpp, every
-#       fsw_acs_cycle of the fuzz corpus test/fuzz/fsw/corpus/acs; and the
-#       share of a 10 Hz period the worst cycle (golden replay and fuzz
-#       corpus) takes on a CLOCK_MHZ (default 168) part at CPI 1.0 and
-#       CPI_HIGH (default 1.5).
+#       the builds; m4f_fuzz_replay.cpp, every fsw_acs_cycle of the fuzz
+#       corpus test/fuzz/fsw/corpus/acs (float builds too); m4f_link_replay.c,
+#       S1's configuration image and recorded packets (bench/target/data/s1)
+#       through the PIL program's link node, the link around the cycle and
+#       the cycle; and the share of a 10 Hz period the worst cycle (golden
+#       replay, fuzz corpus, S1) and S1's worst packet take on a CLOCK_MHZ
+#       (default 168) part at CPI 1.0 and CPI_HIGH (default 1.5).
 #   bench/target/m4f_timing.sh --check ELF
 #       the counter's self-check (ctest m4f_instruction_counter): the
 #       hand-counted routines' disassembly is what the check assumes, and
@@ -55,17 +57,16 @@ for b in "${builds[@]}"; do
     -DKESTREL_BUILD_SIM=OFF -DKESTREL_BUILD_HARNESS=OFF -DKESTREL_BUILD_BENCHMARKS=OFF -DKESTREL_INSTALL=OFF \
     -DKESTREL_BUILD_FSW_M4F=OFF -DKESTREL_BUILD_M4F_TIMING=ON "${launcher[@]}" >"$out/cmake.log" 2>&1 ||
     { cat "$out/cmake.log"; exit 1; }
-  targets=(m4f_cycles m4f_counter_check); [[ $real == double ]] && targets+=(m4f_fuzz_replay)
+  targets=(m4f_cycles m4f_counter_check m4f_fuzz_replay m4f_link_replay)
   cmake --build "$dir" --target "${targets[@]}" >"$out/build.log" 2>&1 || { cat "$out/build.log"; exit 1; }
   # semihosting writes to QEMU's stderr
   "${qemu[@]}" "$dir/bench/target/m4f-counter-check.elf" >"$out/check-$real$opt.txt" 2>&1
   "${qemu[@]}" "$dir/bench/target/m4f-cycles.elf" >"$out/$real$opt.txt" 2>&1
   echo "== fsw_real $real, $opt (GCC $(arm-none-eabi-gcc -dumpversion), -mcpu=cortex-m4 -mfpu=fpv4-sp-d16 -mfloat-abi=hard)"
   cat "$out/check-$real$opt.txt" "$out/$real$opt.txt"
-  if [[ $real == double ]]; then
-    "${qemu[@]}" "$dir/bench/target/m4f-fuzz-replay.elf" >"$out/fuzz-$real$opt.txt" 2>&1
-    cat "$out/fuzz-$real$opt.txt"
-  fi
+  "${qemu[@]}" "$dir/bench/target/m4f-fuzz-replay.elf" >"$out/fuzz-$real$opt.txt" 2>&1
+  "${qemu[@]}" "$dir/bench/target/m4f-link-replay.elf" >"$out/link-$real$opt.txt" 2>&1
+  cat "$out/fuzz-$real$opt.txt" "$out/link-$real$opt.txt"
 done
 
 echo
@@ -79,13 +80,41 @@ awk -F'|' -v nb="${#builds[@]}" '
   END { for (i = 1; i <= n; i++) { printf "|%s|", order[i]; for (j = 1; j <= nb; j++) printf " %d |", v[order[i], j]; print "" } }' "${files[@]}"
 
 echo
+echo "== fsw_acs_cycle per mode and real type, median / max over each replay, instructions"
+printf '| replay | mode, actuation |'; for b in "${builds[@]}"; do printf ' %s %s |' "${b%%:*}" "${b#*:}"; done; echo
+printf '| --- | --- |'; for _ in "${builds[@]}"; do printf ' ---: |'; done; echo
+files=()
+for src in golden fuzz link; do
+  for b in "${builds[@]}"; do
+    case $src in golden) files+=("$out/${b%%:*}${b#*:}.txt") ;; *) files+=("$out/$src-${b%%:*}${b#*:}.txt") ;; esac
+  done
+done
+awk -F'|' -v nb="${#builds[@]}" '
+  function cell(k) { return (k in v) ? v[k] : "-" }
+  FNR == 1 { f++; src = f <= nb ? "golden replay" : f <= 2 * nb ? "fuzz corpus" : "S1 packets"; col = (f - 1) % nb + 1 }
+  src == "fuzz corpus" && $3 ~ /^ *[0-9]+ *$/ { r = src "|" $2 }
+  src != "fuzz corpus" && $3 ~ /^ *fsw_acs_cycle *$/ { r = src "|" $2 }
+  src == "S1 packets" && $3 ~ /whole packet/ { r = "S1 packets, with the link|" $2 }
+  r != "" { if (!(r in seen)) { seen[r] = 1; order[++n] = r }
+            gsub(/ /, "", $6); gsub(/ /, "", $7); v[r, col] = $6 " / " $7; r = "" }
+  END { for (i = 1; i <= n; i++) { split(order[i], p, "|"); printf "| %s |%s|", p[1], p[2]
+                                   for (j = 1; j <= nb; j++) printf " %s |", cell(order[i] SUBSEP j); print "" } }' "${files[@]}"
+
+echo
 echo "== share of a 10 Hz period (100 ms) for the worst fsw_acs_cycle, at $clock MHz"
 for b in "${builds[@]}"; do
-  f="$out/${b%%:*}${b#*:}.txt" z="$out/fuzz-${b%%:*}${b#*:}.txt"
-  [[ -f $z ]] || z=/dev/null
+  f="$out/${b%%:*}${b#*:}.txt" z="$out/fuzz-${b%%:*}${b#*:}.txt" l="$out/link-${b%%:*}${b#*:}.txt"
+  # fsw_acs_cycle over the golden replay, the fuzz corpus and S1's packets
+  # (the line scripts/evidence.sh quotes: "worst N instructions"); then S1's
+  # whole packet (the link around the cycle, and the cycle)
   awk -F'|' -v b="${b%%:*} ${b#*:}" -v mhz="$clock" -v hi="$cpi_hi" '
-    FILENAME !~ /fuzz/ && $3 ~ /fsw_acs_cycle/ && $7 + 0 > w { w = $7 + 0; m = $2 }
-    FILENAME ~ /fuzz/ && $3 ~ /^ *[0-9]+ *$/ && $7 + 0 > w { w = $7 + 0; m = $2 " fuzz input " $8 }
-    END { gsub(/^ +| +$/, "", m); gsub(/  +/, " ", m); printf "%-11s worst %7d instructions (%s): CPI 1.0 %.3f ms = %.2f %% of the period; CPI %s %.3f ms = %.2f %%\n",
-          b, w, m, w / mhz / 1e3, w / mhz / 1e3, hi, w * hi / mhz / 1e3, w * hi / mhz / 1e3 }' "$f" "$z"
+    function line(what, w, m) {
+      gsub(/^ +| +$/, "", m); gsub(/  +/, " ", m)
+      printf "%-11s %s %7d instructions (%s): CPI 1.0 %.3f ms = %.2f %% of the period; CPI %s %.3f ms = %.2f %%\n",
+             b, what, w, m, w / mhz / 1e3, w / mhz / 1e3, hi, w * hi / mhz / 1e3, w * hi / mhz / 1e3 }
+    FILENAME ~ /\/fuzz-/ { if ($3 ~ /^ *[0-9]+ *$/ && $7 + 0 > w) { w = $7 + 0; m = $2 " fuzz input " $8 }; next }
+    FILENAME ~ /\/link-/ && $3 ~ /fsw_acs_cycle/ && $7 + 0 > w { w = $7 + 0; m = $2 " S1 packets" }
+    FILENAME ~ /\/link-/ && $3 ~ /whole packet/ && $7 + 0 > p { p = $7 + 0; pm = $2 }
+    FILENAME !~ /\/(fuzz|link)-/ && $3 ~ /fsw_acs_cycle/ && $7 + 0 > w { w = $7 + 0; m = $2 }
+    END { line("worst", w, m); if (p > 0) line("S1 packet, link and cycle, max", p, pm) }' "$f" "$z" "$l"
 done
