@@ -47,7 +47,7 @@ FswStatus fsw_rw_sat_update(FswRwSatState *st, const FswRwSatConfig *cfg, const 
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) { return FSW_E_NULL_ARG; }
   if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   n = cfg->num_rw;
-  if (!fsw_vni_is_finite(in->u_s, n) || !fsw_rw_avail_valid(in->avail, n)) {
+  if (!fsw_vn_is_finite(in->u_s, n) || !fsw_rw_avail_valid(in->avail, n)) {
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
 
   /* WP (docs/eva.md, "WP proofs"): the saturation bound, proven from
