@@ -88,14 +88,19 @@ done
 mv "$tmp/logs" "$tmp/logs-not-compared"
 
 # ---- analyses -------------------------------------------------------------
-run_gate() {  # run_gate NAME FILE SUMMARY_REGEX COMMAND...
-  local name="$1" file="$2" re="$3"; shift 3
-  if [ ! -e "$1" ]; then gate "$name" MISSING "$1 not in this tree"; return; fi
-  if "$@" > "$tmp/$file" 2>&1; then st=PASS; else st=FAIL; fi
+run_gate() {  # run_gate NAME FILE SUMMARY_REGEX SCRIPT ARGS...  (a .py runs under python3, else bash)
+  local name="$1" file="$2" re="$3" script="$4"; shift 4
+  if [ ! -e "$script" ]; then gate "$name" MISSING "$script not in this tree"; return; fi
+  local run=bash; case "$script" in *.py) run=python3 ;; esac
+  if "$run" "$script" "$@" > "$tmp/$file" 2>&1; then st=PASS; else st=FAIL; fi
   gate "$name" "$st" "$(grep -E "$re" "$tmp/$file" | tail -1)"
 }
 run_gate "requirements traceability" trace-run.txt "requirements" \
-  tools/trace_matrix.py -o "$tmp/trace-matrix.md"
+  tools/trace_matrix.py --root . -o "$tmp/trace-matrix.md" check
+
+# MISRA C:2012 (cppcheck's addon) against the recorded deviations
+run_gate "MISRA C:2012" misra.txt "^misra_check: Cppcheck" \
+  tools/misra_check.py --root . --jobs 2
 
 # timing and size on the Cortex-M4F (QEMU -icount; arm-none-eabi-size)
 run_gate "instructions per cycle on the M4F" timing.txt "worst +[0-9]+ instructions" \
@@ -106,7 +111,7 @@ run_gate "flight footprint on the M4F" footprint.txt "^[a-z]+ +-Os +typical +ACS
 # Frama-C Eva and WP: the sets the suite's fsw_eva and fsw_eva_modules tests
 # analyse (docs/eva.md); the analysis times are dropped so that two runs compare
 eva_set="rw_sat trq_lpf thr_pulse guid_inertial mrp_fb guid_orbit guid_sunsafe rw_map att_track bdot css_sun mtq_desat mtq_map thr_momentum rw_volt rw_speed_filter thr_map/any fsw_acs_save"
-if tools/eva_check.py --root . --work build/evidence-eva --jobs 2 --timeout 120 --only $eva_set \
+if python3 tools/eva_check.py --root . --work build/evidence-eva --jobs 2 --timeout 120 --only $eva_set \
      > "$tmp/eva-run.txt" 2>&1; then st=PASS; else st=FAIL; fi
 sed -E 's/ +[0-9]+\.[0-9]s( |$)/\1/g; s/, [0-9]+\.[0-9] s wall, [0-9]+\.[0-9] s CPU of the analyses;/;/' "$tmp/eva-run.txt" > "$tmp/eva.txt"; rm -f "$tmp/eva-run.txt"
 gate "Frama-C Eva / WP" "$st" "$(grep -E '^eva_check: [0-9]+ drivers' "$tmp/eva.txt" | tail -1)"
