@@ -23,13 +23,6 @@ uint64_t fnv1a64_bytes(uint64_t h, const void* p, size_t n)
   return h;
 }
 
-std::string hex64(uint64_t h)
-{
-  char b[17];
-  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h));
-  return b;
-}
-
 namespace {
 
 constexpr char kMagic[8] = {'K', 'S', 'T', 'R', 'L', 'C', 'K', 'P'};
