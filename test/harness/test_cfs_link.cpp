@@ -117,9 +117,9 @@ class FakeCfs {
               FSW_OK);
     tlm(0x08F1, buf.data(), len);
     ASSERT_EQ(fsw_link_encode_health(&h, pkt.t_ns, seq_, buf.data(), buf.size(), &len, nullptr), FSW_OK);
-    tlm(0x08F2, buf.data(), len);
     ++seq_;
-    ++cycles;
+    ++cycles;  // before the cycle's last reply leaves: the run may end, and the test read it, at once
+    tlm(0x08F2, buf.data(), len);
   }
   void command(const uint8_t* m, size_t n)
   {
