@@ -84,7 +84,9 @@ def mutants_of(path):
                 ms.append({"file": rel, "line": n, "op": name, "original": line.rstrip("\n"),
                            "mutant": new.rstrip("\n") + line[len(code):].rstrip("\n")})
         s = code.strip()
-        if s.endswith(";") and not s.startswith(("return", "case", "default", "break", "}")) and "{" not in s:
+        braced = "{" in s and s.endswith("}") and s.count("{") == s.count("}")  # if (c) { x; } on one line
+        if ((s.endswith(";") and "{" not in s) or braced) \
+                and not s.startswith(("return", "case", "default", "break", "}")):
             ms.append({"file": rel, "line": n, "op": "delete statement", "original": line.rstrip("\n"),
                        "mutant": "/* deleted */"})
         for m in re.finditer(r"= (fsw_\w+)\(", code):  # zero a call result (the call stays)
@@ -95,13 +97,78 @@ def mutants_of(path):
 
 
 def load_equivalents():
+    """The recorded equivalent mutants: a list of rows (file, line, original, mutant, reason)."""
     p = os.path.join(ROOT, "tools", "mutation_equivalents.csv")
-    eq = {}
-    if os.path.exists(p):
-        with open(p) as f:
-            for r in csv.DictReader(f):
-                eq[(r["file"], int(r["line"]), r["mutant"].strip())] = r["reason"]
+    if not os.path.exists(p):
+        return []
+    with open(p) as f:
+        return [r | {"line": int(r["line"])} for r in csv.DictReader(f)]
+
+
+def same_code(text):
+    """A line's code for matching records: without blanks and braces (a body braced for MISRA
+    rule 15.6 is the same statement, and its mutants the same mutants)."""
+    return re.sub(r"[\s{}]", "", text)
+
+
+def equivalent_line(row, src_lines):
+    """Where a recorded equivalent mutant is in today's source: its recorded line when that line
+    still reads its original code, else the one line that does (the code moved), else None (the
+    original code is gone or on several lines: the record must be renewed by hand)."""
+    want = same_code(row["original"])
+    n = row["line"]
+    if 1 <= n <= len(src_lines) and same_code(src_lines[n - 1]) == want:
+        return n
+    hits = [i + 1 for i, l in enumerate(src_lines) if same_code(l) == want]
+    return hits[0] if len(hits) == 1 else None
+
+
+def equivalents_by_place(rows):
+    """{(file, line today, mutant text): reason} for the records that still match the source."""
+    eq, cache = {}, {}
+    for r in rows:
+        if r["file"] not in cache:
+            path = os.path.join(ROOT, r["file"])
+            cache[r["file"]] = open(path).read().split("\n") if os.path.exists(path) else []
+        n = equivalent_line(r, cache[r["file"]])
+        if n is not None:
+            eq[(r["file"], n, same_code(r["mutant"]))] = r["reason"]
     return eq
+
+
+def check_equivalents(fix):
+    """Every record's original text must still be in its file, on one line; with fix, the CSV's
+    line numbers are renewed to where the text is now (written whole through a temporary file)."""
+    rows = load_equivalents()
+    bad, moved = [], 0
+    for r in rows:
+        path = os.path.join(ROOT, r["file"])
+        src = open(path).read().split("\n") if os.path.exists(path) else []
+        n = equivalent_line(r, src)
+        if n is None:
+            bad.append(f"{r['file']}:{r['line']}: {r['original'].strip()!r} is not on exactly one line")
+        elif not any(m["line"] == n and same_code(m["mutant"]) == same_code(r["mutant"])
+                     for m in mutants_of(path)):
+            bad.append(f"{r['file']}:{n}: no mutant {r['mutant'].strip()!r} is made of that line today")
+        elif n != r["line"] or src[n - 1].rstrip("\n") != r["original"]:
+            moved += 1
+            print(f"moved: {r['file']}:{r['line']} -> {n}")
+            r["line"] = n
+            r["original"] = src[n - 1].rstrip("\n")
+            r["mutant"] = next(m["mutant"] for m in mutants_of(path) if m["line"] == n
+                               and same_code(m["mutant"]) == same_code(r["mutant"]))
+    for b in bad:
+        print("stale: " + b)
+    if fix and moved and not bad:
+        p = os.path.join(ROOT, "tools", "mutation_equivalents.csv")
+        with open(p + ".tmp", "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=["file", "line", "original", "mutant", "reason"], lineterminator="\n")
+            w.writeheader()
+            w.writerows(rows)
+        os.replace(p + ".tmp", p)
+    print(f"{len(rows)} recorded equivalent mutants: {len(rows) - len(bad)} found ({moved} moved), "
+          f"{len(bad)} stale")
+    return 1 if bad else 0
 
 
 def run(cmd, cwd, timeout):
@@ -139,7 +206,14 @@ def main():
                     help="build the scratch copy with AddressSanitizer + UBSan (KESTREL_SANITIZE, as the "
                          "host-debug-asan preset; aborting on the first report), optimised (-O1): "
                          "a mutant that reads or writes out of bounds is then killed, as in CI")
+    ap.add_argument("--check-equivalents", action="store_true",
+                    help="only check that every record of tools/mutation_equivalents.csv still names "
+                         "its source line, or one line with its code (exit 1 if one is stale)")
+    ap.add_argument("--fix-lines", action="store_true",
+                    help="with --check-equivalents: renew the line numbers of records whose text moved")
     a = ap.parse_args()
+    if a.check_equivalents:
+        return check_equivalents(a.fix_lines)
 
     srcs = sorted(os.path.join(ROOT, "fsw_c", "src", f) for f in os.listdir(os.path.join(ROOT, "fsw_c", "src"))
                   if f.endswith(".c") and (not a.module or f in a.module))
@@ -194,7 +268,7 @@ def main():
         print("the unmutated tests fail:\n" + out)
         return 2
 
-    eq = load_equivalents()
+    eq = equivalents_by_place(load_equivalents())
     os.makedirs(os.path.dirname(os.path.abspath(a.csv)), exist_ok=True)
     t0 = time.time()
     for i, m in enumerate(sample, 1):
@@ -216,7 +290,7 @@ def main():
             lines[m["line"] - 1] = orig
             with open(path, "w") as f:
                 f.writelines(lines)
-        key = (m["file"], m["line"], m["mutant"].strip())
+        key = (m["file"], m["line"], same_code(m["mutant"]))
         m["equivalent"] = eq.get(key, "") if m["result"] == "survived" else ""
         if m["result"] == "survived" and m["mutant"].strip() == m["original"].strip():
             # e.g. "literal x.y->0" on a literal that is already 0.0: the same program
