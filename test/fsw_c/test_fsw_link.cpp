@@ -25,20 +25,19 @@ using Bytes = std::vector<uint8_t>;
 
 // CRC-16/CCITT-FALSE, table-driven (an implementation independent of the
 // library's bitwise one).
-uint16_t crc_ref(const uint8_t* p, size_t n)
+// CRC-16/CCITT-FALSE by its definition: each bit, MSB first, shifted
+// through the register with the polynomial 0x1021 (the flight code uses a
+// byte table; this is the independent reference).
+uint16_t crc_ref(const uint8_t* p, size_t n, uint16_t crc = 0xFFFF)
 {
-  static uint16_t table[256];
-  static bool made = false;
-  if (!made) {
-    for (unsigned v = 0; v < 256; ++v) {
-      uint16_t c = static_cast<uint16_t>(v << 8);
-      for (int b = 0; b < 8; ++b) c = static_cast<uint16_t>((c & 0x8000) ? (c << 1) ^ 0x1021 : (c << 1));
-      table[v] = c;
+  for (size_t i = 0; i < n; ++i) {
+    for (int b = 7; b >= 0; --b) {
+      const bool in = ((p[i] >> b) & 1) != 0;
+      const bool top = (crc & 0x8000) != 0;
+      crc = static_cast<uint16_t>(crc << 1);
+      if (in != top) crc = static_cast<uint16_t>(crc ^ 0x1021);
     }
-    made = true;
   }
-  uint16_t crc = 0xFFFF;
-  for (size_t i = 0; i < n; ++i) crc = static_cast<uint16_t>((crc << 8) ^ table[((crc >> 8) ^ p[i]) & 0xFF]);
   return crc;
 }
 
@@ -158,7 +157,7 @@ void fix_crc(Bytes& b)
 }  // namespace
 
 // Verifies: REQ-LINK-001
-TEST(FswLink, CrcMatchesTheCheckValueAndATableImplementation)
+TEST(FswLink, CrcMatchesTheCheckValueAndTheBitwiseDefinition)
 {
   const uint8_t check[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
   EXPECT_EQ(fsw_link_crc16(check, sizeof check, 0xFFFF), 0x29B1);  // CRC-16/CCITT-FALSE check value
@@ -172,6 +171,14 @@ TEST(FswLink, CrcMatchesTheCheckValueAndATableImplementation)
     v = static_cast<uint8_t>(x >> 16);
   }
   for (size_t n : {1u, 2u, 17u, 255u, 1000u}) EXPECT_EQ(fsw_link_crc16(data.data(), n, 0xFFFF), crc_ref(data.data(), n)) << n;
+  // every byte value from registers with each high byte: every table entry
+  for (unsigned hi = 0; hi < 256; hi += 51) {
+    for (unsigned v = 0; v < 256; ++v) {
+      const uint8_t byte = static_cast<uint8_t>(v);
+      const uint16_t init = static_cast<uint16_t>((hi << 8) | (v ^ 0x5A));
+      ASSERT_EQ(fsw_link_crc16(&byte, 1, init), crc_ref(&byte, 1, init)) << hi << " " << v;
+    }
+  }
 }
 
 // A command packet assembled by hand from the ICD's byte table.
