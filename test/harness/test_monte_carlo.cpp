@@ -309,7 +309,7 @@ TEST(McDraw, ALightRunRefusedByThePlantOrFswIsTheCheckedDrawsInvalidRun)
   const std::string at = "  dispersions:\n";
   ASSERT_NE(text.find(at), std::string::npos);
   text.insert(text.find(at) + at.size(), "    - {key: fsw.rw_bias.hysteresis, dist: uniform, min: 0, max: 9000}\n");
-  const Scenario sc = load_scenario_text(text, file, {{"duration", "1"}});
+  const Scenario sc = load_scenario_text(text, file, {{"duration", "10"}});
   const McPlan plan = make_mc_plan(sc, 7, 12);
   const fs::path dir = fs::temp_directory_path() / ("kestrel_mc_light_check_" + std::to_string(::getpid()));
   fs::remove_all(dir);
