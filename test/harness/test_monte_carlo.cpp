@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include <nlohmann/json.hpp>
+#include <unistd.h>
 
 #include "harness/mc/monte_carlo.h"
 #include "harness/mc/mc_journal.h"
@@ -290,6 +291,51 @@ TEST(McDraw, AnInvalidDrawIsReportedNotRun)
   }
   EXPECT_GT(invalid, 10u);
   EXPECT_LT(invalid, 190u);
+}
+
+// A run without full results leaves the plant and FSW check to its Run (the
+// same builders in the same order): its record is the one the checked draw
+// gives.  The FSW's own check (fsw_acs_check: keepout + hysteresis at most
+// half the wheel speed limit, 5,000 rad/s, a rule the reader leaves to it)
+// refuses part of the drawn hysteresis values; those runs are invalid draws
+// with the reason the check names and a folder with their manifest only.
+TEST(McDraw, ALightRunRefusedByThePlantOrFswIsTheCheckedDrawsInvalidRun)
+{
+  const std::string file = std::string(KESTREL_SOURCE_DIR) + "/scenarios/s3_monte_carlo.yaml";
+  std::ifstream in(file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  const std::string at = "  dispersions:\n";
+  ASSERT_NE(text.find(at), std::string::npos);
+  text.insert(text.find(at) + at.size(), "    - {key: fsw.rw_bias.hysteresis, dist: uniform, min: 0, max: 9000}\n");
+  const Scenario sc = load_scenario_text(text, file, {{"duration", "10"}});
+  const McPlan plan = make_mc_plan(sc, 7, 12);
+  const fs::path dir = fs::temp_directory_path() / ("kestrel_mc_light_check_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  size_t refused = 0;
+  for (uint64_t k = 0; k < plan.runs; ++k) {
+    const McDraw d = draw_run(plan.nominal, *plan.bound, plan.master_seed, k);
+    const fs::path run_dir = dir / std::to_string(k);
+    const McRecord r = run_mc_one(plan, k, run_dir, false, nullptr);
+    EXPECT_EQ(r.invalid, !d.invalid.empty()) << "run " << k << ": " << d.invalid;
+    EXPECT_EQ(r.drawn, d.drawn) << "run " << k;
+    if (d.invalid.empty()) {
+      EXPECT_TRUE(r.complete) << "run " << k << ": " << r.reason;
+      continue;
+    }
+    ++refused;
+    EXPECT_EQ(r.reason, "invalid draw: " + d.invalid);
+    EXPECT_NE(d.invalid.find("rejected by fsw_acs_check"), std::string::npos) << d.invalid;
+    EXPECT_FALSE(r.pass);
+    std::vector<std::string> files;
+    for (const fs::directory_entry& e : fs::directory_iterator(run_dir)) files.push_back(e.path().filename().string());
+    EXPECT_EQ(files, std::vector<std::string>{"manifest.json"}) << "run " << k;
+  }
+  fs::remove_all(dir);
+  // P(hysteresis > 5000 rad/s - keepout 31.4 rad/s) = (9000 - 4968.6) / 9000 = 0.448 a run
+  EXPECT_GT(refused, 0u);
+  EXPECT_LT(refused, plan.runs);
 }
 
 TEST(McDraw, RunKDependsOnSeedAndIndexAndKeyOnly)

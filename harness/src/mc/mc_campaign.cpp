@@ -249,8 +249,14 @@ McRecord run_mc_one(const McPlan& plan, uint64_t k, const fs::path& dir, bool fu
   McRecord rec;
   rec.index = k;
   // the dispersions bound when the campaign was planned (a plan made by hand binds per run)
-  McDraw d = plan.bound ? draw_run(plan.nominal, *plan.bound, plan.master_seed, k)
-                        : draw_run(plan.nominal, plan.master_seed, k);
+  McDraw d = plan.bound ? draw_run(plan.nominal, *plan.bound, plan.master_seed, k, false)
+                        : draw_run(plan.nominal, plan.master_seed, k, false);
+  // A light run builds its plant and FSW once: its Run makes the plant and
+  // FSW check (same builders, same order, same first ScenarioError, caught
+  // by run_draw as an invalid draw).  A full run or a branched one checks
+  // first: run_scenario would have made its folder, branch_draw reads the
+  // checked scenario.
+  if (d.invalid.empty()) check_drawn_scenario(d, full || plan.from != nullptr);
   rec.seed = d.sc.seed;
   rec.drawn = d.drawn;
   rec.metrics.assign(plan.metrics.size(), NAN);

@@ -344,22 +344,20 @@ std::string draw_target(const DispersionSpec& s, const McTarget& t, uint64_t mas
   return "";
 }
 
-// The checks of a scenario file on the drawn scenario: the run is the
-// reloaded canonical form, exactly what its manifest gives `kestrel run`.
-void check_draw(McDraw& d)
+}  // namespace
+
+void check_drawn_scenario(McDraw& d, bool plant_and_fsw)
 {
   try {
     const std::string src = d.sc.source_file;
     d.sc = reload_canonical_scenario(d.sc, "(drawn scenario)");
     d.sc.source_file = src;
-    check_run_configuration(d.sc);
+    if (plant_and_fsw) check_run_configuration(d.sc);
   } catch (const ScenarioError& e) {
     const ScenarioIssue& is = e.issues().front();
     d.invalid = is.key + ": " + is.message;
   }
 }
-
-}  // namespace
 
 McDraw draw_run(const Scenario& nominal, const McBinding& bound, uint64_t master, uint64_t run, bool check)
 {
@@ -375,7 +373,7 @@ McDraw draw_run(const Scenario& nominal, const McBinding& bound, uint64_t master
       return d;
     }
   }
-  if (check) check_draw(d);
+  if (check) check_drawn_scenario(d);
   return d;
 }
 

@@ -105,6 +105,15 @@ McDraw draw_run(const Scenario& nominal, const McBinding& bound, uint64_t master
 // The same, binding `nominal` for this run alone.
 McDraw draw_run(const Scenario& nominal, uint64_t master, uint64_t run, bool check = true);
 
+// The checks of a scenario file on a valid draw (draw_run's `check`): the
+// drawn scenario becomes its reloaded canonical form, exactly what its
+// manifest gives `kestrel run`; then, with `plant_and_fsw`,
+// check_run_configuration.  Problems go to d.invalid.  Without
+// `plant_and_fsw`, the run's own construction (Run, the same builders in
+// the same order) must make that check: it throws the ScenarioError the
+// check would have reported first.
+void check_drawn_scenario(McDraw& d, bool plant_and_fsw = true);
+
 }  // namespace harness
 
 #endif  // HARNESS_SRC_MC_DRAW_H

@@ -85,19 +85,24 @@ void read_wheel(const Ctx& ctx, const YAML::Node& node, const YAML::Node& defaul
     return;
   }
   // Merge: the wheel's own keys first, then defaults it does not override.
-  YAML::Node merged(YAML::NodeType::Map);
   std::set<std::string> from_defaults;
-  for (auto it = node.begin(); it != node.end(); ++it) merged[it->first] = it->second;
-  if (defaults.IsDefined() && defaults.IsMap()) {
+  if (defaults.IsDefined() && defaults.IsMap())
     for (auto it = defaults.begin(); it != defaults.end(); ++it) {
       const std::string k = it->first.as<std::string>("");
-      if (!node[k].IsDefined()) {
-        merged[it->first] = it->second;
-        from_defaults.insert(k);
-      }
+      if (!node[k].IsDefined()) from_defaults.insert(k);
     }
+  // Nothing to merge into a map without a place in a text (a drawn
+  // scenario's tree, yaml_of_json): the wheel's map is what the merged copy
+  // would be (the same key and value nodes in order, no mark), without the
+  // copy (its first insertion merges the document's node memory into it).
+  const bool copy = !from_defaults.empty() || !node.Mark().is_null();
+  YAML::Node merged(YAML::NodeType::Map);  // (a Node assigned to refers to the other's node: not reused)
+  if (copy) {
+    for (auto it = node.begin(); it != node.end(); ++it) merged[it->first] = it->second;
+    for (auto it = defaults.begin(); it != defaults.end() && !from_defaults.empty(); ++it)
+      if (from_defaults.count(it->first.as<std::string>(""))) merged[it->first] = it->second;
   }
-  MapReader r(ctx, merged, path);
+  MapReader r(ctx, copy ? merged : node, path);
   for (const std::string& k : from_defaults) r.set_alias(k, "wheel_defaults");
   read_keys(r, def, sc, index);
   MapReader f = r.sub("friction");
