@@ -1,6 +1,6 @@
 /* Eva driver: rw_null (docs/fsw/rw_null.md, docs/eva.md).
- * The loops over the wheels (up to FSW_MAX_RW) are not unrolled and no
- * states are split (only the three-row loops unroll): with the defaults the
+ * The loops over the wheels (up to FSW_MAX_RW) are not unrolled and the
+ * states are not split (-eva-slevel 0; only the three-row loops unroll): with the defaults the
  * N x N projector keeps one state per iteration of every enclosing loop
  * (over 60 s of CPU); this way each analysis takes about 3 s, and the joined
  * iterations give the initialization and counter alarms recorded in
