@@ -1,4 +1,6 @@
 /* Eva driver: rw_null_regen (docs/fsw/rw_null_regen.md, docs/eva.md).
+ * The wheel loops are joined as in rw_null.c (the same projector).
+ * eva-options: -eva-auto-loop-unroll 3 -eva-slevel 0
  * eva-sources: rw_null_regen.c rw_common.c fsw_linalg.c fsw_vec.c fsw_status.c */
 #include "eva_driver.h"
 
