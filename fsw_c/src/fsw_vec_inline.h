@@ -199,8 +199,10 @@ static inline int fsw_frexp_exp_normal(fsw_real m)
   return field - (FSW_RB_BIAS - 1);
 }
 
-/* fsw_vec.c includes this header for the functions above only. */
-#ifndef FSW_VEC_INLINE_NO_ALIASES
+/* fsw_vec.c includes this header for the functions above only.  A build
+ * optimised for size (-Os, __OPTIMIZE_SIZE__) keeps the calls of fsw_vec.c:
+ * the same bits, one copy of each helper instead of one per module. */
+#if !defined(FSW_VEC_INLINE_NO_ALIASES) && !defined(__OPTIMIZE_SIZE__)
 #define fsw_v3_set fsw_v3i_set
 #define fsw_v3_copy fsw_v3i_copy
 #define fsw_v3_zero fsw_v3i_zero
