@@ -126,8 +126,8 @@ typedef double fsw_real;
  *   FSW_CFG_LPF           use_lpf: trq_lpf
  *   FSW_CFG_PULSE_SCHMITT pulser = FSW_ACS_PULSE_SCHMITT: thr_pulse_schmitt
  *   FSW_CFG_THR_NNLS      thr_map.mode = FSW_THR_MAP_NNLS: thr_map's bounded
- *                         solve (fsw_bounded_minnorm_solve); thr_map itself
- *                         then refuses the mode (FSW_E_UNSUPPORTED, thr_map.h) */
+ *                         solve, fsw_bounded_minnorm_solve, which thr_map
+ *                         itself then refuses with FSW_E_UNSUPPORTED (thr_map.h) */
 #ifndef FSW_CFG_MTQ
 #define FSW_CFG_MTQ 1
 #endif
