@@ -70,8 +70,9 @@ PY
 
 # The typical selection of docs/flight-footprint.md: wheels (rw_map, rw_null,
 # rw_sat), thrusters (thr_map, remainder pulsing), thruster momentum dumps,
-# sun-safe and inertial pointing; everything else left out.
-typical="MTQ;MTQ_DESAT;ORBIT;RW_BIAS;RW_VOLT;SPEED_FILTER;LPF;PULSE_SCHMITT"
+# sun-safe and inertial pointing, thr_map in its default minimum-norm mode;
+# everything else left out.
+typical="MTQ;MTQ_DESAT;ORBIT;RW_BIAS;RW_VOLT;SPEED_FILTER;LPF;PULSE_SCHMITT;THR_NNLS"
 goal=32768  # [B] the ACS chain without the link at -Os
 fmt="%-7s %-4s %-8s %-9s %8s %6s %7s %10s %12s %6s %-s\n"
 printf "$fmt" real opt stages program .text .data .bss "fsw .text" "chain .text" stack "under 32 KiB (fsw/chain)"

@@ -200,7 +200,7 @@ FswStatus fsw_bdot_update(FswBdotState *st, const FswBdotConfig *cfg,
     o.scale = FSW_R(1.0);
     nx.missed = 0;
   } else { /* DERIV: difference against the last valid sample */
-    const fsw_real dtB = (fsw_real)(in->t_ns - nx.t_B_ns) * FSW_R(1e-9);
+    const fsw_real dtB = fsw_clock_ns_to_s(in->t_ns - nx.t_B_ns);
     fsw_real raw[3];
     int k;
     for (k = 0; k < 3; k++) { raw[k] = (in->B_B[k] - nx.B_prev[k]) / dtB; }

@@ -86,6 +86,10 @@ static FswStatus check_stages_built(const FswAcsConfig *cfg, const char **bad_fi
   if (cfg->has_thrusters != 0 && cfg->pulser == FSW_ACS_PULSE_SCHMITT) {
     return fail(bad_field, "pulser", FSW_E_UNSUPPORTED); }
 #endif
+#if !FSW_CFG_THR_NNLS
+  if (cfg->has_thrusters != 0 && cfg->thr_map.mode == FSW_THR_MAP_NNLS) {
+    return fail(bad_field, "thr_map.mode", FSW_E_UNSUPPORTED); }
+#endif
   (void)cfg;
   (void)bad_field;
   return FSW_OK;

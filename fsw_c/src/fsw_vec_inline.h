@@ -199,8 +199,11 @@ static inline int fsw_frexp_exp_normal(fsw_real m)
   return field - (FSW_RB_BIAS - 1);
 }
 
-/* fsw_vec.c includes this header for the functions above only. */
+/* fsw_vec.c includes this header for the functions above only.  A build
+ * optimised for size (-Os, __OPTIMIZE_SIZE__) keeps the calls of fsw_vec.c:
+ * the same bits, one copy of each helper instead of one per module. */
 #ifndef FSW_VEC_INLINE_NO_ALIASES
+#ifndef __OPTIMIZE_SIZE__
 #define fsw_v3_set fsw_v3i_set
 #define fsw_v3_copy fsw_v3i_copy
 #define fsw_v3_zero fsw_v3i_zero
@@ -217,6 +220,7 @@ static inline int fsw_frexp_exp_normal(fsw_real m)
 #define fsw_vn_dot fsw_vni_dot
 #define fsw_m33_mult_v3 fsw_m33i_mult_v3
 #define fsw_m33_tmult_v3 fsw_m33i_tmult_v3
+#endif
 #endif
 
 #endif /* FSW_VEC_INLINE_H */

@@ -70,7 +70,7 @@ void fsw_rw_speed_filter_reset(FswRwSpeedFilterState *st)
 static int consistent(const FswRwSpeedFilterConfig *cfg, int i, fsw_real x, fsw_real ref,
                       uint64_t t_ns, uint64_t t_ref_ns)
 {
-  const fsw_real dt = (fsw_real)(t_ns - t_ref_ns) * FSW_R(1e-9);
+  const fsw_real dt = fsw_clock_ns_to_s(t_ns - t_ref_ns);
   return FSW_FABS(x - ref) <= cfg->u_max[i] / cfg->J_s[i] * dt + cfg->noise[i];
 }
 

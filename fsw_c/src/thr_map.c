@@ -61,6 +61,9 @@ FswStatus fsw_thr_map_check(const FswThrMapConfig *cfg)
   if (cfg->thr_force_sign != 1 && cfg->thr_force_sign != -1) { return FSW_E_CONFIG; }
   if (cfg->use_2nd_loop != 0 && cfg->use_2nd_loop != 1) { return FSW_E_CONFIG; }
   if (cfg->mode != FSW_THR_MAP_MIN_NORM && cfg->mode != FSW_THR_MAP_NNLS) { return FSW_E_CONFIG; }
+#if !FSW_CFG_THR_NNLS
+  if (cfg->mode == FSW_THR_MAP_NNLS) { return FSW_E_UNSUPPORTED; } /* built without it (fsw_config.h) */
+#endif
   if (!isfinite(cfg->epsilon) || cfg->epsilon < FSW_R(0.0)) { return FSW_E_CONFIG; }
   if (!isfinite(cfg->ang_err_thresh) || cfg->ang_err_thresh < FSW_R(0.0)) { return FSW_E_CONFIG; }
   for (j = 0; j < 3; j++) {
@@ -228,6 +231,7 @@ static FswStatus map_min_norm(FswThrMapState *st, const FswThrMapConfig *cfg,
 }
 
 /* ---- Exact bounded mode (docs/fsw/thr_map.md, NNLS mode) ----------------- */
+#if FSW_CFG_THR_NNLS
 
 static FswStatus map_nnls(FswThrMapState *st, const FswThrMapConfig *cfg,
                           const fsw_real Lbar[3], const uint8_t *avail, fsw_real F[FSW_MAX_EFF])
@@ -256,6 +260,7 @@ static FswStatus map_nnls(FswThrMapState *st, const FswThrMapConfig *cfg,
   if (!(fsw_vn_norm(r, nc) <= THR_NNLS_SAT_TOL * fsw_vn_norm(Lbar, nc))) { return FSW_W_SAT; }
   return FSW_OK;
 }
+#endif /* FSW_CFG_THR_NNLS */
 
 /* ---- update --------------------------------------------------------------- */
 
@@ -273,6 +278,10 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
     return FSW_E_NULL_ARG;
   }
   if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
+#if !FSW_CFG_THR_NNLS
+  /* init refused the mode; a configuration changed to it since is refused here */
+  if (cfg->mode == FSW_THR_MAP_NNLS) { return fsw_health_record(&st->health, FSW_E_UNSUPPORTED); }
+#endif
   n = cfg->num_thr;
   if (!fsw_v3_is_finite(in->Lr_B) || !fsw_v3_is_finite(in->r_CoM_B) ||
       fsw_vn_max_abs(in->r_CoM_B, 3) > FSW_THR_MAP_R_MAX) {
@@ -329,8 +338,10 @@ FswStatus fsw_thr_map_update(FswThrMapState *st, const FswThrMapConfig *cfg,
      * full-rank geometry (docs/fsw-conventions.md "Rank test"). */
     s = FSW_W_SINGULAR; /* F = 0; the diagnostics as each mode sets them */
     st->ang_err = (cfg->mode == FSW_THR_MAP_NNLS) ? FSW_R(0.0) : torque_angle_error(st, cfg, Lbar, F);
+#if FSW_CFG_THR_NNLS
   } else if (cfg->mode == FSW_THR_MAP_NNLS) {
     s = map_nnls(st, cfg, Lbar, in->avail, F);
+#endif
   } else {
     s = map_min_norm(st, cfg, Lbar, in->avail, F); }
   /* overflow of a finite request is bad input; no NaN/Inf leaves */

@@ -15,7 +15,7 @@ static int in_range(fsw_real x, fsw_real lo, fsw_real hi)
 static uint32_t inc_sat(uint32_t n) { return n < UINT32_MAX ? n + 1u : n; }
 
 /* Seconds from a to b (b >= a), from the integer difference. */
-static fsw_real ns_to_s(uint64_t a, uint64_t b) { return (fsw_real)(b - a) * FSW_R(1e-9); }
+static fsw_real ns_to_s(uint64_t a, uint64_t b) { return fsw_clock_ns_to_s(b - a); }
 
 FswStatus fsw_thr_momentum_check(const FswThrMomentumConfig *cfg)
 {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <vector>
 
 #include "fsw/fsw_clock.h"
 #include "kestrel_test_support.h"
@@ -122,4 +123,34 @@ TEST(FswClock, NullArguments)
   fsw_clock_reset(nullptr);
   EXPECT_EQ(4u, kestrel_assert_count());
   kestrel_assert_reset();
+}
+
+// fsw_clock_ns_to_s gives the bits of (fsw_real)d * 1e-9 (the compiler's own
+// conversion, correctly rounded) for every kind of difference: below 2^32,
+// at and around the powers of two where the float path starts shifting,
+// exact ties of the 24-bit rounding with and without lower bits below them
+// (round to even, round up), the largest value, and a deterministic spread
+// of 64-bit values (a 64-bit LCG, shifted so every bit length occurs).
+// Verifies: REQ-CLOCK-003
+TEST(FswClock, NsToSecondsRoundsAsTheDirectConversion)
+{
+  std::vector<uint64_t> d = {0u, 1u, 100000000u, 0xffffffffu, 0x100000000u, 0x100000001u,
+                             0x1ffffffffu, ~0ull, 1ull << 63, (1ull << 63) + 1u};
+  for (int e = 33; e < 64; e++) {
+    const uint64_t top = 1ull << e, half = 1ull << (e - 24);  // half an ulp at 2^e
+    d.push_back(top + half);                 // tie: to even (down)
+    d.push_back(top + 3 * half);             // tie: to even (up)
+    d.push_back(top + half + 1u);            // just above the tie: up
+    d.push_back(top + half - 1u);            // just below: down
+    d.push_back(top - 1u);                   // rounds up to 2^e
+  }
+  uint64_t x = 0x9e3779b97f4a7c15ull;
+  for (int i = 0; i < 4000; i++) {
+    x = x * 6364136223846793005ull + 1442695040888963407ull;
+    d.push_back(x >> (i % 64));
+  }
+  for (uint64_t v : d) {
+    const R want = static_cast<R>(v) * FSW_R(1e-9);
+    EXPECT_EQ(want, fsw_clock_ns_to_s(v)) << v;
+  }
 }

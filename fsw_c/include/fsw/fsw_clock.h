@@ -5,7 +5,7 @@
  *     explicit has_prev flag, no time sentinel), and has dt = 0;
  *   - a later call needs t_ns > t_prev_ns, else FSW_E_TIME;
  *   - dt = (fsw_real)(t_ns - t_prev_ns) * 1e-9 s (the integer difference
- *     first, so dt carries no accumulated round-off).
+ *     first, so dt carries no accumulated round-off; fsw_clock_ns_to_s).
  * Use: fsw_clock_dt() before any state is touched; fsw_clock_commit() once
  * the call is accepted (an error path never commits); fsw_clock_reset() from
  * the module's _reset.  Units: ns in, s out. */
@@ -37,6 +37,13 @@ void fsw_clock_commit(FswClock *clk, uint64_t t_ns);
 
 /* Forget the previous call: has_prev = 0, t_prev_ns = 0. */
 void fsw_clock_reset(FswClock *clk);
+
+/* Seconds of a time-stamp difference: (fsw_real)d_ns * 1e-9, the same bits
+ * as that expression (the conversion rounds to nearest, ties to even).  In
+ * single precision it converts through 32-bit integers, which the
+ * Cortex-M4F's FPU converts itself, instead of the 64-bit conversion
+ * routine of the compiler's run-time library (540 B of soft-float code). */
+fsw_real fsw_clock_ns_to_s(uint64_t d_ns);
 
 #ifdef __cplusplus
 }

@@ -124,7 +124,10 @@ typedef double fsw_real;
  *   FSW_CFG_RW_VOLT       use_volt: rw_volt
  *   FSW_CFG_SPEED_FILTER  use_speed_filter: rw_speed_filter
  *   FSW_CFG_LPF           use_lpf: trq_lpf
- *   FSW_CFG_PULSE_SCHMITT pulser = FSW_ACS_PULSE_SCHMITT: thr_pulse_schmitt */
+ *   FSW_CFG_PULSE_SCHMITT pulser = FSW_ACS_PULSE_SCHMITT: thr_pulse_schmitt
+ *   FSW_CFG_THR_NNLS      thr_map.mode = FSW_THR_MAP_NNLS: thr_map's bounded
+ *                         solve, fsw_bounded_minnorm_solve, which thr_map
+ *                         itself then refuses with FSW_E_UNSUPPORTED (thr_map.h) */
 #ifndef FSW_CFG_MTQ
 #define FSW_CFG_MTQ 1
 #endif
@@ -154,6 +157,9 @@ typedef double fsw_real;
 #endif
 #ifndef FSW_CFG_PULSE_SCHMITT
 #define FSW_CFG_PULSE_SCHMITT 1
+#endif
+#ifndef FSW_CFG_THR_NNLS
+#define FSW_CFG_THR_NNLS 1
 #endif
 #if FSW_CFG_MTQ_DESAT && !FSW_CFG_MTQ
 #error "FSW_CFG_MTQ_DESAT needs FSW_CFG_MTQ"

@@ -11,7 +11,11 @@
  *  - FSW_THR_MAP_NNLS (opt-in, docs/fsw/thr_map.md "NNLS mode"): minimum ||F|| subject to [C][D]F = Lbar
  *    (least squares when no admissible F exists) and the thruster limits,
  *    by a deterministic bounded-variable active-set method.  Delivers the
- *    requested torque whenever the thrusters can.
+ *    requested torque whenever the thrusters can.  A build with
+ *    FSW_CFG_THR_NNLS = 0 (fsw_config.h) does not have it: check and init
+ *    refuse the mode with FSW_E_UNSUPPORTED and update returns
+ *    FSW_E_UNSUPPORTED with the safe output for a configuration changed to
+ *    it after init.
  *
  * Output F: on-pulsing (thr_force_sign = +1) the commanded force of each
  * thruster, >= 0; off-pulsing (thr_force_sign = -1, DV thrusters nominally
@@ -107,7 +111,9 @@ typedef struct {
 
 /* Validate the configuration.  FSW_E_CAPACITY: num_thr > FSW_MAX_THR;
  * FSW_E_SINGULAR: the counted control axes are linearly dependent;
- * FSW_E_CONFIG: anything else out of range or non-finite. */
+ * FSW_E_UNSUPPORTED: mode FSW_THR_MAP_NNLS in a build without it
+ * (FSW_CFG_THR_NNLS = 0); FSW_E_CONFIG: anything else out of range or
+ * non-finite. */
 FswStatus fsw_thr_map_check(const FswThrMapConfig *cfg);
 /* check, then normalise the control axes, clear health, reset. */
 FswStatus fsw_thr_map_init(FswThrMapState *st, const FswThrMapConfig *cfg);
@@ -126,6 +132,7 @@ void fsw_thr_map_reset(FswThrMapState *st);
  * FSW_E_BAD_INPUT (NaN/Inf input, r_CoM_B out of range, an avail entry not
  * 0/1, or a finite request
  * so large that the forces overflow; F = 0); FSW_E_NOT_INIT;
+ * FSW_E_UNSUPPORTED (mode FSW_THR_MAP_NNLS, built without it; F = 0);
  * FSW_E_NULL_ARG.  OK and warnings change the diagnostics (ang_err,
  * nnls_iter); every status may change the scratch and the health counters,
  * nothing else. */
