@@ -587,6 +587,7 @@ TEST_F(CssSun, McdcTheBrighterOfTwoPartnersIsTakenEitherOrder)
 // checks the same flags and readings first): for every input that passes
 // them the output, the status and the health record are the update's, bit
 // for bit, in each of the WLS, two-sensor, one-sensor and no-heading cases.
+// Verifies: REQ-CSS-001, REQ-CSS-002, REQ-CSS-003
 TEST_F(CssSun, EstimateOfACheckedInputIsTheUpdate)
 {
   double n[14][3], sc[14];
