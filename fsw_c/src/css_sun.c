@@ -7,6 +7,7 @@
 #include "fsw/fsw_vec.h"
 #include "fsw_vec_inline.h"
 #include "fsw_status_inline.h"
+#include "css_sun_internal.h"
 
 static void write_safe(FswCssSunOut *out)
 {
@@ -113,6 +114,19 @@ static int in_ok(const FswCssSunConfig *cfg, const FswCssSunIn *in)
 FswStatus fsw_css_sun_update(FswCssSunState *st, const FswCssSunConfig *cfg,
                              const FswCssSunIn *in, FswCssSunOut *out)
 {
+  FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
+  if (out != NULL) { write_safe(out); }
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
+    return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG);
+  }
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
+  if (!in_ok(cfg, in)) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
+  return fsw_css_sun_estimate(st, cfg, in, out);
+}
+
+FswStatus fsw_css_sun_estimate(FswCssSunState *st, const FswCssSunConfig *cfg,
+                               const FswCssSunIn *in, FswCssSunOut *out)
+{
   fsw_real y[FSW_MAX_CSS];     /* [-] normalised readings (cosines) */
   uint8_t lit[FSW_MAX_CSS];    /* [-] 1 if lit */
   fsw_real M[3][3];            /* [-] sum w n n^T */
@@ -123,13 +137,8 @@ FswStatus fsw_css_sun_update(FswCssSunState *st, const FswCssSunConfig *cfg,
   int a = -1, b = -1;          /* brightest lit sensor, brightest non-parallel partner */
   int i, j, k;
 
-  FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) { write_safe(out); }
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
-    return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG);
-  }
+  write_safe(out);
   if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
-  if (!in_ok(cfg, in)) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
 
   /* lit set and weighted normal equations */
   fsw_m33_zero(M);

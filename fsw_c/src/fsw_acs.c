@@ -7,6 +7,7 @@
 #include "fsw/fsw_vec.h"
 #include "fsw_vec_inline.h"
 #include "fsw_status_inline.h"
+#include "css_sun_internal.h"
 #include "fsw/rw_common.h"
 
 /* ---- stage names --------------------------------------------------------- */
@@ -615,12 +616,16 @@ static void u8_copy(uint8_t *out, const uint8_t *in, int n)
   for (i = 0; i < n; i++) { out[i] = in[i]; }
 }
 
-/* Finite check of the entries whose availability flag is 0. */
-static int avail_finite(const fsw_real *x, const uint8_t *avail, int n)
+/* 1 if each of the n availability flags is FSW_AVAILABLE or
+ * FSW_UNAVAILABLE and, when finite_too, each entry flagged available is
+ * finite (one pass: the cycle rejects either fault alike). */
+static int avail_ok(const fsw_real *x, const uint8_t *avail, int n, int finite_too)
 {
   int i;
   for (i = 0; i < n; i++) {
-    if (avail[i] == FSW_AVAILABLE && !isfinite(x[i])) { return 0; } }
+    if (avail[i] > FSW_UNAVAILABLE) { return 0; }
+    if (finite_too && avail[i] == FSW_AVAILABLE && !isfinite(x[i])) { return 0; }
+  }
   return 1;
 }
 
@@ -667,7 +672,9 @@ static FswStatus run_guidance(FswAcsState *st, const FswAcsConfig *cfg,
     const int nc = cfg->css.num_css;
     for (i = 0; i < nc; i++) { w->css_in.reading[i] = sens->css[i]; }
     u8_copy(w->css_in.avail, sens->css_avail, nc);
-    s = fsw_css_sun_update(&st->css, &cfg->css, &w->css_in, &w->css_out);
+    /* the readings and flags passed the cycle's checks (req_mode was
+     * SUN_SAFE): the estimate without fsw_css_sun_update's same checks */
+    s = fsw_css_sun_estimate(&st->css, &cfg->css, &w->css_in, &w->css_out);
     h->stage_status[FSW_ACS_STAGE_CSS] = s;
     acc = combine(acc, s);
     if (w->css_out.sun_valid) {
@@ -1117,20 +1124,21 @@ static void restore_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   }
 }
 
-/* The pointing modes: guidance, control law, actuation. */
+/* The pointing modes: guidance, control law, actuation.  The guidance is
+ * written once, into the control law's input (w->fb_in.guid), and read
+ * from there for the telemetry. */
 static FswStatus run_pointing(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens,
-                              FswAcsActuatorMsg *act, FswAcsHealthMsg *h, FswAttGuid *guid_out)
+                              FswAcsActuatorMsg *act, FswAcsHealthMsg *h)
 {
   FswAcsWork *w = &st->work;
   FswStatus acc = FSW_OK, s;
   const fsw_real *Lr;
 
   /* 3. Guidance and attitude error. */
-  acc = combine(acc, run_guidance(st, cfg, sens, h, guid_out));
+  acc = combine(acc, run_guidance(st, cfg, sens, h, &w->fb_in.guid));
 
-  /* 4. Control law. */
+  /* 4. Control law (run_guidance wrote its input's guidance). */
   w->fb_in.t_ns = sens->t_ns;
-  w->fb_in.guid = *guid_out;
   if (cfg->mrp_fb.num_rw > 0) {
     fsw_vn_copy(w->fb_in.Omega, w->Omega, cfg->mrp_fb.num_rw);
     u8_copy(w->fb_in.rw_avail, w->rw_avail, cfg->mrp_fb.num_rw);
@@ -1173,7 +1181,8 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
 {
   FswAcsWork *w;
   FswStatus acc = FSW_OK, s;
-  FswAttGuid guid;
+  FswAttGuid guid;       /* DETUMBLE's: no attitude error */
+  const FswAttGuid *g;   /* the guidance of the cycle, for the telemetry */
   int req_mode, req_act, req_policy, i;
   uint8_t u_known;
 
@@ -1217,20 +1226,14 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   if (req_mode == FSW_ACS_MODE_NADIR &&
       (sens->orbit_valid != 1u || !fsw_v3_is_finite(sens->r_N) || !fsw_v3_is_finite(sens->v_N))) {
     return finish(st, cfg, h, FSW_E_BAD_INPUT); }
-  if (req_mode == FSW_ACS_MODE_SUN_SAFE) {
-    for (i = 0; i < cfg->css.num_css; i++) {
-      if (sens->css_avail[i] > FSW_UNAVAILABLE) { return finish(st, cfg, h, FSW_E_BAD_INPUT); } }
-    if (!avail_finite(sens->css, sens->css_avail, cfg->css.num_css)) {
-      return finish(st, cfg, h, FSW_E_BAD_INPUT); }
-  }
-  if (cfg->has_wheels) {
-    for (i = 0; i < cfg->rw_map.num_rw; i++) {
-      if (sens->rw_avail[i] > FSW_UNAVAILABLE) { return finish(st, cfg, h, FSW_E_BAD_INPUT); } }
-    /* with the speed filter, a non-finite speed is one wheel's fault (it
-     * fails that wheel), not bad input of the cycle */
-    if (!cfg->use_speed_filter && !avail_finite(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw)) {
-      return finish(st, cfg, h, FSW_E_BAD_INPUT); }
-  }
+  if (req_mode == FSW_ACS_MODE_SUN_SAFE &&
+      !avail_ok(sens->css, sens->css_avail, cfg->css.num_css, 1)) {
+    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
+  /* with the speed filter, a non-finite speed is one wheel's fault (it
+   * fails that wheel), not bad input of the cycle */
+  if (cfg->has_wheels &&
+      !avail_ok(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw, !cfg->use_speed_filter)) {
+    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
   if ((req_act == FSW_ACS_ACT_THRUSTERS || req_policy == FSW_ACS_MOM_THRUSTERS) &&
       !fsw_v3_is_finite(sens->r_CoM_B)) {
     return finish(st, cfg, h, FSW_E_BAD_INPUT); }
@@ -1283,19 +1286,21 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     /* 3-5 in DETUMBLE: B-dot alone. */
     fsw_v3_zero(guid.sigma_BR);
     fsw_v3_zero(guid.omega_BR_B);
+    g = &guid;
 #if FSW_CFG_MTQ
     acc = combine(acc, run_detumble(st, cfg, sens, act, h));
 #else
     acc = combine(acc, FSW_E_UNSUPPORTED); /* not reached: fsw_acs_check rejects the stage */
 #endif
   } else {
-    acc = combine(acc, run_pointing(st, cfg, sens, act, h, &guid));
+    acc = combine(acc, run_pointing(st, cfg, sens, act, h));
+    g = &w->fb_in.guid;
   }
 
   /* 6. Telemetry and timing. */
-  fsw_v3_copy(h->sigma_BR, guid.sigma_BR);
-  fsw_v3_copy(h->omega_BR_B, guid.omega_BR_B);
-  h->att_err_angle = fsw_mrp_angle(guid.sigma_BR);
+  fsw_v3_copy(h->sigma_BR, g->sigma_BR);
+  fsw_v3_copy(h->omega_BR_B, g->omega_BR_B);
+  h->att_err_angle = fsw_mrp_angle(g->sigma_BR);
   if (fsw_status_is_error_i(acc)) {
     safe_output(act);
     restore_dynamic(st, cfg); /* no state advance on an error cycle */

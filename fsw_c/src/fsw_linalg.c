@@ -208,8 +208,9 @@ FswStatus fsw_minnorm_factor(FswMinnormFactor *f, const fsw_real A[3][FSW_MAX_EF
 FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFactor *f,
                                      const fsw_real A[3][FSW_MAX_EFF], const fsw_real b[3])
 {
-  fsw_real bs[3], r[3], dz[3], z[3];
-  fsw_real s, t;
+  fsw_real bs[3] = {FSW_R(0.0), FSW_R(0.0), FSW_R(0.0)}; /* entries m.. unused */
+  fsw_real r[3], dz[3], z[3];
+  fsw_real s, t, mb;
   int i, j, eb, m, n;
 
   FSW_ASSERT(x != NULL && f != NULL && A != NULL && b != NULL);
@@ -218,15 +219,18 @@ FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFa
   n = f->n;
   fsw_vn_zero(x, n < 0 ? 0 : (n > FSW_MAX_EFF ? FSW_MAX_EFF : n)); /* safe output */
   if (f->status == FSW_E_CAPACITY || f->status == FSW_E_NULL_ARG) { return f->status; }
-  for (i = 0; i < m; i++) {
-    if (!isfinite(b[i])) { return FSW_E_BAD_INPUT; } }
+  /* max |b_i| is finite exactly when every b_i is (fsw_vn_max_abs gives NaN
+   * for a NaN entry, infinity for an infinite one): one pass for the
+   * finiteness test and the scale below */
+  mb = fsw_vn_max_abs(b, m);
+  if (!isfinite(mb)) { return FSW_E_BAD_INPUT; }
   if (f->status != FSW_OK) { return f->status; }
 
   /* b is scaled by s and by a power of two t = 2^-eb that brings max |b|
    * into [1/2, 1): the solve cannot overflow, and x = (solution) 2^eb at the
    * end (exact scalings: the digits are those of the unscaled solve). */
   s = f->s;
-  eb = pow2_exp(fsw_vn_max_abs(b, m));
+  eb = pow2_exp(mb);
   t = (fsw_pow2i_normal(-eb) != 0) ? fsw_pow2i(-eb) : FSW_LDEXP(FSW_R(1.0), -eb);
   for (i = 0; i < m; i++) { bs[i] = (b[i] * t) * s; }
 

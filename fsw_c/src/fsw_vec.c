@@ -88,7 +88,7 @@ int fsw_v3_norm_normalize(fsw_real out[3], fsw_real *norm, const fsw_real a[3])
    * maximum (|a| would overflow) or subnormal (|a| would lose digits).  The
    * largest entry is searched and the scaled sum of squares formed once for
    * |a| and the direction (fsw_v3i_scaled_root). */
-  const fsw_real m = fsw_vn_max_abs(a, 3);
+  const fsw_real m = fsw_vni_max_abs(a, 3);
   fsw_real b[3], p, r, n;
   /* m is finite only if every entry is: fsw_vn_max_abs returns NaN for a
    * NaN entry and infinity for an infinite one. */
@@ -153,22 +153,13 @@ fsw_real fsw_vn_dot(const fsw_real *a, const fsw_real *b, int n)
   return s;
 }
 
-fsw_real fsw_vn_max_abs(const fsw_real *a, int n)
-{
-  fsw_real m = FSW_R(0.0);
-  int i;
-  for (i = 0; i < n; i++) {
-    fsw_real v = FSW_FABS(a[i]);
-    if (v > m || v != v) { m = v; } /* NaN propagates */
-  }
-  return m;
-}
+fsw_real fsw_vn_max_abs(const fsw_real *a, int n) { return fsw_vni_max_abs(a, n); }
 
 fsw_real fsw_vn_norm(const fsw_real *a, int n)
 {
   /* Scaled sum of squares: no overflow for entries near the real's maximum
    * and no underflow to zero for tiny ones. */
-  fsw_real m = fsw_vn_max_abs(a, n);
+  fsw_real m = fsw_vni_max_abs(a, n);
   fsw_real s = FSW_R(0.0);
   int i;
   if (m == FSW_R(0.0) || !isfinite(m)) { return m; }

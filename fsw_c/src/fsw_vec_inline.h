@@ -124,6 +124,20 @@ static inline void fsw_m33i_tmult_v3(fsw_real out[3], const fsw_real a[3][3], co
               a[0][2] * v[0] + a[1][2] * v[1] + a[2][2] * v[2]);
 }
 
+/* fsw_vn_max_abs(a, n): max |a_i| (0 for n <= 0); a NaN entry gives NaN
+ * (and keeps it: no later entry compares above NaN), so the result is
+ * finite exactly when every entry is. */
+static inline fsw_real fsw_vni_max_abs(const fsw_real *a, int n)
+{
+  fsw_real m = FSW_R(0.0);
+  int i;
+  for (i = 0; i < n; i++) {
+    fsw_real v = FSW_FABS(a[i]);
+    if (v > m || v != v) { m = v; } /* NaN propagates */
+  }
+  return m;
+}
+
 /* sqrt(sum (a_i / m)^2) for m = fsw_vn_max_abs(a, 3) > 0 and finite: the
  * root fsw_vn_norm forms, so fsw_v3_norm(a) is m times it, bit for bit.  For
  * b = p a with p = fsw_pow2_scale(m) it is also the root fsw_vn_norm forms
@@ -218,6 +232,7 @@ static inline int fsw_frexp_exp_normal(fsw_real m)
 #define fsw_vn_copy fsw_vni_copy
 #define fsw_vn_zero fsw_vni_zero
 #define fsw_vn_dot fsw_vni_dot
+#define fsw_vn_max_abs fsw_vni_max_abs
 #define fsw_m33_mult_v3 fsw_m33i_mult_v3
 #define fsw_m33_tmult_v3 fsw_m33i_tmult_v3
 #endif

@@ -13,9 +13,11 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "fsw/css_sun.h"
+#include "css_sun_internal.h"
 #include "fsw/fsw_vec.h"
 #include "gnc_test_ref.h"
 #include "kestrel_test_support.h"
@@ -579,4 +581,49 @@ TEST_F(CssSun, McdcTheBrighterOfTwoPartnersIsTakenEitherOrder)
     EXPECT_V3_NEAR(r.want[0], r.want[1], r.want[2], out_.sun_hat_B, kt::tol(1e-14, 4e-6));
     EXPECT_NEAR(1.0, out_.sun_mag, kt::tol(1e-14, 4e-6)) << r.y0;
   }
+}
+
+// fsw_acs calls the estimate without the update's input checks (its cycle
+// checks the same flags and readings first): for every input that passes
+// them the output, the status and the health record are the update's, bit
+// for bit, in each of the WLS, two-sensor, one-sensor and no-heading cases.
+// Verifies: REQ-CSS-001, REQ-CSS-002, REQ-CSS-003
+TEST_F(CssSun, EstimateOfACheckedInputIsTheUpdate)
+{
+  double n[14][3], sc[14];
+  FswCssSunConfig c{};
+  head14(c, n, sc);
+  FswCssSunState st_u{}, st_e{};
+  ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_u, &c));
+  ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st_e, &c));
+  kt::Rng rng(0x5eed0045u);
+  int seen[4] = {0, 0, 0, 0};
+  for (int t = 0; t < 4000; t++) {
+    double s[3];
+    rng.unit3(s);
+    FswCssSunIn in{};
+    readings(in, c, s);
+    for (int i = 0; i < c.num_css; i++) {
+      in.avail[i] = (rng.uniform(0.0, 1.0) < 0.4) ? FSW_UNAVAILABLE : FSW_AVAILABLE;
+      if (in.avail[i] == FSW_UNAVAILABLE && (t % 3) == 0) {
+        in.reading[i] = std::numeric_limits<fsw_real>::quiet_NaN();  // not read
+      }
+    }
+    FswCssSunOut out_u{}, out_e{};
+    const FswStatus su = fsw_css_sun_update(&st_u, &c, &in, &out_u);
+    const FswStatus se = fsw_css_sun_estimate(&st_e, &c, &in, &out_e);
+    ASSERT_EQ(su, se) << t;
+    ASSERT_EQ(0, std::memcmp(&out_u, &out_e, sizeof out_u)) << t;
+    ASSERT_EQ(0, std::memcmp(&st_u, &st_e, sizeof st_u)) << t;
+    seen[out_u.mode]++;
+  }
+  for (int m = 0; m < 4; m++) EXPECT_GT(seen[m], 0) << m;
+  // a state that is not ready: FSW_E_NOT_INIT and the safe output, as the update
+  FswCssSunState idle{};
+  FswCssSunIn in{};
+  FswCssSunOut out{};
+  out.sun_valid = 1;
+  EXPECT_EQ(FSW_E_NOT_INIT, fsw_css_sun_estimate(&idle, &c, &in, &out));
+  EXPECT_EQ(0, out.sun_valid);
+  EXPECT_EQ(1u, idle.health.calls);
 }
