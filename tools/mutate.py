@@ -159,7 +159,7 @@ def check_equivalents(fix):
                                and same_code(m["mutant"]) == same_code(r["mutant"]))
     for b in bad:
         print("stale: " + b)
-    if fix and moved and not bad:
+    if fix and moved:
         p = os.path.join(ROOT, "tools", "mutation_equivalents.csv")
         with open(p + ".tmp", "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=["file", "line", "original", "mutant", "reason"], lineterminator="\n")
