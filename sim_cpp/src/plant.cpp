@@ -115,13 +115,15 @@ const ReactionWheelParams& Plant::wheel_params(int i) const
 
 // ------------------------------------------------------------------ inputs
 
-void Plant::latch_wheel_commands(const WheelArray& u_cmd)
+void Plant::latch_wheel_commands(const WheelArray& u_cmd) { latch_wheel_commands(u_cmd.data()); }
+
+void Plant::latch_wheel_commands(const double* u_cmd)
 {
+  const std::vector<ReactionWheelParams>& wheels = model_.params().wheels;
   for (int i = 0; i < num_rw(); ++i) {
     const auto ui = static_cast<size_t>(i);
-    held_.wheels.u_s[ui] = wheel_health_[ui] != WheelHealth::Nominal
-                        ? 0.0
-                        : command_pipeline(wheel_params(i), u_cmd[ui], Omega(i));
+    held_.wheels.u_s[ui] =
+        wheel_health_[ui] != WheelHealth::Nominal ? 0.0 : command_pipeline(wheels[ui], u_cmd[i], Omega(i));
   }
 }
 

@@ -73,6 +73,26 @@ TEST(Scheduler, OrderWithinTickAndCounts)
   EXPECT_EQ(s.t_ns(360000), 3'600'000'000'000ULL);
 }
 
+TEST(Scheduler, TaskOfSeveralGroupsRunsWhenAnyIsDue)
+{
+  // {3, 0} and {4, 1}: due at k = 0, 3, 6, 9 and 1, 5, 9 (9 once); a group
+  // of divisor 1 among others makes the task due at every tick
+  Scheduler s(1);
+  std::vector<uint64_t> two, with_every;
+  s.add_task("two", std::vector<RateGroup>{{"3", 3, 0}, {"4+1", 4, 1}}, [&](uint64_t k) { two.push_back(k); });
+  s.add_task("with_every", std::vector<RateGroup>{{"5+4", 5, 4}, {"1", 1, 0}},
+             [&](uint64_t k) { with_every.push_back(k); });
+  for (uint64_t k = 0; k < 10; ++k) s.run_tick(k);
+  EXPECT_EQ(two, (std::vector<uint64_t>{0, 1, 3, 5, 6, 9}));
+  EXPECT_EQ(with_every, (std::vector<uint64_t>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}));
+  EXPECT_EQ(s.run_count(0), 6u);
+  EXPECT_EQ(s.run_count(1), 10u);
+  // a tick far from the last one (a resumed run): by the groups alone
+  two.clear();
+  EXPECT_EQ(s.run_tick(1'000'000'001), 2u);  // 1'000'000'001 % 4 == 1
+  EXPECT_EQ(two, (std::vector<uint64_t>{1'000'000'001}));
+}
+
 TEST(Scheduler, NoDriftOverManyTicks)
 {
   // 0.1 s summed 10^6 times as a double drifts; the integer clock does not.

@@ -125,6 +125,29 @@ TEST(PlantLayout, CapacitiesAreEnforcedAtConstruction)
 
 // ------------------------------------------------- wheel device parameters
 
+// The latch from a message's own array: the first num_rw entries through the
+// command pipeline (here the saturation at u_max, by hand), as the WheelArray
+// form; a wheel Off latches 0.
+TEST(PlantSetters, LatchFromAPlainArrayReadsTheRunsWheels)
+{
+  OneWheel s = one_wheel();
+  s.sc.wheels[0].u_max = 0.1;
+  sim::Plant plant({s.sc, {}}, sim::InitialConditions{});
+  const double over[1] = {0.5};  // one entry: the plant has one wheel
+  plant.latch_wheel_commands(over);
+  EXPECT_EQ(plant.u_s(0), 0.1);
+  const double under[1] = {-0.05};
+  plant.latch_wheel_commands(under);
+  EXPECT_EQ(plant.u_s(0), -0.05);
+  sim::WheelArray cmd{};
+  cmd[0] = 0.5;
+  plant.latch_wheel_commands(cmd);
+  EXPECT_EQ(plant.u_s(0), 0.1);
+  plant.set_wheel_health(0, sim::WheelHealth::Off);
+  plant.latch_wheel_commands(under);
+  EXPECT_EQ(plant.u_s(0), 0.0);
+}
+
 // A wheel set Off stops responding to commands (u_s = 0 at once and at every
 // latch) and spins down under Coulomb friction at the analytic rate
 // tau_c I_zz / (J_s (I_zz - J_s)) (friction still acts).

@@ -31,7 +31,8 @@ size_t Scheduler::add_task(std::string name, std::vector<RateGroup> groups, Task
   if (groups.empty()) throw std::invalid_argument("scheduler: task '" + name + "' has no rate group");
   for (const RateGroup& g : groups) validate(g);
   if (!fn) throw std::invalid_argument("scheduler: task '" + name + "' has no function");
-  tasks_.push_back(Task{std::move(name), std::move(groups), std::move(fn), 0, 0});
+  const bool every = std::any_of(groups.begin(), groups.end(), [](const RateGroup& g) { return g.divisor == 1; });
+  tasks_.push_back(Task{std::move(name), std::move(groups), std::move(fn), every, 0, 0});
   return tasks_.size() - 1;
 }
 
@@ -39,7 +40,8 @@ size_t Scheduler::run_tick(uint64_t tick)
 {
   size_t n = 0;
   for (Task& t : tasks_) {
-    if (std::any_of(t.groups.begin(), t.groups.end(), [tick](const RateGroup& g) { return g.due(tick); })) {
+    // a group of divisor 1 (offset 0) is due at every tick: the test is the flag
+    if (t.every || std::any_of(t.groups.begin(), t.groups.end(), [tick](const RateGroup& g) { return g.due(tick); })) {
       if (profiling_) {
         const auto t0 = std::chrono::steady_clock::now();
         t.fn(tick);

@@ -54,7 +54,10 @@ void TruthTask::operator()(uint64_t k) const
   for (int j = 0; j < p.num_thr(); ++j) t.F_thr[j] = p.thruster_effect(j).F_B.norm();
   static_assert(kMaxEnvSources == kNumEnvSources, "one torque per environment source");
   const double t_s = static_cast<double>(k * tick_ns) * 1e-9;
-  for (int s = 0; s < kNumEnvSources; ++s) {
+  // without environment sources the per-source fields stay 0 from the start
+  // (nothing else writes them), so they are set only when a source is on
+  const bool any_env = std::any_of(env.begin(), env.end(), [](const auto* e) { return e != nullptr; });
+  for (int s = 0; any_env && s < kNumEnvSources; ++s) {
     Eigen::Vector3d L_C = Eigen::Vector3d::Zero();
     if (const sim::SampledEnvironmentEffector* e = env[static_cast<size_t>(s)]) {
       const sim::BodyLoad l = e->load(t_s, x);
@@ -62,27 +65,24 @@ void TruthTask::operator()(uint64_t k) const
     }
     put3(t.L_env_C_B[s], L_C);
   }
-  environment_truth(t, k * tick_ns, t_s);
+  environment_truth(t, k * tick_ns, t_s, any_env);
   out.publish(k * tick_ns);
 }
 
-void TruthTask::environment_truth(TruthMsg& t, uint64_t t_ns, double t_s) const
+void TruthTask::environment_truth(TruthMsg& t, uint64_t t_ns, double t_s, bool any_env) const
 {
   const sim::Plant& p = *plant;
   const Eigen::Vector3d r_B = ev(t.r_BN_N);
   t.illumination =
       sun && sun->dated() ? sun->illumination(r_B, sun->position_N(static_cast<int64_t>(t_ns))) : 0.0;
+  if (!any_env) return;  // the field and the momenta stay 0 (see operator())
   const auto* mag = static_cast<const sim::MagneticEffector*>(env[static_cast<size_t>(EnvSource::Magnetic)]);
   // index Magnetic holds a MagneticEffector
   put3(t.field_B, mag ? mag->field_B(t_s, p.state()) : Eigen::Vector3d(Eigen::Vector3d::Zero()));
-  bool any = false;
   for (int s = 0; s < kNumEnvSources; ++s) {
     const sim::SampledEnvironmentEffector* e = env[static_cast<size_t>(s)];
-    any = any || e;
     put3(t.H_env_N[s], e ? e->momentum_N() : Eigen::Vector3d(Eigen::Vector3d::Zero()));
   }
-  put3(t.H_wheels_N, Eigen::Vector3d::Zero());
-  if (!any) return;
   Eigen::Vector3d h_B = Eigen::Vector3d::Zero();
   for (int i = 0; i < p.num_rw(); ++i) h_B += p.wheel_params(i).J_s * p.Omega(i) * p.model().wheel_derived(i).gs_hat_B;
   put3(t.H_wheels_N, sim::dcm_BN_from_sigma(ev(t.sigma_BN)).transpose() * h_B);
@@ -194,9 +194,8 @@ void ActuatorTask::operator()(uint64_t k) const
 void PlantInputTask::operator()(uint64_t) const
 {
   const PlantCmdMsg& c = in.read();
-  sim::WheelArray u{};
-  for (int i = 0; i < plant->num_rw(); ++i) u[static_cast<size_t>(i)] = c.u_s[i];
-  plant->latch_wheel_commands(u);
+  static_assert(kMaxRw == sim::kMaxWheels, "the message holds a command per plant wheel");
+  plant->latch_wheel_commands(c.u_s);  // the message's own array, num_rw entries read
   if (plant->num_thr() > 0) {
     sim::ThrusterArray T{};
     for (int j = 0; j < plant->num_thr(); ++j) T[static_cast<size_t>(j)] = c.T_on[j];

@@ -44,8 +44,9 @@ struct TruthTask {
   EnvEffectors env{};  // the run's environment effectors (null: off)
   const SunSource* sun = nullptr;  // the run's Sun (illumination when dated)
   void operator()(uint64_t k) const;
-  // Illumination, field, accumulated momenta and wheel momentum (Earth orbit).
-  void environment_truth(TruthMsg& t, uint64_t t_ns, double t_s) const;
+  // Illumination; with an environment source on (any_env), the field, the
+  // accumulated momenta and the wheel momentum (Earth orbit).
+  void environment_truth(TruthMsg& t, uint64_t t_ns, double t_s, bool any_env) const;
 };
 
 // Burn monitor (thruster runs, every tick): dv += (v_C(k+1) - v_C(k)) -

@@ -80,6 +80,8 @@ class Plant {
   // §4.3 wheel command latch at the current wheel speeds; u_cmd[i], i < num_rw.
   // A wheel that is Off latches 0.
   void latch_wheel_commands(const WheelArray& u_cmd);
+  // The same from u_cmd[0 .. num_rw()), e.g. a command message's own array.
+  void latch_wheel_commands(const double* u_cmd);
   // New thruster command message: on-time requests [s] (num_thr), latched at
   // the next instant k*T_upd at or after now (§5.2).
   void command_thrusters(const ThrusterArray& T_req);

@@ -62,6 +62,7 @@ class Scheduler {
     std::string name;
     std::vector<RateGroup> groups;
     TaskFn fn;
+    bool every = false;  // one of its groups has divisor 1: due at every tick, no test
     uint64_t runs = 0;
     uint64_t ns = 0;
   };
