@@ -10,10 +10,11 @@
 #       mode and item over the golden replay), the worst case per item across
 #       the builds; m4f_fuzz_replay.cpp, every fsw_acs_cycle of the fuzz
 #       corpus test/fuzz/fsw/corpus/acs (float builds too); m4f_link_replay.c,
-#       S1's configuration image and recorded packets (bench/target/data/s1)
-#       through the PIL program's link node, the link around the cycle and
-#       the cycle; and the share of a 10 Hz period the worst cycle (golden
-#       replay, fuzz corpus, S1) and S1's worst packet take on a CLOCK_MHZ
+#       each recorded closed loop of bench/target/data (S1, S2's burn, S3's
+#       detumble and hold: a run's configuration image and packets) through
+#       the PIL program's link node, the link around the cycle and the
+#       cycle; and the share of a 10 Hz period the worst cycle (golden
+#       replay, fuzz corpus, recordings) and the worst packet take on a CLOCK_MHZ
 #       (default 168) part at CPI 1.0 and CPI_HIGH (default 1.5).
 #   bench/target/m4f_timing.sh --check ELF
 #       the counter's self-check (ctest m4f_instruction_counter): the
@@ -91,10 +92,12 @@ for src in golden fuzz link; do
 done
 awk -F'|' -v nb="${#builds[@]}" '
   function cell(k) { return (k in v) ? v[k] : "-" }
-  FNR == 1 { f++; src = f <= nb ? "golden replay" : f <= 2 * nb ? "fuzz corpus" : "S1 packets"; col = (f - 1) % nb + 1 }
-  src == "fuzz corpus" && $3 ~ /^ *[0-9]+ *$/ { r = src "|" $2 }
-  src != "fuzz corpus" && $3 ~ /^ *fsw_acs_cycle *$/ { r = src "|" $2 }
-  src == "S1 packets" && $3 ~ /whole packet/ { r = "S1 packets, with the link|" $2 }
+  FNR == 1 { f++; kind = f <= nb ? "golden" : f <= 2 * nb ? "fuzz" : "link"; col = (f - 1) % nb + 1
+             src = kind == "golden" ? "golden replay" : kind == "fuzz" ? "fuzz corpus" : "" }
+  kind == "link" && /^m4f_link_replay: recording / { split($0, w, " "); sub(/:$/, "", w[3]); src = w[3] " packets" }
+  kind == "fuzz" && $3 ~ /^ *[0-9]+ *$/ { r = src "|" $2 }
+  kind != "fuzz" && $3 ~ /^ *fsw_acs_cycle *$/ { r = src "|" $2 }
+  kind == "link" && $3 ~ /whole packet/ { r = src ", with the link|" $2 }
   r != "" { if (!(r in seen)) { seen[r] = 1; order[++n] = r }
             gsub(/ /, "", $6); gsub(/ /, "", $7); v[r, col] = $6 " / " $7; r = "" }
   END { for (i = 1; i <= n; i++) { split(order[i], p, "|"); printf "| %s |%s|", p[1], p[2]
@@ -104,17 +107,18 @@ echo
 echo "== share of a 10 Hz period (100 ms) for the worst fsw_acs_cycle, at $clock MHz"
 for b in "${builds[@]}"; do
   f="$out/${b%%:*}${b#*:}.txt" z="$out/fuzz-${b%%:*}${b#*:}.txt" l="$out/link-${b%%:*}${b#*:}.txt"
-  # fsw_acs_cycle over the golden replay, the fuzz corpus and S1's packets
-  # (the line scripts/evidence.sh quotes: "worst N instructions"); then S1's
-  # whole packet (the link around the cycle, and the cycle)
+  # fsw_acs_cycle over the golden replay, the fuzz corpus and the recordings
+  # (the line scripts/evidence.sh quotes: "worst N instructions"); then the
+  # recordings' worst whole packet (the link around the cycle, and the cycle)
   awk -F'|' -v b="${b%%:*} ${b#*:}" -v mhz="$clock" -v hi="$cpi_hi" '
     function line(what, w, m) {
       gsub(/^ +| +$/, "", m); gsub(/  +/, " ", m)
       printf "%-11s %s %7d instructions (%s): CPI 1.0 %.3f ms = %.2f %% of the period; CPI %s %.3f ms = %.2f %%\n",
              b, what, w, m, w / mhz / 1e3, w / mhz / 1e3, hi, w * hi / mhz / 1e3, w * hi / mhz / 1e3 }
     FILENAME ~ /\/fuzz-/ { if ($3 ~ /^ *[0-9]+ *$/ && $7 + 0 > w) { w = $7 + 0; m = $2 " fuzz input " $8 }; next }
-    FILENAME ~ /\/link-/ && $3 ~ /fsw_acs_cycle/ && $7 + 0 > w { w = $7 + 0; m = $2 " S1 packets" }
-    FILENAME ~ /\/link-/ && $3 ~ /whole packet/ && $7 + 0 > p { p = $7 + 0; pm = $2 }
+    FILENAME ~ /\/link-/ && /^m4f_link_replay: recording / { split($0, q, " "); sub(/:$/, "", q[3]); rec = q[3] }
+    FILENAME ~ /\/link-/ && $3 ~ /fsw_acs_cycle/ && $7 + 0 > w { w = $7 + 0; m = $2 " " rec " packets" }
+    FILENAME ~ /\/link-/ && $3 ~ /whole packet/ && $7 + 0 > p { p = $7 + 0; pm = $2 " " rec }
     FILENAME !~ /\/(fuzz|link)-/ && $3 ~ /fsw_acs_cycle/ && $7 + 0 > w { w = $7 + 0; m = $2 }
-    END { line("worst", w, m); if (p > 0) line("S1 packet, link and cycle, max", p, pm) }' "$f" "$z" "$l"
+    END { line("worst", w, m); if (p > 0) line("packet, link and cycle, max", p, pm) }' "$f" "$z" "$l"
 done

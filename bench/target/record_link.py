@@ -7,16 +7,20 @@ Writes the run's configuration image (`kestrel fsw-config`) to OUT_DIR/config.kc
 starts `kestrel-fsw` on a loopback UDP port with it, runs `kestrel run SCENARIO
 --fsw udp:...` against a relay on another port, and writes every packet the
 harness sent (sensor and command packets, in order) to OUT_DIR/uplink.bin, each
-as a big-endian u16 length and the packet.  The Cortex-M4F timing benchmark
-(bench/target/m4f_link_replay.c) replays them through fsw_link_node_receive.
-The files are written to temporary names and renamed when the run succeeded.
+as a big-endian u16 length and the packet, and the scenario and its --set
+values to OUT_DIR/recorded.txt.  SCENARIO is best given relative to the source
+folder (scenarios/...), as the check reads it from there.  The Cortex-M4F
+timing benchmark (bench/target/m4f_link_replay.c) replays every recording of
+bench/target/data through fsw_link_node_receive.  The files are written to
+temporary names and renamed when the run succeeded.
 
-    bench/target/record_link.py --check KESTREL SCENARIO DATA_DIR [--set KEY=VALUE ...]
+    bench/target/record_link.py --check KESTREL DATA_DIR [--root SOURCE_DIR]
 
-(ctest m4f_s1_recording) fails when DATA_DIR/config.kcfg is not the image
-`kestrel fsw-config` writes for SCENARIO today (the scenario or the image's
-layout changed: record again), or when DATA_DIR/uplink.bin is not a whole
-sequence of sensor packets (APID 0x101, sequence counts 0, 1, 2, ...).
+(ctest m4f_recording_<name>) fails when DATA_DIR/config.kcfg is not the image
+`kestrel fsw-config` writes today for the scenario and --set values of
+DATA_DIR/recorded.txt (the scenario or the image's layout changed: record
+again), or when DATA_DIR/uplink.bin is not a whole sequence of sensor packets
+(APID 0x101, sequence counts 0, 1, 2, ...).
 """
 import argparse
 import os
@@ -48,14 +52,15 @@ def relay(sock_h, sock_f, fsw_addr, run, packets):
 def check(argv):
     ap = argparse.ArgumentParser(prog="record_link.py --check")
     ap.add_argument("kestrel")
-    ap.add_argument("scenario")
     ap.add_argument("data_dir")
-    ap.add_argument("--set", action="append", default=[], dest="sets")
+    ap.add_argument("--root", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
     a = ap.parse_args(argv)
-    sets = [x for s in a.sets for x in ("--set", s)]
+    scenario, set_values = read_recorded(os.path.join(a.data_dir, "recorded.txt"))
+    a.scenario = scenario
+    sets = [x for s in set_values for x in ("--set", s)]
     with tempfile.TemporaryDirectory() as tmp:
         image = os.path.join(tmp, "config.kcfg")
-        subprocess.run([a.kestrel, "fsw-config", a.scenario, "-o", image] + sets, check=True,
+        subprocess.run([a.kestrel, "fsw-config", os.path.join(a.root, scenario), "-o", image] + sets, check=True,
                        stdout=subprocess.DEVNULL)
         with open(image, "rb") as f:
             want = f.read()
@@ -80,8 +85,29 @@ def check(argv):
             return f"record_link: uplink.bin: record {n}: APID {apid:#x}, sequence count {seq} (expected 0x101, {n})"
         off += 2 + ln
         n += 1
-    print(f"record_link: {a.data_dir}: the configuration image of {a.scenario}, {n} sensor packets in sequence")
+    print(f"record_link: {a.data_dir}: the configuration image of {a.scenario} {' '.join(sets)}, "
+          f"{n} sensor packets in sequence")
     return 0
+
+
+def read_recorded(path):
+    """The scenario and the --set values of a recording (its recorded.txt)."""
+    scenario, sets = None, []
+    with open(path, encoding="utf-8") as f:
+        for n, line in enumerate(f, 1):
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            key, _, value = line.partition(" ")
+            if key == "scenario" and scenario is None and value:
+                scenario = value
+            elif key == "set" and "=" in value:
+                sets.append(value)
+            else:
+                sys.exit(f"record_link: {path}:{n}: expected 'scenario PATH' once, then 'set KEY=VALUE' lines")
+    if scenario is None:
+        sys.exit(f"record_link: {path}: no 'scenario PATH' line")
+    return scenario, sets
 
 
 def main():
@@ -126,8 +152,13 @@ def main():
         tmp_cfg = os.path.join(a.out_dir, ".config.kcfg.tmp")
         with open(image, "rb") as src, open(tmp_cfg, "wb") as dst:
             dst.write(src.read())
+        tmp_rec = os.path.join(a.out_dir, ".recorded.txt.tmp")
+        with open(tmp_rec, "w", encoding="utf-8") as f:
+            f.write("# the run these packets come from (bench/target/record_link.py)\n")
+            f.write(f"scenario {a.scenario}\n" + "".join(f"set {v}\n" for v in a.sets))
         os.replace(tmp_cfg, os.path.join(a.out_dir, "config.kcfg"))
         os.replace(tmp_up, os.path.join(a.out_dir, "uplink.bin"))
+        os.replace(tmp_rec, os.path.join(a.out_dir, "recorded.txt"))
     print(f"record_link: {len(packets)} packets, {sum(map(len, packets))} bytes -> {a.out_dir}/uplink.bin")
 
 
