@@ -886,6 +886,44 @@ TEST(ThrMapIssue13, OverflowingRequestIsBadInput)
   }
 }
 
+// A short torque arm within the operating envelope (docs/eva.md, thr_map's
+// envelope analysis): the six-axis set with every arm scaled to a, CoM at
+// the origin.  [D][D]^T = 2 a^2 I, so for L = (Lx, Lx/2, 0) the first pass
+// is F = (Lx/(2a), -Lx/(2a), Lx/(4a), -Lx/(4a), 0, 0), shifted by Lx/(2a)
+// to (Lx/a, 0, 3Lx/(4a), Lx/(4a), Lx/(2a), Lx/(2a)); saturated, these give
+// the torque F_max a (1, 0, 0), atan(0.5) away from L, so the scaling runs
+// (as in SaturationScalingKeepsDirection).
+// (a) a = 1e2/max: Lx/a = 10 max overflows in the solve's scaling back:
+//     FSW_E_BAD_INPUT with F = 0, the angle error kept.
+// (b) a = 1e6/max, F_max = 1e-6 (the envelope's least): every F_i is
+//     finite (at most 1e-3 max), but |F_0| / F_max = 1e3 max overflows, so
+//     the saturation factor is infinite and F / s = 0: zero forces with
+//     FSW_W_SAT, and the angle between Lbar and the zero torque is
+//     acos(0) = pi/2.  A safe output (no NaN or infinity leaves).
+// Verifies: REQ-THRMAP-004, REQ-THRMAP-008
+TEST(ThrMapEnvelope, ShortTorqueArmOverflowIsBadInputOrZeroForces)
+{
+  const double big = static_cast<double>(std::numeric_limits<R>::max());
+  const double lx = 1e3;
+  for (int which = 0; which < 2; which++) {
+    const double a = (which == 0 ? 1e2 : 1e6) / big;
+    FswThrMapConfig c = six_axis_cfg(which == 0 ? 1.0 : 1e-6);
+    for (int i = 0; i < 6; i++)
+      for (int k = 0; k < 3; k++) c.r_thr_B[i][k] = static_cast<R>(a * c.r_thr_B[i][k]);
+    MapRun r = map_once(c, lx, 0.5 * lx, 0);
+    if (which == 0) {
+      EXPECT_EQ(FSW_E_BAD_INPUT, r.s);
+      EXPECT_EQ(1u, r.st.health.bad_input);
+      EXPECT_EQ(0, r.st.ang_err);
+    } else {
+      EXPECT_EQ(FSW_W_SAT, r.s);
+      EXPECT_EQ(FSW_W_SAT, r.st.health.last);
+      EXPECT_NEAR(std::acos(0.0), r.st.ang_err, kt::tol(1e-15, 1e-6));
+    }
+    for (int i = 0; i < FSW_MAX_THR; i++) EXPECT_EQ(0, r.out.F[i]) << "case " << which << " thruster " << i;
+  }
+}
+
 // Finding 6 (b, c): the configs that overflowed (location 1.5e308, F_max
 // 1e308) are now refused by check; a CoM beyond FSW_THR_MAP_R_MAX is bad
 // input; the bounded mode is OK only when it delivers the request.

@@ -1,7 +1,6 @@
 /* Eva driver: rw_bias (docs/fsw/rw_bias.md, docs/eva.md).
  * The wheel loops are joined as in rw_null.c (the same projector); the
- * alarms of the any analysis are recorded and the suite runs it, those of
- * the envelope analysis are not recorded yet (docs/eva.md).
+ * alarms of both analyses are recorded in alarms.txt (docs/eva.md).
  * eva-options: -eva-auto-loop-unroll 3 -eva-slevel 0
  * eva-sources: rw_bias.c rw_common.c fsw_linalg.c fsw_vec.c fsw_status.c */
 #include "eva_driver.h"
