@@ -129,7 +129,7 @@ FswStatus fsw_css_sun_estimate(FswCssSunState *st, const FswCssSunConfig *cfg,
 {
   fsw_real y[FSW_MAX_CSS];     /* [-] normalised readings (cosines) */
   uint8_t lit[FSW_MAX_CSS];    /* [-] 1 if lit */
-  fsw_real M[3][3];            /* [-] sum w n n^T */
+  fsw_real M[3][3];            /* [-] sum w n n^T, lower triangle (all chol3_solve reads) */
   fsw_real c[3];               /* [-] sum w y n   */
   fsw_real x[3];               /* [-] unnormalised estimate */
   fsw_real x_norm;
@@ -154,12 +154,19 @@ FswStatus fsw_css_sun_estimate(FswCssSunState *st, const FswCssSunConfig *cfg,
     num_lit++;
     if (a < 0 || y[i] > y[a]) { a = i; }
     for (j = 0; j < 3; j++) {
-      for (k = 0; k < 3; k++) { M[j][k] += y[i] * cfg->n_hat_B[i][j] * cfg->n_hat_B[i][k]; }
+      for (k = 0; k <= j; k++) { M[j][k] += y[i] * cfg->n_hat_B[i][j] * cfg->n_hat_B[i][k]; }
       c[j] += y[i] * y[i] * cfg->n_hat_B[i][j];
     }
   }
-  if (!fsw_m33_is_finite(FSW_CM33(M)) || !fsw_v3_is_finite(c)) {
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); /* overflow of huge readings */
+  /* Overflow of huge readings.  c is finite only if M is: a lit y_i whose
+   * square overflows makes the term y_i^2 n_ij infinite (or NaN) for the
+   * j where n_ij != 0, and c_j with it; while every y_i^2 is finite,
+   * y_i <= sqrt(max real) (times 1 + eps), and the at most FSW_MAX_CSS
+   * terms y_i n_ij n_ik of an entry of M, each at most y_i (1 + tol)^2, sum
+   * to far below the largest real.  So testing c decides as testing M and
+   * c did. */
+  if (!fsw_v3_is_finite(c)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   }
   out->num_lit = num_lit;
 

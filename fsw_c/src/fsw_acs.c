@@ -8,6 +8,9 @@
 #include "fsw_vec_inline.h"
 #include "fsw_status_inline.h"
 #include "css_sun_internal.h"
+#include "guid_sunsafe_internal.h"
+#include "mrp_fb_internal.h"
+#include "rw_map_internal.h"
 #include "fsw/rw_common.h"
 
 /* ---- stage names --------------------------------------------------------- */
@@ -683,7 +686,10 @@ static FswStatus run_guidance(FswAcsState *st, const FswAcsConfig *cfg,
       fsw_v3_zero(w->sunsafe_in.sun_B); /* no heading: search spin */
     }
     fsw_v3_copy(w->sunsafe_in.omega_BN_B, sens->omega_BN_B);
-    s = fsw_guid_sunsafe_update(&st->sunsafe, &cfg->sunsafe, &w->sunsafe_in, &w->sunsafe_out);
+    /* its input is the estimate's heading (finite: a unit vector, a
+     * sensor normal or 0) and the body rate checked above: the guidance
+     * without fsw_guid_sunsafe_update's same checks */
+    s = fsw_guid_sunsafe_point(&st->sunsafe, &cfg->sunsafe, &w->sunsafe_in, &w->sunsafe_out);
     h->stage_status[FSW_ACS_STAGE_GUIDANCE] = s;
     acc = combine(acc, s);
     *guid = w->sunsafe_out.guid;
@@ -729,7 +735,9 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   fsw_v3_copy(w->map_in.Lr_B, Lr_B);
   fsw_vn_copy(w->map_in.Omega, w->Omega, n);
   u8_copy(w->map_in.avail, w->rw_avail, n);
-  s = fsw_rw_map_update(&st->rw_map, &cfg->rw_map, &w->map_in, &w->map_out);
+  /* the wheels' flags and speeds are the checked or screened ones: the
+   * mapping without fsw_rw_map_update's same checks of them */
+  s = fsw_rw_map_torques(&st->rw_map, &cfg->rw_map, &w->map_in, &w->map_out);
   h->stage_status[FSW_ACS_STAGE_RW_MAP] = s;
   acc = combine(acc, s);
   u = w->map_out.u_s;
@@ -1143,7 +1151,10 @@ static FswStatus run_pointing(FswAcsState *st, const FswAcsConfig *cfg, const Fs
     fsw_vn_copy(w->fb_in.Omega, w->Omega, cfg->mrp_fb.num_rw);
     u8_copy(w->fb_in.rw_avail, w->rw_avail, cfg->mrp_fb.num_rw);
   }
-  s = fsw_mrp_fb_update(&st->mrp_fb, &st->mrp_cfg, &w->fb_in, &w->fb_out);
+  /* the guidance is a stage's output (finite, or its safe output 0) and
+   * the wheels' flags and speeds are the checked or screened ones: the law
+   * without fsw_mrp_fb_update's same checks */
+  s = fsw_mrp_fb_torque(&st->mrp_fb, &st->mrp_cfg, &w->fb_in, &w->fb_out);
   h->stage_status[FSW_ACS_STAGE_CONTROL] = s;
   acc = combine(acc, s);
   Lr = w->fb_out.torque_B;

@@ -8,6 +8,7 @@
 #include "fsw/fsw_vec.h"
 #include "fsw_vec_inline.h"
 #include "fsw_status_inline.h"
+#include "guid_sunsafe_internal.h"
 
 /* Library guard (docs/fsw/guid_sunsafe.md): in the "normal" branch a cross product
  * |s_B x s_cmd| <= tol * |s_B| is treated as antiparallel (use e180).
@@ -83,10 +84,6 @@ void fsw_guid_sunsafe_reset(FswGuidSunsafeState *st)
 FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeConfig *cfg,
                                   const FswGuidSunsafeIn *in, FswGuidSunsafeOut *out)
 {
-  fsw_real s_norm; /* [-] |s_B| */
-  fsw_real s_B[3]; /* [-] sun_B scaled by a power of two (direction only) */
-  fsw_real m;      /* [-] max |sun_B_i| */
-  fsw_real r;      /* [-] the root of sun_B's scaled sum of squares */
   FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
   if (out != NULL) { write_safe(out); }
   if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
@@ -96,6 +93,18 @@ FswStatus fsw_guid_sunsafe_update(FswGuidSunsafeState *st, const FswGuidSunsafeC
   if (!fsw_v3_is_finite(in->sun_B) || !fsw_v3_is_finite(in->omega_BN_B)) {
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   }
+  return fsw_guid_sunsafe_point(st, cfg, in, out);
+}
+
+FswStatus fsw_guid_sunsafe_point(FswGuidSunsafeState *st, const FswGuidSunsafeConfig *cfg,
+                                 const FswGuidSunsafeIn *in, FswGuidSunsafeOut *out)
+{
+  fsw_real s_norm; /* [-] |s_B| */
+  fsw_real s_B[3]; /* [-] sun_B scaled by a power of two (direction only) */
+  fsw_real m;      /* [-] max |sun_B_i| */
+  fsw_real r;      /* [-] the root of sun_B's scaled sum of squares */
+  write_safe(out);
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
 
   /* |sun_B| as fsw_v3_norm forms it: m times the root of the scaled sum
    * (0 for a zero sun_B; sun_B is finite here, so m is) */

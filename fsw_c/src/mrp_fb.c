@@ -7,6 +7,7 @@
 #include "fsw/fsw_vec.h"
 #include "fsw_vec_inline.h"
 #include "fsw_status_inline.h"
+#include "mrp_fb_internal.h"
 
 /* Relative symmetry tolerance of the inertia: |I_jk - I_kj| <= tol * max|I|. */
 #if FSW_USE_FLOAT
@@ -112,7 +113,22 @@ static int wheels_ok(const FswMrpFbConfig *cfg, const FswMrpFbIn *in)
 FswStatus fsw_mrp_fb_update(FswMrpFbState *st, const FswMrpFbConfig *cfg, const FswMrpFbIn *in,
                             FswMrpFbOut *out)
 {
-  const FswAttGuid *g;
+  FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
+  if (out != NULL) { write_safe(out); }
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
+    return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG);
+  }
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
+  if (!guid_is_finite(&in->guid) || !wheels_ok(cfg, in)) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
+  }
+  return fsw_mrp_fb_torque(st, cfg, in, out);
+}
+
+FswStatus fsw_mrp_fb_torque(FswMrpFbState *st, const FswMrpFbConfig *cfg, const FswMrpFbIn *in,
+                            FswMrpFbOut *out)
+{
+  const FswAttGuid *g = &in->guid;
   fsw_real dt = FSW_R(0.0);  /* [s] */
   fsw_real int_sigma[3];     /* [N*m*s] candidate integral (committed at the end) */
   fsw_real omega_BN_B[3];    /* [rad/s] omega = omega_BR + omega_RN */
@@ -128,16 +144,8 @@ FswStatus fsw_mrp_fb_update(FswMrpFbState *st, const FswMrpFbConfig *cfg, const 
   fsw_real sum_B[3];
   int i;
 
-  FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) { write_safe(out); }
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL) {
-    return fsw_health_record(st != NULL ? &st->health : NULL, FSW_E_NULL_ARG);
-  }
+  write_safe(out);
   if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
-  g = &in->guid;
-  if (!guid_is_finite(g) || !wheels_ok(cfg, in)) {
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
-  }
   {
     const FswStatus s = fsw_clock_dt(&st->clock, in->t_ns, &dt); /* FSW_OK or FSW_E_TIME */
     if (s != FSW_OK) { return fsw_health_record(&st->health, s); }

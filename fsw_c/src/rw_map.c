@@ -18,6 +18,7 @@
 #include "fsw_vec_inline.h"
 #include "fsw_status_inline.h"
 #include "fsw/rw_common.h"
+#include "rw_map_internal.h"
 
 FswStatus fsw_rw_map_check(const FswRwMapConfig *cfg)
 {
@@ -112,22 +113,34 @@ static FswStatus form_map(FswRwMapWork *w, const FswRwMapConfig *cfg, const FswR
 FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
                             const FswRwMapIn *in, FswRwMapOut *out)
 {
+  int n;
+  FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
+  if (out != NULL) { fsw_rw_zero(out->u_s); } /* safe output */
+  if (st == NULL || cfg == NULL || in == NULL || out == NULL) { return FSW_E_NULL_ARG; }
+  if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
+  n = cfg->num_rw;
+  if (!fsw_v3_is_finite(in->Lr_B) || !fsw_rw_avail_valid(in->avail, n) ||
+      (cfg->mode == FSW_RW_MAP_POWER && !fsw_rw_avail_finite(in->Omega, in->avail, n))) {
+    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
+  return fsw_rw_map_torques(st, cfg, in, out);
+}
+
+FswStatus fsw_rw_map_torques(FswRwMapState *st, const FswRwMapConfig *cfg,
+                             const FswRwMapIn *in, FswRwMapOut *out)
+{
   fsw_real b[3], r[3];
   FswRwMapWork *w;
   int n, nc, na, i, j, k;
   FswStatus s;
 
-  FSW_ASSERT(st != NULL && cfg != NULL && in != NULL && out != NULL);
-  if (out != NULL) { fsw_rw_zero(out->u_s); } /* safe output */
-  if (st == NULL || cfg == NULL || in == NULL || out == NULL) { return FSW_E_NULL_ARG; }
+  fsw_rw_zero(out->u_s); /* safe output */
   if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   w = &st->work;
   n = cfg->num_rw;
   nc = cfg->num_axes;
-
-  if (!fsw_v3_is_finite(in->Lr_B) || !fsw_rw_avail_valid(in->avail, n) ||
-      (cfg->mode == FSW_RW_MAP_POWER && !fsw_rw_avail_finite(in->Omega, in->avail, n))) {
-    return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
+  /* Lr is checked here too: the application's Lr is the control law's
+   * torque less a momentum dump's, a difference that can overflow */
+  if (!fsw_v3_is_finite(in->Lr_B)) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
   if (nc == 0) { return fsw_health_record_ok_i(&st->health); }
 
   if (cfg->mode == FSW_RW_MAP_MIN_NORM && w->mn_valid) {

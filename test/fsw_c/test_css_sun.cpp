@@ -627,3 +627,59 @@ TEST_F(CssSun, EstimateOfACheckedInputIsTheUpdate)
   EXPECT_EQ(0, out.sun_valid);
   EXPECT_EQ(1u, idle.health.calls);
 }
+
+// The estimate tests the right-hand side c = sum y^2 n alone for overflow:
+// c is finite only if the normal matrix M = sum y n n^T is.  Over seeded
+// Sun directions, lit sets and one or two readings swept from 1e100 to the
+// largest real (1e10 up in float), bad input exactly when this file's own
+// accumulation of every entry of M and c, in the module's order and type,
+// overflows: the verdict of testing M and c together.
+// Verifies: REQ-CSS-005
+TEST_F(CssSun, OverflowVerdictOfTheRightHandSideIsThatOfTheWholeSystem)
+{
+  double n[14][3], sc[14];
+  FswCssSunConfig c{};
+  head14(c, n, sc);
+  FswCssSunState st{};
+  ASSERT_EQ(FSW_OK, fsw_css_sun_init(&st, &c));
+  kt::Rng rng(0x5eed0046u);
+  const double lo = kt::kFloat ? 1e10 : 1e100;
+  const double hi = static_cast<double>(std::numeric_limits<fsw_real>::max());
+  int bad = 0, good = 0, m_only_ok = 0;
+  for (int t = 0; t < 3000; t++) {
+    double s[3];
+    rng.unit3(s);
+    FswCssSunIn in{};
+    readings(in, c, s);
+    for (int h = 0; h < 1 + (t % 2); h++) {
+      const int i = rng.uniform_int(0, c.num_css - 1);
+      in.reading[i] = static_cast<fsw_real>(std::exp(rng.uniform(std::log(lo), std::log(hi))));
+    }
+    fsw_real M[3][3] = {}, cc[3] = {};
+    bool overflow_y = false;
+    for (int i = 0; i < c.num_css; i++) {
+      const fsw_real y = in.reading[i] / c.scale[i];
+      if (!std::isfinite(y)) overflow_y = true;
+      if (!(y > c.lit_threshold)) continue;
+      for (int j = 0; j < 3; j++) {
+        for (int k = 0; k < 3; k++) M[j][k] += y * c.n_hat_B[i][j] * c.n_hat_B[i][k];
+        cc[j] += y * y * c.n_hat_B[i][j];
+      }
+    }
+    bool m_finite = true, c_finite = true;
+    for (int j = 0; j < 3; j++) {
+      c_finite = c_finite && std::isfinite(cc[j]);
+      for (int k = 0; k < 3; k++) m_finite = m_finite && std::isfinite(M[j][k]);
+    }
+    const bool want_bad = overflow_y || !m_finite || !c_finite;
+    FswCssSunOut out{};
+    const FswStatus got = fsw_css_sun_update(&st, &c, &in, &out);
+    ASSERT_EQ(want_bad, got == FSW_E_BAD_INPUT) << t;
+    bad += want_bad;
+    good += !want_bad;
+    m_only_ok += (m_finite && !c_finite);
+  }
+  EXPECT_GT(bad, 300);
+  EXPECT_GT(good, 300);
+  EXPECT_GT(m_only_ok, 100);  // M finite, c not: the right-hand side decides
+}

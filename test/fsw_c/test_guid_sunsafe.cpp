@@ -7,10 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "fsw/fsw_vec.h"
 #include "fsw/guid_sunsafe.h"
+#include "guid_sunsafe_internal.h"
 #include "gnc_test_ref.h"
 #include "kestrel_test_support.h"
 #include "null_args.h"
@@ -396,4 +398,71 @@ TEST_F(GuidSunsafe, Issue13CommandedAxisIsBounded)
 TEST(GuidSunsafeIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("guid_sunsafe", fsw_guid_sunsafe_check, fsw_guid_sunsafe_init, fsw_guid_sunsafe_reset, fsw_guid_sunsafe_update);
+}
+
+// fsw_acs calls the guidance without the update's input checks (its Sun
+// heading is the sensor estimate's, finite, and its body rate is checked
+// before any stage runs): for every finite input the output, the status and
+// the health record are the update's, bit for bit, over seeded headings of
+// every size (0, below min_unit_mag, tiny, unit, huge), headings inside the
+// dead band and near the antiparallel, and body rates up to the largest
+// finite real.
+// Verifies: REQ-GSUN-001
+TEST(GuidSunsafePoint, PointOfACheckedInputIsTheUpdate)
+{
+  kt::Rng rng(0x5eed0045u);
+  const double big = kt::kFloat ? 3.4e38 : 1.79e308;
+  const double mags[] = {0.0, 0.05, 1e-30, 1.0, 1.0, 1.0, 3.0, 1e30, big};
+  int seen_valid = 0, seen_search = 0, seen_band = 0, seen_e180 = 0;
+  for (int cset = 0; cset < 4; cset++) {
+    FswGuidSunsafeConfig c{};
+    double s_cmd[3];
+    rng.unit3(s_cmd);
+    gref::set3(c.s_cmd_B, s_cmd[0] * (1.0 + cset), s_cmd[1] * (1.0 + cset), s_cmd[2] * (1.0 + cset));
+    c.min_unit_mag = static_cast<fsw_real>(cset == 3 ? 0.0 : 0.1);
+    c.small_angle = static_cast<fsw_real>(cset * 0.2);
+    gref::set3(c.omega_search_B, 0.01, -0.02, 0.03 * cset);
+    c.sun_axis_spin_rate = static_cast<fsw_real>(cset == 2 ? -10.0 : 0.05 * cset);
+    FswGuidSunsafeState st_u{}, st_p{};
+    ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_init(&st_u, &c));
+    ASSERT_EQ(FSW_OK, fsw_guid_sunsafe_init(&st_p, &c));
+    for (int t = 0; t < 1500; t++) {
+      FswGuidSunsafeIn in{};
+      double u[3];
+      rng.unit3(u);
+      if (t % 7 == 3) {  // about the commanded axis or its opposite (dead band, e180)
+        const double sgn = (t % 2 == 0) ? 1.0 : -1.0;
+        for (int i = 0; i < 3; i++) u[i] = sgn * s_cmd[i] + rng.uniform(-1e-3, 1e-3) * (t % 3);
+      }
+      const double m = mags[rng.uniform_int(0, 8)];
+      gref::set3(in.sun_B, u[0] * m, u[1] * m, u[2] * m);
+      const double w = (t % 11 == 0) ? big : 0.1;
+      gref::set3(in.omega_BN_B, rng.uniform(-w, w), rng.uniform(-w, w), rng.uniform(-w, w));
+      FswGuidSunsafeOut out_u{}, out_p{};
+      const FswStatus su = fsw_guid_sunsafe_update(&st_u, &c, &in, &out_u);
+      const FswStatus sp = fsw_guid_sunsafe_point(&st_p, &c, &in, &out_p);
+      ASSERT_EQ(su, sp) << cset << " " << t;
+      ASSERT_EQ(0, std::memcmp(&out_u, &out_p, sizeof out_u)) << cset << " " << t;
+      ASSERT_EQ(0, std::memcmp(&st_u, &st_p, sizeof st_u)) << cset << " " << t;
+      seen_valid += out_u.sun_valid;
+      seen_search += (out_u.sun_valid == 0);
+      seen_band += (out_u.sun_valid && out_u.guid.sigma_BR[0] == FSW_R(0.0) &&
+                    out_u.guid.sigma_BR[1] == FSW_R(0.0) && out_u.guid.sigma_BR[2] == FSW_R(0.0));
+      seen_e180 += (out_u.sun_valid && out_u.sun_angle_err > 3.0);
+    }
+  }
+  EXPECT_GT(seen_valid, 1000);
+  EXPECT_GT(seen_search, 100);
+  EXPECT_GT(seen_band, 10);
+  EXPECT_GT(seen_e180, 10);
+  // a state that is not ready: FSW_E_NOT_INIT and the safe output, as the update
+  FswGuidSunsafeConfig c{};
+  gref::set3(c.s_cmd_B, 1.0, 0.0, 0.0);
+  FswGuidSunsafeState idle{};
+  FswGuidSunsafeIn in{};
+  FswGuidSunsafeOut out{};
+  out.sun_valid = 1;
+  EXPECT_EQ(FSW_E_NOT_INIT, fsw_guid_sunsafe_point(&idle, &c, &in, &out));
+  EXPECT_EQ(0, out.sun_valid);
+  EXPECT_EQ(1u, idle.health.calls);
 }

@@ -7,9 +7,11 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "fsw/mrp_fb.h"
+#include "mrp_fb_internal.h"
 #include "gnc_test_ref.h"
 #include "kestrel_test_support.h"
 #include "null_args.h"
@@ -579,4 +581,82 @@ TEST_F(MrpFb, NullPointersAssert)
 TEST(MrpFbNullIssue21, EveryNullArgumentAssertsAndReturns)
 {
   kt::module_null_args("mrp_fb", fsw_mrp_fb_check, fsw_mrp_fb_init, fsw_mrp_fb_reset, fsw_mrp_fb_update);
+}
+
+// fsw_acs calls the law without the update's input checks (its guidance is
+// a stage's finite output and its wheel flags and speeds are checked before
+// any stage runs): for every input that passes them the output, the status
+// and the state (integral, clock, health) are the update's, bit for bit,
+// over a run of seeded guidance, both laws, the integral on, off and
+// clamped, wheels dropping out (NaN speeds on them, not read), time stamps
+// that do not advance and finite rates so large that Lr overflows.
+// Verifies: REQ-MRPFB-001, REQ-MRPFB-004
+TEST(MrpFbTorque, TorqueOfACheckedInputIsTheUpdate)
+{
+  kt::Rng rng(0x5eed0045u);
+  int seen_ok = 0, seen_time = 0, seen_bad = 0, seen_clamp = 0;
+  for (int run = 0; run < 12; run++) {
+    RefIn r = scenario();
+    r.law = run % 2;
+    r.Ki = (run % 3 == 0) ? -1.0 : 0.01 * (1 + run);
+    FswMrpFbConfig c{};
+    FswMrpFbIn in{};
+    load(r, c, in, (run % 4 == 1) ? 1e-3 : 20.0);
+    FswMrpFbState st_u{}, st_t{};
+    ASSERT_EQ(FSW_OK, fsw_mrp_fb_init(&st_u, &c));
+    ASSERT_EQ(FSW_OK, fsw_mrp_fb_init(&st_t, &c));
+    uint64_t t = 0;
+    for (int k = 0; k < 400; k++) {
+      for (int i = 0; i < 3; i++) {
+        in.guid.sigma_BR[i] = static_cast<fsw_real>(rng.uniform(-1.0, 1.0));
+        in.guid.omega_BR_B[i] = static_cast<fsw_real>(rng.uniform(-0.1, 0.1));
+        in.guid.omega_RN_B[i] = static_cast<fsw_real>(rng.uniform(-0.01, 0.01));
+        in.guid.omega_dot_RN_B[i] = static_cast<fsw_real>(rng.uniform(-1e-3, 1e-3));
+      }
+      for (int w = 0; w < c.num_rw; w++) {
+        in.rw_avail[w] = (rng.uniform() < 0.2) ? FSW_UNAVAILABLE : FSW_AVAILABLE;
+        in.Omega[w] = (in.rw_avail[w] == FSW_UNAVAILABLE && (k % 2) == 0)
+                          ? static_cast<fsw_real>(gref::nan())
+                          : static_cast<fsw_real>(rng.uniform(-300.0, 300.0));
+      }
+      if (k % 37 == 5) {  // finite but huge: Lr overflows
+        in.guid.omega_BR_B[0] = static_cast<fsw_real>(kt::kFloat ? 1e30 : 1e200);
+        in.guid.omega_RN_B[1] = static_cast<fsw_real>(kt::kFloat ? 1e30 : 1e200);
+      }
+      if (k % 29 != 7) t += 100000000ull;  // else the same stamp again: FSW_E_TIME
+      if (k % 101 == 50) {
+        fsw_mrp_fb_reset(&st_u);
+        fsw_mrp_fb_reset(&st_t);
+      }
+      in.t_ns = t;
+      FswMrpFbOut out_u{}, out_t{};
+      const FswStatus su = fsw_mrp_fb_update(&st_u, &c, &in, &out_u);
+      const FswStatus stq = fsw_mrp_fb_torque(&st_t, &c, &in, &out_t);
+      ASSERT_EQ(su, stq) << run << " " << k;
+      ASSERT_EQ(0, std::memcmp(&out_u, &out_t, sizeof out_u)) << run << " " << k;
+      ASSERT_EQ(0, std::memcmp(&st_u, &st_t, sizeof st_u)) << run << " " << k;
+      seen_ok += (su == FSW_OK);
+      seen_time += (su == FSW_E_TIME);
+      seen_bad += (su == FSW_E_BAD_INPUT);
+      for (int i = 0; i < 3; i++) {
+        seen_clamp += (r.Ki > 0 && std::fabs(static_cast<double>(st_u.int_sigma[i])) ==
+                                       static_cast<double>(c.integral_limit));
+      }
+    }
+  }
+  EXPECT_GT(seen_ok, 3000);
+  EXPECT_GT(seen_time, 50);
+  EXPECT_GT(seen_bad, 50);
+  EXPECT_GT(seen_clamp, 0);
+  // a state that is not ready: FSW_E_NOT_INIT and the safe output, as the update
+  RefIn r = scenario();
+  FswMrpFbConfig c{};
+  FswMrpFbIn in{};
+  load(r, c, in, 20.0);
+  FswMrpFbState idle{};
+  FswMrpFbOut out{};
+  out.torque_B[0] = FSW_R(1.0);
+  EXPECT_EQ(FSW_E_NOT_INIT, fsw_mrp_fb_torque(&idle, &c, &in, &out));
+  EXPECT_EQ(FSW_R(0.0), out.torque_B[0]);
+  EXPECT_EQ(1u, idle.health.calls);
 }

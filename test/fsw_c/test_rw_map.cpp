@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "fsw/rw_common.h"
 #include "fsw/rw_map.h"
 #include "kestrel_test_support.h"
 #include "null_args.h"
+#include "rw_map_internal.h"
 #include "rw_test_util.h"
 
 namespace {
@@ -655,4 +657,59 @@ TEST(RwMapIssue21, PowerWeightingThatOverflowsOnTheWayBackIsBadInput)
   EXPECT_EQ(FSW_E_BAD_INPUT, f.update());
   expect_all_zero(*f.out);
   EXPECT_EQ(1u, f.st->health.bad_input);
+}
+
+// fsw_acs calls the mapping without the update's checks of the wheels (its
+// cycle checks the availability flags and speeds before any stage runs):
+// for every input that passes them the output, the status, the scratch and
+// the health record are the update's, bit for bit, in both modes, with two
+// and three control axes and none, masks that change and come back, too
+// few wheels, NaN speeds on unavailable wheels (not read), non-finite and
+// huge requests.
+// Verifies: REQ-RWMAP-001
+TEST(RwMapTorques, TorquesOfACheckedInputAreTheUpdate)
+{
+  kt::Rng r(0x5eed0045u);
+  int seen[4] = {0, 0, 0, 0};  // OK, W_SINGULAR, E_BAD_INPUT, other
+  for (int set = 0; set < 6; set++) {
+    Fixture f = pyramid(set % 2 == 0 ? FSW_RW_MAP_MIN_NORM : FSW_RW_MAP_POWER);
+    Fixture g = pyramid(f.cfg->mode);
+    const int nc = (set < 2) ? 3 : (set < 4 ? 2 : (set == 4 ? 3 : 0));
+    f.cfg->num_axes = g.cfg->num_axes = nc;
+    ASSERT_EQ(f.init(), FSW_OK);
+    ASSERT_EQ(g.init(), FSW_OK);
+    for (int k = 0; k < 600; k++) {
+      for (int i = 0; i < 4; i++) {
+        f.in->avail[i] = (r.uniform() < 0.25) ? FSW_UNAVAILABLE : FSW_AVAILABLE;
+        f.in->Omega[i] = (f.in->avail[i] == FSW_UNAVAILABLE && (k % 2) == 0)
+                             ? std::numeric_limits<fsw_real>::quiet_NaN()
+                             : static_cast<fsw_real>(r.uniform(-600.0, 600.0));
+      }
+      const double scale = (k % 41 == 9) ? (kt::kFloat ? 1e37 : 1e306) : 1.0;
+      f.set_Lr(r.normal() * scale, r.normal() * scale, r.normal() * scale);
+      if (k % 53 == 11) f.in->Lr_B[2] = std::numeric_limits<fsw_real>::infinity();
+      *g.in = *f.in;
+      if (k % 97 == 40) {
+        fsw_rw_map_reset(f.st.get());
+        fsw_rw_map_reset(g.st.get());
+      }
+      const FswStatus su = f.update();
+      const FswStatus st = fsw_rw_map_torques(g.st.get(), g.cfg.get(), g.in.get(), g.out.get());
+      ASSERT_EQ(su, st) << set << " " << k;
+      ASSERT_EQ(0, std::memcmp(f.out.get(), g.out.get(), sizeof(FswRwMapOut))) << set << " " << k;
+      ASSERT_EQ(0, std::memcmp(f.st.get(), g.st.get(), sizeof(FswRwMapState))) << set << " " << k;
+      seen[su == FSW_OK ? 0 : su == FSW_W_SINGULAR ? 1 : su == FSW_E_BAD_INPUT ? 2 : 3]++;
+    }
+  }
+  EXPECT_GT(seen[0], 2000);
+  EXPECT_GT(seen[1], 50);
+  EXPECT_GT(seen[2], 50);
+  EXPECT_EQ(0, seen[3]);
+  // a state that is not ready: FSW_E_NOT_INIT and the safe output, as the update
+  Fixture f = pyramid();
+  auto idle = rwt::make0<FswRwMapState>();
+  f.fill_out_with_garbage();
+  EXPECT_EQ(FSW_E_NOT_INIT, fsw_rw_map_torques(idle.get(), f.cfg.get(), f.in.get(), f.out.get()));
+  expect_all_zero(*f.out);
+  EXPECT_EQ(1u, idle->health.calls);
 }

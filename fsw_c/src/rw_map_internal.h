@@ -1,0 +1,28 @@
+/* rw_map_internal: the torque mapping of fsw_rw_map_update for an input
+ * already checked, for the application (fsw_acs), whose cycle checks the
+ * wheels' availability flags and speeds before any stage runs.  Not a
+ * public header. */
+#ifndef FSW_RW_MAP_INTERNAL_H
+#define FSW_RW_MAP_INTERNAL_H
+
+#include "fsw/rw_map.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* fsw_rw_map_update without its argument checks and its checks of the
+ * wheels: the same output, status, scratch and health record for non-NULL
+ * arguments and an input whose num_rw flags are each FSW_AVAILABLE or
+ * FSW_UNAVAILABLE and (POWER mode) whose available wheels' speeds are
+ * finite; anything else is the caller's error.  A state that is not ready
+ * gives FSW_E_NOT_INIT and a non-finite Lr_B FSW_E_BAD_INPUT, as
+ * fsw_rw_map_update does. */
+FswStatus fsw_rw_map_torques(FswRwMapState *st, const FswRwMapConfig *cfg,
+                             const FswRwMapIn *in, FswRwMapOut *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* FSW_RW_MAP_INTERNAL_H */
