@@ -662,7 +662,8 @@ static FswStatus finish(FswAcsState *st, const FswAcsConfig *cfg, FswAcsHealthMs
     if (st->speed_filter.failed[i]) { h->rw_failed |= (uint64_t)1u << i; }
     if (st->speed_filter.latched[i]) { h->rw_latched |= (uint64_t)1u << i; }
   }
-  h->status = fsw_health_record(&st->health, s);
+  /* the record of an FSW_OK cycle inline, any other through the function */
+  h->status = (s == FSW_OK) ? fsw_health_record_ok_i(&st->health) : fsw_health_record(&st->health, s);
   h->safe_output = (uint8_t)(fsw_status_is_error_i(s) ? 1 : 0);
   h->mode = st->mode;
   h->actuation = st->actuation;
@@ -1198,7 +1199,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
                         const FswAcsCmdMsg *cmd, FswAcsActuatorMsg *act, FswAcsHealthMsg *h)
 {
   FswAcsWork *w;
-  FswStatus acc = FSW_OK, s;
+  FswStatus acc = FSW_OK;
   FswAttGuid guid;       /* DETUMBLE's: no attitude error */
   const FswAttGuid *g;   /* the guidance of the cycle, for the telemetry */
   int req_mode, req_act, req_policy, i;
@@ -1230,11 +1231,10 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
         (req_act == FSW_ACS_ACT_THRUSTERS && cfg->has_thrusters))) {
     return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   if (cmd != NULL && !set_command_ok(cfg, cmd)) { return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
-  {
-    fsw_real dt; /* [s] unused: the stages derive their own */
-    s = fsw_clock_dt(&st->clock, sens->t_ns, &dt);
-    if (s != FSW_OK) { return reject(st, cfg, act, h, s); }
-  }
+  /* fsw_clock_dt's test (the stages derive their own dt): a time stamp
+   * not after the last accepted cycle's is FSW_E_TIME */
+  if (st->clock.has_prev && sens->t_ns <= st->clock.t_prev_ns) {
+    return reject(st, cfg, act, h, FSW_E_TIME); }
   if (!fsw_v3_is_finite(sens->omega_BN_B)) { return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   if ((req_mode == FSW_ACS_MODE_INERTIAL || req_mode == FSW_ACS_MODE_NADIR) &&
       (sens->att_valid != 1u || !fsw_v3_is_finite(sens->sigma_BN))) {
@@ -1293,8 +1293,8 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
       w->filt_in.t_ns = sens->t_ns;
       r_copy(w->filt_in.u_applied, w->u_last, n);
       w->filt_in.u_valid = u_known;
-      s = fsw_rw_speed_filter_update(&st->speed_filter, &cfg->speed_filter, &w->filt_in, &w->filt_out);
-      acc = combine(acc, s); /* OK: its inputs were validated above */
+      /* OK: its inputs were validated above */
+      acc = combine(acc, fsw_rw_speed_filter_update(&st->speed_filter, &cfg->speed_filter, &w->filt_in, &w->filt_out));
       r_copy(w->Omega, w->filt_out.Omega, n);
       u8_copy(w->rw_avail, w->filt_out.avail, n);
 #else
