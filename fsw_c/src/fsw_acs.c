@@ -589,7 +589,7 @@ static void safe_output(FswAcsActuatorMsg *act) { (void)memset(act, 0, sizeof *a
 static void safe_output_but_wheel_torques(FswAcsActuatorMsg *act, int n)
 {
   unsigned char *p = (unsigned char *)act;
-  const size_t from = offsetof(FswAcsActuatorMsg, u_s) + ((size_t)n * sizeof act->u_s[0]);
+  const size_t from = (size_t)offsetof(FswAcsActuatorMsg, u_s) + ((size_t)n * sizeof act->u_s[0]);
   (void)memset(&p[from], 0, sizeof *act - from);
 }
 
@@ -1233,7 +1233,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   if (cmd != NULL && !set_command_ok(cfg, cmd)) { return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   /* fsw_clock_dt's test (the stages derive their own dt): a time stamp
    * not after the last accepted cycle's is FSW_E_TIME */
-  if (st->clock.has_prev && sens->t_ns <= st->clock.t_prev_ns) {
+  if ((st->clock.has_prev != 0) && (sens->t_ns <= st->clock.t_prev_ns)) {
     return reject(st, cfg, act, h, FSW_E_TIME); }
   if (!fsw_v3_is_finite(sens->omega_BN_B)) { return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   if ((req_mode == FSW_ACS_MODE_INERTIAL || req_mode == FSW_ACS_MODE_NADIR) &&
@@ -1275,7 +1275,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   /* The actuator message before the stages run: the safe output, but for
    * what this cycle's stages write in every case (an error cycle ends with
    * the whole safe output again). */
-  if (st->mode != FSW_ACS_MODE_DETUMBLE && st->actuation == FSW_ACS_ACT_WHEELS) {
+  if ((st->mode != FSW_ACS_MODE_DETUMBLE) && (st->actuation == FSW_ACS_ACT_WHEELS)) {
     safe_output_but_wheel_torques(act, cfg->rw_map.num_rw);
   } else {
     safe_output(act);
