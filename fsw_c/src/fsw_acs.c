@@ -634,8 +634,13 @@ static int avail_ok(const fsw_real *x, const uint8_t *avail, int n, int finite_t
 {
   int i;
   for (i = 0; i < n; i++) {
-    if (avail[i] > FSW_UNAVAILABLE) { return 0; }
-    if (finite_too && avail[i] == FSW_AVAILABLE && !isfinite(x[i])) { return 0; }
+    if (avail[i] != FSW_AVAILABLE) {
+      if (avail[i] != FSW_UNAVAILABLE) { return 0; }
+    } else if ((finite_too != 0) && !isfinite(x[i])) {
+      return 0;
+    } else {
+      /* available and finite, or finiteness not asked */
+    }
   }
   return 1;
 }
