@@ -1710,6 +1710,7 @@ FswStatus cycle_both(const FswAcsCmdMsg* cmd)
 // any other cycle starts from the whole safe output.  Each path, from a
 // buffer of 0xA5 bytes (a finite non-zero double) and from a zeroed one:
 // the same fields, and the safe output wherever the contract says so.
+// Verifies: REQ-ACS-004, REQ-ACS-005
 TEST(FswAcsCycle, Issue45EveryFieldIsWrittenWhateverTheBufferHeld)
 {
   acsfix::wheel_config(g_cfg);
