@@ -2,6 +2,7 @@
 #include "fsw/fsw_acs.h"
 
 #include <stddef.h>
+#include <string.h>
 
 #include "fsw/fsw_attitude.h"
 #include "fsw/fsw_vec.h"
@@ -579,17 +580,20 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg)
 
 /* ---- cycle -------------------------------------------------------------- */
 
-static void safe_output(FswAcsActuatorMsg *act)
+/* The safe output (fsw_acs.h): every command 0, no actuator active.  One
+ * fill of the whole message, the padding included: each field's bytes are
+ * those of a 0 (0.0 is all bits 0 in IEEE 754), the same as field by field. */
+static void safe_output(FswAcsActuatorMsg *act) { (void)memset(act, 0, sizeof *act); }
+
+/* The safe output but for Lr_B and the first n wheel torques u_s[0..n),
+ * which a pointing cycle with the wheels active writes in every case
+ * (run_pointing and run_wheels): every other byte of the message is
+ * written once, here, before the stages run. */
+static void safe_output_but_wheel_torques(FswAcsActuatorMsg *act, int n)
 {
-  fsw_v3_zero(act->Lr_B);
-  fsw_vn_zero(act->u_s, FSW_MAX_RW);
-  fsw_vn_zero(act->V, FSW_MAX_RW);
-  fsw_vn_zero(act->F, FSW_MAX_THR);
-  fsw_vn_zero(act->t_on, FSW_MAX_THR);
-  act->wheels_active = 0u;
-  act->thrusters_active = 0u;
-  fsw_vn_zero(act->m_cmd, FSW_MAX_MTQ);
-  act->mtq_active = 0u;
+  unsigned char *p = (unsigned char *)act;
+  const size_t from = (size_t)offsetof(FswAcsActuatorMsg, u_s) + ((size_t)n * sizeof act->u_s[0]);
+  (void)memset(&p[from], 0, sizeof *act - from);
 }
 
 /* The health message of a rejected cycle: all 0 but the stage statuses
@@ -604,7 +608,7 @@ static void zero_bytes(FswAcsHealthMsg *h, size_t from, size_t to)
   for (k = from; k < to; k++) { p[k] = 0u; }
 }
 
-static void zero_health(FswAcsHealthMsg *h) { zero_bytes(h, 0u, sizeof(*h)); }
+static void zero_health(FswAcsHealthMsg *h) { (void)memset(h, 0, sizeof *h); }
 
 static void safe_health(FswAcsHealthMsg *h)
 {
@@ -613,10 +617,17 @@ static void safe_health(FswAcsHealthMsg *h)
   zero_bytes(h, a + sizeof(h->stage_status), sizeof(*h));
 }
 
+/* out[i] = in[i] for i < n (n >= 0: counts of a checked configuration).
+ * The cycle's copies are between distinct objects (a message and the
+ * work area, or two members of it), so one memcpy does them. */
 static void u8_copy(uint8_t *out, const uint8_t *in, int n)
 {
-  int i;
-  for (i = 0; i < n; i++) { out[i] = in[i]; }
+  (void)memcpy(out, in, (size_t)n);
+}
+
+static void r_copy(fsw_real *out, const fsw_real *in, int n)
+{
+  (void)memcpy(out, in, (size_t)n * sizeof *out);
 }
 
 /* 1 if each of the n availability flags is FSW_AVAILABLE or
@@ -626,8 +637,13 @@ static int avail_ok(const fsw_real *x, const uint8_t *avail, int n, int finite_t
 {
   int i;
   for (i = 0; i < n; i++) {
-    if (avail[i] > FSW_UNAVAILABLE) { return 0; }
-    if (finite_too && avail[i] == FSW_AVAILABLE && !isfinite(x[i])) { return 0; }
+    if (avail[i] != FSW_AVAILABLE) {
+      if (avail[i] != FSW_UNAVAILABLE) { return 0; }
+    } else if ((finite_too != 0) && !isfinite(x[i])) {
+      return 0;
+    } else {
+      /* available and finite, or finiteness not asked */
+    }
   }
   return 1;
 }
@@ -654,7 +670,8 @@ static FswStatus finish(FswAcsState *st, const FswAcsConfig *cfg, FswAcsHealthMs
     if (st->speed_filter.failed[i]) { h->rw_failed |= (uint64_t)1u << i; }
     if (st->speed_filter.latched[i]) { h->rw_latched |= (uint64_t)1u << i; }
   }
-  h->status = fsw_health_record(&st->health, s);
+  /* the record of an FSW_OK cycle inline, any other through the function */
+  h->status = (s == FSW_OK) ? fsw_health_record_ok_i(&st->health) : fsw_health_record(&st->health, s);
   h->safe_output = (uint8_t)(fsw_status_is_error_i(s) ? 1 : 0);
   h->mode = st->mode;
   h->actuation = st->actuation;
@@ -665,15 +682,22 @@ static FswStatus finish(FswAcsState *st, const FswAcsConfig *cfg, FswAcsHealthMs
   return s;
 }
 
+/* A cycle refused before any stage ran: the safe output, then finish(). */
+static FswStatus reject(FswAcsState *st, const FswAcsConfig *cfg, FswAcsActuatorMsg *act,
+                        FswAcsHealthMsg *h, FswStatus s)
+{
+  safe_output(act);
+  return finish(st, cfg, h, s);
+}
+
 static FswStatus run_guidance(FswAcsState *st, const FswAcsConfig *cfg,
                               const FswAcsSensorMsg *sens, FswAcsHealthMsg *h, FswAttGuid *guid)
 {
   FswAcsWork *w = &st->work;
   FswStatus acc = FSW_OK, s;
-  int i;
   if (st->mode == FSW_ACS_MODE_SUN_SAFE) {
     const int nc = cfg->css.num_css;
-    for (i = 0; i < nc; i++) { w->css_in.reading[i] = sens->css[i]; }
+    r_copy(w->css_in.reading, sens->css, nc);
     u8_copy(w->css_in.avail, sens->css_avail, nc);
     /* the readings and flags passed the cycle's checks (req_mode was
      * SUN_SAFE): the estimate without fsw_css_sun_update's same checks */
@@ -733,7 +757,7 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   const fsw_real *u;
 
   fsw_v3_copy(w->map_in.Lr_B, Lr_B);
-  fsw_vn_copy(w->map_in.Omega, w->Omega, n);
+  r_copy(w->map_in.Omega, w->Omega, n);
   u8_copy(w->map_in.avail, w->rw_avail, n);
   /* the wheels' flags and speeds are the checked or screened ones: the
    * mapping without fsw_rw_map_update's same checks of them */
@@ -744,8 +768,8 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
 
 #if FSW_CFG_RW_NULL
   if (cfg->use_null) {
-    fsw_vn_copy(w->null_in.u_s, u, n);
-    fsw_vn_copy(w->null_in.Omega, w->Omega, n);
+    r_copy(w->null_in.u_s, u, n);
+    r_copy(w->null_in.Omega, w->Omega, n);
     u8_copy(w->null_in.avail, w->rw_avail, n);
     s = fsw_rw_null_update(&st->rw_null, &cfg->rw_null, &w->null_in, &w->null_out);
     h->stage_status[FSW_ACS_STAGE_RW_NULL] = s;
@@ -754,24 +778,24 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   }
 #endif
 
-  fsw_vn_copy(w->sat_in.u_s, u, n);
+  r_copy(w->sat_in.u_s, u, n);
   u8_copy(w->sat_in.avail, w->rw_avail, n);
   s = fsw_rw_sat_update(&st->rw_sat, &cfg->rw_sat, &w->sat_in, &w->sat_out);
   h->stage_status[FSW_ACS_STAGE_RW_SAT] = s;
   acc = combine(acc, s);
-  fsw_vn_copy(act->u_s, w->sat_out.u_s, n);
+  r_copy(act->u_s, w->sat_out.u_s, n);
 
 #if FSW_CFG_RW_VOLT
   if (cfg->use_volt) {
-    fsw_vn_copy(w->volt_in.u_s, w->sat_out.u_s, n);
-    fsw_vn_copy(w->volt_in.Omega, w->Omega, n);
+    r_copy(w->volt_in.u_s, w->sat_out.u_s, n);
+    r_copy(w->volt_in.Omega, w->Omega, n);
     w->volt_in.has_Omega = 1;
     u8_copy(w->volt_in.avail, w->rw_avail, n);
     w->volt_in.t_ns = sens->t_ns;
     s = fsw_rw_volt_update(&st->rw_volt, &cfg->rw_volt, &w->volt_in, &w->volt_out);
     h->stage_status[FSW_ACS_STAGE_RW_VOLT] = s;
     acc = combine(acc, s);
-    fsw_vn_copy(act->V, w->volt_out.V, n);
+    r_copy(act->V, w->volt_out.V, n);
   }
 #else
   (void)sens; /* its time stamp is rw_volt's */
@@ -790,16 +814,16 @@ static FswStatus run_pulser(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   int i;
   if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
     w->rem_in.t_ns = sens->t_ns;
-    fsw_vn_copy(w->rem_in.F, F, n);
+    r_copy(w->rem_in.F, F, n);
     s = fsw_thr_pulse_rem_update(&st->pulse_rem, &cfg->pulse_rem, &w->rem_in, &w->rem_out);
-    fsw_vn_copy(act->t_on, w->rem_out.t_on, n);
+    r_copy(act->t_on, w->rem_out.t_on, n);
   } else {
 #if FSW_CFG_PULSE_SCHMITT
     w->sch_in.t_ns = sens->t_ns;
-    fsw_vn_copy(w->sch_in.F, F, n);
+    r_copy(w->sch_in.F, F, n);
     s = fsw_thr_pulse_schmitt_update(&st->pulse_schmitt, &cfg->pulse_schmitt, &w->sch_in,
                                      &w->sch_out);
-    fsw_vn_copy(act->t_on, w->sch_out.t_on, n);
+    r_copy(act->t_on, w->sch_out.t_on, n);
 #else
     s = FSW_E_UNSUPPORTED; /* not reached: fsw_acs_check rejects the stage */
 #endif
@@ -834,7 +858,7 @@ static FswStatus run_thrusters(FswAcsState *st, const FswAcsConfig *cfg,
   s = fsw_thr_map_update(&st->thr_map, &cfg->thr_map, &w->thr_in, &w->thr_out);
   h->stage_status[FSW_ACS_STAGE_THR_MAP] = s;
   acc = combine(acc, s);
-  fsw_vn_copy(act->F, w->thr_out.F, n);
+  r_copy(act->F, w->thr_out.F, n);
   acc = combine(acc, run_pulser(st, cfg, sens, w->thr_out.F, act, h));
   act->thrusters_active = 1u;
   return acc;
@@ -871,7 +895,7 @@ static FswStatus run_detumble(FswAcsState *st, const FswAcsConfig *cfg, const Fs
   s = fsw_mtq_map_update(&st->mtq_map, &cfg->mtq_map, &w->mtq_in, &w->mtq_out);
   h->stage_status[FSW_ACS_STAGE_MTQ_MAP] = s;
   acc = combine(acc, s);
-  fsw_vn_copy(act->m_cmd, w->mtq_out.m_cmd, cfg->mtq_map.num_mtq);
+  r_copy(act->m_cmd, w->mtq_out.m_cmd, cfg->mtq_map.num_mtq);
   fsw_v3_copy(h->tau_mtq_B, w->mtq_out.tau_ach_B);
   act->mtq_active = 1u;
   if (cfg->has_wheels) { act->wheels_active = 1u; } /* u_s = 0: the wheels keep their momentum */
@@ -894,12 +918,12 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
   fsw_v3_copy(Lw_B, Lr_B);
 #if FSW_CFG_RW_BIAS
   if (cfg->use_bias) {
-    fsw_vn_copy(w->bias_in.Omega, w->Omega, n);
+    r_copy(w->bias_in.Omega, w->Omega, n);
     u8_copy(w->bias_in.avail, w->rw_avail, n);
     s = fsw_rw_bias_update(&st->rw_bias, &cfg->rw_bias, &w->bias_in, &w->bias_out);
     h->stage_status[FSW_ACS_STAGE_RW_BIAS] = s;
     acc = combine(acc, s);
-    fsw_vn_copy(w->null_in.Omega_des, w->bias_out.Omega_des, n);
+    r_copy(w->null_in.Omega_des, w->bias_out.Omega_des, n);
   }
 #endif
   if (st->policy == FSW_ACS_MOM_THRUSTERS) {
@@ -914,9 +938,9 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
      * counts an impulse the thrusters did not give. */
     const int timed = pulser_has_period(st, cfg);
     w->mom_in.t_ns = sens->t_ns;
-    fsw_vn_copy(w->mom_in.Omega, w->Omega, n);
+    r_copy(w->mom_in.Omega, w->Omega, n);
     u8_copy(w->mom_in.avail, w->rw_avail, n);
-    fsw_vn_copy(w->mom_in.t_on_prev, w->t_on_last, FSW_MAX_THR);
+    r_copy(w->mom_in.t_on_prev, w->t_on_last, FSW_MAX_THR);
     w->mom_in.enable = timed ? 1u : 0u;
     w->mom_in.force_dump = 0u;
     s = fsw_thr_momentum_update(&st->thr_mom, &cfg->thr_mom, &w->mom_in, &w->mom_out);
@@ -942,7 +966,7 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
 #if FSW_CFG_MTQ_DESAT
     act->mtq_active = 1u; /* rods off unless a field sample lets them act */
     if (sens->mag_valid) {
-      fsw_vn_copy(w->desat_in.Omega, w->Omega, n);
+      r_copy(w->desat_in.Omega, w->Omega, n);
       u8_copy(w->desat_in.avail, w->rw_avail, n);
       fsw_v3_copy(w->desat_in.B_B, sens->B_B);
       w->desat_in.B_valid = 1u;
@@ -957,7 +981,7 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
       s = fsw_mtq_map_update(&st->mtq_map, &cfg->mtq_map, &w->mtq_in, &w->mtq_out);
       h->stage_status[FSW_ACS_STAGE_MTQ_MAP] = s;
       acc = combine(acc, s);
-      fsw_vn_copy(act->m_cmd, w->mtq_out.m_cmd, cfg->mtq_map.num_mtq);
+      r_copy(act->m_cmd, w->mtq_out.m_cmd, cfg->mtq_map.num_mtq);
       fsw_v3_copy(h->tau_mtq_B, w->mtq_out.tau_ach_B);
       fsw_v3_sub(Lw_B, Lw_B, w->mtq_out.tau_ach_B);
     }
@@ -1042,7 +1066,7 @@ static void save_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   if (cfg->use_thr_mom) { w->saved.thr_mom = st->thr_mom; }
   if (cfg->use_bias) {
     for (i = 0; i < FSW_MAX_RW; i++) { w->saved.bias_in_band[i] = st->rw_bias.in_band[i]; } }
-  fsw_vn_copy(w->saved.t_on_last, w->t_on_last, thr_count(cfg));
+  r_copy(w->saved.t_on_last, w->t_on_last, thr_count(cfg));
   w->saved.mrp_fb = st->mrp_fb;
   if (cfg->use_lpf) { w->saved.lpf = st->lpf; }
   if (cfg->has_wheels && cfg->use_volt) { w->saved.rw_volt = st->rw_volt; }
@@ -1076,7 +1100,7 @@ static void restore_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   st->mode_changes = w->saved.mode_changes;
   st->policy = w->saved.policy;
   st->cmd_mode = w->saved.cmd_mode;
-  fsw_vn_copy(w->t_on_last, w->saved.t_on_last, thr_count(cfg));
+  r_copy(w->t_on_last, w->saved.t_on_last, thr_count(cfg));
   if (cfg->has_mtq) {
     hh = st->bdot.health;
     st->bdot = w->saved.bdot;
@@ -1148,7 +1172,7 @@ static FswStatus run_pointing(FswAcsState *st, const FswAcsConfig *cfg, const Fs
   /* 4. Control law (run_guidance wrote its input's guidance). */
   w->fb_in.t_ns = sens->t_ns;
   if (cfg->mrp_fb.num_rw > 0) {
-    fsw_vn_copy(w->fb_in.Omega, w->Omega, cfg->mrp_fb.num_rw);
+    r_copy(w->fb_in.Omega, w->Omega, cfg->mrp_fb.num_rw);
     u8_copy(w->fb_in.rw_avail, w->rw_avail, cfg->mrp_fb.num_rw);
   }
   /* the guidance is a stage's output (finite, or its safe output 0) and
@@ -1191,20 +1215,20 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
                         const FswAcsCmdMsg *cmd, FswAcsActuatorMsg *act, FswAcsHealthMsg *h)
 {
   FswAcsWork *w;
-  FswStatus acc = FSW_OK, s;
+  FswStatus acc = FSW_OK;
   FswAttGuid guid;       /* DETUMBLE's: no attitude error */
   const FswAttGuid *g;   /* the guidance of the cycle, for the telemetry */
   int req_mode, req_act, req_policy, i;
   uint8_t u_known;
 
   FSW_ASSERT(st != NULL && cfg != NULL && sens != NULL && act != NULL && h != NULL);
-  if (act != NULL) { safe_output(act); }
   if (h != NULL) { zero_health(h); }
   if (st == NULL || cfg == NULL || sens == NULL || act == NULL || h == NULL) {
+    if (act != NULL) { safe_output(act); }
     if (st != NULL) { (void)fsw_health_record(&st->health, FSW_E_NULL_ARG); }
     return FSW_E_NULL_ARG;
   }
-  if (!st->ready) { return finish(st, cfg, h, FSW_E_NOT_INIT); }
+  if (!st->ready) { return reject(st, cfg, act, h, FSW_E_NOT_INIT); }
   w = &st->work;
   /* Whether last call's wheel torque held until now; from here on, until
    * this cycle succeeds with wheels active, the next call cannot know. */
@@ -1218,39 +1242,38 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   req_mode = (cmd != NULL && cmd->mode != st->cmd_mode) ? cmd->mode : st->mode;
   req_act = (cmd != NULL) ? cmd->actuation : st->actuation;
   req_policy = (cmd != NULL && cmd->set_policy == 1u) ? cmd->policy : st->policy;
-  if (!mode_configured(cfg, req_mode)) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
+  if (!mode_configured(cfg, req_mode)) { return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   if (!((req_act == FSW_ACS_ACT_WHEELS && cfg->has_wheels) ||
         (req_act == FSW_ACS_ACT_THRUSTERS && cfg->has_thrusters))) {
-    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
-  if (cmd != NULL && !set_command_ok(cfg, cmd)) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
-  {
-    fsw_real dt; /* [s] unused: the stages derive their own */
-    s = fsw_clock_dt(&st->clock, sens->t_ns, &dt);
-    if (s != FSW_OK) { return finish(st, cfg, h, s); }
-  }
-  if (!fsw_v3_is_finite(sens->omega_BN_B)) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
+    return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
+  if (cmd != NULL && !set_command_ok(cfg, cmd)) { return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
+  /* fsw_clock_dt's test (the stages derive their own dt): a time stamp
+   * not after the last accepted cycle's is FSW_E_TIME */
+  if ((st->clock.has_prev != 0) && (sens->t_ns <= st->clock.t_prev_ns)) {
+    return reject(st, cfg, act, h, FSW_E_TIME); }
+  if (!fsw_v3_is_finite(sens->omega_BN_B)) { return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   if ((req_mode == FSW_ACS_MODE_INERTIAL || req_mode == FSW_ACS_MODE_NADIR) &&
       (sens->att_valid != 1u || !fsw_v3_is_finite(sens->sigma_BN))) {
-    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
-  if (sens->mag_valid > 1u || sens->orbit_valid > 1u) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
-  if (cfg->has_mtq && sens->mag_valid && !fsw_v3_is_finite(sens->B_B)) { return finish(st, cfg, h, FSW_E_BAD_INPUT); }
+    return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
+  if (sens->mag_valid > 1u || sens->orbit_valid > 1u) { return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
+  if (cfg->has_mtq && sens->mag_valid && !fsw_v3_is_finite(sens->B_B)) { return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   if (req_mode == FSW_ACS_MODE_NADIR &&
       (sens->orbit_valid != 1u || !fsw_v3_is_finite(sens->r_N) || !fsw_v3_is_finite(sens->v_N))) {
-    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
+    return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   if (req_mode == FSW_ACS_MODE_SUN_SAFE &&
       !avail_ok(sens->css, sens->css_avail, cfg->css.num_css, 1)) {
-    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
+    return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   /* with the speed filter, a non-finite speed is one wheel's fault (it
    * fails that wheel), not bad input of the cycle */
   if (cfg->has_wheels &&
       !avail_ok(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw, !cfg->use_speed_filter)) {
-    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
+    return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   if ((req_act == FSW_ACS_ACT_THRUSTERS || req_policy == FSW_ACS_MOM_THRUSTERS) &&
       !fsw_v3_is_finite(sens->r_CoM_B)) {
-    return finish(st, cfg, h, FSW_E_BAD_INPUT); }
+    return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   if (cfg->has_thrusters) {
     for (i = 0; i < cfg->thr_map.num_thr; i++) {
-      if (sens->thr_avail[i] > FSW_UNAVAILABLE) { return finish(st, cfg, h, FSW_E_BAD_INPUT); } } }
+      if (sens->thr_avail[i] > FSW_UNAVAILABLE) { return reject(st, cfg, act, h, FSW_E_BAD_INPUT); } } }
 
   /* 2. Mode transition: clear the memory that belongs to the old mode.
    *    From here on the stages advance their own state; an error status of
@@ -1265,6 +1288,14 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     st->actuation = req_act;
     if (st->mode_changes < UINT32_MAX) { st->mode_changes++; }
   }
+  /* The actuator message before the stages run: the safe output, but for
+   * what this cycle's stages write in every case (an error cycle ends with
+   * the whole safe output again). */
+  if ((st->mode != FSW_ACS_MODE_DETUMBLE) && (st->actuation == FSW_ACS_ACT_WHEELS)) {
+    safe_output_but_wheel_torques(act, cfg->rw_map.num_rw);
+  } else {
+    safe_output(act);
+  }
 
   /* 2b. Wheel speeds and availability for every stage: screened by the
    *     speed filter (in either actuation; the torque it is told of is
@@ -1273,20 +1304,20 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
     const int n = cfg->rw_map.num_rw;
     if (cfg->use_speed_filter) {
 #if FSW_CFG_SPEED_FILTER
-      fsw_vn_copy(w->filt_in.Omega_meas, sens->Omega, n);
+      r_copy(w->filt_in.Omega_meas, sens->Omega, n);
       u8_copy(w->filt_in.avail, sens->rw_avail, n);
       w->filt_in.t_ns = sens->t_ns;
-      fsw_vn_copy(w->filt_in.u_applied, w->u_last, n);
+      r_copy(w->filt_in.u_applied, w->u_last, n);
       w->filt_in.u_valid = u_known;
-      s = fsw_rw_speed_filter_update(&st->speed_filter, &cfg->speed_filter, &w->filt_in, &w->filt_out);
-      acc = combine(acc, s); /* OK: its inputs were validated above */
-      fsw_vn_copy(w->Omega, w->filt_out.Omega, n);
+      /* OK: its inputs were validated above */
+      acc = combine(acc, fsw_rw_speed_filter_update(&st->speed_filter, &cfg->speed_filter, &w->filt_in, &w->filt_out));
+      r_copy(w->Omega, w->filt_out.Omega, n);
       u8_copy(w->rw_avail, w->filt_out.avail, n);
 #else
       (void)u_known; /* not reached: fsw_acs_check rejects the stage */
 #endif
     } else {
-      fsw_vn_copy(w->Omega, sens->Omega, n);
+      r_copy(w->Omega, sens->Omega, n);
       u8_copy(w->rw_avail, sens->rw_avail, n);
     }
   }
@@ -1321,11 +1352,11 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   fsw_clock_commit(&st->clock, sens->t_ns);
   if (st->cycles < UINT32_MAX) { st->cycles++; }
   if (act->wheels_active) { /* the configured wheels (act->u_s is 0 beyond them) */
-    fsw_vn_copy(w->u_last, act->u_s, cfg->rw_map.num_rw);
+    r_copy(w->u_last, act->u_s, cfg->rw_map.num_rw);
     w->u_last_valid = 1u;
   }
   if (act->thrusters_active) {
-    fsw_vn_copy(w->t_on_last, act->t_on, thr_count(cfg));
+    r_copy(w->t_on_last, act->t_on, thr_count(cfg));
   } else {
     fsw_vn_zero(w->t_on_last, thr_count(cfg));
   }

@@ -1667,3 +1667,114 @@ TEST(FswAcsHealth, Issue39ARejectedCycleAfterTheStagesRanCarriesTheSafeHealthMes
   EXPECT_EQ(1u, g_h.health.bad_input);
   EXPECT_TRUE(all_zero(g_act));
 }
+
+// ---- issue 45: every byte of the actuator message is written once --------
+
+namespace {
+// The fields of two actuator messages equal byte for byte (the padding is
+// not compared: it carries no value).
+bool same_fields(const FswAcsActuatorMsg& a, const FswAcsActuatorMsg& b)
+{
+  return std::memcmp(a.Lr_B, b.Lr_B, sizeof a.Lr_B) == 0 && std::memcmp(a.u_s, b.u_s, sizeof a.u_s) == 0 &&
+         std::memcmp(a.V, b.V, sizeof a.V) == 0 && std::memcmp(a.F, b.F, sizeof a.F) == 0 &&
+         std::memcmp(a.t_on, b.t_on, sizeof a.t_on) == 0 && std::memcmp(a.m_cmd, b.m_cmd, sizeof a.m_cmd) == 0 &&
+         a.wheels_active == b.wheels_active && a.thrusters_active == b.thrusters_active &&
+         a.mtq_active == b.mtq_active;
+}
+
+// The documented safe output, every field (the rods included) +0.0 / 0.
+bool is_safe_output(const FswAcsActuatorMsg& a)
+{
+  FswAcsActuatorMsg z;
+  std::memset(&z, 0, sizeof z);
+  return same_fields(a, z);
+}
+
+// One cycle of g_st (into a message that held 0xA5 in every byte) and of
+// g_st2, the same state, into a zeroed message: what each cycle writes
+// must not depend on what the caller's buffer held.
+FswStatus cycle_both(const FswAcsCmdMsg* cmd)
+{
+  std::memset(&g_act, 0xA5, sizeof g_act);
+  std::memset(&g_act2, 0, sizeof g_act2);
+  const FswStatus s = fsw_acs_cycle(&g_st, &g_cfg, &g_sens, cmd, &g_act, &g_h);
+  const FswStatus s2 = fsw_acs_cycle(&g_st2, &g_cfg, &g_sens, cmd, &g_act2, &g_h2);
+  EXPECT_EQ(s, s2);
+  EXPECT_TRUE(same_fields(g_act, g_act2));
+  return s;
+}
+}  // namespace
+
+// A pointing cycle on wheels writes the torque request and the configured
+// wheel torques over the stages and every other field once, before them;
+// any other cycle starts from the whole safe output.  Each path, from a
+// buffer of 0xA5 bytes (a finite non-zero double) and from a zeroed one:
+// the same fields, and the safe output wherever the contract says so.
+// Verifies: REQ-ACS-004, REQ-ACS-005
+TEST(FswAcsCycle, Issue45EveryFieldIsWrittenWhateverTheBufferHeld)
+{
+  acsfix::wheel_config(g_cfg);
+  ASSERT_EQ(FSW_ACS_MODE_SUN_SAFE, g_cfg.initial_mode);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st2, &g_cfg, nullptr));
+  const int n = g_cfg.rw_map.num_rw;
+
+  // a good sun-safe cycle on wheels: nothing beyond the wheels is left over
+  sensors_at_rest(g_sens, 1000);
+  for (int i = 0; i < n; i++) g_sens.Omega[i] = acsfix::R(10.0 * (i + 1));
+  g_sens.omega_BN_B[0] = acsfix::R(0.01);
+  ASSERT_FALSE(fsw_status_is_error(cycle_both(nullptr)));
+  EXPECT_EQ(1, g_act.wheels_active);
+  EXPECT_EQ(0, g_act.thrusters_active);
+  EXPECT_EQ(0, g_act.mtq_active);
+  double u2 = 0;
+  for (int i = 0; i < n; i++) u2 += static_cast<double>(g_act.u_s[i]) * g_act.u_s[i];
+  EXPECT_GT(u2, 0.0);  // torques were commanded
+  for (int i = n; i < FSW_MAX_RW; i++) EXPECT_EQ(0, g_act.u_s[i]) << i;
+  for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(0, g_act.V[i]) << i;  // use_volt = 0
+  for (int i = 0; i < FSW_MAX_THR; i++) {
+    EXPECT_EQ(0, g_act.F[i]) << i;
+    EXPECT_EQ(0, g_act.t_on[i]) << i;
+  }
+  for (int i = 0; i < FSW_MAX_MTQ; i++) EXPECT_EQ(0, g_act.m_cmd[i]) << i;
+
+  // refused before any stage ran (each check that returns early)
+  sensors_at_rest(g_sens, 2000);
+  g_sens.omega_BN_B[1] = kNaN;
+  EXPECT_EQ(FSW_E_BAD_INPUT, cycle_both(nullptr));
+  EXPECT_TRUE(is_safe_output(g_act));
+  sensors_at_rest(g_sens, 1000);  // a repeated time stamp
+  EXPECT_EQ(FSW_E_TIME, cycle_both(nullptr));
+  EXPECT_TRUE(is_safe_output(g_act));
+  FswAcsCmdMsg bad{};
+  bad.mode = 9;
+  sensors_at_rest(g_sens, 2000);
+  EXPECT_EQ(FSW_E_BAD_INPUT, cycle_both(&bad));
+  EXPECT_TRUE(is_safe_output(g_act));
+
+  // an error of a stage after the stages ran (a rate so large that the
+  // control torque overflows): the whole safe output again
+  sensors_at_rest(g_sens, 2000);
+  g_sens.omega_BN_B[2] = static_cast<fsw_real>(0.5 * static_cast<double>(std::numeric_limits<fsw_real>::max()));
+  EXPECT_EQ(FSW_E_BAD_INPUT, cycle_both(nullptr));
+  EXPECT_TRUE(is_safe_output(g_act));
+
+  // a state that is not ready
+  g_st.ready = 0;
+  g_st2.ready = 0;
+  sensors_at_rest(g_sens, 3000);
+  EXPECT_EQ(FSW_E_NOT_INIT, cycle_both(nullptr));
+  EXPECT_TRUE(is_safe_output(g_act));
+
+  // thruster actuation: the safe output up front, the thrusters' fields over it
+  acsfix::thruster_config(g_cfg);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st2, &g_cfg, nullptr));
+  sensors_at_rest(g_sens, 0);
+  g_sens.sigma_BN[0] = acsfix::R(0.01);
+  ASSERT_FALSE(fsw_status_is_error(cycle_both(nullptr)));
+  EXPECT_EQ(1, g_act.thrusters_active);
+  EXPECT_EQ(0, g_act.wheels_active);
+  for (int i = 0; i < FSW_MAX_RW; i++) EXPECT_EQ(0, g_act.u_s[i]) << i;
+  for (int i = g_cfg.thr_map.num_thr; i < FSW_MAX_THR; i++) EXPECT_EQ(0, g_act.F[i]) << i;
+}
