@@ -17,7 +17,10 @@
 #include <sstream>
 
 #include <nlohmann/json.hpp>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include "harness/mc/monte_carlo.h"
 #include "harness/mc/mc_journal.h"
@@ -468,6 +471,18 @@ std::vector<McRecord> campaign(const McPlan& plan, const fs::path& dir, unsigned
   return r;
 }
 
+// Runs 0 to 5 of `plan` into dir (resumed from its journal or not); `ran`
+// gets the finished-run count of each progress report.
+std::vector<McRecord> run_six(const McPlan& plan, const fs::path& dir, bool resume, std::vector<uint64_t>& ran)
+{
+  McRunOptions o;
+  o.indices = {0, 1, 2, 3, 4, 5};
+  o.resume = resume;
+  o.progress = [&](const McProgress& p) { ran.push_back(p.done); };
+  bool stopped = false;
+  return run_mc_runs(plan, dir, o, stopped);
+}
+
 void expect_same(const McRecord& a, const McRecord& b)
 {
   EXPECT_EQ(a.index, b.index);
@@ -620,20 +635,98 @@ TEST(McJournal, AResumedCampaignRunsOnlyTheRunsWithoutARecord)
   fs::remove(mc_record_path(d, 2));  // runs 2 and 4 were not finished when the campaign was killed
   fs::remove(mc_record_path(d, 4));
   std::ofstream(d / "records" / ".000004.json.tmp") << "{\"kestrel_mc_runs\":1,\"rec";  // a write cut short
-  McRunOptions o;
-  o.indices = {0, 1, 2, 3, 4, 5};
-  o.resume = true;
   std::vector<uint64_t> ran;
-  o.progress = [&](const McProgress& p) { ran.push_back(p.done); };
-  bool stopped = false;
-  const std::vector<McRecord> resumed = run_mc_runs(plan, d, o, stopped);
+  const std::vector<McRecord> resumed = run_six(plan, d, true, ran);
   EXPECT_EQ(ran, (std::vector<uint64_t>{5, 6}));  // two runs, counted after the 4 done
   ASSERT_EQ(resumed.size(), 6u);
   for (size_t i = 0; i < 6; ++i) expect_same(whole[i], resumed[i]);
-  o.resume = false;
   ran.clear();
-  run_mc_runs(plan, d, o, stopped);
+  run_six(plan, d, false, ran);
   EXPECT_EQ(ran.size(), 6u);
+  fs::remove_all(d);
+}
+
+// Group commit: a record added to the writer is a temporary file, not
+// listed, until its group is committed; then every record of the group is
+// in place and reads back.  A writer that commits at once holds none.
+TEST(McJournal, AddedRecordsAreListedOnlyOnceCommitted)
+{
+  const fs::path d = fs::temp_directory_path() / "kestrel_mc_test_group";
+  fs::remove_all(d);
+  McJournalWriter w(d, 1e9, 1000);  // commits only when asked
+  for (uint64_t k : {3ULL, 1ULL, 2ULL}) {
+    McRecord r;
+    r.index = k;
+    r.seed = 100 + k;
+    r.metrics = {0.25 * static_cast<double>(k)};
+    w.add(r);
+  }
+  EXPECT_EQ(w.held(), 3u);
+  EXPECT_TRUE(mc_journal_indices(d).empty());
+  w.commit();
+  EXPECT_EQ(w.held(), 0u);
+  EXPECT_EQ(mc_journal_indices(d), (std::vector<uint64_t>{1, 2, 3}));
+  for (uint64_t k : {1ULL, 2ULL, 3ULL}) {
+    const McRecord b = read_mc_record(mc_record_path(d, k));
+    EXPECT_EQ(b.index, k);
+    EXPECT_EQ(b.seed, 100 + k);
+    EXPECT_EQ(b.metrics.at(0), 0.25 * static_cast<double>(k));
+  }
+  McRecord r;
+  r.index = 9;
+  McJournalWriter at_once(d, 0.0);
+  at_once.add(r);
+  EXPECT_EQ(at_once.held(), 0u);
+  EXPECT_EQ(mc_journal_indices(d), (std::vector<uint64_t>{1, 2, 3, 9}));
+  McJournalWriter by_count(d, 1e9, 2);
+  r.index = 10;
+  by_count.add(r);
+  EXPECT_EQ(by_count.held(), 1u);
+  r.index = 11;
+  by_count.add(r);
+  EXPECT_EQ(by_count.held(), 0u);
+  EXPECT_EQ(mc_journal_indices(d), (std::vector<uint64_t>{1, 2, 3, 9, 10, 11}));
+  fs::remove_all(d);
+}
+
+// A campaign killed (SIGKILL) between two commits of its journal: the runs
+// finished since the last commit have no record (their temporary files are
+// not listed), and --resume runs them again with the same records as an
+// uninterrupted campaign.
+TEST(McJournal, ACampaignKilledBetweenCommitsResumesToTheSameRecords)
+{
+  Scenario sc = load(kCampaign);
+  sc.monte_carlo->retention.keep_failing = false;  // no full-results rerun (it commits first)
+  const McPlan plan = make_mc_plan(sc, 11, 6);
+  const fs::path d = fs::temp_directory_path() / "kestrel_mc_test_kill_between_commits";
+  const std::vector<McRecord> whole = campaign(plan, d / "whole", 1, {0, 1, 2, 3, 4, 5});
+  fs::remove_all(d / "killed");
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {  // one thread: the campaign in this process, killed after its third run
+    McRunOptions o;
+    o.indices = {0, 1, 2, 3, 4, 5};
+    o.commit_seconds = 1e9;
+    o.progress = [](const McProgress& p) {
+      if (p.done == 3) ::raise(SIGKILL);
+    };
+    bool stopped = false;
+    run_mc_journal(plan, d / "killed", o, stopped);
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+  EXPECT_TRUE(mc_journal_indices(d / "killed").empty());  // three runs finished, none committed
+  size_t temps = 0;
+  for (const fs::directory_entry& e : fs::directory_iterator(d / "killed" / "records"))
+    temps += e.path().filename().string().find(".tmp") != std::string::npos ? 1 : 0;
+  EXPECT_EQ(temps, 3u);
+  std::vector<uint64_t> ran;
+  const std::vector<McRecord> resumed = run_six(plan, d / "killed", true, ran);
+  EXPECT_EQ(ran.size(), 6u);  // none was done
+  ASSERT_EQ(resumed.size(), 6u);
+  for (size_t i = 0; i < 6; ++i) expect_same(whole[i], resumed[i]);
   fs::remove_all(d);
 }
 

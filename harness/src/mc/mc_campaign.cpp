@@ -304,7 +304,8 @@ class McRunner {
  public:
   McRunner(const McPlan& plan, const fs::path& dir, const McRunOptions& opt)
       : plan_(plan), ret_(plan.nominal.monte_carlo->retention), dir_(dir), runs_(dir / "runs"), opt_(opt),
-        state_(opt.indices.size()), done_(opt.indices.size(), 0), t0_(std::chrono::steady_clock::now())
+        state_(opt.indices.size()), done_(opt.indices.size(), 0), t0_(std::chrono::steady_clock::now()),
+        journal_(dir, opt.commit_seconds)
   {
     fs::create_directories(runs_);
     fs::create_directories(dir_ / "records");
@@ -342,6 +343,7 @@ class McRunner {
     for (unsigned i = 1; i < n; ++i) th.emplace_back(body);
     body();
     for (std::thread& t : th) t.join();
+    journal_.commit();  // the finished runs' records, also when a run ended the campaign
     if (!error_.empty()) throw std::runtime_error(error_);
   }
 
@@ -424,10 +426,14 @@ class McRunner {
     }
   }
 
-  // A finished run's record to the journal, then its state.
+  // A finished run's record to the journal (the first pass's committed
+  // in groups, a replacement at once), then its state.
   void record(size_t slot, const McRecord& r, bool first_pass)
   {
-    write_mc_record(dir_, r);
+    if (first_pass)
+      journal_.add(r);
+    else
+      write_mc_record(dir_, r);
     std::lock_guard<std::mutex> g(mu_);
     state_[slot] = mc_run_state(r);
     if (!first_pass) return;
@@ -464,6 +470,7 @@ class McRunner {
   void rerun_full(size_t slot)
   {
     const uint64_t k = opt_.indices[slot];
+    journal_.commit();  // the first pass's record in place before it is read or replaced
     McRecord r = run_mc_one(plan_, k, runs_ / run_dir_name(k), true, opt_.stop);
     McRecord first = read_mc_record(mc_record_path(dir_, k));
     if (r.interrupted) {  // the first pass's record stays; the folder holds a partial rerun, marked incomplete
@@ -501,6 +508,7 @@ class McRunner {
   const std::chrono::steady_clock::time_point t0_;
   std::string error_;                     // an exception of a worker (output error): ends the campaign
   std::atomic<uint32_t> failing_full_{0};  // failing runs given full results during the pass
+  McJournalWriter journal_;               // the first pass's records, committed in groups
 };
 
 }  // namespace

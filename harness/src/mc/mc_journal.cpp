@@ -21,8 +21,8 @@ namespace {
 
 std::string sys_error() { return std::strerror(errno); }
 
-// The whole of `text` to descriptor fd, then fsync.
-bool write_all_sync(int fd, const std::string& text)
+// The whole of `text` to descriptor fd.
+bool write_all(int fd, const std::string& text)
 {
   size_t at = 0;
   while (at < text.size()) {
@@ -31,7 +31,7 @@ bool write_all_sync(int fd, const std::string& text)
     if (n <= 0) return false;
     at += static_cast<size_t>(n);
   }
-  return ::fsync(fd) == 0;
+  return true;
 }
 
 void sync_folder(const fs::path& d)
@@ -41,6 +41,41 @@ void sync_folder(const fs::path& d)
   const bool ok = ::fsync(fd) == 0;
   ::close(fd);
   if (!ok) throw OutputError(d.string() + ": cannot flush the folder: " + sys_error());
+}
+
+fs::path temp_beside(const fs::path& path) { return path.parent_path() / ("." + path.filename().string() + ".tmp"); }
+
+// `text` into the temporary file beside `path`, left open (its descriptor).
+int write_temp(const fs::path& path, const std::string& text)
+{
+  const fs::path tmp = temp_beside(path);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw OutputError(tmp.string() + ": cannot open for writing: " + sys_error());
+  if (!write_all(fd, text)) {
+    const std::string why = sys_error();
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw OutputError(path.string() + ": write failed (disk full?): " + why);
+  }
+  return fd;
+}
+
+// The temporary file of `path` (open as fd) flushed, closed and renamed
+// into place (the folder not flushed).
+void sync_into_place(int fd, const fs::path& path)
+{
+  const fs::path tmp = temp_beside(path);
+  const bool ok = ::fsync(fd) == 0;
+  const std::string why = ok ? "" : sys_error();
+  if (::close(fd) != 0 || !ok) {
+    ::unlink(tmp.c_str());
+    throw OutputError(path.string() + ": write failed (disk full?)" + (why.empty() ? "" : ": " + why));
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const std::string e = sys_error();
+    ::unlink(tmp.c_str());
+    throw OutputError(path.string() + ": cannot move into place: " + e);
+  }
 }
 
 }  // namespace
@@ -54,21 +89,59 @@ fs::path mc_record_path(const fs::path& dir, uint64_t index)
 
 void write_file_durably(const fs::path& path, const std::string& text)
 {
-  const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp");
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw OutputError(tmp.string() + ": cannot open for writing: " + sys_error());
-  const bool ok = write_all_sync(fd, text);
-  const std::string why = ok ? "" : sys_error();
-  if (::close(fd) != 0 || !ok) {
-    ::unlink(tmp.c_str());
-    throw OutputError(path.string() + ": write failed (disk full?)" + (why.empty() ? "" : ": " + why));
-  }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string e = sys_error();
-    ::unlink(tmp.c_str());
-    throw OutputError(path.string() + ": cannot move into place: " + e);
-  }
+  sync_into_place(write_temp(path, text), path);
   sync_folder(path.parent_path());
+}
+
+McJournalWriter::McJournalWriter(fs::path dir, double commit_seconds, size_t max_held)
+    : dir_(std::move(dir)), commit_s_(commit_seconds), max_held_(std::max<size_t>(1, max_held)),
+      last_(std::chrono::steady_clock::now())
+{
+  std::error_code ec;
+  fs::create_directories(dir_ / "records", ec);
+}
+
+McJournalWriter::~McJournalWriter()
+{
+  for (const Held& h : held_) ::close(h.fd);
+}
+
+void McJournalWriter::add(const McRecord& r)
+{
+  const fs::path path = mc_record_path(dir_, r.index);
+  const int fd = write_temp(path, mc_records_json({r}));
+  std::lock_guard<std::mutex> g(mu_);
+  held_.push_back({fd, temp_beside(path), path});
+  const double age = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count();
+  if (held_.size() >= max_held_ || age >= commit_s_) commit_locked();
+}
+
+void McJournalWriter::commit()
+{
+  std::lock_guard<std::mutex> g(mu_);
+  commit_locked();
+}
+
+size_t McJournalWriter::held() const
+{
+  std::lock_guard<std::mutex> g(mu_);
+  return held_.size();
+}
+
+void McJournalWriter::commit_locked()
+{
+  last_ = std::chrono::steady_clock::now();
+  if (held_.empty()) return;
+  std::vector<Held> group;
+  group.swap(held_);
+  size_t i = 0;
+  try {
+    for (; i < group.size(); ++i) sync_into_place(group[i].fd, group[i].path);
+  } catch (...) {  // the rest closed, left as temporary files (not listed)
+    for (++i; i < group.size(); ++i) ::close(group[i].fd);
+    throw;
+  }
+  sync_folder(dir_ / "records");
 }
 
 void write_mc_record(const fs::path& dir, const McRecord& r)

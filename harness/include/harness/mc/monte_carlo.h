@@ -142,10 +142,14 @@ struct McRunOptions {
   // false: dir/records is cleared first; true: the runs of `indices` that
   // have a record in dir/records already are not run again (--resume)
   bool resume = false;
+  // [s] the first pass commits its records to the journal in groups, at
+  // most this far apart (McJournalWriter); 0: each record as it finishes
+  double commit_seconds = 1.0;
 };
 
 // Runs the given indices on `jobs` threads into dir/runs/, each finished
-// run's record kept durably in dir/records/ as it finishes (mc_journal.h);
+// run's record kept durably in dir/records/ (mc_journal.h: committed in
+// groups at most opt.commit_seconds apart, and when the pass ends);
 // returns the finished runs' states sorted by index (the records stay on
 // disk: memory does not grow with the number of runs).  After the first
 // pass, failing runs beyond keep_first are rerun with full results
