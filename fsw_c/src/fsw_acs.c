@@ -1263,10 +1263,13 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   if (req_mode == FSW_ACS_MODE_SUN_SAFE &&
       !avail_ok(sens->css, sens->css_avail, cfg->css.num_css, 1)) {
     return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
-  /* with the speed filter, a non-finite speed is one wheel's fault (it
-   * fails that wheel), not bad input of the cycle */
+  /* a speed beyond +-FSW_RW_OMEGA_MAX is no speed (the wheel momentum
+   * telemetry J_s Omega stays finite); with the speed filter, a non-finite
+   * or out-of-range speed is one wheel's fault (it fails that wheel), not
+   * bad input of the cycle */
   if (cfg->has_wheels &&
-      !avail_ok(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw, !cfg->use_speed_filter)) {
+      (!avail_ok(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw, 0) ||
+       (!cfg->use_speed_filter && !fsw_rw_avail_speed_ok(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw)))) {
     return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   if ((req_act == FSW_ACS_ACT_THRUSTERS || req_policy == FSW_ACS_MOM_THRUSTERS) &&
       !fsw_v3_is_finite(sens->r_CoM_B)) {

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "fsw/fsw_vec.h"
+#include "fsw/rw_common.h"
 #include "fsw_vec_inline.h"
 #include "fsw_status_inline.h"
 #include "mrp_fb_internal.h"
@@ -64,7 +65,9 @@ FswStatus fsw_mrp_fb_check(const FswMrpFbConfig *cfg)
     if (!(FSW_FABS(fsw_v3_norm(cfg->gs_hat_B[i]) - FSW_R(1.0)) <= FSW_MRP_FB_UNIT_TOL)) {
       return FSW_E_CONFIG;
     }
-    if (!isfinite(cfg->J_s[i]) || !(cfg->J_s[i] > FSW_R(0.0))) { return FSW_E_CONFIG; }
+    /* bounded like every wheel module's J_s (rw_common.h): with |Omega| <=
+     * FSW_RW_OMEGA_MAX the wheel momentum J_s Omega stays finite */
+    if (!(cfg->J_s[i] > FSW_R(0.0) && cfg->J_s[i] <= FSW_RW_J_S_MAX)) { return FSW_E_CONFIG; }
   }
   return FSW_OK;
 }

@@ -165,13 +165,14 @@ FswStatus fsw_rw_speed_filter_update(FswRwSpeedFilterState *st, const FswRwSpeed
 
   for (i = 0; i < n; i++) {
     const fsw_real x = in->Omega_meas[i];
-    const int finite = isfinite(x) != 0;
+    /* beyond +-FSW_RW_OMEGA_MAX a finite sample is no speed: an outlier like NaN */
+    const int plausible = FSW_FABS(x) <= FSW_RW_OMEGA_MAX;
     const uint64_t bit = (uint64_t)1u << i;
     int accepted = 0;
     if (st->latched[i]) {
       /* held until reset: no test, no recovery */
     } else if (!st->failed[i]) {
-      if (finite && (!st->has_good[i] ||
+      if (plausible && (!st->has_good[i] ||
                      consistent(cfg, i, x, st->Omega_good[i], in->t_ns, st->t_good_ns[i]))) {
         st->Omega_good[i] = x;
         st->t_good_ns[i] = in->t_ns;
@@ -187,7 +188,7 @@ FswStatus fsw_rw_speed_filter_update(FswRwSpeedFilterState *st, const FswRwSpeed
           st->recover_run[i] = 0u;
         }
       }
-    } else if (!finite) {
+    } else if (!plausible) {
       st->recover_run[i] = 0u;
     } else {
       if (st->recover_run[i] > 0u &&

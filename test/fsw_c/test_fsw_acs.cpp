@@ -114,6 +114,10 @@ const BadCfg kBadConfigs[] = {
        c.speed_filter.u_max[3] = acsfix::R(0.198);
      },
      "speed_filter.u_max", FSW_E_CONFIG},
+    // issue 45 fuzzing: a spin inertia of 1e307 kg m2 was accepted and its
+    // momentum at 20 rad/s overflowed the health message's h_w_B
+    {"spin inertia above FSW_RW_J_S_MAX", [](FswAcsConfig& c) { c.mrp_fb.J_s[0] = acsfix::R(2e4); }, "mrp_fb",
+     FSW_E_CONFIG},
     {"H wheels without a wheel chain",
      [](FswAcsConfig& c) { c.has_wheels = 0; c.has_thrusters = 1; c.initial_actuation = FSW_ACS_ACT_THRUSTERS; },
      "mrp_fb.num_rw", FSW_E_CONFIG},
@@ -523,6 +527,8 @@ TEST(FswAcsCycle, BadInputGivesSafeOutputAdvancesNothingAndRecovers)
       {"Inf attitude", [](FswAcsSensorMsg& m) { m.sigma_BN[0] = std::numeric_limits<fsw_real>::infinity(); }, FSW_E_BAD_INPUT},
       {"attitude not valid in INERTIAL", [](FswAcsSensorMsg& m) { m.att_valid = 0; }, FSW_E_BAD_INPUT},
       {"NaN wheel speed", [](FswAcsSensorMsg& m) { m.Omega[3] = kNaN; }, FSW_E_BAD_INPUT},
+      {"wheel speed beyond FSW_RW_OMEGA_MAX", [](FswAcsSensorMsg& m) { m.Omega[2] = acsfix::R(-10001.0); },
+       FSW_E_BAD_INPUT},
       {"availability flag 7", [](FswAcsSensorMsg& m) { m.rw_avail[0] = 7; }, FSW_E_BAD_INPUT},
       {"repeated time stamp", [](FswAcsSensorMsg& m) { m.t_ns -= kPeriodNs; }, FSW_E_TIME},
       {"time going back", [](FswAcsSensorMsg& m) { m.t_ns -= 2 * kPeriodNs; }, FSW_E_TIME},
@@ -537,7 +543,7 @@ TEST(FswAcsCycle, BadInputGivesSafeOutputAdvancesNothingAndRecovers)
     EXPECT_EQ(0, std::memcmp(&fb_before, &g_st.mrp_fb, sizeof fb_before)) << sp.why;
     EXPECT_EQ(t_prev, g_st.clock.t_prev_ns);
   }
-  EXPECT_EQ(5u, g_st.health.bad_input);
+  EXPECT_EQ(6u, g_st.health.bad_input);
   EXPECT_EQ(2u, g_st.health.bad_time);
   // NaN in an UNAVAILABLE wheel's speed is not read: fine
   sensors_at_rest(g_sens, 3 * kPeriodNs);
@@ -613,6 +619,71 @@ TEST(FswAcsCycle, UnavailableWheelGetsZeroAndItsNaNSpeedIsIgnored)
     EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
     EXPECT_EQ(0, g_act.u_s[2]);
     for (int k = 0; k < 4; k++) EXPECT_TRUE(std::isfinite(g_act.V[k]));
+  }
+}
+
+// h = sum over the available wheels of J_s,i Omega_i gs_i (by hand, long double)
+static void hand_momentum(const FswAcsConfig& c, const FswAcsSensorMsg& m, uint64_t failed, long double h[3])
+{
+  h[0] = h[1] = h[2] = 0;
+  for (int i = 0; i < c.mrp_fb.num_rw; i++) {
+    if (m.rw_avail[i] != FSW_AVAILABLE || ((failed >> i) & 1u) != 0) continue;
+    for (int k = 0; k < 3; k++)
+      h[k] += static_cast<long double>(c.mrp_fb.J_s[i]) * m.Omega[i] * c.mrp_fb.gs_hat_B[i][k];
+  }
+}
+
+// Verifies: REQ-ACS-005
+// Issue 45 fuzzing: the momentum telemetry overflowed for a huge spin inertia
+// times a speed.  Speeds of available wheels are bounded by FSW_RW_OMEGA_MAX
+// (1e4 rad/s): beyond it the cycle refuses its input, or with the speed
+// filter that wheel's sample is an outlier (held, then the wheel fails);
+// h_w_B stays finite and equals the hand sum over the wheels in use.
+TEST(FswAcsCycle, WheelSpeedBeyondTheRangeIsBadInputOrTheFiltersOutlier)
+{
+  const fsw_real big = acsfix::R(1e30);
+  acsfix::wheel_config(g_cfg);
+  ASSERT_EQ(0, g_cfg.use_speed_filter);
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  long double h[3];
+  // at the bound: accepted, and the telemetry is the hand sum
+  sensors_at_rest(g_sens, 0);
+  g_sens.Omega[0] = acsfix::R(1e4);
+  g_sens.Omega[1] = acsfix::R(-1e4);
+  g_sens.Omega[3] = acsfix::R(250.0);
+  EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  hand_momentum(g_cfg, g_sens, 0, h);
+  for (int k = 0; k < 3; k++) EXPECT_NEAR(static_cast<double>(h[k]), g_h.h_w_B[k], kt::tol(1e-12, 1e-5) * 1e3) << k;
+  // just beyond on an available wheel: bad input, safe output
+  sensors_at_rest(g_sens, kPeriodNs);
+  g_sens.Omega[1] = acsfix::R(-10000.5);
+  EXPECT_EQ(FSW_E_BAD_INPUT, fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h));
+  EXPECT_EQ(1, g_h.safe_output);
+  // a huge speed of an UNAVAILABLE wheel is not read
+  g_sens.Omega[1] = big;
+  g_sens.rw_avail[1] = FSW_UNAVAILABLE;
+  EXPECT_FALSE(fsw_status_is_error(fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h)));
+  EXPECT_EQ(0, g_h.h_w_B[0]);
+  EXPECT_EQ(0, g_h.h_w_B[1]);
+  EXPECT_EQ(0, g_h.h_w_B[2]);
+
+  // with the speed filter: wheel 0 reads 1e30 from the first cycle on; its
+  // samples are rejected (no good sample: held at 0) and after k_reject = 3
+  // the wheel fails; the cycle goes on with the other three
+  acsfix::wheel_config(g_cfg);
+  g_cfg.use_speed_filter = 1;
+  g_cfg.speed_filter.k_reject = g_cfg.speed_filter.n_recover = 3;
+  ASSERT_EQ(FSW_OK, fsw_acs_init(&g_st, &g_cfg, nullptr));
+  for (int c = 0; c < 4; c++) {
+    sensors_at_rest(g_sens, c * kPeriodNs);
+    g_sens.Omega[0] = big;
+    g_sens.Omega[2] = acsfix::R(30.0);
+    const FswStatus s = fsw_acs_cycle(&g_st, &g_cfg, &g_sens, nullptr, &g_act, &g_h);
+    EXPECT_FALSE(fsw_status_is_error(s)) << fsw_status_name(s) << " cycle " << c;
+    EXPECT_EQ(c >= 2 ? 1u : 0u, g_h.rw_failed & 1u) << "cycle " << c;
+    hand_momentum(g_cfg, g_sens, 1u, h);  // wheel 0 contributes 0 (held at 0, then failed)
+    for (int k = 0; k < 3; k++)
+      EXPECT_NEAR(static_cast<double>(h[k]), g_h.h_w_B[k], kt::tol(1e-12, 1e-5)) << "cycle " << c << " axis " << k;
   }
 }
 

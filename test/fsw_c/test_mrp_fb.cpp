@@ -471,6 +471,10 @@ TEST_F(MrpFb, RejectsBadConfig)
       {"gs nan", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.gs_hat_B[0][2] = static_cast<fsw_real>(gref::nan()); }},
       {"J_s = 0", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.J_s[2] = FSW_R(0.0); }},
       {"J_s nan", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.J_s[0] = static_cast<fsw_real>(gref::nan()); }},
+      {"J_s inf", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.J_s[1] = std::numeric_limits<fsw_real>::infinity(); }},
+      // issue 45 fuzzing: 1e307 kg m2 at 20 rad/s overflowed the momentum telemetry
+      {"J_s 1e307", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.J_s[0] = static_cast<fsw_real>(1e307); }},
+      {"J_s just above 1e4", FSW_E_CONFIG, [](FswMrpFbConfig& c) { c.J_s[3] = FSW_R(10000.01); }},
   };
   FswMrpFbConfig base{};
   FswMrpFbIn in{};
@@ -499,6 +503,7 @@ TEST_F(MrpFb, RejectsBadConfig)
     gref::set3(ok.gs_hat_B[k], 0.0, 0.0, 1.0);
     ok.J_s[k] = FSW_R(0.05);
   }
+  ok.J_s[FSW_MAX_RW - 1] = FSW_R(1e4); // the largest spin inertia, FSW_RW_J_S_MAX
   EXPECT_EQ(FSW_OK, fsw_mrp_fb_check(&ok));
 }
 

@@ -97,6 +97,43 @@ TEST(RwSpeedFilterNominal, RejectHoldAndWideningBound)
   EXPECT_EQ(f.out->rejected, 1u);
 }
 
+// Issue 45: a finite sample beyond +-FSW_RW_OMEGA_MAX (1e4 rad/s) is no
+// speed.  As the first sample it is rejected (output 0, no reference);
+// 1e4 itself is accepted.  A failed wheel does not recover on such samples,
+// however consistent with each other: three equal 2e4 samples leave it
+// failed, three in range bring it back.
+// Verifies: REQ-RWSF-002
+TEST(RwSpeedFilterNominal, Issue45SamplesBeyondTheSpeedRangeAreOutliers)
+{
+  {
+    Fixture f;
+    EXPECT_EQ(f.step(0, 10000.5), FSW_OK);
+    EXPECT_EQ(f.out->rejected, 1u);
+    EXPECT_EQ(f.out->Omega[0], FSW_R(0.0));
+    EXPECT_EQ(f.step(kDt, -1e300), FSW_OK);
+    EXPECT_EQ(f.out->rejected, 1u);
+    EXPECT_EQ(f.out->Omega[0], FSW_R(0.0));
+  }
+  {
+    Fixture f;
+    EXPECT_EQ(f.step(0, -1e4), FSW_OK);
+    EXPECT_EQ(f.out->rejected, 0u);
+    EXPECT_EQ(f.out->Omega[0], FSW_R(-1e4));
+  }
+  Fixture f;
+  ASSERT_EQ(f.step(0, 100.0), FSW_OK);
+  for (int k = 1; k <= 3; k++) ASSERT_EQ(f.step(uint64_t(k) * kDt, 300.0 + k), FSW_OK);
+  ASSERT_EQ(f.out->failed, 1u);
+  for (int k = 4; k <= 6; k++) {
+    ASSERT_EQ(f.step(uint64_t(k) * kDt, 20000.0), FSW_OK);
+    EXPECT_EQ(f.out->failed, 1u) << k;
+    EXPECT_EQ(f.out->Omega[0], FSW_R(100.0)) << k;  // held
+  }
+  for (int k = 7; k <= 9; k++) ASSERT_EQ(f.step(uint64_t(k) * kDt, 200.0 + 0.1 * (k - 7)), FSW_OK);
+  EXPECT_EQ(f.out->failed, 0u);
+  EXPECT_EQ(f.out->Omega[0], static_cast<fsw_real>(200.2));
+}
+
 // Issue 21 (seed 9001): a recovered wheel's reference is the recovery
 // sample, at the recovery time.  Fail at 0.3 s (k_reject = 3), recover with
 // 200, 200.5, 201 at 0.4-0.6 s (n_recover = 3).  At 0.7 s the bound is

@@ -304,7 +304,9 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg);
 /* One control cycle.  `cmd` may be NULL (keep the current mode).  Always
  * writes `act` fully and `hlth` fully.  Returns the cycle status (also in
  * hlth->status): FSW_OK or a warning with valid commands; an error with the
- * safe output (FSW_E_BAD_INPUT: non-finite sensor values or an invalid mode
+ * safe output (FSW_E_BAD_INPUT: non-finite sensor values, an available
+ * wheel's speed beyond +-FSW_RW_OMEGA_MAX without the speed filter (with it,
+ * such a speed is an outlier of that wheel), or an invalid mode
  * request or set command (a flag not 0/1, a non-finite reference, a gain
  * not finite and > 0), or a stage's error such as an overflow of finite sensor values;
  * FSW_E_TIME: t_ns not after the previous cycle; FSW_E_NOT_INIT).  An error

@@ -44,7 +44,7 @@ typedef struct {
   int num_rw;                  /* [-]           wheels in H, 0..FSW_MAX_RW (0 = none)*/
   fsw_real gs_hat_B[FSW_MAX_RW][3]; /* [-]      (num_rw) spin axes, unit within
                                                 FSW_MRP_FB_UNIT_TOL                 */
-  fsw_real J_s[FSW_MAX_RW];    /* [kg*m^2]      (num_rw) wheel spin inertias, > 0   */
+  fsw_real J_s[FSW_MAX_RW];    /* [kg*m^2]      (num_rw) spin inertias, (0, 1e4]   */
 } FswMrpFbConfig;
 
 typedef struct {
@@ -77,7 +77,7 @@ typedef struct {
 
 /* FSW_OK; FSW_E_CONFIG (non-finite value, K or P <= 0, integral_limit < 0,
  * bad control_law_type, inertia not symmetric positive definite, num_rw < 0,
- * non-unit gs_hat_B, J_s <= 0); FSW_E_CAPACITY (num_rw > FSW_MAX_RW);
+ * non-unit gs_hat_B, J_s not in (0, FSW_RW_J_S_MAX]); FSW_E_CAPACITY (num_rw > FSW_MAX_RW);
  * FSW_E_NULL_ARG. */
 FswStatus fsw_mrp_fb_check(const FswMrpFbConfig *cfg);
 /* check; ready = 1; health cleared; reset. */

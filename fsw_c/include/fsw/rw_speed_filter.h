@@ -7,7 +7,8 @@
  * must cover together with the sensor noise.
  *   accept  |Omega_meas - Omega_good| <= bound_i (finite sample): Omega_good,
  *           t_good <- sample; the run of consecutive rejections restarts.
- *   reject  otherwise, or a NaN/Inf sample: the output holds Omega_good, the
+ *   reject  otherwise, or a NaN/Inf sample or one beyond +-FSW_RW_OMEGA_MAX
+ *           (1e4 rad/s, rw_common.h): the output holds Omega_good, the
  *           wheel's rejection counter rises, bit i of `rejected` is set.
  *           Because t_good stays put, the bound widens while rejecting.
  *   fail    after k_reject consecutive rejections the wheel is marked
@@ -16,7 +17,8 @@
  *           finite one (same bound, over their spacing); n_recover samples in
  *           a row that are mutually consistent bring the wheel back, anchored
  *           on the latest sample.  A NaN/Inf sample or an inconsistent one
- *           restarts the count (an inconsistent one counts as its first).
+ *           restarts the count (an inconsistent one counts as its first);
+ *           so does a sample beyond +-FSW_RW_OMEGA_MAX.
  * Two latched tests (library extension, issue 14; both off when 0):
  *   stale   n_stale > 0: a wheel whose finite sample equals its previous
  *           finite sample bit for bit n_stale times in a row is failed and
@@ -31,8 +33,10 @@
  *           u_valid = 0 restarts the window (the torque is not known).
  *   A latched wheel stays failed (output held, UNAVAILABLE) until reset:
  *   the outlier recovery rule does not apply to it.
- * The first finite sample after reset is accepted as it is (no reference).
- * Non-finite samples are outliers of one wheel, not bad input of the module.
+ * The first finite sample within +-FSW_RW_OMEGA_MAX after reset is accepted
+ * as it is (no reference).  Non-finite samples and samples beyond that bound
+ * are outliers of one wheel, not bad input of the module: every speed the
+ * filter outputs is within +-FSW_RW_OMEGA_MAX.
  * Out.avail = In.avail OR failed.  Units: SI.
  * Safe output (bad time, bad mask, not initialised): Omega = held good values
  * (0 if none, and 0 when not initialised), every wheel UNAVAILABLE. */
