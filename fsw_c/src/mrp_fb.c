@@ -67,7 +67,7 @@ FswStatus fsw_mrp_fb_check(const FswMrpFbConfig *cfg)
     }
     /* bounded like every wheel module's J_s (rw_common.h): with |Omega| <=
      * FSW_RW_OMEGA_MAX the wheel momentum J_s Omega stays finite */
-    if (!(cfg->J_s[i] > FSW_R(0.0) && cfg->J_s[i] <= FSW_RW_J_S_MAX)) { return FSW_E_CONFIG; }
+    if (!((cfg->J_s[i] > FSW_R(0.0)) && (cfg->J_s[i] <= FSW_RW_J_S_MAX))) { return FSW_E_CONFIG; }
   }
   return FSW_OK;
 }

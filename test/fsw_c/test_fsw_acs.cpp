@@ -633,12 +633,12 @@ static void hand_momentum(const FswAcsConfig& c, const FswAcsSensorMsg& m, uint6
   }
 }
 
-// Verifies: REQ-ACS-005
 // Issue 45 fuzzing: the momentum telemetry overflowed for a huge spin inertia
 // times a speed.  Speeds of available wheels are bounded by FSW_RW_OMEGA_MAX
 // (1e4 rad/s): beyond it the cycle refuses its input, or with the speed
 // filter that wheel's sample is an outlier (held, then the wheel fails);
 // h_w_B stays finite and equals the hand sum over the wheels in use.
+// Verifies: REQ-ACS-005
 TEST(FswAcsCycle, WheelSpeedBeyondTheRangeIsBadInputOrTheFiltersOutlier)
 {
   const fsw_real big = acsfix::R(1e30);
