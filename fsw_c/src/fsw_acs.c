@@ -1,6 +1,7 @@
 /* fsw_acs: the FSW application (one cycle per control period). */
 #include "fsw/fsw_acs.h"
 
+#include <float.h>
 #include <stddef.h>
 #include <string.h>
 
@@ -12,6 +13,7 @@
 #include "guid_sunsafe_internal.h"
 #include "mrp_fb_internal.h"
 #include "rw_map_internal.h"
+#include "rw_sat_internal.h"
 #include "fsw/rw_common.h"
 
 /* ---- stage names --------------------------------------------------------- */
@@ -630,19 +632,27 @@ static void r_copy(fsw_real *out, const fsw_real *in, int n)
   (void)memcpy(out, in, (size_t)n * sizeof *out);
 }
 
+/* The largest finite real: |x| <= ACS_REAL_MAX is isfinite(x). */
+#if FSW_USE_FLOAT
+#define ACS_REAL_MAX FLT_MAX
+#else
+#define ACS_REAL_MAX DBL_MAX
+#endif
+
 /* 1 if each of the n availability flags is FSW_AVAILABLE or
- * FSW_UNAVAILABLE and, when finite_too, each entry flagged available is
- * finite (one pass: the cycle rejects either fault alike). */
-static int avail_ok(const fsw_real *x, const uint8_t *avail, int n, int finite_too)
+ * FSW_UNAVAILABLE and, when values_too, each entry flagged available is
+ * within [-x_max, x_max] (not NaN; one pass: the cycle rejects either fault
+ * alike).  x_max = ACS_REAL_MAX asks for a finite entry. */
+static int avail_ok(const fsw_real *x, const uint8_t *avail, int n, int values_too, fsw_real x_max)
 {
   int i;
   for (i = 0; i < n; i++) {
     if (avail[i] != FSW_AVAILABLE) {
       if (avail[i] != FSW_UNAVAILABLE) { return 0; }
-    } else if ((finite_too != 0) && !isfinite(x[i])) {
+    } else if ((values_too != 0) && !(FSW_FABS(x[i]) <= x_max)) {
       return 0;
     } else {
-      /* available and finite, or finiteness not asked */
+      /* available and within x_max, or the values not asked */
     }
   }
   return 1;
@@ -757,7 +767,7 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   const fsw_real *u;
 
   fsw_v3_copy(w->map_in.Lr_B, Lr_B);
-  r_copy(w->map_in.Omega, w->Omega, n);
+  if (cfg->rw_map.mode == FSW_RW_MAP_POWER) { r_copy(w->map_in.Omega, w->Omega, n); } /* read in POWER only */
   u8_copy(w->map_in.avail, w->rw_avail, n);
   /* the wheels' flags and speeds are the checked or screened ones: the
    * mapping without fsw_rw_map_update's same checks of them */
@@ -778,9 +788,16 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   }
 #endif
 
-  r_copy(w->sat_in.u_s, u, n);
-  u8_copy(w->sat_in.avail, w->rw_avail, n);
-  s = fsw_rw_sat_update(&st->rw_sat, &cfg->rw_sat, &w->sat_in, &w->sat_out);
+  if (u == w->map_out.u_s) {
+    /* rw_map's torques are finite (it refuses a non-finite one, and its
+     * errors give 0) and the flags checked or screened: the saturation
+     * without fsw_rw_sat_update's checks of them */
+    s = fsw_rw_sat_limit(&st->rw_sat, &cfg->rw_sat, u, w->rw_avail, w->sat_out.u_s);
+  } else {
+    r_copy(w->sat_in.u_s, u, n);
+    u8_copy(w->sat_in.avail, w->rw_avail, n);
+    s = fsw_rw_sat_update(&st->rw_sat, &cfg->rw_sat, &w->sat_in, &w->sat_out);
+  }
   h->stage_status[FSW_ACS_STAGE_RW_SAT] = s;
   acc = combine(acc, s);
   r_copy(act->u_s, w->sat_out.u_s, n);
@@ -1261,15 +1278,14 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
       (sens->orbit_valid != 1u || !fsw_v3_is_finite(sens->r_N) || !fsw_v3_is_finite(sens->v_N))) {
     return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   if (req_mode == FSW_ACS_MODE_SUN_SAFE &&
-      !avail_ok(sens->css, sens->css_avail, cfg->css.num_css, 1)) {
+      !avail_ok(sens->css, sens->css_avail, cfg->css.num_css, 1, ACS_REAL_MAX)) {
     return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   /* a speed beyond +-FSW_RW_OMEGA_MAX is no speed (the wheel momentum
    * telemetry J_s Omega stays finite); with the speed filter, a non-finite
    * or out-of-range speed is one wheel's fault (it fails that wheel), not
    * bad input of the cycle */
   if (cfg->has_wheels &&
-      (!avail_ok(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw, 0) ||
-       (!cfg->use_speed_filter && !fsw_rw_avail_speed_ok(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw)))) {
+      !avail_ok(sens->Omega, sens->rw_avail, cfg->rw_map.num_rw, !cfg->use_speed_filter, FSW_RW_OMEGA_MAX)) {
     return reject(st, cfg, act, h, FSW_E_BAD_INPUT); }
   if ((req_act == FSW_ACS_ACT_THRUSTERS || req_policy == FSW_ACS_MOM_THRUSTERS) &&
       !fsw_v3_is_finite(sens->r_CoM_B)) {
