@@ -10,6 +10,7 @@
 // seeds signed-zero-* alternate them on wheel 0 (and repeat one sign).
 #include <cstring>
 
+#include "fsw/rw_common.h"
 #include "fsw/rw_speed_filter.h"
 #include "fuzz_input.h"
 
@@ -91,6 +92,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (s < 0) continue;
     FUZZ_REQUIRE(fuzz_finite(out.Omega, FSW_MAX_RW), "rw_speed_filter: non-finite speed under OK");
     FUZZ_REQUIRE(fuzz_nonzero_from(out.Omega, n, FSW_MAX_RW) < 0, "rw_speed_filter: speed beyond num_rw");
+    // issue 45: a sample beyond +-FSW_RW_OMEGA_MAX is an outlier, never output
+    for (int i = 0; i < n; i++)
+      FUZZ_REQUIRE(std::fabs(out.Omega[i]) <= FSW_RW_OMEGA_MAX, "rw_speed_filter: |Omega[%d]| = %.17g beyond the range", i,
+                   static_cast<double>(out.Omega[i]));
     for (int i = 0; i < FSW_MAX_RW; i++) {
       const int failed = i < 64 && ((out.failed >> i) & 1u);
       const uint8_t expect = (i < n) ? static_cast<uint8_t>(x.avail[i] | failed) : 0;
