@@ -14,7 +14,9 @@ Every driver test/proofs/eva/<name>.c is analysed twice:
              C library preconditions) is an alarm.
 A driver names the library sources it needs on a line
 `eva-sources: a.c b.c` (relative to fsw_c/src), and may add Eva options on
-a line `eva-options: ...`.  Each analysis is bounded
+a line `eva-options: ...` (both analyses) and on a line
+`eva-options-envelope: ...` or `eva-options-any: ...` (that analysis only).
+Each analysis is bounded
 in time.  The alarms (every property of Frama-C's report whose status is
 Unknown or Invalid) are compared with the justified ones of
 test/proofs/eva/alarms.txt, one a line:
@@ -111,10 +113,11 @@ def driver_includes(path):
     return driver_line(path, "eva-include") or []
 
 
-def driver_options(path):
+def driver_options(path, analysis):
     """Extra Eva options of a driver's 'eva-options:' line (e.g. -eva-min-loop-unroll 33 for a loop
-    Eva's automatic unrolling does not take because it returns from inside)."""
-    return driver_line(path, "eva-options") or []
+    Eva's automatic unrolling does not take because it returns from inside), then those of its
+    'eva-options-<analysis>:' line, for that analysis only."""
+    return (driver_line(path, "eva-options") or []) + (driver_line(path, "eva-options-" + analysis) or [])
 
 
 def driver_entries(path):
@@ -175,7 +178,7 @@ def run_one(args, root, work, name, analysis):
     # by a finiteness test)
     for h in (driver_includes(drv) if analysis == "envelope" else []):
         inc += " -include " + os.path.join(root, "test", "proofs", "wp", h)
-    cmd = [args.frama_c, "-cpp-extra-args=" + inc] + COMMON + driver_options(drv) + ANALYSES[analysis] + [drv] + srcs + \
+    cmd = [args.frama_c, "-cpp-extra-args=" + inc] + COMMON + driver_options(drv, analysis) + ANALYSES[analysis] + [drv] + srcs + \
           ["-report-csv", csv_path]
     t0 = time.monotonic()
     res = {"name": name, "analysis": analysis, "alarms": [], "entries": {}, "error": None}

@@ -9,11 +9,15 @@
 // inputs; stale, duplicate, damaged and foreign packets counted and answered
 // by the link status alone; sequence gaps counted as missed cycles; commands applied from the
 // next cycle; the watchdog entering link-safe after max_missed periods with
-// the safe output, and the next sensor packet recovering.
+// the safe output, and the next sensor packet recovering; the messages the
+// node hands its application equal the encoded ones bit for bit (the
+// decoders' contract of the Eva envelope analysis of the node).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -640,4 +644,90 @@ TEST(FswLinkNode, McdcTheSameCountWithAnotherTimeIsStaleNotARetransmission)
   EXPECT_EQ(node.n.resent, 1u);
   EXPECT_EQ(node.n.link.rx_stale, 2u);
   EXPECT_EQ(node.n.acs.cycles, 1u);
+}
+
+// The messages the node hands its application are the messages the sender
+// encoded, bit for bit: the contract by which the Eva envelope analysis of
+// the node takes the two decoders (test/proofs/eva/fsw_link_node.c), over
+// its domain: sensor packets with the configured counts (entries beyond
+// them 0), every flag 0 or 1, and command packets with every mode,
+// actuation and policy, the set flags 0 or 1; the reals +-1e6, +-1e-6,
+// both zeros, the smallest subnormal and normal numbers and pseudo-random
+// bit patterns of every finite value within 1e6.  The node decodes before
+// it judges a packet, so the cycle's own verdicts (refused inputs) do not
+// matter here.
+// Verifies: REQ-LINK-003
+TEST(FswLinkNode, TheApplicationGetsTheEncodedMessagesBitForBit)
+{
+  auto nodep = std::make_unique<Node>();
+  Node& node = *nodep;
+  const fsw_real special[] = {R(1e6), R(-1e6), R(1e-6), R(-1e-6), R(0.0), -R(0.0),
+                              std::numeric_limits<fsw_real>::denorm_min(), -std::numeric_limits<fsw_real>::min(),
+                              R(0.1)};
+  const size_t n_special = sizeof special / sizeof special[0];
+  uint64_t x = 0x9E3779B97F4A7C15ull;  // xorshift64 state
+  size_t next_special = 0;
+  auto bits = [&x]() {
+    x ^= x << 13;
+    x ^= x >> 7;
+    x ^= x << 17;
+    return x;
+  };
+  auto real = [&]() {
+    if (next_special < n_special) return special[next_special++];
+    for (;;) {  // a random finite bit pattern within the envelope
+      const uint64_t b = bits();
+      double d;
+      std::memcpy(&d, &b, sizeof d);
+      if (std::isfinite(d) && std::fabs(d) <= 1e6) return static_cast<fsw_real>(d);
+    }
+  };
+  auto flag = [&bits]() { return static_cast<uint8_t>(bits() & 1u); };
+  for (int k = 0; k < 200; ++k) {
+    FswAcsSensorMsg m;
+    std::memset(&m, 0, sizeof m);
+    m.t_ns = static_cast<uint64_t>(k + 1) * acsfix::kPeriodNs;
+    m.att_valid = flag();
+    m.mag_valid = flag();
+    m.orbit_valid = flag();
+    for (int i = 0; i < 3; ++i) {
+      m.sigma_BN[i] = real();
+      m.omega_BN_B[i] = real();
+      m.r_CoM_B[i] = real();
+      m.B_B[i] = real();
+      m.r_N[i] = real();
+      m.v_N[i] = real();
+    }
+    for (int i = 0; i < kRw; ++i) {
+      m.Omega[i] = real();
+      m.rw_avail[i] = flag();
+    }
+    for (int i = 0; i < kCss; ++i) {
+      m.css[i] = real();
+      m.css_avail[i] = flag();
+    }
+    for (int i = 0; i < FSW_MAX_THR; ++i) m.thr_avail[i] = flag();
+    node.feed(sensor_packet(m, static_cast<uint16_t>(k)));
+    ASSERT_EQ(std::memcmp(&node.n.sens, &m, sizeof m), 0) << "sensor packet " << k;
+
+    FswAcsCmdMsg c;
+    std::memset(&c, 0, sizeof c);
+    c.mode = k % 4;
+    c.actuation = (k / 4) % 2;
+    c.set_ref = flag();
+    c.set_gains = flag();
+    c.set_policy = flag();
+    c.policy = (k / 8) % 3;
+    for (int i = 0; i < 3; ++i) c.sigma_R0N[i] = real();
+    c.K = real();
+    c.P = real();
+    Bytes cb(FSW_LINK_MAX_PACKET);
+    size_t len = 0;
+    ASSERT_EQ(fsw_link_encode_cmd(&c, m.t_ns, static_cast<uint16_t>(k), cb.data(), cb.size(), &len, nullptr), FSW_OK);
+    cb.resize(len);
+    EXPECT_EQ(node.feed(cb), 1);
+    ASSERT_EQ(std::memcmp(&node.n.cmd, &c, sizeof c), 0) << "command packet " << k;
+    EXPECT_EQ(node.n.have_cmd, 1u);
+  }
+  EXPECT_EQ(node.n.link.rx_rejected + node.n.link.rx_crc, 0u);
 }
