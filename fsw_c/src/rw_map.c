@@ -12,6 +12,7 @@
 #include "fsw/rw_map.h"
 
 #include <stddef.h>
+#include <string.h>
 
 #include "fsw/fsw_linalg.h"
 #include "fsw/fsw_vec.h"
@@ -130,7 +131,7 @@ FswStatus fsw_rw_map_torques(FswRwMapState *st, const FswRwMapConfig *cfg,
 {
   fsw_real b[3], r[3];
   FswRwMapWork *w;
-  int n, nc, na, i, j, k;
+  int n, nc, na, i, j, k, refine;
   FswStatus s;
 
   fsw_rw_zero(out->u_s); /* safe output */
@@ -144,9 +145,7 @@ FswStatus fsw_rw_map_torques(FswRwMapState *st, const FswRwMapConfig *cfg,
   if (nc == 0) { return fsw_health_record_ok_i(&st->health); }
 
   if (cfg->mode == FSW_RW_MAP_MIN_NORM && w->mn_valid) {
-    for (i = 0; i < n && w->mn_avail[i] == in->avail[i]; i++) {
-    }
-    if (i < n) { w->mn_valid = 0; } /* another mask */
+    if (memcmp(w->mn_avail, in->avail, (size_t)n) != 0) { w->mn_valid = 0; } /* another mask */
   }
   if (cfg->mode == FSW_RW_MAP_MIN_NORM && w->mn_valid) {
     na = w->mn_na; /* A, idx, sy and k1 as formed for this mask */
@@ -170,10 +169,14 @@ FswStatus fsw_rw_map_torques(FswRwMapState *st, const FswRwMapConfig *cfg,
   if (s == FSW_E_SINGULAR) { return fsw_health_record(&st->health, FSW_W_SINGULAR); }
   if (s != FSW_OK) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
   for (j = 0; j < nc; j++) { r[j] = b[j] - fsw_vn_dot(w->A[j], w->x, na); }
-  if (fsw_minnorm_solve_factored(w->dx, &w->k1, FSW_CM3N(w->A), r) == FSW_OK) {
-    for (k = 0; k < na; k++) { w->x[k] += w->dx[k]; } }
+  /* the correction, when its solve succeeds, added in the output pass */
+  refine = 0;
+  if (fsw_minnorm_solve_factored(w->dx, &w->k1, FSW_CM3N(w->A), r) == FSW_OK) { refine = 1; }
   for (k = 0; k < na; k++) {
-    const fsw_real u = w->x[k] * w->sy[k];
+    fsw_real xk = w->x[k];
+    fsw_real u;
+    if (refine != 0) { xk += w->dx[k]; }
+    u = xk * w->sy[k];
     if (!isfinite(u)) { /* overflow of a finite request: bad input, u = 0 */
       fsw_rw_zero(out->u_s);
       return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
