@@ -720,12 +720,10 @@ static FswStatus run_guidance(FswAcsState *st, const FswAcsConfig *cfg,
   FswAcsWork *w = &st->work;
   FswStatus acc = FSW_OK, s;
   if (st->mode == FSW_ACS_MODE_SUN_SAFE) {
-    const int nc = cfg->css.num_css;
-    r_copy(w->css_in.reading, sens->css, nc);
-    u8_copy(w->css_in.avail, sens->css_avail, nc);
     /* the readings and flags passed the cycle's checks (req_mode was
-     * SUN_SAFE): the estimate without fsw_css_sun_update's same checks */
-    s = fsw_css_sun_estimate(&st->css, &cfg->css, &w->css_in, &w->css_out);
+     * SUN_SAFE): the estimate without fsw_css_sun_update's same checks,
+     * reading them in place */
+    s = fsw_css_sun_estimate(&st->css, &cfg->css, sens->css, sens->css_avail, &w->css_out);
     h->stage_status[FSW_ACS_STAGE_CSS] = s;
     acc = combine(acc, s);
     if (w->css_out.sun_valid) {
@@ -782,12 +780,10 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
   FswStatus acc = FSW_OK, s;
   const fsw_real *u;
 
-  fsw_v3_copy(w->map_in.Lr_B, Lr_B);
-  if (cfg->rw_map.mode == FSW_RW_MAP_POWER) { r_copy(w->map_in.Omega, Omega, n); } /* read in POWER only */
-  u8_copy(w->map_in.avail, avail, n);
   /* the wheels' flags and speeds are the checked or screened ones: the
-   * mapping without fsw_rw_map_update's same checks of them */
-  s = fsw_rw_map_torques(&st->rw_map, &cfg->rw_map, &w->map_in, &w->map_out);
+   * mapping without fsw_rw_map_update's same checks of them, reading its
+   * input in place */
+  s = fsw_rw_map_torques(&st->rw_map, &cfg->rw_map, Lr_B, Omega, avail, &w->map_out);
   h->stage_status[FSW_ACS_STAGE_RW_MAP] = s;
   acc = combine(acc, s);
   u = w->map_out.u_s;
