@@ -1199,16 +1199,14 @@ static FswStatus run_pointing(FswAcsState *st, const FswAcsConfig *cfg, const Fs
   /* 3. Guidance and attitude error. */
   acc = combine(acc, run_guidance(st, cfg, sens, h, &w->fb_in.guid));
 
-  /* 4. Control law (run_guidance wrote its input's guidance). */
-  w->fb_in.t_ns = sens->t_ns;
-  if (cfg->mrp_fb.num_rw > 0) {
-    r_copy(w->fb_in.Omega, wheel_speeds(st, cfg, sens), cfg->mrp_fb.num_rw);
-    u8_copy(w->fb_in.rw_avail, wheel_flags(st, cfg, sens), cfg->mrp_fb.num_rw);
-  }
-  /* the guidance is a stage's output (finite, or its safe output 0) and
-   * the wheels' flags and speeds are the checked or screened ones: the law
-   * without fsw_mrp_fb_update's same checks */
-  s = fsw_mrp_fb_torque(&st->mrp_fb, &st->mrp_cfg, &w->fb_in, &w->fb_out);
+  /* 4. Control law.  The guidance is a stage's output (finite, or its
+   * safe output 0; run_guidance wrote it into w->fb_in.guid) and the
+   * wheels' flags and speeds are the checked or screened ones: the law
+   * without fsw_mrp_fb_update's same checks, reading its input in place
+   * (the wheels' arrays are read for mrp_fb's num_rw wheels, none without
+   * wheels) */
+  s = fsw_mrp_fb_torque(&st->mrp_fb, &st->mrp_cfg, &w->fb_in.guid, sens->t_ns, wheel_speeds(st, cfg, sens),
+                        wheel_flags(st, cfg, sens), &w->fb_out);
   h->stage_status[FSW_ACS_STAGE_CONTROL] = s;
   acc = combine(acc, s);
   Lr = w->fb_out.torque_B;
