@@ -121,11 +121,12 @@ FswStatus fsw_css_sun_update(FswCssSunState *st, const FswCssSunConfig *cfg,
   }
   if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   if (!in_ok(cfg, in)) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
-  return fsw_css_sun_estimate(st, cfg, in, out);
+  return fsw_css_sun_estimate(st, cfg, in->reading, in->avail, out);
 }
 
 FswStatus fsw_css_sun_estimate(FswCssSunState *st, const FswCssSunConfig *cfg,
-                               const FswCssSunIn *in, FswCssSunOut *out)
+                               const fsw_real reading[FSW_MAX_CSS], const uint8_t avail[FSW_MAX_CSS],
+                               FswCssSunOut *out)
 {
   fsw_real y[FSW_MAX_CSS];     /* [-] normalised readings (cosines) */
   uint8_t lit[FSW_MAX_CSS];    /* [-] 1 if lit */
@@ -146,8 +147,8 @@ FswStatus fsw_css_sun_estimate(FswCssSunState *st, const FswCssSunConfig *cfg,
   for (i = 0; i < cfg->num_css; i++) {
     lit[i] = 0u;
     y[i] = FSW_R(0.0);
-    if (in->avail[i] != FSW_AVAILABLE) { continue; }
-    y[i] = in->reading[i] / cfg->scale[i];
+    if (avail[i] != FSW_AVAILABLE) { continue; }
+    y[i] = reading[i] / cfg->scale[i];
     if (!isfinite(y[i])) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); } /* overflow */
     if (!(y[i] > cfg->lit_threshold)) { continue; }
     lit[i] = 1u;

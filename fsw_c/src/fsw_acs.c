@@ -587,14 +587,14 @@ void fsw_acs_reset(FswAcsState *st, const FswAcsConfig *cfg)
  * those of a 0 (0.0 is all bits 0 in IEEE 754), the same as field by field. */
 static void safe_output(FswAcsActuatorMsg *act) { (void)memset(act, 0, sizeof *act); }
 
-/* The safe output but for Lr_B and the first n wheel torques u_s[0..n),
- * which a pointing cycle with the wheels active writes in every case
- * (run_pointing and run_wheels): every other byte of the message is
- * written once, here, before the stages run. */
-static void safe_output_but_wheel_torques(FswAcsActuatorMsg *act, int n)
+/* The safe output but for Lr_B and the wheel torques u_s (every entry,
+ * 0 beyond num_rw), which a pointing cycle with the wheels active writes in
+ * every case (run_pointing and run_wheels): every other byte of the
+ * message is written once, here, before the stages run. */
+static void safe_output_but_wheel_torques(FswAcsActuatorMsg *act)
 {
   unsigned char *p = (unsigned char *)act;
-  const size_t from = (size_t)offsetof(FswAcsActuatorMsg, u_s) + ((size_t)n * sizeof act->u_s[0]);
+  const size_t from = (size_t)offsetof(FswAcsActuatorMsg, u_s) + sizeof act->u_s;
   (void)memset(&p[from], 0, sizeof *act - from);
 }
 
@@ -658,6 +658,20 @@ static int avail_ok(const fsw_real *x, const uint8_t *avail, int n, int values_t
   return 1;
 }
 
+/* The wheel speeds and availability flags every stage uses: the speed
+ * filter's screened ones, else the sensors' own (checked before any stage
+ * runs).  Read in place, n = rw_map.num_rw entries. */
+static const fsw_real *wheel_speeds(const FswAcsState *st, const FswAcsConfig *cfg,
+                                    const FswAcsSensorMsg *sens)
+{
+  return (cfg->use_speed_filter != 0) ? st->work.filt_out.Omega : sens->Omega;
+}
+
+static const uint8_t *wheel_flags(const FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSensorMsg *sens)
+{
+  return (cfg->use_speed_filter != 0) ? st->work.filt_out.avail : sens->rw_avail;
+}
+
 /* First error wins; otherwise the first warning; otherwise OK. */
 static FswStatus combine(FswStatus acc, FswStatus s)
 {
@@ -706,12 +720,10 @@ static FswStatus run_guidance(FswAcsState *st, const FswAcsConfig *cfg,
   FswAcsWork *w = &st->work;
   FswStatus acc = FSW_OK, s;
   if (st->mode == FSW_ACS_MODE_SUN_SAFE) {
-    const int nc = cfg->css.num_css;
-    r_copy(w->css_in.reading, sens->css, nc);
-    u8_copy(w->css_in.avail, sens->css_avail, nc);
     /* the readings and flags passed the cycle's checks (req_mode was
-     * SUN_SAFE): the estimate without fsw_css_sun_update's same checks */
-    s = fsw_css_sun_estimate(&st->css, &cfg->css, &w->css_in, &w->css_out);
+     * SUN_SAFE): the estimate without fsw_css_sun_update's same checks,
+     * reading them in place */
+    s = fsw_css_sun_estimate(&st->css, &cfg->css, sens->css, sens->css_avail, &w->css_out);
     h->stage_status[FSW_ACS_STAGE_CSS] = s;
     acc = combine(acc, s);
     if (w->css_out.sun_valid) {
@@ -763,15 +775,15 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
 {
   FswAcsWork *w = &st->work;
   const int n = cfg->rw_map.num_rw;
+  const fsw_real *const Omega = wheel_speeds(st, cfg, sens);
+  const uint8_t *const avail = wheel_flags(st, cfg, sens);
   FswStatus acc = FSW_OK, s;
   const fsw_real *u;
 
-  fsw_v3_copy(w->map_in.Lr_B, Lr_B);
-  if (cfg->rw_map.mode == FSW_RW_MAP_POWER) { r_copy(w->map_in.Omega, w->Omega, n); } /* read in POWER only */
-  u8_copy(w->map_in.avail, w->rw_avail, n);
   /* the wheels' flags and speeds are the checked or screened ones: the
-   * mapping without fsw_rw_map_update's same checks of them */
-  s = fsw_rw_map_torques(&st->rw_map, &cfg->rw_map, &w->map_in, &w->map_out);
+   * mapping without fsw_rw_map_update's same checks of them, reading its
+   * input in place */
+  s = fsw_rw_map_torques(&st->rw_map, &cfg->rw_map, Lr_B, Omega, avail, &w->map_out);
   h->stage_status[FSW_ACS_STAGE_RW_MAP] = s;
   acc = combine(acc, s);
   u = w->map_out.u_s;
@@ -779,8 +791,8 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
 #if FSW_CFG_RW_NULL
   if (cfg->use_null) {
     r_copy(w->null_in.u_s, u, n);
-    r_copy(w->null_in.Omega, w->Omega, n);
-    u8_copy(w->null_in.avail, w->rw_avail, n);
+    r_copy(w->null_in.Omega, Omega, n);
+    u8_copy(w->null_in.avail, avail, n);
     s = fsw_rw_null_update(&st->rw_null, &cfg->rw_null, &w->null_in, &w->null_out);
     h->stage_status[FSW_ACS_STAGE_RW_NULL] = s;
     acc = combine(acc, s);
@@ -792,30 +804,29 @@ static FswStatus run_wheels(FswAcsState *st, const FswAcsConfig *cfg, const FswA
     /* rw_map's torques are finite (it refuses a non-finite one, and its
      * errors give 0) and the flags checked or screened: the saturation
      * without fsw_rw_sat_update's checks of them */
-    s = fsw_rw_sat_limit(&st->rw_sat, &cfg->rw_sat, u, w->rw_avail, w->sat_out.u_s);
+    s = fsw_rw_sat_limit(&st->rw_sat, &cfg->rw_sat, u, avail, act->u_s);
   } else {
     r_copy(w->sat_in.u_s, u, n);
-    u8_copy(w->sat_in.avail, w->rw_avail, n);
+    u8_copy(w->sat_in.avail, avail, n);
     s = fsw_rw_sat_update(&st->rw_sat, &cfg->rw_sat, &w->sat_in, &w->sat_out);
+    r_copy(act->u_s, w->sat_out.u_s, FSW_MAX_RW);
   }
+  /* either way every entry of act->u_s: the torques, 0 beyond num_rw */
   h->stage_status[FSW_ACS_STAGE_RW_SAT] = s;
   acc = combine(acc, s);
-  r_copy(act->u_s, w->sat_out.u_s, n);
 
 #if FSW_CFG_RW_VOLT
   if (cfg->use_volt) {
-    r_copy(w->volt_in.u_s, w->sat_out.u_s, n);
-    r_copy(w->volt_in.Omega, w->Omega, n);
+    r_copy(w->volt_in.u_s, act->u_s, n);
+    r_copy(w->volt_in.Omega, Omega, n);
     w->volt_in.has_Omega = 1;
-    u8_copy(w->volt_in.avail, w->rw_avail, n);
+    u8_copy(w->volt_in.avail, avail, n);
     w->volt_in.t_ns = sens->t_ns;
     s = fsw_rw_volt_update(&st->rw_volt, &cfg->rw_volt, &w->volt_in, &w->volt_out);
     h->stage_status[FSW_ACS_STAGE_RW_VOLT] = s;
     acc = combine(acc, s);
     r_copy(act->V, w->volt_out.V, n);
   }
-#else
-  (void)sens; /* its time stamp is rw_volt's */
 #endif
   act->wheels_active = 1u;
   return acc;
@@ -931,12 +942,14 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
 {
   FswAcsWork *w = &st->work;
   const int n = cfg->rw_map.num_rw;
+  const fsw_real *const Omega = wheel_speeds(st, cfg, sens);
+  const uint8_t *const avail = wheel_flags(st, cfg, sens);
   FswStatus acc = FSW_OK, s;
   fsw_v3_copy(Lw_B, Lr_B);
 #if FSW_CFG_RW_BIAS
   if (cfg->use_bias) {
-    r_copy(w->bias_in.Omega, w->Omega, n);
-    u8_copy(w->bias_in.avail, w->rw_avail, n);
+    r_copy(w->bias_in.Omega, Omega, n);
+    u8_copy(w->bias_in.avail, avail, n);
     s = fsw_rw_bias_update(&st->rw_bias, &cfg->rw_bias, &w->bias_in, &w->bias_out);
     h->stage_status[FSW_ACS_STAGE_RW_BIAS] = s;
     acc = combine(acc, s);
@@ -955,8 +968,8 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
      * counts an impulse the thrusters did not give. */
     const int timed = pulser_has_period(st, cfg);
     w->mom_in.t_ns = sens->t_ns;
-    r_copy(w->mom_in.Omega, w->Omega, n);
-    u8_copy(w->mom_in.avail, w->rw_avail, n);
+    r_copy(w->mom_in.Omega, Omega, n);
+    u8_copy(w->mom_in.avail, avail, n);
     r_copy(w->mom_in.t_on_prev, w->t_on_last, FSW_MAX_THR);
     w->mom_in.enable = timed ? 1u : 0u;
     w->mom_in.force_dump = 0u;
@@ -983,8 +996,8 @@ static FswStatus run_momentum(FswAcsState *st, const FswAcsConfig *cfg, const Fs
 #if FSW_CFG_MTQ_DESAT
     act->mtq_active = 1u; /* rods off unless a field sample lets them act */
     if (sens->mag_valid) {
-      r_copy(w->desat_in.Omega, w->Omega, n);
-      u8_copy(w->desat_in.avail, w->rw_avail, n);
+      r_copy(w->desat_in.Omega, Omega, n);
+      u8_copy(w->desat_in.avail, avail, n);
       fsw_v3_copy(w->desat_in.B_B, sens->B_B);
       w->desat_in.B_valid = 1u;
       s = fsw_mtq_desat_update(&st->mtq_desat, &cfg->mtq_desat, &w->desat_in, &w->desat_out);
@@ -1083,7 +1096,6 @@ static void save_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
   if (cfg->use_thr_mom) { w->saved.thr_mom = st->thr_mom; }
   if (cfg->use_bias) {
     for (i = 0; i < FSW_MAX_RW; i++) { w->saved.bias_in_band[i] = st->rw_bias.in_band[i]; } }
-  r_copy(w->saved.t_on_last, w->t_on_last, thr_count(cfg));
   w->saved.mrp_fb = st->mrp_fb;
   if (cfg->use_lpf) { w->saved.lpf = st->lpf; }
   if (cfg->has_wheels && cfg->use_volt) { w->saved.rw_volt = st->rw_volt; }
@@ -1091,6 +1103,7 @@ static void save_dynamic(FswAcsState *st, const FswAcsConfig *cfg)
     for (i = 0; i < FSW_MAX_RW; i++) { w->saved.null_avail[i] = st->rw_null.proj.avail[i]; } }
   if (cfg->has_wheels && cfg->use_speed_filter) { w->saved.speed_filter = st->speed_filter; }
   if (cfg->has_thrusters) {
+    r_copy(w->saved.t_on_last, w->t_on_last, thr_count(cfg));
     w->saved.thr_ang_err = st->thr_map.ang_err;
     w->saved.thr_nnls_iter = st->thr_map.nnls_iter;
     if (cfg->pulser == FSW_ACS_PULSE_REMAINDER) {
@@ -1186,16 +1199,14 @@ static FswStatus run_pointing(FswAcsState *st, const FswAcsConfig *cfg, const Fs
   /* 3. Guidance and attitude error. */
   acc = combine(acc, run_guidance(st, cfg, sens, h, &w->fb_in.guid));
 
-  /* 4. Control law (run_guidance wrote its input's guidance). */
-  w->fb_in.t_ns = sens->t_ns;
-  if (cfg->mrp_fb.num_rw > 0) {
-    r_copy(w->fb_in.Omega, w->Omega, cfg->mrp_fb.num_rw);
-    u8_copy(w->fb_in.rw_avail, w->rw_avail, cfg->mrp_fb.num_rw);
-  }
-  /* the guidance is a stage's output (finite, or its safe output 0) and
-   * the wheels' flags and speeds are the checked or screened ones: the law
-   * without fsw_mrp_fb_update's same checks */
-  s = fsw_mrp_fb_torque(&st->mrp_fb, &st->mrp_cfg, &w->fb_in, &w->fb_out);
+  /* 4. Control law.  The guidance is a stage's output (finite, or its
+   * safe output 0; run_guidance wrote it into w->fb_in.guid) and the
+   * wheels' flags and speeds are the checked or screened ones: the law
+   * without fsw_mrp_fb_update's same checks, reading its input in place
+   * (the wheels' arrays are read for mrp_fb's num_rw wheels, none without
+   * wheels) */
+  s = fsw_mrp_fb_torque(&st->mrp_fb, &st->mrp_cfg, &w->fb_in.guid, sens->t_ns, wheel_speeds(st, cfg, sens),
+                        wheel_flags(st, cfg, sens), &w->fb_out);
   h->stage_status[FSW_ACS_STAGE_CONTROL] = s;
   acc = combine(acc, s);
   Lr = w->fb_out.torque_B;
@@ -1311,7 +1322,7 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
    * what this cycle's stages write in every case (an error cycle ends with
    * the whole safe output again). */
   if ((st->mode != FSW_ACS_MODE_DETUMBLE) && (st->actuation == FSW_ACS_ACT_WHEELS)) {
-    safe_output_but_wheel_torques(act, cfg->rw_map.num_rw);
+    safe_output_but_wheel_torques(act);
   } else {
     safe_output(act);
   }
@@ -1330,19 +1341,16 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
       w->filt_in.u_valid = u_known;
       /* OK: its inputs were validated above */
       acc = combine(acc, fsw_rw_speed_filter_update(&st->speed_filter, &cfg->speed_filter, &w->filt_in, &w->filt_out));
-      r_copy(w->Omega, w->filt_out.Omega, n);
-      u8_copy(w->rw_avail, w->filt_out.avail, n);
 #else
       (void)u_known; /* not reached: fsw_acs_check rejects the stage */
+      (void)n;
 #endif
-    } else {
-      r_copy(w->Omega, sens->Omega, n);
-      u8_copy(w->rw_avail, sens->rw_avail, n);
-    }
+    } /* else: the sensors' speeds and flags, read in place (wheel_speeds) */
   }
 
   if (cfg->has_wheels) /* telemetry: mrp_fb's wheel set, available wheels */ {
-    fsw_rw_momentum(h->h_w_B, cfg->mrp_fb.gs_hat_B, cfg->mrp_fb.J_s, w->Omega, w->rw_avail, cfg->mrp_fb.num_rw); }
+    fsw_rw_momentum(h->h_w_B, cfg->mrp_fb.gs_hat_B, cfg->mrp_fb.J_s, wheel_speeds(st, cfg, sens),
+                    wheel_flags(st, cfg, sens), cfg->mrp_fb.num_rw); }
   if (st->mode == FSW_ACS_MODE_DETUMBLE) {
     /* 3-5 in DETUMBLE: B-dot alone. */
     fsw_v3_zero(guid.sigma_BR);
@@ -1376,8 +1384,10 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   }
   if (act->thrusters_active) {
     r_copy(w->t_on_last, act->t_on, thr_count(cfg));
-  } else {
+  } else if (cfg->has_thrusters != 0) {
     fsw_vn_zero(w->t_on_last, thr_count(cfg));
+  } else {
+    /* no thrusters: t_on_last has no entries */
   }
   /* DETUMBLE's exit: the next cycle flies the configured pointing mode */
   if (st->mode == FSW_ACS_MODE_DETUMBLE && h->detumbled && cfg->detumble_exit_mode >= 0) {

@@ -211,20 +211,31 @@ FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFa
   fsw_real bs[3] = {FSW_R(0.0), FSW_R(0.0), FSW_R(0.0)}; /* entries m.. unused */
   fsw_real r[3], dz[3], z[3];
   fsw_real s, t, mb;
-  int i, j, eb, m, n;
+  int i, j, eb, m, n, nz, fin;
 
   FSW_ASSERT(x != NULL && f != NULL && A != NULL && b != NULL);
   if (x == NULL || f == NULL || A == NULL || b == NULL) { return FSW_E_NULL_ARG; }
   m = f->m;
   n = f->n;
-  fsw_vn_zero(x, n < 0 ? 0 : (n > FSW_MAX_EFF ? FSW_MAX_EFF : n)); /* safe output */
-  if (f->status == FSW_E_CAPACITY || f->status == FSW_E_NULL_ARG) { return f->status; }
+  /* the safe output x = 0 on each early return below (a solve that goes on
+   * writes every x[j], j < n, in k1_apply) */
+  nz = (n < 0) ? 0 : ((n > FSW_MAX_EFF) ? FSW_MAX_EFF : n);
+  if (f->status == FSW_E_CAPACITY || f->status == FSW_E_NULL_ARG) {
+    fsw_vn_zero(x, nz);
+    return f->status;
+  }
   /* max |b_i| is finite exactly when every b_i is (fsw_vn_max_abs gives NaN
    * for a NaN entry, infinity for an infinite one): one pass for the
    * finiteness test and the scale below */
   mb = fsw_vn_max_abs(b, m);
-  if (!isfinite(mb)) { return FSW_E_BAD_INPUT; }
-  if (f->status != FSW_OK) { return f->status; }
+  if (!isfinite(mb)) {
+    fsw_vn_zero(x, nz);
+    return FSW_E_BAD_INPUT;
+  }
+  if (f->status != FSW_OK) {
+    fsw_vn_zero(x, nz);
+    return f->status;
+  }
 
   /* b is scaled by s and by a power of two t = 2^-eb that brings max |b|
    * into [1/2, 1): the solve cannot overflow, and x = (solution) 2^eb at the
@@ -256,13 +267,20 @@ FswStatus fsw_minnorm_solve_factored(fsw_real x[FSW_MAX_EFF], const FswMinnormFa
    * x * 2^eb is the exact product rounded once, as ldexp(x, eb) is: the
    * same bits for every x, with one ldexp per call instead of one per
    * entry. */
+  fin = 1; /* 0 when an entry is not finite: tested in the same pass */
   if (eb < K1_MAX_EXP) {
     const fsw_real u = (fsw_pow2i_normal(eb) != 0) ? fsw_pow2i(eb) : FSW_LDEXP(FSW_R(1.0), eb);
-    for (j = 0; j < n; j++) { x[j] *= u; }
+    for (j = 0; j < n; j++) {
+      x[j] *= u;
+      if (!isfinite(x[j])) { fin = 0; }
+    }
   } else {
-    for (j = 0; j < n; j++) { x[j] = FSW_LDEXP(x[j], eb); }
+    for (j = 0; j < n; j++) {
+      x[j] = FSW_LDEXP(x[j], eb);
+      if (!isfinite(x[j])) { fin = 0; }
+    }
   }
-  if (!fsw_vni_is_finite(x, n)) {
+  if (fin == 0) {
     fsw_vn_zero(x, n);
     return FSW_E_BAD_INPUT;
   }

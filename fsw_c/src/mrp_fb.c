@@ -125,13 +125,14 @@ FswStatus fsw_mrp_fb_update(FswMrpFbState *st, const FswMrpFbConfig *cfg, const 
   if (!guid_is_finite(&in->guid) || !wheels_ok(cfg, in)) {
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT);
   }
-  return fsw_mrp_fb_torque(st, cfg, in, out);
+  return fsw_mrp_fb_torque(st, cfg, &in->guid, in->t_ns, in->Omega, in->rw_avail, out);
 }
 
-FswStatus fsw_mrp_fb_torque(FswMrpFbState *st, const FswMrpFbConfig *cfg, const FswMrpFbIn *in,
-                            FswMrpFbOut *out)
+FswStatus fsw_mrp_fb_torque(FswMrpFbState *st, const FswMrpFbConfig *cfg, const FswAttGuid *guid,
+                            uint64_t t_ns, const fsw_real Omega[FSW_MAX_RW],
+                            const uint8_t rw_avail[FSW_MAX_RW], FswMrpFbOut *out)
 {
-  const FswAttGuid *g = &in->guid;
+  const FswAttGuid *g = guid;
   fsw_real dt = FSW_R(0.0);  /* [s] */
   fsw_real int_sigma[3];     /* [N*m*s] candidate integral (committed at the end) */
   fsw_real omega_BN_B[3];    /* [rad/s] omega = omega_BR + omega_RN */
@@ -150,7 +151,7 @@ FswStatus fsw_mrp_fb_torque(FswMrpFbState *st, const FswMrpFbConfig *cfg, const 
   write_safe(out);
   if (!st->ready) { return fsw_health_record(&st->health, FSW_E_NOT_INIT); }
   {
-    const FswStatus s = fsw_clock_dt(&st->clock, in->t_ns, &dt); /* FSW_OK or FSW_E_TIME */
+    const FswStatus s = fsw_clock_dt(&st->clock, t_ns, &dt); /* FSW_OK or FSW_E_TIME */
     if (s != FSW_OK) { return fsw_health_record(&st->health, s); }
   }
 
@@ -175,8 +176,8 @@ FswStatus fsw_mrp_fb_torque(FswMrpFbState *st, const FswMrpFbConfig *cfg, const 
   /* 3. H = [I] omega + sum over available wheels of J_s (gs . omega + Omega) gs */
   fsw_m33_mult_v3(h_B, cfg->I_B, omega_BN_B);
   for (i = 0; i < cfg->num_rw; i++) {
-    if (in->rw_avail[i] == FSW_AVAILABLE) {
-      const fsw_real h_s = cfg->J_s[i] * (fsw_v3_dot(omega_BN_B, cfg->gs_hat_B[i]) + in->Omega[i]);
+    if (rw_avail[i] == FSW_AVAILABLE) {
+      const fsw_real h_s = cfg->J_s[i] * (fsw_v3_dot(omega_BN_B, cfg->gs_hat_B[i]) + Omega[i]);
       fsw_v3_scale(tmp, h_s, cfg->gs_hat_B[i]);
       fsw_v3_add(h_B, h_B, tmp);
     }
@@ -213,6 +214,6 @@ FswStatus fsw_mrp_fb_torque(FswMrpFbState *st, const FswMrpFbConfig *cfg, const 
   fsw_v3_scale(out->torque_B, FSW_R(-1.0), sum_B);
   fsw_v3_scale(out->int_torque_B, FSW_R(-1.0), P_Ki_z);
   fsw_v3_copy(st->int_sigma, int_sigma);
-  fsw_clock_commit(&st->clock, in->t_ns);
+  fsw_clock_commit(&st->clock, t_ns);
   return fsw_health_record_ok_i(&st->health);
 }

@@ -11,15 +11,18 @@
 extern "C" {
 #endif
 
-/* fsw_mrp_fb_update without its argument and input checks: the same
- * output, status, state and health record for non-NULL arguments and an
- * input that passes those checks (every guidance component finite; each
- * of the num_rw flags FSW_AVAILABLE or FSW_UNAVAILABLE, the speed of every
- * available wheel finite); anything else is the caller's error.  A state
- * that is not ready gives FSW_E_NOT_INIT, and a time stamp that does not
- * advance FSW_E_TIME, as fsw_mrp_fb_update does. */
-FswStatus fsw_mrp_fb_torque(FswMrpFbState *st, const FswMrpFbConfig *cfg, const FswMrpFbIn *in,
-                            FswMrpFbOut *out);
+/* fsw_mrp_fb_update without its argument and input checks, the input's
+ * members (FswMrpFbIn's guid, t_ns, Omega and rw_avail) read in place from
+ * the caller's objects: the same output, status, state and health record
+ * for non-NULL arguments and an input that passes those checks (every
+ * guidance component finite; each of the num_rw flags FSW_AVAILABLE or
+ * FSW_UNAVAILABLE, the speed of every available wheel finite); anything
+ * else is the caller's error.  A state that is not ready gives
+ * FSW_E_NOT_INIT, and a time stamp that does not advance FSW_E_TIME, as
+ * fsw_mrp_fb_update does. */
+FswStatus fsw_mrp_fb_torque(FswMrpFbState *st, const FswMrpFbConfig *cfg, const FswAttGuid *guid,
+                            uint64_t t_ns, const fsw_real Omega[FSW_MAX_RW],
+                            const uint8_t rw_avail[FSW_MAX_RW], FswMrpFbOut *out);
 
 #ifdef __cplusplus
 }

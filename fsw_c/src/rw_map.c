@@ -12,6 +12,7 @@
 #include "fsw/rw_map.h"
 
 #include <stddef.h>
+#include <string.h>
 
 #include "fsw/fsw_linalg.h"
 #include "fsw/fsw_vec.h"
@@ -74,17 +75,18 @@ void fsw_rw_map_reset(FswRwMapState *st)
  * the count na, and the geometric verdict: FSW_W_SINGULAR when fewer than
  * nc wheels are available or no control axis is reachable (the floor
  * below), else FSW_OK with K1's factor of A in w->k1. */
-static FswStatus form_map(FswRwMapWork *w, const FswRwMapConfig *cfg, const FswRwMapIn *in, int *na_out)
+static FswStatus form_map(FswRwMapWork *w, const FswRwMapConfig *cfg, const fsw_real *Omega, const uint8_t *avail,
+                          int *na_out)
 {
   fsw_real d, d_max = FSW_R(0.0);
   const int n = cfg->num_rw, nc = cfg->num_axes;
   int na = 0, i, j, k;
   for (i = 0; i < n; i++) {
-    if (in->avail[i] != FSW_AVAILABLE) { continue; }
+    if (avail[i] != FSW_AVAILABLE) { continue; }
     w->idx[na] = i;
     /* y = 1/W, W = Omega^2 + eps_P; Omega^2 overflowing gives y = 0 */
     w->sy[na] = (cfg->mode == FSW_RW_MAP_POWER)
-                    ? FSW_SQRT(FSW_R(1.0) / (in->Omega[i] * in->Omega[i] + cfg->eps_P))
+                    ? FSW_SQRT(FSW_R(1.0) / (Omega[i] * Omega[i] + cfg->eps_P))
                     : FSW_R(1.0);
     na++;
   }
@@ -122,15 +124,16 @@ FswStatus fsw_rw_map_update(FswRwMapState *st, const FswRwMapConfig *cfg,
   if (!fsw_v3_is_finite(in->Lr_B) || !fsw_rw_avail_valid(in->avail, n) ||
       (cfg->mode == FSW_RW_MAP_POWER && !fsw_rw_avail_finite(in->Omega, in->avail, n))) {
     return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
-  return fsw_rw_map_torques(st, cfg, in, out);
+  return fsw_rw_map_torques(st, cfg, in->Lr_B, in->Omega, in->avail, out);
 }
 
-FswStatus fsw_rw_map_torques(FswRwMapState *st, const FswRwMapConfig *cfg,
-                             const FswRwMapIn *in, FswRwMapOut *out)
+FswStatus fsw_rw_map_torques(FswRwMapState *st, const FswRwMapConfig *cfg, const fsw_real Lr_B[3],
+                             const fsw_real Omega[FSW_MAX_RW], const uint8_t avail[FSW_MAX_RW],
+                             FswRwMapOut *out)
 {
   fsw_real b[3], r[3];
   FswRwMapWork *w;
-  int n, nc, na, i, j, k;
+  int n, nc, na, i, j, k, refine;
   FswStatus s;
 
   fsw_rw_zero(out->u_s); /* safe output */
@@ -140,21 +143,19 @@ FswStatus fsw_rw_map_torques(FswRwMapState *st, const FswRwMapConfig *cfg,
   nc = cfg->num_axes;
   /* Lr is checked here too: the application's Lr is the control law's
    * torque less a momentum dump's, a difference that can overflow */
-  if (!fsw_v3_is_finite(in->Lr_B)) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
+  if (!fsw_v3_is_finite(Lr_B)) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
   if (nc == 0) { return fsw_health_record_ok_i(&st->health); }
 
   if (cfg->mode == FSW_RW_MAP_MIN_NORM && w->mn_valid) {
-    for (i = 0; i < n && w->mn_avail[i] == in->avail[i]; i++) {
-    }
-    if (i < n) { w->mn_valid = 0; } /* another mask */
+    if (memcmp(w->mn_avail, avail, (size_t)n) != 0) { w->mn_valid = 0; } /* another mask */
   }
   if (cfg->mode == FSW_RW_MAP_MIN_NORM && w->mn_valid) {
     na = w->mn_na; /* A, idx, sy and k1 as formed for this mask */
     s = w->mn_geo;
   } else {
-    s = form_map(w, cfg, in, &na);
+    s = form_map(w, cfg, Omega, avail, &na);
     if (cfg->mode == FSW_RW_MAP_MIN_NORM) {
-      for (i = 0; i < n; i++) { w->mn_avail[i] = in->avail[i]; }
+      for (i = 0; i < n; i++) { w->mn_avail[i] = avail[i]; }
       w->mn_na = na;
       w->mn_geo = s;
       w->mn_valid = 1;
@@ -162,7 +163,7 @@ FswStatus fsw_rw_map_torques(FswRwMapState *st, const FswRwMapConfig *cfg,
   }
   if (s != FSW_OK) { return fsw_health_record(&st->health, s); }
 
-  for (j = 0; j < nc; j++) { b[j] = -fsw_v3_dot(cfg->ctrl_axes_B[j], in->Lr_B); }
+  for (j = 0; j < nc; j++) { b[j] = -fsw_v3_dot(cfg->ctrl_axes_B[j], Lr_B); }
   /* K1 judges rank by its pivot floor and by the delivered residual
    * (fsw_linalg.h); FSW_E_BAD_INPUT from it means b = -[C] Lr or the
    * solution overflows the real type (finite but huge Lr). */
@@ -170,10 +171,14 @@ FswStatus fsw_rw_map_torques(FswRwMapState *st, const FswRwMapConfig *cfg,
   if (s == FSW_E_SINGULAR) { return fsw_health_record(&st->health, FSW_W_SINGULAR); }
   if (s != FSW_OK) { return fsw_health_record(&st->health, FSW_E_BAD_INPUT); }
   for (j = 0; j < nc; j++) { r[j] = b[j] - fsw_vn_dot(w->A[j], w->x, na); }
-  if (fsw_minnorm_solve_factored(w->dx, &w->k1, FSW_CM3N(w->A), r) == FSW_OK) {
-    for (k = 0; k < na; k++) { w->x[k] += w->dx[k]; } }
+  /* the correction, when its solve succeeds, added in the output pass */
+  refine = 0;
+  if (fsw_minnorm_solve_factored(w->dx, &w->k1, FSW_CM3N(w->A), r) == FSW_OK) { refine = 1; }
   for (k = 0; k < na; k++) {
-    const fsw_real u = w->x[k] * w->sy[k];
+    fsw_real xk = w->x[k];
+    fsw_real u;
+    if (refine != 0) { xk += w->dx[k]; }
+    u = xk * w->sy[k];
     if (!isfinite(u)) { /* overflow of a finite request: bad input, u = 0 */
       fsw_rw_zero(out->u_s);
       return fsw_health_record(&st->health, FSW_E_BAD_INPUT);

@@ -12,14 +12,17 @@ extern "C" {
 #endif
 
 /* fsw_rw_map_update without its argument checks and its checks of the
- * wheels: the same output, status, scratch and health record for non-NULL
- * arguments and an input whose num_rw flags are each FSW_AVAILABLE or
- * FSW_UNAVAILABLE and (POWER mode) whose available wheels' speeds are
- * finite; anything else is the caller's error.  A state that is not ready
- * gives FSW_E_NOT_INIT and a non-finite Lr_B FSW_E_BAD_INPUT, as
+ * wheels, the input's members (FswRwMapIn's Lr_B, Omega and avail) read in
+ * place from the caller's arrays: the same output, status, scratch and
+ * health record for non-NULL arguments and an input whose num_rw flags are
+ * each FSW_AVAILABLE or FSW_UNAVAILABLE and (POWER mode) whose available
+ * wheels' speeds are finite; anything else is the caller's error (Omega is
+ * read in POWER mode only).  A state that is not ready gives
+ * FSW_E_NOT_INIT and a non-finite Lr_B FSW_E_BAD_INPUT, as
  * fsw_rw_map_update does. */
-FswStatus fsw_rw_map_torques(FswRwMapState *st, const FswRwMapConfig *cfg,
-                             const FswRwMapIn *in, FswRwMapOut *out);
+FswStatus fsw_rw_map_torques(FswRwMapState *st, const FswRwMapConfig *cfg, const fsw_real Lr_B[3],
+                             const fsw_real Omega[FSW_MAX_RW], const uint8_t avail[FSW_MAX_RW],
+                             FswRwMapOut *out);
 
 #ifdef __cplusplus
 }

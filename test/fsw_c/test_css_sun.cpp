@@ -611,7 +611,7 @@ TEST_F(CssSun, EstimateOfACheckedInputIsTheUpdate)
     }
     FswCssSunOut out_u{}, out_e{};
     const FswStatus su = fsw_css_sun_update(&st_u, &c, &in, &out_u);
-    const FswStatus se = fsw_css_sun_estimate(&st_e, &c, &in, &out_e);
+    const FswStatus se = fsw_css_sun_estimate(&st_e, &c, in.reading, in.avail, &out_e);
     ASSERT_EQ(su, se) << t;
     ASSERT_EQ(0, std::memcmp(&out_u, &out_e, sizeof out_u)) << t;
     ASSERT_EQ(0, std::memcmp(&st_u, &st_e, sizeof st_u)) << t;
@@ -623,7 +623,7 @@ TEST_F(CssSun, EstimateOfACheckedInputIsTheUpdate)
   FswCssSunIn in{};
   FswCssSunOut out{};
   out.sun_valid = 1;
-  EXPECT_EQ(FSW_E_NOT_INIT, fsw_css_sun_estimate(&idle, &c, &in, &out));
+  EXPECT_EQ(FSW_E_NOT_INIT, fsw_css_sun_estimate(&idle, &c, in.reading, in.avail, &out));
   EXPECT_EQ(0, out.sun_valid);
   EXPECT_EQ(1u, idle.health.calls);
 }

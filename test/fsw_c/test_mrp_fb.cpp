@@ -636,7 +636,7 @@ TEST(MrpFbTorque, TorqueOfACheckedInputIsTheUpdate)
       in.t_ns = t;
       FswMrpFbOut out_u{}, out_t{};
       const FswStatus su = fsw_mrp_fb_update(&st_u, &c, &in, &out_u);
-      const FswStatus stq = fsw_mrp_fb_torque(&st_t, &c, &in, &out_t);
+      const FswStatus stq = fsw_mrp_fb_torque(&st_t, &c, &in.guid, in.t_ns, in.Omega, in.rw_avail, &out_t);
       ASSERT_EQ(su, stq) << run << " " << k;
       ASSERT_EQ(0, std::memcmp(&out_u, &out_t, sizeof out_u)) << run << " " << k;
       ASSERT_EQ(0, std::memcmp(&st_u, &st_t, sizeof st_u)) << run << " " << k;
@@ -661,7 +661,7 @@ TEST(MrpFbTorque, TorqueOfACheckedInputIsTheUpdate)
   FswMrpFbState idle{};
   FswMrpFbOut out{};
   out.torque_B[0] = FSW_R(1.0);
-  EXPECT_EQ(FSW_E_NOT_INIT, fsw_mrp_fb_torque(&idle, &c, &in, &out));
+  EXPECT_EQ(FSW_E_NOT_INIT, fsw_mrp_fb_torque(&idle, &c, &in.guid, in.t_ns, in.Omega, in.rw_avail, &out));
   EXPECT_EQ(FSW_R(0.0), out.torque_B[0]);
   EXPECT_EQ(1u, idle.health.calls);
 }

@@ -694,7 +694,7 @@ TEST(RwMapTorques, TorquesOfACheckedInputAreTheUpdate)
         fsw_rw_map_reset(g.st.get());
       }
       const FswStatus su = f.update();
-      const FswStatus st = fsw_rw_map_torques(g.st.get(), g.cfg.get(), g.in.get(), g.out.get());
+      const FswStatus st = fsw_rw_map_torques(g.st.get(), g.cfg.get(), g.in->Lr_B, g.in->Omega, g.in->avail, g.out.get());
       ASSERT_EQ(su, st) << set << " " << k;
       ASSERT_EQ(0, std::memcmp(f.out.get(), g.out.get(), sizeof(FswRwMapOut))) << set << " " << k;
       ASSERT_EQ(0, std::memcmp(f.st.get(), g.st.get(), sizeof(FswRwMapState))) << set << " " << k;
@@ -709,7 +709,7 @@ TEST(RwMapTorques, TorquesOfACheckedInputAreTheUpdate)
   Fixture f = pyramid();
   auto idle = rwt::make0<FswRwMapState>();
   f.fill_out_with_garbage();
-  EXPECT_EQ(FSW_E_NOT_INIT, fsw_rw_map_torques(idle.get(), f.cfg.get(), f.in.get(), f.out.get()));
+  EXPECT_EQ(FSW_E_NOT_INIT, fsw_rw_map_torques(idle.get(), f.cfg.get(), f.in->Lr_B, f.in->Omega, f.in->avail, f.out.get()));
   expect_all_zero(*f.out);
   EXPECT_EQ(1u, idle->health.calls);
 }

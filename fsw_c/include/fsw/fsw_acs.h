@@ -147,8 +147,6 @@ typedef struct {
 typedef struct {
   FswRwSpeedFilterIn filt_in;
   FswRwSpeedFilterOut filt_out;
-  fsw_real Omega[FSW_MAX_RW];     /* wheel speeds the stages use (screened or raw)  */
-  uint8_t rw_avail[FSW_MAX_RW];   /* wheel availability the stages use              */
   /* The wheel torque the last call wrote and whether it was applied over the
    * whole interval since (a good cycle with wheels active); an error cycle or
    * a thruster cycle clears u_last_valid, so the speed filter's torque window
