@@ -55,9 +55,9 @@ TEST(FswAcsSave, TagAndSize)
   ASSERT_EQ(FSW_OK, fsw_acs_init(&g_a, &g_cfg, nullptr));
   ASSERT_EQ(FSW_OK, fsw_acs_save(&g_a, buf.data(), buf.size(), &len));
   EXPECT_EQ(buf.size(), len);
-  // the tag, little-endian: "KFSW", version 1, the state's and the real's sizes
+  // the tag, little-endian: "KFSW", version 2, the state's and the real's sizes
   EXPECT_EQ(0, std::memcmp(buf.data(), "KFSW", 4));
-  EXPECT_EQ(1u, buf[4] | buf[5] << 8 | buf[6] << 16 | unsigned(buf[7]) << 24);
+  EXPECT_EQ(2u, buf[4] | buf[5] << 8 | buf[6] << 16 | unsigned(buf[7]) << 24);
   EXPECT_EQ(sizeof(FswAcsState), size_t(buf[8] | buf[9] << 8 | buf[10] << 16 | unsigned(buf[11]) << 24));
   EXPECT_EQ(sizeof(fsw_real), size_t(buf[12]));
   EXPECT_EQ(0, std::memcmp(buf.data() + 16, &g_a, sizeof g_a));

@@ -28,7 +28,7 @@ extern "C" {
 #endif
 
 #define FSW_ACS_SAVE_MAGIC 0x5753464Bu /* "KFSW" little-endian */
-#define FSW_ACS_SAVE_VERSION 1u
+#define FSW_ACS_SAVE_VERSION 2u /* 2: FswAcsWork without its own copies of the speeds and flags */
 #define FSW_ACS_SAVE_TAG_BYTES 16u
 
 /* Bytes of a saved image: the tag and sizeof(FswAcsState). */
