@@ -19,8 +19,11 @@ ALLOW_UNDEFINED = [
     r"(sqrt|fabs|sin|cos|tan|asin|acos|atan|atan2|floor|ceil|rint|nearbyint|lrint|"
     r"frexp|ldexp|fmod|exp|log|pow|hypot|copysign|fmin|fmax|trunc|round)f?",
     r"__(fpclassify|finite|isinf|isnan|signbit)[fdl]?",
-    # memory block functions the compiler may emit for struct copies
+    # memory block functions the compiler may emit for struct copies; bcmp
+    # is clang's lowering of a memcmp(...) == 0 test on hosts whose C
+    # library has it (the same comparison, nothing more)
     r"mem(cpy|set|move|cmp)",
+    r"bcmp",
     r"__aeabi_mem(cpy|set|move|clr)[48]?",
     # compiler runtime helpers (soft float, 64-bit division, ...)
     r"__aeabi_\w+",
