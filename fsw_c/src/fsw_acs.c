@@ -1330,23 +1330,20 @@ FswStatus fsw_acs_cycle(FswAcsState *st, const FswAcsConfig *cfg, const FswAcsSe
   /* 2b. Wheel speeds and availability for every stage: screened by the
    *     speed filter (in either actuation; the torque it is told of is
    *     last cycle's, known only after a good cycle with wheels active). */
-  if (cfg->has_wheels) {
-    const int n = cfg->rw_map.num_rw;
-    if (cfg->use_speed_filter) {
+  if (cfg->has_wheels && cfg->use_speed_filter) {
 #if FSW_CFG_SPEED_FILTER
-      r_copy(w->filt_in.Omega_meas, sens->Omega, n);
-      u8_copy(w->filt_in.avail, sens->rw_avail, n);
-      w->filt_in.t_ns = sens->t_ns;
-      r_copy(w->filt_in.u_applied, w->u_last, n);
-      w->filt_in.u_valid = u_known;
-      /* OK: its inputs were validated above */
-      acc = combine(acc, fsw_rw_speed_filter_update(&st->speed_filter, &cfg->speed_filter, &w->filt_in, &w->filt_out));
+    const int n = cfg->rw_map.num_rw;
+    r_copy(w->filt_in.Omega_meas, sens->Omega, n);
+    u8_copy(w->filt_in.avail, sens->rw_avail, n);
+    w->filt_in.t_ns = sens->t_ns;
+    r_copy(w->filt_in.u_applied, w->u_last, n);
+    w->filt_in.u_valid = u_known;
+    /* OK: its inputs were validated above */
+    acc = combine(acc, fsw_rw_speed_filter_update(&st->speed_filter, &cfg->speed_filter, &w->filt_in, &w->filt_out));
 #else
-      (void)u_known; /* not reached: fsw_acs_check rejects the stage */
-      (void)n;
+    (void)u_known; /* not reached: fsw_acs_check rejects the stage */
 #endif
-    } /* else: the sensors' speeds and flags, read in place (wheel_speeds) */
-  }
+  } /* else: the sensors' speeds and flags, read in place (wheel_speeds) */
 
   if (cfg->has_wheels) /* telemetry: mrp_fb's wheel set, available wheels */ {
     fsw_rw_momentum(h->h_w_B, cfg->mrp_fb.gs_hat_B, cfg->mrp_fb.J_s, wheel_speeds(st, cfg, sens),
