@@ -5,6 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <random>
 
 #include <yaml-cpp/yaml.h>
 
@@ -41,6 +45,154 @@ TEST(YamlReader, DecodesTypesAndLeavesAbsentKeysUnset)
   EXPECT_FALSE(r.real("absent").has_value());
   r.finish();
   EXPECT_TRUE(d.issues.empty());
+}
+
+// decode_double reads a plain decimal literal without yaml-cpp's stream:
+// the value must be the stream's, bit for bit.  The oracle is yaml-cpp's own
+// conversion (YAML::convert<double>), an implementation independent of the
+// fast path; the texts are the kinds a scenario or a manifest holds (the
+// shortest round trip, 17 digits, fixed and exponent forms, integers) from
+// random bit patterns, and the edges of the grammar.
+TEST(YamlReader, PlainDecimalsReadAsYamlCppsConversionBitForBit)
+{
+  auto bits = [](double x) {
+    uint64_t u = 0;
+    std::memcpy(&u, &x, sizeof u);
+    return u;
+  };
+  auto same_as_yaml_cpp = [&](const std::string& t) {
+    double fast = 0.0, slow = 0.0;
+    const bool f = harness::plain_decimal_value(t, fast);
+    const bool sl = YAML::convert<double>::decode(YAML::Node(t), slow);
+    double d = 0.0;
+    const bool dd = harness::decode_double(YAML::Node(t), d);
+    if (f) {  // taken: yaml-cpp reads the same double
+      EXPECT_TRUE(sl) << t;
+      EXPECT_EQ(bits(fast), bits(slow)) << t;
+    }
+    EXPECT_EQ(dd, sl && !t.empty()) << t;  // decode_double as before
+    if (dd && sl && !std::isnan(slow)) {
+      EXPECT_EQ(bits(d), bits(slow)) << t;
+    }
+    return f;
+  };
+  std::mt19937_64 g(20261207);
+  int taken = 0, n = 0;
+  for (int i = 0; i < 20000; ++i) {
+    double x = 0.0;
+    const uint64_t u = g();
+    std::memcpy(&x, &u, sizeof x);
+    if (!std::isfinite(x)) continue;
+    const double y = std::ldexp(static_cast<double>(g() >> 11), -53) * 2e3 - 1e3;  // the range of most keys
+    char b[64];
+    for (double v : {x, y}) {
+      for (const char* f : {"%.17g", "%.6g", "%.3e", "%.10f", "%.1E", "%+.12g"}) {
+        std::snprintf(b, sizeof b, f, v);
+        taken += same_as_yaml_cpp(b) ? 1 : 0;
+        ++n;
+      }
+    }
+  }
+  EXPECT_GT(taken, n * 9 / 10);  // the fast path reads nearly all of them
+  for (const char* t : {"0", "-0", "+0", "0.0", "-0.0", "1", "+1.5", "-2.25", ".5", "-.5", "5.", "007", "1e5", "1E-5",
+                        "1e+5", "2.5e-3", "2.2250738585072014e-308", "1.7976931348623157e308",
+                        "9007199254740993", "0.1", "3.141592653589793238462643383279"})
+    EXPECT_TRUE(same_as_yaml_cpp(t)) << t;
+  for (const char* t : {"", "+", "-", ".", "e5", "1e", "1e+", "1.2.3", " 1", "1 ", "0x1p3", "inf", ".inf", "-.inf",
+                        ".nan", "nan", "1_000", "1,5", "true", "1e400", "-1e400", "--1", "+-1", "1e5.0"})
+    EXPECT_FALSE(same_as_yaml_cpp(t)) << t;
+  for (const char* t : {"4.9406564584124654e-324", "1e-310", "1e-400", "-1e-400"})  // subnormal, underflow: either path
+    same_as_yaml_cpp(t);
+}
+
+// The reload's tree writes a number as dump() does, without a serializer.
+TEST(YamlReader, JsonScalarTextIsDumpsText)
+{
+  std::mt19937_64 g(7);
+  for (int i = 0; i < 20000; ++i) {
+    double x = 0.0;
+    const uint64_t u = g();
+    std::memcpy(&x, &u, sizeof x);
+    for (const nlohmann::json& j : {nlohmann::json(x), nlohmann::json(static_cast<double>(static_cast<int32_t>(u))),
+                                    nlohmann::json(static_cast<int64_t>(u)), nlohmann::json(u),
+                                    nlohmann::json(std::ldexp(static_cast<double>(u >> 11), -60))})
+      ASSERT_EQ(harness::json_scalar_text(j), j.dump()) << j.dump();
+  }
+  for (const nlohmann::json& j : {nlohmann::json(0.0), nlohmann::json(-0.0), nlohmann::json(1e-5), nlohmann::json(100.0),
+                                  nlohmann::json(1e21), nlohmann::json(5e-324), nlohmann::json(1.7976931348623157e308),
+                                  nlohmann::json(std::nan("")), nlohmann::json(HUGE_VAL), nlohmann::json(true),
+                                  nlohmann::json(false), nlohmann::json(0), nlohmann::json(-1), nlohmann::json(INT64_MIN),
+                                  nlohmann::json(UINT64_MAX), nlohmann::json(nullptr), nlohmann::json("1.5")})
+    EXPECT_EQ(harness::json_scalar_text(j), j.dump()) << j.dump();
+}
+
+namespace {
+// The kind, a scalar's text, a map's keys in order, each element.
+::testing::AssertionResult same_tree(const YAML::Node& a, const YAML::Node& b, const std::string& at = "")
+{
+  if (a.Type() != b.Type()) return ::testing::AssertionFailure() << at << ": kind";
+  if (a.IsScalar() && a.Scalar() != b.Scalar())
+    return ::testing::AssertionFailure() << at << ": '" << a.Scalar() << "' against '" << b.Scalar() << "'";
+  if (a.IsSequence() || a.IsMap()) {
+    if (a.size() != b.size()) return ::testing::AssertionFailure() << at << ": size";
+    if (a.IsSequence()) {
+      for (size_t i = 0; i < a.size(); ++i)
+        if (auto r = same_tree(a[i], b[i], at + "[" + std::to_string(i) + "]"); !r) return r;
+    } else {
+      auto ib = b.begin();
+      for (auto ia = a.begin(); ia != a.end(); ++ia, ++ib) {
+        if (ia->first.Scalar() != ib->first.Scalar()) return ::testing::AssertionFailure() << at << ": keys";
+        if (auto r = same_tree(ia->second, ib->second, at + "." + ia->first.Scalar()); !r) return r;
+      }
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+}  // namespace
+
+// The kept tree of a sequence of documents is, after each, the tree built
+// anew from that document; documents of the kept shape reuse it, others
+// rebuild it; lookups of absent keys between documents change nothing.
+TEST(YamlReader, TheKeptTreeIsTheTreeOfEachDocument)
+{
+  harness::KeptYamlTree kept;
+  nlohmann::json j = nlohmann::json::parse(
+      R"({"a": 1.5, "b": {"c": [1, 2, 3], "d": "text", "e": null, "f": true, "g": -0.0}, "h": [{"i": 7}, {"i": 8}]})");
+  auto check = [&](const nlohmann::json& doc, uint64_t built, uint64_t reused, const std::string& what) {
+    const YAML::Node& t = kept.tree_of(doc);
+    EXPECT_TRUE(same_tree(t, harness::yaml_of_json(doc))) << what;
+    EXPECT_EQ(kept.built(), built) << what;
+    EXPECT_EQ(kept.reused(), reused) << what;
+    YAML::Node m = t;  // a reader's non-const lookups of absent keys
+    (void)m["absent"];
+    (void)m["b"]["absent too"];
+  };
+  check(j, 1, 0, "first");
+  check(j, 1, 1, "the same");
+  j["a"] = 2.25;
+  j["b"]["c"][1] = -4;
+  j["b"]["d"] = "other";
+  check(j, 1, 2, "numbers and a string");
+  j["b"]["g"] = 0.0;  // written 0.0, not -0.0
+  j["b"]["f"] = false;
+  j["h"][1]["i"] = 8.5;  // integer to double
+  j["b"]["d"] = 3;       // string to number
+  check(j, 1, 3, "bits, booleans and kinds of scalar");
+  j["b"]["c"].push_back(4);
+  check(j, 2, 3, "a list grown");
+  j["b"]["e"] = 1.0;
+  check(j, 3, 3, "null to a number");
+  j["b"]["e"] = nullptr;
+  check(j, 4, 3, "a number to null");
+  j["b"].erase("f");
+  j["b"]["z"] = true;
+  check(j, 5, 3, "a key dropped, another added");
+  nlohmann::json k = j;
+  k["b"] = nlohmann::json::array({1, 2});
+  check(k, 6, 3, "a map to a list");
+  check(j, 7, 3, "back");
+  j["a"] = 1e300;
+  check(j, 7, 4, "again in place");
 }
 
 TEST(YamlReader, IssuesCarryLineColumnAndKey)

@@ -231,6 +231,8 @@ int main(int argc, char** argv)
   bench->add_option("--mc-runs", bo.mc_runs, "runs of the Monte Carlo cases (default 20)")->check(CLI::Range(1, 100000));
   bench->add_option("--mc-duration", bo.mc_duration, "[s] duration of the Monte Carlo cases' runs (default: s1-mc 600, s3-mc 300)")
       ->check(CLI::Range(1.0, 1e6));
+  bench->add_option("--mc-part", bo.mc_part, "the Monte Carlo cases' halves: both (default, the overhead printed), campaign or bare (only that half: time two processes against each other)")
+      ->check(CLI::IsMember({"both", "campaign", "bare"}));
   bench->add_flag("--callgrind", bo.callgrind, "also count instructions per tick under valgrind's callgrind (skipped without valgrind)");
   bench->add_flag("--once", bo.once, "run each case once, print nothing (what --callgrind counts)")->group("");
   try {

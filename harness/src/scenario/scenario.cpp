@@ -313,10 +313,11 @@ Scenario load_from_root(YAML::Node root, const std::string& file, const std::vec
   std::vector<ScenarioIssue> issues;
   Ctx ctx{file, &issues, {}};
   std::optional<CheckpointRef> from;
-  if (root.IsMap() && root["kestrel_manifest"].IsDefined()) {
+  const YAML::Node& croot = root;  // const lookups: an absent key is never added to the tree
+  if (root.IsMap() && croot["kestrel_manifest"].IsDefined()) {
     refuse_python_in_loop(ctx, root);
     from = read_from_checkpoint(ctx, root);
-    YAML::Node s = root["scenario"];
+    YAML::Node s = croot["scenario"];
     if (!s.IsDefined() || !s.IsMap()) {
       ctx.error(root, "scenario", "a manifest needs a 'scenario' map");
       throw ScenarioError(issues);
@@ -420,10 +421,13 @@ Scenario load_canonical_scenario_text(const std::string& text, const std::string
 
 Scenario reload_canonical_scenario(const Scenario& sc, const std::string& file_name)
 {
-  const nlohmann::json j = scenario_to_json(sc);
+  nlohmann::json j = scenario_to_json(sc);
   if (j.dump(2).size() > kMaxYamlBytes)  // as load_canonical_scenario_text of the writer's text
     throw ScenarioError({file_issue(file_name, 0, 0, "longer than " + std::to_string(kMaxYamlBytes) + " bytes")});
-  return load_from_root(yaml_of_json(j), file_name, {}, false);
+  // A campaign's draws reload one after the other on each worker thread:
+  // the tree of the last one, its changed scalars set, is this one's.
+  thread_local KeptYamlTree kept;
+  return load_from_root(kept.tree_of(std::move(j)), file_name, {}, false);
 }
 
 Scenario load_scenario(const std::string& path, const std::vector<Override>& overrides)

@@ -52,6 +52,15 @@ std::string fmt(double v);
 std::string join(const std::string& path, const std::string& key);
 // Decoders that refuse non-scalars (and, for reals, empty scalars).
 bool decode_double(const YAML::Node& n, double& out);
+// A plain decimal literal (an optional sign, digits with at most one '.',
+// at least one digit, an optional exponent e/E with optional sign and
+// digits), read to a finite double: true and out set.  That value is the one
+// yaml-cpp's stream conversion gives the same text in the "C" locale (its
+// num_get collects these characters and hands them to strtod; from_chars
+// rounds to nearest as strtod does), found without a stream: decode_double
+// takes it first.  Anything else (.inf, .nan, spaces, hexadecimal, a value
+// beyond the double range) is false and left to yaml-cpp.
+bool plain_decimal_value(const std::string& s, double& out);
 bool decode_int(const YAML::Node& n, long long& out);
 // The known word nearest to `k` (edit distance < 3), or "".
 std::string did_you_mean(const std::string& k, const std::vector<std::string>& known);
@@ -88,6 +97,34 @@ std::vector<ScenarioIssue> check_yaml_text(const std::string& text, const std::s
 // dump writes for a number or a boolean and the unescaped string of a
 // string, null as a null node.  Only the marks differ (none: no line).
 YAML::Node yaml_of_json(const nlohmann::json& j);
+// yaml_of_json for a sequence of documents of one shape (a campaign's draws:
+// the same keys, lists and nulls, a few numbers apart), the tree kept
+// between them.  A document with the kept one's shape has the text of its
+// changed scalars set in the kept tree, in place (a node's memory is never
+// released before the tree's: a new node per draw would grow it); any other
+// document builds the tree anew.  Either way the tree is yaml_of_json(j)'s
+// (kind, scalar text, keys in order), valid until the next call.  Lookups
+// of absent keys through a non-const node add empty entries to the kept
+// tree that iteration and sizes skip; a reader doing the same lookups adds
+// them once.  One per thread: not shared.
+class KeptYamlTree {
+ public:
+  const YAML::Node& tree_of(nlohmann::json j);
+  uint64_t built() const { return built_; }    // trees built anew
+  uint64_t reused() const { return reused_; }  // documents set into the kept tree
+
+ private:
+  nlohmann::json json_;              // the document the tree holds
+  YAML::Node tree_;
+  std::vector<YAML::Node> leaves_;   // the tree's scalar and null nodes, in the document's order
+  bool kept_ = false;
+  uint64_t built_ = 0, reused_ = 0;
+};
+
+// The text j.dump() writes for a scalar (a number, a boolean; others by
+// dump() itself), without a serializer: a double by nlohmann's own shortest
+// round-trip routine (the one its serializer calls), an integer in decimal.
+std::string json_scalar_text(const nlohmann::json& j);
 
 // Where every key sits in a document: dotted path (list indices as [i]) ->
 // (line, column), 1-based.

@@ -127,6 +127,7 @@ struct BenchOptions {
   bool once = false;              // --once: one plain run of each case, nothing printed (callgrind's child)
   uint64_t mc_runs = 0;           // --mc-runs: the Monte Carlo cases' runs (0: their own, 20)
   double mc_duration = 0.0;       // --mc-duration [s]: their runs' duration (0: their own)
+  std::string mc_part = "both";   // --mc-part: both, campaign or bare (one half, to be timed as a process)
   std::string valgrind;           // set by cmd_bench
 };
 int cmd_bench(const std::string& dir, BenchOptions o, std::ostream& out, std::ostream& err);
