@@ -437,19 +437,28 @@ const YAML::Node& KeptYamlTree::tree_of(nlohmann::json j)
   std::vector<std::pair<size_t, const nlohmann::json*>> changed;
   size_t leaf = 0;
   if (is_container(j) && kept_ && same_shape(json_, j, leaf, changed) && leaf == leaves_.size()) {
+    kept_ = false;  // until every changed scalar is set: an exception here leaves the tree to be built anew
     for (const auto& [i, v] : changed)  // a scalar's text set in place (no new node)
       leaves_[i] = v->is_string() ? v->get_ref<const std::string&>() : json_scalar_text(*v);
+    kept_ = true;
     ++reused_;
   } else {
+    kept_ = false;
+    // The old tree goes whole with its memory: assigning a new node to the
+    // old handle would make yaml-cpp keep the old nodes in the new tree's memory.
     leaves_.clear();
-    tree_ = YAML::Node(j.is_object() ? YAML::NodeType::Map : YAML::NodeType::Sequence);
-    if (is_container(j)) fill_yaml(tree_, j, &leaves_);
-    else tree_ = yaml_scalar_of_json(j);
+    tree_.reset();
+    if (is_container(j)) {
+      tree_.emplace(j.is_object() ? YAML::NodeType::Map : YAML::NodeType::Sequence);
+      fill_yaml(*tree_, j, &leaves_);
+    } else {
+      tree_.emplace(yaml_scalar_of_json(j));
+    }
     kept_ = is_container(j);
     ++built_;
   }
   json_ = std::move(j);
-  return tree_;
+  return *tree_;
 }
 
 void collect_key_lines(const YAML::Node& n, const std::string& path, std::map<std::string, std::pair<int, int>>& out)

@@ -115,7 +115,7 @@ class KeptYamlTree {
 
  private:
   nlohmann::json json_;              // the document the tree holds
-  YAML::Node tree_;
+  std::optional<YAML::Node> tree_;   // replaced whole, never assigned (see tree_of)
   std::vector<YAML::Node> leaves_;   // the tree's scalar and null nodes, in the document's order
   bool kept_ = false;
   uint64_t built_ = 0, reused_ = 0;
