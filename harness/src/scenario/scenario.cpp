@@ -307,23 +307,28 @@ std::optional<CheckpointRef> read_from_checkpoint(const Ctx& ctx, const YAML::No
   return ref;
 }
 
-Scenario load_from_root(YAML::Node root, const std::string& file, const std::vector<Override>& overrides,
+// A manifest's scenario map (its checkpoint, if any, to `from`), or the
+// document itself.  Const lookups: an absent key is never added to the tree.
+YAML::Node scenario_of_document(Ctx& ctx, const YAML::Node& document, std::optional<CheckpointRef>& from)
+{
+  if (!document.IsMap() || !document["kestrel_manifest"].IsDefined()) return document;
+  refuse_python_in_loop(ctx, document);
+  from = read_from_checkpoint(ctx, document);
+  YAML::Node s = document["scenario"];
+  if (!s.IsDefined() || !s.IsMap()) {
+    ctx.error(document, "scenario", "a manifest needs a 'scenario' map");
+    throw ScenarioError(*ctx.issues);
+  }
+  return s;
+}
+
+Scenario load_from_root(const YAML::Node& document, const std::string& file, const std::vector<Override>& overrides,
                         bool key_lines = true)
 {
   std::vector<ScenarioIssue> issues;
   Ctx ctx{file, &issues, {}};
   std::optional<CheckpointRef> from;
-  const YAML::Node& croot = root;  // const lookups: an absent key is never added to the tree
-  if (root.IsMap() && croot["kestrel_manifest"].IsDefined()) {
-    refuse_python_in_loop(ctx, root);
-    from = read_from_checkpoint(ctx, root);
-    YAML::Node s = croot["scenario"];
-    if (!s.IsDefined() || !s.IsMap()) {
-      ctx.error(root, "scenario", "a manifest needs a 'scenario' map");
-      throw ScenarioError(issues);
-    }
-    root = s;
-  }
+  YAML::Node root = scenario_of_document(ctx, document, from);  // a new handle: the document's node is not rebound
   for (const Override& o : overrides) {
     try {
       apply_override(ctx, root, o);
