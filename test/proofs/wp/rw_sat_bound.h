@@ -2,7 +2,7 @@
  * fsw_rw_sat_update runs after its checks and the application calls
  * directly (docs/eva.md, "WP proofs").
  * wp-target: rw_sat.c fsw_rw_sat_limit
- * wp-options: -wp-model Typed+real
+ * wp-options: -wp-model Typed+real -wp-timeout 60
  * The saturation bound of the wheel torque command: for a configuration
  * that check accepts, every output torque is within [-u_max_i, u_max_i]
  * whatever the input and the result (NaN inputs included), in both modes (SCALE and CLIP);
