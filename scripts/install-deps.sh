@@ -8,7 +8,7 @@ host_pkgs=(cmake ninja-build g++ gcc clang libgtest-dev googletest libbenchmark-
            cppcheck  # tools/misra_check.py: MISRA C:2012 of the flight code (docs/misra-deviations.md)
            libeigen3-dev binutils python3 pkgconf libyaml-cpp-dev libhdf5-dev libcli11-dev nlohmann-json3-dev
            nodejs chromium python3-h5py lcov  # report: npm bundle at build time, headless test
-           clang-19 llvm-19  # coverage preset: MC/DC of the flight library (-fcoverage-mcdc, llvm-cov; docs/coverage.md)
+           clang-19 llvm-19 libclang-rt-19-dev  # coverage preset: MC/DC of the flight library (-fcoverage-mcdc, llvm-cov, its profile runtime; docs/coverage.md)
            socat  # HWIL: the serial link tested over a pseudo-terminal pair
            valgrind  # kestrel bench --callgrind: instructions per tick (docs/performance.md)
            make xz-utils  # cFS closed loop: cFS builds with make; its bundle is a .tar.xz (docs/hwil.md, "cFS")
