@@ -91,15 +91,18 @@ bool same_shape(const nlohmann::json& a, const nlohmann::json& b, size_t& leaf,
   return true;
 }
 
-}  // namespace
-
-YAML::Node yaml_of_json(const nlohmann::json& j)
+// The tree of j; leaves as fill_yaml's.
+YAML::Node tree_of_json(const nlohmann::json& j, std::vector<YAML::Node>* leaves)
 {
   if (!is_container(j)) return yaml_scalar_of_json(j);
   YAML::Node root(j.is_object() ? YAML::NodeType::Map : YAML::NodeType::Sequence);
-  fill_yaml(root, j, nullptr);
+  fill_yaml(root, j, leaves);
   return root;
 }
+
+}  // namespace
+
+YAML::Node yaml_of_json(const nlohmann::json& j) { return tree_of_json(j, nullptr); }
 
 const YAML::Node& KeptYamlTree::tree_of(nlohmann::json j)
 {
@@ -117,12 +120,7 @@ const YAML::Node& KeptYamlTree::tree_of(nlohmann::json j)
     // old handle would make yaml-cpp keep the old nodes in the new tree's memory.
     leaves_.clear();
     tree_.reset();
-    if (is_container(j)) {
-      tree_.emplace(j.is_object() ? YAML::NodeType::Map : YAML::NodeType::Sequence);
-      fill_yaml(*tree_, j, &leaves_);
-    } else {
-      tree_.emplace(yaml_scalar_of_json(j));
-    }
+    tree_.emplace(tree_of_json(j, &leaves_));
     kept_ = is_container(j);
     ++built_;
   }
