@@ -97,7 +97,16 @@ static FswStatus form_map(FswRwMapWork *w, const FswRwMapConfig *cfg, const fsw_
     for (k = 0; k < na; k++) {
       const fsw_real m = fsw_v3_dot(cfg->ctrl_axes_B[j], cfg->gs_hat_B[w->idx[k]]);
       d += m * m;
-      w->A[j][k] = m * w->sy[k];
+      /* POWER: the weights scale the columns against each other without
+       * bound (a speed whose square overflows weighs 0), so a pair at
+       * rounding level (|c . g| <= sqrt(FSW_RANK_TOL), the floor below)
+       * could outweigh the real geometry in K1 and carry the torque: such
+       * a pair weighs nothing. */
+      if ((cfg->mode == FSW_RW_MAP_POWER) && !((m * m) > FSW_RANK_TOL)) {
+        w->A[j][k] = FSW_R(0.0);
+      } else {
+        w->A[j][k] = m * w->sy[k];
+      }
     }
     if (d > d_max) { d_max = d; }
   }

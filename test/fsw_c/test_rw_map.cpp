@@ -596,6 +596,104 @@ TEST(RwMapIssue13, WheelNormalToTheOnlyAxisIsSingular)
   }
 }
 
+// Issue 42 (fuzz_fsw_rw_map, 2026-12-07): in POWER mode the weights
+// 1/sqrt(Omega^2 + eps_P) scale the columns of [C][Gs_a] against each other
+// without bound, so a wheel whose c . g is rounding noise could outweigh the
+// wheels that reach the axis and carry the torque.  The finding's pyramid
+// and control axis c = (1, 1, 0)/sqrt 2: wheels 0 and 2 reach it
+// (c . g = +-0.766) and spin at +-1e15 rad/s (weight 1e-15), wheel 1 is
+// exactly normal to it (c . g = 0) and wheel 3 normal up to rounding
+// (c . g = -1.6e-16 in double) at rest (weight about 1).  Before, wheel 3
+// took part of the request at about 1e13 N m and the torque was off by
+// percents.  Now a pair below the floor weighs nothing, and the two wheels
+// that reach the axis share it: equal weights, so u_0 = -u_2 =
+// b / (m_0^2 + m_2^2) m_0 with b = -c . Lr, independent of the weight
+// (exact geometry in long double).  And the finding itself, with speeds
+// whose squares overflow (weight 0): no wheel can deliver, W_SINGULAR.
+// Verifies: REQ-RWMAP-005
+TEST(RwMapIssue42, PowerWeightsNeverPutTheTorqueOnAWheelAtRoundingLevel)
+{
+  const double g[4][3] = {{0.54167522041970195, 0.54167522041970195, 0.64278760968653936},
+                          {-0.54167522041970195, 0.54167522041970195, 0.64278760968653936},
+                          {-0.54167522041970195, -0.54167522041970184, 0.64278760968653925},
+                          {0.54167522041970184, -0.54167522041970206, 0.64278760968653936}};
+  const double r2 = 0.70710678118654746;
+  const auto setup = [&](Fixture &f) {
+    f.setup(g, 4, FSW_RW_MAP_POWER);
+    f.cfg->num_axes = 1;
+    f.cfg->ctrl_axes_B[0][0] = static_cast<fsw_real>(r2);
+    f.cfg->ctrl_axes_B[0][1] = static_cast<fsw_real>(r2);
+    f.cfg->ctrl_axes_B[0][2] = 0;
+    f.cfg->eps_P = 1;
+    ASSERT_EQ(f.init(), FSW_OK);
+    f.set_Lr(0.01, -0.02, 0.005);
+  };
+  {
+    Fixture f;
+    setup(f);
+    const double speeds[4] = {1e15, -80.0, -1e15, -4e-5};
+    for (int i = 0; i < 4; i++) f.in->Omega[i] = static_cast<fsw_real>(speeds[i]);
+    f.fill_out_with_garbage();
+    ASSERT_EQ(f.update(), FSW_OK);
+    long double m[4], b = 0;
+    for (int i = 0; i < 4; i++) {
+      m[i] = 0;
+      for (int k = 0; k < 3; k++)
+        m[i] += static_cast<long double>(f.cfg->ctrl_axes_B[0][k]) * static_cast<long double>(f.cfg->gs_hat_B[i][k]);
+    }
+    for (int k = 0; k < 3; k++) b -= static_cast<long double>(f.cfg->ctrl_axes_B[0][k]) * static_cast<long double>(f.in->Lr_B[k]);
+    const long double u0 = b * m[0] / (m[0] * m[0] + m[2] * m[2]), u2 = b * m[2] / (m[0] * m[0] + m[2] * m[2]);
+    EXPECT_NEAR(f.out->u_s[0], static_cast<double>(u0), kt::tol(1e-12, 1e-5) * std::fabs(static_cast<double>(u0)));
+    EXPECT_NEAR(f.out->u_s[2], static_cast<double>(u2), kt::tol(1e-12, 1e-5) * std::fabs(static_cast<double>(u2)));
+    EXPECT_EQ(f.out->u_s[1], 0.0);
+    EXPECT_EQ(f.out->u_s[3], 0.0);
+    // the torque the wheels deliver about c with the exact geometry is the request
+    long double got = 0;
+    for (int i = 0; i < 4; i++) got += m[i] * static_cast<long double>(f.out->u_s[i]);
+    EXPECT_NEAR(static_cast<double>(got), static_cast<double>(b), kt::tol(1e-12, 1e-5) * std::fabs(static_cast<double>(b)));
+  }
+  {
+    Fixture f;
+    setup(f);
+    // the finding's speeds: the squares of wheels 0 and 2 overflow (weight 0)
+    const fsw_real big = std::numeric_limits<fsw_real>::max();
+    const fsw_real speeds[4] = {big, static_cast<fsw_real>(-80.0), -big, static_cast<fsw_real>(-4e-5)};
+    for (int i = 0; i < 4; i++) f.in->Omega[i] = speeds[i];
+    f.fill_out_with_garbage();
+    EXPECT_EQ(f.update(), FSW_W_SINGULAR);
+    expect_all_zero(*f.out);
+  }
+}
+
+// The rule of the test above in closed form, and that it is POWER's only:
+// one control axis c = x, wheel 0 at g = (1e-7, sqrt(1 - 1e-14), 0)
+// (c . g = 1e-7: below the floor 1e-6 (double) and 3.2e-3 (float)), wheel 1
+// along x, both at rest, request b = -c . Lr = 2.  MIN_NORM keeps the
+// small pair: u = b (1e-7, 1) / (1 + 1e-14).  POWER (equal weights) leaves
+// wheel 0 out: u = (0, 2).
+// Verifies: REQ-RWMAP-002, REQ-RWMAP-003
+TEST(RwMapIssue42, APairBelowTheFloorWeighsNothingInPowerModeOnly)
+{
+  const double g[2][3] = {{1e-7, std::sqrt(1.0 - 1e-14), 0.0}, {1.0, 0.0, 0.0}};
+  for (int mode : {FSW_RW_MAP_MIN_NORM, FSW_RW_MAP_POWER}) {
+    Fixture f;
+    f.setup(g, 2, mode);
+    f.cfg->num_axes = 1;
+    ASSERT_EQ(f.init(), FSW_OK) << mode;
+    f.set_Lr(-2.0, 0.0, 0.0);
+    f.fill_out_with_garbage();
+    ASSERT_EQ(f.update(), FSW_OK) << mode;
+    const double m0 = static_cast<double>(f.cfg->gs_hat_B[0][0]);  // c . g of wheel 0, exact
+    if (mode == FSW_RW_MAP_MIN_NORM) {
+      EXPECT_NEAR(f.out->u_s[0], 2.0 * m0 / (1.0 + m0 * m0), kt::tol(1e-15, 1e-6) * 2.0 * m0) << mode;
+      EXPECT_NEAR(f.out->u_s[1], 2.0 / (1.0 + m0 * m0), kt::tol(1e-15, 1e-6)) << mode;
+    } else {
+      EXPECT_EQ(f.out->u_s[0], 0.0) << mode;
+      EXPECT_NEAR(f.out->u_s[1], 2.0, kt::tol(1e-15, 1e-6)) << mode;
+    }
+  }
+}
+
 // ---- issue 21: a single wheel is a legal configuration ----------------------
 
 // One wheel g = (0.6, 0, 0.8) controlling the body z axis alone: A = [C][g]
