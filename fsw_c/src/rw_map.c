@@ -97,18 +97,21 @@ static FswStatus form_map(FswRwMapWork *w, const FswRwMapConfig *cfg, const fsw_
     for (k = 0; k < na; k++) {
       const fsw_real m = fsw_v3_dot(cfg->ctrl_axes_B[j], cfg->gs_hat_B[w->idx[k]]);
       d += m * m;
-      /* POWER: the weights scale the columns against each other without
-       * bound (a speed whose square overflows weighs 0), so a pair at
-       * rounding level (|c . g| <= sqrt(FSW_RANK_TOL), the floor below)
-       * could outweigh the real geometry in K1 and carry the torque: such
-       * a pair weighs nothing. */
-      if ((cfg->mode == FSW_RW_MAP_POWER) && !((m * m) > FSW_RANK_TOL)) {
-        w->A[j][k] = FSW_R(0.0);
-      } else {
-        w->A[j][k] = m * w->sy[k];
-      }
+      w->A[j][k] = m;
     }
     if (d > d_max) { d_max = d; }
+  }
+  /* POWER: the columns scaled by sqrt(y).  The weights scale them against
+   * each other without bound (a speed whose square overflows weighs 0), so
+   * a wheel that reaches no control axis beyond rounding (its column's sum
+   * of squares <= FSW_RANK_TOL, the floor below taken wheel by wheel) could
+   * outweigh the wheels that do and carry the torque: its column is 0. */
+  if (cfg->mode == FSW_RW_MAP_POWER) {
+    for (k = 0; k < na; k++) {
+      d = FSW_R(0.0);
+      for (j = 0; j < nc; j++) { d += w->A[j][k] * w->A[j][k]; }
+      for (j = 0; j < nc; j++) { w->A[j][k] = (d > FSW_RANK_TOL) ? (w->A[j][k] * w->sy[k]) : FSW_R(0.0); }
+    }
   }
   /* The geometry [C][Gs_a] is dimensionless (unit rows and columns, so
    * each entry is at most 1 in size): when every entry is at the rounding

@@ -605,7 +605,8 @@ TEST(RwMapIssue13, WheelNormalToTheOnlyAxisIsSingular)
 // exactly normal to it (c . g = 0) and wheel 3 normal up to rounding
 // (c . g = -1.6e-16 in double) at rest (weight about 1).  Before, wheel 3
 // took part of the request at about 1e13 N m and the torque was off by
-// percents.  Now a pair below the floor weighs nothing, and the two wheels
+// percents.  Now a wheel that reaches no control axis beyond rounding (its
+// column of [C][Gs_a] below the floor) weighs nothing, and the two wheels
 // that reach the axis share it: equal weights, so u_0 = -u_2 =
 // b / (m_0^2 + m_2^2) m_0 with b = -c . Lr, independent of the weight
 // (exact geometry in long double).  And the finding itself, with speeds
@@ -667,12 +668,12 @@ TEST(RwMapIssue42, PowerWeightsNeverPutTheTorqueOnAWheelAtRoundingLevel)
 
 // The rule of the test above in closed form, and that it is POWER's only:
 // one control axis c = x, wheel 0 at g = (1e-7, sqrt(1 - 1e-14), 0)
-// (c . g = 1e-7: below the floor 1e-6 (double) and 3.2e-3 (float)), wheel 1
-// along x, both at rest, request b = -c . Lr = 2.  MIN_NORM keeps the
-// small pair: u = b (1e-7, 1) / (1 + 1e-14).  POWER (equal weights) leaves
+// (its column c . g = 1e-7, squared 1e-14: below the floor FSW_RANK_TOL,
+// 1e-12 double and 1e-5 float), wheel 1 along x, both at rest, request
+// b = -c . Lr = 2.  MIN_NORM keeps the small entry: u = b (1e-7, 1) / (1 + 1e-14).  POWER (equal weights) leaves
 // wheel 0 out: u = (0, 2).
 // Verifies: REQ-RWMAP-002, REQ-RWMAP-003
-TEST(RwMapIssue42, APairBelowTheFloorWeighsNothingInPowerModeOnly)
+TEST(RwMapIssue42, AWheelBelowTheFloorWeighsNothingInPowerModeOnly)
 {
   const double g[2][3] = {{1e-7, std::sqrt(1.0 - 1e-14), 0.0}, {1.0, 0.0, 0.0}};
   for (int mode : {FSW_RW_MAP_MIN_NORM, FSW_RW_MAP_POWER}) {
@@ -692,6 +693,35 @@ TEST(RwMapIssue42, APairBelowTheFloorWeighsNothingInPowerModeOnly)
       EXPECT_NEAR(f.out->u_s[1], 2.0, kt::tol(1e-15, 1e-6)) << mode;
     }
   }
+}
+
+// The floor is taken wheel by wheel, not entry by entry: a wheel that
+// reaches one axis keeps its small entry on the other.  Axes x and y,
+// wheel 0 at g = (5e-7, sqrt(1 - 2.5e-13), 0) (5e-7 about x: below
+// sqrt(FSW_RANK_TOL) in either real type), wheel 1 along x, both at rest,
+// b = (1, 1): wheel 0 delivers y (u_0 = 1 / g_0y) and 5e-7 u_0 about x,
+// which wheel 1 makes up.  The torque about both axes with the exact
+// geometry is the request within 1e-12 (double), 1e-5 (float); dropping
+// the small entry alone would leave 5e-7 of it undelivered.
+// Verifies: REQ-RWMAP-003, REQ-RWMAP-005
+TEST(RwMapIssue42, AWheelThatReachesOneAxisKeepsItsSmallEntryOnTheOther)
+{
+  const double g[2][3] = {{5e-7, std::sqrt(1.0 - 2.5e-13), 0.0}, {1.0, 0.0, 0.0}};
+  Fixture f;
+  f.setup(g, 2, FSW_RW_MAP_POWER);
+  f.cfg->num_axes = 2;
+  ASSERT_EQ(f.init(), FSW_OK);
+  f.set_Lr(-1.0, -1.0, 0.0);
+  f.fill_out_with_garbage();
+  ASSERT_EQ(f.update(), FSW_OK);
+  for (int j = 0; j < 2; j++) {
+    long double got = 0;
+    for (int i = 0; i < 2; i++) got += static_cast<long double>(f.cfg->gs_hat_B[i][j]) * static_cast<long double>(f.out->u_s[i]);
+    EXPECT_NEAR(static_cast<double>(got), 1.0, kt::tol(1e-12, 1e-5)) << "axis " << j;
+  }
+  EXPECT_NEAR(f.out->u_s[0], 1.0 / static_cast<double>(f.cfg->gs_hat_B[0][1]), kt::tol(1e-12, 1e-5));
+  EXPECT_NEAR(f.out->u_s[1], 1.0 - static_cast<double>(f.cfg->gs_hat_B[0][0]) * static_cast<double>(f.out->u_s[0]),
+              kt::tol(1e-12, 1e-5));
 }
 
 // ---- issue 21: a single wheel is a legal configuration ----------------------
