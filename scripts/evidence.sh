@@ -129,6 +129,11 @@ gate "Frama-C Eva / WP" "$st" "$(grep -E '^eva_check: [0-9]+ drivers' "$tmp/eva.
 if python3 tools/fuzz_counts.py report --root . >> "$tmp/fuzz.md" 2>&1; then st=PASS; else st=FAIL; fi
 gate "fuzzing" "$st" "$(grep -E '^fuzz_counts: ' "$tmp/fuzz.md" | tail -1 | sed 's/^fuzz_counts: //')"
 
+# Paths inside the clone are written relative to it (the coverage and stack
+# reports name files by absolute path), so that runs in two clones compare.
+root_dir=$(pwd -P)
+find "$tmp" -maxdepth 1 -type f -exec sed -i "s#$root_dir/##g" {} +
+
 # ---- index ----------------------------------------------------------------
 {
   echo "# Kestrel flight library: qualification evidence"
